@@ -1,0 +1,242 @@
+/* snell — real-time refractive glass on OpenGL ES 3.0 over EGL.
+ *
+ * Public API. Conventions (see DESIGN.md):
+ *  - every fallible call returns snell_status; snell_last_error() gives the detail;
+ *  - descriptor structs are zero-initialisable, zero means the documented default;
+ *  - objects are opaque; snell_xxx_create(ctx, &desc, &out) / snell_xxx_destroy(x);
+ *  - vectors are float[3], matrices float[16] column-major, angles in radians,
+ *    world space is right-handed with +Y up;
+ *  - the library never exits, aborts or prints (unless a log callback is given).
+ */
+#ifndef SNELL_SNELL_H
+#define SNELL_SNELL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SNELL_VERSION_MAJOR 0
+#define SNELL_VERSION_MINOR 1
+#define SNELL_VERSION_PATCH 0
+
+/* ------------------------------------------------------------------ status */
+typedef enum snell_status {
+    SNELL_OK = 0,
+    SNELL_E_INVALID_ARG,  /* a parameter is NULL, out of range or inconsistent */
+    SNELL_E_IO,           /* a file could not be opened or read/written */
+    SNELL_E_PARSE,        /* a file's content is malformed */
+    SNELL_E_GL,           /* a GL call, shader compile or link failed */
+    SNELL_E_EGL,          /* no EGL display/config/context could be made */
+    SNELL_E_UNSUPPORTED,  /* a needed extension or feature is missing */
+    SNELL_E_NOMEM,        /* an allocation failed or a size is absurd */
+    SNELL_E_LIMIT         /* input exceeds a documented limit */
+} snell_status;
+
+/* Name of a status code ("SNELL_E_PARSE"). Never NULL. */
+const char *snell_status_str(snell_status s);
+
+typedef struct snell_ctx snell_ctx;
+typedef struct snell_mesh snell_mesh;
+typedef struct snell_env snell_env;
+typedef struct snell_renderer snell_renderer;
+
+/* Detailed message of the last failure. With ctx == NULL: the last failure on
+ * this thread of a call that had no context (or of snell_ctx_create). */
+const char *snell_last_error(const snell_ctx *ctx);
+
+/* ------------------------------------------------------------- allocation */
+typedef struct snell_allocator {
+    void *(*alloc)(size_t size, void *user);               /* NULL: malloc */
+    void *(*realloc)(void *ptr, size_t size, void *user);  /* NULL: realloc */
+    void (*free)(void *ptr, void *user);                   /* NULL: free */
+    void *user;
+} snell_allocator;
+
+/* ---------------------------------------------------------------- logging */
+typedef enum snell_log_level {
+    SNELL_LOG_DEBUG = 0,
+    SNELL_LOG_INFO,
+    SNELL_LOG_WARN,
+    SNELL_LOG_ERROR
+} snell_log_level;
+
+typedef void (*snell_log_fn)(snell_log_level level, const char *msg, void *user);
+
+/* ---------------------------------------------------------------- context */
+typedef enum snell_backend {
+    SNELL_BACKEND_DEFAULT = 0,  /* SURFACELESS, which itself falls back to a pbuffer */
+    SNELL_BACKEND_SURFACELESS,  /* EGL_MESA_platform_surfaceless + EGL_KHR_surfaceless_context */
+    SNELL_BACKEND_PBUFFER,      /* any EGL display, 1x1 pbuffer surface */
+    SNELL_BACKEND_EXTERNAL      /* the caller's current GLES 3.0 context; GL state is restored */
+} snell_backend;
+
+typedef struct snell_ctx_desc {
+    snell_backend backend;
+    snell_allocator allocator;
+    snell_log_fn log;          /* receives library messages and KHR_debug output */
+    void *log_user;
+    int gl_debug;              /* nonzero: request a debug context, install KHR_debug callback */
+} snell_ctx_desc;
+
+snell_status snell_ctx_create(const snell_ctx_desc *desc, snell_ctx **out);
+void snell_ctx_destroy(snell_ctx *ctx);
+/* The backend actually in use (SURFACELESS may have fallen back to PBUFFER). */
+snell_backend snell_ctx_backend(const snell_ctx *ctx);
+const char *snell_backend_str(snell_backend b);
+/* Nonzero if the current GL context advertises the extension (exact token). */
+int snell_ctx_has_gl_extension(const snell_ctx *ctx, const char *name);
+/* GL_RENDERER string of the context. */
+const char *snell_ctx_gl_renderer(const snell_ctx *ctx);
+
+/* ------------------------------------------------------------------- mesh */
+/* Meshes are CPU data (positions, smooth normals, triangle indices) plus GPU
+ * buffers created lazily on first draw. ctx may be NULL for CPU-only use
+ * (loaders, reference tracer); GPU drawing then needs snell_mesh_create with a ctx. */
+typedef struct snell_mesh_desc {
+    const float *positions;    /* 3 * vertex_count, object space */
+    const float *normals;      /* optional: 3 * vertex_count; NULL = smooth normals computed */
+    const uint32_t *indices;   /* 3 * triangle_count; NULL = non-indexed triangles */
+    uint32_t vertex_count;
+    uint32_t triangle_count;   /* with indices == NULL: vertex_count / 3 */
+} snell_mesh_desc;
+
+snell_status snell_mesh_create(snell_ctx *ctx, const snell_mesh_desc *desc, snell_mesh **out);
+void snell_mesh_destroy(snell_mesh *mesh);
+
+/* Loaders. snell_mesh_load picks OBJ or glTF (.gltf/.glb) by file extension. */
+snell_status snell_mesh_load(snell_ctx *ctx, const char *path, snell_mesh **out);
+snell_status snell_mesh_load_obj(snell_ctx *ctx, const char *path, snell_mesh **out);
+snell_status snell_mesh_load_obj_mem(snell_ctx *ctx, const char *data, size_t size, snell_mesh **out);
+/* glTF 2.0 (.gltf with external/embedded buffers, or .glb): every triangle primitive
+ * of the default scene, node transforms applied. SNELL_E_UNSUPPORTED if built without. */
+snell_status snell_mesh_load_gltf(snell_ctx *ctx, const char *path, snell_mesh **out);
+snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_mesh **out);
+
+typedef enum snell_shape {
+    SNELL_SHAPE_SPHERE = 0,  /* UV sphere, radius 1 */
+    SNELL_SHAPE_CUBE,        /* cube [-1,1]^3, flat faces (24 vertices) */
+    SNELL_SHAPE_TORUS,       /* major radius 1, minor radius 0.4, around +Y */
+    SNELL_SHAPE_GOBLET       /* closed lathe goblet (concave bowl, stem, foot), height 2 */
+} snell_shape;
+
+typedef struct snell_shape_desc {
+    snell_shape shape;
+    int segments;            /* around the axis; 0 = 64 */
+    int rings;               /* along the profile; 0 = 32 */
+} snell_shape_desc;
+
+snell_status snell_mesh_create_shape(snell_ctx *ctx, const snell_shape_desc *desc, snell_mesh **out);
+
+/* Centre the bounding box at the origin and scale so the bounding sphere about
+ * that centre has the given radius (0 = 1). Recomputes bounds. */
+snell_status snell_mesh_normalize(snell_mesh *mesh, float radius);
+
+uint32_t snell_mesh_vertex_count(const snell_mesh *mesh);
+uint32_t snell_mesh_triangle_count(const snell_mesh *mesh);
+const float *snell_mesh_positions(const snell_mesh *mesh);   /* 3 * vertex_count */
+const float *snell_mesh_normals(const snell_mesh *mesh);     /* 3 * vertex_count, unit */
+const uint32_t *snell_mesh_indices(const snell_mesh *mesh);  /* 3 * triangle_count */
+void snell_mesh_bounds(const snell_mesh *mesh, float min[3], float max[3]);
+
+/* ------------------------------------------------------------ environment */
+typedef enum snell_env_source {
+    SNELL_ENV_PROCEDURAL = 0,  /* built in: sky gradient, sun, checkered floor */
+    SNELL_ENV_FACES,           /* six square images: +X -X +Y -Y +Z -Z (GL cubemap layout) */
+    SNELL_ENV_EQUIRECT         /* one equirectangular (lat-long) image */
+} snell_env_source;
+
+typedef struct snell_env_desc {
+    snell_env_source source;
+    const char *face_paths[6];   /* SNELL_ENV_FACES */
+    const char *equirect_path;   /* SNELL_ENV_EQUIRECT */
+    int face_size;               /* cubemap face size in texels; 0 = 512 (FACES: the images' size) */
+} snell_env_desc;
+
+/* Creates the cubemap texture (ctx needed) and keeps a CPU copy of the faces so
+ * that references can sample exactly the same texels. ctx may be NULL: CPU only. */
+snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_env **out);
+void snell_env_destroy(snell_env *env);
+int snell_env_face_size(const snell_env *env);
+/* Bilinear sample in direction dir (need not be unit), as GL samples the cube
+ * with GL_LINEAR: rgb in [0,1]. Edge texels are clamped per face (GL filters
+ * across faces; the difference is confined to a one-texel seam). */
+void snell_env_sample(const snell_env *env, const float dir[3], float rgb[3]);
+/* Double-precision variant for the reference tracer. */
+void snell_env_sample_d(const snell_env *env, const double dir[3], double rgb[3]);
+
+/* ------------------------------------------------------------------ glass */
+typedef enum snell_method {
+    SNELL_METHOD_AUTO = 0,     /* the cheapest method adequate for the mesh */
+    SNELL_METHOD_SINGLE        /* refraction at the front surface only (Unger 3.3) */
+} snell_method;
+
+typedef struct snell_glass_desc {
+    snell_method method;
+    float ior;                 /* index of refraction of the glass; 0 = 1.5; outside is 1 */
+    float absorption[3];       /* Beer-Lambert coefficient per unit length (world units), rgb */
+    float tint[3];             /* multiplies transmitted light; all zero = white (no tint) */
+} snell_glass_desc;
+
+typedef struct snell_camera {
+    float azimuth;             /* radians, around +Y, 0 = camera on +Z */
+    float elevation;           /* radians above the XZ plane */
+    float distance;            /* from target; 0 = 3.5 */
+    float fov_y;               /* vertical field of view, radians; 0 = 45 degrees */
+    float target[3];           /* orbit centre, world space */
+    float z_near, z_far;       /* 0 = derived from distance and the mesh bounds */
+} snell_camera;
+
+/* Eye position and view/projection matrices (column-major) of an orbit camera. */
+void snell_camera_matrices(const snell_camera *cam, float aspect, float eye[3],
+                           float view[16], float proj[16]);
+
+/* ---------------------------------------------------------------- render */
+typedef enum snell_target {
+    SNELL_TARGET_OFFSCREEN = 0,     /* renderer-owned RGBA8 framebuffer, read back with snell_renderer_read_rgba */
+    SNELL_TARGET_BOUND_FRAMEBUFFER  /* whatever draw framebuffer is bound when snell_render is called */
+} snell_target;
+
+typedef struct snell_renderer_desc {
+    int width, height;              /* pixels; 0 = 512 */
+    snell_target target;
+} snell_renderer_desc;
+
+typedef struct snell_frame_desc {
+    const snell_mesh *mesh;         /* may be NULL: background only */
+    const snell_env *env;           /* required */
+    snell_glass_desc glass;
+    snell_camera camera;
+    const float *model;             /* float[16] object-to-world; NULL = identity */
+    int draw_background;            /* 0 = default (draw skybox); -1 = leave background untouched */
+} snell_frame_desc;
+
+typedef struct snell_frame_stats {
+    snell_method method_used;
+    int passes;                     /* GL draw passes issued */
+    int skipped_passthrough;        /* IOR == 1 and no absorption: glass drawn as nothing */
+    double cpu_ms;                  /* CPU time spent issuing the frame */
+} snell_frame_stats;
+
+snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);
+void snell_renderer_destroy(snell_renderer *r);
+snell_status snell_render(snell_renderer *r, const snell_frame_desc *frame, snell_frame_stats *stats);
+/* Read the offscreen target as tightly packed RGBA8, top row first. */
+snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels);
+/* Blocks until the GPU finished the frame (glFinish); for timing. */
+void snell_renderer_finish(snell_renderer *r);
+
+/* ------------------------------------------------------------------ image */
+/* Writes RGBA8 (top row first) as PNG. */
+snell_status snell_write_png(const char *path, int width, int height, const uint8_t *rgba);
+/* Reads a PNG, JPEG or Radiance HDR file (HDR clamped to [0,1]) as RGBA8, top row
+ * first; at most 16384 pixels per side. Free *rgba with snell_image_free. */
+snell_status snell_image_read(const char *path, int *width, int *height, uint8_t **rgba);
+void snell_image_free(uint8_t *rgba);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,21 @@
+// glass.vert - world-space position and normal of the glass mesh for every
+// refraction kernel. Positions are highp (depth, search parameters).
+precision highp float;
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+
+uniform mat4 u_model;          // object -> world
+uniform mat3 u_normal_matrix;  // inverse transpose of u_model's 3x3
+uniform mat4 u_view_proj;
+
+out vec3 v_world_pos;
+out vec3 v_world_normal;
+
+void main()
+{
+    vec4 wp = u_model * vec4(a_position, 1.0);
+    v_world_pos = wp.xyz;
+    v_world_normal = u_normal_matrix * a_normal;
+    gl_Position = u_view_proj * wp;
+}

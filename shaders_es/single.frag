@@ -1,0 +1,41 @@
+// single.frag - single-surface refraction (Unger 3.3): refract the view ray at
+// the front surface, look the refracted direction up in the environment, mix
+// with the reflection by Schlick's Fresnel term. Absorption uses the distance
+// from the entry point to where the refracted ray leaves the mesh's bounding
+// sphere (exact for a sphere, an estimate otherwise).
+precision mediump float;
+
+#include "common/optics.glsl"
+
+in highp vec3 v_world_pos;
+in vec3 v_world_normal;
+
+uniform highp vec3 u_eye;
+uniform samplerCube u_env;
+uniform float u_ior;             // glass IOR; outside is 1
+uniform vec3 u_sigma;            // Beer-Lambert coefficient per world unit
+uniform vec3 u_tint;
+uniform highp vec4 u_bsphere;    // bounding sphere: world centre, radius
+
+out vec4 o_color;
+
+void main()
+{
+    highp vec3 v = normalize(v_world_pos - u_eye);
+    vec3 n = normalize(v_world_normal);
+    // Interpolated normals can face away from the eye at the silhouette.
+    if (dot(n, v) > 0.0) n = -n;
+    vec3 r = snell_reflect(v, n);
+    vec3 t;
+    snell_refract(v, n, 1.0 / u_ior, t);
+    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+
+    highp vec3 oc = v_world_pos - u_bsphere.xyz;
+    highp float b = dot(oc, t);
+    highp float c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
+    highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
+
+    vec3 transmitted = texture(u_env, t).rgb * u_tint * snell_beer_lambert(u_sigma, path);
+    vec3 reflected = texture(u_env, r).rgb;
+    o_color = vec4(mix(transmitted, reflected, fresnel), 1.0);
+}

@@ -1,0 +1,39 @@
+/* core.h — allocation through the user's allocator and error reporting.
+ * Every module reports failures with snell__fail(), which records the message
+ * on the context (or thread-locally when there is none) and returns the status. */
+#ifndef SNELL_CORE_H
+#define SNELL_CORE_H
+
+#include "snell/snell.h"
+#include <stdarg.h>
+
+#if defined(__GNUC__)
+#define SNELL_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define SNELL_PRINTF(a, b)
+#endif
+
+#define SNELL_PI 3.14159265358979323846
+
+/* An allocator with NULL members filled in from libc. */
+typedef struct snell_alloc {
+    snell_allocator a;
+} snell_alloc;
+
+snell_alloc snell__alloc_from(const snell_allocator *user); /* user may be NULL */
+const snell_alloc *snell__ctx_alloc(const snell_ctx *ctx);  /* libc allocator for NULL ctx */
+
+void *snell__malloc(const snell_alloc *al, size_t size);
+void *snell__calloc(const snell_alloc *al, size_t count, size_t size); /* overflow-checked */
+void *snell__realloc(const snell_alloc *al, void *ptr, size_t size);
+void snell__free(const snell_alloc *al, void *ptr);
+
+/* Records "msg" as the last error of ctx (thread-local if ctx is NULL), logs it
+ * at ERROR level if a log callback is installed, and returns status. */
+snell_status snell__fail(const snell_ctx *ctx, snell_status status, const char *fmt, ...) SNELL_PRINTF(3, 4);
+void snell__log(const snell_ctx *ctx, snell_log_level level, const char *fmt, ...) SNELL_PRINTF(3, 4);
+
+/* size_t multiplication that reports overflow (returns 0 and sets *ok = 0). */
+size_t snell__mul_size(size_t a, size_t b, int *ok);
+
+#endif

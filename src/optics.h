@@ -1,0 +1,73 @@
+/* optics.h — the optics kernel shared by every method and the references:
+ * Snell refraction with total internal reflection, mirror reflection, Schlick
+ * Fresnel and Beer-Lambert attenuation (Unger 2.1). Its GLSL twin is
+ * shaders_es/common/optics.glsl; tests/test_optics_twin.c runs both on the
+ * same inputs. Float versions (snell_opt_*) mirror the GPU; double versions
+ * (snell_optd_*) serve the reference tracers.
+ *
+ * Conventions: i is the unit direction of travel towards the surface, n the
+ * unit surface normal on the side the ray comes from (dot(i, n) <= 0),
+ * eta = n1 / n2 (from the incident medium into the other). */
+#ifndef SNELL_OPTICS_H
+#define SNELL_OPTICS_H
+
+#include <math.h>
+
+#define SNELL_OPTICS_DEFINE(T, SUF, SQRT, EXP)                                               \
+    static inline T snell_opt##SUF##_dot(const T a[3], const T b[3])                               \
+    {                                                                                              \
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];                                            \
+    }                                                                                              \
+    /* r = i - 2 (n.i) n */                                                                        \
+    static inline void snell_opt##SUF##_reflect(const T i[3], const T n[3], T r[3])                \
+    {                                                                                              \
+        T d = (T)2 * snell_opt##SUF##_dot(n, i);                                                   \
+        r[0] = i[0] - d * n[0];                                                                    \
+        r[1] = i[1] - d * n[1];                                                                    \
+        r[2] = i[2] - d * n[2];                                                                    \
+    }                                                                                              \
+    /* Refracted direction into t; returns 0 and the reflection on TIR. */                        \
+    static inline int snell_opt##SUF##_refract(const T i[3], const T n[3], T eta, T t[3])          \
+    {                                                                                              \
+        T c = -snell_opt##SUF##_dot(n, i);                                                         \
+        T k = (T)1 - eta * eta * ((T)1 - c * c);                                                   \
+        T f;                                                                                       \
+        if (k < (T)0) {                                                                            \
+            snell_opt##SUF##_reflect(i, n, t);                                                     \
+            return 0;                                                                              \
+        }                                                                                          \
+        f = eta * c - SQRT(k);                                                                     \
+        t[0] = eta * i[0] + f * n[0];                                                              \
+        t[1] = eta * i[1] + f * n[1];                                                              \
+        t[2] = eta * i[2] + f * n[2];                                                              \
+        return 1;                                                                                  \
+    }                                                                                              \
+    /* Schlick's reflectance for light going from n1 into n2 at incidence cosine                   \
+     * cos_i. Going into a thinner medium the transmitted angle's cosine is used                   \
+     * (Schlick is symmetric in the larger angle), and TIR gives 1. */                             \
+    static inline T snell_opt##SUF##_fresnel_schlick(T cos_i, T n1, T n2)                          \
+    {                                                                                              \
+        T r0 = (n1 - n2) / (n1 + n2), c = cos_i < (T)0 ? -cos_i : cos_i, m;                        \
+        r0 *= r0;                                                                                  \
+        if (n1 > n2) {                                                                             \
+            T eta = n1 / n2, sin2_t = eta * eta * ((T)1 - c * c);                                  \
+            if (sin2_t >= (T)1) return (T)1;                                                       \
+            c = SQRT((T)1 - sin2_t);                                                               \
+        }                                                                                          \
+        m = (T)1 - c;                                                                              \
+        return r0 + ((T)1 - r0) * m * m * m * m * m;                                               \
+    }                                                                                              \
+    /* Transmittance exp(-sigma * d) of a path of length d (sigma per unit length). */             \
+    static inline void snell_opt##SUF##_beer_lambert(const T sigma[3], T d, T out[3])              \
+    {                                                                                              \
+        out[0] = EXP(-sigma[0] * d);                                                               \
+        out[1] = EXP(-sigma[1] * d);                                                               \
+        out[2] = EXP(-sigma[2] * d);                                                               \
+    }
+
+SNELL_OPTICS_DEFINE(float, , sqrtf, expf)
+SNELL_OPTICS_DEFINE(double, d, sqrt, exp)
+
+#undef SNELL_OPTICS_DEFINE
+
+#endif

@@ -1,0 +1,46 @@
+/* test_util.h — tiny test harness: CHECK counts failures and keeps going,
+ * test_finish() prints "N passed, N failed" and returns the exit code,
+ * SKIP exits 77 (ctest's skip code) with the reason. */
+#ifndef SNELL_TEST_UTIL_H
+#define SNELL_TEST_UTIL_H
+
+#include "snell/snell.h"
+#include <stdio.h>
+
+extern int test_passed, test_failed;
+
+#define CHECK(cond, ...)                                                  \
+    do {                                                                  \
+        if (cond) {                                                       \
+            test_passed++;                                                \
+        } else {                                                          \
+            test_failed++;                                                \
+            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond); \
+            fprintf(stderr, __VA_ARGS__);                                 \
+            fprintf(stderr, "\n");                                        \
+        }                                                                 \
+    } while (0)
+
+#define CHECK_OK(call)                                                    \
+    do {                                                                  \
+        snell_status st_ = (call);                                        \
+        CHECK(st_ == SNELL_OK, "%s: %s", snell_status_str(st_), snell_last_error(NULL)); \
+    } while (0)
+
+#define SKIP(...)                                                         \
+    do {                                                                  \
+        printf("SKIP: ");                                                 \
+        printf(__VA_ARGS__);                                              \
+        printf("\n");                                                     \
+        return 77;                                                        \
+    } while (0)
+
+int test_finish(void);
+/* Path of a file under tests/data (static buffer). */
+const char *test_data(const char *name);
+/* Path for an output file in the test's build directory (static buffer). */
+const char *test_out(const char *name);
+/* A headless context (default backend) or NULL, message printed. */
+snell_ctx *test_ctx(void);
+
+#endif
