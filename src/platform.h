@@ -14,10 +14,6 @@ typedef struct snell_platform {
     EGLSurface surface;             /* EGL_NO_SURFACE when surfaceless */
     int owns_display;               /* we called eglInitialize and must terminate */
     int owns_context;               /* 0 for EXTERNAL */
-    /* previously current context, restored on close */
-    EGLDisplay prev_display;
-    EGLContext prev_context;
-    EGLSurface prev_draw, prev_read;
 } snell_platform;
 
 /* Each returns SNELL_OK with a current ES 3.x context, or a status whose

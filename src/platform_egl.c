@@ -66,14 +66,6 @@ EGLDisplay snell__egl_platform_display(EGLenum platform, void *native)
     return fn(platform, native, NULL);
 }
 
-static void remember_current(snell_platform *p)
-{
-    p->prev_display = eglGetCurrentDisplay();
-    p->prev_context = eglGetCurrentContext();
-    p->prev_draw = eglGetCurrentSurface(EGL_DRAW);
-    p->prev_read = eglGetCurrentSurface(EGL_READ);
-}
-
 snell_status snell__egl_make_context(snell_ctx *ctx, snell_platform *p, EGLint surface_type,
                                      int want_pbuffer, int debug)
 {
@@ -113,7 +105,6 @@ snell_status snell__egl_make_context(snell_ctx *ctx, snell_platform *p, EGLint s
             return snell__fail(ctx, SNELL_E_EGL, "eglCreatePbufferSurface failed: %s",
                                snell__egl_error_str(eglGetError()));
     }
-    remember_current(p);
     if (!eglMakeCurrent(p->display, p->surface, p->surface, p->context))
         return snell__fail(ctx, SNELL_E_EGL, "eglMakeCurrent failed: %s",
                            snell__egl_error_str(eglGetError()));
@@ -164,12 +155,10 @@ void snell__platform_close(snell_platform *p)
 {
     if (p->owns_context && p->display != EGL_NO_DISPLAY) {
         /* Reverse order of creation: release, surface, context, display. */
-        if (eglGetCurrentContext() == p->context) {
-            if (p->prev_context != EGL_NO_CONTEXT && p->prev_display != EGL_NO_DISPLAY)
-                eglMakeCurrent(p->prev_display, p->prev_draw, p->prev_read, p->prev_context);
-            else
-                eglMakeCurrent(p->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        }
+        /* Restoring whatever was current before creation is not safe (that
+         * context may be gone by now), so an owned context is just released. */
+        if (eglGetCurrentContext() == p->context)
+            eglMakeCurrent(p->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (p->surface != EGL_NO_SURFACE) eglDestroySurface(p->display, p->surface);
         if (p->context != EGL_NO_CONTEXT) eglDestroyContext(p->display, p->context);
     }

@@ -81,6 +81,10 @@ typedef struct snell_ctx_desc {
     int gl_debug;              /* nonzero: request a debug context, install KHR_debug callback */
 } snell_ctx_desc;
 
+/* Owned backends make their context current on the calling thread; all snell
+ * calls on a context must come from the thread where it is current.
+ * snell_ctx_destroy releases an owned context (no context is current after it
+ * if it was current); EXTERNAL leaves the caller's context as it is. */
 snell_status snell_ctx_create(const snell_ctx_desc *desc, snell_ctx **out);
 void snell_ctx_destroy(snell_ctx *ctx);
 /* The backend actually in use (SURFACELESS may have fallen back to PBUFFER). */

@@ -1,0 +1,190 @@
+/* test_ctx — context creation on every backend available here, failure paths,
+ * and the EXTERNAL backend inside a context the test made itself: the host's
+ * GL state must be untouched by a snell frame. */
+#include "test_util.h"
+
+#include <EGL/egl.h>
+#include <GLES3/gl3.h>
+#include <string.h>
+
+#ifndef EGL_PLATFORM_SURFACELESS_MESA
+#define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
+#endif
+
+static int log_count;
+static void count_log(snell_log_level level, const char *msg, void *user)
+{
+    (void)level; (void)msg;
+    (*(int *)user)++;
+}
+
+static void check_backend(snell_backend b, const char *name)
+{
+    snell_ctx *ctx = NULL;
+    snell_ctx_desc d;
+    memset(&d, 0, sizeof d);
+    d.backend = b;
+    d.log = count_log;
+    d.log_user = &log_count;
+    d.gl_debug = 1;
+    CHECK_OK(snell_ctx_create(&d, &ctx));
+    if (!ctx) return;
+    printf("%s -> %s on %s\n", name, snell_backend_str(snell_ctx_backend(ctx)), snell_ctx_gl_renderer(ctx));
+    CHECK(eglGetCurrentContext() != EGL_NO_CONTEXT, "%s: no current context", name);
+    CHECK(snell_ctx_has_gl_extension(ctx, "GL_KHR_debug") == 1 || 1, "probe");
+    CHECK(snell_ctx_has_gl_extension(ctx, "GL_KHR_debu") == 0, "extension lookup must be exact-token");
+    CHECK(snell_ctx_has_gl_extension(ctx, "") == 0, "empty name");
+    snell_ctx_destroy(ctx);
+    CHECK(eglGetCurrentContext() == EGL_NO_CONTEXT, "%s: context still current after destroy", name);
+}
+
+/* Makes a GLES 3 context the way a host app would. */
+static int host_context(EGLDisplay *dpy, EGLContext *ctx)
+{
+    typedef EGLDisplay (*gpd_fn)(EGLenum, void *, const EGLint *);
+    gpd_fn gpd = (gpd_fn)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    EGLint cfg_attrs[] = {EGL_RENDERABLE_TYPE, 0x40 /* ES3 */, EGL_SURFACE_TYPE, 0, EGL_NONE};
+    EGLint ctx_attrs[] = {0x3098 /* MAJOR */, 3, EGL_NONE};
+    EGLConfig cfg;
+    EGLint n = 0;
+    if (!gpd) return 0;
+    *dpy = gpd(EGL_PLATFORM_SURFACELESS_MESA, NULL, NULL);
+    if (*dpy == EGL_NO_DISPLAY || !eglInitialize(*dpy, NULL, NULL)) return 0;
+    eglBindAPI(EGL_OPENGL_ES_API);
+    if (!eglChooseConfig(*dpy, cfg_attrs, &cfg, 1, &n) || n < 1) return 0;
+    *ctx = eglCreateContext(*dpy, cfg, EGL_NO_CONTEXT, ctx_attrs);
+    return *ctx != EGL_NO_CONTEXT && eglMakeCurrent(*dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, *ctx);
+}
+
+static void check_external(void)
+{
+    EGLDisplay dpy;
+    EGLContext host;
+    snell_ctx *ctx = NULL;
+    snell_ctx_desc d;
+    snell_env *env = NULL;
+    snell_mesh *mesh = NULL;
+    snell_renderer *r = NULL;
+    snell_renderer_desc rd;
+    snell_frame_desc fd;
+    snell_shape_desc sd;
+    GLuint host_fbo, host_rb, host_prog_dummy;
+    GLint v[4], i1;
+    GLboolean b;
+    GLfloat cc[4];
+
+    if (!host_context(&dpy, &host)) {
+        printf("cannot make a host context here; EXTERNAL checked only for the failure path\n");
+        return;
+    }
+    /* Host state that snell must not disturb. */
+    glGenFramebuffers(1, &host_fbo);
+    glGenRenderbuffers(1, &host_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, host_rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 64, 64);
+    glBindFramebuffer(GL_FRAMEBUFFER, host_fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, host_rb);
+    host_prog_dummy = glCreateProgram();
+    glViewport(3, 5, 17, 19);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT);
+    glDepthFunc(GL_GEQUAL);
+    glClearColor(0.25f, 0.5f, 0.75f, 1.0f);
+    glActiveTexture(GL_TEXTURE2);
+
+    memset(&d, 0, sizeof d);
+    d.backend = SNELL_BACKEND_EXTERNAL;
+    CHECK_OK(snell_ctx_create(&d, &ctx));
+    if (!ctx) return;
+    memset(&sd, 0, sizeof sd);
+    memset(&rd, 0, sizeof rd);
+    rd.width = rd.height = 64;
+    memset(&fd, 0, sizeof fd);
+    {
+        snell_env_desc ed;
+        memset(&ed, 0, sizeof ed);
+        ed.face_size = 32;
+        CHECK_OK(snell_env_create(ctx, &ed, &env));
+    }
+    CHECK_OK(snell_mesh_create_shape(ctx, &sd, &mesh));
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    fd.mesh = mesh;
+    fd.env = env;
+    if (r && env && mesh) CHECK_OK(snell_render(r, &fd, NULL));
+
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &i1);
+    CHECK(i1 == (GLint)host_fbo, "framebuffer binding changed to %d", i1);
+    glGetIntegerv(GL_VIEWPORT, v);
+    CHECK(v[0] == 3 && v[1] == 5 && v[2] == 17 && v[3] == 19, "viewport changed");
+    CHECK(glIsEnabled(GL_BLEND) && glIsEnabled(GL_CULL_FACE) && !glIsEnabled(GL_DEPTH_TEST), "enables changed");
+    glGetIntegerv(GL_BLEND_DST_RGB, &i1);
+    CHECK(i1 == GL_ONE, "blend func changed");
+    glGetIntegerv(GL_CULL_FACE_MODE, &i1);
+    CHECK(i1 == GL_FRONT, "cull mode changed");
+    glGetIntegerv(GL_DEPTH_FUNC, &i1);
+    CHECK(i1 == GL_GEQUAL, "depth func changed");
+    glGetIntegerv(GL_CURRENT_PROGRAM, &i1);
+    CHECK(i1 == 0, "program changed");
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &i1);
+    CHECK(i1 == GL_TEXTURE2, "active texture changed");
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, cc);
+    CHECK(cc[0] == 0.25f && cc[2] == 0.75f, "clear colour changed");
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &b);
+    CHECK(b == GL_TRUE, "depth mask changed");
+
+    snell_renderer_destroy(r);
+    snell_mesh_destroy(mesh);
+    snell_env_destroy(env);
+    snell_ctx_destroy(ctx);
+    CHECK(eglGetCurrentContext() == host, "EXTERNAL destroy must leave the host's context current");
+    glDeleteProgram(host_prog_dummy);
+    glDeleteRenderbuffers(1, &host_rb);
+    glDeleteFramebuffers(1, &host_fbo);
+    eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(dpy, host);
+    eglTerminate(dpy);
+}
+
+int main(void)
+{
+    snell_ctx *ctx = (snell_ctx *)0x1;
+    snell_ctx_desc d;
+
+    check_backend(SNELL_BACKEND_DEFAULT, "default");
+    check_backend(SNELL_BACKEND_SURFACELESS, "surfaceless");
+    check_backend(SNELL_BACKEND_PBUFFER, "pbuffer");
+    CHECK(log_count >= 0, "log");
+
+    /* Two contexts at once share the EGL display; destroying one keeps the other usable. */
+    {
+        snell_ctx *a = NULL, *b = NULL;
+        CHECK_OK(snell_ctx_create(NULL, &a));
+        CHECK_OK(snell_ctx_create(NULL, &b));
+        snell_ctx_destroy(a);
+        if (b) {
+            snell_env *env = NULL;
+            snell_env_desc ed;
+            memset(&ed, 0, sizeof ed);
+            ed.face_size = 8;
+            CHECK_OK(snell_env_create(b, &ed, &env));
+            snell_env_destroy(env);
+        }
+        snell_ctx_destroy(b);
+    }
+
+    /* Failure paths: a status and a message, never a crash. */
+    memset(&d, 0, sizeof d);
+    d.backend = SNELL_BACKEND_EXTERNAL;
+    CHECK(snell_ctx_create(&d, &ctx) == SNELL_E_EGL, "EXTERNAL without a current context must fail");
+    CHECK(ctx == NULL, "out must be NULL on failure");
+    CHECK(strstr(snell_last_error(NULL), "no EGL context is current") != NULL, "message: %s", snell_last_error(NULL));
+    d.backend = (snell_backend)42;
+    CHECK(snell_ctx_create(&d, &ctx) == SNELL_E_INVALID_ARG, "unknown backend");
+    CHECK(snell_ctx_create(NULL, NULL) == SNELL_E_INVALID_ARG, "NULL out");
+    snell_ctx_destroy(NULL);
+
+    check_external();
+    return test_finish();
+}

@@ -1,0 +1,173 @@
+/* test_optics_twin — src/optics.h and shaders_es/common/optics.glsl must agree.
+ * The GLSL runs in a vertex shader whose outputs are captured with transform
+ * feedback (core GLES 3.0, exact float32 results, no float render target
+ * needed). Both are also checked against the double-precision twin.
+ * Inputs: incidence angles 0..89.999 deg (grazing included), eta both into
+ * denser (entry) and thinner (exit, where TIR happens) media, IOR 1.0001..4. */
+#include "test_util.h"
+#include "gl.h"
+#include "optics.h"
+#include "program.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char vs[] =
+    "precision highp float;\n"
+    "#include \"common/optics.glsl\"\n"
+    "layout(location = 0) in vec3 a_i;\n"
+    "layout(location = 1) in vec3 a_n;\n"
+    "layout(location = 2) in vec4 a_p; // eta, n1, n2, path length\n"
+    "out vec4 o_t;   // refracted dir, refracted? 1 : 0\n"
+    "out vec4 o_r;   // reflected dir, Schlick(n1 -> n2)\n"
+    "out vec4 o_bl;  // Beer-Lambert for sigma (0.1, 0.5, 2.0)\n"
+    "void main() {\n"
+    "    vec3 t;\n"
+    "    bool ok = snell_refract(a_i, a_n, a_p.x, t);\n"
+    "    o_t = vec4(t, ok ? 1.0 : 0.0);\n"
+    "    o_r = vec4(snell_reflect(a_i, a_n), snell_fresnel_schlick(-dot(a_i, a_n), a_p.y, a_p.z));\n"
+    "    o_bl = vec4(snell_beer_lambert(vec3(0.1, 0.5, 2.0), a_p.w), 0.0);\n"
+    "    gl_Position = vec4(0.0);\n"
+    "}\n";
+
+typedef struct input { float i[3], n[3], p[4]; } input;
+
+static const double angles_deg[] = {0, 1, 10, 30, 41.8, 45, 48.6, 60, 75, 85, 89, 89.9, 89.99, 89.999};
+static const double iors[] = {1.0001, 1.33, 1.5, 2.42, 4.0};
+
+int main(void)
+{
+    snell_ctx *ctx = test_ctx();
+    const char *varyings[] = {"o_t", "o_r", "o_bl"};
+    enum { NA = sizeof angles_deg / sizeof *angles_deg, NI = sizeof iors / sizeof *iors, N = NA * NI * 2 * 2 };
+    input in[N];
+    float out[3][N][4];
+    GLuint prog = 0, vao, vbo, tfb[3], fbo, rb;
+    int k, c, tir_cases = 0, grazing_cases = 0;
+    double max_dir_err = 0, max_f_err = 0, max_bl_err = 0;
+    if (!ctx) SKIP("no GL context");
+    CHECK_OK(snell__program_build_feedback(ctx, vs, NULL, varyings, 3, &prog));
+    if (!prog) return test_finish();
+
+    /* Incidence in the xz-plane, normal +z, ray going down; two normal
+     * orientations (axis-aligned and tilted) so rounding differs. */
+    k = 0;
+    for (int a = 0; a < NA; a++)
+        for (int m = 0; m < NI; m++)
+            for (int dir = 0; dir < 2; dir++)
+                for (int tilt = 0; tilt < 2; tilt++) {
+                    double th = angles_deg[a] * SNELL_PI / 180.0, n1 = dir ? iors[m] : 1.0, n2 = dir ? 1.0 : iors[m];
+                    double nrm[3] = {0, 0, 1}, inc[3] = {sin(th), 0, -cos(th)};
+                    if (tilt) { /* rotate both about the y axis by 0.3 rad */
+                        double cr = cos(0.3), sr = sin(0.3), x, z;
+                        x = nrm[0] * cr + nrm[2] * sr; z = -nrm[0] * sr + nrm[2] * cr; nrm[0] = x; nrm[2] = z;
+                        x = inc[0] * cr + inc[2] * sr; z = -inc[0] * sr + inc[2] * cr; inc[0] = x; inc[2] = z;
+                    }
+                    for (c = 0; c < 3; c++) { in[k].i[c] = (float)inc[c]; in[k].n[c] = (float)nrm[c]; }
+                    in[k].p[0] = (float)(n1 / n2);
+                    in[k].p[1] = (float)n1;
+                    in[k].p[2] = (float)n2;
+                    in[k].p[3] = (float)(0.25 * a);
+                    k++;
+                }
+
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof in, in, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(input), (void *)offsetof(input, i));
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(input), (void *)offsetof(input, n));
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, sizeof(input), (void *)offsetof(input, p));
+    glGenBuffers(3, tfb);
+    for (c = 0; c < 3; c++) {
+        glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, tfb[c]);
+        glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, sizeof out[c], NULL, GL_STATIC_READ);
+        glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, (GLuint)c, tfb[c]);
+    }
+    /* A surfaceless context has no default framebuffer, and draws need a
+     * complete one even with rasterisation discarded. */
+    glGenFramebuffers(1, &fbo);
+    glGenRenderbuffers(1, &rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+    glUseProgram(prog);
+    glEnable(GL_RASTERIZER_DISCARD);
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, N);
+    glEndTransformFeedback();
+    glDisable(GL_RASTERIZER_DISCARD);
+    for (c = 0; c < 3; c++) {
+        void *p;
+        glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, tfb[c]);
+        p = glMapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, sizeof out[c], GL_MAP_READ_BIT);
+        CHECK(p != NULL, "map feedback buffer %d", c);
+        if (p) memcpy(out[c], p, sizeof out[c]);
+        glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
+    }
+    CHECK(glGetError() == GL_NO_ERROR, "GL error");
+
+    for (k = 0; k < N; k++) {
+        float t[3], r[3], bl[3], sig[3] = {0.1f, 0.5f, 2.0f};
+        double id[3], nd[3], td[3], k_disc, cos_i;
+        int ok = snell_opt_refract(in[k].i, in[k].n, in[k].p[0], t), okd;
+        float f = snell_opt_fresnel_schlick(-snell_opt_dot(in[k].i, in[k].n), in[k].p[1], in[k].p[2]);
+        for (c = 0; c < 3; c++) { id[c] = in[k].i[c]; nd[c] = in[k].n[c]; }
+        okd = snell_optd_refract(id, nd, (double)in[k].p[0], td);
+        cos_i = -snell_optd_dot(id, nd);
+        k_disc = 1.0 - (double)in[k].p[0] * in[k].p[0] * (1.0 - cos_i * cos_i);
+        snell_opt_reflect(in[k].i, in[k].n, r);
+        snell_opt_beer_lambert(sig, in[k].p[3], bl);
+        tir_cases += !okd;
+        grazing_cases += cos_i < 0.002;
+        /* The TIR decision may only differ within float rounding of k = 0. */
+        if (fabs(k_disc) > 1e-5) {
+            CHECK(ok == okd && (out[0][k][3] != 0.0f) == okd, "input %d: TIR flag C=%d GL=%g double=%d", k, ok,
+                  out[0][k][3], okd);
+            /* d t / d k ~ 1 / sqrt(k): allow the float rounding of k through the square root. */
+            {
+                double tol = 2e-6 + 4e-7 / sqrt(fabs(k_disc));
+                for (c = 0; c < 3; c++) {
+                    double eg = fabs(out[0][k][c] - td[c]), ec = fabs(t[c] - td[c]);
+                    if (eg > max_dir_err) max_dir_err = eg;
+                    CHECK(eg <= tol && ec <= tol, "input %d comp %d: GL %.9g C %.9g double %.9g (tol %.2g)", k, c,
+                          out[0][k][c], t[c], td[c], tol);
+                }
+            }
+        }
+        for (c = 0; c < 3; c++) CHECK(fabsf(out[1][k][c] - r[c]) <= 1e-6f, "input %d reflect", k);
+        {
+            double fd = snell_optd_fresnel_schlick(cos_i, in[k].p[1], in[k].p[2]);
+            double ef = fabs(out[1][k][3] - fd);
+            if (fabs(k_disc) > 1e-5 && ef > max_f_err) max_f_err = ef;
+            if (fabs(k_disc) > 1e-5)
+                CHECK(ef <= 2e-5 && fabs(f - fd) <= 2e-5, "input %d Fresnel GL %.7g C %.7g double %.7g", k,
+                      out[1][k][3], f, fd);
+            CHECK(out[1][k][3] >= 0.0f && out[1][k][3] <= 1.0f, "Fresnel in [0,1]");
+        }
+        for (c = 0; c < 3; c++) {
+            double e = fabs(out[2][k][c] - bl[c]) / (bl[c] > 1e-30f ? bl[c] : 1.0f);
+            if (e > max_bl_err) max_bl_err = e;
+            CHECK(e <= 1e-5, "input %d Beer-Lambert %g vs %g", k, out[2][k][c], bl[c]);
+        }
+    }
+    CHECK(tir_cases > 20, "the grid must exercise TIR (%d cases)", tir_cases);
+    CHECK(grazing_cases >= 8, "the grid must exercise grazing angles (%d cases)", grazing_cases);
+    printf("%d inputs, %d TIR, %d grazing; max |GL - double| direction %.3g, Fresnel %.3g, Beer-Lambert rel %.3g\n",
+           N, tir_cases, grazing_cases, max_dir_err, max_f_err, max_bl_err);
+
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &rb);
+    glDeleteBuffers(3, tfb);
+    glDeleteBuffers(1, &vbo);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteProgram(prog);
+    snell_ctx_destroy(ctx);
+    return test_finish();
+}
