@@ -114,6 +114,13 @@ static void fill_procedural(snell_env *env)
 
 /* ------------------------------------------------------------------ images */
 
+/* snell_image_read reports on the thread-local slot; move it to the context. */
+static snell_status image_failure(snell_ctx *ctx, snell_status st)
+{
+    if (ctx) snell__fail(ctx, st, "%s", snell_last_error(NULL));
+    return st;
+}
+
 static snell_status load_faces(snell_ctx *ctx, snell_env *env, const char *const paths[6])
 {
     int f, w, h;
@@ -122,7 +129,7 @@ static snell_status load_faces(snell_ctx *ctx, snell_env *env, const char *const
         snell_status st;
         if (!paths[f]) return snell__fail(ctx, SNELL_E_INVALID_ARG, "environment face %d has no path", f);
         st = snell_image_read(paths[f], &w, &h, &img);
-        if (st != SNELL_OK) return snell__fail(ctx, st, "%s", snell_last_error(NULL));
+        if (st != SNELL_OK) return image_failure(ctx, st);
         if (w != h || (f > 0 && w != env->size) || w > ENV_MAX_SIZE) {
             snell_image_free(img);
             return snell__fail(ctx, SNELL_E_INVALID_ARG,
@@ -171,7 +178,7 @@ static snell_status load_equirect(snell_ctx *ctx, snell_env *env, const char *pa
     snell_status st;
     if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "equirectangular environment needs a path");
     st = snell_image_read(path, &w, &h, &img);
-    if (st != SNELL_OK) return snell__fail(ctx, st, "%s", snell_last_error(NULL));
+    if (st != SNELL_OK) return image_failure(ctx, st);
     for (f = 0; f < 6; f++) {
         env->faces[f] = (uint8_t *)snell__malloc(&env->alloc, (size_t)env->size * env->size * 4);
         if (!env->faces[f]) {

@@ -7,3 +7,36 @@ snell_add_test(test_optics_twin SOURCES test_optics_twin.c LABELS "unit;gl")
 target_link_libraries(test_optics_twin PRIVATE PkgConfig::GLES m)
 snell_add_test(test_render_single SOURCES test_render_single.c LABELS "render;gl")
 target_link_libraries(test_render_single PRIVATE m)
+
+# Installed package: find_package(snell) from a separate project, and pkg-config.
+add_test(NAME install_consumer
+  COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+          -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/consumer -P ${CMAKE_CURRENT_SOURCE_DIR}/consumer/run.cmake)
+set_tests_properties(install_consumer PROPERTIES LABELS "install" TIMEOUT 300)
+
+# The CLI: default run, flags, and clear failures with a non-zero exit.
+if(TARGET snell-render)
+  set(cli $<TARGET_FILE:snell-render>)
+  add_test(NAME cli_default COMMAND ${cli} --size 96x64 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_default.png)
+  set_tests_properties(cli_default PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "wrote .*cli_default.png \\(96x64\\)")
+  add_test(NAME cli_flags COMMAND ${cli} --mesh shape:torus --ior 1.33 --absorption 0.2,0.1,0
+           --camera 45,30,4 --fov 50 --method single --size 64x64 --frames 3 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_flags.png)
+  set_tests_properties(cli_flags PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "median .* ms/frame")
+  add_test(NAME cli_help COMMAND ${cli} --help)
+  set_tests_properties(cli_help PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "usage: snell-render")
+  foreach(bad "--ior;abc" "--size;0x5" "--camera;1,2" "--bogus" "--method;wyman" "--mesh;shape:blob" "--ior")
+    string(MAKE_C_IDENTIFIER "cli_bad_${bad}" name)
+    string(REPLACE ";" "|" bad_args "${bad}")
+    add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=${bad_args}" -DCODE=2 "-DERR=snell-render: "
+             -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+    set_tests_properties(${name} PROPERTIES LABELS "cli")
+  endforeach()
+  add_test(NAME cli_missing_mesh COMMAND ${cli} --mesh /nonexistent/x.obj -o ${CMAKE_CURRENT_BINARY_DIR}/x.png)
+  set_tests_properties(cli_missing_mesh PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "snell-render: mesh: .*x.obj")
+  add_test(NAME cli_missing_env COMMAND ${cli} --env /nonexistent/sky.png --size 8x8 -o ${CMAKE_CURRENT_BINARY_DIR}/x.png)
+  set_tests_properties(cli_missing_env PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "environment: cannot open image")
+  add_test(NAME cli_unwritable COMMAND ${cli} --size 8x8 -o /nonexistent/dir/x.png)
+  set_tests_properties(cli_unwritable PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "cannot write PNG")
+endif()
+snell_add_test(test_env SOURCES test_env.c LABELS "unit")
+target_link_libraries(test_env PRIVATE m)

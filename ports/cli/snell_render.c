@@ -34,7 +34,7 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: snell-render [options]\n"
             "Renders refractive glass to a PNG (default: built-in object -> snell.png).\n\n"
-            "  --mesh FILE            OBJ, glTF (.gltf/.glb) mesh, or shape:sphere|cube|torus|goblet\n"
+            "  --mesh FILE            OBJ, glTF (.gltf/.glb) mesh, or shape:sphere|cube|torus|goblet (default goblet)\n"
             "  --env FILE|procedural  environment: procedural (default), an equirectangular image,\n"
             "                         or six faces given as a pattern with %%s (px nx py ny pz nz)\n"
             "  --ior N                index of refraction (default 1.5)\n"
@@ -83,7 +83,7 @@ static int parse_args(int argc, char **argv, options *o)
 {
     int i;
     memset(o, 0, sizeof *o);
-    o->shape = SNELL_SHAPE_SPHERE;
+    o->shape = SNELL_SHAPE_GOBLET;
     o->out = "snell.png";
     o->ior = 1.5f;
     o->width = o->height = 512;
@@ -257,7 +257,7 @@ int main(int argc, char **argv)
         goto done;
     }
     if (o.normalize && (st = snell_mesh_normalize(mesh, 1.0f)) != SNELL_OK) {
-        fprintf(stderr, "snell-render: mesh: %s\n", snell_last_error(NULL));
+        fprintf(stderr, "snell-render: mesh: %s\n", snell_last_error(ctx));
         goto done;
     }
     if ((st = make_env(ctx, o.env, &env)) != SNELL_OK) {

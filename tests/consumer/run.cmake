@@ -1,0 +1,37 @@
+# Installs the build tree into a scratch prefix, configures and builds the
+# consumer project against it with find_package(snell), runs both binaries,
+# and checks the pkg-config file.
+# Args: -DBUILD_DIR= -DSOURCE_DIR= -DWORK_DIR=
+file(REMOVE_RECURSE ${WORK_DIR})
+execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix
+                RESULT_VARIABLE rc OUTPUT_QUIET)
+if(rc)
+  message(FATAL_ERROR "install failed: ${rc}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/consumer -B ${WORK_DIR}/build
+                        -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix RESULT_VARIABLE rc)
+if(rc)
+  message(FATAL_ERROR "consumer configure failed: ${rc}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/build RESULT_VARIABLE rc)
+if(rc)
+  message(FATAL_ERROR "consumer build failed: ${rc}")
+endif()
+foreach(exe consumer_shared consumer_static)
+  execute_process(COMMAND ${WORK_DIR}/build/${exe} RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "${exe} failed: ${rc}")
+  endif()
+endforeach()
+file(GLOB pc ${WORK_DIR}/prefix/lib*/pkgconfig/snell.pc ${WORK_DIR}/prefix/lib/*/pkgconfig/snell.pc)
+if(NOT pc)
+  message(FATAL_ERROR "snell.pc not installed")
+endif()
+list(GET pc 0 pc)
+get_filename_component(pcdir ${pc} DIRECTORY)
+set(ENV{PKG_CONFIG_PATH} ${pcdir})
+execute_process(COMMAND pkg-config --cflags --libs snell OUTPUT_VARIABLE flags RESULT_VARIABLE rc)
+if(rc OR NOT flags MATCHES "-lsnell")
+  message(FATAL_ERROR "pkg-config snell failed: ${flags}")
+endif()
+message(STATUS "pkg-config snell: ${flags}")

@@ -1,0 +1,74 @@
+/* fuzz_common.h — shared by the fuzz targets: mesh invariants that must hold for
+ * every accepted input, and a replay main() for builds without libFuzzer
+ * (ctest feeds it the files under tests/data). */
+#ifndef SNELL_FUZZ_COMMON_H
+#define SNELL_FUZZ_COMMON_H
+
+#include "snell/snell.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+/* A loader either fails with a message and no mesh, or returns a mesh whose
+ * indices are in range, positions finite and normals unit. abort() otherwise,
+ * so both libFuzzer and ctest report it. */
+static void fuzz_check_result(snell_status st, snell_mesh *m)
+{
+    uint32_t i, nv, nt;
+    if (st != SNELL_OK) {
+        if (m || !snell_last_error(NULL)[0]) abort();
+        return;
+    }
+    if (!m) abort();
+    nv = snell_mesh_vertex_count(m);
+    nt = snell_mesh_triangle_count(m);
+    if (nv == 0 || nt == 0) abort();
+    for (i = 0; i < 3 * nt; i++)
+        if (snell_mesh_indices(m)[i] >= nv) abort();
+    for (i = 0; i < nv; i++) {
+        const float *p = snell_mesh_positions(m) + 3 * i, *n = snell_mesh_normals(m) + 3 * i;
+        float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]) || !(fabsf(len - 1.0f) < 1e-3f)) abort();
+    }
+    snell_mesh_destroy(m);
+}
+
+#ifndef SNELL_LIBFUZZER
+/* Replay: run every file named on the command line through the target. */
+int main(int argc, char **argv)
+{
+    int i, n = 0;
+    for (i = 1; i < argc; i++) {
+        FILE *f = fopen(argv[i], "rb");
+        uint8_t *buf;
+        long len;
+        if (!f) {
+            fprintf(stderr, "cannot open %s\n", argv[i]);
+            return 1;
+        }
+        fseek(f, 0, SEEK_END);
+        len = ftell(f);
+        fseek(f, 0, SEEK_SET);
+        buf = (uint8_t *)malloc(len > 0 ? (size_t)len : 1);
+        if (!buf || (len > 0 && fread(buf, 1, (size_t)len, f) != (size_t)len)) {
+            fprintf(stderr, "cannot read %s\n", argv[i]);
+            fclose(f);
+            free(buf);
+            return 1;
+        }
+        fclose(f);
+        LLVMFuzzerTestOneInput(buf, (size_t)len);
+        free(buf);
+        n++;
+    }
+    printf("replayed %d inputs\n", n);
+    return 0;
+}
+#endif
+
+#endif

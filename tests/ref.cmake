@@ -1,0 +1,8 @@
+# Reference tracer (snell_ref_*, src/ref_*.c): BVH, analytic checks (sphere,
+# slab, TIR prism), image-level properties and renders of a sphere and the bunny.
+snell_add_test(test_ref_bvh SOURCES test_ref_bvh.c LABELS "unit")
+target_link_libraries(test_ref_bvh PRIVATE m)
+snell_add_test(test_ref_analytic SOURCES test_ref_analytic.c LABELS "unit")
+target_link_libraries(test_ref_analytic PRIVATE m)
+snell_add_test(test_ref_render SOURCES test_ref_render.c LABELS "render")
+target_link_libraries(test_ref_render PRIVATE m)
