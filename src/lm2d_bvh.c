@@ -257,7 +257,7 @@ static inline void test_leaf(const lm2d_bvh *bvh, int32_t code, const float o[2]
         tn = (wx * g[3] - wy * g[2]) * inv;
         if (!(tn > t_min) || !(tn < *t_best)) continue;
         sn = (wx * d[1] - wy * d[0]) * inv;
-        if (sn < 0.0f || sn > 1.0f) continue;
+        if (sn < -LM2D_S_EPS || sn > 1.0f + LM2D_S_EPS) continue;
         if (bvh->prim[first + i] == skip) continue;
         *t_best = tn;
         *best = bvh->prim[first + i];

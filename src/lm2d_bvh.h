@@ -47,8 +47,13 @@ int lm2d_brute_intersect(const lm2d_bvh *bvh, const float o[2], const float d[2]
                          int skip);
 
 /* Ray/segment test (Brückner eq. 2.3 in cross-product form). p, e: segment
- * p + s e, s in [0,1] inclusive (endpoint hits count). Returns 1 and t when the
+ * p + s e, s in [0,1] inclusive (endpoint hits count, LM2D_S_EPS slack). Returns 1 and t when the
  * ray hits with t > t_min; parallel rays (cross(d,e) == 0) never hit. */
+/* Endpoint tolerance on the segment parameter: a ray through a shared vertex
+ * must not slip between the two edges through rounding (both may then report
+ * the same t; either is correct). */
+#define LM2D_S_EPS 1e-6f
+
 static inline int lm2d_ray_segment(const float o[2], const float d[2], const float p[2], const float e[2],
                                    float t_min, float *t)
 {
@@ -59,7 +64,7 @@ static inline int lm2d_ray_segment(const float o[2], const float d[2], const flo
     inv = 1.0f / den;
     tn = (wx * e[1] - wy * e[0]) * inv;
     sn = (wx * d[1] - wy * d[0]) * inv;
-    if (!(tn > t_min) || sn < 0.0f || sn > 1.0f) return 0;
+    if (!(tn > t_min) || sn < -LM2D_S_EPS || sn > 1.0f + LM2D_S_EPS) return 0;
     *t = tn;
     return 1;
 }

@@ -174,6 +174,11 @@ void snell_lightmap2d_destroy(snell_lightmap2d *lm)
     snell__free(lm->al, lm);
 }
 
+void snell_lightmap2d_finish(snell_lightmap2d *lm)
+{
+    if (lm && lm->gl) lm2d_gl_finish(lm->gl);
+}
+
 unsigned snell_lightmap2d_texture(const snell_lightmap2d *lm) { return lm ? lm2d_gl_texture(lm->gl) : 0; }
 
 /* Per-light state follows the scene's light count (grows only when lights are added). */

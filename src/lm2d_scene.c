@@ -69,6 +69,18 @@ void snell_scene2d_destroy(snell_scene2d *s)
     snell__free(s->al, s);
 }
 
+snell_status snell_scene2d_set_bvh_leaf_size(snell_scene2d *s, int leaf_size)
+{
+    if (!s || leaf_size < 0 || leaf_size > LM2D_BVH_MAX_LEAF)
+        return snell__fail(s ? s->ctx : NULL, SNELL_E_INVALID_ARG, "scene2d: leaf size %d outside [0,%d]", leaf_size,
+                           LM2D_BVH_MAX_LEAF);
+    if (s->leaf_size != leaf_size) {
+        s->leaf_size = leaf_size;
+        s->geom_dirty = 1; /* same geometry, new tree: paths stay valid, no version bump */
+    }
+    return SNELL_OK;
+}
+
 int snell_scene2d_object_count(const snell_scene2d *s) { return s ? s->n_objs : 0; }
 int snell_scene2d_light_count(const snell_scene2d *s) { return s ? s->n_lights : 0; }
 int snell_scene2d_edge_count(const snell_scene2d *s)

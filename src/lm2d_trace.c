@@ -183,7 +183,10 @@ static void trace_one(tracer *tr, rng *r, float o[2], float d[2], float w[3])
     const lm2d_trace_params *p = tr->p;
     const snell_scene2d *sc = p->scene;
     const lm2d_bvh *bvh = &sc->bvh;
-    float t_min = 1e-6f * ((bvh->hi[0] - bvh->lo[0]) + (bvh->hi[1] - bvh->lo[1]));
+    /* New rays start a hair off the surface on the side they leave to (and skip
+     * the edge they left): a fixed t_min instead would miss a neighbouring edge
+     * met within t_min, e.g. near a corner, and leak light through it. */
+    float lift = 1e-6f * ((bvh->hi[0] - bvh->lo[0]) + (bvh->hi[1] - bvh->lo[1])), t_min = 0.0f;
     float w_floor = RR_MIN_WEIGHT * max3(w);
     int skip = -1, medium = -1, bounce = 0;
     tr->e->emitted += (double)sum3(w);
@@ -248,7 +251,10 @@ static void trace_one(tracer *tr, rng *r, float o[2], float d[2], float w[3])
             nf[1] = ngf[1];
         }
         cosi = -dot2(d, nf);
-        if (!front || rng_next(r) < m->transmission) {
+        /* from outside, t splits BTDF/BRDF; from inside a transmissive object the
+         * ray can only leave or reflect internally; an opaque object reflects on
+         * both sides (a light placed inside one stays inside) */
+        if (front ? rng_next(r) < m->transmission : m->transmission > 0.0f) {
             /* BTDF (6.4.2.2 with refraction): Fresnel decides reflect / transmit */
             float n1 = front ? 1.0f : m->ior, n2 = front ? m->ior : 1.0f;
             float F = m->ior != 1.0f ? snell_opt_fresnel_schlick(cosi, n1, n2) : 0.0f;
@@ -290,8 +296,11 @@ static void trace_one(tracer *tr, rng *r, float o[2], float d[2], float w[3])
             for (k = 0; k < 3; k++) w[k] = keep[k] / f[k];
             tr->e->rr_gained += (double)(sum3(w) - sum3(keep));
         }
-        o[0] = pt[0];
-        o[1] = pt[1];
+        {
+            float side = dot2(nd, ng) > 0.0f ? lift : -lift;
+            o[0] = pt[0] + side * ng[0];
+            o[1] = pt[1] + side * ng[1];
+        }
         d[0] = nd[0];
         d[1] = nd[1];
         skip = hit;

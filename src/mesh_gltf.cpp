@@ -486,6 +486,29 @@ std::vector<int> scene_roots(const tinygltf::Model &m)
     return roots;
 }
 
+/* tinygltf and nlohmann::json convert nested JSON (e.g. "extras") recursively,
+ * so deeply nested input overflows the stack: a 200000-deep array segfaulted
+ * in testing. Measure the nesting depth first (brackets outside strings). */
+void check_json_depth(const unsigned char *s, size_t n)
+{
+    const size_t kMaxJsonDepth = 512; /* real glTF files stay below ~20 */
+    size_t depth = 0;
+    bool in_str = false;
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = s[i];
+        if (in_str) {
+            if (c == '\\') i++;
+            else if (c == '"') in_str = false;
+        } else if (c == '"') {
+            in_str = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth) fail(SNELL_E_LIMIT, "JSON nested deeper than 512 levels");
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            depth--;
+        }
+    }
+}
+
 /* GLB container header check before tinygltf sees it (12-byte header, then
  * a JSON chunk that must fit). */
 void check_glb(const unsigned char *d, size_t size)
@@ -527,8 +550,12 @@ snell_status load(snell_ctx *ctx, const unsigned char *data, size_t size, const 
         bool glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
         if (glb) {
             check_glb(data, size);
+            uint32_t jlen;
+            std::memcpy(&jlen, data + 12, 4);
+            check_json_depth(data + 20, jlen);
             ok = loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned int>(size), base_dir);
         } else {
+            check_json_depth(data, size);
             ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char *>(data),
                                             static_cast<unsigned int>(size), base_dir);
         }

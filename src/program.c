@@ -90,8 +90,9 @@ static int expand(snell_ctx *ctx, text_buf *b, const char *src, const char **see
     return 0;
 }
 
-/* "#version 300 es" + defines + FP16 emulation switch + expanded source. */
-static char *assemble(snell_ctx *ctx, const char *defines, const char *src)
+/* "#version 300 es" + defines + FP16 emulation switch + expanded source.
+ * NULL on failure, with *st set (SNELL_E_GL for a bad #include, SNELL_E_NOMEM). */
+static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snell_status *st)
 {
     text_buf b;
     const char *seen[MAX_INCLUDES];
@@ -104,25 +105,28 @@ static char *assemble(snell_ctx *ctx, const char *defines, const char *src)
     buf_append(&b, "#define SNELL_FP16_EMULATION 1\n", 32);
 #endif
     if (defines) buf_append(&b, defines, strlen(defines));
-    if (expand(ctx, &b, src, seen, &n_seen)) {
+    if (!b.failed && expand(ctx, &b, src, seen, &n_seen)) {
         snell__free(b.al, b.data);
+        *st = SNELL_E_GL;
         return NULL;
     }
     if (b.failed) {
         snell__free(b.al, b.data);
-        snell__fail(ctx, SNELL_E_NOMEM, "out of memory assembling a shader");
+        *st = snell__fail(ctx, SNELL_E_NOMEM, "out of memory assembling a shader");
         return NULL;
     }
+    *st = SNELL_OK;
     return b.data;
 }
 
 static snell_status compile(snell_ctx *ctx, GLenum type, const char *defines, const char *src,
                             GLuint *out)
 {
-    char *full = assemble(ctx, defines, src);
+    snell_status st;
+    char *full = assemble(ctx, defines, src, &st);
     GLuint sh;
     GLint ok = 0;
-    if (!full) return SNELL_E_GL;
+    if (!full) return st;
     sh = glCreateShader(type);
     glShaderSource(sh, 1, (const GLchar *const *)&full, NULL);
     glCompileShader(sh);

@@ -472,7 +472,7 @@ static void render_row(job *jb, int y)
 {
     const camera_rays *cr = jb->cr;
     const snell_ref_output *out = jb->out;
-    int want_path = out->exit_dir || out->interfaces;
+    int want_path = out->exit_dir || out->interfaces || out->hit;
     snell_ref_path path;
     int x, k;
     for (x = 0; x < cr->w; x++) {

@@ -1,8 +1,21 @@
-# Mesh loaders (OBJ, glTF) and procedural shapes; fuzz targets replayed on tests/data.
+# Mesh loaders (OBJ, glTF) and procedural shapes; fuzz targets replayed on the
+# assets in tests/data (valid and malformed) and on tests/fuzz/regressions.
 snell_add_test(test_mesh_obj SOURCES test_mesh_obj.c LABELS "unit")
 target_link_libraries(test_mesh_obj PRIVATE m)
-if(SNELL_WITH_GLTF)
-  target_compile_definitions(test_mesh_obj PRIVATE SNELL_TEST_HAVE_GLTF=1)
-endif()
 snell_add_test(test_mesh_shapes SOURCES test_mesh_shapes.c LABELS "unit")
 target_link_libraries(test_mesh_shapes PRIVATE m)
+if(SNELL_WITH_GLTF)
+  target_compile_definitions(test_mesh_obj PRIVATE SNELL_TEST_HAVE_GLTF=1)
+  snell_add_test(test_mesh_gltf SOURCES test_mesh_gltf.c LABELS "unit")
+  target_link_libraries(test_mesh_gltf PRIVATE m)
+endif()
+
+# Fuzz targets as plain replay programs (no -DSNELL_LIBFUZZER): every input file
+# goes through both loaders; a crash, sanitizer report or broken invariant fails.
+file(GLOB SNELL_MESH_FUZZ_INPUTS CONFIGURE_DEPENDS
+     ${CMAKE_CURRENT_SOURCE_DIR}/data/*.obj ${CMAKE_CURRENT_SOURCE_DIR}/data/*.gltf
+     ${CMAKE_CURRENT_SOURCE_DIR}/data/*.glb ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/regressions/*)
+foreach(target fuzz_obj fuzz_gltf)
+  snell_add_test(${target} SOURCES fuzz/${target}.c LABELS "unit;fuzz" ARGS ${SNELL_MESH_FUZZ_INPUTS})
+  target_link_libraries(${target} PRIVATE m)
+endforeach()

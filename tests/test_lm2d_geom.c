@@ -124,7 +124,7 @@ int main(void)
     float s[4] = {0, 0, 1, 1};
     test_segment();
     test_vertex();
-    for (leaf = 1; leaf <= 16; leaf *= 2) test_bvh_random(leaf, 3000, 20000, 30.0f);
+    for (leaf = 1; leaf <= 16; leaf *= 2) test_bvh_random(leaf, 3000, 6000, 30.0f);
     test_bvh_random(3, 5, 2000, 500.0f);   /* root is a single leaf */
     test_bvh_random(4, 200, 5000, 900.0f); /* long overlapping edges */
     CHECK(lm2d_bvh_build(NULL, al, s, 1, 0, &bvh) == SNELL_E_INVALID_ARG, "leaf size 0 accepted");

@@ -64,7 +64,7 @@ int main(void)
         CHECK(snell_scene2d_object_count(s) == 2 && snell_scene2d_light_count(s) == 1, "shadow.txt: %d objects, %d lights",
               snell_scene2d_object_count(s), snell_scene2d_light_count(s));
         CHECK(size[0] == 256 && size[1] == 256 && view[2] == 256.0f, "shadow.txt: size/view not parsed");
-        CHECK(s->objs[1].offset[0] == 103.0f && s->objs[1].bmin[0] == 103.0f, "offset not applied");
+        CHECK(s->objs[1].bmin[0] == 108.0f && s->objs[1].bmax[1] == 160.0f, "inline polygon bounds");
         CHECK(s->lights[0].d.type == SNELL_LIGHT2D_BAR && s->lights[0].d.rays == 40000, "bar light not parsed");
         check_outward(s, "shadow.txt");
         snell_scene2d_destroy(s);

@@ -247,6 +247,36 @@ static void test_malformed_json(void)
     expect("truncated JSON", base, strlen(base) / 2, SNELL_E_PARSE);
     expect("garbage", "\x01\x02\xff\xfe garbage", 12, SNELL_E_PARSE);
     {
+        /* deeply nested JSON overflowed the stack inside tinygltf (found while
+         * testing); the loader now refuses nesting beyond 512 levels */
+        const size_t depth = 200000;
+        const char *head = "{\"asset\":{\"version\":\"2.0\"},\"extras\":";
+        size_t hl = strlen(head), k;
+        char *deep = (char *)malloc(hl + 2 * depth + 2);
+        if (deep) {
+            memcpy(deep, head, hl);
+            for (k = 0; k < depth; k++) {
+                deep[hl + k] = '[';
+                deep[hl + depth + k] = ']';
+            }
+            deep[hl + 2 * depth] = '}';
+            expect("200000-deep JSON", deep, hl + 2 * depth + 1, SNELL_E_LIMIT);
+            free(deep);
+        }
+    }
+    {
+        /* brackets inside strings (also after an escaped quote) do not count */
+        char str[1100], *to, *json;
+        size_t k;
+        strcpy(str, "{\"version\":\"2.0\",\"extras\":{\"s\":\"\\\"");
+        for (k = strlen(str); k < 1000; k++) str[k] = '[';
+        strcpy(str + 1000, "\"}}");
+        to = str;
+        json = replace(base, "{\"version\":\"2.0\"}", to);
+        if (json) expect("brackets in strings", json, strlen(json), SNELL_OK);
+        free(json);
+    }
+    {
         snell_mesh *m = NULL;
         CHECK(snell_mesh_load_gltf_mem(NULL, base, 0, &m) == SNELL_E_INVALID_ARG, "empty input");
         CHECK(snell_mesh_load_gltf(NULL, test_data("missing.gltf"), &m) == SNELL_E_IO, "missing file");
@@ -311,9 +341,23 @@ static void test_malformed_glb(void)
     free(glb);
 }
 
+/* malformed files written by make_gltf.py, through the file loader */
+static void test_bad_files(void)
+{
+    static const char *files[] = {"bad_accessor.gltf", "bad_stride.gltf", "bad_index.gltf", "bad_truncated.glb"};
+    size_t i;
+    for (i = 0; i < sizeof files / sizeof files[0]; i++) {
+        snell_mesh *m = NULL;
+        snell_status st = snell_mesh_load(NULL, test_data(files[i]), &m);
+        CHECK(st == SNELL_E_PARSE && m == NULL && snell_last_error(NULL)[0], "%s: %s (%s)", files[i],
+              snell_status_str(st), snell_last_error(NULL));
+    }
+}
+
 int main(void)
 {
     test_valid();
+    test_bad_files();
     test_malformed_json();
     test_malformed_glb();
     return test_finish();

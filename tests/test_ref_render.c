@@ -180,6 +180,24 @@ static void paths_and_outputs(const snell_ref *ref, snell_ref_params p)
                 }
             }
     }
+    {
+        /* FULL with only rgb + hit requested (the path walk is optional there):
+         * same colours and mask as with every output. */
+        snell_ref_output o;
+        float *rgb = (float *)malloc(sizeof(float) * 3 * a.w * a.h);
+        uint8_t *hit = (uint8_t *)malloc((size_t)a.w * a.h);
+        memset(&o, 0, sizeof o);
+        o.rgb = rgb;
+        o.hit = hit;
+        CHECK_OK(snell_ref_render(ref, &p, &o));
+        CHECK(!memcmp(rgb, a.rgb, sizeof(float) * 3 * a.w * a.h) && !memcmp(hit, a.hit, (size_t)a.w * a.h),
+              "FULL outputs depend on which outputs are requested");
+        o.hit = NULL;
+        CHECK_OK(snell_ref_render(ref, &p, &o));
+        CHECK(!memcmp(rgb, a.rgb, sizeof(float) * 3 * a.w * a.h), "FULL colour depends on the outputs requested");
+        free(rgb);
+        free(hit);
+    }
     CHECK(bad_path == 0, "%d mismatches between trace_pixel and the rendered image", bad_path);
     CHECK(bad_bg == 0, "%d background pixels are not env(view ray)", bad_bg);
     CHECK(bad_dir == 0, "%d exit directions are not unit", bad_dir);

@@ -103,6 +103,9 @@ snell_status snell_scene2d_set_light(snell_scene2d *scene, int id, const snell_l
 snell_status snell_scene2d_load(snell_ctx *ctx, const char *path, snell_scene2d **out,
                                 float view[4], int size[2]);
 
+/* BVH leaf size (edges per leaf, 1..31; 0 = 4). Takes effect at the next frame's rebuild. */
+snell_status snell_scene2d_set_bvh_leaf_size(snell_scene2d *scene, int leaf_size);
+
 int snell_scene2d_object_count(const snell_scene2d *scene);
 int snell_scene2d_light_count(const snell_scene2d *scene);
 int snell_scene2d_edge_count(const snell_scene2d *scene);
@@ -170,6 +173,8 @@ snell_status snell_lightmap2d_read_rgba(snell_lightmap2d *lm, uint8_t *rgba);
 /* The exact CPU rasterisation (eq. 4.2: each pixel weighted by the length of the
  * segment inside it) of the same paths and passes: the reference for the GPU lines. */
 snell_status snell_lightmap2d_read_rgb_exact(snell_lightmap2d *lm, float *rgb);
+/* Waits for the GPU to finish the lightmap (glFinish); for timing. */
+void snell_lightmap2d_finish(snell_lightmap2d *lm);
 /* The GL texture holding the accumulation (0 without GL), for drawing in a host app. */
 unsigned snell_lightmap2d_texture(const snell_lightmap2d *lm);
 

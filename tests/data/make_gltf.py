@@ -4,6 +4,8 @@
   nodes.gltf      JSON with the buffer embedded as a base64 data URI
   nodes.glb       the same model as a binary container (JSON + BIN chunks)
   nodes_ext.gltf  the same model with the buffer in the external file nodes.bin
+  bad_accessor.gltf, bad_stride.gltf, bad_index.gltf, bad_truncated.glb
+                  malformed variants (replayed through the fuzz targets by ctest)
 
 Content (expected values are derived in the test from these definitions):
   mesh 0  triangle (0,0,0) (1,0,0) (0,1,0), NORMAL (0,0,1), uint16 indices
@@ -119,3 +121,24 @@ js += b" " * (-len(js) % 4)
 glb = struct.pack("<I4s", len(js), b"JSON") + js + struct.pack("<I4s", len(blob), b"BIN\0") + blob
 with open("nodes.glb", "wb") as f:
     f.write(struct.pack("<4sII", b"glTF", 2, 12 + len(glb)) + glb)
+
+# --- malformed variants ----------------------------------------------------
+bad = json.loads(dump(embedded))
+bad["accessors"][0]["count"] = 1000  # runs past its bufferView
+with open("bad_accessor.gltf", "w") as f:
+    f.write(dump(bad) + "\n")
+bad = json.loads(dump(embedded))
+bad["bufferViews"][bv_inter]["byteStride"] = 8  # smaller than one VEC3 float element
+with open("bad_stride.gltf", "w") as f:
+    f.write(dump(bad) + "\n")
+bad = json.loads(dump(embedded))
+blob_bad = bytearray(blob)
+off = views[bv_i16]["byteOffset"]
+blob_bad[off + 4:off + 6] = struct.pack("<H", 700)  # index 700 of 3 vertices
+bad["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(bytes(blob_bad)).decode()
+with open("bad_index.gltf", "w") as f:
+    f.write(dump(bad) + "\n")
+with open("nodes.glb", "rb") as f:
+    whole = f.read()
+with open("bad_truncated.glb", "wb") as f:
+    f.write(whole[: len(whole) * 2 // 3])

@@ -1,0 +1,285 @@
+/* bench2d.c — `snell-bench --2d`: the 2D lightmap benchmarks of Brückner ch. 7
+ * on the public API: tracer rays/s per core on a 2263-edge polygon set (7.3.1),
+ * BVH leaf-size sweep (7.3.2), GL line rasterisation in paths/ms (7.4), and the
+ * frame time of a 1920x1080 lightmap with one point light of 2.5e4 rays and 3
+ * specular bounces (7.6). Prints a table, writes JSON and CSV. */
+#define _POSIX_C_SOURCE 200809L
+#include "snell/snell.h"
+#include "snell/snell_2d.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+int snell_bench2d_main(int argc, char **argv);
+
+#define PI_F 3.14159265358979323846f
+#define VIEW_W 1920
+#define VIEW_H 1080
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Thesis Abb. A.17 stand-in: 8 irregular blobs on a ring around the screen
+ * centre, 2263 edges in all, so most rays from the centre hit an edge. */
+static snell_status bvh_scene(snell_ctx *ctx, int edges, float mirror, snell_scene2d **out)
+{
+    snell_scene2d *s;
+    snell_status st;
+    int k;
+    float *pts = (float *)malloc(sizeof(float) * 2 * (size_t)edges);
+    if (!pts) return SNELL_E_NOMEM;
+    if ((st = snell_scene2d_create(ctx, &s)) != SNELL_OK) {
+        free(pts);
+        return st;
+    }
+    for (k = 0; k < 8 && st == SNELL_OK; k++) {
+        int n = edges / 8 + (k < edges % 8), i;
+        float ca = 2.0f * PI_F * (float)k / 8.0f, cx = VIEW_W / 2 + 400.0f * cosf(ca), cy = VIEW_H / 2 + 400.0f * sinf(ca);
+        snell_object2d_desc d;
+        for (i = 0; i < n; i++) {
+            float th = 2.0f * PI_F * (float)i / (float)n, ph = (float)k;
+            float r = 140.0f * (1.0f + 0.25f * sinf(3 * th + ph) + 0.1f * sinf(7 * th + 2 * ph) + 0.05f * sinf(23 * th));
+            pts[2 * i] = cx + r * cosf(th);
+            pts[2 * i + 1] = cy + r * sinf(th);
+        }
+        memset(&d, 0, sizeof d);
+        d.points = pts;
+        d.point_count = n;
+        d.material.absorption = mirror > 0.0f ? 1.0f - mirror : 0.5f;
+        d.material.diffuse = mirror > 0.0f ? 0.0f : 0.3f;
+        st = snell_scene2d_add_object(s, &d, NULL);
+    }
+    free(pts);
+    if (st != SNELL_OK) {
+        snell_scene2d_destroy(s);
+        return st;
+    }
+    *out = s;
+    return SNELL_OK;
+}
+
+static snell_light2d_desc point_light(int rays, float x, float y)
+{
+    snell_light2d_desc L;
+    memset(&L, 0, sizeof L);
+    L.type = SNELL_LIGHT2D_POINT;
+    L.position[0] = x;
+    L.position[1] = y;
+    L.power = 100.0f;
+    L.rays = rays;
+    return L;
+}
+
+static snell_light2d_desc bench2d_light0; /* light 0 of the scene being timed */
+
+typedef struct result {
+    double ms, trace_ms, raster_ms;
+    unsigned long long rays, paths;
+} result;
+
+/* Median over `repeat` frames; the light moves by a hair between frames so
+ * every frame really re-traces (a static scene would be reused). */
+static snell_status run_frames(snell_ctx *ctx, snell_scene2d *s, const snell_lightmap2d_desc *d, int repeat, result *r)
+{
+    snell_lightmap2d *lm;
+    snell_lightmap2d_stats st;
+    snell_status rc;
+    double t[64], tr[64], ra[64];
+    int i;
+    snell_light2d_desc L;
+    if (repeat > 64) repeat = 64;
+    if ((rc = snell_lightmap2d_create(ctx, d, &lm)) != SNELL_OK) return rc;
+    memset(r, 0, sizeof *r);
+    for (i = -1; i < repeat; i++) { /* frame -1 warms up (allocation, shader, BVH) */
+        double t0;
+        L = bench2d_light0;
+        L.position[0] += (i & 1) ? 1e-3f : -1e-3f;
+        if ((rc = snell_scene2d_set_light(s, 0, &L)) != SNELL_OK) break;
+        t0 = now_ms();
+        if ((rc = snell_lightmap2d_frame(lm, s, &st)) != SNELL_OK) break;
+        snell_lightmap2d_finish(lm);
+        if (i < 0) continue;
+        t[i] = now_ms() - t0;
+        tr[i] = st.trace_ms;
+        ra[i] = t[i] - st.trace_ms;
+        r->rays = st.rays;
+        r->paths = st.paths;
+    }
+    snell_lightmap2d_destroy(lm);
+    if (rc != SNELL_OK) return rc;
+    r->ms = median(t, repeat);
+    r->trace_ms = median(tr, repeat);
+    r->raster_ms = median(ra, repeat);
+    return SNELL_OK;
+}
+
+static void usage(void)
+{
+    fprintf(stderr,
+            "usage: snell-bench --2d [--rays N] [--repeat R] [--threads T] [--no-gpu] [--quick]\n"
+            "                        [--json FILE] [--csv FILE]\n"
+            "  rays/s per core (1 thread, 2263 edges, 0 bounces), leaf sweep, GL paths/ms,\n"
+            "  1920x1080 frame (2.5e4 rays, 3 specular bounces)\n");
+}
+
+int snell_bench2d_main(int argc, char **argv)
+{
+    int rays = 200000, repeat = 9, threads = 0, gpu = 1, i, li, edges = 2263;
+    const char *json = "bench2d.json", *csv = "bench2d.csv";
+    static const int leaves[] = {1, 2, 3, 4, 6, 8, 12, 16};
+    double leaf_rps[8];
+    snell_ctx *ctx = NULL;
+    snell_scene2d *s = NULL;
+    snell_lightmap2d_desc d;
+    snell_status st;
+    result r1, rT, rg, rf;
+    FILE *f;
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--2d") == 0) continue;
+        if (strcmp(argv[i], "--rays") == 0 && i + 1 < argc) rays = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) repeat = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) threads = atoi(argv[++i]);
+        else if (strcmp(argv[i], "--json") == 0 && i + 1 < argc) json = argv[++i];
+        else if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv = argv[++i];
+        else if (strcmp(argv[i], "--no-gpu") == 0) gpu = 0;
+        else if (strcmp(argv[i], "--quick") == 0) {
+            rays = 50000;
+            repeat = 3;
+        } else {
+            usage();
+            return 2;
+        }
+    }
+    if (rays < 1000 || repeat < 1 || threads < 0) {
+        usage();
+        return 2;
+    }
+    if (threads == 0) threads = ncpu > 0 ? (int)ncpu : 1;
+    if (gpu && snell_ctx_create(NULL, &ctx) != SNELL_OK) {
+        fprintf(stderr, "snell-bench --2d: no GL context (%s); GPU entries skipped\n", snell_last_error(NULL));
+        ctx = NULL;
+    }
+    if ((st = bvh_scene(ctx, edges, 0.0f, &s)) != SNELL_OK) {
+        fprintf(stderr, "snell-bench --2d: %s\n", snell_last_error(ctx));
+        snell_ctx_destroy(ctx);
+        return 1;
+    }
+    bench2d_light0 = point_light(rays, VIEW_W / 2, VIEW_H / 2);
+    if ((st = snell_scene2d_add_light(s, &bench2d_light0, NULL)) != SNELL_OK) goto fail;
+
+    /* 1. tracer throughput, 0 bounces (thesis 7.3.1), CPU only so raster is the exact CPU one */
+    memset(&d, 0, sizeof d);
+    d.width = VIEW_W;
+    d.height = VIEW_H;
+    d.max_bounces = -1;
+    d.threads = 1;
+    d.cpu_only = 1;
+    if ((st = run_frames(NULL, s, &d, repeat, &r1)) != SNELL_OK) goto fail;
+    d.threads = threads;
+    if ((st = run_frames(NULL, s, &d, repeat, &rT)) != SNELL_OK) goto fail;
+    /* 2. leaf sweep (7.3.2), 1 thread */
+    d.threads = 1;
+    for (li = 0; li < 8; li++) {
+        result r;
+        snell_scene2d_set_bvh_leaf_size(s, leaves[li]);
+        if ((st = run_frames(NULL, s, &d, repeat, &r)) != SNELL_OK) goto fail;
+        leaf_rps[li] = (double)r.rays / (r.trace_ms * 1e-3);
+    }
+    snell_scene2d_set_bvh_leaf_size(s, 0);
+    memset(&rg, 0, sizeof rg);
+    memset(&rf, 0, sizeof rf);
+    if (ctx) {
+        /* 3. GL rasterisation of the same 2e5 paths into a 1080p RGBA32F target (7.4) */
+        d.cpu_only = 0;
+        d.threads = threads;
+        if ((st = run_frames(ctx, s, &d, repeat, &rg)) != SNELL_OK) goto fail;
+    }
+    /* 4. 1080p frame: mirror blobs, 2.5e4 rays, 3 specular bounces (7.6) */
+    snell_scene2d_destroy(s);
+    s = NULL;
+    if ((st = bvh_scene(ctx, edges, 0.9f, &s)) != SNELL_OK) goto fail;
+    bench2d_light0 = point_light(25000, VIEW_W / 2, VIEW_H / 2);
+    if ((st = snell_scene2d_add_light(s, &bench2d_light0, NULL)) != SNELL_OK) goto fail;
+    d.max_bounces = 3;
+    d.threads = threads;
+    d.cpu_only = ctx == NULL;
+    if ((st = run_frames(ctx, s, &d, repeat, &rf)) != SNELL_OK) goto fail;
+
+    printf("snell-bench --2d  (%s, %d thread(s) where not 1, median of %d)\n", ctx ? snell_ctx_gl_renderer(ctx) : "no GL",
+           threads, repeat);
+    printf("%-44s %14s\n", "measure", "value");
+    printf("%-44s %14.3g\n", "trace rays/s per core (1 thread, 2263 edges)", (double)r1.rays / (r1.trace_ms * 1e-3));
+    printf("%-44s %14.3f\n", "  trace ms for 2e5 rays (thesis: 389 ms/4c)", r1.trace_ms * 200000.0 / (double)r1.rays);
+    printf("%-44s %14.3g\n", "trace rays/s, all threads", (double)rT.rays / (rT.trace_ms * 1e-3));
+    for (li = 0; li < 8; li++) {
+        char name[64];
+        snprintf(name, sizeof name, "  leaf size %2d: rays/s per core", leaves[li]);
+        printf("%-44s %14.3g\n", name, leaf_rps[li]);
+    }
+    if (ctx) {
+        printf("%-44s %14.1f\n", "GL paths/ms (1080p RGBA32F, incl. upload)", (double)rg.paths / rg.raster_ms);
+        printf("%-44s %14llu\n", "  paths per frame", rg.paths);
+    }
+    printf("%-44s %14.2f\n", "1080p frame ms (2.5e4 rays, 3 bounces)", rf.ms);
+    printf("%-44s %14.2f\n", "  of which trace ms", rf.trace_ms);
+    printf("%-44s %14.2f\n", "  of which raster ms (incl. glFinish)", rf.raster_ms);
+    printf("%-44s %14llu\n", "  paths", rf.paths);
+
+    f = fopen(json, "w");
+    if (f) {
+        fprintf(f, "{\n  \"renderer\": \"%s\",\n  \"threads\": %d,\n  \"repeat\": %d,\n", ctx ? snell_ctx_gl_renderer(ctx) : "none",
+                threads, repeat);
+        fprintf(f, "  \"edges\": %d,\n  \"rays\": %d,\n", edges, rays);
+        fprintf(f, "  \"trace_rays_per_s_per_core\": %.1f,\n", (double)r1.rays / (r1.trace_ms * 1e-3));
+        fprintf(f, "  \"trace_rays_per_s_all_threads\": %.1f,\n", (double)rT.rays / (rT.trace_ms * 1e-3));
+        fprintf(f, "  \"leaf_sweep\": [");
+        for (li = 0; li < 8; li++)
+            fprintf(f, "%s{\"leaf\": %d, \"rays_per_s\": %.1f}", li ? ", " : "", leaves[li], leaf_rps[li]);
+        fprintf(f, "],\n  \"gl_paths_per_ms\": %.1f,\n", ctx ? (double)rg.paths / rg.raster_ms : 0.0);
+        fprintf(f, "  \"frame_1080p_ms\": %.3f,\n  \"frame_1080p_trace_ms\": %.3f,\n  \"frame_1080p_raster_ms\": %.3f,\n",
+                rf.ms, rf.trace_ms, rf.raster_ms);
+        fprintf(f, "  \"frame_1080p_paths\": %llu\n}\n", rf.paths);
+        fclose(f);
+    }
+    f = fopen(csv, "w");
+    if (f) {
+        fprintf(f, "measure,value\n");
+        fprintf(f, "trace_rays_per_s_per_core,%.1f\n", (double)r1.rays / (r1.trace_ms * 1e-3));
+        fprintf(f, "trace_rays_per_s_all_threads,%.1f\n", (double)rT.rays / (rT.trace_ms * 1e-3));
+        for (li = 0; li < 8; li++) fprintf(f, "leaf_%d_rays_per_s,%.1f\n", leaves[li], leaf_rps[li]);
+        fprintf(f, "gl_paths_per_ms,%.1f\n", ctx ? (double)rg.paths / rg.raster_ms : 0.0);
+        fprintf(f, "frame_1080p_ms,%.3f\nframe_1080p_trace_ms,%.3f\nframe_1080p_raster_ms,%.3f\n", rf.ms, rf.trace_ms,
+                rf.raster_ms);
+        fclose(f);
+    }
+    printf("wrote %s and %s\n", json, csv);
+    snell_scene2d_destroy(s);
+    snell_ctx_destroy(ctx);
+    return 0;
+fail:
+    fprintf(stderr, "snell-bench --2d: %s: %s\n", snell_status_str(st), snell_last_error(ctx));
+    snell_scene2d_destroy(s);
+    snell_ctx_destroy(ctx);
+    return 1;
+}

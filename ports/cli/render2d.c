@@ -1,0 +1,217 @@
+/* render2d.c — `snell-render --2d`: a 2D scene file -> lightmap PNG, optionally
+ * multiplied onto an albedo image (Brückner A.3); and `--contour`: an image's
+ * alpha outline -> polygon CSV (A.5). Public API only (+ stb_image, file-local). */
+#include "snell/snell.h"
+#include "snell/snell_2d.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#if defined(__GNUC__)
+/* stb_image declares some static functions it does not define in this
+ * configuration; the "declared static but never defined" warning is issued at
+ * the end of the file, so it stays off for the whole (small) file. */
+#pragma GCC diagnostic ignored "-Wunused-function"
+#endif
+#include <stb/stb_image.h>
+
+int snell_render2d_main(int argc, char **argv);
+
+static void usage(void)
+{
+    fprintf(stderr,
+            "usage: snell-render --2d SCENE.txt -o OUT.png [options]\n"
+            "       snell-render --2d --contour IMAGE.png -o OUT.csv [--epsilon PX] [--threshold A]\n"
+            "options:\n"
+            "  --albedo IMG.png     multiply the lightmap onto this image (its size sets the lightmap size)\n"
+            "  --size WxH           lightmap size (default: scene 'size', else 512x512)\n"
+            "  --exposure E|auto    scale before display; auto: 99th percentile of lit pixels -> 1 (default)\n"
+            "  --gamma G            display gamma (default 2.2; 1 = linear lightmap as in the thesis)\n"
+            "  --bounces N          interactions per ray (default 8; 0 = direct light only)\n"
+            "  --passes N           progressive passes to accumulate (default 1)\n"
+            "  --threads N --seed S --blend add|screen --cpu (exact CPU rasteriser, no GL)\n"
+            "  --format auto|rgba32f|rgba16f|rgb10a2|rgba8\n");
+}
+
+static int cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+static int contour_main(const char *in, const char *out, float eps, int thr)
+{
+    int w, h, c, n;
+    float *pts;
+    uint8_t *img = stbi_load(in, &w, &h, &c, 4);
+    snell_status st;
+    if (!img) {
+        fprintf(stderr, "snell-render --2d: cannot read %s: %s\n", in, stbi_failure_reason());
+        return 1;
+    }
+    st = snell_contour2d_from_alpha(NULL, img, w, h, thr, eps, &pts, &n);
+    stbi_image_free(img);
+    if (st == SNELL_OK) {
+        st = snell_contour2d_write_csv(out, pts, n);
+        snell_contour2d_free(NULL, pts);
+    }
+    if (st != SNELL_OK) {
+        fprintf(stderr, "snell-render --2d: %s: %s\n", snell_status_str(st), snell_last_error(NULL));
+        return 1;
+    }
+    printf("%s: %d points\n", out, n);
+    return 0;
+}
+
+int snell_render2d_main(int argc, char **argv)
+{
+    const char *scene_path = NULL, *out = NULL, *albedo_path = NULL, *contour = NULL;
+    float exposure = 0.0f, gamma = 2.2f, eps = 0.0f, view[4];
+    int i, w = 0, h = 0, passes = 1, thr = 128, size[2], aw = 0, ah = 0, ac, rc = 1;
+    snell_lightmap2d_desc d;
+    snell_ctx *ctx = NULL;
+    snell_scene2d *s = NULL;
+    snell_lightmap2d *lm = NULL;
+    snell_lightmap2d_stats stats;
+    snell_status st;
+    uint8_t *albedo = NULL, *rgba = NULL;
+    float *rgb = NULL, *lum = NULL;
+    memset(&d, 0, sizeof d);
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--2d") == 0) continue;
+        if (strcmp(a, "-o") == 0 && v) out = argv[++i];
+        else if (strcmp(a, "--albedo") == 0 && v) albedo_path = argv[++i];
+        else if (strcmp(a, "--contour") == 0 && v) contour = argv[++i];
+        else if (strcmp(a, "--epsilon") == 0 && v) eps = (float)atof(argv[++i]);
+        else if (strcmp(a, "--threshold") == 0 && v) thr = atoi(argv[++i]);
+        else if (strcmp(a, "--size") == 0 && v) {
+            if (sscanf(argv[++i], "%dx%d", &w, &h) != 2 || w < 1 || h < 1) {
+                usage();
+                return 2;
+            }
+        } else if (strcmp(a, "--exposure") == 0 && v) exposure = strcmp(argv[++i], "auto") == 0 ? 0.0f : (float)atof(argv[i]);
+        else if (strcmp(a, "--gamma") == 0 && v) gamma = (float)atof(argv[++i]);
+        else if (strcmp(a, "--bounces") == 0 && v) {
+            int b = atoi(argv[++i]);
+            d.max_bounces = b == 0 ? -1 : b;
+        } else if (strcmp(a, "--passes") == 0 && v) passes = atoi(argv[++i]);
+        else if (strcmp(a, "--threads") == 0 && v) d.threads = atoi(argv[++i]);
+        else if (strcmp(a, "--seed") == 0 && v) d.seed = (uint64_t)strtoull(argv[++i], NULL, 10);
+        else if (strcmp(a, "--blend") == 0 && v) d.blend = strcmp(argv[++i], "screen") == 0 ? SNELL_BLEND2D_SCREEN : SNELL_BLEND2D_ADD;
+        else if (strcmp(a, "--cpu") == 0) d.cpu_only = 1;
+        else if (strcmp(a, "--format") == 0 && v) {
+            const char *f = argv[++i];
+            d.format = strcmp(f, "rgba32f") == 0 ? SNELL_FORMAT2D_RGBA32F
+                       : strcmp(f, "rgba16f") == 0 ? SNELL_FORMAT2D_RGBA16F
+                       : strcmp(f, "rgb10a2") == 0 ? SNELL_FORMAT2D_RGB10A2
+                       : strcmp(f, "rgba8") == 0   ? SNELL_FORMAT2D_RGBA8
+                                                   : SNELL_FORMAT2D_AUTO;
+        } else if (a[0] != '-' && !scene_path) scene_path = a;
+        else {
+            fprintf(stderr, "snell-render --2d: unknown or incomplete option %s\n", a);
+            usage();
+            return 2;
+        }
+    }
+    if (contour) {
+        if (!out) {
+            usage();
+            return 2;
+        }
+        return contour_main(contour, out, eps, thr);
+    }
+    if (!scene_path || !out || passes < 1 || !(gamma > 0.0f) || exposure < 0.0f) {
+        usage();
+        return 2;
+    }
+    if ((st = snell_scene2d_load(NULL, scene_path, &s, view, size)) != SNELL_OK) {
+        fprintf(stderr, "snell-render --2d: %s: %s\n", snell_status_str(st), snell_last_error(NULL));
+        return 1;
+    }
+    if (albedo_path) {
+        albedo = stbi_load(albedo_path, &aw, &ah, &ac, 4);
+        if (!albedo) {
+            fprintf(stderr, "snell-render --2d: cannot read %s: %s\n", albedo_path, stbi_failure_reason());
+            goto done;
+        }
+        if (!w) {
+            w = aw;
+            h = ah;
+        } else if (w != aw || h != ah) {
+            fprintf(stderr, "snell-render --2d: albedo is %dx%d but the lightmap %dx%d\n", aw, ah, w, h);
+            goto done;
+        }
+    }
+    if (!w) {
+        w = size[0] ? size[0] : 512;
+        h = size[1] ? size[1] : 512;
+    }
+    d.width = w;
+    d.height = h;
+    if (view[2] > view[0]) {
+        d.view_min[0] = view[0];
+        d.view_min[1] = view[1];
+        d.view_max[0] = view[2];
+        d.view_max[1] = view[3];
+    }
+    d.exposure = exposure > 0.0f && d.blend == SNELL_BLEND2D_SCREEN ? exposure : 1.0f;
+    d.progressive = passes > 1;
+    if (!d.cpu_only && snell_ctx_create(NULL, &ctx) != SNELL_OK) {
+        fprintf(stderr, "snell-render --2d: no GL context (%s); using the CPU rasteriser\n", snell_last_error(NULL));
+        ctx = NULL;
+    }
+    if ((st = snell_lightmap2d_create(ctx, &d, &lm)) != SNELL_OK) goto fail;
+    for (i = 0; i < passes; i++)
+        if ((st = snell_lightmap2d_frame(lm, s, &stats)) != SNELL_OK) goto fail;
+    rgb = (float *)malloc(sizeof(float) * 3 * (size_t)w * (size_t)h);
+    lum = (float *)malloc(sizeof(float) * (size_t)w * (size_t)h);
+    rgba = (uint8_t *)malloc(4 * (size_t)w * (size_t)h);
+    if (!rgb || !lum || !rgba) {
+        fprintf(stderr, "snell-render --2d: out of memory\n");
+        goto done;
+    }
+    if ((st = snell_lightmap2d_read_rgb(lm, rgb)) != SNELL_OK) goto fail;
+    if (exposure == 0.0f && d.blend == SNELL_BLEND2D_ADD) {
+        /* auto exposure: the 99th percentile of lit pixels becomes white */
+        size_t n = 0, k;
+        for (k = 0; k < (size_t)w * (size_t)h; k++) {
+            float m = fmaxf(rgb[3 * k], fmaxf(rgb[3 * k + 1], rgb[3 * k + 2]));
+            if (m > 0.0f) lum[n++] = m;
+        }
+        qsort(lum, n, sizeof(float), cmp_float);
+        exposure = n ? 1.0f / lum[(size_t)(0.99 * (double)(n - 1))] : 1.0f;
+    } else if (d.blend == SNELL_BLEND2D_SCREEN) {
+        exposure = 1.0f; /* already applied inside the blend */
+    }
+    for (i = 0; i < w * h; i++) {
+        int k;
+        for (k = 0; k < 3; k++) {
+            float v = powf(fminf(fmaxf(rgb[3 * i + k] * exposure, 0.0f), 1.0f), 1.0f / gamma);
+            if (albedo) v *= (float)albedo[4 * i + k] / 255.0f; /* A.3: lightmap x texture */
+            rgba[4 * i + k] = (uint8_t)(v * 255.0f + 0.5f);
+        }
+        rgba[4 * i + 3] = albedo ? albedo[4 * i + 3] : 255;
+    }
+    if ((st = snell_write_png(out, w, h, rgba)) != SNELL_OK) goto fail;
+    printf("%s: %dx%d, %s, %llu rays, %llu paths, %d pass(es), trace %.1f ms, raster %.1f ms, exposure %.4g\n", out, w, h,
+           ctx ? snell_ctx_gl_renderer(ctx) : "CPU exact rasteriser", (unsigned long long)stats.rays,
+           (unsigned long long)stats.paths, stats.passes, stats.trace_ms, stats.raster_ms, (double)exposure);
+    rc = 0;
+    goto done;
+fail:
+    fprintf(stderr, "snell-render --2d: %s: %s\n", snell_status_str(st), snell_last_error(ctx));
+done:
+    free(rgb);
+    free(lum);
+    free(rgba);
+    if (albedo) stbi_image_free(albedo);
+    snell_lightmap2d_destroy(lm);
+    snell_scene2d_destroy(s);
+    snell_ctx_destroy(ctx);
+    return rc;
+}
