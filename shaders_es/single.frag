@@ -6,6 +6,7 @@
 precision mediump float;
 
 #include "common/optics.glsl"
+#include "common/output.glsl"
 
 in highp vec3 v_world_pos;
 in vec3 v_world_normal;
@@ -17,7 +18,6 @@ uniform vec3 u_sigma;            // Beer-Lambert coefficient per world unit
 uniform vec3 u_tint;
 uniform highp vec4 u_bsphere;    // bounding sphere: world centre, radius
 
-out vec4 o_color;
 
 void main()
 {
@@ -37,5 +37,5 @@ void main()
 
     vec3 transmitted = texture(u_env, t).rgb * u_tint * snell_beer_lambert(u_sigma, path);
     vec3 reflected = texture(u_env, r).rgb;
-    o_color = vec4(mix(transmitted, reflected, fresnel), 1.0);
+    snell_write(mix(transmitted, reflected, fresnel), t);
 }

@@ -2,15 +2,17 @@
 // view direction through each pixel, rotation only, looked up in the cubemap.
 precision mediump float;
 
+#include "common/output.glsl"
+
 in highp vec2 v_ndc;
 
 uniform highp mat4 u_inv_view_proj_rot;  // inverse(proj * view without translation)
 uniform samplerCube u_env;
 
-out vec4 o_color;
 
 void main()
 {
     highp vec4 d = u_inv_view_proj_rot * vec4(v_ndc, 1.0, 1.0);
-    o_color = vec4(texture(u_env, d.xyz / d.w).rgb, 1.0);
+    highp vec3 dir = d.xyz / d.w;
+    snell_write(texture(u_env, dir).rgb, dir);
 }

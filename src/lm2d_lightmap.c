@@ -332,7 +332,13 @@ snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snel
         if ((st = ensure_capacity(lm, &lm->ls[li], s->lights[li].d.rays)) != SNELL_OK) return st;
     }
     lm->scene = s;
-    if (lm->n_todo) lm2d_pool_run(lm->pool, trace_job, lm);
+    if (lm->n_todo) {
+        struct timespec c0, c1;
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);
+        lm2d_pool_run(lm->pool, trace_job, lm);
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c1);
+        stats->trace_cpu_ms = (double)(c1.tv_sec - c0.tv_sec) * 1e3 + (double)(c1.tv_nsec - c0.tv_nsec) * 1e-6;
+    }
     energy_reset(&lm->frame_e);
     for (i = 0; i < lm->n_todo; i++) {
         int li = lm->todo[i], t;

@@ -1,53 +1,40 @@
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 /* renderer.c — the frame: background (skybox) then the glass mesh with the
- * chosen refraction kernel, into the renderer's offscreen target or the bound
- * framebuffer. Programs and targets are made at creation; a frame allocates
- * nothing after the first (which uploads the mesh). */
+ * chosen refraction kernel (method_*.c), into the renderer's offscreen target
+ * or the bound framebuffer. Programs and targets are made at creation; a frame
+ * allocates nothing after the first (which uploads the mesh). */
 #include "ctx.h"
 #include "env.h"
 #include "gl.h"
 #include "glstate.h"
 #include "mesh.h"
+#include "method.h"
+#include "pack.h"
 #include "program.h"
 
-#include <cglm/cglm.h>
 #include <math.h>
 #include <string.h>
 #include <time.h>
 
 #define MAX_RENDER_SIZE 16384
 
-typedef struct glass_program {
-    GLuint prog;
-    GLint model, normal_matrix, view_proj, eye, env, ior, sigma, tint, bsphere;
-} glass_program;
+/* Every kernel, indexed by snell_method (AUTO resolves to one of them). */
+static const snell__method *const g_methods[] = {NULL, &snell__method_single};
+#define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
 
 struct snell_renderer {
     snell_ctx *ctx;
     int width, height;
     snell_target target;
+    snell__output_kind out;
     GLuint fbo, color_rb, depth_rb;
-    GLuint empty_vao;               /* skybox draws without attributes */
+    GLuint empty_vao;               /* the skybox draws without attributes */
     GLuint sky_prog;
     GLint sky_inv, sky_env;
-    glass_program single;
+    void *method_state[METHOD_COUNT];
+    float *readback;                /* RGBA32F scratch for exit directions, made at creation */
+    uint8_t *readback8;
 };
-
-static snell_status build_glass(snell_ctx *ctx, const char *fs, glass_program *g)
-{
-    snell_status st = snell__program_build(ctx, "glass.vert", fs, NULL, &g->prog);
-    if (st != SNELL_OK) return st;
-    g->model = glGetUniformLocation(g->prog, "u_model");
-    g->normal_matrix = glGetUniformLocation(g->prog, "u_normal_matrix");
-    g->view_proj = glGetUniformLocation(g->prog, "u_view_proj");
-    g->eye = glGetUniformLocation(g->prog, "u_eye");
-    g->env = glGetUniformLocation(g->prog, "u_env");
-    g->ior = glGetUniformLocation(g->prog, "u_ior");
-    g->sigma = glGetUniformLocation(g->prog, "u_sigma");
-    g->tint = glGetUniformLocation(g->prog, "u_tint");
-    g->bsphere = glGetUniformLocation(g->prog, "u_bsphere");
-    return SNELL_OK;
-}
 
 static snell_status make_target(snell_renderer *r)
 {
@@ -56,7 +43,8 @@ static snell_status make_target(snell_renderer *r)
     glGenRenderbuffers(1, &r->color_rb);
     glGenRenderbuffers(1, &r->depth_rb);
     glBindRenderbuffer(GL_RENDERBUFFER, r->color_rb);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, r->width, r->height);
+    glRenderbufferStorage(GL_RENDERBUFFER, r->out == SNELL__OUT_DIR_FLOAT ? GL_RGBA32F : GL_RGBA8, r->width,
+                          r->height);
     glBindRenderbuffer(GL_RENDERBUFFER, r->depth_rb);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, r->width, r->height);
     glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
@@ -69,6 +57,28 @@ static snell_status make_target(snell_renderer *r)
     return glGetError() == GL_NO_ERROR ? SNELL_OK
                                        : snell__fail(r->ctx, SNELL_E_GL, "GL error creating a %dx%d target",
                                                      r->width, r->height);
+}
+
+static snell_status create_resources(snell_renderer *r)
+{
+    snell_status st = snell__program_build(r->ctx, "skybox.vert", "skybox.frag", snell__output_defines(r->out),
+                                           &r->sky_prog);
+    int m;
+    if (st != SNELL_OK) return st;
+    r->sky_inv = glGetUniformLocation(r->sky_prog, "u_inv_view_proj_rot");
+    r->sky_env = glGetUniformLocation(r->sky_prog, "u_env");
+    for (m = 1; m < METHOD_COUNT && st == SNELL_OK; m++)
+        st = g_methods[m]->create(r->ctx, r->out, &r->method_state[m]);
+    if (st != SNELL_OK) return st;
+    glGenVertexArrays(1, &r->empty_vao);
+    if (r->target == SNELL_TARGET_OFFSCREEN) st = make_target(r);
+    if (st == SNELL_OK && r->out != SNELL__OUT_COLOR) {
+        size_t n = (size_t)r->width * (size_t)r->height;
+        r->readback = (float *)snell__calloc(&r->ctx->alloc, n, 4 * sizeof(float));
+        r->readback8 = (uint8_t *)snell__calloc(&r->ctx->alloc, n, 4);
+        if (!r->readback || !r->readback8) st = snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for readback");
+    }
+    return st;
 }
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out)
@@ -89,23 +99,23 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
         (d.target == SNELL_TARGET_OFFSCREEN && (d.width > max_rb || d.height > max_rb)))
         return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d outside 1..%d", d.width, d.height,
                            max_rb < MAX_RENDER_SIZE ? max_rb : MAX_RENDER_SIZE);
-    if ((unsigned)d.target > SNELL_TARGET_BOUND_FRAMEBUFFER)
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown render target %d", (int)d.target);
+    if ((unsigned)d.target > SNELL_TARGET_BOUND_FRAMEBUFFER || (unsigned)d.output > SNELL_OUTPUT_EXIT_DIRECTION_PACKED)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown render target %d or output %d", (int)d.target,
+                           (int)d.output);
+    if (d.output != SNELL_OUTPUT_COLOR && d.target != SNELL_TARGET_OFFSCREEN)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "exit-direction output needs an offscreen target");
     r = (snell_renderer *)snell__calloc(&ctx->alloc, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     r->ctx = ctx;
     r->width = d.width;
     r->height = d.height;
     r->target = d.target;
+    r->out = d.output == SNELL_OUTPUT_COLOR ? SNELL__OUT_COLOR
+             : d.output == SNELL_OUTPUT_EXIT_DIRECTION && snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float")
+                 ? SNELL__OUT_DIR_FLOAT
+                 : SNELL__OUT_DIR_PACKED;
     snell__glstate_save(&saved);
-    st = snell__program_build(ctx, "skybox.vert", "skybox.frag", NULL, &r->sky_prog);
-    if (st == SNELL_OK) {
-        r->sky_inv = glGetUniformLocation(r->sky_prog, "u_inv_view_proj_rot");
-        r->sky_env = glGetUniformLocation(r->sky_prog, "u_env");
-        st = build_glass(ctx, "single.frag", &r->single);
-    }
-    if (st == SNELL_OK) glGenVertexArrays(1, &r->empty_vao);
-    if (st == SNELL_OK && r->target == SNELL_TARGET_OFFSCREEN) st = make_target(r);
+    st = create_resources(r);
     snell__glstate_restore(&saved);
     if (st != SNELL_OK) {
         snell_renderer_destroy(r);
@@ -117,13 +127,17 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
 
 void snell_renderer_destroy(snell_renderer *r)
 {
+    int m;
     if (!r) return;
-    if (r->single.prog) glDeleteProgram(r->single.prog);
+    for (m = 1; m < METHOD_COUNT; m++)
+        if (r->method_state[m]) g_methods[m]->destroy(r->ctx, r->method_state[m]);
     if (r->sky_prog) glDeleteProgram(r->sky_prog);
     if (r->empty_vao) glDeleteVertexArrays(1, &r->empty_vao);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
     if (r->color_rb) glDeleteRenderbuffers(1, &r->color_rb);
     if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
+    snell__free(&r->ctx->alloc, r->readback);
+    snell__free(&r->ctx->alloc, r->readback8);
     snell__free(&r->ctx->alloc, r);
 }
 
@@ -150,12 +164,12 @@ static void bounding_sphere(const snell_mesh *m, mat4 model, float out[4])
     out[3] = sqrtf(r2) * s;
 }
 
-static void draw_background(snell_renderer *r, mat4 view, mat4 proj)
+static void draw_background(snell_renderer *r, snell__frame *f)
 {
     mat4 rot, vp, inv;
-    glm_mat4_copy(view, rot);
+    glm_mat4_copy(f->view, rot);
     rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
-    glm_mat4_mul(proj, rot, vp);
+    glm_mat4_mul(f->proj, rot, vp);
     glm_mat4_inv(vp, inv);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
@@ -164,38 +178,6 @@ static void draw_background(snell_renderer *r, mat4 view, mat4 proj)
     glUniform1i(r->sky_env, 0);
     glBindVertexArray(r->empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-}
-
-static void draw_glass(const glass_program *g, const snell_frame_desc *f, mat4 model, mat4 view_proj,
-                       const float eye[3])
-{
-    mat4 inv;
-    mat3 nrm;
-    float bs[4];
-    const snell_glass_desc *gd = &f->glass;
-    float ior = gd->ior > 0.0f ? gd->ior : 1.5f;
-    float tint[3] = {1.0f, 1.0f, 1.0f};
-    if (gd->tint[0] != 0.0f || gd->tint[1] != 0.0f || gd->tint[2] != 0.0f) memcpy(tint, gd->tint, sizeof tint);
-    glm_mat4_inv(model, inv);
-    glm_mat4_transpose(inv);
-    glm_mat4_pick3(inv, nrm);
-    bounding_sphere(f->mesh, model, bs);
-
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glUseProgram(g->prog);
-    glUniformMatrix4fv(g->model, 1, GL_FALSE, (const GLfloat *)model);
-    glUniformMatrix3fv(g->normal_matrix, 1, GL_FALSE, (const GLfloat *)nrm);
-    glUniformMatrix4fv(g->view_proj, 1, GL_FALSE, (const GLfloat *)view_proj);
-    glUniform3fv(g->eye, 1, eye);
-    glUniform1i(g->env, 0);
-    glUniform1f(g->ior, ior);
-    glUniform3fv(g->sigma, 1, gd->absorption);
-    glUniform3fv(g->tint, 1, tint);
-    glUniform4fv(g->bsphere, 1, bs);
-    glBindVertexArray(f->mesh->vao);
-    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * f->mesh->triangle_count), GL_UNSIGNED_INT, (const void *)0);
 }
 
 static double now_ms(void)
@@ -225,7 +207,7 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *f)
         if (!(g->absorption[k] >= 0.0f) || !isfinite(g->absorption[k]) || !(g->tint[k] >= 0.0f) ||
             !isfinite(g->tint[k]))
             return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "absorption and tint must be finite and >= 0");
-    if ((unsigned)g->method > SNELL_METHOD_SINGLE)
+    if ((int)g->method < 0 || (int)g->method >= METHOD_COUNT)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "unknown method %d", (int)g->method);
     if (f->model)
         for (k = 0; k < 16; k++)
@@ -233,26 +215,53 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *f)
     return SNELL_OK;
 }
 
-snell_status snell_render(snell_renderer *r, const snell_frame_desc *f, snell_frame_stats *stats)
+/* AUTO: the cheapest kernel adequate for the mesh. With only the single-surface
+ * kernel built so far, that is it. */
+static snell_method resolve_method(const snell_frame_desc *f)
+{
+    return f->glass.method == SNELL_METHOD_AUTO ? SNELL_METHOD_SINGLE : f->glass.method;
+}
+
+static void setup_frame(snell_renderer *r, const snell_frame_desc *fd, snell__frame *f)
+{
+    mat4 inv;
+    const snell_glass_desc *g = &fd->glass;
+    memset(f, 0, sizeof *f);
+    f->desc = fd;
+    f->mesh = (snell_mesh *)fd->mesh;
+    f->env = fd->env;
+    f->ior = g->ior > 0.0f ? g->ior : 1.5f;
+    f->tint[0] = f->tint[1] = f->tint[2] = 1.0f;
+    if (g->tint[0] != 0.0f || g->tint[1] != 0.0f || g->tint[2] != 0.0f) memcpy(f->tint, g->tint, sizeof f->tint);
+    if (fd->model) memcpy(f->model, fd->model, sizeof f->model);
+    else glm_mat4_identity(f->model);
+    snell_camera_matrices(&fd->camera, (float)r->width / (float)r->height, f->eye, (float *)f->view,
+                          (float *)f->proj);
+    glm_mat4_mul(f->proj, f->view, f->view_proj);
+    glm_mat4_inv(f->model, inv);
+    glm_mat4_transpose(inv);
+    glm_mat4_pick3(inv, f->normal_matrix);
+    if (f->mesh) bounding_sphere(f->mesh, f->model, f->bsphere);
+    f->width = r->width;
+    f->height = r->height;
+}
+
+snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_frame_stats *stats)
 {
     snell_glstate saved;
     snell_frame_stats s;
     snell_status st;
-    mat4 model, view, proj, view_proj;
-    float eye[3];
+    snell__frame f;
+    snell_method m;
     int external;
     double t0 = now_ms();
-    if (!r || !f) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
-    st = validate_frame(r, f);
+    if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
+    st = validate_frame(r, fd);
     if (st != SNELL_OK) return st;
     memset(&s, 0, sizeof s);
     external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
     if (external) snell__glstate_save(&saved);
-
-    if (f->model) memcpy(model, f->model, sizeof model);
-    else glm_mat4_identity(model);
-    snell_camera_matrices(&f->camera, (float)r->width / (float)r->height, eye, (float *)view, (float *)proj);
-    glm_mat4_mul(proj, view, view_proj);
+    setup_frame(r, fd, &f);
 
     if (r->target == SNELL_TARGET_OFFSCREEN) glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     glViewport(0, 0, r->width, r->height);
@@ -265,20 +274,24 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *f, snell_fr
     glClearDepthf(1.0f);
     glClear(GL_DEPTH_BUFFER_BIT);
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, f->env->texture);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, f.env->texture);
 
-    if (f->draw_background >= 0) {
-        draw_background(r, view, proj);
+    /* Exit-direction output always needs the background (misses = view ray). */
+    if (fd->draw_background >= 0 || r->out != SNELL__OUT_COLOR) {
+        draw_background(r, &f);
         s.passes++;
     }
-    s.method_used = SNELL_METHOD_SINGLE;
-    if (f->mesh && is_passthrough(&f->glass)) {
+    m = resolve_method(fd);
+    s.method_used = m;
+    if (f.mesh && is_passthrough(&fd->glass) && r->out == SNELL__OUT_COLOR) {
         s.skipped_passthrough = 1;
-    } else if (f->mesh) {
-        st = snell__mesh_upload((snell_mesh *)f->mesh);
+    } else if (f.mesh) {
+        st = snell__mesh_upload(f.mesh);
         if (st == SNELL_OK) {
-            draw_glass(&r->single, f, model, view_proj, eye);
-            s.passes++;
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_LESS);
+            glDepthMask(GL_TRUE);
+            st = g_methods[m]->draw(r->ctx, r->method_state[m], &f, &s);
         }
     }
     glBindVertexArray(0);
@@ -289,21 +302,29 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *f, snell_fr
     return st;
 }
 
-snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels)
+/* Reads the offscreen colour buffer (bottom row first, as GL stores it). */
+static snell_status read_target(snell_renderer *r, GLenum type, void *pixels)
 {
     GLint prev_fbo = 0, prev_align = 4;
-    int y;
-    size_t row;
-    if (!r || !pixels) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "read_rgba: NULL argument");
-    if (r->target != SNELL_TARGET_OFFSCREEN)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "read_rgba needs an offscreen renderer");
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev_fbo);
     glGetIntegerv(GL_PACK_ALIGNMENT, &prev_align);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, r->width, r->height, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+    glReadPixels(0, 0, r->width, r->height, GL_RGBA, type, pixels);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev_fbo);
     glPixelStorei(GL_PACK_ALIGNMENT, prev_align);
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "glReadPixels failed");
+}
+
+snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels)
+{
+    int y;
+    size_t row;
+    snell_status st;
+    if (!r || !pixels) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "read_rgba: NULL argument");
+    if (r->target != SNELL_TARGET_OFFSCREEN || r->out != SNELL__OUT_COLOR)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "read_rgba needs an offscreen colour renderer");
+    if ((st = read_target(r, GL_UNSIGNED_BYTE, pixels)) != SNELL_OK) return st;
     /* GL's row 0 is the bottom; flip in place so row 0 is the top. */
     row = (size_t)r->width * 4;
     for (y = 0; y < r->height / 2; y++) {
@@ -315,7 +336,35 @@ snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels)
             b[i] = t;
         }
     }
-    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "glReadPixels failed");
+    return SNELL_OK;
+}
+
+snell_status snell_renderer_read_exit_dirs(snell_renderer *r, float *xyz)
+{
+    int x, y;
+    snell_status st;
+    if (!r || !xyz) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "read_exit_dirs: NULL argument");
+    if (r->out == SNELL__OUT_COLOR)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "renderer was not created with SNELL_OUTPUT_EXIT_DIRECTION");
+    st = r->out == SNELL__OUT_DIR_FLOAT ? read_target(r, GL_FLOAT, r->readback)
+                                        : read_target(r, GL_UNSIGNED_BYTE, r->readback8);
+    if (st != SNELL_OK) return st;
+    for (y = 0; y < r->height; y++)
+        for (x = 0; x < r->width; x++) {
+            size_t src = (size_t)(r->height - 1 - y) * r->width + x, dst = (size_t)y * r->width + x;
+            if (r->out == SNELL__OUT_DIR_FLOAT) {
+                memcpy(xyz + 3 * dst, r->readback + 4 * src, 3 * sizeof(float));
+            } else {
+                snell_unpack_dir_rgba8(r->readback8 + 4 * src, xyz + 3 * dst);
+            }
+        }
+    return SNELL_OK;
+}
+
+const char *snell_renderer_exit_dir_encoding(const snell_renderer *r)
+{
+    if (!r || r->out == SNELL__OUT_COLOR) return "none";
+    return r->out == SNELL__OUT_DIR_FLOAT ? "float" : "packed-rgba8";
 }
 
 void snell_renderer_finish(snell_renderer *r)

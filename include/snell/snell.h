@@ -203,9 +203,22 @@ typedef enum snell_target {
     SNELL_TARGET_BOUND_FRAMEBUFFER  /* whatever draw framebuffer is bound when snell_render is called */
 } snell_target;
 
+/* What a frame writes. EXIT_DIRECTION is for error measurement: each pixel
+ * holds the world direction in which its light path finally leaves (the view
+ * ray for background pixels). It uses an RGBA32F target when
+ * GL_EXT_color_buffer_float is present, else RGBA8 with the direction packed
+ * octahedrally in 2x16 bits (quantisation error below 1e-4 rad; see
+ * snell_renderer_exit_dir_encoding). Offscreen targets only. */
+typedef enum snell_output {
+    SNELL_OUTPUT_COLOR = 0,
+    SNELL_OUTPUT_EXIT_DIRECTION,
+    SNELL_OUTPUT_EXIT_DIRECTION_PACKED  /* force the RGBA8 fallback encoding */
+} snell_output;
+
 typedef struct snell_renderer_desc {
     int width, height;              /* pixels; 0 = 512 */
     snell_target target;
+    snell_output output;
 } snell_renderer_desc;
 
 typedef struct snell_frame_desc {
@@ -229,6 +242,11 @@ void snell_renderer_destroy(snell_renderer *r);
 snell_status snell_render(snell_renderer *r, const snell_frame_desc *frame, snell_frame_stats *stats);
 /* Read the offscreen target as tightly packed RGBA8, top row first. */
 snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels);
+/* Read an EXIT_DIRECTION target: 3 floats (unit world direction) per pixel,
+ * top row first. */
+snell_status snell_renderer_read_exit_dirs(snell_renderer *r, float *xyz);
+/* "float" or "packed-rgba8": how an EXIT_DIRECTION renderer stores directions. */
+const char *snell_renderer_exit_dir_encoding(const snell_renderer *r);
 /* Blocks until the GPU finished the frame (glFinish); for timing. */
 void snell_renderer_finish(snell_renderer *r);
 

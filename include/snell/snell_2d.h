@@ -149,6 +149,8 @@ typedef struct snell_lightmap2d_stats {
     uint64_t rays;                /* rays emitted this frame */
     uint64_t paths;               /* path segments rasterised this frame */
     double trace_ms;              /* wall time of the light tracing */
+    double trace_cpu_ms;          /* CPU time the calling thread spent tracing (its share of
+                                     the rays; all of them with threads = 1); robust to load */
     double raster_ms;             /* wall time of rasterising (GL: issuing the draws; no glFinish) */
     snell_format2d format;        /* accumulation format in use */
 } snell_lightmap2d_stats;

@@ -1,0 +1,42 @@
+// pack.glsl - GLSL twin of src/pack.h: octahedral unit vectors and 16-bit
+// values split over two 8-bit channels of an RGBA8 target. Needs highp for
+// the 16-bit split.
+
+vec2 snell_oct_encode(highp vec3 n)
+{
+    highp vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    if (n.z < 0.0) {
+        highp vec2 s = vec2(p.x >= 0.0 ? 1.0 : -1.0, p.y >= 0.0 ? 1.0 : -1.0);
+        p = (1.0 - abs(p.yx)) * s;
+    }
+    return p;
+}
+
+highp vec3 snell_oct_decode(highp vec2 e)
+{
+    highp vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) {
+        highp vec2 s = vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+        n.xy = (1.0 - abs(n.yx)) * s;
+    }
+    return normalize(n);
+}
+
+// v in [0,1] -> (high byte, low byte) / 255 for two UNORM8 channels.
+highp vec2 snell_pack_unorm16(highp float v)
+{
+    highp float q = floor(clamp(v, 0.0, 1.0) * 65535.0 + 0.5);
+    highp float hi = floor(q / 256.0);
+    return vec2(hi, q - hi * 256.0) / 255.0;
+}
+
+highp float snell_unpack_unorm16(highp vec2 hl)
+{
+    return (floor(hl.x * 255.0 + 0.5) * 256.0 + floor(hl.y * 255.0 + 0.5)) / 65535.0;
+}
+
+highp vec4 snell_pack_dir_rgba8(highp vec3 n)
+{
+    highp vec2 e = snell_oct_encode(n) * 0.5 + 0.5;
+    return vec4(snell_pack_unorm16(e.x), snell_pack_unorm16(e.y));
+}

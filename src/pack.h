@@ -1,0 +1,69 @@
+/* pack.h — the C twin of shaders_es/common/pack.glsl: unit directions in
+ * octahedral form (Cigolle et al. 2014) and values in [0,1] split across
+ * 8-bit channels, so tests know exactly what a packed RGBA8 texel holds. */
+#ifndef SNELL_PACK_H
+#define SNELL_PACK_H
+
+#include <math.h>
+#include <stdint.h>
+
+static inline float snell_pack_sign(float v) { return v >= 0.0f ? 1.0f : -1.0f; }
+
+/* Unit vector -> octahedral coordinates in [-1,1]^2. */
+static inline void snell_oct_encode(const float n[3], float e[2])
+{
+    float l1 = fabsf(n[0]) + fabsf(n[1]) + fabsf(n[2]);
+    float x = n[0] / l1, y = n[1] / l1;
+    if (n[2] < 0.0f) {
+        float ox = (1.0f - fabsf(y)) * snell_pack_sign(x), oy = (1.0f - fabsf(x)) * snell_pack_sign(y);
+        x = ox;
+        y = oy;
+    }
+    e[0] = x;
+    e[1] = y;
+}
+
+/* Octahedral coordinates -> unit vector. */
+static inline void snell_oct_decode(const float e[2], float n[3])
+{
+    float x = e[0], y = e[1], z = 1.0f - fabsf(x) - fabsf(y), len;
+    if (z < 0.0f) {
+        float ox = (1.0f - fabsf(y)) * snell_pack_sign(x), oy = (1.0f - fabsf(x)) * snell_pack_sign(y);
+        x = ox;
+        y = oy;
+    }
+    len = sqrtf(x * x + y * y + z * z);
+    n[0] = x / len;
+    n[1] = y / len;
+    n[2] = z / len;
+}
+
+/* v in [0,1] -> 16-bit fixed point as two bytes (high, low), as the GLSL
+ * twin writes them into two RGBA8 channels; and back. */
+static inline void snell_pack_unorm16(float v, uint8_t *hi, uint8_t *lo)
+{
+    uint32_t q = (uint32_t)(fminf(fmaxf(v, 0.0f), 1.0f) * 65535.0f + 0.5f);
+    *hi = (uint8_t)(q >> 8);
+    *lo = (uint8_t)(q & 255u);
+}
+
+static inline float snell_unpack_unorm16(uint8_t hi, uint8_t lo) { return (float)((hi << 8) | lo) / 65535.0f; }
+
+/* A unit direction as RGBA8: octahedral x and y, 16 bits each. */
+static inline void snell_pack_dir_rgba8(const float n[3], uint8_t px[4])
+{
+    float e[2];
+    snell_oct_encode(n, e);
+    snell_pack_unorm16(e[0] * 0.5f + 0.5f, &px[0], &px[1]);
+    snell_pack_unorm16(e[1] * 0.5f + 0.5f, &px[2], &px[3]);
+}
+
+static inline void snell_unpack_dir_rgba8(const uint8_t px[4], float n[3])
+{
+    float e[2];
+    e[0] = snell_unpack_unorm16(px[0], px[1]) * 2.0f - 1.0f;
+    e[1] = snell_unpack_unorm16(px[2], px[3]) * 2.0f - 1.0f;
+    snell_oct_decode(e, n);
+}
+
+#endif
