@@ -78,7 +78,10 @@ snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *
             goto fail;
         }
     m = (snell_mesh *)snell__calloc(alloc, 1, sizeof *m);
-    if (!normals) normals = (float *)snell__calloc(alloc, 3 * (size_t)vertex_count, sizeof(float));
+    if (!normals) {
+        normals = (float *)snell__calloc(alloc, 3 * (size_t)vertex_count, sizeof(float));
+        if (normals) snell__mesh_compute_normals(positions, indices, vertex_count, triangle_count, normals);
+    }
     if (!m || !normals) {
         st = snell__fail(ctx, SNELL_E_NOMEM, "out of memory for a mesh of %u vertices", vertex_count);
         goto fail;
@@ -125,8 +128,6 @@ snell_status snell_mesh_create(snell_ctx *ctx, const snell_mesh_desc *desc, snel
     for (i = 0; i < 3 * nt; i++) idx[i] = desc->indices ? desc->indices[i] : i;
     if (nrm) memcpy(nrm, desc->normals, sizeof(float) * 3 * (size_t)desc->vertex_count);
     st = snell__mesh_adopt(ctx, al, pos, nrm, idx, desc->vertex_count, nt, out);
-    if (st == SNELL_OK && !nrm)
-        snell__mesh_compute_normals(pos, idx, desc->vertex_count, nt, (*out)->normals);
     if (st == SNELL_OK && nrm)
         for (i = 0; i < desc->vertex_count; i++) {
             /* Caller normals are renormalised; unusable ones make the mesh invalid. */

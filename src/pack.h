@@ -66,4 +66,47 @@ static inline void snell_unpack_dir_rgba8(const uint8_t px[4], float n[3])
     snell_oct_decode(e, n);
 }
 
+/* ---- normal + distance texels of the cubemap method (Unger 4.1; ndcube.c) ----
+ * d is the distance from the cubemap centre divided by the mesh radius about
+ * that centre, in [0,1]; n a unit object-space normal. GL converts a float
+ * output to UNORM8 as round(clamp(v,0,1) * 255) (GLES 3.0 2.1.6.1). */
+static inline uint8_t snell_pack_unorm8(float v) { return (uint8_t)(fminf(fmaxf(v, 0.0f), 1.0f) * 255.0f + 0.5f); }
+
+/* PLAIN (the seed's): rgb = n * 0.5 + 0.5 (Unger eq. 11), a = d; 8 bits each. */
+static inline void snell_pack_ndist_plain(const float n[3], float d, uint8_t px[4])
+{
+    int k;
+    for (k = 0; k < 3; k++) px[k] = snell_pack_unorm8(n[k] * 0.5f + 0.5f);
+    px[3] = snell_pack_unorm8(d);
+}
+
+/* Decoded as the shader does with GL_NEAREST (normal renormalised). */
+static inline void snell_unpack_ndist_plain(const uint8_t px[4], float n[3], float *d)
+{
+    float x = px[0] / 255.0f * 2.0f - 1.0f, y = px[1] / 255.0f * 2.0f - 1.0f, z = px[2] / 255.0f * 2.0f - 1.0f;
+    float len = sqrtf(x * x + y * y + z * z);
+    if (len > 0.0f) { x /= len; y /= len; z /= len; }
+    n[0] = x; n[1] = y; n[2] = z;
+    *d = px[3] / 255.0f;
+}
+
+/* OCT: rg = octahedral n * 0.5 + 0.5 (8 bits each), ba = d in 16 bits (hi, lo). */
+static inline void snell_pack_ndist_oct(const float n[3], float d, uint8_t px[4])
+{
+    float e[2];
+    snell_oct_encode(n, e);
+    px[0] = snell_pack_unorm8(e[0] * 0.5f + 0.5f);
+    px[1] = snell_pack_unorm8(e[1] * 0.5f + 0.5f);
+    snell_pack_unorm16(d, &px[2], &px[3]);
+}
+
+static inline void snell_unpack_ndist_oct(const uint8_t px[4], float n[3], float *d)
+{
+    float e[2];
+    e[0] = px[0] / 255.0f * 2.0f - 1.0f;
+    e[1] = px[1] / 255.0f * 2.0f - 1.0f;
+    snell_oct_decode(e, n);
+    *d = snell_unpack_unorm16(px[2], px[3]);
+}
+
 #endif

@@ -33,6 +33,7 @@ static void compare(const char *name, snell_ctx *ctx, snell_renderer *r, const s
     char png[64];
 
     memset(&fd, 0, sizeof fd);
+    fd.glass.method = SNELL_METHOD_SINGLE;
     fd.mesh = mesh;
     fd.env = env;
     fd.model = model;

@@ -97,6 +97,7 @@ int main(void)
     model[15] = 1.0f;
 
     memset(&fd, 0, sizeof fd);
+    fd.glass.method = SNELL_METHOD_SINGLE;
     fd.mesh = mesh;
     fd.env = env;
     fd.model = model;
