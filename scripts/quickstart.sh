@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(build-essential g++ cmake pkg-config
           libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
           libcglm-dev libstb-dev libtinygltf-dev nlohmann-json3-dev
-          glmark2-data)
+          glmark2-data valgrind)
 
 install_missing() {
     local missing=()

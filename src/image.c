@@ -35,44 +35,32 @@ snell_status snell_write_png(const char *path, int width, int height, const uint
     return SNELL_OK;
 }
 
-static int has_suffix_ci(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), m = strlen(suffix), i;
-    if (m > n) return 0;
-    for (i = 0; i < m; i++) {
-        char a = s[n - m + i], b = suffix[i];
-        if (a >= 'A' && a <= 'Z') a = (char)(a - 'A' + 'a');
-        if (a != b) return 0;
-    }
-    return 1;
-}
+/* Largest encoded image accepted (bytes); stb also caps each side at 16384. */
+#define IMAGE_MAX_FILE (256u << 20)
 
-snell_status snell_image_read(const char *path, int *width, int *height, uint8_t **rgba)
+snell_status snell_image_decode(const void *data, size_t size, int *width, int *height, uint8_t **rgba)
 {
+    const stbi_uc *bytes = (const stbi_uc *)data;
     int w = 0, h = 0, n = 0;
-    FILE *f;
-    if (!path || !width || !height || !rgba)
-        return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_image_read: NULL argument");
+    if (!data || !width || !height || !rgba)
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_image_decode: NULL argument");
     *rgba = NULL;
-    f = fopen(path, "rb");
-    if (!f) return snell__fail(NULL, SNELL_E_IO, "cannot open image \"%s\"", path);
-    if (!stbi_info_from_file(f, &w, &h, &n)) {
-        fclose(f);
-        return snell__fail(NULL, SNELL_E_PARSE, "\"%s\" is not a readable PNG/JPEG/HDR image (%s)", path,
-                           stbi_failure_reason());
-    }
-    fseek(f, 0, SEEK_SET);
-    if (stbi_is_hdr_from_file(f) || has_suffix_ci(path, ".hdr")) {
+    if (size == 0 || size > IMAGE_MAX_FILE)
+        return snell__fail(NULL, SNELL_E_LIMIT, "image of %zu bytes outside 1..%u", size, IMAGE_MAX_FILE);
+    if (!stbi_info_from_memory(bytes, (int)size, &w, &h, &n))
+        return snell__fail(NULL, SNELL_E_PARSE, "not a readable PNG/JPEG/HDR image (%s)", stbi_failure_reason());
+    /* stb accepts some malformed headers as 0-pixel images (found by fuzzing). */
+    if (w < 1 || h < 1) return snell__fail(NULL, SNELL_E_PARSE, "image header declares %dx%d pixels", w, h);
+    if (stbi_is_hdr_from_memory(bytes, (int)size)) {
         /* HDR: clamp to the displayable range; the library's env is RGBA8. */
-        float *px = stbi_loadf_from_file(f, &w, &h, &n, 4);
+        float *px = stbi_loadf_from_memory(bytes, (int)size, &w, &h, &n, 4);
         size_t i, count;
-        fclose(f);
-        if (!px) return snell__fail(NULL, SNELL_E_PARSE, "cannot decode \"%s\": %s", path, stbi_failure_reason());
+        if (!px) return snell__fail(NULL, SNELL_E_PARSE, "cannot decode HDR image: %s", stbi_failure_reason());
         count = (size_t)w * (size_t)h * 4;
         *rgba = (uint8_t *)malloc(count);
         if (!*rgba) {
             stbi_image_free(px);
-            return snell__fail(NULL, SNELL_E_NOMEM, "out of memory decoding \"%s\"", path);
+            return snell__fail(NULL, SNELL_E_NOMEM, "out of memory decoding a %dx%d image", w, h);
         }
         for (i = 0; i < count; i++) {
             float v = px[i] < 0.0f ? 0.0f : px[i] > 1.0f ? 1.0f : px[i];
@@ -80,12 +68,58 @@ snell_status snell_image_read(const char *path, int *width, int *height, uint8_t
         }
         stbi_image_free(px);
     } else {
-        *rgba = stbi_load_from_file(f, &w, &h, &n, 4);
-        fclose(f);
-        if (!*rgba) return snell__fail(NULL, SNELL_E_PARSE, "cannot decode \"%s\": %s", path, stbi_failure_reason());
+        *rgba = stbi_load_from_memory(bytes, (int)size, &w, &h, &n, 4);
+        if (!*rgba) return snell__fail(NULL, SNELL_E_PARSE, "cannot decode image: %s", stbi_failure_reason());
+    }
+    if (w < 1 || h < 1) {
+        free(*rgba);
+        *rgba = NULL;
+        return snell__fail(NULL, SNELL_E_PARSE, "image decodes to %dx%d pixels", w, h);
     }
     *width = w;
     *height = h;
+    return SNELL_OK;
+}
+
+snell_status snell_image_read(const char *path, int *width, int *height, uint8_t **rgba)
+{
+    FILE *f;
+    long len;
+    uint8_t *buf;
+    snell_status st;
+    if (!path || !width || !height || !rgba)
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_image_read: NULL argument");
+    *rgba = NULL;
+    f = fopen(path, "rb");
+    if (!f) return snell__fail(NULL, SNELL_E_IO, "cannot open image \"%s\"", path);
+    if (fseek(f, 0, SEEK_END) != 0 || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        return snell__fail(NULL, SNELL_E_IO, "cannot read image \"%s\"", path);
+    }
+    if (len == 0 || (unsigned long)len > IMAGE_MAX_FILE) {
+        fclose(f);
+        return snell__fail(NULL, len ? SNELL_E_LIMIT : SNELL_E_PARSE, "image \"%s\" has %ld bytes (1..%u accepted)",
+                           path, len, IMAGE_MAX_FILE);
+    }
+    buf = (uint8_t *)malloc((size_t)len);
+    if (!buf) {
+        fclose(f);
+        return snell__fail(NULL, SNELL_E_NOMEM, "out of memory reading \"%s\"", path);
+    }
+    if (fread(buf, 1, (size_t)len, f) != (size_t)len) {
+        fclose(f);
+        free(buf);
+        return snell__fail(NULL, SNELL_E_IO, "cannot read image \"%s\"", path);
+    }
+    fclose(f);
+    st = snell_image_decode(buf, (size_t)len, width, height, rgba);
+    free(buf);
+    if (st != SNELL_OK) {
+        /* Name the file in the message (the decoder does not know it). */
+        char msg[768];
+        snprintf(msg, sizeof msg, "%s", snell_last_error(NULL));
+        return snell__fail(NULL, st, "\"%s\": %s", path, msg);
+    }
     return SNELL_OK;
 }
 

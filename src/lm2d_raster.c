@@ -4,6 +4,7 @@
 
 #include "ctx.h"
 #include "gl.h"
+#include "glstate.h"
 #include "program.h"
 
 #include <math.h>
@@ -28,61 +29,6 @@ struct lm2d_gl {
     float *verts;              /* BATCH_LINES * 2 vertices */
     void *readback;            /* width * height * 4 floats, allocated on the first read */
 };
-
-typedef struct saved_state {
-    GLint draw_fbo, read_fbo, viewport[4], program, vao, array_buffer;
-    GLint blend_src_rgb, blend_dst_rgb, blend_src_a, blend_dst_a, blend_eq_rgb, blend_eq_a;
-    GLboolean blend, depth, scissor, stencil, cull, dither, mask[4];
-} saved_state;
-
-static void save_state(saved_state *s)
-{
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->draw_fbo);
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_fbo);
-    glGetIntegerv(GL_VIEWPORT, s->viewport);
-    glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
-    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
-    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->array_buffer);
-    glGetIntegerv(GL_BLEND_SRC_RGB, &s->blend_src_rgb);
-    glGetIntegerv(GL_BLEND_DST_RGB, &s->blend_dst_rgb);
-    glGetIntegerv(GL_BLEND_SRC_ALPHA, &s->blend_src_a);
-    glGetIntegerv(GL_BLEND_DST_ALPHA, &s->blend_dst_a);
-    glGetIntegerv(GL_BLEND_EQUATION_RGB, &s->blend_eq_rgb);
-    glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &s->blend_eq_a);
-    s->blend = glIsEnabled(GL_BLEND);
-    s->depth = glIsEnabled(GL_DEPTH_TEST);
-    s->scissor = glIsEnabled(GL_SCISSOR_TEST);
-    s->stencil = glIsEnabled(GL_STENCIL_TEST);
-    s->cull = glIsEnabled(GL_CULL_FACE);
-    s->dither = glIsEnabled(GL_DITHER);
-    glGetBooleanv(GL_COLOR_WRITEMASK, s->mask);
-}
-
-static void set_cap(GLenum cap, GLboolean on)
-{
-    if (on) glEnable(cap);
-    else glDisable(cap);
-}
-
-static void restore_state(const saved_state *s)
-{
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_fbo);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_fbo);
-    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
-    glUseProgram((GLuint)s->program);
-    glBindVertexArray((GLuint)s->vao);
-    glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
-    glBlendFuncSeparate((GLenum)s->blend_src_rgb, (GLenum)s->blend_dst_rgb, (GLenum)s->blend_src_a,
-                        (GLenum)s->blend_dst_a);
-    glBlendEquationSeparate((GLenum)s->blend_eq_rgb, (GLenum)s->blend_eq_a);
-    set_cap(GL_BLEND, s->blend);
-    set_cap(GL_DEPTH_TEST, s->depth);
-    set_cap(GL_SCISSOR_TEST, s->scissor);
-    set_cap(GL_STENCIL_TEST, s->stencil);
-    set_cap(GL_CULL_FACE, s->cull);
-    set_cap(GL_DITHER, s->dither);
-    glColorMask(s->mask[0], s->mask[1], s->mask[2], s->mask[3]);
-}
 
 static snell_format2d pick_format(snell_ctx *ctx, snell_format2d want)
 {
@@ -121,7 +67,7 @@ snell_status lm2d_gl_create(snell_ctx *ctx, int width, int height, snell_format2
     const snell_alloc *al = snell__ctx_alloc(ctx);
     lm2d_gl *g;
     snell_format2d f;
-    saved_state ss;
+    snell_glstate ss;
     GLint prev_tex;
     GLenum ifmt, type, status;
     snell_status st;
@@ -151,7 +97,7 @@ snell_status lm2d_gl_create(snell_ctx *ctx, int width, int height, snell_format2
     g->u_size = glGetUniformLocation(g->prog, "u_size");
     g->u_quant = glGetUniformLocation(g->prog, "u_quant");
     g->u_frame = glGetUniformLocation(g->prog, "u_frame");
-    save_state(&ss);
+    snell__glstate_save(&ss);
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev_tex);
     switch (f) {
     case SNELL_FORMAT2D_RGBA32F: ifmt = GL_RGBA32F; type = GL_FLOAT; break;
@@ -181,7 +127,7 @@ snell_status lm2d_gl_create(snell_ctx *ctx, int width, int height, snell_format2
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, FLOATS_PER_VERTEX * sizeof(float),
                           (const void *)(2 * sizeof(float)));
-    restore_state(&ss);
+    snell__glstate_restore(&ss);
     if (status != GL_FRAMEBUFFER_COMPLETE || glGetError() != GL_NO_ERROR) {
         lm2d_gl_destroy(g);
         return snell__fail(ctx, SNELL_E_GL, "lightmap2d: accumulation framebuffer (format %d) incomplete: 0x%x",
@@ -213,12 +159,12 @@ void lm2d_gl_clear(lm2d_gl *g)
 
 snell_status lm2d_gl_draw(lm2d_gl *g, const lm2d_path *paths, size_t n, const lm2d_raster_view *v, float scale)
 {
-    saved_state ss;
+    snell_glstate ss;
     float sx = (float)v->width / (v->hi[0] - v->lo[0]), sy = (float)v->height / (v->hi[1] - v->lo[1]);
     size_t i = 0;
     GLenum err;
     if (n == 0) return SNELL_OK;
-    save_state(&ss);
+    snell__glstate_save(&ss);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, g->fbo);
     glViewport(0, 0, g->width, g->height);
     glUseProgram(g->prog);
@@ -266,7 +212,7 @@ snell_status lm2d_gl_draw(lm2d_gl *g, const lm2d_path *paths, size_t n, const lm
         glDrawArrays(GL_LINES, 0, (GLsizei)(m * 2));
         i += m;
     }
-    restore_state(&ss);
+    snell__glstate_restore(&ss);
     err = glGetError();
     if (err != GL_NO_ERROR) return snell__fail(g->ctx, SNELL_E_GL, "lightmap2d: GL error 0x%x drawing paths", (unsigned)err);
     return SNELL_OK;

@@ -43,3 +43,26 @@ target_link_libraries(test_env PRIVATE m)
 snell_add_test(test_alloc SOURCES test_alloc.c LABELS "unit;gl")
 snell_add_test(test_exit_dir SOURCES test_exit_dir.c LABELS "render;gl")
 target_link_libraries(test_exit_dir PRIVATE PkgConfig::GLES m)
+
+# valgrind on the CLI: no definite leaks, no invalid accesses (driver-internal
+# records are suppressed in tests/valgrind.supp with the evidence).
+find_program(VALGRIND valgrind)
+if(VALGRIND AND TARGET snell-render AND NOT SNELL_SANITIZE)
+  add_test(NAME valgrind_snell_render
+    COMMAND ${VALGRIND} --error-exitcode=9 --leak-check=full --errors-for-leak-kinds=definite,indirect
+            --keep-debuginfo=yes --suppressions=${CMAKE_CURRENT_SOURCE_DIR}/valgrind.supp
+            $<TARGET_FILE:snell-render> --size 48x48 -o ${CMAKE_CURRENT_BINARY_DIR}/valgrind.png)
+  set_tests_properties(valgrind_snell_render PROPERTIES LABELS "valgrind" TIMEOUT 900)
+endif()
+
+# Image input (environment maps) as a fuzz target replayed on valid and broken files.
+file(GLOB SNELL_IMAGE_FUZZ_INPUTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/data/images/*)
+snell_add_test(fuzz_image SOURCES fuzz/fuzz_image.c LABELS "unit;fuzz" ARGS ${SNELL_IMAGE_FUZZ_INPUTS})
+target_link_libraries(fuzz_image PRIVATE m)
+
+# 2D scene and CSV text as a fuzz target, replayed on the valid and malformed
+# files under tests/data/lm2d.
+file(GLOB SNELL_SCENE2D_FUZZ_INPUTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/data/lm2d/*.csv
+     ${CMAKE_CURRENT_SOURCE_DIR}/data/lm2d/*.txt)
+snell_add_test(fuzz_scene2d SOURCES fuzz/fuzz_scene2d.c LABELS "unit;fuzz" ARGS ${SNELL_SCENE2D_FUZZ_INPUTS})
+target_link_libraries(fuzz_scene2d PRIVATE m)

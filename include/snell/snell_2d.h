@@ -177,7 +177,9 @@ snell_status snell_lightmap2d_read_rgba(snell_lightmap2d *lm, uint8_t *rgba);
 snell_status snell_lightmap2d_read_rgb_exact(snell_lightmap2d *lm, float *rgb);
 /* Waits for the GPU to finish the lightmap (glFinish); for timing. */
 void snell_lightmap2d_finish(snell_lightmap2d *lm);
-/* The GL texture holding the accumulation (0 without GL), for drawing in a host app. */
+/* The GL texture holding the accumulation (0 without GL), for drawing in a host app.
+ * Float targets with ADD hold the raw sum: multiply by exposure / passes. SCREEN and
+ * the fixed-point fallbacks hold display values (exposure already applied). */
 unsigned snell_lightmap2d_texture(const snell_lightmap2d *lm);
 
 /* Energy bookkeeping of the last traced pass (flux summed over rgb). */

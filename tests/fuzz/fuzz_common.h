@@ -17,7 +17,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 /* A loader either fails with a message and no mesh, or returns a mesh whose
  * indices are in range, positions finite and normals unit. abort() otherwise,
  * so both libFuzzer and ctest report it. */
-static void fuzz_check_result(snell_status st, snell_mesh *m)
+static inline void fuzz_check_result(snell_status st, snell_mesh *m)
 {
     uint32_t i, nv, nt;
     if (st != SNELL_OK) {
