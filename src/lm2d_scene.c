@@ -593,7 +593,7 @@ static snell_status parse_light(snell_scene2d *s, const tok_line *t, const char 
             if (st == SNELL_OK && (rays < 0.0f || rays > (float)LM2D_MAX_RAYS || rays != floorf(rays)))
                 return snell__fail(s->ctx, SNELL_E_PARSE, "%s:%d: rays must be an integer in [0, %d]", name, line,
                                    LM2D_MAX_RAYS);
-            d.rays = (int)rays;
+            if (st == SNELL_OK) d.rays = (int)rays; /* only once range-checked (found by fuzzing) */
         } else if (tok_is(t, i, "two_sided")) {
             st = key_floats(s, t, &i, 1, &two, name, line);
             d.two_sided = two != 0.0f;
