@@ -5,11 +5,14 @@
 // sphere (exact for a sphere, an estimate otherwise).
 precision mediump float;
 
+#include "common/fp16.glsl"
 #include "common/optics.glsl"
 #include "common/output.glsl"
 
 in highp vec3 v_world_pos;
-in vec3 v_world_normal;
+// highp: the normal matrix scales normals by 1/scale; at mediump (fp16 on llvmpipe)
+// |n|^2 overflows above 256 (mesh scale 1e-3) and is subnormal at scale 1e3.
+in highp vec3 v_world_normal;
 
 uniform highp vec3 u_eye;
 uniform samplerCube u_env;
@@ -21,21 +24,25 @@ uniform highp vec4 u_bsphere;    // bounding sphere: world centre, radius
 
 void main()
 {
+    // snell_h(): fp16 rounding of what is mediump on real hardware (the
+    // arguments of the mediump optics functions included) under
+    // SNELL_FP16_EMULATION; the identity otherwise (common/fp16.glsl).
     highp vec3 v = normalize(v_world_pos - u_eye);
-    vec3 n = normalize(v_world_normal);
+    vec3 n = snell_h(normalize(v_world_normal)); // normalised at highp, then mediump
     // Interpolated normals can face away from the eye at the silhouette.
     if (dot(n, v) > 0.0) n = -n;
-    vec3 r = snell_reflect(v, n);
+    vec3 r = snell_h(snell_reflect(snell_h(v), n));
     vec3 t;
-    snell_refract(v, n, 1.0 / u_ior, t);
-    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+    snell_refract(snell_h(v), n, snell_h(1.0 / u_ior), t);
+    t = snell_h(t);
+    float fresnel = snell_h(snell_fresnel_schlick(snell_h(-dot(v, n)), 1.0, u_ior));
 
     highp vec3 oc = v_world_pos - u_bsphere.xyz;
     highp float b = dot(oc, t);
     highp float c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
     highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
 
-    vec3 transmitted = texture(u_env, t).rgb * u_tint * snell_beer_lambert(u_sigma, path);
-    vec3 reflected = texture(u_env, r).rgb;
+    vec3 transmitted = snell_h(texture(u_env, t).rgb * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
+    vec3 reflected = snell_h(texture(u_env, r).rgb);
     snell_write(mix(transmitted, reflected, fresnel), t);
 }

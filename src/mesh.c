@@ -6,7 +6,24 @@
 #include "gl.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <string.h>
+
+/* Geometry versions are unique across all meshes of the process, so caches
+ * keyed on (mesh pointer, version) cannot confuse a freed mesh with a new one
+ * allocated at the same address. */
+static pthread_mutex_t g_version_lock = PTHREAD_MUTEX_INITIALIZER;
+static unsigned g_next_version = 1;
+
+static unsigned next_version(void)
+{
+    unsigned v;
+    pthread_mutex_lock(&g_version_lock);
+    v = g_next_version++;
+    if (g_next_version == 0) g_next_version = 1; /* 0 means "never uploaded" */
+    pthread_mutex_unlock(&g_version_lock);
+    return v;
+}
 
 static void compute_bounds(snell_mesh *m)
 {
@@ -93,7 +110,7 @@ snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *
     m->indices = indices;
     m->vertex_count = vertex_count;
     m->triangle_count = triangle_count;
-    m->version = 1;
+    m->version = next_version();
     compute_bounds(m);
     *out = m;
     return SNELL_OK;
@@ -176,7 +193,7 @@ snell_status snell_mesh_normalize(snell_mesh *m, float radius)
     for (i = 0; i < m->vertex_count; i++)
         for (k = 0; k < 3; k++) m->positions[3 * i + k] = (m->positions[3 * i + k] - c[k]) * s;
     compute_bounds(m);
-    m->version++;
+    m->version = next_version();
     return SNELL_OK;
 }
 

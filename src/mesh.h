@@ -14,7 +14,7 @@ struct snell_mesh {
     uint32_t vertex_count;
     uint32_t triangle_count;
     float bmin[3], bmax[3];
-    unsigned version;          /* bumped whenever the geometry changes */
+    unsigned version;          /* process-unique; renewed whenever the geometry changes */
     /* GPU side, created by snell__mesh_upload */
     unsigned vao, vbo, ibo;
     unsigned uploaded_version;

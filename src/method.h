@@ -45,6 +45,7 @@ typedef struct snell__method {
 } snell__method;
 
 extern const snell__method snell__method_single;
+extern const snell__method snell__method_cubemap;
 
 /* Defines for a program variant of the given output kind ("#define ...\n"). */
 const char *snell__output_defines(snell__output_kind out);

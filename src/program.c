@@ -102,7 +102,10 @@ static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snel
     b.al = snell__ctx_alloc(ctx);
     buf_append(&b, header, sizeof header - 1);
 #ifdef SNELL_FP16_EMULATION
-    buf_append(&b, "#define SNELL_FP16_EMULATION 1\n", 32);
+    {
+        static const char fp16[] = "#define SNELL_FP16_EMULATION 1\n";
+        buf_append(&b, fp16, sizeof fp16 - 1);
+    }
 #endif
     if (defines) buf_append(&b, defines, strlen(defines));
     if (!b.failed && expand(ctx, &b, src, seen, &n_seen)) {

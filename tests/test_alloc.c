@@ -157,6 +157,17 @@ int main(void)
         CHECK_OK(snell_render(r, &fd, NULL));
         CHECK_OK(snell_render(r, &fd, NULL));
         CHECK(c.total == before, "frames after the first allocated %ld times", c.total - before);
+        /* The cubemap method: after its first frame (analysis, bake), frames
+         * and per-frame parameter changes allocate nothing. */
+        fd.glass.method = SNELL_METHOD_CUBEMAP;
+        CHECK_OK(snell_render(r, &fd, NULL));
+        before = c.total;
+        CHECK_OK(snell_render(r, &fd, NULL));
+        fd.glass.search_iterations = 5;
+        fd.glass.max_interfaces = 4;
+        fd.glass.linear_steps = 3;
+        CHECK_OK(snell_render(r, &fd, NULL));
+        CHECK(c.total == before, "cubemap frames after the first allocated %ld times", c.total - before);
         snell_renderer_destroy(r);
         snell_env_destroy(env);
         snell_mesh_destroy(mesh);

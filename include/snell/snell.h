@@ -145,6 +145,32 @@ const float *snell_mesh_normals(const snell_mesh *mesh);     /* 3 * vertex_count
 const uint32_t *snell_mesh_indices(const snell_mesh *mesh);  /* 3 * triangle_count */
 void snell_mesh_bounds(const snell_mesh *mesh, float min[3], float max[3]);
 
+/* What a mesh needs (DESIGN.md "analyze"), found with exact ray casts against
+ * a CPU BVH in object space. The centre is the point the normal+distance
+ * cubemap (SNELL_METHOD_CUBEMAP) is rendered from: among candidates (vertex
+ * average, box centre, surface and volume centroids, an interior grid) the one
+ * that is inside and sees the most surface. hidden_fraction is the share of
+ * surface area whose line from the centre crosses the surface anywhere else
+ * too (hidden behind other surface, or hiding surface farther out): the part
+ * the cubemap method, which keeps one surface per direction, cannot represent
+ * (0 iff the mesh is star-shaped about the centre, e.g. any convex mesh). */
+typedef struct snell_mesh_analysis {
+    float centre[3];         /* object space */
+    float radius;            /* largest distance of a vertex from centre (object units) */
+    float hidden_fraction;   /* 0..1, area-weighted, +-1/sqrt(samples) sampling error */
+    int samples;             /* surface sample points used for hidden_fraction */
+    int closed;              /* every edge has exactly two triangles of opposite orientation */
+    int convex;              /* closed and every edge locally convex (so the solid is convex) */
+    int inside;              /* closed and the centre's crossing parity was odd along 3 rays */
+    int winding;             /* closed: +1 counter-clockwise triangles face outward (signed
+                              * volume > 0), -1 they face inward; 0 open or zero volume */
+} snell_mesh_analysis;
+
+/* Analyzes the mesh (O(triangles) memory, a few tens of ms for 100k triangles).
+ * The renderer does this itself once per mesh version for the cubemap method
+ * and AUTO; exposed so users can see why a mesh is (not) suited. */
+snell_status snell_mesh_analyze(const snell_mesh *mesh, snell_mesh_analysis *out);
+
 /* ------------------------------------------------------------ environment */
 typedef enum snell_env_source {
     SNELL_ENV_PROCEDURAL = 0,  /* built in: sky gradient, sun, checkered floor */
@@ -174,14 +200,33 @@ void snell_env_sample_d(const snell_env *env, const double dir[3], double rgb[3]
 /* ------------------------------------------------------------------ glass */
 typedef enum snell_method {
     SNELL_METHOD_AUTO = 0,     /* the cheapest method adequate for the mesh */
-    SNELL_METHOD_SINGLE        /* refraction at the front surface only (Unger 3.3) */
+    SNELL_METHOD_SINGLE,       /* refraction at the front surface only (Unger 3.3) */
+    SNELL_METHOD_CUBEMAP       /* two-sided: exit found in a normal+distance cubemap (Unger 4.1, Li et al.) */
 } snell_method;
+
+/* How SNELL_METHOD_CUBEMAP packs normal and distance into one RGBA8 texel. */
+typedef enum snell_ndcube_encoding {
+    SNELL_NDCUBE_DEFAULT = 0,  /* SNELL_NDCUBE_PLAIN (lower error at equal cost, bench/BENCHMARKS.md) */
+    SNELL_NDCUBE_PLAIN,        /* Unger 4.1: normal*0.5+0.5 in RGB, distance/radius in A (8 bits), filtered */
+    SNELL_NDCUBE_OCT           /* octahedral normal in RG (8+8 bits), distance in BA (16 bits), nearest */
+} snell_ndcube_encoding;
+
+#define SNELL_CUBEMAP_MAX_ITERATIONS 32
+#define SNELL_CUBEMAP_MAX_LINEAR_STEPS 32
+#define SNELL_CUBEMAP_MAX_INTERFACES 8
 
 typedef struct snell_glass_desc {
     snell_method method;
     float ior;                 /* index of refraction of the glass; 0 = 1.5; outside is 1 */
     float absorption[3];       /* Beer-Lambert coefficient per unit length (world units), rgb */
     float tint[3];             /* multiplies transmitted light; all zero = white (no tint) */
+    /* SNELL_METHOD_CUBEMAP (and AUTO when it picks it); all changeable per frame. */
+    int search_iterations;     /* binary-search steps per interface, 1..32; 0 = 8 */
+    int linear_steps;          /* linear pre-search steps before the binary search, 0..32; 0 = none */
+    int max_interfaces;        /* surfaces processed per path, 1..8 (1 = single surface,
+                                * 2 = entry + exit, more = internal reflections); 0 = 2 */
+    int cube_face_size;        /* normal+distance cubemap face, 16..2048 texels; 0 = 256 */
+    snell_ndcube_encoding encoding;
 } snell_glass_desc;
 
 typedef struct snell_camera {
@@ -221,6 +266,16 @@ typedef struct snell_renderer_desc {
     snell_output output;
 } snell_renderer_desc;
 
+/* An opaque object of the scene (diffuse, lit from +Y), drawn in the view and,
+ * seen from the glass, into the dynamic environment. */
+typedef struct snell_opaque {
+    const snell_mesh *mesh;         /* required; GPU buffers made on first draw */
+    const float *model;             /* float[16] object-to-world; NULL = identity */
+    float color[3];                 /* diffuse albedo 0..1; all zero = 0.8 grey */
+} snell_opaque;
+
+#define SNELL_MAX_OPAQUE 16
+
 typedef struct snell_frame_desc {
     const snell_mesh *mesh;         /* may be NULL: background only */
     const snell_env *env;           /* required */
@@ -228,6 +283,13 @@ typedef struct snell_frame_desc {
     snell_camera camera;
     const float *model;             /* float[16] object-to-world; NULL = identity */
     int draw_background;            /* 0 = default (draw skybox); -1 = leave background untouched */
+    /* Opaque scene objects (0..SNELL_MAX_OPAQUE). With any, the glass sees a
+     * dynamic environment: env plus these objects rendered into a cubemap from
+     * the glass's bounding-sphere centre, re-rendered only in frames where an
+     * object, its model/colour, the glass position or env changed (Unger 4.1). */
+    const snell_opaque *opaque;
+    int opaque_count;
+    int dynamic_env_size;           /* its face size, 16..2048; 0 = half of env's, at most 256 */
 } snell_frame_desc;
 
 typedef struct snell_frame_stats {
@@ -235,6 +297,10 @@ typedef struct snell_frame_stats {
     int passes;                     /* GL draw passes issued */
     int skipped_passthrough;        /* IOR == 1 and no absorption: glass drawn as nothing */
     double cpu_ms;                  /* CPU time spent issuing the frame */
+    int ndcube_baked;               /* CUBEMAP: 1 if the normal+distance cubemap was (re)built this frame */
+    int env_updated;                /* 1 if the dynamic environment was re-rendered this frame */
+    int env_skipped;                /* 1 if it exists and nothing moved, so it was reused */
+    float hidden_fraction;          /* CUBEMAP/AUTO: the mesh's hidden_fraction (snell_mesh_analyze), else 0 */
 } snell_frame_stats;
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);

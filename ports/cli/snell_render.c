@@ -27,6 +27,12 @@ typedef struct options {
     snell_backend backend;
     int frames;             /* >1: time the frames and print the median */
     int normalize;
+    int iterations, linear_steps, interfaces, face_size;  /* cubemap method; 0 = library default */
+    snell_ndcube_encoding encoding;
+    int stats;              /* print the frame statistics */
+    int trace_xy[32];       /* --trace-pixel X,Y (repeatable, up to 16) */
+    int trace_count;
+    int opaque;             /* demo: this many opaque cubes orbiting the glass (move every frame) */
 } options;
 
 static void usage(FILE *f)
@@ -42,11 +48,21 @@ static void usage(FILE *f)
             "  --size WxH             image size (default 512x512)\n"
             "  --camera AZ,EL,DIST    orbit camera: degrees, degrees, distance (default 30,20,3.5)\n"
             "  --fov DEG              vertical field of view (default 45)\n"
-            "  --method single        refraction method (single)\n"
+            "  --method NAME          refraction method: single, cubemap, auto (default single)\n"
+            "  --iterations N         cubemap: binary-search steps per interface, 1..32 (default 8)\n"
+            "  --linear-steps N       cubemap: linear pre-search steps, 0..32 (default 0)\n"
+            "  --interfaces N         cubemap: surfaces per light path, 1..8 (default 3)\n"
+            "  --face-size N          cubemap: normal+distance cubemap face, 16..2048 (default 256)\n"
+            "  --encoding plain|oct   cubemap: texel packing (default oct)\n"
+            "  --stats                print the last frame's statistics\n"
+            "  --opaque N             demo scene: N opaque cubes (0..16) orbiting the glass, moving each frame;\n"
+            "                         the glass sees them through a dynamic environment\n"
             "  --backend NAME         surfaceless (default), pbuffer\n"
             "  --no-normalize         keep the mesh's own scale (default: fit in the unit sphere)\n"
             "  --frames N             render N frames and print the median time per frame\n"
             "  -o FILE                output PNG (default snell.png)\n"
+            "  --trace-pixel X,Y      reference light path of pixel X,Y (repeatable): drawn over a second\n"
+            "                         view into FILE_trace.png, points in FILE_trace.json\n"
             "  --2d SCENE             2D lightmap mode (see the 2D options with --2d --help)\n"
             "  -h, --help             this text\n");
 }
@@ -103,6 +119,9 @@ static int parse_args(int argc, char **argv, options *o)
         } else if (!strcmp(a, "--no-normalize")) {
             o->normalize = 0;
             takes = 0;
+        } else if (!strcmp(a, "--stats")) {
+            o->stats = 1;
+            takes = 0;
         } else if (!v) {
             fprintf(stderr, "snell-render: %s needs a value (or is unknown); see --help\n", a);
             return 0;
@@ -145,8 +164,39 @@ static int parse_args(int argc, char **argv, options *o)
             }
         } else if (!strcmp(a, "--method")) {
             if (!strcmp(v, "single")) o->method = SNELL_METHOD_SINGLE;
+            else if (!strcmp(v, "cubemap")) o->method = SNELL_METHOD_CUBEMAP;
             else if (!strcmp(v, "auto")) o->method = SNELL_METHOD_AUTO;
-            else { fprintf(stderr, "snell-render: unknown method '%s' (single, auto)\n", v); return 0; }
+            else { fprintf(stderr, "snell-render: unknown method '%s' (single, cubemap, auto)\n", v); return 0; }
+        } else if (!strcmp(a, "--iterations")) {
+            if (!parse_int(v, &o->iterations) || o->iterations < 1 || o->iterations > SNELL_CUBEMAP_MAX_ITERATIONS) {
+                fprintf(stderr, "snell-render: --iterations wants 1..%d, got '%s'\n", SNELL_CUBEMAP_MAX_ITERATIONS, v);
+                return 0;
+            }
+        } else if (!strcmp(a, "--linear-steps")) {
+            if (!parse_int(v, &o->linear_steps) || o->linear_steps < 0 ||
+                o->linear_steps > SNELL_CUBEMAP_MAX_LINEAR_STEPS) {
+                fprintf(stderr, "snell-render: --linear-steps wants 0..%d, got '%s'\n", SNELL_CUBEMAP_MAX_LINEAR_STEPS, v);
+                return 0;
+            }
+        } else if (!strcmp(a, "--interfaces")) {
+            if (!parse_int(v, &o->interfaces) || o->interfaces < 1 || o->interfaces > SNELL_CUBEMAP_MAX_INTERFACES) {
+                fprintf(stderr, "snell-render: --interfaces wants 1..%d, got '%s'\n", SNELL_CUBEMAP_MAX_INTERFACES, v);
+                return 0;
+            }
+        } else if (!strcmp(a, "--face-size")) {
+            if (!parse_int(v, &o->face_size) || o->face_size < 16 || o->face_size > 2048) {
+                fprintf(stderr, "snell-render: --face-size wants 16..2048, got '%s'\n", v);
+                return 0;
+            }
+        } else if (!strcmp(a, "--opaque")) {
+            if (!parse_int(v, &o->opaque) || o->opaque < 0 || o->opaque > SNELL_MAX_OPAQUE) {
+                fprintf(stderr, "snell-render: --opaque wants 0..%d, got '%s'\n", SNELL_MAX_OPAQUE, v);
+                return 0;
+            }
+        } else if (!strcmp(a, "--encoding")) {
+            if (!strcmp(v, "plain")) o->encoding = SNELL_NDCUBE_PLAIN;
+            else if (!strcmp(v, "oct")) o->encoding = SNELL_NDCUBE_OCT;
+            else { fprintf(stderr, "snell-render: unknown encoding '%s' (plain, oct)\n", v); return 0; }
         } else if (!strcmp(a, "--backend")) {
             if (!strcmp(v, "surfaceless")) o->backend = SNELL_BACKEND_SURFACELESS;
             else if (!strcmp(v, "pbuffer")) o->backend = SNELL_BACKEND_PBUFFER;
@@ -156,6 +206,14 @@ static int parse_args(int argc, char **argv, options *o)
                 fprintf(stderr, "snell-render: --frames wants 1..100000\n");
                 return 0;
             }
+        } else if (!strcmp(a, "--trace-pixel")) {
+            float xy[2];
+            if (o->trace_count == 16 || !parse_floats(v, xy, 2) || xy[0] != floorf(xy[0]) || xy[1] != floorf(xy[1])) {
+                fprintf(stderr, "snell-render: --trace-pixel wants X,Y (integers, at most 16 pixels)\n");
+                return 0;
+            }
+            o->trace_xy[2 * o->trace_count] = (int)xy[0];
+            o->trace_xy[2 * o->trace_count++ + 1] = (int)xy[1];
         } else if (!strcmp(a, "-o")) {
             o->out = v;
         } else {
@@ -210,6 +268,9 @@ static snell_status make_env(snell_ctx *ctx, const char *spec, snell_env **env)
 #ifdef SNELL_HAVE_2D
 int snell_render2d_main(int argc, char **argv);
 #endif
+/* trace_pixel.c */
+int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int width, int height, const int *xy,
+                              int count, const char *out_png);
 
 int main(int argc, char **argv)
 {
@@ -221,6 +282,10 @@ int main(int argc, char **argv)
     snell_renderer *r = NULL;
     snell_renderer_desc rd;
     snell_frame_desc fd;
+    snell_frame_stats fs;
+    snell_mesh *cube = NULL;
+    snell_opaque ob[SNELL_MAX_OPAQUE];
+    float obm[SNELL_MAX_OPAQUE][16];
     uint8_t *pixels = NULL;
     double *times = NULL;
     snell_status st;
@@ -277,6 +342,11 @@ int main(int argc, char **argv)
     fd.glass.method = o.method;
     fd.glass.ior = o.ior;
     memcpy(fd.glass.absorption, o.absorption, sizeof o.absorption);
+    fd.glass.search_iterations = o.iterations;
+    fd.glass.linear_steps = o.linear_steps;
+    fd.glass.max_interfaces = o.interfaces;
+    fd.glass.cube_face_size = o.face_size;
+    fd.glass.encoding = o.encoding;
     fd.camera.azimuth = (float)(o.az_deg * PI / 180.0);
     fd.camera.elevation = (float)(o.el_deg * PI / 180.0);
     fd.camera.distance = o.dist;
@@ -288,11 +358,41 @@ int main(int argc, char **argv)
         fprintf(stderr, "snell-render: out of memory for a %dx%d image\n", o.width, o.height);
         goto done;
     }
+    if (o.opaque > 0) {
+        snell_shape_desc cs;
+        memset(&cs, 0, sizeof cs);
+        cs.shape = SNELL_SHAPE_CUBE;
+        if ((st = snell_mesh_create_shape(ctx, &cs, &cube)) != SNELL_OK) {
+            fprintf(stderr, "snell-render: opaque cube: %s\n", snell_last_error(ctx));
+            goto done;
+        }
+        memset(ob, 0, sizeof ob);
+        for (i = 0; i < o.opaque; i++) {
+            ob[i].mesh = cube;
+            ob[i].model = obm[i];
+            ob[i].color[0] = (float)(0.5 + 0.5 * cos(2.1 * i));
+            ob[i].color[1] = (float)(0.5 + 0.5 * cos(2.1 * i + 2.1));
+            ob[i].color[2] = (float)(0.5 + 0.5 * cos(2.1 * i + 4.2));
+        }
+        fd.opaque = ob;
+        fd.opaque_count = o.opaque;
+    }
     /* Frame 0 warms up (uploads, shader JIT); with --frames N the median of the
      * following frames is reported, each ended by glFinish. */
     for (i = 0; i <= (o.frames > 1 ? o.frames : 0); i++) {
         double t0 = now_ms();
-        if ((st = snell_render(r, &fd, NULL)) != SNELL_OK) {
+        int k;
+        for (k = 0; k < o.opaque; k++) {
+            /* cubes of size 0.4 on a circle of radius 2.2 around the glass, turning */
+            double ang = 2.0 * PI * k / o.opaque + 0.15 * i;
+            memset(obm[k], 0, sizeof obm[k]);
+            obm[k][0] = obm[k][5] = obm[k][10] = 0.2f;
+            obm[k][12] = (float)(2.2 * cos(ang));
+            obm[k][13] = (float)(0.3 * sin(3.0 * ang));
+            obm[k][14] = (float)(2.2 * sin(ang));
+            obm[k][15] = 1.0f;
+        }
+        if ((st = snell_render(r, &fd, &fs)) != SNELL_OK) {
             fprintf(stderr, "snell-render: render: %s\n", snell_last_error(ctx));
             goto done;
         }
@@ -304,6 +404,13 @@ int main(int argc, char **argv)
         printf("%dx%d: median %.3f ms/frame over %d frames (min %.3f, max %.3f) on %s\n", o.width, o.height,
                times[o.frames / 2], o.frames, times[0], times[o.frames - 1], snell_ctx_gl_renderer(ctx));
     }
+    if (o.stats) {
+        static const char *mnames[] = {"auto", "single", "cubemap"};
+        printf("stats: method %s, passes %d, ndcube_baked %d, env_updated %d, env_skipped %d, hidden_fraction %.4f, "
+               "cpu %.3f ms\n",
+               (unsigned)fs.method_used < sizeof mnames / sizeof *mnames ? mnames[fs.method_used] : "?", fs.passes,
+               fs.ndcube_baked, fs.env_updated, fs.env_skipped, fs.hidden_fraction, fs.cpu_ms);
+    }
     if ((st = snell_renderer_read_rgba(r, pixels)) != SNELL_OK) {
         fprintf(stderr, "snell-render: readback: %s\n", snell_last_error(ctx));
         goto done;
@@ -313,6 +420,9 @@ int main(int argc, char **argv)
         goto done;
     }
     printf("wrote %s (%dx%d)\n", o.out, o.width, o.height);
+    if (o.trace_count &&
+        (rc = snell_render_trace_pixels(ctx, &fd, o.width, o.height, o.trace_xy, o.trace_count, o.out)) != 0)
+        goto done;
     rc = 0;
 done:
     free(times);
@@ -320,6 +430,7 @@ done:
     snell_renderer_destroy(r);
     snell_env_destroy(env);
     snell_mesh_destroy(mesh);
+    snell_mesh_destroy(cube);
     snell_ctx_destroy(ctx);
     return rc;
 }

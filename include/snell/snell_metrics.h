@@ -1,0 +1,84 @@
+/* snell_metrics.h — error metrics of a method against the reference (issue 3):
+ * per-pixel exit-direction angle, image RMSE/PSNR, shares above 1 and 5 degrees,
+ * NaN/Inf counts. Pure CPU functions on caller-owned buffers; no allocation.
+ *
+ * Pixel sets. A "glass pixel" is one whose light path met the glass. For the
+ * reference it is snell_ref_output.hit; for a GPU method it is a pixel whose
+ * exit direction differs from that of a background-only frame of the same
+ * camera (snell_metrics_coverage_mask: the skybox shader is deterministic, so
+ * any pixel the glass kernel wrote differs in at least one bit). The angular
+ * statistics are taken over the pixels that are glass in BOTH masks; pixels
+ * where the masks disagree (silhouette coverage: a triangle edge vs the BVH
+ * hit) are counted in mask_mismatch and left out, because there one side is a
+ * background view ray and the angle would measure rasterisation coverage, not
+ * the optics. Non-finite test directions are counted in nan_inf (over all
+ * pixels) and are never "compared". */
+#ifndef SNELL_SNELL_METRICS_H
+#define SNELL_SNELL_METRICS_H
+
+#include "snell.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Angular error statistics, degrees. Percentiles come from a log-spaced
+ * histogram (1e-6 .. 180 degrees, 2048 bins): relative precision 1%. */
+typedef struct snell_dir_error {
+    long pixels;            /* width * height */
+    long glass_ref;         /* glass pixels of the reference mask */
+    long glass_test;        /* glass pixels of the test mask */
+    long compared;          /* glass in both, both directions finite and non-zero */
+    long mask_mismatch;     /* glass in exactly one mask */
+    long nan_inf;           /* test pixels with a non-finite component (all pixels) */
+    long zero_length;       /* finite but zero test directions (cannot be normalised) */
+    double mean_deg, rms_deg, max_deg;
+    double median_deg, p99_deg;
+    double frac_above_1deg; /* share of compared pixels with error > 1 degree */
+    double frac_above_5deg; /* share of compared pixels with error > 5 degrees */
+} snell_dir_error;
+
+typedef struct snell_dir_error_desc {
+    const float *test;          /* required: 3 floats per pixel (need not be unit) */
+    const float *ref;           /* required: 3 floats per pixel */
+    const uint8_t *ref_mask;    /* optional: nonzero = glass pixel; NULL = every pixel */
+    const uint8_t *test_mask;   /* optional: nonzero = glass pixel; NULL = ref_mask */
+    int width, height;          /* >= 1 */
+    float *error_deg;           /* optional out: per-pixel angle in degrees, NaN where not compared */
+} snell_dir_error_desc;
+
+/* Angle between two directions, radians, computed as atan2(|a x b|, a . b)
+ * in double (accurate near 0 and pi, unlike acos). NaN if either is zero
+ * or not finite. */
+double snell_metrics_angle(const float a[3], const float b[3]);
+
+snell_status snell_metrics_dir_error(const snell_dir_error_desc *desc, snell_dir_error *out);
+
+/* mask[i] = 1 where dirs differs from background in any component (bitwise,
+ * NaN counts as different), else 0. n = pixel count. */
+snell_status snell_metrics_coverage_mask(const float *dirs, const float *background, long n, uint8_t *mask);
+
+/* Image error of RGBA8 images over the RGB channels (alpha ignored), in
+ * 8-bit units: RMSE = sqrt(mean squared channel difference), PSNR = 20
+ * log10(255 / RMSE) dB (+INFINITY when identical). */
+typedef struct snell_image_error {
+    long pixels;                /* pixels considered */
+    double rmse;                /* 0..255 */
+    double psnr_db;
+    double mean_abs;            /* mean |difference| per channel, 0..255 */
+    int max_abs;                /* largest channel difference */
+    long above_3;               /* pixels with a channel off by more than 3/255 */
+} snell_image_error;
+
+/* mask optional: nonzero = pixel considered; NULL = all. A mask selecting no
+ * pixel gives pixels = 0, rmse 0, psnr +INFINITY. */
+snell_status snell_metrics_image_error(const uint8_t *test_rgba, const uint8_t *ref_rgba, int width, int height,
+                                       const uint8_t *mask, snell_image_error *out);
+
+/* Non-finite values in n floats. */
+long snell_metrics_count_nonfinite(const float *v, long n);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,150 @@
+/* bench_ref.c — reference images for snell-bench (snell_ref_render), cached on
+ * disk per scene, camera, size, glass and mode so that reruns only time the
+ * GPU. A cache file holds a text key (checked on load, so a hash collision
+ * cannot return the wrong image) and the raw float/byte arrays of this
+ * machine's byte order; a file that does not match is re-rendered. */
+#define _POSIX_C_SOURCE 200809L
+#include "bench_common.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define CACHE_MAGIC "SNELLBENCHREF2\n"
+
+static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
+{
+    const unsigned char *p = (const unsigned char *)data;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        h ^= p[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+/* Hash of everything in the mesh the reference sees (positions, normals, indices). */
+static uint64_t mesh_hash(const snell_mesh *m)
+{
+    uint64_t h = 1469598103934665603ull;
+    uint32_t nv = snell_mesh_vertex_count(m), nt = snell_mesh_triangle_count(m);
+    h = fnv1a(h, &nv, sizeof nv);
+    h = fnv1a(h, &nt, sizeof nt);
+    h = fnv1a(h, snell_mesh_positions(m), (size_t)nv * 3 * sizeof(float));
+    h = fnv1a(h, snell_mesh_normals(m), (size_t)nv * 3 * sizeof(float));
+    h = fnv1a(h, snell_mesh_indices(m), (size_t)nt * 3 * sizeof(uint32_t));
+    return h;
+}
+
+void bench_ref_free(bench_ref_image *img)
+{
+    if (!img) return;
+    free(img->rgb);
+    free(img->exit_dir);
+    free(img->hit);
+    free(img->rgba);
+    memset(img, 0, sizeof *img);
+}
+
+static int alloc_image(bench_ref_image *img, int w, int h)
+{
+    size_t n = (size_t)w * (size_t)h;
+    memset(img, 0, sizeof *img);
+    img->width = w;
+    img->height = h;
+    img->rgb = (float *)malloc(n * 3 * sizeof(float));
+    img->exit_dir = (float *)malloc(n * 3 * sizeof(float));
+    img->hit = (uint8_t *)malloc(n);
+    img->rgba = (uint8_t *)malloc(n * 4);
+    if (img->rgb && img->exit_dir && img->hit && img->rgba) return 1;
+    bench_ref_free(img);
+    return 0;
+}
+
+static int read_exact(FILE *f, void *p, size_t n) { return fread(p, 1, n, f) == n; }
+
+/* 1 if the cache file exists and holds this key's image. */
+static int cache_load(const char *path, const char *full_key, bench_ref_image *img)
+{
+    FILE *f = fopen(path, "rb");
+    char magic[sizeof CACHE_MAGIC];
+    uint32_t key_len, w, h;
+    char *key = NULL;
+    size_t n;
+    int ok = 0;
+    if (!f) return 0;
+    if (!read_exact(f, magic, sizeof CACHE_MAGIC - 1) || memcmp(magic, CACHE_MAGIC, sizeof CACHE_MAGIC - 1)) goto done;
+    if (!read_exact(f, &key_len, 4) || key_len != strlen(full_key)) goto done;
+    key = (char *)malloc(key_len);
+    if (!key || !read_exact(f, key, key_len) || memcmp(key, full_key, key_len)) goto done;
+    if (!read_exact(f, &w, 4) || !read_exact(f, &h, 4) || (int)w != img->width || (int)h != img->height) goto done;
+    n = (size_t)w * h;
+    ok = read_exact(f, img->rgb, n * 3 * sizeof(float)) && read_exact(f, img->exit_dir, n * 3 * sizeof(float)) &&
+         read_exact(f, img->hit, n);
+done:
+    free(key);
+    fclose(f);
+    return ok;
+}
+
+/* Writes to a temporary name and renames, so a killed run leaves no torn file. */
+static void cache_store(const char *dir, const char *path, const char *full_key, const bench_ref_image *img)
+{
+    char tmp[1200];
+    FILE *f;
+    uint32_t key_len = (uint32_t)strlen(full_key), w = (uint32_t)img->width, h = (uint32_t)img->height;
+    size_t n = (size_t)w * h;
+    int ok;
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST) return;
+    snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
+    if (!(f = fopen(tmp, "wb"))) return;
+    ok = fwrite(CACHE_MAGIC, 1, sizeof CACHE_MAGIC - 1, f) == sizeof CACHE_MAGIC - 1 && fwrite(&key_len, 4, 1, f) == 1 &&
+         fwrite(full_key, 1, key_len, f) == key_len && fwrite(&w, 4, 1, f) == 1 && fwrite(&h, 4, 1, f) == 1 &&
+         fwrite(img->rgb, sizeof(float), n * 3, f) == n * 3 && fwrite(img->exit_dir, sizeof(float), n * 3, f) == n * 3 &&
+         fwrite(img->hit, 1, n, f) == n;
+    ok = (fclose(f) == 0) && ok;
+    if (!ok || rename(tmp, path) != 0) remove(tmp);
+}
+
+snell_status bench_ref_get(const snell_mesh *mesh, const snell_ref_params *p,
+                           const char *cache_dir, const char *key, bench_ref_image *out, int *cached)
+{
+    char full_key[1024], path[1100];
+    snell_ref *ref = NULL;
+    snell_ref_desc rd;
+    snell_ref_output o;
+    snell_status st;
+    uint64_t h;
+    *cached = 0;
+    if (!alloc_image(out, p->width, p->height)) return SNELL_E_NOMEM;
+    h = mesh_hash(mesh);
+    snprintf(full_key, sizeof full_key, "mesh=%016llx %s", (unsigned long long)h, key);
+    snprintf(path, sizeof path, "%s/%016llx.ref", cache_dir ? cache_dir : ".",
+             (unsigned long long)fnv1a(1469598103934665603ull, full_key, strlen(full_key)));
+    if (cache_dir && cache_load(path, full_key, out)) {
+        *cached = 1;
+    } else {
+        memset(&rd, 0, sizeof rd);
+        rd.mesh = mesh;
+        if ((st = snell_ref_create(NULL, &rd, &ref)) != SNELL_OK) {
+            bench_ref_free(out);
+            return st;
+        }
+        memset(&o, 0, sizeof o);
+        o.rgb = out->rgb;
+        o.exit_dir = out->exit_dir;
+        o.hit = out->hit;
+        st = snell_ref_render(ref, p, &o);
+        snell_ref_destroy(ref);
+        if (st != SNELL_OK) {
+            bench_ref_free(out);
+            return st;
+        }
+        if (cache_dir) cache_store(cache_dir, path, full_key, out);
+    }
+    snell_ref_rgb_to_rgba8(out->rgb, out->width, out->height, out->rgba);
+    return SNELL_OK;
+}

@@ -1,0 +1,19 @@
+// opaque.frag - diffuse albedo lit by a sky-like light from +Y (half-Lambert,
+// so no side is black). In exit-direction output the view ray is written, as
+// for the background: an opaque pixel has no refracted path.
+precision mediump float;
+
+#include "common/output.glsl"
+
+in highp vec3 v_world_pos;
+in vec3 v_world_normal;
+
+uniform highp vec3 u_eye;
+uniform vec3 u_color;
+
+void main()
+{
+    vec3 n = normalize(v_world_normal);
+    float l = 0.5 + 0.5 * dot(n, normalize(vec3(0.3, 1.0, 0.2)));
+    snell_write(u_color * (0.25 + 0.75 * l), v_world_pos - u_eye);
+}

@@ -1,0 +1,21 @@
+// opaque.vert - opaque scene objects (frame desc's opaque list), drawn in the
+// view and into the dynamic environment cubemap (env_dynamic.c).
+precision highp float;
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+
+uniform mat4 u_model;
+uniform mat3 u_normal_matrix;
+uniform mat4 u_view_proj;
+
+out vec3 v_world_pos;
+out vec3 v_world_normal;
+
+void main()
+{
+    vec4 wp = u_model * vec4(a_position, 1.0);
+    v_world_pos = wp.xyz;
+    v_world_normal = u_normal_matrix * a_normal;
+    gl_Position = u_view_proj * wp;
+}

@@ -1,0 +1,226 @@
+/* method_cubemap.c — two-sided refraction with a normal+distance cubemap
+ * (Li et al. 2007 as in Unger 4.1): per mesh version, analyze (centre, hidden
+ * fraction; mesh_analyze.c) and bake (ndcube.c); per frame one pass of the
+ * search shader (cubemap.frag) over the front faces. The per-mesh cache lives here, in the
+ * method state (a few entries, least recently used replaced). */
+#include "glass_program.h"
+#include "ctx.h"
+#include "gl.h"
+#include "ndcube.h"
+#include "program.h"
+
+#include <math.h>
+#include <string.h>
+
+#define CACHE_SIZE 4
+
+/* Defaults of the glass desc's cubemap fields (snell.h documents them). */
+#define DEFAULT_ITERATIONS 8
+#define DEFAULT_MAX_INTERFACES 2
+#define DEFAULT_FACE 256
+/* encoding: PLAIN (filtered normals; lower error than OCT at equal cost) */
+
+typedef struct cube_prog {
+    snell__glass_program g;
+    int ndcube, inv_model, centre, radius, iterations, linear_steps, max_interfaces, texel_angle, absorb;
+} cube_prog;
+
+/* One mesh's analysis and baked cubemap. The key is the mesh pointer and
+ * version plus counts, bounds and the positions pointer, so a destroyed mesh
+ * whose address is reused by a new one is recognised unless all of these
+ * coincide (see the report: a process-unique mesh id would make it exact). */
+typedef struct cache_entry {
+    const snell_mesh *mesh;
+    unsigned version;
+    uint32_t nv, nt;
+    const float *positions;
+    float bmin[3], bmax[3];
+    snell_mesh_analysis an;
+    snell__ndcube cube;
+    int baked;                 /* cube holds the current version */
+    unsigned long last_use;
+} cache_entry;
+
+typedef struct cubemap_state {
+    cube_prog prog[2];         /* [0] PLAIN, [1] OCT */
+    snell__ndcube_baker baker;
+    cache_entry cache[CACHE_SIZE];
+    unsigned long clock;
+} cubemap_state;
+
+static void cubemap_destroy(snell_ctx *ctx, void *state);
+
+static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const char *def, cube_prog *p)
+{
+    snell_status st = snell__glass_program_build(ctx, "cubemap.frag", out, def, &p->g);
+    if (st != SNELL_OK) return st;
+    p->ndcube = glGetUniformLocation(p->g.prog, "u_ndcube");
+    p->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
+    p->centre = glGetUniformLocation(p->g.prog, "u_centre");
+    p->radius = glGetUniformLocation(p->g.prog, "u_radius");
+    p->iterations = glGetUniformLocation(p->g.prog, "u_iterations");
+    p->linear_steps = glGetUniformLocation(p->g.prog, "u_linear_steps");
+    p->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    p->texel_angle = glGetUniformLocation(p->g.prog, "u_texel_angle");
+    p->absorb = glGetUniformLocation(p->g.prog, "u_absorb");
+    return SNELL_OK;
+}
+
+static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void **state)
+{
+    cubemap_state *s = (cubemap_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
+    snell_status st;
+    if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
+    st = build_prog(ctx, out, "#define SNELL_NDCUBE_PLAIN 1\n", &s->prog[0]);
+    if (st == SNELL_OK) st = build_prog(ctx, out, "#define SNELL_NDCUBE_OCT 1\n", &s->prog[1]);
+    if (st == SNELL_OK) st = snell__ndcube_baker_create(ctx, &s->baker);
+    if (st != SNELL_OK) {
+        cubemap_destroy(ctx, s);
+        return st;
+    }
+    *state = s;
+    return SNELL_OK;
+}
+
+static void cubemap_destroy(snell_ctx *ctx, void *state)
+{
+    cubemap_state *s = (cubemap_state *)state;
+    int i;
+    if (!s) return;
+    for (i = 0; i < 2; i++) snell__glass_program_destroy(&s->prog[i].g);
+    snell__ndcube_baker_destroy(&s->baker);
+    for (i = 0; i < CACHE_SIZE; i++) snell__ndcube_release(&s->cache[i].cube);
+    snell__free(&ctx->alloc, s);
+}
+
+static int entry_matches(const cache_entry *e, const snell_mesh *m)
+{
+    return e->mesh == m && e->version == m->version && e->nv == m->vertex_count && e->nt == m->triangle_count &&
+           e->positions == m->positions && !memcmp(e->bmin, m->bmin, sizeof e->bmin) &&
+           !memcmp(e->bmax, m->bmax, sizeof e->bmax);
+}
+
+/* The cache entry of the mesh's current version, analysed (not yet baked). */
+static snell_status get_entry(cubemap_state *s, const snell_mesh *m, cache_entry **out)
+{
+    cache_entry *e = NULL;
+    snell_status st;
+    int i;
+    s->clock++;
+    for (i = 0; i < CACHE_SIZE; i++)
+        if (entry_matches(&s->cache[i], m)) {
+            e = &s->cache[i];
+            e->last_use = s->clock;
+            *out = e;
+            return SNELL_OK;
+        }
+    /* Same mesh, new version (deformed): reuse its slot and texture; else the
+     * least recently used slot. */
+    for (i = 0; i < CACHE_SIZE && !e; i++)
+        if (s->cache[i].mesh == m) e = &s->cache[i];
+    if (!e) {
+        e = &s->cache[0];
+        for (i = 1; i < CACHE_SIZE; i++)
+            if (s->cache[i].last_use < e->last_use) e = &s->cache[i];
+    }
+    e->mesh = NULL;
+    e->baked = 0;
+    st = snell_mesh_analyze(m, &e->an);
+    if (st != SNELL_OK) return st;
+    e->mesh = m;
+    e->version = m->version;
+    e->nv = m->vertex_count;
+    e->nt = m->triangle_count;
+    e->positions = m->positions;
+    memcpy(e->bmin, m->bmin, sizeof e->bmin);
+    memcpy(e->bmax, m->bmax, sizeof e->bmax);
+    e->last_use = s->clock;
+    *out = e;
+    return SNELL_OK;
+}
+
+snell_status snell__cubemap_analysis(snell_ctx *ctx, void *method_state, const snell_mesh *mesh,
+                                     const snell_mesh_analysis **out)
+{
+    cache_entry *e;
+    snell_status st;
+    if (!method_state || !mesh || !out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "cubemap analysis: NULL argument");
+    st = get_entry((cubemap_state *)method_state, mesh, &e);
+    if (st != SNELL_OK) return st;
+    *out = &e->an;
+    return SNELL_OK;
+}
+
+static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame *f, snell_frame_stats *stats)
+{
+    cubemap_state *s = (cubemap_state *)state;
+    const snell_glass_desc *g = &f->desc->glass;
+    int iterations = g->search_iterations ? g->search_iterations : DEFAULT_ITERATIONS;
+    int max_if = g->max_interfaces ? g->max_interfaces : DEFAULT_MAX_INTERFACES;
+    int face = g->cube_face_size ? g->cube_face_size : DEFAULT_FACE;
+    snell_ndcube_encoding enc = g->encoding == SNELL_NDCUBE_DEFAULT ? SNELL_NDCUBE_PLAIN : g->encoding;
+    const cube_prog *p = &s->prog[enc == SNELL_NDCUBE_OCT ? 1 : 0];
+    cache_entry *e;
+    snell_status st;
+    mat4 inv_model;
+    /* 1e-4 margin: the farthest vertex stays strictly inside the cube's range. */
+    float radius;
+
+    st = get_entry(s, f->mesh, &e);
+    if (st != SNELL_OK) return st;
+    stats->hidden_fraction = e->an.hidden_fraction;
+    radius = e->an.radius * 1.0001f;
+    if (!e->baked || e->cube.face_size != face || e->cube.encoding != enc) {
+        GLint fbo = 0, vp[4];
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+        glGetIntegerv(GL_VIEWPORT, vp);
+        st = snell__ndcube_bake(ctx, &s->baker, f->mesh, e->an.centre, radius, face, enc, &e->cube);
+        glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
+        glViewport(vp[0], vp[1], vp[2], vp[3]);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glActiveTexture(GL_TEXTURE0);
+        if (st != SNELL_OK) return st;
+        e->baked = 1;
+        stats->ndcube_baked = 1;
+        stats->passes += 6;
+    }
+
+    /* Only surfaces facing the eye start a path (Unger 4.1 refracts at the
+     * front surface): for a closed mesh of known winding, cull the others, so
+     * the search shader runs about once per covered pixel. (A depth pre-pass
+     * did the same for any mesh but cost more than it saved: it doubles the
+     * triangle setup, which dominates on llvmpipe for the 69k-triangle
+     * bunny; bench/BENCHMARKS_CUBEMAP.md.) A model matrix with negative
+     * determinant mirrors the winding. */
+    if (e->an.winding != 0) {
+        int flip = (e->an.winding < 0) != (glm_mat4_det((vec4 *)f->model) < 0.0f);
+        glEnable(GL_CULL_FACE);
+        glCullFace(flip ? GL_FRONT : GL_BACK);
+        glFrontFace(GL_CCW);
+    }
+
+    glm_mat4_inv((vec4 *)f->model, inv_model);
+    snell__glass_program_use(&p->g, f);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, e->cube.texture);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(p->ndcube, 1);
+    glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)inv_model);
+    glUniform3fv(p->centre, 1, e->cube.centre);
+    glUniform1f(p->radius, e->cube.radius);
+    glUniform1i(p->iterations, iterations);
+    glUniform1i(p->linear_steps, g->linear_steps);
+    glUniform1i(p->max_interfaces, max_if);
+    /* A texel is 2/N wide in face coordinates; it subtends 2/N rad at a face
+     * centre and sqrt(2)/3 * 2/N at a corner: the smaller is the stop bound. */
+    glUniform1f(p->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)face);
+    glUniform1i(p->absorb, g->absorption[0] > 0.0f || g->absorption[1] > 0.0f || g->absorption[2] > 0.0f);
+    snell__draw_mesh(f);
+    glDisable(GL_CULL_FACE);
+    stats->passes++;
+    return SNELL_OK;
+}
+
+const snell__method snell__method_cubemap = {SNELL_METHOD_CUBEMAP, "cubemap", cubemap_create, cubemap_destroy,
+                                             cubemap_draw};

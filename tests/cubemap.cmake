@@ -1,0 +1,42 @@
+# Cubemap method (Unger 4.1, src/method_cubemap.c, ndcube.c, mesh_analyze.c):
+# packing twin, bake vs CPU ray casts, sphere/cube/TIR vs the reference,
+# analysis (star-shapedness), CLI flags.
+snell_add_test(test_analyze SOURCES test_analyze.c LABELS "unit")
+target_link_libraries(test_analyze PRIVATE m)
+
+# Not a test: the time-vs-error driver behind bench/BENCHMARKS_CUBEMAP.md
+# (cubemap_bench MESH [frames] [size] [all|defaults|quick] [ior]).
+add_executable(cubemap_bench cubemap_bench.c ${CMAKE_CURRENT_SOURCE_DIR}/test_util.c)
+target_link_libraries(cubemap_bench PRIVATE snell_static m)
+target_include_directories(cubemap_bench PRIVATE ${PROJECT_SOURCE_DIR}/src ${CMAKE_CURRENT_SOURCE_DIR})
+target_compile_options(cubemap_bench PRIVATE ${SNELL_WARNINGS})
+snell_add_test(test_cubemap SOURCES test_cubemap.c LABELS "render;gl")
+target_link_libraries(test_cubemap PRIVATE m)
+snell_add_test(test_cubemap_ref SOURCES test_cubemap_ref.c LABELS "render;gl")
+target_link_libraries(test_cubemap_ref PRIVATE m)
+
+# CLI: the cubemap flags, and clear failures (exit 2) for bad values.
+if(TARGET snell-render)
+  set(cli $<TARGET_FILE:snell-render>)
+  add_test(NAME cli_cubemap COMMAND ${cli} --mesh shape:sphere --method cubemap --iterations 6 --linear-steps 4
+           --interfaces 3 --face-size 64 --encoding plain --size 64x64 --frames 3 --stats
+           -o ${CMAKE_CURRENT_BINARY_DIR}/cli_cubemap.png)
+  set_tests_properties(cli_cubemap PROPERTIES LABELS "cli"
+    PASS_REGULAR_EXPRESSION "stats: method cubemap, passes [0-9]+, ndcube_baked 0.*hidden_fraction 0.0000")
+  add_test(NAME cli_auto_goblet COMMAND ${cli} --mesh shape:goblet --method auto --size 32x32 --stats
+           -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto.png)
+  set_tests_properties(cli_auto_goblet PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: method single")
+  add_test(NAME cli_auto_sphere COMMAND ${cli} --mesh shape:sphere --method auto --size 32x32 --stats
+           -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto.png)
+  set_tests_properties(cli_auto_sphere PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: method cubemap")
+  foreach(bad "--iterations;0" "--iterations;33" "--iterations;x" "--interfaces;9" "--interfaces;0"
+              "--face-size;8" "--face-size;4096" "--encoding;rgb" "--linear-steps;-1" "--method;cube")
+    string(MAKE_C_IDENTIFIER "cli_bad_cubemap_${bad}" name)
+    string(REPLACE ";" "|" bad_args "${bad}")
+    add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=${bad_args}" -DCODE=2 "-DERR=snell-render: "
+             -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+    set_tests_properties(${name} PROPERTIES LABELS "cli")
+  endforeach()
+endif()
+snell_add_test(test_cubemap_env SOURCES test_cubemap_env.c LABELS "render;gl")
+target_link_libraries(test_cubemap_env PRIVATE m)
