@@ -55,6 +55,17 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__frame 
     glUniform4fv(g->bsphere, 1, f->bsphere);
 }
 
+int snell__cull_back_faces(const snell__frame *f)
+{
+    int winding = snell__mesh_winding(f->mesh), flip;
+    if (winding == 0) return 0;
+    flip = (winding < 0) != (glm_mat4_det((vec4 *)f->model) < 0.0f);
+    glEnable(GL_CULL_FACE);
+    glCullFace(flip ? GL_FRONT : GL_BACK);
+    glFrontFace(GL_CCW);
+    return 1;
+}
+
 void snell__draw_mesh(const snell__frame *f)
 {
     glBindVertexArray(f->mesh->vao);

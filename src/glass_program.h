@@ -16,6 +16,11 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
 void snell__glass_program_destroy(snell__glass_program *g);
 /* glUseProgram + the shared uniforms (environment on texture unit 0). */
 void snell__glass_program_use(const snell__glass_program *g, const snell__frame *f);
+/* Only surfaces facing the eye start a path (both kernels refract at the
+ * front surface): for a closed mesh of known winding, enable culling of the
+ * others (a model with negative determinant mirrors the winding). Returns
+ * whether culling was enabled; the caller disables GL_CULL_FACE after drawing. */
+int snell__cull_back_faces(const snell__frame *f);
 /* Draws the frame's mesh with the currently bound program. */
 void snell__draw_mesh(const snell__frame *f);
 

@@ -15,6 +15,9 @@ struct snell_mesh {
     uint32_t triangle_count;
     float bmin[3], bmax[3];
     unsigned version;          /* process-unique; renewed whenever the geometry changes */
+    /* Orientation, computed on demand by snell__mesh_winding (mesh_analyze.c). */
+    unsigned winding_version;  /* the version it was computed for; 0 = never */
+    int winding;               /* +1 closed and outward, -1 closed and inward, 0 open */
     /* GPU side, created by snell__mesh_upload */
     unsigned vao, vbo, ibo;
     unsigned uploaded_version;
@@ -34,6 +37,11 @@ snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *
 /* Area-weighted smooth normals; degenerate vertices get (0,1,0). */
 void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t nv, uint32_t nt,
                                  float *normals);
+
+/* +1/-1 if the mesh is a closed, consistently oriented surface wound with
+ * outward/inward normals, 0 otherwise. Computed once per geometry version
+ * (sorts the edges: allocates then, not on later calls). */
+int snell__mesh_winding(snell_mesh *mesh);
 
 /* Creates/updates VAO+VBO+IBO (attribute 0 = position, 1 = normal). Needs GL. */
 snell_status snell__mesh_upload(snell_mesh *mesh);

@@ -177,6 +177,17 @@ static snell_status topology(const snell_mesh *m, int *closed, int *convex, doub
     return SNELL_OK;
 }
 
+int snell__mesh_winding(snell_mesh *m)
+{
+    int closed = 0, convex = 0;
+    double volume = 0.0, vc[3];
+    if (m->winding_version == m->version) return m->winding;
+    if (topology(m, &closed, &convex, &volume, vc) != SNELL_OK) return 0; /* not cached: retried */
+    m->winding = closed && volume != 0.0 ? (volume > 0.0 ? 1 : -1) : 0;
+    m->winding_version = m->version;
+    return m->winding;
+}
+
 /* ------------------------------------------------------------ sampling */
 
 /* Sample i of n: an area-weighted stratified point on the surface (triangle by

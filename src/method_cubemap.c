@@ -186,19 +186,11 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame
         stats->passes += 6;
     }
 
-    /* Only surfaces facing the eye start a path (Unger 4.1 refracts at the
-     * front surface): for a closed mesh of known winding, cull the others, so
-     * the search shader runs about once per covered pixel. (A depth pre-pass
-     * did the same for any mesh but cost more than it saved: it doubles the
-     * triangle setup, which dominates on llvmpipe for the 69k-triangle
-     * bunny; bench/BENCHMARKS_CUBEMAP.md.) A model matrix with negative
-     * determinant mirrors the winding. */
-    if (e->an.winding != 0) {
-        int flip = (e->an.winding < 0) != (glm_mat4_det((vec4 *)f->model) < 0.0f);
-        glEnable(GL_CULL_FACE);
-        glCullFace(flip ? GL_FRONT : GL_BACK);
-        glFrontFace(GL_CCW);
-    }
+    /* Back faces culled on closed meshes (snell__cull_back_faces). A depth
+     * pre-pass would do the same for any mesh but cost more than it saved: it
+     * doubles the triangle setup, which dominates on llvmpipe for the
+     * 69k-triangle bunny (bench/BENCHMARKS.md). */
+    snell__cull_back_faces(f);
 
     glm_mat4_inv((vec4 *)f->model, inv_model);
     snell__glass_program_use(&p->g, f);

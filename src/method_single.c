@@ -2,6 +2,7 @@
  * one pass, refraction and reflection at the front surface only. */
 #include "glass_program.h"
 #include "ctx.h"
+#include "gl.h"
 
 typedef struct single_state {
     snell__glass_program prog;
@@ -34,7 +35,9 @@ static snell_status single_draw(snell_ctx *ctx, void *state, const snell__frame 
     single_state *s = (single_state *)state;
     (void)ctx;
     snell__glass_program_use(&s->prog, f);
+    snell__cull_back_faces(f);
     snell__draw_mesh(f);
+    glDisable(GL_CULL_FACE);
     stats->passes++;
     return SNELL_OK;
 }

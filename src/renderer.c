@@ -176,7 +176,10 @@ static void draw_background(snell_renderer *r, snell__frame *f)
     rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
     glm_mat4_mul(f->proj, rot, vp);
     glm_mat4_inv(vp, inv);
-    glDisable(GL_DEPTH_TEST);
+    /* The triangle lies at the far plane (z = w): LEQUAL passes only where
+     * nothing nearer was drawn. */
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
     glUseProgram(r->sky_prog);
     glUniformMatrix4fv(r->sky_inv, 1, GL_FALSE, (const GLfloat *)inv);
@@ -312,11 +315,6 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_CUBE_MAP, f.env->texture);
 
-    /* Exit-direction output always needs the background (misses = view ray). */
-    if (fd->draw_background >= 0 || r->out != SNELL__OUT_COLOR) {
-        draw_background(r, &f);
-        s.passes++;
-    }
     m = resolve_method(r, fd, &s);
     s.method_used = m;
     if (f.mesh && is_passthrough(&fd->glass) && r->out == SNELL__OUT_COLOR) {
@@ -343,6 +341,15 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
             glDepthMask(GL_TRUE);
             st = g_methods[m]->draw(r->ctx, r->method_state[m], &f, &s);
         }
+    }
+    /* The background goes last, where the depth buffer is still clear, so
+     * pixels covered by glass or opaque objects are never shaded twice.
+     * Exit-direction output always needs it (misses = the view ray). */
+    if (st == SNELL_OK && (fd->draw_background >= 0 || r->out != SNELL__OUT_COLOR)) {
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, f.env->texture);
+        draw_background(r, &f);
+        s.passes++;
     }
     glBindVertexArray(0);
     if (external) snell__glstate_restore(&saved);

@@ -40,7 +40,7 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: snell-render [options]\n"
             "Renders refractive glass to a PNG (default: built-in object -> snell.png).\n\n"
-            "  --mesh FILE            OBJ, glTF (.gltf/.glb) mesh, or shape:sphere|cube|torus|goblet (default goblet)\n"
+            "  --mesh FILE            OBJ, glTF (.gltf/.glb) mesh, or shape:sphere|cube|torus|goblet (default sphere)\n"
             "  --env FILE|procedural  environment: procedural (default), an equirectangular image,\n"
             "                         or six faces given as a pattern with %%s (px nx py ny pz nz)\n"
             "  --ior N                index of refraction (default 1.5)\n"
@@ -48,7 +48,7 @@ static void usage(FILE *f)
             "  --size WxH             image size (default 512x512)\n"
             "  --camera AZ,EL,DIST    orbit camera: degrees, degrees, distance (default 30,20,3.5)\n"
             "  --fov DEG              vertical field of view (default 45)\n"
-            "  --method NAME          refraction method: single, cubemap, auto (default single)\n"
+            "  --method NAME          refraction method: single, cubemap, auto (default auto)\n"
             "  --iterations N         cubemap: binary-search steps per interface, 1..32 (default 8)\n"
             "  --linear-steps N       cubemap: linear pre-search steps, 0..32 (default 0)\n"
             "  --interfaces N         cubemap: surfaces per light path, 1..8 (default 3)\n"
@@ -99,7 +99,7 @@ static int parse_args(int argc, char **argv, options *o)
 {
     int i;
     memset(o, 0, sizeof *o);
-    o->shape = SNELL_SHAPE_GOBLET;
+    o->shape = SNELL_SHAPE_SPHERE;
     o->out = "snell.png";
     o->ior = 1.5f;
     o->width = o->height = 512;
@@ -107,7 +107,7 @@ static int parse_args(int argc, char **argv, options *o)
     o->el_deg = 20.0f;
     o->dist = 3.5f;
     o->fov_deg = 45.0f;
-    o->method = SNELL_METHOD_SINGLE;
+    o->method = SNELL_METHOD_AUTO;
     o->frames = 1;
     o->normalize = 1;
     for (i = 1; i < argc; i++) {
