@@ -19,4 +19,8 @@ void snell__cube_coords(const double dir[3], int *face, double *s, double *t);
 /* Unit direction through face coordinates (s,t) of face; inverse of the above. */
 void snell__cube_dir(int face, double s, double t, double dir[3]);
 
+/* An empty RGBA8 cube texture (one level, CLAMP_TO_EDGE, the given min/mag
+ * filter) left bound to GL_TEXTURE_CUBE_MAP; for render targets. */
+unsigned snell__cube_texture_create(int size, int filter);
+
 #endif

@@ -184,14 +184,7 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, co
         if (d->texture) glDeleteTextures(1, &d->texture);
         if (!d->fbo) glGenFramebuffers(1, &d->fbo);
         if (!d->depth_rb) glGenRenderbuffers(1, &d->depth_rb);
-        glGenTextures(1, &d->texture);
-        glBindTexture(GL_TEXTURE_CUBE_MAP, d->texture);
-        glTexStorage2D(GL_TEXTURE_CUBE_MAP, 1, GL_RGBA8, size, size);
-        glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+        d->texture = snell__cube_texture_create(size, GL_LINEAR);
         glBindRenderbuffer(GL_RENDERBUFFER, d->depth_rb);
         glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, size, size);
         d->size = size;

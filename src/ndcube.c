@@ -2,6 +2,7 @@
  * 6 passes (one per face) of the mesh from the centre with depth test GREATER
  * and culling off, so the farthest surface wins; see ndcube.h. */
 #include "ndcube.h"
+#include "env.h"
 #include "ctx.h"
 #include "gl.h"
 #include "program.h"
@@ -73,14 +74,7 @@ static snell_status make_texture(snell_ctx *ctx, snell__ndcube *cube, int size, 
      * coordinates do not interpolate. */
     GLint filter = enc == SNELL_NDCUBE_PLAIN ? GL_LINEAR : GL_NEAREST;
     snell__ndcube_release(cube);
-    glGenTextures(1, &cube->texture);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, cube->texture);
-    glTexStorage2D(GL_TEXTURE_CUBE_MAP, 1, GL_RGBA8, size, size);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, filter);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, filter);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    cube->texture = snell__cube_texture_create(size, filter);
     cube->face_size = size;
     cube->encoding = enc;
     return glGetError() == GL_NO_ERROR ? SNELL_OK

@@ -67,21 +67,12 @@ static float *reference(bench *b, int interfaces)
 {
     if (!b->ref_dir[interfaces]) {
         snell_ref_params p;
-        snell_ref_output o;
         float *rgb = (float *)malloc(sizeof(float) * 3 * b->size * b->size);
         b->ref_dir[interfaces] = (float *)malloc(sizeof(float) * 3 * b->size * b->size);
-        memset(&p, 0, sizeof p);
-        p.mode = SNELL_REF_MATCHED;
-        p.max_interfaces = interfaces;
-        p.glass = b->fd.glass;
+        test_ref_params(&b->fd, b->size, b->size, interfaces, &p);
         p.env = b->env;
-        p.camera = b->fd.camera;
-        p.width = p.height = b->size;
-        memset(&o, 0, sizeof o);
-        o.rgb = rgb;
-        o.exit_dir = b->ref_dir[interfaces];
-        o.hit = b->hit;
-        if (snell_ref_render(b->ref, &p, &o) != SNELL_OK) fprintf(stderr, "ref: %s\n", snell_last_error(NULL));
+        if (test_ref_render(b->ref, &p, rgb, b->ref_dir[interfaces], b->hit) != SNELL_OK)
+            fprintf(stderr, "ref: %s\n", snell_last_error(NULL));
         free(rgb);
     }
     return b->ref_dir[interfaces];

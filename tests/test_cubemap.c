@@ -166,7 +166,6 @@ static void check_sphere(snell_ctx *ctx, snell_mesh *sphere, snell_env *env, sne
     snell_ref *ref = NULL;
     snell_ref_desc refd;
     snell_ref_params p;
-    snell_ref_output o;
     int i, n = 0, over = 0;
     double worst = 0.0, lim = bound(enc, N, K), worst1 = 0.0;
     memset(&rd, 0, sizeof rd);
@@ -210,19 +209,8 @@ static void check_sphere(snell_ctx *ctx, snell_mesh *sphere, snell_env *env, sne
      * at grazing entry); cubemap.frag is highp. */
     CHECK(worst1 < 2e-3, "max_interfaces 1 must equal the single-surface method (worst %g rad)", worst1);
 
-    memset(&p, 0, sizeof p);
-    p.mode = SNELL_REF_MATCHED;
-    p.max_interfaces = 2;
-    p.glass = fd.glass;
-    p.env = env;
-    p.camera = fd.camera;
-    p.width = W;
-    p.height = H;
-    memset(&o, 0, sizeof o);
-    o.rgb = rgb;
-    o.exit_dir = ref_dir;
-    o.hit = hit;
-    CHECK_OK(snell_ref_render(ref, &p, &o));
+    test_ref_params(&fd, W, H, 2, &p);
+    CHECK_OK(test_ref_render(ref, &p, rgb, ref_dir, hit));
     for (i = 0; i < W * H; i++) {
         snell_ref_path path;
         double v[3], e, cos_e, len;

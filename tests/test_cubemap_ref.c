@@ -96,7 +96,6 @@ static void run(snell_ctx *ctx, snell_mesh *cube, snell_env *env, float ior, int
     snell_ref *ref = NULL;
     snell_ref_desc refd;
     snell_ref_params p;
-    snell_ref_output o;
     double q = max_quant(enc), eta = ior, R = sqrt(3.0);
     double dq = enc == SNELL_NDCUBE_PLAIN ? 0.5 / 255.0 : 0.5 / 65535.0;
     double bracket = fmax(2.0 * R / pow(2.0, K), 0.943 / N * R);
@@ -130,19 +129,8 @@ static void run(snell_ctx *ctx, snell_mesh *cube, snell_env *env, float ior, int
     CHECK_OK(snell_render(r, &fd, NULL));
     CHECK_OK(snell_renderer_read_exit_dirs(r, single));
 
-    memset(&p, 0, sizeof p);
-    p.mode = SNELL_REF_MATCHED;
-    p.max_interfaces = interfaces;
-    p.glass = fd.glass;
-    p.env = env;
-    p.camera = fd.camera;
-    p.width = W;
-    p.height = H;
-    memset(&o, 0, sizeof o);
-    o.rgb = rgb;
-    o.exit_dir = ref_dir;
-    o.hit = hit;
-    CHECK_OK(snell_ref_render(ref, &p, &o));
+    test_ref_params(&fd, W, H, interfaces, &p);
+    CHECK_OK(test_ref_render(ref, &p, rgb, ref_dir, hit));
 
     for (i = 0; i < W * H; i++) {
         snell_ref_path path;

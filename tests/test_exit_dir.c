@@ -128,7 +128,6 @@ static void against_reference(snell_ctx *ctx, snell_output output)
     snell_ref *ref = NULL;
     snell_ref_desc refd;
     snell_ref_params p;
-    snell_ref_output o;
     int i, n = 0, below = 0, bg_bad = 0, nbg = 0;
     double bg_sum = 0;
     memset(&ed, 0, sizeof ed);
@@ -163,20 +162,9 @@ static void against_reference(snell_ctx *ctx, snell_output output)
     refd.mesh = mesh;
     CHECK_OK(snell_ref_create(ctx, &refd, &ref));
     if (!ref) goto done;
-    memset(&p, 0, sizeof p);
-    p.mode = SNELL_REF_MATCHED;
-    p.max_interfaces = 1;
-    p.glass = fd.glass;
-    p.env = env;
-    p.camera = fd.camera;
-    p.width = W;
-    p.height = H;
-    memset(&o, 0, sizeof o);
-    o.rgb = rgb;
-    o.exit_dir = ref_dir;
-    o.hit = hit;
+    test_ref_params(&fd, W, H, 1, &p);
     {
-        snell_status st = snell_ref_render(ref, &p, &o);
+        snell_status st = test_ref_render(ref, &p, rgb, ref_dir, hit);
         CHECK(st == SNELL_OK, "reference: %s", snell_last_error(ctx));
     }
     for (i = 0; i < W * H; i++) {

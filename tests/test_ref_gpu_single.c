@@ -27,7 +27,6 @@ static void compare(const char *name, snell_ctx *ctx, snell_renderer *r, const s
     snell_ref *ref = NULL;
     snell_ref_desc rd;
     snell_ref_params p;
-    snell_ref_output o;
     int i, c, within = 0, hits = 0;
     double sum_err = 0.0;
     char png[64];
@@ -55,19 +54,9 @@ static void compare(const char *name, snell_ctx *ctx, snell_renderer *r, const s
     rd.model = model;
     CHECK_OK(snell_ref_create(ctx, &rd, &ref));
     if (!ref) return;
-    memset(&p, 0, sizeof p);
-    p.mode = SNELL_REF_MATCHED;
-    p.max_interfaces = 1;
+    test_ref_params(&fd, W, H, 1, &p);
     p.absorption_model = SNELL_REF_ABSORB_BOUNDING_SPHERE;
-    p.glass = fd.glass;
-    p.env = env;
-    p.camera = fd.camera;
-    p.width = W;
-    p.height = H;
-    memset(&o, 0, sizeof o);
-    o.rgb = rgb;
-    o.hit = hit;
-    CHECK_OK(snell_ref_render(ref, &p, &o));
+    CHECK_OK(test_ref_render(ref, &p, rgb, NULL, hit));
     snell_ref_rgb_to_rgba8(rgb, W, H, cpu);
 
     for (i = 0; i < W * H; i++) {

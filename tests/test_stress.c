@@ -112,7 +112,6 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
     snell_ref *ref = NULL;
     snell_ref_desc rd;
     snell_ref_params p;
-    snell_ref_output o;
     snell_dir_error_desc dd;
     snell_dir_error e;
     float model[16];
@@ -148,20 +147,9 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
     rd.model = model;
     CHECK_OK(snell_ref_create(ctx, &rd, &ref));
     if (!ref) return 0;
-    memset(&p, 0, sizeof p);
-    p.mode = SNELL_REF_MATCHED;
-    p.max_interfaces = mc->interfaces;
+    test_ref_params(&fd, W, H, mc->interfaces, &p);
     p.absorption_model = mc->absorb;
-    p.glass = fd.glass;
-    p.env = env;
-    p.camera = fd.camera;
-    p.width = W;
-    p.height = H;
-    memset(&o, 0, sizeof o);
-    o.rgb = rgb;
-    o.exit_dir = ref_dirs;
-    o.hit = hit;
-    CHECK_OK(snell_ref_render(ref, &p, &o));
+    CHECK_OK(test_ref_render(ref, &p, rgb, ref_dirs, hit));
     snell_ref_destroy(ref);
 
     memset(&dd, 0, sizeof dd);

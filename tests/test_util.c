@@ -1,6 +1,7 @@
 #include "test_util.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 int test_passed, test_failed;
 
@@ -35,4 +36,27 @@ snell_ctx *test_ctx(void)
         return NULL;
     }
     return ctx;
+}
+
+void test_ref_params(const snell_frame_desc *fd, int w, int h, int max_interfaces, snell_ref_params *p)
+{
+    memset(p, 0, sizeof *p);
+    p->mode = SNELL_REF_MATCHED;
+    p->max_interfaces = max_interfaces;
+    p->glass = fd->glass;
+    p->env = fd->env;
+    p->camera = fd->camera;
+    p->width = w;
+    p->height = h;
+}
+
+snell_status test_ref_render(const snell_ref *ref, const snell_ref_params *p, float *rgb, float *exit_dir,
+                             uint8_t *hit)
+{
+    snell_ref_output o;
+    memset(&o, 0, sizeof o);
+    o.rgb = rgb;
+    o.exit_dir = exit_dir;
+    o.hit = hit;
+    return snell_ref_render(ref, p, &o);
 }

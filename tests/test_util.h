@@ -5,6 +5,7 @@
 #define SNELL_TEST_UTIL_H
 
 #include "snell/snell.h"
+#include "snell/snell_ref.h"
 #include <stdio.h>
 
 extern int test_passed, test_failed;
@@ -40,6 +41,12 @@ int test_finish(void);
 const char *test_data(const char *name);
 /* Path for an output file in the test's build directory (static buffer). */
 const char *test_out(const char *name);
+/* Reference parameters that match frame fd rendered at w x h: MATCHED mode
+ * with the given interface cap, the frame's glass, environment and camera. */
+void test_ref_params(const snell_frame_desc *fd, int w, int h, int max_interfaces, snell_ref_params *p);
+/* snell_ref_render with these outputs (rgb required; exit_dir, hit optional). */
+snell_status test_ref_render(const snell_ref *ref, const snell_ref_params *p, float *rgb, float *exit_dir,
+                             uint8_t *hit);
 /* A headless context (default backend) or NULL, message printed. */
 snell_ctx *test_ctx(void);
 

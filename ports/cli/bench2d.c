@@ -6,6 +6,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "snell/snell.h"
 #include "snell/snell_2d.h"
+#include "bench_common.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -20,24 +21,6 @@ int snell_bench2d_main(int argc, char **argv);
 #define VIEW_W 1920
 #define VIEW_H 1080
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /* Thesis Abb. A.17 stand-in: 8 irregular blobs on a ring around the screen
  * centre, 2263 edges in all, so most rays from the centre hit an edge. */
@@ -115,11 +98,11 @@ static snell_status run_frames(snell_ctx *ctx, snell_scene2d *s, const snell_lig
         L = bench2d_light0;
         L.position[0] += (i & 1) ? 1e-3f : -1e-3f;
         if ((rc = snell_scene2d_set_light(s, 0, &L)) != SNELL_OK) break;
-        t0 = now_ms();
+        t0 = bench_now_ms();
         if ((rc = snell_lightmap2d_frame(lm, s, &st)) != SNELL_OK) break;
         snell_lightmap2d_finish(lm);
         if (i < 0) continue;
-        t[i] = now_ms() - t0;
+        t[i] = bench_now_ms() - t0;
         tr[i] = st.trace_ms;
         tc[i] = st.trace_cpu_ms;
         ra[i] = t[i] - st.trace_ms;
@@ -128,10 +111,10 @@ static snell_status run_frames(snell_ctx *ctx, snell_scene2d *s, const snell_lig
     }
     snell_lightmap2d_destroy(lm);
     if (rc != SNELL_OK) return rc;
-    r->ms = median(t, repeat);
-    r->trace_ms = median(tr, repeat);
-    r->trace_cpu_ms = median(tc, repeat);
-    r->raster_ms = median(ra, repeat);
+    r->ms = bench_median(t, repeat);
+    r->trace_ms = bench_median(tr, repeat);
+    r->trace_cpu_ms = bench_median(tc, repeat);
+    r->raster_ms = bench_median(ra, repeat);
     return SNELL_OK;
 }
 

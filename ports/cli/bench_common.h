@@ -48,6 +48,12 @@ snell_status bench_ref_get(const snell_mesh *mesh, const snell_ref_params *p,
                            const char *cache_dir, const char *key, bench_ref_image *out, int *cached);
 void bench_ref_free(bench_ref_image *img);
 
+/* Monotonic wall clock in ms, and the median of v[0..n) (sorts v) (bench_timer.c). */
+double bench_now_ms(void);
+double bench_median(double *v, int n);
+/* snell-bench --2d (bench2d.c). */
+int snell_bench2d_main(int argc, char **argv);
+
 /* Time-vs-error plot. */
 typedef struct bench_plot_point {
     double x, y;                 /* time (ms), error; y <= 0 is drawn at the floor */

@@ -486,24 +486,6 @@ static snell_status get_scene(snell_ctx *ctx, const char *name, snell_mesh **out
 }
 
 /* ------------------------------------------------------------- running */
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 static void frame_of(const bench_config *c, const snell_mesh *mesh, const snell_env *env, snell_frame_desc *fd)
 {
@@ -595,7 +577,7 @@ static void run_config(snell_ctx *ctx, const snell_env *env, const char *env_nam
 
     /* Timing: warm-up, then N frames each ended by glFinish. */
     for (i = 0; i < o->warmup + o->frames; i++) {
-        double t0 = now_ms(), g;
+        double t0 = bench_now_ms(), g;
         snell_status st;
         bench_timer_begin();
         st = snell_render(rc, &fd, NULL);
@@ -609,14 +591,14 @@ static void run_config(snell_ctx *ctx, const snell_env *env, const char *env_nam
             bench_timer_read();
             continue;
         }
-        times[i - o->warmup] = now_ms() - t0;
+        times[i - o->warmup] = bench_now_ms() - t0;
         g = bench_timer_read();
         if (g >= 0.0) gpu[gpu_n++] = g;
     }
-    c->t_median = median(times, o->frames);
+    c->t_median = bench_median(times, o->frames);
     c->t_min = times[0];
     c->t_max = times[o->frames - 1];
-    c->gpu_median = gpu_n == o->frames ? median(gpu, gpu_n) : -1.0;
+    c->gpu_median = gpu_n == o->frames ? bench_median(gpu, gpu_n) : -1.0;
     if (snell_renderer_read_rgba(rc, rgba) != SNELL_OK) {
         fail_config(c, "readback", ctx);
         goto done;
@@ -980,9 +962,6 @@ static int method_works(snell_ctx *ctx, const snell_env *env, const bench_method
     return ok;
 }
 
-#ifdef SNELL_HAVE_BENCH2D
-int snell_bench2d_main(int argc, char **argv);
-#endif
 
 int main(int argc, char **argv)
 {
@@ -995,17 +974,12 @@ int main(int argc, char **argv)
     int i, n = 0, rc = 0, timer, failed = 0;
     char path[1200], load_before[64], load_after[64], date[64];
     const char *renderer;
-    double t_start = now_ms();
+    double t_start = bench_now_ms();
     time_t now = time(NULL);
 
     for (i = 1; i < argc; i++)
         if (!strcmp(argv[i], "--2d")) {
-#ifdef SNELL_HAVE_BENCH2D
             return snell_bench2d_main(argc, argv);
-#else
-            fprintf(stderr, "snell-bench: built without the 2D lightmap benchmarks\n");
-            return 2;
-#endif
         }
     if (!parse_options(argc, argv, &o)) return 2;
     cs = (bench_config *)calloc(MAX_CONFIGS, sizeof *cs);
@@ -1068,7 +1042,7 @@ int main(int argc, char **argv)
                     ">5deg %.1f%%, PSNR %.1f dB; NaN/Inf %ld; %.0f s elapsed\n",
                     i + 1, n, c->t_median, c->gpu_median, c->ref_interfaces, c->dir[0].mean_deg, c->dir[1].mean_deg,
                     100.0 * c->dir[1].frac_above_1deg, 100.0 * c->dir[1].frac_above_5deg, c->img[1].psnr_db,
-                    c->nan_inf, (now_ms() - t_start) / 1000.0);
+                    c->nan_inf, (bench_now_ms() - t_start) / 1000.0);
         }
     }
     read_loadavg(load_after, sizeof load_after);
@@ -1100,7 +1074,7 @@ int main(int argc, char **argv)
                c->dir[1].mean_deg, 100.0 * c->dir[1].frac_above_1deg, 100.0 * c->dir[1].frac_above_5deg, c->nan_inf);
     }
     printf("wrote %s.json, %s.csv, %s.png (%.1f s)\n", o.out_prefix, o.out_prefix, o.out_prefix,
-           (now_ms() - t_start) / 1000.0);
+           (bench_now_ms() - t_start) / 1000.0);
     if (failed) rc = 1;
 done:
     for (i = 0; i < g_scene_count; i++) snell_mesh_destroy(g_scenes[i].mesh);

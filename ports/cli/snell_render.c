@@ -265,9 +265,8 @@ static snell_status make_env(snell_ctx *ctx, const char *spec, snell_env **env)
     return snell_env_create(ctx, &d, env);
 }
 
-#ifdef SNELL_HAVE_2D
+/* render2d.c */
 int snell_render2d_main(int argc, char **argv);
-#endif
 /* trace_pixel.c */
 int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int width, int height, const int *xy,
                               int count, const char *out_png);
@@ -293,12 +292,7 @@ int main(int argc, char **argv)
 
     for (i = 1; i < argc; i++)
         if (!strcmp(argv[i], "--2d")) {
-#ifdef SNELL_HAVE_2D
             return snell_render2d_main(argc, argv);
-#else
-            fprintf(stderr, "snell-render: built without the 2D lightmap port\n");
-            return 2;
-#endif
         }
     if (!parse_args(argc, argv, &o)) return 2;
 
