@@ -10,7 +10,8 @@
 #   SNELL_BENCH  path of snell-bench (default build/ports/cli/snell-bench)
 #   REPEATS      alternations per size (default 3)
 # Environment: SIZES (default "256x256 512x512 800x600"), DURATION (glmark2
-# seconds per run, default 5), FRAMES (snell frames per run, default 30).
+# seconds per run, default 5), FRAMES (snell frames per run, default 30),
+# METHOD (snell-bench method spec, default single; e.g. cubemap).
 #
 # Caveats, stated in the output too: glmark2's refract is a different
 # algorithm (two passes: back-face depth/normal texture, then the front
@@ -26,6 +27,7 @@ REPEATS=${2:-3}
 SIZES=${SIZES:-"256x256 512x512 800x600"}
 DURATION=${DURATION:-5}
 FRAMES=${FRAMES:-30}
+METHOD=${METHOD:-single}
 BUNNY=/usr/share/glmark2/models/bunny.obj
 
 for tool in glmark2-es2 xvfb-run; do
@@ -52,8 +54,8 @@ for size in $SIZES; do
         g=$(xvfb-run -a -s "-screen 0 1024x768x24" glmark2-es2 --off-screen -s "${w}x${h}" \
                 -b "refract:duration=$DURATION" 2>&1 | sed -n 's/.*FrameTime: *\([0-9.]*\) ms.*/\1/p' | head -n 1)
         [ -n "$g" ] || { echo "glmark2-es2 gave no FrameTime (run it by hand to see why)" >&2; exit 1; }
-        # snell: same bunny, single-surface method, median of FRAMES frames
-        "$SNELL_BENCH" -q -b "single:scene=$BUNNY:size=${w}x${h}" --frames "$FRAMES" --warmup 3 \
+        # snell: same bunny, METHOD, median of FRAMES frames
+        "$SNELL_BENCH" -q -b "$METHOD:scene=$BUNNY:size=${w}x${h}" --frames "$FRAMES" --warmup 3 \
             --cache "$TMP/cache" -o "$TMP/snell_$size" >/dev/null
         s=$(awk -F, 'NR == 2 { print $8 }' "$TMP/snell_$size.csv")
         [ -n "$s" ] || { echo "snell-bench gave no time" >&2; exit 1; }
