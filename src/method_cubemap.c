@@ -15,9 +15,6 @@
 #define CACHE_SIZE 4
 
 /* Defaults of the glass desc's cubemap fields (snell.h documents them). */
-#define DEFAULT_ITERATIONS 8
-#define DEFAULT_MAX_INTERFACES 2
-#define DEFAULT_FACE 256
 /* encoding: PLAIN (filtered normals; lower error than OCT at equal cost) */
 
 typedef struct cube_prog {
@@ -155,9 +152,9 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame
 {
     cubemap_state *s = (cubemap_state *)state;
     const snell_glass_desc *g = &f->desc->glass;
-    int iterations = g->search_iterations ? g->search_iterations : DEFAULT_ITERATIONS;
-    int max_if = g->max_interfaces ? g->max_interfaces : DEFAULT_MAX_INTERFACES;
-    int face = g->cube_face_size ? g->cube_face_size : DEFAULT_FACE;
+    int iterations = g->search_iterations ? g->search_iterations : SNELL_CUBEMAP_DEFAULT_ITERATIONS;
+    int max_if = g->max_interfaces ? g->max_interfaces : SNELL_CUBEMAP_DEFAULT_INTERFACES;
+    int face = g->cube_face_size ? g->cube_face_size : SNELL_CUBEMAP_DEFAULT_FACE_SIZE;
     snell_ndcube_encoding enc = g->encoding == SNELL_NDCUBE_DEFAULT ? SNELL_NDCUBE_PLAIN : g->encoding;
     const cube_prog *p = &s->prog[enc == SNELL_NDCUBE_OCT ? 1 : 0];
     cache_entry *e;

@@ -211,6 +211,10 @@ typedef enum snell_ndcube_encoding {
     SNELL_NDCUBE_OCT           /* octahedral normal in RG (8+8 bits), distance in BA (16 bits), nearest */
 } snell_ndcube_encoding;
 
+/* What zero means in the cubemap fields of snell_glass_desc. */
+#define SNELL_CUBEMAP_DEFAULT_ITERATIONS 8
+#define SNELL_CUBEMAP_DEFAULT_INTERFACES 2
+#define SNELL_CUBEMAP_DEFAULT_FACE_SIZE 256
 #define SNELL_CUBEMAP_MAX_ITERATIONS 32
 #define SNELL_CUBEMAP_MAX_LINEAR_STEPS 32
 #define SNELL_CUBEMAP_MAX_INTERFACES 8
@@ -221,11 +225,11 @@ typedef struct snell_glass_desc {
     float absorption[3];       /* Beer-Lambert coefficient per unit length (world units), rgb */
     float tint[3];             /* multiplies transmitted light; all zero = white (no tint) */
     /* SNELL_METHOD_CUBEMAP (and AUTO when it picks it); all changeable per frame. */
-    int search_iterations;     /* binary-search steps per interface, 1..32; 0 = 8 */
+    int search_iterations;     /* binary-search steps per interface, 1..32; 0 = SNELL_CUBEMAP_DEFAULT_ITERATIONS (8) */
     int linear_steps;          /* linear pre-search steps before the binary search, 0..32; 0 = none */
     int max_interfaces;        /* surfaces processed per path, 1..8 (1 = single surface,
-                                * 2 = entry + exit, more = internal reflections); 0 = 2 */
-    int cube_face_size;        /* normal+distance cubemap face, 16..2048 texels; 0 = 256 */
+                                * 2 = entry + exit, more = internal reflections); 0 = ..._DEFAULT_INTERFACES (2) */
+    int cube_face_size;        /* normal+distance cubemap face, 16..2048 texels; 0 = ..._DEFAULT_FACE_SIZE (256) */
     snell_ndcube_encoding encoding;
 } snell_glass_desc;
 

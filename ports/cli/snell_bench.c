@@ -117,6 +117,9 @@ static int p_camera(bench_config *c, const char *v)
     return c->cam[2] > 0.0f ? 1 : bad("camera", v, "az/el/dist (degrees, degrees, distance > 0)");
 }
 
+#define STR_(x) #x
+#define STR(x) STR_(x)
+
 /* Keys every method takes. */
 static const bench_param g_common_params[] = {
     {"scene", "sphere|cube|torus|goblet|bunny or a mesh file (normalised to the unit sphere)", p_scene},
@@ -158,16 +161,17 @@ static int p_encoding(bench_config *c, const char *v)
 }
 
 static const bench_param g_cubemap_params[] = {
-    {"iterations", "binary-search steps per interface (default 8)", p_iterations},
+    {"iterations", "binary-search steps per interface (default " STR(SNELL_CUBEMAP_DEFAULT_ITERATIONS) ")",
+     p_iterations},
     {"linear", "linear pre-search steps (default 0)", p_linear},
-    {"interfaces", "surfaces per path (default 3)", p_interfaces},
-    {"face", "normal+distance cubemap face size (default 256)", p_face},
-    {"encoding", "oct|plain normal+distance packing (default oct)", p_encoding},
+    {"interfaces", "surfaces per path (default " STR(SNELL_CUBEMAP_DEFAULT_INTERFACES) ")", p_interfaces},
+    {"face", "normal+distance cubemap face size (default " STR(SNELL_CUBEMAP_DEFAULT_FACE_SIZE) ")", p_face},
+    {"encoding", "plain|oct normal+distance packing (default plain)", p_encoding},
     {NULL, NULL, NULL}};
 
 static void cubemap_finalize(bench_config *c)
 {
-    c->ref_interfaces = c->glass.max_interfaces ? c->glass.max_interfaces : 3;
+    c->ref_interfaces = c->glass.max_interfaces ? c->glass.max_interfaces : SNELL_CUBEMAP_DEFAULT_INTERFACES;
     c->ref_absorb = SNELL_REF_ABSORB_PATH;
 }
 

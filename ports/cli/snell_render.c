@@ -13,6 +13,8 @@
 #include <time.h>
 
 #define PI 3.14159265358979323846
+#define STR_(x) #x
+#define STR(x) STR_(x) /* a default from snell.h, spelled out in --help */
 
 typedef struct options {
     const char *mesh;       /* NULL: built-in shape */
@@ -49,10 +51,13 @@ static void usage(FILE *f)
             "  --camera AZ,EL,DIST    orbit camera: degrees, degrees, distance (default 30,20,3.5)\n"
             "  --fov DEG              vertical field of view (default 45)\n"
             "  --method NAME          refraction method: single, cubemap, auto (default auto)\n"
-            "  --iterations N         cubemap: binary-search steps per interface, 1..32 (default 8)\n"
+            "  --iterations N         cubemap: binary-search steps per interface, 1..32 (default "
+            STR(SNELL_CUBEMAP_DEFAULT_ITERATIONS) ")\n"
             "  --linear-steps N       cubemap: linear pre-search steps, 0..32 (default 0)\n"
-            "  --interfaces N         cubemap: surfaces per light path, 1..8 (default 2)\n"
-            "  --face-size N          cubemap: normal+distance cubemap face, 16..2048 (default 256)\n"
+            "  --interfaces N         cubemap: surfaces per light path, 1..8 (default "
+            STR(SNELL_CUBEMAP_DEFAULT_INTERFACES) ")\n"
+            "  --face-size N          cubemap: normal+distance cubemap face, 16..2048 (default "
+            STR(SNELL_CUBEMAP_DEFAULT_FACE_SIZE) ")\n"
             "  --encoding plain|oct   cubemap: texel packing (default plain)\n"
             "  --stats                print the last frame's statistics\n"
             "  --opaque N             demo scene: N opaque cubes (0..16) orbiting the glass, moving each frame;\n"
