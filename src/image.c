@@ -3,6 +3,20 @@
  * clash with a host application's own copy of stb. */
 #include "core.h"
 
+#include <stdlib.h>
+
+/* No single stb allocation may exceed what the largest accepted image needs
+ * (2^25 pixels as 16-bit RGBA plus PNG filter bytes, or as float RGBA while
+ * an HDR decodes: 512 MiB). Without this a corrupt zlib stream in a 100-byte
+ * PNG makes stb double its output buffer up to 2 GiB (found by fuzzing);
+ * with it stb fails with "outofmem", reported as SNELL_E_PARSE. */
+#define IMAGE_MAX_ALLOC ((size_t)640 << 20)
+static void *image_malloc(size_t n) { return n > IMAGE_MAX_ALLOC ? NULL : malloc(n); }
+static void *image_realloc(void *p, size_t n) { return n > IMAGE_MAX_ALLOC ? NULL : realloc(p, n); }
+#define STBI_MALLOC(sz) image_malloc(sz)
+#define STBI_REALLOC(p, newsz) image_realloc(p, newsz)
+#define STBI_FREE(p) free(p)
+
 #define STBI_MAX_DIMENSIONS 16384
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
@@ -37,6 +51,11 @@ snell_status snell_write_png(const char *path, int width, int height, const uint
 
 /* Largest encoded image accepted (bytes); stb also caps each side at 16384. */
 #define IMAGE_MAX_FILE (256u << 20)
+/* Largest decoded image: 2^25 pixels (8192 x 4096, an 8K lat-long map; 128 MiB
+ * as RGBA8, 512 MiB while an HDR is decoded as floats). Checked from the
+ * header before decoding: a 100-byte file may declare 16384^2 pixels, which
+ * would allocate 4 GiB of floats (found by fuzzing). */
+#define IMAGE_MAX_PIXELS (1u << 25)
 
 snell_status snell_image_decode(const void *data, size_t size, int *width, int *height, uint8_t **rgba)
 {
@@ -51,6 +70,9 @@ snell_status snell_image_decode(const void *data, size_t size, int *width, int *
         return snell__fail(NULL, SNELL_E_PARSE, "not a readable PNG/JPEG/HDR image (%s)", stbi_failure_reason());
     /* stb accepts some malformed headers as 0-pixel images (found by fuzzing). */
     if (w < 1 || h < 1) return snell__fail(NULL, SNELL_E_PARSE, "image header declares %dx%d pixels", w, h);
+    if ((unsigned long long)w * (unsigned long long)h > IMAGE_MAX_PIXELS)
+        return snell__fail(NULL, SNELL_E_LIMIT, "image of %dx%d pixels exceeds the limit of %u pixels", w, h,
+                           IMAGE_MAX_PIXELS);
     if (stbi_is_hdr_from_memory(bytes, (int)size)) {
         /* HDR: clamp to the displayable range; the library's env is RGBA8. */
         float *px = stbi_loadf_from_memory(bytes, (int)size, &w, &h, &n, 4);

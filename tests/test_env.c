@@ -92,8 +92,13 @@ int main(void)
                                        0, 1, 0x86, 0xa0, 0, 1, 0x86, 0xa0, 8, 6, 0, 0, 0, 0, 0, 0, 0};
         int w, h;
         uint8_t *px = NULL;
+        /* 8192 x 8193: each side is fine for stb, but more than 2^25 pixels in all. */
+        static const uint8_t big[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                      0, 0, 0x20, 0, 0, 0, 0x20, 0x01, 8, 6, 0, 0, 0, 0, 0, 0, 0};
         write_bytes(test_out("huge.png"), huge, sizeof huge);
         CHECK(snell_image_read(test_out("huge.png"), &w, &h, &px) != SNELL_OK && px == NULL, "absurd dimensions");
+        CHECK(snell_image_decode(big, sizeof big, &w, &h, &px) == SNELL_E_LIMIT && px == NULL,
+              "more than 2^25 pixels must be SNELL_E_LIMIT: %s", snell_last_error(NULL));
     }
 
     /* Equirectangular: a lat-long image whose colour encodes the direction

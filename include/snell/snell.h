@@ -324,7 +324,8 @@ void snell_renderer_finish(snell_renderer *r);
 /* Writes RGBA8 (top row first) as PNG. */
 snell_status snell_write_png(const char *path, int width, int height, const uint8_t *rgba);
 /* Reads a PNG, JPEG or Radiance HDR file (HDR clamped to [0,1]) as RGBA8, top row
- * first; at most 16384 pixels per side. Free *rgba with snell_image_free. */
+ * first; at most 16384 pixels per side and 2^25 pixels in all (SNELL_E_LIMIT
+ * beyond, checked before decoding). Free *rgba with snell_image_free. */
 snell_status snell_image_read(const char *path, int *width, int *height, uint8_t **rgba);
 /* The same from an encoded image in memory (e.g. an Android asset). */
 snell_status snell_image_decode(const void *data, size_t size, int *width, int *height, uint8_t **rgba);
