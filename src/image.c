@@ -1,4 +1,4 @@
-/* image.c — PNG/JPEG/HDR input and PNG output through stb (libstb-dev headers).
+/* image.c — PNG/HDR input and PNG output through stb (libstb-dev headers).
  * The stb implementations are compiled here with static linkage so they never
  * clash with a host application's own copy of stb. */
 #include "core.h"
@@ -20,8 +20,10 @@ static void *image_realloc(void *p, size_t n) { return n > IMAGE_MAX_ALLOC ? NUL
 #define STBI_MAX_DIMENSIONS 16384
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
+/* No JPEG: Debian's stb_image 2.27 writes past a Huffman table on malformed
+ * DHT segments (libFuzzer, tests/data/images/bad_jpeg_huffman_overflow.jpg).
+ * PNG and Radiance HDR cover environment maps. */
 #define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
 #define STBI_ONLY_HDR
 #define STBI_FAILURE_USERMSG
 #define STB_IMAGE_WRITE_STATIC
@@ -66,8 +68,10 @@ snell_status snell_image_decode(const void *data, size_t size, int *width, int *
     *rgba = NULL;
     if (size == 0 || size > IMAGE_MAX_FILE)
         return snell__fail(NULL, SNELL_E_LIMIT, "image of %zu bytes outside 1..%u", size, IMAGE_MAX_FILE);
+    if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF)
+        return snell__fail(NULL, SNELL_E_UNSUPPORTED, "JPEG images are not decoded (use PNG or Radiance HDR)");
     if (!stbi_info_from_memory(bytes, (int)size, &w, &h, &n))
-        return snell__fail(NULL, SNELL_E_PARSE, "not a readable PNG/JPEG/HDR image (%s)", stbi_failure_reason());
+        return snell__fail(NULL, SNELL_E_PARSE, "not a readable PNG or HDR image (%s)", stbi_failure_reason());
     /* stb accepts some malformed headers as 0-pixel images (found by fuzzing). */
     if (w < 1 || h < 1) return snell__fail(NULL, SNELL_E_PARSE, "image header declares %dx%d pixels", w, h);
     if ((unsigned long long)w * (unsigned long long)h > IMAGE_MAX_PIXELS)

@@ -99,6 +99,11 @@ int main(void)
         CHECK(snell_image_read(test_out("huge.png"), &w, &h, &px) != SNELL_OK && px == NULL, "absurd dimensions");
         CHECK(snell_image_decode(big, sizeof big, &w, &h, &px) == SNELL_E_LIMIT && px == NULL,
               "more than 2^25 pixels must be SNELL_E_LIMIT: %s", snell_last_error(NULL));
+        {
+            static const uint8_t jpeg[] = {0xFF, 0xD8, 0xFF, 0xE0, 0, 16, 'J', 'F', 'I', 'F', 0};
+            CHECK(snell_image_decode(jpeg, sizeof jpeg, &w, &h, &px) == SNELL_E_UNSUPPORTED && px == NULL,
+                  "JPEG is refused: %s", snell_last_error(NULL));
+        }
     }
 
     /* Equirectangular: a lat-long image whose colour encodes the direction

@@ -323,9 +323,10 @@ void snell_renderer_finish(snell_renderer *r);
 /* ------------------------------------------------------------------ image */
 /* Writes RGBA8 (top row first) as PNG. */
 snell_status snell_write_png(const char *path, int width, int height, const uint8_t *rgba);
-/* Reads a PNG, JPEG or Radiance HDR file (HDR clamped to [0,1]) as RGBA8, top row
+/* Reads a PNG or Radiance HDR file (HDR clamped to [0,1]) as RGBA8, top row
  * first; at most 16384 pixels per side and 2^25 pixels in all (SNELL_E_LIMIT
- * beyond, checked before decoding). Free *rgba with snell_image_free. */
+ * beyond, checked before decoding). JPEG gives SNELL_E_UNSUPPORTED: the
+ * bundled decoder is not safe on malformed files. Free *rgba with snell_image_free. */
 snell_status snell_image_read(const char *path, int *width, int *height, uint8_t **rgba);
 /* The same from an encoded image in memory (e.g. an Android asset). */
 snell_status snell_image_decode(const void *data, size_t size, int *width, int *height, uint8_t **rgba);

@@ -1,5 +1,5 @@
 /* fuzz_image.c — libFuzzer target for environment image input
- * (snell_image_decode: PNG, JPEG, HDR). Built with -DSNELL_LIBFUZZER for
+ * (snell_image_decode: PNG, HDR; JPEG is refused). Built with -DSNELL_LIBFUZZER for
  * libFuzzer; otherwise a replay program (see fuzz_common.h). An input either
  * fails with a message and no pixels, or decodes to a sane size. */
 #include "fuzz_common.h"
