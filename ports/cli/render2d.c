@@ -5,21 +5,42 @@
 #include "snell/snell_2d.h"
 
 #include <math.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#if defined(__GNUC__)
-/* stb_image declares some static functions it does not define in this
- * configuration; the "declared static but never defined" warning is issued at
- * the end of the file, so it stays off for the whole (small) file. */
-#pragma GCC diagnostic ignored "-Wunused-function"
-#endif
-#include <stb/stb_image.h>
 
 int snell_render2d_main(int argc, char **argv);
+
+/* Whole-string numbers only: "--passes abc" is an error, not 0. */
+static int arg_int(const char *opt, const char *v, long lo, long hi, int *out)
+{
+    char *end;
+    long x;
+    errno = 0;
+    x = strtol(v, &end, 10);
+    if (end == v || *end || errno || x < lo || x > hi) {
+        fprintf(stderr, "snell-render --2d: %s wants an integer in %ld..%ld, got '%s'\n", opt, lo, hi, v);
+        return 0;
+    }
+    *out = (int)x;
+    return 1;
+}
+
+static int arg_float(const char *opt, const char *v, float lo, float hi, float *out)
+{
+    char *end;
+    float x;
+    errno = 0;
+    x = strtof(v, &end);
+    if (end == v || *end || errno || !(x >= lo && x <= hi)) {
+        fprintf(stderr, "snell-render --2d: %s wants a number in %g..%g, got '%s'\n", opt, lo, hi, v);
+        return 0;
+    }
+    *out = x;
+    return 1;
+}
 
 static void usage(void)
 {
@@ -45,16 +66,16 @@ static int cmp_float(const void *a, const void *b)
 
 static int contour_main(const char *in, const char *out, float eps, int thr)
 {
-    int w, h, c, n;
+    int w, h, n;
     float *pts;
-    uint8_t *img = stbi_load(in, &w, &h, &c, 4);
-    snell_status st;
-    if (!img) {
-        fprintf(stderr, "snell-render --2d: cannot read %s: %s\n", in, stbi_failure_reason());
+    uint8_t *img = NULL;
+    snell_status st = snell_image_read(in, &w, &h, &img);
+    if (st != SNELL_OK) {
+        fprintf(stderr, "snell-render --2d: %s\n", snell_last_error(NULL));
         return 1;
     }
     st = snell_contour2d_from_alpha(NULL, img, w, h, thr, eps, &pts, &n);
-    stbi_image_free(img);
+    snell_image_free(img);
     if (st == SNELL_OK) {
         st = snell_contour2d_write_csv(out, pts, n);
         snell_contour2d_free(NULL, pts);
@@ -71,7 +92,7 @@ int snell_render2d_main(int argc, char **argv)
 {
     const char *scene_path = NULL, *out = NULL, *albedo_path = NULL, *contour = NULL;
     float exposure = 0.0f, gamma = 2.2f, eps = 0.0f, view[4];
-    int i, w = 0, h = 0, passes = 1, thr = 128, size[2], aw = 0, ah = 0, ac, rc = 1;
+    int i, w = 0, h = 0, passes = 1, thr = 128, size[2], aw = 0, ah = 0, rc = 1;
     snell_lightmap2d_desc d;
     snell_ctx *ctx = NULL;
     snell_scene2d *s = NULL;
@@ -87,22 +108,49 @@ int snell_render2d_main(int argc, char **argv)
         if (strcmp(a, "-o") == 0 && v) out = argv[++i];
         else if (strcmp(a, "--albedo") == 0 && v) albedo_path = argv[++i];
         else if (strcmp(a, "--contour") == 0 && v) contour = argv[++i];
-        else if (strcmp(a, "--epsilon") == 0 && v) eps = (float)atof(argv[++i]);
-        else if (strcmp(a, "--threshold") == 0 && v) thr = atoi(argv[++i]);
+        else if (strcmp(a, "--epsilon") == 0 && v) {
+            if (!arg_float(a, argv[++i], 0.0f, 1e6f, &eps)) return 2;
+        } else if (strcmp(a, "--threshold") == 0 && v) {
+            if (!arg_int(a, argv[++i], 0, 255, &thr)) return 2;
+        }
         else if (strcmp(a, "--size") == 0 && v) {
             if (sscanf(argv[++i], "%dx%d", &w, &h) != 2 || w < 1 || h < 1) {
                 usage();
                 return 2;
             }
-        } else if (strcmp(a, "--exposure") == 0 && v) exposure = strcmp(argv[++i], "auto") == 0 ? 0.0f : (float)atof(argv[i]);
-        else if (strcmp(a, "--gamma") == 0 && v) gamma = (float)atof(argv[++i]);
-        else if (strcmp(a, "--bounces") == 0 && v) {
-            int b = atoi(argv[++i]);
+        } else if (strcmp(a, "--exposure") == 0 && v) {
+            if (strcmp(argv[++i], "auto") == 0) exposure = 0.0f;
+            else if (!arg_float(a, argv[i], 1e-30f, 1e30f, &exposure)) return 2;
+        } else if (strcmp(a, "--gamma") == 0 && v) {
+            if (!arg_float(a, argv[++i], 0.01f, 100.0f, &gamma)) return 2;
+        } else if (strcmp(a, "--bounces") == 0 && v) {
+            int b;
+            if (!arg_int(a, argv[++i], 0, 1000, &b)) return 2;
             d.max_bounces = b == 0 ? -1 : b;
-        } else if (strcmp(a, "--passes") == 0 && v) passes = atoi(argv[++i]);
-        else if (strcmp(a, "--threads") == 0 && v) d.threads = atoi(argv[++i]);
-        else if (strcmp(a, "--seed") == 0 && v) d.seed = (uint64_t)strtoull(argv[++i], NULL, 10);
-        else if (strcmp(a, "--blend") == 0 && v) d.blend = strcmp(argv[++i], "screen") == 0 ? SNELL_BLEND2D_SCREEN : SNELL_BLEND2D_ADD;
+        } else if (strcmp(a, "--passes") == 0 && v) {
+            if (!arg_int(a, argv[++i], 1, 100000, &passes)) return 2;
+        } else if (strcmp(a, "--threads") == 0 && v) {
+            if (!arg_int(a, argv[++i], 0, 256, &d.threads)) return 2;
+        }
+        else if (strcmp(a, "--seed") == 0 && v) {
+            char *end;
+            errno = 0;
+            d.seed = (uint64_t)strtoull(argv[++i], &end, 10);
+            if (end == argv[i] || *end || errno) {
+                fprintf(stderr, "snell-render --2d: --seed wants an unsigned integer, got '%s'\n", argv[i]);
+                return 2;
+            }
+        } else if (strcmp(a, "--blend") == 0 && v) {
+            const char *b = argv[++i];
+            if (strcmp(b, "screen") && strcmp(b, "add")) {
+                fprintf(stderr, "snell-render --2d: --blend wants add or screen, got '%s'\n", b);
+                return 2;
+            }
+            d.blend = strcmp(b, "screen") == 0 ? SNELL_BLEND2D_SCREEN : SNELL_BLEND2D_ADD;
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            usage();
+            return 0;
+        }
         else if (strcmp(a, "--cpu") == 0) d.cpu_only = 1;
         else if (strcmp(a, "--format") == 0 && v) {
             const char *f = argv[++i];
@@ -111,6 +159,10 @@ int snell_render2d_main(int argc, char **argv)
                        : strcmp(f, "rgb10a2") == 0 ? SNELL_FORMAT2D_RGB10A2
                        : strcmp(f, "rgba8") == 0   ? SNELL_FORMAT2D_RGBA8
                                                    : SNELL_FORMAT2D_AUTO;
+            if (d.format == SNELL_FORMAT2D_AUTO && strcmp(f, "auto")) {
+                fprintf(stderr, "snell-render --2d: unknown --format '%s'\n", f);
+                return 2;
+            }
         } else if (a[0] != '-' && !scene_path) scene_path = a;
         else {
             fprintf(stderr, "snell-render --2d: unknown or incomplete option %s\n", a);
@@ -134,9 +186,8 @@ int snell_render2d_main(int argc, char **argv)
         return 1;
     }
     if (albedo_path) {
-        albedo = stbi_load(albedo_path, &aw, &ah, &ac, 4);
-        if (!albedo) {
-            fprintf(stderr, "snell-render --2d: cannot read %s: %s\n", albedo_path, stbi_failure_reason());
+        if (snell_image_read(albedo_path, &aw, &ah, &albedo) != SNELL_OK) {
+            fprintf(stderr, "snell-render --2d: albedo: %s\n", snell_last_error(NULL));
             goto done;
         }
         if (!w) {
@@ -209,7 +260,7 @@ done:
     free(rgb);
     free(lum);
     free(rgba);
-    if (albedo) stbi_image_free(albedo);
+    snell_image_free(albedo);
     snell_lightmap2d_destroy(lm);
     snell_scene2d_destroy(s);
     snell_ctx_destroy(ctx);
