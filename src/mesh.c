@@ -39,6 +39,19 @@ static void compute_bounds(snell_mesh *m)
             if (v < m->bmin[k]) m->bmin[k] = v;
             if (v > m->bmax[k]) m->bmax[k] = v;
         }
+    /* The bounding sphere about the box centre (normalisation, the renderer's
+     * absorption estimate and the reference all use it): once per geometry
+     * change, not per frame. */
+    {
+        float c[3], r2 = 0.0f;
+        for (k = 0; k < 3; k++) c[k] = 0.5f * (m->bmin[k] + m->bmax[k]);
+        for (i = 0; i < m->vertex_count; i++) {
+            const float *p = m->positions + 3 * i;
+            float d2 = (p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) + (p[2] - c[2]) * (p[2] - c[2]);
+            if (d2 > r2) r2 = d2;
+        }
+        m->bradius = sqrtf(r2);
+    }
 }
 
 void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t nv, uint32_t nt,
@@ -175,21 +188,17 @@ void snell_mesh_destroy(snell_mesh *m)
 
 snell_status snell_mesh_normalize(snell_mesh *m, float radius)
 {
-    float c[3], r2 = 0.0f, s;
+    float c[3], s;
     uint32_t i;
     int k;
     if (!m) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_mesh_normalize: mesh is NULL");
     if (radius == 0.0f) radius = 1.0f;
     if (!(radius > 0.0f) || !isfinite(radius))
         return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_normalize: radius %g is not positive", radius);
+    if (!(m->bradius > 0.0f))
+        return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "mesh is degenerate (all vertices coincide)");
     for (k = 0; k < 3; k++) c[k] = 0.5f * (m->bmin[k] + m->bmax[k]);
-    for (i = 0; i < m->vertex_count; i++) {
-        const float *p = m->positions + 3 * i;
-        float d2 = (p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) + (p[2] - c[2]) * (p[2] - c[2]);
-        if (d2 > r2) r2 = d2;
-    }
-    if (!(r2 > 0.0f)) return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "mesh is degenerate (all vertices coincide)");
-    s = radius / sqrtf(r2);
+    s = radius / m->bradius;
     for (i = 0; i < m->vertex_count; i++)
         for (k = 0; k < 3; k++) m->positions[3 * i + k] = (m->positions[3 * i + k] - c[k]) * s;
     compute_bounds(m);

@@ -14,6 +14,7 @@ struct snell_mesh {
     uint32_t vertex_count;
     uint32_t triangle_count;
     float bmin[3], bmax[3];
+    float bradius;             /* distance of the farthest vertex from the box centre */
     unsigned version;          /* process-unique; renewed whenever the geometry changes */
     /* Orientation, computed on demand by snell__mesh_winding (mesh_analyze.c). */
     unsigned winding_version;  /* the version it was computed for; 0 = never */

@@ -624,7 +624,7 @@ snell_status snell_ref_create(snell_ctx *ctx, const snell_ref_desc *desc, snell_
     const snell_mesh *m;
     snell_ref *r = NULL;
     snell_status st;
-    double M[16], N[9], c[3], r2 = 0.0, s = 0.0;
+    double M[16], N[9], c[3], s = 0.0;
     uint32_t i;
     int k;
     if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_ref_create: out is NULL");
@@ -665,19 +665,14 @@ snell_status snell_ref_create(snell_ctx *ctx, const snell_ref_desc *desc, snell_
         const float *n = m->normals + 3 * (size_t)i;
         for (k = 0; k < 3; k++) r->normals[3 * (size_t)i + k] = N[k] * n[0] + N[3 + k] * n[1] + N[6 + k] * n[2];
     }
-    /* Bounding sphere exactly as renderer.c computes it for single.frag. */
+    /* Bounding sphere as renderer.c uses it for single.frag: the mesh's own radius. */
     for (k = 0; k < 3; k++) c[k] = 0.5 * ((double)m->bmin[k] + (double)m->bmax[k]);
-    for (i = 0; i < m->vertex_count; i++) {
-        const float *p = m->positions + 3 * (size_t)i;
-        double d2 = (p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) + (p[2] - c[2]) * (p[2] - c[2]);
-        if (d2 > r2) r2 = d2;
-    }
     for (k = 0; k < 3; k++) {
         double len = sqrt(M[4 * k] * M[4 * k] + M[4 * k + 1] * M[4 * k + 1] + M[4 * k + 2] * M[4 * k + 2]);
         if (len > s) s = len;
     }
     for (k = 0; k < 3; k++) r->bs_c[k] = M[k] * c[0] + M[4 + k] * c[1] + M[8 + k] * c[2] + M[12 + k];
-    r->bs_r = sqrt(r2) * s;
+    r->bs_r = (double)m->bradius * s;
     {
         /* Ray epsilon: far above the rounding of hit points (~1e-16 of the
          * coordinates), far below any feature of a sane mesh. */

@@ -151,22 +151,16 @@ void snell_renderer_destroy(snell_renderer *r)
 static void bounding_sphere(const snell_mesh *m, mat4 model, float out[4])
 {
     vec3 c, wc;
-    float r2 = 0.0f, s = 0.0f;
-    uint32_t i;
+    float s = 0.0f;
     int k;
     for (k = 0; k < 3; k++) c[k] = 0.5f * (m->bmin[k] + m->bmax[k]);
-    for (i = 0; i < m->vertex_count; i++) {
-        const float *p = m->positions + 3 * i;
-        float d2 = (p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) + (p[2] - c[2]) * (p[2] - c[2]);
-        if (d2 > r2) r2 = d2;
-    }
     for (k = 0; k < 3; k++) {
         float len = sqrtf(model[k][0] * model[k][0] + model[k][1] * model[k][1] + model[k][2] * model[k][2]);
         if (len > s) s = len;
     }
     glm_mat4_mulv3(model, c, 1.0f, wc);
     out[0] = wc[0]; out[1] = wc[1]; out[2] = wc[2];
-    out[3] = sqrtf(r2) * s;
+    out[3] = m->bradius * s;
 }
 
 static void draw_background(snell_renderer *r, snell__frame *f)
