@@ -41,6 +41,18 @@ static void c_free(void *p, void *u)
     free(p);
 }
 
+/* A context desc whose allocator is the counter c. */
+static snell_ctx_desc counting_desc(counter *c)
+{
+    snell_ctx_desc cd;
+    memset(&cd, 0, sizeof cd);
+    cd.allocator.alloc = c_alloc;
+    cd.allocator.realloc = c_realloc;
+    cd.allocator.free = c_free;
+    cd.allocator.user = c;
+    return cd;
+}
+
 /* One full cycle; returns the first failing status (or SNELL_OK). */
 static snell_status cycle(counter *c, int render)
 {
@@ -56,11 +68,7 @@ static snell_status cycle(counter *c, int render)
     static uint8_t px[32 * 32 * 4];
     static const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
     snell_status st;
-    memset(&cd, 0, sizeof cd);
-    cd.allocator.alloc = c_alloc;
-    cd.allocator.realloc = c_realloc;
-    cd.allocator.free = c_free;
-    cd.allocator.user = c;
+    cd = counting_desc(c);
     st = snell_ctx_create(&cd, &ctx);
     if (st != SNELL_OK) return st;
     memset(&sd, 0, sizeof sd);
@@ -136,11 +144,7 @@ int main(void)
         long before;
         memset(&c, 0, sizeof c);
         c.fail_at = -1;
-        memset(&cd, 0, sizeof cd);
-        cd.allocator.alloc = c_alloc;
-        cd.allocator.realloc = c_realloc;
-        cd.allocator.free = c_free;
-        cd.allocator.user = &c;
+        cd = counting_desc(&c);
         memset(&ed, 0, sizeof ed);
         ed.face_size = 16;
         memset(&rd, 0, sizeof rd);
