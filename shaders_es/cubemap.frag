@@ -16,9 +16,9 @@ precision highp float;
 #include "common/optics.glsl"
 #include "common/output.glsl"
 
-#define MAX_ITER 32          // SNELL_CUBEMAP_MAX_ITERATIONS
-#define MAX_LINEAR 32        // SNELL_CUBEMAP_MAX_LINEAR_STEPS
 #define MAX_INTERFACES 8     // SNELL_CUBEMAP_MAX_INTERFACES
+// SNELL_SEARCH_ITERATIONS (1..32) and SNELL_LINEAR_STEPS (0..32) are defined
+// by the program's variant (method_cubemap.c).
 
 in highp vec3 v_world_pos;
 in highp vec3 v_world_normal; // highp: scaled by 1/scale, overflows fp16 at tiny scales (see single.frag)
@@ -34,8 +34,7 @@ uniform highp samplerCube u_ndcube;
 uniform mat4 u_inv_model;        // world -> object
 uniform vec3 u_centre;           // cubemap centre, object space
 uniform float u_radius;          // distance scale of the cubemap, object units
-uniform int u_iterations;        // binary search steps, 1..MAX_ITER
-uniform int u_linear_steps;      // 0..MAX_LINEAR
+uniform float u_inner_radius;    // no surface closer to the centre, object units
 uniform int u_max_interfaces;    // 1..MAX_INTERFACES
 uniform float u_texel_angle;     // smallest angle of a cubemap texel, radians
 uniform int u_absorb;            // 1 if any sigma > 0: the capped path still needs its length
@@ -64,63 +63,69 @@ vec3 fetch_normal(vec3 q)
 }
 
 // Exit of the ray p + t d (p relative to the centre, object space; t world
-// length) from the surface held in the cubemap. Bounds from the bounding
-// sphere of radius u_radius about the centre: t = 0 is on the surface (the
-// ray starts there), t_max is where the ray leaves that sphere, surely
-// outside (Unger uses fixed 0.01..250 for objects scaled to radius 100; this
-// is the same idea without the scaling). Optional linear pre-search finds the
-// first crossing at a coarse step; the binary search (Listing 2) halves the
-// bracket until u_iterations steps or the bracket is below one texel at the
-// current distance; a final secant step between the bracket's ends uses the
-// insideness values f = stored distance - |q| (> 0 inside) already fetched.
+// length) from the surface held in the cubemap. The bracket comes from two
+// spheres about the centre: the ray surely is inside while within the inner
+// one (u_inner_radius: no surface there) and surely outside once it leaves
+// the bounding one (u_radius); Unger uses fixed 0.01..250 for objects scaled
+// to radius 100, this is the same idea without the scaling, and for a convex,
+// nearly round mesh the bracket is already short. An optional linear
+// pre-search finds the first crossing at a coarse step; the binary search
+// (Listing 2) halves the bracket SNELL_SEARCH_ITERATIONS times or until it is
+// below one texel at the current distance; a final secant step between the
+// bracket's ends uses the insideness f = stored distance - |q| (> 0 inside)
+// already fetched there (an end never sampled counts as f = 0: the estimate
+// stays inside the final bracket either way).
 //
-// One loop, one fetch per pass, the stop test at the end of the pass: on a
-// SIMD rasteriser without real branches (llvmpipe runs every pass while any
-// lane is active and a pass's body even when none is) a separate pre-search
-// loop, or a stop test at the top, costs a fully masked pass with its fetch.
-// Measured on the bunny at 512x512, 8 iterations (llvmpipe): the same exit
-// directions as the former two loops with the test at the top, 17% less
-// CPU time. The bisection steps are counted alone, so u_iterations keeps its
-// meaning: the bracket after K halvings is (bracket before) / 2^K.
+// The step counts are compile-time constants (one program per setting,
+// built on first use, method_cubemap.c). Measured on llvmpipe, bunny at
+// 512x512, cost relative to single-surface in alternating frames: the former
+// single loop bounded by uniforms (pre-search and bisection merged) 1.46x;
+// the same search with a constant bound 1.31-1.35x; a pre-search loop left
+// in the program but disabled by its uniform costs +0.06x by itself. On GPUs
+// a constant bound lets the compiler unroll.
 float search_exit(vec3 p, vec3 d)
 {
     float a2 = dot(d, d);
     float b = dot(p, d);
-    float c = dot(p, p) - u_radius * u_radius;
-    float t_max = max((-b + sqrt(max(b * b - a2 * c, 0.0))) / a2, 0.0);
+    float pp = dot(p, p);
+    float t_max = max((-b + sqrt(max(b * b - a2 * (pp - u_radius * u_radius), 0.0))) / a2, 0.0);
+    float disc_in = b * b - a2 * (pp - u_inner_radius * u_inner_radius);
+    float lo = disc_in > 0.0 ? clamp((-b + sqrt(disc_in)) / a2, 0.0, t_max) : 0.0;
+    float hi = t_max;
     float dlen = sqrt(a2);
-    float lo = 0.0, hi = t_max;
     float f_lo = 0.0, f_hi = 0.0;
-    bool have_lo = false, have_hi = false;
-    bool linear = u_linear_steps > 0;                 // still in the pre-search
-    float step = t_max / float(u_linear_steps + 1);
-    float m = linear ? step : 0.5 * t_max;            // next sample
-    vec3 q = p + m * d;
-    float lq = length(q);
-    int j = 1, k = 0;                                 // linear sample index, bisection steps done
-    for (int i = 0; i < MAX_LINEAR + MAX_ITER; i++) {
+#if SNELL_LINEAR_STEPS > 0
+    float step = (hi - lo) / float(SNELL_LINEAR_STEPS + 1);
+    float t0 = lo;
+    for (int j = 1; j <= SNELL_LINEAR_STEPS; j++) {
+        float m = t0 + float(j) * step;
+        vec3 q = p + m * d;
+        float f = fetch_dist(q) - length(q);
+        if (f > 0.0) {
+            lo = m;
+            f_lo = f;
+        } else {
+            hi = m;
+            f_hi = f;
+            break;
+        }
+    }
+#endif
+    for (int i = 0; i < SNELL_SEARCH_ITERATIONS; i++) {
+        float m = 0.5 * (lo + hi);
+        vec3 q = p + m * d;
+        float lq = length(q);
         float f = fetch_dist(q) - lq;
         if (f > 0.0) {
             lo = m;
             f_lo = f;
-            have_lo = true;
         } else {
             hi = m;
             f_hi = f;
-            have_hi = true;
         }
-        if (linear) {
-            j++;
-            linear = f > 0.0 && j <= u_linear_steps;  // first crossing found, or steps done
-        } else {
-            k++;
-        }
-        m = linear ? float(j) * step : 0.5 * (lo + hi);
-        q = p + m * d;
-        lq = length(q);
-        if (!linear && (k >= u_iterations || (hi - lo) * dlen < lq * u_texel_angle)) break;
+        if ((hi - lo) * dlen < lq * u_texel_angle) break;
     }
-    if (have_lo && have_hi && f_lo - f_hi > 0.0) return lo + (hi - lo) * f_lo / (f_lo - f_hi);
+    if (f_lo - f_hi > 0.0) return lo + (hi - lo) * f_lo / (f_lo - f_hi);
     return 0.5 * (lo + hi);
 }
 

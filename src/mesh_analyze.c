@@ -235,6 +235,54 @@ static double hidden_fraction(const analyzer *an, const double c[3], int n)
 }
 
 /* Crossings of the ray from p along dir (counted one by one, nearest first). */
+/* Squared distance from p to triangle abc (closest point by Voronoi regions,
+ * Ericson, Real-Time Collision Detection 5.1.5). */
+static double dist2_point_triangle(const double p[3], double v[3][3])
+{
+    double ab[3], ac[3], ap[3], bp[3], cp[3], q[3], d1, d2, d3, d4, d5, d6, va, vb, vc, den, t, w;
+    int k;
+    for (k = 0; k < 3; k++) {
+        ab[k] = v[1][k] - v[0][k];
+        ac[k] = v[2][k] - v[0][k];
+        ap[k] = p[k] - v[0][k];
+        bp[k] = p[k] - v[1][k];
+        cp[k] = p[k] - v[2][k];
+    }
+    d1 = dot3(ab, ap);
+    d2 = dot3(ac, ap);
+    d3 = dot3(ab, bp);
+    d4 = dot3(ac, bp);
+    d5 = dot3(ab, cp);
+    d6 = dot3(ac, cp);
+    vc = d1 * d4 - d3 * d2;
+    vb = d5 * d2 - d1 * d6;
+    va = d3 * d6 - d5 * d4;
+    if (d1 <= 0.0 && d2 <= 0.0) return dot3(ap, ap);                                  /* vertex a */
+    if (d3 >= 0.0 && d4 <= d3) return dot3(bp, bp);                                   /* vertex b */
+    if (d6 >= 0.0 && d5 <= d6) return dot3(cp, cp);                                   /* vertex c */
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {                                        /* edge ab */
+        t = d1 / (d1 - d3);
+        for (k = 0; k < 3; k++) q[k] = ap[k] - t * ab[k];
+        return dot3(q, q);
+    }
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {                                        /* edge ac */
+        t = d2 / (d2 - d6);
+        for (k = 0; k < 3; k++) q[k] = ap[k] - t * ac[k];
+        return dot3(q, q);
+    }
+    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {                              /* edge bc */
+        t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        for (k = 0; k < 3; k++) q[k] = bp[k] - t * (v[2][k] - v[1][k]);
+        return dot3(q, q);
+    }
+    den = va + vb + vc;                                                               /* face */
+    if (!(den > 0.0)) return dot3(ap, ap);                                            /* degenerate */
+    t = vb / den;
+    w = vc / den;
+    for (k = 0; k < 3; k++) q[k] = ap[k] - t * ab[k] - w * ac[k];
+    return dot3(q, q);
+}
+
 static int crossings(const analyzer *an, const double p[3], const double dir[3])
 {
     double org[3] = {p[0], p[1], p[2]}, tmin = 0.0;
@@ -389,6 +437,17 @@ snell_status snell_mesh_analyze(const snell_mesh *m, snell_mesh_analysis *out)
             r2 = fmax(r2, dot3(d, d));
         }
         out->radius = (float)sqrt(r2);
+    }
+    {
+        double r2 = HUGE_VAL, v[3][3];
+        uint32_t t;
+        for (t = 0; t < m->triangle_count; t++) {
+            tri_verts(m, t, v);
+            r2 = fmin(r2, dist2_point_triangle(best_c, v));
+        }
+        /* Rounded down to float: the ball must stay free of surface. */
+        out->inner_radius = m->triangle_count ? nextafterf((float)sqrt(r2), 0.0f) : 0.0f;
+        if (out->inner_radius < 0.0f) out->inner_radius = 0.0f;
     }
     out->closed = an.closed;
     out->convex = convex;

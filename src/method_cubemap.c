@@ -2,7 +2,10 @@
  * (Li et al. 2007 as in Unger 4.1): per mesh version, analyze (centre, hidden
  * fraction; mesh_analyze.c) and bake (ndcube.c); per frame one pass of the
  * search shader (cubemap.frag) over the front faces. The per-mesh cache lives here, in the
- * method state (a few entries, least recently used replaced). */
+ * method state (a few entries, least recently used replaced), and so do the
+ * search programs: one per (encoding, iterations, linear steps), because the
+ * step counts are compile-time constants of the shader (cubemap.frag says
+ * why); the default one is built with the method, others on first use. */
 #include "glass_program.h"
 #include "ctx.h"
 #include "gl.h"
@@ -13,13 +16,17 @@
 #include <string.h>
 
 #define CACHE_SIZE 4
+#define PROG_CACHE 8
 
 /* Defaults of the glass desc's cubemap fields (snell.h documents them). */
 /* encoding: PLAIN (filtered normals; lower error than OCT at equal cost) */
 
 typedef struct cube_prog {
-    snell__glass_program g;
-    int ndcube, inv_model, centre, radius, iterations, linear_steps, max_interfaces, texel_angle, absorb;
+    snell__glass_program g;    /* g.prog == 0: empty slot */
+    snell_ndcube_encoding enc;
+    int iterations, linear;
+    unsigned long last_use;
+    int ndcube, inv_model, centre, radius, inner_radius, max_interfaces, texel_angle, absorb;
 } cube_prog;
 
 /* One mesh's analysis and baked cubemap. The key is the mesh pointer and
@@ -39,7 +46,8 @@ typedef struct cache_entry {
 } cache_entry;
 
 typedef struct cubemap_state {
-    cube_prog prog[2];         /* [0] PLAIN, [1] OCT */
+    snell__output_kind out;
+    cube_prog prog[PROG_CACHE];
     snell__ndcube_baker baker;
     cache_entry cache[CACHE_SIZE];
     unsigned long clock;
@@ -47,29 +55,63 @@ typedef struct cubemap_state {
 
 static void cubemap_destroy(snell_ctx *ctx, void *state);
 
-static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const char *def, cube_prog *p)
+static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, snell_ndcube_encoding enc, int iterations,
+                               int linear, cube_prog *p)
 {
-    snell_status st = snell__glass_program_build(ctx, "cubemap.frag", out, def, &p->g);
+    char def[160];
+    snell_status st;
+    snprintf(def, sizeof def, "#define SNELL_NDCUBE_%s 1\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_LINEAR_STEPS %d\n",
+             enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", iterations, linear);
+    st = snell__glass_program_build(ctx, "cubemap.frag", out, def, &p->g);
     if (st != SNELL_OK) return st;
+    p->enc = enc;
+    p->iterations = iterations;
+    p->linear = linear;
     p->ndcube = glGetUniformLocation(p->g.prog, "u_ndcube");
     p->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
     p->centre = glGetUniformLocation(p->g.prog, "u_centre");
     p->radius = glGetUniformLocation(p->g.prog, "u_radius");
-    p->iterations = glGetUniformLocation(p->g.prog, "u_iterations");
-    p->linear_steps = glGetUniformLocation(p->g.prog, "u_linear_steps");
+    p->inner_radius = glGetUniformLocation(p->g.prog, "u_inner_radius");
     p->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
     p->texel_angle = glGetUniformLocation(p->g.prog, "u_texel_angle");
     p->absorb = glGetUniformLocation(p->g.prog, "u_absorb");
     return SNELL_OK;
 }
 
+/* The program of these settings: cached, else built into the least recently
+ * used slot. */
+static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, snell_ndcube_encoding enc, int iterations, int linear,
+                             const cube_prog **out)
+{
+    cube_prog *p = &s->prog[0];
+    snell_status st;
+    int i;
+    s->clock++;
+    for (i = 0; i < PROG_CACHE; i++) {
+        cube_prog *c = &s->prog[i];
+        if (c->g.prog && c->enc == enc && c->iterations == iterations && c->linear == linear) {
+            c->last_use = s->clock;
+            *out = c;
+            return SNELL_OK;
+        }
+        if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
+    }
+    snell__glass_program_destroy(&p->g);
+    st = build_prog(ctx, s->out, enc, iterations, linear, p);
+    if (st != SNELL_OK) return st;
+    p->last_use = s->clock;
+    *out = p;
+    return SNELL_OK;
+}
+
 static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void **state)
 {
     cubemap_state *s = (cubemap_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
+    const cube_prog *p;
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
-    st = build_prog(ctx, out, "#define SNELL_NDCUBE_PLAIN 1\n", &s->prog[0]);
-    if (st == SNELL_OK) st = build_prog(ctx, out, "#define SNELL_NDCUBE_OCT 1\n", &s->prog[1]);
+    s->out = out;
+    st = get_prog(ctx, s, SNELL_NDCUBE_PLAIN, SNELL_CUBEMAP_DEFAULT_ITERATIONS, 0, &p);
     if (st == SNELL_OK) st = snell__ndcube_baker_create(ctx, &s->baker);
     if (st != SNELL_OK) {
         cubemap_destroy(ctx, s);
@@ -84,7 +126,7 @@ static void cubemap_destroy(snell_ctx *ctx, void *state)
     cubemap_state *s = (cubemap_state *)state;
     int i;
     if (!s) return;
-    for (i = 0; i < 2; i++) snell__glass_program_destroy(&s->prog[i].g);
+    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].g);
     snell__ndcube_baker_destroy(&s->baker);
     for (i = 0; i < CACHE_SIZE; i++) snell__ndcube_release(&s->cache[i].cube);
     snell__free(&ctx->alloc, s);
@@ -156,7 +198,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame
     int max_if = g->max_interfaces ? g->max_interfaces : SNELL_CUBEMAP_DEFAULT_INTERFACES;
     int face = g->cube_face_size ? g->cube_face_size : SNELL_CUBEMAP_DEFAULT_FACE_SIZE;
     snell_ndcube_encoding enc = g->encoding == SNELL_NDCUBE_DEFAULT ? SNELL_NDCUBE_PLAIN : g->encoding;
-    const cube_prog *p = &s->prog[enc == SNELL_NDCUBE_OCT ? 1 : 0];
+    const cube_prog *p;
     cache_entry *e;
     snell_status st;
     mat4 inv_model;
@@ -164,6 +206,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame
     float radius;
 
     st = get_entry(s, f->mesh, &e);
+    if (st == SNELL_OK) st = get_prog(ctx, s, enc, iterations, g->linear_steps, &p);
     if (st != SNELL_OK) return st;
     stats->hidden_fraction = e->an.hidden_fraction;
     radius = e->an.radius * 1.0001f;
@@ -198,8 +241,10 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame
     glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)inv_model);
     glUniform3fv(p->centre, 1, e->cube.centre);
     glUniform1f(p->radius, e->cube.radius);
-    glUniform1i(p->iterations, iterations);
-    glUniform1i(p->linear_steps, g->linear_steps);
+    /* The inner ball is surely inside only if the centre is; one 8-bit
+     * distance step below its radius, as stored distances are rounded to that
+     * step (the 16-bit OCT ones far finer). */
+    glUniform1f(p->inner_radius, e->an.inside ? fmaxf(e->an.inner_radius - e->cube.radius / 255.0f, 0.0f) : 0.0f);
     glUniform1i(p->max_interfaces, max_if);
     /* A texel is 2/N wide in face coordinates; it subtends 2/N rad at a face
      * centre and sqrt(2)/3 * 2/N at a corner: the smaller is the stop bound. */

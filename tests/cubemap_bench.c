@@ -9,7 +9,10 @@
  *
  * usage: cubemap_bench MESH [frames] [size] [sweep]
  *   MESH: shape:sphere|cube|torus|goblet or an OBJ path (normalised to radius 1)
- *   sweep: all (default) | defaults | quick
+ *   sweep: all (default) | defaults | quick | ratio
+ *   ratio: single and the cubemap defaults frame by frame alternating (the
+ *   cost target of issue 4 is a ratio; alternating cancels the drift of a
+ *   shared machine), prints the medians of each and of the per-pair ratios.
  * ms = median wall time per frame; cpu_ms = process CPU time per frame
  * (llvmpipe's threads included), steadier than wall time on a shared machine.
  * Output: one CSV line per setting:
@@ -78,18 +81,64 @@ static float *reference(bench *b, int interfaces)
     return b->ref_dir[interfaces];
 }
 
+static void apply(snell_frame_desc *fd, const setting *s)
+{
+    fd->glass.method = s->method;
+    fd->glass.encoding = s->enc;
+    fd->glass.cube_face_size = s->face;
+    fd->glass.search_iterations = s->iterations;
+    fd->glass.linear_steps = s->linear;
+    fd->glass.max_interfaces = s->interfaces;
+}
+
+static double timed_frame(bench *b, const snell_frame_desc *fd)
+{
+    double t0 = now_ms();
+    if (snell_render(b->color, fd, NULL) != SNELL_OK) fprintf(stderr, "render: %s\n", snell_last_error(b->ctx));
+    snell_renderer_finish(b->color);
+    return now_ms() - t0;
+}
+
+/* Frames of a and b alternating (a b b a a b ...: each gets the first slot
+ * of a pair half the time); medians of each and of the per-pair ratio b/a. */
+static void ratio(bench *b, const setting *sa, const setting *sb)
+{
+    snell_frame_desc fa = b->fd, fb = b->fd;
+    double *ta = (double *)malloc(sizeof(double) * b->frames), *tb = (double *)malloc(sizeof(double) * b->frames);
+    double *r = (double *)malloc(sizeof(double) * b->frames);
+    int f;
+    apply(&fa, sa);
+    apply(&fb, sb);
+    timed_frame(b, &fa);
+    timed_frame(b, &fb);
+    for (f = 0; f < b->frames; f++) {
+        if (f & 1) {
+            tb[f] = timed_frame(b, &fb);
+            ta[f] = timed_frame(b, &fa);
+        } else {
+            ta[f] = timed_frame(b, &fa);
+            tb[f] = timed_frame(b, &fb);
+        }
+        r[f] = tb[f] / ta[f];
+    }
+    qsort(ta, (size_t)b->frames, sizeof *ta, cmp_d);
+    qsort(tb, (size_t)b->frames, sizeof *tb, cmp_d);
+    qsort(r, (size_t)b->frames, sizeof *r, cmp_d);
+    printf("ratio,frames=%d,a_ms=%.3f,b_ms=%.3f,ratio_of_medians=%.3f,median_ratio=%.3f,p25=%.3f,p75=%.3f\n", b->frames,
+           ta[b->frames / 2], tb[b->frames / 2], tb[b->frames / 2] / ta[b->frames / 2], r[b->frames / 2],
+           r[b->frames / 4], r[3 * b->frames / 4]);
+    free(ta);
+    free(tb);
+    free(r);
+}
+
 static void run(bench *b, const char *mesh_name, const setting *s)
 {
     snell_frame_desc fd = b->fd;
     int i, n = b->size * b->size, hits = 0, f;
     double mean = 0.0, cpu0 = 0.0, cpu = 0.0;
     float *ref;
-    fd.glass.method = s->method;
-    fd.glass.encoding = s->enc;
-    fd.glass.cube_face_size = s->face;
-    fd.glass.search_iterations = s->iterations;
-    fd.glass.linear_steps = s->linear;
-    fd.glass.max_interfaces = s->interfaces;
+    apply(&fd, s);
     for (f = 0; f <= b->frames; f++) {
         double t0 = now_ms();
         if (f == 1) cpu0 = cpu_ms();
@@ -190,6 +239,15 @@ int main(int argc, char **argv)
     s.face = 256;
     s.iterations = 8;
     s.interfaces = 2;
+    if (!strcmp(sweep, "ratio")) {
+        setting a = s;
+        /* CUBEMAP_BENCH_ITERATIONS / _FACE: settings other than the defaults. */
+        if (getenv("CUBEMAP_BENCH_ITERATIONS")) s.iterations = atoi(getenv("CUBEMAP_BENCH_ITERATIONS"));
+        if (getenv("CUBEMAP_BENCH_FACE")) s.face = atoi(getenv("CUBEMAP_BENCH_FACE"));
+        a.method = SNELL_METHOD_SINGLE;
+        ratio(&b, &a, &s);
+        run(&b, mesh_name, &s);
+    }
     if (!strcmp(sweep, "quick")) {
         setting d = s;
         run(&b, mesh_name, &s);

@@ -137,6 +137,7 @@ int main(void)
         snell_ctx *ctx = NULL;
         snell_mesh *mesh = NULL;
         snell_env *env = NULL;
+        int i;
         snell_renderer *r = NULL;
         snell_frame_desc fd;
         snell_env_desc ed;
@@ -162,16 +163,27 @@ int main(void)
         CHECK_OK(snell_render(r, &fd, NULL));
         CHECK(c.total == before, "frames after the first allocated %ld times", c.total - before);
         /* The cubemap method: after its first frame (analysis, bake), frames
-         * and per-frame parameter changes allocate nothing. */
+         * allocate nothing; a new search setting builds its program once
+         * (the step counts are compile-time constants of the shader), after
+         * which switching between seen settings allocates nothing. */
         fd.glass.method = SNELL_METHOD_CUBEMAP;
         CHECK_OK(snell_render(r, &fd, NULL));
         before = c.total;
         CHECK_OK(snell_render(r, &fd, NULL));
-        fd.glass.search_iterations = 5;
         fd.glass.max_interfaces = 4;
-        fd.glass.linear_steps = 3;
         CHECK_OK(snell_render(r, &fd, NULL));
         CHECK(c.total == before, "cubemap frames after the first allocated %ld times", c.total - before);
+        fd.glass.search_iterations = 5;
+        fd.glass.linear_steps = 3;
+        CHECK_OK(snell_render(r, &fd, NULL));
+        CHECK(c.total > before, "a new search setting built no program");
+        before = c.total;
+        for (i = 0; i < 4; i++) {
+            fd.glass.search_iterations = i & 1 ? 0 : 5;
+            fd.glass.linear_steps = i & 1 ? 0 : 3;
+            CHECK_OK(snell_render(r, &fd, NULL));
+        }
+        CHECK(c.total == before, "switching between built search settings allocated %ld times", c.total - before);
         snell_renderer_destroy(r);
         snell_env_destroy(env);
         snell_mesh_destroy(mesh);

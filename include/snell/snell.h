@@ -157,6 +157,8 @@ void snell_mesh_bounds(const snell_mesh *mesh, float min[3], float max[3]);
 typedef struct snell_mesh_analysis {
     float centre[3];         /* object space */
     float radius;            /* largest distance of a vertex from centre (object units) */
+    float inner_radius;      /* distance from centre to the nearest surface point: the ball of
+                              * this radius holds no surface (inside it if the centre is inside) */
     float hidden_fraction;   /* 0..1, area-weighted, +-1/sqrt(samples) sampling error */
     int samples;             /* surface sample points used for hidden_fraction */
     int closed;              /* every edge has exactly two triangles of opposite orientation */
@@ -212,7 +214,7 @@ typedef enum snell_ndcube_encoding {
 } snell_ndcube_encoding;
 
 /* What zero means in the cubemap fields of snell_glass_desc. */
-#define SNELL_CUBEMAP_DEFAULT_ITERATIONS 8
+#define SNELL_CUBEMAP_DEFAULT_ITERATIONS 6
 #define SNELL_CUBEMAP_DEFAULT_INTERFACES 2
 #define SNELL_CUBEMAP_DEFAULT_FACE_SIZE 256
 #define SNELL_CUBEMAP_MAX_ITERATIONS 32
