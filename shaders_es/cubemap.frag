@@ -147,7 +147,10 @@ void main()
     // current direction and absorption runs on to the next surface (the
     // reference's MATCHED model), so with absorption one more search gives
     // that length. The exit tests are at the end of the pass (see
-    // search_exit: no fully masked pass).
+    // search_exit: no fully masked pass). SNELL_NO_SEARCH (one interface, no
+    // absorption: the single-surface model) compiles the loop out, as
+    // llvmpipe would run its body under an empty mask.
+#if !SNELL_NO_SEARCH
     for (int k = 2; k <= MAX_INTERFACES + 1; k++) {
         if (k > u_max_interfaces && u_absorb == 0) break;      // max_interfaces 1: no search
         vec3 d = inv3 * dir;
@@ -162,6 +165,7 @@ void main()
         dir = normalize(out_dir);                               // refracted out, or totally reflected
         if (exited || (k == u_max_interfaces && u_absorb == 0)) break;
     }
+#endif
 
     vec3 transmitted = texture(u_env, dir).rgb * u_tint * snell_beer_lambert(u_sigma, path);
     vec3 reflected = texture(u_env, r).rgb;

@@ -3,7 +3,8 @@
  * fraction; mesh_analyze.c) and bake (ndcube.c); per frame one pass of the
  * search shader (cubemap.frag) over the front faces. The per-mesh cache lives here, in the
  * method state (a few entries, least recently used replaced), and so do the
- * search programs: one per (encoding, iterations, linear steps), because the
+ * search programs: one per (encoding, iterations, linear steps, search or
+ * none), because the
  * step counts are compile-time constants of the shader (cubemap.frag says
  * why); the default one is built with the method, others on first use. */
 #include "glass_program.h"
@@ -24,7 +25,7 @@
 typedef struct cube_prog {
     snell__glass_program g;    /* g.prog == 0: empty slot */
     snell_ndcube_encoding enc;
-    int iterations, linear;
+    int iterations, linear, no_search;
     unsigned long last_use;
     int ndcube, inv_model, centre, radius, inner_radius, max_interfaces, texel_angle, absorb;
 } cube_prog;
@@ -56,17 +57,20 @@ typedef struct cubemap_state {
 static void cubemap_destroy(snell_ctx *ctx, void *state);
 
 static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, snell_ndcube_encoding enc, int iterations,
-                               int linear, cube_prog *p)
+                               int linear, int no_search, cube_prog *p)
 {
-    char def[160];
+    char def[200];
     snell_status st;
-    snprintf(def, sizeof def, "#define SNELL_NDCUBE_%s 1\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_LINEAR_STEPS %d\n",
-             enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", iterations, linear);
+    snprintf(def, sizeof def,
+             "#define SNELL_NDCUBE_%s 1\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_LINEAR_STEPS %d\n"
+             "#define SNELL_NO_SEARCH %d\n",
+             enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", iterations, linear, no_search);
     st = snell__glass_program_build(ctx, "cubemap.frag", out, def, &p->g);
     if (st != SNELL_OK) return st;
     p->enc = enc;
     p->iterations = iterations;
     p->linear = linear;
+    p->no_search = no_search;
     p->ndcube = glGetUniformLocation(p->g.prog, "u_ndcube");
     p->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
     p->centre = glGetUniformLocation(p->g.prog, "u_centre");
@@ -81,7 +85,7 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, snell_ndc
 /* The program of these settings: cached, else built into the least recently
  * used slot. */
 static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, snell_ndcube_encoding enc, int iterations, int linear,
-                             const cube_prog **out)
+                             int no_search, const cube_prog **out)
 {
     cube_prog *p = &s->prog[0];
     snell_status st;
@@ -89,7 +93,8 @@ static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, snell_ndcube_enco
     s->clock++;
     for (i = 0; i < PROG_CACHE; i++) {
         cube_prog *c = &s->prog[i];
-        if (c->g.prog && c->enc == enc && c->iterations == iterations && c->linear == linear) {
+        if (c->g.prog && c->enc == enc && c->iterations == iterations && c->linear == linear &&
+            c->no_search == no_search) {
             c->last_use = s->clock;
             *out = c;
             return SNELL_OK;
@@ -97,7 +102,7 @@ static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, snell_ndcube_enco
         if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
     }
     snell__glass_program_destroy(&p->g);
-    st = build_prog(ctx, s->out, enc, iterations, linear, p);
+    st = build_prog(ctx, s->out, enc, iterations, linear, no_search, p);
     if (st != SNELL_OK) return st;
     p->last_use = s->clock;
     *out = p;
@@ -111,7 +116,7 @@ static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void 
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
-    st = get_prog(ctx, s, SNELL_NDCUBE_PLAIN, SNELL_CUBEMAP_DEFAULT_ITERATIONS, 0, &p);
+    st = get_prog(ctx, s, SNELL_NDCUBE_PLAIN, SNELL_CUBEMAP_DEFAULT_ITERATIONS, 0, 0, &p);
     if (st == SNELL_OK) st = snell__ndcube_baker_create(ctx, &s->baker);
     if (st != SNELL_OK) {
         cubemap_destroy(ctx, s);
@@ -197,6 +202,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame
     int iterations = g->search_iterations ? g->search_iterations : SNELL_CUBEMAP_DEFAULT_ITERATIONS;
     int max_if = g->max_interfaces ? g->max_interfaces : SNELL_CUBEMAP_DEFAULT_INTERFACES;
     int face = g->cube_face_size ? g->cube_face_size : SNELL_CUBEMAP_DEFAULT_FACE_SIZE;
+    int absorb = g->absorption[0] > 0.0f || g->absorption[1] > 0.0f || g->absorption[2] > 0.0f;
     snell_ndcube_encoding enc = g->encoding == SNELL_NDCUBE_DEFAULT ? SNELL_NDCUBE_PLAIN : g->encoding;
     const cube_prog *p;
     cache_entry *e;
@@ -206,7 +212,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame
     float radius;
 
     st = get_entry(s, f->mesh, &e);
-    if (st == SNELL_OK) st = get_prog(ctx, s, enc, iterations, g->linear_steps, &p);
+    if (st == SNELL_OK) st = get_prog(ctx, s, enc, iterations, g->linear_steps, max_if == 1 && !absorb, &p);
     if (st != SNELL_OK) return st;
     stats->hidden_fraction = e->an.hidden_fraction;
     radius = e->an.radius * 1.0001f;
@@ -249,7 +255,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame
     /* A texel is 2/N wide in face coordinates; it subtends 2/N rad at a face
      * centre and sqrt(2)/3 * 2/N at a corner: the smaller is the stop bound. */
     glUniform1f(p->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)face);
-    glUniform1i(p->absorb, g->absorption[0] > 0.0f || g->absorption[1] > 0.0f || g->absorption[2] > 0.0f);
+    glUniform1i(p->absorb, absorb);
     snell__draw_mesh(f);
     glDisable(GL_CULL_FACE);
     stats->passes++;

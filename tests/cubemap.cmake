@@ -4,12 +4,6 @@
 snell_add_test(test_analyze SOURCES test_analyze.c LABELS "unit")
 target_link_libraries(test_analyze PRIVATE m)
 
-# Not a test: the time-vs-error driver behind bench/BENCHMARKS_CUBEMAP.md
-# (cubemap_bench MESH [frames] [size] [all|defaults|quick] [ior]).
-add_executable(cubemap_bench cubemap_bench.c ${CMAKE_CURRENT_SOURCE_DIR}/test_util.c)
-target_link_libraries(cubemap_bench PRIVATE snell_static m)
-target_include_directories(cubemap_bench PRIVATE ${PROJECT_SOURCE_DIR}/src ${CMAKE_CURRENT_SOURCE_DIR})
-target_compile_options(cubemap_bench PRIVATE ${SNELL_WARNINGS})
 snell_add_test(test_cubemap SOURCES test_cubemap.c LABELS "render;gl")
 target_link_libraries(test_cubemap PRIVATE m)
 snell_add_test(test_cubemap_ref SOURCES test_cubemap_ref.c LABELS "render;gl")

@@ -26,6 +26,9 @@ typedef struct bench_config {
     int frames;
     double t_median, t_min, t_max; /* ms per frame, CPU wall clock, each frame ended by glFinish */
     double gpu_median;             /* ms, GL_EXT_disjoint_timer_query; < 0 if not measured */
+    double vs_single;              /* median over rounds of time / time of the single-surface
+                                    * configuration of the same scene and size; < 0 if none */
+    int pareto;                    /* on the time vs error (plot's y) front of its scene and size */
     const char *encoding;          /* exit-direction storage: "float" or "packed-rgba8" */
     long nan_inf;                  /* non-finite exit-direction pixels (float target only) */
     snell_dir_error dir[2];        /* [0] vs MATCHED, [1] vs FULL */

@@ -3,7 +3,9 @@
  *
  * Runs scenes x methods x parameters; for each configuration it times the
  * median of N frames after warm-up (each frame ended by glFinish, plus
- * GL_EXT_disjoint_timer_query when the context has it), renders the exit
+ * GL_EXT_disjoint_timer_query when the context has it; the configurations of
+ * one scene and size take turns frame by frame, so a shared machine's drift
+ * hits all of them alike and ratios to single-surface are per round), renders the exit
  * directions (SNELL_OUTPUT_EXIT_DIRECTION) and compares them and the colour
  * image with the CPU reference (snell_ref, MATCHED with the method's
  * max_interfaces and FULL), cached on disk per scene/camera/size/glass.
@@ -26,6 +28,7 @@
 #define MAX_KEYS 16
 #define MAX_VALUES 32
 #define MAX_SCENES 32
+#define MAX_INTERLEAVED 48 /* renderers alive at once while timing (memory) */
 
 /* ------------------------------------------------------------ parameters */
 typedef struct bench_param {
@@ -180,7 +183,7 @@ static void cubemap_finalize(bench_config *c)
  * which reference model it approximates. */
 static const bench_method g_methods[] = {
     {"single", SNELL_METHOD_SINGLE, "front surface only (Unger 3.3)", "", g_no_params, single_finalize},
-    {"cubemap", SNELL_METHOD_CUBEMAP, "normal+distance cubemap search (Unger 4.1)", "iterations=2,4,8", g_cubemap_params,
+    {"cubemap", SNELL_METHOD_CUBEMAP, "normal+distance cubemap search (Unger 4.1)", "iterations=4,6,12", g_cubemap_params,
      cubemap_finalize},
 };
 #define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
@@ -545,6 +548,154 @@ static void sanitize(char *s)
             *s = '_';
 }
 
+/* One configuration while it is being timed. */
+typedef struct timing_slot {
+    bench_config *c;
+    snell_renderer *r;
+    snell_frame_desc fd;
+    double *times, *gpu, *ratio;
+    int gpu_n;
+} timing_slot;
+
+static int time_frame(snell_ctx *ctx, timing_slot *t, int record, int round)
+{
+    double t0 = bench_now_ms(), g;
+    snell_status st;
+    bench_timer_begin();
+    st = snell_render(t->r, &t->fd, NULL);
+    bench_timer_end();
+    snell_renderer_finish(t->r);
+    if (st != SNELL_OK) {
+        fail_config(t->c, "render", ctx);
+        return 0;
+    }
+    if (!record) {
+        bench_timer_read();
+        return 1;
+    }
+    t->times[round] = bench_now_ms() - t0;
+    g = bench_timer_read();
+    if (g >= 0.0) t->gpu[t->gpu_n++] = g;
+    return 1;
+}
+
+/* Times the m configurations cs[idx[0..m)] (one scene and size; base = the
+ * position in idx of its single-surface configuration, or -1): each gets its
+ * warm-up frames, then o->frames rounds in which every configuration renders
+ * one frame, the order rotating from round to round. */
+static void time_group(snell_ctx *ctx, const snell_env *env, const options *o, bench_config *cs, const int *idx, int m,
+                       int base)
+{
+    timing_slot *ts = (timing_slot *)calloc((size_t)m, sizeof *ts);
+    int i, r, k;
+    if (!ts) {
+        for (i = 0; i < m; i++) {
+            cs[idx[i]].ok = 0;
+            snprintf(cs[idx[i]].error, sizeof cs[idx[i]].error, "out of memory");
+        }
+        return;
+    }
+    for (i = 0; i < m; i++) {
+        timing_slot *t = &ts[i];
+        snell_renderer_desc desc;
+        snell_mesh *mesh = NULL;
+        t->c = &cs[idx[i]];
+        t->c->ok = 1;
+        t->c->frames = o->frames;
+        t->c->vs_single = -1.0;
+        t->times = (double *)malloc(sizeof(double) * (size_t)o->frames);
+        t->gpu = (double *)malloc(sizeof(double) * (size_t)o->frames);
+        t->ratio = (double *)malloc(sizeof(double) * (size_t)o->frames);
+        if (!t->times || !t->gpu || !t->ratio) {
+            snprintf(t->c->error, sizeof t->c->error, "out of memory");
+            t->c->ok = 0;
+            continue;
+        }
+        if (get_scene(ctx, t->c->scene, &mesh) != SNELL_OK) {
+            fail_config(t->c, "scene", ctx);
+            continue;
+        }
+        memset(&desc, 0, sizeof desc);
+        desc.width = t->c->width;
+        desc.height = t->c->height;
+        if (snell_renderer_create(ctx, &desc, &t->r) != SNELL_OK) {
+            fail_config(t->c, "renderer", ctx);
+            continue;
+        }
+        frame_of(t->c, mesh, env, &t->fd);
+        for (k = 0; k < o->warmup && t->c->ok; k++) time_frame(ctx, t, 0, 0);
+    }
+    for (r = 0; r < o->frames; r++)
+        for (k = 0; k < m; k++) {
+            timing_slot *t = &ts[(k + r) % m];
+            if (t->c->ok) time_frame(ctx, t, 1, r);
+        }
+    for (i = 0; i < m; i++) {
+        timing_slot *t = &ts[i];
+        if (t->c->ok && base >= 0 && ts[base].c->ok) {
+            for (r = 0; r < o->frames; r++) t->ratio[r] = t->times[r] / ts[base].times[r];
+            t->c->vs_single = bench_median(t->ratio, o->frames);
+        }
+    }
+    for (i = 0; i < m; i++) {
+        timing_slot *t = &ts[i];
+        if (t->c->ok) {
+            t->c->t_median = bench_median(t->times, o->frames); /* sorts */
+            t->c->t_min = t->times[0];
+            t->c->t_max = t->times[o->frames - 1];
+            t->c->gpu_median = t->gpu_n == o->frames ? bench_median(t->gpu, t->gpu_n) : -1.0;
+        }
+        snell_renderer_destroy(t->r);
+        free(t->times);
+        free(t->gpu);
+        free(t->ratio);
+    }
+    free(ts);
+}
+
+static int same_group(const bench_config *a, const bench_config *b)
+{
+    return !strcmp(a->scene, b->scene) && a->width == b->width && a->height == b->height;
+}
+
+/* Times every configuration: those of one scene and size interleaved (at
+ * most MAX_INTERLEAVED at once; a larger group is timed in parts, each with
+ * the group's single-surface configuration, if any, so every ratio is taken
+ * within one part). */
+static void time_all(snell_ctx *ctx, const snell_env *env, const options *o, bench_config *cs, int n)
+{
+    int *done = (int *)calloc((size_t)(n > 0 ? n : 1), sizeof(int));
+    int idx[MAX_INTERLEAVED], i, j, k, m, single, part;
+    if (!done) {
+        for (i = 0; i < n; i++) {
+            cs[i].ok = 0;
+            snprintf(cs[i].error, sizeof cs[i].error, "out of memory");
+        }
+        return;
+    }
+    for (i = 0; i < n; i++) {
+        if (done[i]) continue;
+        single = -1;
+        for (j = i; j < n && single < 0; j++)
+            if (!done[j] && cs[j].method->id == SNELL_METHOD_SINGLE && same_group(&cs[j], &cs[i])) single = j;
+        j = i;
+        for (part = 0;; part++) {
+            m = 0;
+            if (single >= 0) idx[m++] = single;
+            for (; j < n && m < MAX_INTERLEAVED; j++)
+                if (!done[j] && j != single && same_group(&cs[j], &cs[i])) idx[m++] = j;
+            if (part > 0 && m == (single >= 0)) break; /* nothing left but the baseline */
+            if (!o->quiet)
+                fprintf(stderr, "timing %d configuration(s) of %s at %dx%d, taking turns frame by frame\n", m,
+                        cs[i].scene, cs[i].width, cs[i].height);
+            time_group(ctx, env, o, cs, idx, m, single >= 0 ? 0 : -1);
+            for (k = 0; k < m; k++) done[idx[k]] = 1;
+            if (j >= n) break;
+        }
+    }
+    free(done);
+}
+
 static void run_config(snell_ctx *ctx, const snell_env *env, const char *env_name, const options *o,
                        bench_config *c)
 {
@@ -553,15 +704,12 @@ static void run_config(snell_ctx *ctx, const snell_env *env, const char *env_nam
     snell_renderer_desc desc;
     snell_frame_desc fd, bg;
     size_t n = (size_t)c->width * (size_t)c->height;
-    double *times = (double *)malloc(sizeof(double) * (size_t)o->frames);
-    double *gpu = (double *)malloc(sizeof(double) * (size_t)o->frames);
     uint8_t *rgba = (uint8_t *)malloc(n * 4), *mask = (uint8_t *)malloc(n), *either = (uint8_t *)malloc(n);
     float *dirs = (float *)malloc(n * 3 * sizeof(float)), *bgdirs = (float *)malloc(n * 3 * sizeof(float));
     float *err = (float *)malloc(n * sizeof(float));
-    int i, mode, gpu_n = 0;
-    c->ok = 1;
-    c->frames = o->frames;
-    if (!times || !gpu || !rgba || !mask || !either || !dirs || !bgdirs || !err) {
+    int i, mode;
+    if (!c->ok) return; /* timing failed */
+    if (!rgba || !mask || !either || !dirs || !bgdirs || !err) {
         snprintf(c->error, sizeof c->error, "out of memory");
         c->ok = 0;
         goto done;
@@ -579,30 +727,11 @@ static void run_config(snell_ctx *ctx, const snell_env *env, const char *env_nam
     }
     frame_of(c, mesh, env, &fd);
 
-    /* Timing: warm-up, then N frames each ended by glFinish. */
-    for (i = 0; i < o->warmup + o->frames; i++) {
-        double t0 = bench_now_ms(), g;
-        snell_status st;
-        bench_timer_begin();
-        st = snell_render(rc, &fd, NULL);
-        bench_timer_end();
-        snell_renderer_finish(rc);
-        if (st != SNELL_OK) {
-            fail_config(c, "render", ctx);
-            goto done;
-        }
-        if (i < o->warmup) {
-            bench_timer_read();
-            continue;
-        }
-        times[i - o->warmup] = bench_now_ms() - t0;
-        g = bench_timer_read();
-        if (g >= 0.0) gpu[gpu_n++] = g;
+    /* The colour image (timing is done before, in time_group). */
+    if (snell_render(rc, &fd, NULL) != SNELL_OK) {
+        fail_config(c, "render", ctx);
+        goto done;
     }
-    c->t_median = bench_median(times, o->frames);
-    c->t_min = times[0];
-    c->t_max = times[o->frames - 1];
-    c->gpu_median = gpu_n == o->frames ? bench_median(gpu, gpu_n) : -1.0;
     if (snell_renderer_read_rgba(rc, rgba) != SNELL_OK) {
         fail_config(c, "readback", ctx);
         goto done;
@@ -687,8 +816,6 @@ static void run_config(snell_ctx *ctx, const snell_env *env, const char *env_nam
 done:
     snell_renderer_destroy(rc);
     snell_renderer_destroy(rd);
-    free(times);
-    free(gpu);
     free(rgba);
     free(mask);
     free(either);
@@ -757,7 +884,9 @@ static int write_json(const char *path, const bench_config *cs, int n, const opt
     fprintf(f, ",\n  \"gl_renderer\": ");
     json_str(f, renderer);
     fprintf(f, ",\n  \"timer_query\": %s,\n  \"timing\": ", timer ? "true" : "false");
-    json_str(f, "median of frames after warm-up; each frame = snell_render + glFinish (CPU wall clock)");
+    json_str(f, "median of frames after warm-up; each frame = snell_render + glFinish (CPU wall clock); the "
+                "configurations of one scene and size take turns frame by frame; vs_single = median over rounds of "
+                "the ratio to the single-surface configuration's frame of the same round");
     fprintf(f, ",\n  \"frames\": %d,\n  \"warmup\": %d,\n  \"full_interfaces\": %d,\n  \"loadavg_before\": ", o->frames,
             o->warmup, o->full_interfaces);
     json_str(f, load_before);
@@ -792,7 +921,9 @@ static int write_json(const char *path, const bench_config *cs, int n, const opt
         json_num(f, c->t_max);
         fprintf(f, ", \"gpu_median\": ");
         json_num(f, c->gpu_median >= 0 ? c->gpu_median : NAN);
-        fprintf(f, "}, \"exit_dir_encoding\": ");
+        fprintf(f, "}, \"vs_single\": ");
+        json_num(f, c->vs_single >= 0 ? c->vs_single : NAN);
+        fprintf(f, ", \"pareto\": %s, \"exit_dir_encoding\": ", c->pareto ? "true" : "false");
         json_str(f, c->encoding);
         fprintf(f, ", \"nan_inf\": %ld, \"matched_interfaces\": %d,\n     \"vs_matched\": ", c->nan_inf,
                 c->ref_interfaces);
@@ -817,7 +948,7 @@ static int write_csv(const char *path, const bench_config *cs, int n)
     int i, m;
     if (!f) return 0;
     fprintf(f, "spec,method,scene,width,height,ior,ok,time_median_ms,time_min_ms,time_max_ms,gpu_median_ms,"
-               "exit_dir_encoding,nan_inf");
+               "vs_single,pareto,exit_dir_encoding,nan_inf");
     for (m = 0; m < 2; m++) {
         const char *p = m ? "full" : "matched";
         fprintf(f, ",%s_mean_deg,%s_rms_deg,%s_median_deg,%s_p99_deg,%s_max_deg,%s_frac_above_1deg,"
@@ -834,7 +965,8 @@ static int write_csv(const char *path, const bench_config *cs, int n)
             csv_num(f, c->t_min);
             csv_num(f, c->t_max);
             csv_num(f, c->gpu_median >= 0 ? c->gpu_median : NAN);
-            fprintf(f, ",%s,%ld", c->encoding, c->nan_inf);
+            csv_num(f, c->vs_single >= 0 ? c->vs_single : NAN);
+            fprintf(f, ",%d,%s,%ld", c->pareto, c->encoding, c->nan_inf);
             for (m = 0; m < 2; m++) {
                 const snell_dir_error *d = &c->dir[m];
                 csv_num(f, d->mean_deg);
@@ -851,8 +983,8 @@ static int write_csv(const char *path, const bench_config *cs, int n)
             }
             fprintf(f, ",\n");
         } else {
-            fprintf(f, ",,,,,,%s", "");
-            for (m = 0; m < 24; m++) fputc(',', f);
+            fprintf(f, ",,,,,,,,%s", "");
+            for (m = 0; m < 25; m++) fputc(',', f);
             fprintf(f, "\"%s\"\n", c->error);
         }
     }
@@ -865,6 +997,31 @@ static double plot_value(const bench_config *c, const char *what)
     if (!strcmp(what, "full-rmse")) return c->img_glass[1].rmse;
     if (!strcmp(what, "matched-mean")) return c->dir[0].mean_deg;
     return c->dir[1].mean_deg;
+}
+
+/* cs[i].pareto: not dominated in (median time, plot's error) by another
+ * configuration of the same scene and size. */
+static void mark_pareto(bench_config *cs, int n, const options *o)
+{
+    bench_plot_point *pts = (bench_plot_point *)calloc((size_t)(n > 0 ? n : 1), sizeof *pts);
+    int *front = (int *)calloc((size_t)(n > 0 ? n : 1), sizeof(int)), *at = (int *)calloc((size_t)(n > 0 ? n : 1), sizeof(int));
+    int i, j, count = 0;
+    for (i = 0; i < n; i++) cs[i].pareto = 0;
+    if (pts && front && at) {
+        for (i = 0; i < n; i++) {
+            if (!cs[i].ok) continue;
+            for (j = 0; j < i && !(cs[j].ok && same_group(&cs[j], &cs[i])); j++) {}
+            pts[count].group = j; /* first configuration of the group */
+            pts[count].x = cs[i].t_median;
+            pts[count].y = plot_value(&cs[i], o->plot_y);
+            at[count++] = i;
+        }
+        bench_pareto(pts, count, front);
+        for (i = 0; i < count; i++) cs[at[i]].pareto = front[i];
+    }
+    free(pts);
+    free(front);
+    free(at);
 }
 
 static int write_plot(const char *path, const bench_config *cs, int n, const options *o, const char *renderer,
@@ -1033,6 +1190,7 @@ int main(int argc, char **argv)
                 timer ? "present: GPU times reported too"
                       : "not available: times are CPU wall clock of render + glFinish only");
     }
+    time_all(ctx, env, &o, cs, n);
     for (i = 0; i < n; i++) {
         bench_config *c = &cs[i];
         if (!o.quiet) fprintf(stderr, "[%d/%d] %s\n", i + 1, n, c->spec);
@@ -1050,6 +1208,7 @@ int main(int argc, char **argv)
         }
     }
     read_loadavg(load_after, sizeof load_after);
+    mark_pareto(cs, n, &o);
 
     snprintf(path, sizeof path, "%s.json", o.out_prefix);
     if (!write_json(path, cs, n, &o, renderer, timer, load_before, load_after, date)) {
@@ -1066,16 +1225,17 @@ int main(int argc, char **argv)
         fprintf(stderr, "snell-bench: cannot write %s\n", path);
         rc = 1;
     }
-    printf("%-58s %9s %9s %9s %7s %7s %6s\n", "configuration", "ms/frame", "deg/MATCH", "deg/FULL", ">1deg", ">5deg",
-           "NaN");
+    printf("%-58s %9s %7s %9s %9s %7s %7s %6s %6s\n", "configuration", "ms/frame", "xsingle", "deg/MATCH", "deg/FULL",
+           ">1deg", ">5deg", "NaN", "pareto");
     for (i = 0; i < n; i++) {
         const bench_config *c = &cs[i];
         if (!c->ok) {
             printf("%-58s FAILED: %s\n", c->spec, c->error);
             continue;
         }
-        printf("%-58s %9.2f %9.3g %9.3g %6.1f%% %6.1f%% %6ld\n", c->spec, c->t_median, c->dir[0].mean_deg,
-               c->dir[1].mean_deg, 100.0 * c->dir[1].frac_above_1deg, 100.0 * c->dir[1].frac_above_5deg, c->nan_inf);
+        printf("%-58s %9.2f %7.3f %9.3g %9.3g %6.1f%% %6.1f%% %6ld %6s\n", c->spec, c->t_median, c->vs_single,
+               c->dir[0].mean_deg, c->dir[1].mean_deg, 100.0 * c->dir[1].frac_above_1deg,
+               100.0 * c->dir[1].frac_above_5deg, c->nan_inf, c->pareto ? "*" : "");
     }
     printf("wrote %s.json, %s.csv, %s.png (%.1f s)\n", o.out_prefix, o.out_prefix, o.out_prefix,
            (bench_now_ms() - t_start) / 1000.0);
