@@ -133,9 +133,12 @@ out:
 
 /* 4. Error bound for the sphere (radius R = 1 about the centre), entry
  * incidence theta_e <= 60 deg, IOR eta = 1.5, 2 interfaces:
- *  - exit point along the ray: the bracket after K halvings of the chord
- *    (<= 2R) is 2R/2^K, or the search stopped at one texel (0.943/N rad at
- *    radius R); the secant step lands inside it;
+ *  - exit point along the ray: the bracket starts between the inner ball
+ *    (radius r_in, less one 8-bit step: no surface inside) and the bounding
+ *    sphere R_out, whose crossings are at most (R_out - r_in) / cos(theta_i)
+ *    apart near the exit, and never more than the chord 2R; after K
+ *    halvings it is that / 2^K, or the search stopped at one texel
+ *    (0.943/N rad at radius R); the secant step lands inside it;
  *  - stored distance error dq (half a quantisation step) moves the point
  *    by dq / cos(theta_i), cos(theta_i) >= sqrt(1 - (sin60/1.5)^2) = 0.816;
  *  - a position error s turns the sphere's normal by at most s / R;
@@ -146,9 +149,9 @@ out:
  *  - a normal error delta turns the refracted exit direction by at most
  *    delta * (1 + eta cos(theta_i) / cos(theta_t)); on a sphere theta_t =
  *    theta_e, so the gain is at most 1 + 1.5 / cos(60) = 4. */
-static double bound(snell_ndcube_encoding enc, int N, int K)
+static double bound(snell_ndcube_encoding enc, int N, int K, double bracket0)
 {
-    double bracket = fmax(2.0 / pow(2.0, K), 0.943 / N);
+    double bracket = fmax(bracket0 / pow(2.0, K), 0.943 / N);
     double dq = enc == SNELL_NDCUBE_PLAIN ? 0.5 / 255.0 : 0.5 / 65535.0;
     double pos = bracket + dq / 0.816;
     double texel = enc == SNELL_NDCUBE_PLAIN ? (2.0 / N) * (2.0 / N) / 8.0 : sqrt(2.0) / N;
@@ -167,7 +170,12 @@ static void check_sphere(snell_ctx *ctx, snell_mesh *sphere, snell_env *env, sne
     snell_ref_desc refd;
     snell_ref_params p;
     int i, n = 0, over = 0;
-    double worst = 0.0, lim = bound(enc, N, K), worst1 = 0.0;
+    double worst = 0.0, lim, worst1 = 0.0, r_out, r_in;
+    snell_mesh_analysis an;
+    CHECK_OK(snell_mesh_analyze(sphere, &an));
+    r_out = an.radius * 1.0001;        /* as method_cubemap.c sets them */
+    r_in = an.inner_radius - r_out / 255.0;
+    lim = bound(enc, N, K, fmin(2.0, (r_out - r_in) / 0.816));
     memset(&rd, 0, sizeof rd);
     rd.width = W;
     rd.height = H;
