@@ -184,6 +184,12 @@ int main(void)
             CHECK_OK(snell_render(r, &fd, NULL));
         }
         CHECK(c.total == before, "switching between built search settings allocated %ld times", c.total - before);
+        /* More settings than the program cache holds: the least recently used
+         * programs are replaced (and freed: the leak check below). */
+        for (i = 1; i <= 12; i++) {
+            fd.glass.search_iterations = i;
+            CHECK_OK(snell_render(r, &fd, NULL));
+        }
         snell_renderer_destroy(r);
         snell_env_destroy(env);
         snell_mesh_destroy(mesh);
