@@ -234,7 +234,6 @@ static double hidden_fraction(const analyzer *an, const double c[3], int n)
     return (double)hidden / n;
 }
 
-/* Crossings of the ray from p along dir (counted one by one, nearest first). */
 /* Squared distance from p to triangle abc (closest point by Voronoi regions,
  * Ericson, Real-Time Collision Detection 5.1.5). */
 static double dist2_point_triangle(const double p[3], double v[3][3])
@@ -283,6 +282,7 @@ static double dist2_point_triangle(const double p[3], double v[3][3])
     return dot3(q, q);
 }
 
+/* Crossings of the ray from p along dir (counted one by one, nearest first). */
 static int crossings(const analyzer *an, const double p[3], const double dir[3])
 {
     double org[3] = {p[0], p[1], p[2]}, tmin = 0.0;
@@ -447,7 +447,6 @@ snell_status snell_mesh_analyze(const snell_mesh *m, snell_mesh_analysis *out)
         }
         /* Rounded down to float: the ball must stay free of surface. */
         out->inner_radius = m->triangle_count ? nextafterf((float)sqrt(r2), 0.0f) : 0.0f;
-        if (out->inner_radius < 0.0f) out->inner_radius = 0.0f;
     }
     out->closed = an.closed;
     out->convex = convex;

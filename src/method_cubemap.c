@@ -4,9 +4,9 @@
  * search shader (cubemap.frag) over the front faces. The per-mesh cache lives here, in the
  * method state (a few entries, least recently used replaced), and so do the
  * search programs: one per (encoding, iterations, linear steps, search or
- * none), because the
- * step counts are compile-time constants of the shader (cubemap.frag says
- * why); the default one is built with the method, others on first use. */
+ * none), because the step counts are compile-time constants of the shader
+ * (cubemap.frag says why); the default one is built with the method, others
+ * on first use. */
 #include "glass_program.h"
 #include "ctx.h"
 #include "gl.h"
@@ -20,7 +20,7 @@
 #define PROG_CACHE 8
 
 /* Defaults of the glass desc's cubemap fields (snell.h documents them). */
-/* encoding: PLAIN (filtered normals; lower error than OCT at equal cost) */
+/* encoding: PLAIN (filtered: lower error than OCT, which is 3-7% cheaper on llvmpipe) */
 
 typedef struct cube_prog {
     snell__glass_program g;    /* g.prog == 0: empty slot */
