@@ -227,10 +227,12 @@ typedef struct snell_glass_desc {
     float absorption[3];       /* Beer-Lambert coefficient per unit length (world units), rgb */
     float tint[3];             /* multiplies transmitted light; all zero = white (no tint) */
     /* SNELL_METHOD_CUBEMAP (and AUTO when it picks it); all changeable per frame.
-     * The first frame with a new (search_iterations, linear_steps, encoding)
-     * builds that search program (the step counts are compile-time constants
-     * of the shader; 8 programs are kept) and a new face size or encoding
-     * re-bakes the cubemap; frames with settings already used allocate nothing. */
+     * The first frame with a new (search_iterations, linear_steps, encoding,
+     * max_interfaces == 1 without absorption or not) builds that search
+     * program (the step counts are compile-time constants of the shader, and
+     * one interface compiles the search out; 8 programs are kept) and a new
+     * face size or encoding re-bakes the cubemap; frames with settings already
+     * used allocate nothing. */
     int search_iterations;     /* binary-search steps per interface, 1..32; 0 = SNELL_CUBEMAP_DEFAULT_ITERATIONS (6) */
     int linear_steps;          /* linear pre-search steps before the binary search, 0..32; 0 = none */
     int max_interfaces;        /* surfaces processed per path, 1..8 (1 = single surface,

@@ -557,7 +557,9 @@ typedef struct timing_slot {
     int gpu_n;
 } timing_slot;
 
-static int time_frame(snell_ctx *ctx, timing_slot *t, int record, int round)
+/* One frame of t; recorded as round `round` if record, else warm-up. A
+ * failure marks the configuration failed (c->ok = 0). */
+static void time_frame(snell_ctx *ctx, timing_slot *t, int record, int round)
 {
     double t0 = bench_now_ms(), g;
     snell_status st;
@@ -567,16 +569,15 @@ static int time_frame(snell_ctx *ctx, timing_slot *t, int record, int round)
     snell_renderer_finish(t->r);
     if (st != SNELL_OK) {
         fail_config(t->c, "render", ctx);
-        return 0;
+        return;
     }
     if (!record) {
         bench_timer_read();
-        return 1;
+        return;
     }
     t->times[round] = bench_now_ms() - t0;
     g = bench_timer_read();
     if (g >= 0.0) t->gpu[t->gpu_n++] = g;
-    return 1;
 }
 
 /* Times the m configurations cs[idx[0..m)] (one scene and size; base = the
