@@ -1,4 +1,4 @@
-# Cubemap method (Unger 4.1, src/method_cubemap.c, ndcube.c, mesh_analyze.c):
+# Cubemap method (Unger 4.1, src/methods/cubemap.c, methods/ndcube.c, mesh/mesh_analyze.c):
 # packing twin, bake vs CPU ray casts, sphere/cube/TIR vs the reference,
 # analysis (star-shapedness), CLI flags.
 snell_add_test(test_analyze SOURCES test_analyze.c LABELS "unit")

@@ -1,4 +1,4 @@
-# Reference tracer (snell_ref_*, src/ref_*.c): BVH, analytic checks (sphere,
+# Reference tracer (snell_ref_*, src/ref/*.c): BVH, analytic checks (sphere,
 # slab, TIR prism), image-level properties and renders of a sphere and the bunny.
 snell_add_test(test_ref_bvh SOURCES test_ref_bvh.c LABELS "unit")
 target_link_libraries(test_ref_bvh PRIVATE m)

@@ -12,12 +12,12 @@
  *  5. the image shows the bent, upside-down view (floor seen in the top half).
  */
 #include "test_util.h"
-#include "gl.h"
-#include "mesh.h"
-#include "ndcube.h"
-#include "pack.h"
-#include "ref_bvh.h"
-#include "env.h"
+#include "core/gl.h"
+#include "mesh/mesh.h"
+#include "methods/ndcube.h"
+#include "core/pack.h"
+#include "ref/ref_bvh.h"
+#include "render/env.h"
 #include "snell/snell_ref.h"
 
 #include <math.h>

@@ -20,7 +20,7 @@
  * method's mean error over ALL glass pixels must be far below that of the
  * single-surface method against the same reference (the point of it). */
 #include "test_util.h"
-#include "pack.h"
+#include "core/pack.h"
 #include "snell/snell_ref.h"
 
 #include <math.h>

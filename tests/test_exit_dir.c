@@ -11,9 +11,9 @@
  * (silhouette pixels are decided by coverage and may differ), and background
  * pixels (computed at highp) within 1e-3 rad of the view ray. */
 #include "test_util.h"
-#include "gl.h"
-#include "pack.h"
-#include "program.h"
+#include "core/gl.h"
+#include "core/pack.h"
+#include "core/program.h"
 #include "snell/snell_ref.h"
 
 #include <math.h>

@@ -1,7 +1,7 @@
 /* test_lm2d_geom.c — ray/segment intersection (parallel, endpoint, vertex hits)
  * and BVH traversal against brute force on random scenes, for several leaf sizes. */
-#include "lm2d_bvh.h"
-#include "core.h"
+#include "lm2d/lm2d_bvh.h"
+#include "core/core.h"
 #include "test_util.h"
 
 #include <math.h>

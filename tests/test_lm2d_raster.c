@@ -3,7 +3,7 @@
  * error for every accumulation format (float, half, and the fixed-point
  * fallbacks), the screen blend mode, the slope correction (eq. 6.4) on a star
  * of lines, and GL state restoration. Prints the measured errors. */
-#include "gl.h"
+#include "core/gl.h"
 #include "test_util.h"
 #include "snell/snell_2d.h"
 

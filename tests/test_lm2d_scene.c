@@ -1,7 +1,7 @@
 /* test_lm2d_scene.c — CSV and text scene loading: good files load, malformed
  * ones fail with SNELL_E_PARSE/IO/INVALID_ARG and a message naming the line;
  * edge normals point outward for either winding; hard vs smooth point normals. */
-#include "lm2d_scene.h"
+#include "lm2d/lm2d_scene.h"
 #include "test_util.h"
 
 #include <math.h>

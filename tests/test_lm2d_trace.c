@@ -2,7 +2,7 @@
  * closed white box with a = 0 keeps all of it until the bounce cap), refraction
  * angles through a glass slab (shared optics kernel), clipping to the view,
  * determinism across thread counts, and the skip-work logic of the lightmap. */
-#include "lm2d_trace.h"
+#include "lm2d/lm2d_trace.h"
 #include "test_util.h"
 
 #include <math.h>

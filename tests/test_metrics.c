@@ -5,7 +5,7 @@
  * the angular error of the packed RGBA8 exit-direction encoding (pack.h),
  * which must stay below the 1e-4 rad that snell.h documents. */
 #include "test_util.h"
-#include "pack.h"
+#include "core/pack.h"
 #include "snell/snell_metrics.h"
 
 #include <math.h>

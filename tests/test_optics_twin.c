@@ -5,9 +5,9 @@
  * Inputs: incidence angles 0..89.999 deg (grazing included), eta both into
  * denser (entry) and thinner (exit, where TIR happens) media, IOR 1.0001..4. */
 #include "test_util.h"
-#include "gl.h"
-#include "optics.h"
-#include "program.h"
+#include "core/gl.h"
+#include "core/optics.h"
+#include "core/program.h"
 
 #include <math.h>
 #include <stdlib.h>

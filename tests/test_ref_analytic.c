@@ -22,7 +22,7 @@
  *     (sin 45 < 1/1.3) it refracts out at the first leg (2 interfaces); the
  *     cap at 3 and 2 interfaces ends inside as documented. */
 #include "test_util.h"
-#include "ref_trace.h"
+#include "ref/ref_trace.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -8,8 +8,8 @@
  *    and edge midpoints always hit;
  *  - bad input is rejected with a status and a message. */
 #include "test_util.h"
-#include "mesh.h"
-#include "ref_bvh.h"
+#include "mesh/mesh.h"
+#include "ref/ref_bvh.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -7,7 +7,7 @@
  * silhouette (coverage at a triangle edge) and cube seams (GL filters across
  * faces, the CPU sampler clamps inside one face). */
 #include "test_util.h"
-#include "optics.h"
+#include "core/optics.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,8 +1,8 @@
 /* test_shader — the program builder: embedded chunks resolve, and compile and
  * link failures come back as SNELL_E_GL with the driver's info log. */
 #include "test_util.h"
-#include "gl.h"
-#include "program.h"
+#include "core/gl.h"
+#include "core/program.h"
 
 #include <string.h>
 

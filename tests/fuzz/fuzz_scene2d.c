@@ -4,7 +4,7 @@
  * resolve under a directory that does not exist, so no file is opened.
  * Either a parse fails with a message, or it yields finite points. */
 #include "fuzz_common.h"
-#include "lm2d_scene.h"
+#include "lm2d/lm2d_scene.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

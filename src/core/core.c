@@ -1,0 +1,124 @@
+/* core.c — allocator plumbing, status names and error/log reporting. */
+#include "core/core.h"
+#include "core/ctx.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#if defined(__GNUC__)
+#define SNELL_THREAD_LOCAL __thread
+#else
+#define SNELL_THREAD_LOCAL
+#endif
+
+static SNELL_THREAD_LOCAL char g_thread_error[1024];
+
+static void *libc_alloc(size_t size, void *user) { (void)user; return malloc(size); }
+static void *libc_realloc(void *p, size_t size, void *user) { (void)user; return realloc(p, size); }
+static void libc_free(void *p, void *user) { (void)user; free(p); }
+
+static const snell_alloc g_libc_alloc = {{libc_alloc, libc_realloc, libc_free, NULL}};
+
+snell_alloc snell__alloc_from(const snell_allocator *user)
+{
+    snell_alloc al = g_libc_alloc;
+    if (user) {
+        if (user->alloc) al.a.alloc = user->alloc;
+        if (user->realloc) al.a.realloc = user->realloc;
+        if (user->free) al.a.free = user->free;
+        al.a.user = user->user;
+    }
+    return al;
+}
+
+const snell_alloc *snell__ctx_alloc(const snell_ctx *ctx)
+{
+    return ctx ? &ctx->alloc : &g_libc_alloc;
+}
+
+void *snell__malloc(const snell_alloc *al, size_t size)
+{
+    return al->a.alloc(size ? size : 1, al->a.user);
+}
+
+void *snell__calloc(const snell_alloc *al, size_t count, size_t size)
+{
+    int ok = 1;
+    size_t total = snell__mul_size(count, size, &ok);
+    void *p;
+    if (!ok) return NULL;
+    p = snell__malloc(al, total);
+    if (p) memset(p, 0, total);
+    return p;
+}
+
+void *snell__realloc(const snell_alloc *al, void *ptr, size_t size)
+{
+    return al->a.realloc(ptr, size ? size : 1, al->a.user);
+}
+
+void snell__free(const snell_alloc *al, void *ptr)
+{
+    if (ptr) al->a.free(ptr, al->a.user);
+}
+
+size_t snell__mul_size(size_t a, size_t b, int *ok)
+{
+    if (a && b > (size_t)-1 / a) {
+        *ok = 0;
+        return 0;
+    }
+    return a * b;
+}
+
+const char *snell_status_str(snell_status s)
+{
+    switch (s) {
+    case SNELL_OK: return "SNELL_OK";
+    case SNELL_E_INVALID_ARG: return "SNELL_E_INVALID_ARG";
+    case SNELL_E_IO: return "SNELL_E_IO";
+    case SNELL_E_PARSE: return "SNELL_E_PARSE";
+    case SNELL_E_GL: return "SNELL_E_GL";
+    case SNELL_E_EGL: return "SNELL_E_EGL";
+    case SNELL_E_UNSUPPORTED: return "SNELL_E_UNSUPPORTED";
+    case SNELL_E_NOMEM: return "SNELL_E_NOMEM";
+    case SNELL_E_LIMIT: return "SNELL_E_LIMIT";
+    }
+    return "SNELL_E_UNKNOWN";
+}
+
+const char *snell_last_error(const snell_ctx *ctx)
+{
+    return ctx ? ctx->last_error : g_thread_error;
+}
+
+static void vlog(const snell_ctx *ctx, snell_log_level level, const char *fmt, va_list ap)
+{
+    char buf[1024];
+    if (!ctx || !ctx->log) return;
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    ctx->log(level, buf, ctx->log_user);
+}
+
+snell_status snell__fail(const snell_ctx *ctx, snell_status status, const char *fmt, ...)
+{
+    va_list ap;
+    /* The message buffer is part of the context's bookkeeping, not of its GL
+     * state, so writing it through a const pointer is acceptable here. */
+    char *dst = ctx ? ((snell_ctx *)ctx)->last_error : g_thread_error;
+    size_t cap = ctx ? sizeof ctx->last_error : sizeof g_thread_error;
+    va_start(ap, fmt);
+    vsnprintf(dst, cap, fmt, ap);
+    va_end(ap);
+    if (ctx && ctx->log) ctx->log(SNELL_LOG_ERROR, dst, ctx->log_user);
+    return status;
+}
+
+void snell__log(const snell_ctx *ctx, snell_log_level level, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vlog(ctx, level, fmt, ap);
+    va_end(ap);
+}

@@ -1,0 +1,91 @@
+/* glstate.c — save/restore of every piece of GL state snell's per-frame calls
+ * may change. Used only with the EXTERNAL backend: glGet* can stall a real
+ * driver's pipeline, so an owned context skips it. */
+#include "core/glstate.h"
+#include "core/gl.h"
+
+static unsigned char enabled(GLenum cap) { return glIsEnabled(cap) ? 1 : 0; }
+static void set_enabled(GLenum cap, unsigned char on) { if (on) glEnable(cap); else glDisable(cap); }
+
+void snell__glstate_save(snell_glstate *s)
+{
+    int i;
+    GLboolean cm[4], dm;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->draw_fbo);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_fbo);
+    glGetIntegerv(GL_RENDERBUFFER_BINDING, &s->renderbuffer);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->array_buffer);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
+    for (i = 0; i < SNELL_GLSTATE_UNITS; i++) {
+        glActiveTexture((GLenum)(GL_TEXTURE0 + i));
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->tex_2d[i]);
+        glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &s->tex_cube[i]);
+    }
+    glActiveTexture((GLenum)s->active_texture);
+    glGetIntegerv(GL_VIEWPORT, s->viewport);
+    glGetIntegerv(GL_SCISSOR_BOX, s->scissor_box);
+    s->depth_test = enabled(GL_DEPTH_TEST);
+    s->cull_face = enabled(GL_CULL_FACE);
+    s->blend = enabled(GL_BLEND);
+    s->scissor_test = enabled(GL_SCISSOR_TEST);
+    s->stencil_test = enabled(GL_STENCIL_TEST);
+    s->polygon_offset = enabled(GL_POLYGON_OFFSET_FILL);
+    s->dither = enabled(GL_DITHER);
+    glGetBooleanv(GL_COLOR_WRITEMASK, cm);
+    for (i = 0; i < 4; i++) s->color_mask[i] = cm[i];
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &dm);
+    s->depth_mask = dm;
+    glGetIntegerv(GL_DEPTH_FUNC, &s->depth_func);
+    glGetIntegerv(GL_CULL_FACE_MODE, &s->cull_mode);
+    glGetIntegerv(GL_FRONT_FACE, &s->front_face);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &s->blend_src_rgb);
+    glGetIntegerv(GL_BLEND_DST_RGB, &s->blend_dst_rgb);
+    glGetIntegerv(GL_BLEND_SRC_ALPHA, &s->blend_src_a);
+    glGetIntegerv(GL_BLEND_DST_ALPHA, &s->blend_dst_a);
+    glGetIntegerv(GL_BLEND_EQUATION_RGB, &s->blend_eq_rgb);
+    glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &s->blend_eq_a);
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, s->clear_color);
+    glGetFloatv(GL_DEPTH_CLEAR_VALUE, &s->clear_depth);
+    glGetIntegerv(GL_PACK_ALIGNMENT, &s->pack_alignment);
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &s->unpack_alignment);
+}
+
+void snell__glstate_restore(const snell_glstate *s)
+{
+    int i;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_fbo);
+    glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)s->renderbuffer);
+    glUseProgram((GLuint)s->program);
+    glBindVertexArray((GLuint)s->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
+    for (i = 0; i < SNELL_GLSTATE_UNITS; i++) {
+        glActiveTexture((GLenum)(GL_TEXTURE0 + i));
+        glBindTexture(GL_TEXTURE_2D, (GLuint)s->tex_2d[i]);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, (GLuint)s->tex_cube[i]);
+    }
+    glActiveTexture((GLenum)s->active_texture);
+    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    glScissor(s->scissor_box[0], s->scissor_box[1], s->scissor_box[2], s->scissor_box[3]);
+    set_enabled(GL_DEPTH_TEST, s->depth_test);
+    set_enabled(GL_CULL_FACE, s->cull_face);
+    set_enabled(GL_BLEND, s->blend);
+    set_enabled(GL_SCISSOR_TEST, s->scissor_test);
+    set_enabled(GL_STENCIL_TEST, s->stencil_test);
+    set_enabled(GL_POLYGON_OFFSET_FILL, s->polygon_offset);
+    set_enabled(GL_DITHER, s->dither);
+    glColorMask(s->color_mask[0], s->color_mask[1], s->color_mask[2], s->color_mask[3]);
+    glDepthMask(s->depth_mask);
+    glDepthFunc((GLenum)s->depth_func);
+    glCullFace((GLenum)s->cull_mode);
+    glFrontFace((GLenum)s->front_face);
+    glBlendFuncSeparate((GLenum)s->blend_src_rgb, (GLenum)s->blend_dst_rgb, (GLenum)s->blend_src_a,
+                        (GLenum)s->blend_dst_a);
+    glBlendEquationSeparate((GLenum)s->blend_eq_rgb, (GLenum)s->blend_eq_a);
+    glClearColor(s->clear_color[0], s->clear_color[1], s->clear_color[2], s->clear_color[3]);
+    glClearDepthf(s->clear_depth);
+    glPixelStorei(GL_PACK_ALIGNMENT, s->pack_alignment);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, s->unpack_alignment);
+}

@@ -1,0 +1,215 @@
+/* program.c — shader assembly (#include of embedded chunks), compile, link,
+ * with the info log carried into the error message. */
+#include "core/program.h"
+#include "core/gl.h"
+#include "core/shaders_embedded.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#define MAX_INCLUDES 16
+
+const char *snell__shader_source(const char *path)
+{
+    const snell_shader_file *f;
+    for (f = snell_shader_files; f->path; f++)
+        if (strcmp(f->path, path) == 0) return f->source;
+    return NULL;
+}
+
+/* The table's own copy of a chunk's path (static storage). */
+static const char *table_path(const char *source)
+{
+    const snell_shader_file *f;
+    for (f = snell_shader_files; f->path; f++)
+        if (f->source == source) return f->path;
+    return "";
+}
+
+typedef struct text_buf {
+    const snell_alloc *al;
+    char *data;
+    size_t len, cap;
+    int failed;
+} text_buf;
+
+static void buf_append(text_buf *b, const char *s, size_t n)
+{
+    if (b->failed) return;
+    if (b->len + n + 1 > b->cap) {
+        size_t cap = (b->cap ? b->cap * 2 : 4096);
+        char *p;
+        while (cap < b->len + n + 1) cap *= 2;
+        p = (char *)snell__realloc(b->al, b->data, cap);
+        if (!p) { b->failed = 1; return; }
+        b->data = p;
+        b->cap = cap;
+    }
+    memcpy(b->data + b->len, s, n);
+    b->len += n;
+    b->data[b->len] = '\0';
+}
+
+/* Appends src, replacing `#include "path"` lines by the embedded chunk
+ * (each chunk once, nesting allowed). Returns nonzero on a missing chunk. */
+static int expand(snell_ctx *ctx, text_buf *b, const char *src, const char **seen, int *n_seen)
+{
+    const char *line = src;
+    while (*line) {
+        const char *end = strchr(line, '\n');
+        size_t n = end ? (size_t)(end - line + 1) : strlen(line);
+        const char *p = line;
+        while (*p == ' ' || *p == '\t') p++;
+        if (strncmp(p, "#include", 8) == 0) {
+            char path[128];
+            const char *q = strchr(p, '"'), *r = q ? strchr(q + 1, '"') : NULL;
+            const char *chunk;
+            int i, dup = 0;
+            if (!q || !r || (size_t)(r - q - 1) >= sizeof path) {
+                snell__fail(ctx, SNELL_E_GL, "malformed #include line in shader source");
+                return 1;
+            }
+            memcpy(path, q + 1, (size_t)(r - q - 1));
+            path[r - q - 1] = '\0';
+            for (i = 0; i < *n_seen; i++) dup |= strcmp(seen[i], path) == 0;
+            if (!dup) {
+                chunk = snell__shader_source(path);
+                if (!chunk || *n_seen >= MAX_INCLUDES) {
+                    snell__fail(ctx, SNELL_E_GL, "shader chunk \"%s\" not found", path);
+                    return 1;
+                }
+                seen[(*n_seen)++] = table_path(chunk); /* outlives this frame */
+                if (expand(ctx, b, chunk, seen, n_seen)) return 1;
+                buf_append(b, "\n", 1);
+            }
+        } else {
+            buf_append(b, line, n);
+        }
+        line += n;
+    }
+    return 0;
+}
+
+/* "#version 300 es" + defines + FP16 emulation switch + expanded source.
+ * NULL on failure, with *st set (SNELL_E_GL for a bad #include, SNELL_E_NOMEM). */
+static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snell_status *st)
+{
+    text_buf b;
+    const char *seen[MAX_INCLUDES];
+    int n_seen = 0;
+    static const char header[] = "#version 300 es\n";
+    memset(&b, 0, sizeof b);
+    b.al = snell__ctx_alloc(ctx);
+    buf_append(&b, header, sizeof header - 1);
+#ifdef SNELL_FP16_EMULATION
+    {
+        static const char fp16[] = "#define SNELL_FP16_EMULATION 1\n";
+        buf_append(&b, fp16, sizeof fp16 - 1);
+    }
+#endif
+    if (defines) buf_append(&b, defines, strlen(defines));
+    if (!b.failed && expand(ctx, &b, src, seen, &n_seen)) {
+        snell__free(b.al, b.data);
+        *st = SNELL_E_GL;
+        return NULL;
+    }
+    if (b.failed) {
+        snell__free(b.al, b.data);
+        *st = snell__fail(ctx, SNELL_E_NOMEM, "out of memory assembling a shader");
+        return NULL;
+    }
+    *st = SNELL_OK;
+    return b.data;
+}
+
+static snell_status compile(snell_ctx *ctx, GLenum type, const char *defines, const char *src,
+                            GLuint *out)
+{
+    snell_status st;
+    char *full = assemble(ctx, defines, src, &st);
+    GLuint sh;
+    GLint ok = 0;
+    if (!full) return st;
+    sh = glCreateShader(type);
+    glShaderSource(sh, 1, (const GLchar *const *)&full, NULL);
+    glCompileShader(sh);
+    snell__free(snell__ctx_alloc(ctx), full);
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[768];
+        log[0] = '\0';
+        glGetShaderInfoLog(sh, sizeof log, NULL, log);
+        glDeleteShader(sh);
+        return snell__fail(ctx, SNELL_E_GL, "%s shader compile failed: %s",
+                           type == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+    }
+    *out = sh;
+    return SNELL_OK;
+}
+
+static snell_status link_program(snell_ctx *ctx, GLuint vs, GLuint fs, const char *const *varyings,
+                                 int n_varyings, unsigned *out)
+{
+    GLuint prog = glCreateProgram();
+    GLint ok = 0;
+    glAttachShader(prog, vs);
+    glAttachShader(prog, fs);
+    glBindAttribLocation(prog, 0, "a_position");
+    glBindAttribLocation(prog, 1, "a_normal");
+    if (n_varyings > 0) glTransformFeedbackVaryings(prog, n_varyings, varyings, GL_SEPARATE_ATTRIBS);
+    glLinkProgram(prog);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[768];
+        log[0] = '\0';
+        glGetProgramInfoLog(prog, sizeof log, NULL, log);
+        glDeleteProgram(prog);
+        return snell__fail(ctx, SNELL_E_GL, "program link failed: %s", log);
+    }
+    *out = prog;
+    return SNELL_OK;
+}
+
+snell_status snell__program_build_src(snell_ctx *ctx, const char *vs_src, const char *fs_src,
+                                      const char *defines, unsigned *out_program)
+{
+    GLuint vs = 0, fs = 0;
+    snell_status st;
+    if (!vs_src || !fs_src || !out_program)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "program build: missing source");
+    st = compile(ctx, GL_VERTEX_SHADER, defines, vs_src, &vs);
+    if (st != SNELL_OK) return st;
+    st = compile(ctx, GL_FRAGMENT_SHADER, defines, fs_src, &fs);
+    if (st != SNELL_OK) {
+        glDeleteShader(vs);
+        return st;
+    }
+    return link_program(ctx, vs, fs, NULL, 0, out_program);
+}
+
+snell_status snell__program_build(snell_ctx *ctx, const char *vs_path, const char *fs_path,
+                                  const char *defines, unsigned *out_program)
+{
+    const char *vs = snell__shader_source(vs_path), *fs = snell__shader_source(fs_path);
+    if (!vs || !fs)
+        return snell__fail(ctx, SNELL_E_GL, "embedded shader \"%s\" not found", vs ? fs_path : vs_path);
+    return snell__program_build_src(ctx, vs, fs, defines, out_program);
+}
+
+snell_status snell__program_build_feedback(snell_ctx *ctx, const char *vs_src, const char *defines,
+                                           const char *const *varyings, int n_varyings,
+                                           unsigned *out_program)
+{
+    static const char fs_src[] = "precision mediump float;\nout vec4 o;\nvoid main() { o = vec4(0.0); }\n";
+    GLuint vs = 0, fs = 0;
+    snell_status st = compile(ctx, GL_VERTEX_SHADER, defines, vs_src, &vs);
+    if (st != SNELL_OK) return st;
+    st = compile(ctx, GL_FRAGMENT_SHADER, NULL, fs_src, &fs);
+    if (st != SNELL_OK) {
+        glDeleteShader(vs);
+        return st;
+    }
+    return link_program(ctx, vs, fs, varyings, n_varyings, out_program);
+}

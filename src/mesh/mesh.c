@@ -1,0 +1,255 @@
+/* mesh.c — mesh objects from arrays: validation, smooth normals, bounds,
+ * normalisation, GPU upload. Loaders live in mesh_obj.c / mesh_gltf.cpp and
+ * procedural shapes in mesh_shapes.c; all of them end in snell__mesh_adopt. */
+#include "mesh/mesh.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <string.h>
+
+/* Geometry versions are unique across all meshes of the process, so caches
+ * keyed on (mesh pointer, version) cannot confuse a freed mesh with a new one
+ * allocated at the same address. */
+static pthread_mutex_t g_version_lock = PTHREAD_MUTEX_INITIALIZER;
+static unsigned g_next_version = 1;
+
+static unsigned next_version(void)
+{
+    unsigned v;
+    pthread_mutex_lock(&g_version_lock);
+    v = g_next_version++;
+    if (g_next_version == 0) g_next_version = 1; /* 0 means "never uploaded" */
+    pthread_mutex_unlock(&g_version_lock);
+    return v;
+}
+
+static void compute_bounds(snell_mesh *m)
+{
+    uint32_t i;
+    int k;
+    for (k = 0; k < 3; k++) {
+        m->bmin[k] = m->vertex_count ? HUGE_VALF : 0.0f;
+        m->bmax[k] = m->vertex_count ? -HUGE_VALF : 0.0f;
+    }
+    for (i = 0; i < m->vertex_count; i++)
+        for (k = 0; k < 3; k++) {
+            float v = m->positions[3 * i + k];
+            if (v < m->bmin[k]) m->bmin[k] = v;
+            if (v > m->bmax[k]) m->bmax[k] = v;
+        }
+    /* The bounding sphere about the box centre (normalisation, the renderer's
+     * absorption estimate and the reference all use it): once per geometry
+     * change, not per frame. */
+    {
+        float c[3], r2 = 0.0f;
+        for (k = 0; k < 3; k++) c[k] = 0.5f * (m->bmin[k] + m->bmax[k]);
+        for (i = 0; i < m->vertex_count; i++) {
+            const float *p = m->positions + 3 * i;
+            float d2 = (p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) + (p[2] - c[2]) * (p[2] - c[2]);
+            if (d2 > r2) r2 = d2;
+        }
+        m->bradius = sqrtf(r2);
+    }
+}
+
+void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t nv, uint32_t nt,
+                                 float *normals)
+{
+    uint32_t t, v;
+    memset(normals, 0, sizeof(float) * 3 * (size_t)nv);
+    for (t = 0; t < nt; t++) {
+        const float *a = pos + 3 * idx[3 * t], *b = pos + 3 * idx[3 * t + 1], *c = pos + 3 * idx[3 * t + 2];
+        float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        /* The unnormalised cross product weights each face by its area. */
+        float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        int k, j;
+        for (j = 0; j < 3; j++)
+            for (k = 0; k < 3; k++) normals[3 * idx[3 * t + j] + k] += n[k];
+    }
+    for (v = 0; v < nv; v++) {
+        float *n = normals + 3 * v;
+        float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (len > 0.0f && isfinite(len)) {
+            n[0] /= len; n[1] /= len; n[2] /= len;
+        } else {
+            n[0] = 0.0f; n[1] = 1.0f; n[2] = 0.0f;
+        }
+    }
+}
+
+snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *positions,
+                               float *normals, uint32_t *indices, uint32_t vertex_count,
+                               uint32_t triangle_count, snell_mesh **out)
+{
+    snell_mesh *m = NULL;
+    snell_status st = SNELL_OK;
+    size_t i;
+    if (vertex_count > SNELL_MESH_MAX_VERTICES || triangle_count > SNELL_MESH_MAX_TRIANGLES) {
+        st = snell__fail(ctx, SNELL_E_LIMIT, "mesh too large: %u vertices, %u triangles (limits %u, %u)",
+                         vertex_count, triangle_count, SNELL_MESH_MAX_VERTICES, SNELL_MESH_MAX_TRIANGLES);
+        goto fail;
+    }
+    if (triangle_count == 0 || vertex_count < 3) {
+        st = snell__fail(ctx, SNELL_E_INVALID_ARG, "mesh has no triangles");
+        goto fail;
+    }
+    for (i = 0; i < 3 * (size_t)vertex_count; i++)
+        if (!isfinite(positions[i])) {
+            st = snell__fail(ctx, SNELL_E_INVALID_ARG, "vertex %zu has a non-finite coordinate", i / 3);
+            goto fail;
+        }
+    for (i = 0; i < 3 * (size_t)triangle_count; i++)
+        if (indices[i] >= vertex_count) {
+            st = snell__fail(ctx, SNELL_E_INVALID_ARG, "triangle %zu references vertex %u of %u", i / 3,
+                             indices[i], vertex_count);
+            goto fail;
+        }
+    m = (snell_mesh *)snell__calloc(alloc, 1, sizeof *m);
+    if (!normals) {
+        normals = (float *)snell__calloc(alloc, 3 * (size_t)vertex_count, sizeof(float));
+        if (normals) snell__mesh_compute_normals(positions, indices, vertex_count, triangle_count, normals);
+    }
+    if (!m || !normals) {
+        st = snell__fail(ctx, SNELL_E_NOMEM, "out of memory for a mesh of %u vertices", vertex_count);
+        goto fail;
+    }
+    m->ctx = ctx;
+    m->alloc = *alloc;
+    m->positions = positions;
+    m->normals = normals;
+    m->indices = indices;
+    m->vertex_count = vertex_count;
+    m->triangle_count = triangle_count;
+    m->version = next_version();
+    compute_bounds(m);
+    *out = m;
+    return SNELL_OK;
+fail:
+    snell__free(alloc, m);
+    snell__free(alloc, positions);
+    snell__free(alloc, normals);
+    snell__free(alloc, indices);
+    return st;
+}
+
+snell_status snell_mesh_create(snell_ctx *ctx, const snell_mesh_desc *desc, snell_mesh **out)
+{
+    const snell_alloc *al = snell__ctx_alloc(ctx);
+    float *pos = NULL, *nrm = NULL;
+    uint32_t *idx = NULL, nt, i;
+    snell_status st;
+    if (!desc || !out || !desc->positions)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_create: desc, positions and out are required");
+    *out = NULL;
+    nt = desc->indices ? desc->triangle_count : desc->vertex_count / 3;
+    if (desc->vertex_count > SNELL_MESH_MAX_VERTICES || nt > SNELL_MESH_MAX_TRIANGLES)
+        return snell__fail(ctx, SNELL_E_LIMIT, "mesh too large: %u vertices, %u triangles", desc->vertex_count, nt);
+    pos = (float *)snell__calloc(al, 3 * (size_t)desc->vertex_count, sizeof(float));
+    idx = (uint32_t *)snell__calloc(al, 3 * (size_t)nt, sizeof(uint32_t));
+    if (desc->normals) nrm = (float *)snell__calloc(al, 3 * (size_t)desc->vertex_count, sizeof(float));
+    if (!pos || !idx || (desc->normals && !nrm)) {
+        snell__free(al, pos); snell__free(al, idx); snell__free(al, nrm);
+        return snell__fail(ctx, SNELL_E_NOMEM, "out of memory for a mesh of %u vertices", desc->vertex_count);
+    }
+    memcpy(pos, desc->positions, sizeof(float) * 3 * (size_t)desc->vertex_count);
+    for (i = 0; i < 3 * nt; i++) idx[i] = desc->indices ? desc->indices[i] : i;
+    if (nrm) memcpy(nrm, desc->normals, sizeof(float) * 3 * (size_t)desc->vertex_count);
+    st = snell__mesh_adopt(ctx, al, pos, nrm, idx, desc->vertex_count, nt, out);
+    if (st == SNELL_OK && nrm)
+        for (i = 0; i < desc->vertex_count; i++) {
+            /* Caller normals are renormalised; unusable ones make the mesh invalid. */
+            float *n = nrm + 3 * i, len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            if (!(len > 0.0f) || !isfinite(len)) {
+                snell_mesh_destroy(*out);
+                *out = NULL;
+                return snell__fail(ctx, SNELL_E_INVALID_ARG, "normal %u is zero or not finite", i);
+            }
+            n[0] /= len; n[1] /= len; n[2] /= len;
+        }
+    return st;
+}
+
+void snell_mesh_destroy(snell_mesh *m)
+{
+    snell_alloc al;
+    if (!m) return;
+    if (m->vao) glDeleteVertexArrays(1, &m->vao);
+    if (m->vbo) glDeleteBuffers(1, &m->vbo);
+    if (m->ibo) glDeleteBuffers(1, &m->ibo);
+    al = m->alloc;
+    snell__free(&al, m->positions);
+    snell__free(&al, m->normals);
+    snell__free(&al, m->indices);
+    snell__free(&al, m);
+}
+
+snell_status snell_mesh_normalize(snell_mesh *m, float radius)
+{
+    float c[3], s;
+    uint32_t i;
+    int k;
+    if (!m) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_mesh_normalize: mesh is NULL");
+    if (radius == 0.0f) radius = 1.0f;
+    if (!(radius > 0.0f) || !isfinite(radius))
+        return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_normalize: radius %g is not positive", radius);
+    if (!(m->bradius > 0.0f))
+        return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "mesh is degenerate (all vertices coincide)");
+    for (k = 0; k < 3; k++) c[k] = 0.5f * (m->bmin[k] + m->bmax[k]);
+    s = radius / m->bradius;
+    for (i = 0; i < m->vertex_count; i++)
+        for (k = 0; k < 3; k++) m->positions[3 * i + k] = (m->positions[3 * i + k] - c[k]) * s;
+    compute_bounds(m);
+    m->version = next_version();
+    return SNELL_OK;
+}
+
+uint32_t snell_mesh_vertex_count(const snell_mesh *m) { return m ? m->vertex_count : 0; }
+uint32_t snell_mesh_triangle_count(const snell_mesh *m) { return m ? m->triangle_count : 0; }
+const float *snell_mesh_positions(const snell_mesh *m) { return m ? m->positions : NULL; }
+const float *snell_mesh_normals(const snell_mesh *m) { return m ? m->normals : NULL; }
+const uint32_t *snell_mesh_indices(const snell_mesh *m) { return m ? m->indices : NULL; }
+
+void snell_mesh_bounds(const snell_mesh *m, float mn[3], float mx[3])
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        mn[k] = m ? m->bmin[k] : 0.0f;
+        mx[k] = m ? m->bmax[k] : 0.0f;
+    }
+}
+
+snell_status snell__mesh_upload(snell_mesh *m)
+{
+    size_t nv = m->vertex_count, i;
+    float *interleaved;
+    if (m->vao && m->uploaded_version == m->version) return SNELL_OK;
+    interleaved = (float *)snell__calloc(&m->alloc, 6 * nv, sizeof(float));
+    if (!interleaved) return snell__fail(m->ctx, SNELL_E_NOMEM, "out of memory uploading a mesh");
+    for (i = 0; i < nv; i++) {
+        memcpy(interleaved + 6 * i, m->positions + 3 * i, 3 * sizeof(float));
+        memcpy(interleaved + 6 * i + 3, m->normals + 3 * i, 3 * sizeof(float));
+    }
+    if (!m->vao) {
+        glGenVertexArrays(1, &m->vao);
+        glGenBuffers(1, &m->vbo);
+        glGenBuffers(1, &m->ibo);
+    }
+    glBindVertexArray(m->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 6 * nv), interleaved, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), (const void *)0);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), (const void *)(3 * sizeof(float)));
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof(uint32_t) * 3 * (size_t)m->triangle_count),
+                 m->indices, GL_STATIC_DRAW);
+    glBindVertexArray(0);
+    snell__free(&m->alloc, interleaved);
+    m->uploaded_version = m->version;
+    return glGetError() == GL_NO_ERROR ? SNELL_OK
+                                       : snell__fail(m->ctx, SNELL_E_GL, "GL error uploading mesh buffers");
+}

@@ -1,0 +1,50 @@
+/* mesh.h — the mesh object: CPU geometry (positions, unit smooth normals,
+ * triangle indices, bounds) and its lazily created GPU buffers. */
+#ifndef SNELL_MESH_H
+#define SNELL_MESH_H
+
+#include "core/core.h"
+
+struct snell_mesh {
+    snell_ctx *ctx;            /* may be NULL (CPU-only mesh) */
+    snell_alloc alloc;
+    float *positions;          /* 3 * vertex_count */
+    float *normals;            /* 3 * vertex_count, unit length */
+    uint32_t *indices;         /* 3 * triangle_count */
+    uint32_t vertex_count;
+    uint32_t triangle_count;
+    float bmin[3], bmax[3];
+    float bradius;             /* distance of the farthest vertex from the box centre */
+    unsigned version;          /* process-unique; renewed whenever the geometry changes */
+    /* Orientation, computed on demand by snell__mesh_winding (mesh_analyze.c). */
+    unsigned winding_version;  /* the version it was computed for; 0 = never */
+    int winding;               /* +1 closed and outward, -1 closed and inward, 0 open */
+    /* GPU side, created by snell__mesh_upload */
+    unsigned vao, vbo, ibo;
+    unsigned uploaded_version;
+};
+
+/* Limits that protect against absurd inputs (files claiming 2^40 vertices). */
+#define SNELL_MESH_MAX_VERTICES (1u << 26)
+#define SNELL_MESH_MAX_TRIANGLES (1u << 26)
+
+/* Takes ownership of positions/normals/indices (allocated with alloc). normals
+ * may be NULL: smooth area-weighted normals are computed. Validates indices and
+ * rejects non-finite positions. On failure the arrays are freed. */
+snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *positions,
+                               float *normals, uint32_t *indices, uint32_t vertex_count,
+                               uint32_t triangle_count, snell_mesh **out);
+
+/* Area-weighted smooth normals; degenerate vertices get (0,1,0). */
+void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t nv, uint32_t nt,
+                                 float *normals);
+
+/* +1/-1 if the mesh is a closed, consistently oriented surface wound with
+ * outward/inward normals, 0 otherwise. Computed once per geometry version
+ * (sorts the edges: allocates then, not on later calls). */
+int snell__mesh_winding(snell_mesh *mesh);
+
+/* Creates/updates VAO+VBO+IBO (attribute 0 = position, 1 = normal). Needs GL. */
+snell_status snell__mesh_upload(snell_mesh *mesh);
+
+#endif

@@ -1,0 +1,46 @@
+/* mesh_load.c — snell_mesh_load: picks the OBJ or glTF loader by file extension.
+ * Also the glTF stubs for builds without SNELL_WITH_GLTF (mesh_gltf.cpp is then absent). */
+#include "mesh/mesh.h"
+
+#include <string.h>
+
+/* ASCII case-insensitive "does path end in ext" (ext lower-case, with the dot);
+ * deliberately not strcasecmp, which is POSIX and locale-dependent. */
+static int has_ext(const char *path, const char *ext)
+{
+    size_t lp = strlen(path), le = strlen(ext), i;
+    if (lp < le) return 0;
+    for (i = 0; i < le; i++) {
+        char c = path[lp - le + i];
+        if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
+        if (c != ext[i]) return 0;
+    }
+    return 1;
+}
+
+snell_status snell_mesh_load(snell_ctx *ctx, const char *path, snell_mesh **out)
+{
+    if (out) *out = NULL;
+    if (!path || !out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load: path and out are required");
+    if (has_ext(path, ".obj")) return snell_mesh_load_obj(ctx, path, out);
+    if (has_ext(path, ".gltf") || has_ext(path, ".glb")) return snell_mesh_load_gltf(ctx, path, out);
+    return snell__fail(ctx, SNELL_E_UNSUPPORTED,
+                       "'%s': unknown mesh file extension (supported: .obj, .gltf, .glb)", path);
+}
+
+#ifndef SNELL_WITH_GLTF
+snell_status snell_mesh_load_gltf(snell_ctx *ctx, const char *path, snell_mesh **out)
+{
+    if (out) *out = NULL;
+    return snell__fail(ctx, SNELL_E_UNSUPPORTED, "cannot load '%s': snell was built without glTF support "
+                       "(SNELL_WITH_GLTF=OFF)", path ? path : "(null)");
+}
+
+snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_mesh **out)
+{
+    (void)data;
+    (void)size;
+    if (out) *out = NULL;
+    return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell was built without glTF support (SNELL_WITH_GLTF=OFF)");
+}
+#endif

@@ -1,0 +1,487 @@
+/* ref_bvh.c — double-precision triangle BVH: binned SAH build (32 bins per
+ * axis over centroid bounds), depth-first flattened nodes with adjacent
+ * children, near-first stack traversal, watertight ray-triangle test
+ * (Woop/Benthin/Wald 2013). See ref_bvh.h. */
+#include "ref/ref_bvh.h"
+#include "mesh/mesh.h"
+
+#include <math.h>
+#include <string.h>
+
+#define BINS 32
+#define MAX_LEAF 4        /* a leaf never holds more unless the centroids coincide */
+#define MAX_DEPTH 96      /* beyond this, split by halves (keeps recursion bounded) */
+#define STACK_SIZE 128    /* >= MAX_DEPTH + log2(SNELL_MESH_MAX_TRIANGLES) + 1 */
+
+/* ------------------------------------------------------------ ray setup */
+
+typedef struct ray_pre {
+    double org[3], dir[3], inv[3];
+    int kx, ky, kz;
+    double sx, sy, sz;
+} ray_pre;
+
+/* Per-ray constants of the watertight test: the dominant axis kz, the two
+ * others (swapped to keep the winding when dir[kz] < 0) and the shear that
+ * maps the ray onto +Z (paper, section 3). */
+static void ray_setup(ray_pre *r, const double org[3], const double dir[3])
+{
+    double ax = fabs(dir[0]), ay = fabs(dir[1]), az = fabs(dir[2]);
+    int k;
+    for (k = 0; k < 3; k++) {
+        r->org[k] = org[k];
+        r->dir[k] = dir[k];
+        r->inv[k] = 1.0 / dir[k]; /* +-inf for a zero component: handled by the slab test */
+    }
+    r->kz = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
+    r->kx = (r->kz + 1) % 3;
+    r->ky = (r->kx + 1) % 3;
+    if (dir[r->kz] < 0.0) {
+        int tmp = r->kx;
+        r->kx = r->ky;
+        r->ky = tmp;
+    }
+    r->sx = dir[r->kx] / dir[r->kz];
+    r->sy = dir[r->ky] / dir[r->kz];
+    r->sz = 1.0 / dir[r->kz];
+}
+
+static int tri_hit(const ray_pre *r, const double *v0, const double *v1, const double *v2, double tmin,
+                   double tmax, double *t_out, double b_out[3])
+{
+    const int kx = r->kx, ky = r->ky, kz = r->kz;
+    double A[3], B[3], C[3], ax, ay, bx, by, cx, cy, u, v, w, det, az, bz, cz, T, t, rcp;
+    int k;
+    for (k = 0; k < 3; k++) {
+        A[k] = v0[k] - r->org[k];
+        B[k] = v1[k] - r->org[k];
+        C[k] = v2[k] - r->org[k];
+    }
+    ax = A[kx] - r->sx * A[kz];
+    ay = A[ky] - r->sy * A[kz];
+    bx = B[kx] - r->sx * B[kz];
+    by = B[ky] - r->sy * B[kz];
+    cx = C[kx] - r->sx * C[kz];
+    cy = C[ky] - r->sy * C[kz];
+    /* Scaled barycentrics (2D edge functions in the sheared space); the
+     * paper's single->double fallback for exact zeros has no wider type to go
+     * to here, and a zero edge function already counts as "on the edge". */
+    u = cx * by - cy * bx;
+    v = ax * cy - ay * cx;
+    w = bx * ay - by * ax;
+    if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return 0;
+    det = u + v + w;
+    if (det == 0.0) return 0;
+    az = r->sz * A[kz];
+    bz = r->sz * B[kz];
+    cz = r->sz * C[kz];
+    T = u * az + v * bz + w * cz;
+    rcp = 1.0 / det;
+    t = T * rcp;
+    if (!(t > tmin && t < tmax)) return 0;
+    *t_out = t;
+    b_out[0] = u * rcp;
+    b_out[1] = v * rcp;
+    b_out[2] = w * rcp;
+    return 1;
+}
+
+int snell__bvh_triangle_hit(const double org[3], const double dir[3], const double v0[3], const double v1[3],
+                            const double v2[3], double tmin, double tmax, double *t, double b[3])
+{
+    ray_pre r;
+    ray_setup(&r, org, dir);
+    return tri_hit(&r, v0, v1, v2, tmin, tmax, t, b);
+}
+
+/* Slab test; returns the entry parameter or +inf when missed. A NaN from
+ * 0 * inf (origin on a slab plane, zero direction component) fails every
+ * comparison and so leaves the interval unchanged: conservative. */
+static double box_enter(const ray_pre *r, const snell__bvh_node *n, double tmin, double tmax)
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        double t0 = (n->bmin[k] - r->org[k]) * r->inv[k];
+        double t1 = (n->bmax[k] - r->org[k]) * r->inv[k];
+        if (t0 > t1) {
+            double tmp = t0;
+            t0 = t1;
+            t1 = tmp;
+        }
+        if (t0 > tmin) tmin = t0;
+        if (t1 < tmax) tmax = t1;
+    }
+    return tmin <= tmax ? tmin : HUGE_VAL;
+}
+
+/* any_only: stop at the first hit. Returns the leaf-order entry of the hit or
+ * SNELL__BVH_NONE. */
+static uint32_t traverse(const snell__bvh *bvh, const ray_pre *r, double tmin, double *tmax, uint32_t skip,
+                         int any_only, double b[3])
+{
+    uint32_t stack[STACK_SIZE], best = SNELL__BVH_NONE;
+    int sp = 0;
+    if (box_enter(r, &bvh->nodes[0], tmin, *tmax) == HUGE_VAL) return SNELL__BVH_NONE;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const snell__bvh_node *n = &bvh->nodes[stack[--sp]];
+        if (n->count) {
+            uint32_t i;
+            for (i = n->index; i < n->index + n->count; i++) {
+                const double *v = bvh->tri_verts + 9 * (size_t)i;
+                double t, bb[3];
+                if (bvh->tri_ids[i] == skip) continue;
+                if (tri_hit(r, v, v + 3, v + 6, tmin, *tmax, &t, bb)) {
+                    *tmax = t;
+                    best = i;
+                    b[0] = bb[0];
+                    b[1] = bb[1];
+                    b[2] = bb[2];
+                    if (any_only) return best;
+                }
+            }
+        } else {
+            const snell__bvh_node *c0 = &bvh->nodes[n->index], *c1 = c0 + 1;
+            double t0 = box_enter(r, c0, tmin, *tmax), t1 = box_enter(r, c1, tmin, *tmax);
+            /* Push the farther child first so the nearer is visited first. */
+            if (t0 <= t1) {
+                if (t1 != HUGE_VAL) stack[sp++] = n->index + 1;
+                if (t0 != HUGE_VAL) stack[sp++] = n->index;
+            } else {
+                if (t0 != HUGE_VAL) stack[sp++] = n->index;
+                if (t1 != HUGE_VAL) stack[sp++] = n->index + 1;
+            }
+        }
+    }
+    return best;
+}
+
+int snell__bvh_closest(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
+                       uint32_t skip_tri, snell__bvh_hit *hit)
+{
+    ray_pre r;
+    double b[3] = {0, 0, 0}, t = tmax;
+    uint32_t e;
+    const double *v;
+    int k;
+    if (!bvh || !bvh->node_count) return 0;
+    ray_setup(&r, org, dir);
+    e = traverse(bvh, &r, tmin, &t, skip_tri, 0, b);
+    if (e == SNELL__BVH_NONE) return 0;
+    v = bvh->tri_verts + 9 * (size_t)e;
+    hit->t = t;
+    hit->tri = bvh->tri_ids[e];
+    for (k = 0; k < 3; k++) {
+        hit->b[k] = b[k];
+        hit->p[k] = b[0] * v[k] + b[1] * v[3 + k] + b[2] * v[6 + k];
+    }
+    return 1;
+}
+
+int snell__bvh_any(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
+                   uint32_t skip_tri)
+{
+    ray_pre r;
+    double b[3], t = tmax;
+    if (!bvh || !bvh->node_count) return 0;
+    ray_setup(&r, org, dir);
+    return traverse(bvh, &r, tmin, &t, skip_tri, 1, b) != SNELL__BVH_NONE;
+}
+
+/* --------------------------------------------------------------- build */
+
+typedef struct build_ctx {
+    snell__bvh *bvh;
+    const double *tv;     /* 9 per source triangle, world space */
+    double *cent;         /* 3 per source triangle */
+    double *lo, *hi;      /* per source triangle boxes */
+    uint32_t *order;      /* source triangle indices, permuted into leaf order */
+    uint32_t next_node;
+} build_ctx;
+
+typedef struct box3 {
+    double lo[3], hi[3];
+} box3;
+
+static void box_empty(box3 *b)
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        b->lo[k] = HUGE_VAL;
+        b->hi[k] = -HUGE_VAL;
+    }
+}
+
+static void box_grow(box3 *b, const double *lo, const double *hi)
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        if (lo[k] < b->lo[k]) b->lo[k] = lo[k];
+        if (hi[k] > b->hi[k]) b->hi[k] = hi[k];
+    }
+}
+
+static double box_area(const box3 *b)
+{
+    double d0 = b->hi[0] - b->lo[0], d1 = b->hi[1] - b->lo[1], d2 = b->hi[2] - b->lo[2];
+    if (d0 < 0.0) return 0.0; /* empty */
+    return d0 * d1 + d1 * d2 + d2 * d0;
+}
+
+static int bin_of(double c, double lo, double scale)
+{
+    int b = (int)((c - lo) * scale);
+    return b < 0 ? 0 : (b >= BINS ? BINS - 1 : b);
+}
+
+static void build_node(build_ctx *bc, uint32_t node, uint32_t begin, uint32_t end, int depth)
+{
+    snell__bvh_node *n = &bc->bvh->nodes[node];
+    box3 nb, cb;
+    uint32_t i, count = end - begin, mid = begin;
+    int k, best_axis = -1, best_split = 0;
+    double best_cost = HUGE_VAL, leaf_cost;
+    box_empty(&nb);
+    box_empty(&cb);
+    for (i = begin; i < end; i++) {
+        uint32_t t = bc->order[i];
+        box_grow(&nb, bc->lo + 3 * (size_t)t, bc->hi + 3 * (size_t)t);
+        box_grow(&cb, bc->cent + 3 * (size_t)t, bc->cent + 3 * (size_t)t);
+    }
+    for (k = 0; k < 3; k++) {
+        n->bmin[k] = nb.lo[k];
+        n->bmax[k] = nb.hi[k];
+    }
+    if (depth > bc->bvh->depth) bc->bvh->depth = depth;
+    if (count <= 1) goto leaf;
+
+    /* Binned SAH (Wald 2007): cost of a split = A_L*N_L + A_R*N_R relative to
+     * the node, traversal cost 1, intersection cost 1 per triangle. */
+    if (depth < MAX_DEPTH) {
+        for (k = 0; k < 3; k++) {
+            double ext = cb.hi[k] - cb.lo[k], scale, right_area[BINS];
+            box3 bins[BINS], acc;
+            uint32_t cnt[BINS], right_cnt[BINS], left_cnt = 0;
+            int b;
+            if (!(ext > 0.0)) continue;
+            scale = (double)BINS / ext;
+            for (b = 0; b < BINS; b++) {
+                box_empty(&bins[b]);
+                cnt[b] = 0;
+            }
+            for (i = begin; i < end; i++) {
+                uint32_t t = bc->order[i];
+                b = bin_of(bc->cent[3 * (size_t)t + k], cb.lo[k], scale);
+                cnt[b]++;
+                box_grow(&bins[b], bc->lo + 3 * (size_t)t, bc->hi + 3 * (size_t)t);
+            }
+            box_empty(&acc);
+            right_cnt[BINS - 1] = 0;
+            for (b = BINS - 1; b > 0; b--) {
+                box_grow(&acc, bins[b].lo, bins[b].hi);
+                right_cnt[b - 1] = (b < BINS - 1 ? right_cnt[b] : 0) + cnt[b];
+                right_area[b - 1] = box_area(&acc);
+            }
+            box_empty(&acc);
+            for (b = 0; b < BINS - 1; b++) {
+                double cost;
+                box_grow(&acc, bins[b].lo, bins[b].hi);
+                left_cnt += cnt[b];
+                if (!left_cnt || !right_cnt[b]) continue;
+                cost = box_area(&acc) * left_cnt + right_area[b] * right_cnt[b];
+                if (cost < best_cost) {
+                    best_cost = cost;
+                    best_axis = k;
+                    best_split = b;
+                }
+            }
+        }
+    }
+    leaf_cost = (double)count;
+    if (best_axis >= 0) {
+        double area = box_area(&nb);
+        double split_cost = 1.0 + (area > 0.0 ? best_cost / area : (double)count);
+        if (count <= MAX_LEAF && leaf_cost <= split_cost) goto leaf;
+        {
+            double scale = (double)BINS / (cb.hi[best_axis] - cb.lo[best_axis]);
+            uint32_t lo_i = begin, hi_i = end;
+            /* Partition by the same bin function used for the costs. */
+            while (lo_i < hi_i) {
+                uint32_t t = bc->order[lo_i];
+                if (bin_of(bc->cent[3 * (size_t)t + best_axis], cb.lo[best_axis], scale) <= best_split) {
+                    lo_i++;
+                } else {
+                    bc->order[lo_i] = bc->order[--hi_i];
+                    bc->order[hi_i] = t;
+                }
+            }
+            mid = lo_i;
+        }
+    } else {
+        /* Coincident centroids (or depth limit): no useful plane. Small sets
+         * become a leaf; larger ones are split by halves of the list. */
+        if (count <= MAX_LEAF) goto leaf;
+        mid = begin + count / 2;
+    }
+    {
+        uint32_t c = bc->next_node;
+        bc->next_node += 2;
+        n->index = c;
+        n->count = 0;
+        build_node(bc, c, begin, mid, depth + 1);
+        build_node(bc, c + 1, mid, end, depth + 1);
+    }
+    return;
+leaf:
+    n->index = begin;
+    n->count = count;
+}
+
+static int invert3(const double m[9], double inv[9])
+{
+    /* m column-major 3x3; inv = m^-1. Returns 0 if singular. */
+    double a = m[0], b = m[3], c = m[6], d = m[1], e = m[4], f = m[7], g = m[2], h = m[5], i = m[8];
+    double A = e * i - f * h, B = -(d * i - f * g), C = d * h - e * g;
+    double det = a * A + b * B + c * C, r;
+    if (!(fabs(det) > 0.0) || !isfinite(det)) return 0;
+    r = 1.0 / det;
+    inv[0] = A * r;
+    inv[3] = -(b * i - c * h) * r;
+    inv[6] = (b * f - c * e) * r;
+    inv[1] = B * r;
+    inv[4] = (a * i - c * g) * r;
+    inv[7] = -(a * f - c * d) * r;
+    inv[2] = C * r;
+    inv[5] = -(a * h - b * g) * r;
+    inv[8] = (a * e - b * d) * r;
+    return 1;
+}
+
+snell_status snell__bvh_build(snell_ctx *ctx, const float *positions, uint32_t nv, const uint32_t *indices,
+                              uint32_t nt, const float *model, snell__bvh **out)
+{
+    const snell_alloc *al = snell__ctx_alloc(ctx);
+    snell__bvh *bvh = NULL;
+    build_ctx bc;
+    double *tv = NULL, m[16], m3[9], pad, ext = 0.0;
+    uint32_t i, j;
+    int k;
+    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: out is NULL");
+    *out = NULL;
+    if (!positions || !indices || nt == 0 || nv < 3)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: mesh has no triangles");
+    if (nt > SNELL_MESH_MAX_TRIANGLES || nv > SNELL_MESH_MAX_VERTICES)
+        return snell__fail(ctx, SNELL_E_LIMIT, "bvh build: %u triangles / %u vertices exceed the mesh limits", nt,
+                           nv);
+    for (k = 0; k < 16; k++) m[k] = model ? (double)model[k] : (k % 5 == 0 ? 1.0 : 0.0);
+    for (k = 0; k < 16; k++)
+        if (!isfinite(m[k])) return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: model matrix is not finite");
+    for (k = 0; k < 3; k++) {
+        m3[3 * k] = m[4 * k];
+        m3[3 * k + 1] = m[4 * k + 1];
+        m3[3 * k + 2] = m[4 * k + 2];
+    }
+    {
+        double inv[9];
+        if (!invert3(m3, inv)) return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: model matrix is singular");
+    }
+    for (i = 0; i < 3 * nt; i++)
+        if (indices[i] >= nv)
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: triangle %u references vertex %u of %u", i / 3,
+                               indices[i], nv);
+
+    memset(&bc, 0, sizeof bc);
+    bvh = (snell__bvh *)snell__calloc(al, 1, sizeof *bvh);
+    if (!bvh) return snell__fail(ctx, SNELL_E_NOMEM, "bvh build: out of memory");
+    bvh->alloc = *al;
+    bvh->triangle_count = nt;
+    tv = (double *)snell__calloc(al, 9 * (size_t)nt, sizeof(double));
+    bc.cent = (double *)snell__calloc(al, 3 * (size_t)nt, sizeof(double));
+    bc.lo = (double *)snell__calloc(al, 3 * (size_t)nt, sizeof(double));
+    bc.hi = (double *)snell__calloc(al, 3 * (size_t)nt, sizeof(double));
+    bc.order = (uint32_t *)snell__calloc(al, nt, sizeof(uint32_t));
+    bvh->nodes = (snell__bvh_node *)snell__calloc(al, 2 * (size_t)nt, sizeof(snell__bvh_node));
+    bvh->tri_verts = (double *)snell__calloc(al, 9 * (size_t)nt, sizeof(double));
+    bvh->tri_ids = (uint32_t *)snell__calloc(al, nt, sizeof(uint32_t));
+    if (!tv || !bc.cent || !bc.lo || !bc.hi || !bc.order || !bvh->nodes || !bvh->tri_verts || !bvh->tri_ids) {
+        snell__free(al, tv);
+        snell__free(al, bc.cent);
+        snell__free(al, bc.lo);
+        snell__free(al, bc.hi);
+        snell__free(al, bc.order);
+        snell__bvh_destroy(bvh);
+        return snell__fail(ctx, SNELL_E_NOMEM, "bvh build: out of memory for %u triangles", nt);
+    }
+    for (k = 0; k < 3; k++) {
+        bvh->bmin[k] = HUGE_VAL;
+        bvh->bmax[k] = -HUGE_VAL;
+    }
+    for (i = 0; i < nt; i++) {
+        for (j = 0; j < 3; j++) {
+            const float *p = positions + 3 * (size_t)indices[3 * i + j];
+            double *w = tv + 9 * (size_t)i + 3 * j;
+            for (k = 0; k < 3; k++) {
+                w[k] = m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k];
+                if (j == 0 || w[k] < bc.lo[3 * i + k]) bc.lo[3 * i + k] = w[k];
+                if (j == 0 || w[k] > bc.hi[3 * i + k]) bc.hi[3 * i + k] = w[k];
+            }
+        }
+        for (k = 0; k < 3; k++) {
+            bc.cent[3 * i + k] = 0.5 * (bc.lo[3 * i + k] + bc.hi[3 * i + k]);
+            if (bc.lo[3 * i + k] < bvh->bmin[k]) bvh->bmin[k] = bc.lo[3 * i + k];
+            if (bc.hi[3 * i + k] > bvh->bmax[k]) bvh->bmax[k] = bc.hi[3 * i + k];
+        }
+        bc.order[i] = i;
+    }
+    bc.bvh = bvh;
+    bc.tv = tv;
+    bc.next_node = 1;
+    build_node(&bc, 0, 0, nt, 1);
+    bvh->node_count = bc.next_node;
+
+    /* Pad every box by a margin far above the rounding of the slab test
+     * (a few ulps of the coordinates) so traversal never culls a box that the
+     * watertight triangle test would hit. */
+    for (k = 0; k < 3; k++) {
+        double e = fabs(bvh->bmin[k]) > fabs(bvh->bmax[k]) ? fabs(bvh->bmin[k]) : fabs(bvh->bmax[k]);
+        if (e > ext) ext = e;
+    }
+    pad = 1e-10 * (ext > 0.0 ? ext : 1.0);
+    for (i = 0; i < bvh->node_count; i++)
+        for (k = 0; k < 3; k++) {
+            bvh->nodes[i].bmin[k] -= pad;
+            bvh->nodes[i].bmax[k] += pad;
+        }
+    for (i = 0; i < nt; i++) {
+        memcpy(bvh->tri_verts + 9 * (size_t)i, tv + 9 * (size_t)bc.order[i], 9 * sizeof(double));
+        bvh->tri_ids[i] = bc.order[i];
+    }
+    snell__free(al, tv);
+    snell__free(al, bc.cent);
+    snell__free(al, bc.lo);
+    snell__free(al, bc.hi);
+    snell__free(al, bc.order);
+    *out = bvh;
+    return SNELL_OK;
+}
+
+snell_status snell__bvh_build_mesh(snell_ctx *ctx, const snell_mesh *mesh, const float *model, snell__bvh **out)
+{
+    if (!mesh) {
+        if (out) *out = NULL;
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: mesh is NULL");
+    }
+    return snell__bvh_build(ctx, mesh->positions, mesh->vertex_count, mesh->indices, mesh->triangle_count, model,
+                            out);
+}
+
+void snell__bvh_destroy(snell__bvh *bvh)
+{
+    snell_alloc al;
+    if (!bvh) return;
+    al = bvh->alloc;
+    snell__free(&al, bvh->nodes);
+    snell__free(&al, bvh->tri_verts);
+    snell__free(&al, bvh->tri_ids);
+    snell__free(&al, bvh);
+}

@@ -1,0 +1,69 @@
+/* ref_bvh.h — 3D triangle BVH in double precision (world space): binned SAH
+ * build, flattened node array, watertight ray-triangle test, closest/any hit.
+ *
+ * Used by the reference tracer (ref_trace.c) and by any module that needs exact
+ * ray casts against a mesh (e.g. star-shapedness checks). The BVH owns a world-
+ * space copy of the triangles (the model matrix is applied once at build), so
+ * queries take world-space rays and the mesh may be destroyed afterwards.
+ *
+ * Ray-triangle test: Woop, Benthin, Wald, "Watertight Ray/Triangle
+ * Intersection", JCGT 2(1), 2013 — a ray through a shared edge or vertex hits
+ * at least one of the adjacent triangles (no cracks). Traversal uses boxes
+ * padded by a tiny relative margin so that the box test is conservative. */
+#ifndef SNELL_REF_BVH_H
+#define SNELL_REF_BVH_H
+
+#include "core/core.h"
+
+#define SNELL__BVH_NONE 0xffffffffu /* "no triangle" for skip_tri / hit.tri */
+
+typedef struct snell__bvh_node {
+    double bmin[3], bmax[3]; /* world space, padded */
+    uint32_t index;          /* interior: first child (second = index + 1); leaf: first entry */
+    uint32_t count;          /* 0 = interior, else number of triangles in the leaf */
+} snell__bvh_node;
+
+typedef struct snell__bvh {
+    snell_alloc alloc;
+    snell__bvh_node *nodes;  /* nodes[0] is the root */
+    uint32_t node_count;
+    uint32_t triangle_count;
+    double *tri_verts;       /* 9 doubles per entry (v0, v1, v2 in world space), leaf order */
+    uint32_t *tri_ids;       /* leaf order -> triangle index in the source mesh */
+    double bmin[3], bmax[3]; /* world-space bounds of all triangles (unpadded) */
+    int depth;               /* depth of the tree (root = 1) */
+} snell__bvh;
+
+typedef struct snell__bvh_hit {
+    double t;       /* ray parameter, in units of |dir| */
+    uint32_t tri;   /* triangle index in the source mesh */
+    double b[3];    /* barycentric weights of the triangle's vertices 0, 1, 2 (sum 1) */
+    double p[3];    /* hit point b0*v0 + b1*v1 + b2*v2 (lies on the triangle), world space */
+} snell__bvh_hit;
+
+/* Builds from raw arrays: positions 3*nv floats (object space), indices 3*nt.
+ * model: float[16] column-major object-to-world, NULL = identity. Indices are
+ * validated. Fails with a message (SNELL_E_INVALID_ARG, SNELL_E_LIMIT,
+ * SNELL_E_NOMEM); ctx may be NULL (libc allocator, thread-local message). */
+snell_status snell__bvh_build(snell_ctx *ctx, const float *positions, uint32_t nv, const uint32_t *indices,
+                              uint32_t nt, const float *model, snell__bvh **out);
+/* Same, from a snell_mesh. */
+snell_status snell__bvh_build_mesh(snell_ctx *ctx, const snell_mesh *mesh, const float *model, snell__bvh **out);
+void snell__bvh_destroy(snell__bvh *bvh);
+
+/* Closest hit with t in (tmin, tmax); dir need not be unit (must be nonzero).
+ * skip_tri: a mesh triangle index to ignore (the one a secondary ray starts on),
+ * or SNELL__BVH_NONE. Returns 1 and fills *hit, or 0. Thread-safe (read only). */
+int snell__bvh_closest(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
+                       uint32_t skip_tri, snell__bvh_hit *hit);
+/* 1 if any triangle is hit with t in (tmin, tmax). */
+int snell__bvh_any(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
+                   uint32_t skip_tri);
+
+/* The watertight test alone, for one triangle (v0, v1, v2 world space): 1 and
+ * t, b[3] (weights of v0, v1, v2) if hit with t in (tmin, tmax). Exposed so
+ * tests can brute-force the same predicate the BVH uses. */
+int snell__bvh_triangle_hit(const double org[3], const double dir[3], const double v0[3], const double v1[3],
+                            const double v2[3], double tmin, double tmax, double *t, double b[3]);
+
+#endif
