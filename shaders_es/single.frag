@@ -3,6 +3,9 @@
 // with the reflection by Schlick's Fresnel term. Absorption uses the distance
 // from the entry point to where the refracted ray leaves the mesh's bounding
 // sphere (exact for a sphere, an estimate otherwise).
+// SNELL_THIN: a thin wall (material thickness > 0) is a slab: light leaves in
+// the direction it came, reflected and attenuated by all of its inner bounces
+// (snell_thin_slab, common/optics.glsl).
 precision mediump float;
 
 #include "common/fp16.glsl"
@@ -20,6 +23,7 @@ uniform float u_ior;             // glass IOR; outside is 1
 uniform vec3 u_sigma;            // Beer-Lambert coefficient per world unit
 uniform vec3 u_tint;
 uniform highp vec4 u_bsphere;    // bounding sphere: world centre, radius
+uniform float u_thickness;       // SNELL_THIN: wall thickness, world units
 
 
 void main()
@@ -32,6 +36,11 @@ void main()
     // Interpolated normals can face away from the eye at the silhouette.
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_h(snell_reflect(snell_h(v), n));
+#ifdef SNELL_THIN
+    vec3 rs, ts;
+    snell_thin_slab(-dot(v, n), u_ior, u_sigma, u_thickness, rs, ts);
+    snell_write(texture(u_env, v).rgb * u_tint * ts + texture(u_env, r).rgb * rs, v);
+#else
     vec3 t;
     snell_refract(snell_h(v), n, snell_h(1.0 / u_ior), t);
     t = snell_h(t);
@@ -45,4 +54,5 @@ void main()
     vec3 transmitted = snell_h(texture(u_env, t).rgb * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
     vec3 reflected = snell_h(texture(u_env, r).rgb);
     snell_write(mix(transmitted, reflected, fresnel), t);
+#endif
 }

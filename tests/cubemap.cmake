@@ -16,13 +16,13 @@ if(TARGET snell-render)
            --interfaces 3 --face-size 64 --encoding plain --size 64x64 --frames 3 --stats
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_cubemap.png)
   set_tests_properties(cli_cubemap PROPERTIES LABELS "cli"
-    PASS_REGULAR_EXPRESSION "stats: method cubemap, passes [0-9]+, ndcube_baked 0.*hidden_fraction 0.0000")
+    PASS_REGULAR_EXPRESSION "stats: glass 0 \\(sphere, ior 1.5\\): method cubemap, warning 0, passes [0-9]+, prepared 0.*hidden_fraction 0.0000")
   add_test(NAME cli_auto_goblet COMMAND ${cli} --mesh shape:goblet --method auto --size 32x32 --stats
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto.png)
-  set_tests_properties(cli_auto_goblet PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: method single")
+  set_tests_properties(cli_auto_goblet PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\(goblet[^)]*\\): method single")
   add_test(NAME cli_auto_sphere COMMAND ${cli} --mesh shape:sphere --method auto --size 32x32 --stats
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto.png)
-  set_tests_properties(cli_auto_sphere PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: method cubemap")
+  set_tests_properties(cli_auto_sphere PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\(sphere[^)]*\\): method cubemap")
   foreach(bad "--iterations;0" "--iterations;33" "--iterations;x" "--interfaces;9" "--interfaces;0"
               "--face-size;8" "--face-size;4096" "--encoding;rgb" "--linear-steps;-1" "--method;cube")
     string(MAKE_C_IDENTIFIER "cli_bad_cubemap_${bad}" name)

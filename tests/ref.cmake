@@ -1,5 +1,8 @@
-# Reference tracer (snell_ref_*, src/ref/*.c): BVH, analytic checks (sphere,
-# slab, TIR prism), image-level properties and renders of a sphere and the bunny.
+# Reference tracer (snell_ref_*, src/ref/*.c): BVH (one or several parts),
+# analytic checks (sphere, slab, TIR prism; scenes of several glass objects,
+# thin walls, opaque objects), image-level properties of single objects and
+# scenes (determinism, energy, object ids, separation, isolate_glass) and
+# renders of a sphere, the bunny and a scene.
 snell_add_test(test_ref_bvh SOURCES test_ref_bvh.c LABELS "unit")
 target_link_libraries(test_ref_bvh PRIVATE m)
 snell_add_test(test_ref_analytic SOURCES test_ref_analytic.c LABELS "unit")

@@ -65,6 +65,9 @@ static snell_status cycle(counter *c, int render)
     snell_env_desc ed;
     snell_renderer_desc rd;
     snell_frame_desc fd;
+    snell_glass g, scene[3];
+    snell_opaque ob;
+    float moved[16] = {0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.8f, 0, 0, 1};
     static uint8_t px[32 * 32 * 4];
     static const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
     snell_status st;
@@ -88,17 +91,139 @@ static snell_status cycle(counter *c, int render)
     if (st == SNELL_OK) st = snell_env_create(ctx, &ed, &env);
     if (st == SNELL_OK && render) st = snell_renderer_create(ctx, &rd, &r);
     if (st == SNELL_OK && render) {
-        memset(&fd, 0, sizeof fd);
-        fd.mesh = mesh;
-        fd.env = env;
+        test_frame_one(&fd, &g, mesh, env);
         st = snell_render(r, &fd, NULL);
         if (st == SNELL_OK) st = snell_renderer_read_rgba(r, px);
+    }
+    if (st == SNELL_OK && render) {
+        /* A scene: the prepared-resource cache, a second kernel and the
+         * dynamic environments (all allocated on first use) fail cleanly too. */
+        memset(scene, 0, sizeof scene);
+        memset(&ob, 0, sizeof ob);
+        scene[0].mesh = scene[1].mesh = scene[2].mesh = mesh;
+        scene[1].model = moved;
+        scene[1].material.method = SNELL_METHOD_CUBEMAP;
+        scene[1].material.cubemap.face_size = 16;
+        scene[2].material.thickness = 0.05f;
+        ob.mesh = mesh;
+        ob.model = moved;
+        fd.glass = scene;
+        fd.glass_count = 3;
+        fd.opaque = &ob;
+        fd.opaque_count = 1;
+        st = snell_render(r, &fd, NULL);
     }
     snell_renderer_destroy(r);
     snell_env_destroy(env);
     snell_mesh_destroy(mesh);
     snell_ctx_destroy(ctx);
     return st;
+}
+
+/* A scene of 8 glass objects (3 meshes; AUTO, explicit SINGLE and CUBEMAP,
+ * a thin wall, absorption, two cubemap settings) and 4 opaque objects: after
+ * the first frame (analyses, bakes, 8 dynamic environments) frames allocate
+ * nothing, whether nothing moved (everything reused) or an opaque object and
+ * a glass object move every frame (environments re-rendered in place). */
+static void scene_frames(void)
+{
+    enum { NG = 8, NO = 4 };
+    counter c;
+    snell_ctx_desc cd;
+    snell_ctx *ctx = NULL;
+    snell_mesh *mesh[3] = {NULL, NULL, NULL};
+    snell_env *env = NULL;
+    snell_renderer *r = NULL;
+    snell_frame_desc fd;
+    snell_frame_stats fs;
+    snell_glass g[NG];
+    snell_opaque ob[NO];
+    float gm[NG][16], om[NO][16];
+    snell_env_desc ed;
+    snell_renderer_desc rd;
+    const float sigma[3] = {0.4f, 0.2f, 0.1f};
+    long before;
+    int i, f, ok = 1;
+    memset(&c, 0, sizeof c);
+    c.fail_at = -1;
+    cd = counting_desc(&c);
+    memset(&ed, 0, sizeof ed);
+    ed.face_size = 32;
+    memset(&rd, 0, sizeof rd);
+    rd.width = rd.height = 48;
+    CHECK_OK(snell_ctx_create(&cd, &ctx));
+    if (!ctx) return;
+    CHECK_OK(snell_mesh_create_shape(ctx, &(snell_shape_desc){SNELL_SHAPE_SPHERE, 16, 8}, &mesh[0]));
+    CHECK_OK(snell_mesh_create_shape(ctx, &(snell_shape_desc){SNELL_SHAPE_TORUS, 16, 8}, &mesh[1]));
+    CHECK_OK(snell_mesh_create_shape(ctx, &(snell_shape_desc){SNELL_SHAPE_CUBE, 0, 0}, &mesh[2]));
+    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    if (!mesh[0] || !mesh[1] || !mesh[2] || !env || !r) goto out;
+    memset(g, 0, sizeof g);
+    memset(ob, 0, sizeof ob);
+    memset(gm, 0, sizeof gm);
+    memset(om, 0, sizeof om);
+    for (i = 0; i < NG; i++) {
+        /* a 4 x 2 grid of objects of radius 0.3 in front of the camera */
+        gm[i][0] = gm[i][5] = gm[i][10] = 0.3f;
+        gm[i][12] = -1.2f + 0.8f * (float)(i % 4);
+        gm[i][13] = i < 4 ? 0.4f : -0.4f;
+        gm[i][14] = -0.1f * (float)i;
+        gm[i][15] = 1.0f;
+        g[i].mesh = mesh[i % 3];
+        g[i].model = gm[i];
+    }
+    g[1].material.method = SNELL_METHOD_SINGLE;
+    g[2].material.method = SNELL_METHOD_CUBEMAP;
+    g[3].material.thickness = 0.02f;
+    snell_glass_set_absorption(&g[4].material, sigma);
+    g[5].material.method = SNELL_METHOD_CUBEMAP;
+    g[5].material.cubemap.face_size = 64;
+    g[5].material.cubemap.encoding = SNELL_NDCUBE_OCT;
+    g[6].material.ior = 1.33f;
+    g[7].material.method = SNELL_METHOD_CUBEMAP;
+    g[7].material.cubemap.max_interfaces = 1; /* no search */
+    for (i = 0; i < NO; i++) {
+        om[i][0] = om[i][5] = om[i][10] = 0.25f;
+        om[i][12] = -1.5f + 1.0f * (float)i;
+        om[i][13] = -1.2f;
+        om[i][14] = -1.5f;
+        om[i][15] = 1.0f;
+        ob[i].mesh = mesh[2 - i % 2];
+        ob[i].model = om[i];
+        ob[i].color[i % 3] = 0.9f;
+    }
+    memset(&fd, 0, sizeof fd);
+    fd.env = env;
+    fd.glass = g;
+    fd.glass_count = NG;
+    fd.opaque = ob;
+    fd.opaque_count = NO;
+    fd.camera.distance = 4.0f;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    for (i = 0; i < NG; i++) ok &= fs.glass[i].draw_order >= 0 && fs.glass[i].env_updated == 1;
+    CHECK(ok && fs.opaque_drawn == NO, "every object drawn, every dynamic environment rendered");
+    before = c.total;
+    for (f = 0; f < 3; f++) CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK(c.total == before, "%d glass + %d opaque: frames after the first allocated %ld times", NG, NO,
+          c.total - before);
+    for (i = 0, ok = 1; i < NG; i++) ok &= (fs.glass[i].skipped & SNELL_SKIP_ENV_UPDATE) && !fs.glass[i].prepared;
+    CHECK(ok, "nothing moved: environments and prepared resources reused");
+    before = c.total;
+    for (f = 0; f < 4; f++) {
+        om[f % NO][13] += 0.05f; /* an opaque object moves: every environment is re-rendered */
+        gm[f % NG][12] += 0.01f; /* and a glass object */
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+        for (i = 0, ok = 1; i < NG; i++) ok &= fs.glass[i].env_updated == 1;
+        CHECK(ok, "frame %d: a moved opaque object re-renders every environment", f);
+    }
+    CHECK(c.total == before, "moving objects: frames allocated %ld times", c.total - before);
+out:
+    snell_renderer_destroy(r);
+    snell_env_destroy(env);
+    for (i = 0; i < 3; i++) snell_mesh_destroy(mesh[i]);
+    snell_ctx_destroy(ctx);
+    CHECK(c.outstanding == 0, "scene: %ld blocks leaked", c.outstanding);
 }
 
 int main(void)
@@ -140,6 +265,7 @@ int main(void)
         int i;
         snell_renderer *r = NULL;
         snell_frame_desc fd;
+        snell_glass g;
         snell_env_desc ed;
         snell_renderer_desc rd;
         long before;
@@ -154,41 +280,39 @@ int main(void)
         CHECK_OK(snell_mesh_create_shape(ctx, &(snell_shape_desc){SNELL_SHAPE_SPHERE, 16, 8}, &mesh));
         CHECK_OK(snell_env_create(ctx, &ed, &env));
         CHECK_OK(snell_renderer_create(ctx, &rd, &r));
-        memset(&fd, 0, sizeof fd);
-        fd.mesh = mesh;
-        fd.env = env;
-        CHECK_OK(snell_render(r, &fd, NULL));
+        test_frame_one(&fd, &g, mesh, env);
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         before = c.total;
-        CHECK_OK(snell_render(r, &fd, NULL));
-        CHECK_OK(snell_render(r, &fd, NULL));
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         CHECK(c.total == before, "frames after the first allocated %ld times", c.total - before);
         /* The cubemap method: after its first frame (analysis, bake), frames
          * allocate nothing; a new search setting builds its program once
          * (the step counts are compile-time constants of the shader), after
          * which switching between seen settings allocates nothing. */
-        fd.glass.method = SNELL_METHOD_CUBEMAP;
-        CHECK_OK(snell_render(r, &fd, NULL));
+        g.material.method = SNELL_METHOD_CUBEMAP;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         before = c.total;
-        CHECK_OK(snell_render(r, &fd, NULL));
-        fd.glass.max_interfaces = 4;
-        CHECK_OK(snell_render(r, &fd, NULL));
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
+        g.material.cubemap.max_interfaces = 4;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         CHECK(c.total == before, "cubemap frames after the first allocated %ld times", c.total - before);
-        fd.glass.search_iterations = 5;
-        fd.glass.linear_steps = 3;
-        CHECK_OK(snell_render(r, &fd, NULL));
+        g.material.cubemap.iterations = 5;
+        g.material.cubemap.linear_steps = 3;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         CHECK(c.total > before, "a new search setting built no program");
         before = c.total;
         for (i = 0; i < 4; i++) {
-            fd.glass.search_iterations = i & 1 ? 0 : 5;
-            fd.glass.linear_steps = i & 1 ? 0 : 3;
-            CHECK_OK(snell_render(r, &fd, NULL));
+            g.material.cubemap.iterations = i & 1 ? 0 : 5;
+            g.material.cubemap.linear_steps = i & 1 ? 0 : 3;
+            CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         }
         CHECK(c.total == before, "switching between built search settings allocated %ld times", c.total - before);
         /* More settings than the program cache holds: the least recently used
          * programs are replaced (and freed: the leak check below). */
         for (i = 1; i <= 12; i++) {
-            fd.glass.search_iterations = i;
-            CHECK_OK(snell_render(r, &fd, NULL));
+            g.material.cubemap.iterations = i;
+            CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         }
         snell_renderer_destroy(r);
         snell_env_destroy(env);
@@ -196,5 +320,6 @@ int main(void)
         snell_ctx_destroy(ctx);
         CHECK(c.outstanding == 0, "leak");
     }
+    scene_frames();
     return test_finish();
 }

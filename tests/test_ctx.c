@@ -76,6 +76,7 @@ static void check_external(void)
     snell_renderer *r = NULL;
     snell_renderer_desc rd;
     snell_frame_desc fd;
+    snell_glass g;
     snell_shape_desc sd;
     GLuint host_fbo, host_rb, host_prog_dummy;
     GLint v[4], i1;
@@ -110,7 +111,6 @@ static void check_external(void)
     memset(&sd, 0, sizeof sd);
     memset(&rd, 0, sizeof rd);
     rd.width = rd.height = 64;
-    memset(&fd, 0, sizeof fd);
     {
         snell_env_desc ed;
         memset(&ed, 0, sizeof ed);
@@ -119,9 +119,8 @@ static void check_external(void)
     }
     CHECK_OK(snell_mesh_create_shape(ctx, &sd, &mesh));
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
-    fd.mesh = mesh;
-    fd.env = env;
-    if (r && env && mesh) CHECK_OK(snell_render(r, &fd, NULL));
+    test_frame_one(&fd, &g, mesh, env);
+    if (r && env && mesh) CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
 
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &i1);
     CHECK(i1 == (GLint)host_fbo, "framebuffer binding changed to %d", i1);

@@ -9,7 +9,9 @@
  *  4. exit directions vs the reference (MATCHED, 2 interfaces, same mesh)
  *     below a bound derived from face size N and iterations K, for pixels
  *     whose entry incidence angle is at most 60 degrees (see bound());
- *  5. the image shows the bent, upside-down view (floor seen in the top half).
+ *  5. the image shows the bent, upside-down view (floor seen in the top half);
+ *  6. prepared resources (the bakes) are cached per (mesh version, settings)
+ *     for the whole scene: five meshes in a frame bake once, then never.
  */
 #include "test_util.h"
 #include "core/gl.h"
@@ -165,15 +167,15 @@ static void check_sphere(snell_ctx *ctx, snell_mesh *sphere, snell_env *env, sne
     snell_renderer *r = NULL;
     snell_renderer_desc rd;
     snell_frame_desc fd;
+    snell_glass g;
     snell_frame_stats fs;
     snell_ref *ref = NULL;
-    snell_ref_desc refd;
     snell_ref_params p;
     int i, n = 0, over = 0;
     double worst = 0.0, lim, worst1 = 0.0, r_out, r_in;
     snell_mesh_analysis an;
     CHECK_OK(snell_mesh_analyze(sphere, &an));
-    r_out = an.radius * 1.0001;        /* as method_cubemap.c sets them */
+    r_out = an.radius * 1.0001; /* as methods/cubemap.c sets them */
     r_in = an.inner_radius - r_out / 255.0;
     lim = bound(enc, N, K, fmin(2.0, (r_out - r_in) / 0.816));
     memset(&rd, 0, sizeof rd);
@@ -181,34 +183,35 @@ static void check_sphere(snell_ctx *ctx, snell_mesh *sphere, snell_env *env, sne
     rd.height = H;
     rd.output = SNELL_OUTPUT_EXIT_DIRECTION;
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
-    memset(&refd, 0, sizeof refd);
-    refd.mesh = sphere;
-    CHECK_OK(snell_ref_create(ctx, &refd, &ref));
-    if (!r || !ref) goto out;
-    memset(&fd, 0, sizeof fd);
-    fd.mesh = sphere;
-    fd.env = env;
-    fd.glass.method = SNELL_METHOD_CUBEMAP;
-    fd.glass.ior = 1.5f;
-    fd.glass.encoding = enc;
-    fd.glass.cube_face_size = N;
-    fd.glass.search_iterations = K;
-    fd.glass.max_interfaces = 2;
+    test_frame_one(&fd, &g, sphere, env);
+    g.material.method = SNELL_METHOD_CUBEMAP;
+    g.material.ior = 1.5f;
+    g.material.cubemap.encoding = enc;
+    g.material.cubemap.face_size = N;
+    g.material.cubemap.iterations = K;
+    g.material.cubemap.max_interfaces = 2;
     fd.camera.azimuth = 0.4f;
     fd.camera.elevation = 0.3f;
     fd.camera.distance = 3.0f;
-    CHECK_OK(snell_render(r, &fd, &fs));
-    CHECK(fs.method_used == SNELL_METHOD_CUBEMAP && fs.ndcube_baked == 1, "first frame bakes");
-    CHECK_OK(snell_render(r, &fd, &fs));
-    CHECK(fs.ndcube_baked == 0, "second frame reuses the cubemap");
+    CHECK_OK(test_ref_create(ctx, &fd, &ref));
+    if (!r || !ref) goto out;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK(fs.glass[0].method_used == SNELL_METHOD_CUBEMAP && fs.glass[0].prepared == 1 &&
+              !(fs.glass[0].skipped & SNELL_SKIP_PREPARE) && fs.glass[0].passes == 7,
+          "first frame bakes (6 face passes + the kernel: %d passes)", fs.glass[0].passes);
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK(fs.glass[0].prepared == 0 && (fs.glass[0].skipped & SNELL_SKIP_PREPARE) && fs.glass[0].passes == 1,
+          "second frame reuses the cubemap");
     CHECK_OK(snell_renderer_read_exit_dirs(r, gpu));
 
     /* 3. One interface = single surface. */
-    fd.glass.max_interfaces = 1;
-    CHECK_OK(snell_render(r, &fd, NULL));
+    g.material.cubemap.max_interfaces = 1;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK((fs.glass[0].skipped & SNELL_SKIP_SEARCH) && (fs.glass[0].skipped & SNELL_SKIP_PREPARE),
+          "one interface without absorption: no search, the same bake (skipped 0x%x)", fs.glass[0].skipped);
     CHECK_OK(snell_renderer_read_exit_dirs(r, single));
-    fd.glass.method = SNELL_METHOD_SINGLE;
-    CHECK_OK(snell_render(r, &fd, NULL));
+    g.material.method = SNELL_METHOD_SINGLE;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
     CHECK_OK(snell_renderer_read_exit_dirs(r, rgb));
     for (i = 0; i < W * H; i++) worst1 = fmax(worst1, angle(single + 3 * i, rgb + 3 * i));
     printf("max_interfaces 1 vs single: worst %.2g rad\n", worst1);
@@ -256,6 +259,7 @@ static void check_inverted(snell_ctx *ctx, snell_mesh *sphere, snell_env *env)
     snell_renderer *r = NULL, *rc = NULL;
     snell_renderer_desc rd;
     snell_frame_desc fd;
+    snell_glass g;
     int x, y, down = 0, up_half = 0;
     memset(&rd, 0, sizeof rd);
     rd.width = W;
@@ -264,12 +268,10 @@ static void check_inverted(snell_ctx *ctx, snell_mesh *sphere, snell_env *env)
     rd.output = SNELL_OUTPUT_EXIT_DIRECTION;
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     if (!r || !rc) goto out;
-    memset(&fd, 0, sizeof fd);
-    fd.mesh = sphere;
-    fd.env = env;
-    fd.glass.method = SNELL_METHOD_CUBEMAP;
+    test_frame_one(&fd, &g, sphere, env);
+    g.material.method = SNELL_METHOD_CUBEMAP;
     fd.camera.distance = 3.0f; /* level camera looking at the sphere */
-    CHECK_OK(snell_render(r, &fd, NULL));
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
     CHECK_OK(snell_renderer_read_exit_dirs(r, dirs));
     /* the sphere (radius 1 at distance 3, fov 45) spans about rows 30..130;
      * sample the upper central part (rows 45..75, columns 60..100) */
@@ -280,12 +282,82 @@ static void check_inverted(snell_ctx *ctx, snell_mesh *sphere, snell_env *env)
         }
     CHECK(down > up_half * 9 / 10, "upper half of the sphere must look downward (inverted image): %d of %d", down,
           up_half);
-    CHECK_OK(snell_render(rc, &fd, NULL));
+    CHECK_OK_CTX(ctx, snell_render(rc, &fd, NULL));
     CHECK_OK(snell_renderer_read_rgba(rc, px));
     snell_write_png(test_out("cubemap_sphere.png"), W, H, px);
 out:
     snell_renderer_destroy(r);
     snell_renderer_destroy(rc);
+}
+
+/* 6. The prepare stage's cache is sized by the scene: five different meshes
+ * (and one of them twice) in one frame each bake once in the first frame,
+ * the repeated mesh reuses its bake within that frame, and the next frames
+ * bake nothing (SNELL_SKIP_PREPARE on every object). A new face size for one
+ * object re-bakes that object only, once. */
+static void check_prepare_cache(snell_ctx *ctx, snell_env *env)
+{
+    enum { NM = 5, NG = 6 };
+    snell_mesh *mesh[NM] = {NULL};
+    snell_renderer *r = NULL;
+    snell_renderer_desc rd;
+    snell_frame_desc fd;
+    snell_frame_stats fs;
+    snell_glass g[NG];
+    float model[NG][16];
+    int i, f, baked, reused;
+    const snell_shape_desc shapes[NM] = {{SNELL_SHAPE_SPHERE, 16, 8},
+                                         {SNELL_SHAPE_SPHERE, 24, 12},
+                                         {SNELL_SHAPE_SPHERE, 32, 16},
+                                         {SNELL_SHAPE_CUBE, 0, 0},
+                                         {SNELL_SHAPE_SPHERE, 12, 6}};
+    for (i = 0; i < NM; i++) CHECK_OK(snell_mesh_create_shape(ctx, &shapes[i], &mesh[i]));
+    memset(&rd, 0, sizeof rd);
+    rd.width = rd.height = 64;
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    if (!r || !mesh[0] || !mesh[1] || !mesh[2] || !mesh[3] || !mesh[4]) goto out;
+    memset(g, 0, sizeof g);
+    memset(model, 0, sizeof model);
+    for (i = 0; i < NG; i++) {
+        model[i][0] = model[i][5] = model[i][10] = 0.25f;
+        model[i][12] = -1.25f + 0.5f * (float)i;
+        model[i][15] = 1.0f;
+        g[i].mesh = mesh[i % NM];
+        g[i].model = model[i];
+        g[i].material.method = SNELL_METHOD_CUBEMAP;
+        g[i].material.cubemap.face_size = 32;
+    }
+    memset(&fd, 0, sizeof fd);
+    fd.env = env;
+    fd.glass = g;
+    fd.glass_count = NG;
+    fd.camera.distance = 3.5f;
+    for (f = 0; f < 3; f++) {
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+        for (i = 0, baked = 0, reused = 0; i < NG; i++) {
+            baked += fs.glass[i].prepared;
+            reused += !!(fs.glass[i].skipped & SNELL_SKIP_PREPARE);
+            CHECK(fs.glass[i].method_used == SNELL_METHOD_CUBEMAP && fs.glass[i].draw_order >= 0,
+                  "frame %d object %d: drawn with the cubemap method", f, i);
+        }
+        printf("frame %d: %d of %d objects baked, %d reused\n", f, baked, NG, reused);
+        if (f == 0)
+            CHECK(baked == NM && reused == NG - NM && fs.glass[0].prepared + fs.glass[NM].prepared == 1,
+                  "first frame: each of %d meshes bakes once (%d baked, %d reused)", NM, baked, reused);
+        else
+            CHECK(baked == 0 && reused == NG, "frame %d: nothing bakes (%d baked, %d reused)", f, baked, reused);
+    }
+    /* New settings for one object (its mesh not shared): only it bakes. */
+    g[2].material.cubemap.face_size = 64;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    for (i = 0, baked = 0; i < NG; i++) baked += fs.glass[i].prepared;
+    CHECK(baked == 1 && fs.glass[2].prepared == 1, "a new face size bakes that object only (%d baked)", baked);
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    for (i = 0, baked = 0; i < NG; i++) baked += fs.glass[i].prepared;
+    CHECK(baked == 0, "and then nothing (%d baked)", baked);
+out:
+    snell_renderer_destroy(r);
+    for (i = 0; i < NM; i++) snell_mesh_destroy(mesh[i]);
 }
 
 int main(void)
@@ -323,6 +395,7 @@ int main(void)
     check_sphere(ctx, sphere, env, SNELL_NDCUBE_PLAIN, 256, 8);
     check_sphere(ctx, sphere, env, SNELL_NDCUBE_PLAIN, 64, 4);
     check_inverted(ctx, sphere, env);
+    check_prepare_cache(ctx, env);
 
     snell_env_destroy(env);
     snell_mesh_destroy(sphere);

@@ -33,6 +33,7 @@ int main(void)
     snell_env_desc ed;
     snell_frame_desc fd;
     snell_frame_stats fs;
+    snell_glass g;
     snell_opaque ob[2];
     float m0[16], m1[16];
     static uint8_t px[W * H * 4], px_no[W * H * 4];
@@ -68,23 +69,23 @@ int main(void)
     ob[1].mesh = cube;
     ob[1].model = m1;
     ob[1].color[1] = 1.0f;
-    memset(&fd, 0, sizeof fd);
-    fd.mesh = sphere;
-    fd.env = env;
-    fd.glass.method = SNELL_METHOD_CUBEMAP;
-    fd.glass.max_interfaces = 2;
+    test_frame_one(&fd, &g, sphere, env);
+    g.material.method = SNELL_METHOD_CUBEMAP;
+    g.material.cubemap.max_interfaces = 2;
     fd.camera.distance = 3.0f;
     fd.camera.fov_y = 0.6f; /* the sphere fills the view: the cube is only seen through it */
 
-    CHECK_OK(snell_render(r, &fd, &fs));
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
     CHECK_OK(snell_renderer_read_rgba(r, px_no));
     red_without = red_pixels(px_no);
-    CHECK(fs.env_updated == 0 && fs.env_skipped == 0, "no opaque objects: no dynamic environment");
+    CHECK(fs.glass[0].env_updated == 0 && !(fs.glass[0].skipped & SNELL_SKIP_ENV_UPDATE) && fs.opaque_drawn == 0,
+          "no opaque objects: no dynamic environment");
 
     fd.opaque = ob;
     fd.opaque_count = 2;
-    CHECK_OK(snell_render(r, &fd, &fs));
-    CHECK(fs.env_updated == 1 && fs.env_skipped == 0, "first frame with objects renders the environment");
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK(fs.glass[0].env_updated == 1 && !(fs.glass[0].skipped & SNELL_SKIP_ENV_UPDATE) && fs.opaque_drawn == 2,
+          "first frame with objects renders the environment");
     CHECK_OK(snell_renderer_read_rgba(r, px));
     red_with = red_pixels(px);
     printf("red pixels through the sphere: %d with the dynamic environment, %d without\n", red_with, red_without);
@@ -92,30 +93,31 @@ int main(void)
     CHECK(red_with > 10 * (red_without + 10), "the red cube behind the glass must be seen through it");
     snell_write_png(test_out("cubemap_env.png"), W, H, px);
 
-    CHECK_OK(snell_render(r, &fd, &fs));
-    CHECK(fs.env_updated == 0 && fs.env_skipped == 1, "nothing moved: skipped");
-    fd.glass.search_iterations = 12;
-    CHECK_OK(snell_render(r, &fd, &fs));
-    CHECK(fs.env_updated == 0 && fs.env_skipped == 1, "kernel parameters do not touch the environment");
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK(fs.glass[0].env_updated == 0 && (fs.glass[0].skipped & SNELL_SKIP_ENV_UPDATE), "nothing moved: skipped");
+    g.material.cubemap.iterations = 12;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK(fs.glass[0].env_updated == 0 && (fs.glass[0].skipped & SNELL_SKIP_ENV_UPDATE),
+          "kernel parameters do not touch the environment");
 
     /* Moving objects: every frame that moves one re-renders. */
     for (f = 0; f < 3; f++) {
         m1[13] = 0.2f * (f + 1);
-        CHECK_OK(snell_render(r, &fd, &fs));
-        CHECK(fs.env_updated == 1, "frame %d: a moved object re-renders", f);
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+        CHECK(fs.glass[0].env_updated == 1, "frame %d: a moved object re-renders", f);
         snell_renderer_read_rgba(r, px);
     }
     ob[1].color[2] = 0.5f;
-    CHECK_OK(snell_render(r, &fd, &fs));
-    CHECK(fs.env_updated == 1, "a colour change re-renders");
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK(fs.glass[0].env_updated == 1, "a colour change re-renders");
     {
         float gm[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.1f, 0, 0, 1};
-        fd.model = gm;
-        CHECK_OK(snell_render(r, &fd, &fs));
-        CHECK(fs.env_updated == 1, "a moved glass re-renders (new centre)");
-        CHECK_OK(snell_render(r, &fd, &fs));
-        CHECK(fs.env_skipped == 1, "then skips again");
-        fd.model = NULL;
+        g.model = gm;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+        CHECK(fs.glass[0].env_updated == 1, "a moved glass re-renders (new centre)");
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+        CHECK(fs.glass[0].env_updated == 0 && (fs.glass[0].skipped & SNELL_SKIP_ENV_UPDATE), "then skips again");
+        g.model = NULL;
     }
 
     /* Bad input. */
@@ -135,19 +137,19 @@ int main(void)
     ob[0].color[1] = NAN;
     CHECK(snell_render(r, &fd, NULL) == SNELL_E_INVALID_ARG, "NaN colour");
     ob[0].color[1] = 0.0f;
-    fd.glass.search_iterations = 33;
+    g.material.cubemap.iterations = 33;
     CHECK(snell_render(r, &fd, NULL) == SNELL_E_INVALID_ARG, "iterations 33");
-    fd.glass.search_iterations = 0;
-    fd.glass.max_interfaces = 9;
+    g.material.cubemap.iterations = 0;
+    g.material.cubemap.max_interfaces = 9;
     CHECK(snell_render(r, &fd, NULL) == SNELL_E_INVALID_ARG, "interfaces 9");
-    fd.glass.max_interfaces = 0;
-    fd.glass.cube_face_size = 15;
+    g.material.cubemap.max_interfaces = 0;
+    g.material.cubemap.face_size = 15;
     CHECK(snell_render(r, &fd, NULL) == SNELL_E_INVALID_ARG, "face 15");
-    fd.glass.cube_face_size = 0;
-    fd.glass.encoding = (snell_ndcube_encoding)7;
+    g.material.cubemap.face_size = 0;
+    g.material.cubemap.encoding = (snell_ndcube_encoding)7;
     CHECK(snell_render(r, &fd, NULL) == SNELL_E_INVALID_ARG, "encoding 7");
-    fd.glass.encoding = SNELL_NDCUBE_DEFAULT;
-    CHECK_OK(snell_render(r, &fd, &fs));
+    g.material.cubemap.encoding = SNELL_NDCUBE_DEFAULT;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
 
     snell_renderer_destroy(r);
     snell_env_destroy(env);

@@ -125,8 +125,8 @@ static void against_reference(snell_ctx *ctx, snell_output output)
     snell_renderer_desc rd;
     snell_env_desc ed;
     snell_frame_desc fd;
+    snell_glass g;
     snell_ref *ref = NULL;
-    snell_ref_desc refd;
     snell_ref_params p;
     int i, n = 0, below = 0, bg_bad = 0, nbg = 0;
     double bg_sum = 0;
@@ -143,24 +143,20 @@ static void against_reference(snell_ctx *ctx, snell_output output)
     printf("output %d: encoding %s\n", (int)output, snell_renderer_exit_dir_encoding(r));
     if (output == SNELL_OUTPUT_EXIT_DIRECTION_PACKED)
         CHECK(strcmp(snell_renderer_exit_dir_encoding(r), "packed-rgba8") == 0, "forced packing");
-    memset(&fd, 0, sizeof fd);
-    fd.mesh = mesh;
-    fd.env = env;
-    fd.glass.method = SNELL_METHOD_SINGLE;
-    fd.glass.ior = 1.5f;
+    test_frame_one(&fd, &g, mesh, env);
+    g.material.method = SNELL_METHOD_SINGLE;
+    g.material.ior = 1.5f;
     fd.camera.azimuth = 0.4f;
     fd.camera.elevation = 0.3f;
     fd.camera.distance = 3.2f;
-    CHECK_OK(snell_render(r, &fd, NULL));
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
     CHECK_OK(snell_renderer_read_exit_dirs(r, gpu));
     {
         uint8_t px[4];
         CHECK(snell_renderer_read_rgba(r, px) == SNELL_E_INVALID_ARG, "colour readback of a direction target");
     }
 
-    memset(&refd, 0, sizeof refd);
-    refd.mesh = mesh;
-    CHECK_OK(snell_ref_create(ctx, &refd, &ref));
+    CHECK_OK(test_ref_create(ctx, &fd, &ref));
     if (!ref) goto done;
     test_ref_params(&fd, W, H, 1, &p);
     {

@@ -1,9 +1,14 @@
-/* test_optics_twin — src/optics.h and shaders_es/common/optics.glsl must agree.
+/* test_optics_twin — src/core/optics.h and shaders_es/common/optics.glsl must agree.
  * The GLSL runs in a vertex shader whose outputs are captured with transform
  * feedback (core GLES 3.0, exact float32 results, no float render target
  * needed). Both are also checked against the double-precision twin.
  * Inputs: incidence angles 0..89.999 deg (grazing included), eta both into
- * denser (entry) and thinner (exit, where TIR happens) media, IOR 1.0001..4. */
+ * denser (entry) and thinner (exit, where TIR happens) media, IOR 1.0001..4.
+ * The thin-wall slab (snell_opt_thin_slab / snell_thin_slab) on its own grid
+ * (incidence cosines 1..0 and negative, IOR 0.75..4, thickness 0..3,
+ * absorption none to strong), also against its analytic cases: without
+ * absorption rs + ts = 1 and rs = 2R / (1 + R), R = Schlick at one face; with
+ * it, the sum of the bounce series computed term by term. */
 #include "test_util.h"
 #include "core/gl.h"
 #include "core/optics.h"
@@ -35,6 +40,191 @@ typedef struct input { float i[3], n[3], p[4]; } input;
 
 static const double angles_deg[] = {0, 1, 10, 30, 41.8, 45, 48.6, 60, 75, 85, 89, 89.9, 89.99, 89.999};
 static const double iors[] = {1.0001, 1.33, 1.5, 2.42, 4.0};
+
+/* The slab in GLSL, one input per vertex. */
+static const char slab_vs[] = "precision highp float;\n"
+                              "#include \"common/optics.glsl\"\n"
+                              "layout(location = 0) in vec4 a_p;     // cos_i, ior, thickness\n"
+                              "layout(location = 1) in vec3 a_sigma;\n"
+                              "out vec4 o_rs;\n"
+                              "out vec4 o_ts;\n"
+                              "void main() {\n"
+                              "    vec3 rs, ts;\n"
+                              "    snell_thin_slab(a_p.x, a_p.y, a_sigma, a_p.z, rs, ts);\n"
+                              "    o_rs = vec4(rs, 0.0);\n"
+                              "    o_ts = vec4(ts, 0.0);\n"
+                              "    gl_Position = vec4(0.0);\n"
+                              "}\n";
+
+typedef struct slab_input {
+    float p[4], sigma[3];
+} slab_input;
+
+static const double slab_cos[] = {1, 0.999, 0.9, 0.7, 0.5, 0.3, 0.1, 0.01, 1e-3, 1e-5, 0, -0.6};
+static const double slab_ior[] = {0.75, 1.0001, 1.33, 1.5, 2.42, 4.0};
+static const double slab_thick[] = {0, 0.01, 0.5, 3};
+static const double slab_sigma[][3] = {{0, 0, 0}, {0.1, 0.5, 2.0}, {5, 20, 0.01}};
+
+/* rs, ts of the slab as the sum of its bounce series (reflected: R, then
+ * (1-R)^2 R ti^2 (R ti)^(2k); transmitted: (1-R)^2 ti (R ti)^(2k)), term by
+ * term; only where R ti <= 0.9 (200 terms leave < 1e-18). */
+static void slab_series(double r, double ti, double *rs, double *ts)
+{
+    double q = r * r * ti * ti, term = 1.0;
+    int k;
+    *rs = r;
+    *ts = 0.0;
+    for (k = 0; k < 200; k++) {
+        *rs += (1 - r) * (1 - r) * r * ti * ti * term;
+        *ts += (1 - r) * (1 - r) * ti * term;
+        term *= q;
+    }
+}
+
+static void thin_slab_twin(snell_ctx *ctx)
+{
+    enum {
+        NC = sizeof slab_cos / sizeof *slab_cos,
+        NR = sizeof slab_ior / sizeof *slab_ior,
+        NT = sizeof slab_thick / sizeof *slab_thick,
+        NS = sizeof slab_sigma / sizeof *slab_sigma,
+        N = NC * NR * NT * NS
+    };
+    const char *varyings[] = {"o_rs", "o_ts"};
+    static slab_input in[N];
+    static float out[2][N][4];
+    GLuint prog = 0, vao, vbo, tfb[2], fbo, rb;
+    int k, c, analytic = 0, series = 0, nonfinite = 0;
+    char first_nonfinite[256] = "";
+    double max_twin = 0, max_c = 0, max_an = 0, max_series = 0;
+    CHECK_OK(snell__program_build_feedback(ctx, slab_vs, NULL, varyings, 2, &prog));
+    if (!prog) return;
+    k = 0;
+    for (int a = 0; a < NC; a++)
+        for (int m = 0; m < NR; m++)
+            for (int t = 0; t < NT; t++)
+                for (int sg = 0; sg < NS; sg++) {
+                    in[k].p[0] = (float)slab_cos[a];
+                    in[k].p[1] = (float)slab_ior[m];
+                    in[k].p[2] = (float)slab_thick[t];
+                    in[k].p[3] = 0.0f;
+                    for (c = 0; c < 3; c++) in[k].sigma[c] = (float)slab_sigma[sg][c];
+                    k++;
+                }
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof in, in, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(slab_input), (void *)offsetof(slab_input, p));
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(slab_input), (void *)offsetof(slab_input, sigma));
+    glGenBuffers(2, tfb);
+    for (c = 0; c < 2; c++) {
+        glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, tfb[c]);
+        glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, sizeof out[c], NULL, GL_STATIC_READ);
+        glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, (GLuint)c, tfb[c]);
+    }
+    glGenFramebuffers(1, &fbo);
+    glGenRenderbuffers(1, &rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+    glUseProgram(prog);
+    glEnable(GL_RASTERIZER_DISCARD);
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, N);
+    glEndTransformFeedback();
+    glDisable(GL_RASTERIZER_DISCARD);
+    for (c = 0; c < 2; c++) {
+        void *p;
+        glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, tfb[c]);
+        p = glMapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, sizeof out[c], GL_MAP_READ_BIT);
+        CHECK(p != NULL, "map slab feedback buffer %d", c);
+        if (p) memcpy(out[c], p, sizeof out[c]);
+        glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
+    }
+    CHECK(glGetError() == GL_NO_ERROR, "GL error (slab)");
+
+    for (k = 0; k < N; k++) {
+        const slab_input *q = &in[k];
+        double sd[3], rsd[3], tsd[3], cd = q->p[0], iord = q->p[1], thd = q->p[2];
+        double R = snell_optd_fresnel_schlick(fabs(cd), 1.0, iord);
+        float rsf[3], tsf[3];
+        for (c = 0; c < 3; c++) sd[c] = q->sigma[c];
+        snell_opt_thin_slab(q->p[0], q->p[1], q->sigma, q->p[2], rsf, tsf);
+        snell_optd_thin_slab(cd, iord, sd, thd, rsd, tsd);
+        for (c = 0; c < 3; c++) {
+            const double gl_rs = out[0][k][c], gl_ts = out[1][k][c];
+            int fin = isfinite(gl_rs) && isfinite(gl_ts) && isfinite(rsf[c]) && isfinite(tsf[c]) && isfinite(rsd[c]) &&
+                      isfinite(tsd[c]);
+            if (!fin && !nonfinite++)
+                snprintf(first_nonfinite, sizeof first_nonfinite,
+                         "cos %g, ior %g, thickness %g, sigma %g: GL rs %g ts %g, C %g %g, double %g %g", cd, iord, thd,
+                         sd[c], gl_rs, gl_ts, rsf[c], tsf[c], rsd[c], tsd[c]);
+            if (!fin) continue;
+            /* Physical: reflected and transmitted parts are shares of the light. */
+            CHECK(gl_rs >= 0 && gl_ts >= 0 && gl_rs + gl_ts <= 1.0 + 2e-5 && rsd[c] + tsd[c] <= 1.0 + 1e-12,
+                  "slab input %d comp %d: rs %g + ts %g outside [0, 1]", k, c, gl_rs, gl_ts);
+            /* Twin: GL and C float against double. rs and ts are polynomials
+             * and a quotient in Schlick's R, in [0, 1]: the Fresnel twin's
+             * absolute tolerance 2e-5 (above). */
+            {
+                double eg = fmax(fabs(gl_rs - rsd[c]), fabs(gl_ts - tsd[c]));
+                double ec = fmax(fabs(rsf[c] - rsd[c]), fabs(tsf[c] - tsd[c]));
+                max_twin = fmax(max_twin, eg);
+                max_c = fmax(max_c, ec);
+                CHECK(eg <= 2e-5 && ec <= 2e-5,
+                      "slab input %d (cos %g, ior %g, thickness %g, sigma %g) comp %d: GL rs %.7g ts %.7g, "
+                      "C %.7g %.7g, double %.7g %.7g",
+                      k, cd, iord, thd, sd[c], c, gl_rs, gl_ts, rsf[c], tsf[c], rsd[c], tsd[c]);
+            }
+            /* Analytic, no absorption (sigma 0 or thickness 0): ti = 1, so
+             * rs = R + (1-R)^2 R / (1 - R^2) = 2R / (1 + R), ts = 1 - rs. */
+            if (!(q->sigma[c] > 0.0f && q->p[2] > 0.0f)) {
+                double want = 2.0 * R / (1.0 + R);
+                double e = fmax(fmax(fabs(gl_rs - want), fabs(gl_rs + gl_ts - 1.0)),
+                                fmax(fabs(rsf[c] - want), fabs(rsf[c] + tsf[c] - 1.0)));
+                max_an = fmax(max_an, e);
+                analytic++;
+                CHECK(e <= 2e-5 && fabs(rsd[c] - want) <= 1e-10 && fabs(rsd[c] + tsd[c] - 1.0) <= 1e-10,
+                      "slab input %d comp %d: no absorption: rs GL %.7g C %.7g double %.12g, want 2R/(1+R) = %.12g; "
+                      "rs + ts GL %.7g double %.12g",
+                      k, c, gl_rs, rsf[c], rsd[c], want, gl_rs + gl_ts, rsd[c] + tsd[c]);
+            } else {
+                /* Absorbing: the bounce series term by term, with the chord
+                 * thickness / cos_t (Snell at the first face). */
+                double s2 = (1.0 - cd * cd) / (iord * iord), ct = sqrt(1.0 - fmin(s2, 1.0));
+                double ti = exp(-sd[c] * thd / fmax(ct, 1e-6)), rs_s, ts_s;
+                if (R * ti <= 0.9) {
+                    slab_series(R, ti, &rs_s, &ts_s);
+                    max_series = fmax(max_series, fmax(fabs(rsd[c] - rs_s), fabs(tsd[c] - ts_s)));
+                    series++;
+                    CHECK(fabs(rsd[c] - rs_s) <= 1e-12 && fabs(tsd[c] - ts_s) <= 1e-12 && fabs(gl_rs - rs_s) <= 2e-5 &&
+                              fabs(gl_ts - ts_s) <= 2e-5,
+                          "slab input %d comp %d: series rs %.12g ts %.12g vs double %.12g %.12g, GL %.7g %.7g", k, c,
+                          rs_s, ts_s, rsd[c], tsd[c], gl_rs, gl_ts);
+                }
+            }
+        }
+    }
+    /* Where Schlick's R is 1 (exactly grazing incidence, or beyond the
+     * critical angle of an IOR below 1) without absorption, the closed form
+     * is 0/0; the slab then reflects everything: rs = 1, ts = 0. */
+    CHECK(nonfinite == 0, "%d slab results not finite, e.g. %s", nonfinite, first_nonfinite);
+    CHECK(analytic > N / 4 && series > N / 4, "the slab grid must exercise both cases (%d, %d)", analytic, series);
+    printf("thin slab: %d inputs x 3 channels, %d analytic, %d series, %d not finite; max |GL - double| %.3g, "
+           "|C - double| %.3g, analytic %.3g, series %.3g\n",
+           N, analytic, series, nonfinite, max_twin, max_c, max_an, max_series);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &rb);
+    glDeleteBuffers(2, tfb);
+    glDeleteBuffers(1, &vbo);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteProgram(prog);
+}
 
 int main(void)
 {
@@ -168,6 +358,7 @@ int main(void)
     glDeleteBuffers(1, &vbo);
     glDeleteVertexArrays(1, &vao);
     glDeleteProgram(prog);
+    thin_slab_twin(ctx);
     snell_ctx_destroy(ctx);
     return test_finish();
 }

@@ -6,7 +6,11 @@
  *  - the watertight predicate agrees with Moller-Trumbore away from edges;
  *  - watertightness: rays from inside a closed mesh aimed exactly at vertices
  *    and edge midpoints always hit;
- *  - bad input is rejected with a status and a message. */
+ *  - several parts (a torus, a cube and a sphere, each with its own model
+ *    matrix) in one BVH: ids run over the parts in order (part_first), each
+ *    hit reports its part, and the closest hit, with and without a per-part
+ *    filter, equals brute force over the parts' world triangles;
+ *  - bad input is rejected with a status and a message (naming the part). */
 #include "test_util.h"
 #include "mesh/mesh.h"
 #include "ref/ref_bvh.h"
@@ -231,6 +235,145 @@ static void watertight(const snell_mesh *m)
     snell__bvh_destroy(bvh);
 }
 
+/* Parts: world triangles of every part concatenated in part order, with the
+ * part of each, built here independently of the BVH. */
+typedef struct parts_world {
+    world w;
+    uint32_t *part;
+} parts_world;
+
+static int accept_mask(uint32_t part, const void *user) { return (*(const unsigned *)user >> part) & 1u; }
+
+static int brute_mask(const parts_world *pw, unsigned mask, const double o[3], const double d[3], double *t_out,
+                      uint32_t *tri)
+{
+    uint32_t t;
+    int hit = 0;
+    double best = HUGE_VAL;
+    for (t = 0; t < pw->w.nt; t++) {
+        double tt, b[3];
+        const double *v = pw->w.v + 9 * t;
+        if (!((mask >> pw->part[t]) & 1u)) continue;
+        if (snell__bvh_triangle_hit(o, d, v, v + 3, v + 6, 1e-12, best, &tt, b)) {
+            best = tt;
+            *tri = t;
+            hit = 1;
+        }
+    }
+    *t_out = best;
+    return hit;
+}
+
+static void multi_part(const snell_mesh *torus)
+{
+    snell_mesh *cube = NULL, *sphere = NULL;
+    snell_shape_desc sd;
+    snell__bvh_part parts[3];
+    snell__bvh *bvh = NULL;
+    parts_world pw;
+    /* The cube squashed and moved beside the torus; the sphere inside the torus hole. */
+    static const float cube_model[16] = {0.5f, 0, 0, 0, 0, 2.0f, 0, 0, 0, 0, 0.3f, 0, 2.5f, 0.1f, -0.2f, 1};
+    static const float sph_model[16] = {0.4f, 0, 0, 0, 0, 0.4f, 0, 0, 0, 0, 0.4f, 0, 0.05f, 0, 0, 1};
+    const snell_mesh *meshes[3];
+    const float *models[3];
+    uint32_t p, t, nt = 0;
+    int i, k, mism = 0, mism_f = 0, bad_part = 0, hits = 0, parts_hit[3] = {0, 0, 0};
+    memset(&sd, 0, sizeof sd);
+    sd.shape = SNELL_SHAPE_CUBE;
+    CHECK_OK(snell_mesh_create_shape(NULL, &sd, &cube));
+    sd.shape = SNELL_SHAPE_SPHERE;
+    sd.segments = 24;
+    sd.rings = 12;
+    CHECK_OK(snell_mesh_create_shape(NULL, &sd, &sphere));
+    if (!cube || !sphere) {
+        snell_mesh_destroy(cube);
+        snell_mesh_destroy(sphere);
+        return;
+    }
+    meshes[0] = torus;
+    meshes[1] = cube;
+    meshes[2] = sphere;
+    models[0] = NULL;
+    models[1] = cube_model;
+    models[2] = sph_model;
+    pw.w.nt = 0;
+    for (p = 0; p < 3; p++) pw.w.nt += meshes[p]->triangle_count;
+    pw.w.v = (double *)malloc(sizeof(double) * 9 * pw.w.nt);
+    pw.part = (uint32_t *)malloc(sizeof(uint32_t) * pw.w.nt);
+    for (p = 0; p < 3; p++) {
+        world w = make_world(meshes[p], models[p]);
+        memcpy(pw.w.v + 9 * (size_t)nt, w.v, sizeof(double) * 9 * w.nt);
+        for (t = 0; t < w.nt; t++) pw.part[nt + t] = p;
+        nt += w.nt;
+        free(w.v);
+        parts[p].positions = meshes[p]->positions;
+        parts[p].vertex_count = meshes[p]->vertex_count;
+        parts[p].indices = meshes[p]->indices;
+        parts[p].triangle_count = meshes[p]->triangle_count;
+        parts[p].model = models[p];
+    }
+    CHECK_OK(snell__bvh_build_parts(NULL, parts, 3, &bvh));
+    if (bvh) {
+        CHECK(bvh->part_count == 3 && bvh->triangle_count == nt && bvh->part_first[0] == 0 &&
+                  bvh->part_first[1] == torus->triangle_count &&
+                  bvh->part_first[2] == torus->triangle_count + cube->triangle_count && bvh->part_first[3] == nt,
+              "part_first %u %u %u %u", bvh->part_first[0], bvh->part_first[1], bvh->part_first[2], bvh->part_first[3]);
+        for (i = 0; i < 6000; i++) {
+            double o[3], d[3], tb;
+            uint32_t trib = 0; /* ties on shared edges may pick either triangle: compare t */
+            unsigned mask = i < 2000 ? 7u : (unsigned)(1 + i % 7); /* every non-empty subset */
+            snell__bvh_hit h;
+            int hb, hf;
+            for (k = 0; k < 3; k++) {
+                o[k] = (rnd() - 0.5) * 8.0;
+                d[k] = (k == 0 ? 0.3 : 0.0) - o[k] + (rnd() - 0.5) * 3.0; /* towards the objects */
+            }
+            hb = brute_mask(&pw, mask, o, d, &tb, &trib);
+            hf = mask == 7u
+                     ? snell__bvh_closest(bvh, o, d, 1e-12, HUGE_VAL, SNELL__BVH_NONE, &h)
+                     : snell__bvh_closest_filtered(bvh, o, d, 1e-12, HUGE_VAL, SNELL__BVH_NONE, accept_mask, &mask, &h);
+            if (hb != hf || (hb && (h.t != tb || !((mask >> h.part) & 1u)))) {
+                if (mask == 7u)
+                    mism++;
+                else
+                    mism_f++;
+                continue;
+            }
+            if (!hf) continue;
+            hits++;
+            parts_hit[h.part < 3 ? h.part : 0]++;
+            /* The part, the id range and the leaf entry agree. */
+            if (h.part != pw.part[h.tri] || h.tri < bvh->part_first[h.part] || h.tri >= bvh->part_first[h.part + 1] ||
+                bvh->tri_ids[h.entry] != h.tri ||
+                memcmp(bvh->tri_verts + 9 * (size_t)h.entry, pw.w.v + 9 * (size_t)h.tri, 9 * sizeof(double)) != 0)
+                bad_part++;
+        }
+    }
+    printf("parts: %u triangles in 3 parts, %d hits (%d / %d / %d per part)\n", nt, hits, parts_hit[0], parts_hit[1],
+           parts_hit[2]);
+    CHECK(hits > 1500 && parts_hit[0] > 100 && parts_hit[1] > 100 && parts_hit[2] > 50,
+          "too few hits for a meaningful test (%d: %d / %d / %d)", hits, parts_hit[0], parts_hit[1], parts_hit[2]);
+    CHECK(mism == 0, "%d closest hits over all parts differ from brute force", mism);
+    CHECK(mism_f == 0, "%d filtered closest hits differ from brute force over the admitted parts", mism_f);
+    CHECK(bad_part == 0, "%d hits with a wrong part, id or entry", bad_part);
+    {
+        /* A bad part is named. */
+        uint32_t bad[3] = {0, 1, 99999};
+        snell__bvh *b2 = (snell__bvh *)&b2;
+        parts[1].indices = bad;
+        parts[1].triangle_count = 1;
+        CHECK(snell__bvh_build_parts(NULL, parts, 3, &b2) == SNELL_E_INVALID_ARG && !b2, "bad part");
+        CHECK(strstr(snell_last_error(NULL), "part 1") != NULL, "message: %s", snell_last_error(NULL));
+        CHECK(snell__bvh_build_parts(NULL, parts, 0, &b2) == SNELL_E_INVALID_ARG, "no parts");
+        CHECK(snell__bvh_build_parts(NULL, NULL, 2, &b2) == SNELL_E_INVALID_ARG, "NULL parts");
+    }
+    snell__bvh_destroy(bvh);
+    free(pw.w.v);
+    free(pw.part);
+    snell_mesh_destroy(cube);
+    snell_mesh_destroy(sphere);
+}
+
 static void bad_input(void)
 {
     float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
@@ -295,6 +438,7 @@ int main(void)
         random_rays("torus", torus, NULL, 4000);
         random_rays("torus (model)", torus, model, 4000);
         watertight(torus);
+        multi_part(torus);
         snell_mesh_destroy(torus);
     }
     if (snell_mesh_load_obj(NULL, "/usr/share/glmark2/models/bunny.obj", &bunny) == SNELL_OK) {

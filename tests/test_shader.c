@@ -38,11 +38,15 @@ int main(void)
     st = snell__program_build_src(ctx, vs_ok, fs_link_bad, NULL, &prog);
     CHECK(st == SNELL_E_GL && strstr(snell_last_error(ctx), "link failed"), "link failure: %s", snell_last_error(ctx));
 
-    st = snell__program_build(ctx, "glass.vert", "missing.frag", NULL, &prog);
+    st = snell__program_build(ctx, "object.vert", "missing.frag", NULL, &prog);
     CHECK(st == SNELL_E_GL && strstr(snell_last_error(ctx), "missing.frag"), "missing file: %s", snell_last_error(ctx));
 
     /* Every embedded vertex/fragment pair the renderer uses builds. */
-    CHECK_OK(snell__program_build(ctx, "glass.vert", "single.frag", NULL, &prog));
+    CHECK_OK(snell__program_build(ctx, "object.vert", "single.frag", NULL, &prog));
+    glDeleteProgram(prog);
+    CHECK_OK(snell__program_build(ctx, "object.vert", "single.frag", "#define SNELL_THIN 1\n", &prog));
+    glDeleteProgram(prog);
+    CHECK_OK(snell__program_build(ctx, "object.vert", "opaque.frag", NULL, &prog));
     glDeleteProgram(prog);
     CHECK_OK(snell__program_build(ctx, "skybox.vert", "skybox.frag", NULL, &prog));
     glDeleteProgram(prog);

@@ -110,8 +110,8 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
     static float dirs[W * H * 3], bg[W * H * 3], rgb[W * H * 3], ref_dirs[W * H * 3];
     static uint8_t mask[W * H], hit[W * H];
     snell_frame_desc fd;
+    snell_glass g;
     snell_ref *ref = NULL;
-    snell_ref_desc rd;
     snell_ref_params p;
     snell_dir_error_desc dd;
     snell_dir_error e;
@@ -123,18 +123,17 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
     memset(model, 0, sizeof model);
     model[0] = model[5] = model[10] = sc->scale;
     model[15] = 1.0f;
-    memset(&fd, 0, sizeof fd);
-    fd.mesh = NULL;
-    fd.env = env;
-    fd.model = model;
-    fd.glass.method = mc->id;
-    fd.glass.ior = sc->ior;
+    test_frame_one(&fd, &g, sc->mesh, env);
+    g.model = model;
+    g.material.method = mc->id;
+    g.material.ior = sc->ior;
     fd.camera.azimuth = (float)(sc->az_deg * PI / 180.0);
     fd.camera.elevation = (float)(sc->el_deg * PI / 180.0);
     fd.camera.distance = 3.5f * sc->scale;
-    CHECK_OK(snell_render(r, &fd, NULL));
+    fd.glass_count = 0; /* the background alone */
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
     CHECK_OK(snell_renderer_read_exit_dirs(r, bg));
-    fd.mesh = sc->mesh;
+    fd.glass_count = 1;
     st = snell_render(r, &fd, NULL);
     if (st != SNELL_OK) {
         CHECK(0, "%s %s: render failed: %s", mc->name, sc->label, snell_last_error(ctx));
@@ -143,10 +142,7 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
     CHECK_OK(snell_renderer_read_exit_dirs(r, dirs));
     CHECK_OK(snell_metrics_coverage_mask(dirs, bg, W * H, mask));
 
-    memset(&rd, 0, sizeof rd);
-    rd.mesh = sc->mesh;
-    rd.model = model;
-    CHECK_OK(snell_ref_create(ctx, &rd, &ref));
+    CHECK_OK(test_ref_create(ctx, &fd, &ref));
     if (!ref) return 0;
     test_ref_params(&fd, W, H, mc->interfaces, &p);
     p.absorption_model = mc->absorb;
@@ -250,12 +246,11 @@ int main(int argc, char **argv)
         };
         for (m = 0; m < sizeof g_methods / sizeof *g_methods; m++) {
             snell_frame_desc probe;
+            snell_glass pg;
             if (argc > 1 && strcmp(argv[1], g_methods[m].name)) continue;
             /* A method not built into this renderer yet is skipped, not failed. */
-            memset(&probe, 0, sizeof probe);
-            probe.mesh = sphere;
-            probe.env = env;
-            probe.glass.method = g_methods[m].id;
+            test_frame_one(&probe, &pg, sphere, env);
+            pg.material.method = g_methods[m].id;
             if (snell_render(r, &probe, NULL) != SNELL_OK) {
                 printf("%s: not available (%s): skipped\n", g_methods[m].name, snell_last_error(ctx));
                 continue;

@@ -43,11 +43,31 @@ void test_ref_params(const snell_frame_desc *fd, int w, int h, int max_interface
     memset(p, 0, sizeof *p);
     p->mode = SNELL_REF_MATCHED;
     p->max_interfaces = max_interfaces;
-    p->glass = fd->glass;
     p->env = fd->env;
     p->camera = fd->camera;
     p->width = w;
     p->height = h;
+}
+
+snell_status test_ref_create(snell_ctx *ctx, const snell_frame_desc *fd, snell_ref **out)
+{
+    snell_ref_desc d;
+    memset(&d, 0, sizeof d);
+    d.glass = fd->glass;
+    d.glass_count = fd->glass_count;
+    d.opaque = fd->opaque;
+    d.opaque_count = fd->opaque_count;
+    return snell_ref_create(ctx, &d, out);
+}
+
+void test_frame_one(snell_frame_desc *fd, snell_glass *g, const snell_mesh *mesh, const snell_env *env)
+{
+    memset(fd, 0, sizeof *fd);
+    memset(g, 0, sizeof *g);
+    g->mesh = mesh;
+    fd->env = env;
+    fd->glass = g;
+    fd->glass_count = 1;
 }
 
 snell_status test_ref_render(const snell_ref *ref, const snell_ref_params *p, float *rgb, float *exit_dir,

@@ -28,6 +28,13 @@ extern int test_passed, test_failed;
         CHECK(st_ == SNELL_OK, "%s: %s", snell_status_str(st_), snell_last_error(NULL)); \
     } while (0)
 
+/* The same for a call on a context: the message is the context's. */
+#define CHECK_OK_CTX(ctx, call)                                                         \
+    do {                                                                                \
+        snell_status st_ = (call);                                                      \
+        CHECK(st_ == SNELL_OK, "%s: %s", snell_status_str(st_), snell_last_error(ctx)); \
+    } while (0)
+
 #define SKIP(...)                                                         \
     do {                                                                  \
         printf("SKIP: ");                                                 \
@@ -42,8 +49,15 @@ const char *test_data(const char *name);
 /* Path for an output file in the test's build directory (static buffer). */
 const char *test_out(const char *name);
 /* Reference parameters that match frame fd rendered at w x h: MATCHED mode
- * with the given interface cap, the frame's glass, environment and camera. */
+ * with the given interface cap, the frame's environment and camera (the
+ * materials come from the reference's scene: test_ref_create). */
 void test_ref_params(const snell_frame_desc *fd, int w, int h, int max_interfaces, snell_ref_params *p);
+/* A reference tracer over frame fd's scene (its glass objects with their
+ * materials, and its opaque objects). Materials are copied: after changing
+ * fd's, call snell_ref_set_material (or create the reference again). */
+snell_status test_ref_create(snell_ctx *ctx, const snell_frame_desc *fd, snell_ref **out);
+/* fd = a frame of one glass object g (mesh, model NULL, zero material) in env. */
+void test_frame_one(snell_frame_desc *fd, snell_glass *g, const snell_mesh *mesh, const snell_env *env);
 /* snell_ref_render with these outputs (rgb required; exit_dir, hit optional). */
 snell_status test_ref_render(const snell_ref *ref, const snell_ref_params *p, float *rgb, float *exit_dir,
                              uint8_t *hit);

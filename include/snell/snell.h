@@ -161,16 +161,34 @@ typedef struct snell_mesh_analysis {
                               * this radius holds no surface (inside it if the centre is inside) */
     float hidden_fraction;   /* 0..1, area-weighted, +-1/sqrt(samples) sampling error */
     int samples;             /* surface sample points used for hidden_fraction */
-    int closed;              /* every edge has exactly two triangles of opposite orientation */
-    int convex;              /* closed and every edge locally convex (so the solid is convex) */
+    /* Topology is found on vertices welded by position, so meshes whose
+     * vertices are split at UV or normal seams count as closed; drawing keeps
+     * the split vertices. Two vertices weld when a chain of vertices, each
+     * within 1e-5 of the bounding-box diagonal of the next, joins them.
+     * Vertices no triangle uses are ignored; triangles with two welded
+     * corners equal (no area) are left out, so they are no defect. An edge is
+     * a pair of welded vertices that are corners of one triangle side. */
+    uint32_t welded_vertices;   /* distinct positions the triangles use, after welding */
+    uint32_t boundary_edges;    /* edges with one triangle (holes, open rims) */
+    uint32_t nonmanifold_edges; /* edges with three or more triangles (fins, doubled faces) */
+    uint32_t flipped_edges;     /* edges whose two triangles run it the same way (inconsistent winding) */
+    int closed;              /* none of these three (and some triangle): every edge has two triangles of
+                              * opposite orientation (vertices where two sheets touch are not checked) */
+    int convex;              /* closed and every edge locally convex within 4 weld tolerances
+                              * (so the solid is convex) */
     int inside;              /* closed and the centre's crossing parity was odd along 3 rays */
     int winding;             /* closed: +1 counter-clockwise triangles face outward (signed
                               * volume > 0), -1 they face inward; 0 open or zero volume */
 } snell_mesh_analysis;
 
-/* Analyzes the mesh (O(triangles) memory, a few tens of ms for 100k triangles).
- * The renderer does this itself once per mesh version for the cubemap method
- * and AUTO; exposed so users can see why a mesh is (not) suited. */
+/* Analyzes the mesh (O(triangles) memory; 0.16 s for the 70k-triangle bunny on
+ * one core, nearly all of it the ray casts). The renderer does this itself,
+ * once per mesh version (cached on the mesh), for AUTO and the methods that
+ * need it; this returns that cached result when there is one, and analyses
+ * afresh otherwise; exposed so users can see why a mesh is (not) suited.
+ * SNELL_E_INVALID_ARG for a mesh without area, SNELL_E_LIMIT for one whose
+ * vertices are too densely clustered to weld (far below the weld tolerance,
+ * in their thousands: not seen in real meshes). */
 snell_status snell_mesh_analyze(const snell_mesh *mesh, snell_mesh_analysis *out);
 
 /* ------------------------------------------------------------ environment */
@@ -200,10 +218,16 @@ void snell_env_sample(const snell_env *env, const float dir[3], float rgb[3]);
 void snell_env_sample_d(const snell_env *env, const double dir[3], double rgb[3]);
 
 /* ------------------------------------------------------------------ glass */
+/* How the exit of a light path through the glass is found. Methods are the
+ * entries of a registry (snell_method_info); AUTO picks, per object, the
+ * cheapest method whose preconditions the object's mesh and material meet
+ * and says why in the frame statistics. */
 typedef enum snell_method {
-    SNELL_METHOD_AUTO = 0,     /* the cheapest method adequate for the mesh */
-    SNELL_METHOD_SINGLE,       /* refraction at the front surface only (Unger 3.3) */
-    SNELL_METHOD_CUBEMAP       /* two-sided: exit found in a normal+distance cubemap (Unger 4.1, Li et al.) */
+    SNELL_METHOD_AUTO = 0,     /* the cheapest method adequate for the object */
+    SNELL_METHOD_SINGLE,       /* refraction at the front surface only (Unger 3.3); needs nothing */
+    SNELL_METHOD_CUBEMAP,      /* two-sided: exit found in a normal+distance cubemap (Unger 4.1, Li et al.);
+                                * needs a closed mesh with its centre inside */
+    SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 
 /* How SNELL_METHOD_CUBEMAP packs normal and distance into one RGBA8 texel. */
@@ -213,33 +237,96 @@ typedef enum snell_ndcube_encoding {
     SNELL_NDCUBE_OCT           /* octahedral normal in RG (8+8 bits), distance in BA (16 bits), nearest */
 } snell_ndcube_encoding;
 
-/* What zero means in the cubemap fields of snell_glass_desc. */
-#define SNELL_CUBEMAP_DEFAULT_ITERATIONS 6
-#define SNELL_CUBEMAP_DEFAULT_INTERFACES 2
-#define SNELL_CUBEMAP_DEFAULT_FACE_SIZE 256
+/* SNELL_METHOD_CUBEMAP's parameters (material.cubemap); zero = the default
+ * snell_glass_defaults() reports. All changeable per frame: the first frame
+ * with a new (iterations, linear_steps, encoding, max_interfaces == 1 without
+ * absorption or not) builds that search program (step counts are compile-time
+ * constants of the shader; 8 programs are kept) and a new face_size or
+ * encoding bakes that mesh's cubemap; frames with settings already used
+ * allocate nothing. */
+typedef struct snell_cubemap_params {
+    int iterations;            /* binary-search steps per interface, 1..32 (default 6) */
+    int linear_steps;          /* linear pre-search steps before the binary search, 0..32 (default 0) */
+    int max_interfaces;        /* surfaces processed per path, 1..8 (1 = single surface, 2 = entry +
+                                * exit, more = internal reflections; default 2) */
+    int face_size;             /* normal+distance cubemap face, 16..2048 texels (default 256) */
+    snell_ndcube_encoding encoding;
+} snell_cubemap_params;
+
 #define SNELL_CUBEMAP_MAX_ITERATIONS 32
 #define SNELL_CUBEMAP_MAX_LINEAR_STEPS 32
 #define SNELL_CUBEMAP_MAX_INTERFACES 8
 
-typedef struct snell_glass_desc {
+/* A glass material, named as glTF 2.0 names it so that a glTF material maps
+ * onto it field by field. Zero means the default (snell_glass_defaults). */
+typedef struct snell_glass_material {
+    float ior;                     /* KHR_materials_ior "ior": 0 = 1.5; outside is 1 (0.05..100) */
+    float attenuation_color[3];    /* KHR_materials_volume: the colour white light turns after
+                                    * attenuation_distance inside; 0..1, all zero = white (none) */
+    float attenuation_distance;    /* KHR_materials_volume, world units; 0 = infinite (no absorption) */
+    /* 0: the mesh bounds a solid volume of glass. > 0: a thin wall of this
+     * thickness (world units), e.g. a window pane or a bubble: light leaves in
+     * the direction it entered, reflected and absorbed as by a slab (glTF's
+     * thin-walled case; KHR_materials_volume's thicknessFactor 0). */
+    float thickness;
+    float tint[3];                 /* multiplies transmitted light (glTF baseColorFactor under
+                                    * KHR_materials_transmission); all zero = white */
+    snell_method method;           /* SNELL_METHOD_AUTO = chosen per object and frame */
+    snell_cubemap_params cubemap;  /* used when the method (or AUTO's choice) is CUBEMAP */
+} snell_glass_material;
+
+/* A material with every default applied, and the per-unit absorption derived
+ * from it (Beer-Lambert: sigma = -ln(attenuation_color) / attenuation_distance;
+ * a colour channel of 0 counts as 1e-6). This is what the renderer and the
+ * reference tracer use; CLIs print it instead of keeping their own copies. */
+typedef struct snell_glass_resolved {
+    snell_glass_material material; /* ior, tint, cubemap.* resolved; attenuation_distance
+                                    * HUGE_VALF when there is no absorption */
+    float absorption[3];           /* per world unit, rgb; 0 = none */
+    int absorbs;                   /* any absorption > 0 */
+} snell_glass_resolved;
+
+/* Resolves and validates `in` (NULL = all defaults) into *out. SNELL_E_INVALID_ARG
+ * with a message naming the field when a value is out of range or not finite. */
+snell_status snell_glass_defaults(const snell_glass_material *in, snell_glass_resolved *out);
+
+/* Per-unit absorption -> the glTF form (distance 1, colour exp(-sigma)); for
+ * callers that think in Beer-Lambert coefficients. */
+void snell_glass_set_absorption(snell_glass_material *m, const float sigma[3]);
+
+/* ------------------------------------------------------- method registry */
+/* One integer parameter of a method (enums are integers with value names). */
+typedef struct snell_param_info {
+    const char *name;              /* "iterations": what CLIs accept as name=value */
+    const char *help;
+    int min, max;                  /* valid range of explicit values */
+    int def;                       /* the resolved default */
+    const char *const *value_names; /* enum parameters: name of each value min..max, else NULL */
+} snell_param_info;
+
+typedef struct snell_method_info {
     snell_method method;
-    float ior;                 /* index of refraction of the glass; 0 = 1.5; outside is 1 */
-    float absorption[3];       /* Beer-Lambert coefficient per unit length (world units), rgb */
-    float tint[3];             /* multiplies transmitted light; all zero = white (no tint) */
-    /* SNELL_METHOD_CUBEMAP (and AUTO when it picks it); all changeable per frame.
-     * The first frame with a new (search_iterations, linear_steps, encoding,
-     * max_interfaces == 1 without absorption or not) builds that search
-     * program (the step counts are compile-time constants of the shader, and
-     * one interface compiles the search out; 8 programs are kept) and a new
-     * face size or encoding re-bakes the cubemap; frames with settings already
-     * used allocate nothing. */
-    int search_iterations;     /* binary-search steps per interface, 1..32; 0 = SNELL_CUBEMAP_DEFAULT_ITERATIONS (6) */
-    int linear_steps;          /* linear pre-search steps before the binary search, 0..32; 0 = none */
-    int max_interfaces;        /* surfaces processed per path, 1..8 (1 = single surface,
-                                * 2 = entry + exit, more = internal reflections); 0 = ..._DEFAULT_INTERFACES (2) */
-    int cube_face_size;        /* normal+distance cubemap face, 16..2048 texels; 0 = ..._DEFAULT_FACE_SIZE (256) */
-    snell_ndcube_encoding encoding;
-} snell_glass_desc;
+    const char *name;              /* "single", "cubemap" */
+    const char *summary;           /* one line */
+    const char *needs;             /* its preconditions, in words */
+    int cost_rank;                 /* AUTO tries lower ranks first */
+    int param_count;
+    const snell_param_info *params;
+} snell_method_info;
+
+/* Registry entries in cost order (i = 0 .. snell_method_count()-1), NULL past the end. */
+int snell_method_count(void);
+const snell_method_info *snell_method_info_at(int i);
+/* The entry of a method (NULL for AUTO or an unknown value). */
+const snell_method_info *snell_method_info_of(snell_method m);
+/* "auto", "single", "cubemap"; "unknown" for other values. Never NULL. */
+const char *snell_method_str(snell_method m);
+/* By name ("auto" included); SNELL_E_INVALID_ARG for an unknown one. */
+snell_status snell_method_from_str(const char *name, snell_method *out);
+/* Sets a method parameter of the material by name ("iterations", "encoding"
+ * also by value name, e.g. "oct"), range-checked. */
+snell_status snell_glass_set_param(snell_glass_material *m, snell_method method, const char *name,
+                                   const char *value);
 
 typedef struct snell_camera {
     float azimuth;             /* radians, around +Y, 0 = camera on +Z */
@@ -278,41 +365,78 @@ typedef struct snell_renderer_desc {
     snell_output output;
 } snell_renderer_desc;
 
-/* An opaque object of the scene (diffuse, lit from +Y), drawn in the view and,
- * seen from the glass, into the dynamic environment. */
+/* A glass object of the scene. */
+typedef struct snell_glass {
+    const snell_mesh *mesh;         /* required; GPU buffers made on first draw */
+    const float *model;             /* float[16] object-to-world; NULL = identity */
+    snell_glass_material material;
+} snell_glass;
+
+/* An opaque object of the scene (diffuse, lit from above: colour *
+ * (0.25 + 0.75 * (0.5 + 0.5 * dot(n, normalize(0.3, 1, 0.2))))), drawn in the
+ * view and, seen from each glass object, into its dynamic environment. */
 typedef struct snell_opaque {
     const snell_mesh *mesh;         /* required; GPU buffers made on first draw */
     const float *model;             /* float[16] object-to-world; NULL = identity */
     float color[3];                 /* diffuse albedo 0..1; all zero = 0.8 grey */
 } snell_opaque;
 
-#define SNELL_MAX_OPAQUE 16
+#define SNELL_MAX_GLASS 32
+#define SNELL_MAX_OPAQUE 64
 
+/* One frame's scene. Drawn as Franke's transparency notes order it: opaque
+ * objects first (depth write), then the glass objects back to front by the
+ * view depth of their bounding-sphere centres, then the background where
+ * nothing was drawn. A glass object sees the environment and, when there are
+ * opaque objects, a dynamic environment rendered from its bounding-sphere
+ * centre with them in it (Unger 4.1), re-rendered only in frames where
+ * something it shows moved. Glass does not yet see other glass objects. */
 typedef struct snell_frame_desc {
-    const snell_mesh *mesh;         /* may be NULL: background only */
     const snell_env *env;           /* required */
-    snell_glass_desc glass;
     snell_camera camera;
-    const float *model;             /* float[16] object-to-world; NULL = identity */
-    int draw_background;            /* 0 = default (draw skybox); -1 = leave background untouched */
-    /* Opaque scene objects (0..SNELL_MAX_OPAQUE). With any, the glass sees a
-     * dynamic environment: env plus these objects rendered into a cubemap from
-     * the glass's bounding-sphere centre, re-rendered only in frames where an
-     * object, its model/colour, the glass position or env changed (Unger 4.1). */
-    const snell_opaque *opaque;
+    const snell_glass *glass;       /* glass_count entries (0..SNELL_MAX_GLASS) */
+    int glass_count;
+    const snell_opaque *opaque;     /* opaque_count entries (0..SNELL_MAX_OPAQUE) */
     int opaque_count;
-    int dynamic_env_size;           /* its face size, 16..2048; 0 = half of env's, at most 256 */
+    int draw_background;            /* 0 = default (draw skybox); -1 = leave background untouched */
+    int dynamic_env_size;           /* dynamic environment face size, 16..2048; 0 = half of env's, at most 256 */
 } snell_frame_desc;
 
+/* What a frame did not do for an object, and why (bits of snell_object_stats.skipped). */
+typedef enum snell_skip {
+    SNELL_SKIP_PASSTHROUGH = 1 << 0,  /* IOR 1, no absorption, no tint: the glass changes nothing */
+    SNELL_SKIP_OUTSIDE_VIEW = 1 << 1, /* its bounding sphere is outside the view frustum */
+    SNELL_SKIP_PREPARE = 1 << 2,      /* prepared resources (e.g. the baked cubemap) reused */
+    SNELL_SKIP_ENV_UPDATE = 1 << 3,   /* its dynamic environment reused: nothing in it moved */
+    SNELL_SKIP_BACK_FACES = 1 << 4,   /* back faces culled (closed mesh of known winding) */
+    SNELL_SKIP_ANALYSIS = 1 << 5,     /* no mesh analysis: an explicit method that needs none */
+    SNELL_SKIP_SEARCH = 1 << 6        /* CUBEMAP with one interface and no absorption: no exit search */
+} snell_skip;
+
+#define SNELL_REASON_SIZE 160
+
+typedef struct snell_object_stats {
+    snell_method method_used;       /* SINGLE or CUBEMAP (what drew it, or would have) */
+    char reason[SNELL_REASON_SIZE]; /* why this method: AUTO's choice or the explicit request,
+                                     * with the mesh facts it rests on */
+    int warning;                    /* 1: an explicit method whose preconditions the mesh fails
+                                     * (drawn anyway; the reason says what fails; logged at WARN) */
+    unsigned skipped;               /* SNELL_SKIP_* bits */
+    int passes;                     /* GL draw passes for this object (bake, environment, kernel) */
+    int prepared;                   /* 1: its method's resources were built this frame */
+    int env_updated;                /* 1: its dynamic environment was re-rendered this frame */
+    int draw_order;                 /* 0 = drawn first (farthest); -1 = not drawn */
+    float view_depth;               /* distance of its bounding-sphere centre along the view axis */
+    float hidden_fraction;          /* the mesh's hidden_fraction if analysed, else 0 */
+} snell_object_stats;
+
 typedef struct snell_frame_stats {
-    snell_method method_used;
-    int passes;                     /* GL draw passes issued */
-    int skipped_passthrough;        /* IOR == 1 and no absorption: glass drawn as nothing */
+    int passes;                     /* GL draw passes issued in all */
     double cpu_ms;                  /* CPU time spent issuing the frame */
-    int ndcube_baked;               /* CUBEMAP: 1 if the normal+distance cubemap was (re)built this frame */
-    int env_updated;                /* 1 if the dynamic environment was re-rendered this frame */
-    int env_skipped;                /* 1 if it exists and nothing moved, so it was reused */
-    float hidden_fraction;          /* CUBEMAP/AUTO: the mesh's hidden_fraction (snell_mesh_analyze), else 0 */
+    int glass_count;                /* entries of glass[] filled, = the frame's glass_count */
+    snell_object_stats glass[SNELL_MAX_GLASS]; /* in the order of the frame's glass list */
+    int opaque_drawn;               /* opaque objects drawn in the view */
+    int background_drawn;           /* 1 if the background pass ran */
 } snell_frame_stats;
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);

@@ -1,38 +1,78 @@
 /* snell_ref.h — the CPU reference ray tracer: ground truth for the GPU methods.
  *
- * Double precision, a BVH over the mesh (watertight ray-triangle test), the
- * GPU's smooth shading normals, camera and environment filtering, so that an
- * image difference measures only a method's approximation. Two optical models:
+ * Double precision, one BVH over every object of the scene (watertight
+ * ray-triangle test), the GPU's smooth shading normals, camera and
+ * environment filtering, so that an image difference measures only a
+ * method's approximation. The scene is the renderer's: glass objects (each
+ * its mesh, model and material, resolved by snell_glass_defaults: ior, tint,
+ * absorption derived from attenuation_color / attenuation_distance, thin-wall
+ * thickness) and opaque diffuse objects (snell_opaque).
  *
- *  SNELL_REF_MATCHED — the model of the GPU kernels (Unger 4.1): at the first
- *    surface C = F*env(R) + (1-F) * tint * T * L, F = Schlick(cos_i, 1, ior),
- *    R the mirror direction, L the radiance of the refracted chain: the
- *    refracted ray continues inside; at each further interface it is reflected
- *    if totally internally reflected (no Fresnel split inside), else refracted
- *    out and L = env(exit direction). T = exp(-absorption * d), d the path
- *    length inside (or see SNELL_REF_ABSORB_BOUNDING_SPHERE).
+ * What a ray meets (both modes):
+ *  - nothing: the environment in its direction;
+ *  - an opaque object: the path ends there with the colour opaque.frag gives
+ *    it, colour * (0.25 + 0.75 * (0.5 + 0.5 * dot(n, normalize(0.3, 1, 0.2))))
+ *    with n the normalised interpolated world normal, not flipped;
+ *  - a glass object: an interface, as the mode below says. A solid object
+ *    (thickness 0) bounds a volume of glass; a thin-walled one (thickness > 0)
+ *    is a slab at each of its surfaces: reflectance rs and transmittance ts of
+ *    all inner bounces (snell_optd_thin_slab: Schlick at both faces,
+ *    Beer-Lambert along the refracted chord thickness / cos_t), light going
+ *    through leaves in the direction it came; a ray is never inside it.
+ * Inside/outside is tracked per object: a ray inside solid object A sees only
+ * A's surfaces and opaque objects (an opaque object inside glass ends the
+ * path there, absorbed on the way). Glass objects are taken to be disjoint:
+ * where they overlap, the object the ray entered last is its medium until it
+ * leaves that object, and the other object's surfaces inside it are passed
+ * through unseen. A ray that has left a glass object may enter another one;
+ * with params.isolate_glass it sees only the environment and the opaque
+ * objects (and, in FULL mode, again the object it first entered, e.g. the
+ * other side of a torus), never another glass object.
+ *
+ * Two optical models:
+ *
+ *  SNELL_REF_MATCHED — the model of the GPU kernels (Unger 4.1): where a ray
+ *    in air meets solid glass object j, C = F*E(R) + (1-F) * tint * T * L,
+ *    F = Schlick(cos_i, 1, ior), R the mirror direction, L the radiance of
+ *    the refracted chain: the refracted ray continues inside j; at each
+ *    further surface of j it is reflected if totally internally reflected (no
+ *    Fresnel split inside), else refracted out and L = E(exit direction).
+ *    T = exp(-absorption * d), d the path length inside j (or see
+ *    SNELL_REF_ABSORB_BOUNDING_SPHERE). A thin-walled j gives C = rs*E(R) +
+ *    ts * tint * L, L = E(the same direction), the further surfaces of j
+ *    unseen (the GPU draws its front faces only). E(dir) is what a ray from
+ *    that surface sees in the scene without j (the GPU looks up an
+ *    environment j is not in): in a scene of one glass object, the
+ *    environment. Reflection branches are ended by an env lookup once their
+ *    weight drops below 1e-5 (as FULL's branches are); the chain, which the
+ *    path records, never is.
  *  SNELL_REF_FULL — a Whitted tree: reflection and refraction at every
  *    interface weighted by Schlick's F (n1/n2 of the side the ray is on),
  *    Beer-Lambert on every inner segment, tint on every entering refraction
- *    (once for a convex object); what a glass object really looks like. A
- *    branch whose throughput drops below 1e-5 ends with an env lookup in its
- *    direction instead of being traced on (error < 1e-5, far below 1/255).
+ *    (once for a convex object), every wall of a thin object a slab (a
+ *    reflected branch of weight rs, a straight-on one of weight ts * tint);
+ *    what a glass object really looks like. A branch whose throughput drops
+ *    below 1e-5 ends with an env lookup in its direction instead of being
+ *    traced on (error < 1e-5 per branch, far below 1/255).
  *
- * Interface cap (both modes): an "interface" is one ray-surface hit that is
- * processed (refracted and/or reflected); the first surface is interface 1.
- * At most max_interfaces are processed along any path. A ray that has gone
- * through max_interfaces interfaces and is still inside leaves in its current
- * direction: the environment is looked up in that direction, and absorption
- * (PATH model) runs on to the next surface along it. The same holds for a ray
- * inside that finds no surface (open mesh). max_interfaces = 1 in MATCHED mode
- * is the single-surface method (Unger 3.3): env(T1) after the front refraction.
+ * Interface cap (both modes): an "interface" is one ray-glass surface hit that
+ * is processed (refracted and/or reflected, or a thin wall crossed); the first
+ * glass surface is interface 1, and the count runs on over every object along
+ * a path. At most max_interfaces are processed along any path. A ray that has
+ * gone through max_interfaces interfaces and is still inside leaves through
+ * the next surface in its current direction: absorption (PATH model) runs on
+ * to that surface, and after it the ray sees the environment and the opaque
+ * objects only; so does a capped ray in air. The same holds for a ray inside
+ * that finds no surface (open mesh). max_interfaces = 1 in MATCHED mode is the
+ * single-surface method (Unger 3.3): E(T1) after the front refraction.
  *
  * Conventions are those of the renderer: pixel (x, y), y = 0 the top row, ray
  * through the pixel centre of snell_camera_matrices(camera, width/height);
  * smooth normal = normalize(barycentric interpolation of the world-space vertex
- * normals, inverse-transpose(model) * n), flipped to face the incoming ray;
- * environment = snell_env_sample_d (GL_LINEAR model). All directions are world
- * space, unit length. Results do not depend on the thread count (bitwise). */
+ * normals, inverse-transpose(model) * n), flipped to face the incoming ray at
+ * glass; environment = snell_env_sample_d (GL_LINEAR model). All directions
+ * are world space, unit length. Results do not depend on the thread count
+ * (bitwise). */
 #ifndef SNELL_SNELL_REF_H
 #define SNELL_SNELL_REF_H
 
@@ -49,20 +89,38 @@ extern "C" {
 
 typedef struct snell_ref snell_ref;
 
+/* The scene, as snell_frame_desc gives it to the renderer: glass objects
+ * (mesh, model, material; its method and cubemap parameters are validated
+ * but not used) and opaque diffuse objects, lit as the GPU lights them
+ * (snell_opaque). Paths may leave one glass object and enter another or end
+ * on an opaque one. At least one object; at most 2^26 triangles in all
+ * (SNELL_E_LIMIT beyond). */
 typedef struct snell_ref_desc {
-    const snell_mesh *mesh;  /* required; its triangles are copied (world space) */
-    const float *model;      /* float[16] object-to-world, column-major; NULL = identity */
+    const snell_glass *glass;     /* glass_count entries, 0..SNELL_MAX_GLASS; triangles copied */
+    int glass_count;
+    const snell_opaque *opaque;   /* opaque_count entries, 0..SNELL_MAX_OPAQUE; triangles copied;
+                                   * colour 0..1 per channel (all zero = 0.8 grey) */
+    int opaque_count;
 } snell_ref_desc;
 
-/* Builds the BVH (SAH) over the mesh in world space. ctx may be NULL (CPU only,
- * libc allocator, messages via snell_last_error(NULL)). */
+/* Builds one BVH (SAH) over all objects' triangles in world space. ctx may be
+ * NULL (CPU only, libc allocator, messages via snell_last_error(NULL)).
+ * SNELL_E_INVALID_ARG, with a message naming the object ("glass[1].model is
+ * not finite", "glass 1: ior ..."), for counts out of range, a NULL list or
+ * mesh, a mesh without triangles, a model that is not finite or singular, a
+ * material snell_glass_defaults rejects or an opaque colour outside 0..1. */
 snell_status snell_ref_create(snell_ctx *ctx, const snell_ref_desc *desc, snell_ref **out);
 void snell_ref_destroy(snell_ref *ref);
+/* Replaces glass object `index`'s material (no rebuild; NULL = defaults);
+ * validated as snell_glass_defaults validates, and on failure the material in
+ * use stays. Not while a render or trace of this reference runs. */
+snell_status snell_ref_set_material(snell_ref *ref, int index, const snell_glass_material *material);
 
-/* The world-space bounding sphere the GPU single-surface method uses for its
- * absorption estimate: centre = model * (object bounding-box centre), radius =
- * max vertex distance from that centre * largest column length of model's 3x3. */
-void snell_ref_bounding_sphere(const snell_ref *ref, double centre[3], double *radius);
+/* The world-space bounding sphere of glass object `index` that the GPU
+ * single-surface method uses for its absorption estimate: centre = model *
+ * (object bounding-box centre), radius = max vertex distance from that centre
+ * * largest column length of model's 3x3. Zeros for an index out of range. */
+void snell_ref_bounding_sphere(const snell_ref *ref, int index, double centre[3], double *radius);
 
 typedef enum snell_ref_mode {
     SNELL_REF_MATCHED = 0,  /* the GPU kernels' optical model (see above) */
@@ -71,9 +129,11 @@ typedef enum snell_ref_mode {
 
 typedef enum snell_ref_absorption {
     SNELL_REF_ABSORB_PATH = 0,         /* the real path length inside the glass */
-    /* MATCHED only: d = distance from the entry point along the first refracted
-     * direction to the exit of snell_ref_bounding_sphere(), whatever the chain
-     * does; with max_interfaces = 1 this is exactly SNELL_METHOD_SINGLE. */
+    /* MATCHED only: d = distance from the entry point of solid object j along
+     * the first refracted direction to the exit of j's
+     * snell_ref_bounding_sphere(), whatever the chain does; with
+     * max_interfaces = 1 this is exactly SNELL_METHOD_SINGLE. (Thin walls
+     * keep their slab absorption.) */
     SNELL_REF_ABSORB_BOUNDING_SPHERE
 } snell_ref_absorption;
 
@@ -84,7 +144,12 @@ typedef struct snell_ref_params {
     snell_ref_mode mode;
     int max_interfaces;                  /* 1..SNELL_REF_MAX_INTERFACES; 0 = 10 */
     snell_ref_absorption absorption_model;
-    snell_glass_desc glass;              /* ior (0 = 1.5), absorption, tint; method ignored */
+    /* 1: a ray that has left a glass object sees the environment and the
+     * opaque objects but no other glass object: what the GPU's per-object
+     * dynamic environment shows (without its parallax), so that the method's
+     * own error is measured apart from the glass-through-glass light that the
+     * renderer does not draw yet. 0: the full scene. */
+    int isolate_glass;                   /* nonzero = 1 */
     const snell_env *env;                /* environment, or: */
     snell_ref_env_fn env_fn;             /* used instead of env when non-NULL */
     void *env_user;
@@ -98,9 +163,12 @@ typedef struct snell_ref_output {
     float *rgb;           /* required: 3 per pixel, linear radiance (0..1 scale of the 8-bit env) */
     float *exit_dir;      /* optional: 3 per pixel, the direction of the final env lookup of the
                            * path (MATCHED: the chain; FULL: the dominant branch, see
-                           * snell_ref_trace_pixel); background pixels: the view ray */
+                           * snell_ref_trace_pixel), or of the ray that hit the opaque
+                           * object it ends on; background and opaque pixels: the view ray */
     uint8_t *interfaces;  /* optional: interfaces processed along that path (0 = background) */
-    uint8_t *hit;         /* optional: 1 if the view ray hits the mesh, else 0 */
+    uint8_t *hit;         /* optional: 1 if the view ray hits a glass object first, else 0 */
+    int16_t *object;      /* optional: what the view ray hits first: glass i -> i, opaque j ->
+                           * -2 - j, nothing -> -1 */
 } snell_ref_output;
 
 /* Renders the whole image with params->threads worker threads (pthreads). */
@@ -119,20 +187,28 @@ typedef enum snell_ref_event {
 } snell_ref_event;
 
 /* One light path as a polyline: points[0] is the origin, points[1..interfaces]
- * the interface points (world space) with what happened there; after the last
- * point the ray travels along exit_dir (unit). MATCHED: the refracted chain of
- * the GPU model (points[1] is the entry; its Fresnel reflection is a side
- * branch with weight `fresnel`). FULL: the dominant branch of the Whitted tree
- * (at every interface the branch of larger weight, refraction on a tie). */
+ * the interface points (world space) with what happened there (a thin wall
+ * crossed is REFRACT); after the last point the ray travels along exit_dir
+ * (unit) to the environment or to the opaque object the path ends on.
+ * MATCHED: the refracted (thin: transmitted) chain of the GPU model through
+ * every glass object it meets (points[1] is the entry; its Fresnel reflection
+ * is a side branch with weight `fresnel`). FULL: the dominant branch of the
+ * Whitted tree (at every interface the branch of larger weight, refraction on
+ * a tie; at a thin wall rs against ts summed over rgb). */
 typedef struct snell_ref_path {
-    int hit;                   /* 0: the ray missed the mesh (points[0] only) */
+    int hit;                   /* 1: the ray meets a glass object first; 0: nothing or an opaque
+                                * object (points[0] only) */
+    int first_object;          /* as snell_ref_output.object for the first hit */
+    int objects[SNELL_REF_MAX_INTERFACES + 1]; /* glass object of each interface point (-1 at points[0]) */
     int interfaces;            /* number of interface points; point count = interfaces + 1 */
     double points[SNELL_REF_MAX_INTERFACES + 1][3];
     snell_ref_event events[SNELL_REF_MAX_INTERFACES + 1];
     double exit_dir[3];
-    int ended_inside;          /* 1 if the path stopped inside the glass (cap or open mesh) */
-    double fresnel;            /* F at the first surface (0 if missed) */
-    double inside_length;      /* path length inside the glass, world units (PATH model) */
+    int ended_inside;          /* 1 if the path stopped inside glass (cap, open mesh, or an opaque
+                                * object inside it) */
+    double fresnel;            /* F at the first surface (a thin wall: its rs, mean of rgb; 0 if missed) */
+    double inside_length;      /* path length inside glass over all objects, world units (PATH
+                                * model; a thin wall crossed counts thickness / cos_t) */
     double rgb[3];             /* the pixel's colour as snell_ref_render computes it */
 } snell_ref_path;
 

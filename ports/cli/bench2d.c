@@ -6,7 +6,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "snell/snell.h"
 #include "snell/snell_2d.h"
-#include "bench_common.h"
+#include "cli_time.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -98,11 +98,11 @@ static snell_status run_frames(snell_ctx *ctx, snell_scene2d *s, const snell_lig
         L = bench2d_light0;
         L.position[0] += (i & 1) ? 1e-3f : -1e-3f;
         if ((rc = snell_scene2d_set_light(s, 0, &L)) != SNELL_OK) break;
-        t0 = bench_now_ms();
+        t0 = cli_now_ms();
         if ((rc = snell_lightmap2d_frame(lm, s, &st)) != SNELL_OK) break;
         snell_lightmap2d_finish(lm);
         if (i < 0) continue;
-        t[i] = bench_now_ms() - t0;
+        t[i] = cli_now_ms() - t0;
         tr[i] = st.trace_ms;
         tc[i] = st.trace_cpu_ms;
         ra[i] = t[i] - st.trace_ms;
@@ -111,10 +111,10 @@ static snell_status run_frames(snell_ctx *ctx, snell_scene2d *s, const snell_lig
     }
     snell_lightmap2d_destroy(lm);
     if (rc != SNELL_OK) return rc;
-    r->ms = bench_median(t, repeat);
-    r->trace_ms = bench_median(tr, repeat);
-    r->trace_cpu_ms = bench_median(tc, repeat);
-    r->raster_ms = bench_median(ra, repeat);
+    r->ms = cli_median(t, repeat);
+    r->trace_ms = cli_median(tr, repeat);
+    r->trace_cpu_ms = cli_median(tc, repeat);
+    r->raster_ms = cli_median(ra, repeat);
     return SNELL_OK;
 }
 

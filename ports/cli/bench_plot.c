@@ -2,7 +2,7 @@
  * log-log axes with decade grid and labels, one colour per scene, one marker
  * per method, the Pareto front of each scene+size group ringed and joined by
  * a dashed line, and a legend. Text uses an embedded 6x10 bitmap font. */
-#include "bench_common.h"
+#include "bench_plot.h"
 
 #include <math.h>
 #include <stdio.h>

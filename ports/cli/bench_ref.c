@@ -1,19 +1,21 @@
-/* bench_ref.c — reference images for snell-bench (snell_ref_render), cached on
- * disk per scene, camera, size, glass and mode so that reruns only time the
- * GPU. A cache file holds a text key (checked on load, so a hash collision
- * cannot return the wrong image) and the raw float/byte arrays of this
- * machine's byte order; a file that does not match is re-rendered. */
+/* bench_ref.c — reference images for snell-bench (snell_ref_render of the
+ * configuration's scene), cached on disk per scene, material, camera, size
+ * and model, so that reruns only time the GPU. A cache file holds a text key
+ * (checked on load, so a hash collision cannot return the wrong image) and
+ * the raw float/byte arrays of this machine's byte order; a file that does
+ * not match is re-rendered. */
 #define _POSIX_C_SOURCE 200809L
-#include "bench_common.h"
+#include "bench_ref.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define CACHE_MAGIC "SNELLBENCHREF2\n"
+#define CACHE_MAGIC "SNELLBENCHREF3\n"
 
 static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
 {
@@ -109,41 +111,96 @@ static void cache_store(const char *dir, const char *path, const char *full_key,
     if (!ok || rename(tmp, path) != 0) remove(tmp);
 }
 
-snell_status bench_ref_get(const snell_mesh *mesh, const snell_ref_params *p,
-                           const char *cache_dir, const char *key, bench_ref_image *out, int *cached)
+/* Appends printf-style text to the key (bounded; *len past the end marks overflow). */
+static void key_add(char *key, size_t size, size_t *len, const char *fmt, ...)
 {
-    char full_key[1024], path[1100];
+    va_list ap;
+    if (*len >= size) return;
+    va_start(ap, fmt);
+    *len += (size_t)vsnprintf(key + *len, size - *len, fmt, ap);
+    va_end(ap);
+}
+
+static void key_model(char *key, size_t size, size_t *len, const float *model)
+{
+    int k;
+    if (!model) {
+        key_add(key, size, len, " model=identity");
+        return;
+    }
+    key_add(key, size, len, " model=");
+    for (k = 0; k < 16; k++) key_add(key, size, len, "%s%.9g", k ? "/" : "", model[k]);
+}
+
+/* Everything the reference image depends on, as text. 0 if it does not fit. */
+static int scene_key(const snell_ref_desc *scene, const snell_ref_params *p, const char *env_key, char *key,
+                     size_t size)
+{
+    const snell_camera *cam = &p->camera;
+    size_t len = 0;
+    int i;
+    key_add(key, size, &len, "env=%s size=%dx%d cam=%.9g/%.9g/%.9g/%.9g/%.9g/%.9g/%.9g/%.9g/%.9g mode=%d "
+            "interfaces=%d absorb=%d isolate=%d",
+            env_key, p->width, p->height, cam->azimuth, cam->elevation, cam->distance, cam->fov_y, cam->target[0],
+            cam->target[1], cam->target[2], cam->z_near, cam->z_far, (int)p->mode, p->max_interfaces,
+            (int)p->absorption_model, p->isolate_glass != 0);
+    for (i = 0; i < scene->glass_count; i++) {
+        const snell_glass *g = &scene->glass[i];
+        snell_glass_resolved r;
+        if (snell_glass_defaults(&g->material, &r) != SNELL_OK) return 0;
+        key_add(key, size, &len, " | glass mesh=%016llx", (unsigned long long)mesh_hash(g->mesh));
+        key_model(key, size, &len, g->model);
+        key_add(key, size, &len, " ior=%.9g abs=%.9g/%.9g/%.9g tint=%.9g/%.9g/%.9g thickness=%.9g", r.material.ior,
+                r.absorption[0], r.absorption[1], r.absorption[2], r.material.tint[0], r.material.tint[1],
+                r.material.tint[2], r.material.thickness);
+    }
+    for (i = 0; i < scene->opaque_count; i++) {
+        const snell_opaque *q = &scene->opaque[i];
+        key_add(key, size, &len, " | opaque mesh=%016llx", (unsigned long long)mesh_hash(q->mesh));
+        key_model(key, size, &len, q->model);
+        key_add(key, size, &len, " color=%.9g/%.9g/%.9g", q->color[0], q->color[1], q->color[2]);
+    }
+    return len < size;
+}
+
+static snell_status render_ref(const snell_ref_desc *scene, const snell_ref_params *p, bench_ref_image *out)
+{
     snell_ref *ref = NULL;
-    snell_ref_desc rd;
     snell_ref_output o;
-    snell_status st;
-    uint64_t h;
+    snell_status st = snell_ref_create(NULL, scene, &ref);
+    if (st != SNELL_OK) return st;
+    memset(&o, 0, sizeof o);
+    o.rgb = out->rgb;
+    o.exit_dir = out->exit_dir;
+    o.hit = out->hit;
+    st = snell_ref_render(ref, p, &o);
+    snell_ref_destroy(ref);
+    return st;
+}
+
+snell_status bench_ref_get(const snell_ref_desc *scene, const snell_ref_params *p, const char *env_key,
+                           const char *cache_dir, bench_ref_image *out, int *cached)
+{
+    size_t key_size = 1024 + (size_t)(scene->glass_count + scene->opaque_count) * 512;
+    char *key = (char *)malloc(key_size), path[1100];
+    snell_status st = SNELL_OK;
     *cached = 0;
-    if (!alloc_image(out, p->width, p->height)) return SNELL_E_NOMEM;
-    h = mesh_hash(mesh);
-    snprintf(full_key, sizeof full_key, "mesh=%016llx %s", (unsigned long long)h, key);
+    if (!key || !alloc_image(out, p->width, p->height)) {
+        free(key);
+        return SNELL_E_NOMEM;
+    }
+    if (!scene_key(scene, p, env_key, key, key_size)) cache_dir = NULL; /* a material the reference rejects */
     snprintf(path, sizeof path, "%s/%016llx.ref", cache_dir ? cache_dir : ".",
-             (unsigned long long)fnv1a(1469598103934665603ull, full_key, strlen(full_key)));
-    if (cache_dir && cache_load(path, full_key, out)) {
+             (unsigned long long)fnv1a(1469598103934665603ull, key, strlen(key)));
+    if (cache_dir && cache_load(path, key, out)) {
         *cached = 1;
-    } else {
-        memset(&rd, 0, sizeof rd);
-        rd.mesh = mesh;
-        if ((st = snell_ref_create(NULL, &rd, &ref)) != SNELL_OK) {
-            bench_ref_free(out);
-            return st;
-        }
-        memset(&o, 0, sizeof o);
-        o.rgb = out->rgb;
-        o.exit_dir = out->exit_dir;
-        o.hit = out->hit;
-        st = snell_ref_render(ref, p, &o);
-        snell_ref_destroy(ref);
-        if (st != SNELL_OK) {
-            bench_ref_free(out);
-            return st;
-        }
-        if (cache_dir) cache_store(cache_dir, path, full_key, out);
+    } else if ((st = render_ref(scene, p, out)) == SNELL_OK && cache_dir) {
+        cache_store(cache_dir, path, key, out);
+    }
+    free(key);
+    if (st != SNELL_OK) {
+        bench_ref_free(out);
+        return st;
     }
     snell_ref_rgb_to_rgba8(out->rgb, out->width, out->height, out->rgba);
     return SNELL_OK;

@@ -1,37 +1,14 @@
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
-/* bench_timer.c — wall-clock timing and medians for snell-bench (3D and 2D),
- * and GPU frame time with GL_EXT_disjoint_timer_query, when the
- * context has it (llvmpipe does not: snell-bench then reports CPU wall time
- * with glFinish only, and says so). One query in flight at a time: the bench
- * ends every frame with glFinish anyway. */
-#include "bench_common.h"
-
-#include <stdlib.h>
-#include <time.h>
+/* bench_timer.c — GPU frame time with GL_EXT_disjoint_timer_query, when the
+ * context has it (llvmpipe advertises it, but its query measures command
+ * submission, not the deferred rasterisation: bench/BENCHMARKS.md; the wall
+ * clock of render + glFinish is what snell-bench reports). One query in
+ * flight at a time: the bench ends every frame with glFinish anyway. */
+#include "bench_timer.h"
 
 #include <EGL/egl.h>
 #include <GLES3/gl3.h>
 #include <GLES2/gl2ext.h>
 #include <stddef.h>
-
-double bench_now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-double bench_median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 static PFNGLGENQUERIESEXTPROC p_gen;
 static PFNGLBEGINQUERYEXTPROC p_begin;

@@ -1,19 +1,17 @@
 /* trace_pixel.c — `snell-render --trace-pixel X,Y`: the reference light paths
- * of chosen pixels (snell_ref_trace_pixel; Unger 4.2.2), drawn as lines over
- * the scene seen from a second camera (the first one turned 90 degrees about
- * the target and raised), and written as JSON. FULL (the Whitted tree's
- * dominant branch) and MATCHED (the GPU kernels' refracted chain, 10
- * interfaces) are both traced. Uses the public API only. */
-#include "snell/snell.h"
+ * of chosen pixels (snell_ref_trace_pixel; Unger 4.2.2) through the whole
+ * scene (every glass and opaque object; paths may pass from one glass object
+ * into another), drawn as lines over the scene seen from a second camera (the
+ * first one turned 90 degrees about the target and raised), and written as
+ * JSON. FULL (the Whitted tree's dominant branch) and MATCHED (the GPU
+ * kernels' refracted chain, 10 interfaces) are both traced. Public API only. */
+#include "render.h"
 #include "snell/snell_ref.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int width, int height, const int *xy,
-                              int count, const char *out_png);
 
 typedef struct view2 {
     float view[16], proj[16];
@@ -91,7 +89,10 @@ static const char *event_name(snell_ref_event e)
 static void json_path(FILE *f, const snell_ref_path *p)
 {
     int i;
-    fprintf(f, "{\"hit\": %d, \"interfaces\": %d, \"points\": [", p->hit, p->interfaces);
+    fprintf(f, "{\"hit\": %d, \"first_object\": %d, \"interfaces\": %d, \"objects\": [", p->hit, p->first_object,
+            p->interfaces);
+    for (i = 0; i <= p->interfaces; i++) fprintf(f, "%s%d", i ? ", " : "", p->objects[i]);
+    fprintf(f, "], \"points\": [");
     for (i = 0; i <= p->interfaces; i++)
         fprintf(f, "%s[%.9g, %.9g, %.9g]", i ? ", " : "", p->points[i][0], p->points[i][1], p->points[i][2]);
     fprintf(f, "], \"events\": [");
@@ -102,18 +103,17 @@ static void json_path(FILE *f, const snell_ref_path *p)
             p->rgb[1], p->rgb[2]);
 }
 
-static void draw_path(view2 *v, const snell_ref_path *p, double exit_len, const uint8_t in_c[3],
-                      const uint8_t out_c[3], const uint8_t eye_c[3])
+/* The exit ray is drawn twice the bounding radius of the glass object it leaves. */
+static void draw_path(view2 *v, const snell_ref_path *p, const double *radius, int glass_count,
+                      const uint8_t in_c[3], const uint8_t out_c[3], const uint8_t eye_c[3])
 {
-    int i;
-    double end[3];
+    int i, last = p->objects[p->interfaces];
+    double end[3], exit_len = 2.0 * radius[last >= 0 && last < glass_count ? last : 0];
     for (i = 0; i < p->interfaces; i++) segment(v, p->points[i], p->points[i + 1], i == 0 ? eye_c : in_c);
     for (i = 0; i < 3; i++) end[i] = p->points[p->interfaces][i] + exit_len * p->exit_dir[i];
     segment(v, p->points[p->interfaces], end, out_c);
 }
 
-/* Renders the second view, traces the pixels, draws and writes
- * <out_png without .png>_trace.png and _trace.json. 0 on success. */
 int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int width, int height, const int *xy,
                               int count, const char *out_png)
 {
@@ -129,13 +129,13 @@ int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int
     char base[1024], path[1100];
     FILE *json = NULL;
     float eye2[3];
-    double radius, eye1[3];
+    double radius[SNELL_MAX_GLASS], eye1[3], scene_radius = 0.0;
     int i, rc = 1;
     size_t n;
 
     memset(&v, 0, sizeof v);
-    if (!frame->mesh) {
-        fprintf(stderr, "snell-render: --trace-pixel needs a mesh\n");
+    if (frame->glass_count < 1) {
+        fprintf(stderr, "snell-render: --trace-pixel needs a glass object\n");
         return 1;
     }
     for (i = 0; i < count; i++)
@@ -170,18 +170,21 @@ int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int
         goto done;
     }
     memset(&refd, 0, sizeof refd);
-    refd.mesh = frame->mesh;
-    refd.model = frame->model;
+    refd.glass = frame->glass;
+    refd.glass_count = frame->glass_count;
+    refd.opaque = frame->opaque;
+    refd.opaque_count = frame->opaque_count;
     if (snell_ref_create(ctx, &refd, &ref) != SNELL_OK) {
         fprintf(stderr, "snell-render: reference: %s\n", snell_last_error(ctx));
         goto done;
     }
-    {
+    for (i = 0; i < frame->glass_count; i++) {
         double c[3];
-        snell_ref_bounding_sphere(ref, c, &radius);
+        snell_ref_bounding_sphere(ref, i, c, &radius[i]);
+        if (radius[i] > scene_radius) scene_radius = radius[i];
     }
     memset(&p, 0, sizeof p);
-    p.glass = frame->glass;
+    p.isolate_glass = 0; /* the whole scene: light may pass from glass to glass */
     p.env = frame->env;
     p.camera = frame->camera;
     p.width = width;
@@ -196,9 +199,10 @@ int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int
     fprintf(json, "{\n  \"image\": [%d, %d],\n  \"camera\": {\"eye\": [%.9g, %.9g, %.9g]},\n", width, height, eye1[0],
             eye1[1], eye1[2]);
     fprintf(json, "  \"second_camera\": {\"eye\": [%.9g, %.9g, %.9g], \"azimuth\": %.6g, \"elevation\": %.6g, "
-                  "\"distance\": %.6g},\n  \"max_interfaces\": %d,\n  \"pixels\": [\n",
+                  "\"distance\": %.6g},\n  \"scene\": {\"glass\": %d, \"opaque\": %d},\n  \"isolate_glass\": %d,\n"
+                  "  \"max_interfaces\": %d,\n  \"pixels\": [\n",
             eye2[0], eye2[1], eye2[2], fd2.camera.azimuth, fd2.camera.elevation, fd2.camera.distance,
-            p.max_interfaces);
+            frame->glass_count, frame->opaque_count, p.isolate_glass, p.max_interfaces);
     for (i = 0; i < count; i++) {
         snell_ref_path full, matched;
         p.mode = SNELL_REF_FULL;
@@ -206,16 +210,21 @@ int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int
         p.mode = SNELL_REF_MATCHED;
         if (snell_ref_trace_pixel(ref, &p, xy[2 * i], xy[2 * i + 1], &matched) != SNELL_OK) goto trace_fail;
         /* MATCHED under FULL, so that where they agree the FULL colours show */
-        draw_path(&v, &matched, 2.0 * radius, magenta, cyan, yellow);
-        draw_path(&v, &full, 2.0 * radius, red, green, yellow);
+        draw_path(&v, &matched, radius, frame->glass_count, magenta, cyan, yellow);
+        draw_path(&v, &full, radius, frame->glass_count, red, green, yellow);
         fprintf(json, "    {\"x\": %d, \"y\": %d,\n     \"full\": ", xy[2 * i], xy[2 * i + 1]);
         json_path(json, &full);
         fprintf(json, ",\n     \"matched\": ");
         json_path(json, &matched);
         fprintf(json, "}%s\n", i + 1 < count ? "," : "");
-        printf("pixel %d,%d: FULL %d interface(s)%s, MATCHED %d interface(s)%s\n", xy[2 * i], xy[2 * i + 1],
+        printf("pixel %d,%d: FULL %d interface(s)%s, MATCHED %d interface(s)%s", xy[2 * i], xy[2 * i + 1],
                full.interfaces, full.hit ? "" : " (missed the glass)", matched.interfaces,
                matched.ended_inside ? " (ended inside)" : "");
+        if (frame->glass_count > 1 || frame->opaque_count > 0) {
+            if (full.first_object >= 0) printf("; first hit glass %d", full.first_object);
+            else if (full.first_object <= -2) printf("; first hit opaque %d", -2 - full.first_object);
+        }
+        printf("\n");
         continue;
     trace_fail:
         fprintf(stderr, "snell-render: trace %d,%d: %s\n", xy[2 * i], xy[2 * i + 1], snell_last_error(ctx));
@@ -229,8 +238,8 @@ int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int
         for (k = 0; k < 3; k++) {
             memcpy(a, eye1, sizeof a);
             memcpy(b, eye1, sizeof b);
-            a[k] -= 0.05 * radius;
-            b[k] += 0.05 * radius;
+            a[k] -= 0.05 * scene_radius;
+            b[k] += 0.05 * scene_radius;
             segment(&v, a, b, blue);
         }
     }

@@ -42,3 +42,23 @@ vec3 snell_beer_lambert(vec3 sigma, float d)
 {
     return exp(-sigma * d);
 }
+
+// A thin wall (slab of the given thickness and index ior, in air) hit at
+// incidence cosine cos_i: reflectance rs and transmittance ts of all inner
+// bounces summed, Schlick at both faces, Beer-Lambert along the refracted chord
+// thickness / cos_t. Light leaves parallel to how it came (src/core/optics.h).
+void snell_thin_slab(float cos_i, float ior, vec3 sigma, float thickness, out vec3 rs, out vec3 ts)
+{
+    float c = abs(cos_i);
+    float r = snell_fresnel_schlick(c, 1.0, ior);
+    if (r >= 1.0) { // grazing or total reflection: the sum below is 0/0
+        rs = vec3(1.0);
+        ts = vec3(0.0);
+        return;
+    }
+    float ct = sqrt(1.0 - min((1.0 - c * c) / (ior * ior), 1.0));
+    vec3 ti = exp(-sigma * (thickness / max(ct, 1e-6)));
+    vec3 d = 1.0 - r * r * ti * ti;
+    rs = r + (1.0 - r) * (1.0 - r) * r * ti * ti / d;
+    ts = (1.0 - r) * (1.0 - r) * ti / d;
+}

@@ -1,10 +1,12 @@
-/* core.c — allocator plumbing, status names and error/log reporting. */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
+/* core.c — allocator plumbing, status names, error/log reporting, the clock. */
 #include "core/core.h"
 #include "core/ctx.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #if defined(__GNUC__)
 #define SNELL_THREAD_LOCAL __thread
@@ -121,4 +123,11 @@ void snell__log(const snell_ctx *ctx, snell_log_level level, const char *fmt, ..
     va_start(ap, fmt);
     vlog(ctx, level, fmt, ap);
     va_end(ap);
+}
+
+double snell__now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }

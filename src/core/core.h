@@ -33,6 +33,9 @@ void snell__free(const snell_alloc *al, void *ptr);
 snell_status snell__fail(const snell_ctx *ctx, snell_status status, const char *fmt, ...) SNELL_PRINTF(3, 4);
 void snell__log(const snell_ctx *ctx, snell_log_level level, const char *fmt, ...) SNELL_PRINTF(3, 4);
 
+/* Monotonic clock in milliseconds (timing statistics). */
+double snell__now_ms(void);
+
 /* size_t multiplication that reports overflow (returns 0 and sets *ok = 0). */
 size_t snell__mul_size(size_t a, size_t b, int *ok);
 

@@ -63,6 +63,27 @@
         out[0] = EXP(-sigma[0] * d);                                                               \
         out[1] = EXP(-sigma[1] * d);                                                               \
         out[2] = EXP(-sigma[2] * d);                                                               \
+    }                                                                                              \
+    /* A thin wall (slab of the given thickness, index ior, in air) hit at                         \
+     * incidence cosine cos_i: reflectance rs and transmittance ts (rgb) of all                    \
+     * inner bounces summed, Schlick at both faces, Beer-Lambert along the                         \
+     * refracted chord thickness / cos_t. Light leaves parallel to how it came. */                 \
+    static inline void snell_opt##SUF##_thin_slab(T cos_i, T ior, const T sigma[3], T thickness,   \
+                                                  T rs[3], T ts[3])                                \
+    {                                                                                              \
+        T c = cos_i < (T)0 ? -cos_i : cos_i, r = snell_opt##SUF##_fresnel_schlick(c, (T)1, ior);    \
+        T s2 = ((T)1 - c * c) / (ior * ior), ct = SQRT((T)1 - (s2 < (T)1 ? s2 : (T)1));             \
+        int k;                                                                                     \
+        for (k = 0; k < 3; k++) {                                                                  \
+            if (r >= (T)1) { /* grazing or total reflection: the sum below is 0/0 */               \
+                rs[k] = (T)1;                                                                      \
+                ts[k] = (T)0;                                                                      \
+                continue;                                                                          \
+            }                                                                                      \
+            T ti = EXP(-sigma[k] * thickness / (ct > (T)1e-6 ? ct : (T)1e-6)), d = (T)1 - r * r * ti * ti; \
+            rs[k] = r + ((T)1 - r) * ((T)1 - r) * r * ti * ti / d;                                 \
+            ts[k] = ((T)1 - r) * ((T)1 - r) * ti / d;                                              \
+        }                                                                                          \
     }
 
 SNELL_OPTICS_DEFINE(float, , sqrtf, expf)

@@ -47,12 +47,6 @@ struct snell_lightmap2d {
     lm2d_energy frame_e;      /* bookkeeping of the last traced frame, all lights */
 };
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
 
 static void energy_reset(lm2d_energy *e)
 {
@@ -326,7 +320,7 @@ snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snel
         lm->pass = 0;
     }
     /* --- trace */
-    t0 = now_ms();
+    t0 = snell__now_ms();
     for (i = 0; i < lm->n_todo; i++) {
         int li = lm->todo[i];
         if ((st = ensure_capacity(lm, &lm->ls[li], s->lights[li].d.rays)) != SNELL_OK) return st;
@@ -361,13 +355,13 @@ snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snel
         ls->rays = N;
         rays += (uint64_t)N;
     }
-    stats->trace_ms = now_ms() - t0;
+    stats->trace_ms = snell__now_ms() - t0;
     stats->lights_traced = lm->n_todo;
     stats->rays = rays;
     stats->traced = 1;
     lm->traced_once = 1;
     /* --- rasterise */
-    t0 = now_ms();
+    t0 = snell__now_ms();
     if (progressive_pass) {
         for (i = 0; i < lm->n_todo; i++) paths += lm->ls[lm->todo[i]].n;
         if (use_gl(lm)) {
@@ -394,7 +388,7 @@ snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snel
         }
         lm->passes = 1;
     }
-    stats->raster_ms = now_ms() - t0;
+    stats->raster_ms = snell__now_ms() - t0;
     stats->paths = paths;
     stats->passes = lm->passes;
     return SNELL_OK;

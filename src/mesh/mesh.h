@@ -1,5 +1,5 @@
 /* mesh.h — the mesh object: CPU geometry (positions, unit smooth normals,
- * triangle indices, bounds) and its lazily created GPU buffers. */
+ * triangle indices, bounds), its cached analysis and lazily created GPU buffers. */
 #ifndef SNELL_MESH_H
 #define SNELL_MESH_H
 
@@ -19,6 +19,11 @@ struct snell_mesh {
     /* Orientation, computed on demand by snell__mesh_winding (mesh_analyze.c). */
     unsigned winding_version;  /* the version it was computed for; 0 = never */
     int winding;               /* +1 closed and outward, -1 closed and inward, 0 open */
+    /* Analysis, computed on demand by snell__mesh_analysis (mesh_analyze.c). */
+    unsigned analysis_version; /* the version of the last cached attempt; 0 = never */
+    snell_status analysis_status; /* its outcome (SNELL_E_NOMEM is never cached) */
+    snell_mesh_analysis analysis; /* valid when analysis_status == SNELL_OK */
+    char analysis_error[128]; /* the failure message when it is not */
     /* GPU side, created by snell__mesh_upload */
     unsigned vao, vbo, ibo;
     unsigned uploaded_version;
@@ -40,9 +45,20 @@ void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t
                                  float *normals);
 
 /* +1/-1 if the mesh is a closed, consistently oriented surface wound with
- * outward/inward normals, 0 otherwise. Computed once per geometry version
- * (sorts the edges: allocates then, not on later calls). */
+ * outward/inward normals, 0 otherwise: snell_mesh_analysis.winding, on the
+ * same welded topology. Computed once per geometry version (welds and sorts
+ * the edges: allocates then, not on later calls; taken from the cached
+ * analysis when there is one). */
 int snell__mesh_winding(snell_mesh *mesh);
+
+/* The mesh's analysis (snell_mesh_analyze), computed once per geometry
+ * version and cached on the mesh; later calls for that version allocate
+ * nothing and return the same pointer (*out, valid until the geometry changes
+ * or the mesh is destroyed) and status. A failure is cached too (*out = NULL;
+ * the message was recorded and logged once, when it happened, and is kept in
+ * mesh->analysis_error), so an unanalysable mesh is not retried every frame;
+ * SNELL_E_NOMEM is not cached: the next call tries again. */
+snell_status snell__mesh_analysis(snell_mesh *mesh, const snell_mesh_analysis **out);
 
 /* Creates/updates VAO+VBO+IBO (attribute 0 = position, 1 = normal). Needs GL. */
 snell_status snell__mesh_upload(snell_mesh *mesh);

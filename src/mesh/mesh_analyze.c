@@ -1,6 +1,8 @@
-/* mesh_analyze.c — the "analyze" stage (DESIGN.md): closedness, convexity and
+/* mesh_analyze.c — the "analyze" stage (DESIGN.md): topology on position-welded
+ * vertices (boundary, non-manifold and flipped edges, closed, convex, winding),
  * the centre for the normal+distance cubemap with the share of surface that
- * the cubemap cannot represent (snell_mesh_analyze, declared in snell.h).
+ * the cubemap cannot represent (snell_mesh_analyze, declared in snell.h), and
+ * its per-version cache on the mesh (snell__mesh_analysis, snell__mesh_winding).
  *
  * Why: Li et al.'s method as in Unger 4.1 stores, per direction from a centre,
  * only the farthest surface. It is exact only if every ray from the centre
@@ -12,6 +14,7 @@
 #include "ref/ref_bvh.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -54,6 +57,232 @@ static void tri_cross(double v[3][3], double n[3])
     n[2] = e1[0] * e2[1] - e1[1] * e2[0];
 }
 
+/* ------------------------------------------------------------- welding */
+
+/* Two vertices are the same point of the surface when a chain of vertices,
+ * each within WELD_REL_TOL * (bounding-box diagonal) of the next, joins them
+ * (single-linkage clusters): seams of flat-shaded or UV-mapped meshes split
+ * vertices, and exporters round the copies differently. The clusters depend
+ * on the positions only, not on vertex or triangle order.
+ *
+ * Method: a uniform grid of cell size h = tol / sqrt(3), so any two points of
+ * one cell are within tol and a cell is one cluster without a test. Points
+ * within tol lie at most 2 cells apart per axis (tol = 1.73 h), so each pair
+ * of non-empty cells up to 2 apart is tested point by point until one pair is
+ * within tol (then the cells are joined: union-find). Points straddling a
+ * cell face are thereby found like any others. Cost: a sort of the vertices
+ * by cell (O(n log n)) and hash look-ups of 62 neighbour cells per non-empty
+ * cell; the point tests are capped (WELD_MAX_TESTS) so that an adversarial
+ * file with huge clusters of distinct points just farther apart than tol
+ * cannot make the analysis quadratic: it fails with SNELL_E_LIMIT instead. */
+#define WELD_REL_TOL 1e-5
+#define WELD_KEY_BITS 21 /* per axis: the box spans at most sqrt(3)/WELD_REL_TOL < 2^18 cells */
+#define WELD_MAX_TESTS(nv) (32.0 * (double)(nv) + 1048576.0)
+#define WELD_EMPTY 0xffffffffu
+
+typedef struct cell_pt {
+    uint64_t key; /* packed cell coordinates */
+    uint32_t v; /* vertex index */
+} cell_pt;
+
+static int cmp_cell_pt(const void *x, const void *y)
+{
+    const cell_pt *p = (const cell_pt *)x, *q = (const cell_pt *)y;
+    if (p->key != q->key) return p->key < q->key ? -1 : 1;
+    return p->v < q->v ? -1 : p->v > q->v;
+}
+
+typedef struct welder {
+    const snell_mesh *m;
+    cell_pt *pts; /* vertices sorted by cell */
+    uint32_t *start; /* cell c holds pts[start[c] .. start[c + 1]) */
+    uint32_t *parent; /* union-find over cells */
+    uint64_t *hkey; /* hash: cell key -> cell index (hval) */
+    uint32_t *hval;
+    uint64_t hmask;
+    int hbits; /* table size 2^hbits >= 2 * cells */
+    uint32_t ncells;
+    double tol2;
+    double tests; /* point pairs tested so far */
+} welder;
+
+static uint32_t uf_find(uint32_t *parent, uint32_t c)
+{
+    while (parent[c] != c) {
+        parent[c] = parent[parent[c]]; /* path halving */
+        c = parent[c];
+    }
+    return c;
+}
+
+static uint64_t hash_key(uint64_t key) { return key * 0x9E3779B97F4A7C15ull; }
+
+static uint32_t cell_lookup(const welder *w, uint64_t key)
+{
+    uint64_t h = hash_key(key) >> (64 - w->hbits);
+    while (w->hval[h] != WELD_EMPTY) {
+        if (w->hkey[h] == key) return w->hval[h];
+        h = (h + 1) & w->hmask;
+    }
+    return WELD_EMPTY;
+}
+
+/* Joins cells a and b if some point of one is within tol of some point of
+ * the other. Returns 0 when the test budget is spent. */
+static int weld_cells(welder *w, uint32_t a, uint32_t b, double budget)
+{
+    uint32_t i, j, ra = uf_find(w->parent, a), rb = uf_find(w->parent, b);
+    if (ra == rb) return 1;
+    for (i = w->start[a]; i < w->start[a + 1]; i++) {
+        const float *p = w->m->positions + 3 * (size_t)w->pts[i].v;
+        for (j = w->start[b]; j < w->start[b + 1]; j++) {
+            const float *q = w->m->positions + 3 * (size_t)w->pts[j].v;
+            double dx = (double)p[0] - q[0], dy = (double)p[1] - q[1], dz = (double)p[2] - q[2];
+            if (++w->tests > budget) return 0;
+            if (dx * dx + dy * dy + dz * dz <= w->tol2) {
+                /* the smaller root wins: the result does not depend on visiting order */
+                if (ra < rb)
+                    w->parent[rb] = ra;
+                else
+                    w->parent[ra] = rb;
+                return 1;
+            }
+        }
+    }
+    return 1;
+}
+
+static void weld_free(welder *w)
+{
+    const snell_alloc *al = &w->m->alloc;
+    snell__free(al, w->pts);
+    snell__free(al, w->start);
+    snell__free(al, w->parent);
+    snell__free(al, w->hkey);
+    snell__free(al, w->hval);
+}
+
+/* The weld tolerance: WELD_REL_TOL of the diagonal of the box around the
+ * vertices the triangles use (used[v] != 0); that box's minimum in lo. */
+static double weld_tolerance(const snell_mesh *m, const unsigned char *used, double lo[3])
+{
+    double hi[3], d2 = 0.0;
+    uint32_t v;
+    int k;
+    for (k = 0; k < 3; k++) {
+        lo[k] = HUGE_VAL;
+        hi[k] = -HUGE_VAL;
+    }
+    for (v = 0; v < m->vertex_count; v++)
+        if (used[v])
+            for (k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], m->positions[3 * (size_t)v + k]);
+                hi[k] = fmax(hi[k], m->positions[3 * (size_t)v + k]);
+            }
+    for (k = 0; k < 3; k++) d2 += hi[k] > lo[k] ? (hi[k] - lo[k]) * (hi[k] - lo[k]) : 0.0;
+    return WELD_REL_TOL * sqrt(d2);
+}
+
+/* id[v] = welded vertex of each used vertex v (used[v] != 0; others are left
+ * alone: vertices no triangle uses neither count nor join others), numbered
+ * 0 .. *count-1 in the cells' sorted (position) order; *tol_out = the
+ * tolerance (object units). */
+static snell_status weld(const snell_mesh *m, const unsigned char *used, uint32_t *id, uint32_t *count, double *tol_out)
+{
+    const snell_alloc *al = &m->alloc;
+    uint32_t nv = 0, i, c, n;
+    double lo[3], tol, h;
+    uint64_t hcap;
+    welder w;
+    int k;
+    memset(&w, 0, sizeof w);
+    w.m = m;
+    *tol_out = tol = weld_tolerance(m, used, lo);
+    for (i = 0; i < m->vertex_count; i++) nv += used[i] != 0;
+    if (!(tol > 0.0)) { /* every used vertex at one point */
+        for (i = 0; i < m->vertex_count; i++) id[i] = 0;
+        *count = nv ? 1 : 0;
+        return SNELL_OK;
+    }
+    w.tol2 = tol * tol;
+    h = tol / sqrt(3.0);
+    w.pts = (cell_pt *)snell__calloc(al, nv, sizeof *w.pts);
+    if (!w.pts) return snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
+    for (i = 0, n = 0; i < m->vertex_count; i++) {
+        uint64_t key = 0;
+        if (!used[i]) continue;
+        for (k = 0; k < 3; k++) {
+            double cell = floor(((double)m->positions[3 * (size_t)i + k] - lo[k]) / h);
+            uint64_t ci = cell < 0.0 ? 0u : (uint64_t)cell; /* 0 .. < 2^18 (see WELD_KEY_BITS) */
+            key = (key << WELD_KEY_BITS) | ci;
+        }
+        w.pts[n].key = key;
+        w.pts[n].v = i;
+        n++;
+    }
+    qsort(w.pts, nv, sizeof *w.pts, cmp_cell_pt);
+    for (i = 0, n = 0; i < nv; i++) n += i == 0 || w.pts[i].key != w.pts[i - 1].key;
+    w.ncells = n;
+    w.hbits = 1;
+    while ((hcap = (uint64_t)1 << w.hbits) < 2 * (uint64_t)n) w.hbits++;
+    w.hmask = hcap - 1;
+    w.start = (uint32_t *)snell__calloc(al, (size_t)n + 1, sizeof *w.start);
+    w.parent = (uint32_t *)snell__calloc(al, n, sizeof *w.parent);
+    w.hkey = (uint64_t *)snell__calloc(al, (size_t)hcap, sizeof *w.hkey);
+    w.hval = (uint32_t *)snell__calloc(al, (size_t)hcap, sizeof *w.hval);
+    if (!w.start || !w.parent || !w.hkey || !w.hval) {
+        weld_free(&w);
+        return snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
+    }
+    memset(w.hval, 0xff, (size_t)hcap * sizeof *w.hval);
+    for (i = 0, c = 0; i < nv; i++)
+        if (i == 0 || w.pts[i].key != w.pts[i - 1].key) {
+            uint64_t hh = hash_key(w.pts[i].key) >> (64 - w.hbits);
+            while (w.hval[hh] != WELD_EMPTY) hh = (hh + 1) & w.hmask;
+            w.hkey[hh] = w.pts[i].key;
+            w.hval[hh] = c;
+            w.start[c] = i;
+            w.parent[c] = c;
+            c++;
+        }
+    w.start[n] = nv;
+
+    for (c = 0; c < n; c++) {
+        const uint64_t mask = ((uint64_t)1 << WELD_KEY_BITS) - 1, key = w.pts[w.start[c]].key;
+        const int64_t cx = (int64_t)(key >> (2 * WELD_KEY_BITS)), cy = (int64_t)((key >> WELD_KEY_BITS) & mask),
+                      cz = (int64_t)(key & mask);
+        int dx, dy, dz;
+        /* the 62 offsets lexicographically after (0, 0, 0): each pair of cells once */
+        for (dx = 0; dx <= 2; dx++)
+            for (dy = dx ? -2 : 0; dy <= 2; dy++)
+                for (dz = (dx || dy) ? -2 : 1; dz <= 2; dz++) {
+                    int64_t x = cx + dx, y = cy + dy, z = cz + dz;
+                    uint32_t other;
+                    if (y < 0 || z < 0 || x > (int64_t)mask || y > (int64_t)mask || z > (int64_t)mask) continue;
+                    other = cell_lookup(&w, ((uint64_t)x << (2 * WELD_KEY_BITS)) | ((uint64_t)y << WELD_KEY_BITS) |
+                                                (uint64_t)z);
+                    if (other == WELD_EMPTY) continue;
+                    if (!weld_cells(&w, c, other, WELD_MAX_TESTS(nv))) {
+                        weld_free(&w);
+                        return snell__fail(m->ctx, SNELL_E_LIMIT,
+                                           "snell_mesh_analyze: %u vertices too densely clustered to weld", nv);
+                    }
+                }
+    }
+
+    /* Number the clusters in cell order: a root is the smallest cell of its
+     * cluster (weld_cells keeps the smaller root), so it is numbered before
+     * the others are met. The hash table is done with: hval holds the numbers. */
+    for (c = 0, n = 0; c < w.ncells; c++) {
+        uint32_t r = uf_find(w.parent, c);
+        w.hval[c] = r == c ? n++ : w.hval[r];
+        for (i = w.start[c]; i < w.start[c + 1]; i++) id[w.pts[i].v] = w.hval[c];
+    }
+    *count = n;
+    weld_free(&w);
+    return SNELL_OK;
+}
+
 /* ---------------------------------------------------- closed / convex */
 
 typedef struct edge_rec {
@@ -70,56 +299,62 @@ static int cmp_edge(const void *x, const void *y)
     return p->tri < q->tri ? -1 : p->tri > q->tri;
 }
 
-typedef struct vert_rec {
-    float p[3];
-    uint32_t id;
-} vert_rec;
+/* What topology() finds; the counts are those of snell_mesh_analysis. */
+typedef struct topo {
+    uint32_t welded, boundary, nonmanifold, flipped;
+    int closed, convex;
+    double volume; /* signed, object units^3 (> 0: counter-clockwise faces outward) */
+    double vcentroid[3]; /* volume centroid (0 when the volume is 0) */
+} topo;
 
-static int cmp_vert(const void *x, const void *y)
-{
-    const vert_rec *p = (const vert_rec *)x, *q = (const vert_rec *)y;
-    int k;
-    for (k = 0; k < 3; k++)
-        if (p->p[k] != q->p[k]) return p->p[k] < q->p[k] ? -1 : 1;
-    return p->id < q->id ? -1 : p->id > q->id;
-}
+/* On the welded vertices, every edge (pair of welded vertices joined by a
+ * triangle side) is counted once by the triangles that use it: one is a
+ * boundary edge, three or more a non-manifold one, two running it the same
+ * way a flipped one. Triangles with two welded corners equal are left out:
+ * they cover no area (a sliver thinner than the weld tolerance, or an index
+ * repeated), and their one proper side would pair with itself (a->b and
+ * b->a) or add a third use to a good edge. Collinear triangles with three
+ * distinct corners stay (they are part of the surface's connectivity, e.g.
+ * T-junction fillers). If the mesh is closed, every edge is also tested for
+ * local convexity: the far vertex of one triangle must not lie on the outer
+ * side of the other's plane by more than CONVEX_SLACK weld tolerances (the
+ * tolerance the vertices themselves may be off by). A closed connected
+ * surface that is locally convex everywhere bounds a convex solid. Signed
+ * volume decides which side is "outer" (the mesh may be wound inside out).
+ * Vertices where otherwise separate sheets touch are not detected. */
+#define CONVEX_SLACK 4.0
 
-/* Welds vertices at identical positions (seams of flat-shaded or UV meshes
- * split them), then checks that every edge has exactly two triangles running
- * it in opposite directions (closed, consistently oriented 2-manifold) and,
- * if so, that every edge is locally convex: the far vertex of one triangle
- * lies on the inner side of the other's plane. A closed connected surface
- * that is locally convex everywhere bounds a convex solid. Signed volume
- * decides which side is "inner" (the mesh may be wound inside out). */
-static snell_status topology(const snell_mesh *m, int *closed, int *convex, double *volume, double vcentroid[3])
+static snell_status topology(const snell_mesh *m, topo *out)
 {
     const snell_alloc *al = &m->alloc;
     uint32_t nv = m->vertex_count, nt = m->triangle_count, i, run;
-    vert_rec *order = (vert_rec *)snell__calloc(al, nv, sizeof *order);
-    uint32_t *weld = (uint32_t *)snell__calloc(al, nv, sizeof *weld);
+    uint32_t *wid = (uint32_t *)snell__calloc(al, nv, sizeof *wid);
+    unsigned char *used = (unsigned char *)snell__calloc(al, nv, 1);
     edge_rec *e = (edge_rec *)snell__calloc(al, (size_t)nt * 3, sizeof *e);
-    double vol = 0.0, c[3] = {0, 0, 0}, scale = 0.0;
-    int k, ok = 1, cvx = 1;
-    if (!order || !weld || !e) {
-        snell__free(al, order);
-        snell__free(al, weld);
+    double vol = 0.0, c[3] = {0, 0, 0}, slack = 0.0;
+    size_t ne = 0;
+    int k, cvx = 1;
+    snell_status st;
+    memset(out, 0, sizeof *out);
+    if (!wid || !used || !e) {
+        snell__free(al, wid);
+        snell__free(al, used);
         snell__free(al, e);
         return snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
     }
-    for (i = 0; i < nv; i++) {
-        memcpy(order[i].p, m->positions + 3 * (size_t)i, sizeof order[i].p);
-        order[i].id = i;
+    for (i = 0; i < 3 * nt; i++) used[m->indices[i]] = 1;
+    st = weld(m, used, wid, &out->welded, &slack);
+    slack *= CONVEX_SLACK;
+    snell__free(al, used);
+    if (st != SNELL_OK) {
+        snell__free(al, wid);
+        snell__free(al, e);
+        return st;
     }
-    qsort(order, nv, sizeof *order, cmp_vert);
-    for (i = 0; i < nv; i++)
-        weld[order[i].id] = (i > 0 && order[i - 1].p[0] == order[i].p[0] &&
-                                       order[i - 1].p[1] == order[i].p[1] && order[i - 1].p[2] == order[i].p[2])
-                                ? weld[order[i - 1].id]
-                                : order[i].id;
-    for (k = 0; k < 3; k++) scale = fmax(scale, (double)m->bmax[k] - m->bmin[k]);
 
     for (i = 0; i < nt; i++) {
         double v[3][3], n[3];
+        uint32_t w[3];
         int j;
         tri_verts(m, i, v);
         tri_cross(v, n);
@@ -129,61 +364,69 @@ static snell_status topology(const snell_mesh *m, int *closed, int *convex, doub
             vol += t6;
             for (k = 0; k < 3; k++) c[k] += t6 * (v[0][k] + v[1][k] + v[2][k]);
         }
+        for (j = 0; j < 3; j++) w[j] = wid[m->indices[3 * (size_t)i + j]];
+        if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) continue; /* degenerate after welding */
         for (j = 0; j < 3; j++) {
-            uint32_t a = weld[m->indices[3 * i + j]], b = weld[m->indices[3 * i + (j + 1) % 3]];
-            edge_rec *r = &e[3 * (size_t)i + j];
+            uint32_t a = w[j], b = w[(j + 1) % 3];
+            edge_rec *r = &e[ne++];
             r->a = a < b ? a : b;
             r->b = a < b ? b : a;
             r->tri = i;
             r->fwd = a < b;
         }
     }
-    *volume = vol / 6.0;
-    for (k = 0; k < 3; k++) vcentroid[k] = vol != 0.0 ? c[k] / (4.0 * vol) : 0.0;
+    out->volume = vol / 6.0;
+    for (k = 0; k < 3; k++) out->vcentroid[k] = vol != 0.0 ? c[k] / (4.0 * vol) : 0.0;
 
-    qsort(e, (size_t)nt * 3, sizeof *e, cmp_edge);
-    for (i = 0; i < 3 * nt && ok; i += run) {
+    qsort(e, ne, sizeof *e, cmp_edge);
+    for (i = 0; i < ne; i += run) {
         run = 1;
-        while (i + run < 3 * nt && e[i + run].a == e[i].a && e[i + run].b == e[i].b) run++;
-        if (e[i].a == e[i].b) continue; /* degenerate edge of a degenerate triangle */
-        if (run != 2 || e[i].fwd == e[i + 1].fwd) {
-            ok = 0;
-            break;
-        }
-        if (cvx) {
-            /* far vertex of triangle 2 against the plane of triangle 1 */
-            double v1[3][3], v2[3][3], n[3], len, best = 0.0, d;
+        while (i + run < ne && e[i + run].a == e[i].a && e[i + run].b == e[i].b) run++;
+        if (run == 1)
+            out->boundary++;
+        else if (run > 2)
+            out->nonmanifold++;
+        else if (e[i].fwd == e[i + 1].fwd)
+            out->flipped++;
+        else if (cvx) {
+            /* the vertex of triangle 2 off the shared edge against the plane of triangle 1 */
+            double v1[3][3], v2[3][3], n[3], len;
             int j;
             tri_verts(m, e[i].tri, v1);
             tri_verts(m, e[i + 1].tri, v2);
             tri_cross(v1, n);
             len = sqrt(dot3(n, n));
-            if (len > 0.0) {
-                for (j = 0; j < 3; j++) {
-                    double w[3] = {v2[j][0] - v1[0][0], v2[j][1] - v1[0][1], v2[j][2] - v1[0][2]};
-                    d = dot3(w, n) / len;
-                    if (fabs(d) > fabs(best)) best = d;
-                }
+            for (j = 0; j < 3 && len > 0.0; j++) {
+                uint32_t wj = wid[m->indices[3 * (size_t)e[i + 1].tri + j]];
+                double wv[3] = {v2[j][0] - v1[0][0], v2[j][1] - v1[0][1], v2[j][2] - v1[0][2]}, d;
+                if (wj == e[i].a || wj == e[i].b) continue;
+                d = dot3(wv, n) / len;
                 /* outward normals: the neighbour must not rise above the plane */
-                if ((vol >= 0.0 ? best : -best) > 1e-6 * scale) cvx = 0;
+                if ((vol >= 0.0 ? d : -d) > slack) cvx = 0;
             }
         }
     }
-    *closed = ok && nt > 0;
-    *convex = *closed && cvx;
-    snell__free(al, order);
-    snell__free(al, weld);
+    out->closed = ne > 0 && !out->boundary && !out->nonmanifold && !out->flipped;
+    out->convex = out->closed && cvx;
+    snell__free(al, wid);
     snell__free(al, e);
     return SNELL_OK;
 }
 
+static int winding_of(const topo *t) { return t->closed && t->volume != 0.0 ? (t->volume > 0.0 ? 1 : -1) : 0; }
+
 int snell__mesh_winding(snell_mesh *m)
 {
-    int closed = 0, convex = 0;
-    double volume = 0.0, vc[3];
+    topo t;
+    snell_status st;
     if (m->winding_version == m->version) return m->winding;
-    if (topology(m, &closed, &convex, &volume, vc) != SNELL_OK) return 0; /* not cached: retried */
-    m->winding = closed && volume != 0.0 ? (volume > 0.0 ? 1 : -1) : 0;
+    if (m->analysis_version == m->version && m->analysis_status == SNELL_OK) {
+        m->winding = m->analysis.winding; /* the same topology, already found */
+    } else {
+        st = topology(m, &t);
+        if (st == SNELL_E_NOMEM) return 0; /* not cached: retried */
+        m->winding = st == SNELL_OK ? winding_of(&t) : 0;
+    }
     m->winding_version = m->version;
     return m->winding;
 }
@@ -308,23 +551,24 @@ static int parity_inside(const analyzer *an, const double p[3])
 
 /* --------------------------------------------------------------- public */
 
-snell_status snell_mesh_analyze(const snell_mesh *m, snell_mesh_analysis *out)
+static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
 {
     analyzer an;
-    double cand[MAX_CANDIDATES][3], volume = 0.0, vc[3], best_c[3] = {0, 0, 0}, best_h = 2.0, sum_area = 0.0;
+    topo tp;
+    double cand[MAX_CANDIDATES][3], best_c[3] = {0, 0, 0}, best_h = 2.0, sum_area = 0.0;
     double lo[3], hi[3], step[3];
-    int ncand = 0, i, j, k, convex = 0, best_inside = 0, have_inside = 0;
+    int ncand = 0, i, j, k, best_inside = 0, have_inside = 0;
     snell_status st;
     uint32_t t;
 
-    if (!m || !out) return snell__fail(m ? m->ctx : NULL, SNELL_E_INVALID_ARG, "snell_mesh_analyze: NULL argument");
     memset(out, 0, sizeof *out);
     if (m->triangle_count == 0 || m->vertex_count == 0)
         return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_analyze: mesh has no triangles");
     memset(&an, 0, sizeof an);
     an.m = m;
-    st = topology(m, &an.closed, &convex, &volume, vc);
+    st = topology(m, &tp);
     if (st != SNELL_OK) return st;
+    an.closed = tp.closed;
     an.cdf = (double *)snell__calloc(&m->alloc, m->triangle_count, sizeof *an.cdf);
     if (!an.cdf) return snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
     st = snell__bvh_build(m->ctx, m->positions, m->vertex_count, m->indices, m->triangle_count, NULL, &an.bvh);
@@ -356,9 +600,9 @@ snell_status snell_mesh_analyze(const snell_mesh *m, snell_mesh_analysis *out)
         /* Candidates in order of preference on ties: volume centroid (the
          * natural centre of a solid), area centroid, vertex average (Unger
          * 4.1), box centre, then an interior grid. */
-        if (an.closed && fabs(volume) > 0.0)
-            for (k = 0; k < 3; k++) cand[ncand][k] = vc[k];
-        if (an.closed && fabs(volume) > 0.0) ncand++;
+        if (an.closed && fabs(tp.volume) > 0.0)
+            for (k = 0; k < 3; k++) cand[ncand][k] = tp.vcentroid[k];
+        if (an.closed && fabs(tp.volume) > 0.0) ncand++;
         for (k = 0; k < 3; k++) cand[ncand][k] = ac[k] / sum_area;
         ncand++;
     }
@@ -425,9 +669,15 @@ snell_status snell_mesh_analyze(const snell_mesh *m, snell_mesh_analysis *out)
             }
         }
 
+    /* The radii below are about the centre as reported (float): rounding it
+     * moves it by up to half a float ulp, which on a small inner radius far
+     * from the origin is more than the radius's own rounding. */
+    for (k = 0; k < 3; k++) {
+        out->centre[k] = (float)best_c[k];
+        best_c[k] = out->centre[k];
+    }
     out->samples = FINE_SAMPLES;
     out->hidden_fraction = (float)hidden_fraction(&an, best_c, FINE_SAMPLES);
-    for (k = 0; k < 3; k++) out->centre[k] = (float)best_c[k];
     {
         double r2 = 0.0;
         uint32_t v;
@@ -448,11 +698,42 @@ snell_status snell_mesh_analyze(const snell_mesh *m, snell_mesh_analysis *out)
         /* Rounded down to float: the ball must stay free of surface. */
         out->inner_radius = m->triangle_count ? nextafterf((float)sqrt(r2), 0.0f) : 0.0f;
     }
-    out->closed = an.closed;
-    out->convex = convex;
-    out->inside = an.closed && best_inside;
-    out->winding = an.closed && volume != 0.0 ? (volume > 0.0 ? 1 : -1) : 0;
+    out->welded_vertices = tp.welded;
+    out->boundary_edges = tp.boundary;
+    out->nonmanifold_edges = tp.nonmanifold;
+    out->flipped_edges = tp.flipped;
+    out->closed = tp.closed;
+    out->convex = tp.convex;
+    out->inside = tp.closed && best_inside;
+    out->winding = winding_of(&tp);
     snell__bvh_destroy(an.bvh);
     snell__free(&m->alloc, an.cdf);
     return SNELL_OK;
+}
+
+snell_status snell_mesh_analyze(const snell_mesh *m, snell_mesh_analysis *out)
+{
+    if (!m || !out) return snell__fail(m ? m->ctx : NULL, SNELL_E_INVALID_ARG, "snell_mesh_analyze: NULL argument");
+    if (m->analysis_version == m->version && m->analysis_status == SNELL_OK) {
+        *out = m->analysis; /* the renderer's cached result for this geometry */
+        return SNELL_OK;
+    }
+    return analyze(m, out);
+}
+
+snell_status snell__mesh_analysis(snell_mesh *m, const snell_mesh_analysis **out)
+{
+    snell_status st;
+    if (out) *out = NULL;
+    if (!m || !out) return snell__fail(m ? m->ctx : NULL, SNELL_E_INVALID_ARG, "snell__mesh_analysis: NULL argument");
+    if (m->analysis_version != m->version) {
+        st = analyze(m, &m->analysis);
+        if (st == SNELL_E_NOMEM) return st; /* not cached: the next call tries again */
+        m->analysis_status = st;
+        m->analysis_version = m->version;
+        m->analysis_error[0] = '\0';
+        if (st != SNELL_OK) snprintf(m->analysis_error, sizeof m->analysis_error, "%s", snell_last_error(m->ctx));
+    }
+    if (m->analysis_status == SNELL_OK) *out = &m->analysis;
+    return m->analysis_status;
 }

@@ -1,26 +1,40 @@
-/* method_cubemap.c — two-sided refraction with a normal+distance cubemap
- * (Li et al. 2007 as in Unger 4.1): per mesh version, analyze (centre, hidden
- * fraction; mesh_analyze.c) and bake (ndcube.c); per frame one pass of the
- * search shader (cubemap.frag) over the front faces. The per-mesh cache lives here, in the
- * method state (a few entries, least recently used replaced), and so do the
- * search programs: one per (encoding, iterations, linear steps, search or
- * none), because the step counts are compile-time constants of the shader
- * (cubemap.frag says why); the default one is built with the method, others
- * on first use. */
-#include "render/glass_program.h"
+/* cubemap.c — two-sided refraction with a normal+distance cubemap (Li et
+ * al. 2007 as in Unger 4.1): prepared once per (mesh version, face size,
+ * encoding) by baking the cubemap about the analysed centre (ndcube.c,
+ * mesh_analyze.c); per frame one pass of the search shader (cubemap.frag)
+ * over the front faces. The search programs are kept here: one per
+ * (encoding, iterations, linear steps, search or none), because the step
+ * counts are compile-time constants of the shader (cubemap.frag says why);
+ * the default one is built with the method, others on first use. */
+#include "methods/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "methods/ndcube.h"
 #include "core/program.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
-#define CACHE_SIZE 4
+#define DEFAULT_ITERATIONS 6
+
 #define PROG_CACHE 8
 
-/* Defaults of the glass desc's cubemap fields (snell.h documents them). */
-/* encoding: PLAIN (filtered: lower error than OCT, which is 3-7% cheaper on llvmpipe) */
+/* The AUTO threshold on hidden_fraction (snell_mesh_analyze): the share of
+ * surface the cubemap cannot represent. The refracted rays seldom reach most
+ * of it, so the method stays far better than single-surface well beyond
+ * small fractions; measured mean exit-direction errors at 512x512 with the
+ * defaults (bench/BENCHMARKS.md): bunny (hidden 0.23) 6.3 vs 38.5 degrees,
+ * torus (0.47) 10.4 vs 37.6, goblet (0.97, thin bowl wall) 30.0 vs 28.3 - no
+ * better than single. The threshold sits between the worst mesh it helps
+ * and the one it does not. */
+#define AUTO_MAX_HIDDEN 0.6f
+
+/* One mesh version's baked cubemap (the prepared resource). */
+typedef struct cube_prepared {
+    snell__ndcube cube;
+    float inner_radius;        /* object units; 0 when the centre may be outside */
+} cube_prepared;
 
 typedef struct cube_prog {
     snell__glass_program g;    /* g.prog == 0: empty slot */
@@ -30,27 +44,10 @@ typedef struct cube_prog {
     int ndcube, inv_model, centre, radius, inner_radius, max_interfaces, texel_angle, absorb;
 } cube_prog;
 
-/* One mesh's analysis and baked cubemap. The key is the mesh pointer and
- * version plus counts, bounds and the positions pointer, so a destroyed mesh
- * whose address is reused by a new one is recognised unless all of these
- * coincide (see the report: a process-unique mesh id would make it exact). */
-typedef struct cache_entry {
-    const snell_mesh *mesh;
-    unsigned version;
-    uint32_t nv, nt;
-    const float *positions;
-    float bmin[3], bmax[3];
-    snell_mesh_analysis an;
-    snell__ndcube cube;
-    int baked;                 /* cube holds the current version */
-    unsigned long last_use;
-} cache_entry;
-
 typedef struct cubemap_state {
     snell__output_kind out;
     cube_prog prog[PROG_CACHE];
     snell__ndcube_baker baker;
-    cache_entry cache[CACHE_SIZE];
     unsigned long clock;
 } cubemap_state;
 
@@ -116,7 +113,7 @@ static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void 
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
-    st = get_prog(ctx, s, SNELL_NDCUBE_PLAIN, SNELL_CUBEMAP_DEFAULT_ITERATIONS, 0, 0, &p);
+    st = get_prog(ctx, s, SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, &p);
     if (st == SNELL_OK) st = snell__ndcube_baker_create(ctx, &s->baker);
     if (st != SNELL_OK) {
         cubemap_destroy(ctx, s);
@@ -133,134 +130,134 @@ static void cubemap_destroy(snell_ctx *ctx, void *state)
     if (!s) return;
     for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].g);
     snell__ndcube_baker_destroy(&s->baker);
-    for (i = 0; i < CACHE_SIZE; i++) snell__ndcube_release(&s->cache[i].cube);
     snell__free(&ctx->alloc, s);
 }
 
-static int entry_matches(const cache_entry *e, const snell_mesh *m)
+static snell__fit cubemap_fit(const snell_mesh_analysis *an, const snell_glass_resolved *g, char *why, size_t n)
 {
-    return e->mesh == m && e->version == m->version && e->nv == m->vertex_count && e->nt == m->triangle_count &&
-           e->positions == m->positions && !memcmp(e->bmin, m->bmin, sizeof e->bmin) &&
-           !memcmp(e->bmax, m->bmax, sizeof e->bmax);
-}
-
-/* The cache entry of the mesh's current version, analysed (not yet baked). */
-static snell_status get_entry(cubemap_state *s, const snell_mesh *m, cache_entry **out)
-{
-    cache_entry *e = NULL;
-    snell_status st;
-    int i;
-    s->clock++;
-    for (i = 0; i < CACHE_SIZE; i++)
-        if (entry_matches(&s->cache[i], m)) {
-            e = &s->cache[i];
-            e->last_use = s->clock;
-            *out = e;
-            return SNELL_OK;
-        }
-    /* Same mesh, new version (deformed): reuse its slot and texture; else the
-     * least recently used slot. */
-    for (i = 0; i < CACHE_SIZE && !e; i++)
-        if (s->cache[i].mesh == m) e = &s->cache[i];
-    if (!e) {
-        e = &s->cache[0];
-        for (i = 1; i < CACHE_SIZE; i++)
-            if (s->cache[i].last_use < e->last_use) e = &s->cache[i];
+    (void)g;
+    if (!an) {
+        snell__why(why, n, "needs the mesh analysis, which failed");
+        return SNELL__FIT_FAILS;
     }
-    e->mesh = NULL;
-    e->baked = 0;
-    st = snell_mesh_analyze(m, &e->an);
-    if (st != SNELL_OK) return st;
-    e->mesh = m;
-    e->version = m->version;
-    e->nv = m->vertex_count;
-    e->nt = m->triangle_count;
-    e->positions = m->positions;
-    memcpy(e->bmin, m->bmin, sizeof e->bmin);
-    memcpy(e->bmax, m->bmax, sizeof e->bmax);
-    e->last_use = s->clock;
-    *out = e;
-    return SNELL_OK;
+    if (!an->closed) {
+        snell__why(why, n, "needs a closed mesh: %u boundary, %u non-manifold, %u flipped edges",
+                   (unsigned)an->boundary_edges, (unsigned)an->nonmanifold_edges, (unsigned)an->flipped_edges);
+        return SNELL__FIT_FAILS;
+    }
+    if (!an->inside) {
+        snell__why(why, n, "needs its centre inside the mesh; no inside candidate was found");
+        return SNELL__FIT_FAILS;
+    }
+    if (an->hidden_fraction > AUTO_MAX_HIDDEN) {
+        snell__why(why, n, "closed, centre inside, but %.2f > %.2f of the surface is hidden from the centre",
+                   an->hidden_fraction, AUTO_MAX_HIDDEN);
+        return SNELL__FIT_RUNS;
+    }
+    snell__why(why, n, "closed, centre inside, %.2f <= %.2f of the surface hidden from the centre",
+               an->hidden_fraction, AUTO_MAX_HIDDEN);
+    return SNELL__FIT_ADEQUATE;
 }
 
-snell_status snell__cubemap_analysis(snell_ctx *ctx, void *method_state, const snell_mesh *mesh,
-                                     const snell_mesh_analysis **out)
+static void cubemap_key(const snell__object *o, int key[4])
 {
-    cache_entry *e;
-    snell_status st;
-    if (!method_state || !mesh || !out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "cubemap analysis: NULL argument");
-    st = get_entry((cubemap_state *)method_state, mesh, &e);
-    if (st != SNELL_OK) return st;
-    *out = &e->an;
-    return SNELL_OK;
+    key[0] = o->glass->material.cubemap.face_size;
+    key[1] = (int)o->glass->material.cubemap.encoding;
+    key[2] = key[3] = 0;
 }
 
-static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__frame *f, snell_frame_stats *stats)
+/* Bakes about the analysed centre; a mesh that could not be analysed (drawn
+ * only when asked for explicitly, with a warning) uses its box centre. */
+static snell_status cubemap_prepare(snell_ctx *ctx, void *state, const snell__object *o, void *prepared,
+                                    snell_object_stats *stats)
 {
     cubemap_state *s = (cubemap_state *)state;
-    const snell_glass_desc *g = &f->desc->glass;
-    int iterations = g->search_iterations ? g->search_iterations : SNELL_CUBEMAP_DEFAULT_ITERATIONS;
-    int max_if = g->max_interfaces ? g->max_interfaces : SNELL_CUBEMAP_DEFAULT_INTERFACES;
-    int face = g->cube_face_size ? g->cube_face_size : SNELL_CUBEMAP_DEFAULT_FACE_SIZE;
-    int absorb = g->absorption[0] > 0.0f || g->absorption[1] > 0.0f || g->absorption[2] > 0.0f;
-    snell_ndcube_encoding enc = g->encoding == SNELL_NDCUBE_DEFAULT ? SNELL_NDCUBE_PLAIN : g->encoding;
-    const cube_prog *p;
-    cache_entry *e;
+    cube_prepared *p = (cube_prepared *)prepared;
+    const snell_mesh_analysis *an = o->analysis;
+    const snell_cubemap_params *c = &o->glass->material.cubemap;
+    float centre[3], radius;
     snell_status st;
-    mat4 inv_model;
+    int k;
+    for (k = 0; k < 3; k++) centre[k] = an ? an->centre[k] : 0.5f * (o->mesh->bmin[k] + o->mesh->bmax[k]);
     /* 1e-4 margin: the farthest vertex stays strictly inside the cube's range. */
-    float radius;
-
-    st = get_entry(s, f->mesh, &e);
-    if (st == SNELL_OK) st = get_prog(ctx, s, enc, iterations, g->linear_steps, max_if == 1 && !absorb, &p);
+    radius = (an ? an->radius : o->mesh->bradius) * 1.0001f;
+    if (!(radius > 0.0f)) radius = 1.0f;
+    st = snell__ndcube_bake(ctx, &s->baker, o->mesh, centre, radius, c->face_size, c->encoding, &p->cube);
     if (st != SNELL_OK) return st;
-    stats->hidden_fraction = e->an.hidden_fraction;
-    radius = e->an.radius * 1.0001f;
-    if (!e->baked || e->cube.face_size != face || e->cube.encoding != enc) {
-        GLint fbo = 0, vp[4];
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-        glGetIntegerv(GL_VIEWPORT, vp);
-        st = snell__ndcube_bake(ctx, &s->baker, f->mesh, e->an.centre, radius, face, enc, &e->cube);
-        glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
-        glViewport(vp[0], vp[1], vp[2], vp[3]);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glActiveTexture(GL_TEXTURE0);
-        if (st != SNELL_OK) return st;
-        e->baked = 1;
-        stats->ndcube_baked = 1;
-        stats->passes += 6;
-    }
+    /* The inner ball is surely inside only if the centre is; one 8-bit
+     * distance step below its radius, as stored distances are rounded to that
+     * step (the 16-bit OCT ones far finer). */
+    p->inner_radius = an && an->inside ? fmaxf(an->inner_radius - p->cube.radius / 255.0f, 0.0f) : 0.0f;
+    stats->passes += 6;
+    return SNELL_OK;
+}
 
+static void cubemap_release(void *prepared)
+{
+    snell__ndcube_release(&((cube_prepared *)prepared)->cube);
+}
+
+static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                                 snell_object_stats *stats)
+{
+    cubemap_state *s = (cubemap_state *)state;
+    const snell_cubemap_params *c = &o->glass->material.cubemap;
+    const cube_prepared *cp = (const cube_prepared *)o->prepared;
+    int no_search = c->max_interfaces == 1 && !o->glass->absorbs;
+    const cube_prog *p;
+    snell_status st;
+
+    st = get_prog(ctx, s, c->encoding, c->iterations, c->linear_steps, no_search, &p);
+    if (st != SNELL_OK) return st;
+    if (no_search) stats->skipped |= SNELL_SKIP_SEARCH;
     /* Back faces culled on closed meshes (snell__cull_back_faces). A depth
      * pre-pass would do the same for any mesh but cost more than it saved: it
      * doubles the triangle setup, which dominates on llvmpipe for the
      * 69k-triangle bunny (bench/BENCHMARKS.md). */
-    snell__cull_back_faces(f);
-
-    glm_mat4_inv((vec4 *)f->model, inv_model);
-    snell__glass_program_use(&p->g, f);
+    snell__cull_back_faces(o, stats);
+    snell__glass_program_use(&p->g, v, o);
     glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, e->cube.texture);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, cp->cube.texture);
     glActiveTexture(GL_TEXTURE0);
     glUniform1i(p->ndcube, 1);
-    glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)inv_model);
-    glUniform3fv(p->centre, 1, e->cube.centre);
-    glUniform1f(p->radius, e->cube.radius);
-    /* The inner ball is surely inside only if the centre is; one 8-bit
-     * distance step below its radius, as stored distances are rounded to that
-     * step (the 16-bit OCT ones far finer). */
-    glUniform1f(p->inner_radius, e->an.inside ? fmaxf(e->an.inner_radius - e->cube.radius / 255.0f, 0.0f) : 0.0f);
-    glUniform1i(p->max_interfaces, max_if);
+    glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
+    glUniform3fv(p->centre, 1, cp->cube.centre);
+    glUniform1f(p->radius, cp->cube.radius);
+    glUniform1f(p->inner_radius, cp->inner_radius);
+    glUniform1i(p->max_interfaces, c->max_interfaces);
     /* A texel is 2/N wide in face coordinates; it subtends 2/N rad at a face
      * centre and sqrt(2)/3 * 2/N at a corner: the smaller is the stop bound. */
-    glUniform1f(p->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)face);
-    glUniform1i(p->absorb, absorb);
-    snell__draw_mesh(f);
-    glDisable(GL_CULL_FACE);
+    glUniform1f(p->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)c->face_size);
+    glUniform1i(p->absorb, o->glass->absorbs);
+    snell__draw_object(o);
     stats->passes++;
     return SNELL_OK;
 }
 
-const snell__method snell__method_cubemap = {SNELL_METHOD_CUBEMAP, "cubemap", cubemap_create, cubemap_destroy,
+static const char *const g_encoding_names[] = {"default", "plain", "oct"};
+
+static const snell_param_info g_params[] = {
+    {"iterations", "binary-search steps per interface", 1, SNELL_CUBEMAP_MAX_ITERATIONS, DEFAULT_ITERATIONS, NULL},
+    {"linear", "linear pre-search steps before the binary search", 0, SNELL_CUBEMAP_MAX_LINEAR_STEPS, 0, NULL},
+    {"interfaces", "surfaces processed per path (1 = single surface, 2 = entry + exit, more = TIR bounces)", 1,
+     SNELL_CUBEMAP_MAX_INTERFACES, 2, NULL},
+    {"face", "normal+distance cubemap face size, texels", 16, 2048, 256, NULL},
+    /* PLAIN: filtered, lower error than OCT, which is 3-7% cheaper on llvmpipe */
+    {"encoding", "texel packing: plain (Unger 4.1, filtered) or oct (octahedral normal, 16-bit distance)", 0, 2,
+     SNELL_NDCUBE_PLAIN, g_encoding_names},
+};
+
+static const size_t g_offsets[] = {
+    offsetof(snell_glass_material, cubemap.iterations), offsetof(snell_glass_material, cubemap.linear_steps),
+    offsetof(snell_glass_material, cubemap.max_interfaces), offsetof(snell_glass_material, cubemap.face_size),
+    offsetof(snell_glass_material, cubemap.encoding)};
+
+static const snell_method_info g_info = {
+    SNELL_METHOD_CUBEMAP, "cubemap",
+    "two-sided: exit found in a normal+distance cubemap, TIR bounces (Li et al., Unger 4.1)",
+    "a closed mesh with its analysed centre inside; exact when star-shaped about it", 2,
+    (int)(sizeof g_params / sizeof *g_params), g_params};
+
+const snell__method snell__method_cubemap = {&g_info, g_offsets, 1, cubemap_fit, cubemap_create, cubemap_destroy,
+                                             sizeof(cube_prepared), cubemap_key, cubemap_prepare, cubemap_release,
                                              cubemap_draw};

@@ -6,6 +6,7 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/program.h"
+#include "render/pass.h"
 
 #include <string.h>
 
@@ -85,6 +86,7 @@ snell_status snell__ndcube_bake(snell_ctx *ctx, snell__ndcube_baker *b, snell_me
                                 float radius, int face_size, snell_ndcube_encoding enc, snell__ndcube *cube)
 {
     int face, pi = enc == SNELL_NDCUBE_OCT ? 1 : 0;
+    snell__pass pass;
     snell_status st;
     if (face_size < 1 || face_size > MAX_FACE || !(radius > 0.0f) || (enc != SNELL_NDCUBE_PLAIN && enc != SNELL_NDCUBE_OCT))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "ndcube: face size %d, radius %g or encoding %d invalid",
@@ -102,30 +104,27 @@ snell_status snell__ndcube_bake(snell_ctx *ctx, snell__ndcube_baker *b, snell_me
     memcpy(cube->centre, centre, sizeof cube->centre);
     cube->radius = radius;
 
-    glBindFramebuffer(GL_FRAMEBUFFER, b->fbo);
+    /* d = 0 clear: "no surface", every point counts as outside; GREATER with
+     * depth cleared to 0 keeps the farthest surface. */
+    snell__pass_begin(&pass, b->fbo, face_size, face_size, 0, GL_GREATER, 0.0f);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, b->depth_rb);
-    glViewport(0, 0, face_size, face_size);
     glUseProgram(b->prog[pi]);
     glUniform3fv(b->u_centre[pi], 1, centre);
     /* Slightly more than 1/radius would clip the farthest vertex's depth at
      * exactly 1; the shader clamps d to [0,1], and depth 1.0 still passes
      * GREATER against the cleared 0. */
     glUniform1f(b->u_inv_radius[pi], 1.0f / radius);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glClearColor(0.0f, 0.0f, 0.0f, 0.0f); /* d = 0: "no surface", every point counts as outside */
-    glClearDepthf(0.0f);
     glBindVertexArray(mesh->vao);
     for (face = 0; face < 6; face++) {
         mat4 vp;
         GLenum fst;
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, (GLenum)(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face),
                                cube->texture, 0);
-        if (face == 0 && (fst = glCheckFramebufferStatus(GL_FRAMEBUFFER)) != GL_FRAMEBUFFER_COMPLETE)
+        if (face == 0 && (fst = glCheckFramebufferStatus(GL_FRAMEBUFFER)) != GL_FRAMEBUFFER_COMPLETE) {
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+            snell__pass_end(&pass);
             return snell__fail(ctx, SNELL_E_GL, "ndcube framebuffer incomplete (0x%x)", (unsigned)fst);
+        }
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         /* near: surfaces closer than 1e-4 radius to the centre are clipped (a
          * centre that close to the surface is rejected by the analysis anyway);
@@ -135,9 +134,7 @@ snell_status snell__ndcube_bake(snell_ctx *ctx, snell__ndcube_baker *b, snell_me
         glDrawElements(GL_TRIANGLES, (GLsizei)(3 * mesh->triangle_count), GL_UNSIGNED_INT, (const void *)0);
     }
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
-    glClearDepthf(1.0f);
-    glDepthFunc(GL_LESS);
-    glActiveTexture(GL_TEXTURE0);
+    snell__pass_end(&pass);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error baking the ndcube");
 }
 

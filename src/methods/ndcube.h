@@ -7,7 +7,7 @@
 
 #include "core/core.h"
 #include "mesh/mesh.h"
-#include "render/method.h"
+#include "methods/method.h"
 
 #include <cglm/cglm.h>
 
@@ -38,8 +38,8 @@ void snell__ndcube_baker_destroy(snell__ndcube_baker *b);
 
 /* (Re)bakes cube for mesh (uploaded) about centre with the given radius
  * (>= every vertex's distance). Reallocates the texture only if face size or
- * encoding changed. Leaves the draw framebuffer, viewport, program, depth
- * func, clear values and texture unit 1's binding changed: callers restore. */
+ * encoding changed. Restores the pass state (render/pass.h); leaves texture
+ * unit 1's cube binding changed. */
 snell_status snell__ndcube_bake(snell_ctx *ctx, snell__ndcube_baker *b, snell_mesh *mesh, const float centre[3],
                                 float radius, int face_size, snell_ndcube_encoding enc, snell__ndcube *cube);
 void snell__ndcube_release(snell__ndcube *cube);
@@ -47,12 +47,5 @@ void snell__ndcube_release(snell__ndcube *cube);
 /* Reads face (0..5) as RGBA8, row 0 = t = 0 (for tests); rgba: 4*size*size. */
 snell_status snell__ndcube_read_face(snell_ctx *ctx, snell__ndcube_baker *b, const snell__ndcube *cube, int face,
                                      uint8_t *rgba);
-
-/* The cubemap method's per-mesh cache (method_cubemap.c): analysis of the
- * mesh's current version, computed on first use. For AUTO in renderer.c. */
-snell_status snell__cubemap_analysis(snell_ctx *ctx, void *method_state, const snell_mesh *mesh,
-                                     const snell_mesh_analysis **out);
-
-/* The kernel (method_cubemap.c), registered in renderer.c's g_methods. */
 
 #endif

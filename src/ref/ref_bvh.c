@@ -1,17 +1,18 @@
 /* ref_bvh.c — double-precision triangle BVH: binned SAH build (32 bins per
  * axis over centroid bounds), depth-first flattened nodes with adjacent
  * children, near-first stack traversal, watertight ray-triangle test
- * (Woop/Benthin/Wald 2013). See ref_bvh.h. */
+ * (Woop/Benthin/Wald 2013), an optional per-part filter on hits. See ref_bvh.h. */
 #include "ref/ref_bvh.h"
 #include "mesh/mesh.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #define BINS 32
 #define MAX_LEAF 4        /* a leaf never holds more unless the centroids coincide */
 #define MAX_DEPTH 96      /* beyond this, split by halves (keeps recursion bounded) */
-#define STACK_SIZE 128    /* >= MAX_DEPTH + log2(SNELL_MESH_MAX_TRIANGLES) + 1 */
+#define STACK_SIZE 128 /* >= MAX_DEPTH + log2(SNELL__BVH_MAX_TRIANGLES) + 1 */
 
 /* ------------------------------------------------------------ ray setup */
 
@@ -114,10 +115,10 @@ static double box_enter(const ray_pre *r, const snell__bvh_node *n, double tmin,
     return tmin <= tmax ? tmin : HUGE_VAL;
 }
 
-/* any_only: stop at the first hit. Returns the leaf-order entry of the hit or
- * SNELL__BVH_NONE. */
+/* any_only: stop at the first hit. accept (NULL = all) filters by part.
+ * Returns the leaf-order entry of the hit or SNELL__BVH_NONE. */
 static uint32_t traverse(const snell__bvh *bvh, const ray_pre *r, double tmin, double *tmax, uint32_t skip,
-                         int any_only, double b[3])
+                         int any_only, snell__bvh_filter accept, const void *user, double b[3])
 {
     uint32_t stack[STACK_SIZE], best = SNELL__BVH_NONE;
     int sp = 0;
@@ -132,6 +133,7 @@ static uint32_t traverse(const snell__bvh *bvh, const ray_pre *r, double tmin, d
                 double t, bb[3];
                 if (bvh->tri_ids[i] == skip) continue;
                 if (tri_hit(r, v, v + 3, v + 6, tmin, *tmax, &t, bb)) {
+                    if (accept && !accept(bvh->tri_parts[i], user)) continue;
                     *tmax = t;
                     best = i;
                     b[0] = bb[0];
@@ -156,8 +158,9 @@ static uint32_t traverse(const snell__bvh *bvh, const ray_pre *r, double tmin, d
     return best;
 }
 
-int snell__bvh_closest(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
-                       uint32_t skip_tri, snell__bvh_hit *hit)
+int snell__bvh_closest_filtered(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin,
+                                double tmax, uint32_t skip_tri, snell__bvh_filter accept, const void *user,
+                                snell__bvh_hit *hit)
 {
     ray_pre r;
     double b[3] = {0, 0, 0}, t = tmax;
@@ -166,16 +169,24 @@ int snell__bvh_closest(const snell__bvh *bvh, const double org[3], const double 
     int k;
     if (!bvh || !bvh->node_count) return 0;
     ray_setup(&r, org, dir);
-    e = traverse(bvh, &r, tmin, &t, skip_tri, 0, b);
+    e = traverse(bvh, &r, tmin, &t, skip_tri, 0, accept, user, b);
     if (e == SNELL__BVH_NONE) return 0;
     v = bvh->tri_verts + 9 * (size_t)e;
     hit->t = t;
     hit->tri = bvh->tri_ids[e];
+    hit->part = bvh->tri_parts[e];
+    hit->entry = e;
     for (k = 0; k < 3; k++) {
         hit->b[k] = b[k];
         hit->p[k] = b[0] * v[k] + b[1] * v[3 + k] + b[2] * v[6 + k];
     }
     return 1;
+}
+
+int snell__bvh_closest(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
+                       uint32_t skip_tri, snell__bvh_hit *hit)
+{
+    return snell__bvh_closest_filtered(bvh, org, dir, tmin, tmax, skip_tri, NULL, NULL, hit);
 }
 
 int snell__bvh_any(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
@@ -185,7 +196,7 @@ int snell__bvh_any(const snell__bvh *bvh, const double org[3], const double dir[
     double b[3], t = tmax;
     if (!bvh || !bvh->node_count) return 0;
     ray_setup(&r, org, dir);
-    return traverse(bvh, &r, tmin, &t, skip_tri, 1, b) != SNELL__BVH_NONE;
+    return traverse(bvh, &r, tmin, &t, skip_tri, 1, NULL, NULL, b) != SNELL__BVH_NONE;
 }
 
 /* --------------------------------------------------------------- build */
@@ -357,44 +368,71 @@ static int invert3(const double m[9], double inv[9])
     return 1;
 }
 
-snell_status snell__bvh_build(snell_ctx *ctx, const float *positions, uint32_t nv, const uint32_t *indices,
-                              uint32_t nt, const float *model, snell__bvh **out)
+/* Model matrix m (double, column-major) of a part; 0 and a message if it is
+ * not finite or its 3x3 is singular. */
+static snell_status part_model(snell_ctx *ctx, const snell__bvh_part *pt, const char *who, double m[16])
 {
-    const snell_alloc *al = snell__ctx_alloc(ctx);
-    snell__bvh *bvh = NULL;
-    build_ctx bc;
-    double *tv = NULL, m[16], m3[9], pad, ext = 0.0;
-    uint32_t i, j;
+    double m3[9], inv[9];
     int k;
-    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: out is NULL");
-    *out = NULL;
-    if (!positions || !indices || nt == 0 || nv < 3)
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: mesh has no triangles");
-    if (nt > SNELL_MESH_MAX_TRIANGLES || nv > SNELL_MESH_MAX_VERTICES)
-        return snell__fail(ctx, SNELL_E_LIMIT, "bvh build: %u triangles / %u vertices exceed the mesh limits", nt,
-                           nv);
-    for (k = 0; k < 16; k++) m[k] = model ? (double)model[k] : (k % 5 == 0 ? 1.0 : 0.0);
+    for (k = 0; k < 16; k++) m[k] = pt->model ? (double)pt->model[k] : (k % 5 == 0 ? 1.0 : 0.0);
     for (k = 0; k < 16; k++)
-        if (!isfinite(m[k])) return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: model matrix is not finite");
+        if (!isfinite(m[k]))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: %smodel matrix is not finite", who);
     for (k = 0; k < 3; k++) {
         m3[3 * k] = m[4 * k];
         m3[3 * k + 1] = m[4 * k + 1];
         m3[3 * k + 2] = m[4 * k + 2];
     }
-    {
-        double inv[9];
-        if (!invert3(m3, inv)) return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: model matrix is singular");
+    if (!invert3(m3, inv)) return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: %smodel matrix is singular", who);
+    return SNELL_OK;
+}
+
+static snell_status part_check(snell_ctx *ctx, const snell__bvh_part *pt, const char *who)
+{
+    uint32_t i;
+    if (!pt->positions || !pt->indices || pt->triangle_count == 0 || pt->vertex_count < 3)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: %smesh has no triangles", who);
+    if (pt->triangle_count > SNELL_MESH_MAX_TRIANGLES || pt->vertex_count > SNELL_MESH_MAX_VERTICES)
+        return snell__fail(ctx, SNELL_E_LIMIT, "bvh build: %s%u triangles / %u vertices exceed the mesh limits", who,
+                           pt->triangle_count, pt->vertex_count);
+    for (i = 0; i < 3 * pt->triangle_count; i++)
+        if (pt->indices[i] >= pt->vertex_count)
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: %striangle %u references vertex %u of %u", who,
+                               i / 3, pt->indices[i], pt->vertex_count);
+    return SNELL_OK;
+}
+
+snell_status snell__bvh_build_parts(snell_ctx *ctx, const snell__bvh_part *parts, uint32_t part_count, snell__bvh **out)
+{
+    const snell_alloc *al = snell__ctx_alloc(ctx);
+    snell__bvh *bvh = NULL;
+    build_ctx bc;
+    double *tv = NULL, m[16], pad, ext = 0.0;
+    uint64_t total = 0;
+    uint32_t i, j, p, nt;
+    int k;
+    snell_status st;
+    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: out is NULL");
+    *out = NULL;
+    if (!parts || part_count == 0) return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: no parts");
+    for (p = 0; p < part_count; p++) {
+        char who[32] = "";
+        if (part_count > 1) snprintf(who, sizeof who, "part %u: ", p);
+        if ((st = part_check(ctx, &parts[p], who)) != SNELL_OK) return st;
+        if ((st = part_model(ctx, &parts[p], who, m)) != SNELL_OK) return st;
+        total += parts[p].triangle_count;
     }
-    for (i = 0; i < 3 * nt; i++)
-        if (indices[i] >= nv)
-            return snell__fail(ctx, SNELL_E_INVALID_ARG, "bvh build: triangle %u references vertex %u of %u", i / 3,
-                               indices[i], nv);
+    if (total > SNELL__BVH_MAX_TRIANGLES)
+        return snell__fail(ctx, SNELL_E_LIMIT, "bvh build: %llu triangles in all exceed the limit %u",
+                           (unsigned long long)total, SNELL__BVH_MAX_TRIANGLES);
+    nt = (uint32_t)total;
 
     memset(&bc, 0, sizeof bc);
     bvh = (snell__bvh *)snell__calloc(al, 1, sizeof *bvh);
     if (!bvh) return snell__fail(ctx, SNELL_E_NOMEM, "bvh build: out of memory");
     bvh->alloc = *al;
     bvh->triangle_count = nt;
+    bvh->part_count = part_count;
     tv = (double *)snell__calloc(al, 9 * (size_t)nt, sizeof(double));
     bc.cent = (double *)snell__calloc(al, 3 * (size_t)nt, sizeof(double));
     bc.lo = (double *)snell__calloc(al, 3 * (size_t)nt, sizeof(double));
@@ -403,7 +441,10 @@ snell_status snell__bvh_build(snell_ctx *ctx, const float *positions, uint32_t n
     bvh->nodes = (snell__bvh_node *)snell__calloc(al, 2 * (size_t)nt, sizeof(snell__bvh_node));
     bvh->tri_verts = (double *)snell__calloc(al, 9 * (size_t)nt, sizeof(double));
     bvh->tri_ids = (uint32_t *)snell__calloc(al, nt, sizeof(uint32_t));
-    if (!tv || !bc.cent || !bc.lo || !bc.hi || !bc.order || !bvh->nodes || !bvh->tri_verts || !bvh->tri_ids) {
+    bvh->tri_parts = (uint32_t *)snell__calloc(al, nt, sizeof(uint32_t));
+    bvh->part_first = (uint32_t *)snell__calloc(al, (size_t)part_count + 1, sizeof(uint32_t));
+    if (!tv || !bc.cent || !bc.lo || !bc.hi || !bc.order || !bvh->nodes || !bvh->tri_verts || !bvh->tri_ids ||
+        !bvh->tri_parts || !bvh->part_first) {
         snell__free(al, tv);
         snell__free(al, bc.cent);
         snell__free(al, bc.lo);
@@ -416,23 +457,30 @@ snell_status snell__bvh_build(snell_ctx *ctx, const float *positions, uint32_t n
         bvh->bmin[k] = HUGE_VAL;
         bvh->bmax[k] = -HUGE_VAL;
     }
-    for (i = 0; i < nt; i++) {
-        for (j = 0; j < 3; j++) {
-            const float *p = positions + 3 * (size_t)indices[3 * i + j];
-            double *w = tv + 9 * (size_t)i + 3 * j;
-            for (k = 0; k < 3; k++) {
-                w[k] = m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k];
-                if (j == 0 || w[k] < bc.lo[3 * i + k]) bc.lo[3 * i + k] = w[k];
-                if (j == 0 || w[k] > bc.hi[3 * i + k]) bc.hi[3 * i + k] = w[k];
+    for (p = 0, i = 0; p < part_count; p++) {
+        const snell__bvh_part *pt = &parts[p];
+        uint32_t t;
+        part_model(ctx, pt, "", m); /* validated above */
+        bvh->part_first[p] = i;
+        for (t = 0; t < pt->triangle_count; t++, i++) {
+            for (j = 0; j < 3; j++) {
+                const float *q = pt->positions + 3 * (size_t)pt->indices[3 * (size_t)t + j];
+                double *w = tv + 9 * (size_t)i + 3 * j;
+                for (k = 0; k < 3; k++) {
+                    w[k] = m[k] * q[0] + m[4 + k] * q[1] + m[8 + k] * q[2] + m[12 + k];
+                    if (j == 0 || w[k] < bc.lo[3 * (size_t)i + k]) bc.lo[3 * (size_t)i + k] = w[k];
+                    if (j == 0 || w[k] > bc.hi[3 * (size_t)i + k]) bc.hi[3 * (size_t)i + k] = w[k];
+                }
             }
+            for (k = 0; k < 3; k++) {
+                bc.cent[3 * (size_t)i + k] = 0.5 * (bc.lo[3 * (size_t)i + k] + bc.hi[3 * (size_t)i + k]);
+                if (bc.lo[3 * (size_t)i + k] < bvh->bmin[k]) bvh->bmin[k] = bc.lo[3 * (size_t)i + k];
+                if (bc.hi[3 * (size_t)i + k] > bvh->bmax[k]) bvh->bmax[k] = bc.hi[3 * (size_t)i + k];
+            }
+            bc.order[i] = i;
         }
-        for (k = 0; k < 3; k++) {
-            bc.cent[3 * i + k] = 0.5 * (bc.lo[3 * i + k] + bc.hi[3 * i + k]);
-            if (bc.lo[3 * i + k] < bvh->bmin[k]) bvh->bmin[k] = bc.lo[3 * i + k];
-            if (bc.hi[3 * i + k] > bvh->bmax[k]) bvh->bmax[k] = bc.hi[3 * i + k];
-        }
-        bc.order[i] = i;
     }
+    bvh->part_first[part_count] = nt;
     bc.bvh = bvh;
     bc.tv = tv;
     bc.next_node = 1;
@@ -453,8 +501,17 @@ snell_status snell__bvh_build(snell_ctx *ctx, const float *positions, uint32_t n
             bvh->nodes[i].bmax[k] += pad;
         }
     for (i = 0; i < nt; i++) {
-        memcpy(bvh->tri_verts + 9 * (size_t)i, tv + 9 * (size_t)bc.order[i], 9 * sizeof(double));
-        bvh->tri_ids[i] = bc.order[i];
+        uint32_t id = bc.order[i], lo = 0, hi = part_count - 1;
+        memcpy(bvh->tri_verts + 9 * (size_t)i, tv + 9 * (size_t)id, 9 * sizeof(double));
+        bvh->tri_ids[i] = id;
+        while (lo < hi) { /* the last part whose first id is <= id */
+            uint32_t mid = (lo + hi + 1) / 2;
+            if (bvh->part_first[mid] <= id)
+                lo = mid;
+            else
+                hi = mid - 1;
+        }
+        bvh->tri_parts[i] = lo;
     }
     snell__free(al, tv);
     snell__free(al, bc.cent);
@@ -463,6 +520,18 @@ snell_status snell__bvh_build(snell_ctx *ctx, const float *positions, uint32_t n
     snell__free(al, bc.order);
     *out = bvh;
     return SNELL_OK;
+}
+
+snell_status snell__bvh_build(snell_ctx *ctx, const float *positions, uint32_t nv, const uint32_t *indices, uint32_t nt,
+                              const float *model, snell__bvh **out)
+{
+    snell__bvh_part pt;
+    pt.positions = positions;
+    pt.vertex_count = nv;
+    pt.indices = indices;
+    pt.triangle_count = nt;
+    pt.model = model;
+    return snell__bvh_build_parts(ctx, &pt, 1, out);
 }
 
 snell_status snell__bvh_build_mesh(snell_ctx *ctx, const snell_mesh *mesh, const float *model, snell__bvh **out)
@@ -483,5 +552,7 @@ void snell__bvh_destroy(snell__bvh *bvh)
     snell__free(&al, bvh->nodes);
     snell__free(&al, bvh->tri_verts);
     snell__free(&al, bvh->tri_ids);
+    snell__free(&al, bvh->tri_parts);
+    snell__free(&al, bvh->part_first);
     snell__free(&al, bvh);
 }

@@ -1,55 +1,37 @@
-/* ref_trace.c — the double-precision CPU reference tracer (snell_ref.h):
- * scene intersection (mesh BVH or analytic sphere), the MATCHED chain and
- * the FULL Whitted tree, camera rays, the pthread image loop and light paths.
+/* ref_trace.c — the double-precision CPU reference tracer (snell_ref.h): the
+ * MATCHED chain and the FULL Whitted tree through a scene of glass and opaque
+ * objects (ref_scene.c), camera rays, the pthread image loop and light paths.
  * Optics are the shared kernel of optics.h (Unger 2.1: Snell with TIR, mirror
- * reflection, Schlick, Beer-Lambert); the chain follows Unger 4.1 with exact
- * ray casts in place of the cubemap binary search. */
+ * reflection, Schlick, Beer-Lambert, the thin slab); the chain follows Unger
+ * 4.1 with exact ray casts in place of the cubemap binary search. */
 #define _POSIX_C_SOURCE 200809L
 #include "ref/ref_trace.h"
+#include "ref/ref_scene.h"
 #include "render/env.h"
-#include "mesh/mesh.h"
 #include "core/optics.h"
-#include "ref/ref_bvh.h"
 
 #include <math.h>
 #include <pthread.h>
 #include <string.h>
 #include <unistd.h>
 
-/* FULL mode: a branch whose throughput (largest channel) falls below this ends
- * with an env lookup in its direction instead of being traced further. The
+/* A branch whose throughput (largest channel) falls below this ends with an
+ * env lookup in its direction instead of being traced further (FULL: every
+ * branch; MATCHED: the side branches, never the chain the path records). The
  * error is below MIN_WEIGHT * (difference of two radiances <= 1) per pruned
  * branch, far under half an 8-bit step (1/510). */
 #define MIN_WEIGHT 1e-5
-
-struct snell_ref {
-    snell_ctx *ctx;
-    snell_alloc alloc;
-    snell__bvh *bvh;          /* NULL for the analytic sphere */
-    double *normals;          /* 3 * vertex_count: inverse-transpose(model) * n, not renormalised (glass.vert) */
-    uint32_t *indices;        /* 3 * triangle_count, copy of the mesh's */
-    int analytic;             /* 1: exact sphere sph_c, sph_r */
-    double sph_c[3], sph_r;
-    double bs_c[3], bs_r;     /* bounding sphere of the GPU single method */
-    double eps;               /* tmin of every ray cast, world units */
-};
 
 /* Parameters with defaults resolved. */
 typedef struct optics {
     snell_ref_mode mode;
     int max_if;
     snell_ref_absorption absorb;
-    double ior, sigma[3], tint[3];
-    int has_sigma;
+    int isolate;
     const snell_env *env;
     snell_ref_env_fn env_fn;
     void *env_user;
 } optics;
-
-typedef struct surf {
-    double t, p[3], n[3]; /* n: unit smooth normal, not yet flipped */
-    uint32_t prim;
-} surf;
 
 /* ------------------------------------------------------------ vectors */
 
@@ -65,6 +47,11 @@ static int normalize3(double v[3])
     return 1;
 }
 
+static double max3(const double w[3])
+{
+    return w[0] > w[1] ? (w[0] > w[2] ? w[0] : w[2]) : (w[1] > w[2] ? w[1] : w[2]);
+}
+
 static void env_rgb(const optics *op, const double d[3], double rgb[3])
 {
     if (op->env_fn)
@@ -73,224 +60,336 @@ static void env_rgb(const optics *op, const double d[3], double rgb[3])
         snell_env_sample_d(op->env, d, rgb);
 }
 
-/* ------------------------------------------------------------ geometry */
-
-static int sphere_hit(const snell_ref *r, const double o[3], const double d[3], surf *s)
+/* What a ray in air sees after `depth` interfaces. excl: a glass object it
+ * must not see (MATCHED: the one it leaves); home: the first glass object the
+ * path met, -1 none yet (MATCHED passes excl: any object left counts). */
+static ref_view air_view(const optics *op, int depth, int excl, int home)
 {
-    double oc[3] = {o[0] - r->sph_c[0], o[1] - r->sph_c[1], o[2] - r->sph_c[2]};
-    double a = dot3(d, d), b = dot3(oc, d), c = dot3(oc, oc) - r->sph_r * r->sph_r, disc = b * b - a * c, q, t0,
-           t1, t;
-    int k;
-    if (disc < 0.0) return 0;
-    /* Stable roots: q = -(b + sign(b) sqrt(disc)); t = q / a and c / q. */
-    q = -(b + (b >= 0.0 ? sqrt(disc) : -sqrt(disc)));
-    if (q == 0.0) return 0;
-    t0 = q / a;
-    t1 = c / q;
-    if (t0 > t1) {
-        t = t0;
-        t0 = t1;
-        t1 = t;
-    }
-    t = t0 > r->eps ? t0 : t1;
-    if (!(t > r->eps)) return 0;
-    s->t = t;
-    for (k = 0; k < 3; k++) s->n[k] = o[k] + t * d[k] - r->sph_c[k];
-    if (!normalize3(s->n)) return 0;
-    /* Put the point exactly on the sphere (its radius error would otherwise
-     * accumulate along a chain). */
-    for (k = 0; k < 3; k++) s->p[k] = r->sph_c[k] + r->sph_r * s->n[k];
-    s->prim = 0;
-    return 1;
+    ref_view v;
+    v.medium = -1;
+    v.excl = excl;
+    if (depth >= op->max_if) /* no interface can be processed any more */
+        v.glass = REF_SEE_NONE;
+    else if (op->isolate && home >= 0)
+        v.glass = op->mode == SNELL_REF_FULL ? home : REF_SEE_NONE;
+    else
+        v.glass = REF_SEE_ALL;
+    return v;
 }
 
-/* Closest surface along o + t d, t > eps; skip: the mesh triangle the ray
- * starts on (a planar triangle cannot be hit again by a ray leaving it). */
-static int scene_hit(const snell_ref *r, const double o[3], const double d[3], uint32_t skip, surf *s)
+static ref_view inside_view(int medium)
 {
-    snell__bvh_hit h;
-    const uint32_t *tri;
-    int k;
-    if (r->analytic) return sphere_hit(r, o, d, s);
-    if (!snell__bvh_closest(r->bvh, o, d, r->eps, HUGE_VAL, skip, &h)) return 0;
-    tri = r->indices + 3 * (size_t)h.tri;
-    s->t = h.t;
-    s->prim = h.tri;
-    for (k = 0; k < 3; k++) {
-        s->p[k] = h.p[k];
-        /* Barycentric interpolation of the world vertex normals, as the GPU
-         * interpolates v_world_normal (perspective-correct = barycentric). */
-        s->n[k] = h.b[0] * r->normals[3 * (size_t)tri[0] + k] + h.b[1] * r->normals[3 * (size_t)tri[1] + k] +
-                  h.b[2] * r->normals[3 * (size_t)tri[2] + k];
-    }
-    if (!normalize3(s->n)) {
-        /* Opposite vertex normals cancelled: fall back to the face normal. */
-        const double *v = NULL;
-        uint32_t i;
-        for (i = 0; i < r->bvh->triangle_count; i++)
-            if (r->bvh->tri_ids[i] == h.tri) {
-                v = r->bvh->tri_verts + 9 * (size_t)i;
-                break;
-            }
-        if (v) {
-            double e1[3] = {v[3] - v[0], v[4] - v[1], v[5] - v[2]}, e2[3] = {v[6] - v[0], v[7] - v[1], v[8] - v[2]};
-            s->n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-            s->n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-            s->n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        }
-        if (!normalize3(s->n)) {
-            s->n[0] = -d[0];
-            s->n[1] = -d[1];
-            s->n[2] = -d[2];
-            normalize3(s->n);
-        }
-    }
-    return 1;
+    ref_view v;
+    v.medium = medium;
+    v.glass = REF_SEE_NONE;
+    v.excl = -1;
+    return v;
 }
 
-/* ------------------------------------------------------------ the optics */
+/* The smooth normal at s turned to face the ray d; returns cos_i >= 0. */
+static double facing(const ref_surf *s, const double d[3], double n[3])
+{
+    double nd = dot3(s->n, d);
+    int k;
+    for (k = 0; k < 3; k++) n[k] = nd > 0.0 ? -s->n[k] : s->n[k];
+    return nd > 0.0 ? nd : -nd;
+}
 
-static void path_point(snell_ref_path *path, const double p[3], snell_ref_event ev)
+/* A thin wall at incidence cosine c: slab reflectance rs, transmittance ts,
+ * and the refracted chord through it. */
+static double slab(const ref_glass *g, double c, double rs[3], double ts[3])
+{
+    double s2 = (1.0 - c * c) / (g->ior * g->ior), ct = sqrt(1.0 - (s2 < 1.0 ? s2 : 1.0));
+    snell_optd_thin_slab(c, g->ior, g->sigma, g->thickness, rs, ts);
+    return g->thickness / (ct > 1e-6 ? ct : 1e-6);
+}
+
+/* ------------------------------------------------------------ light path */
+
+static void path_point(snell_ref_path *path, const double p[3], snell_ref_event ev, int object)
 {
     int i = path->interfaces;
     if (i >= SNELL_REF_MAX_INTERFACES) return; /* cannot happen: max_if <= SNELL_REF_MAX_INTERFACES */
     path->interfaces = i + 1;
     memcpy(path->points[i + 1], p, 3 * sizeof(double));
     path->events[i + 1] = ev;
+    path->objects[i + 1] = object;
 }
 
-/* Walks one path: MATCHED = always refract unless TIR and stop once out of the
- * glass; FULL = the branch of larger Fresnel weight at every interface. Fills
- * path (points, events, exit_dir, ended_inside, inside_length, fresnel) and the
- * first-surface reflection r1 and refraction t1 (for the MATCHED colour). */
-static void walk(const snell_ref *r, const optics *op, const double o[3], const double d[3], snell_ref_path *path,
-                 double r1[3], double t1[3])
+/* The first hit of the view ray (depth 0) fills the path's summary. */
+static void first_hit(snell_ref_path *path, int depth, int found, const ref_surf *s)
+{
+    if (!path || depth != 0) return;
+    path->first_object = found ? s->object : -1;
+    path->hit = found && s->object >= 0;
+}
+
+/* ------------------------------------------------------------ MATCHED */
+
+/* The GPU model, generalised to a scene: a ray in air (m_air) takes the
+ * radiance of what it meets first: the environment, an opaque object, or a
+ * glass object j, where C = F env'(R) + (1-F) tint T L (solid; L from the
+ * refracted chain inside, m_inside) or rs env'(R) + ts tint L (thin wall; L
+ * straight on through). env' is again m_air from that surface, which never
+ * sees j itself (the GPU draws one surface of j per pixel and looks up an
+ * environment j is not in). w: throughput, for pruning side branches; path:
+ * the chain being recorded (the refracted/transmitted branch), or NULL. */
+static void m_inside(const snell_ref *r, const optics *op, int j, const double p[3], const double t1[3], uint32_t prim,
+                     int depth, const double w[3], snell_ref_path *path, double *len, double L[3]);
+
+static void m_air(const snell_ref *r, const optics *op, const double o[3], const double d[3], uint32_t prim, int excl,
+                  int depth, const double w[3], snell_ref_path *path, double rgb[3])
+{
+    ref_view v = air_view(op, depth, excl, excl);
+    ref_surf s;
+    const ref_glass *g;
+    double n[3], c, refl[3] = {0, 0, 0}, rdir[3], wr[3], wt[3];
+    int found, k;
+    if (!path && max3(w) < MIN_WEIGHT) {
+        env_rgb(op, d, rgb);
+        return;
+    }
+    found = snell__ref_hit(r, o, d, prim, &v, &s);
+    first_hit(path, depth, found, &s);
+    if (!found || s.object < 0) {
+        if (found)
+            snell__ref_shade_opaque(r, -2 - s.object, &s, rgb);
+        else
+            env_rgb(op, d, rgb);
+        if (path) memcpy(path->exit_dir, d, 3 * sizeof(double));
+        return;
+    }
+    g = &r->glass[s.object];
+    c = facing(&s, d, n);
+    snell_optd_reflect(d, n, rdir);
+    normalize3(rdir);
+    if (g->thin) {
+        double rs[3], ts[3], L[3], chord = slab(g, c, rs, ts);
+        if (path) {
+            if (path->interfaces == 0) path->fresnel = (rs[0] + rs[1] + rs[2]) / 3.0;
+            path_point(path, s.p, SNELL_REF_EVENT_REFRACT, s.object);
+            path->inside_length += chord;
+        }
+        for (k = 0; k < 3; k++) {
+            wr[k] = w[k] * rs[k];
+            wt[k] = w[k] * ts[k] * g->tint[k];
+        }
+        m_air(r, op, s.p, rdir, s.prim, s.object, depth + 1, wr, NULL, refl);
+        m_air(r, op, s.p, d, s.prim, s.object, depth + 1, wt, path, L);
+        for (k = 0; k < 3; k++) rgb[k] = rs[k] * refl[k] + ts[k] * g->tint[k] * L[k];
+    } else {
+        double F = snell_optd_fresnel_schlick(c, 1.0, g->ior), t1[3], L[3], len = 0.0, dist, T;
+        int tir = !snell_optd_refract(d, n, 1.0 / g->ior, t1);
+        if (tir) F = 1.0; /* IOR < 1 at a grazing angle */
+        if (path) {
+            if (path->interfaces == 0) path->fresnel = F;
+            path_point(path, s.p, tir ? SNELL_REF_EVENT_TIR : SNELL_REF_EVENT_REFRACT, s.object);
+        }
+        if (tir) { /* the chain goes on along the reflection */
+            m_air(r, op, s.p, rdir, s.prim, s.object, depth + 1, w, path, rgb);
+            return;
+        }
+        normalize3(t1);
+        for (k = 0; k < 3; k++) {
+            wr[k] = w[k] * F;
+            wt[k] = w[k] * (1.0 - F) * g->tint[k];
+        }
+        if (F > 0.0) m_air(r, op, s.p, rdir, s.prim, s.object, depth + 1, wr, NULL, refl);
+        m_inside(r, op, s.object, s.p, t1, s.prim, depth + 1, wt, path, &len, L);
+        dist = 0.0;
+        if (op->absorb == SNELL_REF_ABSORB_BOUNDING_SPHERE) {
+            /* Distance from the entry along t1 to the exit of j's bounding sphere (single.frag). */
+            double oc[3] = {s.p[0] - g->bs_c[0], s.p[1] - g->bs_c[1], s.p[2] - g->bs_c[2]};
+            double b = dot3(oc, t1), cc = dot3(oc, oc) - g->bs_r * g->bs_r, disc = b * b - cc;
+            dist = -b + sqrt(disc > 0.0 ? disc : 0.0);
+            if (!(dist > 0.0)) dist = 0.0;
+        } else {
+            dist = len;
+        }
+        for (k = 0; k < 3; k++) {
+            T = g->has_sigma ? exp(-g->sigma[k] * dist) : 1.0;
+            rgb[k] = F * refl[k] + (1.0 - F) * g->tint[k] * T * L[k];
+        }
+    }
+}
+
+/* The refracted chain inside solid glass object j from p along t1: reflected
+ * where totally internally reflected (no Fresnel split inside), else refracted
+ * out, and L is what the outgoing ray sees (m_air, j unseen). At the cap, or
+ * with no surface ahead (open mesh), the ray leaves unrefracted through the
+ * next surface. *len: the path length inside. An opaque object inside the
+ * glass ends the chain with its colour. */
+static void m_inside(const snell_ref *r, const optics *op, int j, const double p[3], const double t1[3], uint32_t prim,
+                     int depth, const double w[3], snell_ref_path *path, double *len, double L[3])
+{
+    const ref_glass *g = &r->glass[j];
+    ref_view v = inside_view(j);
+    double pos[3], dir[3], wo[3];
+    int k;
+    memcpy(pos, p, sizeof pos);
+    memcpy(dir, t1, sizeof dir);
+    *len = 0.0;
+    for (;;) {
+        ref_surf s;
+        double n[3], out[3];
+        if (!snell__ref_hit(r, pos, dir, prim, &v, &s)) { /* open mesh: leaves in its direction */
+            if (path) path->ended_inside = 1;
+            break;
+        }
+        *len += s.t;
+        if (path) path->inside_length += s.t;
+        if (s.object < 0) { /* an opaque object in the glass */
+            if (path) {
+                path->ended_inside = 1;
+                memcpy(path->exit_dir, dir, 3 * sizeof(double));
+            }
+            snell__ref_shade_opaque(r, -2 - s.object, &s, L);
+            return;
+        }
+        memcpy(pos, s.p, sizeof pos);
+        prim = s.prim;
+        if (depth >= op->max_if) { /* cap: leaves through this surface in its direction */
+            if (path) path->ended_inside = 1;
+            break;
+        }
+        facing(&s, dir, n);
+        if (!snell_optd_refract(dir, n, g->ior, out)) {
+            snell_optd_reflect(dir, n, out);
+            normalize3(out);
+            if (path) path_point(path, s.p, SNELL_REF_EVENT_TIR, j);
+            memcpy(dir, out, sizeof dir);
+            depth++;
+            continue;
+        }
+        normalize3(out);
+        if (path) path_point(path, s.p, SNELL_REF_EVENT_REFRACT, j);
+        memcpy(dir, out, sizeof dir);
+        depth++;
+        break;
+    }
+    for (k = 0; k < 3; k++) wo[k] = w[k] * (g->has_sigma ? exp(-g->sigma[k] * *len) : 1.0);
+    m_air(r, op, pos, dir, prim, j, depth, wo, path, L);
+}
+
+/* ------------------------------------------------------------ FULL */
+
+/* Whitted recursion. medium: the solid glass object the ray is in, -1 air;
+ * home: the first glass object of the path (what isolate_glass still shows);
+ * w: throughput of this ray; adds its radiance contribution to acc; depth:
+ * interfaces already processed on this branch. */
+static void whitted(const snell_ref *r, const optics *op, const double o[3], const double d[3], uint32_t prim,
+                    int medium, int home, int depth, const double w_in[3], double acc[3])
+{
+    double w[3] = {w_in[0], w_in[1], w_in[2]}, n[3], c, dir_r[3], dir_t[3], col[3], wr[3], wt[3];
+    ref_view v = medium >= 0 ? inside_view(medium) : air_view(op, depth, -1, home);
+    const ref_glass *g;
+    ref_surf s;
+    int k;
+    if (max3(w) < MIN_WEIGHT || !snell__ref_hit(r, o, d, prim, &v, &s)) {
+        env_rgb(op, d, col);
+        for (k = 0; k < 3; k++) acc[k] += w[k] * col[k];
+        return;
+    }
+    if (medium >= 0 && r->glass[medium].has_sigma)
+        for (k = 0; k < 3; k++) w[k] *= exp(-r->glass[medium].sigma[k] * s.t);
+    if (s.object < 0) {
+        snell__ref_shade_opaque(r, -2 - s.object, &s, col);
+        for (k = 0; k < 3; k++) acc[k] += w[k] * col[k];
+        return;
+    }
+    if (depth >= op->max_if) { /* cap (only met inside): leaves through this surface in its direction */
+        whitted(r, op, s.p, d, s.prim, -1, home, depth, w, acc);
+        return;
+    }
+    g = &r->glass[s.object];
+    if (home < 0) home = s.object;
+    c = facing(&s, d, n);
+    snell_optd_reflect(d, n, dir_r);
+    normalize3(dir_r);
+    if (g->thin) { /* every wall is a slab: reflected, or straight through */
+        double rs[3], ts[3];
+        slab(g, c, rs, ts);
+        for (k = 0; k < 3; k++) {
+            wr[k] = w[k] * rs[k];
+            wt[k] = w[k] * ts[k] * g->tint[k];
+        }
+        whitted(r, op, s.p, dir_r, s.prim, -1, home, depth + 1, wr, acc);
+        whitted(r, op, s.p, d, s.prim, -1, home, depth + 1, wt, acc);
+    } else {
+        int in = medium == s.object, tir;
+        double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = snell_optd_fresnel_schlick(c, n1, n2);
+        tir = !snell_optd_refract(d, n, n1 / n2, dir_t);
+        if (tir) F = 1.0;
+        if (F > 0.0) {
+            for (k = 0; k < 3; k++) wr[k] = w[k] * F;
+            whitted(r, op, s.p, dir_r, s.prim, medium, home, depth + 1, wr, acc);
+        }
+        if (!tir && F < 1.0) {
+            for (k = 0; k < 3; k++) wt[k] = w[k] * (1.0 - F) * (in ? 1.0 : g->tint[k]);
+            normalize3(dir_t);
+            whitted(r, op, s.p, dir_t, s.prim, in ? -1 : s.object, home, depth + 1, wt, acc);
+        }
+    }
+}
+
+/* The dominant branch of the Whitted tree (at every interface the branch of
+ * larger Fresnel weight, refraction on a tie), as a path. */
+static void full_walk(const snell_ref *r, const optics *op, const double o[3], const double d[3], snell_ref_path *path)
 {
     double pos[3], dir[3];
     uint32_t prim = SNELL__BVH_NONE;
-    int inside = 0, k;
-    surf s;
+    int medium = -1, home = -1, depth = 0;
     memcpy(pos, o, sizeof pos);
     memcpy(dir, d, sizeof dir);
     for (;;) {
-        double n[3], nd, n1, n2, F, out_dir[3];
+        ref_view v = medium >= 0 ? inside_view(medium) : air_view(op, depth, -1, home);
+        const ref_glass *g;
+        double n[3], c, out[3];
         snell_ref_event ev;
-        if (op->mode == SNELL_REF_MATCHED && path->interfaces > 0 && !inside) break; /* out: env lookup */
-        if (!scene_hit(r, pos, dir, prim, &s)) break;
-        if (path->interfaces == 0) path->hit = 1;
-        if (inside) path->inside_length += s.t;
-        if (path->interfaces >= op->max_if) break; /* cap: leaves in its current direction */
-        memcpy(n, s.n, sizeof n);
-        nd = dot3(n, dir);
-        if (nd > 0.0) { /* face the incoming ray */
-            n[0] = -n[0];
-            n[1] = -n[1];
-            n[2] = -n[2];
-            nd = -nd;
-        }
-        n1 = inside ? op->ior : 1.0;
-        n2 = inside ? 1.0 : op->ior;
-        F = snell_optd_fresnel_schlick(-nd, n1, n2);
-        if (!snell_optd_refract(dir, n, n1 / n2, out_dir)) {
-            ev = SNELL_REF_EVENT_TIR;
-        } else if (op->mode == SNELL_REF_FULL && F > 1.0 - F) {
-            snell_optd_reflect(dir, n, out_dir);
-            ev = SNELL_REF_EVENT_REFLECT;
+        ref_surf s;
+        int found = snell__ref_hit(r, pos, dir, prim, &v, &s);
+        first_hit(path, depth, found, &s);
+        if (!found) break;
+        if (medium >= 0) path->inside_length += s.t;
+        if (s.object < 0 || depth >= op->max_if) break; /* opaque: ends there; cap: leaves in its direction */
+        g = &r->glass[s.object];
+        if (home < 0) home = s.object;
+        c = facing(&s, dir, n);
+        if (g->thin) {
+            double rs[3], ts[3], chord = slab(g, c, rs, ts);
+            if (depth == 0) path->fresnel = (rs[0] + rs[1] + rs[2]) / 3.0;
+            if (rs[0] + rs[1] + rs[2] > ts[0] + ts[1] + ts[2]) {
+                snell_optd_reflect(dir, n, out);
+                ev = SNELL_REF_EVENT_REFLECT;
+            } else {
+                memcpy(out, dir, sizeof out);
+                ev = SNELL_REF_EVENT_REFRACT;
+                path->inside_length += chord;
+            }
         } else {
-            ev = SNELL_REF_EVENT_REFRACT;
-            inside = !inside;
+            int in = medium == s.object;
+            double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = snell_optd_fresnel_schlick(c, n1, n2);
+            if (!snell_optd_refract(dir, n, n1 / n2, out)) {
+                ev = SNELL_REF_EVENT_TIR;
+                F = 1.0;
+            } else if (F > 1.0 - F) {
+                snell_optd_reflect(dir, n, out);
+                ev = SNELL_REF_EVENT_REFLECT;
+            } else {
+                ev = SNELL_REF_EVENT_REFRACT;
+                medium = in ? -1 : s.object;
+            }
+            if (depth == 0) path->fresnel = F;
         }
-        if (path->interfaces == 0) {
-            path->fresnel = F;
-            snell_optd_reflect(dir, n, r1);
-            normalize3(r1);
-            if (!snell_optd_refract(dir, n, n1 / n2, t1)) memcpy(t1, r1, 3 * sizeof(double));
-            normalize3(t1);
-        }
-        normalize3(out_dir);
-        path_point(path, s.p, ev);
+        normalize3(out);
+        path_point(path, s.p, ev, s.object);
         memcpy(pos, s.p, sizeof pos);
-        memcpy(dir, out_dir, sizeof dir);
+        memcpy(dir, out, sizeof dir);
         prim = s.prim;
+        depth++;
     }
-    for (k = 0; k < 3; k++) path->exit_dir[k] = dir[k];
-    path->ended_inside = inside;
-}
-
-/* Distance from p along unit t to the exit of the bounding sphere (single.frag). */
-static double bsphere_path(const snell_ref *r, const double p[3], const double t[3])
-{
-    double oc[3] = {p[0] - r->bs_c[0], p[1] - r->bs_c[1], p[2] - r->bs_c[2]};
-    double b = dot3(oc, t), c = dot3(oc, oc) - r->bs_r * r->bs_r, disc = b * b - c, d;
-    d = -b + sqrt(disc > 0.0 ? disc : 0.0);
-    return d > 0.0 ? d : 0.0;
-}
-
-static void matched_colour(const snell_ref *r, const optics *op, const snell_ref_path *path, const double r1[3],
-                           const double t1[3], double rgb[3])
-{
-    double refl[3], trans[3], dist, F = path->fresnel;
-    int k;
-    env_rgb(op, path->exit_dir, trans);
-    if (!path->hit) {
-        memcpy(rgb, trans, 3 * sizeof(double));
-        return;
-    }
-    env_rgb(op, r1, refl);
-    dist = op->absorb == SNELL_REF_ABSORB_BOUNDING_SPHERE ? bsphere_path(r, path->points[1], t1)
-                                                          : path->inside_length;
-    for (k = 0; k < 3; k++) {
-        double T = op->has_sigma ? exp(-op->sigma[k] * dist) : 1.0;
-        rgb[k] = F * refl[k] + (1.0 - F) * op->tint[k] * T * trans[k];
-    }
-}
-
-/* FULL: Whitted recursion. w = throughput of this ray; adds its radiance
- * contribution to acc. depth = interfaces already processed on this branch. */
-static void whitted(const snell_ref *r, const optics *op, const double o[3], const double d[3], uint32_t prim,
-                    int inside, int depth, const double w_in[3], double acc[3])
-{
-    double w[3] = {w_in[0], w_in[1], w_in[2]}, n[3], nd, n1, n2, F, dir_r[3], dir_t[3], wmax, c[3];
-    int k, tir;
-    surf s;
-    wmax = w[0] > w[1] ? (w[0] > w[2] ? w[0] : w[2]) : (w[1] > w[2] ? w[1] : w[2]);
-    if (wmax < MIN_WEIGHT || !scene_hit(r, o, d, prim, &s)) {
-        env_rgb(op, d, c);
-        for (k = 0; k < 3; k++) acc[k] += w[k] * c[k];
-        return;
-    }
-    if (inside && op->has_sigma)
-        for (k = 0; k < 3; k++) w[k] *= exp(-op->sigma[k] * s.t);
-    if (depth >= op->max_if) { /* cap: leaves in its current direction */
-        env_rgb(op, d, c);
-        for (k = 0; k < 3; k++) acc[k] += w[k] * c[k];
-        return;
-    }
-    memcpy(n, s.n, sizeof n);
-    nd = dot3(n, d);
-    if (nd > 0.0) {
-        n[0] = -n[0];
-        n[1] = -n[1];
-        n[2] = -n[2];
-        nd = -nd;
-    }
-    n1 = inside ? op->ior : 1.0;
-    n2 = inside ? 1.0 : op->ior;
-    F = snell_optd_fresnel_schlick(-nd, n1, n2);
-    tir = !snell_optd_refract(d, n, n1 / n2, dir_t);
-    if (tir) F = 1.0;
-    snell_optd_reflect(d, n, dir_r);
-    normalize3(dir_r);
-    if (F > 0.0) {
-        double wr[3] = {w[0] * F, w[1] * F, w[2] * F};
-        whitted(r, op, s.p, dir_r, s.prim, inside, depth + 1, wr, acc);
-    }
-    if (!tir && F < 1.0) {
-        double wt[3];
-        for (k = 0; k < 3; k++) wt[k] = w[k] * (1.0 - F) * (inside ? 1.0 : op->tint[k]);
-        normalize3(dir_t);
-        whitted(r, op, s.p, dir_t, s.prim, !inside, depth + 1, wt, acc);
-    }
+    memcpy(path->exit_dir, dir, 3 * sizeof(double));
+    path->ended_inside = medium >= 0;
 }
 
 /* Traces one ray (unit d). want_path: the walk is needed (path outputs) even
@@ -298,26 +397,23 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
 static void trace(const snell_ref *r, const optics *op, const double o[3], const double d[3], int want_path,
                   snell_ref_path *path)
 {
-    double r1[3] = {0, 0, 0}, t1[3] = {0, 0, 0};
+    static const double one[3] = {1.0, 1.0, 1.0};
     path->hit = 0;
+    path->first_object = -1;
     path->interfaces = 0;
     memcpy(path->points[0], o, 3 * sizeof(double));
     path->events[0] = SNELL_REF_EVENT_EYE;
+    path->objects[0] = -1;
+    memcpy(path->exit_dir, d, 3 * sizeof(double));
     path->ended_inside = 0;
     path->fresnel = 0.0;
     path->inside_length = 0.0;
     if (op->mode == SNELL_REF_MATCHED) {
-        walk(r, op, o, d, path, r1, t1);
-        matched_colour(r, op, path, r1, t1, path->rgb);
+        m_air(r, op, o, d, SNELL__BVH_NONE, -1, 0, one, path, path->rgb);
     } else {
-        static const double one[3] = {1.0, 1.0, 1.0};
         path->rgb[0] = path->rgb[1] = path->rgb[2] = 0.0;
-        whitted(r, op, o, d, SNELL__BVH_NONE, 0, 0, one, path->rgb);
-        if (want_path) {
-            walk(r, op, o, d, path, r1, t1);
-        } else {
-            memcpy(path->exit_dir, d, 3 * sizeof(double));
-        }
+        whitted(r, op, o, d, SNELL__BVH_NONE, -1, -1, 0, one, path->rgb);
+        if (want_path) full_walk(r, op, o, d, path);
     }
 }
 
@@ -326,8 +422,6 @@ static void trace(const snell_ref *r, const optics *op, const double o[3], const
 static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, optics *op)
 {
     const snell_ctx *ctx = ref->ctx;
-    const snell_glass_desc *g = &p->glass;
-    int k;
     if (p->mode != SNELL_REF_MATCHED && p->mode != SNELL_REF_FULL)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: unknown mode %d", (int)p->mode);
     if (p->absorption_model != SNELL_REF_ABSORB_PATH && p->absorption_model != SNELL_REF_ABSORB_BOUNDING_SPHERE)
@@ -340,24 +434,11 @@ static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, opt
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: an environment (env or env_fn) is required");
     if (!p->env_fn && !p->env->faces[0])
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: the environment has no CPU faces");
-    if (!(g->ior >= 0.0f) || !isfinite(g->ior))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: ior %g is not a positive number", (double)g->ior);
     memset(op, 0, sizeof *op);
     op->mode = p->mode;
     op->max_if = p->max_interfaces ? p->max_interfaces : 10;
     op->absorb = p->absorption_model;
-    op->ior = g->ior > 0.0f ? (double)g->ior : 1.5;
-    for (k = 0; k < 3; k++) {
-        if (!(g->absorption[k] >= 0.0f) || !isfinite(g->absorption[k]) || !isfinite(g->tint[k]) || g->tint[k] < 0.0f)
-            return snell__fail(ctx, SNELL_E_INVALID_ARG,
-                               "reference: absorption and tint must be finite and non-negative");
-        op->sigma[k] = g->absorption[k];
-        if (op->sigma[k] > 0.0) op->has_sigma = 1;
-    }
-    if (g->tint[0] != 0.0f || g->tint[1] != 0.0f || g->tint[2] != 0.0f)
-        for (k = 0; k < 3; k++) op->tint[k] = g->tint[k];
-    else
-        op->tint[0] = op->tint[1] = op->tint[2] = 1.0;
+    op->isolate = p->isolate_glass != 0;
     op->env = p->env;
     op->env_fn = p->env_fn;
     op->env_user = p->env_user;
@@ -472,7 +553,7 @@ static void render_row(job *jb, int y)
 {
     const camera_rays *cr = jb->cr;
     const snell_ref_output *out = jb->out;
-    int want_path = out->exit_dir || out->interfaces || out->hit;
+    int want_path = out->exit_dir || out->interfaces || out->hit || out->object;
     snell_ref_path path;
     int x, k;
     for (x = 0; x < cr->w; x++) {
@@ -485,6 +566,7 @@ static void render_row(job *jb, int y)
             for (k = 0; k < 3; k++) out->exit_dir[3 * i + k] = (float)path.exit_dir[k];
         if (out->interfaces) out->interfaces[i] = (uint8_t)path.interfaces;
         if (out->hit) out->hit[i] = (uint8_t)path.hit;
+        if (out->object) out->object[i] = (int16_t)path.first_object;
     }
 }
 
@@ -604,123 +686,4 @@ snell_status snell_ref_trace_pixel(const snell_ref *ref, const snell_ref_params 
     camera_ray(&cr, x, y, d);
     trace(ref, &op, cr.eye, d, 1, path);
     return SNELL_OK;
-}
-
-/* ------------------------------------------------------------ creation */
-
-static snell_status ref_alloc(snell_ctx *ctx, snell_ref **out)
-{
-    const snell_alloc *al = snell__ctx_alloc(ctx);
-    snell_ref *r = (snell_ref *)snell__calloc(al, 1, sizeof *r);
-    if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "reference: out of memory");
-    r->ctx = ctx;
-    r->alloc = *al;
-    *out = r;
-    return SNELL_OK;
-}
-
-snell_status snell_ref_create(snell_ctx *ctx, const snell_ref_desc *desc, snell_ref **out)
-{
-    const snell_mesh *m;
-    snell_ref *r = NULL;
-    snell_status st;
-    double M[16], N[9], c[3], s = 0.0;
-    uint32_t i;
-    int k;
-    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_ref_create: out is NULL");
-    *out = NULL;
-    if (!desc || !desc->mesh) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_ref_create: desc->mesh is required");
-    m = desc->mesh;
-    if (!m->triangle_count || !m->positions || !m->normals || !m->indices)
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_ref_create: mesh has no triangles");
-    if ((st = ref_alloc(ctx, &r)) != SNELL_OK) return st;
-    if ((st = snell__bvh_build_mesh(ctx, m, desc->model, &r->bvh)) != SNELL_OK) { /* validates model */
-        snell_ref_destroy(r);
-        return st;
-    }
-    for (k = 0; k < 16; k++) M[k] = desc->model ? (double)desc->model[k] : (k % 5 == 0 ? 1.0 : 0.0);
-    {
-        /* N = inverse-transpose of the 3x3 = cofactor matrix / det (column-major). */
-        double a = M[0], b = M[4], cc = M[8], d = M[1], e = M[5], f = M[9], g = M[2], h = M[6], ii = M[10];
-        double det = a * (e * ii - f * h) - b * (d * ii - f * g) + cc * (d * h - e * g);
-        /* N[col*3+row] = cof(row, col) / det, where cof is of the row-major A. */
-        N[0] = (e * ii - f * h) / det;
-        N[3] = -(d * ii - f * g) / det;
-        N[6] = (d * h - e * g) / det;
-        N[1] = -(b * ii - cc * h) / det;
-        N[4] = (a * ii - cc * g) / det;
-        N[7] = -(a * h - b * g) / det;
-        N[2] = (b * f - cc * e) / det;
-        N[5] = -(a * f - cc * d) / det;
-        N[8] = (a * e - b * d) / det;
-    }
-    r->normals = (double *)snell__calloc(&r->alloc, 3 * (size_t)m->vertex_count, sizeof(double));
-    r->indices = (uint32_t *)snell__calloc(&r->alloc, 3 * (size_t)m->triangle_count, sizeof(uint32_t));
-    if (!r->normals || !r->indices) {
-        snell_ref_destroy(r);
-        return snell__fail(ctx, SNELL_E_NOMEM, "snell_ref_create: out of memory");
-    }
-    memcpy(r->indices, m->indices, 3 * (size_t)m->triangle_count * sizeof(uint32_t));
-    for (i = 0; i < m->vertex_count; i++) {
-        const float *n = m->normals + 3 * (size_t)i;
-        for (k = 0; k < 3; k++) r->normals[3 * (size_t)i + k] = N[k] * n[0] + N[3 + k] * n[1] + N[6 + k] * n[2];
-    }
-    /* Bounding sphere as renderer.c uses it for single.frag: the mesh's own radius. */
-    for (k = 0; k < 3; k++) c[k] = 0.5 * ((double)m->bmin[k] + (double)m->bmax[k]);
-    for (k = 0; k < 3; k++) {
-        double len = sqrt(M[4 * k] * M[4 * k] + M[4 * k + 1] * M[4 * k + 1] + M[4 * k + 2] * M[4 * k + 2]);
-        if (len > s) s = len;
-    }
-    for (k = 0; k < 3; k++) r->bs_c[k] = M[k] * c[0] + M[4 + k] * c[1] + M[8 + k] * c[2] + M[12 + k];
-    r->bs_r = (double)m->bradius * s;
-    {
-        /* Ray epsilon: far above the rounding of hit points (~1e-16 of the
-         * coordinates), far below any feature of a sane mesh. */
-        double ext = 0.0;
-        for (k = 0; k < 3; k++) {
-            double e = fabs(r->bvh->bmin[k]) > fabs(r->bvh->bmax[k]) ? fabs(r->bvh->bmin[k]) : fabs(r->bvh->bmax[k]);
-            if (e > ext) ext = e;
-        }
-        r->eps = 1e-9 * (ext > 0.0 ? ext : 1.0);
-    }
-    *out = r;
-    return SNELL_OK;
-}
-
-snell_status snell__ref_create_sphere(snell_ctx *ctx, const double centre[3], double radius, snell_ref **out)
-{
-    snell_ref *r = NULL;
-    snell_status st;
-    int k;
-    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference sphere: out is NULL");
-    *out = NULL;
-    if (!centre || !(radius > 0.0) || !isfinite(radius) || !isfinite(centre[0]) || !isfinite(centre[1]) ||
-        !isfinite(centre[2]))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference sphere: centre and positive radius required");
-    if ((st = ref_alloc(ctx, &r)) != SNELL_OK) return st;
-    r->analytic = 1;
-    for (k = 0; k < 3; k++) r->sph_c[k] = r->bs_c[k] = centre[k];
-    r->sph_r = r->bs_r = radius;
-    r->eps = 1e-9 * (radius + fabs(centre[0]) + fabs(centre[1]) + fabs(centre[2]));
-    *out = r;
-    return SNELL_OK;
-}
-
-void snell_ref_bounding_sphere(const snell_ref *ref, double centre[3], double *radius)
-{
-    int k;
-    for (k = 0; k < 3; k++)
-        if (centre) centre[k] = ref ? ref->bs_c[k] : 0.0;
-    if (radius) *radius = ref ? ref->bs_r : 0.0;
-}
-
-void snell_ref_destroy(snell_ref *ref)
-{
-    snell_alloc al;
-    if (!ref) return;
-    al = ref->alloc;
-    snell__bvh_destroy(ref->bvh);
-    snell__free(&al, ref->normals);
-    snell__free(&al, ref->indices);
-    snell__free(&al, ref);
 }

@@ -1,26 +1,16 @@
-/* env_dynamic.h — the dynamic environment (Unger 4.1): the static environment
- * plus the opaque scene objects rendered into a cubemap from the glass's
- * centre, re-rendered only when something in it changed; and the opaque
- * objects' own drawing in the view. */
+/* env_dynamic.h — dynamic environments (Unger 4.1): per glass object, the
+ * static environment plus the opaque objects rendered into a cubemap from
+ * the object's bounding-sphere centre, re-rendered only when something it
+ * shows changed. One slot per position in the frame's glass list. */
 #ifndef SNELL_ENV_DYNAMIC_H
 #define SNELL_ENV_DYNAMIC_H
 
-#include "core/core.h"
-#include "render/method.h"
+#include "render/composite.h"
 
-typedef struct snell__opaque_prog {
-    unsigned prog;
-    int model, normal_matrix, view_proj, eye, color;
-} snell__opaque_prog;
-
-typedef struct snell__env_dynamic {
-    snell__opaque_prog view_prog;     /* renderer's output kind (view pass) */
-    snell__opaque_prog cube_prog;     /* colour (cube faces) */
-    unsigned sky_prog;                /* colour skybox for the faces */
-    int sky_inv, sky_env;
-    unsigned texture, fbo, depth_rb;
-    int size;                         /* face size of texture, 0 = none yet */
-    /* what the current texture shows (for the "nothing moved" skip) */
+typedef struct snell__env_view {
+    unsigned texture;                 /* GL cubemap, 0 = none yet */
+    int size;
+    /* what the texture shows (for the "nothing moved" skip) */
     int valid;
     const snell_env *env;
     float centre[3];
@@ -29,21 +19,22 @@ typedef struct snell__env_dynamic {
     unsigned version[SNELL_MAX_OPAQUE];
     float model[SNELL_MAX_OPAQUE][16];
     float color[SNELL_MAX_OPAQUE][3];
+} snell__env_view;
+
+typedef struct snell__env_dynamic {
+    snell__env_view *views;           /* SNELL_MAX_GLASS, allocated on first use */
+    unsigned fbo, depth_rb;
+    int depth_size;
 } snell__env_dynamic;
 
-snell_status snell__env_dynamic_create(snell_ctx *ctx, snell__output_kind out, snell__env_dynamic *d);
-void snell__env_dynamic_destroy(snell__env_dynamic *d);
+void snell__env_dynamic_destroy(snell_ctx *ctx, snell__env_dynamic *d);
 
-/* Checks a frame's opaque list (count, meshes, finite models/colours, size). */
-snell_status snell__env_dynamic_validate(snell_ctx *ctx, const snell_frame_desc *fd);
-
-/* Uploads the opaque meshes and draws them in the view (depth test on). */
-snell_status snell__opaque_draw_view(snell__env_dynamic *d, const snell__frame *f, snell_frame_stats *stats);
-
-/* Re-renders the cubemap if anything changed since it was last rendered
- * (stats->env_updated) or reuses it (stats->env_skipped). Leaves the draw
- * framebuffer and viewport changed when it renders: the caller restores. */
-snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, const snell__frame *f,
-                                       snell_frame_stats *stats);
+/* The cubemap glass object `slot` sees from centre: re-rendered when
+ * anything changed (stats->env_updated, passes) or reused
+ * (SNELL_SKIP_ENV_UPDATE). size: face size, 0 = half of env's, 16..256. */
+snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, snell__composite *comp, int slot,
+                                       const snell_env *env, const snell_opaque *list, int count,
+                                       const float centre[3], float radius, int size, unsigned *texture,
+                                       snell_object_stats *stats);
 
 #endif

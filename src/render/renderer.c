@@ -1,43 +1,22 @@
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
-/* renderer.c — the frame: background (skybox) then the glass mesh with the
- * chosen refraction kernel (method_*.c), into the renderer's offscreen target
- * or the bound framebuffer. Programs and targets are made at creation; a frame
- * allocates nothing after the first (which uploads the mesh). */
+/* renderer.c — the frame (DESIGN.md "frame"): resolve the scene
+ * (scene.c), draw the opaque objects (composite.c), then each glass object
+ * back to front with its method (methods/): prepare its resources (cached,
+ * prepared.c), update its dynamic environment if it sees opaque objects
+ * (env_dynamic.c), draw; the background last where nothing was drawn. Into
+ * the renderer's offscreen target or the bound framebuffer. After the first
+ * frame with given meshes and settings a frame allocates nothing. */
+#include "render/renderer.h"
 #include "core/ctx.h"
-#include "render/env.h"
 #include "core/gl.h"
 #include "core/glstate.h"
-#include "mesh/mesh.h"
-#include "render/method.h"
-#include "methods/ndcube.h"
-#include "render/env_dynamic.h"
 #include "core/pack.h"
-#include "core/program.h"
+#include "core/platform.h"
+#include "render/env.h"
 
 #include <math.h>
 #include <string.h>
-#include <time.h>
 
 #define MAX_RENDER_SIZE 16384
-
-/* Every kernel, indexed by snell_method (AUTO resolves to one of them). */
-static const snell__method *const g_methods[] = {NULL, &snell__method_single, &snell__method_cubemap};
-#define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
-
-struct snell_renderer {
-    snell_ctx *ctx;
-    int width, height;
-    snell_target target;
-    snell__output_kind out;
-    GLuint fbo, color_rb, depth_rb;
-    GLuint empty_vao;               /* the skybox draws without attributes */
-    GLuint sky_prog;
-    GLint sky_inv, sky_env;
-    void *method_state[METHOD_COUNT];
-    snell__env_dynamic dyn;         /* opaque objects and the dynamic environment */
-    float *readback;                /* RGBA32F scratch for exit directions, made at creation */
-    uint8_t *readback8;
-};
 
 static snell_status make_target(snell_renderer *r)
 {
@@ -64,17 +43,7 @@ static snell_status make_target(snell_renderer *r)
 
 static snell_status create_resources(snell_renderer *r)
 {
-    snell_status st = snell__program_build(r->ctx, "skybox.vert", "skybox.frag", snell__output_defines(r->out),
-                                           &r->sky_prog);
-    int m;
-    if (st != SNELL_OK) return st;
-    r->sky_inv = glGetUniformLocation(r->sky_prog, "u_inv_view_proj_rot");
-    r->sky_env = glGetUniformLocation(r->sky_prog, "u_env");
-    for (m = 1; m < METHOD_COUNT && st == SNELL_OK; m++)
-        st = g_methods[m]->create(r->ctx, r->out, &r->method_state[m]);
-    if (st == SNELL_OK) st = snell__env_dynamic_create(r->ctx, r->out, &r->dyn);
-    if (st != SNELL_OK) return st;
-    glGenVertexArrays(1, &r->empty_vao);
+    snell_status st = SNELL_OK;
     if (r->target == SNELL_TARGET_OFFSCREEN) st = make_target(r);
     if (st == SNELL_OK && r->out != SNELL__OUT_COLOR) {
         size_t n = (size_t)r->width * (size_t)r->height;
@@ -82,6 +51,9 @@ static snell_status create_resources(snell_renderer *r)
         r->readback8 = (uint8_t *)snell__calloc(&r->ctx->alloc, n, 4);
         if (!r->readback || !r->readback8) st = snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for readback");
     }
+    /* The background program of the output kind: shader errors surface here,
+     * not in the first frame. Methods are made on first use. */
+    if (st == SNELL_OK) st = snell__composite_prepare(r->ctx, &r->comp, r->out);
     return st;
 }
 
@@ -133,11 +105,11 @@ void snell_renderer_destroy(snell_renderer *r)
 {
     int m;
     if (!r) return;
-    for (m = 1; m < METHOD_COUNT; m++)
-        if (r->method_state[m]) g_methods[m]->destroy(r->ctx, r->method_state[m]);
-    snell__env_dynamic_destroy(&r->dyn);
-    if (r->sky_prog) glDeleteProgram(r->sky_prog);
-    if (r->empty_vao) glDeleteVertexArrays(1, &r->empty_vao);
+    snell__prepared_destroy(r->ctx, &r->prepared);
+    for (m = 0; m < SNELL_METHOD_COUNT_; m++)
+        if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
+    snell__env_dynamic_destroy(r->ctx, &r->dyn);
+    snell__composite_destroy(&r->comp);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
     if (r->color_rb) glDeleteRenderbuffers(1, &r->color_rb);
     if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
@@ -146,159 +118,83 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__free(&r->ctx->alloc, r);
 }
 
-/* World-space bounding sphere of the mesh: centre of the object-space box,
- * radius = farthest vertex, scaled by the model's largest axis scale. */
-static void bounding_sphere(const snell_mesh *m, mat4 model, float out[4])
+/* Methods are created on first use; one that fails (a device that cannot
+ * compile its shaders, say) fails alone and is not retried, except after
+ * running out of memory. */
+static snell_status method_state(void *user, const snell__method *m, void **state)
 {
-    vec3 c, wc;
-    float s = 0.0f;
-    int k;
-    for (k = 0; k < 3; k++) c[k] = 0.5f * (m->bmin[k] + m->bmax[k]);
-    for (k = 0; k < 3; k++) {
-        float len = sqrtf(model[k][0] * model[k][0] + model[k][1] * model[k][1] + model[k][2] * model[k][2]);
-        if (len > s) s = len;
+    snell_renderer *r = (snell_renderer *)user;
+    int id = (int)m->info->method;
+    if (!r->method_state[id] && r->method_status[id] == SNELL_OK) {
+        snell_status st = m->create(r->ctx, r->out, &r->method_state[id]);
+        if (st == SNELL_E_NOMEM) return st;
+        if (st != SNELL_OK) {
+            r->method_status[id] = st;
+            snprintf(r->method_error[id], sizeof r->method_error[id], "%s", snell_last_error(r->ctx));
+            snell__log(r->ctx, SNELL_LOG_WARN, "method %s unavailable: %s", m->info->name, r->method_error[id]);
+        }
     }
-    glm_mat4_mulv3(model, c, 1.0f, wc);
-    out[0] = wc[0]; out[1] = wc[1]; out[2] = wc[2];
-    out[3] = m->bradius * s;
+    if (r->method_status[id] != SNELL_OK)
+        return snell__fail(r->ctx, r->method_status[id], "method %s unavailable: %s", m->info->name,
+                           r->method_error[id]);
+    *state = r->method_state[id];
+    return SNELL_OK;
 }
 
-static void draw_background(snell_renderer *r, snell__frame *f)
+/* Logs a method warning once per (object slot, mesh version, method). */
+static void warn_once(snell_renderer *r, const snell__object *o, const snell_object_stats *st)
 {
-    mat4 rot, vp, inv;
-    glm_mat4_copy(f->view, rot);
-    rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
-    glm_mat4_mul(f->proj, rot, vp);
-    glm_mat4_inv(vp, inv);
-    /* The triangle lies at the far plane (z = w): LEQUAL passes only where
-     * nothing nearer was drawn. */
+    unsigned key = o->mesh->version * 16u + (unsigned)st->method_used;
+    if (r->warned[o->index] == key) return;
+    r->warned[o->index] = key;
+    snell__log(r->ctx, SNELL_LOG_WARN, "glass %d: %s %s", o->index, snell_method_str(st->method_used), st->reason);
+}
+
+static snell_status draw_glass(snell_renderer *r, const snell_frame_desc *fd, snell__object *o,
+                               snell_object_stats *st)
+{
+    const snell__method *m = NULL;
+    void *state = NULL;
+    snell_status s = snell__scene_choose(r->ctx, o, method_state, r, &m, &state, st);
+    if (s != SNELL_OK) return s;
+    if (st->warning) warn_once(r, o, st);
+    if ((s = snell__mesh_upload(o->mesh)) != SNELL_OK) return s;
+    if ((s = snell__prepared_get(r->ctx, &r->prepared, m, state, o, st)) != SNELL_OK) return s;
+    o->env_texture = fd->env->texture;
+    if (fd->opaque_count > 0) {
+        /* The glass sees the opaque objects through its dynamic environment. */
+        s = snell__env_dynamic_update(r->ctx, &r->dyn, &r->comp, o->index, fd->env, fd->opaque, fd->opaque_count,
+                                      o->bsphere, o->bsphere[3], fd->dynamic_env_size, &o->env_texture, st);
+        if (s != SNELL_OK) return s;
+    }
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, o->env_texture);
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    glUseProgram(r->sky_prog);
-    glUniformMatrix4fv(r->sky_inv, 1, GL_FALSE, (const GLfloat *)inv);
-    glUniform1i(r->sky_env, 0);
-    glBindVertexArray(r->empty_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    return m->draw(r->ctx, state, &r->scene.view, o, st);
 }
 
-static double now_ms(void)
+static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-/* Glass that changes nothing: IOR 1, no absorption, no tint. */
-static int is_passthrough(const snell_glass_desc *g)
-{
-    return g->ior == 1.0f && g->absorption[0] == 0.0f && g->absorption[1] == 0.0f && g->absorption[2] == 0.0f &&
-           ((g->tint[0] == 0.0f && g->tint[1] == 0.0f && g->tint[2] == 0.0f) ||
-            (g->tint[0] == 1.0f && g->tint[1] == 1.0f && g->tint[2] == 1.0f));
-}
-
-static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *f)
-{
-    const snell_glass_desc *g = &f->glass;
-    int k;
-    if (!f->env || !f->env->texture)
+    if (!fd->env || !fd->env->texture)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "frame needs an environment created with a context");
-    if (g->ior < 0.0f || !isfinite(g->ior) || (g->ior != 0.0f && (g->ior < 0.05f || g->ior > 100.0f)))
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "IOR %g outside 0.05..100", g->ior);
-    for (k = 0; k < 3; k++)
-        if (!(g->absorption[k] >= 0.0f) || !isfinite(g->absorption[k]) || !(g->tint[k] >= 0.0f) ||
-            !isfinite(g->tint[k]))
-            return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "absorption and tint must be finite and >= 0");
-    if ((int)g->method < 0 || (int)g->method >= METHOD_COUNT)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "unknown method %d", (int)g->method);
-    if (g->search_iterations < 0 || g->search_iterations > SNELL_CUBEMAP_MAX_ITERATIONS)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "search_iterations %d outside 0..%d", g->search_iterations,
-                           SNELL_CUBEMAP_MAX_ITERATIONS);
-    if (g->linear_steps < 0 || g->linear_steps > SNELL_CUBEMAP_MAX_LINEAR_STEPS)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "linear_steps %d outside 0..%d", g->linear_steps,
-                           SNELL_CUBEMAP_MAX_LINEAR_STEPS);
-    if (g->max_interfaces < 0 || g->max_interfaces > SNELL_CUBEMAP_MAX_INTERFACES)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "max_interfaces %d outside 0..%d", g->max_interfaces,
-                           SNELL_CUBEMAP_MAX_INTERFACES);
-    if (g->cube_face_size != 0 && (g->cube_face_size < 16 || g->cube_face_size > 2048))
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "cube_face_size %d outside 16..2048", g->cube_face_size);
-    if ((unsigned)g->encoding > SNELL_NDCUBE_OCT)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "unknown ndcube encoding %d", (int)g->encoding);
-    if (f->model)
-        for (k = 0; k < 16; k++)
-            if (!isfinite(f->model[k])) return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "model matrix is not finite");
-    return snell__env_dynamic_validate(r->ctx, f);
+    if (fd->env->ctx && fd->env->ctx != r->ctx)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the environment belongs to another context");
+    if (fd->dynamic_env_size != 0 && (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048))
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "dynamic_env_size %d outside 16..2048", fd->dynamic_env_size);
+    return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
 }
 
-/* AUTO: the cheapest kernel adequate for the mesh. The cubemap method is
- * exact where the mesh is star-shaped about its centre (snell_mesh_analyze);
- * hidden_fraction is the share of surface it cannot represent. The refracted
- * rays seldom reach most of that surface, so the method stays far better
- * than single-surface well beyond small fractions; measured mean exit-
- * direction errors at 512x512 with the defaults (bench/BENCHMARKS_CUBEMAP.md):
- * bunny (hidden 0.23) 6.3 vs 38.5 degrees, torus (0.47) 10.4 vs 37.6, goblet
- * (0.97, thin bowl wall) 30.0 vs 28.3 - no better than single. The
- * threshold sits between the worst mesh it helps and the one it does not. */
-#define AUTO_MAX_HIDDEN 0.6f
-
-static snell_method resolve_method(snell_renderer *r, const snell_frame_desc *f, snell_frame_stats *s)
+static void begin_frame_state(snell_renderer *r)
 {
-    const snell_mesh_analysis *an = NULL;
-    if (f->glass.method != SNELL_METHOD_AUTO) return f->glass.method;
-    if (!f->mesh || !r->method_state[SNELL_METHOD_CUBEMAP]) return SNELL_METHOD_SINGLE;
-    if (snell__cubemap_analysis(r->ctx, r->method_state[SNELL_METHOD_CUBEMAP], f->mesh, &an) != SNELL_OK)
-        return SNELL_METHOD_SINGLE; /* unanalysable (e.g. no area): the method that needs nothing */
-    s->hidden_fraction = an->hidden_fraction;
-    return an->hidden_fraction <= AUTO_MAX_HIDDEN ? SNELL_METHOD_CUBEMAP : SNELL_METHOD_SINGLE;
-}
-
-static void setup_frame(snell_renderer *r, const snell_frame_desc *fd, snell__frame *f)
-{
-    mat4 inv;
-    const snell_glass_desc *g = &fd->glass;
-    memset(f, 0, sizeof *f);
-    f->desc = fd;
-    f->mesh = (snell_mesh *)fd->mesh;
-    f->env = fd->env;
-    f->ior = g->ior > 0.0f ? g->ior : 1.5f;
-    f->tint[0] = f->tint[1] = f->tint[2] = 1.0f;
-    if (g->tint[0] != 0.0f || g->tint[1] != 0.0f || g->tint[2] != 0.0f) memcpy(f->tint, g->tint, sizeof f->tint);
-    if (fd->model) memcpy(f->model, fd->model, sizeof f->model);
-    else glm_mat4_identity(f->model);
-    snell_camera_matrices(&fd->camera, (float)r->width / (float)r->height, f->eye, (float *)f->view,
-                          (float *)f->proj);
-    glm_mat4_mul(f->proj, f->view, f->view_proj);
-    glm_mat4_inv(f->model, inv);
-    glm_mat4_transpose(inv);
-    glm_mat4_pick3(inv, f->normal_matrix);
-    if (f->mesh) bounding_sphere(f->mesh, f->model, f->bsphere);
-    f->width = r->width;
-    f->height = r->height;
-}
-
-snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_frame_stats *stats)
-{
-    snell_glstate saved;
-    snell_frame_stats s;
-    snell_status st;
-    snell__frame f;
-    snell_method m;
-    int external;
-    double t0 = now_ms();
-    if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
-    st = validate_frame(r, fd);
-    if (st != SNELL_OK) return st;
-    memset(&s, 0, sizeof s);
-    external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
-    if (external) snell__glstate_save(&saved);
-    setup_frame(r, fd, &f);
-
     if (r->target == SNELL_TARGET_OFFSCREEN) glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     glViewport(0, 0, r->width, r->height);
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_CULL_FACE);
+    glDisable(GL_POLYGON_OFFSET_FILL);
     /* Dithering (on by default) may change the low bits of UNORM8 writes: it
      * would corrupt packed exit directions and make images driver-dependent. */
     glDisable(GL_DITHER);
@@ -306,50 +202,63 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     glDepthMask(GL_TRUE);
     glClearDepthf(1.0f);
     glClear(GL_DEPTH_BUFFER_BIT);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, f.env->texture);
+}
 
-    m = resolve_method(r, fd, &s);
-    s.method_used = m;
-    if (f.mesh && is_passthrough(&fd->glass) && r->out == SNELL__OUT_COLOR) {
-        s.skipped_passthrough = 1;
+snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_frame_stats *stats)
+{
+    snell_frame_stats *s;
+    snell__scene *sc;
+    snell_glstate saved;
+    snell_status st;
+    int external, i;
+    double t0 = snell__now_ms();
+    if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
+    s = &r->stats;
+    sc = &r->scene;
+    memset(s, 0, sizeof *s);
+    st = validate_frame(r, fd);
+    if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->width, r->height, r->out, sc, s);
+    if (st != SNELL_OK) return st;
+    external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
+    if (external) snell__glstate_save(&saved);
+    begin_frame_state(r);
+    snell__prepared_frame(&r->prepared);
+
+    st = snell__composite_opaque(r->ctx, &r->comp, r->out, fd->opaque, fd->opaque_count,
+                                 (const float *)sc->view.view_proj, sc->view.eye);
+    if (fd->opaque_count > 0) {
+        s->opaque_drawn = fd->opaque_count;
+        s->passes++;
     }
-    if (fd->opaque_count > 0) st = snell__opaque_draw_view(&r->dyn, &f, &s);
-    if (st == SNELL_OK && f.mesh && !s.skipped_passthrough && fd->opaque_count > 0) {
-        /* The glass sees the opaque objects through a dynamic environment. */
-        GLint fbo = 0;
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-        st = snell__env_dynamic_update(r->ctx, &r->dyn, &f, &s);
-        if (s.env_updated) {
-            glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
-            glViewport(0, 0, r->width, r->height);
-        }
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_CUBE_MAP, r->dyn.texture);
-    }
-    if (st == SNELL_OK && f.mesh && !s.skipped_passthrough) {
-        st = snell__mesh_upload(f.mesh);
-        if (st == SNELL_OK) {
-            glEnable(GL_DEPTH_TEST);
-            glDepthFunc(GL_LESS);
-            glDepthMask(GL_TRUE);
-            st = g_methods[m]->draw(r->ctx, r->method_state[m], &f, &s);
-        }
+    /* Glass back to front (Franke): each drawn over what is behind it. */
+    for (i = 0; i < sc->drawn && st == SNELL_OK; i++) {
+        int k = sc->order[i];
+        st = draw_glass(r, fd, &sc->obj[k], &s->glass[k]);
     }
     /* The background goes last, where the depth buffer is still clear, so
      * pixels covered by glass or opaque objects are never shaded twice.
      * Exit-direction output always needs it (misses = the view ray). */
     if (st == SNELL_OK && (fd->draw_background >= 0 || r->out != SNELL__OUT_COLOR)) {
+        mat4 rot, vp;
+        glm_mat4_copy(sc->view.view, rot);
+        rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
+        glm_mat4_mul(sc->view.proj, rot, vp);
         glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_CUBE_MAP, f.env->texture);
-        draw_background(r, &f);
-        s.passes++;
+        glBindTexture(GL_TEXTURE_CUBE_MAP, fd->env->texture);
+        st = snell__composite_background(r->ctx, &r->comp, r->out, (const float *)vp);
+        s->background_drawn = 1;
     }
+    /* Leave no program of ours current: one deleted while current (renderer
+     * destroyed) lives on until replaced, and a later pass that saved and
+     * restores its name would then name a freed program. */
+    glUseProgram(0);
     glBindVertexArray(0);
     if (external) snell__glstate_restore(&saved);
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(r->ctx, SNELL_E_GL, "GL error during the frame");
-    s.cpu_ms = now_ms() - t0;
-    if (stats) *stats = s;
+    for (i = 0; i < sc->count; i++) s->passes += s->glass[i].passes;
+    s->passes += s->background_drawn;
+    s->cpu_ms = snell__now_ms() - t0;
+    if (stats) memcpy(stats, s, sizeof *s);
     return st;
 }
 

@@ -1,12 +1,13 @@
-// opaque.vert - opaque scene objects (frame desc's opaque list), drawn in the
-// view and into the dynamic environment cubemap (env_dynamic.c).
+// object.vert - world-space position and normal of a mesh, for every glass
+// kernel and for opaque objects (in the view and in dynamic environments).
+// Positions are highp (depth, search parameters).
 precision highp float;
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 
-uniform mat4 u_model;
-uniform mat3 u_normal_matrix;
+uniform mat4 u_model;          // object -> world
+uniform mat3 u_normal_matrix;  // inverse transpose of u_model's 3x3
 uniform mat4 u_view_proj;
 
 out vec3 v_world_pos;

@@ -1,5 +1,5 @@
 /* glass_program.c — build and bind a kernel's program; shared uniforms. */
-#include "render/glass_program.h"
+#include "methods/glass_program.h"
 #include "core/gl.h"
 #include "core/program.h"
 
@@ -21,7 +21,7 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     snell_status st;
     snprintf(defines, sizeof defines, "%s%s", snell__output_defines(out), extra_defines ? extra_defines : "");
     memset(g, 0, sizeof *g);
-    st = snell__program_build(ctx, "glass.vert", fs_path, defines, &g->prog);
+    st = snell__program_build(ctx, "object.vert", fs_path, defines, &g->prog);
     if (st != SNELL_OK) return st;
     g->model = glGetUniformLocation(g->prog, "u_model");
     g->normal_matrix = glGetUniformLocation(g->prog, "u_normal_matrix");
@@ -41,33 +41,35 @@ void snell__glass_program_destroy(snell__glass_program *g)
     g->prog = 0;
 }
 
-void snell__glass_program_use(const snell__glass_program *g, const snell__frame *f)
+void snell__glass_program_use(const snell__glass_program *g, const snell__view *v, const snell__object *o)
 {
     glUseProgram(g->prog);
-    glUniformMatrix4fv(g->model, 1, GL_FALSE, (const GLfloat *)f->model);
-    glUniformMatrix3fv(g->normal_matrix, 1, GL_FALSE, (const GLfloat *)f->normal_matrix);
-    glUniformMatrix4fv(g->view_proj, 1, GL_FALSE, (const GLfloat *)f->view_proj);
-    glUniform3fv(g->eye, 1, f->eye);
+    glUniformMatrix4fv(g->model, 1, GL_FALSE, (const GLfloat *)o->model);
+    glUniformMatrix3fv(g->normal_matrix, 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
+    glUniformMatrix4fv(g->view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
+    glUniform3fv(g->eye, 1, v->eye);
     glUniform1i(g->env, 0);
-    glUniform1f(g->ior, f->ior);
-    glUniform3fv(g->sigma, 1, f->desc->glass.absorption);
-    glUniform3fv(g->tint, 1, f->tint);
-    glUniform4fv(g->bsphere, 1, f->bsphere);
+    glUniform1f(g->ior, o->glass->material.ior);
+    glUniform3fv(g->sigma, 1, o->glass->absorption);
+    glUniform3fv(g->tint, 1, o->glass->material.tint);
+    glUniform4fv(g->bsphere, 1, o->bsphere);
 }
 
-int snell__cull_back_faces(const snell__frame *f)
+int snell__cull_back_faces(const snell__object *o, snell_object_stats *stats)
 {
-    int winding = snell__mesh_winding(f->mesh), flip;
+    int winding = snell__mesh_winding(o->mesh), flip;
     if (winding == 0) return 0;
-    flip = (winding < 0) != (glm_mat4_det((vec4 *)f->model) < 0.0f);
+    flip = (winding < 0) != (o->mirrored != 0);
     glEnable(GL_CULL_FACE);
     glCullFace(flip ? GL_FRONT : GL_BACK);
     glFrontFace(GL_CCW);
+    stats->skipped |= SNELL_SKIP_BACK_FACES;
     return 1;
 }
 
-void snell__draw_mesh(const snell__frame *f)
+void snell__draw_object(const snell__object *o)
 {
-    glBindVertexArray(f->mesh->vao);
-    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * f->mesh->triangle_count), GL_UNSIGNED_INT, (const void *)0);
+    glBindVertexArray(o->mesh->vao);
+    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * o->mesh->triangle_count), GL_UNSIGNED_INT, (const void *)0);
+    glDisable(GL_CULL_FACE);
 }

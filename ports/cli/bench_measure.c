@@ -1,0 +1,231 @@
+/* bench_measure.c — one configuration's error against the CPU reference: its
+ * colour frame and exit directions (SNELL_OUTPUT_EXIT_DIRECTION) compared with
+ * the reference of the same scene in the MATCHED model (the method's own,
+ * with its interface cap) and the FULL model (Whitted tree). The reference
+ * runs with isolate_glass = 1: light that has left a glass object sees the
+ * environment and the opaque objects but no other glass object, as the
+ * renderer draws it, so the error measured is the method's own and not the
+ * glass-through-glass light the renderer does not draw yet. */
+#include "bench.h"
+#include "bench_ref.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void bench_fail(bench_config *c, const char *what, snell_ctx *ctx)
+{
+    const char *msg = snell_last_error(ctx);
+    if (!msg || !*msg) msg = snell_last_error(NULL);
+    snprintf(c->error, sizeof c->error, "%s: %s", what, msg && *msg ? msg : "failed");
+    c->ok = 0;
+}
+
+/* Error map for --images: grey background, glass pixels coloured by the
+ * log of the angle, 0.01 degrees (black) .. 10 degrees (white), red = NaN. */
+static void write_error_map(const char *path, const float *err, const uint8_t *mask, const float *dirs, int w,
+                            int h)
+{
+    uint8_t *px = (uint8_t *)malloc((size_t)w * h * 4);
+    long i;
+    if (!px) return;
+    for (i = 0; i < (long)w * h; i++) {
+        uint8_t *p = px + 4 * i;
+        p[3] = 255;
+        if (!isfinite(dirs[3 * i]) || !isfinite(dirs[3 * i + 1]) || !isfinite(dirs[3 * i + 2])) {
+            p[0] = 255, p[1] = p[2] = 0;
+        } else if (!mask[i] || isnan(err[i])) {
+            p[0] = p[1] = p[2] = 64;
+        } else {
+            double t = (log10(err[i] > 1e-4f ? err[i] : 1e-4f) + 2.0) / 3.0;
+            t = t < 0 ? 0 : t > 1 ? 1 : t;
+            p[0] = (uint8_t)(255 * t);
+            p[1] = (uint8_t)(255 * t * t);
+            p[2] = (uint8_t)(255 * 2 * t * (1 - t));
+        }
+    }
+    snell_write_png(path, w, h, px);
+    free(px);
+}
+
+static void sanitize(char *s)
+{
+    for (; *s; s++)
+        if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') || *s == '.' ||
+              *s == '-' || *s == '='))
+            *s = '_';
+}
+
+/* Buffers of one measurement, c->width * c->height pixels each. */
+typedef struct measure_buf {
+    size_t n;
+    uint8_t *rgba, *mask, *either;
+    float *dirs, *bgdirs, *err;
+} measure_buf;
+
+static int buf_alloc(measure_buf *b, const bench_config *c)
+{
+    b->n = (size_t)c->width * (size_t)c->height;
+    b->rgba = (uint8_t *)malloc(b->n * 4);
+    b->mask = (uint8_t *)malloc(b->n);
+    b->either = (uint8_t *)malloc(b->n);
+    b->dirs = (float *)malloc(b->n * 3 * sizeof(float));
+    b->bgdirs = (float *)malloc(b->n * 3 * sizeof(float));
+    b->err = (float *)malloc(b->n * sizeof(float));
+    return b->rgba && b->mask && b->either && b->dirs && b->bgdirs && b->err;
+}
+
+static void buf_free(measure_buf *b)
+{
+    free(b->rgba);
+    free(b->mask);
+    free(b->either);
+    free(b->dirs);
+    free(b->bgdirs);
+    free(b->err);
+}
+
+/* The colour frame (timing was done before, in bench_time_all), with the
+ * per-object statistics: how many glass objects warn. */
+static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, bench_config *c, measure_buf *b)
+{
+    snell_renderer *r = NULL;
+    snell_renderer_desc desc;
+    snell_frame_stats fs;
+    int i, ok = 0;
+    memset(&desc, 0, sizeof desc);
+    desc.width = c->width;
+    desc.height = c->height;
+    if (snell_renderer_create(ctx, &desc, &r) != SNELL_OK) bench_fail(c, "renderer", ctx);
+    else if (snell_render(r, fd, &fs) != SNELL_OK) bench_fail(c, "render", ctx);
+    else if (snell_renderer_read_rgba(r, b->rgba) != SNELL_OK) bench_fail(c, "readback", ctx);
+    else ok = 1;
+    if (ok) {
+        c->warnings = 0;
+        for (i = 0; i < fs.glass_count; i++) c->warnings += fs.glass[i].warning != 0;
+    }
+    snell_renderer_destroy(r);
+    return ok;
+}
+
+/* Exit directions, and a frame without the glass (opaque objects and
+ * background only) for the coverage mask. */
+static int exit_dir_frames(snell_ctx *ctx, const snell_frame_desc *fd, bench_config *c, measure_buf *b)
+{
+    snell_renderer *r = NULL;
+    snell_renderer_desc desc;
+    snell_frame_desc bg = *fd;
+    size_t i;
+    int ok = 0;
+    memset(&desc, 0, sizeof desc);
+    desc.width = c->width;
+    desc.height = c->height;
+    desc.output = SNELL_OUTPUT_EXIT_DIRECTION;
+    bg.glass = NULL;
+    bg.glass_count = 0;
+    if (snell_renderer_create(ctx, &desc, &r) != SNELL_OK) {
+        bench_fail(c, "exit-direction renderer", ctx);
+        return 0;
+    }
+    c->encoding = snell_renderer_exit_dir_encoding(r);
+    if (snell_render(r, &bg, NULL) != SNELL_OK || snell_renderer_read_exit_dirs(r, b->bgdirs) != SNELL_OK ||
+        snell_render(r, fd, NULL) != SNELL_OK || snell_renderer_read_exit_dirs(r, b->dirs) != SNELL_OK) {
+        bench_fail(c, "exit-direction frame", ctx);
+    } else {
+        ok = 1;
+        snell_metrics_coverage_mask(b->dirs, b->bgdirs, (long)b->n, b->mask);
+        c->nan_inf = 0;
+        for (i = 0; i < b->n; i++)
+            c->nan_inf += !isfinite(b->dirs[3 * i]) || !isfinite(b->dirs[3 * i + 1]) || !isfinite(b->dirs[3 * i + 2]);
+    }
+    snell_renderer_destroy(r);
+    return ok;
+}
+
+static void write_images(const bench_options *o, const bench_config *c, int mode, const measure_buf *b,
+                         const bench_ref_image *ref)
+{
+    char path[1400], name[600];
+    snprintf(name, sizeof name, "%s", c->spec);
+    sanitize(name);
+    if (mode == 0) {
+        snprintf(path, sizeof path, "%s/%s.png", o->images_dir, name);
+        snell_write_png(path, c->width, c->height, b->rgba);
+    }
+    snprintf(path, sizeof path, "%s/%s.ref-%s.png", o->images_dir, name, mode ? "full" : "matched");
+    snell_write_png(path, c->width, c->height, ref->rgba);
+    snprintf(path, sizeof path, "%s/%s.err-%s.png", o->images_dir, name, mode ? "full" : "matched");
+    write_error_map(path, b->err, b->mask, b->dirs, c->width, c->height);
+}
+
+/* mode 0: MATCHED, 1: FULL. */
+static int compare(const snell_frame_desc *fd, const char *env_name, const bench_options *o, bench_config *c,
+                   int mode, measure_buf *b)
+{
+    snell_ref_params p;
+    snell_ref_desc scene;
+    bench_ref_image ref;
+    snell_dir_error_desc dd;
+    size_t j;
+    memset(&scene, 0, sizeof scene);
+    scene.glass = fd->glass;
+    scene.glass_count = fd->glass_count;
+    scene.opaque = fd->opaque;
+    scene.opaque_count = fd->opaque_count;
+    memset(&p, 0, sizeof p);
+    p.mode = mode ? SNELL_REF_FULL : SNELL_REF_MATCHED;
+    p.max_interfaces = mode ? o->full_interfaces : c->ref_interfaces;
+    p.absorption_model = mode ? SNELL_REF_ABSORB_PATH : c->ref_absorb;
+    p.isolate_glass = 1;
+    p.env = fd->env;
+    p.camera = fd->camera;
+    p.width = c->width;
+    p.height = c->height;
+    p.threads = o->threads;
+    if (!o->quiet)
+        fprintf(stderr, "    reference %s (%d interfaces)...\n", mode ? "FULL" : "MATCHED", p.max_interfaces);
+    if (bench_ref_get(&scene, &p, env_name, o->cache_dir, &ref, &c->ref_cached[mode]) != SNELL_OK) {
+        bench_fail(c, mode ? "FULL reference" : "MATCHED reference", NULL);
+        return 0;
+    }
+    memset(&dd, 0, sizeof dd);
+    dd.test = b->dirs;
+    dd.ref = ref.exit_dir;
+    dd.ref_mask = ref.hit;
+    dd.test_mask = b->mask;
+    dd.width = c->width;
+    dd.height = c->height;
+    dd.error_deg = b->err;
+    snell_metrics_dir_error(&dd, &c->dir[mode]);
+    snell_metrics_image_error(b->rgba, ref.rgba, c->width, c->height, NULL, &c->img[mode]);
+    for (j = 0; j < b->n; j++) b->either[j] = (uint8_t)(b->mask[j] || ref.hit[j]);
+    snell_metrics_image_error(b->rgba, ref.rgba, c->width, c->height, b->either, &c->img_glass[mode]);
+    if (o->images_dir) write_images(o, c, mode, b, &ref);
+    bench_ref_free(&ref);
+    return 1;
+}
+
+void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, const bench_options *o,
+                   bench_config *c)
+{
+    const bench_scene *s = NULL;
+    snell_glass glass[SNELL_MAX_GLASS];
+    snell_frame_desc fd;
+    measure_buf b;
+    memset(&b, 0, sizeof b);
+    if (!c->ok) return; /* timing failed */
+    if (!buf_alloc(&b, c)) {
+        snprintf(c->error, sizeof c->error, "out of memory");
+        c->ok = 0;
+    } else if (bench_scene_get(ctx, c->scene, &s) != SNELL_OK) {
+        bench_fail(c, "scene", ctx);
+    } else {
+        bench_scene_frame(c, s, env, glass, &fd);
+        c->glass_objects = fd.glass_count;
+        c->opaque_objects = fd.opaque_count;
+        if (colour_frame(ctx, &fd, c, &b) && exit_dir_frames(ctx, &fd, c, &b) &&
+            compare(&fd, env_name, o, c, 0, &b))
+            compare(&fd, env_name, o, c, 1, &b);
+    }
+    buf_free(&b);
+}

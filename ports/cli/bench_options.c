@@ -1,0 +1,142 @@
+/* bench_options.c — snell-bench's command line and --help; the methods and
+ * their parameters (with the defaults the library resolves) come from the
+ * registry through cli_method.c. */
+#include "bench.h"
+#include "cli_method.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+int bench_parse_int(const char *key, const char *v, int lo, int hi, int *out)
+{
+    char *end;
+    long x;
+    errno = 0;
+    x = strtol(v, &end, 10);
+    if (end == v || *end || errno || x < lo || x > hi) {
+        fprintf(stderr, "snell-bench: %s=%s: want an integer in %d..%d\n", key, v, lo, hi);
+        return 0;
+    }
+    *out = (int)x;
+    return 1;
+}
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: snell-bench [options] [-b SPEC]...\n"
+            "Times refraction methods and measures their error against the CPU reference.\n"
+            "With no SPEC: a quick default sweep of every method that renders here.\n\n"
+            "  -b, --benchmark SPEC   method[:key=value[,value...]]... (a comma list sweeps);\n"
+            "                         bare SPEC arguments are accepted too\n"
+            "  --scenes LIST          scenes for specs without scene= (default sphere,torus,goblet,bunny)\n"
+            "  --sizes LIST           sizes for specs without size= (default 256x256)\n"
+            "  --frames N             timed frames per configuration, median reported (default 15)\n"
+            "  --warmup N             untimed frames first (default 3)\n"
+            "  --full-interfaces N    interface cap of the FULL reference (default 10)\n"
+            "  --threads N            reference tracer threads (default: all CPUs)\n"
+            "  --env FILE|procedural  environment: procedural (default), an equirectangular image,\n"
+            "                         or six faces given as a pattern with %%s (px nx py ny pz nz)\n"
+            "  -o PREFIX              outputs PREFIX.json, .csv, .png (default snell-bench)\n"
+            "  --cache DIR            reference cache (default snell-bench-cache); --no-cache\n"
+            "  --images DIR           also write each configuration's colour image and error map\n"
+            "  --plot-y WHAT          full-mean (default), full-p99, full-rmse, matched-mean\n"
+            "  --list                 methods and their keys (also shown by --help)\n"
+            "  --2d ...               the 2D lightmap benchmarks (see --2d --help)\n"
+            "  -q                     no progress lines\n"
+            "  -h, --help             this text\n\n"
+            "The error is measured against the reference tracer rendering the same scene with\n"
+            "isolate_glass = 1: light that left a glass object sees the environment and the opaque\n"
+            "objects but no other glass object, as the renderer draws it, so the error is the method's own.\n\n"
+            "example: snell-bench -b single:scene=bunny:size=256x256,512x512 -b cubemap:scene=pair:iterations=4,8\n");
+    if (f != stdout) return;
+    printf("\nkeys of every method:\n");
+    bench_spec_help(stdout);
+    printf("\nscenes (scene=):\n");
+    bench_scene_help(stdout);
+    printf("\nmethods (the library's registry) and their keys:\n");
+    cli_method_help(stdout, "", "", "");
+}
+
+static int set_list(char *dst, size_t n, const char *opt, const char *v)
+{
+    if (strlen(v) >= n || !*v) {
+        fprintf(stderr, "snell-bench: bad %s '%s'\n", opt, v);
+        return 0;
+    }
+    strcpy(dst, v);
+    return 1;
+}
+
+static int add_spec(bench_options *o, const char *spec)
+{
+    if (o->spec_count == BENCH_MAX_SPECS) {
+        fprintf(stderr, "snell-bench: more than %d specs\n", BENCH_MAX_SPECS);
+        return 0;
+    }
+    o->specs[o->spec_count++] = spec;
+    return 1;
+}
+
+/* An option with a value. 1 handled, 0 bad value, -1 unknown. */
+static int value_option(const char *a, const char *v, bench_options *o)
+{
+    if (!strcmp(a, "-b") || !strcmp(a, "--benchmark")) return add_spec(o, v);
+    if (!strcmp(a, "--scenes")) return set_list(o->scenes, sizeof o->scenes, a, v);
+    if (!strcmp(a, "--sizes")) return set_list(o->sizes, sizeof o->sizes, a, v);
+    if (!strcmp(a, "--frames")) return bench_parse_int(a, v, 1, 100000, &o->frames);
+    if (!strcmp(a, "--warmup")) return bench_parse_int(a, v, 0, 100000, &o->warmup);
+    if (!strcmp(a, "--full-interfaces")) return bench_parse_int(a, v, 1, SNELL_REF_MAX_INTERFACES, &o->full_interfaces);
+    if (!strcmp(a, "--threads")) return bench_parse_int(a, v, 0, SNELL_REF_MAX_THREADS, &o->threads);
+    if (!strcmp(a, "--env")) o->env = strcmp(v, "procedural") ? v : NULL;
+    else if (!strcmp(a, "-o")) o->out_prefix = v;
+    else if (!strcmp(a, "--cache")) o->cache_dir = v;
+    else if (!strcmp(a, "--images")) o->images_dir = v;
+    else if (!strcmp(a, "--plot-y")) {
+        if (strcmp(v, "full-mean") && strcmp(v, "full-p99") && strcmp(v, "full-rmse") && strcmp(v, "matched-mean")) {
+            fprintf(stderr, "snell-bench: --plot-y wants full-mean|full-p99|full-rmse|matched-mean\n");
+            return 0;
+        }
+        o->plot_y = v;
+    } else return -1;
+    return 1;
+}
+
+int bench_parse_options(int argc, char **argv, bench_options *o)
+{
+    int i, r;
+    memset(o, 0, sizeof *o);
+    snprintf(o->scenes, sizeof o->scenes, "sphere,torus,goblet,bunny");
+    snprintf(o->sizes, sizeof o->sizes, "256x256");
+    o->frames = 15;
+    o->warmup = 3;
+    o->out_prefix = "snell-bench";
+    o->cache_dir = "snell-bench-cache";
+    o->full_interfaces = 10;
+    o->plot_y = "full-mean";
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help") || !strcmp(a, "--list")) {
+            usage(stdout);
+            return -1;
+        } else if (!strcmp(a, "--no-cache")) {
+            o->cache_dir = NULL;
+        } else if (!strcmp(a, "-q")) {
+            o->quiet = 1;
+        } else if (a[0] != '-') {
+            if (!add_spec(o, a)) return 0;
+        } else if (!v) {
+            fprintf(stderr, "snell-bench: %s needs a value (or is unknown); see --help\n", a);
+            return 0;
+        } else if ((r = value_option(a, v, o)) < 0) {
+            fprintf(stderr, "snell-bench: unknown option '%s'; see --help\n", a);
+            return 0;
+        } else if (!r) {
+            return 0;
+        } else {
+            i++;
+        }
+    }
+    return 1;
+}

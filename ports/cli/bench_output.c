@@ -1,0 +1,349 @@
+/* bench_output.c — what snell-bench writes: PREFIX.json, PREFIX.csv, the
+ * points and labels of the time-vs-error plot (drawn by bench_plot.c), the
+ * Pareto front per scene and size, and the summary table on stdout. */
+#include "bench.h"
+#include "bench_plot.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_MARKERS 8
+
+static double resolved_ior(const bench_config *c)
+{
+    snell_glass_resolved r;
+    return snell_glass_defaults(&c->glass, &r) == SNELL_OK ? r.material.ior : NAN;
+}
+
+/* Registry index of the configuration's method (the plot's marker). */
+static int method_index(const bench_config *c)
+{
+    int i;
+    for (i = 0; i < snell_method_count(); i++)
+        if (snell_method_info_at(i) == c->method) return i;
+    return 0;
+}
+
+/* ------------------------------------------------------------------ JSON */
+static void json_str(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; s && *s; s++) {
+        unsigned char ch = (unsigned char)*s;
+        if (ch == '"' || ch == '\\') fprintf(f, "\\%c", ch);
+        else if (ch < 0x20) fprintf(f, "\\u%04x", ch);
+        else fputc(ch, f);
+    }
+    fputc('"', f);
+}
+
+static void json_num(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, "%.6g", v);
+    else fprintf(f, "null");
+}
+
+static void json_errors(FILE *f, const bench_config *c, int m)
+{
+    const snell_dir_error *d = &c->dir[m];
+    fprintf(f, "{\"mean_deg\": ");
+    json_num(f, d->mean_deg);
+    fprintf(f, ", \"rms_deg\": ");
+    json_num(f, d->rms_deg);
+    fprintf(f, ", \"median_deg\": ");
+    json_num(f, d->median_deg);
+    fprintf(f, ", \"p99_deg\": ");
+    json_num(f, d->p99_deg);
+    fprintf(f, ", \"max_deg\": ");
+    json_num(f, d->max_deg);
+    fprintf(f, ", \"frac_above_1deg\": ");
+    json_num(f, d->frac_above_1deg);
+    fprintf(f, ", \"frac_above_5deg\": ");
+    json_num(f, d->frac_above_5deg);
+    fprintf(f, ", \"compared\": %ld, \"mask_mismatch\": %ld, \"glass_ref\": %ld, \"glass_test\": %ld", d->compared,
+            d->mask_mismatch, d->glass_ref, d->glass_test);
+    fprintf(f, ", \"rmse\": ");
+    json_num(f, c->img[m].rmse);
+    fprintf(f, ", \"psnr_db\": ");
+    json_num(f, c->img[m].psnr_db);
+    fprintf(f, ", \"rmse_glass\": ");
+    json_num(f, c->img_glass[m].rmse);
+    fprintf(f, ", \"psnr_glass_db\": ");
+    json_num(f, c->img_glass[m].psnr_db);
+    fprintf(f, ", \"reference_cached\": %s}", c->ref_cached[m] ? "true" : "false");
+}
+
+static void json_header(FILE *f, const bench_options *o, const bench_run_info *run)
+{
+    fprintf(f, "{\n  \"tool\": \"snell-bench\",\n  \"date\": ");
+    json_str(f, run->date);
+    fprintf(f, ",\n  \"gl_renderer\": ");
+    json_str(f, run->renderer);
+    fprintf(f, ",\n  \"timer_query\": %s,\n  \"timing\": ", run->timer ? "true" : "false");
+    json_str(f, "median of frames after warm-up; each frame = snell_render + glFinish (CPU wall clock); the "
+                "configurations of one scene and size take turns frame by frame; vs_single = median over rounds of "
+                "the ratio to the single-surface configuration's frame of the same round");
+    fprintf(f, ",\n  \"frames\": %d,\n  \"warmup\": %d,\n  \"full_interfaces\": %d,\n  \"loadavg_before\": ", o->frames,
+            o->warmup, o->full_interfaces);
+    json_str(f, run->load_before);
+    fprintf(f, ",\n  \"loadavg_after\": ");
+    json_str(f, run->load_after);
+    fprintf(f, ",\n  \"mask_policy\": ");
+    json_str(f, "angles over pixels that are glass in both the reference hit mask and the method's coverage; "
+                "mismatches counted, not compared");
+    fprintf(f, ",\n  \"reference\": ");
+    json_str(f, "snell_ref of the same scene with isolate_glass = 1: light that left a glass object sees the "
+                "environment and the opaque objects but no other glass object, as the renderer draws it, so the "
+                "error is the method's own");
+    fprintf(f, ",\n  \"results\": [\n");
+}
+
+static void json_result(FILE *f, const bench_config *c)
+{
+    fprintf(f, "    {\"spec\": ");
+    json_str(f, c->spec);
+    fprintf(f, ", \"method\": ");
+    json_str(f, c->method->name);
+    fprintf(f, ", \"scene\": ");
+    json_str(f, c->scene);
+    fprintf(f, ", \"width\": %d, \"height\": %d, \"ior\": ", c->width, c->height);
+    json_num(f, resolved_ior(c));
+    fprintf(f, ", \"ok\": %s", c->ok ? "true" : "false");
+    if (!c->ok) {
+        fprintf(f, ", \"error\": ");
+        json_str(f, c->error);
+        fprintf(f, "}");
+        return;
+    }
+    fprintf(f, ", \"glass_objects\": %d, \"opaque_objects\": %d, \"warnings\": %d", c->glass_objects,
+            c->opaque_objects, c->warnings);
+    fprintf(f, ", \"time_ms\": {\"median\": ");
+    json_num(f, c->t_median);
+    fprintf(f, ", \"min\": ");
+    json_num(f, c->t_min);
+    fprintf(f, ", \"max\": ");
+    json_num(f, c->t_max);
+    fprintf(f, ", \"gpu_median\": ");
+    json_num(f, c->gpu_median >= 0 ? c->gpu_median : NAN);
+    fprintf(f, "}, \"vs_single\": ");
+    json_num(f, c->vs_single >= 0 ? c->vs_single : NAN);
+    fprintf(f, ", \"pareto\": %s, \"exit_dir_encoding\": ", c->pareto ? "true" : "false");
+    json_str(f, c->encoding);
+    fprintf(f, ", \"nan_inf\": %ld, \"matched_interfaces\": %d,\n     \"vs_matched\": ", c->nan_inf,
+            c->ref_interfaces);
+    json_errors(f, c, 0);
+    fprintf(f, ",\n     \"vs_full\": ");
+    json_errors(f, c, 1);
+    fprintf(f, "}");
+}
+
+int bench_write_json(const char *path, const bench_config *cs, int n, const bench_options *o,
+                     const bench_run_info *run)
+{
+    FILE *f = fopen(path, "w");
+    int i;
+    if (!f) return 0;
+    json_header(f, o, run);
+    for (i = 0; i < n; i++) {
+        json_result(f, &cs[i]);
+        fprintf(f, "%s\n", i + 1 < n ? "," : "");
+    }
+    fprintf(f, "  ]\n}\n");
+    return fclose(f) == 0;
+}
+
+/* ------------------------------------------------------------------- CSV */
+#define CSV_MODE_FIELDS 12
+
+static void csv_num(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, ",%.6g", v);
+    else fprintf(f, ",");
+}
+
+static void csv_errors(FILE *f, const bench_config *c, int m)
+{
+    const snell_dir_error *d = &c->dir[m];
+    csv_num(f, d->mean_deg);
+    csv_num(f, d->rms_deg);
+    csv_num(f, d->median_deg);
+    csv_num(f, d->p99_deg);
+    csv_num(f, d->max_deg);
+    csv_num(f, d->frac_above_1deg);
+    csv_num(f, d->frac_above_5deg);
+    fprintf(f, ",%ld,%ld", d->compared, d->mask_mismatch);
+    csv_num(f, c->img[m].rmse);
+    csv_num(f, c->img[m].psnr_db);
+    csv_num(f, c->img_glass[m].rmse);
+}
+
+int bench_write_csv(const char *path, const bench_config *cs, int n)
+{
+    FILE *f = fopen(path, "w");
+    int i, m;
+    if (!f) return 0;
+    fprintf(f, "spec,method,scene,width,height,ior,ok,time_median_ms,time_min_ms,time_max_ms,gpu_median_ms,"
+               "vs_single,pareto,exit_dir_encoding,nan_inf,glass_objects,opaque_objects,warnings");
+    for (m = 0; m < 2; m++) {
+        const char *p = m ? "full" : "matched";
+        fprintf(f, ",%s_mean_deg,%s_rms_deg,%s_median_deg,%s_p99_deg,%s_max_deg,%s_frac_above_1deg,"
+                   "%s_frac_above_5deg,%s_compared,%s_mask_mismatch,%s_rmse,%s_psnr_db,%s_rmse_glass",
+                p, p, p, p, p, p, p, p, p, p, p, p);
+    }
+    fprintf(f, ",error\n");
+    for (i = 0; i < n; i++) {
+        const bench_config *c = &cs[i];
+        fprintf(f, "\"%s\",%s,\"%s\",%d,%d,%g,%d", c->spec, c->method->name, c->scene, c->width, c->height,
+                resolved_ior(c), c->ok);
+        if (c->ok) {
+            csv_num(f, c->t_median);
+            csv_num(f, c->t_min);
+            csv_num(f, c->t_max);
+            csv_num(f, c->gpu_median >= 0 ? c->gpu_median : NAN);
+            csv_num(f, c->vs_single >= 0 ? c->vs_single : NAN);
+            fprintf(f, ",%d,%s,%ld,%d,%d,%d", c->pareto, c->encoding, c->nan_inf, c->glass_objects, c->opaque_objects,
+                    c->warnings);
+            for (m = 0; m < 2; m++) csv_errors(f, c, m);
+            fprintf(f, ",\n");
+        } else {
+            /* 11 empty fields from time_median_ms to warnings, the error fields, then the error */
+            for (m = 0; m < 11 + 2 * CSV_MODE_FIELDS + 1; m++) fputc(',', f);
+            fprintf(f, "\"%s\"\n", c->error);
+        }
+    }
+    return fclose(f) == 0;
+}
+
+/* ---------------------------------------------------------- plot, Pareto */
+static double plot_value(const bench_config *c, const char *what)
+{
+    if (!strcmp(what, "full-p99")) return c->dir[1].p99_deg;
+    if (!strcmp(what, "full-rmse")) return c->img_glass[1].rmse;
+    if (!strcmp(what, "matched-mean")) return c->dir[0].mean_deg;
+    return c->dir[1].mean_deg;
+}
+
+/* cs[i].pareto: not dominated in (median time, plot's error) by another
+ * configuration of the same scene and size. */
+void bench_mark_pareto(bench_config *cs, int n, const bench_options *o)
+{
+    size_t m = (size_t)(n > 0 ? n : 1);
+    bench_plot_point *pts = (bench_plot_point *)calloc(m, sizeof *pts);
+    int *front = (int *)calloc(m, sizeof(int)), *at = (int *)calloc(m, sizeof(int));
+    int i, j, count = 0;
+    for (i = 0; i < n; i++) cs[i].pareto = 0;
+    if (pts && front && at) {
+        for (i = 0; i < n; i++) {
+            if (!cs[i].ok) continue;
+            for (j = 0; j < i && !(cs[j].ok && bench_same_group(&cs[j], &cs[i])); j++) {}
+            pts[count].group = j; /* first configuration of the group */
+            pts[count].x = cs[i].t_median;
+            pts[count].y = plot_value(&cs[i], o->plot_y);
+            at[count++] = i;
+        }
+        bench_pareto(pts, count, front);
+        for (i = 0; i < count; i++) cs[at[i]].pareto = front[i];
+    }
+    free(pts);
+    free(front);
+    free(at);
+}
+
+static const char *y_label(const char *what)
+{
+    if (!strcmp(what, "full-p99")) return "99th percentile exit-direction error vs FULL reference [deg]";
+    if (!strcmp(what, "full-rmse")) return "RMSE of glass pixels vs FULL reference [8-bit units]";
+    if (!strcmp(what, "matched-mean")) return "mean exit-direction error vs MATCHED reference [deg]";
+    return "mean exit-direction error vs FULL reference [deg]";
+}
+
+/* Label of a point: the width when sizes differ, then the method's own keys
+ * (scene and size lead the canonical spec). */
+static void point_label(const bench_config *c, int several_sizes, char *label, size_t n)
+{
+    const char *params = strchr(c->spec, ':');
+    int k;
+    for (k = 0; params && k < 2; k++) params = strchr(params + 1, ':');
+    if (several_sizes) snprintf(label, n, "%d%s%s", c->width, params ? " " : "", params ? params + 1 : "");
+    else snprintf(label, n, "%s", params ? params + 1 : "");
+}
+
+int bench_write_plot(const char *path, const bench_config *cs, int n, const bench_options *o,
+                     const bench_run_info *run)
+{
+    bench_plot_point *pts = (bench_plot_point *)calloc((size_t)(n > 0 ? n : 1), sizeof *pts);
+    char (*labels)[64] = (char (*)[64])calloc((size_t)(n > 0 ? n : 1), 64);
+    char groups[BENCH_MAX_SCENES * 8][300];
+    const char *scene_names[BENCH_MAX_SCENES], *method_names[MAX_MARKERS];
+    char subtitle[512];
+    int i, k, ngroups = 0, nscenes = 0, nmethods, count = 0, ok, several_sizes = 0;
+    bench_plot_desc d;
+    if (!pts || !labels) {
+        free(pts);
+        free(labels);
+        return 0;
+    }
+    nmethods = snell_method_count() < MAX_MARKERS ? snell_method_count() : MAX_MARKERS;
+    for (k = 0; k < nmethods; k++) method_names[k] = snell_method_info_at(k)->name;
+    for (i = 1; i < n; i++)
+        if (cs[i].width != cs[0].width || cs[i].height != cs[0].height) several_sizes = 1;
+    for (i = 0; i < n; i++) {
+        const bench_config *c = &cs[i];
+        char g[300];
+        if (!c->ok) continue;
+        for (k = 0; k < nscenes; k++)
+            if (!strcmp(scene_names[k], c->scene)) break;
+        if (k == nscenes && nscenes < BENCH_MAX_SCENES) scene_names[nscenes++] = c->scene;
+        pts[count].color = k;
+        snprintf(g, sizeof g, "%s %dx%d", c->scene, c->width, c->height);
+        for (k = 0; k < ngroups; k++)
+            if (!strcmp(groups[k], g)) break;
+        if (k == ngroups && ngroups < (int)(sizeof groups / sizeof *groups)) strcpy(groups[ngroups++], g);
+        pts[count].group = k;
+        pts[count].marker = method_index(c) % MAX_MARKERS;
+        pts[count].x = c->t_median;
+        pts[count].y = plot_value(c, o->plot_y);
+        point_label(c, several_sizes, labels[count], sizeof labels[count]);
+        pts[count].label = labels[count];
+        count++;
+    }
+    snprintf(subtitle, sizeof subtitle, "%s; median of %d frames after %d warm-up, glFinish%s; %s; load %s",
+             run->renderer, o->frames, o->warmup, run->timer ? " (GL timer query in JSON)" : " (no GL timer query)",
+             run->date, run->load_before);
+    memset(&d, 0, sizeof d);
+    d.title = "snell-bench: frame time vs error";
+    d.subtitle = subtitle;
+    d.x_label = several_sizes ? "median frame time [ms]  (labels: image width, method parameters)"
+                              : "median frame time [ms]";
+    d.y_label = y_label(o->plot_y);
+    d.points = pts;
+    d.count = count;
+    d.color_names = scene_names;
+    d.color_count = nscenes;
+    d.marker_names = method_names;
+    d.marker_count = nmethods;
+    ok = bench_plot_write(path, &d) == SNELL_OK;
+    free(pts);
+    free(labels);
+    return ok;
+}
+
+/* ----------------------------------------------------------------- table */
+void bench_print_table(const bench_config *cs, int n)
+{
+    int i;
+    printf("%-58s %9s %7s %9s %9s %7s %7s %6s %6s\n", "configuration", "ms/frame", "xsingle", "deg/MATCH", "deg/FULL",
+           ">1deg", ">5deg", "NaN", "pareto");
+    for (i = 0; i < n; i++) {
+        const bench_config *c = &cs[i];
+        if (!c->ok) {
+            printf("%-58s FAILED: %s\n", c->spec, c->error);
+            continue;
+        }
+        printf("%-58s %9.2f %7.3f %9.3g %9.3g %6.1f%% %6.1f%% %6ld %6s%s\n", c->spec, c->t_median, c->vs_single,
+               c->dir[0].mean_deg, c->dir[1].mean_deg, 100.0 * c->dir[1].frac_above_1deg,
+               100.0 * c->dir[1].frac_above_5deg, c->nan_inf, c->pareto ? "*" : "",
+               c->warnings ? "  (method warns: preconditions fail)" : "");
+    }
+}

@@ -1,0 +1,315 @@
+/* bench_spec.c — spec expansion, glmark2 style: "method:key=value:key=v1,v2"
+ * (a comma list sweeps) -> one configuration per element of the cartesian
+ * product. Keys are the scene/view/material keys below, which every method
+ * takes, and the method's own parameters from the library's registry
+ * (snell_method_info params, set by snell_glass_set_param). */
+#define _POSIX_C_SOURCE 200809L /* strtok_r */
+#include "bench.h"
+#include "cli_method.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_KEYS 16
+#define MAX_VALUES 32
+
+/* ------------------------------------------------------ keys of every method */
+typedef struct common_key {
+    const char *key;
+    const char *help;
+    int (*apply)(bench_config *c, const char *value); /* 0: bad value (message printed) */
+} common_key;
+
+static int bad(const char *key, const char *v, const char *want)
+{
+    fprintf(stderr, "snell-bench: %s=%s: want %s\n", key, v, want);
+    return 0;
+}
+
+/* n floats separated by '/' (',' separates sweep values); a single value fills all n. */
+static int parse_vec(const char *key, const char *v, float *out, int n, float lo, float hi)
+{
+    const char *s = v;
+    char *end;
+    int i;
+    for (i = 0; i < n; i++) {
+        float x;
+        errno = 0;
+        x = strtof(s, &end);
+        if (end == s || errno || !isfinite(x) || x < lo || x > hi) return bad(key, v, "number(s) in range, a/b/c");
+        out[i] = x;
+        s = end;
+        if (*s == '\0' && i == 0) {
+            for (; i < n; i++) out[i] = x;
+            return 1;
+        }
+        if (i < n - 1) {
+            if (*s != '/') return bad(key, v, "a/b/c");
+            s++;
+        }
+    }
+    return *s == '\0' ? 1 : bad(key, v, "a/b/c");
+}
+
+static int k_scene(bench_config *c, const char *v)
+{
+    if (!*v || strlen(v) >= sizeof c->scene) return bad("scene", v, "a scene name, a shape name or a mesh path");
+    strcpy(c->scene, v);
+    return 1;
+}
+
+static int k_size(bench_config *c, const char *v)
+{
+    char tail;
+    if (sscanf(v, "%dx%d%c", &c->width, &c->height, &tail) != 2 || c->width < 1 || c->height < 1 ||
+        c->width > 8192 || c->height > 8192)
+        return bad("size", v, "WxH within 1..8192");
+    return 1;
+}
+
+static int k_ior(bench_config *c, const char *v) { return parse_vec("ior", v, &c->glass.ior, 1, 0.05f, 100.0f); }
+
+static int k_absorption(bench_config *c, const char *v)
+{
+    float sigma[3];
+    if (!parse_vec("absorption", v, sigma, 3, 0.0f, 1e6f)) return 0;
+    snell_glass_set_absorption(&c->glass, sigma);
+    return 1;
+}
+
+static int k_attenuation(bench_config *c, const char *v)
+{
+    float a[4];
+    if (!parse_vec("attenuation", v, a, 4, 0.0f, 1e6f)) return 0;
+    if (a[0] > 1.0f || a[1] > 1.0f || a[2] > 1.0f || !(a[3] > 0.0f))
+        return bad("attenuation", v, "r/g/b/distance, colours in 0..1, distance > 0");
+    memcpy(c->glass.attenuation_color, a, sizeof c->glass.attenuation_color);
+    c->glass.attenuation_distance = a[3];
+    return 1;
+}
+
+static int k_thickness(bench_config *c, const char *v)
+{
+    return parse_vec("thickness", v, &c->glass.thickness, 1, 0.0f, 1e6f);
+}
+
+static int k_tint(bench_config *c, const char *v) { return parse_vec("tint", v, c->glass.tint, 3, 0.0f, 1.0f); }
+
+static int k_camera(bench_config *c, const char *v)
+{
+    if (!parse_vec("camera", v, c->cam, 3, -1e4f, 1e4f)) return 0;
+    if (!(c->cam[2] > 0.0f)) return bad("camera", v, "az/el/dist (degrees, degrees, distance > 0)");
+    c->cam_set = 1;
+    return 1;
+}
+
+static const common_key g_common[] = {
+    {"scene", "a scene below, sphere|cube|torus|goblet|bunny, or a mesh file (normalised to the unit sphere)",
+     k_scene},
+    {"size", "WxH image size", k_size},
+    {"ior", "index of refraction of every glass object (default %g)", k_ior},
+    {"absorption", "Beer-Lambert coefficient per unit length, a or r/g/b (default 0)", k_absorption},
+    {"attenuation", "glTF's form instead: r/g/b/distance, the colour white light turns after distance", k_attenuation},
+    {"thickness", "thin walls of this thickness instead of solid glass (default 0: solid)", k_thickness},
+    {"tint", "transmission tint r/g/b (default %g/%g/%g)", k_tint},
+    {"camera", "orbit camera az/el/dist, degrees (default: the scene's, 30/20/3.5 for one mesh)", k_camera},
+};
+#define COMMON_COUNT ((int)(sizeof g_common / sizeof *g_common))
+
+void bench_spec_help(FILE *f)
+{
+    snell_glass_resolved d;
+    int k;
+    snell_glass_defaults(NULL, &d);
+    for (k = 0; k < COMMON_COUNT; k++) {
+        char help[256];
+        /* the material's defaults are the library's (snell_glass_defaults) */
+        if (g_common[k].apply == k_ior) snprintf(help, sizeof help, g_common[k].help, d.material.ior);
+        else if (g_common[k].apply == k_tint)
+            snprintf(help, sizeof help, g_common[k].help, d.material.tint[0], d.material.tint[1], d.material.tint[2]);
+        else snprintf(help, sizeof help, "%s", g_common[k].help);
+        fprintf(f, "  %-20s %s\n", g_common[k].key, help);
+    }
+}
+
+/* -------------------------------------------- per-method bench knowledge */
+/* What snell-bench knows of a method beyond the registry: the parameters of
+ * its default sweep, and which MATCHED reference model it approximates. */
+const char *bench_default_sweep(const snell_method_info *m)
+{
+    return m->method == SNELL_METHOD_CUBEMAP ? "iterations=4,6,12" : "";
+}
+
+/* Sets the MATCHED reference model from the method and its resolved parameters. */
+static void reference_model(bench_config *c)
+{
+    snell_glass_resolved r;
+    if (c->method->method == SNELL_METHOD_SINGLE) {
+        /* Unger 3.3: one interface; absorption over the bounding-sphere chord. */
+        c->ref_interfaces = 1;
+        c->ref_absorb = SNELL_REF_ABSORB_BOUNDING_SPHERE;
+        return;
+    }
+    c->ref_absorb = SNELL_REF_ABSORB_PATH;
+    c->ref_interfaces = 10;
+    if (c->method->method == SNELL_METHOD_CUBEMAP && snell_glass_defaults(&c->glass, &r) == SNELL_OK)
+        c->ref_interfaces = r.material.cubemap.max_interfaces;
+}
+
+/* ------------------------------------------------------------- expansion */
+typedef struct spec_key {
+    const common_key *common;      /* NULL: a method parameter */
+    char key[32];
+    char values[MAX_VALUES][256];
+    int count;
+} spec_key;
+
+typedef struct expansion {
+    const snell_method_info *method;
+    spec_key keys[MAX_KEYS + 2];   /* [0] scene, [1] size, then in spec order */
+    int key_count;
+    bench_config *out;
+    int *n;
+} expansion;
+
+static const common_key *find_common(const char *key)
+{
+    int k;
+    for (k = 0; k < COMMON_COUNT; k++)
+        if (!strcmp(g_common[k].key, key)) return &g_common[k];
+    return NULL;
+}
+
+static int method_has(const snell_method_info *m, const char *key)
+{
+    int k;
+    for (k = 0; k < m->param_count; k++)
+        if (!strcmp(m->params[k].name, key)) return 1;
+    return 0;
+}
+
+/* Splits "a,b,c" into k->values. */
+static int split_values(spec_key *k, const char *list)
+{
+    const char *s = list;
+    k->count = 0;
+    for (;;) {
+        const char *e = strchr(s, ',');
+        size_t n = e ? (size_t)(e - s) : strlen(s);
+        if (n == 0 || n >= sizeof k->values[0] || k->count == MAX_VALUES) {
+            fprintf(stderr, "snell-bench: %s: empty, too long or too many values in '%s'\n", k->key, list);
+            return 0;
+        }
+        memcpy(k->values[k->count], s, n);
+        k->values[k->count++][n] = '\0';
+        if (!e) return 1;
+        s = e + 1;
+    }
+}
+
+static void config_defaults(bench_config *c, const snell_method_info *m)
+{
+    memset(c, 0, sizeof *c);
+    c->method = m;
+    c->glass.method = m->method;
+    c->width = c->height = 256;
+    c->gpu_median = -1.0;
+}
+
+static int apply_key(bench_config *c, const spec_key *k, const char *value)
+{
+    if (k->common) return k->common->apply(c, value);
+    /* the key is one of this method's parameters (checked in bench_expand_spec) */
+    return cli_param_set_one("snell-bench", &c->glass, c->method->method, k->key, value);
+}
+
+/* Cartesian product of the keys' values, depth-first in key order. */
+static int expand(expansion *e, int depth, const char **chosen)
+{
+    int v;
+    if (depth == e->key_count) {
+        bench_config *c;
+        int k;
+        size_t len;
+        if (*e->n >= BENCH_MAX_CONFIGS) {
+            fprintf(stderr, "snell-bench: more than %d configurations\n", BENCH_MAX_CONFIGS);
+            return 0;
+        }
+        c = &e->out[(*e->n)++];
+        config_defaults(c, e->method);
+        len = (size_t)snprintf(c->spec, sizeof c->spec, "%s", e->method->name);
+        for (k = 0; k < e->key_count; k++) {
+            if (!apply_key(c, &e->keys[k], chosen[k])) return 0;
+            if (len < sizeof c->spec)
+                len += (size_t)snprintf(c->spec + len, sizeof c->spec - len, ":%s=%s", e->keys[k].key, chosen[k]);
+        }
+        if (!c->cam_set) bench_scene_camera(c->scene, c->cam);
+        reference_model(c);
+        return 1;
+    }
+    for (v = 0; v < e->keys[depth].count; v++) {
+        chosen[depth] = e->keys[depth].values[v];
+        if (!expand(e, depth + 1, chosen)) return 0;
+    }
+    return 1;
+}
+
+static int parse_method(const char *name, const char *spec, const snell_method_info **out)
+{
+    snell_method m = SNELL_METHOD_COUNT_;
+    int i;
+    if (snell_method_from_str(name, &m) == SNELL_OK && (*out = snell_method_info_of(m)) != NULL) return 1;
+    fprintf(stderr, "snell-bench: %s method '%s' in '%s'; methods:",
+            m == SNELL_METHOD_AUTO ? "no benchmark of the" : "unknown", name, spec);
+    for (i = 0; i < snell_method_count(); i++) fprintf(stderr, "%s %s", i ? "," : "", snell_method_info_at(i)->name);
+    fprintf(stderr, "\n");
+    return 0;
+}
+
+static int default_key(spec_key *k, const char *name, const char *list)
+{
+    k->common = find_common(name);
+    snprintf(k->key, sizeof k->key, "%s", name);
+    return split_values(k, list);
+}
+
+int bench_expand_spec(const char *spec, const bench_options *o, bench_config *out, int *n)
+{
+    static expansion e; /* 16 KiB per key: not on the stack */
+    char buf[2048], *tok, *save = NULL;
+    const char *chosen[MAX_KEYS + 2];
+    int k, have_scene = 0, have_size = 0;
+    memset(&e, 0, sizeof e);
+    if (strlen(spec) >= sizeof buf) return fprintf(stderr, "snell-bench: spec too long\n"), 0;
+    strcpy(buf, spec);
+    tok = strtok_r(buf, ":", &save);
+    if (!parse_method(tok ? tok : "", spec, &e.method)) return 0;
+    e.key_count = 2; /* scene and size first, so that they lead the canonical spec */
+    while ((tok = strtok_r(NULL, ":", &save)) != NULL) {
+        char *eq = strchr(tok, '=');
+        spec_key *sk;
+        const common_key *ck;
+        if (!eq) return fprintf(stderr, "snell-bench: '%s' in '%s' is not key=value\n", tok, spec), 0;
+        *eq = '\0';
+        ck = find_common(tok);
+        if (!ck && !method_has(e.method, tok)) {
+            fprintf(stderr, "snell-bench: method %s has no key '%s' (see --list)\n", e.method->name, tok);
+            return 0;
+        }
+        if (!strcmp(tok, "scene")) sk = &e.keys[0], have_scene = 1;
+        else if (!strcmp(tok, "size")) sk = &e.keys[1], have_size = 1;
+        else if (e.key_count == MAX_KEYS + 2) return fprintf(stderr, "snell-bench: too many keys\n"), 0;
+        else sk = &e.keys[e.key_count++];
+        sk->common = ck;
+        snprintf(sk->key, sizeof sk->key, "%s", tok);
+        if (!split_values(sk, eq + 1)) return 0;
+    }
+    if (!have_scene && !default_key(&e.keys[0], "scene", o->scenes)) return 0;
+    if (!have_size && !default_key(&e.keys[1], "size", o->sizes)) return 0;
+    for (k = 0; k < e.key_count; k++) chosen[k] = NULL;
+    e.out = out;
+    e.n = n;
+    return expand(&e, 0, chosen);
+}

@@ -1,0 +1,172 @@
+/* bench_timing.c — timing of snell-bench's configurations. Those of one scene
+ * and size take turns frame by frame (each with its own renderer, so nothing
+ * is re-baked between turns), so a shared machine's drift hits all of them
+ * alike; ratios to the single-surface configuration are taken per round. Each
+ * frame is snell_render + glFinish on the CPU wall clock, plus a GL timer
+ * query where the context has one. */
+#include "bench.h"
+#include "bench_timer.h"
+#include "cli_time.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_INTERLEAVED 48 /* renderers alive at once while timing (memory) */
+
+/* One configuration while it is being timed. */
+typedef struct timing_slot {
+    bench_config *c;
+    snell_renderer *r;
+    snell_glass glass[SNELL_MAX_GLASS];
+    snell_frame_desc fd;
+    double *times, *gpu, *ratio;
+    int gpu_n;
+} timing_slot;
+
+int bench_same_group(const bench_config *a, const bench_config *b)
+{
+    return !strcmp(a->scene, b->scene) && a->width == b->width && a->height == b->height;
+}
+
+/* One frame of t; recorded as round `round` if record, else warm-up. A
+ * failure marks the configuration failed (c->ok = 0). */
+static void time_frame(snell_ctx *ctx, timing_slot *t, int record, int round)
+{
+    double t0 = cli_now_ms(), g;
+    snell_status st;
+    bench_timer_begin();
+    st = snell_render(t->r, &t->fd, NULL);
+    bench_timer_end();
+    snell_renderer_finish(t->r);
+    if (st != SNELL_OK) {
+        bench_fail(t->c, "render", ctx);
+        return;
+    }
+    if (!record) {
+        bench_timer_read();
+        return;
+    }
+    t->times[round] = cli_now_ms() - t0;
+    g = bench_timer_read();
+    if (g >= 0.0) t->gpu[t->gpu_n++] = g;
+}
+
+/* Renderer, frame and buffers of one slot, then its warm-up frames. */
+static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options *o, timing_slot *t)
+{
+    snell_renderer_desc desc;
+    const bench_scene *s = NULL;
+    int k;
+    t->c->ok = 1;
+    t->c->frames = o->frames;
+    t->c->vs_single = -1.0;
+    t->times = (double *)malloc(sizeof(double) * (size_t)o->frames);
+    t->gpu = (double *)malloc(sizeof(double) * (size_t)o->frames);
+    t->ratio = (double *)malloc(sizeof(double) * (size_t)o->frames);
+    if (!t->times || !t->gpu || !t->ratio) {
+        snprintf(t->c->error, sizeof t->c->error, "out of memory");
+        t->c->ok = 0;
+        return;
+    }
+    if (bench_scene_get(ctx, t->c->scene, &s) != SNELL_OK) {
+        bench_fail(t->c, "scene", ctx);
+        return;
+    }
+    memset(&desc, 0, sizeof desc);
+    desc.width = t->c->width;
+    desc.height = t->c->height;
+    if (snell_renderer_create(ctx, &desc, &t->r) != SNELL_OK) {
+        bench_fail(t->c, "renderer", ctx);
+        return;
+    }
+    bench_scene_frame(t->c, s, env, t->glass, &t->fd);
+    for (k = 0; k < o->warmup && t->c->ok; k++) time_frame(ctx, t, 0, 0);
+}
+
+/* Medians of a slot, then its resources freed. */
+static void close_slot(const bench_options *o, timing_slot *t)
+{
+    if (t->c->ok) {
+        t->c->t_median = cli_median(t->times, o->frames); /* sorts */
+        t->c->t_min = t->times[0];
+        t->c->t_max = t->times[o->frames - 1];
+        t->c->gpu_median = t->gpu_n == o->frames ? cli_median(t->gpu, t->gpu_n) : -1.0;
+    }
+    snell_renderer_destroy(t->r);
+    free(t->times);
+    free(t->gpu);
+    free(t->ratio);
+}
+
+/* Times the m configurations cs[idx[0..m)] (one scene and size; base = the
+ * position in idx of its single-surface configuration, or -1): each gets its
+ * warm-up frames, then o->frames rounds in which every configuration renders
+ * one frame, the order rotating from round to round. */
+static void time_group(snell_ctx *ctx, const snell_env *env, const bench_options *o, bench_config *cs, const int *idx,
+                       int m, int base)
+{
+    timing_slot *ts = (timing_slot *)calloc((size_t)m, sizeof *ts);
+    int i, r, k;
+    if (!ts) {
+        for (i = 0; i < m; i++) {
+            cs[idx[i]].ok = 0;
+            snprintf(cs[idx[i]].error, sizeof cs[idx[i]].error, "out of memory");
+        }
+        return;
+    }
+    for (i = 0; i < m; i++) {
+        ts[i].c = &cs[idx[i]];
+        open_slot(ctx, env, o, &ts[i]);
+    }
+    for (r = 0; r < o->frames; r++)
+        for (k = 0; k < m; k++) {
+            timing_slot *t = &ts[(k + r) % m];
+            if (t->c->ok) time_frame(ctx, t, 1, r);
+        }
+    for (i = 0; i < m; i++) {
+        timing_slot *t = &ts[i];
+        if (t->c->ok && base >= 0 && ts[base].c->ok) {
+            for (r = 0; r < o->frames; r++) t->ratio[r] = t->times[r] / ts[base].times[r];
+            t->c->vs_single = cli_median(t->ratio, o->frames);
+        }
+    }
+    for (i = 0; i < m; i++) close_slot(o, &ts[i]);
+    free(ts);
+}
+
+/* At most MAX_INTERLEAVED configurations at once; a larger group is timed in
+ * parts, each with the group's single-surface configuration, if any, so every
+ * ratio is taken within one part. */
+void bench_time_all(snell_ctx *ctx, const snell_env *env, const bench_options *o, bench_config *cs, int n)
+{
+    int *done = (int *)calloc((size_t)(n > 0 ? n : 1), sizeof(int));
+    int idx[MAX_INTERLEAVED], i, j, k, m, single, part;
+    if (!done) {
+        for (i = 0; i < n; i++) {
+            cs[i].ok = 0;
+            snprintf(cs[i].error, sizeof cs[i].error, "out of memory");
+        }
+        return;
+    }
+    for (i = 0; i < n; i++) {
+        if (done[i]) continue;
+        single = -1;
+        for (j = i; j < n && single < 0; j++)
+            if (!done[j] && cs[j].method->method == SNELL_METHOD_SINGLE && bench_same_group(&cs[j], &cs[i])) single = j;
+        j = i;
+        for (part = 0;; part++) {
+            m = 0;
+            if (single >= 0) idx[m++] = single;
+            for (; j < n && m < MAX_INTERLEAVED; j++)
+                if (!done[j] && j != single && bench_same_group(&cs[j], &cs[i])) idx[m++] = j;
+            if (part > 0 && m == (single >= 0)) break; /* nothing left but the baseline */
+            if (!o->quiet)
+                fprintf(stderr, "timing %d configuration(s) of %s at %dx%d, taking turns frame by frame\n", m,
+                        cs[i].scene, cs[i].width, cs[i].height);
+            time_group(ctx, env, o, cs, idx, m, single >= 0 ? 0 : -1);
+            for (k = 0; k < m; k++) done[idx[k]] = 1;
+            if (j >= n) break;
+        }
+    }
+    free(done);
+}

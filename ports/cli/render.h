@@ -1,0 +1,57 @@
+/* render.h — the parts of snell-render: its command line read as a scene
+ * (render_args.c), the reference light paths of --trace-pixel (trace_pixel.c)
+ * and the 2D lightmap mode --2d (render2d.c); main is snell_render.c. */
+#ifndef SNELL_RENDER_H
+#define SNELL_RENDER_H
+
+#include "snell/snell.h"
+
+#include <stdio.h>
+
+/* One object of the command line's scene. */
+typedef struct render_object {
+    const char *mesh;              /* shape name ("sphere", "shape:sphere") or OBJ/glTF file */
+    float place[4];                /* --place x, y, z, uniform scale */
+    int placed;                    /* 0: identity model (NULL), as without --place */
+    snell_glass_material material; /* glass objects */
+    float color[3];                /* opaque objects; zero = the library's grey */
+} render_object;
+
+typedef struct render_options {
+    /* Glass options given before the first --mesh: every --mesh starts from a
+     * copy of it; with no --mesh it is the scene's one glass object (a sphere). */
+    render_object base;
+    render_object glass[SNELL_MAX_GLASS];
+    int glass_count;               /* --mesh given; 0 = the default scene (base) */
+    render_object opaque[SNELL_MAX_OPAQUE];
+    int opaque_count;              /* --opaque MESH given */
+    int orbit;                     /* --opaque N: N cubes orbiting the origin, moving each frame */
+    const char *env;               /* NULL or "procedural": the built-in sky */
+    const char *out;
+    int width, height;
+    float az_deg, el_deg, dist, fov_deg;
+    snell_backend backend;
+    int frames;                    /* >1: time the frames and print the median */
+    int normalize;                 /* fit each mesh into the unit sphere before placing it */
+    int stats;                     /* --stats: frame and per-object statistics on stdout */
+    int verbose;                   /* -v: the same on stderr, and the library's INFO messages */
+    int trace_xy[32];              /* --trace-pixel X,Y (repeatable, up to 16) */
+    int trace_count;
+} render_options;
+
+/* Parses argv into *o. 1: render; 0: bad usage (message printed: exit 2);
+ * -1: --help was printed (exit 0). */
+int render_parse_args(int argc, char **argv, render_options *o);
+void render_usage(FILE *f);
+
+/* snell-render --2d ... (render2d.c). */
+int snell_render2d_main(int argc, char **argv);
+
+/* --trace-pixel (trace_pixel.c): renders the frame from a second camera,
+ * traces each pixel through the whole scene with the reference tracer and
+ * writes <out_png without .png>_trace.png and _trace.json. 0 on success,
+ * 1 on a runtime failure, 2 for a pixel outside the image. */
+int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int width, int height, const int *xy,
+                              int count, const char *out_png);
+
+#endif

@@ -1,0 +1,328 @@
+/* render_args.c — snell-render's command line read as a scene: repeated
+ * --mesh (glass) and --opaque objects, each followed by its own options, the
+ * view and the outputs. Method names and parameters come from the library's
+ * registry (cli_method.c); defaults shown in --help from snell_glass_defaults. */
+#include "render.h"
+#include "cli_method.h"
+#include "cli_scene.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PROG "snell-render"
+
+/* Old spellings of registry parameters, kept because tests and bench/ use them. */
+static const char *const g_param_alias[][2] = {{"linear-steps", "linear"}, {"face-size", "face"}};
+
+void render_usage(FILE *f)
+{
+    snell_glass_resolved d;
+    snell_glass_defaults(NULL, &d);
+    fprintf(f,
+            "usage: snell-render [options] [--mesh M [glass options]]... [--opaque M [--place P] [--color C]]...\n"
+            "Renders refractive glass to a PNG (default: one glass sphere -> snell.png).\n\n"
+            "scene (no --mesh: one glass sphere at the origin):\n"
+            "  --mesh M               a glass object: OBJ or glTF (.gltf/.glb) file, or %s\n"
+            "                         (also shape:NAME); glass options after it apply to it, glass options\n"
+            "                         before the first --mesh are the defaults of every glass object\n"
+            "  --opaque M             an opaque diffuse object (mesh names as for --mesh)\n"
+            "  --opaque N             demo: N opaque cubes orbiting the origin, moving every frame\n"
+            "  --place X,Y,Z[,S]      position and uniform scale of the last --mesh or --opaque (default 0,0,0,1)\n"
+            "  --color R,G,B          albedo of the last --opaque, 0..1 (default 0.8 grey)\n"
+            "  --no-normalize         keep the meshes' own scale (default: fit each in the unit sphere)\n\n"
+            "glass (apply to the most recent --mesh):\n"
+            "  --ior N                index of refraction, 0.05..100 (default %g)\n"
+            "  --absorption R,G,B     Beer-Lambert coefficient per unit length, or one value for all (default 0)\n"
+            "  --attenuation R,G,B,D  glTF's form: the colour white light turns after distance D (default none)\n"
+            "  --tint R,G,B           multiplies transmitted light (default %g,%g,%g)\n"
+            "  --thickness T          a thin wall of thickness T instead of a solid (default 0: solid)\n"
+            "  --method NAME          auto (default: the cheapest adequate method per object)",
+            cli_shape_names, d.material.ior, d.material.tint[0], d.material.tint[1], d.material.tint[2]);
+    {
+        int i;
+        for (i = 0; i < snell_method_count(); i++) fprintf(f, ", %s", snell_method_info_at(i)->name);
+    }
+    fprintf(f, "\n"
+               "  --NAME V               a parameter of a method, listed below (--linear-steps, --face-size:\n"
+               "                         old names of --linear, --face); --param [METHOD.]NAME=V is the same\n");
+    cli_method_help(f, "  ", "--", " V");
+    fprintf(f,
+            "\nview and output:\n"
+            "  --env FILE|procedural  environment: procedural (default), an equirectangular image,\n"
+            "                         or six faces given as a pattern with %%s (px nx py ny pz nz)\n"
+            "  --size WxH             image size (default 512x512)\n"
+            "  --camera AZ,EL,DIST    orbit camera about the origin: degrees, degrees, distance (default 30,20,3.5)\n"
+            "  --fov DEG              vertical field of view (default 45)\n"
+            "  --backend NAME         surfaceless (default), pbuffer\n"
+            "  --frames N             render N frames and print the median time per frame\n"
+            "  --stats                print the last frame's statistics: per glass object the method used\n"
+            "                         and why, warnings, passes, what was skipped\n"
+            "  -v, --verbose          the statistics on stderr, and the library's info messages\n"
+            "  -o FILE                output PNG (default snell.png)\n"
+            "  --trace-pixel X,Y      reference light path of pixel X,Y through the whole scene (repeatable):\n"
+            "                         drawn over a second view into FILE_trace.png, points in FILE_trace.json\n"
+            "  --2d SCENE             2D lightmap mode (see the 2D options with --2d --help)\n"
+            "  -h, --help             this text\n");
+}
+
+/* n comma-separated finite floats, the whole string. */
+static int parse_floats(const char *s, float *out, int n)
+{
+    int i;
+    char *end;
+    for (i = 0; i < n; i++) {
+        errno = 0;
+        out[i] = strtof(s, &end);
+        if (end == s || errno || !isfinite(out[i])) return 0;
+        s = end;
+        if (i < n - 1) {
+            if (*s != ',') return 0;
+            s++;
+        }
+    }
+    return *s == '\0';
+}
+
+static int parse_int(const char *s, int *out)
+{
+    char *end;
+    long v;
+    errno = 0;
+    v = strtol(s, &end, 10);
+    if (end == s || *end || errno || v < -1000000 || v > 1000000) return 0;
+    *out = (int)v;
+    return 1;
+}
+
+static int is_count(const char *s)
+{
+    if (!*s) return 0;
+    for (; *s; s++)
+        if (*s < '0' || *s > '9') return 0;
+    return 1;
+}
+
+static int usage_error(const char *fmt, const char *opt, const char *v)
+{
+    fprintf(stderr, PROG ": ");
+    fprintf(stderr, fmt, opt, v);
+    fprintf(stderr, "\n");
+    return 0;
+}
+
+static int in_range3(const float *v, float lo, float hi)
+{
+    return v[0] >= lo && v[0] <= hi && v[1] >= lo && v[1] <= hi && v[2] >= lo && v[2] <= hi;
+}
+
+/* A registry parameter of the current glass: "--NAME V" or "--param [METHOD.]NAME=V".
+ * 1 set, 0 bad value (printed), -1 not a parameter name. */
+static int method_param(const char *name, const char *v, snell_glass_material *m)
+{
+    size_t k;
+    int at = 0;
+    for (k = 0; k < sizeof g_param_alias / sizeof *g_param_alias; k++)
+        if (!strcmp(name, g_param_alias[k][0])) name = g_param_alias[k][1];
+    if (!cli_param_owner(name, &at)) return -1;
+    return cli_param_set(PROG, m, name, v);
+}
+
+static int param_option(const char *v, snell_glass_material *m)
+{
+    char name[96];
+    const char *eq = strchr(v, '='), *dot;
+    snell_method method;
+    if (!eq || eq == v || (size_t)(eq - v) >= sizeof name)
+        return usage_error("%s wants [METHOD.]NAME=VALUE, got '%s'", "--param", v);
+    memcpy(name, v, (size_t)(eq - v));
+    name[eq - v] = '\0';
+    dot = strchr(name, '.');
+    if (!dot) {
+        int r = method_param(name, eq + 1, m);
+        return r >= 0 ? r : usage_error("%s: no method has a parameter '%s' (see --help)", "--param", name);
+    }
+    name[dot - name] = '\0';
+    if (!cli_method_parse(PROG, name, &method)) return 0;
+    return cli_param_set_one(PROG, m, method, dot + 1, eq + 1);
+}
+
+/* Options of the most recent glass object. 1 handled, 0 bad value, -1 not a glass option. */
+static int glass_option(const char *a, const char *v, render_object *g)
+{
+    snell_glass_material *m = &g->material;
+    if (!strcmp(a, "--ior")) {
+        if (!parse_floats(v, &m->ior, 1) || m->ior < 0.05f || m->ior > 100.0f)
+            return usage_error("%s wants a number in 0.05..100, got '%s'", a, v);
+    } else if (!strcmp(a, "--absorption")) {
+        float s[3];
+        if (parse_floats(v, s, 1)) s[1] = s[2] = s[0];
+        else if (!parse_floats(v, s, 3)) return usage_error("%s wants R,G,B (or one value), got '%s'", a, v);
+        if (!in_range3(s, 0.0f, 1e6f)) return usage_error("%s wants coefficients in 0..1e6, got '%s'", a, v);
+        snell_glass_set_absorption(m, s);
+    } else if (!strcmp(a, "--attenuation")) {
+        float c[4];
+        if (!parse_floats(v, c, 4) || !in_range3(c, 0.0f, 1.0f) || !(c[3] > 0.0f))
+            return usage_error("%s wants R,G,B,DISTANCE with colours in 0..1 and DISTANCE > 0, got '%s'", a, v);
+        memcpy(m->attenuation_color, c, sizeof m->attenuation_color);
+        m->attenuation_distance = c[3];
+    } else if (!strcmp(a, "--tint")) {
+        if (!parse_floats(v, m->tint, 3) || !in_range3(m->tint, 0.0f, 1e3f))
+            return usage_error("%s wants R,G,B >= 0, got '%s'", a, v);
+    } else if (!strcmp(a, "--thickness")) {
+        if (!parse_floats(v, &m->thickness, 1) || m->thickness < 0.0f)
+            return usage_error("%s wants a thickness >= 0, got '%s'", a, v);
+    } else if (!strcmp(a, "--method")) {
+        if (!cli_method_parse(PROG, v, &m->method)) return 0;
+    } else if (!strcmp(a, "--param")) {
+        return param_option(v, m);
+    } else if (!strncmp(a, "--", 2)) {
+        return method_param(a + 2, v, m);
+    } else {
+        return -1;
+    }
+    return 1;
+}
+
+/* A new glass (--mesh) or opaque (--opaque MESH) object; NULL if the list is full. */
+static render_object *add_object(render_options *o, const char *mesh, int opaque)
+{
+    render_object *obj;
+    snell_shape shape;
+    if (cli_is_shape_spec(mesh) && !cli_shape_from_name(mesh, &shape)) {
+        fprintf(stderr, PROG ": unknown shape '%s' (%s)\n", mesh + 6, cli_shape_names);
+        return NULL;
+    }
+    if (opaque ? o->opaque_count + o->orbit >= SNELL_MAX_OPAQUE : o->glass_count >= SNELL_MAX_GLASS) {
+        fprintf(stderr, PROG ": more than %d %s objects\n", opaque ? SNELL_MAX_OPAQUE : SNELL_MAX_GLASS,
+                opaque ? "opaque" : "glass");
+        return NULL;
+    }
+    obj = opaque ? &o->opaque[o->opaque_count++] : &o->glass[o->glass_count++];
+    if (opaque) memset(obj, 0, sizeof *obj);
+    else *obj = o->base;
+    obj->mesh = mesh;
+    obj->placed = 0;
+    obj->place[0] = obj->place[1] = obj->place[2] = 0.0f;
+    obj->place[3] = 1.0f;
+    return obj;
+}
+
+/* View, output and mode options. 1 handled, 0 bad value, -1 unknown. */
+static int view_option(const char *a, const char *v, render_options *o)
+{
+    if (!strcmp(a, "--env")) {
+        o->env = strcmp(v, "procedural") ? v : NULL;
+    } else if (!strcmp(a, "--size")) {
+        char tail;
+        if (sscanf(v, "%dx%d%c", &o->width, &o->height, &tail) != 2 || o->width < 1 || o->height < 1 ||
+            o->width > 16384 || o->height > 16384)
+            return usage_error("%s wants WxH within 1..16384, got '%s'", a, v);
+    } else if (!strcmp(a, "--camera")) {
+        float c[3];
+        if (!parse_floats(v, c, 3) || !(c[2] > 0.0f))
+            return usage_error("%s wants AZ,EL,DIST with DIST > 0, got '%s'", a, v);
+        o->az_deg = c[0];
+        o->el_deg = c[1];
+        o->dist = c[2];
+    } else if (!strcmp(a, "--fov")) {
+        if (!parse_floats(v, &o->fov_deg, 1) || !(o->fov_deg > 1.0f && o->fov_deg < 179.0f))
+            return usage_error("%s wants degrees in 1..179, got '%s'", a, v);
+    } else if (!strcmp(a, "--backend")) {
+        if (!strcmp(v, "surfaceless")) o->backend = SNELL_BACKEND_SURFACELESS;
+        else if (!strcmp(v, "pbuffer")) o->backend = SNELL_BACKEND_PBUFFER;
+        else return usage_error("%s: unknown backend '%s' (surfaceless, pbuffer)", a, v);
+    } else if (!strcmp(a, "--frames")) {
+        if (!parse_int(v, &o->frames) || o->frames < 1 || o->frames > 100000)
+            return usage_error("%s wants 1..100000, got '%s'", a, v);
+    } else if (!strcmp(a, "--trace-pixel")) {
+        float xy[2];
+        if (o->trace_count == 16 || !parse_floats(v, xy, 2) || xy[0] != floorf(xy[0]) || xy[1] != floorf(xy[1]))
+            return usage_error("%s wants X,Y (integers, at most 16 pixels), got '%s'", a, v);
+        o->trace_xy[2 * o->trace_count] = (int)xy[0];
+        o->trace_xy[2 * o->trace_count++ + 1] = (int)xy[1];
+    } else if (!strcmp(a, "-o")) {
+        o->out = v;
+    } else {
+        return -1;
+    }
+    return 1;
+}
+
+static void set_defaults(render_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->base.mesh = "sphere";
+    o->base.place[3] = 1.0f;
+    o->out = "snell.png";
+    o->width = o->height = 512;
+    o->az_deg = 30.0f;
+    o->el_deg = 20.0f;
+    o->dist = 3.5f;
+    o->fov_deg = 45.0f;
+    o->frames = 1;
+    o->normalize = 1;
+}
+
+int render_parse_args(int argc, char **argv, render_options *o)
+{
+    /* cur: the last --mesh or --opaque (--place); glass: the last --mesh, or
+     * base before the first (glass options); opaque: cur if it is opaque. */
+    render_object *cur = NULL, *glass, *opaque = NULL;
+    int i, r;
+    set_defaults(o);
+    glass = &o->base;
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            render_usage(stdout);
+            return -1;
+        } else if (!strcmp(a, "--no-normalize")) {
+            o->normalize = 0;
+            continue;
+        } else if (!strcmp(a, "--stats")) {
+            o->stats = 1;
+            continue;
+        } else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) {
+            o->verbose = 1;
+            continue;
+        } else if (!v) {
+            fprintf(stderr, PROG ": %s needs a value (or is unknown); see --help\n", a);
+            return 0;
+        }
+        i++;
+        if (!strcmp(a, "--mesh")) {
+            if (!(cur = glass = add_object(o, v, 0))) return 0;
+            opaque = NULL;
+        } else if (!strcmp(a, "--opaque") && is_count(v)) {
+            if (!parse_int(v, &o->orbit) || o->orbit + o->opaque_count > SNELL_MAX_OPAQUE) {
+                fprintf(stderr, PROG ": --opaque N: at most %d opaque objects in all, got '%s'\n", SNELL_MAX_OPAQUE, v);
+                return 0;
+            }
+        } else if (!strcmp(a, "--opaque")) {
+            if (!(cur = opaque = add_object(o, v, 1))) return 0;
+        } else if (!strcmp(a, "--place")) {
+            render_object *t = cur ? cur : &o->base;
+            if (parse_floats(v, t->place, 3)) t->place[3] = 1.0f;
+            else if (!parse_floats(v, t->place, 4) || !(t->place[3] > 0.0f))
+                return usage_error("%s wants X,Y,Z or X,Y,Z,SCALE with SCALE > 0, got '%s'", a, v);
+            t->placed = 1;
+        } else if (!strcmp(a, "--color")) {
+            if (!opaque) return usage_error("%s applies to an --opaque object; give it after --opaque MESH%s", a, "");
+            if (!parse_floats(v, opaque->color, 3) || !in_range3(opaque->color, 0.0f, 1.0f))
+                return usage_error("%s wants R,G,B in 0..1, got '%s'", a, v);
+        } else if ((r = view_option(a, v, o)) >= 0 || (r = glass_option(a, v, glass)) >= 0) {
+            if (!r) return 0;
+        } else {
+            fprintf(stderr, PROG ": unknown option '%s'; see --help\n", a);
+            return 0;
+        }
+    }
+    if (o->glass_count > 0 && o->base.placed) {
+        fprintf(stderr, PROG ": --place before the first --mesh places nothing when --mesh is given; put it after "
+                        "the --mesh it moves\n");
+        return 0;
+    }
+    return 1;
+}

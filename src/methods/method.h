@@ -1,0 +1,90 @@
+/* method.h — the seam between the renderer (src/render/) and the refraction
+ * kernels (src/methods/, one file each): a method is a registry entry
+ * (registry.c) with its public description, its parameters, an adequacy test
+ * on the analysed mesh, and lazily created GL state that prepares per-mesh
+ * resources and draws one glass object. Kernels see only resolved values. */
+#ifndef SNELL_METHOD_H
+#define SNELL_METHOD_H
+
+#include "core/core.h"
+#include "mesh/mesh.h"
+
+#include <cglm/cglm.h>
+
+/* What the fragment shaders write (common/output.glsl). */
+typedef enum snell__output_kind {
+    SNELL__OUT_COLOR = 0,
+    SNELL__OUT_DIR_FLOAT,           /* RGBA32F target: xyz = exit direction */
+    SNELL__OUT_DIR_PACKED,          /* RGBA8 target: octahedral 16+16 bits (pack.h) */
+    SNELL__OUT_KINDS
+} snell__output_kind;
+
+/* The frame's camera and target, shared by every object (world space). */
+typedef struct snell__view {
+    mat4 view, proj, view_proj;
+    float eye[3];
+    int width, height;
+    snell__output_kind out;
+} snell__view;
+
+/* One glass object of a frame, resolved by the scene stage (render/scene.c). */
+typedef struct snell__object {
+    int index;                      /* in the frame's glass list */
+    snell_mesh *mesh;               /* uploaded before prepare/draw */
+    const snell_glass_resolved *glass;
+    mat4 model, inv_model;
+    mat3 normal_matrix;             /* inverse transpose of model's 3x3 */
+    int mirrored;                   /* model's determinant < 0: winding flips */
+    float bsphere[4];               /* world bounding sphere: centre, radius */
+    float view_depth;               /* of the sphere's centre, along the view axis */
+    const snell_mesh_analysis *analysis; /* NULL: not analysed (not needed, or failed) */
+    unsigned env_texture;           /* the cubemap it sees: static env or its dynamic one */
+    void *prepared;                 /* the method's resources for (mesh version, settings) */
+} snell__object;
+
+/* How well a method serves an object. */
+typedef enum snell__fit {
+    SNELL__FIT_FAILS = 0,           /* preconditions fail: wrong images (explicit use warns) */
+    SNELL__FIT_RUNS,                /* correct in kind, approximate: a fallback for AUTO */
+    SNELL__FIT_ADEQUATE             /* represents this object's optics: AUTO may pick it */
+} snell__fit;
+
+typedef struct snell__method {
+    const snell_method_info *info;  /* public: id, name, summary, needs, cost rank, params */
+    const size_t *param_offsets;    /* byte offset of each info->params[i] in snell_glass_material */
+    int needs_analysis;             /* adequate() reads the mesh analysis */
+    /* May be NULL (always ADEQUATE). analysis may be NULL (unanalysable mesh).
+     * Writes why into why (a short clause, no method name). */
+    snell__fit (*fit)(const snell_mesh_analysis *analysis, const snell_glass_resolved *glass, char *why,
+                      size_t why_size);
+    /* GL state, made on the first frame that uses the method. */
+    snell_status (*create)(snell_ctx *ctx, snell__output_kind out, void **state);
+    void (*destroy)(snell_ctx *ctx, void *state);
+    /* Prepared resources per (mesh version, key): prepared_size bytes,
+     * zeroed on creation; key() fills the settings they depend on; prepare()
+     * builds them (renderer-owned cache, render/prepared.c), release() frees
+     * their GL objects. All NULL/0 for a method that prepares nothing. */
+    size_t prepared_size;
+    void (*key)(const snell__object *o, int key[4]);
+    snell_status (*prepare)(snell_ctx *ctx, void *state, const snell__object *o, void *prepared,
+                            snell_object_stats *stats);
+    void (*release)(void *prepared);
+    /* Draws the object into the bound target: depth test LESS with depth
+     * write on, the object's env_texture on texture unit 0; unit 1+ free. */
+    snell_status (*draw)(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                         snell_object_stats *stats);
+} snell__method;
+
+/* The registry entry of a method id (registry.c), NULL for AUTO or unknown. */
+const snell__method *snell__method_get(snell_method id);
+
+/* Resolves (zero = default) and range-checks the method's nested parameters in m. */
+snell_status snell__method_params_resolve(const snell__method *e, snell_glass_material *m, int object);
+
+/* Defines for a program variant of the given output kind ("#define ...\n"). */
+const char *snell__output_defines(snell__output_kind out);
+
+/* snprintf that tolerates truncation (reasons are for people). */
+void snell__why(char *why, size_t n, const char *fmt, ...) SNELL_PRINTF(3, 4);
+
+#endif

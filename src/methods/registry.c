@@ -1,0 +1,121 @@
+/* registry.c — the method registry: every kernel is one entry of g_methods
+ * (in cost order); AUTO walks it, CLIs list its names and parameters, and
+ * the generic parameter code below resolves and validates each method's
+ * nested struct from its snell_param_info table. Adding a method: its file
+ * under src/methods/, its shaders, its tests, and one line here. */
+#include "methods/method.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+extern const snell__method snell__method_single;
+extern const snell__method snell__method_cubemap;
+
+static const snell__method *const g_methods[] = {
+    &snell__method_single,
+    &snell__method_cubemap,
+};
+#define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
+
+int snell_method_count(void) { return METHOD_COUNT; }
+
+const snell_method_info *snell_method_info_at(int i)
+{
+    return i >= 0 && i < METHOD_COUNT ? g_methods[i]->info : NULL;
+}
+
+const snell__method *snell__method_get(snell_method id)
+{
+    int i;
+    for (i = 0; i < METHOD_COUNT; i++)
+        if (g_methods[i]->info->method == id) return g_methods[i];
+    return NULL;
+}
+
+const snell_method_info *snell_method_info_of(snell_method m)
+{
+    const snell__method *e = snell__method_get(m);
+    return e ? e->info : NULL;
+}
+
+const char *snell_method_str(snell_method m)
+{
+    const snell_method_info *i = snell_method_info_of(m);
+    if (m == SNELL_METHOD_AUTO) return "auto";
+    return i ? i->name : "unknown";
+}
+
+snell_status snell_method_from_str(const char *name, snell_method *out)
+{
+    int i;
+    if (!name || !out) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_method_from_str: NULL argument");
+    if (strcmp(name, "auto") == 0) {
+        *out = SNELL_METHOD_AUTO;
+        return SNELL_OK;
+    }
+    for (i = 0; i < METHOD_COUNT; i++)
+        if (strcmp(name, g_methods[i]->info->name) == 0) {
+            *out = g_methods[i]->info->method;
+            return SNELL_OK;
+        }
+    return snell__fail(NULL, SNELL_E_INVALID_ARG, "unknown method \"%s\"", name);
+}
+
+static int *param_ptr(snell_glass_material *m, const snell__method *e, int i)
+{
+    return (int *)((char *)m + e->param_offsets[i]);
+}
+
+/* Zero = default; anything else must lie in min..max. */
+snell_status snell__method_params_resolve(const snell__method *e, snell_glass_material *m, int object)
+{
+    int i;
+    for (i = 0; i < e->info->param_count; i++) {
+        const snell_param_info *p = &e->info->params[i];
+        int *v = param_ptr(m, e, i);
+        if (*v == 0) *v = p->def;
+        else if (*v < p->min || *v > p->max)
+            return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: %s.%s = %d outside %d..%d", object,
+                               e->info->name, p->name, *v, p->min, p->max);
+    }
+    return SNELL_OK;
+}
+
+snell_status snell_glass_set_param(snell_glass_material *m, snell_method method, const char *name,
+                                   const char *value)
+{
+    const snell__method *e = snell__method_get(method);
+    int i, j;
+    if (!m || !name || !value) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_glass_set_param: NULL argument");
+    if (!e) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_glass_set_param: method %d has no parameters",
+                               (int)method);
+    for (i = 0; i < e->info->param_count; i++) {
+        const snell_param_info *p = &e->info->params[i];
+        char *end;
+        long v;
+        if (strcmp(p->name, name) != 0) continue;
+        if (p->value_names)
+            for (j = 0; j <= p->max - p->min; j++)
+                if (strcmp(p->value_names[j], value) == 0) {
+                    *param_ptr(m, e, i) = p->min + j;
+                    return SNELL_OK;
+                }
+        v = strtol(value, &end, 10);
+        if (end == value || *end || v < p->min || v > p->max)
+            return snell__fail(NULL, SNELL_E_INVALID_ARG, "%s.%s: \"%s\" is not a value in %d..%d%s", e->info->name,
+                               p->name, value, p->min, p->max, p->value_names ? " or a value name" : "");
+        *param_ptr(m, e, i) = (int)v;
+        return SNELL_OK;
+    }
+    return snell__fail(NULL, SNELL_E_INVALID_ARG, "method %s has no parameter \"%s\"", e->info->name, name);
+}
+
+void snell__why(char *why, size_t n, const char *fmt, ...)
+{
+    va_list ap;
+    if (!why || !n) return;
+    va_start(ap, fmt);
+    vsnprintf(why, n, fmt, ap);
+    va_end(ap);
+}

@@ -1,0 +1,130 @@
+/* composite.c — opaque objects and background; see composite.h. */
+#include "render/composite.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "core/program.h"
+
+#include <math.h>
+#include <string.h>
+
+static snell_status opaque_prog(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                const snell__opaque_prog **out)
+{
+    snell__opaque_prog *p = &c->opaque[kind];
+    if (!p->prog) {
+        snell_status st = snell__program_build(ctx, "object.vert", "opaque.frag", snell__output_defines(kind), &p->prog);
+        if (st != SNELL_OK) return st;
+        p->model = glGetUniformLocation(p->prog, "u_model");
+        p->normal_matrix = glGetUniformLocation(p->prog, "u_normal_matrix");
+        p->view_proj = glGetUniformLocation(p->prog, "u_view_proj");
+        p->eye = glGetUniformLocation(p->prog, "u_eye");
+        p->color = glGetUniformLocation(p->prog, "u_color");
+    }
+    *out = p;
+    return SNELL_OK;
+}
+
+void snell__composite_destroy(snell__composite *c)
+{
+    int k;
+    for (k = 0; k < SNELL__OUT_KINDS; k++) {
+        if (c->opaque[k].prog) glDeleteProgram(c->opaque[k].prog);
+        if (c->sky[k]) glDeleteProgram(c->sky[k]);
+    }
+    if (c->empty_vao) glDeleteVertexArrays(1, &c->empty_vao);
+    memset(c, 0, sizeof *c);
+}
+
+snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, int count)
+{
+    int i, k;
+    if (count < 0 || count > SNELL_MAX_OPAQUE || (count > 0 && !list))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque_count %d outside 0..%d or opaque list NULL", count,
+                           SNELL_MAX_OPAQUE);
+    for (i = 0; i < count; i++) {
+        const snell_opaque *o = &list[i];
+        if (!o->mesh) return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d has no mesh", i);
+        if (o->mesh->ctx && o->mesh->ctx != ctx)
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: its mesh belongs to another context", i);
+        for (k = 0; k < 3; k++)
+            if (!(o->color[k] >= 0.0f && o->color[k] <= 1.0f))
+                return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: colour must lie in 0..1", i);
+        if (o->model)
+            for (k = 0; k < 16; k++)
+                if (!isfinite(o->model[k]))
+                    return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: model matrix is not finite", i);
+    }
+    return SNELL_OK;
+}
+
+snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                     const snell_opaque *list, int count, const float view_proj[16],
+                                     const float eye[3])
+{
+    const snell__opaque_prog *p;
+    snell_status st;
+    int i;
+    if (count == 0) return SNELL_OK;
+    for (i = 0; i < count; i++)
+        if ((st = snell__mesh_upload((snell_mesh *)list[i].mesh)) != SNELL_OK) return st;
+    if ((st = opaque_prog(ctx, c, kind, &p)) != SNELL_OK) return st;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(p->prog);
+    glUniformMatrix4fv(p->view_proj, 1, GL_FALSE, view_proj);
+    glUniform3fv(p->eye, 1, eye);
+    for (i = 0; i < count; i++) {
+        const snell_opaque *o = &list[i];
+        const snell_mesh *m = o->mesh;
+        mat4 model, inv;
+        mat3 nm;
+        float color[3] = {0.8f, 0.8f, 0.8f};
+        if (o->model) memcpy(model, o->model, sizeof model);
+        else glm_mat4_identity(model);
+        glm_mat4_inv(model, inv);
+        glm_mat4_transpose(inv);
+        glm_mat4_pick3(inv, nm);
+        if (o->color[0] != 0.0f || o->color[1] != 0.0f || o->color[2] != 0.0f) memcpy(color, o->color, sizeof color);
+        glUniformMatrix4fv(p->model, 1, GL_FALSE, (const GLfloat *)model);
+        glUniformMatrix3fv(p->normal_matrix, 1, GL_FALSE, (const GLfloat *)nm);
+        glUniform3fv(p->color, 1, color);
+        glBindVertexArray(m->vao);
+        glDrawElements(GL_TRIANGLES, (GLsizei)(3 * m->triangle_count), GL_UNSIGNED_INT, (const void *)0);
+    }
+    return SNELL_OK;
+}
+
+snell_status snell__composite_prepare(snell_ctx *ctx, snell__composite *c, snell__output_kind kind)
+{
+    if (!c->sky[kind]) {
+        snell_status st = snell__program_build(ctx, "skybox.vert", "skybox.frag", snell__output_defines(kind),
+                                               &c->sky[kind]);
+        if (st != SNELL_OK) return st;
+        c->sky_inv[kind] = glGetUniformLocation(c->sky[kind], "u_inv_view_proj_rot");
+        c->sky_env[kind] = glGetUniformLocation(c->sky[kind], "u_env");
+    }
+    if (!c->empty_vao) glGenVertexArrays(1, &c->empty_vao);
+    return SNELL_OK;
+}
+
+snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                         const float rot_view_proj[16])
+{
+    mat4 inv;
+    snell_status st = snell__composite_prepare(ctx, c, kind);
+    if (st != SNELL_OK) return st;
+    glm_mat4_inv((vec4 *)rot_view_proj, inv);
+    /* The triangle lies at the far plane (z = w): LEQUAL passes only where
+     * nothing nearer was drawn. */
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glUseProgram(c->sky[kind]);
+    glUniformMatrix4fv(c->sky_inv[kind], 1, GL_FALSE, (const GLfloat *)inv);
+    glUniform1i(c->sky_env[kind], 0);
+    glBindVertexArray(c->empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    return SNELL_OK;
+}

@@ -1,0 +1,39 @@
+/* composite.h — what is drawn around the glass: the opaque objects (diffuse,
+ * lit from above) and the background (the environment through each pixel),
+ * in the view or into a cube face; one program per output kind, built on
+ * first use. */
+#ifndef SNELL_COMPOSITE_H
+#define SNELL_COMPOSITE_H
+
+#include "methods/method.h"
+
+typedef struct snell__opaque_prog {
+    unsigned prog;
+    int model, normal_matrix, view_proj, eye, color;
+} snell__opaque_prog;
+
+typedef struct snell__composite {
+    snell__opaque_prog opaque[SNELL__OUT_KINDS];
+    unsigned sky[SNELL__OUT_KINDS];
+    int sky_inv[SNELL__OUT_KINDS], sky_env[SNELL__OUT_KINDS];
+    unsigned empty_vao;             /* the background draws without attributes */
+} snell__composite;
+
+void snell__composite_destroy(snell__composite *c);
+/* Builds the background program of an output kind now (it is otherwise
+ * built on first use); draws nothing. */
+snell_status snell__composite_prepare(snell_ctx *ctx, snell__composite *c, snell__output_kind kind);
+/* Checks a frame's opaque list (count, meshes, finite models/colours). */
+snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, int count);
+/* Uploads the meshes (first use) and draws them with depth test LESS and
+ * depth write. */
+snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                     const snell_opaque *list, int count, const float view_proj[16],
+                                     const float eye[3]);
+/* The environment cubemap bound on unit 0 drawn at the far plane under
+ * LEQUAL without depth write (only where nothing was drawn); rot_view_proj
+ * is proj * view without the translation. */
+snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                         const float rot_view_proj[16]);
+
+#endif

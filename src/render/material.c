@@ -1,0 +1,74 @@
+/* material.c — the one resolve step of a glass material (sokol's _sg_def):
+ * zero fields become their documented defaults, every method's nested
+ * parameters are resolved by the method's own table (methods/registry.c),
+ * and the per-unit absorption is derived from glTF's attenuation form. */
+#include "render/material.h"
+#include "methods/method.h"
+
+#include <math.h>
+#include <string.h>
+
+#define DEFAULT_IOR 1.5f
+/* An attenuation colour channel of 0 would mean infinite absorption. */
+#define MIN_ATTENUATION_COLOR 1e-6f
+
+static int finite_nonneg(float v) { return isfinite(v) && v >= 0.0f; }
+
+snell_status snell__glass_resolve(const snell_glass_material *in, int object, snell_glass_resolved *out)
+{
+    snell_glass_material m;
+    int k, i;
+    memset(&m, 0, sizeof m);
+    if (in) m = *in;
+    memset(out, 0, sizeof *out);
+    if (!isfinite(m.ior) || m.ior < 0.0f || (m.ior != 0.0f && (m.ior < 0.05f || m.ior > 100.0f)))
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: ior %g outside 0.05..100", object, m.ior);
+    if (!finite_nonneg(m.attenuation_distance) || !finite_nonneg(m.thickness))
+        return snell__fail(NULL, SNELL_E_INVALID_ARG,
+                           "glass %d: attenuation_distance and thickness must be finite and >= 0", object);
+    for (k = 0; k < 3; k++)
+        if (!finite_nonneg(m.attenuation_color[k]) || m.attenuation_color[k] > 1.0f || !finite_nonneg(m.tint[k]))
+            return snell__fail(NULL, SNELL_E_INVALID_ARG,
+                               "glass %d: attenuation_color must lie in 0..1 and tint be finite and >= 0", object);
+    if ((int)m.method < 0 || (m.method != SNELL_METHOD_AUTO && !snell__method_get(m.method)))
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: unknown method %d", object, (int)m.method);
+    for (i = 0; i < snell_method_count(); i++) {
+        snell_status st = snell__method_params_resolve(snell__method_get(snell_method_info_at(i)->method), &m, object);
+        if (st != SNELL_OK) return st;
+    }
+    if (m.ior == 0.0f) m.ior = DEFAULT_IOR;
+    if (m.tint[0] == 0.0f && m.tint[1] == 0.0f && m.tint[2] == 0.0f) m.tint[0] = m.tint[1] = m.tint[2] = 1.0f;
+    if (m.attenuation_color[0] == 0.0f && m.attenuation_color[1] == 0.0f && m.attenuation_color[2] == 0.0f)
+        m.attenuation_color[0] = m.attenuation_color[1] = m.attenuation_color[2] = 1.0f;
+    if (m.attenuation_distance == 0.0f) m.attenuation_distance = HUGE_VALF;
+    for (k = 0; k < 3; k++) {
+        float c = m.attenuation_color[k] > MIN_ATTENUATION_COLOR ? m.attenuation_color[k] : MIN_ATTENUATION_COLOR;
+        /* -ln(1) is 0 exactly; an infinite distance gives 0 too. */
+        out->absorption[k] = c >= 1.0f ? 0.0f : -logf(c) / m.attenuation_distance;
+        if (out->absorption[k] > 0.0f) out->absorbs = 1;
+    }
+    out->material = m;
+    return SNELL_OK;
+}
+
+snell_status snell_glass_defaults(const snell_glass_material *in, snell_glass_resolved *out)
+{
+    if (!out) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_glass_defaults: out is NULL");
+    return snell__glass_resolve(in, 0, out);
+}
+
+void snell_glass_set_absorption(snell_glass_material *m, const float sigma[3])
+{
+    float smax = 0.0f;
+    int k;
+    if (!m || !sigma) return;
+    for (k = 0; k < 3; k++)
+        if (sigma[k] > smax) smax = sigma[k];
+    memset(m->attenuation_color, 0, sizeof m->attenuation_color);
+    m->attenuation_distance = 0.0f;
+    if (!(smax > 0.0f) || !isfinite(smax)) return; /* none: the zero (white) default */
+    /* Distance 1/smax keeps every colour in [1/e, 1]: no under- or overflow
+     * for tiny or huge coefficients, and -ln(c)/d gives sigma back. */
+    m->attenuation_distance = 1.0f / smax;
+    for (k = 0; k < 3; k++) m->attenuation_color[k] = sigma[k] > 0.0f ? expf(-sigma[k] / smax) : 1.0f;
+}

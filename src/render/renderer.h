@@ -1,0 +1,31 @@
+/* renderer.h — the renderer object: its target, the lazily created method
+ * states, the prepared-resource cache, dynamic environments, and the scratch
+ * a frame works in (so a frame allocates nothing). */
+#ifndef SNELL_RENDERER_H
+#define SNELL_RENDERER_H
+
+#include "render/composite.h"
+#include "render/env_dynamic.h"
+#include "render/prepared.h"
+#include "render/scene.h"
+
+struct snell_renderer {
+    snell_ctx *ctx;
+    int width, height;
+    snell_target target;
+    snell__output_kind out;
+    unsigned fbo, color_rb, depth_rb;
+    void *method_state[SNELL_METHOD_COUNT_];
+    snell_status method_status[SNELL_METHOD_COUNT_];  /* creation failed: not retried */
+    char method_error[SNELL_METHOD_COUNT_][160];
+    unsigned warned[SNELL_MAX_GLASS];                 /* warn_once keys */
+    snell__composite comp;
+    snell__prepared_cache prepared;
+    snell__env_dynamic dyn;
+    snell__scene scene;                               /* this frame's resolved scene */
+    snell_frame_stats stats;                          /* filled, then copied to the caller */
+    float *readback;                                  /* RGBA32F scratch for exit directions */
+    uint8_t *readback8;
+};
+
+#endif
