@@ -38,24 +38,12 @@ static void value_names(const snell_param_info *p, char *buf, size_t n)
         len += (size_t)snprintf(buf + len, n - len, "%s%s", v > p->min ? "|" : "", p->value_names[v - p->min]);
 }
 
-static const snell_param_info *param_of(const snell_method_info *mi, const char *name)
-{
-    int k;
-    for (k = 0; k < mi->param_count; k++)
-        if (!strcmp(mi->params[k].name, name)) return &mi->params[k];
-    return NULL;
-}
-
 int cli_param_set_one(const char *prog, snell_glass_material *m, snell_method method, const char *name,
                       const char *value)
 {
-    const snell_method_info *mi = snell_method_info_of(method);
-    const snell_param_info *p = mi ? param_of(mi, name) : NULL;
-    char names[160];
+    /* the library's message names the range and any value names */
     if (snell_glass_set_param(m, method, name, value) == SNELL_OK) return 1;
-    names[0] = '\0';
-    if (p) value_names(p, names, sizeof names);
-    fprintf(stderr, "%s: %s%s%s%s\n", prog, snell_last_error(NULL), *names ? " (" : "", names, *names ? ")" : "");
+    fprintf(stderr, "%s: %s\n", prog, snell_last_error(NULL));
     return 0;
 }
 

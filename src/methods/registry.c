@@ -88,8 +88,8 @@ snell_status snell_glass_set_param(snell_glass_material *m, snell_method method,
     const snell__method *e = snell__method_get(method);
     int i, j;
     if (!m || !name || !value) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_glass_set_param: NULL argument");
-    if (!e) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_glass_set_param: method %d has no parameters",
-                               (int)method);
+    if (!e) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_glass_set_param: method %s has no parameters",
+                               snell_method_str(method));
     for (i = 0; i < e->info->param_count; i++) {
         const snell_param_info *p = &e->info->params[i];
         char *end;
@@ -102,9 +102,14 @@ snell_status snell_glass_set_param(snell_glass_material *m, snell_method method,
                     return SNELL_OK;
                 }
         v = strtol(value, &end, 10);
-        if (end == value || *end || v < p->min || v > p->max)
+        if (end == value || *end || v < p->min || v > p->max) {
+            char names[128] = "";
+            size_t n = 0;
+            for (j = 0; p->value_names && j <= p->max - p->min && n < sizeof names; j++)
+                n += (size_t)snprintf(names + n, sizeof names - n, "%s%s", j ? "|" : " or ", p->value_names[j]);
             return snell__fail(NULL, SNELL_E_INVALID_ARG, "%s.%s: \"%s\" is not a value in %d..%d%s", e->info->name,
-                               p->name, value, p->min, p->max, p->value_names ? " or a value name" : "");
+                               p->name, value, p->min, p->max, names);
+        }
         *param_ptr(m, e, i) = (int)v;
         return SNELL_OK;
     }
