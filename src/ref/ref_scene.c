@@ -12,17 +12,6 @@
 #include <stdio.h>
 #include <string.h>
 
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-static int normalize3(double v[3])
-{
-    double l = sqrt(dot3(v, v));
-    if (!(l > 0.0) || !isfinite(l)) return 0;
-    v[0] /= l;
-    v[1] /= l;
-    v[2] /= l;
-    return 1;
-}
 
 /* ------------------------------------------------------------ queries */
 
@@ -49,7 +38,7 @@ static int sphere_hit(const snell_ref *r, const ref_sphere *sp, const double o[3
                       ref_surf *s)
 {
     double oc[3] = {o[0] - sp->c[0], o[1] - sp->c[1], o[2] - sp->c[2]};
-    double a = dot3(d, d), b = dot3(oc, d), c = dot3(oc, oc) - sp->r * sp->r, disc = b * b - a * c, q, t0, t1, t;
+    double a = snell__ref_dot3(d, d), b = snell__ref_dot3(oc, d), c = snell__ref_dot3(oc, oc) - sp->r * sp->r, disc = b * b - a * c, q, t0, t1, t;
     int k;
     if (disc < 0.0) return 0;
     /* Stable roots: q = -(b + sign(b) sqrt(disc)); t = q / a and c / q. */
@@ -66,7 +55,7 @@ static int sphere_hit(const snell_ref *r, const ref_sphere *sp, const double o[3
     if (!(t > r->eps) || !(t < tmax)) return 0;
     s->t = t;
     for (k = 0; k < 3; k++) s->n[k] = o[k] + t * d[k] - sp->c[k];
-    if (!normalize3(s->n)) return 0;
+    if (!snell__ref_normalize3(s->n)) return 0;
     /* Put the point exactly on the sphere (its radius error would otherwise
      * accumulate along a chain). */
     for (k = 0; k < 3; k++) s->p[k] = sp->c[k] + sp->r * s->n[k];
@@ -115,18 +104,18 @@ int snell__ref_hit(const snell_ref *r, const double o[3], const double d[3], uin
         s->n[k] = h.b[0] * r->normals[3 * (size_t)tri[0] + k] + h.b[1] * r->normals[3 * (size_t)tri[1] + k] +
                   h.b[2] * r->normals[3 * (size_t)tri[2] + k];
     }
-    if (!normalize3(s->n)) {
+    if (!snell__ref_normalize3(s->n)) {
         /* Opposite vertex normals cancelled: fall back to the face normal. */
         const double *w = r->bvh->tri_verts + 9 * (size_t)h.entry;
         double e1[3] = {w[3] - w[0], w[4] - w[1], w[5] - w[2]}, e2[3] = {w[6] - w[0], w[7] - w[1], w[8] - w[2]};
         s->n[0] = e1[1] * e2[2] - e1[2] * e2[1];
         s->n[1] = e1[2] * e2[0] - e1[0] * e2[2];
         s->n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        if (!normalize3(s->n)) {
+        if (!snell__ref_normalize3(s->n)) {
             s->n[0] = -d[0];
             s->n[1] = -d[1];
             s->n[2] = -d[2];
-            normalize3(s->n);
+            snell__ref_normalize3(s->n);
         }
     }
     return 1;
@@ -136,7 +125,7 @@ void snell__ref_shade_opaque(const snell_ref *r, int j, const ref_surf *s, doubl
 {
     /* opaque.frag: half-Lambert light from normalize(0.3, 1, 0.2), n unflipped. */
     const double ll = sqrt(0.3 * 0.3 + 1.0 + 0.2 * 0.2), L[3] = {0.3 / ll, 1.0 / ll, 0.2 / ll};
-    double l = 0.5 + 0.5 * dot3(s->n, L);
+    double l = 0.5 + 0.5 * snell__ref_dot3(s->n, L);
     int k;
     for (k = 0; k < 3; k++) rgb[k] = r->opaque_color[j][k] * (0.25 + 0.75 * l);
 }

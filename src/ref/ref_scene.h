@@ -6,6 +6,8 @@
 #ifndef SNELL_REF_SCENE_H
 #define SNELL_REF_SCENE_H
 
+#include <math.h>
+
 #include "core/core.h"
 #include "ref/ref_bvh.h"
 #include "snell/snell_ref.h"
@@ -70,5 +72,22 @@ int snell__ref_hit(const snell_ref *r, const double o[3], const double d[3], uin
 /* Radiance of opaque object j at s, lit as shaders_es/opaque.frag lights it:
  * colour * (0.25 + 0.75 * (0.5 + 0.5 * dot(n, normalize(0.3, 1, 0.2)))). */
 void snell__ref_shade_opaque(const snell_ref *r, int j, const ref_surf *s, double rgb[3]);
+
+/* Vector helpers of the tracer (double precision). */
+static inline double snell__ref_dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Normalises v in place; 0 (v unchanged) if it has no finite length. */
+static inline int snell__ref_normalize3(double v[3])
+{
+    double l = sqrt(snell__ref_dot3(v, v));
+    if (!(l > 0.0) || !isfinite(l)) return 0;
+    v[0] /= l;
+    v[1] /= l;
+    v[2] /= l;
+    return 1;
+}
 
 #endif

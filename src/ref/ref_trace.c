@@ -35,17 +35,6 @@ typedef struct optics {
 
 /* ------------------------------------------------------------ vectors */
 
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-static int normalize3(double v[3])
-{
-    double l = sqrt(dot3(v, v));
-    if (!(l > 0.0) || !isfinite(l)) return 0;
-    v[0] /= l;
-    v[1] /= l;
-    v[2] /= l;
-    return 1;
-}
 
 static double max3(const double w[3])
 {
@@ -89,7 +78,7 @@ static ref_view inside_view(int medium)
 /* The smooth normal at s turned to face the ray d; returns cos_i >= 0. */
 static double facing(const ref_surf *s, const double d[3], double n[3])
 {
-    double nd = dot3(s->n, d);
+    double nd = snell__ref_dot3(s->n, d);
     int k;
     for (k = 0; k < 3; k++) n[k] = nd > 0.0 ? -s->n[k] : s->n[k];
     return nd > 0.0 ? nd : -nd;
@@ -162,7 +151,7 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
     g = &r->glass[s.object];
     c = facing(&s, d, n);
     snell_optd_reflect(d, n, rdir);
-    normalize3(rdir);
+    snell__ref_normalize3(rdir);
     if (g->thin) {
         double rs[3], ts[3], L[3], chord = slab(g, c, rs, ts);
         if (path) {
@@ -189,7 +178,7 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
             m_air(r, op, s.p, rdir, s.prim, s.object, depth + 1, w, path, rgb);
             return;
         }
-        normalize3(t1);
+        snell__ref_normalize3(t1);
         for (k = 0; k < 3; k++) {
             wr[k] = w[k] * F;
             wt[k] = w[k] * (1.0 - F) * g->tint[k];
@@ -200,7 +189,7 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
         if (op->absorb == SNELL_REF_ABSORB_BOUNDING_SPHERE) {
             /* Distance from the entry along t1 to the exit of j's bounding sphere (single.frag). */
             double oc[3] = {s.p[0] - g->bs_c[0], s.p[1] - g->bs_c[1], s.p[2] - g->bs_c[2]};
-            double b = dot3(oc, t1), cc = dot3(oc, oc) - g->bs_r * g->bs_r, disc = b * b - cc;
+            double b = snell__ref_dot3(oc, t1), cc = snell__ref_dot3(oc, oc) - g->bs_r * g->bs_r, disc = b * b - cc;
             dist = -b + sqrt(disc > 0.0 ? disc : 0.0);
             if (!(dist > 0.0)) dist = 0.0;
         } else {
@@ -255,13 +244,13 @@ static void m_inside(const snell_ref *r, const optics *op, int j, const double p
         facing(&s, dir, n);
         if (!snell_optd_refract(dir, n, g->ior, out)) {
             snell_optd_reflect(dir, n, out);
-            normalize3(out);
+            snell__ref_normalize3(out);
             if (path) path_point(path, s.p, SNELL_REF_EVENT_TIR, j);
             memcpy(dir, out, sizeof dir);
             depth++;
             continue;
         }
-        normalize3(out);
+        snell__ref_normalize3(out);
         if (path) path_point(path, s.p, SNELL_REF_EVENT_REFRACT, j);
         memcpy(dir, out, sizeof dir);
         depth++;
@@ -305,7 +294,7 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
     if (home < 0) home = s.object;
     c = facing(&s, d, n);
     snell_optd_reflect(d, n, dir_r);
-    normalize3(dir_r);
+    snell__ref_normalize3(dir_r);
     if (g->thin) { /* every wall is a slab: reflected, or straight through */
         double rs[3], ts[3];
         slab(g, c, rs, ts);
@@ -326,7 +315,7 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
         }
         if (!tir && F < 1.0) {
             for (k = 0; k < 3; k++) wt[k] = w[k] * (1.0 - F) * (in ? 1.0 : g->tint[k]);
-            normalize3(dir_t);
+            snell__ref_normalize3(dir_t);
             whitted(r, op, s.p, dir_t, s.prim, in ? -1 : s.object, home, depth + 1, wt, acc);
         }
     }
@@ -381,7 +370,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
             }
             if (depth == 0) path->fresnel = F;
         }
-        normalize3(out);
+        snell__ref_normalize3(out);
         path_point(path, s.p, ev, s.object);
         memcpy(pos, s.p, sizeof pos);
         memcpy(dir, out, sizeof dir);
@@ -535,7 +524,7 @@ static void camera_ray(const camera_rays *cr, int x, int y, double dir[3])
     dir[0] = pf[0] - pn[0];
     dir[1] = pf[1] - pn[1];
     dir[2] = pf[2] - pn[2];
-    normalize3(dir);
+    snell__ref_normalize3(dir);
 }
 
 /* ------------------------------------------------------------ image loop */
@@ -663,7 +652,7 @@ snell_status snell_ref_trace_ray(const snell_ref *ref, const snell_ref_params *p
             return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_trace_ray: ray is not finite");
         d[k] = dir[k];
     }
-    if (!normalize3(d)) return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_trace_ray: dir is zero");
+    if (!snell__ref_normalize3(d)) return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_trace_ray: dir is zero");
     trace(ref, &op, org, d, 1, path);
     return SNELL_OK;
 }
