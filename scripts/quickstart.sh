@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(build-essential g++ cmake pkg-config
           libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
-          libcglm-dev libstb-dev libtinygltf-dev nlohmann-json3-dev
+          libcglm-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libmeshoptimizer-dev
           glmark2-data valgrind)
 
 install_missing() {

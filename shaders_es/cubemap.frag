@@ -15,13 +15,12 @@ precision highp float;
 
 #include "common/optics.glsl"
 #include "common/output.glsl"
+#include "common/surface.glsl"
 
 #define MAX_INTERFACES 8     // SNELL_CUBEMAP_MAX_INTERFACES
 // SNELL_SEARCH_ITERATIONS (1..32) and SNELL_LINEAR_STEPS (0..32) are defined
 // by the program's variant (method_cubemap.c).
 
-in highp vec3 v_world_pos;
-in highp vec3 v_world_normal; // highp: scaled by 1/scale, overflows fp16 at tiny scales (see single.frag)
 
 uniform highp vec3 u_eye;
 uniform samplerCube u_env;
@@ -37,7 +36,8 @@ uniform float u_radius;          // distance scale of the cubemap, object units
 uniform float u_inner_radius;    // no surface closer to the centre, object units
 uniform int u_max_interfaces;    // 1..MAX_INTERFACES
 uniform float u_texel_angle;     // smallest angle of a cubemap texel, radians
-uniform int u_absorb;            // 1 if any sigma > 0: the capped path still needs its length
+// SNELL_ABSORB (0/1, compile-time): any sigma > 0, so the capped path still
+// needs its length and the Beer-Lambert exp runs; without it neither does.
 
 // Distance only (the search needs no normal): one channel of the texel.
 float fetch_dist(vec3 q)
@@ -131,8 +131,10 @@ float search_exit(vec3 p, vec3 d)
 
 void main()
 {
-    highp vec3 v = normalize(v_world_pos - u_eye);
-    vec3 n = normalize(v_world_normal);
+    highp vec3 world_pos, world_normal;
+    snell_surface(world_pos, world_normal);
+    highp vec3 v = normalize(world_pos - u_eye);
+    vec3 n = normalize(world_normal);
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);
     vec3 dir;
@@ -140,7 +142,7 @@ void main()
     float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
 
     mat3 inv3 = mat3(u_inv_model);
-    vec3 p = (u_inv_model * vec4(v_world_pos, 1.0)).xyz - u_centre;    // object, about the centre
+    vec3 p = (u_inv_model * vec4(world_pos, 1.0)).xyz - u_centre;    // object, about the centre
     float path = 0.0;
     // Interface 1 was the entry; pass k searches for interface k. After
     // u_max_interfaces the light is capped while inside: it leaves along its
@@ -152,7 +154,7 @@ void main()
     // llvmpipe would run its body under an empty mask.
 #if !SNELL_NO_SEARCH
     for (int k = 2; k <= MAX_INTERFACES + 1; k++) {
-        if (k > u_max_interfaces && u_absorb == 0) break;      // max_interfaces 1: no search
+        if (k > u_max_interfaces && SNELL_ABSORB == 0) break;      // max_interfaces 1: no search
         vec3 d = inv3 * dir;
         float t = search_exit(p, d);
         p += t * d;
@@ -163,11 +165,15 @@ void main()
         vec3 out_dir;
         bool exited = snell_refract(dir, n2, u_ior, out_dir);
         dir = normalize(out_dir);                               // refracted out, or totally reflected
-        if (exited || (k == u_max_interfaces && u_absorb == 0)) break;
+        if (exited || (k == u_max_interfaces && SNELL_ABSORB == 0)) break;
     }
 #endif
 
+#if SNELL_ABSORB
     vec3 transmitted = texture(u_env, dir).rgb * u_tint * snell_beer_lambert(u_sigma, path);
+#else
+    vec3 transmitted = texture(u_env, dir).rgb * u_tint;
+#endif
     vec3 reflected = texture(u_env, r).rgb;
     snell_write(mix(transmitted, reflected, fresnel), dir);
 }

@@ -1,7 +1,7 @@
 // opaque.frag - diffuse albedo lit by a sky-like light from +Y (half-Lambert,
 // so no side is black). In exit-direction output the view ray is written, as
 // for the background: an opaque pixel has no refracted path.
-precision mediump float;
+precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 
 #include "common/output.glsl"
 

@@ -6,16 +6,13 @@
 // SNELL_THIN: a thin wall (material thickness > 0) is a slab: light leaves in
 // the direction it came, reflected and attenuated by all of its inner bounces
 // (snell_thin_slab, common/optics.glsl).
-precision mediump float;
+precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 
 #include "common/fp16.glsl"
 #include "common/optics.glsl"
 #include "common/output.glsl"
+#include "common/surface.glsl"
 
-in highp vec3 v_world_pos;
-// highp: the normal matrix scales normals by 1/scale; at mediump (fp16 on llvmpipe)
-// |n|^2 overflows above 256 (mesh scale 1e-3) and is subnormal at scale 1e3.
-in highp vec3 v_world_normal;
 
 uniform highp vec3 u_eye;
 uniform samplerCube u_env;
@@ -28,11 +25,13 @@ uniform float u_thickness;       // SNELL_THIN: wall thickness, world units
 
 void main()
 {
+    highp vec3 world_pos, world_normal;
+    snell_surface(world_pos, world_normal);
     // snell_h(): fp16 rounding of what is mediump on real hardware (the
     // arguments of the mediump optics functions included) under
     // SNELL_FP16_EMULATION; the identity otherwise (common/fp16.glsl).
-    highp vec3 v = normalize(v_world_pos - u_eye);
-    vec3 n = snell_h(normalize(v_world_normal)); // normalised at highp, then mediump
+    highp vec3 v = normalize(world_pos - u_eye);
+    vec3 n = snell_h(normalize(world_normal)); // normalised at highp, then mediump
     // Interpolated normals can face away from the eye at the silhouette.
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_h(snell_reflect(snell_h(v), n));
@@ -46,12 +45,18 @@ void main()
     t = snell_h(t);
     float fresnel = snell_h(snell_fresnel_schlick(snell_h(-dot(v, n)), 1.0, u_ior));
 
-    highp vec3 oc = v_world_pos - u_bsphere.xyz;
+#ifdef SNELL_ABSORB
+    // Only in the variant with absorption: exp per lane was 16% of the
+    // mediump cost on llvmpipe even with sigma = 0.
+    highp vec3 oc = world_pos - u_bsphere.xyz;
     highp float b = dot(oc, t);
     highp float c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
     highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
 
     vec3 transmitted = snell_h(texture(u_env, t).rgb * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
+#else
+    vec3 transmitted = snell_h(texture(u_env, t).rgb * u_tint);
+#endif
     vec3 reflected = snell_h(texture(u_env, r).rgb);
     snell_write(mix(transmitted, reflected, fresnel), t);
 #endif

@@ -1,6 +1,6 @@
 // skybox.frag - the environment drawn as the background (Unger 2.2.2): the
 // view direction through each pixel, rotation only, looked up in the cubemap.
-precision mediump float;
+precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 
 #include "common/output.glsl"
 

@@ -5,7 +5,7 @@ snell_add_test(test_shader SOURCES test_shader.c LABELS "unit;gl")
 target_link_libraries(test_shader PRIVATE PkgConfig::GLES)
 snell_add_test(test_optics_twin SOURCES test_optics_twin.c LABELS "unit;gl")
 target_link_libraries(test_optics_twin PRIVATE PkgConfig::GLES m)
-snell_add_test(test_render_single SOURCES test_render_single.c LABELS "render;gl")
+snell_add_test(test_render_single SOURCES test_render_single.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_render_single PRIVATE m)
 
 # Installed package: find_package(snell) from a separate project, and pkg-config.
@@ -41,7 +41,7 @@ endif()
 snell_add_test(test_env SOURCES test_env.c LABELS "unit")
 target_link_libraries(test_env PRIVATE m)
 snell_add_test(test_alloc SOURCES test_alloc.c LABELS "unit;gl")
-snell_add_test(test_exit_dir SOURCES test_exit_dir.c LABELS "render;gl")
+snell_add_test(test_exit_dir SOURCES test_exit_dir.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_exit_dir PRIVATE PkgConfig::GLES m)
 
 # valgrind on the CLI: no definite leaks, no invalid accesses (driver-internal

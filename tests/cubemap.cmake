@@ -4,9 +4,9 @@
 snell_add_test(test_analyze SOURCES test_analyze.c LABELS "unit")
 target_link_libraries(test_analyze PRIVATE m)
 
-snell_add_test(test_cubemap SOURCES test_cubemap.c LABELS "render;gl")
+snell_add_test(test_cubemap SOURCES test_cubemap.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_cubemap PRIVATE m)
-snell_add_test(test_cubemap_ref SOURCES test_cubemap_ref.c LABELS "render;gl")
+snell_add_test(test_cubemap_ref SOURCES test_cubemap_ref.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_cubemap_ref PRIVATE m)
 
 # CLI: the cubemap flags, and clear failures (exit 2) for bad values.
@@ -32,5 +32,5 @@ if(TARGET snell-render)
     set_tests_properties(${name} PROPERTIES LABELS "cli")
   endforeach()
 endif()
-snell_add_test(test_cubemap_env SOURCES test_cubemap_env.c LABELS "render;gl")
+snell_add_test(test_cubemap_env SOURCES test_cubemap_env.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_cubemap_env PRIVATE m)

@@ -11,11 +11,19 @@ if(SNELL_WITH_GLTF)
 endif()
 
 # Fuzz targets as plain replay programs (no -DSNELL_LIBFUZZER): every input file
-# goes through both loaders; a crash, sanitizer report or broken invariant fails.
+# goes through both loaders, and every mesh they accept through snell_mesh_normalize
+# and snell_mesh_analyze; a crash, sanitizer report or broken invariant fails.
+# tests/fuzz/run_libfuzzer.sh runs the same targets under libFuzzer (.ci/run: 5 s each).
 file(GLOB SNELL_MESH_FUZZ_INPUTS CONFIGURE_DEPENDS
      ${CMAKE_CURRENT_SOURCE_DIR}/data/*.obj ${CMAKE_CURRENT_SOURCE_DIR}/data/*.gltf
-     ${CMAKE_CURRENT_SOURCE_DIR}/data/*.glb ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/regressions/*)
+     ${CMAKE_CURRENT_SOURCE_DIR}/data/*.glb ${CMAKE_CURRENT_SOURCE_DIR}/fuzz/regressions/*
+     ${CMAKE_CURRENT_SOURCE_DIR}/data/hostile/*.obj ${CMAKE_CURRENT_SOURCE_DIR}/data/hostile/*.gltf)
 foreach(target fuzz_obj fuzz_gltf)
   snell_add_test(${target} SOURCES fuzz/${target}.c LABELS "unit;fuzz" ARGS ${SNELL_MESH_FUZZ_INPUTS})
   target_link_libraries(${target} PRIVATE m)
 endforeach()
+# The GPU copy of a mesh (src/mesh/mesh_gpu.c): same triangles and winding, better vertex cache.
+snell_add_test(test_mesh_gpu SOURCES test_mesh_gpu.c LABELS "unit")
+if(SNELL_WITH_MESHOPT)
+  target_compile_definitions(test_mesh_gpu PRIVATE SNELL_WITH_MESHOPT_TEST=1)
+endif()

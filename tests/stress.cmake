@@ -3,7 +3,7 @@
 # One test per method so a failure names it. Configure with
 # -DSNELL_FP16_EMULATION=ON in a separate build dir for the mediump study.
 foreach(method single cubemap)
-  snell_add_test(test_stress_${method} SOURCES test_stress.c LABELS "stress;gl" ARGS ${method} TIMEOUT 240)
+  snell_add_test(test_stress_${method} SOURCES test_stress.c LABELS "stress;gl" ARGS ${method} TIMEOUT 240 SHADINGS forward screen)
   target_link_libraries(test_stress_${method} PRIVATE m)
   if(SNELL_FP16_EMULATION)
     target_compile_definitions(test_stress_${method} PRIVATE SNELL_FP16_EMULATION=1)

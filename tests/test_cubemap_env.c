@@ -50,6 +50,7 @@ int main(void)
     memset(&rd, 0, sizeof rd);
     rd.width = W;
     rd.height = H;
+    rd.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     if (!sphere || !cube || !env || !r) return test_finish();
 

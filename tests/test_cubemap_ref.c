@@ -106,6 +106,7 @@ static void run(snell_ctx *ctx, snell_mesh *cube, snell_env *env, float ior, int
     rd.width = W;
     rd.height = H;
     rd.output = SNELL_OUTPUT_EXIT_DIRECTION;
+    rd.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     test_frame_one(&fd, &g, cube, env);
     g.material.method = SNELL_METHOD_CUBEMAP;

@@ -138,6 +138,7 @@ static void against_reference(snell_ctx *ctx, snell_output output)
     rd.output = output;
     CHECK_OK(snell_mesh_create_shape(ctx, &(snell_shape_desc){SNELL_SHAPE_SPHERE, 64, 32}, &mesh));
     CHECK_OK(snell_env_create(ctx, &ed, &env));
+    rd.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     if (!mesh || !env || !r) goto done;
     printf("output %d: encoding %s\n", (int)output, snell_renderer_exit_dir_encoding(r));

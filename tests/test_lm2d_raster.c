@@ -1,8 +1,11 @@
-/* test_lm2d_raster.c — GL lines (llvmpipe) against the exact CPU rasteriser of
- * the same paths (eq. 4.2): total flux, per-pixel and block-averaged relative
- * error for every accumulation format (float, half, and the fixed-point
- * fallbacks), the screen blend mode, the slope correction (eq. 6.4) on a star
- * of lines, and GL state restoration. Prints the measured errors. */
+/* test_lm2d_raster.c — GL lines (llvmpipe, forced: AUTO picks the CPU
+ * rasteriser here) against the exact CPU rasteriser of the same paths (eq.
+ * 4.2): total flux, per-pixel and block-averaged relative error for every
+ * accumulation format (float, half, and the fixed-point fallbacks), the screen
+ * blend mode, the slope correction (eq. 6.4) on a star of lines, and GL state
+ * restoration. Then the rasteriser choice on a ctx: AUTO on llvmpipe is the CPU
+ * rasteriser (stats say so and why), GL and CPU can be forced, and the CPU
+ * image uploaded into the texture is the one read back. Prints the errors. */
 #include "core/gl.h"
 #include "test_util.h"
 #include "snell/snell_2d.h"
@@ -77,6 +80,7 @@ static int run(snell_ctx *ctx, snell_scene2d *s, snell_format2d fmt, snell_blend
     d.exposure = exposure;
     d.max_bounces = 3;
     d.seed = 5;
+    d.raster = SNELL_RASTER2D_GL;
     rc = snell_lightmap2d_create(ctx, &d, &lm);
     if (rc == SNELL_E_UNSUPPORTED) {
         printf("%-22s skipped: %s\n", name, snell_last_error(ctx));
@@ -88,6 +92,8 @@ static int run(snell_ctx *ctx, snell_scene2d *s, snell_format2d fmt, snell_blend
     if (!lm) return 1;
     CHECK_OK(snell_lightmap2d_frame(lm, s, &st));
     CHECK(st.format == fmt || fmt == SNELL_FORMAT2D_AUTO, "%s: format %d in use", name, (int)st.format);
+    CHECK(st.raster == SNELL_RASTER2D_GL && st.raster_threads == 0, "%s: forced GL lines, stats say %d", name,
+          (int)st.raster);
     CHECK_OK(snell_lightmap2d_read_rgb(lm, gpu));
     CHECK_OK(snell_lightmap2d_read_rgb_exact(lm, ref));
     if (fmt == SNELL_FORMAT2D_RGB10A2 || fmt == SNELL_FORMAT2D_RGBA8) {
@@ -129,6 +135,7 @@ static void star(snell_ctx *ctx)
     d.width = W;
     d.height = H;
     d.exposure = 100;
+    d.raster = SNELL_RASTER2D_GL;
     CHECK_OK(snell_lightmap2d_create(ctx, &d, &lm));
     CHECK_OK(snell_lightmap2d_frame(lm, s, NULL));
     CHECK_OK(snell_lightmap2d_read_rgb(lm, gpu));
@@ -153,15 +160,16 @@ static void star(snell_ctx *ctx)
     free(ref);
 }
 
-static void state_restore(snell_ctx *ctx, snell_scene2d *s)
+static void state_restore(snell_ctx *ctx, snell_scene2d *s, snell_raster2d raster)
 {
     snell_lightmap2d_desc d;
     snell_lightmap2d *lm = NULL;
-    GLuint fbo, tex;
-    GLint v[4], b, prog, src, dst;
+    GLuint fbo, tex, pbo;
+    GLint v[4], b, prog, src, dst, t2d, unpack, align, rowlen;
     memset(&d, 0, sizeof d);
     d.width = 64;
     d.height = 64;
+    d.raster = raster;
     CHECK_OK(snell_lightmap2d_create(ctx, &d, &lm));
     glGenTextures(1, &tex);
     glBindTexture(GL_TEXTURE_2D, tex);
@@ -171,20 +179,128 @@ static void state_restore(snell_ctx *ctx, snell_scene2d *s)
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
     glViewport(1, 2, 3, 4);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    /* what the CPU rasteriser's texture upload touches */
+    glGenBuffers(1, &pbo);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pbo);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 5);
     CHECK_OK(snell_lightmap2d_frame(lm, s, NULL));
     glGetIntegerv(GL_VIEWPORT, v);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &b);
     glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
     glGetIntegerv(GL_BLEND_SRC_RGB, &src);
     glGetIntegerv(GL_BLEND_DST_RGB, &dst);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &t2d);
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack);
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &align);
+    glGetIntegerv(GL_UNPACK_ROW_LENGTH, &rowlen);
     CHECK(v[0] == 1 && v[1] == 2 && v[2] == 3 && v[3] == 4, "viewport not restored");
     CHECK((GLuint)b == fbo, "framebuffer not restored");
     CHECK(prog == 0 && !glIsEnabled(GL_BLEND), "program/blend enable not restored");
     CHECK(src == GL_SRC_ALPHA && dst == GL_ONE_MINUS_SRC_ALPHA, "blend func not restored");
+    CHECK((GLuint)t2d == tex, "texture binding not restored (raster %d)", (int)raster);
+    CHECK((GLuint)unpack == pbo && align == 1 && rowlen == 5, "unpack state not restored (raster %d)", (int)raster);
+    CHECK(glGetError() == GL_NO_ERROR, "GL error after the frame (raster %d)", (int)raster);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glDeleteBuffers(1, &pbo);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &tex);
     snell_lightmap2d_destroy(lm);
+}
+
+/* The lightmap's texture as float RGB, top row first (GL rows are bottom first). */
+static void read_texture(unsigned tex, float *rgb)
+{
+    static float px[W * H * 4];
+    GLuint fbo;
+    GLint prev;
+    int x, y, k;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_FLOAT, px);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev);
+    glDeleteFramebuffers(1, &fbo);
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++)
+            for (k = 0; k < 3; k++) rgb[3 * (y * W + x) + k] = px[4 * ((H - 1 - y) * W + x) + k];
+}
+
+/* AUTO on llvmpipe: the CPU rasteriser, said in the stats with the reason; the
+ * same image as without GL (bitwise), and the same values in the texture a
+ * host would draw (raw sum for float ADD, display values for SCREEN). Forcing
+ * GL lines gives GL lines. */
+static void choice(snell_ctx *ctx, snell_scene2d *s)
+{
+    static float a[W * H * 3], b[W * H * 3], t[W * H * 3];
+    snell_lightmap2d_desc d;
+    snell_lightmap2d *lm = NULL, *cpu = NULL;
+    snell_lightmap2d_stats st;
+    int soft = strstr(snell_ctx_gl_renderer(ctx), "llvmpipe") != NULL, i, bl;
+    double err;
+    for (bl = 0; bl < 2; bl++) {
+        memset(&d, 0, sizeof d);
+        d.width = W;
+        d.height = H;
+        d.max_bounces = 3;
+        d.seed = 5;
+        d.blend = bl ? SNELL_BLEND2D_SCREEN : SNELL_BLEND2D_ADD;
+        d.exposure = bl ? 0.05f : 1.0f;
+        CHECK_OK(snell_lightmap2d_create(ctx, &d, &lm));
+        d.cpu_only = 1;
+        CHECK_OK(snell_lightmap2d_create(ctx, &d, &cpu));
+        if (!lm || !cpu) return;
+        CHECK_OK(snell_lightmap2d_frame(lm, s, &st));
+        printf("auto on '%s': raster %d on %d threads (%s), upload %.2f ms\n", snell_ctx_gl_renderer(ctx),
+               (int)st.raster, st.raster_threads, st.raster_reason, st.upload_ms);
+        if (soft) {
+            CHECK(st.raster == SNELL_RASTER2D_CPU && st.raster_threads >= 1, "llvmpipe: AUTO chose %d", (int)st.raster);
+            CHECK(strstr(st.raster_reason, "auto") && strstr(st.raster_reason, "llvmpipe"), "reason '%s'",
+                  st.raster_reason);
+        }
+        CHECK_OK(snell_lightmap2d_frame(cpu, s, NULL));
+        CHECK_OK(snell_lightmap2d_read_rgb(lm, a));
+        CHECK_OK(snell_lightmap2d_read_rgb(cpu, b));
+        if (st.raster == SNELL_RASTER2D_CPU) {
+            CHECK(memcmp(a, b, sizeof a) == 0, "CPU rasteriser with a ctx differs from cpu_only (blend %d)", bl);
+            CHECK(snell_lightmap2d_texture(lm) != 0 && snell_lightmap2d_texture(cpu) == 0, "textures %u %u",
+                  snell_lightmap2d_texture(lm), snell_lightmap2d_texture(cpu));
+            read_texture(snell_lightmap2d_texture(lm), t);
+            err = 0.0;
+            for (i = 0; i < W * H * 3; i++) {
+                /* float ADD holds the raw sum (exposure 1, one pass here) */
+                double e = fabs((double)t[i] - a[i]);
+                if (e > err) err = e;
+            }
+            CHECK(err < 1e-6, "texture differs from the image read back by %.3g (blend %d)", err, bl);
+        }
+        snell_lightmap2d_destroy(lm);
+        snell_lightmap2d_destroy(cpu);
+        lm = cpu = NULL;
+    }
+    /* forced either way */
+    memset(&d, 0, sizeof d);
+    d.width = d.height = 32;
+    d.raster = SNELL_RASTER2D_GL;
+    CHECK_OK(snell_lightmap2d_create(ctx, &d, &lm));
+    CHECK_OK(snell_lightmap2d_frame(lm, s, &st));
+    CHECK(st.raster == SNELL_RASTER2D_GL && strstr(st.raster_reason, "requested"), "forced GL: %d (%s)",
+          (int)st.raster, st.raster_reason);
+    snell_lightmap2d_destroy(lm);
+    d.raster = SNELL_RASTER2D_CPU;
+    CHECK_OK(snell_lightmap2d_create(ctx, &d, &lm));
+    CHECK_OK(snell_lightmap2d_frame(lm, s, &st));
+    CHECK(st.raster == SNELL_RASTER2D_CPU && strstr(st.raster_reason, "requested"), "forced CPU: %d (%s)",
+          (int)st.raster, st.raster_reason);
+    snell_lightmap2d_destroy(lm);
+    d.raster = SNELL_RASTER2D_GL;
+    d.cpu_only = 1;
+    lm = NULL;
+    CHECK(snell_lightmap2d_create(ctx, &d, &lm) == SNELL_E_INVALID_ARG && !lm, "GL lines with cpu_only accepted");
 }
 
 int main(void)
@@ -205,7 +321,9 @@ int main(void)
     run(ctx, s, SNELL_FORMAT2D_RGBA8, SNELL_BLEND2D_ADD, 1.0f, "RGBA8 add (fallback)", 0.01, 0.02);
     run(ctx, s, SNELL_FORMAT2D_RGBA32F, SNELL_BLEND2D_SCREEN, 1.0f, "RGBA32F screen", 0.002, 0.003);
     star(ctx);
-    state_restore(ctx, s);
+    state_restore(ctx, s, SNELL_RASTER2D_GL);
+    state_restore(ctx, s, SNELL_RASTER2D_CPU);
+    choice(ctx, s);
     snell_scene2d_destroy(s);
     snell_ctx_destroy(ctx);
     return test_finish();

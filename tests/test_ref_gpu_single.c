@@ -94,6 +94,7 @@ int main(void)
     memset(&rdesc, 0, sizeof rdesc);
     rdesc.width = W;
     rdesc.height = H;
+    rdesc.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rdesc, &r));
     if (!sphere || !env || !r) return test_finish();
 

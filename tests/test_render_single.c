@@ -111,6 +111,7 @@ static void check_thin_wall(snell_ctx *ctx)
     memset(&rd, 0, sizeof rd);
     rd.width = TW;
     rd.height = TH;
+    rd.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     if (!env || !quad || !cube || !r) goto out;
 
@@ -206,6 +207,7 @@ int main(void)
     memset(&rd, 0, sizeof rd);
     rd.width = W;
     rd.height = H;
+    rd.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     if (!mesh || !env || !r) return test_finish();
 
@@ -235,7 +237,9 @@ int main(void)
     fd.camera.elevation = 0.25f;
     fd.camera.distance = 3.0f;
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &stats));
-    CHECK(stats.passes == 2 && stats.glass_count == 1 && stats.glass[0].passes == 1 && stats.background_drawn &&
+    /* the kernel (+ the G-buffer pass when shaded in screen space) and the background */
+    CHECK(stats.passes == 2 + stats.glass[0].screen_space && stats.glass_count == 1 &&
+              stats.glass[0].passes == 1 + stats.glass[0].screen_space && stats.background_drawn &&
               !(stats.glass[0].skipped & SNELL_SKIP_PASSTHROUGH) && stats.glass[0].method_used == SNELL_METHOD_SINGLE,
           "passes %d (glass %d), skipped 0x%x", stats.passes, stats.glass[0].passes, stats.glass[0].skipped);
     CHECK_OK(snell_renderer_read_rgba(r, gpu));

@@ -246,7 +246,7 @@ int main(void)
     snell_mesh *sphere = NULL, *cube = NULL, *torus = NULL, *open = NULL;
     snell_env *env = NULL;
     snell_renderer *r = NULL;
-    snell_renderer_desc rd = {W, H, SNELL_TARGET_OFFSCREEN, SNELL_OUTPUT_COLOR};
+    snell_renderer_desc rd = {W, H, SNELL_TARGET_OFFSCREEN, SNELL_OUTPUT_COLOR, SNELL_SHADING_AUTO};
     snell_env_desc ed;
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 32, 16};
     snell_glass glass[NG + 1];
@@ -271,6 +271,7 @@ int main(void)
     memset(&ed, 0, sizeof ed);
     ed.face_size = 128;
     CHECK_OK(snell_env_create(ctx, &ed, &env));
+    rd.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     if (!sphere || !cube || !torus || !open || !env || !r) return test_finish();
 
@@ -327,6 +328,16 @@ int main(void)
         CHECK(o->env_updated == 1, "object %d: dynamic environment not rendered on the first frame", i);
     }
     for (i = 0; i < NG; i++) CHECK(order_seen[i] == 1, "draw order %d used %d times", i, order_seen[i]);
+    /* Shading: forced, or AUTO's rule on the estimated pixels per front triangle. */
+    for (i = 0; i < NG; i++) {
+        int want = test_shading() == SNELL_SHADING_SCREEN ||
+                   (test_shading() == SNELL_SHADING_AUTO &&
+                    st.glass[i].pixels_per_triangle <
+                        snell__screen_threshold(snell_ctx_gl_renderer(ctx), snell__method_get(st.glass[i].method_used)));
+        CHECK(st.glass[i].screen_space == want && st.glass[i].pixels_per_triangle > 0.0f,
+              "object %d: screen_space %d at %.1f px/triangle", i, st.glass[i].screen_space,
+              st.glass[i].pixels_per_triangle);
+    }
     /* Back to front: a larger draw order never has a larger view depth. */
     for (i = 0; i < NG; i++) {
         int j;
@@ -443,7 +454,13 @@ int main(void)
             f1.glass_count = 1;
             f1.opaque_count = 0;
             CHECK_OK(snell_render(r, &f1, &st));
-            printf("%s: %s: %s\n", names[i], snell_method_str(st.glass[0].method_used), st.glass[0].reason);
+            printf("%s: %s, %s shading at %.1f px/triangle: %s\n", names[i], snell_method_str(st.glass[0].method_used),
+                   st.glass[0].screen_space ? "screen" : "forward", st.glass[0].pixels_per_triangle,
+                   st.glass[0].reason);
+            /* every real mesh here has triangles of a few pixels: AUTO shades it in screen space */
+            if (test_shading() == SNELL_SHADING_AUTO && strstr(snell_ctx_gl_renderer(ctx), "llvmpipe"))
+                CHECK(st.glass[0].screen_space, "%s shaded forward at %.1f px/triangle", names[i],
+                      st.glass[0].pixels_per_triangle);
             CHECK(st.glass[0].method_used == (i == 2 ? SNELL_METHOD_CUBEMAP : SNELL_METHOD_SINGLE) &&
                       strstr(st.glass[0].reason, expect[i]) && !st.glass[0].warning,
                   "%s: %s", names[i], st.glass[0].reason);
@@ -458,6 +475,7 @@ int main(void)
         snell_renderer *r2 = NULL;
         snell_glass g1;
         snell_frame_desc f1 = fd;
+        rd.shading = test_shading();
         CHECK_OK(snell_renderer_create(ctx, &rd, &r2));
         if (r2) {
             r2->method_status[SNELL_METHOD_CUBEMAP] = SNELL_E_UNSUPPORTED;

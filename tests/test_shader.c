@@ -41,6 +41,24 @@ int main(void)
     st = snell__program_build(ctx, "object.vert", "missing.frag", NULL, &prog);
     CHECK(st == SNELL_E_GL && strstr(snell_last_error(ctx), "missing.frag"), "missing file: %s", snell_last_error(ctx));
 
+    /* The precision policy: SNELL_MEDIUMP is defined in every program (a
+     * shader that uses it compiles), highp on software rasterisers (they
+     * emulate fp16 mediump, slower than highp) unless the fp16 study build. */
+    {
+        static const char fs_policy[] = "precision SNELL_MEDIUMP float;\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n";
+        const char *why = snell_ctx_precision(ctx);
+        int software = strstr(snell_ctx_gl_renderer(ctx), "llvmpipe") || strstr(snell_ctx_gl_renderer(ctx), "softpipe");
+        CHECK_OK(snell__program_build_src(ctx, vs_ok, fs_policy, NULL, &prog));
+        glDeleteProgram(prog);
+        printf("precision policy: %s\n", why);
+#ifdef SNELL_FP16_EMULATION
+        CHECK(snell__ctx_fragment_mediump(ctx) == 1 && strncmp(why, "mediump", 7) == 0, "fp16 build: %s", why);
+#else
+        if (software) CHECK(snell__ctx_fragment_mediump(ctx) == 0 && strncmp(why, "highp", 5) == 0, "software: %s", why);
+#endif
+        CHECK(strncmp(why, "highp", 5) == 0 || strncmp(why, "mediump", 7) == 0, "policy named: %s", why);
+    }
+
     /* Every embedded vertex/fragment pair the renderer uses builds. */
     CHECK_OK(snell__program_build(ctx, "object.vert", "single.frag", NULL, &prog));
     glDeleteProgram(prog);
@@ -49,6 +67,10 @@ int main(void)
     CHECK_OK(snell__program_build(ctx, "object.vert", "opaque.frag", NULL, &prog));
     glDeleteProgram(prog);
     CHECK_OK(snell__program_build(ctx, "skybox.vert", "skybox.frag", NULL, &prog));
+    glDeleteProgram(prog);
+    CHECK_OK(snell__program_build(ctx, "object.vert", "gbuffer.frag", NULL, &prog));
+    glDeleteProgram(prog);
+    CHECK_OK(snell__program_build(ctx, "screen.vert", "single.frag", "#define SNELL_SCREEN_SPACE 1\n#define SNELL_ABSORB 1\n", &prog));
     glDeleteProgram(prog);
 
     snell_ctx_destroy(ctx);

@@ -215,6 +215,7 @@ int main(int argc, char **argv)
     rdesc.width = W;
     rdesc.height = H;
     rdesc.output = SNELL_OUTPUT_EXIT_DIRECTION;
+    rdesc.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rdesc, &r));
     if (!sphere || !cube || !torus || !shell || !env || !r) return test_finish();
     printf("exit directions stored as %s%s\n", snell_renderer_exit_dir_encoding(r),

@@ -27,6 +27,14 @@ const char *test_out(const char *name)
     return buf;
 }
 
+snell_shading test_shading(void)
+{
+    const char *s = getenv("SNELL_TEST_SHADING");
+    if (s && strcmp(s, "forward") == 0) return SNELL_SHADING_FORWARD;
+    if (s && strcmp(s, "screen") == 0) return SNELL_SHADING_SCREEN;
+    return SNELL_SHADING_AUTO;
+}
+
 snell_ctx *test_ctx(void)
 {
     snell_ctx *ctx = NULL;

@@ -61,6 +61,9 @@ void test_frame_one(snell_frame_desc *fd, snell_glass *g, const snell_mesh *mesh
 /* snell_ref_render with these outputs (rgb required; exit_dir, hit optional). */
 snell_status test_ref_render(const snell_ref *ref, const snell_ref_params *p, float *rgb, float *exit_dir,
                              uint8_t *hit);
+/* The renderer shading the tests run with: SNELL_TEST_SHADING=forward|screen
+ * (ctest registers the render tests once per path with SHADINGS), else AUTO. */
+snell_shading test_shading(void);
 /* A headless context (default backend) or NULL, message printed. */
 snell_ctx *test_ctx(void);
 

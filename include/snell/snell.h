@@ -79,26 +79,70 @@ typedef struct snell_ctx_desc {
     snell_log_fn log;          /* receives library messages and KHR_debug output */
     void *log_user;
     int gl_debug;              /* nonzero: request a debug context, install KHR_debug callback */
+    /* The most memory one request sized by input data may ask for, in bytes;
+     * 0 = SNELL_DEFAULT_MEMORY_BUDGET. Checked before the large allocations a
+     * file or a parameter sizes (a loader's vertex/index arrays and file
+     * buffer, a glTF parse, an image, a 2D light's path buffer): beyond it the
+     * call fails with SNELL_E_LIMIT naming the budget, before allocating.
+     * Calls without a context (ctx == NULL) use the default. It bounds each
+     * request, it does not account for everything the context holds. */
+    size_t memory_budget;
 } snell_ctx_desc;
+
+/* 256 MiB: on a 1 GB board (RAM shared by the OS, the app, and the GPU's
+ * copies of what it draws) a request beyond a quarter of it is the point
+ * where a load starts pushing the system towards the OOM killer. It holds
+ * every accepted image (2^25 pixels, 128 MiB as RGBA8) and meshes of a few
+ * million vertices (OBJ parse ~70 bytes per vertex). */
+#define SNELL_DEFAULT_MEMORY_BUDGET ((size_t)256 << 20)
 
 /* Owned backends make their context current on the calling thread; all snell
  * calls on a context must come from the thread where it is current.
  * snell_ctx_destroy releases an owned context (no context is current after it
- * if it was current); EXTERNAL leaves the caller's context as it is. */
+ * if it was current); EXTERNAL leaves the caller's context as it is.
+ *
+ * One current context per thread: creating a second owned context makes it
+ * current, so the first is no longer. Calls that draw or make GL objects
+ * (snell_render, snell_renderer_create, snell_env_create with a ctx, the
+ * read-backs) check that their context is current and fail with
+ * SNELL_E_INVALID_ARG saying so; switch with snell_ctx_make_current.
+ * Destroy calls make an owned context current for the moment if needed.
+ *
+ * Objects may be destroyed before or after their context: after
+ * snell_ctx_destroy, destroying a mesh, environment, renderer, reference or
+ * 2D object frees its memory only (its GL objects went with an owned GL
+ * context; with EXTERNAL they stay in the host's context, so destroy them
+ * first to free those). snell_render and the read-backs then fail with
+ * SNELL_E_INVALID_ARG, as does creating a mesh, environment or renderer with
+ * the destroyed context while such objects keep it alive.
+ *
+ * A mesh made without a context (ctx NULL) gets its GPU buffers in the
+ * context of the first frame that draws it; a frame of another context
+ * refuses it (SNELL_E_INVALID_ARG), as it refuses meshes and environments
+ * made with another context. */
 snell_status snell_ctx_create(const snell_ctx_desc *desc, snell_ctx **out);
 void snell_ctx_destroy(snell_ctx *ctx);
+/* Makes an owned context current on the calling thread (SNELL_E_EGL if EGL
+ * refuses). EXTERNAL: the host makes its context current; this only checks
+ * that it is (SNELL_E_INVALID_ARG if not). */
+snell_status snell_ctx_make_current(snell_ctx *ctx);
 /* The backend actually in use (SURFACELESS may have fallen back to PBUFFER). */
 snell_backend snell_ctx_backend(const snell_ctx *ctx);
 const char *snell_backend_str(snell_backend b);
 /* Nonzero if the current GL context advertises the extension (exact token). */
 int snell_ctx_has_gl_extension(const snell_ctx *ctx, const char *name);
+/* The shader precision policy chosen for this context, with its reason, e.g.
+ * "highp: llvmpipe emulates mediump in software": mediump where the driver has
+ * real fp16, highp where mediump is emulated or as precise as highp. */
+const char *snell_ctx_precision(snell_ctx *ctx);
 /* GL_RENDERER string of the context. */
 const char *snell_ctx_gl_renderer(const snell_ctx *ctx);
 
 /* ------------------------------------------------------------------- mesh */
 /* Meshes are CPU data (positions, smooth normals, triangle indices) plus GPU
  * buffers created lazily on first draw. ctx may be NULL for CPU-only use
- * (loaders, reference tracer); GPU drawing then needs snell_mesh_create with a ctx. */
+ * (loaders, reference tracer); such a mesh is drawn in the context of the
+ * first frame that uses it, and only there (see snell_ctx_destroy). */
 typedef struct snell_mesh_desc {
     const float *positions;    /* 3 * vertex_count, object space */
     const float *normals;      /* optional: 3 * vertex_count; NULL = smooth normals computed */
@@ -115,9 +159,29 @@ snell_status snell_mesh_load(snell_ctx *ctx, const char *path, snell_mesh **out)
 snell_status snell_mesh_load_obj(snell_ctx *ctx, const char *path, snell_mesh **out);
 snell_status snell_mesh_load_obj_mem(snell_ctx *ctx, const char *data, size_t size, snell_mesh **out);
 /* glTF 2.0 (.gltf with external/embedded buffers, or .glb): every triangle primitive
- * of the default scene, node transforms applied. SNELL_E_UNSUPPORTED if built without. */
+ * of the default scene, node transforms applied. SNELL_E_UNSUPPORTED if built without,
+ * for glTF 1.0 and for files that require an extension the loader does not handle
+ * (named in the message, e.g. KHR_draco_mesh_compression).
+ * Files are untrusted (README "Trust model for files"): buffer and image URIs are
+ * resolved, after percent-decoding, against the model's folder only; an absolute
+ * path, a path that leaves the folder (also through a symlink: real paths are
+ * compared) or a non-regular file is refused (SNELL_E_IO; the message names the
+ * URI, never the refused file's size). data: URIs need no file. Images are not
+ * decoded (geometry only); a refused image is skipped. snell_mesh_load_gltf_mem
+ * reads no file at all. */
 snell_status snell_mesh_load_gltf(snell_ctx *ctx, const char *path, snell_mesh **out);
 snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_mesh **out);
+
+/* Loader options (bits of the flags of snell_mesh_load_gltf_ex). */
+typedef enum snell_load_flags {
+    SNELL_LOAD_DEFAULT = 0,
+    /* Let glTF URIs name files outside the model's folder (absolute paths, "..",
+     * symlinks out of it): only for files the caller trusts. Non-regular
+     * files (devices, FIFOs, directories) are refused even so. */
+    SNELL_LOAD_ALLOW_OUTSIDE_FOLDER = 1 << 0
+} snell_load_flags;
+/* snell_mesh_load_gltf with flags (snell_load_flags bits; 0 = the same call). */
+snell_status snell_mesh_load_gltf_ex(snell_ctx *ctx, const char *path, unsigned flags, snell_mesh **out);
 
 typedef enum snell_shape {
     SNELL_SHAPE_SPHERE = 0,  /* UV sphere, radius 1 */
@@ -135,7 +199,11 @@ typedef struct snell_shape_desc {
 snell_status snell_mesh_create_shape(snell_ctx *ctx, const snell_shape_desc *desc, snell_mesh **out);
 
 /* Centre the bounding box at the origin and scale so the bounding sphere about
- * that centre has the given radius (0 = 1). Recomputes bounds. */
+ * that centre has the given radius (0 = 1). Recomputes bounds. Computed in
+ * double, so meshes with coordinates up to the float range (1e38) normalise;
+ * SNELL_E_INVALID_ARG for a radius above FLT_MAX / 2 or a mesh whose vertices
+ * all coincide. (Creating or loading a mesh whose extent or bounding radius
+ * exceeds FLT_MAX fails with SNELL_E_LIMIT, giving the size.) */
 snell_status snell_mesh_normalize(snell_mesh *mesh, float radius);
 
 uint32_t snell_mesh_vertex_count(const snell_mesh *mesh);
@@ -188,7 +256,10 @@ typedef struct snell_mesh_analysis {
  * afresh otherwise; exposed so users can see why a mesh is (not) suited.
  * SNELL_E_INVALID_ARG for a mesh without area, SNELL_E_LIMIT for one whose
  * vertices are too densely clustered to weld (far below the weld tolerance,
- * in their thousands: not seen in real meshes). */
+ * in their thousands: not seen in real meshes) and for one whose ray casts
+ * exceed the analysis's work bound (2^23 + 256 per triangle BVH steps, over
+ * 10x what real meshes need: thousands of triangles on top of each other, e.g.
+ * one OBJ face of 40,000 repeated corners, which then fails in ~0.1 s). */
 snell_status snell_mesh_analyze(const snell_mesh *mesh, snell_mesh_analysis *out);
 
 /* ------------------------------------------------------------ environment */
@@ -212,7 +283,8 @@ void snell_env_destroy(snell_env *env);
 int snell_env_face_size(const snell_env *env);
 /* Bilinear sample in direction dir (need not be unit), as GL samples the cube
  * with GL_LINEAR: rgb in [0,1]. Edge texels are clamped per face (GL filters
- * across faces; the difference is confined to a one-texel seam). */
+ * across faces; the difference is confined to a one-texel seam). Black (0)
+ * for a NULL env or dir and for a direction that is not finite. */
 void snell_env_sample(const snell_env *env, const float dir[3], float rgb[3]);
 /* Double-precision variant for the reference tracer. */
 void snell_env_sample_d(const snell_env *env, const double dir[3], double rgb[3]);
@@ -336,6 +408,10 @@ typedef struct snell_camera {
     float target[3];           /* orbit centre, world space */
     float z_near, z_far;       /* 0 = derived from distance and the mesh bounds */
 } snell_camera;
+/* snell_render and the reference tracer refuse, with SNELL_E_INVALID_ARG
+ * naming the field: a value that is not finite, distance, z_near or z_far < 0,
+ * fov_y outside [0, pi), a near plane (given or derived) not before the far
+ * plane, and a distance so large that the derived far plane overflows. */
 
 /* Eye position and view/projection matrices (column-major) of an orbit camera. */
 void snell_camera_matrices(const snell_camera *cam, float aspect, float eye[3],
@@ -359,16 +435,32 @@ typedef enum snell_output {
     SNELL_OUTPUT_EXIT_DIRECTION_PACKED  /* force the RGBA8 fallback encoding */
 } snell_output;
 
+/* Where the glass kernels run. Forward shading runs a kernel on the glass
+ * triangles; a rasteriser that shades pixels in blocks (llvmpipe: 4x4, GPUs:
+ * 2x2 quads) then wastes most lanes on meshes whose triangles cover a pixel
+ * or two. The screen-space stage draws the glass's front surface once with a
+ * trivial shader into a G-buffer (depth texture + RGBA8 normal and object id;
+ * GLES 3.0, no extension) and runs each kernel once per covered pixel, at the
+ * cost of one more pass and a G-buffer's memory (8 bytes per pixel). */
+typedef enum snell_shading {
+    SNELL_SHADING_AUTO = 0,         /* per object: screen space when its projected triangles are
+                                     * smaller than the renderer's threshold (snell_frame_stats says) */
+    SNELL_SHADING_FORWARD,
+    SNELL_SHADING_SCREEN
+} snell_shading;
+
 typedef struct snell_renderer_desc {
     int width, height;              /* pixels; 0 = 512 */
     snell_target target;
     snell_output output;
+    snell_shading shading;
 } snell_renderer_desc;
 
 /* A glass object of the scene. */
 typedef struct snell_glass {
     const snell_mesh *mesh;         /* required; GPU buffers made on first draw */
-    const float *model;             /* float[16] object-to-world; NULL = identity */
+    const float *model;             /* float[16] object-to-world; NULL = identity; finite and
+                                     * invertible (else SNELL_E_INVALID_ARG) */
     snell_glass_material material;
 } snell_glass;
 
@@ -377,7 +469,8 @@ typedef struct snell_glass {
  * view and, seen from each glass object, into its dynamic environment. */
 typedef struct snell_opaque {
     const snell_mesh *mesh;         /* required; GPU buffers made on first draw */
-    const float *model;             /* float[16] object-to-world; NULL = identity */
+    const float *model;             /* float[16] object-to-world; NULL = identity; finite and
+                                     * invertible (else SNELL_E_INVALID_ARG) */
     float color[3];                 /* diffuse albedo 0..1; all zero = 0.8 grey */
 } snell_opaque;
 
@@ -428,6 +521,9 @@ typedef struct snell_object_stats {
     int draw_order;                 /* 0 = drawn first (farthest); -1 = not drawn */
     float view_depth;               /* distance of its bounding-sphere centre along the view axis */
     float hidden_fraction;          /* the mesh's hidden_fraction if analysed, else 0 */
+    int screen_space;               /* 1: shaded in screen space (G-buffer), 0: forward */
+    float pixels_per_triangle;      /* estimate AUTO shading decided on: projected bounding-sphere
+                                     * area / front triangles (half the mesh's) */
 } snell_object_stats;
 
 typedef struct snell_frame_stats {
@@ -437,6 +533,7 @@ typedef struct snell_frame_stats {
     snell_object_stats glass[SNELL_MAX_GLASS]; /* in the order of the frame's glass list */
     int opaque_drawn;               /* opaque objects drawn in the view */
     int background_drawn;           /* 1 if the background pass ran */
+    int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
 } snell_frame_stats;
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);
@@ -457,7 +554,11 @@ void snell_renderer_finish(snell_renderer *r);
 snell_status snell_write_png(const char *path, int width, int height, const uint8_t *rgba);
 /* Reads a PNG or Radiance HDR file (HDR clamped to [0,1]) as RGBA8, top row
  * first; at most 16384 pixels per side and 2^25 pixels in all (SNELL_E_LIMIT
- * beyond, checked before decoding). JPEG gives SNELL_E_UNSUPPORTED: the
+ * beyond, checked before decoding), and within the default memory budget
+ * (SNELL_DEFAULT_MEMORY_BUDGET for the decode's peak: 8 bytes a pixel for an
+ * RGBA8 PNG, 20 for an HDR, so an 8192x4096 HDR needs a context with a larger
+ * budget, snell_env_create). A truncated HDR is SNELL_E_PARSE; a directory or
+ * other non-regular file SNELL_E_IO. JPEG gives SNELL_E_UNSUPPORTED: the
  * bundled decoder is not safe on malformed files. Free *rgba with snell_image_free. */
 snell_status snell_image_read(const char *path, int *width, int *height, uint8_t **rgba);
 /* The same from an encoded image in memory (e.g. an Android asset). */

@@ -58,6 +58,7 @@ typedef struct bench_config {
     int cam_set;                   /* camera= given; else the scene's own camera */
     int ref_interfaces;            /* MATCHED reference cap (the method's own) */
     snell_ref_absorption ref_absorb;
+    snell_shading shading;         /* shading= (the renderer's; default auto) */
 
     /* results */
     int ok;

@@ -2,7 +2,8 @@
  * on the public API: tracer rays/s per core on a 2263-edge polygon set (7.3.1),
  * BVH leaf-size sweep (7.3.2), GL line rasterisation in paths/ms (7.4), and the
  * frame time of a 1920x1080 lightmap with one point light of 2.5e4 rays and 3
- * specular bounces (7.6). Prints a table, writes JSON and CSV. */
+ * specular bounces (7.6) for each rasteriser, taking turns frame by frame
+ * (`--frame`: only that). Prints a table, writes JSON and CSV. */
 #define _POSIX_C_SOURCE 200809L
 #include "snell/snell.h"
 #include "snell/snell_2d.h"
@@ -75,69 +76,126 @@ static snell_light2d_desc point_light(int rays, float x, float y)
 
 static snell_light2d_desc bench2d_light0; /* light 0 of the scene being timed */
 
+#define MAX_REPEAT 64
+
+/* CPU time of the whole process (all threads, llvmpipe's included): what a
+ * frame costs the machine, robust to other processes sharing it. */
+static double process_cpu_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
 typedef struct result {
-    double ms, trace_ms, raster_ms, trace_cpu_ms;
+    double ms, trace_ms, raster_ms, trace_cpu_ms, upload_ms, cpu_ms;
     unsigned long long rays, paths;
+    snell_raster2d raster;
+    int raster_threads;
+    char reason[SNELL_REASON_SIZE];
 } result;
 
-/* Median over `repeat` frames; the light moves by a hair between frames so
- * every frame really re-traces (a static scene would be reused). */
-static snell_status run_frames(snell_ctx *ctx, snell_scene2d *s, const snell_lightmap2d_desc *d, int repeat, result *r)
+/* n configurations on one scene, taking turns frame by frame (the first of
+ * each round rotates), medians over `repeat` rounds; the light moves by a hair
+ * every round so every frame really re-traces (a static scene is reused). */
+static snell_status run_interleaved(snell_ctx *ctx, snell_scene2d *s, const snell_lightmap2d_desc *d, int n,
+                                    int repeat, result *r)
 {
-    snell_lightmap2d *lm;
+    snell_lightmap2d *lm[8];
     snell_lightmap2d_stats st;
-    snell_status rc;
-    double t[64], tr[64], ra[64], tc[64];
-    int i;
+    snell_status rc = SNELL_OK;
+    static double t[8][MAX_REPEAT], tr[8][MAX_REPEAT], ra[8][MAX_REPEAT], tc[8][MAX_REPEAT], up[8][MAX_REPEAT],
+        pc[8][MAX_REPEAT];
+    int i, c, k;
     snell_light2d_desc L;
-    if (repeat > 64) repeat = 64;
-    if ((rc = snell_lightmap2d_create(ctx, d, &lm)) != SNELL_OK) return rc;
-    memset(r, 0, sizeof *r);
-    for (i = -1; i < repeat; i++) { /* frame -1 warms up (allocation, shader, BVH) */
-        double t0;
+    if (repeat > MAX_REPEAT) repeat = MAX_REPEAT;
+    if (n > 8) n = 8;
+    memset(lm, 0, sizeof lm);
+    for (c = 0; c < n && rc == SNELL_OK; c++) rc = snell_lightmap2d_create(ctx, &d[c], &lm[c]);
+    for (i = -1; i < repeat && rc == SNELL_OK; i++) { /* round -1 warms up (allocation, shader, BVH) */
         L = bench2d_light0;
         L.position[0] += (i & 1) ? 1e-3f : -1e-3f;
         if ((rc = snell_scene2d_set_light(s, 0, &L)) != SNELL_OK) break;
-        t0 = cli_now_ms();
-        if ((rc = snell_lightmap2d_frame(lm, s, &st)) != SNELL_OK) break;
-        snell_lightmap2d_finish(lm);
-        if (i < 0) continue;
-        t[i] = cli_now_ms() - t0;
-        tr[i] = st.trace_ms;
-        tc[i] = st.trace_cpu_ms;
-        ra[i] = t[i] - st.trace_ms;
-        r->rays = st.rays;
-        r->paths = st.paths;
+        for (k = 0; k < n && rc == SNELL_OK; k++) {
+            double t0, c0;
+            c = (k + (i < 0 ? 0 : i)) % n;
+            c0 = process_cpu_ms();
+            t0 = cli_now_ms();
+            if ((rc = snell_lightmap2d_frame(lm[c], s, &st)) != SNELL_OK) break;
+            snell_lightmap2d_finish(lm[c]);
+            if (i < 0) continue;
+            t[c][i] = cli_now_ms() - t0;
+            pc[c][i] = process_cpu_ms() - c0;
+            tr[c][i] = st.trace_ms;
+            tc[c][i] = st.trace_cpu_ms;
+            up[c][i] = st.upload_ms;
+            ra[c][i] = t[c][i] - st.trace_ms;
+            r[c].rays = st.rays;
+            r[c].paths = st.paths;
+            r[c].raster = st.raster;
+            r[c].raster_threads = st.raster_threads;
+            memcpy(r[c].reason, st.raster_reason, sizeof r[c].reason);
+        }
     }
-    snell_lightmap2d_destroy(lm);
+    for (c = 0; c < n; c++) snell_lightmap2d_destroy(lm[c]);
     if (rc != SNELL_OK) return rc;
-    r->ms = cli_median(t, repeat);
-    r->trace_ms = cli_median(tr, repeat);
-    r->trace_cpu_ms = cli_median(tc, repeat);
-    r->raster_ms = cli_median(ra, repeat);
+    for (c = 0; c < n; c++) {
+        r[c].ms = cli_median(t[c], repeat);
+        r[c].trace_ms = cli_median(tr[c], repeat);
+        r[c].trace_cpu_ms = cli_median(tc[c], repeat);
+        r[c].raster_ms = cli_median(ra[c], repeat);
+        r[c].upload_ms = cli_median(up[c], repeat);
+        r[c].cpu_ms = cli_median(pc[c], repeat);
+    }
     return SNELL_OK;
+}
+
+static snell_status run_frames(snell_ctx *ctx, snell_scene2d *s, const snell_lightmap2d_desc *d, int repeat, result *r)
+{
+    memset(r, 0, sizeof *r);
+    return run_interleaved(ctx, s, d, 1, repeat, r);
+}
+
+/* What llvmpipe will use (it reads LP_NUM_THREADS at context creation; unset:
+ * one thread per CPU); "-" for other renderers. */
+static const char *lp_threads(const snell_ctx *ctx, char *buf, size_t size)
+{
+    const char *env = getenv("LP_NUM_THREADS");
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    if (!ctx || !strstr(snell_ctx_gl_renderer(ctx), "llvmpipe")) return "-";
+    if (env && *env) snprintf(buf, size, "%s (LP_NUM_THREADS=%s)", env, env);
+    else snprintf(buf, size, "%ld (LP_NUM_THREADS unset: one per CPU)", ncpu > 0 ? ncpu : 1);
+    return buf;
+}
+
+static const char *raster_name(snell_raster2d r)
+{
+    return r == SNELL_RASTER2D_GL ? "GL lines" : r == SNELL_RASTER2D_CPU ? "CPU exact" : "auto";
 }
 
 static void usage(void)
 {
     fprintf(stderr,
-            "usage: snell-bench --2d [--rays N] [--repeat R] [--threads T] [--no-gpu] [--quick]\n"
+            "usage: snell-bench --2d [--rays N] [--repeat R] [--threads T] [--no-gpu] [--quick] [--frame]\n"
             "                        [--json FILE] [--csv FILE]\n"
             "  rays/s per core (1 thread, 2263 edges, 0 bounces), leaf sweep, GL paths/ms,\n"
-            "  1920x1080 frame (2.5e4 rays, 3 specular bounces)\n");
+            "  1920x1080 frame (2.5e4 rays, 3 specular bounces): auto, CPU rasteriser on T threads and\n"
+            "  on 1, GL lines, taking turns frame by frame. --frame: only the 1080p frame.\n");
 }
 
 int snell_bench2d_main(int argc, char **argv)
 {
-    int rays = 200000, repeat = 9, threads = 0, gpu = 1, i, li, edges = 2263;
+    int rays = 200000, repeat = 9, threads = 0, gpu = 1, frame_only = 0, i, li, c, nf = 0, edges = 2263;
     const char *json = "bench2d.json", *csv = "bench2d.csv";
     static const int leaves[] = {1, 2, 3, 4, 6, 8, 12, 16};
-    double leaf_rps[8], leaf_cpu[8];
+    double leaf_rps[8] = {0}, leaf_cpu[8] = {0};
     snell_ctx *ctx = NULL;
     snell_scene2d *s = NULL;
-    snell_lightmap2d_desc d;
+    snell_lightmap2d_desc d, fd[4];
     snell_status st;
-    result r1, rT, rg, rf;
+    result r1, rT, rg, rf[4];
+    char lpbuf[96];
+    const char *lp;
     FILE *f;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     for (i = 1; i < argc; i++) {
@@ -148,6 +206,7 @@ int snell_bench2d_main(int argc, char **argv)
         else if (strcmp(argv[i], "--json") == 0 && i + 1 < argc) json = argv[++i];
         else if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv = argv[++i];
         else if (strcmp(argv[i], "--no-gpu") == 0) gpu = 0;
+        else if (strcmp(argv[i], "--frame") == 0) frame_only = 1;
         else if (strcmp(argv[i], "--quick") == 0) {
             rays = 50000;
             repeat = 3;
@@ -156,7 +215,7 @@ int snell_bench2d_main(int argc, char **argv)
             return 2;
         }
     }
-    if (rays < 1000 || repeat < 1 || threads < 0) {
+    if (rays < 1000 || repeat < 1 || repeat > MAX_REPEAT || threads < 0) {
         usage();
         return 2;
     }
@@ -165,104 +224,145 @@ int snell_bench2d_main(int argc, char **argv)
         fprintf(stderr, "snell-bench --2d: no GL context (%s); GPU entries skipped\n", snell_last_error(NULL));
         ctx = NULL;
     }
-    if ((st = bvh_scene(ctx, edges, 0.0f, &s)) != SNELL_OK) {
-        fprintf(stderr, "snell-bench --2d: %s\n", snell_last_error(ctx));
-        snell_ctx_destroy(ctx);
-        return 1;
-    }
-    bench2d_light0 = point_light(rays, VIEW_W / 2, VIEW_H / 2);
-    if ((st = snell_scene2d_add_light(s, &bench2d_light0, NULL)) != SNELL_OK) goto fail;
-
-    /* 1. tracer throughput, 0 bounces (thesis 7.3.1), CPU only so raster is the exact CPU one */
+    lp = lp_threads(ctx, lpbuf, sizeof lpbuf);
+    memset(&r1, 0, sizeof r1);
+    memset(&rT, 0, sizeof rT);
+    memset(&rg, 0, sizeof rg);
+    memset(rf, 0, sizeof rf);
     memset(&d, 0, sizeof d);
     d.width = VIEW_W;
     d.height = VIEW_H;
-    d.max_bounces = -1;
-    d.threads = 1;
-    d.cpu_only = 1;
-    if ((st = run_frames(NULL, s, &d, repeat, &r1)) != SNELL_OK) goto fail;
-    d.threads = threads;
-    if ((st = run_frames(NULL, s, &d, repeat, &rT)) != SNELL_OK) goto fail;
-    /* 2. leaf sweep (7.3.2), 1 thread */
-    d.threads = 1;
-    for (li = 0; li < 8; li++) {
-        result r;
-        snell_scene2d_set_bvh_leaf_size(s, leaves[li]);
-        if ((st = run_frames(NULL, s, &d, repeat, &r)) != SNELL_OK) goto fail;
-        leaf_rps[li] = (double)r.rays / (r.trace_ms * 1e-3);
-        leaf_cpu[li] = (double)r.rays / (r.trace_cpu_ms * 1e-3);
-    }
-    snell_scene2d_set_bvh_leaf_size(s, 0);
-    memset(&rg, 0, sizeof rg);
-    memset(&rf, 0, sizeof rf);
-    if (ctx) {
-        /* 3. GL rasterisation of the same 2e5 paths into a 1080p RGBA32F target (7.4) */
-        d.cpu_only = 0;
+    if (!frame_only) {
+        if ((st = bvh_scene(ctx, edges, 0.0f, &s)) != SNELL_OK) goto fail;
+        bench2d_light0 = point_light(rays, VIEW_W / 2, VIEW_H / 2);
+        if ((st = snell_scene2d_add_light(s, &bench2d_light0, NULL)) != SNELL_OK) goto fail;
+        /* 1. tracer throughput, 0 bounces (thesis 7.3.1), CPU only so raster is the exact CPU one */
+        d.max_bounces = -1;
+        d.threads = 1;
+        d.cpu_only = 1;
+        if ((st = run_frames(NULL, s, &d, repeat, &r1)) != SNELL_OK) goto fail;
         d.threads = threads;
-        if ((st = run_frames(ctx, s, &d, repeat, &rg)) != SNELL_OK) goto fail;
+        if ((st = run_frames(NULL, s, &d, repeat, &rT)) != SNELL_OK) goto fail;
+        /* 2. leaf sweep (7.3.2), 1 thread */
+        d.threads = 1;
+        for (li = 0; li < 8; li++) {
+            result r;
+            snell_scene2d_set_bvh_leaf_size(s, leaves[li]);
+            if ((st = run_frames(NULL, s, &d, repeat, &r)) != SNELL_OK) goto fail;
+            leaf_rps[li] = (double)r.rays / (r.trace_ms * 1e-3);
+            leaf_cpu[li] = (double)r.rays / (r.trace_cpu_ms * 1e-3);
+        }
+        snell_scene2d_set_bvh_leaf_size(s, 0);
+        if (ctx) {
+            /* 3. GL rasterisation of the same 2e5 paths into a 1080p RGBA32F target (7.4) */
+            d.cpu_only = 0;
+            d.threads = threads;
+            d.raster = SNELL_RASTER2D_GL;
+            if ((st = run_frames(ctx, s, &d, repeat, &rg)) != SNELL_OK) goto fail;
+        }
+        snell_scene2d_destroy(s);
+        s = NULL;
     }
-    /* 4. 1080p frame: mirror blobs, 2.5e4 rays, 3 specular bounces (7.6) */
-    snell_scene2d_destroy(s);
-    s = NULL;
+    /* 4. 1080p frame: mirror blobs, 2.5e4 rays, 3 specular bounces (7.6); every
+     * rasteriser on the same frames, taking turns */
     if ((st = bvh_scene(ctx, edges, 0.9f, &s)) != SNELL_OK) goto fail;
     bench2d_light0 = point_light(25000, VIEW_W / 2, VIEW_H / 2);
     if ((st = snell_scene2d_add_light(s, &bench2d_light0, NULL)) != SNELL_OK) goto fail;
+    memset(&d, 0, sizeof d);
+    d.width = VIEW_W;
+    d.height = VIEW_H;
     d.max_bounces = 3;
     d.threads = threads;
     d.cpu_only = ctx == NULL;
-    if ((st = run_frames(ctx, s, &d, repeat, &rf)) != SNELL_OK) goto fail;
+    fd[nf++] = d; /* AUTO */
+    d.raster = SNELL_RASTER2D_CPU;
+    fd[nf++] = d;
+    d.threads = 1;
+    fd[nf++] = d;
+    if (ctx) {
+        d.threads = threads;
+        d.raster = SNELL_RASTER2D_GL;
+        fd[nf++] = d;
+    }
+    if ((st = run_interleaved(ctx, s, fd, nf, repeat, rf)) != SNELL_OK) goto fail;
 
     printf("snell-bench --2d  (%s, %d thread(s) where not 1, median of %d)\n", ctx ? snell_ctx_gl_renderer(ctx) : "no GL",
            threads, repeat);
+    printf("llvmpipe threads: %s\n", lp);
     printf("%-44s %14s\n", "measure", "value");
-    printf("%-44s %14.3g\n", "trace rays/s per core (1 thread, 2263 edges)", (double)r1.rays / (r1.trace_ms * 1e-3));
-    printf("%-44s %14.3g\n", "  same, by thread CPU time (load-robust)", (double)r1.rays / (r1.trace_cpu_ms * 1e-3));
-    printf("%-44s %14.3f\n", "  trace ms for 2e5 rays (thesis: 389 ms/4c)", r1.trace_ms * 200000.0 / (double)r1.rays);
-    printf("%-44s %14.3g\n", "trace rays/s, all threads", (double)rT.rays / (rT.trace_ms * 1e-3));
-    for (li = 0; li < 8; li++) {
+    if (!frame_only) {
+        printf("%-44s %14.3g\n", "trace rays/s per core (1 thread, 2263 edges)", (double)r1.rays / (r1.trace_ms * 1e-3));
+        printf("%-44s %14.3g\n", "  same, by thread CPU time (load-robust)", (double)r1.rays / (r1.trace_cpu_ms * 1e-3));
+        printf("%-44s %14.3f\n", "  trace ms for 2e5 rays (thesis: 389 ms/4c)", r1.trace_ms * 200000.0 / (double)r1.rays);
+        printf("%-44s %14.3g\n", "trace rays/s, all threads", (double)rT.rays / (rT.trace_ms * 1e-3));
+        for (li = 0; li < 8; li++) {
+            char name[64];
+            snprintf(name, sizeof name, "  leaf size %2d: rays/s per core (wall, cpu)", leaves[li]);
+            printf("%-44s %14.3g %10.3g\n", name, leaf_rps[li], leaf_cpu[li]);
+        }
+        if (ctx) {
+            printf("%-44s %14.1f\n", "GL paths/ms (1080p RGBA32F, incl. upload)", (double)rg.paths / rg.raster_ms);
+            printf("%-44s %14llu\n", "  paths per frame", rg.paths);
+        }
+    }
+    printf("1080p frame (2.5e4 rays, 3 bounces, %llu paths), ms:\n", rf[0].paths);
+    printf("  %-24s %9s %9s %9s %9s %7s %9s\n", "rasteriser", "frame", "trace", "raster", "upload", "FPS",
+           "CPU ms");
+    for (c = 0; c < nf; c++) {
         char name[64];
-        snprintf(name, sizeof name, "  leaf size %2d: rays/s per core (wall, cpu)", leaves[li]);
-        printf("%-44s %14.3g %10.3g\n", name, leaf_rps[li], leaf_cpu[li]);
+        snprintf(name, sizeof name, "%s%s, %d thr", c == 0 ? "auto -> " : "", raster_name(rf[c].raster),
+                 fd[c].threads);
+        printf("  %-24s %9.2f %9.2f %9.2f %9.2f %7.1f %9.1f\n", name, rf[c].ms, rf[c].trace_ms, rf[c].raster_ms,
+               rf[c].upload_ms, 1000.0 / rf[c].ms, rf[c].cpu_ms);
     }
-    if (ctx) {
-        printf("%-44s %14.1f\n", "GL paths/ms (1080p RGBA32F, incl. upload)", (double)rg.paths / rg.raster_ms);
-        printf("%-44s %14llu\n", "  paths per frame", rg.paths);
-    }
-    printf("%-44s %14.2f\n", "1080p frame ms (2.5e4 rays, 3 bounces)", rf.ms);
-    printf("%-44s %14.2f\n", "  of which trace ms", rf.trace_ms);
-    printf("%-44s %14.2f\n", "  of which raster ms (incl. glFinish)", rf.raster_ms);
-    printf("%-44s %14llu\n", "  paths", rf.paths);
+    printf("  (frame = trace + raster incl. upload and glFinish; CPU ms: all threads of the process)\n");
+    printf("  auto: %s\n", rf[0].reason);
 
     f = fopen(json, "w");
     if (f) {
-        fprintf(f, "{\n  \"renderer\": \"%s\",\n  \"threads\": %d,\n  \"repeat\": %d,\n", ctx ? snell_ctx_gl_renderer(ctx) : "none",
-                threads, repeat);
-        fprintf(f, "  \"edges\": %d,\n  \"rays\": %d,\n", edges, rays);
-        fprintf(f, "  \"trace_rays_per_s_per_core\": %.1f,\n", (double)r1.rays / (r1.trace_ms * 1e-3));
-        fprintf(f, "  \"trace_rays_per_cpu_s\": %.1f,\n", (double)r1.rays / (r1.trace_cpu_ms * 1e-3));
-        fprintf(f, "  \"trace_rays_per_s_all_threads\": %.1f,\n", (double)rT.rays / (rT.trace_ms * 1e-3));
-        fprintf(f, "  \"leaf_sweep\": [");
-        for (li = 0; li < 8; li++)
-            fprintf(f, "%s{\"leaf\": %d, \"rays_per_s\": %.1f, \"rays_per_cpu_s\": %.1f}", li ? ", " : "", leaves[li],
-                    leaf_rps[li], leaf_cpu[li]);
-        fprintf(f, "],\n  \"gl_paths_per_ms\": %.1f,\n", ctx ? (double)rg.paths / rg.raster_ms : 0.0);
-        fprintf(f, "  \"frame_1080p_ms\": %.3f,\n  \"frame_1080p_trace_ms\": %.3f,\n  \"frame_1080p_raster_ms\": %.3f,\n",
-                rf.ms, rf.trace_ms, rf.raster_ms);
-        fprintf(f, "  \"frame_1080p_paths\": %llu\n}\n", rf.paths);
+        fprintf(f, "{\n  \"renderer\": \"%s\",\n  \"llvmpipe_threads\": \"%s\",\n  \"threads\": %d,\n  \"repeat\": %d,\n",
+                ctx ? snell_ctx_gl_renderer(ctx) : "none", lp, threads, repeat);
+        if (!frame_only) {
+            fprintf(f, "  \"edges\": %d,\n  \"rays\": %d,\n", edges, rays);
+            fprintf(f, "  \"trace_rays_per_s_per_core\": %.1f,\n", (double)r1.rays / (r1.trace_ms * 1e-3));
+            fprintf(f, "  \"trace_rays_per_cpu_s\": %.1f,\n", (double)r1.rays / (r1.trace_cpu_ms * 1e-3));
+            fprintf(f, "  \"trace_rays_per_s_all_threads\": %.1f,\n", (double)rT.rays / (rT.trace_ms * 1e-3));
+            fprintf(f, "  \"leaf_sweep\": [");
+            for (li = 0; li < 8; li++)
+                fprintf(f, "%s{\"leaf\": %d, \"rays_per_s\": %.1f, \"rays_per_cpu_s\": %.1f}", li ? ", " : "",
+                        leaves[li], leaf_rps[li], leaf_cpu[li]);
+            fprintf(f, "],\n  \"gl_paths_per_ms\": %.1f,\n", ctx ? (double)rg.paths / rg.raster_ms : 0.0);
+        }
+        fprintf(f, "  \"frame_1080p_paths\": %llu,\n  \"frame_1080p_auto\": \"%s\",\n  \"frame_1080p\": [", rf[0].paths,
+                rf[0].reason);
+        for (c = 0; c < nf; c++)
+            fprintf(f,
+                    "%s{\"config\": \"%s\", \"raster\": \"%s\", \"threads\": %d, \"ms\": %.3f, \"trace_ms\": %.3f, "
+                    "\"raster_ms\": %.3f, \"upload_ms\": %.3f, \"cpu_ms\": %.3f}",
+                    c ? ", " : "", c == 0 ? "auto" : raster_name(fd[c].raster), raster_name(rf[c].raster),
+                    fd[c].threads, rf[c].ms, rf[c].trace_ms, rf[c].raster_ms, rf[c].upload_ms, rf[c].cpu_ms);
+        fprintf(f, "],\n  \"frame_1080p_ms\": %.3f,\n  \"frame_1080p_trace_ms\": %.3f,\n  \"frame_1080p_raster_ms\": %.3f\n}\n",
+                rf[0].ms, rf[0].trace_ms, rf[0].raster_ms);
         fclose(f);
     }
     f = fopen(csv, "w");
     if (f) {
         fprintf(f, "measure,value\n");
-        fprintf(f, "trace_rays_per_s_per_core,%.1f\n", (double)r1.rays / (r1.trace_ms * 1e-3));
-        fprintf(f, "trace_rays_per_cpu_s,%.1f\n", (double)r1.rays / (r1.trace_cpu_ms * 1e-3));
-        fprintf(f, "trace_rays_per_s_all_threads,%.1f\n", (double)rT.rays / (rT.trace_ms * 1e-3));
-        for (li = 0; li < 8; li++)
-            fprintf(f, "leaf_%d_rays_per_s,%.1f\nleaf_%d_rays_per_cpu_s,%.1f\n", leaves[li], leaf_rps[li], leaves[li],
-                    leaf_cpu[li]);
-        fprintf(f, "gl_paths_per_ms,%.1f\n", ctx ? (double)rg.paths / rg.raster_ms : 0.0);
-        fprintf(f, "frame_1080p_ms,%.3f\nframe_1080p_trace_ms,%.3f\nframe_1080p_raster_ms,%.3f\n", rf.ms, rf.trace_ms,
-                rf.raster_ms);
+        fprintf(f, "renderer,\"%s\"\nllvmpipe_threads,\"%s\"\n", ctx ? snell_ctx_gl_renderer(ctx) : "none", lp);
+        if (!frame_only) {
+            fprintf(f, "trace_rays_per_s_per_core,%.1f\n", (double)r1.rays / (r1.trace_ms * 1e-3));
+            fprintf(f, "trace_rays_per_cpu_s,%.1f\n", (double)r1.rays / (r1.trace_cpu_ms * 1e-3));
+            fprintf(f, "trace_rays_per_s_all_threads,%.1f\n", (double)rT.rays / (rT.trace_ms * 1e-3));
+            for (li = 0; li < 8; li++)
+                fprintf(f, "leaf_%d_rays_per_s,%.1f\nleaf_%d_rays_per_cpu_s,%.1f\n", leaves[li], leaf_rps[li],
+                        leaves[li], leaf_cpu[li]);
+            fprintf(f, "gl_paths_per_ms,%.1f\n", ctx ? (double)rg.paths / rg.raster_ms : 0.0);
+        }
+        fprintf(f, "frame_1080p_ms,%.3f\nframe_1080p_trace_ms,%.3f\nframe_1080p_raster_ms,%.3f\n", rf[0].ms,
+                rf[0].trace_ms, rf[0].raster_ms);
+        for (c = 1; c < nf; c++)
+            fprintf(f, "frame_1080p_%s_%dthr_ms,%.3f\n", fd[c].raster == SNELL_RASTER2D_GL ? "gl" : "cpu",
+                    fd[c].threads, rf[c].ms);
         fclose(f);
     }
     printf("wrote %s and %s\n", json, csv);

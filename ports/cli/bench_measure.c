@@ -96,6 +96,7 @@ static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, bench_config
     memset(&desc, 0, sizeof desc);
     desc.width = c->width;
     desc.height = c->height;
+    desc.shading = c->shading;
     if (snell_renderer_create(ctx, &desc, &r) != SNELL_OK) bench_fail(c, "renderer", ctx);
     else if (snell_render(r, fd, &fs) != SNELL_OK) bench_fail(c, "render", ctx);
     else if (snell_renderer_read_rgba(r, b->rgba) != SNELL_OK) bench_fail(c, "readback", ctx);
@@ -120,6 +121,7 @@ static int exit_dir_frames(snell_ctx *ctx, const snell_frame_desc *fd, bench_con
     memset(&desc, 0, sizeof desc);
     desc.width = c->width;
     desc.height = c->height;
+    desc.shading = c->shading;
     desc.output = SNELL_OUTPUT_EXIT_DIRECTION;
     bg.glass = NULL;
     bg.glass_count = 0;

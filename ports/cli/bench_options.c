@@ -3,6 +3,7 @@
  * registry through cli_method.c. */
 #include "bench.h"
 #include "cli_method.h"
+#include "cli_scene.h"
 
 #include <errno.h>
 #include <stdlib.h>
@@ -36,8 +37,11 @@ static void usage(FILE *f)
             "  --warmup N             untimed frames first (default 3)\n"
             "  --full-interfaces N    interface cap of the FULL reference (default 10)\n"
             "  --threads N            reference tracer threads (default: all CPUs)\n"
+            "                         (llvmpipe's own threads come from LP_NUM_THREADS, unset: one per\n"
+            "                         CPU; reported in the table, JSON and CSV)\n"
             "  --env FILE|procedural  environment: procedural (default), an equirectangular image,\n"
-            "                         or six faces given as a pattern with %%s (px nx py ny pz nz)\n"
+            "                         or six faces given as a pattern with %%s (px nx py ny pz nz;\n"
+            "                         %%%% for a %%, no other %%)\n"
             "  -o PREFIX              outputs PREFIX.json, .csv, .png (default snell-bench)\n"
             "  --cache DIR            reference cache (default snell-bench-cache); --no-cache\n"
             "  --images DIR           also write each configuration's colour image and error map\n"
@@ -89,8 +93,15 @@ static int value_option(const char *a, const char *v, bench_options *o)
     if (!strcmp(a, "--warmup")) return bench_parse_int(a, v, 0, 100000, &o->warmup);
     if (!strcmp(a, "--full-interfaces")) return bench_parse_int(a, v, 1, SNELL_REF_MAX_INTERFACES, &o->full_interfaces);
     if (!strcmp(a, "--threads")) return bench_parse_int(a, v, 0, SNELL_REF_MAX_THREADS, &o->threads);
-    if (!strcmp(a, "--env")) o->env = strcmp(v, "procedural") ? v : NULL;
-    else if (!strcmp(a, "-o")) o->out_prefix = v;
+    if (!strcmp(a, "--env")) {
+        char why[160];
+        if (!cli_env_spec_check(v, why, sizeof why)) {
+            fprintf(stderr, "snell-bench: %s '%s': %s; only %%s (the face: px nx py ny pz nz) and %%%% (a %%) may "
+                            "follow a %%\n", a, v, why);
+            return 0;
+        }
+        o->env = strcmp(v, "procedural") ? v : NULL;
+    } else if (!strcmp(a, "-o")) o->out_prefix = v;
     else if (!strcmp(a, "--cache")) o->cache_dir = v;
     else if (!strcmp(a, "--images")) o->images_dir = v;
     else if (!strcmp(a, "--plot-y")) {

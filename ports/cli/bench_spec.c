@@ -105,6 +105,15 @@ static int k_camera(bench_config *c, const char *v)
     return 1;
 }
 
+static int k_shading(bench_config *c, const char *v)
+{
+    if (!strcmp(v, "auto")) c->shading = SNELL_SHADING_AUTO;
+    else if (!strcmp(v, "forward")) c->shading = SNELL_SHADING_FORWARD;
+    else if (!strcmp(v, "screen")) c->shading = SNELL_SHADING_SCREEN;
+    else return bad("shading", v, "auto, forward or screen");
+    return 1;
+}
+
 static const common_key g_common[] = {
     {"scene", "a scene below, sphere|cube|torus|goblet|bunny, or a mesh file (normalised to the unit sphere)",
      k_scene},
@@ -115,6 +124,7 @@ static const common_key g_common[] = {
     {"thickness", "thin walls of this thickness instead of solid glass (default 0: solid)", k_thickness},
     {"tint", "transmission tint r/g/b (default %g/%g/%g)", k_tint},
     {"camera", "orbit camera az/el/dist, degrees (default: the scene's, 30/20/3.5 for one mesh)", k_camera},
+    {"shading", "auto (default), forward or screen (the renderer's screen-space stage)", k_shading},
 };
 #define COMMON_COUNT ((int)(sizeof g_common / sizeof *g_common))
 

@@ -75,6 +75,7 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
     memset(&desc, 0, sizeof desc);
     desc.width = t->c->width;
     desc.height = t->c->height;
+    desc.shading = t->c->shading;
     if (snell_renderer_create(ctx, &desc, &t->r) != SNELL_OK) {
         bench_fail(t->c, "renderer", ctx);
         return;

@@ -20,8 +20,12 @@ int cli_is_shape_spec(const char *name);
 snell_status cli_mesh_open(snell_ctx *ctx, const char *name, int normalize, snell_mesh **out);
 
 /* spec NULL or "procedural": the built-in sky; a path containing "%s": six
- * faces (px nx py ny pz nz substituted); any other path: an equirectangular image. */
+ * faces (px nx py ny pz nz substituted for each %s); any other path: an
+ * equirectangular image. "%%" stands for "%"; any other '%' is refused
+ * (SNELL_E_INVALID_ARG: check with cli_env_spec_check first for the reason). */
 snell_status cli_env_open(snell_ctx *ctx, const char *spec, snell_env **out);
+/* 1 if cli_env_open accepts spec's pattern, else 0 with the reason in why. */
+int cli_env_spec_check(const char *spec, char *why, size_t why_size);
 
 /* Column-major model matrix: uniform scale place[3], then translate place[0..2]. */
 void cli_place_matrix(const float place[4], float m[16]);

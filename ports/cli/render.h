@@ -32,6 +32,7 @@ typedef struct render_options {
     float az_deg, el_deg, dist, fov_deg;
     snell_backend backend;
     int frames;                    /* >1: time the frames and print the median */
+    snell_shading shading;         /* --shading */
     int normalize;                 /* fit each mesh into the unit sphere before placing it */
     int stats;                     /* --stats: frame and per-object statistics on stdout */
     int verbose;                   /* -v: the same on stderr, and the library's INFO messages */

@@ -55,6 +55,7 @@ static void usage(void)
             "  --bounces N          interactions per ray (default 8; 0 = direct light only)\n"
             "  --passes N           progressive passes to accumulate (default 1)\n"
             "  --threads N --seed S --blend add|screen --cpu (exact CPU rasteriser, no GL)\n"
+            "  --raster auto|gl|cpu  who rasterises the paths (auto: the CPU on software GL, else GL lines)\n"
             "  --format auto|rgba32f|rgba16f|rgb10a2|rgba8\n");
 }
 
@@ -152,6 +153,16 @@ int snell_render2d_main(int argc, char **argv)
             return 0;
         }
         else if (strcmp(a, "--cpu") == 0) d.cpu_only = 1;
+        else if (strcmp(a, "--raster") == 0 && v) {
+            const char *r = argv[++i];
+            if (strcmp(r, "auto") == 0) d.raster = SNELL_RASTER2D_AUTO;
+            else if (strcmp(r, "gl") == 0) d.raster = SNELL_RASTER2D_GL;
+            else if (strcmp(r, "cpu") == 0) d.raster = SNELL_RASTER2D_CPU;
+            else {
+                fprintf(stderr, "snell-render --2d: --raster wants auto, gl or cpu, got '%s'\n", r);
+                return 2;
+            }
+        }
         else if (strcmp(a, "--format") == 0 && v) {
             const char *f = argv[++i];
             d.format = strcmp(f, "rgba32f") == 0 ? SNELL_FORMAT2D_RGBA32F
@@ -249,9 +260,11 @@ int snell_render2d_main(int argc, char **argv)
         rgba[4 * i + 3] = albedo ? albedo[4 * i + 3] : 255;
     }
     if ((st = snell_write_png(out, w, h, rgba)) != SNELL_OK) goto fail;
-    printf("%s: %dx%d, %s, %llu rays, %llu paths, %d pass(es), trace %.1f ms, raster %.1f ms, exposure %.4g\n", out, w, h,
-           ctx ? snell_ctx_gl_renderer(ctx) : "CPU exact rasteriser", (unsigned long long)stats.rays,
+    printf("%s: %dx%d, %s, %s, %llu rays, %llu paths, %d pass(es), trace %.1f ms, raster %.1f ms, exposure %.4g\n",
+           out, w, h, ctx ? snell_ctx_gl_renderer(ctx) : "no GL",
+           stats.raster == SNELL_RASTER2D_GL ? "GL lines" : "CPU exact rasteriser", (unsigned long long)stats.rays,
            (unsigned long long)stats.paths, stats.passes, stats.trace_ms, stats.raster_ms, (double)exposure);
+    printf("rasteriser: %s\n", stats.raster_reason);
     rc = 0;
     goto done;
 fail:

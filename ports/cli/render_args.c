@@ -51,12 +51,14 @@ void render_usage(FILE *f)
     fprintf(f,
             "\nview and output:\n"
             "  --env FILE|procedural  environment: procedural (default), an equirectangular image,\n"
-            "                         or six faces given as a pattern with %%s (px nx py ny pz nz)\n"
+            "                         or six faces given as a pattern with %%s (px nx py ny pz nz;\n"
+            "                         %%%% for a %%, no other %%)\n"
             "  --size WxH             image size (default 512x512)\n"
             "  --camera AZ,EL,DIST    orbit camera about the origin: degrees, degrees, distance (default 30,20,3.5)\n"
             "  --fov DEG              vertical field of view (default 45)\n"
             "  --backend NAME         surfaceless (default), pbuffer\n"
             "  --frames N             render N frames and print the median time per frame\n"
+            "  --shading MODE         auto (default: screen space for dense meshes), forward, screen\n"
             "  --stats                print the last frame's statistics: per glass object the method used\n"
             "                         and why, warnings, passes, what was skipped\n"
             "  -v, --verbose          the statistics on stderr, and the library's info messages\n"
@@ -213,6 +215,12 @@ static render_object *add_object(render_options *o, const char *mesh, int opaque
 static int view_option(const char *a, const char *v, render_options *o)
 {
     if (!strcmp(a, "--env")) {
+        char why[160];
+        if (!cli_env_spec_check(v, why, sizeof why)) {
+            fprintf(stderr, PROG ": %s '%s': %s; only %%s (the face: px nx py ny pz nz) and %%%% (a %%) may follow "
+                            "a %%\n", a, v, why);
+            return 0;
+        }
         o->env = strcmp(v, "procedural") ? v : NULL;
     } else if (!strcmp(a, "--size")) {
         char tail;
@@ -233,6 +241,11 @@ static int view_option(const char *a, const char *v, render_options *o)
         if (!strcmp(v, "surfaceless")) o->backend = SNELL_BACKEND_SURFACELESS;
         else if (!strcmp(v, "pbuffer")) o->backend = SNELL_BACKEND_PBUFFER;
         else return usage_error("%s: unknown backend '%s' (surfaceless, pbuffer)", a, v);
+    } else if (!strcmp(a, "--shading")) {
+        if (!strcmp(v, "auto")) o->shading = SNELL_SHADING_AUTO;
+        else if (!strcmp(v, "forward")) o->shading = SNELL_SHADING_FORWARD;
+        else if (!strcmp(v, "screen")) o->shading = SNELL_SHADING_SCREEN;
+        else return usage_error("%s: unknown shading '%s' (auto, forward, screen)", a, v);
     } else if (!strcmp(a, "--frames")) {
         if (!parse_int(v, &o->frames) || o->frames < 1 || o->frames > 100000)
             return usage_error("%s wants 1..100000, got '%s'", a, v);

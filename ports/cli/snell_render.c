@@ -137,8 +137,9 @@ static void skipped_str(unsigned bits, char *buf, size_t n)
 static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene *s)
 {
     int i;
-    fprintf(f, "stats: frame passes %d, cpu %.3f ms, glass %d, opaque drawn %d, background %d\n", fs->passes,
-            fs->cpu_ms, fs->glass_count, fs->opaque_drawn, fs->background_drawn);
+    fprintf(f, "stats: frame passes %d, cpu %.3f ms, glass %d, opaque drawn %d, background %d, fragment %s\n",
+            fs->passes, fs->cpu_ms, fs->glass_count, fs->opaque_drawn, fs->background_drawn,
+            fs->fragment_mediump ? "mediump" : "highp");
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
         snell_glass_resolved m;
@@ -147,9 +148,11 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
         if (snell_glass_defaults(&s->glass[i].material, &m) != SNELL_OK) m.material.ior = NAN;
         fprintf(f,
                 "stats: glass %d (%s, ior %g): method %s, warning %d, passes %d, prepared %d, env_updated %d, "
-                "skipped %s, draw_order %d, view_depth %.3f, hidden_fraction %.4f, reason: %s\n",
+                "skipped %s, draw_order %d, view_depth %.3f, hidden_fraction %.4f, shading %s (%.1f px/triangle), "
+                "reason: %s\n",
                 i, s->glass_names[i], m.material.ior, snell_method_str(g->method_used), g->warning, g->passes,
-                g->prepared, g->env_updated, skipped, g->draw_order, g->view_depth, g->hidden_fraction, g->reason);
+                g->prepared, g->env_updated, skipped, g->draw_order, g->view_depth, g->hidden_fraction,
+                g->screen_space ? "screen" : "forward", g->pixels_per_triangle, g->reason);
     }
 }
 
@@ -232,6 +235,7 @@ int main(int argc, char **argv)
     memset(&rd, 0, sizeof rd);
     rd.width = o.width;
     rd.height = o.height;
+    rd.shading = o.shading;
     if (snell_renderer_create(ctx, &rd, &r) != SNELL_OK) {
         fprintf(stderr, "snell-render: renderer: %s\n", snell_last_error(ctx));
         goto done;

@@ -1,7 +1,10 @@
-// fp16.glsl - mediump study (issue 3): llvmpipe computes mediump at full fp32,
-// so a build with SNELL_FP16_EMULATION rounds chosen intermediates to IEEE
-// half precision (10-bit mantissa, max 65504) through packHalf2x16 /
-// unpackHalf2x16, as a GPU with true fp16 mediump would hold them. Kernels
+// fp16.glsl - mediump study (issue 3). Shaders declare what a GPU with real
+// fp16 holds at mediump as SNELL_MEDIUMP, which the context's precision policy
+// makes highp on llvmpipe (it emulates fp16 mediump in software, slower than
+// highp; core/program.c). A build with SNELL_FP16_EMULATION sets the policy
+// to mediump and also rounds chosen intermediates to IEEE half precision
+// (10-bit mantissa, max 65504) through packHalf2x16 / unpackHalf2x16, as a
+// GPU with true fp16 mediump would hold them, whatever the driver. Kernels
 // wrap values that are mediump on such hardware with snell_h(); without the
 // flag snell_h(x) is x and the shader is unchanged. Only what crosses a
 // snell_h() is rounded: arithmetic inside a function (e.g. the optics chunk)

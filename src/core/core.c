@@ -65,6 +65,20 @@ void snell__free(const snell_alloc *al, void *ptr)
     if (ptr) al->a.free(ptr, al->a.user);
 }
 
+size_t snell__ctx_budget(const snell_ctx *ctx)
+{
+    return ctx && ctx->memory_budget ? ctx->memory_budget : SNELL_DEFAULT_MEMORY_BUDGET;
+}
+
+snell_status snell__budget_check(const snell_ctx *ctx, size_t bytes, const char *what)
+{
+    size_t budget = snell__ctx_budget(ctx);
+    if (bytes <= budget) return SNELL_OK;
+    return snell__fail(ctx, SNELL_E_LIMIT,
+                       "%s needs %.1f MiB, more than the memory budget of %.1f MiB (snell_ctx_desc.memory_budget)",
+                       what, (double)bytes / 1048576.0, (double)budget / 1048576.0);
+}
+
 size_t snell__mul_size(size_t a, size_t b, int *ok)
 {
     if (a && b > (size_t)-1 / a) {

@@ -36,6 +36,19 @@ void snell__log(const snell_ctx *ctx, snell_log_level level, const char *fmt, ..
 /* Monotonic clock in milliseconds (timing statistics). */
 double snell__now_ms(void);
 
+/* The context's memory budget (snell_ctx_desc.memory_budget; the default for NULL). */
+size_t snell__ctx_budget(const snell_ctx *ctx);
+/* SNELL_OK if one request of `bytes` for `what` (e.g. "OBJ positions") fits
+ * the budget, else SNELL_E_LIMIT with a message naming the request and the
+ * budget. Called before the allocation. */
+snell_status snell__budget_check(const snell_ctx *ctx, size_t bytes, const char *what);
+
+/* snell_image_read / snell_image_decode within a given memory budget (a
+ * context's, for environments); they report on the thread-local message. */
+snell_status snell__image_read_budget(const char *path, size_t budget, int *width, int *height, uint8_t **rgba);
+snell_status snell__image_decode_budget(const void *data, size_t size, size_t budget, int *width, int *height,
+                                        uint8_t **rgba);
+
 /* size_t multiplication that reports overflow (returns 0 and sets *ok = 0). */
 size_t snell__mul_size(size_t a, size_t b, int *ok);
 

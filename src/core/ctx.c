@@ -3,8 +3,11 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
+
+static pthread_mutex_t g_ref_lock = PTHREAD_MUTEX_INITIALIZER;
 
 static void GL_APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity,
                                        GLsizei length, const GLchar *message, const void *user)
@@ -83,8 +86,10 @@ snell_status snell_ctx_create(const snell_ctx_desc *desc, snell_ctx **out)
     ctx = (snell_ctx *)snell__calloc(&al, 1, sizeof *ctx);
     if (!ctx) return snell__fail(NULL, SNELL_E_NOMEM, "snell_ctx_create: out of memory");
     ctx->alloc = al;
+    ctx->refs = 1; /* the caller's handle */
     ctx->log = d.log;
     ctx->log_user = d.log_user;
+    ctx->memory_budget = d.memory_budget ? d.memory_budget : SNELL_DEFAULT_MEMORY_BUDGET;
     ctx->platform.display = EGL_NO_DISPLAY;
     ctx->platform.context = EGL_NO_CONTEXT;
     ctx->platform.surface = EGL_NO_SURFACE;
@@ -111,6 +116,7 @@ snell_status snell_ctx_create(const snell_ctx_desc *desc, snell_ctx **out)
         st = snell__platform_open_external(ctx, &ctx->platform);
         break;
     }
+    ctx->gl_context = ctx->platform.context;
     if (st == SNELL_OK) st = probe_gl(ctx);
     if (st != SNELL_OK) {
         /* Copy the message out before the context (which holds it) is freed. */
@@ -125,15 +131,108 @@ snell_status snell_ctx_create(const snell_ctx_desc *desc, snell_ctx **out)
     return SNELL_OK;
 }
 
-void snell_ctx_destroy(snell_ctx *ctx)
+void snell__ctx_retain(snell_ctx *ctx)
+{
+    if (!ctx) return;
+    pthread_mutex_lock(&g_ref_lock);
+    ctx->refs++;
+    pthread_mutex_unlock(&g_ref_lock);
+}
+
+void snell__ctx_release(snell_ctx *ctx)
 {
     snell_alloc al;
+    int last;
     if (!ctx) return;
-    if (ctx->debug_installed) install_debug(ctx, 0);
-    snell__platform_close(&ctx->platform);
+    pthread_mutex_lock(&g_ref_lock);
+    last = --ctx->refs == 0;
+    pthread_mutex_unlock(&g_ref_lock);
+    if (!last) return;
     al = ctx->alloc;
     snell__free(&al, ctx->gl_extensions);
     snell__free(&al, ctx);
+}
+
+/* Objects may outlive their context (snell.h, snell_ctx_destroy): the GL
+ * context goes now, the struct with the last object. */
+void snell_ctx_destroy(snell_ctx *ctx)
+{
+    if (!ctx || ctx->destroyed) return;
+    if (ctx->debug_installed) {
+        snell__gl_scope sc;
+        if (snell__gl_scope_enter(ctx, &sc)) install_debug(ctx, 0);
+        snell__gl_scope_leave(&sc);
+    }
+    snell__platform_close(&ctx->platform);
+    ctx->destroyed = 1;
+    ctx->log = NULL; /* the caller may free log_user now */
+    snell__ctx_release(ctx);
+}
+
+snell_status snell_ctx_make_current(snell_ctx *ctx)
+{
+    snell_platform *p;
+    if (!ctx) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_ctx_make_current: ctx is NULL");
+    if (ctx->destroyed)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_ctx_make_current: the context was destroyed");
+    p = &ctx->platform;
+    if (!p->owns_context) {
+        if (eglGetCurrentContext() == ctx->gl_context) return SNELL_OK;
+        return snell__fail(ctx, SNELL_E_INVALID_ARG,
+                           "snell_ctx_make_current: EXTERNAL context: the host's EGL context it was created on is "
+                           "not current on this thread (the host makes it current, snell cannot)");
+    }
+    if (!eglMakeCurrent(p->display, p->surface, p->surface, p->context))
+        return snell__fail(ctx, SNELL_E_EGL, "snell_ctx_make_current: eglMakeCurrent failed: %s",
+                           snell__egl_error_str(eglGetError()));
+    return SNELL_OK;
+}
+
+snell_status snell__ctx_check_current(snell_ctx *ctx, const char *who)
+{
+    if (ctx->destroyed)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: its context was destroyed (snell_ctx_destroy)", who);
+    if (eglGetCurrentContext() != ctx->gl_context)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG,
+                           ctx->platform.owns_context
+                               ? "%s: the context's GL context is not current on this thread (another context was "
+                                 "created or made current since): call snell_ctx_make_current first"
+                               : "%s: the host's EGL context this EXTERNAL context was created on is not current on "
+                                 "this thread",
+                           who);
+    return SNELL_OK;
+}
+
+int snell__gl_scope_enter(snell_ctx *ctx, snell__gl_scope *s)
+{
+    s->display = eglGetCurrentDisplay();
+    s->draw = eglGetCurrentSurface(EGL_DRAW);
+    s->read = eglGetCurrentSurface(EGL_READ);
+    s->context = eglGetCurrentContext();
+    s->used_display = s->display;
+    s->switched = 0;
+    if (ctx && !ctx->destroyed) {
+        const snell_platform *p = &ctx->platform;
+        if (s->context != EGL_NO_CONTEXT && s->context == ctx->gl_context) return 1;
+        if (p->owns_context && eglMakeCurrent(p->display, p->surface, p->surface, p->context)) {
+            s->used_display = p->display;
+            s->switched = 1;
+            return 1;
+        }
+    }
+    /* No context current: the GL calls that follow reach none (the GL spec
+     * leaves them undefined; the dispatch of libglvnd, Mesa and Android
+     * ignores them), so they cannot delete another context's objects. */
+    if (s->context != EGL_NO_CONTEXT && eglMakeCurrent(s->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT))
+        s->switched = 1;
+    return 0;
+}
+
+void snell__gl_scope_leave(const snell__gl_scope *s)
+{
+    if (!s->switched) return;
+    if (s->context != EGL_NO_CONTEXT) eglMakeCurrent(s->display, s->draw, s->read, s->context);
+    else eglMakeCurrent(s->used_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }
 
 snell_backend snell_ctx_backend(const snell_ctx *ctx) { return ctx ? ctx->backend : SNELL_BACKEND_DEFAULT; }

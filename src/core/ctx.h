@@ -17,6 +17,42 @@ struct snell_ctx {
     int has_khr_debug;
     int debug_installed;
     char last_error[1024];
+    int fragment_mediump;           /* shader precision policy (program.c): 0 unknown, 1 mediump, -1 highp */
+    char precision_reason[96];
+    size_t memory_budget;           /* resolved, never 0 (snell_ctx_desc.memory_budget; core.h) */
+    /* Lifetime: the caller's handle and every object made with the context
+     * (or drawn in it: a CPU-only mesh) hold a reference. snell_ctx_destroy
+     * releases the GL context at once and the handle's reference; the struct
+     * (allocator, messages) lives until the last object is destroyed. */
+    int refs;
+    int destroyed;                  /* snell_ctx_destroy was called: GL calls must not reach it */
+    EGLContext gl_context;          /* the EGL context it draws in (owned or the host's) */
 };
+
+/* An object takes (retain) and gives back (release) a reference; ctx may be
+ * NULL. The last release of a destroyed context frees it. */
+void snell__ctx_retain(snell_ctx *ctx);
+void snell__ctx_release(snell_ctx *ctx);
+
+/* SNELL_OK if ctx is alive and its GL context is current on this thread, else
+ * SNELL_E_INVALID_ARG with a message starting with who. For calls that draw or
+ * create GL objects: drawing in whatever context happens to be current gives
+ * misleading GL errors or touches another context's objects. */
+snell_status snell__ctx_check_current(snell_ctx *ctx, const char *who);
+
+/* Destroy paths: snell__gl_scope_enter returns 1 when GL deletions reach
+ * ctx's own GL context (current already, or an owned one made current for the
+ * moment); otherwise 0, with no context current until snell__gl_scope_leave,
+ * so GL calls made meanwhile are ignored (the context is gone, or an EXTERNAL
+ * one that is not current: its objects stay with it). leave puts back
+ * whatever was current before. */
+typedef struct snell__gl_scope {
+    EGLDisplay display, used_display;
+    EGLSurface draw, read;
+    EGLContext context;
+    int switched;
+} snell__gl_scope;
+int snell__gl_scope_enter(snell_ctx *ctx, snell__gl_scope *s);
+void snell__gl_scope_leave(const snell__gl_scope *s);
 
 #endif

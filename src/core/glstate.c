@@ -1,11 +1,78 @@
 /* glstate.c — save/restore of every piece of GL state snell's per-frame calls
- * may change. Used only with the EXTERNAL backend: glGet* can stall a real
- * driver's pipeline, so an owned context skips it. */
+ * may change or its output depends on. Saved only with the EXTERNAL backend:
+ * glGet* can stall a real driver's pipeline, so an owned context skips it.
+ * Also the frame's defaults for state no pass sets (all backends), and the
+ * pixel pack/unpack scope of read-backs and uploads. */
 #include "core/glstate.h"
 #include "core/gl.h"
 
 static unsigned char enabled(GLenum cap) { return glIsEnabled(cap) ? 1 : 0; }
 static void set_enabled(GLenum cap, unsigned char on) { if (on) glEnable(cap); else glDisable(cap); }
+
+static void pixel_save(snell__pixel_store *p, int pack)
+{
+    glGetIntegerv(pack ? GL_PIXEL_PACK_BUFFER_BINDING : GL_PIXEL_UNPACK_BUFFER_BINDING, &p->buffer);
+    glGetIntegerv(pack ? GL_PACK_ALIGNMENT : GL_UNPACK_ALIGNMENT, &p->alignment);
+    glGetIntegerv(pack ? GL_PACK_ROW_LENGTH : GL_UNPACK_ROW_LENGTH, &p->row_length);
+    glGetIntegerv(pack ? GL_PACK_SKIP_ROWS : GL_UNPACK_SKIP_ROWS, &p->skip_rows);
+    glGetIntegerv(pack ? GL_PACK_SKIP_PIXELS : GL_UNPACK_SKIP_PIXELS, &p->skip_pixels);
+    p->image_height = p->skip_images = 0;
+    if (!pack) {
+        glGetIntegerv(GL_UNPACK_IMAGE_HEIGHT, &p->image_height);
+        glGetIntegerv(GL_UNPACK_SKIP_IMAGES, &p->skip_images);
+    }
+}
+
+static void pixel_set(const snell__pixel_store *p, int pack)
+{
+    glBindBuffer(pack ? GL_PIXEL_PACK_BUFFER : GL_PIXEL_UNPACK_BUFFER, (GLuint)p->buffer);
+    glPixelStorei(pack ? GL_PACK_ALIGNMENT : GL_UNPACK_ALIGNMENT, p->alignment);
+    glPixelStorei(pack ? GL_PACK_ROW_LENGTH : GL_UNPACK_ROW_LENGTH, p->row_length);
+    glPixelStorei(pack ? GL_PACK_SKIP_ROWS : GL_UNPACK_SKIP_ROWS, p->skip_rows);
+    glPixelStorei(pack ? GL_PACK_SKIP_PIXELS : GL_UNPACK_SKIP_PIXELS, p->skip_pixels);
+    if (!pack) {
+        glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, p->image_height);
+        glPixelStorei(GL_UNPACK_SKIP_IMAGES, p->skip_images);
+    }
+}
+
+static void pixel_default(int pack, int alignment)
+{
+    snell__pixel_store d = {0, 4, 0, 0, 0, 0, 0};
+    d.alignment = alignment;
+    pixel_set(&d, pack);
+}
+
+void snell__pixel_pack_begin(snell__pixel_store *saved, int alignment)
+{
+    pixel_save(saved, 1);
+    pixel_default(1, alignment);
+}
+
+void snell__pixel_pack_end(const snell__pixel_store *saved) { pixel_set(saved, 1); }
+
+void snell__pixel_unpack_begin(snell__pixel_store *saved, int alignment)
+{
+    pixel_save(saved, 0);
+    pixel_default(0, alignment);
+}
+
+void snell__pixel_unpack_end(const snell__pixel_store *saved) { pixel_set(saved, 0); }
+
+void snell__glstate_frame_defaults(void)
+{
+    int i;
+    for (i = 0; i < SNELL_GLSTATE_UNITS; i++) glBindSampler((GLuint)i, 0);
+    glDepthRangef(0.0f, 1.0f);
+    glDisable(GL_RASTERIZER_DISCARD);
+    glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glDisable(GL_SAMPLE_COVERAGE);
+    glDisable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+    glFrontFace(GL_CCW);
+    glCullFace(GL_BACK);
+    pixel_default(1, 4);
+    pixel_default(0, 4);
+}
 
 void snell__glstate_save(snell_glstate *s)
 {
@@ -22,6 +89,7 @@ void snell__glstate_save(snell_glstate *s)
         glActiveTexture((GLenum)(GL_TEXTURE0 + i));
         glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->tex_2d[i]);
         glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &s->tex_cube[i]);
+        glGetIntegerv(GL_SAMPLER_BINDING, &s->sampler[i]);
     }
     glActiveTexture((GLenum)s->active_texture);
     glGetIntegerv(GL_VIEWPORT, s->viewport);
@@ -50,6 +118,13 @@ void snell__glstate_save(snell_glstate *s)
     glGetFloatv(GL_DEPTH_CLEAR_VALUE, &s->clear_depth);
     glGetIntegerv(GL_PACK_ALIGNMENT, &s->pack_alignment);
     glGetIntegerv(GL_UNPACK_ALIGNMENT, &s->unpack_alignment);
+    glGetFloatv(GL_DEPTH_RANGE, s->depth_range);
+    s->rasterizer_discard = enabled(GL_RASTERIZER_DISCARD);
+    s->alpha_to_coverage = enabled(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    s->sample_coverage = enabled(GL_SAMPLE_COVERAGE);
+    s->primitive_restart = enabled(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+    pixel_save(&s->pack, 1);
+    pixel_save(&s->unpack, 0);
 }
 
 void snell__glstate_restore(const snell_glstate *s)
@@ -65,6 +140,7 @@ void snell__glstate_restore(const snell_glstate *s)
         glActiveTexture((GLenum)(GL_TEXTURE0 + i));
         glBindTexture(GL_TEXTURE_2D, (GLuint)s->tex_2d[i]);
         glBindTexture(GL_TEXTURE_CUBE_MAP, (GLuint)s->tex_cube[i]);
+        glBindSampler((GLuint)i, (GLuint)s->sampler[i]);
     }
     glActiveTexture((GLenum)s->active_texture);
     glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
@@ -88,4 +164,11 @@ void snell__glstate_restore(const snell_glstate *s)
     glClearDepthf(s->clear_depth);
     glPixelStorei(GL_PACK_ALIGNMENT, s->pack_alignment);
     glPixelStorei(GL_UNPACK_ALIGNMENT, s->unpack_alignment);
+    glDepthRangef(s->depth_range[0], s->depth_range[1]);
+    set_enabled(GL_RASTERIZER_DISCARD, s->rasterizer_discard);
+    set_enabled(GL_SAMPLE_ALPHA_TO_COVERAGE, s->alpha_to_coverage);
+    set_enabled(GL_SAMPLE_COVERAGE, s->sample_coverage);
+    set_enabled(GL_PRIMITIVE_RESTART_FIXED_INDEX, s->primitive_restart);
+    pixel_set(&s->pack, 1);
+    pixel_set(&s->unpack, 0);
 }

@@ -3,7 +3,13 @@
 #ifndef SNELL_GLSTATE_H
 #define SNELL_GLSTATE_H
 
-#define SNELL_GLSTATE_UNITS 4 /* texture units the library may bind (0..3) */
+#define SNELL_GLSTATE_UNITS 5 /* texture units the library may bind (0..4: render/gbuffer.h) */
+
+/* Pixel pack or unpack state (GLES 3.0 tables 6.29, 6.30) and the pixel
+ * buffer bound for it. */
+typedef struct snell__pixel_store {
+    int buffer, alignment, row_length, skip_rows, skip_pixels, image_height, skip_images;
+} snell__pixel_store;
 
 typedef struct snell_glstate {
     int draw_fbo, read_fbo, renderbuffer, program, vao, array_buffer, active_texture;
@@ -15,9 +21,29 @@ typedef struct snell_glstate {
     int blend_src_rgb, blend_dst_rgb, blend_src_a, blend_dst_a, blend_eq_rgb, blend_eq_a;
     float clear_color[4], clear_depth;
     int pack_alignment, unpack_alignment;
+    int sampler[SNELL_GLSTATE_UNITS];
+    float depth_range[2];
+    unsigned char rasterizer_discard, alpha_to_coverage, sample_coverage, primitive_restart;
+    snell__pixel_store pack, unpack;
 } snell_glstate;
 
 void snell__glstate_save(snell_glstate *s);
 void snell__glstate_restore(const snell_glstate *s);
+
+/* Sets the state a frame's output depends on that the passes do not set
+ * themselves (all backends; EXTERNAL saved it first): no sampler objects on
+ * the units above, depth range 0..1, no rasterizer discard, coverage or
+ * primitive restart, counter-clockwise front faces culled from the back, no
+ * pixel buffers bound and default pixel store state (texture allocations in a
+ * frame pass NULL data, which a bound unpack buffer would turn into an offset). */
+void snell__glstate_frame_defaults(void);
+
+/* Around a read-back into (an upload from) client memory: saves the pack
+ * (unpack) state, unbinds any pixel buffer and sets tight rows with the given
+ * alignment and nothing skipped; end puts back what begin saved. */
+void snell__pixel_pack_begin(snell__pixel_store *saved, int alignment);
+void snell__pixel_pack_end(const snell__pixel_store *saved);
+void snell__pixel_unpack_begin(snell__pixel_store *saved, int alignment);
+void snell__pixel_unpack_end(const snell__pixel_store *saved);
 
 #endif

@@ -1,7 +1,10 @@
 /* image.c — PNG/HDR input and PNG output through stb (libstb-dev headers).
  * The stb implementations are compiled here with static linkage so they never
  * clash with a host application's own copy of stb. */
+#define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 #include "core/core.h"
+
+#include <sys/stat.h>
 
 #include <stdlib.h>
 
@@ -59,10 +62,132 @@ snell_status snell_write_png(const char *path, int width, int height, const uint
  * would allocate 4 GiB of floats (found by fuzzing). */
 #define IMAGE_MAX_PIXELS (1u << 25)
 
-snell_status snell_image_decode(const void *data, size_t size, int *width, int *height, uint8_t **rgba)
+/* ---- headers, read before stb sees the file -------------------------------
+ * stb refuses a side beyond STBI_MAX_DIMENSIONS as "not of any known type, or
+ * corrupt", which hides the reason; its HDR decoder reads past the end as
+ * zero bytes, so a truncated file decoded with black rows (flat scanlines) or
+ * never finished (a run-length scanline: a zero count does not advance). */
+typedef struct image_header {
+    unsigned long w, h;
+    int hdr;            /* Radiance HDR (else PNG) */
+    size_t data;        /* HDR: offset of the pixel data */
+    size_t peak_per_px; /* bytes per pixel the decode holds at its peak */
+} image_header;
+
+static int starts_with(const uint8_t *b, size_t n, const char *s)
+{
+    size_t k = strlen(s);
+    return n >= k && memcmp(b, s, k) == 0;
+}
+
+/* Decimal number as strtol reads it (spaces, sign, digits), capped; advances *p. */
+static long hdr_number(const uint8_t *b, size_t end, size_t *p)
+{
+    long v = 0;
+    int neg = 0;
+    while (*p < end && b[*p] == ' ') (*p)++;
+    if (*p < end && (b[*p] == '+' || b[*p] == '-')) neg = b[(*p)++] == '-';
+    while (*p < end && b[*p] >= '0' && b[*p] <= '9') {
+        if (v < 100000000L) v = v * 10 + (b[*p] - '0');
+        (*p)++;
+    }
+    return neg ? -v : v;
+}
+
+/* 1 and *hd if the data starts like a PNG (IHDR) or an HDR with a resolution
+ * line stb accepts ("-Y h +X w"); 0 otherwise (stb then says what is wrong). */
+static int read_header(const uint8_t *b, size_t n, image_header *hd)
+{
+    memset(hd, 0, sizeof *hd);
+    if (n >= 26 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0 && memcmp(b + 12, "IHDR", 4) == 0) {
+        unsigned bd = b[24], ct = b[25], ch = ct == 0 ? 1 : ct == 2 ? 3 : ct == 4 ? 2 : 4;
+        size_t bpp = ch * (bd == 16 ? 2u : 1u), convert = bpp == 4 && bd == 8 ? 0 : 4;
+        hd->w = (unsigned long)b[16] << 24 | (unsigned long)b[17] << 16 | (unsigned long)b[18] << 8 | b[19];
+        hd->h = (unsigned long)b[20] << 24 | (unsigned long)b[21] << 16 | (unsigned long)b[22] << 8 | b[23];
+        /* stb inflates the scanlines (about bpp a pixel), unfilters them into
+         * an image of bpp a pixel, then converts that to RGBA8 if it is not */
+        hd->peak_per_px = ct == 3 ? 8 : (2 * bpp > bpp + convert ? 2 * bpp : bpp + convert);
+        return 1;
+    }
+    if (starts_with(b, n, "#?RADIANCE\n") || starts_with(b, n, "#?RGBE\n")) {
+        size_t p = 0, e;
+        long w, h;
+        /* the header's lines end at an empty one; then the resolution line */
+        for (;;) {
+            const uint8_t *nl = (const uint8_t *)memchr(b + p, '\n', n - p);
+            if (!nl) return 0;
+            e = (size_t)(nl - b);
+            if (p > 0 && e == p) break;
+            p = e + 1;
+        }
+        p = e + 1;
+        {
+            const uint8_t *nl = (const uint8_t *)memchr(b + p, '\n', n - p);
+            e = nl ? (size_t)(nl - b) : n;
+        }
+        if (e - p < 3 || memcmp(b + p, "-Y ", 3) != 0) return 0;
+        p += 3;
+        h = hdr_number(b, e, &p);
+        while (p < e && b[p] == ' ') p++;
+        if (e - p < 3 || memcmp(b + p, "+X ", 3) != 0) return 0;
+        p += 3;
+        w = hdr_number(b, e, &p);
+        if (w < 1 || h < 1) return 0;
+        hd->w = (unsigned long)w;
+        hd->h = (unsigned long)h;
+        hd->hdr = 1;
+        hd->data = e < n ? e + 1 : n;
+        hd->peak_per_px = 16 + 4; /* float RGBA, then our RGBA8 copy */
+        return 1;
+    }
+    return 0;
+}
+
+/* 1 if the pixel data of an HDR of w x h holds every scanline, walking it as
+ * stbi__hdr_load reads it (stb 2.27): flat RGBE when w < 8 or w >= 32768 or
+ * the first scanline is not run-length encoded (then the rest is read flat),
+ * else per scanline 2 2 w_hi w_lo and four run-length coded channels. Data
+ * stb rejects itself (bad counts) counts as complete: stb says why. */
+static int hdr_complete(const uint8_t *b, size_t n, size_t pos, size_t w, size_t h)
+{
+    size_t j;
+    if (w < 8 || w >= 32768) return n - pos >= w * h * 4;
+    for (j = 0; j < h; j++) {
+        int k;
+        if (n - pos < 4) return 0;
+        if (b[pos] != 2 || b[pos + 1] != 2 || (b[pos + 2] & 0x80)) return n - pos >= w * h * 4;
+        if (((size_t)b[pos + 2] << 8 | b[pos + 3]) != w) return 1;
+        pos += 4;
+        for (k = 0; k < 4; k++) {
+            size_t i = 0;
+            while (i < w) {
+                size_t c;
+                if (pos >= n) return 0;
+                c = b[pos++];
+                if (c > 128) {
+                    c -= 128;
+                    if (c > w - i) return 1;
+                    if (pos >= n) return 0;
+                    pos++;
+                } else {
+                    if (c > w - i) return 1;
+                    if (n - pos < c) return 0;
+                    pos += c;
+                }
+                i += c;
+            }
+        }
+    }
+    return 1;
+}
+
+snell_status snell__image_decode_budget(const void *data, size_t size, size_t budget, int *width, int *height,
+                                        uint8_t **rgba)
 {
     const stbi_uc *bytes = (const stbi_uc *)data;
     int w = 0, h = 0, n = 0;
+    image_header hd;
+    int have_header;
     if (!data || !width || !height || !rgba)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_image_decode: NULL argument");
     *rgba = NULL;
@@ -70,6 +195,10 @@ snell_status snell_image_decode(const void *data, size_t size, int *width, int *
         return snell__fail(NULL, SNELL_E_LIMIT, "image of %zu bytes outside 1..%u", size, IMAGE_MAX_FILE);
     if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF)
         return snell__fail(NULL, SNELL_E_UNSUPPORTED, "JPEG images are not decoded (use PNG or Radiance HDR)");
+    have_header = read_header(bytes, size, &hd);
+    if (have_header && (hd.w > STBI_MAX_DIMENSIONS || hd.h > STBI_MAX_DIMENSIONS))
+        return snell__fail(NULL, SNELL_E_LIMIT, "%s image of %lux%lu pixels exceeds the limit of %d pixels per side",
+                           hd.hdr ? "HDR" : "PNG", hd.w, hd.h, STBI_MAX_DIMENSIONS);
     if (!stbi_info_from_memory(bytes, (int)size, &w, &h, &n))
         return snell__fail(NULL, SNELL_E_PARSE, "not a readable PNG or HDR image (%s)", stbi_failure_reason());
     /* stb accepts some malformed headers as 0-pixel images (found by fuzzing). */
@@ -77,10 +206,22 @@ snell_status snell_image_decode(const void *data, size_t size, int *width, int *
     if ((unsigned long long)w * (unsigned long long)h > IMAGE_MAX_PIXELS)
         return snell__fail(NULL, SNELL_E_LIMIT, "image of %dx%d pixels exceeds the limit of %u pixels", w, h,
                            IMAGE_MAX_PIXELS);
+    {
+        /* the decode's peak (stb's buffers and the RGBA8 result): one request */
+        size_t need = (size_t)w * (size_t)h * (have_header ? hd.peak_per_px : 20);
+        if (need > budget)
+            return snell__fail(NULL, SNELL_E_LIMIT,
+                               "decoding a %dx%d image needs %.1f MiB, more than the memory budget of %.1f MiB "
+                               "(snell_ctx_desc.memory_budget)",
+                               w, h, (double)need / 1048576.0, (double)budget / 1048576.0);
+    }
     if (stbi_is_hdr_from_memory(bytes, (int)size)) {
         /* HDR: clamp to the displayable range; the library's env is RGBA8. */
-        float *px = stbi_loadf_from_memory(bytes, (int)size, &w, &h, &n, 4);
+        float *px;
         size_t i, count;
+        if (have_header && hd.hdr && !hdr_complete(bytes, size, hd.data, hd.w, hd.h))
+            return snell__fail(NULL, SNELL_E_PARSE, "HDR image of %dx%d pixels is truncated (%zu bytes)", w, h, size);
+        px = stbi_loadf_from_memory(bytes, (int)size, &w, &h, &n, 4);
         if (!px) return snell__fail(NULL, SNELL_E_PARSE, "cannot decode HDR image: %s", stbi_failure_reason());
         count = (size_t)w * (size_t)h * 4;
         *rgba = (uint8_t *)malloc(count);
@@ -107,17 +248,29 @@ snell_status snell_image_decode(const void *data, size_t size, int *width, int *
     return SNELL_OK;
 }
 
-snell_status snell_image_read(const char *path, int *width, int *height, uint8_t **rgba)
+snell_status snell_image_decode(const void *data, size_t size, int *width, int *height, uint8_t **rgba)
+{
+    return snell__image_decode_budget(data, size, SNELL_DEFAULT_MEMORY_BUDGET, width, height, rgba);
+}
+
+snell_status snell__image_read_budget(const char *path, size_t budget, int *width, int *height, uint8_t **rgba)
 {
     FILE *f;
     long len;
     uint8_t *buf;
     snell_status st;
+    struct stat sb;
     if (!path || !width || !height || !rgba)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_image_read: NULL argument");
     *rgba = NULL;
     f = fopen(path, "rb");
     if (!f) return snell__fail(NULL, SNELL_E_IO, "cannot open image \"%s\"", path);
+    /* fopen opens a directory as well, and ftell then says LONG_MAX */
+    if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        int dir = S_ISDIR(sb.st_mode);
+        fclose(f);
+        return snell__fail(NULL, SNELL_E_IO, "image \"%s\" is %s", path, dir ? "a directory" : "not a regular file");
+    }
     if (fseek(f, 0, SEEK_END) != 0 || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);
         return snell__fail(NULL, SNELL_E_IO, "cannot read image \"%s\"", path);
@@ -126,6 +279,12 @@ snell_status snell_image_read(const char *path, int *width, int *height, uint8_t
         fclose(f);
         return snell__fail(NULL, len ? SNELL_E_LIMIT : SNELL_E_PARSE, "image \"%s\" has %ld bytes (1..%u accepted)",
                            path, len, IMAGE_MAX_FILE);
+    }
+    if ((size_t)len > budget) {
+        fclose(f);
+        return snell__fail(NULL, SNELL_E_LIMIT,
+                           "reading image \"%s\" needs %.1f MiB, more than the memory budget of %.1f MiB "
+                           "(snell_ctx_desc.memory_budget)", path, (double)len / 1048576.0, (double)budget / 1048576.0);
     }
     buf = (uint8_t *)malloc((size_t)len);
     if (!buf) {
@@ -138,7 +297,7 @@ snell_status snell_image_read(const char *path, int *width, int *height, uint8_t
         return snell__fail(NULL, SNELL_E_IO, "cannot read image \"%s\"", path);
     }
     fclose(f);
-    st = snell_image_decode(buf, (size_t)len, width, height, rgba);
+    st = snell__image_decode_budget(buf, (size_t)len, budget, width, height, rgba);
     free(buf);
     if (st != SNELL_OK) {
         /* Name the file in the message (the decoder does not know it). */
@@ -147,6 +306,11 @@ snell_status snell_image_read(const char *path, int *width, int *height, uint8_t
         return snell__fail(NULL, st, "\"%s\": %s", path, msg);
     }
     return SNELL_OK;
+}
+
+snell_status snell_image_read(const char *path, int *width, int *height, uint8_t **rgba)
+{
+    return snell__image_read_budget(path, SNELL_DEFAULT_MEMORY_BUDGET, width, height, rgba);
 }
 
 /* stb_image allocates with malloc (STBI_MALLOC default), as does the HDR path. */

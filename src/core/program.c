@@ -1,6 +1,7 @@
 /* program.c — shader assembly (#include of embedded chunks), compile, link,
  * with the info log carried into the error message. */
 #include "core/program.h"
+#include "core/ctx.h"
 #include "core/gl.h"
 #include "core/shaders_embedded.h"
 
@@ -92,6 +93,46 @@ static int expand(snell_ctx *ctx, text_buf *b, const char *src, const char **see
 
 /* "#version 300 es" + defines + FP16 emulation switch + expanded source.
  * NULL on failure, with *st set (SNELL_E_GL for a bad #include, SNELL_E_NOMEM). */
+/* The precision policy (DESIGN.md "Shaders"): SNELL_MEDIUMP is what shaders
+ * write for values a GPU with real fp16 holds at mediump. Software
+ * rasterisers emulate fp16 for mediump (llvmpipe: 2.3x slower than highp for
+ * single.frag full screen, bench/BENCHMARKS.md), and a driver whose mediump
+ * is as precise as highp gains nothing from it: both get highp. */
+static int fragment_mediump(snell_ctx *ctx)
+{
+    static const char *const software[] = {"llvmpipe", "softpipe", "SwiftShader", "swrast"};
+    GLint range[2] = {0, 0}, bits = 0;
+    size_t i;
+    if (!ctx) return 1;
+    if (ctx->fragment_mediump) return ctx->fragment_mediump > 0;
+#ifdef SNELL_FP16_EMULATION
+    ctx->fragment_mediump = 1; /* the study build: mediump as a phone has it */
+    snprintf(ctx->precision_reason, sizeof ctx->precision_reason, "mediump: SNELL_FP16_EMULATION build");
+    return 1;
+#endif
+    for (i = 0; i < sizeof software / sizeof *software; i++)
+        if (strstr(ctx->gl_renderer, software[i])) {
+            ctx->fragment_mediump = -1;
+            snprintf(ctx->precision_reason, sizeof ctx->precision_reason,
+                     "highp: %s emulates mediump in software", software[i]);
+            return 0;
+        }
+    glGetShaderPrecisionFormat(GL_FRAGMENT_SHADER, GL_MEDIUM_FLOAT, range, &bits);
+    ctx->fragment_mediump = bits >= 23 ? -1 : 1;
+    snprintf(ctx->precision_reason, sizeof ctx->precision_reason, "%s: fragment mediump has %d mantissa bits",
+             bits >= 23 ? "highp" : "mediump", (int)bits);
+    return ctx->fragment_mediump > 0;
+}
+
+const char *snell_ctx_precision(snell_ctx *ctx)
+{
+    if (!ctx) return "mediump: no context";
+    fragment_mediump(ctx);
+    return ctx->precision_reason;
+}
+
+int snell__ctx_fragment_mediump(snell_ctx *ctx) { return fragment_mediump(ctx); }
+
 static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snell_status *st)
 {
     text_buf b;
@@ -101,6 +142,10 @@ static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snel
     memset(&b, 0, sizeof b);
     b.al = snell__ctx_alloc(ctx);
     buf_append(&b, header, sizeof header - 1);
+    {
+        const char *policy = fragment_mediump(ctx) ? "#define SNELL_MEDIUMP mediump\n" : "#define SNELL_MEDIUMP highp\n";
+        buf_append(&b, policy, strlen(policy));
+    }
 #ifdef SNELL_FP16_EMULATION
     {
         static const char fp16[] = "#define SNELL_FP16_EMULATION 1\n";

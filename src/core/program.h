@@ -7,6 +7,9 @@
 
 #include "core/core.h"
 
+/* The context's shader precision policy: 1 if SNELL_MEDIUMP is mediump. */
+int snell__ctx_fragment_mediump(snell_ctx *ctx);
+
 /* Embedded source by path relative to shaders_es/, or NULL. */
 const char *snell__shader_source(const char *path);
 

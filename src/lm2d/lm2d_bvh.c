@@ -231,12 +231,19 @@ static inline float safe_inv(float v)
     return 1.0f / v;
 }
 
+/* min/max as one instruction: fminf/fmaxf are library calls without
+ * -ffast-math (they must return the non-NaN operand); the slab operands here
+ * are finite (safe_inv), so the results are the same. The calls were 5% of a
+ * traced 1080p frame. */
+static inline float min2(float a, float b) { return a < b ? a : b; }
+static inline float max2(float a, float b) { return a > b ? a : b; }
+
 float lm2d_slab(const float lo[2], const float hi[2], const float o[2], const float inv[2], float t_max)
 {
     float tx0 = (lo[0] - o[0]) * inv[0], tx1 = (hi[0] - o[0]) * inv[0];
     float ty0 = (lo[1] - o[1]) * inv[1], ty1 = (hi[1] - o[1]) * inv[1];
-    float tn = fmaxf(fminf(tx0, tx1), fminf(ty0, ty1));
-    float tf = fminf(fmaxf(tx0, tx1), fmaxf(ty0, ty1));
+    float tn = max2(min2(tx0, tx1), min2(ty0, ty1));
+    float tf = min2(max2(tx0, tx1), max2(ty0, ty1));
     if (tn < 0.0f) tn = 0.0f; /* origin inside: entry at 0 (6.4.1.1) */
     if (tn > tf || tn >= t_max) return INFINITY;
     return tn;
@@ -291,13 +298,13 @@ int lm2d_bvh_intersect(const lm2d_bvh *bvh, const float o[2], const float d[2], 
             const lm2d_node *n = bvh->nodes + cur;
             const float *xn = nx ? n->hi_x : n->lo_x, *xf = nx ? n->lo_x : n->hi_x;
             const float *yn = ny ? n->hi_y : n->lo_y, *yf = ny ? n->lo_y : n->hi_y;
-            float a0 = fmaxf((xn[0] - o[0]) * inv[0], (yn[0] - o[1]) * inv[1]);
-            float b0 = fminf((xf[0] - o[0]) * inv[0], (yf[0] - o[1]) * inv[1]);
-            float a1 = fmaxf((xn[1] - o[0]) * inv[0], (yn[1] - o[1]) * inv[1]);
-            float b1 = fminf((xf[1] - o[0]) * inv[0], (yf[1] - o[1]) * inv[1]);
+            float a0 = max2((xn[0] - o[0]) * inv[0], (yn[0] - o[1]) * inv[1]);
+            float b0 = min2((xf[0] - o[0]) * inv[0], (yf[0] - o[1]) * inv[1]);
+            float a1 = max2((xn[1] - o[0]) * inv[0], (yn[1] - o[1]) * inv[1]);
+            float b1 = min2((xf[1] - o[0]) * inv[0], (yf[1] - o[1]) * inv[1]);
             int h0, h1;
-            b0 = fminf(b0, t_best);
-            b1 = fminf(b1, t_best);
+            b0 = min2(b0, t_best);
+            b1 = min2(b1, t_best);
             h0 = a0 <= b0 && b0 >= 0.0f;
             h1 = a1 <= b1 && b1 >= 0.0f;
             if (h0 && h1) {

@@ -1,6 +1,7 @@
 /* lm2d_lightmap.c — the public lightmap object: decides per frame what must be
  * traced (changed lights, lights whose paths a moved object can touch, or one
- * more progressive pass), runs the tracer on the pool and rasterises. */
+ * more progressive pass), runs the tracer on the pool and rasterises (GL lines,
+ * or the exact CPU rasteriser on the same pool, chosen once at creation). */
 #define _POSIX_C_SOURCE 200809L
 #include "lm2d/lm2d_raster.h"
 
@@ -8,6 +9,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
@@ -30,7 +32,10 @@ struct snell_lightmap2d {
     const snell_alloc *al;
     snell_lightmap2d_desc d;
     lm2d_raster_view view;
-    lm2d_gl *gl;
+    lm2d_raster_view cpu_view; /* the same with y flipped: the CPU image is stored bottom row first, as GL */
+    lm2d_gl *gl;              /* GL target (texture); NULL without GL */
+    snell_raster2d raster;    /* resolved: GL or CPU */
+    char raster_reason[SNELL_REASON_SIZE];
     lm2d_pool *pool;
     light_state *ls;
     int n_ls;
@@ -38,12 +43,15 @@ struct snell_lightmap2d {
     int traced_once;
     int passes;
     uint32_t pass;
-    float *cpu;               /* CPU-only accumulation (sum, or product for SCREEN); exact scratch for GPU */
+    float *cpu;               /* CPU accumulation (sum, or product for SCREEN; LM2D_RASTER_PX floats a
+                                 pixel, bottom row first: the GL texture's layout); exact scratch for GL */
     /* job for the pool */
     const snell_scene2d *scene;
     int *todo;
     int n_todo;
     slice *slices;            /* n_ls * threads */
+    lm2d_raster_src *src;     /* n_ls: the CPU rasteriser's segment lists */
+    lm2d_raster_bins *bins;   /* its scratch */
     lm2d_energy frame_e;      /* bookkeeping of the last traced frame, all lights */
 };
 
@@ -70,7 +78,36 @@ static void energy_add(lm2d_energy *a, const lm2d_energy *b)
     a->unbounded |= b->unbounded;
 }
 
-static int use_gl(const snell_lightmap2d *lm) { return lm->gl != NULL; }
+/* GL lines draw the lightmap (else the CPU rasteriser does; lm->gl may still
+ * hold the texture it is uploaded to). */
+static int use_gl(const snell_lightmap2d *lm) { return lm->raster == SNELL_RASTER2D_GL; }
+
+static int contains(const char *s, const char *word) { return s && strstr(s, word) != NULL; }
+
+snell_raster2d lm2d_raster_pick(snell_raster2d want, int have_gl, const char *renderer, char *reason,
+                                size_t reason_size)
+{
+    static const char *const soft[] = {"llvmpipe", "softpipe", "swrast"};
+    size_t i;
+    if (want == SNELL_RASTER2D_GL || want == SNELL_RASTER2D_CPU) {
+        snprintf(reason, reason_size, "%s requested", want == SNELL_RASTER2D_GL ? "GL lines" : "CPU rasteriser");
+        return want;
+    }
+    if (!have_gl) {
+        snprintf(reason, reason_size, "auto: no GL (ctx NULL or cpu_only): CPU rasteriser");
+        return SNELL_RASTER2D_CPU;
+    }
+    for (i = 0; i < sizeof soft / sizeof soft[0]; i++)
+        if (contains(renderer, soft[i])) {
+            snprintf(reason, reason_size,
+                     "auto: renderer '%.60s' is software GL (%s: lines set up serially): CPU rasteriser", renderer,
+                     soft[i]);
+            return SNELL_RASTER2D_CPU;
+        }
+    snprintf(reason, reason_size, "auto: renderer '%.80s' is not a software rasteriser: GL lines",
+             renderer ? renderer : "?");
+    return SNELL_RASTER2D_GL;
+}
 
 /* Linear accumulation (progressive passes averaged) only for plain sums in
  * float; SCREEN is nonlinear and the fixed-point fallback is pre-exposed. */
@@ -115,8 +152,11 @@ snell_status snell_lightmap2d_create(snell_ctx *ctx, const snell_lightmap2d_desc
     if (d.exposure == 0.0f) d.exposure = 1.0f;
     if (!(d.exposure > 0.0f) || !isfinite(d.exposure))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_lightmap2d_create: exposure must be > 0");
-    if ((unsigned)d.blend > SNELL_BLEND2D_SCREEN || (unsigned)d.format > SNELL_FORMAT2D_RGBA8)
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_lightmap2d_create: unknown blend or format");
+    if ((unsigned)d.blend > SNELL_BLEND2D_SCREEN || (unsigned)d.format > SNELL_FORMAT2D_RGBA8 ||
+        (unsigned)d.raster > SNELL_RASTER2D_CPU)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_lightmap2d_create: unknown blend, format or raster");
+    if (d.raster == SNELL_RASTER2D_GL && (!ctx || d.cpu_only))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_lightmap2d_create: raster GL needs a ctx and cpu_only = 0");
     threads = d.threads;
     if (threads <= 0) {
         long n = sysconf(_SC_NPROCESSORS_ONLN);
@@ -134,13 +174,18 @@ snell_status snell_lightmap2d_create(snell_ctx *ctx, const snell_lightmap2d_desc
     lm->view.lo[1] = d.view_min[1];
     lm->view.hi[0] = d.view_max[0];
     lm->view.hi[1] = d.view_max[1];
+    lm->cpu_view = lm->view;
+    lm->cpu_view.lo[1] = d.view_max[1];
+    lm->cpu_view.hi[1] = d.view_min[1];
     px = (size_t)d.width * (size_t)d.height;
-    lm->cpu = (float *)snell__calloc(al, px, 3 * sizeof(float));
+    lm->cpu = (float *)snell__calloc(al, px, LM2D_RASTER_PX * sizeof(float));
     if (!lm->cpu) {
         snell__free(al, lm);
         return snell__fail(ctx, SNELL_E_NOMEM, "snell_lightmap2d_create: out of memory for %dx%d", d.width, d.height);
     }
-    if ((st = lm2d_pool_create(ctx, al, threads, &lm->pool)) != SNELL_OK) {
+    snell__ctx_retain(ctx); /* released by snell_lightmap2d_destroy (lm->al lives in ctx) */
+    if ((st = lm2d_raster_bins_create(ctx, al, &lm->bins)) != SNELL_OK ||
+        (st = lm2d_pool_create(ctx, al, threads, &lm->pool)) != SNELL_OK) {
         snell_lightmap2d_destroy(lm);
         return st;
     }
@@ -150,22 +195,35 @@ snell_status snell_lightmap2d_create(snell_ctx *ctx, const snell_lightmap2d_desc
             return st;
         }
     }
+    lm->raster = lm2d_raster_pick(d.raster, lm->gl != NULL, ctx ? snell_ctx_gl_renderer(ctx) : NULL,
+                                  lm->raster_reason, sizeof lm->raster_reason);
     *out = lm;
     return SNELL_OK;
 }
 
 void snell_lightmap2d_destroy(snell_lightmap2d *lm)
 {
+    snell_ctx *ctx;
     int i;
     if (!lm) return;
     for (i = 0; i < lm->n_ls; i++) snell__free(lm->al, lm->ls[i].paths);
     snell__free(lm->al, lm->ls);
     snell__free(lm->al, lm->todo);
     snell__free(lm->al, lm->slices);
+    snell__free(lm->al, lm->src);
+    lm2d_raster_bins_destroy(lm->bins);
     snell__free(lm->al, lm->cpu);
     lm2d_pool_destroy(lm->pool);
-    lm2d_gl_destroy(lm->gl);
+    if (lm->gl) {
+        /* In its context; after snell_ctx_destroy its GL objects are gone with it. */
+        snell__gl_scope sc;
+        snell__gl_scope_enter(lm->ctx, &sc);
+        lm2d_gl_destroy(lm->gl);
+        snell__gl_scope_leave(&sc);
+    }
+    ctx = lm->ctx;
     snell__free(lm->al, lm);
+    snell__ctx_release(ctx);
 }
 
 void snell_lightmap2d_finish(snell_lightmap2d *lm)
@@ -183,6 +241,7 @@ static snell_status sync_lights(snell_lightmap2d *lm, const snell_scene2d *s)
         light_state *ls = (light_state *)snell__realloc(lm->al, lm->ls, (size_t)s->n_lights * sizeof *ls);
         int *todo;
         slice *sl;
+        lm2d_raster_src *src;
         if (!ls) return snell__fail(lm->ctx, SNELL_E_NOMEM, "lightmap2d: out of memory");
         lm->ls = ls;
         for (i = lm->n_ls; i < s->n_lights; i++) memset(&ls[i], 0, sizeof ls[i]);
@@ -193,6 +252,9 @@ static snell_status sync_lights(snell_lightmap2d *lm, const snell_scene2d *s)
         sl = (slice *)snell__realloc(lm->al, lm->slices, (size_t)s->n_lights * (size_t)T * sizeof *sl);
         if (!sl) return snell__fail(lm->ctx, SNELL_E_NOMEM, "lightmap2d: out of memory");
         lm->slices = sl;
+        src = (lm2d_raster_src *)snell__realloc(lm->al, lm->src, (size_t)s->n_lights * sizeof *src);
+        if (!src) return snell__fail(lm->ctx, SNELL_E_NOMEM, "lightmap2d: out of memory");
+        lm->src = src;
     }
     return SNELL_OK;
 }
@@ -205,6 +267,15 @@ static snell_status ensure_capacity(snell_lightmap2d *lm, light_state *ls, int r
         int ok = 1;
         snell__mul_size(cap, sizeof(lm2d_path), &ok);
         if (!ok) return snell__fail(lm->ctx, SNELL_E_NOMEM, "lightmap2d: path buffer size overflows");
+        {
+            /* rays * (max_bounces + 1) segments: a 40-byte scene line
+             * ("rays 100000000") would otherwise ask for 36 GB */
+            char what[96];
+            snell_status st;
+            snprintf(what, sizeof what, "lightmap2d: the path buffer of %d rays x %d segments", rays,
+                     lm->d.max_bounces + 1);
+            if ((st = snell__budget_check(lm->ctx, cap * sizeof(lm2d_path), what)) != SNELL_OK) return st;
+        }
         p = (lm2d_path *)snell__realloc(lm->al, ls->paths, cap * sizeof(lm2d_path));
         if (!p)
             return snell__fail(lm->ctx, SNELL_E_NOMEM, "lightmap2d: out of memory for %zu path segments", cap);
@@ -246,17 +317,29 @@ static int boxes_overlap(const float alo[2], const float ahi[2], const float blo
     return alo[0] <= bhi[0] && blo[0] <= ahi[0] && alo[1] <= bhi[1] && blo[1] <= ahi[1];
 }
 
-static void raster_cpu_all(snell_lightmap2d *lm, int clear)
+/* Every light's paths (all = 1) or this frame's (the progressive pass), in
+ * light order, into lm->cpu on the pool's threads. SCREEN applies the exposure
+ * inside the blend (6.5.3); ADD keeps the raw sum. */
+static void raster_cpu(snell_lightmap2d *lm, int all, int clear)
 {
-    size_t px = (size_t)lm->d.width * (size_t)lm->d.height, i;
-    int l;
-    int screen = lm->d.blend == SNELL_BLEND2D_SCREEN;
-    if (clear)
-        for (i = 0; i < 3 * px; i++) lm->cpu[i] = screen ? 1.0f : 0.0f;
-    for (l = 0; l < lm->n_ls; l++) {
-        if (screen) lm2d_raster_exact_screen(lm->ls[l].paths, lm->ls[l].n, &lm->view, lm->d.exposure, lm->cpu);
-        else lm2d_raster_exact_add(lm->ls[l].paths, lm->ls[l].n, &lm->view, 1.0f, lm->cpu);
+    int screen = lm->d.blend == SNELL_BLEND2D_SCREEN, n = 0, i;
+    for (i = 0; i < (all ? lm->n_ls : lm->n_todo); i++) {
+        const light_state *ls = &lm->ls[all ? i : lm->todo[i]];
+        lm->src[n].paths = ls->paths;
+        lm->src[n++].n = ls->n;
     }
+    lm2d_raster_exact(lm->bins, lm->pool, lm->src, n, &lm->cpu_view, screen ? lm->d.exposure : 1.0f,
+                      screen ? LM2D_RASTER_SCREEN : LM2D_RASTER_ADD, clear, lm->cpu);
+}
+
+/* CPU rasteriser with a GL target: the texture gets what the GL lines would
+ * have left there (raw sum for float ADD; display values otherwise). */
+static snell_status upload_cpu(snell_lightmap2d *lm)
+{
+    snell_format2d f = lm2d_gl_format(lm->gl);
+    int fixed = f == SNELL_FORMAT2D_RGB10A2 || f == SNELL_FORMAT2D_RGBA8;
+    if (lm->d.blend == SNELL_BLEND2D_SCREEN) return lm2d_gl_upload(lm->gl, lm->cpu, 1.0f, 1);
+    return lm2d_gl_upload(lm->gl, lm->cpu, fixed ? lm->d.exposure / (float)(lm->passes ? lm->passes : 1) : 1.0f, 0);
 }
 
 snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snell_lightmap2d_stats *stats)
@@ -269,6 +352,9 @@ snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snel
     if (!stats) stats = &stl;
     memset(stats, 0, sizeof *stats);
     if (!lm || !s) return snell__fail(lm ? lm->ctx : NULL, SNELL_E_INVALID_ARG, "snell_lightmap2d_frame: NULL argument");
+    stats->raster = lm->raster;
+    stats->raster_threads = use_gl(lm) ? 0 : lm2d_pool_size(lm->pool);
+    memcpy(stats->raster_reason, lm->raster_reason, sizeof stats->raster_reason);
     if ((st = lm2d_scene_prepare(s)) != SNELL_OK) return st;
     if ((st = sync_lights(lm, s)) != SNELL_OK) return st;
     T = lm2d_pool_size(lm->pool);
@@ -370,10 +456,7 @@ snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snel
                 if ((st = lm2d_gl_draw(lm->gl, ls->paths, ls->n, &lm->view, 1.0f)) != SNELL_OK) return st;
             }
         } else {
-            for (i = 0; i < lm->n_todo; i++) {
-                light_state *ls = &lm->ls[lm->todo[i]];
-                lm2d_raster_exact_add(ls->paths, ls->n, &lm->view, 1.0f, lm->cpu);
-            }
+            raster_cpu(lm, 0, 0);
         }
         lm->passes++;
     } else {
@@ -384,9 +467,14 @@ snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snel
             for (i = 0; i < lm->n_ls; i++)
                 if ((st = lm2d_gl_draw(lm->gl, lm->ls[i].paths, lm->ls[i].n, &lm->view, scale)) != SNELL_OK) return st;
         } else {
-            raster_cpu_all(lm, 1);
+            raster_cpu(lm, 1, 1);
         }
         lm->passes = 1;
+    }
+    if (!use_gl(lm) && lm->gl) {
+        double t1 = snell__now_ms();
+        if ((st = upload_cpu(lm)) != SNELL_OK) return st;
+        stats->upload_ms = snell__now_ms() - t1;
     }
     stats->raster_ms = snell__now_ms() - t0;
     stats->paths = paths;
@@ -394,71 +482,75 @@ snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snel
     return SNELL_OK;
 }
 
+/* lm->cpu as display RGB, top row first: 1 - product for SCREEN, else sum x scale. */
+static void cpu_to_rgb(const snell_lightmap2d *lm, float *rgb, float scale)
+{
+    int w = lm->d.width, h = lm->d.height, x, y, k, screen = lm->d.blend == SNELL_BLEND2D_SCREEN;
+    for (y = 0; y < h; y++) {
+        const float *src = lm->cpu + LM2D_RASTER_PX * (size_t)(h - 1 - y) * (size_t)w;
+        float *dst = rgb + 3 * (size_t)y * (size_t)w;
+        for (x = 0; x < w; x++, src += LM2D_RASTER_PX, dst += 3)
+            for (k = 0; k < 3; k++) dst[k] = screen ? 1.0f - src[k] : src[k] * scale;
+    }
+}
+
 snell_status snell_lightmap2d_read_rgb(snell_lightmap2d *lm, float *rgb)
 {
-    size_t px, i;
     if (!lm || !rgb) return snell__fail(lm ? lm->ctx : NULL, SNELL_E_INVALID_ARG, "snell_lightmap2d_read_rgb: NULL argument");
-    px = (size_t)lm->d.width * (size_t)lm->d.height;
     if (use_gl(lm)) {
         float scale = linear_accum(lm) ? lm->d.exposure / (float)(lm->passes ? lm->passes : 1) : 1.0f;
         return lm2d_gl_read(lm->gl, rgb, scale);
     }
-    if (lm->d.blend == SNELL_BLEND2D_SCREEN) {
-        for (i = 0; i < 3 * px; i++) rgb[i] = lm->passes ? 1.0f - lm->cpu[i] : 0.0f;
-    } else {
-        float scale = lm->d.exposure / (float)(lm->passes ? lm->passes : 1);
-        for (i = 0; i < 3 * px; i++) rgb[i] = lm->cpu[i] * scale;
+    if (!lm->passes) {
+        memset(rgb, 0, 3 * sizeof(float) * (size_t)lm->d.width * (size_t)lm->d.height);
+        return SNELL_OK;
     }
+    cpu_to_rgb(lm, rgb, lm->d.exposure / (float)lm->passes);
     return SNELL_OK;
 }
 
 snell_status snell_lightmap2d_read_rgb_exact(snell_lightmap2d *lm, float *rgb)
 {
-    size_t px, i;
     if (!lm || !rgb)
         return snell__fail(lm ? lm->ctx : NULL, SNELL_E_INVALID_ARG, "snell_lightmap2d_read_rgb_exact: NULL argument");
     if (!use_gl(lm)) return snell_lightmap2d_read_rgb(lm, rgb);
     /* the paths kept are each light's latest pass: equal to the GPU image when passes == 1 */
-    px = (size_t)lm->d.width * (size_t)lm->d.height;
-    raster_cpu_all(lm, 1);
-    if (lm->d.blend == SNELL_BLEND2D_SCREEN)
-        for (i = 0; i < 3 * px; i++) rgb[i] = 1.0f - lm->cpu[i];
-    else
-        for (i = 0; i < 3 * px; i++) rgb[i] = lm->cpu[i] * lm->d.exposure;
+    raster_cpu(lm, 1, 1);
+    cpu_to_rgb(lm, rgb, lm->d.exposure);
     return SNELL_OK;
 }
+
+static uint8_t to8(float v) { return (uint8_t)(v <= 0.0f ? 0 : v >= 1.0f ? 255 : (int)(v * 255.0f + 0.5f)); }
 
 snell_status snell_lightmap2d_read_rgba(snell_lightmap2d *lm, uint8_t *rgba)
 {
     size_t px, i;
     snell_status st;
-    float *tmp;
     if (!lm || !rgba) return snell__fail(lm ? lm->ctx : NULL, SNELL_E_INVALID_ARG, "snell_lightmap2d_read_rgba: NULL argument");
     px = (size_t)lm->d.width * (size_t)lm->d.height;
-    /* GPU mode reads into the CPU scratch; CPU mode converts in place through a copy-free loop */
     if (use_gl(lm)) {
-        tmp = lm->cpu;
+        /* the CPU image is scratch in GL mode (4 floats a pixel: room for the RGB) */
+        float *tmp = lm->cpu;
         if ((st = snell_lightmap2d_read_rgb(lm, tmp)) != SNELL_OK) return st;
         for (i = 0; i < px; i++) {
-            int k;
-            for (k = 0; k < 3; k++) {
-                float v = tmp[3 * i + k];
-                rgba[4 * i + k] = (uint8_t)(v <= 0.0f ? 0 : v >= 1.0f ? 255 : (int)(v * 255.0f + 0.5f));
-            }
+            rgba[4 * i] = to8(tmp[3 * i]);
+            rgba[4 * i + 1] = to8(tmp[3 * i + 1]);
+            rgba[4 * i + 2] = to8(tmp[3 * i + 2]);
             rgba[4 * i + 3] = 255;
         }
         return SNELL_OK;
     }
     {
-        int screen = lm->d.blend == SNELL_BLEND2D_SCREEN;
+        int w = lm->d.width, h = lm->d.height, x, y, k, screen = lm->d.blend == SNELL_BLEND2D_SCREEN;
         float scale = lm->d.exposure / (float)(lm->passes ? lm->passes : 1);
-        for (i = 0; i < px; i++) {
-            int k;
-            for (k = 0; k < 3; k++) {
-                float v = screen ? (lm->passes ? 1.0f - lm->cpu[3 * i + k] : 0.0f) : lm->cpu[3 * i + k] * scale;
-                rgba[4 * i + k] = (uint8_t)(v <= 0.0f ? 0 : v >= 1.0f ? 255 : (int)(v * 255.0f + 0.5f));
+        for (y = 0; y < h; y++) {
+            const float *src = lm->cpu + LM2D_RASTER_PX * (size_t)(h - 1 - y) * (size_t)w;
+            uint8_t *dst = rgba + 4 * (size_t)y * (size_t)w;
+            for (x = 0; x < w; x++, src += LM2D_RASTER_PX, dst += 4) {
+                for (k = 0; k < 3; k++)
+                    dst[k] = !lm->passes ? 0 : to8(screen ? 1.0f - src[k] : src[k] * scale);
+                dst[3] = 255;
             }
-            rgba[4 * i + 3] = 255;
         }
     }
     return SNELL_OK;

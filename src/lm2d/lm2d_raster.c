@@ -221,7 +221,8 @@ snell_status lm2d_gl_draw(lm2d_gl *g, const lm2d_path *paths, size_t n, const lm
 snell_status lm2d_gl_read(lm2d_gl *g, float *rgb, float scale)
 {
     const snell_alloc *al = snell__ctx_alloc(g->ctx);
-    GLint prev, pack;
+    GLint prev;
+    snell__pixel_store pack;
     int x, y, w = g->width, h = g->height;
     GLenum err;
     if (!g->readback) {
@@ -229,14 +230,13 @@ snell_status lm2d_gl_read(lm2d_gl *g, float *rgb, float scale)
         if (!g->readback) return snell__fail(g->ctx, SNELL_E_NOMEM, "lightmap2d: out of memory for readback");
     }
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
-    glGetIntegerv(GL_PACK_ALIGNMENT, &pack);
+    snell__pixel_pack_begin(&pack, 4); /* client memory, whatever pixel buffer the host bound */
     glBindFramebuffer(GL_READ_FRAMEBUFFER, g->fbo);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
     if (g->quant == 0.0f) glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, g->readback);
     else if (g->format == SNELL_FORMAT2D_RGB10A2)
         glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV, g->readback);
     else glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, g->readback);
-    glPixelStorei(GL_PACK_ALIGNMENT, pack);
+    snell__pixel_pack_end(&pack);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev);
     err = glGetError();
     if (err != GL_NO_ERROR) return snell__fail(g->ctx, SNELL_E_GL, "lightmap2d: GL error 0x%x reading the lightmap", (unsigned)err);
@@ -270,4 +270,69 @@ void lm2d_gl_finish(lm2d_gl *g)
 {
     (void)g;
     glFinish();
+}
+
+snell_status lm2d_gl_upload(lm2d_gl *g, const float *img, float mul, int one_minus)
+{
+    const snell_alloc *al = snell__ctx_alloc(g->ctx);
+    GLint prev_tex, unpack_buf, align, row_len, skip_rows, skip_px;
+    size_t i, n = (size_t)g->width * (size_t)g->height;
+    const void *data = img;
+    GLenum err;
+    if (g->quant != 0.0f || one_minus || mul != 1.0f) {
+        if (!g->readback) {
+            g->readback = snell__calloc(al, n, 4 * sizeof(float));
+            if (!g->readback) return snell__fail(g->ctx, SNELL_E_NOMEM, "lightmap2d: out of memory for the upload");
+        }
+        data = g->readback;
+        for (i = 0; i < n; i++) {
+            const float *s = img + LM2D_RASTER_PX * i;
+            float v[3];
+            int k;
+            for (k = 0; k < 3; k++) v[k] = one_minus ? 1.0f - s[k] : s[k] * mul;
+            if (g->quant == 0.0f) {
+                float *d = (float *)g->readback + 4 * i;
+                d[0] = v[0];
+                d[1] = v[1];
+                d[2] = v[2];
+                d[3] = 0.0f;
+            } else {
+                uint32_t c[3];
+                for (k = 0; k < 3; k++) {
+                    float x = v[k] > 0.0f ? (v[k] < 1.0f ? v[k] : 1.0f) : 0.0f;
+                    c[k] = (uint32_t)(x * g->quant + 0.5f);
+                }
+                ((uint32_t *)g->readback)[i] = g->format == SNELL_FORMAT2D_RGB10A2
+                                                   ? c[0] | c[1] << 10 | c[2] << 20
+                                                   : c[0] | c[1] << 8 | c[2] << 16;
+            }
+        }
+    }
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev_tex);
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack_buf);
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &align);
+    glGetIntegerv(GL_UNPACK_ROW_LENGTH, &row_len);
+    glGetIntegerv(GL_UNPACK_SKIP_ROWS, &skip_rows);
+    glGetIntegerv(GL_UNPACK_SKIP_PIXELS, &skip_px);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+    glBindTexture(GL_TEXTURE_2D, g->tex);
+    if (g->quant == 0.0f)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, g->width, g->height, GL_RGBA, GL_FLOAT, data);
+    else if (g->format == SNELL_FORMAT2D_RGB10A2)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, g->width, g->height, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV, data);
+    else glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, g->width, g->height, GL_RGBA, GL_UNSIGNED_BYTE, data);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)prev_tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, align);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, row_len);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, skip_rows);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, skip_px);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, (GLuint)unpack_buf);
+    err = glGetError();
+    if (err != GL_NO_ERROR)
+        return snell__fail(g->ctx, SNELL_E_GL, "lightmap2d: GL error 0x%x uploading the lightmap", (unsigned)err);
+    return SNELL_OK;
 }

@@ -24,5 +24,17 @@ snell_status lm2d_gl_draw(lm2d_gl *g, const lm2d_path *paths, size_t n, const lm
 /* Reads the accumulation as float RGB, top row first, times `scale`. */
 snell_status lm2d_gl_read(lm2d_gl *g, float *rgb, float scale);
 void lm2d_gl_finish(lm2d_gl *g);
+/* Replaces the accumulation texture with a CPU lightmap (LM2D_RASTER_PX floats
+ * per pixel, bottom row first: the texture's layout), each value v stored as
+ * mul * v, or as 1 - v when one_minus (SCREEN's product); fixed-point targets
+ * clamp to [0,1]. A float target with mul 1 takes the image as it is. */
+snell_status lm2d_gl_upload(lm2d_gl *g, const float *img, float mul, int one_minus);
+
+/* The rasteriser rule of SNELL_RASTER2D_AUTO (snell_2d.h): CPU without GL, or
+ * when `renderer` (GL_RENDERER) names a software rasteriser (llvmpipe, softpipe,
+ * swrast); GL otherwise. An explicit GL or CPU is kept (GL without GL is
+ * reported by the caller). Writes why into reason (reason_size bytes). */
+snell_raster2d lm2d_raster_pick(snell_raster2d want, int have_gl, const char *renderer, char *reason,
+                                size_t reason_size);
 
 #endif

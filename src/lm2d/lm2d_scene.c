@@ -1,6 +1,7 @@
 /* lm2d_scene.c — 2D scene objects, lights, CSV polygons and the text scene
  * format; flattening into one edge array with normals (Brückner 6.2.1-6.2.2). */
 #include "lm2d/lm2d_scene.h"
+#include "core/ctx.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -51,6 +52,7 @@ snell_status snell_scene2d_create(snell_ctx *ctx, snell_scene2d **out)
     s = (snell_scene2d *)snell__calloc(al, 1, sizeof *s);
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "snell_scene2d_create: out of memory");
     s->ctx = ctx;
+    snell__ctx_retain(ctx); /* s->al lives in ctx: released by snell_scene2d_destroy */
     s->al = al;
     s->geom_dirty = 1;
     *out = s;
@@ -59,6 +61,7 @@ snell_status snell_scene2d_create(snell_ctx *ctx, snell_scene2d **out)
 
 void snell_scene2d_destroy(snell_scene2d *s)
 {
+    snell_ctx *ctx;
     int i;
     if (!s) return;
     for (i = 0; i < s->n_objs; i++) snell__free(s->al, s->objs[i].pts);
@@ -66,7 +69,9 @@ void snell_scene2d_destroy(snell_scene2d *s)
     snell__free(s->al, s->lights);
     snell__free(s->al, s->edges);
     lm2d_bvh_free(s->al, &s->bvh);
+    ctx = s->ctx;
     snell__free(s->al, s);
+    snell__ctx_release(ctx);
 }
 
 snell_status snell_scene2d_set_bvh_leaf_size(snell_scene2d *s, int leaf_size)

@@ -5,6 +5,7 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <string.h>
@@ -25,33 +26,49 @@ static unsigned next_version(void)
     return v;
 }
 
-static void compute_bounds(snell_mesh *m)
+/* Box and the bounding sphere about the box centre (normalisation, the
+ * renderer's absorption estimate and the reference all use it): once per
+ * geometry change, not per frame. In double: with coordinates near 1e38 the
+ * centre (a sum of two coordinates) and the squared distances overflow float,
+ * which made the radius Inf, the normalisation scale 0 and the mesh a point.
+ * A mesh whose extent or radius exceeds the float range (FLT_MAX, 3.4e38)
+ * cannot be drawn or normalised: SNELL_E_LIMIT with its size. */
+static snell_status compute_bounds(snell_mesh *m)
 {
+    double lo[3], hi[3], c[3], r2 = 0.0, r, ext = 0.0;
     uint32_t i;
     int k;
     for (k = 0; k < 3; k++) {
-        m->bmin[k] = m->vertex_count ? HUGE_VALF : 0.0f;
-        m->bmax[k] = m->vertex_count ? -HUGE_VALF : 0.0f;
+        lo[k] = m->vertex_count ? HUGE_VAL : 0.0;
+        hi[k] = m->vertex_count ? -HUGE_VAL : 0.0;
     }
     for (i = 0; i < m->vertex_count; i++)
         for (k = 0; k < 3; k++) {
-            float v = m->positions[3 * i + k];
-            if (v < m->bmin[k]) m->bmin[k] = v;
-            if (v > m->bmax[k]) m->bmax[k] = v;
+            double v = m->positions[3 * (size_t)i + k];
+            if (v < lo[k]) lo[k] = v;
+            if (v > hi[k]) hi[k] = v;
         }
-    /* The bounding sphere about the box centre (normalisation, the renderer's
-     * absorption estimate and the reference all use it): once per geometry
-     * change, not per frame. */
-    {
-        float c[3], r2 = 0.0f;
-        for (k = 0; k < 3; k++) c[k] = 0.5f * (m->bmin[k] + m->bmax[k]);
-        for (i = 0; i < m->vertex_count; i++) {
-            const float *p = m->positions + 3 * i;
-            float d2 = (p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) + (p[2] - c[2]) * (p[2] - c[2]);
-            if (d2 > r2) r2 = d2;
-        }
-        m->bradius = sqrtf(r2);
+    for (k = 0; k < 3; k++) {
+        c[k] = 0.5 * (lo[k] + hi[k]);
+        if (hi[k] - lo[k] > ext) ext = hi[k] - lo[k];
     }
+    for (i = 0; i < m->vertex_count; i++) {
+        const float *p = m->positions + 3 * (size_t)i;
+        double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+        double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if (d2 > r2) r2 = d2;
+    }
+    r = sqrt(r2);
+    if (!(ext <= FLT_MAX) || !(r <= FLT_MAX))
+        return snell__fail(m->ctx, SNELL_E_LIMIT,
+                           "mesh too large for float: extent %g, bounding radius %g (the float range ends at %g)",
+                           ext, r, (double)FLT_MAX);
+    for (k = 0; k < 3; k++) {
+        m->bmin[k] = (float)lo[k];
+        m->bmax[k] = (float)hi[k];
+    }
+    m->bradius = (float)r;
+    return SNELL_OK;
 }
 
 void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t nv, uint32_t nt,
@@ -92,6 +109,10 @@ snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *
                          vertex_count, triangle_count, SNELL_MESH_MAX_VERTICES, SNELL_MESH_MAX_TRIANGLES);
         goto fail;
     }
+    if (ctx && ctx->destroyed) {
+        st = snell__fail(ctx, SNELL_E_INVALID_ARG, "mesh: its context was destroyed (snell_ctx_destroy)");
+        goto fail;
+    }
     if (triangle_count == 0 || vertex_count < 3) {
         st = snell__fail(ctx, SNELL_E_INVALID_ARG, "mesh has no triangles");
         goto fail;
@@ -117,6 +138,8 @@ snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *
         goto fail;
     }
     m->ctx = ctx;
+    m->gpu_ctx = ctx;
+    snell__ctx_retain(ctx);
     m->alloc = *alloc;
     m->positions = positions;
     m->normals = normals;
@@ -124,7 +147,11 @@ snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *
     m->vertex_count = vertex_count;
     m->triangle_count = triangle_count;
     m->version = next_version();
-    compute_bounds(m);
+    st = compute_bounds(m);
+    if (st != SNELL_OK) {
+        snell_mesh_destroy(m); /* frees the arrays it owns now */
+        return st;
+    }
     *out = m;
     return SNELL_OK;
 fail:
@@ -147,6 +174,9 @@ snell_status snell_mesh_create(snell_ctx *ctx, const snell_mesh_desc *desc, snel
     nt = desc->indices ? desc->triangle_count : desc->vertex_count / 3;
     if (desc->vertex_count > SNELL_MESH_MAX_VERTICES || nt > SNELL_MESH_MAX_TRIANGLES)
         return snell__fail(ctx, SNELL_E_LIMIT, "mesh too large: %u vertices, %u triangles", desc->vertex_count, nt);
+    /* positions + normals (given or computed) + indices, counted as one request */
+    st = snell__budget_check(ctx, 24 * (size_t)desc->vertex_count + 12 * (size_t)nt, "snell_mesh_create: the mesh");
+    if (st != SNELL_OK) return st;
     pos = (float *)snell__calloc(al, 3 * (size_t)desc->vertex_count, sizeof(float));
     idx = (uint32_t *)snell__calloc(al, 3 * (size_t)nt, sizeof(uint32_t));
     if (desc->normals) nrm = (float *)snell__calloc(al, 3 * (size_t)desc->vertex_count, sizeof(float));
@@ -176,9 +206,17 @@ void snell_mesh_destroy(snell_mesh *m)
 {
     snell_alloc al;
     if (!m) return;
-    if (m->vao) glDeleteVertexArrays(1, &m->vao);
-    if (m->vbo) glDeleteBuffers(1, &m->vbo);
-    if (m->ibo) glDeleteBuffers(1, &m->ibo);
+    if (m->vao || m->vbo || m->ibo) {
+        /* In the GL context that holds them; nowhere if it is gone. */
+        snell__gl_scope sc;
+        if (snell__gl_scope_enter(m->gpu_ctx, &sc)) {
+            if (m->vao) glDeleteVertexArrays(1, &m->vao);
+            if (m->vbo) glDeleteBuffers(1, &m->vbo);
+            if (m->ibo) glDeleteBuffers(1, &m->ibo);
+        }
+        snell__gl_scope_leave(&sc);
+    }
+    snell__ctx_release(m->gpu_ctx);
     al = m->alloc;
     snell__free(&al, m->positions);
     snell__free(&al, m->normals);
@@ -186,24 +224,43 @@ void snell_mesh_destroy(snell_mesh *m)
     snell__free(&al, m);
 }
 
+int snell__mesh_bind_ctx(snell_mesh *m, snell_ctx *ctx)
+{
+    if (m->gpu_ctx) return m->gpu_ctx == ctx;
+    if (m->ctx && m->ctx != ctx) return 0;
+    m->gpu_ctx = ctx;
+    snell__ctx_retain(ctx);
+    return 1;
+}
+
+/* In double, like compute_bounds: the centre and the scale of a mesh near
+ * the float range (or far below it) are not representable in float. */
 snell_status snell_mesh_normalize(snell_mesh *m, float radius)
 {
-    float c[3], s;
+    double c[3], s;
     uint32_t i;
     int k;
+    snell_status st;
     if (!m) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_mesh_normalize: mesh is NULL");
     if (radius == 0.0f) radius = 1.0f;
     if (!(radius > 0.0f) || !isfinite(radius))
         return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_normalize: radius %g is not positive", radius);
+    if ((double)radius > 0.5 * FLT_MAX)
+        return snell__fail(m->ctx, SNELL_E_INVALID_ARG,
+                           "snell_mesh_normalize: radius %g too large (the mesh's extent, up to twice the radius, "
+                           "must stay below the float range %g)", radius, (double)FLT_MAX);
     if (!(m->bradius > 0.0f))
         return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "mesh is degenerate (all vertices coincide)");
-    for (k = 0; k < 3; k++) c[k] = 0.5f * (m->bmin[k] + m->bmax[k]);
-    s = radius / m->bradius;
+    for (k = 0; k < 3; k++) c[k] = 0.5 * ((double)m->bmin[k] + (double)m->bmax[k]);
+    s = (double)radius / (double)m->bradius;
     for (i = 0; i < m->vertex_count; i++)
-        for (k = 0; k < 3; k++) m->positions[3 * i + k] = (m->positions[3 * i + k] - c[k]) * s;
-    compute_bounds(m);
+        for (k = 0; k < 3; k++) {
+            float *p = &m->positions[3 * (size_t)i + k];
+            *p = (float)(((double)*p - c[k]) * s);
+        }
     m->version = next_version();
-    return SNELL_OK;
+    st = compute_bounds(m); /* cannot fail: extent <= 2 * radius (a float rounding above) < FLT_MAX */
+    return st;
 }
 
 uint32_t snell_mesh_vertex_count(const snell_mesh *m) { return m ? m->vertex_count : 0; }
@@ -221,17 +278,32 @@ void snell_mesh_bounds(const snell_mesh *m, float mn[3], float mx[3])
     }
 }
 
+void snell__mesh_draw(const snell_mesh *m)
+{
+    glBindVertexArray(m->vao);
+    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * m->triangle_count), m->index_type, (const void *)0);
+}
+
 snell_status snell__mesh_upload(snell_mesh *m)
 {
-    size_t nv = m->vertex_count, i;
+    size_t nv = m->vertex_count, ni = 3 * (size_t)m->triangle_count, i;
     float *interleaved;
+    uint32_t *idx;
+    snell_status st;
     if (m->vao && m->uploaded_version == m->version) return SNELL_OK;
     interleaved = (float *)snell__calloc(&m->alloc, 6 * nv, sizeof(float));
-    if (!interleaved) return snell__fail(m->ctx, SNELL_E_NOMEM, "out of memory uploading a mesh");
-    for (i = 0; i < nv; i++) {
-        memcpy(interleaved + 6 * i, m->positions + 3 * i, 3 * sizeof(float));
-        memcpy(interleaved + 6 * i + 3, m->normals + 3 * i, 3 * sizeof(float));
+    idx = (uint32_t *)snell__calloc(&m->alloc, ni, sizeof(uint32_t));
+    st = interleaved && idx ? snell__mesh_gpu_layout(m, interleaved, idx)
+                            : snell__fail(m->ctx, SNELL_E_NOMEM, "out of memory uploading a mesh");
+    if (st != SNELL_OK) {
+        snell__free(&m->alloc, interleaved);
+        snell__free(&m->alloc, idx);
+        return st;
     }
+    /* 16-bit indices where they fit: half the index bandwidth. */
+    m->index_type = nv <= 65536 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+    if (m->index_type == GL_UNSIGNED_SHORT)
+        for (i = 0; i < ni; i++) ((uint16_t *)idx)[i] = (uint16_t)idx[i];
     if (!m->vao) {
         glGenVertexArrays(1, &m->vao);
         glGenBuffers(1, &m->vbo);
@@ -245,10 +317,12 @@ snell_status snell__mesh_upload(snell_mesh *m)
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), (const void *)(3 * sizeof(float)));
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->ibo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof(uint32_t) * 3 * (size_t)m->triangle_count),
-                 m->indices, GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 (GLsizeiptr)((m->index_type == GL_UNSIGNED_SHORT ? sizeof(uint16_t) : sizeof(uint32_t)) * ni), idx,
+                 GL_STATIC_DRAW);
     glBindVertexArray(0);
     snell__free(&m->alloc, interleaved);
+    snell__free(&m->alloc, idx);
     m->uploaded_version = m->version;
     return glGetError() == GL_NO_ERROR ? SNELL_OK
                                        : snell__fail(m->ctx, SNELL_E_GL, "GL error uploading mesh buffers");

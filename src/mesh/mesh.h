@@ -24,8 +24,13 @@ struct snell_mesh {
     snell_status analysis_status; /* its outcome (SNELL_E_NOMEM is never cached) */
     snell_mesh_analysis analysis; /* valid when analysis_status == SNELL_OK */
     char analysis_error[128]; /* the failure message when it is not */
-    /* GPU side, created by snell__mesh_upload */
+    /* GPU side, created by snell__mesh_upload in gpu_ctx's GL context (a VAO
+     * names nothing in another context). gpu_ctx is ctx, or for a CPU-only
+     * mesh the context of the first frame that drew it (snell__mesh_bind_ctx);
+     * it holds a reference on it. */
+    snell_ctx *gpu_ctx;
     unsigned vao, vbo, ibo;
+    unsigned index_type;       /* GL_UNSIGNED_SHORT or GL_UNSIGNED_INT (mesh_gpu.c) */
     unsigned uploaded_version;
 };
 
@@ -60,7 +65,21 @@ int snell__mesh_winding(snell_mesh *mesh);
  * SNELL_E_NOMEM is not cached: the next call tries again. */
 snell_status snell__mesh_analysis(snell_mesh *mesh, const snell_mesh_analysis **out);
 
+/* The GPU copy (mesh_gpu.c): vertices interleaved (position, normal: 6
+ * floats each, vertex_count of them) and indices (3 * triangle_count),
+ * reordered for the vertex cache and fetch when built with meshoptimizer. */
+snell_status snell__mesh_gpu_layout(const snell_mesh *mesh, float *vertices, uint32_t *indices);
+/* Average cache miss ratio (transformed vertices per triangle, 16-entry cache). */
+float snell__mesh_acmr(const uint32_t *indices, uint32_t triangle_count, uint32_t vertex_count);
+/* Draws the uploaded mesh's triangles (its VAO and index type). */
+void snell__mesh_draw(const snell_mesh *mesh);
+
 /* Creates/updates VAO+VBO+IBO (attribute 0 = position, 1 = normal). Needs GL. */
 snell_status snell__mesh_upload(snell_mesh *mesh);
+
+/* For frame validation: 1 if a frame of ctx may draw the mesh (made with ctx,
+ * or CPU-only and drawn in no other context yet: it is bound to ctx now, its
+ * GPU buffers will live there), 0 if its GPU side belongs to another context. */
+int snell__mesh_bind_ctx(snell_mesh *mesh, snell_ctx *ctx);
 
 #endif

@@ -23,6 +23,19 @@
 #define GRID 4               /* interior grid candidates: GRID^3 cell centres of the box */
 #define MAX_CANDIDATES (4 + GRID * GRID * GRID + 27)
 #define MAX_CROSSINGS 100000 /* parity walk cap (a ray cannot cross more than all triangles anyway) */
+/* The ray casts' work bound (BVH nodes visited + triangles tested, over the
+ * whole analysis). Real meshes need well under 10^6 (bunny, 70k triangles:
+ * 6.0e5; horse 4.6e5; every mesh of test_analyze at most 6.0e5): a ray tests
+ * a few dozen triangles whatever the mesh size. A ray along which thousands
+ * of triangles coincide tests all of them, whichever BVH: one OBJ face of
+ * 40,000 repeated corners needed ~10^9 (8.5 s here, >100 s reported under
+ * AUTO). The base leaves room for meshes of high depth complexity (a parity
+ * ray through D surfaces costs ~20 D steps, 122 candidates x 3 rays: D = 1000
+ * nested shells fit); the bound grows with the triangle count (one query may
+ * cost up to 3 per triangle), so hitting it costs at most about as long as
+ * analysing a clean mesh of that size; beyond it: SNELL_E_LIMIT. */
+#define WORK_BASE 8388608.0 /* 2^23 */
+#define WORK_PER_TRIANGLE 256.0
 
 /* Three fixed directions with irrational-looking components, so that a parity
  * ray through a vertex or along an edge has probability ~0. */
@@ -34,10 +47,16 @@ static const double k_parity_dirs[3][3] = {
 typedef struct analyzer {
     const snell_mesh *m;
     snell__bvh *bvh;
-    double *cdf;             /* cumulative triangle areas, normalised to 1 */
+    double *cdf;             /* cumulative triangle areas in canonical order, normalised to 1 */
+    uint32_t *order;         /* triangles in canonical order (canonical_order): sampling does not
+                              * depend on index order, so neither does the analysis */
     double area;
     int closed;
+    uint64_t work;           /* BVH work done so far (snell__bvh_*_counted) */
+    double work_limit;       /* WORK_BASE + WORK_PER_TRIANGLE * triangles */
 } analyzer;
+
+static int over_budget(const analyzer *an) { return (double)an->work > an->work_limit; }
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -433,6 +452,57 @@ int snell__mesh_winding(snell_mesh *m)
 
 /* ------------------------------------------------------------ sampling */
 
+/* A triangle's corners rotated so the lexicographically smallest comes
+ * first (winding kept): independent of which corner the index list starts at. */
+static void canonical_verts(const snell_mesh *m, uint32_t t, double v[3][3])
+{
+    double w[3][3];
+    int first = 0, j, k;
+    tri_verts(m, t, w);
+    for (j = 1; j < 3; j++)
+        for (k = 0; k < 3; k++) {
+            if (w[j][k] < w[first][k]) {
+                first = j;
+                break;
+            }
+            if (w[j][k] > w[first][k]) break;
+        }
+    for (j = 0; j < 3; j++) memcpy(v[j], w[(first + j) % 3], sizeof v[j]);
+}
+
+typedef struct tri_order {
+    double key[9];           /* canonical corners */
+    uint32_t t;
+} tri_order;
+
+static int cmp_tri_order(const void *x, const void *y)
+{
+    const tri_order *a = (const tri_order *)x, *b = (const tri_order *)y;
+    int k;
+    for (k = 0; k < 9; k++)
+        if (a->key[k] != b->key[k]) return a->key[k] < b->key[k] ? -1 : 1;
+    return 0; /* the same triangle twice: either serves */
+}
+
+/* Triangles sorted by their canonical corners: a reordered index list (a
+ * vertex-cache optimisation, another exporter) gives the same samples. */
+static snell_status canonical_order(const snell_mesh *m, uint32_t *order)
+{
+    tri_order *tmp = (tri_order *)snell__calloc(&m->alloc, m->triangle_count, sizeof *tmp);
+    uint32_t t;
+    if (!tmp) return snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
+    for (t = 0; t < m->triangle_count; t++) {
+        double v[3][3];
+        canonical_verts(m, t, v);
+        memcpy(tmp[t].key, v, sizeof tmp[t].key);
+        tmp[t].t = t;
+    }
+    qsort(tmp, m->triangle_count, sizeof *tmp, cmp_tri_order);
+    for (t = 0; t < m->triangle_count; t++) order[t] = tmp[t].t;
+    snell__free(&m->alloc, tmp);
+    return SNELL_OK;
+}
+
 /* Sample i of n: an area-weighted stratified point on the surface (triangle by
  * the area CDF at (i+0.5)/n, point by an R2 sequence), deterministic. */
 static uint32_t surface_sample(const analyzer *an, int i, int n, double p[3])
@@ -449,27 +519,29 @@ static uint32_t surface_sample(const analyzer *an, int i, int n, double p[3])
     r1 = fmod(0.5 + 0.7548776662466927 * i, 1.0);
     r2 = fmod(0.5 + 0.5698402909980532 * i, 1.0);
     s = sqrt(r1);
-    tri_verts(m, lo, v);
+    canonical_verts(m, an->order[lo], v);
     for (k = 0; k < 3; k++) p[k] = (1.0 - s) * v[0][k] + s * (1.0 - r2) * v[1][k] + s * r2 * v[2][k];
-    return lo;
+    return an->order[lo];
 }
 
 /* Does the line from c through surface point q (on triangle tri) cross the
  * surface anywhere else? Then q is not the single surface the cubemap holds
  * in that direction: something hides it, or it hides something farther. */
-static int sample_hidden(const analyzer *an, const double c[3], const double q[3], uint32_t tri)
+static int sample_hidden(analyzer *an, const double c[3], const double q[3], uint32_t tri)
 {
     double d[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
     const double eps = 1e-7;
     if (dot3(d, d) < 1e-24) return 1; /* the centre lies on the surface: degenerate */
-    return snell__bvh_any(an->bvh, c, d, 0.0, 1.0 - eps, tri) ||
-           snell__bvh_any(an->bvh, q, d, eps, HUGE_VAL, tri);
+    return snell__bvh_any_counted(an->bvh, c, d, 0.0, 1.0 - eps, tri, &an->work) ||
+           snell__bvh_any_counted(an->bvh, q, d, eps, HUGE_VAL, tri, &an->work);
 }
 
-static double hidden_fraction(const analyzer *an, const double c[3], int n)
+/* Stops early (a meaningless value) once the work bound is spent; the
+ * caller then fails. */
+static double hidden_fraction(analyzer *an, const double c[3], int n)
 {
     int i, hidden = 0;
-    for (i = 0; i < n; i++) {
+    for (i = 0; i < n && !over_budget(an); i++) {
         double q[3];
         uint32_t tri = surface_sample(an, i, n, q);
         hidden += sample_hidden(an, c, q, tri);
@@ -526,13 +598,14 @@ static double dist2_point_triangle(const double p[3], double v[3][3])
 }
 
 /* Crossings of the ray from p along dir (counted one by one, nearest first). */
-static int crossings(const analyzer *an, const double p[3], const double dir[3])
+static int crossings(analyzer *an, const double p[3], const double dir[3])
 {
     double org[3] = {p[0], p[1], p[2]}, tmin = 0.0;
     uint32_t skip = SNELL__BVH_NONE;
     snell__bvh_hit h;
     int n = 0;
-    while (n < MAX_CROSSINGS && snell__bvh_closest(an->bvh, org, dir, tmin, HUGE_VAL, skip, &h)) {
+    while (n < MAX_CROSSINGS && !over_budget(an) &&
+           snell__bvh_closest_counted(an->bvh, org, dir, tmin, HUGE_VAL, skip, &h, &an->work)) {
         n++;
         tmin = h.t;
         skip = h.tri;
@@ -541,7 +614,7 @@ static int crossings(const analyzer *an, const double p[3], const double dir[3])
 }
 
 /* Odd crossing count along all three parity rays: inside a closed mesh. */
-static int parity_inside(const analyzer *an, const double p[3])
+static int parity_inside(analyzer *an, const double p[3])
 {
     int k;
     for (k = 0; k < 3; k++)
@@ -566,14 +639,19 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
         return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_analyze: mesh has no triangles");
     memset(&an, 0, sizeof an);
     an.m = m;
+    an.work_limit = WORK_BASE + WORK_PER_TRIANGLE * (double)m->triangle_count;
     st = topology(m, &tp);
     if (st != SNELL_OK) return st;
     an.closed = tp.closed;
     an.cdf = (double *)snell__calloc(&m->alloc, m->triangle_count, sizeof *an.cdf);
-    if (!an.cdf) return snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
-    st = snell__bvh_build(m->ctx, m->positions, m->vertex_count, m->indices, m->triangle_count, NULL, &an.bvh);
+    an.order = (uint32_t *)snell__calloc(&m->alloc, m->triangle_count, sizeof *an.order);
+    st = an.cdf && an.order ? canonical_order(m, an.order)
+                            : snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
+    if (st == SNELL_OK)
+        st = snell__bvh_build(m->ctx, m->positions, m->vertex_count, m->indices, m->triangle_count, NULL, &an.bvh);
     if (st != SNELL_OK) {
         snell__free(&m->alloc, an.cdf);
+        snell__free(&m->alloc, an.order);
         return st;
     }
 
@@ -582,7 +660,7 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
         double ac[3] = {0, 0, 0};
         for (t = 0; t < m->triangle_count; t++) {
             double v[3][3], n[3], a;
-            tri_verts(m, t, v);
+            canonical_verts(m, an.order[t], v);
             tri_cross(v, n);
             a = 0.5 * sqrt(dot3(n, n));
             sum_area += a;
@@ -592,6 +670,7 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
         if (!(sum_area > 0.0)) {
             snell__bvh_destroy(an.bvh);
             snell__free(&m->alloc, an.cdf);
+            snell__free(&m->alloc, an.order);
             return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_analyze: mesh has zero surface area");
         }
         for (t = 0; t < m->triangle_count; t++) an.cdf[t] /= sum_area;
@@ -607,11 +686,16 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
         ncand++;
     }
     {
-        double avg[3] = {0, 0, 0};
+        /* Neumaier-compensated: the sum does not depend on the vertex order */
+        double avg[3] = {0, 0, 0}, comp[3] = {0, 0, 0};
         uint32_t v;
         for (v = 0; v < m->vertex_count; v++)
-            for (k = 0; k < 3; k++) avg[k] += m->positions[3 * v + k];
-        for (k = 0; k < 3; k++) cand[ncand][k] = avg[k] / m->vertex_count;
+            for (k = 0; k < 3; k++) {
+                double x = m->positions[3 * v + k], t2 = avg[k] + x;
+                comp[k] += fabs(avg[k]) >= fabs(x) ? (avg[k] - t2) + x : (x - t2) + avg[k];
+                avg[k] = t2;
+            }
+        for (k = 0; k < 3; k++) cand[ncand][k] = (avg[k] + comp[k]) / m->vertex_count;
         ncand++;
     }
     for (k = 0; k < 3; k++) {
@@ -634,7 +718,7 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
      * (parity is meaningful for closed meshes; for open ones it still sorts
      * "probably inside" first). Then refine around the winner on a half-step
      * 3x3x3 grid. */
-    for (i = 0; i < ncand; i++) {
+    for (i = 0; i < ncand && !over_budget(&an); i++) {
         int inside = parity_inside(&an, cand[i]);
         double h;
         if (have_inside && !inside) continue;
@@ -657,7 +741,7 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
                 ncand++;
             }
     if (best_h > 0.0)
-        for (i = 0; i < ncand; i++) {
+        for (i = 0; i < ncand && !over_budget(&an); i++) {
             int inside = parity_inside(&an, cand[i]);
             double h;
             if (best_inside && !inside) continue;
@@ -678,6 +762,16 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
     }
     out->samples = FINE_SAMPLES;
     out->hidden_fraction = (float)hidden_fraction(&an, best_c, FINE_SAMPLES);
+    if (over_budget(&an)) {
+        snell__bvh_destroy(an.bvh);
+        snell__free(&m->alloc, an.cdf);
+        snell__free(&m->alloc, an.order);
+        memset(out, 0, sizeof *out);
+        return snell__fail(m->ctx, SNELL_E_LIMIT,
+                           "snell_mesh_analyze: the ray casts exceeded their work bound (%.0f BVH steps for %u "
+                           "triangles): many triangles lie on top of each other (duplicated faces?)",
+                           an.work_limit, m->triangle_count);
+    }
     {
         double r2 = 0.0;
         uint32_t v;
@@ -708,6 +802,7 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
     out->winding = winding_of(&tp);
     snell__bvh_destroy(an.bvh);
     snell__free(&m->alloc, an.cdf);
+    snell__free(&m->alloc, an.order);
     return SNELL_OK;
 }
 

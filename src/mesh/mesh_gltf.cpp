@@ -7,9 +7,13 @@ extern "C" {
 
 #include <tiny_gltf.h> /* declarations only: the implementation is libtinygltf.so */
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -32,48 +36,157 @@ struct LoadError {
 [[noreturn]] void fail(snell_status st, const std::string &msg) { throw LoadError{st, msg}; }
 
 /* --- filesystem callbacks -------------------------------------------------- */
-/* Memory input must not touch the filesystem: a buffer uri naming a file is an
- * error there. File input may read sibling files, but only regular ones (no
- * /dev/zero) and not beyond kMaxInputBytes. */
+/* Files are untrusted (DESIGN.md): a model's buffer and image URIs may name
+ * files in its own folder only. Memory input must not touch the filesystem at
+ * all: a URI naming a file is an error there. tinygltf percent-decodes a URI,
+ * joins it to the base directory and asks FileExists/ReadWholeFile; it then
+ * tries the URI relative to the current directory too, which the policy
+ * never accepts. A candidate path is allowed when its real path (symlinks
+ * resolved) is a regular file under the real path of the model's folder, and
+ * the URI is not absolute; with SNELL_LOAD_ALLOW_OUTSIDE_FOLDER any regular
+ * file is. Refusals are collected for the error message, which names the URI
+ * and the reason, never the file's size. (A folder changed while it loads can
+ * still race the check; the file is opened by its resolved path with
+ * O_NOFOLLOW.) */
 struct FsPolicy {
     bool allow_files;
+    bool allow_outside;   /* SNELL_LOAD_ALLOW_OUTSIDE_FOLDER */
+    std::string base_dir; /* as tinygltf joins it ("" = the current directory) */
+    std::string root;     /* real path of the model's folder, ending in '/'; "" = unresolvable */
+    size_t budget;        /* the context's memory budget */
+    size_t used;          /* bytes counted against it: the parse estimate, external files read */
+    std::string refused;  /* "'uri' reason; ..." */
+    std::string limit;    /* set when an external file exceeds the budget */
 };
+
+const size_t kMaxUriInMessage = 160;
+
+std::string shown_uri(const std::string &uri)
+{
+    std::string u = uri.size() > kMaxUriInMessage ? uri.substr(0, kMaxUriInMessage) + "..." : uri;
+    for (char &c : u)
+        if (static_cast<unsigned char>(c) < 0x20) c = '?';
+    return u;
+}
+
+void refuse(FsPolicy *pol, const std::string &uri, const char *why)
+{
+    std::string item = "'" + shown_uri(uri) + "' (" + why + ")";
+    if (pol->refused.find(item) != std::string::npos) return; /* FileExists, then ReadWholeFile */
+    if (pol->refused.size() > 1024) return;
+    if (!pol->refused.empty()) pol->refused += "; ";
+    pol->refused += item;
+}
+
+/* The URI a candidate path was made from, or false for tinygltf's fallback
+ * candidate relative to the current directory (not the model's folder). */
+bool uri_of(const FsPolicy *pol, const std::string &path, std::string *uri)
+{
+    if (pol->base_dir.empty()) {
+        *uri = path;
+        return true;
+    }
+    const std::string &prefix = pol->base_dir; /* ends in '/' (snell_mesh_load_gltf_ex) */
+    if (path.compare(0, prefix.size(), prefix) == 0) {
+        *uri = path.substr(prefix.size());
+        return true;
+    }
+    if (pol->allow_outside && !path.empty() && path[0] == '/') { /* an absolute URI, fs_expand */
+        *uri = path;
+        return true;
+    }
+    return false;
+}
+
+/* Resolves a candidate path; true and its real path if the policy allows it. */
+bool allowed(FsPolicy *pol, const std::string &path, std::string *real)
+{
+    std::string uri;
+    if (!pol->allow_files || !uri_of(pol, path, &uri)) return false;
+    if (uri.find('\0') != std::string::npos) {
+        refuse(pol, uri, "contains a NUL byte");
+        return false;
+    }
+    if (!pol->allow_outside && !uri.empty() && uri[0] == '/') {
+        refuse(pol, uri, "is an absolute path");
+        return false;
+    }
+    char *rp = realpath(path.c_str(), nullptr);
+    if (!rp) return false; /* absent: tinygltf reports "File not found" */
+    *real = rp;
+    std::free(rp);
+    struct stat sb;
+    if (stat(real->c_str(), &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        refuse(pol, uri, "is not a regular file");
+        return false;
+    }
+    if (!pol->allow_outside && (pol->root.empty() || real->compare(0, pol->root.size(), pol->root) != 0)) {
+        refuse(pol, uri, "leaves the model's folder");
+        return false;
+    }
+    return true;
+}
 
 bool fs_exists(const std::string &path, void *user)
 {
-    const FsPolicy *pol = static_cast<const FsPolicy *>(user);
-    struct stat sb;
-    return pol->allow_files && stat(path.c_str(), &sb) == 0 && S_ISREG(sb.st_mode);
+    std::string real;
+    return allowed(static_cast<FsPolicy *>(user), path, &real);
 }
 
-std::string fs_expand(const std::string &path, void *) { return path; /* no ~ or $VAR expansion */ }
+/* No ~ or $VAR expansion. tinygltf joins even an absolute URI to the base
+ * directory ("dir//abs"); with SNELL_LOAD_ALLOW_OUTSIDE_FOLDER it names the
+ * absolute path, as the caller allowed. */
+std::string fs_expand(const std::string &path, void *user)
+{
+    const FsPolicy *pol = static_cast<const FsPolicy *>(user);
+    std::string uri;
+    if (pol->allow_files && pol->allow_outside && uri_of(pol, path, &uri) && !uri.empty() && uri[0] == '/') return uri;
+    return path;
+}
 
 bool fs_read(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *user)
 {
-    const FsPolicy *pol = static_cast<const FsPolicy *>(user);
+    FsPolicy *pol = static_cast<FsPolicy *>(user);
+    std::string real;
     if (!pol->allow_files) {
-        if (err) *err += "external file '" + path + "' referenced from in-memory glTF\n";
+        if (err) *err += "external file '" + shown_uri(path) + "' referenced from in-memory glTF\n";
         return false;
     }
+    if (!allowed(pol, path, &real)) {
+        if (err) *err += "refused\n";
+        return false;
+    }
+    int fd = open(real.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
     struct stat sb;
-    if (stat(path.c_str(), &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        if (err) *err += "'" + path + "' is not a readable regular file\n";
+    if (fd < 0 || fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        if (fd >= 0) close(fd);
+        if (err) *err += "cannot open '" + shown_uri(path) + "'\n";
         return false;
     }
-    if (static_cast<unsigned long long>(sb.st_size) > kMaxInputBytes) {
-        if (err) *err += "'" + path + "' is larger than 1 GiB\n";
+    size_t size = static_cast<size_t>(sb.st_size);
+    if (static_cast<unsigned long long>(sb.st_size) > kMaxInputBytes ||
+        size > pol->budget - std::min(pol->used, pol->budget)) {
+        close(fd);
+        char buf[256];
+        std::snprintf(buf, sizeof buf,
+                      "'%s' (%.1f MiB) would exceed the memory budget of %.1f MiB (snell_ctx_desc.memory_budget)",
+                      shown_uri(path).c_str(), static_cast<double>(size) / 1048576.0,
+                      static_cast<double>(pol->budget) / 1048576.0);
+        if (pol->limit.empty()) pol->limit = buf;
+        if (err) *err += std::string(buf) + "\n";
         return false;
     }
-    FILE *f = std::fopen(path.c_str(), "rb");
-    if (!f) {
-        if (err) *err += "cannot open '" + path + "'\n";
-        return false;
+    pol->used += size;
+    out->resize(size);
+    size_t got = 0;
+    while (got < size) {
+        ssize_t n = read(fd, out->data() + got, size - got);
+        if (n <= 0) break;
+        got += static_cast<size_t>(n);
     }
-    out->resize(static_cast<size_t>(sb.st_size));
-    size_t got = out->empty() ? 0 : std::fread(out->data(), 1, out->size(), f);
-    std::fclose(f);
-    if (got != out->size()) {
-        if (err) *err += "short read on '" + path + "'\n";
+    close(fd);
+    if (got != size) {
+        if (err) *err += "short read on '" + shown_uri(path) + "'\n";
         return false;
     }
     return true;
@@ -307,10 +420,11 @@ Mat4 local_transform(const tinygltf::Node &n, int idx)
 /* --- geometry accumulation -------------------------------------------------- */
 struct Builder {
     const tinygltf::Model &model;
+    snell_ctx *ctx;
     std::vector<float> pos, nrm;
     std::vector<uint32_t> idx;
     size_t instances = 0;
-    explicit Builder(const tinygltf::Model &m) : model(m) {}
+    Builder(const tinygltf::Model &m, snell_ctx *c) : model(m), ctx(c) {}
 
     void add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mesh_idx);
     void visit(int node, const Mat4 &parent, int depth);
@@ -380,6 +494,14 @@ void Builder::add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mes
         std::snprintf(buf, sizeof buf, "scene exceeds %u vertices or %u triangles", SNELL_MESH_MAX_VERTICES,
                       SNELL_MESH_MAX_TRIANGLES);
         fail(SNELL_E_LIMIT, buf);
+    }
+    {
+        /* positions + normals + indices, twice: the mesh's own arrays are
+         * copied from these (a shared subtree instanced many times grows
+         * them without the file growing) */
+        size_t bytes = 2 * (8 * (pos.size() + 3 * vp.count) + 4 * (idx.size() + tris.size()));
+        snell_status st = snell__budget_check(ctx, bytes, "the scene's vertex and index arrays");
+        if (st != SNELL_OK) fail(st, snell_last_error(ctx));
     }
     /* Normals transform by the inverse transpose of the upper 3x3, which is the
      * cofactor matrix divided by the determinant; only the direction matters,
@@ -534,14 +656,86 @@ void check_glb(const unsigned char *d, size_t size)
     }
 }
 
+/* Required extensions that do not change the geometry this loader reads
+ * (materials, textures, lights): a file requiring them still loads. Any other
+ * required extension is an error naming it (glTF 2.0 §3.12: a loader that
+ * does not support a required extension must not load the file). */
+bool extension_tolerated(const std::string &e)
+{
+    static const char *const known[] = {"KHR_texture_transform", "KHR_texture_basisu", "EXT_texture_webp",
+                                        "EXT_texture_avif", "KHR_lights_punctual", "KHR_materials_variants"};
+    if (e.compare(0, 14, "KHR_materials_") == 0) return true;
+    for (const char *k : known)
+        if (e == k) return true;
+    return false;
+}
+
+/* asset.version and extensionsRequired: tinygltf 2.7 parses both before any
+ * buffer, so they are set even when it fails later (a glTF 1.0 file fails on
+ * its object-shaped sections, a Draco file on accessors without a
+ * bufferView): these messages replace the misleading ones. */
+void check_version_and_extensions(const tinygltf::Model &model)
+{
+    const std::string &v = model.asset.version;
+    if (!v.empty() && v.compare(0, 2, "2.") != 0) {
+        if (v[0] == '1' || v[0] == '0')
+            fail(SNELL_E_UNSUPPORTED, "glTF 1.0 is not supported (asset.version \"" + shown_uri(v) +
+                                          "\"): convert the file to glTF 2.0");
+        fail(SNELL_E_UNSUPPORTED, "glTF version \"" + shown_uri(v) + "\" is not supported (2.x only)");
+    }
+    std::string bad;
+    for (const std::string &e : model.extensionsRequired) {
+        if (extension_tolerated(e)) continue;
+        if (!bad.empty()) bad += ", ";
+        bad += shown_uri(e);
+        if (e == "KHR_draco_mesh_compression") bad += " (Draco-compressed geometry)";
+        else if (e == "EXT_meshopt_compression") bad += " (meshoptimizer-compressed buffers)";
+        else if (e == "KHR_mesh_quantization") bad += " (integer vertex attributes)";
+    }
+    if (!bad.empty()) fail(SNELL_E_UNSUPPORTED, "the file requires extensions that are not supported: " + bad);
+}
+
+/* tinygltf's peak memory for an input: its JSON DOM and the copies it makes
+ * of data: URIs (the base64 text, its decoded string, the buffer) cost about
+ * 6 bytes per byte of JSON (measured: 28 MB of JSON with one data: URI peaked
+ * at 164 MB resident); 8 leaves room. A GLB's BIN chunk is copied once more
+ * into the buffer. Checked against the budget before parsing. */
+const size_t kJsonMemFactor = 8;
+
+void check_parse_budget(snell_ctx *ctx, size_t json_bytes, size_t bin_bytes, FsPolicy *pol)
+{
+    char what[160];
+    size_t est = json_bytes > (SIZE_MAX - 2 * bin_bytes) / kJsonMemFactor ? SIZE_MAX
+                                                                          : kJsonMemFactor * json_bytes + 2 * bin_bytes;
+    pol->used = est;
+    if (est <= pol->budget) return;
+    std::snprintf(what, sizeof what, "parsing %zu bytes of JSON (data: URIs included) and %zu of binary chunk",
+                  json_bytes, bin_bytes);
+    snell_status st = snell__budget_check(ctx, est, what);
+    fail(st, snell_last_error(ctx));
+}
+
 snell_status load(snell_ctx *ctx, const unsigned char *data, size_t size, const std::string &base_dir,
-                  bool allow_files, snell_mesh **out)
+                  bool allow_files, unsigned flags, snell_mesh **out)
 {
     try {
         if (size > kMaxInputBytes) fail(SNELL_E_LIMIT, "glTF input larger than 1 GiB");
         tinygltf::TinyGLTF loader;
         tinygltf::Model model;
-        FsPolicy pol = {allow_files};
+        FsPolicy pol;
+        pol.allow_files = allow_files;
+        pol.allow_outside = (flags & SNELL_LOAD_ALLOW_OUTSIDE_FOLDER) != 0;
+        pol.base_dir = base_dir;
+        pol.budget = snell__ctx_budget(ctx);
+        pol.used = 0;
+        if (allow_files) {
+            char *rp = realpath(base_dir.empty() ? "." : base_dir.c_str(), nullptr);
+            if (rp) {
+                pol.root = rp;
+                std::free(rp);
+                if (pol.root.back() != '/') pol.root += '/';
+            }
+        }
         tinygltf::FsCallbacks fs = {fs_exists, fs_expand, fs_read, fs_write, &pol};
         loader.SetFsCallbacks(fs);
         loader.SetImageLoader(skip_image, nullptr);
@@ -553,17 +747,27 @@ snell_status load(snell_ctx *ctx, const unsigned char *data, size_t size, const 
             uint32_t jlen;
             std::memcpy(&jlen, data + 12, 4);
             check_json_depth(data + 20, jlen);
+            check_parse_budget(ctx, jlen, size - 20 - jlen, &pol);
             ok = loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned int>(size), base_dir);
         } else {
             check_json_depth(data, size);
+            check_parse_budget(ctx, size, 0, &pol);
             ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char *>(data),
                                             static_cast<unsigned int>(size), base_dir);
         }
+        check_version_and_extensions(model);
+        if (!pol.limit.empty()) fail(SNELL_E_LIMIT, pol.limit);
+        if (!ok && !pol.refused.empty())
+            fail(SNELL_E_IO, "refused to read " + pol.refused +
+                                 ": URIs may name regular files in the model's folder only "
+                                 "(SNELL_LOAD_ALLOW_OUTSIDE_FOLDER lifts the folder rule)");
         if (!ok) {
             while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
             fail(SNELL_E_PARSE, "tinygltf: " + (err.empty() ? std::string("unknown error") : err));
         }
-        Builder b(model);
+        if (!pol.refused.empty()) /* only images can be refused without failing the load */
+            snell__log(ctx, SNELL_LOG_WARN, "glTF: image files not read: %s", pol.refused.c_str());
+        Builder b(model, ctx);
         Mat4 id = identity();
         for (int r : scene_roots(model)) b.visit(r, id, 0);
         if (b.idx.empty()) fail(SNELL_E_PARSE, "no triangle primitives in the scene");
@@ -594,6 +798,42 @@ snell_status load(snell_ctx *ctx, const unsigned char *data, size_t size, const 
     }
 }
 
+/* Reads the model file itself: a regular file (not a directory or device),
+ * at most 1 GiB and within the memory budget. */
+snell_status read_model_file(snell_ctx *ctx, const char *path, std::vector<unsigned char> *bytes)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    struct stat sb;
+    if (fd < 0) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s'", path);
+    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        bool dir = S_ISDIR(sb.st_mode);
+        close(fd);
+        return snell__fail(ctx, SNELL_E_IO, "glTF: '%s' is %s", path, dir ? "a directory" : "not a regular file");
+    }
+    if (static_cast<unsigned long long>(sb.st_size) > kMaxInputBytes) {
+        close(fd);
+        return snell__fail(ctx, SNELL_E_LIMIT, "'%s' is larger than 1 GiB", path);
+    }
+    size_t size = static_cast<size_t>(sb.st_size);
+    char what[320];
+    std::snprintf(what, sizeof what, "glTF: reading '%.256s'", path); /* reported as is */
+    snell_status st = snell__budget_check(ctx, size, what);
+    if (st != SNELL_OK) {
+        close(fd);
+        return st;
+    }
+    bytes->resize(size);
+    size_t got = 0;
+    while (got < size) {
+        ssize_t n = read(fd, bytes->data() + got, size - got);
+        if (n <= 0) break;
+        got += static_cast<size_t>(n);
+    }
+    close(fd);
+    if (got != size) return snell__fail(ctx, SNELL_E_IO, "glTF: short read on '%s'", path);
+    return SNELL_OK;
+}
+
 } // namespace
 
 extern "C" snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_mesh **out)
@@ -601,34 +841,32 @@ extern "C" snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *dat
     if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_gltf_mem: out is NULL");
     *out = NULL;
     if (!data || !size) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_gltf_mem: no data");
-    return load(ctx, static_cast<const unsigned char *>(data), size, "", false, out);
+    return load(ctx, static_cast<const unsigned char *>(data), size, "", false, 0, out);
 }
 
-extern "C" snell_status snell_mesh_load_gltf(snell_ctx *ctx, const char *path, snell_mesh **out)
+extern "C" snell_status snell_mesh_load_gltf_ex(snell_ctx *ctx, const char *path, unsigned flags, snell_mesh **out)
 {
     if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_gltf: out is NULL");
     *out = NULL;
     if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_gltf: path is NULL");
+    if (flags & ~static_cast<unsigned>(SNELL_LOAD_ALLOW_OUTSIDE_FOLDER))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_gltf_ex: unknown flags 0x%x", flags);
     try {
         std::vector<unsigned char> bytes;
-        std::string err;
-        FsPolicy pol = {true};
-        struct stat sb;
-        if (stat(path, &sb) != 0) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s'", path);
-        if (static_cast<unsigned long long>(sb.st_size) > kMaxInputBytes)
-            return snell__fail(ctx, SNELL_E_LIMIT, "'%s' is larger than 1 GiB", path);
-        if (!fs_read(&bytes, &err, path, &pol)) {
-            while (!err.empty() && err.back() == '\n') err.pop_back();
-            return snell__fail(ctx, SNELL_E_IO, "glTF: %s", err.c_str());
-        }
+        snell_status st = read_model_file(ctx, path, &bytes);
+        if (st != SNELL_OK) return st;
         if (bytes.empty()) return snell__fail(ctx, SNELL_E_PARSE, "glTF: '%s' is empty", path);
         /* external buffers are resolved relative to the file's directory */
         std::string p(path), dir;
         size_t slash = p.find_last_of('/');
-        if (slash != std::string::npos) dir = p.substr(0, slash);
-        snell_status st = load(ctx, bytes.data(), bytes.size(), dir, true, out);
-        return st;
+        if (slash != std::string::npos) dir = p.substr(0, slash + 1);
+        return load(ctx, bytes.data(), bytes.size(), dir, true, flags, out);
     } catch (...) {
         return snell__fail(ctx, SNELL_E_NOMEM, "glTF: out of memory reading '%s'", path);
     }
+}
+
+extern "C" snell_status snell_mesh_load_gltf(snell_ctx *ctx, const char *path, snell_mesh **out)
+{
+    return snell_mesh_load_gltf_ex(ctx, path, 0, out);
 }

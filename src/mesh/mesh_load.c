@@ -36,6 +36,12 @@ snell_status snell_mesh_load_gltf(snell_ctx *ctx, const char *path, snell_mesh *
                        "(SNELL_WITH_GLTF=OFF)", path ? path : "(null)");
 }
 
+snell_status snell_mesh_load_gltf_ex(snell_ctx *ctx, const char *path, unsigned flags, snell_mesh **out)
+{
+    (void)flags;
+    return snell_mesh_load_gltf(ctx, path, out);
+}
+
 snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_mesh **out)
 {
     (void)data;

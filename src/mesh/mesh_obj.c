@@ -1,7 +1,10 @@
 /* mesh_obj.c — Wavefront OBJ loader (v, vn, vt, f; everything else ignored).
  * Own bounded parser: works on a buffer that need not be NUL-terminated, never
  * reads past it, and reports malformed input with the line number. */
+#define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 #include "mesh/mesh.h"
+
+#include <sys/stat.h>
 
 #include <float.h>
 #include <math.h>
@@ -29,22 +32,32 @@ typedef struct obj_parser {
     uint32_t *tri; size_t ntri, cap_tri;
     /* scratch for one face's corners */
     uint32_t *face; size_t cap_face;
+    /* bytes held by all the arrays above: one request against the memory
+     * budget (they live together until the mesh is built) */
+    size_t bytes;
 } obj_parser;
+
+/* The capacity grow() moves cap to for need elements; 0 on overflow. */
+static size_t grown_cap(size_t cap, size_t need, size_t elem)
+{
+    size_t ncap = cap ? cap : 64;
+    int ok = 1;
+    while (ncap < need) {
+        if (ncap > ((size_t)-1) / 2) return 0;
+        ncap *= 2;
+    }
+    (void)snell__mul_size(ncap, elem, &ok);
+    return ok ? ncap : 0;
+}
 
 /* Grows *arr (elements of size elem) so it holds at least need elements. */
 static int grow(const snell_alloc *al, void **arr, size_t *cap, size_t need, size_t elem)
 {
     size_t ncap;
     void *np;
-    int ok = 1;
     if (need <= *cap) return 1;
-    ncap = *cap ? *cap : 64;
-    while (ncap < need) {
-        if (ncap > ((size_t)-1) / 2) return 0;
-        ncap *= 2;
-    }
-    (void)snell__mul_size(ncap, elem, &ok);
-    if (!ok) return 0;
+    ncap = grown_cap(*cap, need, elem);
+    if (!ncap) return 0;
     np = snell__realloc(al, *arr, ncap * elem);
     if (!np) return 0;
     *arr = np;
@@ -55,6 +68,30 @@ static int grow(const snell_alloc *al, void **arr, size_t *cap, size_t need, siz
 static snell_status nomem(obj_parser *ps)
 {
     return snell__fail(ps->ctx, SNELL_E_NOMEM, "OBJ line %lu: out of memory", ps->line);
+}
+
+/* SNELL_OK if the parser's arrays may grow by `more` bytes within the memory budget. */
+static snell_status budget(obj_parser *ps, size_t more)
+{
+    char what[64];
+    size_t total = ps->bytes + more;
+    if (total >= more && total <= snell__ctx_budget(ps->ctx)) return SNELL_OK;
+    snprintf(what, sizeof what, "OBJ line %lu: the parsed arrays", ps->line);
+    return snell__budget_check(ps->ctx, total >= more ? total : (size_t)-1, what);
+}
+
+/* grow() of one of the parser's arrays, counted against the budget. */
+static snell_status pgrow(obj_parser *ps, void **arr, size_t *cap, size_t need, size_t elem)
+{
+    size_t old = *cap, ncap;
+    snell_status st;
+    if (need <= old) return SNELL_OK;
+    ncap = grown_cap(old, need, elem);
+    if (!ncap) return nomem(ps);
+    if ((st = budget(ps, (ncap - old) * elem)) != SNELL_OK) return st;
+    if (!grow(ps->al, arr, cap, need, elem)) return nomem(ps);
+    ps->bytes += (ncap - old) * elem;
+    return SNELL_OK;
 }
 
 /* Horizontal whitespace; a backslash before the newline continues the line
@@ -253,7 +290,14 @@ static snell_status vertex_id(obj_parser *ps, uint32_t v, uint32_t n, uint32_t *
 {
     uint64_t key = (((uint64_t)v << 32) | n) + 1; /* never 0: v < 2^26 */
     size_t h;
-    if ((ps->nout + 1) * 2 > ps->hcap && !hash_rehash(ps, ps->hcap ? ps->hcap * 2 : 1024)) return nomem(ps);
+    if ((ps->nout + 1) * 2 > ps->hcap) {
+        size_t ncap = ps->hcap ? ps->hcap * 2 : 1024;
+        size_t more = (ncap - ps->hcap) * (sizeof *ps->hkeys + sizeof *ps->hvals);
+        snell_status st = budget(ps, more);
+        if (st != SNELL_OK) return st;
+        if (!hash_rehash(ps, ncap)) return nomem(ps);
+        ps->bytes += more;
+    }
     h = (size_t)hash64(key) & (ps->hcap - 1);
     while (ps->hkeys[h]) {
         if (ps->hkeys[h] == key) {
@@ -268,9 +312,10 @@ static snell_status vertex_id(obj_parser *ps, uint32_t v, uint32_t n, uint32_t *
     if (ps->nout + 1 > ps->cap_out) {
         /* out_v and out_n share one capacity, grown together */
         size_t cap_v = ps->cap_out, cap_n = ps->cap_out;
-        if (!grow(ps->al, (void **)&ps->out_v, &cap_v, ps->nout + 1, sizeof(uint32_t)) ||
-            !grow(ps->al, (void **)&ps->out_n, &cap_n, ps->nout + 1, sizeof(uint32_t)))
-            return nomem(ps);
+        snell_status st;
+        if ((st = pgrow(ps, (void **)&ps->out_v, &cap_v, ps->nout + 1, sizeof(uint32_t))) != SNELL_OK ||
+            (st = pgrow(ps, (void **)&ps->out_n, &cap_n, ps->nout + 1, sizeof(uint32_t))) != SNELL_OK)
+            return st;
         ps->cap_out = cap_v < cap_n ? cap_v : cap_n;
     }
     ps->out_v[ps->nout] = v;
@@ -321,7 +366,7 @@ static snell_status parse_face(obj_parser *ps)
     for (;;) {
         skip_ws(ps);
         if (at_eol(ps)) break;
-        if (!grow(ps->al, (void **)&ps->face, &ps->cap_face, n + 1, sizeof(uint32_t))) return nomem(ps);
+        if ((st = pgrow(ps, (void **)&ps->face, &ps->cap_face, n + 1, sizeof(uint32_t))) != SNELL_OK) return st;
         st = parse_corner(ps, (int)(n < 0x7fffffff ? n : 0x7fffffff), &ps->face[n]);
         if (st != SNELL_OK) return st;
         n++;
@@ -332,8 +377,8 @@ static snell_status parse_face(obj_parser *ps)
     if (ps->ntri + (n - 2) > SNELL_MESH_MAX_TRIANGLES)
         return snell__fail(ps->ctx, SNELL_E_LIMIT, "OBJ line %lu: more than %u triangles", ps->line,
                            SNELL_MESH_MAX_TRIANGLES);
-    if (!grow(ps->al, (void **)&ps->tri, &ps->cap_tri, 3 * (ps->ntri + n - 2), sizeof(uint32_t)))
-        return nomem(ps);
+    if ((st = pgrow(ps, (void **)&ps->tri, &ps->cap_tri, 3 * (ps->ntri + n - 2), sizeof(uint32_t))) != SNELL_OK)
+        return st;
     for (i = 1; i + 1 < n; i++) {
         uint32_t *t = ps->tri + 3 * ps->ntri++;
         t[0] = ps->face[0];
@@ -347,15 +392,17 @@ static snell_status parse_statement(obj_parser *ps)
 {
     const char *kw = ps->p;
     size_t len;
+    snell_status st;
     while (!is_delim(ps, ps->p)) ps->p++;
     len = (size_t)(ps->p - kw);
     if (len == 1 && kw[0] == 'v') {
         if (ps->npos >= SNELL_MESH_MAX_VERTICES)
             return snell__fail(ps->ctx, SNELL_E_LIMIT, "OBJ line %lu: more than %u positions", ps->line,
                                SNELL_MESH_MAX_VERTICES);
-        if (!grow(ps->al, (void **)&ps->pos, &ps->cap_pos, 3 * (ps->npos + 1), sizeof(float))) return nomem(ps);
+        st = pgrow(ps, (void **)&ps->pos, &ps->cap_pos, 3 * (ps->npos + 1), sizeof(float));
+        if (st != SNELL_OK) return st;
         {
-            snell_status st = parse_vec3(ps, "v", ps->pos + 3 * ps->npos);
+            st = parse_vec3(ps, "v", ps->pos + 3 * ps->npos);
             if (st != SNELL_OK) return st;
         }
         ps->npos++;
@@ -363,9 +410,10 @@ static snell_status parse_statement(obj_parser *ps)
         if (ps->nnrm >= SNELL_MESH_MAX_VERTICES)
             return snell__fail(ps->ctx, SNELL_E_LIMIT, "OBJ line %lu: more than %u normals", ps->line,
                                SNELL_MESH_MAX_VERTICES);
-        if (!grow(ps->al, (void **)&ps->nrm, &ps->cap_nrm, 3 * (ps->nnrm + 1), sizeof(float))) return nomem(ps);
+        st = pgrow(ps, (void **)&ps->nrm, &ps->cap_nrm, 3 * (ps->nnrm + 1), sizeof(float));
+        if (st != SNELL_OK) return st;
         {
-            snell_status st = parse_vec3(ps, "vn", ps->nrm + 3 * ps->nnrm);
+            st = parse_vec3(ps, "vn", ps->nrm + 3 * ps->nnrm);
             if (st != SNELL_OK) return st;
         }
         ps->nnrm++;
@@ -409,6 +457,10 @@ static snell_status build_mesh(obj_parser *ps, snell_mesh **out)
     float *opos = NULL, *onrm = NULL, *smooth = NULL;
     uint32_t *oidx = NULL, *tmp = NULL;
     int need_smooth = 0;
+    snell_status st;
+    /* the output arrays join the parser's, which are freed after this */
+    if ((st = budget(ps, 24 * nv)) != SNELL_OK) return st;
+    ps->bytes += 24 * nv;
     opos = (float *)snell__calloc(al, 3 * nv, sizeof(float));
     onrm = (float *)snell__calloc(al, 3 * nv, sizeof(float));
     if (!opos || !onrm) goto oom;
@@ -429,6 +481,11 @@ static snell_status build_mesh(obj_parser *ps, snell_mesh **out)
         need_smooth = 1;
     }
     if (need_smooth) {
+        if ((st = budget(ps, 12 * (ps->npos + nt))) != SNELL_OK) {
+            snell__free(al, opos);
+            snell__free(al, onrm);
+            return st;
+        }
         smooth = (float *)snell__calloc(al, 3 * ps->npos, sizeof(float));
         tmp = (uint32_t *)snell__calloc(al, 3 * nt, sizeof(uint32_t));
         if (!smooth || !tmp) goto oom;
@@ -514,6 +571,14 @@ snell_status snell_mesh_load_obj(snell_ctx *ctx, const char *path, snell_mesh **
     if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_obj: path is NULL");
     f = fopen(path, "rb");
     if (!f) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s'", path);
+    {
+        /* fopen opens a directory too; its reads then fail with EISDIR */
+        struct stat sb;
+        if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+            fclose(f);
+            return snell__fail(ctx, SNELL_E_IO, "'%s' is a directory, not an OBJ file", path);
+        }
+    }
     /* read in chunks (works for pipes and files whose size changes) */
     for (;;) {
         size_t got;
@@ -522,6 +587,13 @@ snell_status snell_mesh_load_obj(snell_ctx *ctx, const char *path, snell_mesh **
                 fclose(f);
                 snell__free(al, buf);
                 return snell__fail(ctx, SNELL_E_LIMIT, "'%s' is larger than %zu bytes", path, OBJ_MAX_FILE_BYTES);
+            }
+            if (cap && 2 * cap > snell__ctx_budget(ctx)) {
+                char what[320];
+                fclose(f);
+                snell__free(al, buf);
+                snprintf(what, sizeof what, "reading '%.256s' (more than %zu bytes)", path, cap);
+                return snell__budget_check(ctx, 2 * cap, what);
             }
             if (!grow(al, (void **)&buf, &cap, cap ? cap * 2 : 65536, 1)) {
                 fclose(f);

@@ -30,6 +30,12 @@
  * and the one it does not. */
 #define AUTO_MAX_HIDDEN 0.6f
 
+/* llvmpipe, 512x512 (BENCHMARKS.md): screen space is faster at every density
+ * measured, 0.93x forward on a 32-segment sphere (355 estimated px/triangle)
+ * down to 0.56x on the bunny (5.1): the search costs so much per pixel that
+ * full 4x4 blocks always win. */
+#define CUBEMAP_SOFTWARE_SCREEN_PPT 1e9f
+
 /* One mesh version's baked cubemap (the prepared resource). */
 typedef struct cube_prepared {
     snell__ndcube cube;
@@ -39,9 +45,9 @@ typedef struct cube_prepared {
 typedef struct cube_prog {
     snell__glass_program g;    /* g.prog == 0: empty slot */
     snell_ndcube_encoding enc;
-    int iterations, linear, no_search;
+    int iterations, linear, no_search, screen, absorb;
     unsigned long last_use;
-    int ndcube, inv_model, centre, radius, inner_radius, max_interfaces, texel_angle, absorb;
+    int ndcube, inv_model, centre, radius, inner_radius, max_interfaces, texel_angle;
 } cube_prog;
 
 typedef struct cubemap_state {
@@ -53,21 +59,28 @@ typedef struct cubemap_state {
 
 static void cubemap_destroy(snell_ctx *ctx, void *state);
 
-static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, snell_ndcube_encoding enc, int iterations,
-                               int linear, int no_search, cube_prog *p)
+/* What selects a search program: its compile-time constants. */
+typedef struct prog_key {
+    snell_ndcube_encoding enc;
+    int iterations, linear, no_search, screen, absorb;
+} prog_key;
+
+static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const prog_key *k, cube_prog *p)
 {
-    char def[200];
+    char def[240];
     snell_status st;
     snprintf(def, sizeof def,
              "#define SNELL_NDCUBE_%s 1\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_LINEAR_STEPS %d\n"
-             "#define SNELL_NO_SEARCH %d\n",
-             enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", iterations, linear, no_search);
-    st = snell__glass_program_build(ctx, "cubemap.frag", out, def, &p->g);
+             "#define SNELL_NO_SEARCH %d\n#define SNELL_ABSORB %d\n",
+             k->enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", k->iterations, k->linear, k->no_search, k->absorb);
+    st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->g);
     if (st != SNELL_OK) return st;
-    p->enc = enc;
-    p->iterations = iterations;
-    p->linear = linear;
-    p->no_search = no_search;
+    p->enc = k->enc;
+    p->iterations = k->iterations;
+    p->linear = k->linear;
+    p->no_search = k->no_search;
+    p->screen = k->screen;
+    p->absorb = k->absorb;
     p->ndcube = glGetUniformLocation(p->g.prog, "u_ndcube");
     p->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
     p->centre = glGetUniformLocation(p->g.prog, "u_centre");
@@ -75,14 +88,12 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, snell_ndc
     p->inner_radius = glGetUniformLocation(p->g.prog, "u_inner_radius");
     p->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
     p->texel_angle = glGetUniformLocation(p->g.prog, "u_texel_angle");
-    p->absorb = glGetUniformLocation(p->g.prog, "u_absorb");
     return SNELL_OK;
 }
 
 /* The program of these settings: cached, else built into the least recently
  * used slot. */
-static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, snell_ndcube_encoding enc, int iterations, int linear,
-                             int no_search, const cube_prog **out)
+static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, const prog_key *k, const cube_prog **out)
 {
     cube_prog *p = &s->prog[0];
     snell_status st;
@@ -90,8 +101,8 @@ static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, snell_ndcube_enco
     s->clock++;
     for (i = 0; i < PROG_CACHE; i++) {
         cube_prog *c = &s->prog[i];
-        if (c->g.prog && c->enc == enc && c->iterations == iterations && c->linear == linear &&
-            c->no_search == no_search) {
+        if (c->g.prog && c->enc == k->enc && c->iterations == k->iterations && c->linear == k->linear &&
+            c->no_search == k->no_search && c->screen == k->screen && c->absorb == k->absorb) {
             c->last_use = s->clock;
             *out = c;
             return SNELL_OK;
@@ -99,7 +110,7 @@ static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, snell_ndcube_enco
         if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
     }
     snell__glass_program_destroy(&p->g);
-    st = build_prog(ctx, s->out, enc, iterations, linear, no_search, p);
+    st = build_prog(ctx, s->out, k, p);
     if (st != SNELL_OK) return st;
     p->last_use = s->clock;
     *out = p;
@@ -113,7 +124,8 @@ static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void 
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
-    st = get_prog(ctx, s, SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, &p);
+    prog_key k = {SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, 0, 0};
+    st = get_prog(ctx, s, &k, &p);
     if (st == SNELL_OK) st = snell__ndcube_baker_create(ctx, &s->baker);
     if (st != SNELL_OK) {
         cubemap_destroy(ctx, s);
@@ -203,18 +215,19 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     cubemap_state *s = (cubemap_state *)state;
     const snell_cubemap_params *c = &o->glass->material.cubemap;
     const cube_prepared *cp = (const cube_prepared *)o->prepared;
-    int no_search = c->max_interfaces == 1 && !o->glass->absorbs;
+    prog_key k;
     const cube_prog *p;
     snell_status st;
 
-    st = get_prog(ctx, s, c->encoding, c->iterations, c->linear_steps, no_search, &p);
+    k.enc = c->encoding;
+    k.iterations = c->iterations;
+    k.linear = c->linear_steps;
+    k.no_search = c->max_interfaces == 1 && !o->glass->absorbs;
+    k.screen = o->screen_space;
+    k.absorb = o->glass->absorbs;
+    st = get_prog(ctx, s, &k, &p);
     if (st != SNELL_OK) return st;
-    if (no_search) stats->skipped |= SNELL_SKIP_SEARCH;
-    /* Back faces culled on closed meshes (snell__cull_back_faces). A depth
-     * pre-pass would do the same for any mesh but cost more than it saved: it
-     * doubles the triangle setup, which dominates on llvmpipe for the
-     * 69k-triangle bunny (bench/BENCHMARKS.md). */
-    snell__cull_back_faces(o, stats);
+    if (k.no_search) stats->skipped |= SNELL_SKIP_SEARCH;
     snell__glass_program_use(&p->g, v, o);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_CUBE_MAP, cp->cube.texture);
@@ -228,8 +241,11 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     /* A texel is 2/N wide in face coordinates; it subtends 2/N rad at a face
      * centre and sqrt(2)/3 * 2/N at a corner: the smaller is the stop bound. */
     glUniform1f(p->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)c->face_size);
-    glUniform1i(p->absorb, o->glass->absorbs);
-    snell__draw_object(o);
+    /* Back faces are culled on closed meshes (snell__draw_surface). A depth
+     * pre-pass would do the same for any mesh but cost more than it saved: it
+     * doubles the triangle setup, which dominates on llvmpipe for the
+     * 69k-triangle bunny (bench/BENCHMARKS.md). */
+    snell__draw_surface(v, o, stats);
     stats->passes++;
     return SNELL_OK;
 }
@@ -260,4 +276,4 @@ static const snell_method_info g_info = {
 
 const snell__method snell__method_cubemap = {&g_info, g_offsets, 1, cubemap_fit, cubemap_create, cubemap_destroy,
                                              sizeof(cube_prepared), cubemap_key, cubemap_prepare, cubemap_release,
-                                             cubemap_draw};
+                                             cubemap_draw, CUBEMAP_SOFTWARE_SCREEN_PPT};

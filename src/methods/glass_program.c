@@ -2,6 +2,7 @@
 #include "methods/glass_program.h"
 #include "core/gl.h"
 #include "core/program.h"
+#include "render/gbuffer.h"
 
 #include <string.h>
 
@@ -15,14 +16,23 @@ const char *snell__output_defines(snell__output_kind out)
 }
 
 snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, snell__output_kind out,
-                                        const char *extra_defines, snell__glass_program *g)
+                                        const char *extra_defines, int screen_space, snell__glass_program *g)
 {
     char defines[1024];
     snell_status st;
-    snprintf(defines, sizeof defines, "%s%s", snell__output_defines(out), extra_defines ? extra_defines : "");
+    snprintf(defines, sizeof defines, "%s%s%s%s", snell__output_defines(out),
+             screen_space ? "#define SNELL_SCREEN_SPACE 1\n" : "",
+             screen_space == SNELL__SCREEN_WRITES_DEPTH ? "#define SNELL_SCREEN_WRITES_DEPTH 1\n" : "",
+             extra_defines ? extra_defines : "");
     memset(g, 0, sizeof *g);
-    st = snell__program_build(ctx, "object.vert", fs_path, defines, &g->prog);
+    st = snell__program_build(ctx, screen_space ? "screen.vert" : "object.vert", fs_path, defines, &g->prog);
     if (st != SNELL_OK) return st;
+    g->screen_space = screen_space;
+    g->gnormal = glGetUniformLocation(g->prog, "u_gnormal");
+    g->gdepth_id = glGetUniformLocation(g->prog, "u_gdepth_id");
+    g->inv_view_proj = glGetUniformLocation(g->prog, "u_inv_view_proj");
+    g->inv_size = glGetUniformLocation(g->prog, "u_inv_size");
+    g->gid = glGetUniformLocation(g->prog, "u_gid");
     g->model = glGetUniformLocation(g->prog, "u_model");
     g->normal_matrix = glGetUniformLocation(g->prog, "u_normal_matrix");
     g->view_proj = glGetUniformLocation(g->prog, "u_view_proj");
@@ -53,6 +63,13 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniform3fv(g->sigma, 1, o->glass->absorption);
     glUniform3fv(g->tint, 1, o->glass->material.tint);
     glUniform4fv(g->bsphere, 1, o->bsphere);
+    if (g->screen_space) {
+        glUniform1i(g->gnormal, SNELL__GBUFFER_UNIT_NORMAL);
+        glUniform1i(g->gdepth_id, SNELL__GBUFFER_UNIT_DEPTH_ID);
+        glUniformMatrix4fv(g->inv_view_proj, 1, GL_FALSE, (const GLfloat *)v->inv_view_proj);
+        glUniform2f(g->inv_size, 1.0f / (float)v->width, 1.0f / (float)v->height);
+        glUniform1i(g->gid, o->gid);
+    }
 }
 
 int snell__cull_back_faces(const snell__object *o, snell_object_stats *stats)
@@ -69,7 +86,33 @@ int snell__cull_back_faces(const snell__object *o, snell_object_stats *stats)
 
 void snell__draw_object(const snell__object *o)
 {
-    glBindVertexArray(o->mesh->vao);
-    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * o->mesh->triangle_count), GL_UNSIGNED_INT, (const void *)0);
+    snell__mesh_draw(o->mesh);
     glDisable(GL_CULL_FACE);
+}
+
+void snell__draw_surface(const snell__view *v, const snell__object *o, snell_object_stats *stats)
+{
+    int rect[4];
+    if (!o->screen_space) {
+        if (o->glass->material.thickness <= 0.0f) snell__cull_back_faces(o, stats);
+        snell__draw_object(o);
+        return;
+    }
+    /* The G-buffer holds the front surface; the full-screen triangle at the
+     * far plane passes GREATER where the target's depth holds something
+     * nearer (the G-buffer pass wrote the glass there), so the rasteriser's
+     * depth test, not the kernel, rejects uncovered pixels. With a depth
+     * buffer of the G-buffer's own the kernel writes gl_FragDepth instead. */
+    snell__object_scissor(v, o, rect);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(rect[0], rect[1], rect[2], rect[3]);
+    if (o->screen_space == SNELL__SCREEN_SHARED_DEPTH) {
+        glDepthFunc(GL_GREATER);
+        glDepthMask(GL_FALSE);
+    }
+    glBindVertexArray(0);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_SCISSOR_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
 }

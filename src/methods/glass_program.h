@@ -7,12 +7,16 @@
 
 typedef struct snell__glass_program {
     unsigned prog;
+    int screen_space;               /* 0 forward, else SNELL__SCREEN_* (render/gbuffer.h): screen.vert */
     int model, normal_matrix, view_proj, eye, env, ior, sigma, tint, bsphere;
+    int gnormal, gdepth_id, inv_view_proj, inv_size, gid;
 } snell__glass_program;
 
-/* object.vert + fs_path with the output kind's defines and extra_defines (may be NULL). */
+/* The kernel fs_path with the output kind's defines and extra_defines (may be
+ * NULL), forward (screen_space 0: object.vert) or for the screen-space stage
+ * (SNELL__SCREEN_*: screen.vert, common/surface.glsl reads the G-buffer). */
 snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, snell__output_kind out,
-                                        const char *extra_defines, snell__glass_program *g);
+                                        const char *extra_defines, int screen_space, snell__glass_program *g);
 void snell__glass_program_destroy(snell__glass_program *g);
 /* glUseProgram + the shared uniforms (the object's environment on texture unit 0). */
 void snell__glass_program_use(const snell__glass_program *g, const snell__view *v, const snell__object *o);
@@ -23,5 +27,9 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
 int snell__cull_back_faces(const snell__object *o, snell_object_stats *stats);
 /* Draws the object's mesh with the bound program, then turns culling off. */
 void snell__draw_object(const snell__object *o);
+/* Draws the object with the bound program as it is shaded: its mesh
+ * (forward, back faces culled where the mesh allows, except for thin walls)
+ * or a full-screen triangle scissored to it (screen space). */
+void snell__draw_surface(const snell__view *v, const snell__object *o, snell_object_stats *stats);
 
 #endif

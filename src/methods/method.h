@@ -21,7 +21,7 @@ typedef enum snell__output_kind {
 
 /* The frame's camera and target, shared by every object (world space). */
 typedef struct snell__view {
-    mat4 view, proj, view_proj;
+    mat4 view, proj, view_proj, inv_view_proj;
     float eye[3];
     int width, height;
     snell__output_kind out;
@@ -39,6 +39,9 @@ typedef struct snell__object {
     float view_depth;               /* of the sphere's centre, along the view axis */
     const snell_mesh_analysis *analysis; /* NULL: not analysed (not needed, or failed) */
     unsigned env_texture;           /* the cubemap it sees: static env or its dynamic one */
+    int screen_space;               /* 0 forward, else shaded on the screen-space stage's G-buffer:
+                                     * SNELL__SCREEN_* (render/gbuffer.h) */
+    int gid;                        /* its id in the G-buffer (index + 1) */
     void *prepared;                 /* the method's resources for (mesh version, settings) */
 } snell__object;
 
@@ -70,9 +73,16 @@ typedef struct snell__method {
                             snell_object_stats *stats);
     void (*release)(void *prepared);
     /* Draws the object into the bound target: depth test LESS with depth
-     * write on, the object's env_texture on texture unit 0; unit 1+ free. */
+     * write on, the object's env_texture on texture unit 0, unit 1 free for
+     * the kernel; forward or in screen space as o->screen_space says (both
+     * through glass_program.h, so a kernel writes no code for either). */
     snell_status (*draw)(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
                          snell_object_stats *stats);
+    /* AUTO shading on software rasterisers: screen space below this many
+     * (estimated) pixels per front triangle. Measured per method, because the
+     * G-buffer pass pays off sooner the more a kernel costs per pixel
+     * (bench/BENCHMARKS.md "Screen-space stage"). */
+    float software_screen_ppt;
 } snell__method;
 
 /* The registry entry of a method id (registry.c), NULL for AUTO or unknown. */

@@ -5,6 +5,7 @@
 #include "render/env.h"
 #include "core/ctx.h"
 #include "core/gl.h"
+#include "core/glstate.h"
 #include "core/program.h"
 #include "render/pass.h"
 
@@ -131,7 +132,7 @@ snell_status snell__ndcube_bake(snell_ctx *ctx, snell__ndcube_baker *b, snell_me
          * far: every vertex lies within radius. */
         snell__cube_face_view_proj(face, centre, radius * 1e-4f, radius * 1.01f, vp);
         glUniformMatrix4fv(b->u_view_proj[pi], 1, GL_FALSE, (const GLfloat *)vp);
-        glDrawElements(GL_TRIANGLES, (GLsizei)(3 * mesh->triangle_count), GL_UNSIGNED_INT, (const void *)0);
+        snell__mesh_draw(mesh);
     }
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
     snell__pass_end(&pass);
@@ -141,22 +142,22 @@ snell_status snell__ndcube_bake(snell_ctx *ctx, snell__ndcube_baker *b, snell_me
 snell_status snell__ndcube_read_face(snell_ctx *ctx, snell__ndcube_baker *b, const snell__ndcube *cube, int face,
                                      uint8_t *rgba)
 {
-    GLint prev_read = 0, prev_align = 4;
+    GLint prev_read = 0;
+    snell__pixel_store pack;
     GLenum fst;
     if (!cube->texture || face < 0 || face > 5 || !rgba)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "ndcube_read_face: no cube, bad face %d or NULL", face);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev_read);
-    glGetIntegerv(GL_PACK_ALIGNMENT, &prev_align);
+    snell__pixel_pack_begin(&pack, 1); /* client memory, tight rows, whatever the host set */
     glBindFramebuffer(GL_READ_FRAMEBUFFER, b->fbo);
     glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, (GLenum)(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face),
                            cube->texture, 0);
     fst = glCheckFramebufferStatus(GL_READ_FRAMEBUFFER);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
     if (fst == GL_FRAMEBUFFER_COMPLETE)
         glReadPixels(0, 0, cube->face_size, cube->face_size, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev_read);
-    glPixelStorei(GL_PACK_ALIGNMENT, prev_align);
+    snell__pixel_pack_end(&pack);
     if (fst != GL_FRAMEBUFFER_COMPLETE) return snell__fail(ctx, SNELL_E_GL, "ndcube face not readable (0x%x)", (unsigned)fst);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error reading an ndcube face");
 }

@@ -2,28 +2,51 @@
  * refraction and reflection at the front surface only; and the thin-wall
  * (slab) model, which is exact for a thin-walled material whatever method
  * is asked for. Needs no analysis and prepares nothing. */
+#include <stdio.h>
 #include "methods/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 
+/* Program variants: [shading: forward or SNELL__SCREEN_*][thin wall][absorption]; the forward solid
+ * one without absorption (the default) is built with the method, the others
+ * on first use. */
 typedef struct single_state {
-    snell__glass_program solid, thin;
-    int u_thickness;
+    snell__output_kind out;
+    snell__glass_program prog[3][2][2];
+    int u_thickness[3][2][2];
 } single_state;
+
+static void single_destroy(snell_ctx *ctx, void *state);
+
+static snell_status get_prog(snell_ctx *ctx, single_state *s, int screen, int thin, int absorb,
+                             const snell__glass_program **out)
+{
+    snell__glass_program *p = &s->prog[screen][thin][absorb];
+    if (!p->prog) {
+        char defines[96];
+        snell_status st;
+        snprintf(defines, sizeof defines, "%s%s", thin ? "#define SNELL_THIN 1\n" : "",
+                 absorb ? "#define SNELL_ABSORB 1\n" : "");
+        st = snell__glass_program_build(ctx, "single.frag", s->out, defines, screen, p);
+        if (st != SNELL_OK) return st;
+        s->u_thickness[screen][thin][absorb] = glGetUniformLocation(p->prog, "u_thickness");
+    }
+    *out = p;
+    return SNELL_OK;
+}
 
 static snell_status single_create(snell_ctx *ctx, snell__output_kind out, void **state)
 {
     single_state *s = (single_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
+    const snell__glass_program *p;
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
-    st = snell__glass_program_build(ctx, "single.frag", out, NULL, &s->solid);
-    if (st == SNELL_OK) st = snell__glass_program_build(ctx, "single.frag", out, "#define SNELL_THIN 1\n", &s->thin);
+    s->out = out;
+    st = get_prog(ctx, s, 0, 0, 0, &p);
     if (st != SNELL_OK) {
-        snell__glass_program_destroy(&s->solid);
-        snell__free(&ctx->alloc, s);
+        single_destroy(ctx, s);
         return st;
     }
-    s->u_thickness = glGetUniformLocation(s->thin.prog, "u_thickness");
     *state = s;
     return SNELL_OK;
 }
@@ -31,9 +54,9 @@ static snell_status single_create(snell_ctx *ctx, snell__output_kind out, void *
 static void single_destroy(snell_ctx *ctx, void *state)
 {
     single_state *s = (single_state *)state;
+    int i;
     if (!s) return;
-    snell__glass_program_destroy(&s->solid);
-    snell__glass_program_destroy(&s->thin);
+    for (i = 0; i < 12; i++) snell__glass_program_destroy(&s->prog[i >> 2][(i >> 1) & 1][i & 1]);
     snell__free(&ctx->alloc, s);
 }
 
@@ -53,13 +76,13 @@ static snell_status single_draw(snell_ctx *ctx, void *state, const snell__view *
                                 snell_object_stats *stats)
 {
     single_state *s = (single_state *)state;
-    int thin = o->glass->material.thickness > 0.0f;
-    (void)ctx;
-    snell__glass_program_use(thin ? &s->thin : &s->solid, v, o);
-    if (thin) glUniform1f(s->u_thickness, o->glass->material.thickness);
-    /* A thin wall is seen from both sides: its back faces are walls too. */
-    else snell__cull_back_faces(o, stats);
-    snell__draw_object(o);
+    int thin = o->glass->material.thickness > 0.0f, screen = o->screen_space, absorb = o->glass->absorbs;
+    const snell__glass_program *p;
+    snell_status st = get_prog(ctx, s, screen, thin, absorb, &p);
+    if (st != SNELL_OK) return st;
+    snell__glass_program_use(p, v, o);
+    if (thin) glUniform1f(s->u_thickness[screen][thin][absorb], o->glass->material.thickness);
+    snell__draw_surface(v, o, stats);
     stats->passes++;
     return SNELL_OK;
 }
@@ -68,5 +91,7 @@ static const snell_method_info g_info = {
     SNELL_METHOD_SINGLE, "single", "refraction at the front surface only (Unger 3.3); thin walls as slabs",
     "nothing", 1, 0, NULL};
 
+/* llvmpipe, 512x512 (BENCHMARKS.md): screen space 0.87x forward on the bunny
+ * (5.1 estimated px/triangle), 0.99x at 5.5, 1.14x at 22. */
 const snell__method snell__method_single = {&g_info, NULL, 0, single_fit, single_create, single_destroy,
-                                            0, NULL, NULL, NULL, single_draw};
+                                            0, NULL, NULL, NULL, single_draw, 8.0f};

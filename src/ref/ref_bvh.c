@@ -116,9 +116,10 @@ static double box_enter(const ray_pre *r, const snell__bvh_node *n, double tmin,
 }
 
 /* any_only: stop at the first hit. accept (NULL = all) filters by part.
+ * work (NULL = not counted) gains the nodes visited and triangles tested.
  * Returns the leaf-order entry of the hit or SNELL__BVH_NONE. */
 static uint32_t traverse(const snell__bvh *bvh, const ray_pre *r, double tmin, double *tmax, uint32_t skip,
-                         int any_only, snell__bvh_filter accept, const void *user, double b[3])
+                         int any_only, snell__bvh_filter accept, const void *user, double b[3], uint64_t *work)
 {
     uint32_t stack[STACK_SIZE], best = SNELL__BVH_NONE;
     int sp = 0;
@@ -126,6 +127,7 @@ static uint32_t traverse(const snell__bvh *bvh, const ray_pre *r, double tmin, d
     stack[sp++] = 0;
     while (sp > 0) {
         const snell__bvh_node *n = &bvh->nodes[stack[--sp]];
+        if (work) *work += 1 + n->count;
         if (n->count) {
             uint32_t i;
             for (i = n->index; i < n->index + n->count; i++) {
@@ -158,9 +160,8 @@ static uint32_t traverse(const snell__bvh *bvh, const ray_pre *r, double tmin, d
     return best;
 }
 
-int snell__bvh_closest_filtered(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin,
-                                double tmax, uint32_t skip_tri, snell__bvh_filter accept, const void *user,
-                                snell__bvh_hit *hit)
+static int closest(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
+                   uint32_t skip_tri, snell__bvh_filter accept, const void *user, snell__bvh_hit *hit, uint64_t *work)
 {
     ray_pre r;
     double b[3] = {0, 0, 0}, t = tmax;
@@ -169,7 +170,7 @@ int snell__bvh_closest_filtered(const snell__bvh *bvh, const double org[3], cons
     int k;
     if (!bvh || !bvh->node_count) return 0;
     ray_setup(&r, org, dir);
-    e = traverse(bvh, &r, tmin, &t, skip_tri, 0, accept, user, b);
+    e = traverse(bvh, &r, tmin, &t, skip_tri, 0, accept, user, b, work);
     if (e == SNELL__BVH_NONE) return 0;
     v = bvh->tri_verts + 9 * (size_t)e;
     hit->t = t;
@@ -183,20 +184,39 @@ int snell__bvh_closest_filtered(const snell__bvh *bvh, const double org[3], cons
     return 1;
 }
 
+int snell__bvh_closest_filtered(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin,
+                                double tmax, uint32_t skip_tri, snell__bvh_filter accept, const void *user,
+                                snell__bvh_hit *hit)
+{
+    return closest(bvh, org, dir, tmin, tmax, skip_tri, accept, user, hit, NULL);
+}
+
 int snell__bvh_closest(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
                        uint32_t skip_tri, snell__bvh_hit *hit)
 {
-    return snell__bvh_closest_filtered(bvh, org, dir, tmin, tmax, skip_tri, NULL, NULL, hit);
+    return closest(bvh, org, dir, tmin, tmax, skip_tri, NULL, NULL, hit, NULL);
 }
 
-int snell__bvh_any(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
-                   uint32_t skip_tri)
+int snell__bvh_closest_counted(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin,
+                               double tmax, uint32_t skip_tri, snell__bvh_hit *hit, uint64_t *work)
+{
+    return closest(bvh, org, dir, tmin, tmax, skip_tri, NULL, NULL, hit, work);
+}
+
+int snell__bvh_any_counted(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
+                           uint32_t skip_tri, uint64_t *work)
 {
     ray_pre r;
     double b[3], t = tmax;
     if (!bvh || !bvh->node_count) return 0;
     ray_setup(&r, org, dir);
-    return traverse(bvh, &r, tmin, &t, skip_tri, 1, NULL, NULL, b) != SNELL__BVH_NONE;
+    return traverse(bvh, &r, tmin, &t, skip_tri, 1, NULL, NULL, b, work) != SNELL__BVH_NONE;
+}
+
+int snell__bvh_any(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
+                   uint32_t skip_tri)
+{
+    return snell__bvh_any_counted(bvh, org, dir, tmin, tmax, skip_tri, NULL);
 }
 
 /* --------------------------------------------------------------- build */

@@ -96,6 +96,14 @@ int snell__bvh_closest_filtered(const snell__bvh *bvh, const double org[3], cons
 int snell__bvh_any(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
                    uint32_t skip_tri);
 
+/* snell__bvh_closest / snell__bvh_any that add the work they do (nodes
+ * visited + triangles tested; at most 3 * triangle_count per query) to *work,
+ * for callers that bound their cost (the mesh analysis). Same results. */
+int snell__bvh_closest_counted(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin,
+                               double tmax, uint32_t skip_tri, snell__bvh_hit *hit, uint64_t *work);
+int snell__bvh_any_counted(const snell__bvh *bvh, const double org[3], const double dir[3], double tmin, double tmax,
+                           uint32_t skip_tri, uint64_t *work);
+
 /* The watertight test alone, for one triangle (v0, v1, v2 world space): 1 and
  * t, b[3] (weights of v0, v1, v2) if hit with t in (tmin, tmax). Exposed so
  * tests can brute-force the same predicate the BVH uses. */

@@ -5,6 +5,7 @@
  * closest-hit queries with the GPU's smooth normals, and opaque shading. */
 #include "ref/ref_scene.h"
 #include "ref/ref_trace.h"
+#include "core/ctx.h"
 #include "mesh/mesh.h"
 #include "render/material.h"
 
@@ -174,6 +175,7 @@ static snell_status ref_alloc(snell_ctx *ctx, snell_ref **out)
     snell_ref *r = (snell_ref *)snell__calloc(al, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "reference: out of memory");
     r->ctx = ctx;
+    snell__ctx_retain(ctx); /* its messages go to ctx, which may be destroyed first */
     r->alloc = *al;
     *out = r;
     return SNELL_OK;
@@ -406,5 +408,6 @@ void snell_ref_destroy(snell_ref *ref)
     snell__bvh_destroy(ref->bvh);
     snell__free(&al, ref->normals);
     snell__free(&al, ref->indices);
+    snell__ctx_release(ref->ctx);
     snell__free(&al, ref);
 }

@@ -7,6 +7,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "ref/ref_trace.h"
 #include "ref/ref_scene.h"
+#include "render/camera.h"
 #include "render/env.h"
 #include "core/optics.h"
 
@@ -483,6 +484,7 @@ static snell_status camera_setup(const snell_ref *ref, const snell_ref_params *p
     float eye[3], view[16], proj[16];
     double vp[16];
     int i, j, k;
+    snell_status st;
     if (p->width < 0 || p->height < 0)
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "reference: negative image size %dx%d", p->width,
                            p->height);
@@ -491,6 +493,8 @@ static snell_status camera_setup(const snell_ref *ref, const snell_ref_params *p
     if (cr->w > SNELL_REF_MAX_SIZE || cr->h > SNELL_REF_MAX_SIZE)
         return snell__fail(ref->ctx, SNELL_E_LIMIT, "reference: image %dx%d exceeds %d pixels a side", cr->w, cr->h,
                            SNELL_REF_MAX_SIZE);
+    st = snell__camera_validate(ref->ctx, &p->camera, (float)cr->w / (float)cr->h, "reference");
+    if (st != SNELL_OK) return st;
     snell_camera_matrices(&p->camera, (float)cr->w / (float)cr->h, eye, view, proj);
     for (i = 0; i < 4; i++)
         for (j = 0; j < 4; j++) {

@@ -1,6 +1,6 @@
 /* camera.c — the orbit camera shared by the renderer, the references and the
  * CLI: eye on a sphere around the target, +Y up, GL clip conventions. */
-#include "core/core.h"
+#include "render/camera.h"
 
 #include <cglm/cglm.h>
 #include <math.h>
@@ -37,4 +37,65 @@ void snell_camera_matrices(const snell_camera *cam, float aspect, float eye_out[
     if (eye_out) memcpy(eye_out, eye, sizeof(vec3));
     if (view_out) memcpy(view_out, view, sizeof(mat4));
     if (proj_out) memcpy(proj_out, proj, sizeof(mat4));
+}
+
+static int all_finite(const float *v, int n)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        if (!isfinite(v[i])) return 0;
+    return 1;
+}
+
+snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *cam, float aspect, const char *who)
+{
+    float dist, zn, zf, eye[3], view[16], proj[16];
+    int k;
+    if (!cam) return SNELL_OK;
+    if (!isfinite(cam->azimuth))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.azimuth %g is not finite", who, cam->azimuth);
+    if (!isfinite(cam->elevation))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.elevation %g is not finite", who, cam->elevation);
+    for (k = 0; k < 3; k++)
+        if (!isfinite(cam->target[k]))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.target[%d] %g is not finite", who, k,
+                               cam->target[k]);
+    if (!(cam->distance >= 0.0f) || !isfinite(cam->distance))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.distance %g: 0 (default) or a finite distance > 0",
+                           who, cam->distance);
+    if (!(cam->fov_y >= 0.0f && cam->fov_y < (float)SNELL_PI))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.fov_y %g rad: 0 (default) or in (0, pi)", who,
+                           cam->fov_y);
+    if (!(cam->z_near >= 0.0f) || !isfinite(cam->z_near))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_near %g: 0 (derived) or a finite distance > 0",
+                           who, cam->z_near);
+    if (!(cam->z_far >= 0.0f) || !isfinite(cam->z_far))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_far %g: 0 (derived) or a finite distance > 0",
+                           who, cam->z_far);
+    /* The planes as snell_camera_matrices derives them. */
+    dist = cam->distance > 0.0f ? cam->distance : 3.5f;
+    zn = cam->z_near > 0.0f ? cam->z_near : dist * 0.01f;
+    zf = cam->z_far > 0.0f ? cam->z_far : dist * 100.0f;
+    if (!isfinite(zf))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.distance %g is too large (the derived far plane "
+                           "overflows; set z_far)", who, cam->distance);
+    if (!(zn < zf))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_near %g is not before camera.z_far %g%s", who, zn,
+                           zf, cam->z_far > 0.0f && cam->z_near > 0.0f ? "" : " (0 = derived from the distance)");
+    snell_camera_matrices(cam, aspect, eye, view, proj);
+    if (!all_finite(eye, 3) || !all_finite(view, 16) || !all_finite(proj, 16))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera (distance %g, z_near %g, z_far %g) gives matrices "
+                           "that are not finite", who, dist, zn, zf);
+    return SNELL_OK;
+}
+
+int snell__matrix_invertible(const float m[16])
+{
+    mat4 a, inv;
+    float det;
+    memcpy(a, m, sizeof a);
+    det = glm_mat4_det(a);
+    if (!(fabsf(det) > 0.0f) || !isfinite(det)) return 0;
+    glm_mat4_inv(a, inv);
+    return all_finite((const float *)inv, 16);
 }

@@ -3,6 +3,7 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/program.h"
+#include "render/camera.h"
 
 #include <math.h>
 #include <string.h>
@@ -44,8 +45,10 @@ snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, in
     for (i = 0; i < count; i++) {
         const snell_opaque *o = &list[i];
         if (!o->mesh) return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d has no mesh", i);
-        if (o->mesh->ctx && o->mesh->ctx != ctx)
-            return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: its mesh belongs to another context", i);
+        if (!snell__mesh_bind_ctx((snell_mesh *)o->mesh, ctx))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG,
+                               "opaque object %d: its mesh belongs to another context (made with it, or drawn there "
+                               "first)", i);
         for (k = 0; k < 3; k++)
             if (!(o->color[k] >= 0.0f && o->color[k] <= 1.0f))
                 return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: colour must lie in 0..1", i);
@@ -53,6 +56,8 @@ snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, in
             for (k = 0; k < 16; k++)
                 if (!isfinite(o->model[k]))
                     return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: model matrix is not finite", i);
+        if (o->model && !snell__matrix_invertible(o->model))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: model matrix is singular", i);
     }
     return SNELL_OK;
 }
@@ -89,8 +94,7 @@ snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell_
         glUniformMatrix4fv(p->model, 1, GL_FALSE, (const GLfloat *)model);
         glUniformMatrix3fv(p->normal_matrix, 1, GL_FALSE, (const GLfloat *)nm);
         glUniform3fv(p->color, 1, color);
-        glBindVertexArray(m->vao);
-        glDrawElements(GL_TRIANGLES, (GLsizei)(3 * m->triangle_count), GL_UNSIGNED_INT, (const void *)0);
+        snell__mesh_draw(m);
     }
     return SNELL_OK;
 }

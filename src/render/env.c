@@ -4,6 +4,7 @@
 #include "render/env.h"
 #include "core/ctx.h"
 #include "core/gl.h"
+#include "core/glstate.h"
 
 #include <math.h>
 #include <string.h>
@@ -128,7 +129,7 @@ static snell_status load_faces(snell_ctx *ctx, snell_env *env, const char *const
         uint8_t *img = NULL;
         snell_status st;
         if (!paths[f]) return snell__fail(ctx, SNELL_E_INVALID_ARG, "environment face %d has no path", f);
-        st = snell_image_read(paths[f], &w, &h, &img);
+        st = snell__image_read_budget(paths[f], snell__ctx_budget(ctx), &w, &h, &img);
         if (st != SNELL_OK) return image_failure(ctx, st);
         if (w != h || (f > 0 && w != env->size) || w > ENV_MAX_SIZE) {
             snell_image_free(img);
@@ -177,7 +178,7 @@ static snell_status load_equirect(snell_ctx *ctx, snell_env *env, const char *pa
     uint8_t *img = NULL;
     snell_status st;
     if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "equirectangular environment needs a path");
-    st = snell_image_read(path, &w, &h, &img);
+    st = snell__image_read_budget(path, snell__ctx_budget(ctx), &w, &h, &img);
     if (st != SNELL_OK) return image_failure(ctx, st);
     for (f = 0; f < 6; f++) {
         env->faces[f] = (uint8_t *)snell__malloc(&env->alloc, (size_t)env->size * env->size * 4);
@@ -203,12 +204,13 @@ static snell_status load_equirect(snell_ctx *ctx, snell_env *env, const char *pa
 static snell_status upload(snell_ctx *ctx, snell_env *env)
 {
     int f;
-    GLint prev_tex = 0, prev_align = 4;
+    GLint prev_tex = 0;
+    snell__pixel_store unpack;
     glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &prev_tex);
-    glGetIntegerv(GL_UNPACK_ALIGNMENT, &prev_align);
+    /* From client memory, tightly packed, whatever pixel buffer or unpack state the host has set. */
+    snell__pixel_unpack_begin(&unpack, 4);
     glGenTextures(1, &env->texture);
     glBindTexture(GL_TEXTURE_CUBE_MAP, env->texture);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     for (f = 0; f < 6; f++)
         glTexImage2D((GLenum)(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, GL_RGBA8, env->size, env->size, 0, GL_RGBA,
                      GL_UNSIGNED_BYTE, env->faces[f]);
@@ -219,7 +221,7 @@ static snell_status upload(snell_ctx *ctx, snell_env *env)
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     glBindTexture(GL_TEXTURE_CUBE_MAP, (GLuint)prev_tex);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, prev_align);
+    snell__pixel_unpack_end(&unpack);
     if (glGetError() != GL_NO_ERROR)
         return snell__fail(ctx, SNELL_E_GL, "GL error creating a %d^2 cubemap", env->size);
     return SNELL_OK;
@@ -251,9 +253,11 @@ snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_
     if (desc) d = *desc;
     if (d.face_size < 0 || d.face_size > ENV_MAX_SIZE)
         return snell__fail(ctx, SNELL_E_LIMIT, "environment face size %d outside 1..%d", d.face_size, ENV_MAX_SIZE);
+    if (ctx && (st = snell__ctx_check_current(ctx, "snell_env_create")) != SNELL_OK) return st;
     env = (snell_env *)snell__calloc(snell__ctx_alloc(ctx), 1, sizeof *env);
     if (!env) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     env->ctx = ctx;
+    snell__ctx_retain(ctx); /* released by snell_env_destroy */
     env->alloc = *snell__ctx_alloc(ctx);
     env->size = d.face_size ? d.face_size : ENV_DEFAULT_SIZE;
     switch (d.source) {
@@ -282,7 +286,13 @@ void snell_env_destroy(snell_env *env)
     int f;
     snell_alloc al;
     if (!env) return;
-    if (env->texture) glDeleteTextures(1, &env->texture);
+    if (env->texture) {
+        /* In its context; after snell_ctx_destroy the texture is gone with it. */
+        snell__gl_scope sc;
+        if (snell__gl_scope_enter(env->ctx, &sc)) glDeleteTextures(1, &env->texture);
+        snell__gl_scope_leave(&sc);
+    }
+    snell__ctx_release(env->ctx);
     al = env->alloc;
     for (f = 0; f < 6; f++) snell__free(&al, env->faces[f]);
     snell__free(&al, env);
@@ -292,9 +302,16 @@ int snell_env_face_size(const snell_env *env) { return env ? env->size : 0; }
 
 void snell_env_sample_d(const snell_env *env, const double dir[3], double rgb[3])
 {
-    int face, x0, y0, i, k, n = env->size;
+    int face, x0, y0, i, k, n;
     double s, t, u, v, fx, fy;
     const uint8_t *tex;
+    if (!rgb) return;
+    /* No environment, or no direction to look in: black, like the other getters' zero. */
+    if (!env || !dir || !isfinite(dir[0]) || !isfinite(dir[1]) || !isfinite(dir[2])) {
+        rgb[0] = rgb[1] = rgb[2] = 0.0;
+        return;
+    }
+    n = env->size;
     snell__cube_coords(dir, &face, &s, &t);
     tex = env->faces[face];
     /* GL_LINEAR: texel centres at (i + 0.5) / n, CLAMP_TO_EDGE within the face. */
@@ -316,7 +333,13 @@ void snell_env_sample_d(const snell_env *env, const double dir[3], double rgb[3]
 
 void snell_env_sample(const snell_env *env, const float dir[3], float rgb[3])
 {
-    double d[3] = {dir[0], dir[1], dir[2]}, c[3];
+    double d[3], c[3];
+    if (!rgb) return;
+    if (!dir) {
+        rgb[0] = rgb[1] = rgb[2] = 0.0f;
+        return;
+    }
+    d[0] = dir[0]; d[1] = dir[1]; d[2] = dir[2];
     snell_env_sample_d(env, d, c);
     rgb[0] = (float)c[0]; rgb[1] = (float)c[1]; rgb[2] = (float)c[2];
 }

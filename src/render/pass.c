@@ -1,4 +1,7 @@
-/* pass.c — see pass.h. The state saved is exactly what passes change. */
+/* pass.c — see pass.h. The state saved is what passes change and what the
+ * frame around them relies on. Not the program: every draw binds its own,
+ * and the current one may be a deleted program kept alive only by being
+ * current, whose name would be invalid by the time it was restored. */
 #include "render/pass.h"
 #include "core/gl.h"
 
@@ -9,7 +12,6 @@ void snell__pass_begin(snell__pass *p, unsigned fbo, int width, int height, unsi
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &p->fbo);
     glGetIntegerv(GL_VIEWPORT, p->viewport);
     glGetIntegerv(GL_DEPTH_FUNC, &p->depth_func);
-    glGetIntegerv(GL_CURRENT_PROGRAM, &p->program);
     glGetIntegerv(GL_ACTIVE_TEXTURE, &p->active_texture);
     glGetBooleanv(GL_DEPTH_WRITEMASK, &b);
     p->depth_mask = b;
@@ -40,6 +42,5 @@ void snell__pass_end(const snell__pass *p)
     else glDisable(GL_CULL_FACE);
     glClearColor(p->clear_color[0], p->clear_color[1], p->clear_color[2], p->clear_color[3]);
     glClearDepthf(p->clear_depth);
-    glUseProgram((GLuint)p->program);
     glActiveTexture((GLenum)p->active_texture);
 }

@@ -7,7 +7,7 @@
 
 typedef struct snell__pass {
     int fbo, viewport[4];
-    int depth_func, program, active_texture;
+    int depth_func, active_texture;
     unsigned char depth_test, depth_mask, cull_face;
     float clear_color[4], clear_depth;
 } snell__pass;

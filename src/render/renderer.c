@@ -10,8 +10,11 @@
 #include "core/gl.h"
 #include "core/glstate.h"
 #include "core/pack.h"
+#include "core/program.h"
 #include "core/platform.h"
+#include "render/camera.h"
 #include "render/env.h"
+#include "render/gbuffer.h"
 
 #include <math.h>
 #include <string.h>
@@ -66,6 +69,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     GLint max_rb = 0;
     if (!ctx || !out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_renderer_create: ctx and out are required");
     *out = NULL;
+    if ((st = snell__ctx_check_current(ctx, "snell_renderer_create")) != SNELL_OK) return st;
     memset(&d, 0, sizeof d);
     if (desc) d = *desc;
     if (!d.width) d.width = 512;
@@ -86,10 +90,16 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     r->width = d.width;
     r->height = d.height;
     r->target = d.target;
+    if ((unsigned)d.shading > SNELL_SHADING_SCREEN) {
+        snell__free(&ctx->alloc, r);
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown shading %d", (int)d.shading);
+    }
+    r->shading = d.shading;
     r->out = d.output == SNELL_OUTPUT_COLOR ? SNELL__OUT_COLOR
              : d.output == SNELL_OUTPUT_EXIT_DIRECTION && snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float")
                  ? SNELL__OUT_DIR_FLOAT
                  : SNELL__OUT_DIR_PACKED;
+    snell__ctx_retain(ctx); /* from here on released by snell_renderer_destroy */
     snell__glstate_save(&saved);
     st = create_resources(r);
     snell__glstate_restore(&saved);
@@ -103,19 +113,29 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
 
 void snell_renderer_destroy(snell_renderer *r)
 {
+    snell_ctx *ctx;
+    snell__gl_scope sc;
     int m;
     if (!r) return;
+    /* Its GL objects are deleted in its context, made current for the moment
+     * if need be; after snell_ctx_destroy they are gone with it and the GL
+     * calls below reach no context (snell__gl_scope_enter). */
+    snell__gl_scope_enter(r->ctx, &sc);
     snell__prepared_destroy(r->ctx, &r->prepared);
     for (m = 0; m < SNELL_METHOD_COUNT_; m++)
         if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
     snell__composite_destroy(&r->comp);
+    snell__gbuffer_destroy(&r->gbuffer);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
     if (r->color_rb) glDeleteRenderbuffers(1, &r->color_rb);
     if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
-    snell__free(&r->ctx->alloc, r->readback);
-    snell__free(&r->ctx->alloc, r->readback8);
-    snell__free(&r->ctx->alloc, r);
+    snell__gl_scope_leave(&sc);
+    ctx = r->ctx;
+    snell__free(&ctx->alloc, r->readback);
+    snell__free(&ctx->alloc, r->readback8);
+    snell__free(&ctx->alloc, r);
+    snell__ctx_release(ctx);
 }
 
 /* Methods are created on first use; one that fails (a device that cannot
@@ -150,16 +170,35 @@ static void warn_once(snell_renderer *r, const snell__object *o, const snell_obj
     snell__log(r->ctx, SNELL_LOG_WARN, "glass %d: %s %s", o->index, snell_method_str(st->method_used), st->reason);
 }
 
-static snell_status draw_glass(snell_renderer *r, const snell_frame_desc *fd, snell__object *o,
-                               snell_object_stats *st)
+/* Where an object is shaded (snell_shading): AUTO compares its projected
+ * pixels per front triangle with the threshold for this device and method. */
+static void choose_shading(snell_renderer *r, snell__object *o, snell_object_stats *st)
 {
-    const snell__method *m = NULL;
+    st->pixels_per_triangle = snell__pixels_per_triangle(&r->scene.view, o);
+    float threshold = snell__screen_threshold(snell_ctx_gl_renderer(r->ctx), r->object_method[o->index]);
+    int screen = r->shading == SNELL_SHADING_SCREEN ||
+                 (r->shading == SNELL_SHADING_AUTO && st->pixels_per_triangle < threshold);
+    /* An offscreen target's depth buffer is the renderer's own, so the
+     * G-buffer pass can write it; a host's framebuffer gets gl_FragDepth. */
+    o->screen_space = !screen ? 0 : r->target == SNELL_TARGET_OFFSCREEN ? SNELL__SCREEN_SHARED_DEPTH
+                                                                          : SNELL__SCREEN_WRITES_DEPTH;
+    o->gid = o->index + 1;
+    st->screen_space = screen;
+}
+
+/* Everything an object needs before any glass is drawn: its method, its
+ * mesh on the GPU, its prepared resources and dynamic environment (passes
+ * of their own), and where it is shaded. */
+static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, snell__object *o,
+                                 snell_object_stats *st)
+{
     void *state = NULL;
-    snell_status s = snell__scene_choose(r->ctx, o, method_state, r, &m, &state, st);
+    snell_status s = snell__scene_choose(r->ctx, o, method_state, r, &r->object_method[o->index], &state, st);
     if (s != SNELL_OK) return s;
+    r->object_state[o->index] = state;
     if (st->warning) warn_once(r, o, st);
     if ((s = snell__mesh_upload(o->mesh)) != SNELL_OK) return s;
-    if ((s = snell__prepared_get(r->ctx, &r->prepared, m, state, o, st)) != SNELL_OK) return s;
+    if ((s = snell__prepared_get(r->ctx, &r->prepared, r->object_method[o->index], state, o, st)) != SNELL_OK) return s;
     o->env_texture = fd->env->texture;
     if (fd->opaque_count > 0) {
         /* The glass sees the opaque objects through its dynamic environment. */
@@ -167,16 +206,26 @@ static snell_status draw_glass(snell_renderer *r, const snell_frame_desc *fd, sn
                                       o->bsphere, o->bsphere[3], fd->dynamic_env_size, &o->env_texture, st);
         if (s != SNELL_OK) return s;
     }
+    choose_shading(r, o, st);
+    return SNELL_OK;
+}
+
+static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *st)
+{
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_CUBE_MAP, o->env_texture);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    return m->draw(r->ctx, state, &r->scene.view, o, st);
+    return r->object_method[o->index]->draw(r->ctx, r->object_state[o->index], &r->scene.view, o, st);
 }
 
 static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd)
 {
+    snell_status st = snell__ctx_check_current(r->ctx, "snell_render");
+    if (st != SNELL_OK) return st;
+    st = snell__camera_validate(r->ctx, &fd->camera, (float)r->width / (float)r->height, "snell_render");
+    if (st != SNELL_OK) return st;
     if (!fd->env || !fd->env->texture)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "frame needs an environment created with a context");
     if (fd->env->ctx && fd->env->ctx != r->ctx)
@@ -198,6 +247,7 @@ static void begin_frame_state(snell_renderer *r)
     /* Dithering (on by default) may change the low bits of UNORM8 writes: it
      * would corrupt packed exit directions and make images driver-dependent. */
     glDisable(GL_DITHER);
+    snell__glstate_frame_defaults();
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
     glClearDepthf(1.0f);
@@ -210,7 +260,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     snell__scene *sc;
     snell_glstate saved;
     snell_status st;
-    int external, i;
+    int external, i, n_screen = 0;
     double t0 = snell__now_ms();
     if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
     s = &r->stats;
@@ -230,10 +280,22 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         s->opaque_drawn = fd->opaque_count;
         s->passes++;
     }
-    /* Glass back to front (Franke): each drawn over what is behind it. */
+    /* Glass: the objects shaded in screen space share one G-buffer pass,
+     * which leaves each pixel the nearest of their surfaces, then run their
+     * kernels (in any order: they cover disjoint pixels); then the forward
+     * ones back to front (Franke), each depth-tested against all of those. */
     for (i = 0; i < sc->drawn && st == SNELL_OK; i++) {
         int k = sc->order[i];
-        st = draw_glass(r, fd, &sc->obj[k], &s->glass[k]);
+        st = set_up_glass(r, fd, &sc->obj[k], &s->glass[k]);
+        if (st == SNELL_OK && sc->obj[k].screen_space) r->screen_list[n_screen++] = &sc->obj[k];
+    }
+    if (st == SNELL_OK && n_screen > 0)
+        st = snell__gbuffer_draw(r->ctx, &r->gbuffer, &sc->view, r->screen_list, n_screen,
+                                 r->target == SNELL_TARGET_OFFSCREEN ? r->depth_rb : 0, s->glass);
+    for (i = 0; i < n_screen && st == SNELL_OK; i++) st = draw_glass(r, r->screen_list[i], &s->glass[r->screen_list[i]->index]);
+    for (i = 0; i < sc->drawn && st == SNELL_OK; i++) {
+        int k = sc->order[i];
+        if (!sc->obj[k].screen_space) st = draw_glass(r, &sc->obj[k], &s->glass[k]);
     }
     /* The background goes last, where the depth buffer is still clear, so
      * pixels covered by glass or opaque objects are never shaded twice.
@@ -257,6 +319,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(r->ctx, SNELL_E_GL, "GL error during the frame");
     for (i = 0; i < sc->count; i++) s->passes += s->glass[i].passes;
     s->passes += s->background_drawn;
+    s->fragment_mediump = snell__ctx_fragment_mediump(r->ctx);
     s->cpu_ms = snell__now_ms() - t0;
     if (stats) memcpy(stats, s, sizeof *s);
     return st;
@@ -265,14 +328,17 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
 /* Reads the offscreen colour buffer (bottom row first, as GL stores it). */
 static snell_status read_target(snell_renderer *r, GLenum type, void *pixels)
 {
-    GLint prev_fbo = 0, prev_align = 4;
+    GLint prev_fbo = 0;
+    snell__pixel_store pack;
+    snell_status st = snell__ctx_check_current(r->ctx, "snell_renderer_read");
+    if (st != SNELL_OK) return st;
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev_fbo);
-    glGetIntegerv(GL_PACK_ALIGNMENT, &prev_align);
+    /* Into client memory, tightly packed, whatever pixel buffer or pack state the host has set. */
+    snell__pixel_pack_begin(&pack, 1);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, r->width, r->height, GL_RGBA, type, pixels);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev_fbo);
-    glPixelStorei(GL_PACK_ALIGNMENT, prev_align);
+    snell__pixel_pack_end(&pack);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "glReadPixels failed");
 }
 

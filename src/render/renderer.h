@@ -6,6 +6,7 @@
 
 #include "render/composite.h"
 #include "render/env_dynamic.h"
+#include "render/gbuffer.h"
 #include "render/prepared.h"
 #include "render/scene.h"
 
@@ -22,7 +23,12 @@ struct snell_renderer {
     snell__composite comp;
     snell__prepared_cache prepared;
     snell__env_dynamic dyn;
+    snell_shading shading;
+    snell__gbuffer gbuffer;                           /* the screen-space stage, made on first use */
     snell__scene scene;                               /* this frame's resolved scene */
+    const snell__method *object_method[SNELL_MAX_GLASS]; /* this frame's choice per object */
+    void *object_state[SNELL_MAX_GLASS];
+    snell__object *screen_list[SNELL_MAX_GLASS];      /* objects shaded in screen space */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */
     uint8_t *readback8;

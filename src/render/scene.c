@@ -1,5 +1,6 @@
 /* scene.c — see scene.h. */
 #include "render/scene.h"
+#include "render/camera.h"
 #include "render/material.h"
 #include "core/ctx.h"
 
@@ -58,8 +59,9 @@ static snell_status build_object(snell_ctx *ctx, const snell_glass *g, int i, sn
     int k;
     memset(o, 0, sizeof *o);
     if (!g->mesh) return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d has no mesh", i);
-    if (g->mesh->ctx && g->mesh->ctx != ctx)
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: its mesh belongs to another context", i);
+    if (!snell__mesh_bind_ctx((snell_mesh *)g->mesh, ctx))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG,
+                           "glass %d: its mesh belongs to another context (made with it, or drawn there first)", i);
     if (g->model)
         for (k = 0; k < 16; k++)
             if (!isfinite(g->model[k])) return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: model matrix is not finite", i);
@@ -71,6 +73,9 @@ static snell_status build_object(snell_ctx *ctx, const snell_glass *g, int i, sn
     if (g->model) memcpy(o->model, g->model, sizeof o->model);
     else glm_mat4_identity(o->model);
     glm_mat4_inv(o->model, o->inv_model);
+    if (!snell__matrix_invertible((const float *)o->model))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: model matrix is singular (determinant %g)", i,
+                           glm_mat4_det(o->model));
     glm_mat4_transpose_to(o->inv_model, inv);
     glm_mat4_pick3(inv, o->normal_matrix);
     o->mirrored = glm_mat4_det(o->model) < 0.0f;
@@ -109,6 +114,7 @@ snell_status snell__scene_build(snell_ctx *ctx, const snell_frame_desc *fd, int 
     memset(v, 0, sizeof *v);
     snell_camera_matrices(&fd->camera, (float)width / (float)height, v->eye, (float *)v->view, (float *)v->proj);
     glm_mat4_mul(v->proj, v->view, v->view_proj);
+    glm_mat4_inv(v->view_proj, v->inv_view_proj);
     v->width = width;
     v->height = height;
     v->out = out;

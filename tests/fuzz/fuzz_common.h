@@ -14,9 +14,43 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
+/* The stages that consume loaded data (DESIGN.md "Tests"): normalisation and
+ * the analysis either fail with a message or give sane values (positions
+ * within the unit sphere after normalising, fractions in [0,1], finite radii
+ * with inner <= outer). The analysis's cost is bounded by the triangle count
+ * (mesh_analyze.c WORK_*), so a slow input is a finding too (libFuzzer -timeout). */
+static inline void fuzz_check_stages(snell_mesh *m)
+{
+    snell_mesh_analysis a;
+    snell_status st = snell_mesh_normalize(m, 1.0f);
+    uint32_t i;
+    int k;
+    if (st != SNELL_OK) {
+        if (!snell_last_error(NULL)[0]) abort();
+    } else {
+        for (i = 0; i < 3 * snell_mesh_vertex_count(m); i++) {
+            float p = snell_mesh_positions(m)[i];
+            if (!isfinite(p) || fabsf(p) > 1.001f) abort();
+        }
+    }
+    st = snell_mesh_analyze(m, &a);
+    if (st != SNELL_OK) {
+        if (!snell_last_error(NULL)[0]) abort();
+        return;
+    }
+    for (k = 0; k < 3; k++)
+        if (!isfinite(a.centre[k])) abort();
+    if (!(a.hidden_fraction >= 0.0f && a.hidden_fraction <= 1.0f) || !(a.radius >= 0.0f) || !isfinite(a.radius) ||
+        !(a.inner_radius >= 0.0f && a.inner_radius <= a.radius * 1.001f + 1e-6f) || a.samples <= 0)
+        abort();
+    if (a.closed && (a.boundary_edges || a.nonmanifold_edges || a.flipped_edges)) abort();
+    if (a.convex && !a.closed) abort();
+}
+
 /* A loader either fails with a message and no mesh, or returns a mesh whose
- * indices are in range, positions finite and normals unit. abort() otherwise,
- * so both libFuzzer and ctest report it. */
+ * indices are in range, positions finite and normals unit; the mesh then goes
+ * through fuzz_check_stages. abort() otherwise, so both libFuzzer and ctest
+ * report it. */
 static inline void fuzz_check_result(snell_status st, snell_mesh *m)
 {
     uint32_t i, nv, nt;
@@ -35,6 +69,7 @@ static inline void fuzz_check_result(snell_status st, snell_mesh *m)
         float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]) || !(fabsf(len - 1.0f) < 1e-3f)) abort();
     }
+    fuzz_check_stages(m);
     snell_mesh_destroy(m);
 }
 

@@ -1,5 +1,6 @@
 /* fuzz_gltf.c — libFuzzer target for the glTF loader (snell_mesh_load_gltf_mem,
- * JSON and GLB). Built with -DSNELL_LIBFUZZER for libFuzzer; otherwise a replay
+ * JSON and GLB) and the stages after it (snell_mesh_normalize,
+ * snell_mesh_analyze: fuzz_check_result). Built with -DSNELL_LIBFUZZER for libFuzzer; otherwise a replay
  * program. Without SNELL_WITH_GLTF every input gives SNELL_E_UNSUPPORTED. */
 #include "fuzz_common.h"
 

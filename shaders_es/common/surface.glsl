@@ -1,0 +1,44 @@
+// surface.glsl - the front surface a glass kernel shades: world position and
+// (unnormalised) normal. Forward: the interpolated vertex outputs of
+// object.vert. SNELL_SCREEN_SPACE: fetched from the G-buffer that the
+// renderer's screen-space stage drew (render/gbuffer.c: RGBA8 with the normal
+// octahedral in 16+16 bits, RGBA8 with the depth in 24 bits and the object id
+// in 8), on a full-screen triangle at the far plane, scissored to the object,
+// that the depth test (GREATER) limits to covered pixels; pixels of other
+// objects are discarded.
+#ifdef SNELL_SCREEN_SPACE
+uniform highp sampler2D u_gnormal;   // octahedral 16+16 bits
+uniform highp sampler2D u_gdepth_id; // window depth 24 bits, object id 8 bits
+uniform highp mat4 u_inv_view_proj;
+uniform highp vec2 u_inv_size;       // 1 / target size in pixels
+uniform int u_gid;                   // this object's id in the G-buffer (1..255)
+
+void snell_surface(out highp vec3 pos, out highp vec3 normal)
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    highp uvec4 b = uvec4(texelFetch(u_gdepth_id, px, 0) * 255.0 + 0.5);
+    if (int(b.a) != u_gid) discard;
+    highp float depth = float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+    highp vec4 ndc = vec4(gl_FragCoord.xy * u_inv_size * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    highp vec4 w = u_inv_view_proj * ndc;
+    highp vec4 g = texelFetch(u_gnormal, px, 0);
+    pos = w.xyz / w.w;
+    normal = snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0);
+#ifdef SNELL_SCREEN_WRITES_DEPTH
+    // the G-buffer had a depth buffer of its own (a target whose depth buffer
+    // the renderer cannot attach): the surface's depth goes to the target here
+    gl_FragDepth = depth;
+#endif
+}
+#else
+in highp vec3 v_world_pos;
+// highp: the normal matrix scales normals by 1/scale; at mediump (fp16 on llvmpipe)
+// |n|^2 overflows above 256 (mesh scale 1e-3) and is subnormal at scale 1e3.
+in highp vec3 v_world_normal;
+
+void snell_surface(out highp vec3 pos, out highp vec3 normal)
+{
+    pos = v_world_pos;
+    normal = v_world_normal;
+}
+#endif

@@ -1,0 +1,20 @@
+/* camera.h — validation of an orbit camera (snell_camera), shared by the
+ * renderer and the reference tracer so both refuse the same values, and of
+ * model matrices. */
+#ifndef SNELL_CAMERA_H
+#define SNELL_CAMERA_H
+
+#include "core/core.h"
+
+/* SNELL_OK, or SNELL_E_INVALID_ARG with a message "who: camera.FIELD ..."
+ * naming the field: every value finite, distance >= 0, 0 <= fov_y < pi,
+ * z_near and z_far >= 0 with the near plane (given or derived) before the
+ * far one, and finite matrices for the given aspect (a distance so large that
+ * the derived far plane overflows is refused). cam NULL = all defaults. */
+snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *cam, float aspect, const char *who);
+
+/* 1 if a column-major 4x4 matrix (a model matrix) has a non-zero, finite
+ * determinant and a finite inverse: shading needs its inverse transpose. */
+int snell__matrix_invertible(const float m[16]);
+
+#endif

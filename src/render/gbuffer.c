@@ -1,0 +1,197 @@
+/* gbuffer.c — see gbuffer.h. */
+#include "render/gbuffer.h"
+#include "render/pass.h"
+#include "methods/glass_program.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "core/program.h"
+
+#include <math.h>
+#include <string.h>
+
+void snell__gbuffer_destroy(snell__gbuffer *g)
+{
+    if (g->fbo) glDeleteFramebuffers(1, &g->fbo);
+    if (g->normal_tex) glDeleteTextures(1, &g->normal_tex);
+    if (g->depth_id_tex) glDeleteTextures(1, &g->depth_id_tex);
+    if (g->own_depth_rb) glDeleteRenderbuffers(1, &g->own_depth_rb);
+    if (g->prog) glDeleteProgram(g->prog);
+    memset(g, 0, sizeof *g);
+}
+
+static unsigned make_texture(GLenum internal, GLenum format, GLenum type, int w, int h)
+{
+    GLuint t = 0;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, w, h, 0, format, type, NULL);
+    return t;
+}
+
+static snell_status create(snell_ctx *ctx, snell__gbuffer *g, int w, int h)
+{
+    GLint prev_fbo = 0;
+    snell_status st = snell__program_build(ctx, "object.vert", "gbuffer.frag", NULL, &g->prog);
+    if (st != SNELL_OK) return st;
+    g->u_model = glGetUniformLocation(g->prog, "u_model");
+    g->u_normal_matrix = glGetUniformLocation(g->prog, "u_normal_matrix");
+    g->u_view_proj = glGetUniformLocation(g->prog, "u_view_proj");
+    g->u_gid = glGetUniformLocation(g->prog, "u_gid");
+    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_NORMAL);
+    g->normal_tex = make_texture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, w, h);
+    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_DEPTH_ID);
+    g->depth_id_tex = make_texture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, w, h);
+    glActiveTexture(GL_TEXTURE0);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev_fbo);
+    glGenFramebuffers(1, &g->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, g->normal_tex, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, g->depth_id_tex, 0);
+    {
+        static const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glDrawBuffers(2, bufs);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)prev_fbo);
+    g->width = w;
+    g->height = h;
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error creating the G-buffer");
+}
+
+/* Attaches the depth buffer the pass tests and writes: the target's, or one of its own. */
+static snell_status attach_depth(snell_ctx *ctx, snell__gbuffer *g, unsigned target_depth)
+{
+    unsigned rb = target_depth;
+    GLenum fst;
+    if (!rb) {
+        if (!g->own_depth_rb) {
+            glGenRenderbuffers(1, &g->own_depth_rb);
+            glBindRenderbuffer(GL_RENDERBUFFER, g->own_depth_rb);
+            glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, g->width, g->height);
+        }
+        rb = g->own_depth_rb;
+    }
+    if (g->attached_depth == rb) return SNELL_OK;
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb);
+    fst = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (fst != GL_FRAMEBUFFER_COMPLETE)
+        return snell__fail(ctx, SNELL_E_GL, "G-buffer %dx%d framebuffer incomplete (0x%x)", g->width, g->height,
+                           (unsigned)fst);
+    g->attached_depth = rb;
+    return SNELL_OK;
+}
+
+snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v, snell__object *const *objects,
+                                 int count, unsigned target_depth, snell_object_stats *stats)
+{
+    snell__pass pass;
+    snell_status st;
+    int i;
+    if (!g->fbo) {
+        st = create(ctx, g, v->width, v->height);
+        if (st != SNELL_OK) {
+            snell__gbuffer_destroy(g);
+            return st;
+        }
+    }
+    /* The target's depth already holds the opaque objects: glass behind them
+     * fails the test here and costs nothing later. Only colour is cleared. */
+    snell__pass_begin(&pass, g->fbo, g->width, g->height, 0, GL_LESS, 1.0f);
+    if ((st = attach_depth(ctx, g, target_depth)) != SNELL_OK) {
+        snell__pass_end(&pass);
+        return st;
+    }
+    glClear(target_depth ? GL_COLOR_BUFFER_BIT : GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glUseProgram(g->prog);
+    glUniformMatrix4fv(g->u_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
+    for (i = 0; i < count; i++) {
+        const snell__object *o = objects[i];
+        snell_object_stats *st = &stats[o->index];
+        glUniformMatrix4fv(g->u_model, 1, GL_FALSE, (const GLfloat *)o->model);
+        glUniformMatrix3fv(g->u_normal_matrix, 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
+        glUniform1i(g->u_gid, o->gid);
+        /* thin walls are walls from both sides; every kernel starts at the front surface */
+        if (o->glass->material.thickness <= 0.0f) snell__cull_back_faces(o, st);
+        snell__draw_object(o);
+        st->passes++;
+    }
+    snell__pass_end(&pass);
+    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_NORMAL);
+    glBindTexture(GL_TEXTURE_2D, g->normal_tex);
+    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_DEPTH_ID);
+    glBindTexture(GL_TEXTURE_2D, g->depth_id_tex);
+    glActiveTexture(GL_TEXTURE0);
+    return SNELL_OK;
+}
+
+float snell__screen_threshold(const char *gl_renderer, const snell__method *method)
+{
+    static const char *const tilers[] = {"Mali", "Adreno", "PowerVR", "VideoCore", "V3D", "Apple", "Immortalis"};
+    size_t i;
+    const char *rs = gl_renderer ? gl_renderer : "";
+    /* Software rasterisers shade 4x4 blocks: the crossover measured per method. */
+    if (strstr(rs, "llvmpipe") || strstr(rs, "softpipe") || strstr(rs, "SwiftShader"))
+        return method->software_screen_ppt;
+    /* Not measured yet (no GPU here), from how they work: tile-based GPUs pay
+     * the extra pass in memory bandwidth, so only for sub-pixel triangles;
+     * immediate-mode GPUs shade 2x2 quads, so most lanes idle below a few pixels. */
+    for (i = 0; i < sizeof tilers / sizeof *tilers; i++)
+        if (strstr(rs, tilers[i])) return 1.0f;
+    return 4.0f;
+}
+
+/* Window-space bounds of the sphere, from its bounding box's 8 corners. */
+static int project_sphere(const snell__view *v, const float s[4], float lo[2], float hi[2])
+{
+    int c, k;
+    lo[0] = lo[1] = HUGE_VALF;
+    hi[0] = hi[1] = -HUGE_VALF;
+    for (c = 0; c < 8; c++) {
+        vec4 p = {s[0] + ((c & 1) ? s[3] : -s[3]), s[1] + ((c & 2) ? s[3] : -s[3]), s[2] + ((c & 4) ? s[3] : -s[3]),
+                  1.0f}, q;
+        glm_mat4_mulv((vec4 *)v->view_proj, p, q);
+        if (!(q[3] > 1e-6f)) return 0; /* a corner at or behind the eye: no bound */
+        for (k = 0; k < 2; k++) {
+            float w = (q[k] / q[3] * 0.5f + 0.5f) * (float)(k ? v->height : v->width);
+            if (w < lo[k]) lo[k] = w;
+            if (w > hi[k]) hi[k] = w;
+        }
+    }
+    return 1;
+}
+
+float snell__pixels_per_triangle(const snell__view *v, const snell__object *o)
+{
+    float lo[2], hi[2], area, front = 0.5f * (float)o->mesh->triangle_count;
+    if (!project_sphere(v, o->bsphere, lo, hi)) return 0.0f; /* very near: treat as dense */
+    /* the sphere's disc inscribed in its screen box, clipped to the target */
+    lo[0] = fmaxf(lo[0], 0.0f);
+    lo[1] = fmaxf(lo[1], 0.0f);
+    hi[0] = fminf(hi[0], (float)v->width);
+    hi[1] = fminf(hi[1], (float)v->height);
+    area = hi[0] > lo[0] && hi[1] > lo[1] ? 0.785398f * (hi[0] - lo[0]) * (hi[1] - lo[1]) : 0.0f;
+    return front > 0.0f ? area / front : 0.0f;
+}
+
+void snell__object_scissor(const snell__view *v, const snell__object *o, int rect[4])
+{
+    float lo[2], hi[2];
+    int x0, y0, x1, y1;
+    if (!project_sphere(v, o->bsphere, lo, hi)) {
+        rect[0] = rect[1] = 0;
+        rect[2] = v->width;
+        rect[3] = v->height;
+        return;
+    }
+    x0 = (int)floorf(fmaxf(lo[0], 0.0f)) ;
+    y0 = (int)floorf(fmaxf(lo[1], 0.0f));
+    x1 = (int)ceilf(fminf(hi[0], (float)v->width));
+    y1 = (int)ceilf(fminf(hi[1], (float)v->height));
+    rect[0] = x0;
+    rect[1] = y0;
+    rect[2] = x1 > x0 ? x1 - x0 : 0;
+    rect[3] = y1 > y0 ? y1 - y0 : 0;
+}
