@@ -129,9 +129,10 @@ typedef enum snell_format2d {
 
 /* Who turns the traced paths into the lightmap. GL lines (Brückner 6.5) are
  * cheap on a GPU; a software GL sets up each line serially (llvmpipe: ~1.6 us a
- * line), where the exact CPU rasteriser on the tracer's threads is faster
- * (1080p, 2.5e4 rays x 3 bounces, 86129 paths: 2.8-3.9x with one thread) and
- * has no line-rule error. */
+ * line), where the exact CPU rasteriser on the lightmap's threads is faster and
+ * has no line-rule error (1080p, 86129 paths, llvmpipe on 2 cores: GL lines
+ * ~430 ms, the CPU rasteriser ~40 ms; bench/BENCHMARKS.md). Its image is the
+ * same, bit for bit, for any thread count. */
 typedef enum snell_raster2d {
     SNELL_RASTER2D_AUTO = 0,  /* CPU without a ctx, with cpu_only, or when GL_RENDERER contains
                                  "llvmpipe", "softpipe" or "swrast" (Mesa's software rasterisers);
@@ -145,7 +146,7 @@ typedef struct snell_lightmap2d_desc {
     int width, height;            /* pixels; 0 = 512 x 512 */
     float view_min[2], view_max[2]; /* world rectangle shown; all zero = [0,width] x [0,height] */
     int max_bounces;              /* interactions per ray after emission; 0 = 8, negative = none */
-    int threads;                  /* tracer threads; 0 = online CPUs */
+    int threads;                  /* tracer (and CPU rasteriser) threads; 0 = online CPUs */
     uint64_t seed;                /* RNG seed; same seed and scene = same paths (any thread count) */
     int progressive;              /* nonzero: an unchanged scene traces one more pass per frame
                                      and accumulates; zero: it is traced once and reused */

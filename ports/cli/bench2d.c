@@ -156,16 +156,23 @@ static snell_status run_frames(snell_ctx *ctx, snell_scene2d *s, const snell_lig
     return run_interleaved(ctx, s, d, 1, repeat, r);
 }
 
-/* What llvmpipe will use (it reads LP_NUM_THREADS at context creation; unset:
- * one thread per CPU); "-" for other renderers. */
-static const char *lp_threads(const snell_ctx *ctx, char *buf, size_t size)
+/* The threads llvmpipe rasterises on (Mesa reads LP_NUM_THREADS at context
+ * creation; unset: one per CPU) and where the number comes from; -1 and "not
+ * llvmpipe" for other renderers (as snell-bench's 3D outputs). */
+static int lp_threads(const snell_ctx *ctx, char *why, size_t size)
 {
     const char *env = getenv("LP_NUM_THREADS");
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    if (!ctx || !strstr(snell_ctx_gl_renderer(ctx), "llvmpipe")) return "-";
-    if (env && *env) snprintf(buf, size, "%s (LP_NUM_THREADS=%s)", env, env);
-    else snprintf(buf, size, "%ld (LP_NUM_THREADS unset: one per CPU)", ncpu > 0 ? ncpu : 1);
-    return buf;
+    if (!ctx || !strstr(snell_ctx_gl_renderer(ctx), "llvmpipe")) {
+        snprintf(why, size, "not llvmpipe");
+        return -1;
+    }
+    if (env && *env) {
+        snprintf(why, size, "LP_NUM_THREADS=%s", env);
+        return atoi(env);
+    }
+    snprintf(why, size, "LP_NUM_THREADS unset: one per CPU");
+    return ncpu > 0 ? (int)ncpu : 1;
 }
 
 static const char *raster_name(snell_raster2d r)
@@ -194,8 +201,8 @@ int snell_bench2d_main(int argc, char **argv)
     snell_lightmap2d_desc d, fd[4];
     snell_status st;
     result r1, rT, rg, rf[4];
-    char lpbuf[96];
-    const char *lp;
+    char lpwhy[64];
+    int lp;
     FILE *f;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     for (i = 1; i < argc; i++) {
@@ -224,7 +231,7 @@ int snell_bench2d_main(int argc, char **argv)
         fprintf(stderr, "snell-bench --2d: no GL context (%s); GPU entries skipped\n", snell_last_error(NULL));
         ctx = NULL;
     }
-    lp = lp_threads(ctx, lpbuf, sizeof lpbuf);
+    lp = lp_threads(ctx, lpwhy, sizeof lpwhy);
     memset(&r1, 0, sizeof r1);
     memset(&rT, 0, sizeof rT);
     memset(&rg, 0, sizeof rg);
@@ -288,7 +295,7 @@ int snell_bench2d_main(int argc, char **argv)
 
     printf("snell-bench --2d  (%s, %d thread(s) where not 1, median of %d)\n", ctx ? snell_ctx_gl_renderer(ctx) : "no GL",
            threads, repeat);
-    printf("llvmpipe threads: %s\n", lp);
+    if (lp >= 0) printf("llvmpipe threads: %d (%s)\n", lp, lpwhy);
     printf("%-44s %14s\n", "measure", "value");
     if (!frame_only) {
         printf("%-44s %14.3g\n", "trace rays/s per core (1 thread, 2263 edges)", (double)r1.rays / (r1.trace_ms * 1e-3));
@@ -316,12 +323,15 @@ int snell_bench2d_main(int argc, char **argv)
                rf[c].upload_ms, 1000.0 / rf[c].ms, rf[c].cpu_ms);
     }
     printf("  (frame = trace + raster incl. upload and glFinish; CPU ms: all threads of the process)\n");
-    printf("  auto: %s\n", rf[0].reason);
+    printf("  rasteriser of the first row: %s\n", rf[0].reason);
 
     f = fopen(json, "w");
     if (f) {
-        fprintf(f, "{\n  \"renderer\": \"%s\",\n  \"llvmpipe_threads\": \"%s\",\n  \"threads\": %d,\n  \"repeat\": %d,\n",
-                ctx ? snell_ctx_gl_renderer(ctx) : "none", lp, threads, repeat);
+        fprintf(f, "{\n  \"renderer\": \"%s\",\n", ctx ? snell_ctx_gl_renderer(ctx) : "none");
+        if (lp >= 0) fprintf(f, "  \"llvmpipe_threads\": %d,\n", lp);
+        else fprintf(f, "  \"llvmpipe_threads\": null,\n");
+        fprintf(f, "  \"llvmpipe_threads_from\": \"%s\",\n  \"threads\": %d,\n  \"repeat\": %d,\n", lpwhy, threads,
+                repeat);
         if (!frame_only) {
             fprintf(f, "  \"edges\": %d,\n  \"rays\": %d,\n", edges, rays);
             fprintf(f, "  \"trace_rays_per_s_per_core\": %.1f,\n", (double)r1.rays / (r1.trace_ms * 1e-3));
@@ -348,7 +358,8 @@ int snell_bench2d_main(int argc, char **argv)
     f = fopen(csv, "w");
     if (f) {
         fprintf(f, "measure,value\n");
-        fprintf(f, "renderer,\"%s\"\nllvmpipe_threads,\"%s\"\n", ctx ? snell_ctx_gl_renderer(ctx) : "none", lp);
+        fprintf(f, "renderer,\"%s\"\n", ctx ? snell_ctx_gl_renderer(ctx) : "none");
+        if (lp >= 0) fprintf(f, "llvmpipe_threads,%d\n", lp);
         if (!frame_only) {
             fprintf(f, "trace_rays_per_s_per_core,%.1f\n", (double)r1.rays / (r1.trace_ms * 1e-3));
             fprintf(f, "trace_rays_per_cpu_s,%.1f\n", (double)r1.rays / (r1.trace_cpu_ms * 1e-3));

@@ -298,7 +298,7 @@ snell_status snell_ref_create(snell_ctx *ctx, const snell_ref_desc *desc, snell_
         int glass = i < desc->glass_count, j = glass ? i : i - desc->glass_count;
         const snell_mesh *m = glass ? desc->glass[i].mesh : desc->opaque[j].mesh;
         const float *model = glass ? desc->glass[i].model : desc->opaque[j].model;
-        double M[16], N[9], s = 0.0;
+        double M[16] = {0}, N[9] = {0}, s = 0.0; /* zeroed: -O3 cannot see object_model fill them */
         uint32_t v, t;
         if ((st = object_model(ctx, glass ? "glass" : "opaque", j, model, M, N, &s)) != SNELL_OK) {
             snell_ref_destroy(r);
