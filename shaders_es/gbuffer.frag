@@ -17,6 +17,11 @@ uniform int u_gid;
 
 layout(location = 0) out highp vec4 o_normal;
 layout(location = 1) out highp vec4 o_depth_id;
+#ifdef SNELL_GBUFFER_AUX
+// the aux target: a method's per-vertex scalar in [0,1] (snell__object.vao), 16 bits in rg
+in highp float v_aux;
+layout(location = 2) out highp vec4 o_aux;
+#endif
 
 void main()
 {
@@ -25,4 +30,7 @@ void main()
     o_normal = snell_pack_dir_rgba8(normalize(v_world_normal));
     // (b + 0.25) / 255: stored as b whether the driver rounds or truncates (pack.glsl)
     o_depth_id = (vec4(b) + 0.25) / 255.0;
+#ifdef SNELL_GBUFFER_AUX
+    o_aux = vec4(snell_pack_unorm16(v_aux), 0.0, 0.0);
+#endif
 }

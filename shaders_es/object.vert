@@ -12,9 +12,17 @@ uniform mat4 u_view_proj;
 
 out vec3 v_world_pos;
 out vec3 v_world_normal;
+#ifdef SNELL_VERTEX_AUX
+// a method's per-vertex scalar (snell__object.vao, attribute 2), passed through
+layout(location = 2) in float a_aux;
+out float v_aux;
+#endif
 
 void main()
 {
+#ifdef SNELL_VERTEX_AUX
+    v_aux = a_aux;
+#endif
     vec4 wp = u_model * vec4(a_position, 1.0);
     v_world_pos = wp.xyz;
     v_world_normal = u_normal_matrix * a_normal;

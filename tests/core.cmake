@@ -24,7 +24,7 @@ if(TARGET snell-render)
   set_tests_properties(cli_flags PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "median .* ms/frame")
   add_test(NAME cli_help COMMAND ${cli} --help)
   set_tests_properties(cli_help PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "usage: snell-render")
-  foreach(bad "--ior;abc" "--size;0x5" "--camera;1,2" "--bogus" "--method;wyman" "--mesh;shape:blob" "--ior")
+  foreach(bad "--ior;abc" "--size;0x5" "--camera;1,2" "--bogus" "--method;nosuch" "--mesh;shape:blob" "--ior")
     string(MAKE_C_IDENTIFIER "cli_bad_${bad}" name)
     string(REPLACE ";" "|" bad_args "${bad}")
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=${bad_args}" -DCODE=2 "-DERR=snell-render: "

@@ -226,6 +226,53 @@ out:
     CHECK(c.outstanding == 0, "scene: %ld blocks leaked", c.outstanding);
 }
 
+/* snell_mesh_simplify (level of detail): its arrays and the new mesh come from
+ * the context's allocator, all returned; failing each request in turn gives
+ * SNELL_E_NOMEM (or success) and leaks nothing. Without meshoptimizer it is
+ * SNELL_E_UNSUPPORTED and allocates nothing. */
+static snell_status simplify_cycle(counter *c)
+{
+    snell_ctx_desc cd = counting_desc(c);
+    snell_ctx *ctx = NULL;
+    snell_mesh *src = NULL, *lod = NULL;
+    snell_simplify_desc sd;
+    snell_status st = snell_ctx_create(&cd, &ctx);
+    if (st != SNELL_OK) return st;
+    memset(&sd, 0, sizeof sd);
+    sd.target_ratio = 0.25f;
+    st = snell_mesh_create_shape(ctx, &(snell_shape_desc){SNELL_SHAPE_TORUS, 48, 24}, &src);
+    if (st == SNELL_OK) st = snell_mesh_simplify(ctx, src, &sd, &lod, NULL);
+    if (st != SNELL_OK && lod) st = SNELL_E_INVALID_ARG; /* no mesh on failure */
+    snell_mesh_destroy(lod);
+    snell_mesh_destroy(src);
+    snell_ctx_destroy(ctx);
+    return st;
+}
+
+static void simplify_alloc(void)
+{
+    counter c;
+    long total, n, nomem = 0;
+    snell_status st;
+    memset(&c, 0, sizeof c);
+    c.fail_at = -1;
+    st = simplify_cycle(&c);
+    CHECK(st == SNELL_OK || st == SNELL_E_UNSUPPORTED, "simplify: %s", snell_status_str(st));
+    CHECK(c.outstanding == 0, "simplify: %ld blocks leaked", c.outstanding);
+    if (st != SNELL_OK) return;
+    total = c.total;
+    for (n = 0; n < total; n++) {
+        memset(&c, 0, sizeof c);
+        c.fail_at = n;
+        st = simplify_cycle(&c);
+        CHECK(st == SNELL_OK || st == SNELL_E_NOMEM, "simplify, failing allocation %ld: %s", n, snell_status_str(st));
+        nomem += st == SNELL_E_NOMEM;
+        CHECK(c.outstanding == 0, "simplify, failing allocation %ld leaked %ld blocks", n, c.outstanding);
+    }
+    printf("simplify: %ld allocations, each failed in turn (%ld gave SNELL_E_NOMEM)\n", total, nomem);
+    CHECK(nomem > 0, "simplify: no injected failure surfaced");
+}
+
 int main(void)
 {
     counter c;
@@ -321,5 +368,6 @@ int main(void)
         CHECK(c.outstanding == 0, "leak");
     }
     scene_frames();
+    simplify_alloc();
     return test_finish();
 }

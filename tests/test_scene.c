@@ -44,7 +44,7 @@ static void test_registry(void)
     }
     CHECK(snell_method_info_at(snell_method_count()) == NULL, "past the end");
     CHECK(snell_method_from_str("auto", &id) == SNELL_OK && id == SNELL_METHOD_AUTO, "auto");
-    CHECK(snell_method_from_str("wyman", &id) == SNELL_E_INVALID_ARG, "unknown name accepted");
+    CHECK(snell_method_from_str("nosuch", &id) == SNELL_E_INVALID_ARG, "unknown name accepted");
     CHECK(strcmp(snell_method_str((snell_method)99), "unknown") == 0, "unknown value");
 
     /* Defaults: the registry's param defaults are what snell_glass_defaults gives. */
@@ -480,6 +480,9 @@ int main(void)
         if (r2) {
             r2->method_status[SNELL_METHOD_CUBEMAP] = SNELL_E_UNSUPPORTED;
             snprintf(r2->method_error[SNELL_METHOD_CUBEMAP], sizeof r2->method_error[0], "test: no such device");
+            /* the other two-sided method, which AUTO would take next for the sphere */
+            r2->method_status[SNELL_METHOD_WYMAN] = SNELL_E_UNSUPPORTED;
+            snprintf(r2->method_error[SNELL_METHOD_WYMAN], sizeof r2->method_error[0], "test: no such device");
             memset(&g1, 0, sizeof g1);
             g1.mesh = sphere;
             f1.glass = &g1;

@@ -262,6 +262,55 @@ typedef struct snell_mesh_analysis {
  * one OBJ face of 40,000 repeated corners, which then fails in ~0.1 s). */
 snell_status snell_mesh_analyze(const snell_mesh *mesh, snell_mesh_analysis *out);
 
+/* Level of detail: a simplified copy of a mesh, for meshes whose triangles
+ * are far below a pixel (meshoptimizer's edge-collapse simplifier). OFF BY
+ * DEFAULT: the renderer never simplifies on its own; a caller who wants LOD
+ * creates the copy and draws it instead. snell-bench's lod=R key measures the
+ * error it adds against the original mesh, and bench/BENCHMARKS.md states
+ * when it pays ("Level of detail"). Zero means the default for every field. */
+typedef struct snell_simplify_desc {
+    float target_ratio;  /* share of the source's triangles to keep, 0 < r <= 1; 0 = no count
+                          * target (as few as target_error allows). The simplifier may stop
+                          * short of it (topology, locked border, target_error) */
+    float target_error;  /* most a surface point may move, relative to the largest side of the
+                          * mesh's bounding box (meshoptimizer's measure), >= 0; 0 = default:
+                          * unbounded with a target_ratio (the ratio decides), 0.01 without one */
+    int lock_border;     /* nonzero: vertices on boundary edges (an open mesh's rims and holes)
+                          * stay, so the boundary is kept edge for edge; 0: rims simplify too */
+} snell_simplify_desc;
+
+/* What snell_mesh_simplify did. */
+typedef struct snell_simplify_report {
+    uint32_t triangles_before, triangles_after;
+    uint32_t vertices_before, vertices_after;
+    uint32_t welded_vertices;        /* distinct positions of the source (the analysis's weld) */
+    float error;                     /* meshoptimizer's resulting error, relative as target_error
+                                      * (the repair of non-manifold edges below is not in it) */
+    float error_abs;                 /* the same in object units */
+    uint32_t degenerate_removed;     /* triangles with two equal (welded) corners removed */
+    uint32_t duplicate_pairs_removed; /* opposite-facing pairs on the same three vertices removed */
+    uint32_t duplicates_removed;     /* same-facing copies of a triangle removed (one is kept) */
+    uint32_t nonmanifold_collapsed;  /* edges where a collapse made two sheets meet (four triangles),
+                                      * collapsed in turn so that a closed mesh stays closed */
+} snell_simplify_report;
+
+/* *out = a new mesh of ctx (NULL: CPU-only) simplified from src, which is not
+ * changed. Vertices are welded by position first (the analysis's weld, so
+ * split seams do not block or open), collapses keep source positions, normals
+ * are recomputed smooth (hard creases are not kept); then degenerate
+ * triangles and opposite-facing duplicate pairs are removed and edges where
+ * the simplifier made two sheets meet are collapsed (both make a closed mesh
+ * look open): a closed source stays closed (snell_mesh_analyze). report may
+ * be NULL. SNELL_E_INVALID_ARG for NULL src/desc/out, a ratio outside [0, 1]
+ * or NaN, an error < 0 or not finite, and a result with no triangle left (a
+ * tiny ratio can collapse a closed mesh to nothing); SNELL_E_LIMIT beyond the
+ * memory budget (scratch estimated at 120 bytes per source triangle and 100 per vertex); SNELL_E_UNSUPPORTED
+ * when built without SNELL_WITH_MESHOPT. Memory is ctx's allocator's
+ * (meshoptimizer's own scratch, freed before the call returns, is its
+ * process-wide allocator's). Takes ~70 ms for the 70k-triangle bunny. */
+snell_status snell_mesh_simplify(snell_ctx *ctx, const snell_mesh *src, const snell_simplify_desc *desc,
+                                 snell_mesh **out, snell_simplify_report *report);
+
 /* ------------------------------------------------------------ environment */
 typedef enum snell_env_source {
     SNELL_ENV_PROCEDURAL = 0,  /* built in: sky gradient, sun, checkered floor */
@@ -299,6 +348,9 @@ typedef enum snell_method {
     SNELL_METHOD_SINGLE,       /* refraction at the front surface only (Unger 3.3); needs nothing */
     SNELL_METHOD_CUBEMAP,      /* two-sided: exit found in a normal+distance cubemap (Unger 4.1, Li et al.);
                                 * needs a closed mesh with its centre inside */
+    SNELL_METHOD_WYMAN,        /* two-sided in image space (Wyman 2005): exit point interpolated between the
+                                * view-ray and inward-normal thicknesses, normal from a per-frame back-face
+                                * pass; needs no bake, so works for any closed mesh */
     SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 
@@ -509,7 +561,7 @@ typedef enum snell_skip {
 #define SNELL_REASON_SIZE 160
 
 typedef struct snell_object_stats {
-    snell_method method_used;       /* SINGLE or CUBEMAP (what drew it, or would have) */
+    snell_method method_used;       /* SINGLE, CUBEMAP, WYMAN (what drew it, or would have) */
     char reason[SNELL_REASON_SIZE]; /* why this method: AUTO's choice or the explicit request,
                                      * with the mesh facts it rests on */
     int warning;                    /* 1: an explicit method whose preconditions the mesh fails
@@ -533,6 +585,8 @@ typedef struct snell_frame_stats {
     snell_object_stats glass[SNELL_MAX_GLASS]; /* in the order of the frame's glass list */
     int opaque_drawn;               /* opaque objects drawn in the view */
     int background_drawn;           /* 1 if the background pass ran */
+    int back_face_pass;             /* 1 if the shared back-face pass ran (a method of the frame needs the
+                                     * glass's back faces: WYMAN); one pass for all objects that need it */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
 } snell_frame_stats;
 

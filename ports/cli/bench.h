@@ -59,6 +59,8 @@ typedef struct bench_config {
     int ref_interfaces;            /* MATCHED reference cap (the method's own) */
     snell_ref_absorption ref_absorb;
     snell_shading shading;         /* shading= (the renderer's; default auto) */
+    float lod;                     /* lod=: glass meshes simplified to this triangle ratio; 1 = the
+                                    * original (the default); references always use the original */
 
     /* results */
     int ok;
@@ -109,6 +111,10 @@ void bench_scene_help(FILE *f);
 /* Configuration c on scene s: fills glass[] (the scene's objects with c's material) and *fd. */
 void bench_scene_frame(const bench_config *c, const bench_scene *s, const snell_env *env, snell_glass *glass,
                        snell_frame_desc *fd);
+/* Level of detail (c->lod < 1): replaces the meshes of glass[0..n) by their
+ * simplified copies (snell_mesh_simplify at ratio c->lod, made once per mesh
+ * and ratio, reported on stderr). The frame's reference keeps the originals. */
+snell_status bench_scene_lod(snell_ctx *ctx, const bench_config *c, snell_glass *glass, int n);
 /* Does the method render here? The default sweep skips those that do not. */
 int bench_method_works(snell_ctx *ctx, const snell_env *env, const snell_method_info *m);
 

@@ -160,9 +160,10 @@ static void write_images(const bench_options *o, const bench_config *c, int mode
     write_error_map(path, b->err, b->mask, b->dirs, c->width, c->height);
 }
 
-/* mode 0: MATCHED, 1: FULL. */
-static int compare(const snell_frame_desc *fd, const char *env_name, const bench_options *o, bench_config *c,
-                   int mode, measure_buf *b)
+/* mode 0: MATCHED, 1: FULL. The reference sees ref_glass (fd's objects with
+ * their original meshes, lod= or not). */
+static int compare(const snell_frame_desc *fd, const snell_glass *ref_glass, const char *env_name,
+                   const bench_options *o, bench_config *c, int mode, measure_buf *b)
 {
     snell_ref_params p;
     snell_ref_desc scene;
@@ -170,7 +171,7 @@ static int compare(const snell_frame_desc *fd, const char *env_name, const bench
     snell_dir_error_desc dd;
     size_t j;
     memset(&scene, 0, sizeof scene);
-    scene.glass = fd->glass;
+    scene.glass = ref_glass;
     scene.glass_count = fd->glass_count;
     scene.opaque = fd->opaque;
     scene.opaque_count = fd->opaque_count;
@@ -211,7 +212,7 @@ void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, c
                    bench_config *c)
 {
     const bench_scene *s = NULL;
-    snell_glass glass[SNELL_MAX_GLASS];
+    snell_glass glass[SNELL_MAX_GLASS], ref_glass[SNELL_MAX_GLASS];
     snell_frame_desc fd;
     measure_buf b;
     memset(&b, 0, sizeof b);
@@ -223,11 +224,13 @@ void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, c
         bench_fail(c, "scene", ctx);
     } else {
         bench_scene_frame(c, s, env, glass, &fd);
+        memcpy(ref_glass, glass, sizeof(snell_glass) * (size_t)fd.glass_count);
         c->glass_objects = fd.glass_count;
         c->opaque_objects = fd.opaque_count;
-        if (colour_frame(ctx, &fd, c, &b) && exit_dir_frames(ctx, &fd, c, &b) &&
-            compare(&fd, env_name, o, c, 0, &b))
-            compare(&fd, env_name, o, c, 1, &b);
+        if (bench_scene_lod(ctx, c, glass, fd.glass_count) != SNELL_OK) bench_fail(c, "lod", ctx);
+        else if (colour_frame(ctx, &fd, c, &b) && exit_dir_frames(ctx, &fd, c, &b) &&
+                 compare(&fd, ref_glass, env_name, o, c, 0, &b))
+            compare(&fd, ref_glass, env_name, o, c, 1, &b);
     }
     buf_free(&b);
 }

@@ -35,7 +35,17 @@ static const preset g_presets[] = {
 };
 #define PRESET_COUNT ((int)(sizeof g_presets / sizeof *g_presets))
 
+/* Simplified copies (lod=), one per source mesh and ratio. */
+typedef struct lod_mesh {
+    const snell_mesh *src;
+    float ratio;
+    snell_mesh *mesh;
+} lod_mesh;
+#define MAX_LODS 64
+
 static bench_scene g_scenes[BENCH_MAX_SCENES];
+static lod_mesh g_lods[MAX_LODS];
+static int g_lod_count;
 static int g_scene_count;
 static snell_mesh *g_meshes[MAX_MESHES];
 static char g_mesh_names[MAX_MESHES][256];
@@ -189,8 +199,47 @@ snell_status bench_scene_get(snell_ctx *ctx, const char *name, const bench_scene
 void bench_scene_release_all(void)
 {
     int i;
+    for (i = 0; i < g_lod_count; i++) snell_mesh_destroy(g_lods[i].mesh);
     for (i = 0; i < g_mesh_count; i++) snell_mesh_destroy(g_meshes[i]);
-    g_mesh_count = g_scene_count = 0;
+    g_mesh_count = g_scene_count = g_lod_count = 0;
+}
+
+static snell_status lod_of(snell_ctx *ctx, const snell_mesh *src, float ratio, const snell_mesh **out)
+{
+    snell_simplify_desc d;
+    snell_simplify_report rep;
+    snell_status st;
+    int i;
+    for (i = 0; i < g_lod_count; i++)
+        if (g_lods[i].src == src && g_lods[i].ratio == ratio) {
+            *out = g_lods[i].mesh;
+            return SNELL_OK;
+        }
+    if (g_lod_count == MAX_LODS) {
+        fprintf(stderr, "snell-bench: more than %d simplified meshes\n", MAX_LODS);
+        return SNELL_E_LIMIT;
+    }
+    memset(&d, 0, sizeof d);
+    d.target_ratio = ratio;
+    st = snell_mesh_simplify(ctx, src, &d, &g_lods[g_lod_count].mesh, &rep);
+    if (st != SNELL_OK) return st;
+    fprintf(stderr, "lod=%g: %u -> %u triangles, meshoptimizer error %.3g of the extent (%.3g object units); "
+                    "removed %u degenerate, %u opposite pairs, %u copies; %u non-manifold edges collapsed\n",
+            (double)ratio, rep.triangles_before, rep.triangles_after, (double)rep.error, (double)rep.error_abs,
+            rep.degenerate_removed, rep.duplicate_pairs_removed, rep.duplicates_removed, rep.nonmanifold_collapsed);
+    g_lods[g_lod_count].src = src;
+    g_lods[g_lod_count].ratio = ratio;
+    *out = g_lods[g_lod_count++].mesh;
+    return SNELL_OK;
+}
+
+snell_status bench_scene_lod(snell_ctx *ctx, const bench_config *c, snell_glass *glass, int n)
+{
+    snell_status st = SNELL_OK;
+    int i;
+    if (!(c->lod < 1.0f)) return SNELL_OK; /* lod=1: the original meshes */
+    for (i = 0; i < n && st == SNELL_OK; i++) st = lod_of(ctx, glass[i].mesh, c->lod, &glass[i].mesh);
+    return st;
 }
 
 void bench_scene_frame(const bench_config *c, const bench_scene *s, const snell_env *env, snell_glass *glass,

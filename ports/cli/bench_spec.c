@@ -114,6 +114,21 @@ static int k_shading(bench_config *c, const char *v)
     return 1;
 }
 
+/* lod=R: the scene's glass meshes simplified to the ratio R of their
+ * triangles (snell_mesh_simplify) before timing; the references keep the
+ * original meshes, so the error measured includes the simplification. */
+static int k_lod(bench_config *c, const char *v)
+{
+    char *end;
+    float r;
+    errno = 0;
+    r = strtof(v, &end);
+    if (end == v || *end || errno || !(r > 0.0f && r <= 1.0f))
+        return bad("lod", v, "a triangle ratio in (0, 1] (1 = the original mesh)");
+    c->lod = r;
+    return 1;
+}
+
 static const common_key g_common[] = {
     {"scene", "a scene below, sphere|cube|torus|goblet|bunny, or a mesh file (normalised to the unit sphere)",
      k_scene},
@@ -125,6 +140,8 @@ static const common_key g_common[] = {
     {"tint", "transmission tint r/g/b (default %g/%g/%g)", k_tint},
     {"camera", "orbit camera az/el/dist, degrees (default: the scene's, 30/20/3.5 for one mesh)", k_camera},
     {"shading", "auto (default), forward or screen (the renderer's screen-space stage)", k_shading},
+    {"lod", "glass meshes simplified to this share of their triangles, 0..1 (default 1: the original; the "
+            "reference keeps the original)", k_lod},
 };
 #define COMMON_COUNT ((int)(sizeof g_common / sizeof *g_common))
 
@@ -226,6 +243,7 @@ static void config_defaults(bench_config *c, const snell_method_info *m)
     c->glass.method = m->method;
     c->width = c->height = 256;
     c->gpu_median = -1.0;
+    c->lod = 1.0f;
 }
 
 static int apply_key(bench_config *c, const spec_key *k, const char *value)

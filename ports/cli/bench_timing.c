@@ -81,6 +81,10 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
         return;
     }
     bench_scene_frame(t->c, s, env, t->glass, &t->fd);
+    if (bench_scene_lod(ctx, t->c, t->glass, t->fd.glass_count) != SNELL_OK) {
+        bench_fail(t->c, "lod", ctx);
+        return;
+    }
     for (k = 0; k < o->warmup && t->c->ok; k++) time_frame(ctx, t, 0, 0);
 }
 

@@ -65,6 +65,12 @@ int snell__mesh_winding(snell_mesh *mesh);
  * SNELL_E_NOMEM is not cached: the next call tries again. */
 snell_status snell__mesh_analysis(snell_mesh *mesh, const snell_mesh_analysis **out);
 
+/* The analysis's weld (snell_mesh_analysis: chains of vertices within 1e-5
+ * of the bounding-box diagonal): id[v] = welded vertex 0 .. *count-1 of each
+ * vertex with used[v] != 0 (others are left alone). For the simplifier
+ * (mesh_lod.c), so that what it keeps closed is what the analysis calls closed. */
+snell_status snell__mesh_weld(const snell_mesh *mesh, const unsigned char *used, uint32_t *id, uint32_t *count);
+
 /* The GPU copy (mesh_gpu.c): vertices interleaved (position, normal: 6
  * floats each, vertex_count of them) and indices (3 * triangle_count),
  * reordered for the vertex cache and fetch when built with meshoptimizer. */

@@ -276,4 +276,4 @@ static const snell_method_info g_info = {
 
 const snell__method snell__method_cubemap = {&g_info, g_offsets, 1, cubemap_fit, cubemap_create, cubemap_destroy,
                                              sizeof(cube_prepared), cubemap_key, cubemap_prepare, cubemap_release,
-                                             cubemap_draw, CUBEMAP_SOFTWARE_SCREEN_PPT};
+                                             cubemap_draw, CUBEMAP_SOFTWARE_SCREEN_PPT, 0, NULL};

@@ -86,7 +86,13 @@ int snell__cull_back_faces(const snell__object *o, snell_object_stats *stats)
 
 void snell__draw_object(const snell__object *o)
 {
-    snell__mesh_draw(o->mesh);
+    if (o->vao) {
+        /* the method's VAO: the mesh's buffers plus attribute 2 */
+        glBindVertexArray(o->vao);
+        glDrawElements(GL_TRIANGLES, (GLsizei)(3 * o->mesh->triangle_count), o->mesh->index_type, (const void *)0);
+    } else {
+        snell__mesh_draw(o->mesh);
+    }
     glDisable(GL_CULL_FACE);
 }
 

@@ -43,6 +43,9 @@ typedef struct snell__object {
                                      * SNELL__SCREEN_* (render/gbuffer.h) */
     int gid;                        /* its id in the G-buffer (index + 1) */
     void *prepared;                 /* the method's resources for (mesh version, settings) */
+    unsigned vao;                   /* 0: draw the mesh's own VAO; else the method's (vertex_array()):
+                                     * the mesh's attributes plus attribute 2, a per-vertex scalar that
+                                     * the kernel reads forward and the G-buffer keeps (its aux target) */
 } snell__object;
 
 /* How well a method serves an object. */
@@ -83,6 +86,14 @@ typedef struct snell__method {
      * G-buffer pass pays off sooner the more a kernel costs per pixel
      * (bench/BENCHMARKS.md "Screen-space stage"). */
     float software_screen_ppt;
+    /* Per-frame inputs beyond the front surface: nonzero = the frame's shared
+     * back-face pass (the glass's farthest back faces' normal, depth and id,
+     * render/gbuffer.h SNELL__BACK_UNIT_*) is drawn before this method's
+     * objects and bound while they draw. */
+    int needs_back_faces;
+    /* May be NULL. The VAO of the prepared resources (the mesh's attributes
+     * plus attribute 2), 0 for none: becomes snell__object.vao. */
+    unsigned (*vertex_array)(const void *prepared);
 } snell__method;
 
 /* The registry entry of a method id (registry.c), NULL for AUTO or unknown. */

@@ -11,10 +11,12 @@
 
 extern const snell__method snell__method_single;
 extern const snell__method snell__method_cubemap;
+extern const snell__method snell__method_wyman;
 
 static const snell__method *const g_methods[] = {
     &snell__method_single,
     &snell__method_cubemap,
+    &snell__method_wyman,
 };
 #define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
 

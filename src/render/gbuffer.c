@@ -16,6 +16,8 @@ void snell__gbuffer_destroy(snell__gbuffer *g)
     if (g->depth_id_tex) glDeleteTextures(1, &g->depth_id_tex);
     if (g->own_depth_rb) glDeleteRenderbuffers(1, &g->own_depth_rb);
     if (g->prog) glDeleteProgram(g->prog);
+    if (g->aux_tex) glDeleteTextures(1, &g->aux_tex);
+    if (g->prog_aux) glDeleteProgram(g->prog_aux);
     memset(g, 0, sizeof *g);
 }
 
@@ -84,12 +86,32 @@ static snell_status attach_depth(snell_ctx *ctx, snell__gbuffer *g, unsigned tar
     return SNELL_OK;
 }
 
-snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v, snell__object *const *objects,
-                                 int count, unsigned target_depth, snell_object_stats *stats)
+/* The aux target and its program (object.vert passes attribute 2 through). */
+static snell_status create_aux(snell_ctx *ctx, snell__gbuffer *g)
 {
+    snell_status st = snell__program_build(ctx, "object.vert", "gbuffer.frag",
+                                           "#define SNELL_VERTEX_AUX 1\n#define SNELL_GBUFFER_AUX 1\n", &g->prog_aux);
+    if (st != SNELL_OK) return st;
+    g->ua_model = glGetUniformLocation(g->prog_aux, "u_model");
+    g->ua_normal_matrix = glGetUniformLocation(g->prog_aux, "u_normal_matrix");
+    g->ua_view_proj = glGetUniformLocation(g->prog_aux, "u_view_proj");
+    g->ua_gid = glGetUniformLocation(g->prog_aux, "u_gid");
+    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_AUX);
+    g->aux_tex = make_texture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, g->width, g->height);
+    glActiveTexture(GL_TEXTURE0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, g->aux_tex, 0);
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error creating the G-buffer's aux target");
+}
+
+/* The front (G-buffer) or the farthest surface (back-face pass) of the objects. */
+static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v,
+                                  snell__object *const *objects, int count, unsigned target_depth, int back,
+                                  snell_object_stats *stats)
+{
+    static const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     snell__pass pass;
     snell_status st;
-    int i;
+    int i, aux = 0;
     if (!g->fbo) {
         st = create(ctx, g, v->width, v->height);
         if (st != SNELL_OK) {
@@ -97,34 +119,65 @@ snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell_
             return st;
         }
     }
-    /* The target's depth already holds the opaque objects: glass behind them
-     * fails the test here and costs nothing later. Only colour is cleared. */
-    snell__pass_begin(&pass, g->fbo, g->width, g->height, 0, GL_LESS, 1.0f);
-    if ((st = attach_depth(ctx, g, target_depth)) != SNELL_OK) {
+    for (i = 0; i < count && !back; i++) aux |= objects[i]->vao != 0;
+    /* Front: the target's depth already holds the opaque objects, so glass
+     * behind them fails the test here and costs nothing later; only colour is
+     * cleared. Back: the farthest surface, in a depth buffer of its own. */
+    snell__pass_begin(&pass, g->fbo, g->width, g->height, 0, back ? GL_GREATER : GL_LESS,
+                      back ? 0.0f : 1.0f);
+    if ((st = attach_depth(ctx, g, target_depth)) != SNELL_OK || (aux && !g->aux_tex && (st = create_aux(ctx, g)) != SNELL_OK)) {
         snell__pass_end(&pass);
         return st;
     }
+    glDrawBuffers(aux ? 3 : 2, bufs);
     glClear(target_depth ? GL_COLOR_BUFFER_BIT : GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glUseProgram(g->prog);
-    glUniformMatrix4fv(g->u_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
+    glUseProgram(aux ? g->prog_aux : g->prog);
+    glUniformMatrix4fv(aux ? g->ua_view_proj : g->u_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
     for (i = 0; i < count; i++) {
         const snell__object *o = objects[i];
         snell_object_stats *st = &stats[o->index];
-        glUniformMatrix4fv(g->u_model, 1, GL_FALSE, (const GLfloat *)o->model);
-        glUniformMatrix3fv(g->u_normal_matrix, 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
-        glUniform1i(g->u_gid, o->gid);
-        /* thin walls are walls from both sides; every kernel starts at the front surface */
-        if (o->glass->material.thickness <= 0.0f) snell__cull_back_faces(o, st);
+        glUniformMatrix4fv(aux ? g->ua_model : g->u_model, 1, GL_FALSE, (const GLfloat *)o->model);
+        glUniformMatrix3fv(aux ? g->ua_normal_matrix : g->u_normal_matrix, 1, GL_FALSE,
+                           (const GLfloat *)o->normal_matrix);
+        glUniform1i(aux ? g->ua_gid : g->u_gid, o->gid);
+        if (back) {
+            /* the farthest surface of a closed mesh is a back face: cull the front ones */
+            int winding = snell__mesh_winding(o->mesh);
+            if (winding != 0) {
+                glEnable(GL_CULL_FACE);
+                glCullFace((winding < 0) != (o->mirrored != 0) ? GL_BACK : GL_FRONT);
+                glFrontFace(GL_CCW);
+            }
+        } else if (o->glass->material.thickness <= 0.0f) {
+            /* thin walls are walls from both sides; every kernel starts at the front surface */
+            snell__cull_back_faces(o, st);
+        }
         snell__draw_object(o);
         st->passes++;
     }
     snell__pass_end(&pass);
-    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_NORMAL);
+    glActiveTexture(GL_TEXTURE0 + (back ? SNELL__BACK_UNIT_NORMAL : SNELL__GBUFFER_UNIT_NORMAL));
     glBindTexture(GL_TEXTURE_2D, g->normal_tex);
-    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_DEPTH_ID);
+    glActiveTexture(GL_TEXTURE0 + (back ? SNELL__BACK_UNIT_DEPTH_ID : SNELL__GBUFFER_UNIT_DEPTH_ID));
     glBindTexture(GL_TEXTURE_2D, g->depth_id_tex);
+    if (aux) {
+        glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_AUX);
+        glBindTexture(GL_TEXTURE_2D, g->aux_tex);
+    }
     glActiveTexture(GL_TEXTURE0);
     return SNELL_OK;
+}
+
+snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v, snell__object *const *objects,
+                                 int count, unsigned target_depth, snell_object_stats *stats)
+{
+    return draw_surfaces(ctx, g, v, objects, count, target_depth, 0, stats);
+}
+
+snell_status snell__gbuffer_draw_back(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v,
+                                      snell__object *const *objects, int count, snell_object_stats *stats)
+{
+    return draw_surfaces(ctx, g, v, objects, count, 0, 1, stats);
 }
 
 float snell__screen_threshold(const char *gl_renderer, const snell__method *method)

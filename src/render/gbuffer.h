@@ -14,6 +14,14 @@
  * kernel's own texture). */
 #define SNELL__GBUFFER_UNIT_NORMAL 2
 #define SNELL__GBUFFER_UNIT_DEPTH_ID 3
+/* The G-buffer's aux target (RGBA8, rg: 16 bits of a per-vertex scalar of
+ * objects drawn with a method VAO, snell__object.vao), made and drawn only in
+ * frames where a screen-space object has one. */
+#define SNELL__GBUFFER_UNIT_AUX 4
+/* The back-face pass (snell__gbuffer_draw_back): the same two textures for
+ * the farthest surface. */
+#define SNELL__BACK_UNIT_NORMAL 5
+#define SNELL__BACK_UNIT_DEPTH_ID 6
 
 /* How a screen-space kernel gets its depth into the target (snell__object.screen_space). */
 #define SNELL__SCREEN_SHARED_DEPTH 1  /* the G-buffer pass wrote the target's own depth buffer */
@@ -26,6 +34,8 @@ typedef struct snell__gbuffer {
     int width, height;
     unsigned prog;
     int u_model, u_normal_matrix, u_view_proj, u_gid;
+    unsigned aux_tex, prog_aux;     /* the aux target and the program that writes it, made on first use */
+    int ua_model, ua_normal_matrix, ua_view_proj, ua_gid;
 } snell__gbuffer;
 
 void snell__gbuffer_destroy(snell__gbuffer *g);
@@ -36,6 +46,16 @@ void snell__gbuffer_destroy(snell__gbuffer *g);
  * the G-buffer's own. */
 snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v, snell__object *const *objects,
                                  int count, unsigned target_depth, snell_object_stats *stats);
+/* The back-face pass (DESIGN.md "extra passes the method needs"): the
+ * farthest surface of objects[0..count-1] (depth GREATER into a depth buffer
+ * of its own, cleared to 0, front faces culled where the winding is known;
+ * opaque objects are not tested: a back face behind one is still where the
+ * light leaves) as the G-buffer stores the front: normal, window depth + id
+ * o->gid; binds them on SNELL__BACK_UNIT_*. Overlapping objects: the farther
+ * one's back faces win the texel (the nearer sees another id there). g is a
+ * G-buffer of its own (made on first use). */
+snell_status snell__gbuffer_draw_back(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v,
+                                      snell__object *const *objects, int count, snell_object_stats *stats);
 /* The AUTO shading rule's threshold for a GL_RENDERER string and a method:
  * objects whose front triangles cover fewer (estimated) pixels each than
  * this are shaded in screen space. */

@@ -127,6 +127,7 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
     snell__composite_destroy(&r->comp);
     snell__gbuffer_destroy(&r->gbuffer);
+    snell__gbuffer_destroy(&r->backfaces);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
     if (r->color_rb) glDeleteRenderbuffers(1, &r->color_rb);
     if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
@@ -199,6 +200,8 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
     if (st->warning) warn_once(r, o, st);
     if ((s = snell__mesh_upload(o->mesh)) != SNELL_OK) return s;
     if ((s = snell__prepared_get(r->ctx, &r->prepared, r->object_method[o->index], state, o, st)) != SNELL_OK) return s;
+    if (r->object_method[o->index]->vertex_array && o->prepared)
+        o->vao = r->object_method[o->index]->vertex_array(o->prepared);
     o->env_texture = fd->env->texture;
     if (fd->opaque_count > 0) {
         /* The glass sees the opaque objects through its dynamic environment. */
@@ -260,7 +263,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     snell__scene *sc;
     snell_glstate saved;
     snell_status st;
-    int external, i, n_screen = 0;
+    int external, i, n_screen = 0, n_back = 0;
     double t0 = snell__now_ms();
     if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
     s = &r->stats;
@@ -288,6 +291,13 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         int k = sc->order[i];
         st = set_up_glass(r, fd, &sc->obj[k], &s->glass[k]);
         if (st == SNELL_OK && sc->obj[k].screen_space) r->screen_list[n_screen++] = &sc->obj[k];
+        if (st == SNELL_OK && r->object_method[k]->needs_back_faces) r->back_list[n_back++] = &sc->obj[k];
+    }
+    /* One back-face pass for every object whose method reads back faces;
+     * none in frames without such an object. */
+    if (st == SNELL_OK && n_back > 0) {
+        st = snell__gbuffer_draw_back(r->ctx, &r->backfaces, &sc->view, r->back_list, n_back, s->glass);
+        s->back_face_pass = 1;
     }
     if (st == SNELL_OK && n_screen > 0)
         st = snell__gbuffer_draw(r->ctx, &r->gbuffer, &sc->view, r->screen_list, n_screen,

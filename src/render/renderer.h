@@ -29,6 +29,8 @@ struct snell_renderer {
     const snell__method *object_method[SNELL_MAX_GLASS]; /* this frame's choice per object */
     void *object_state[SNELL_MAX_GLASS];
     snell__object *screen_list[SNELL_MAX_GLASS];      /* objects shaded in screen space */
+    snell__gbuffer backfaces;                         /* the shared back-face pass, made on first use */
+    snell__object *back_list[SNELL_MAX_GLASS];        /* objects whose method needs it */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */
     uint8_t *readback8;

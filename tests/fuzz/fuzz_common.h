@@ -19,6 +19,35 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
  * within the unit sphere after normalising, fractions in [0,1], finite radii
  * with inner <= outer). The analysis's cost is bounded by the triangle count
  * (mesh_analyze.c WORK_*), so a slow input is a finding too (libFuzzer -timeout). */
+/* The level of detail (snell_mesh_simplify, half the triangles): fails with a
+ * message and no mesh (SNELL_E_UNSUPPORTED without meshoptimizer), or gives a
+ * valid mesh with no more triangles, which is closed if the source was. */
+static inline void fuzz_check_simplify(const snell_mesh *m, const snell_mesh_analysis *src)
+{
+    snell_simplify_desc d;
+    snell_simplify_report rep;
+    snell_mesh_analysis a;
+    snell_mesh *lod = NULL;
+    snell_status st;
+    uint32_t i;
+    memset(&d, 0, sizeof d);
+    d.target_ratio = 0.5f;
+    st = snell_mesh_simplify(NULL, m, &d, &lod, &rep);
+    if (st != SNELL_OK) {
+        if (lod || !snell_last_error(NULL)[0]) abort();
+        return;
+    }
+    if (!lod || rep.triangles_after != snell_mesh_triangle_count(lod) ||
+        rep.triangles_after > snell_mesh_triangle_count(m))
+        abort();
+    for (i = 0; i < 3 * snell_mesh_triangle_count(lod); i++)
+        if (snell_mesh_indices(lod)[i] >= snell_mesh_vertex_count(lod)) abort();
+    for (i = 0; i < 3 * snell_mesh_vertex_count(lod); i++)
+        if (!isfinite(snell_mesh_positions(lod)[i]) || !isfinite(snell_mesh_normals(lod)[i])) abort();
+    if (src->closed && snell_mesh_analyze(lod, &a) == SNELL_OK && !a.closed) abort();
+    snell_mesh_destroy(lod);
+}
+
 static inline void fuzz_check_stages(snell_mesh *m)
 {
     snell_mesh_analysis a;
@@ -45,6 +74,7 @@ static inline void fuzz_check_stages(snell_mesh *m)
         abort();
     if (a.closed && (a.boundary_edges || a.nonmanifold_edges || a.flipped_edges)) abort();
     if (a.convex && !a.closed) abort();
+    fuzz_check_simplify(m, &a);
 }
 
 /* A loader either fails with a message and no mesh, or returns a mesh whose

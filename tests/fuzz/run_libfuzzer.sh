@@ -32,6 +32,13 @@ fi
 STB=$(dirname "$(find /usr/include /usr/local/include -name stb_image.h 2>/dev/null | head -1)")
 F="-g -O1 -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -DSNELL_LIBFUZZER"
 F="$F -DSNELL_WITH_GLTF=1 -DTINYGLTF_NO_STB_IMAGE -DTINYGLTF_NO_STB_IMAGE_WRITE -Iinclude -Isrc -I$STB -Itests/fuzz"
+# snell_mesh_simplify (the level of detail) when meshoptimizer is installed (Debian:
+# libmeshoptimizer-dev), as the CMake default builds it; its own code is not instrumented.
+LIBS=""
+if [ -f /usr/include/meshoptimizer.h ]; then
+    F="$F -DSNELL_WITH_MESHOPT=1"
+    LIBS="-lmeshoptimizer"
+fi
 export F OUT
 
 echo "run_libfuzzer: building into $OUT"
@@ -55,7 +62,7 @@ run() {
     local t=$1 max_len=$2
     shift 2
     clang -std=c99 $F -w -c "tests/fuzz/$t.c" -o "$OUT/$t.o"
-    clang++ $F -fsanitize=fuzzer "$OUT/$t.o" "$OUT"/obj/*.o -lEGL -lGLESv2 -lpthread -lm -o "$OUT/$t"
+    clang++ $F -fsanitize=fuzzer "$OUT/$t.o" "$OUT"/obj/*.o $LIBS -lEGL -lGLESv2 -lpthread -lm -o "$OUT/$t"
     rm -rf "$OUT/corpus_$t"
     mkdir -p "$OUT/corpus_$t"
     cp "$@" "$OUT/corpus_$t/" 2>/dev/null || true

@@ -1,0 +1,117 @@
+// wyman.frag - two-sided refraction in image space (Wyman 2005; seed
+// 000 3.4.1). Refract the view ray at the front surface P1 into T1; the exit
+// point is P2 = P1 + d T1 with d = (th_t / th_i) d_V + (1 - th_t / th_i) d_N
+// (the seed's equation 10: th_i, th_t the incidence and refraction angles;
+// d_V the distance from P1 to the farthest back face along the view ray, from
+// the frame's back-face pass; d_N the thickness along the inward normal, a
+// per-vertex precomputation, methods/wyman.c). The exit normal is the
+// back-face map's at P2's projection; where P2 projects outside this object's
+// back faces (it left through a side) or outside the target, the paper's
+// fallback: a normal perpendicular to the view vector, in the plane of V and
+// T1. Refract out there; on total internal reflection, reflect and stop: the
+// direction after two interfaces, as the reference's MATCHED model with
+// max_interfaces 2 (and the cubemap method) cap it, not the seed's clamp.
+// Schlick Fresnel at the entry, Beer-Lambert over d.
+//
+// Spaces: world; window depth 24 bits, as the G-buffer stores it (gbuffer.frag).
+// highp throughout: depth reconstruction and the projection of P2.
+precision highp float;
+
+#include "common/optics.glsl"
+#include "common/output.glsl"
+#include "common/surface.glsl"
+
+uniform highp vec3 u_eye;
+uniform samplerCube u_env;
+uniform float u_ior;
+uniform vec3 u_sigma;
+uniform vec3 u_tint;
+uniform mat4 u_model;                // object -> world
+uniform mat4 u_view_proj;
+
+uniform highp sampler2D u_bnormal;   // back-face pass: octahedral 16+16 bits
+uniform highp sampler2D u_bdepth_id; // back-face pass: window depth 24 bits, object id 8 bits
+uniform float u_dn_scale;            // object units of a d_N value of 1 (the mesh's bounding diameter)
+
+#ifdef SNELL_SCREEN_SPACE
+uniform highp sampler2D u_gaux;      // the G-buffer's aux target: d_N / u_dn_scale in 16 bits
+
+float wyman_dn()
+{
+    return snell_unpack_unorm16(texelFetch(u_gaux, ivec2(gl_FragCoord.xy), 0).rg);
+}
+#else
+// surface.glsl declares these for the screen-space stage; forward needs them for the back-face map
+uniform highp mat4 u_inv_view_proj;
+uniform highp vec2 u_inv_size;
+uniform int u_gid;
+in highp float v_aux;
+
+float wyman_dn()
+{
+    return v_aux;
+}
+#endif
+
+// The back face at pixel px, if it is this object's: world position and outward normal.
+bool back_face(ivec2 px, out highp vec3 pos, out highp vec3 normal)
+{
+    highp uvec4 b = uvec4(texelFetch(u_bdepth_id, px, 0) * 255.0 + 0.5);
+    if (int(b.a) != u_gid) return false;
+    highp float depth = float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+    highp vec4 ndc = vec4((vec2(px) + 0.5) * u_inv_size * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    highp vec4 w = u_inv_view_proj * ndc;
+    pos = w.xyz / w.w;
+    highp vec4 g = texelFetch(u_bnormal, px, 0);
+    normal = snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0);
+    return true;
+}
+
+void main()
+{
+    highp vec3 p1, n1;
+    snell_surface(p1, n1);
+    highp vec3 v = normalize(p1 - u_eye);
+    vec3 n = normalize(n1);
+    if (dot(n, v) > 0.0) n = -n;
+    vec3 r = snell_reflect(v, n);
+    vec3 t1;
+    snell_refract(v, n, 1.0 / u_ior, t1);
+    t1 = normalize(t1);
+    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+
+    // d_N in world units: the object-space thickness along the inward normal,
+    // scaled as the model matrix stretches the normal's object direction.
+    mat3 m3 = mat3(u_model);
+    float d_n = wyman_dn() * u_dn_scale * length(m3 * normalize(transpose(m3) * n));
+    highp vec3 pb, nb;
+    ivec2 size = ivec2(1.0 / u_inv_size + 0.5);
+    float d_v = back_face(ivec2(gl_FragCoord.xy), pb, nb) ? max(dot(pb - p1, v), 0.0) : d_n;
+    float th_i = acos(clamp(-dot(v, n), 0.0, 1.0));
+    float th_t = acos(clamp(-dot(t1, n), 0.0, 1.0));
+    float w = th_i > 1e-3 ? th_t / th_i : 1.0 / u_ior; // the ratio's limit at normal incidence
+    float d = w * d_v + (1.0 - w) * d_n;
+    highp vec3 p2 = p1 + d * t1;
+
+    highp vec4 c = u_view_proj * vec4(p2, 1.0);
+    ivec2 q = ivec2(floor((c.xy / c.w * 0.5 + 0.5) * vec2(size)));
+    vec3 n2;
+    bool inside = c.w > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+    if (!(inside && back_face(q, pb, n2))) {
+        // Wyman's fallback: a normal perpendicular to the view vector (in the plane of V and T1)
+        vec3 side = t1 - dot(t1, v) * v;
+        n2 = dot(side, side) > 1e-12 ? normalize(side) : -n;
+    }
+    if (dot(n2, t1) > 0.0) n2 = -n2; // face the ray (it comes from inside)
+    vec3 dir;
+    snell_refract(t1, n2, u_ior, dir); // refracted out, or on TIR reflected: the capped direction
+    dir = normalize(dir);
+
+#if SNELL_ABSORB
+    vec3 transmitted = texture(u_env, dir).rgb * u_tint * snell_beer_lambert(u_sigma, d);
+#else
+    vec3 transmitted = texture(u_env, dir).rgb * u_tint;
+#endif
+    vec3 reflected = texture(u_env, r).rgb;
+    snell_write(mix(transmitted, reflected, fresnel), dir);
+}
