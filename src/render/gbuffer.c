@@ -130,7 +130,28 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
         return st;
     }
     glDrawBuffers(aux ? 3 : 2, bufs);
-    glClear(target_depth ? GL_COLOR_BUFFER_BIT : GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    {
+        /* Only the depth+id target needs clearing, and only where a kernel
+         * will read it: inside the objects' scissor rectangles (the normal
+         * and aux targets are read only where the id matches, i.e. where
+         * this frame wrote them). Two full-target clears were ~3% of a
+         * single-surface bunny frame on llvmpipe. */
+        static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        const GLfloat depth = back ? 0.0f : 1.0f;
+        int lo[2] = {g->width, g->height}, hi[2] = {0, 0}, rect[4];
+        for (i = 0; i < count; i++) {
+            snell__object_scissor(v, objects[i], rect);
+            if (rect[0] < lo[0]) lo[0] = rect[0];
+            if (rect[1] < lo[1]) lo[1] = rect[1];
+            if (rect[0] + rect[2] > hi[0]) hi[0] = rect[0] + rect[2];
+            if (rect[1] + rect[3] > hi[1]) hi[1] = rect[1] + rect[3];
+        }
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(lo[0], lo[1], hi[0] > lo[0] ? hi[0] - lo[0] : 0, hi[1] > lo[1] ? hi[1] - lo[1] : 0);
+        glClearBufferfv(GL_COLOR, 1, zero);
+        if (!target_depth) glClearBufferfv(GL_DEPTH, 0, &depth);
+        glDisable(GL_SCISSOR_TEST);
+    }
     glUseProgram(aux ? g->prog_aux : g->prog);
     glUniformMatrix4fv(aux ? g->ua_view_proj : g->u_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
     for (i = 0; i < count; i++) {
