@@ -88,9 +88,12 @@ void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t
     }
     for (v = 0; v < nv; v++) {
         float *n = normals + 3 * v;
-        float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (len > 0.0f && isfinite(len)) {
-            n[0] /= len; n[1] /= len; n[2] /= len;
+        /* In double: the squares of a tiny (subnormal-range) float sum lose
+         * their precision and the "unit" normal came out up to 0.8% long
+         * (libFuzzer, tests/fuzz/regressions/tiny_normals.obj). */
+        double len = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+        if (len > 0.0 && isfinite(len)) {
+            n[0] = (float)(n[0] / len); n[1] = (float)(n[1] / len); n[2] = (float)(n[2] / len);
         } else {
             n[0] = 0.0f; n[1] = 1.0f; n[2] = 0.0f;
         }
@@ -191,13 +194,14 @@ snell_status snell_mesh_create(snell_ctx *ctx, const snell_mesh_desc *desc, snel
     if (st == SNELL_OK && nrm)
         for (i = 0; i < desc->vertex_count; i++) {
             /* Caller normals are renormalised; unusable ones make the mesh invalid. */
-            float *n = nrm + 3 * i, len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            if (!(len > 0.0f) || !isfinite(len)) {
+            float *n = nrm + 3 * i; /* length in double, as in snell__mesh_compute_normals */
+            double len = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+            if (!(len > 0.0) || !isfinite(len)) {
                 snell_mesh_destroy(*out);
                 *out = NULL;
                 return snell__fail(ctx, SNELL_E_INVALID_ARG, "normal %u is zero or not finite", i);
             }
-            n[0] /= len; n[1] /= len; n[2] /= len;
+            n[0] = (float)(n[0] / len); n[1] = (float)(n[1] / len); n[2] = (float)(n[2] / len);
         }
     return st;
 }
