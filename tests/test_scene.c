@@ -333,7 +333,8 @@ int main(void)
         int want = test_shading() == SNELL_SHADING_SCREEN ||
                    (test_shading() == SNELL_SHADING_AUTO &&
                     st.glass[i].pixels_per_triangle <
-                        snell__screen_threshold(snell_ctx_gl_renderer(ctx), snell__method_get(st.glass[i].method_used)));
+                        snell__screen_threshold(snell__device_class_of(snell_ctx_gl_renderer(ctx)),
+                                                snell__method_get(st.glass[i].method_used)));
         CHECK(st.glass[i].screen_space == want && st.glass[i].pixels_per_triangle > 0.0f,
               "object %d: screen_space %d at %.1f px/triangle", i, st.glass[i].screen_space,
               st.glass[i].pixels_per_triangle);

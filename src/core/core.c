@@ -145,3 +145,12 @@ double snell__now_ms(void)
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
+
+const char *snell__software_rasteriser(const char *gl_renderer)
+{
+    static const char *const names[] = {"llvmpipe", "softpipe", "SwiftShader", "swrast"};
+    size_t i;
+    for (i = 0; gl_renderer && i < sizeof names / sizeof *names; i++)
+        if (strstr(gl_renderer, names[i])) return names[i];
+    return NULL;
+}

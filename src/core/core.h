@@ -33,6 +33,11 @@ void snell__free(const snell_alloc *al, void *ptr);
 snell_status snell__fail(const snell_ctx *ctx, snell_status status, const char *fmt, ...) SNELL_PRINTF(3, 4);
 void snell__log(const snell_ctx *ctx, snell_log_level level, const char *fmt, ...) SNELL_PRINTF(3, 4);
 
+/* The software rasteriser a GL_RENDERER string names (llvmpipe, softpipe,
+ * SwiftShader, swrast), or NULL for hardware. The precision policy, the
+ * shading rule and the 2D rasteriser rule all decide on it. */
+const char *snell__software_rasteriser(const char *gl_renderer);
+
 /* Monotonic clock in milliseconds (timing statistics). */
 double snell__now_ms(void);
 

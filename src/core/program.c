@@ -100,9 +100,8 @@ static int expand(snell_ctx *ctx, text_buf *b, const char *src, const char **see
  * is as precise as highp gains nothing from it: both get highp. */
 static int fragment_mediump(snell_ctx *ctx)
 {
-    static const char *const software[] = {"llvmpipe", "softpipe", "SwiftShader", "swrast"};
     GLint range[2] = {0, 0}, bits = 0;
-    size_t i;
+    const char *software;
     if (!ctx) return 1;
     if (ctx->fragment_mediump) return ctx->fragment_mediump > 0;
 #ifdef SNELL_FP16_EMULATION
@@ -110,13 +109,12 @@ static int fragment_mediump(snell_ctx *ctx)
     snprintf(ctx->precision_reason, sizeof ctx->precision_reason, "mediump: SNELL_FP16_EMULATION build");
     return 1;
 #endif
-    for (i = 0; i < sizeof software / sizeof *software; i++)
-        if (strstr(ctx->gl_renderer, software[i])) {
-            ctx->fragment_mediump = -1;
-            snprintf(ctx->precision_reason, sizeof ctx->precision_reason,
-                     "highp: %s emulates mediump in software", software[i]);
-            return 0;
-        }
+    if ((software = snell__software_rasteriser(ctx->gl_renderer)) != NULL) {
+        ctx->fragment_mediump = -1;
+        snprintf(ctx->precision_reason, sizeof ctx->precision_reason, "highp: %s emulates mediump in software",
+                 software);
+        return 0;
+    }
     glGetShaderPrecisionFormat(GL_FRAGMENT_SHADER, GL_MEDIUM_FLOAT, range, &bits);
     ctx->fragment_mediump = bits >= 23 ? -1 : 1;
     snprintf(ctx->precision_reason, sizeof ctx->precision_reason, "%s: fragment mediump has %d mantissa bits",

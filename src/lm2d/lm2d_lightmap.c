@@ -82,13 +82,10 @@ static void energy_add(lm2d_energy *a, const lm2d_energy *b)
  * hold the texture it is uploaded to). */
 static int use_gl(const snell_lightmap2d *lm) { return lm->raster == SNELL_RASTER2D_GL; }
 
-static int contains(const char *s, const char *word) { return s && strstr(s, word) != NULL; }
-
 snell_raster2d lm2d_raster_pick(snell_raster2d want, int have_gl, const char *renderer, char *reason,
                                 size_t reason_size)
 {
-    static const char *const soft[] = {"llvmpipe", "softpipe", "swrast"};
-    size_t i;
+    const char *soft;
     if (want == SNELL_RASTER2D_GL || want == SNELL_RASTER2D_CPU) {
         snprintf(reason, reason_size, "%s requested", want == SNELL_RASTER2D_GL ? "GL lines" : "CPU rasteriser");
         return want;
@@ -97,13 +94,11 @@ snell_raster2d lm2d_raster_pick(snell_raster2d want, int have_gl, const char *re
         snprintf(reason, reason_size, "auto: no GL (ctx NULL or cpu_only): CPU rasteriser");
         return SNELL_RASTER2D_CPU;
     }
-    for (i = 0; i < sizeof soft / sizeof soft[0]; i++)
-        if (contains(renderer, soft[i])) {
-            snprintf(reason, reason_size,
-                     "auto: renderer '%.60s' is software GL (%s: lines set up serially): CPU rasteriser", renderer,
-                     soft[i]);
-            return SNELL_RASTER2D_CPU;
-        }
+    if ((soft = snell__software_rasteriser(renderer)) != NULL) {
+        snprintf(reason, reason_size,
+                 "auto: renderer '%.60s' is software GL (%s: lines set up serially): CPU rasteriser", renderer, soft);
+        return SNELL_RASTER2D_CPU;
+    }
     snprintf(reason, reason_size, "auto: renderer '%.80s' is not a software rasteriser: GL lines",
              renderer ? renderer : "?");
     return SNELL_RASTER2D_GL;

@@ -31,8 +31,8 @@ void lm2d_gl_finish(lm2d_gl *g);
 snell_status lm2d_gl_upload(lm2d_gl *g, const float *img, float mul, int one_minus);
 
 /* The rasteriser rule of SNELL_RASTER2D_AUTO (snell_2d.h): CPU without GL, or
- * when `renderer` (GL_RENDERER) names a software rasteriser (llvmpipe, softpipe,
- * swrast); GL otherwise. An explicit GL or CPU is kept (GL without GL is
+ * when `renderer` (GL_RENDERER) names a software rasteriser
+ * (snell__software_rasteriser); GL otherwise. An explicit GL or CPU is kept (GL without GL is
  * reported by the caller). Writes why into reason (reason_size bytes). */
 snell_raster2d lm2d_raster_pick(snell_raster2d want, int have_gl, const char *renderer, char *reason,
                                 size_t reason_size);

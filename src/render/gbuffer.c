@@ -201,20 +201,27 @@ snell_status snell__gbuffer_draw_back(snell_ctx *ctx, snell__gbuffer *g, const s
     return draw_surfaces(ctx, g, v, objects, count, 0, 1, stats);
 }
 
-float snell__screen_threshold(const char *gl_renderer, const snell__method *method)
+snell__device_class snell__device_class_of(const char *gl_renderer)
 {
     static const char *const tilers[] = {"Mali", "Adreno", "PowerVR", "VideoCore", "V3D", "Apple", "Immortalis"};
     size_t i;
-    const char *rs = gl_renderer ? gl_renderer : "";
+    if (snell__software_rasteriser(gl_renderer)) return SNELL__DEVICE_SOFTWARE;
+    for (i = 0; gl_renderer && i < sizeof tilers / sizeof *tilers; i++)
+        if (strstr(gl_renderer, tilers[i])) return SNELL__DEVICE_TILER;
+    return SNELL__DEVICE_IMMEDIATE;
+}
+
+float snell__screen_threshold(snell__device_class device, const snell__method *method)
+{
+    switch (device) {
     /* Software rasterisers shade 4x4 blocks: the crossover measured per method. */
-    if (strstr(rs, "llvmpipe") || strstr(rs, "softpipe") || strstr(rs, "SwiftShader"))
-        return method->software_screen_ppt;
+    case SNELL__DEVICE_SOFTWARE: return method->software_screen_ppt;
     /* Not measured yet (no GPU here), from how they work: tile-based GPUs pay
      * the extra pass in memory bandwidth, so only for sub-pixel triangles;
      * immediate-mode GPUs shade 2x2 quads, so most lanes idle below a few pixels. */
-    for (i = 0; i < sizeof tilers / sizeof *tilers; i++)
-        if (strstr(rs, tilers[i])) return 1.0f;
-    return 4.0f;
+    case SNELL__DEVICE_TILER: return 1.0f;
+    default: return 4.0f;
+    }
 }
 
 /* Window-space bounds of the sphere, from its bounding box's 8 corners. */

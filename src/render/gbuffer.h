@@ -56,10 +56,18 @@ snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell_
  * G-buffer of its own (made on first use). */
 snell_status snell__gbuffer_draw_back(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v,
                                       snell__object *const *objects, int count, snell_object_stats *stats);
-/* The AUTO shading rule's threshold for a GL_RENDERER string and a method:
- * objects whose front triangles cover fewer (estimated) pixels each than
- * this are shaded in screen space. */
-float snell__screen_threshold(const char *gl_renderer, const snell__method *method);
+/* How a device shades, for the AUTO shading rule; found once per renderer. */
+typedef enum snell__device_class {
+    SNELL__DEVICE_SOFTWARE = 0,     /* software rasteriser: 4x4 blocks */
+    SNELL__DEVICE_TILER,            /* tile-based GPU: an extra pass costs memory bandwidth */
+    SNELL__DEVICE_IMMEDIATE         /* other GPUs: 2x2 quads */
+} snell__device_class;
+
+snell__device_class snell__device_class_of(const char *gl_renderer);
+/* The AUTO shading rule's threshold for a device and a method: objects whose
+ * front triangles cover fewer (estimated) pixels each than this are shaded
+ * in screen space. */
+float snell__screen_threshold(snell__device_class device, const snell__method *method);
 /* Pixels per front triangle of o seen in v (projected bounding sphere). */
 float snell__pixels_per_triangle(const snell__view *v, const snell__object *o);
 /* The object's scissor rectangle in window pixels (x, y, w, h): its

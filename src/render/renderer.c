@@ -95,6 +95,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown shading %d", (int)d.shading);
     }
     r->shading = d.shading;
+    r->device = snell__device_class_of(snell_ctx_gl_renderer(ctx));
     r->out = d.output == SNELL_OUTPUT_COLOR ? SNELL__OUT_COLOR
              : d.output == SNELL_OUTPUT_EXIT_DIRECTION && snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float")
                  ? SNELL__OUT_DIR_FLOAT
@@ -176,7 +177,7 @@ static void warn_once(snell_renderer *r, const snell__object *o, const snell_obj
 static void choose_shading(snell_renderer *r, snell__object *o, snell_object_stats *st)
 {
     st->pixels_per_triangle = snell__pixels_per_triangle(&r->scene.view, o);
-    float threshold = snell__screen_threshold(snell_ctx_gl_renderer(r->ctx), r->object_method[o->index]);
+    float threshold = snell__screen_threshold(r->device, r->object_method[o->index]);
     int screen = r->shading == SNELL_SHADING_SCREEN ||
                  (r->shading == SNELL_SHADING_AUTO && st->pixels_per_triangle < threshold);
     /* An offscreen target's depth buffer is the renderer's own, so the

@@ -24,6 +24,7 @@ struct snell_renderer {
     snell__prepared_cache prepared;
     snell__env_dynamic dyn;
     snell_shading shading;
+    snell__device_class device;                       /* for the AUTO shading rule, found at creation */
     snell__gbuffer gbuffer;                           /* the screen-space stage, made on first use */
     snell__scene scene;                               /* this frame's resolved scene */
     const snell__method *object_method[SNELL_MAX_GLASS]; /* this frame's choice per object */

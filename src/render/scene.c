@@ -129,12 +129,12 @@ snell_status snell__scene_build(snell_ctx *ctx, const snell_frame_desc *fd, int 
     return SNELL_OK;
 }
 
-/* The object's mesh analysis (cached on the mesh); NULL if it fails. */
-static const snell_mesh_analysis *analysis_of(snell_ctx *ctx, snell__object *o, snell_object_stats *st)
+/* The object's mesh analysis (cached on the mesh); NULL if it fails (the
+ * failure is logged once, when the mesh caches it). */
+static const snell_mesh_analysis *analysis_of(snell__object *o, snell_object_stats *st)
 {
     const snell_mesh_analysis *an = NULL;
     if (!o->analysis && snell__mesh_analysis(o->mesh, &an) == SNELL_OK) o->analysis = an;
-    (void)ctx; /* a failure is logged once, when the mesh caches it */
     if (o->analysis) st->hidden_fraction = o->analysis->hidden_fraction;
     return o->analysis;
 }
@@ -154,7 +154,7 @@ snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method
         const snell__method *m = snell__method_get(g->thickness > 0.0f ? SNELL_METHOD_SINGLE : g->method);
         const snell_mesh_analysis *an = NULL;
         snell__fit fit = SNELL__FIT_ADEQUATE;
-        if (m->needs_analysis) an = analysis_of(ctx, o, st);
+        if (m->needs_analysis) an = analysis_of(o, st);
         else st->skipped |= SNELL_SKIP_ANALYSIS;
         if (m->fit) fit = m->fit(an, o->glass, why, sizeof why);
         if ((s = get_state(user, m, state)) != SNELL_OK) return s;
@@ -176,7 +176,7 @@ snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method
         snell__fit fit = SNELL__FIT_ADEQUATE;
         void *ms = NULL;
         size_t n = strlen(rejected);
-        if (m->fit) fit = m->fit(m->needs_analysis ? analysis_of(ctx, o, st) : NULL, o->glass, why, sizeof why);
+        if (m->fit) fit = m->fit(m->needs_analysis ? analysis_of(o, st) : NULL, o->glass, why, sizeof why);
         if (fit != SNELL__FIT_FAILS && (s = get_state(user, m, &ms)) != SNELL_OK) {
             if (s == SNELL_E_NOMEM) return s; /* not the device's fault: no fallback */
             snell__why(why, sizeof why, "unavailable on this device: %s", snell_last_error(ctx));
