@@ -156,25 +156,6 @@ static snell_status run_frames(snell_ctx *ctx, snell_scene2d *s, const snell_lig
     return run_interleaved(ctx, s, d, 1, repeat, r);
 }
 
-/* The threads llvmpipe rasterises on (Mesa reads LP_NUM_THREADS at context
- * creation; unset: one per CPU) and where the number comes from; -1 and "not
- * llvmpipe" for other renderers (as snell-bench's 3D outputs). */
-static int lp_threads(const snell_ctx *ctx, char *why, size_t size)
-{
-    const char *env = getenv("LP_NUM_THREADS");
-    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    if (!ctx || !strstr(snell_ctx_gl_renderer(ctx), "llvmpipe")) {
-        snprintf(why, size, "not llvmpipe");
-        return -1;
-    }
-    if (env && *env) {
-        snprintf(why, size, "LP_NUM_THREADS=%s", env);
-        return atoi(env);
-    }
-    snprintf(why, size, "LP_NUM_THREADS unset: one per CPU");
-    return ncpu > 0 ? (int)ncpu : 1;
-}
-
 static const char *raster_name(snell_raster2d r)
 {
     return r == SNELL_RASTER2D_GL ? "GL lines" : r == SNELL_RASTER2D_CPU ? "CPU exact" : "auto";
@@ -231,7 +212,7 @@ int snell_bench2d_main(int argc, char **argv)
         fprintf(stderr, "snell-bench --2d: no GL context (%s); GPU entries skipped\n", snell_last_error(NULL));
         ctx = NULL;
     }
-    lp = lp_threads(ctx, lpwhy, sizeof lpwhy);
+    lp = cli_llvmpipe_threads(ctx ? snell_ctx_gl_renderer(ctx) : NULL, lpwhy, sizeof lpwhy);
     memset(&r1, 0, sizeof r1);
     memset(&rT, 0, sizeof rT);
     memset(&rg, 0, sizeof rg);

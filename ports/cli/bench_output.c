@@ -3,11 +3,11 @@
  * Pareto front per scene and size, and the summary table on stdout. */
 #include "bench.h"
 #include "bench_plot.h"
+#include "cli_time.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #define MAX_MARKERS 8
 
@@ -15,27 +15,6 @@
  * CSV and the table, whose calls do not carry the run. */
 static char run_renderer[256];
 
-/* llvmpipe's rasteriser threads: Mesa reads LP_NUM_THREADS when the context is
- * created; unset, it uses one per CPU (capped by Mesa); 0 rasterises on the
- * calling thread. -1 (and "not llvmpipe") for other renderers. On this 2-core
- * machine 1 -> 2 threads made the bunny frame 1.56x (single) and 1.62x
- * (cubemap) faster: a kiosk without a GPU should leave it unset or set it to
- * its core count. */
-static int llvmpipe_threads(char *why, size_t size)
-{
-    const char *env = getenv("LP_NUM_THREADS");
-    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    if (!strstr(run_renderer, "llvmpipe")) {
-        snprintf(why, size, "not llvmpipe");
-        return -1;
-    }
-    if (env && *env) {
-        snprintf(why, size, "LP_NUM_THREADS=%s", env);
-        return atoi(env);
-    }
-    snprintf(why, size, "LP_NUM_THREADS unset: one per CPU");
-    return ncpu > 0 ? (int)ncpu : 1;
-}
 
 static double resolved_ior(const bench_config *c)
 {
@@ -104,7 +83,7 @@ static void json_errors(FILE *f, const bench_config *c, int m)
 static void json_header(FILE *f, const bench_options *o, const bench_run_info *run)
 {
     char why[64];
-    int lp = llvmpipe_threads(why, sizeof why);
+    int lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
     fprintf(f, "{\n  \"tool\": \"snell-bench\",\n  \"date\": ");
     json_str(f, run->date);
     fprintf(f, ",\n  \"gl_renderer\": ");
@@ -217,7 +196,7 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
 {
     FILE *f = fopen(path, "w");
     char why[64];
-    int i, m, lp = llvmpipe_threads(why, sizeof why);
+    int i, m, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
     if (!f) return 0;
     fprintf(f, "spec,method,scene,width,height,ior,ok,time_median_ms,time_min_ms,time_max_ms,gpu_median_ms,"
                "vs_single,pareto,exit_dir_encoding,nan_inf,glass_objects,opaque_objects,warnings");
@@ -371,7 +350,7 @@ int bench_write_plot(const char *path, const bench_config *cs, int n, const benc
 void bench_print_table(const bench_config *cs, int n)
 {
     char why[64];
-    int i, lp = llvmpipe_threads(why, sizeof why);
+    int i, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
     if (lp >= 0) printf("llvmpipe threads: %d (%s)\n", lp, why);
     printf("%-58s %9s %7s %9s %9s %7s %7s %6s %6s\n", "configuration", "ms/frame", "xsingle", "deg/MATCH", "deg/FULL",
            ">1deg", ">5deg", "NaN", "pareto");

@@ -1,9 +1,12 @@
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime, sysconf */
 /* cli_time.c — monotonic wall clock and medians shared by the CLI ports. */
 #include "cli_time.h"
 
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 double cli_now_ms(void)
 {
@@ -22,4 +25,20 @@ double cli_median(double *v, int n)
 {
     qsort(v, (size_t)n, sizeof *v, cmp_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int cli_llvmpipe_threads(const char *gl_renderer, char *why, size_t size)
+{
+    const char *env = getenv("LP_NUM_THREADS");
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    if (!gl_renderer || !strstr(gl_renderer, "llvmpipe")) {
+        snprintf(why, size, "not llvmpipe");
+        return -1;
+    }
+    if (env && *env) {
+        snprintf(why, size, "LP_NUM_THREADS=%s", env);
+        return atoi(env);
+    }
+    snprintf(why, size, "LP_NUM_THREADS unset: one per CPU");
+    return ncpu > 0 ? (int)ncpu : 1;
 }
