@@ -435,23 +435,6 @@ static void check_camera(void)
 
 /* -------------------------------------------------- 4 + 5: EXTERNAL state */
 
-/* Makes a GLES 3 context the way a host app would (as test_ctx.c does). */
-static int host_context(EGLDisplay *dpy, EGLContext *ctx)
-{
-    typedef EGLDisplay (*gpd_fn)(EGLenum, void *, const EGLint *);
-    gpd_fn gpd = (gpd_fn)eglGetProcAddress("eglGetPlatformDisplayEXT");
-    EGLint cfg_attrs[] = {EGL_RENDERABLE_TYPE, 0x40 /* ES3 */, EGL_SURFACE_TYPE, 0, EGL_NONE};
-    EGLint ctx_attrs[] = {0x3098 /* MAJOR */, 3, EGL_NONE};
-    EGLConfig cfg;
-    EGLint n = 0;
-    if (!gpd) return 0;
-    *dpy = gpd(EGL_PLATFORM_SURFACELESS_MESA, NULL, NULL);
-    if (*dpy == EGL_NO_DISPLAY || !eglInitialize(*dpy, NULL, NULL)) return 0;
-    eglBindAPI(EGL_OPENGL_ES_API);
-    if (!eglChooseConfig(*dpy, cfg_attrs, &cfg, 1, &n) || n < 1) return 0;
-    *ctx = eglCreateContext(*dpy, cfg, EGL_NO_CONTEXT, ctx_attrs);
-    return *ctx != EGL_NO_CONTEXT && eglMakeCurrent(*dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, *ctx);
-}
 
 #define UNITS 5 /* texture units the library uses */
 
@@ -908,7 +891,7 @@ static void check_external_state(void)
     uint8_t *clean[2], *px = (uint8_t *)malloc(big);
     int i, k;
 
-    if (!host_context(&dpy, &host)) {
+    if (!test_host_context(&dpy, &host)) {
         printf("cannot make a host context here; EXTERNAL state not checked\n");
         free(px);
         return;

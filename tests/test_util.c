@@ -1,5 +1,7 @@
 #include "test_util.h"
 
+#include <EGL/eglext.h>
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,6 +35,23 @@ snell_shading test_shading(void)
     if (s && strcmp(s, "forward") == 0) return SNELL_SHADING_FORWARD;
     if (s && strcmp(s, "screen") == 0) return SNELL_SHADING_SCREEN;
     return SNELL_SHADING_AUTO;
+}
+
+int test_host_context(EGLDisplay *dpy, EGLContext *ctx)
+{
+    typedef EGLDisplay (*gpd_fn)(EGLenum, void *, const EGLint *);
+    gpd_fn gpd = (gpd_fn)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    EGLint cfg_attrs[] = {EGL_RENDERABLE_TYPE, 0x40 /* ES3 */, EGL_SURFACE_TYPE, 0, EGL_NONE};
+    EGLint ctx_attrs[] = {0x3098 /* MAJOR */, 3, EGL_NONE};
+    EGLConfig cfg;
+    EGLint n = 0;
+    if (!gpd) return 0;
+    *dpy = gpd(EGL_PLATFORM_SURFACELESS_MESA, NULL, NULL);
+    if (*dpy == EGL_NO_DISPLAY || !eglInitialize(*dpy, NULL, NULL)) return 0;
+    eglBindAPI(EGL_OPENGL_ES_API);
+    if (!eglChooseConfig(*dpy, cfg_attrs, &cfg, 1, &n) || n < 1) return 0;
+    *ctx = eglCreateContext(*dpy, cfg, EGL_NO_CONTEXT, ctx_attrs);
+    return *ctx != EGL_NO_CONTEXT && eglMakeCurrent(*dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, *ctx);
 }
 
 snell_ctx *test_ctx(void)

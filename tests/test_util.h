@@ -6,6 +6,7 @@
 
 #include "snell/snell.h"
 #include "snell/snell_ref.h"
+#include <EGL/egl.h>
 #include <stdio.h>
 
 extern int test_passed, test_failed;
@@ -64,6 +65,9 @@ snell_status test_ref_render(const snell_ref *ref, const snell_ref_params *p, fl
 /* The renderer shading the tests run with: SNELL_TEST_SHADING=forward|screen
  * (ctest registers the render tests once per path with SHADINGS), else AUTO. */
 snell_shading test_shading(void);
+/* Makes a GLES 3 context the way a host app would (surfaceless Mesa display,
+ * no surface) and makes it current: 1 on success. For EXTERNAL-backend tests. */
+int test_host_context(EGLDisplay *dpy, EGLContext *ctx);
 /* A headless context (default backend) or NULL, message printed. */
 snell_ctx *test_ctx(void);
 
