@@ -208,38 +208,31 @@ static void seg_band(const band *bd, const seg *s)
     if (k0 <= k1) walks[s->swap][bd->screen][s->flat](bd, s, k0, k1);
 }
 
+/* One axis of Liang-Barsky: narrows [*a, *b] to where p + t d lies in
+ * [0, extent]; id = 1/d (d != 0). 0 if the segment misses when d is 0. */
+static int clip_axis(double p, double d, double id, double extent, double *a, double *b)
+{
+    double t0, t1;
+    if (d == 0.0) return !(p < 0.0 || p > extent);
+    t0 = -p * id;
+    t1 = (extent - p) * id;
+    if (t0 > t1) {
+        double t = t0;
+        t0 = t1;
+        t1 = t;
+    }
+    *a = t0 > *a ? t0 : *a;
+    *b = t1 < *b ? t1 : *b;
+    return 1;
+}
+
 /* Liang-Barsky: the parameter range of p + t d, t in [0,1], inside [0,w] x [0,h];
  * idx, idy = 1/dx, 1/dy (0 where d is 0). */
 static int clip_unit(double px, double py, double dx, double dy, double idx, double idy, double w, double h,
                      double *ta, double *tb)
 {
-    double a = 0.0, b = 1.0, t0, t1;
-    if (dx != 0.0) {
-        t0 = -px * idx;
-        t1 = (w - px) * idx;
-        if (t0 > t1) {
-            double t = t0;
-            t0 = t1;
-            t1 = t;
-        }
-        a = t0 > a ? t0 : a;
-        b = t1 < b ? t1 : b;
-    } else if (px < 0.0 || px > w) {
-        return 0;
-    }
-    if (dy != 0.0) {
-        t0 = -py * idy;
-        t1 = (h - py) * idy;
-        if (t0 > t1) {
-            double t = t0;
-            t0 = t1;
-            t1 = t;
-        }
-        a = t0 > a ? t0 : a;
-        b = t1 < b ? t1 : b;
-    } else if (py < 0.0 || py > h) {
-        return 0;
-    }
+    double a = 0.0, b = 1.0;
+    if (!clip_axis(px, dx, idx, w, &a, &b) || !clip_axis(py, dy, idy, h, &a, &b)) return 0;
     if (!(a < b)) return 0;
     *ta = a;
     *tb = b;

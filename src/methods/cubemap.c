@@ -245,7 +245,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
      * pre-pass would do the same for any mesh but cost more than it saved: it
      * doubles the triangle setup, which dominates on llvmpipe for the
      * 69k-triangle bunny (bench/BENCHMARKS.md). */
-    snell__draw_surface(v, o, stats);
+    snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;
 }

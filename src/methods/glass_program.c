@@ -96,9 +96,8 @@ void snell__draw_object(const snell__object *o)
     glDisable(GL_CULL_FACE);
 }
 
-void snell__draw_surface(const snell__view *v, const snell__object *o, snell_object_stats *stats)
+void snell__draw_surface(const snell__object *o, snell_object_stats *stats)
 {
-    int rect[4];
     if (!o->screen_space) {
         if (o->glass->material.thickness <= 0.0f) snell__cull_back_faces(o, stats);
         snell__draw_object(o);
@@ -109,9 +108,8 @@ void snell__draw_surface(const snell__view *v, const snell__object *o, snell_obj
      * nearer (the G-buffer pass wrote the glass there), so the rasteriser's
      * depth test, not the kernel, rejects uncovered pixels. With a depth
      * buffer of the G-buffer's own the kernel writes gl_FragDepth instead. */
-    snell__object_scissor(v, o, rect);
     glEnable(GL_SCISSOR_TEST);
-    glScissor(rect[0], rect[1], rect[2], rect[3]);
+    glScissor(o->scissor[0], o->scissor[1], o->scissor[2], o->scissor[3]);
     if (o->screen_space == SNELL__SCREEN_SHARED_DEPTH) {
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_FALSE);

@@ -29,7 +29,7 @@ int snell__cull_back_faces(const snell__object *o, snell_object_stats *stats);
 void snell__draw_object(const snell__object *o);
 /* Draws the object with the bound program as it is shaded: its mesh
  * (forward, back faces culled where the mesh allows, except for thin walls)
- * or a full-screen triangle scissored to it (screen space). */
-void snell__draw_surface(const snell__view *v, const snell__object *o, snell_object_stats *stats);
+ * or a full-screen triangle scissored to it (screen space: o->scissor). */
+void snell__draw_surface(const snell__object *o, snell_object_stats *stats);
 
 #endif

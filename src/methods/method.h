@@ -42,6 +42,8 @@ typedef struct snell__object {
     int screen_space;               /* 0 forward, else shaded on the screen-space stage's G-buffer:
                                      * SNELL__SCREEN_* (render/gbuffer.h) */
     int gid;                        /* its id in the G-buffer (index + 1) */
+    float pixels_per_triangle;      /* its projected bounding sphere per front triangle */
+    int scissor[4];                 /* that projection in window pixels: x, y, w, h */
     void *prepared;                 /* the method's resources for (mesh version, settings) */
     unsigned vao;                   /* 0: draw the mesh's own VAO; else the method's (vertex_array()):
                                      * the mesh's attributes plus attribute 2, a per-vertex scalar that

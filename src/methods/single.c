@@ -82,7 +82,7 @@ static snell_status single_draw(snell_ctx *ctx, void *state, const snell__view *
     if (st != SNELL_OK) return st;
     snell__glass_program_use(p, v, o);
     if (thin) glUniform1f(s->u_thickness[screen][thin][absorb], o->glass->material.thickness);
-    snell__draw_surface(v, o, stats);
+    snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;
 }

@@ -242,7 +242,7 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
     glUniform1i(p->bdepth_id, SNELL__BACK_UNIT_DEPTH_ID);
     glUniform1i(p->gaux, SNELL__GBUFFER_UNIT_AUX);
     glUniform1f(p->dn_scale, wp ? wp->dn_scale : 0.0f);
-    snell__draw_surface(v, o, stats);
+    snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;
 }

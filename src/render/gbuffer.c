@@ -138,9 +138,9 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
          * single-surface bunny frame on llvmpipe. */
         static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         const GLfloat depth = back ? 0.0f : 1.0f;
-        int lo[2] = {g->width, g->height}, hi[2] = {0, 0}, rect[4];
+        int lo[2] = {g->width, g->height}, hi[2] = {0, 0};
         for (i = 0; i < count; i++) {
-            snell__object_scissor(v, objects[i], rect);
+            const int *rect = objects[i]->scissor;
             if (rect[0] < lo[0]) lo[0] = rect[0];
             if (rect[1] < lo[1]) lo[1] = rect[1];
             if (rect[0] + rect[2] > hi[0]) hi[0] = rect[0] + rect[2];
@@ -244,35 +244,31 @@ static int project_sphere(const snell__view *v, const float s[4], float lo[2], f
     return 1;
 }
 
-float snell__pixels_per_triangle(const snell__view *v, const snell__object *o)
+void snell__object_project(const snell__view *v, snell__object *o)
 {
     float lo[2], hi[2], area, front = 0.5f * (float)o->mesh->triangle_count;
-    if (!project_sphere(v, o->bsphere, lo, hi)) return 0.0f; /* very near: treat as dense */
-    /* the sphere's disc inscribed in its screen box, clipped to the target */
+    int x0, y0, x1, y1;
+    if (!project_sphere(v, o->bsphere, lo, hi)) {
+        o->pixels_per_triangle = 0.0f; /* very near: treat as dense */
+        o->scissor[0] = o->scissor[1] = 0;
+        o->scissor[2] = v->width;
+        o->scissor[3] = v->height;
+        return;
+    }
+    /* clipped to the target */
     lo[0] = fmaxf(lo[0], 0.0f);
     lo[1] = fmaxf(lo[1], 0.0f);
     hi[0] = fminf(hi[0], (float)v->width);
     hi[1] = fminf(hi[1], (float)v->height);
+    /* the sphere's disc inscribed in its screen box */
     area = hi[0] > lo[0] && hi[1] > lo[1] ? 0.785398f * (hi[0] - lo[0]) * (hi[1] - lo[1]) : 0.0f;
-    return front > 0.0f ? area / front : 0.0f;
-}
-
-void snell__object_scissor(const snell__view *v, const snell__object *o, int rect[4])
-{
-    float lo[2], hi[2];
-    int x0, y0, x1, y1;
-    if (!project_sphere(v, o->bsphere, lo, hi)) {
-        rect[0] = rect[1] = 0;
-        rect[2] = v->width;
-        rect[3] = v->height;
-        return;
-    }
-    x0 = (int)floorf(fmaxf(lo[0], 0.0f)) ;
-    y0 = (int)floorf(fmaxf(lo[1], 0.0f));
-    x1 = (int)ceilf(fminf(hi[0], (float)v->width));
-    y1 = (int)ceilf(fminf(hi[1], (float)v->height));
-    rect[0] = x0;
-    rect[1] = y0;
-    rect[2] = x1 > x0 ? x1 - x0 : 0;
-    rect[3] = y1 > y0 ? y1 - y0 : 0;
+    o->pixels_per_triangle = front > 0.0f ? area / front : 0.0f;
+    x0 = (int)floorf(lo[0]);
+    y0 = (int)floorf(lo[1]);
+    x1 = (int)ceilf(hi[0]);
+    y1 = (int)ceilf(hi[1]);
+    o->scissor[0] = x0;
+    o->scissor[1] = y0;
+    o->scissor[2] = x1 > x0 ? x1 - x0 : 0;
+    o->scissor[3] = y1 > y0 ? y1 - y0 : 0;
 }

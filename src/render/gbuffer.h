@@ -68,10 +68,9 @@ snell__device_class snell__device_class_of(const char *gl_renderer);
  * front triangles cover fewer (estimated) pixels each than this are shaded
  * in screen space. */
 float snell__screen_threshold(snell__device_class device, const snell__method *method);
-/* Pixels per front triangle of o seen in v (projected bounding sphere). */
-float snell__pixels_per_triangle(const snell__view *v, const snell__object *o);
-/* The object's scissor rectangle in window pixels (x, y, w, h): its
- * bounding sphere's projection, the whole target if it reaches the eye's plane. */
-void snell__object_scissor(const snell__view *v, const snell__object *o, int rect[4]);
+/* Projects o's bounding sphere once per frame into o->pixels_per_triangle
+ * (per front triangle) and o->scissor (window pixels x, y, w, h; the whole
+ * target if the sphere reaches the eye's plane). */
+void snell__object_project(const snell__view *v, snell__object *o);
 
 #endif

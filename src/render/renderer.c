@@ -176,7 +176,8 @@ static void warn_once(snell_renderer *r, const snell__object *o, const snell_obj
  * pixels per front triangle with the threshold for this device and method. */
 static void choose_shading(snell_renderer *r, snell__object *o, snell_object_stats *st)
 {
-    st->pixels_per_triangle = snell__pixels_per_triangle(&r->scene.view, o);
+    snell__object_project(&r->scene.view, o);
+    st->pixels_per_triangle = o->pixels_per_triangle;
     float threshold = snell__screen_threshold(r->device, r->object_method[o->index]);
     int screen = r->shading == SNELL_SHADING_SCREEN ||
                  (r->shading == SNELL_SHADING_AUTO && st->pixels_per_triangle < threshold);
