@@ -247,6 +247,12 @@ typedef struct snell_mesh_analysis {
     int inside;              /* closed and the centre's crossing parity was odd along 3 rays */
     int winding;             /* closed: +1 counter-clockwise triangles face outward (signed
                               * volume > 0), -1 they face inward; 0 open or zero volume */
+    /* Depth complexity: surfaces crossed by lines through the bounding
+     * sphere along sampled view directions (16 directions x 12x12 parallel
+     * lines), what depth peeling needs (SNELL_METHOD_PEEL): a convex mesh
+     * gives 2, a torus 4. */
+    int depth_complexity;    /* the most surfaces any sampled line crosses */
+    float deep_fraction;     /* of the sampled lines that hit the mesh, the share crossing more than 2 */
 } snell_mesh_analysis;
 
 /* Analyzes the mesh (O(triangles) memory; 0.16 s for the 70k-triangle bunny on
@@ -351,6 +357,9 @@ typedef enum snell_method {
     SNELL_METHOD_WYMAN,        /* two-sided in image space (Wyman 2005): exit point interpolated between the
                                 * view-ray and inward-normal thicknesses, normal from a per-frame back-face
                                 * pass; needs no bake, so works for any closed mesh */
+    SNELL_METHOD_PEEL,         /* multi-layer in image space (Wang 2014): depth-peeled layers of normal and
+                                * depth, a ray-height-field search between them, up to N interfaces with TIR;
+                                * for concave meshes (a view ray crossing more than two surfaces) */
     SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 
@@ -381,6 +390,35 @@ typedef struct snell_cubemap_params {
 #define SNELL_CUBEMAP_MAX_LINEAR_STEPS 32
 #define SNELL_CUBEMAP_MAX_INTERFACES 8
 
+/* Which of the seed's fixes for the layer search (Wang 2014, 3.5) run in
+ * SNELL_METHOD_PEEL; the others are for measuring each fix's effect. */
+typedef enum snell_peel_fixes {
+    SNELL_PEEL_FIXES_DEFAULT = 0, /* SNELL_PEEL_FIXES_BOTH */
+    SNELL_PEEL_FIXES_NONE,        /* the plain layer-pair search */
+    SNELL_PEEL_FIXES_DISCONTINUITY, /* 3.5.1: a crossing at a depth jump larger than the linear step is
+                                     * re-checked against the layers there and skipped if the medium is
+                                     * unchanged (case 2) */
+    SNELL_PEEL_FIXES_MERGE,       /* 3.5.2: where layers 2k, 2k+1 are empty, an inside ray uses 2k-2, 2k-1 */
+    SNELL_PEEL_FIXES_BOTH
+} snell_peel_fixes;
+
+/* SNELL_METHOD_PEEL's parameters (material.peel); zero = the default. Step
+ * counts are compile-time constants of the search program (one per setting,
+ * built on first use). */
+typedef struct snell_peel_params {
+    int layers;                /* depth layers peeled, 2..8 (default 4, as the seed argues; fewer are
+                                * peeled where the mesh's depth_complexity or an empty layer allows) */
+    int linear_steps;          /* linear search steps over the bounding diameter, 4..128 (default 50: the
+                                * seed's 1/50 of the depth range) */
+    int binary_steps;          /* binary refinement steps after a linear crossing, 1..16 (default 6) */
+    int max_interfaces;        /* surfaces processed per path, 2..10 (entry, exits, re-entries, TIR
+                                * bounces; default 8) */
+    snell_peel_fixes fixes;
+} snell_peel_params;
+
+#define SNELL_PEEL_MAX_LAYERS 8
+#define SNELL_PEEL_MAX_INTERFACES 10
+
 /* A glass material, named as glTF 2.0 names it so that a glTF material maps
  * onto it field by field. Zero means the default (snell_glass_defaults). */
 typedef struct snell_glass_material {
@@ -397,6 +435,7 @@ typedef struct snell_glass_material {
                                     * KHR_materials_transmission); all zero = white */
     snell_method method;           /* SNELL_METHOD_AUTO = chosen per object and frame */
     snell_cubemap_params cubemap;  /* used when the method (or AUTO's choice) is CUBEMAP */
+    snell_peel_params peel;        /* used when the method (or AUTO's choice) is PEEL */
 } snell_glass_material;
 
 /* A material with every default applied, and the per-unit absorption derived
@@ -576,6 +615,10 @@ typedef struct snell_object_stats {
     int screen_space;               /* 1: shaded in screen space (G-buffer), 0: forward */
     float pixels_per_triangle;      /* estimate AUTO shading decided on: projected bounding-sphere
                                      * area / front triangles (half the mesh's) */
+    int layers_peeled;              /* PEEL: depth layers drawn this frame (at most material.peel.layers,
+                                     * fewer where the mesh's depth_complexity bounds them or a layer came
+                                     * out empty: the peels after it are not drawn) */
+    int layers_used;                /* PEEL: of those, the non-empty ones the search reads */
 } snell_object_stats;
 
 typedef struct snell_frame_stats {

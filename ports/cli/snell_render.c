@@ -143,16 +143,18 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
         snell_glass_resolved m;
-        char skipped[160];
+        char skipped[160], layers[64] = "";
         skipped_str(g->skipped, skipped, sizeof skipped);
+        if (g->method_used == SNELL_METHOD_PEEL)
+            snprintf(layers, sizeof layers, ", layers peeled %d used %d", g->layers_peeled, g->layers_used);
         if (snell_glass_defaults(&s->glass[i].material, &m) != SNELL_OK) m.material.ior = NAN;
         fprintf(f,
                 "stats: glass %d (%s, ior %g): method %s, warning %d, passes %d, prepared %d, env_updated %d, "
-                "skipped %s, draw_order %d, view_depth %.3f, hidden_fraction %.4f, shading %s (%.1f px/triangle), "
+                "skipped %s, draw_order %d, view_depth %.3f, hidden_fraction %.4f, shading %s (%.1f px/triangle)%s, "
                 "reason: %s\n",
                 i, s->glass_names[i], m.material.ior, snell_method_str(g->method_used), g->warning, g->passes,
                 g->prepared, g->env_updated, skipped, g->draw_order, g->view_depth, g->hidden_fraction,
-                g->screen_space ? "screen" : "forward", g->pixels_per_triangle, g->reason);
+                g->screen_space ? "screen" : "forward", g->pixels_per_triangle, layers, g->reason);
     }
 }
 
