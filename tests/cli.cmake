@@ -11,7 +11,7 @@ if(TARGET snell-render)
            --place 1,0,0,0.5 --ior 2 --mesh shape:cube --place 0,1,0,0.4 --method single --opaque torus
            --place 0,-1,0,0.5 --color 0.2,0.6,0.9 --stats --size 32x32 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_scene.png)
   set_tests_properties(cli_scene_objects PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
-    "glass 3, opaque drawn 1.*glass 0 \\(sphere, ior 1.2\\): method cubemap, warning 0.*reason: auto.*glass 1 \\(goblet, ior 2\\): method single, warning 0.*reason: auto fallback.*glass 2 \\(cube, ior 1.2\\): method single.*reason: requested.*wrote .*cli_scene.png")
+    "glass 3, opaque drawn 1.*glass 0 \\(sphere, ior 1.2\\): method cubemap, warning 0.*reason: auto.*glass 1 \\(goblet, ior 2\\): method peel, warning 0.*reason: auto: closed, depth complexity.*glass 2 \\(cube, ior 1.2\\): method single.*reason: requested.*wrote .*cli_scene.png")
   # -v: the same statistics on stderr
   add_test(NAME cli_scene_verbose COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}"
            "-DARGS=--mesh|sphere|--place|-1,0,0,0.5|--mesh|cube|--place|1,0,0,0.5|-v|--size|16x16|-o|${CMAKE_CURRENT_BINARY_DIR}/cli_verbose.png"

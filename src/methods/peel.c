@@ -28,7 +28,7 @@
 #include <string.h>
 
 #define DEFAULT_LAYERS 4
-#define DEFAULT_LINEAR 50
+#define DEFAULT_LINEAR 16
 #define DEFAULT_BINARY 6
 #define DEFAULT_INTERFACES 8
 #define PROG_CACHE 8
@@ -357,9 +357,11 @@ static const char *const g_fix_names[] = {"default", "none", "discontinuity", "m
 static const snell_param_info g_params[] = {
     {"layers", "depth layers peeled (front and back faces alternate; fewer where the mesh needs fewer)", 2,
      SNELL_PEEL_MAX_LAYERS, DEFAULT_LAYERS, NULL},
-    {"linear", "linear search steps over the bounding diameter", 4, 128, DEFAULT_LINEAR, NULL},
+    /* "linear" and "interfaces" are also the cubemap's names (a CLI's
+     * --linear sets both): their ranges include the cubemap's, 0 the default */
+    {"linear", "linear search steps over the bounding diameter (0: the default)", 0, 128, DEFAULT_LINEAR, NULL},
     {"binary", "binary refinement steps after a linear crossing", 1, 16, DEFAULT_BINARY, NULL},
-    {"interfaces", "surfaces processed per path (entry, exits, re-entries, TIR bounces)", 2,
+    {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
      SNELL_PEEL_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
     {"fixes", "the seed's search fixes (3.5): none, discontinuity, merge or both", 0, 4, SNELL_PEEL_FIXES_BOTH,
      g_fix_names},
