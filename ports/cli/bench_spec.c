@@ -166,6 +166,7 @@ void bench_spec_help(FILE *f)
  * its default sweep, and which MATCHED reference model it approximates. */
 const char *bench_default_sweep(const snell_method_info *m)
 {
+    if (m->method == SNELL_METHOD_PEEL) return "linear=8,16"; /* layers and fixes: bench/BENCHMARKS.md */
     return m->method == SNELL_METHOD_CUBEMAP ? "iterations=4,6,12" : "";
 }
 
@@ -183,6 +184,10 @@ static void reference_model(bench_config *c)
     c->ref_interfaces = 10;
     if (c->method->method == SNELL_METHOD_CUBEMAP && snell_glass_defaults(&c->glass, &r) == SNELL_OK)
         c->ref_interfaces = r.material.cubemap.max_interfaces;
+    /* peel's cap; MATCHED stops at the first exit, peel goes on through
+     * re-entries as FULL's dominant branch does: FULL is its model */
+    if (c->method->method == SNELL_METHOD_PEEL && snell_glass_defaults(&c->glass, &r) == SNELL_OK)
+        c->ref_interfaces = r.material.peel.max_interfaces;
 }
 
 /* ------------------------------------------------------------- expansion */
