@@ -267,6 +267,51 @@ snell_status snell_mesh_normalize(snell_mesh *m, float radius)
     return st;
 }
 
+snell_status snell_mesh_set_vertices(snell_mesh *m, const float *positions, const float *normals)
+{
+    double c[3];
+    size_t i, n;
+    int k;
+    snell_status st;
+    if (!m || !positions)
+        return snell__fail(m ? m->ctx : NULL, SNELL_E_INVALID_ARG, "snell_mesh_set_vertices: mesh and positions required");
+    n = 3 * (size_t)m->vertex_count;
+    /* everything checked before anything changes: a refused call leaves the mesh as it was */
+    for (i = 0; i < n; i++)
+        if (!isfinite(positions[i]) || (normals && !isfinite(normals[i])))
+            return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_set_vertices: vertex %zu has a non-finite %s",
+                               i / 3, isfinite(positions[i]) ? "normal" : "coordinate");
+    for (i = 0; normals && i < n; i += 3) {
+        double len = sqrt((double)normals[i] * normals[i] + (double)normals[i + 1] * normals[i + 1] +
+                          (double)normals[i + 2] * normals[i + 2]);
+        if (!(len > 0.0)) return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_set_vertices: normal %zu is zero", i / 3);
+    }
+    /* the extent must stay representable, as compute_bounds requires */
+    for (k = 0; k < 3; k++) {
+        double lo = HUGE_VAL, hi = -HUGE_VAL;
+        for (i = (size_t)k; i < n; i += 3) {
+            lo = fmin(lo, positions[i]);
+            hi = fmax(hi, positions[i]);
+        }
+        c[k] = hi - lo;
+        if (!(c[k] < FLT_MAX))
+            return snell__fail(m->ctx, SNELL_E_LIMIT, "snell_mesh_set_vertices: extent %g exceeds the float range", c[k]);
+    }
+    memcpy(m->positions, positions, n * sizeof(float));
+    if (normals) {
+        for (i = 0; i < n; i += 3) {
+            double len = sqrt((double)normals[i] * normals[i] + (double)normals[i + 1] * normals[i + 1] +
+                              (double)normals[i + 2] * normals[i + 2]);
+            for (k = 0; k < 3; k++) m->normals[i + k] = (float)(normals[i + k] / len);
+        }
+    } else {
+        snell__mesh_compute_normals(m->positions, m->indices, m->vertex_count, m->triangle_count, m->normals);
+    }
+    m->version = next_version();
+    st = compute_bounds(m);
+    return st;
+}
+
 uint32_t snell_mesh_vertex_count(const snell_mesh *m) { return m ? m->vertex_count : 0; }
 uint32_t snell_mesh_triangle_count(const snell_mesh *m) { return m ? m->triangle_count : 0; }
 const float *snell_mesh_positions(const snell_mesh *m) { return m ? m->positions : NULL; }

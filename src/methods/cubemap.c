@@ -274,6 +274,17 @@ static const snell_method_info g_info = {
     "a closed mesh with its analysed centre inside; exact when star-shaped about it", 2,
     (int)(sizeof g_params / sizeof *g_params), g_params};
 
-const snell__method snell__method_cubemap = {&g_info, g_offsets, 1, cubemap_fit, cubemap_create, cubemap_destroy,
-                                             sizeof(cube_prepared), cubemap_key, cubemap_prepare, cubemap_release,
-                                             cubemap_draw, CUBEMAP_SOFTWARE_SCREEN_PPT, 0, NULL};
+const snell__method snell__method_cubemap = {
+    .info = &g_info,
+    .param_offsets = g_offsets,
+    .needs_analysis = 1,
+    .fit = cubemap_fit,
+    .create = cubemap_create,
+    .destroy = cubemap_destroy,
+    .prepared_size = sizeof(cube_prepared),
+    .key = cubemap_key,
+    .prepare = cubemap_prepare,
+    .release = cubemap_release,
+    .draw = cubemap_draw,
+    .software_screen_ppt = CUBEMAP_SOFTWARE_SCREEN_PPT,
+};

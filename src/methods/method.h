@@ -96,6 +96,10 @@ typedef struct snell__method {
     /* May be NULL. The VAO of the prepared resources (the mesh's attributes
      * plus attribute 2), 0 for none: becomes snell__object.vao. */
     unsigned (*vertex_array)(const void *prepared);
+    /* Nonzero: its objects are shaded in screen space whatever the shading
+     * rule or snell_renderer_desc.shading says, because the kernel reads the
+     * G-buffer at pixels other than its own (oliveira.c). */
+    int screen_space_only;
 } snell__method;
 
 /* The registry entry of a method id (registry.c), NULL for AUTO or unknown. */

@@ -179,7 +179,7 @@ static void choose_shading(snell_renderer *r, snell__object *o, snell_object_sta
     snell__object_project(&r->scene.view, o);
     st->pixels_per_triangle = o->pixels_per_triangle;
     float threshold = snell__screen_threshold(r->device, r->object_method[o->index]);
-    int screen = r->shading == SNELL_SHADING_SCREEN ||
+    int screen = r->shading == SNELL_SHADING_SCREEN || r->object_method[o->index]->screen_space_only ||
                  (r->shading == SNELL_SHADING_AUTO && st->pixels_per_triangle < threshold);
     /* An offscreen target's depth buffer is the renderer's own, so the
      * G-buffer pass can write it; a host's framebuffer gets gl_FragDepth. */
