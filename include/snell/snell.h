@@ -395,6 +395,21 @@ typedef struct snell_cubemap_params {
 #define SNELL_CUBEMAP_MAX_LINEAR_STEPS 32
 #define SNELL_CUBEMAP_MAX_INTERFACES 8
 
+/* How finely the image-space methods' back-face pass draws the mesh. */
+typedef enum snell_back_detail {
+    SNELL_BACK_DETAIL_DEFAULT = 0, /* SNELL_BACK_DETAIL_AUTO */
+    SNELL_BACK_DETAIL_AUTO,        /* a coarse copy (a quarter of the triangles, within 1% of the extent,
+                                    * made once per mesh) when the mesh's triangles are below 8 px each:
+                                    * 0.3-0.5x single's frame cheaper on a 70k-triangle mesh on llvmpipe,
+                                    * 1-1.5 degrees less accurate (bench/BENCHMARKS.md) */
+    SNELL_BACK_DETAIL_FULL         /* always the mesh itself */
+} snell_back_detail;
+
+/* SNELL_METHOD_WYMAN's parameters (material.wyman); zero = the default. */
+typedef struct snell_wyman_params {
+    snell_back_detail back_detail;
+} snell_wyman_params;
+
 /* SNELL_METHOD_OLIVEIRA's parameters (material.oliveira); zero = the default.
  * Step counts are compile-time constants of its shader, as for the cubemap
  * (one program per (linear_steps, iterations) pair, 8 kept). */
@@ -405,6 +420,7 @@ typedef struct snell_oliveira_params {
                                 * stops when a step spans less than a pixel */
     int max_interfaces;        /* surfaces processed per path, 2..8 (2 = entry + exit, more = internal
                                 * reflections; default 2) */
+    snell_back_detail back_detail;
 } snell_oliveira_params;
 
 #define SNELL_OLIVEIRA_MAX_LINEAR_STEPS 32
@@ -427,6 +443,7 @@ typedef struct snell_glass_material {
                                     * KHR_materials_transmission); all zero = white */
     snell_method method;           /* SNELL_METHOD_AUTO = chosen per object and frame */
     snell_cubemap_params cubemap;  /* used when the method (or AUTO's choice) is CUBEMAP */
+    snell_wyman_params wyman;      /* used when it is WYMAN */
     snell_oliveira_params oliveira; /* used when it is OLIVEIRA */
 } snell_glass_material;
 
@@ -586,7 +603,10 @@ typedef enum snell_skip {
     SNELL_SKIP_ENV_UPDATE = 1 << 3,   /* its dynamic environment reused: nothing in it moved */
     SNELL_SKIP_BACK_FACES = 1 << 4,   /* back faces culled (closed mesh of known winding) */
     SNELL_SKIP_ANALYSIS = 1 << 5,     /* no mesh analysis: an explicit method that needs none */
-    SNELL_SKIP_SEARCH = 1 << 6        /* CUBEMAP with one interface and no absorption: no exit search */
+    SNELL_SKIP_SEARCH = 1 << 6,       /* CUBEMAP with one interface and no absorption: no exit search */
+    SNELL_SKIP_BACK_DETAIL = 1 << 7   /* the back-face pass drew its mesh's coarse copy (a quarter of the
+                                       * triangles, within 1% of its extent): its triangles are below
+                                       * 8 px each, finer than the per-pixel map holds */
 } snell_skip;
 
 #define SNELL_REASON_SIZE 160

@@ -210,13 +210,15 @@ void snell_mesh_destroy(snell_mesh *m)
 {
     snell_alloc al;
     if (!m) return;
-    if (m->vao || m->vbo || m->ibo) {
+    if (m->vao || m->vbo || m->ibo || m->coarse_vao || m->coarse_ibo) {
         /* In the GL context that holds them; nowhere if it is gone. */
         snell__gl_scope sc;
         if (snell__gl_scope_enter(m->gpu_ctx, &sc)) {
             if (m->vao) glDeleteVertexArrays(1, &m->vao);
             if (m->vbo) glDeleteBuffers(1, &m->vbo);
             if (m->ibo) glDeleteBuffers(1, &m->ibo);
+            if (m->coarse_vao) glDeleteVertexArrays(1, &m->coarse_vao);
+            if (m->coarse_ibo) glDeleteBuffers(1, &m->coarse_ibo);
         }
         snell__gl_scope_leave(&sc);
     }

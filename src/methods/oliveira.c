@@ -156,11 +156,15 @@ static const snell_param_info g_params[] = {
      DEFAULT_ITERATIONS, NULL},
     {"interfaces", "surfaces processed per path (2 = entry + exit, more = TIR bounces)", 2,
      SNELL_OLIVEIRA_MAX_INTERFACES, 2, NULL},
+    {"backdetail", SNELL__BACK_DETAIL_HELP, 0, 2, SNELL_BACK_DETAIL_AUTO, snell__back_detail_names},
 };
 
 static const size_t g_offsets[] = {offsetof(snell_glass_material, oliveira.linear_steps),
                                    offsetof(snell_glass_material, oliveira.iterations),
-                                   offsetof(snell_glass_material, oliveira.max_interfaces)};
+                                   offsetof(snell_glass_material, oliveira.max_interfaces),
+                                   offsetof(snell_glass_material, oliveira.back_detail)};
+
+static snell_back_detail oliveira_back_detail(const snell_glass_resolved *g) { return g->material.oliveira.back_detail; }
 
 static const snell_method_info g_info = {
     SNELL_METHOD_OLIVEIRA, "oliveira",
@@ -179,5 +183,6 @@ const snell__method snell__method_oliveira = {
     .draw = oliveira_draw,
     .software_screen_ppt = 1e9f,
     .needs_back_faces = 1,
+    .back_detail = oliveira_back_detail,
     .screen_space_only = 1,
 };

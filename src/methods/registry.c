@@ -22,6 +22,8 @@ static const snell__method *const g_methods[] = {
 };
 #define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
 
+const char *const snell__back_detail_names[3] = {"default", "auto", "full"};
+
 int snell_method_count(void) { return METHOD_COUNT; }
 
 const snell_method_info *snell_method_info_at(int i)

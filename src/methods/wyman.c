@@ -13,6 +13,7 @@
 #include "render/gbuffer.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -252,15 +253,24 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
     return SNELL_OK;
 }
 
+static const snell_param_info g_params[] = {
+    {"backdetail", SNELL__BACK_DETAIL_HELP, 0, 2, SNELL_BACK_DETAIL_AUTO, snell__back_detail_names},
+};
+
+static const size_t g_offsets[] = {offsetof(snell_glass_material, wyman.back_detail)};
+
+static snell_back_detail wyman_back_detail(const snell_glass_resolved *g) { return g->material.wyman.back_detail; }
+
 static const snell_method_info g_info = {
     SNELL_METHOD_WYMAN, "wyman",
     "two-sided in image space: exit interpolated between view-ray and normal thickness, back-face normal "
     "(Wyman 2005)",
-    "a closed mesh (no centre, no star shape); per frame a back-face pass", 3, 0, NULL};
+    "a closed mesh (no centre, no star shape); per frame a back-face pass", 3,
+    (int)(sizeof g_params / sizeof *g_params), g_params};
 
 const snell__method snell__method_wyman = {
     .info = &g_info,
-    .param_offsets = NULL,
+    .param_offsets = g_offsets,
     .needs_analysis = 1,
     .fit = wyman_fit,
     .create = wyman_create,
@@ -272,5 +282,6 @@ const snell__method snell__method_wyman = {
     .draw = wyman_draw,
     .software_screen_ppt = WYMAN_SOFTWARE_SCREEN_PPT,
     .needs_back_faces = 1,
+    .back_detail = wyman_back_detail,
     .vertex_array = wyman_vertex_array,
 };
