@@ -375,7 +375,7 @@ static const size_t g_offsets[] = {
 static const snell_method_info g_info = {
     SNELL_METHOD_PEEL, "peel",
     "multi-layer in image space: depth-peeled layers, ray-height-field search between them, TIR (Wang 2014)",
-    "a closed mesh of depth complexity above 2 (concave); per object and frame a few depth peels", 4,
+    "a closed mesh of depth complexity above 2 (concave); per object and frame a few depth peels", 5,
     (int)(sizeof g_params / sizeof *g_params), g_params};
 
 const snell__method snell__method_peel = {
