@@ -11,3 +11,13 @@ if(TARGET snell-render)
   set_tests_properties(cli_peel PROPERTIES LABELS "cli"
     PASS_REGULAR_EXPRESSION "stats: glass 0 \\(torus, ior 1.5\\): method peel, .*layers peeled [34] used [34]")
 endif()
+# Clear failures (exit 2, the library's range message) for bad peel values.
+if(TARGET snell-render)
+  foreach(bad "--layers;1" "--layers;9" "--binary;0" "--binary;17" "--linear;129" "--interfaces;11" "--fixes;all")
+    string(MAKE_C_IDENTIFIER "cli_bad_peel_${bad}" name)
+    string(REPLACE ";" "|" bad_args "--mesh|torus|--method|peel|${bad}")
+    add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>" "-DARGS=${bad_args}" -DCODE=2
+             "-DERR=snell-render: " -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+    set_tests_properties(${name} PROPERTIES LABELS "cli")
+  endforeach()
+endif()
