@@ -7,9 +7,11 @@
 // test compares the same quantised value the previous pass stored, so a
 // surface is never kept twice (two surfaces closer than 2r / 2^24 merge).
 // Writes the unit world normal octahedrally in 16+16 bits (as gbuffer.frag),
-// the depth + a flag (1 front face, 2 back face; 0, the clear, marks an empty
-// texel) to the layer, and the depth + flag again to the ping-pong texture
-// the next peel reads.
+// the depth + a flag (1; 0, the clear, marks an empty texel) to the layer,
+// and the depth + flag again to the ping-pong texture the next peel reads.
+// On a closed mesh the layers alternate front and back faces by
+// construction (every face is drawn, nearest first); the kernel takes the
+// gap's parity for inside or outside.
 precision highp float;
 
 #include "common/pack.glsl"
@@ -37,7 +39,7 @@ void main()
         // an empty previous layer: nothing lies behind it either
         if (p.a == 0u || q <= ((p.r << 16u) | (p.g << 8u) | p.b)) discard;
     }
-    highp uvec4 b = uvec4(q >> 16u, (q >> 8u) & 255u, q & 255u, gl_FrontFacing ? 1u : 2u);
+    highp uvec4 b = uvec4(q >> 16u, (q >> 8u) & 255u, q & 255u, 1u);
     o_normal = snell_pack_dir_rgba8(normalize(v_world_normal));
     // (b + 0.25) / 255: stored as b whether the driver rounds or truncates (pack.glsl)
     o_depth = (vec4(b) + 0.25) / 255.0;
