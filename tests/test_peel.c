@@ -384,6 +384,53 @@ static void test_over_cap(snell_ctx *ctx, snell_env *env)
     snell_mesh_destroy(mesh);
 }
 
+/* Two peel objects in a frame share the layer textures, peeling one after
+ * the other: the torus's pixels are the same with the goblet beside it as
+ * alone (the left half of the image holds only the torus). */
+static void test_two_objects(snell_ctx *ctx, snell_env *env)
+{
+    static float both[W * H * 3], alone[W * H * 3], none[W * H * 3];
+    snell_mesh *torus = shape(ctx, SNELL_SHAPE_TORUS), *goblet = shape(ctx, SNELL_SHAPE_GOBLET);
+    float m0[16] = {0.45f, 0, 0, 0, 0, 0.45f, 0, 0, 0, 0, 0.45f, 0, -0.55f, 0, 0, 1};
+    float m1[16] = {0.45f, 0, 0, 0, 0, 0.45f, 0, 0, 0, 0, 0.45f, 0, 0.6f, 0, 0, 1};
+    snell_frame_desc fd;
+    snell_glass g[2];
+    snell_frame_stats st;
+    int x, y, differ = 0, glass = 0;
+    if (!torus || !goblet) goto out;
+    memset(g, 0, sizeof g);
+    test_frame_one(&fd, &g[0], torus, env);
+    fd.camera.azimuth = 0.0f;
+    fd.camera.elevation = 0.3f;
+    g[0].model = m0;
+    g[1].mesh = goblet;
+    g[1].model = m1;
+    g[1].material.method = SNELL_METHOD_PEEL;
+    fd.glass = g;
+    fd.glass_count = 2;
+    render(ctx, &fd, &g[0], SNELL_METHOD_PEEL, both, NULL, &st);
+    CHECK(st.glass[0].method_used == SNELL_METHOD_PEEL && st.glass[1].method_used == SNELL_METHOD_PEEL &&
+              st.glass[0].layers_used >= 2 && st.glass[1].layers_used >= 2,
+          "methods %d %d, layers used %d %d", (int)st.glass[0].method_used, (int)st.glass[1].method_used,
+          st.glass[0].layers_used, st.glass[1].layers_used);
+    fd.glass_count = 1;
+    render(ctx, &fd, &g[0], SNELL_METHOD_PEEL, alone, NULL, &st);
+    fd.glass_count = 0; /* the background's directions: where the torus is not */
+    render(ctx, &fd, &g[0], SNELL_METHOD_PEEL, none, NULL, &st);
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W / 2; x++) {
+            size_t i = 3 * ((size_t)y * W + x);
+            differ += memcmp(both + i, alone + i, 3 * sizeof(float)) != 0;
+            glass += memcmp(alone + i, none + i, 3 * sizeof(float)) != 0;
+        }
+    printf("two peel objects: %d of the torus's %d pixels differ from the torus alone\n", differ, glass);
+    CHECK(glass > W * H / 40, "the torus covers %d px of the left half", glass);
+    CHECK(differ == 0, "%d pixels of the torus changed with the goblet beside it", differ);
+out:
+    snell_mesh_destroy(torus);
+    snell_mesh_destroy(goblet);
+}
+
 int main(void)
 {
     snell_ctx *ctx = test_ctx();
@@ -401,6 +448,7 @@ int main(void)
     test_concave(ctx, env, SNELL_SHAPE_TORUS, "torus", 0.1f);
     test_concave(ctx, env, SNELL_SHAPE_GOBLET, "goblet", 0.5f);
     test_over_cap(ctx, env);
+    test_two_objects(ctx, env);
     snell_env_destroy(env);
     snell_ctx_destroy(ctx);
     return test_finish();
