@@ -59,7 +59,9 @@
  *    torus edge-on, 0.80x goblet; BENCHMARKS.md has each fix alone).
  * 5. More surfaces than layers (the goblet, depth complexity 6, with 2
  *    layers): degrades, does not break: every exit direction is a finite unit
- *    vector and no glass pixel of the colour image is black. */
+ *    vector and no glass pixel of the colour image is black.
+ * 6. Two peel objects in one frame share the layer textures: the torus's
+ *    exit directions are bitwise those of the torus alone. */
 #include "test_util.h"
 
 #include <math.h>
