@@ -21,6 +21,7 @@
  * 0.2-0.9 rad mean by band there, as the reference itself would move under a
  * pixel's shift. Measured values are printed.
  *
+ * 0. The maps' quantisation (C twin): a hundredth of a pixel or less.
  * 1. Sphere: as above, and over all the glass well below Wyman's error (the
  *    search replaces Wyman's interpolated distance).
  * 2. Slab: a cube seen face-on; where the refracted ray leaves through the
@@ -42,10 +43,18 @@
  *    direction, no black glass pixel.
  * 5b. The back-face pass's coarse copy of a dense mesh: used only where
  *    allowed and dense, within 1.3x the full mesh's error.
+ * 5b'. A guard band's worth, measured by rendering a larger view.
+ * 5c. Where the seed's model fails by construction (exit through a front
+ *    face or a hidden back face): its share of the torus and goblet, each
+ *    method's error inside and outside it, an error map.
  * 6. Stats: always screen space (even with FORWARD requested), one back-face
  *    pass, nothing prepared. */
 #include "test_util.h"
 #include "test_twin.h"
+#include "core/core.h"
+#include "core/pack.h"
+#include "mesh/mesh.h"
+#include "ref/ref_bvh.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -53,6 +62,45 @@
 
 #define W 160
 #define H 160
+
+/* 0. The back-face map's quantisation, from the C twin of its packing
+ * (core/pack.h, gbuffer.frag): the worst normal angle of the 16+16-bit
+ * octahedral encoding over a fine sphere grid, and the world-space depth step
+ * of 24-bit window depth at the far side of the sphere for this test's
+ * camera. Both must be a hundredth or less of what the search resolves (one
+ * pixel: 0.023 world units, 0.023 rad of a unit sphere's normal): that is why
+ * no float (RGBA16F/RGBA32F) variant of the maps exists. A 32-bit float
+ * window depth has the same 2^-24 step near 1, and a float normal would
+ * remove an error 350x below the pixel's. */
+static void test_quantisation(void)
+{
+    snell_camera cam;
+    float eye[3], view[16], proj[16];
+    double worst = 0.0, z, b, dwdz, step;
+    int i, j;
+    for (i = 0; i <= 400; i++)
+        for (j = 0; j < 800; j++) {
+            double th = SNELL_PI * i / 400.0, ph = 2.0 * SNELL_PI * j / 800.0;
+            float n[3] = {(float)(sin(th) * cos(ph)), (float)cos(th), (float)(sin(th) * sin(ph))}, m[3];
+            uint8_t px[4];
+            snell_pack_dir_rgba8(n, px);
+            snell_unpack_dir_rgba8(px, m);
+            worst = fmax(worst, anglef(n, m));
+        }
+    memset(&cam, 0, sizeof cam);
+    cam.z_near = 0.1f;   /* what the renderer derives for distance 3.5 and a unit sphere is farther: */
+    cam.z_far = 100.0f;  /* these bounds make the depth step larger, i.e. the bound conservative */
+    snell_camera_matrices(&cam, 1.0f, eye, view, proj);
+    /* window depth w(z) = 0.5 (1 + (a z + b) / -z) for view z < 0: dw/dz = b / (2 z^2) */
+    b = proj[14];
+    z = -(3.5 + 1.0);
+    dwdz = fabs(b / (2.0 * z * z));
+    step = 1.0 / 16777215.0 / dwdz;
+    printf("back-face map quantisation: normal worst %.3g rad (pixel: 0.023), depth step %.3g world units at "
+           "distance 4.5 (pixel: 0.023)\n", worst, step);
+    CHECK(worst < 0.023 / 100.0, "normal quantisation %g rad", worst);
+    CHECK(step < 0.023 / 100.0, "depth step %g", step);
+}
 
 static snell_status render_dirs(snell_ctx *ctx, const snell_frame_desc *fd, float *dirs, snell_frame_stats *stats)
 {
@@ -451,6 +499,207 @@ out:
     snell_mesh_destroy(light);
 }
 
+/* The seed's limit, measured: where does the light of each glass pixel
+ * (MATCHED, 2 interfaces) leave? A: on the farthest surface along the eye
+ * ray through the exit point, which the back-face map holds; B: through a
+ * surface facing the eye (a front face); C: through a back face hidden
+ * behind a farther one. Both image-space methods are wrong by construction
+ * in B and C. Prints each class's share of the glass and each method's mean
+ * error in it, and writes an error map (test_out: grey = error, 0.5 rad =
+ * white; B tinted red, C blue). Checks: where B + C hold more than 5% of
+ * the glass, oliveira's error in A is below a third of its error in B + C
+ * (the search is right where the model holds), and the shares add up. */
+enum { EXIT_FARTHEST = 0, EXIT_FRONT, EXIT_HIDDEN_BACK, EXIT_NONE };
+
+static double dot3f(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* Interpolated unit normal at a hit (the mesh's own vertex normals). */
+static void hit_normal(const snell_mesh *m, const snell__bvh_hit *h, double n[3])
+{
+    int k, c;
+    for (k = 0; k < 3; k++) n[k] = 0.0;
+    for (c = 0; c < 3; c++) {
+        const float *vn = m->normals + 3 * (size_t)m->indices[3 * (size_t)h->tri + c];
+        for (k = 0; k < 3; k++) n[k] += h->b[c] * vn[k];
+    }
+    normalize3(n);
+}
+
+static int classify_exit(const snell__bvh *bvh, const snell_mesh *m, const camera_d *cam, int x, int y, double ior)
+{
+    double v[3], n[3], t1[3], d[3], far_t = 0.0, t_exit, len;
+    snell__bvh_hit h, e, f;
+    int k;
+    pixel_ray(cam, x, y, v);
+    if (!snell__bvh_closest(bvh, cam->eye, v, 1e-6, 1e30, SNELL__BVH_NONE, &h)) return EXIT_NONE;
+    hit_normal(m, &h, n);
+    if (dot3f(n, v) > 0.0)
+        for (k = 0; k < 3; k++) n[k] = -n[k];
+    if (!refract(v, n, 1.0 / ior, t1)) return EXIT_NONE;
+    normalize3(t1);
+    if (!snell__bvh_closest(bvh, h.p, t1, 1e-6, 1e30, h.tri, &e)) return EXIT_NONE;
+    /* the eye ray through the exit point: is any surface behind it? */
+    for (k = 0; k < 3; k++) d[k] = e.p[k] - cam->eye[k];
+    len = sqrt(dot3f(d, d));
+    for (k = 0; k < 3; k++) d[k] /= len;
+    t_exit = len;
+    {
+        double tmin = 1e-6;
+        uint32_t skip = SNELL__BVH_NONE;
+        while (snell__bvh_closest(bvh, cam->eye, d, tmin, 1e30, skip, &f)) {
+            far_t = f.t;
+            tmin = f.t + 1e-7;
+            skip = f.tri;
+        }
+    }
+    if (far_t <= t_exit * (1.0 + 1e-5)) return EXIT_FARTHEST;
+    hit_normal(m, &e, n);
+    return dot3f(n, d) < 0.0 ? EXIT_FRONT : EXIT_HIDDEN_BACK;
+}
+
+static void test_exit_classes(snell_ctx *ctx, snell_env *env, snell_shape shape, float elevation, const char *name)
+{
+    static float oli[W * H * 3], wy[W * H * 3], ref_dir[W * H * 3], rgb[W * H * 3];
+    static uint8_t hit[W * H], px[W * H * 4];
+    snell_shape_desc sd;
+    snell_mesh *mesh = NULL;
+    snell__bvh *bvh = NULL;
+    snell_frame_desc fd;
+    snell_glass g;
+    snell_frame_stats stats;
+    camera_d cam;
+    double sum_o[4] = {0}, sum_w[4] = {0};
+    int count[4] = {0}, i, glass = 0;
+    char file[64];
+    memset(&sd, 0, sizeof sd);
+    sd.shape = shape;
+    CHECK_OK(snell_mesh_create_shape(ctx, &sd, &mesh));
+    if (!mesh) return;
+    CHECK_OK(snell_mesh_normalize(mesh, 1.0f));
+    CHECK_OK(snell__bvh_build_mesh(ctx, mesh, NULL, &bvh));
+    if (!bvh) goto out;
+    test_frame_one(&fd, &g, mesh, env);
+    fd.camera.azimuth = 0.3f;
+    fd.camera.elevation = elevation;
+    camera_setup(&fd.camera, W, H, &cam);
+    g.material.method = SNELL_METHOD_OLIVEIRA;
+    g.material.oliveira.back_detail = SNELL_BACK_DETAIL_FULL;
+    if (render_dirs(ctx, &fd, oli, &stats) != SNELL_OK) goto out;
+    g.material.method = SNELL_METHOD_WYMAN;
+    g.material.wyman.back_detail = SNELL_BACK_DETAIL_FULL;
+    if (render_dirs(ctx, &fd, wy, &stats) != SNELL_OK) goto out;
+    if (reference(ctx, &fd, 2, rgb, ref_dir, hit) != SNELL_OK) goto out;
+    memset(px, 0, sizeof px);
+    for (i = 0; i < W * H; i++) {
+        int c;
+        double eo;
+        px[4 * i + 3] = 255;
+        if (!hit[i]) continue;
+        glass++;
+        c = classify_exit(bvh, mesh, &cam, i % W, i / W, 1.5);
+        eo = anglef(oli + 3 * i, ref_dir + 3 * i);
+        count[c]++;
+        sum_o[c] += eo;
+        sum_w[c] += anglef(wy + 3 * i, ref_dir + 3 * i);
+        {
+            int grey = (int)fmin(255.0, eo / 0.5 * 255.0);
+            px[4 * i + 0] = (uint8_t)(c == EXIT_FRONT ? 255 : grey);
+            px[4 * i + 1] = (uint8_t)grey;
+            px[4 * i + 2] = (uint8_t)(c == EXIT_HIDDEN_BACK ? 255 : grey);
+        }
+    }
+    snprintf(file, sizeof file, "oliveira_exits_%s.png", name);
+    snell_write_png(test_out(file), W, H, px);
+    printf("%s exits (%d glass px): farthest surface %.1f%% (oliveira %.4f, wyman %.4f rad), front face %.1f%% "
+           "(%.4f, %.4f), hidden back face %.1f%% (%.4f, %.4f), none/TIR at entry %.1f%%\n", name, glass,
+           100.0 * count[0] / glass, sum_o[0] / (count[0] ? count[0] : 1), sum_w[0] / (count[0] ? count[0] : 1),
+           100.0 * count[1] / glass, sum_o[1] / (count[1] ? count[1] : 1), sum_w[1] / (count[1] ? count[1] : 1),
+           100.0 * count[2] / glass, sum_o[2] / (count[2] ? count[2] : 1), sum_w[2] / (count[2] ? count[2] : 1),
+           100.0 * count[3] / glass);
+    CHECK(count[0] + count[1] + count[2] + count[3] == glass, "classes");
+    if (count[1] + count[2] > glass / 20)
+        CHECK(count[0] > 0 && sum_o[0] / count[0] < (sum_o[1] + sum_o[2]) / (count[1] + count[2]) / 3.0,
+              "%s: oliveira %g where the model holds vs %g where it does not", name, sum_o[0] / (count[0] ? count[0] : 1),
+              (sum_o[1] + sum_o[2]) / (count[1] + count[2]));
+out:
+    snell__bvh_destroy(bvh);
+    snell_mesh_destroy(mesh);
+}
+
+/* Guard band (guard_band): a sphere half off the right edge, whose light
+ * leaves through the off-screen half. What a band of G pixels can buy is
+ * measured without the feature: a render G pixels larger on every side with
+ * the field of view widened to match has exactly the same pixel rays in its
+ * centre and its back-face map holds the band. Checked: the default band
+ * (10% of 160 px = 16 px, drawn only because the sphere crosses the edge)
+ * reaches that render's error within 10% and at least halves the error
+ * without a band; a centred object gets no band. Printed: the glass mean and
+ * the 24 pixel columns at the edge. */
+static void test_guard_band(snell_ctx *ctx, snell_env *env)
+{
+    enum { G = 16, WB = W + 2 * G, HB = H + 2 * G };
+    static float none[W * H * 3], band[W * H * 3], big[WB * HB * 3], ref_dir[W * H * 3], rgb[W * H * 3];
+    static uint8_t hit[W * H];
+    snell_shape_desc sd;
+    snell_mesh *mesh = NULL;
+    snell_renderer *r = NULL;
+    snell_renderer_desc rd;
+    snell_frame_desc fd;
+    snell_glass g;
+    snell_frame_stats stats;
+    float model[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1.6f, 0.2f, 0, 1};
+    double sum[3] = {0}, edge[3] = {0};
+    int i, k, n = 0, ne = 0, used;
+    memset(&sd, 0, sizeof sd);
+    sd.shape = SNELL_SHAPE_SPHERE;
+    CHECK_OK(snell_mesh_create_shape(ctx, &sd, &mesh));
+    if (!mesh) return;
+    test_frame_one(&fd, &g, mesh, env);
+    g.material.method = SNELL_METHOD_OLIVEIRA;
+    fd.camera.distance = 3.0f;
+    fd.camera.fov_y = (float)(45.0 * SNELL_PI / 180.0);
+    if (render_dirs(ctx, &fd, none, &stats) != SNELL_OK) goto out;
+    CHECK(stats.back_face_guard == 0, "a centred sphere got a %d px band", stats.back_face_guard);
+    g.model = model;
+    if (render_dirs(ctx, &fd, band, &stats) != SNELL_OK) goto out;
+    used = stats.back_face_guard;
+    CHECK(used == G, "band %d px, want %d", used, G);
+    g.material.oliveira.guard_band = -1;
+    if (render_dirs(ctx, &fd, none, &stats) != SNELL_OK) goto out;
+    CHECK(stats.back_face_guard == 0, "guard_band -1 drew a %d px band", stats.back_face_guard);
+    if (reference(ctx, &fd, 2, rgb, ref_dir, hit) != SNELL_OK) goto out;
+    memset(&rd, 0, sizeof rd);
+    rd.width = WB;
+    rd.height = HB;
+    rd.output = SNELL_OUTPUT_EXIT_DIRECTION;
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    if (!r) goto out;
+    fd.camera.fov_y = (float)(2.0 * atan(tan(22.5 * SNELL_PI / 180.0) * HB / H));
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &stats));
+    CHECK_OK(snell_renderer_read_exit_dirs(r, big));
+    for (i = 0; i < W * H; i++) {
+        int x = i % W, y = i / W;
+        const float *d[3] = {none + 3 * i, band + 3 * i, big + 3 * ((size_t)(y + G) * WB + x + G)};
+        if (!hit[i]) continue;
+        n++;
+        ne += x >= W - 24;
+        for (k = 0; k < 3; k++) {
+            double e = anglef(d[k], ref_dir + 3 * i);
+            sum[k] += e;
+            if (x >= W - 24) edge[k] += e;
+        }
+    }
+    printf("guard band (sphere half off-screen): glass mean without %.4f rad, with the %d px band %.4f, larger view "
+           "%.4f; last 24 columns (%d px) %.4f / %.4f / %.4f rad\n", sum[0] / n, used, sum[1] / n, sum[2] / n, ne,
+           edge[0] / (ne ? ne : 1), edge[1] / (ne ? ne : 1), edge[2] / (ne ? ne : 1));
+    CHECK(n > 1000 && ne > 100, "%d glass px, %d at the edge", n, ne);
+    CHECK(sum[1] <= 1.1 * sum[2] && sum[1] < 0.5 * sum[0], "band %g vs larger view %g and none %g", sum[1] / n,
+          sum[2] / n, sum[0] / n);
+out:
+    snell_renderer_destroy(r);
+    snell_mesh_destroy(mesh);
+}
+
 /* Every pixel a finite unit direction; in colour, no glass pixel black. */
 static void check_finite(snell_ctx *ctx, const snell_frame_desc *fd, const char *name)
 {
@@ -519,6 +768,7 @@ int main(void)
     ed.face_size = 128;
     CHECK_OK(snell_env_create(ctx, &ed, &env));
     if (!env) return test_finish();
+    test_quantisation();
     test_sphere(ctx, env);
     test_slab(ctx, env);
     test_deforming(ctx, env);
@@ -527,6 +777,10 @@ int main(void)
     test_concave(ctx, env, SNELL_SHAPE_GOBLET, "goblet", 1.5);
     test_edges(ctx, env);
     test_back_detail(ctx, env);
+    test_guard_band(ctx, env);
+    test_exit_classes(ctx, env, SNELL_SHAPE_TORUS, 0.5f, "torus");
+    test_exit_classes(ctx, env, SNELL_SHAPE_TORUS, 0.05f, "torus_edge_on");
+    test_exit_classes(ctx, env, SNELL_SHAPE_GOBLET, 0.5f, "goblet");
     snell_env_destroy(env);
     snell_ctx_destroy(ctx);
     return test_finish();

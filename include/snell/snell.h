@@ -417,7 +417,12 @@ typedef enum snell_back_detail {
 /* SNELL_METHOD_WYMAN's parameters (material.wyman); zero = the default. */
 typedef struct snell_wyman_params {
     snell_back_detail back_detail;
+    int guard_band;            /* percent of the target height drawn around it in the back-face pass for an
+                                * object that crosses the target's edge (its light may leave off-screen);
+                                * -1 none, 1..25, default 10 */
 } snell_wyman_params;
+
+#define SNELL_MAX_GUARD_BAND 25
 
 /* SNELL_METHOD_OLIVEIRA's parameters (material.oliveira); zero = the default.
  * Step counts are compile-time constants of its shader, as for the cubemap
@@ -430,6 +435,7 @@ typedef struct snell_oliveira_params {
     int max_interfaces;        /* surfaces processed per path, 2..8 (2 = entry + exit, more = internal
                                 * reflections; default 2) */
     snell_back_detail back_detail;
+    int guard_band;            /* as snell_wyman_params.guard_band */
 } snell_oliveira_params;
 
 #define SNELL_OLIVEIRA_MAX_LINEAR_STEPS 32
@@ -680,6 +686,8 @@ typedef struct snell_frame_stats {
     int background_drawn;           /* 1 if the background pass ran */
     int back_face_pass;             /* 1 if the shared back-face pass ran (a method of the frame needs the
                                      * glass's back faces: WYMAN, OLIVEIRA); one pass for all objects that need it */
+    int back_face_guard;            /* pixels of guard band it drew around the target (an object crossing the
+                                     * target's edge asked for it: guard_band), 0 if none */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
 } snell_frame_stats;
 
