@@ -691,6 +691,33 @@ typedef struct snell_frame_stats {
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
 } snell_frame_stats;
 
+/* ------------------------------------------------------------ scene files */
+/* A glTF 2.0 scene (.gltf/.glb) as frame lists: every node instance of every
+ * triangle primitive of the default scene becomes a glass object when its
+ * material has KHR_materials_transmission with transmissionFactor > 0, else
+ * an opaque object (base colour; glTF's default material is opaque white).
+ * Glass: KHR_materials_ior's ior (default 1.5), baseColorFactor as the tint,
+ * KHR_materials_volume with thicknessFactor > 0 a solid with its attenuation
+ * colour and distance, without it a thin wall (glTF's "infinitely thin"; a
+ * 1e-4 wall here). Geometry stays in each node's local space, the node's
+ * world transform is the object's model matrix; primitives instanced by
+ * several nodes share one mesh. The first camera met in the node tree, if
+ * any, becomes snell_scene_file_camera (eye and view direction kept, roll
+ * dropped: snell's camera keeps +Y up). Other extensions are ignored with
+ * one INFO log line; a file that requires a KHR_materials_* extension other
+ * than those three is SNELL_E_UNSUPPORTED, beyond that the rules and trust
+ * model of snell_mesh_load_gltf_ex apply (flags likewise). More than
+ * SNELL_MAX_GLASS glass or SNELL_MAX_OPAQUE opaque objects is SNELL_E_LIMIT. */
+typedef struct snell_scene_file snell_scene_file;
+snell_status snell_scene_load_gltf(snell_ctx *ctx, const char *path, unsigned flags, snell_scene_file **out);
+snell_status snell_scene_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_scene_file **out);
+void snell_scene_file_destroy(snell_scene_file *scene);
+/* The objects (valid until the scene is destroyed), for snell_frame_desc.glass / .opaque. */
+const snell_glass *snell_scene_file_glass(const snell_scene_file *scene, int *count);
+const snell_opaque *snell_scene_file_opaque(const snell_scene_file *scene, int *count);
+/* 1 and *camera set if the file has a camera, else 0. */
+int snell_scene_file_camera(const snell_scene_file *scene, snell_camera *camera);
+
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);
 void snell_renderer_destroy(snell_renderer *r);
 snell_status snell_render(snell_renderer *r, const snell_frame_desc *frame, snell_frame_stats *stats);
