@@ -42,7 +42,7 @@ static void test_connectors(void)
     memset(&r, 0, sizeof r);
     c[0] = (kms_connector_info){30, KMS_DISCONNECTED, 0, g_enc_hdmi, 1, g_modes_hdmi, 5};
     c[1] = (kms_connector_info){31, KMS_UNKNOWN, 0, g_enc_dsi, 2, g_modes_dsi, 1};
-    c[2] = (kms_connector_info){32, KMS_CONNECTED, 0, g_enc_hdmi, 1, NULL, 0};  /* connected, no modes */
+    c[2] = (kms_connector_info){32, KMS_CONNECTED, 0, g_enc_hdmi, 1, NULL, 0}; /* connected, no modes */
     c[3] = (kms_connector_info){33, KMS_CONNECTED, 0, g_enc_hdmi, 1, g_modes_hdmi, 5};
     r.connectors = c;
     r.connector_count = 4;
@@ -80,12 +80,11 @@ static void test_modes(void)
     c.mode_count = 0;
     CHECK(kms_pick_mode(&c, NULL) == -1, "no modes");
     {
-        static const char *const bad[] = {"", "1920", "1920x", "x1080", "1920x1080@", "1920x1080@60Hz", "0x1080",
-                                          "1920x0", "-1920x1080", "1920 x1080", "1920x1080@0", "99999999x1",
-                                          "1920X1080"};
+        static const char *const bad[] = {
+            "",       "1920",       "1920x",      "x1080",       "1920x1080@", "1920x1080@60Hz", "0x1080",
+            "1920x0", "-1920x1080", "1920 x1080", "1920x1080@0", "99999999x1", "1920X1080"};
         size_t i;
-        for (i = 0; i < sizeof bad / sizeof *bad; i++)
-            CHECK(!kms_parse_mode(bad[i], &q), "'%s' is not a mode", bad[i]);
+        for (i = 0; i < sizeof bad / sizeof *bad; i++) CHECK(!kms_parse_mode(bad[i], &q), "'%s' is not a mode", bad[i]);
         CHECK(!kms_parse_mode(NULL, &q), "NULL is not a mode");
     }
 }
@@ -97,8 +96,7 @@ static void test_crtcs(void)
     kms_connector_info c = {33, KMS_CONNECTED, 0, g_enc_hdmi, 1, g_modes_hdmi, 5};
     kms_resources_info r = {&c, 1, enc, 3, crtcs, 3};
     int index;
-    CHECK(kms_pick_crtc(&r, &c, &index) == 51 && index == 1, "the first CRTC the encoder can use (bit 1): %d",
-          index);
+    CHECK(kms_pick_crtc(&r, &c, &index) == 51 && index == 1, "the first CRTC the encoder can use (bit 1): %d", index);
     c.encoder_id = 40;
     enc[0].crtc_id = 52;
     CHECK(kms_pick_crtc(&r, &c, &index) == 52 && index == 2, "the CRTC the current encoder feeds (the console's)");

@@ -69,7 +69,8 @@ static int value_option(const char *a, const char *v, kiosk_options *o)
     long l;
     double x;
     if (!strcmp(a, "-b")) {
-        if (o->spec_count == KIOSK_MAX_SPECS) return fprintf(stderr, "snell-kiosk: more than %d -b\n", KIOSK_MAX_SPECS), 0;
+        if (o->spec_count == KIOSK_MAX_SPECS)
+            return fprintf(stderr, "snell-kiosk: more than %d -b\n", KIOSK_MAX_SPECS), 0;
         o->specs[o->spec_count++] = v;
     } else if (!strcmp(a, "--device")) {
         o->display.device = v;

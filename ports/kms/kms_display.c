@@ -150,7 +150,8 @@ static void find_primary_plane(kms_display *d)
         uint32_t blob = 0;
         if (!p) continue;
         props = (p->possible_crtcs & (1u << d->crtc_index))
-                    ? drmModeObjectGetProperties(d->fd, p->plane_id, DRM_MODE_OBJECT_PLANE) : NULL;
+                    ? drmModeObjectGetProperties(d->fd, p->plane_id, DRM_MODE_OBJECT_PLANE)
+                    : NULL;
         for (k = 0; props && k < props->count_props; k++) {
             drmModePropertyRes *pp = drmModeGetProperty(d->fd, props->props[k]);
             if (!pp) continue;
@@ -177,7 +178,7 @@ static void explain_cards(char paths[][256], const kms_card_probe *probe, const 
     size_t len = 0;
     int i;
     for (i = 0; i < n && len < size; i++) {
-        const char *why = !probe[i].opened ? strerror(open_errno[i])
+        const char *why = !probe[i].opened          ? strerror(open_errno[i])
                           : !probe[i].has_resources ? "no KMS resources (a render-only GPU, or not a DRM card)"
                                                     : "no connected display";
         len += (size_t)snprintf(msg + len, size - len, "%s%s: %s", i ? "; " : "", paths[i], why);
@@ -191,8 +192,10 @@ static kms_open_result choose(kms_display *d, const kms_display_request *req, ca
     const kms_connector_info *c;
     drmModeConnector *dc;
     if ((ci = kms_pick_connector(&s->info, req->connector_id)) < 0) {
-        if (req->connector_id) snprintf(msg, n, "%s: connector %u is not there or not connected", d->path, req->connector_id);
-        else snprintf(msg, n, "%s: no connected connector with modes", d->path);
+        if (req->connector_id)
+            snprintf(msg, n, "%s: connector %u is not there or not connected", d->path, req->connector_id);
+        else
+            snprintf(msg, n, "%s: no connected connector with modes", d->path);
         return KMS_OPEN_FAILED;
     }
     c = &s->info.connectors[ci];
@@ -208,8 +211,8 @@ static kms_open_result choose(kms_display *d, const kms_display_request *req, ca
         char list[512];
         kms_display_mode_list(d, list, sizeof list);
         if (req->mode.refresh)
-            snprintf(msg, n, "%s: %s has no mode %dx%d@%d; its modes: %s", d->path, d->connector_name,
-                     req->mode.width, req->mode.height, req->mode.refresh, list);
+            snprintf(msg, n, "%s: %s has no mode %dx%d@%d; its modes: %s", d->path, d->connector_name, req->mode.width,
+                     req->mode.height, req->mode.refresh, list);
         else
             snprintf(msg, n, "%s: %s has no mode %dx%d; its modes: %s", d->path, d->connector_name, req->mode.width,
                      req->mode.height, list);
@@ -227,11 +230,13 @@ static kms_open_result choose(kms_display *d, const kms_display_request *req, ca
      * every KMS driver (and on the atomic ones through their helpers). */
     d->atomic = drmSetClientCap(d->fd, DRM_CLIENT_CAP_ATOMIC, 1) == 0;
     if (d->atomic) drmSetClientCap(d->fd, DRM_CLIENT_CAP_ATOMIC, 0);
-    snprintf(msg, n, "%s, %s (%s), mode %dx%d@%d%s, CRTC %u, primary plane %u (%d formats, IN_FORMATS %s), "
+    snprintf(msg, n,
+             "%s, %s (%s), mode %dx%d@%d%s, CRTC %u, primary plane %u (%d formats, IN_FORMATS %s), "
              "atomic %s (legacy page flips used)",
              d->path, d->connector_name, connection_str(c->connection), d->mode.hdisplay, d->mode.vdisplay,
              (int)d->mode.vrefresh, (d->mode.type & DRM_MODE_TYPE_PREFERRED) ? " (preferred)" : "", d->crtc_id,
-             d->plane_id, d->format_count, d->in_formats_blob ? "yes" : "no", d->atomic ? "available" : "not available");
+             d->plane_id, d->format_count, d->in_formats_blob ? "yes" : "no",
+             d->atomic ? "available" : "not available");
     return KMS_OPEN_OK;
 }
 
@@ -310,8 +315,8 @@ void kms_display_mode_list(const kms_display *d, char *out, size_t n)
     int i;
     out[0] = '\0';
     for (i = 0; i < d->mode_count && len < n; i++)
-        len += (size_t)snprintf(out + len, n - len, "%s%dx%d@%d%s", i ? " " : "", d->modes[i].width,
-                                d->modes[i].height, d->modes[i].refresh, d->modes[i].preferred ? "*" : "");
+        len += (size_t)snprintf(out + len, n - len, "%s%dx%d@%d%s", i ? " " : "", d->modes[i].width, d->modes[i].height,
+                                d->modes[i].refresh, d->modes[i].preferred ? "*" : "");
 }
 
 uint32_t kms_display_add_fb(const kms_display *d, int width, int height, uint32_t format, int planes,

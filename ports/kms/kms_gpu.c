@@ -33,8 +33,18 @@ static int plane_takes(const kms_display *d, uint32_t format)
  * framebuffer) and GBM format, matched by native visual id. */
 static int choose_config(kms_gpu *g, const kms_display *d, char *msg, size_t n)
 {
-    static const EGLint attrs[] = {EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_ES3_BIT,
-                                   EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, 16,
+    static const EGLint attrs[] = {EGL_SURFACE_TYPE,
+                                   EGL_WINDOW_BIT,
+                                   EGL_RENDERABLE_TYPE,
+                                   EGL_OPENGL_ES3_BIT,
+                                   EGL_RED_SIZE,
+                                   8,
+                                   EGL_GREEN_SIZE,
+                                   8,
+                                   EGL_BLUE_SIZE,
+                                   8,
+                                   EGL_DEPTH_SIZE,
+                                   16,
                                    EGL_NONE};
     EGLConfig configs[MAX_CONFIGS];
     int32_t visual[MAX_CONFIGS];
@@ -50,8 +60,10 @@ static int choose_config(kms_gpu *g, const kms_display *d, char *msg, size_t n)
     for (f = 0; f < FORMAT_COUNT; f++)
         if (plane_takes(d, g_formats[f])) formats[nf++] = g_formats[f];
     if ((pick = kms_pick_config(visual, count, formats, nf, &f)) < 0) {
-        snprintf(msg, n, "none of %d EGL configs has XRGB8888 or ARGB8888 (that the primary plane takes) as its "
-                 "native visual", (int)count);
+        snprintf(msg, n,
+                 "none of %d EGL configs has XRGB8888 or ARGB8888 (that the primary plane takes) as its "
+                 "native visual",
+                 (int)count);
         return 0;
     }
     g->config = configs[pick];
@@ -67,14 +79,15 @@ static int create_surface(kms_gpu *g, const kms_display *d, char *msg, size_t n)
     char fcc[5];
     g->modifier_count = kms_display_modifiers(d, g->format, mods, KMS_MAX_MODIFIERS);
     if (g->modifier_count > 0)
-        g->surface = gbm_surface_create_with_modifiers(g->gbm, (uint32_t)g->width, (uint32_t)g->height, g->format,
-                                                       mods, (unsigned)g->modifier_count);
+        g->surface = gbm_surface_create_with_modifiers(g->gbm, (uint32_t)g->width, (uint32_t)g->height, g->format, mods,
+                                                       (unsigned)g->modifier_count);
     g->with_modifiers = g->surface != NULL;
     if (!g->surface)
         g->surface = gbm_surface_create(g->gbm, (uint32_t)g->width, (uint32_t)g->height, g->format,
                                         GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
     kms_fourcc_str(g->format, fcc);
-    if (!g->surface) snprintf(msg, n, "gbm_surface_create %dx%d %s failed: %s", g->width, g->height, fcc, strerror(errno));
+    if (!g->surface)
+        snprintf(msg, n, "gbm_surface_create %dx%d %s failed: %s", g->width, g->height, fcc, strerror(errno));
     return g->surface != NULL;
 }
 
@@ -102,7 +115,7 @@ int kms_gpu_open(kms_gpu *g, const kms_display *d, char *msg, size_t n)
         return snprintf(msg, n, "eglMakeCurrent failed (EGL error 0x%x)", eglGetError()), 0;
     kms_fourcc_str(g->format, fcc);
     snprintf(msg, n, "GBM surface %dx%d %s, %s; EGL %s", g->width, g->height, fcc,
-             g->with_modifiers ? "allocated with the plane's modifiers"
+             g->with_modifiers   ? "allocated with the plane's modifiers"
              : g->modifier_count ? "plain (the driver refused the plane's modifiers)"
                                  : "plain (the plane lists no modifiers)",
              eglQueryString(g->dpy, EGL_VERSION));

@@ -27,7 +27,7 @@
 
 #define PI 3.14159265358979323846
 #define FLIP_TIMEOUT_MS 2000 /* a flip event later than this means the display is stuck */
-#define MAX_INTERVALS 4096   /* show mode keeps the last this many frame intervals for the median */
+#define MAX_INTERVALS 4096 /* show mode keeps the last this many frame intervals for the median */
 
 static volatile sig_atomic_t g_stop;
 
@@ -43,10 +43,10 @@ typedef struct kiosk {
     kms_display disp;
     kms_gpu gpu;
     kms_flip flip;
-    double last_shown_ms;       /* when the last frame reached the screen (0: none yet), CLOCK_MONOTONIC */
-    int record;                 /* intervals are being recorded */
+    double last_shown_ms; /* when the last frame reached the screen (0: none yet), CLOCK_MONOTONIC */
+    int record; /* intervals are being recorded */
     double intervals[MAX_INTERVALS]; /* ms between frames reaching the screen (ring) */
-    long interval_count;        /* recorded, in all */
+    long interval_count; /* recorded, in all */
     char msg[1024];
 } kiosk;
 
@@ -280,8 +280,8 @@ static int expand_configs(const kiosk_options *o, snell_ctx *ctx, const snell_en
             return 0;
         }
     if (!o->bench && *n != 1) {
-        fprintf(stderr, "snell-kiosk: -b %s is %d configurations; show one, or time them with --bench\n",
-                o->specs[0], *n);
+        fprintf(stderr, "snell-kiosk: -b %s is %d configurations; show one, or time them with --bench\n", o->specs[0],
+                *n);
         return 0;
     }
     return 1;
@@ -301,8 +301,10 @@ static int bench(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_config *c
     printf("snell-kiosk: %d configuration(s) on %s at %dx%d, %d warm-up + %ld timed frames each; load %s\n", n,
            snell_ctx_gl_renderer(ctx), k->gpu.width, k->gpu.height, o->warmup, o->frames, load_before);
     for (i = 0; i < n && !g_stop; i++) {
-        if (bench_one(k, ctx, env, &cs[i], o)) fps_sum += 1000.0 / cs[i].t_median, done++;
-        else fprintf(stderr, "snell-kiosk: %s FAILED: %s\n", cs[i].spec, cs[i].error), ok = 0;
+        if (bench_one(k, ctx, env, &cs[i], o))
+            fps_sum += 1000.0 / cs[i].t_median, done++;
+        else
+            fprintf(stderr, "snell-kiosk: %s FAILED: %s\n", cs[i].spec, cs[i].error), ok = 0;
     }
     cli_loadavg(load_after, sizeof load_after);
     memset(&run, 0, sizeof run);

@@ -52,10 +52,10 @@ static unsigned char *read_ppm(const char *path, int *w, int *h)
 }
 
 typedef struct agreement {
-    int max_diff;     /* largest channel difference, 8-bit levels */
+    int max_diff; /* largest channel difference, 8-bit levels */
     double mean_diff; /* mean over pixels of the largest channel difference */
-    long different;   /* pixels with a channel more than LEVELS off */
-    long outside;     /* pixels with a channel more than LEVELS outside the reference's 3x3 range */
+    long different; /* pixels with a channel more than LEVELS off */
+    long outside; /* pixels with a channel more than LEVELS outside the reference's 3x3 range */
     long pixels;
 } agreement;
 
@@ -134,7 +134,7 @@ int main(int argc, char **argv)
     report("(check) the frame shifted by one pixel", &shifted);
     report("(check) the frame before", &previous);
     ok = agrees(&shown) && !agrees(&shifted) && !agrees(&previous);
-    printf("kms_compare: %s\n", !agrees(&shown)                        ? "FAIL: the screen does not show the frame"
+    printf("kms_compare: %s\n", !agrees(&shown)                         ? "FAIL: the screen does not show the frame"
                                 : agrees(&shifted) || agrees(&previous) ? "FAIL: the check cannot tell frames apart"
                                                                         : "the screen shows the frame");
     free(screen);
