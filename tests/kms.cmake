@@ -30,7 +30,7 @@ if(TARGET snell-kiosk)
 
   # The real KMS test: Debian's kernel in qemu (TCG) with a bochs display,
   # snell-kiosk on it, the screen against an offscreen render (tests/kms/).
-  # About 95 s here; skipped (77) when qemu, busybox-static, kmod or
+  # 95-145 s here; skipped (77) when qemu, busybox-static, kmod or
   # linux-image-amd64 is missing (.ci/run installs them).
   add_executable(kms_compare kms/kms_compare.c)
   target_link_libraries(kms_compare PRIVATE snell_static)

@@ -115,7 +115,8 @@ static int present(kiosk *k)
         kms_gpu_release(&k->gpu, bo);
         return snprintf(k->msg, sizeof k->msg, "page flip failed: %s", strerror(-r)), 0;
     }
-    kms_flip_queued(&k->flip, bo);
+    if (!kms_flip_queued(&k->flip, bo)) /* GBM handed back the buffer on screen: cannot happen */
+        return snprintf(k->msg, sizeof k->msg, "page flip to the buffer already on screen"), 0;
     return 1;
 }
 
@@ -200,9 +201,9 @@ static int show(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_conf
     ok = ok && wait_for_flip(k);
     if (ok) {
         double med = interval_median(k, &lo, &hi), secs = (cli_now_ms() - t_start) / 1000.0;
-        printf("snell-kiosk: %ld frames shown (1 modeset + %ld page flips) in %.2f s; frame interval median %.3f ms "
+        printf("snell-kiosk: %ld frames shown (%ld modeset + %ld page flips) in %.2f s; frame interval median %.3f ms "
                "(min %.3f, max %.3f) = %.2f FPS; last camera azimuth %.3f deg\n",
-               k->flip.frames, k->flip.flips, secs, med, lo, hi, 1000.0 / med,
+               k->flip.frames, k->flip.frames - k->flip.flips, k->flip.flips, secs, med, lo, hi, 1000.0 / med,
                c->cam[0] + (double)(i - 1) * o->spin_deg);
         if (o->hold && !g_stop) {
             printf("snell-kiosk: holding frame %ld on screen until SIGINT/SIGTERM\n", k->flip.frames);
@@ -243,6 +244,7 @@ static int bench_one(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_confi
     c->frames = (int)k->interval_count;
     c->t_median = interval_median(k, &c->t_min, &c->t_max);
     c->gpu_median = c->vs_single = -1.0;
+    c->encoding = "none"; /* no exit directions: times only */
     c->glass_objects = stats.glass_count;
     c->opaque_objects = fd.opaque_count;
     for (g = 0; g < stats.glass_count; g++) c->warnings += stats.glass[g].warning;
@@ -370,7 +372,7 @@ int main(int argc, char **argv)
     snell_ctx *ctx = NULL;
     snell_env *env = NULL;
     struct sigaction sa;
-    int n = 0, ok = 0, r;
+    int n = 0, ok = 0, usage_ok = 1, r;
 
     if ((r = kiosk_parse_options(argc, argv, &o)) <= 0) return r < 0 ? 0 : 2;
     memset(&sa, 0, sizeof sa);
@@ -406,8 +408,12 @@ int main(int argc, char **argv)
         fprintf(stderr, "snell-kiosk: environment: %s\n", snell_last_error(ctx));
         goto done;
     }
-    if (!(cs = (bench_config *)calloc(BENCH_MAX_CONFIGS, sizeof *cs))) goto done;
-    if (!expand_configs(&o, ctx, env, &bo, cs, &n, k.gpu.width, k.gpu.height)) goto done;
+    if (!(cs = (bench_config *)calloc(BENCH_MAX_CONFIGS, sizeof *cs))) {
+        fprintf(stderr, "snell-kiosk: out of memory\n");
+        goto done;
+    }
+    /* A -b that does not parse is bad usage, found only now: sizes are the mode's. */
+    if (!(usage_ok = expand_configs(&o, ctx, env, &bo, cs, &n, k.gpu.width, k.gpu.height))) goto done;
     no_errors(cs, n);
     fflush(stdout);
     ok = o.bench ? bench(&k, ctx, env, cs, n, &bo, &o) : show(&k, ctx, env, cs, &o);
@@ -418,5 +424,5 @@ done:
     snell_ctx_destroy(ctx);
     free(cs);
     ok = close_display(&k, k.flip.shown != NULL) && ok;
-    return ok ? 0 : 1;
+    return !usage_ok ? 2 : ok ? 0 : 1;
 }

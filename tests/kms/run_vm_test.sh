@@ -34,14 +34,17 @@ done
 [ -n "$kver" ] || skip "no /boot/vmlinuz-* with the bochs DRM module in /lib/modules (Debian: linux-image-amd64)"
 [ -r /boot/vmlinuz-"$kver" ] || skip "/boot/vmlinuz-$kver is not readable"
 
+case "$out" in *[[:space:]]*) fail "the output folder's path has white space: the kernel command line carries it" ;; esac
 mkdir -p "$out"
-rm -f "$out"/serial.* "$out"/mon.* "$out"/*.ppm "$out"/*.png
+rm -rf "$out"/serial.* "$out"/mon.* "$out"/*.ppm "$out"/*.png "$out"/*.json
 az_last=$((AZ0 + (FRAMES - 1) * SPIN)) # the camera of the kiosk's last frame
 t0=$(date +%s.%N)
 "$here/make_initramfs.sh" "$out/initrd.cpio" "$kver"
 cat >"$out/guest_run.sh" <<GUEST
 # Written by run_vm_test.sh; runs in the VM inside this machine's root (read-only).
-export MESA_SHADER_CACHE_DISABLE=true
+export MESA_SHADER_CACHE_DISABLE=true # the root is read-only
+up() { cut -d' ' -f1 /proc/uptime; }
+echo "KMS-VM: kiosk starts after \$(up) s"
 # llvmpipe's 128-bit (SSE4.1) code: QEMU 7.2's TCG miscomputes some of its
 # 256-bit AVX2 code (measured: snell-render's screen-space frame 25% wrong
 # pixels at 256 bits, exact at 128; this machine's llvmpipe gives the same
@@ -55,10 +58,10 @@ reader=\$!
 wait \$pid
 rc=\$?
 kill \$reader 2>/dev/null
-echo "KMS-VM: kiosk exit \$rc"
+echo "KMS-VM: kiosk exit \$rc after \$(up) s"
 # The benchmark mode: glmark2-style lines and snell-bench's JSON.
 "$kiosk" --bench -b $SPEC -b single:scene=sphere --warmup 1 --frames 3 --json "$out/kiosk_bench.json"
-echo "KMS-VM: kiosk bench exit \$?"
+echo "KMS-VM: kiosk bench exit \$? after \$(up) s"
 GUEST
 for f in serial mon; do mkfifo "$out/$f.in" "$out/$f.out"; done
 qemu-system-x86_64 -accel tcg -cpu max -m 1024 -smp 1 -nodefaults -no-reboot -display none \
@@ -101,11 +104,11 @@ trap - EXIT
 t1=$(date +%s.%N)
 
 log=$out/serial.log
-grep -q "KMS-VM: kiosk exit 0" "$log" || fail "the kiosk failed"
+grep -q "KMS-VM: kiosk exit 0 " "$log" || fail "the kiosk failed"
 grep -q "$FRAMES frames shown (1 modeset + $((FRAMES - 1)) page flips)" "$log" ||
     fail "not $FRAMES frames with $((FRAMES - 1)) page flips"
 [ "$(grep -c "restored CRTC .*(the one before the kiosk)" "$log")" = 2 ] || fail "the CRTC was not restored"
-grep -q "KMS-VM: kiosk bench exit 0" "$log" || fail "the kiosk's benchmark failed"
+grep -q "KMS-VM: kiosk bench exit 0 " "$log" || fail "the kiosk's benchmark failed"
 grep -q "^\[cubemap\] scene=sphere:size=${W}x$H: FPS: [0-9]* FrameTime: [0-9.]* ms" "$log" &&
     grep -q "^\[single\] scene=sphere:size=${W}x$H: FPS: [0-9]* FrameTime: [0-9.]* ms" "$log" &&
     grep -q "^snell-kiosk Score: [0-9]" "$log" || fail "no glmark2-style benchmark lines"
