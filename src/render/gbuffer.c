@@ -173,7 +173,13 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
             /* thin walls are walls from both sides; every kernel starts at the front surface */
             snell__cull_back_faces(o, st);
         }
-        snell__draw_object(o);
+        if (back && o->back_coarse && snell__mesh_coarse(o->mesh)) {
+            snell__mesh_coarse_draw(o->mesh);
+            glDisable(GL_CULL_FACE);
+            st->skipped |= SNELL_SKIP_BACK_DETAIL;
+        } else {
+            snell__draw_object(o);
+        }
         st->passes++;
     }
     snell__pass_end(&pass);

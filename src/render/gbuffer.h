@@ -23,6 +23,16 @@
 #define SNELL__BACK_UNIT_NORMAL 5
 #define SNELL__BACK_UNIT_DEPTH_ID 6
 
+/* The back-face pass may draw a mesh's coarse copy (a quarter of its
+ * triangles, within 1% of its extent: snell__mesh_coarse) when its front
+ * triangles are estimated below this many pixels each and its method's
+ * back_detail parameter allows (snell__object.back_coarse): the pass
+ * rasterises every back triangle again and is bound by triangle setup on
+ * llvmpipe there (bunny at 512x512, ~5 px/triangle: 0.6-0.7x a
+ * single-surface frame; bench/BENCHMARKS.md "Oliveira"). The same
+ * crossover as single-surface's screen-space rule. */
+#define SNELL__BACK_COARSE_PPT 8.0f
+
 /* How a screen-space kernel gets its depth into the target (snell__object.screen_space). */
 #define SNELL__SCREEN_SHARED_DEPTH 1  /* the G-buffer pass wrote the target's own depth buffer */
 #define SNELL__SCREEN_WRITES_DEPTH 2  /* the G-buffer had its own; the kernel writes gl_FragDepth */

@@ -179,7 +179,7 @@ static void choose_shading(snell_renderer *r, snell__object *o, snell_object_sta
     snell__object_project(&r->scene.view, o);
     st->pixels_per_triangle = o->pixels_per_triangle;
     float threshold = snell__screen_threshold(r->device, r->object_method[o->index]);
-    int screen = r->shading == SNELL_SHADING_SCREEN ||
+    int screen = r->shading == SNELL_SHADING_SCREEN || r->object_method[o->index]->screen_space_only ||
                  (r->shading == SNELL_SHADING_AUTO && st->pixels_per_triangle < threshold);
     /* An offscreen target's depth buffer is the renderer's own, so the
      * G-buffer pass can write it; a host's framebuffer gets gl_FragDepth. */
@@ -293,7 +293,13 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         int k = sc->order[i];
         st = set_up_glass(r, fd, &sc->obj[k], &s->glass[k]);
         if (st == SNELL_OK && sc->obj[k].screen_space) r->screen_list[n_screen++] = &sc->obj[k];
-        if (st == SNELL_OK && r->object_method[k]->needs_back_faces) r->back_list[n_back++] = &sc->obj[k];
+        if (st == SNELL_OK && r->object_method[k]->needs_back_faces) {
+            const snell__method *m = r->object_method[k];
+            snell__object *o = &sc->obj[k];
+            o->back_coarse = m->back_detail && m->back_detail(o->glass) == SNELL_BACK_DETAIL_AUTO &&
+                             o->pixels_per_triangle < SNELL__BACK_COARSE_PPT;
+            r->back_list[n_back++] = o;
+        }
     }
     /* One back-face pass for every object whose method reads back faces;
      * none in frames without such an object. */
