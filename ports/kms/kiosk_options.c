@@ -22,6 +22,8 @@ static void usage(FILE *f)
             "  --dri-dir DIR       where to look for card* (default /dev/dri)\n"
             "  --connector ID      connector id (default: the first connected, else the first unknown)\n"
             "  --mode WxH[@R]      display mode (default: the connector's preferred mode)\n"
+            "  --atomic            show frames by atomic commits (default: legacy page flips; the kiosk\n"
+            "                      reports whether the driver has atomic modesetting)\n"
             "  --spin DEG          camera azimuth step per frame, degrees (default 0.5; 0 with --bench)\n"
             "  --frames N          stop after N frames (default: run until SIGINT/SIGTERM; --bench: 60)\n"
             "  --hold              after the last frame keep it on screen until SIGINT/SIGTERM\n"
@@ -117,6 +119,8 @@ int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
             o->hold = 1;
         } else if (!strcmp(a, "--bench")) {
             o->bench = 1;
+        } else if (!strcmp(a, "--atomic")) {
+            o->display.atomic = 1;
         } else if (!v) {
             fprintf(stderr, "snell-kiosk: %s needs a value (or is unknown); see --help\n", a);
             return 0;

@@ -185,6 +185,42 @@ static void explain_cards(char paths[][256], const kms_card_probe *probe, const 
     }
 }
 
+/* Id of the property called name of object obj (0 if it has none). */
+static uint32_t prop_id(int fd, uint32_t obj, uint32_t type, const char *name)
+{
+    drmModeObjectProperties *props = drmModeObjectGetProperties(fd, obj, type);
+    uint32_t i, id = 0;
+    for (i = 0; props && i < props->count_props && !id; i++) {
+        drmModePropertyRes *p = drmModeGetProperty(fd, props->props[i]);
+        if (p && !strcmp(p->name, name)) id = p->prop_id;
+        drmModeFreeProperty(p);
+    }
+    drmModeFreeObjectProperties(props);
+    return id;
+}
+
+/* Atomic commits asked for: the cap (left on) and the properties they set. */
+static int atomic_setup(kms_display *d, char *msg, size_t n)
+{
+    static const char *const plane_names[10] = {"FB_ID", "CRTC_ID", "SRC_X",  "SRC_Y",  "SRC_W",
+                                                "SRC_H", "CRTC_X",  "CRTC_Y", "CRTC_W", "CRTC_H"};
+    uint32_t *plane_ids[10] = {&d->prop.fb_id, &d->prop.crtc_id, &d->prop.src_x,  &d->prop.src_y,  &d->prop.src_w,
+                               &d->prop.src_h, &d->prop.crtc_x,  &d->prop.crtc_y, &d->prop.crtc_w, &d->prop.crtc_h};
+    int i;
+    if (!d->atomic) return snprintf(msg, n, "%s: --atomic, but the kernel has no atomic modesetting here", d->path), 0;
+    if (!d->plane_id) return snprintf(msg, n, "%s: --atomic, but no primary plane for CRTC %u", d->path, d->crtc_id), 0;
+    d->prop.conn_crtc_id = prop_id(d->fd, d->connector_id, DRM_MODE_OBJECT_CONNECTOR, "CRTC_ID");
+    d->prop.crtc_mode_id = prop_id(d->fd, d->crtc_id, DRM_MODE_OBJECT_CRTC, "MODE_ID");
+    d->prop.crtc_active = prop_id(d->fd, d->crtc_id, DRM_MODE_OBJECT_CRTC, "ACTIVE");
+    if (!d->prop.conn_crtc_id || !d->prop.crtc_mode_id || !d->prop.crtc_active)
+        return snprintf(msg, n, "%s: --atomic, but the connector or CRTC lacks CRTC_ID, MODE_ID or ACTIVE", d->path), 0;
+    for (i = 0; i < 10; i++)
+        if (!(*plane_ids[i] = prop_id(d->fd, d->plane_id, DRM_MODE_OBJECT_PLANE, plane_names[i])))
+            return snprintf(msg, n, "%s: --atomic, but plane %u has no %s", d->path, d->plane_id, plane_names[i]), 0;
+    d->use_atomic = 1;
+    return 1;
+}
+
 static kms_open_result choose(kms_display *d, const kms_display_request *req, card_scan *s, char *msg, size_t n)
 {
     int ci, mi, i;
@@ -226,17 +262,18 @@ static kms_open_result choose(kms_display *d, const kms_display_request *req, ca
     d->saved = drmModeGetCrtc(d->fd, d->crtc_id);
     d->monotonic_events = drmGetCap(d->fd, DRM_CAP_TIMESTAMP_MONOTONIC, &cap) == 0 && cap == 1;
     find_primary_plane(d);
-    /* Atomic modesetting is probed and reported only: legacy flips work on
-     * every KMS driver (and on the atomic ones through their helpers). */
+    /* Atomic modesetting is probed and reported; used when asked for. Legacy
+     * flips work on every KMS driver (on atomic ones through their helpers). */
     d->atomic = drmSetClientCap(d->fd, DRM_CLIENT_CAP_ATOMIC, 1) == 0;
-    if (d->atomic) drmSetClientCap(d->fd, DRM_CLIENT_CAP_ATOMIC, 0);
+    if (d->atomic && !req->atomic) drmSetClientCap(d->fd, DRM_CLIENT_CAP_ATOMIC, 0);
+    if (req->atomic && !atomic_setup(d, msg, n)) return KMS_OPEN_FAILED;
     snprintf(msg, n,
              "%s, %s (%s), mode %dx%d@%d%s, CRTC %u, primary plane %u (%d formats, IN_FORMATS %s), "
-             "atomic %s (legacy page flips used)",
+             "atomic %s (%s used)",
              d->path, d->connector_name, connection_str(c->connection), d->mode.hdisplay, d->mode.vdisplay,
              (int)d->mode.vrefresh, (d->mode.type & DRM_MODE_TYPE_PREFERRED) ? " (preferred)" : "", d->crtc_id,
-             d->plane_id, d->format_count, d->in_formats_blob ? "yes" : "no",
-             d->atomic ? "available" : "not available");
+             d->plane_id, d->format_count, d->in_formats_blob ? "yes" : "no", d->atomic ? "available" : "not available",
+             d->use_atomic ? "atomic commits" : "legacy page flips");
     return KMS_OPEN_OK;
 }
 
@@ -337,13 +374,47 @@ uint32_t kms_display_add_fb(const kms_display *d, int width, int height, uint32_
     return 0;
 }
 
+/* An atomic commit of framebuffer fb on the primary plane: with the mode,
+ * the connector and the whole plane for the modeset (blocking), the
+ * framebuffer alone for a flip (nonblocking, with an event). */
+static int atomic_commit(kms_display *d, uint32_t fb, int modeset)
+{
+    drmModeAtomicReq *req;
+    uint32_t flags = modeset ? DRM_MODE_ATOMIC_ALLOW_MODESET : DRM_MODE_PAGE_FLIP_EVENT | DRM_MODE_ATOMIC_NONBLOCK;
+    uint64_t w = d->mode.hdisplay, h = d->mode.vdisplay;
+    int r;
+    if (modeset && !d->mode_blob && drmModeCreatePropertyBlob(d->fd, &d->mode, sizeof d->mode, &d->mode_blob))
+        return -errno;
+    if (!(req = drmModeAtomicAlloc())) return -ENOMEM;
+    if (modeset) {
+        drmModeAtomicAddProperty(req, d->connector_id, d->prop.conn_crtc_id, d->crtc_id);
+        drmModeAtomicAddProperty(req, d->crtc_id, d->prop.crtc_mode_id, d->mode_blob);
+        drmModeAtomicAddProperty(req, d->crtc_id, d->prop.crtc_active, 1);
+        drmModeAtomicAddProperty(req, d->plane_id, d->prop.crtc_id, d->crtc_id);
+        drmModeAtomicAddProperty(req, d->plane_id, d->prop.src_x, 0);
+        drmModeAtomicAddProperty(req, d->plane_id, d->prop.src_y, 0);
+        drmModeAtomicAddProperty(req, d->plane_id, d->prop.src_w, w << 16); /* 16.16 fixed point */
+        drmModeAtomicAddProperty(req, d->plane_id, d->prop.src_h, h << 16);
+        drmModeAtomicAddProperty(req, d->plane_id, d->prop.crtc_x, 0);
+        drmModeAtomicAddProperty(req, d->plane_id, d->prop.crtc_y, 0);
+        drmModeAtomicAddProperty(req, d->plane_id, d->prop.crtc_w, w);
+        drmModeAtomicAddProperty(req, d->plane_id, d->prop.crtc_h, h);
+    }
+    drmModeAtomicAddProperty(req, d->plane_id, d->prop.fb_id, fb);
+    r = drmModeAtomicCommit(d->fd, req, flags, d) ? -errno : 0;
+    drmModeAtomicFree(req);
+    return r;
+}
+
 int kms_display_modeset(kms_display *d, uint32_t fb)
 {
+    if (d->use_atomic) return atomic_commit(d, fb, 1);
     return drmModeSetCrtc(d->fd, d->crtc_id, fb, 0, 0, &d->connector_id, 1, &d->mode) ? -errno : 0;
 }
 
 int kms_display_page_flip(kms_display *d, uint32_t fb)
 {
+    if (d->use_atomic) return atomic_commit(d, fb, 0);
     return drmModePageFlip(d->fd, d->crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, d) ? -errno : 0;
 }
 
@@ -401,6 +472,8 @@ int kms_display_restore(kms_display *d, char *msg, size_t n)
 
 void kms_display_close(kms_display *d)
 {
+    if (d->mode_blob) drmModeDestroyPropertyBlob(d->fd, d->mode_blob);
+    d->mode_blob = 0;
     drmModeFreeCrtc(d->saved);
     d->saved = NULL;
     if (d->fd >= 0) close(d->fd);

@@ -23,8 +23,14 @@ typedef struct kms_display {
     int crtc_index;
     drmModeModeInfo mode;
     drmModeCrtc *saved;          /* the CRTC as we found it (what the console showed) */
-    int atomic;                  /* the kernel accepts DRM_CLIENT_CAP_ATOMIC: probed and reported;
-                                  * frames are shown with legacy page flips, which every KMS driver has */
+    int atomic;                  /* the kernel accepts DRM_CLIENT_CAP_ATOMIC (probed and reported) */
+    int use_atomic;              /* frames are shown by atomic commits (asked for); else by the legacy
+                                  * SetCrtc and PageFlip, which every KMS driver has */
+    uint32_t mode_blob;          /* atomic: the mode as a property blob */
+    struct {                     /* atomic: property ids */
+        uint32_t conn_crtc_id, crtc_mode_id, crtc_active, fb_id, crtc_id, src_x, src_y, src_w, src_h, crtc_x,
+            crtc_y, crtc_w, crtc_h;
+    } prop;
     uint32_t formats[KMS_MAX_FORMATS]; /* the primary plane's formats */
     int format_count;
     uint32_t in_formats_blob;    /* the plane's IN_FORMATS property (formats x modifiers), 0 if none */
@@ -43,6 +49,7 @@ typedef struct kms_display_request {
     const char *device;          /* this card only (NULL = probe) */
     uint32_t connector_id;       /* 0 = the first connected */
     kms_mode_request mode;       /* zero = preferred */
+    int atomic;                  /* show frames by atomic commits (KMS_OPEN_FAILED where there are none) */
 } kms_display_request;
 
 typedef enum kms_open_result {
@@ -68,7 +75,8 @@ uint32_t kms_display_add_fb(const kms_display *d, int width, int height, uint32_
                             uint64_t modifier);
 /* Sets the mode with framebuffer fb (the first frame). 0 on success, else -errno. */
 int kms_display_modeset(kms_display *d, uint32_t fb);
-/* Queues a flip to fb at the next vblank, with an event. 0 or -errno. */
+/* Queues a flip to fb at the next vblank, with an event (legacy or atomic,
+ * nonblocking). 0 or -errno. */
 int kms_display_page_flip(kms_display *d, uint32_t fb);
 /* Waits up to timeout_ms for DRM events and calls on_flip(user, t) for each
  * flip event (t: the vblank's time stamp, seconds). 1 if events were handled,
