@@ -51,6 +51,7 @@ uniform int u_max_interfaces;        // 2..MAX_INTERFACES
 
 uniform highp sampler2D u_bnormal;   // back-face pass: octahedral 16+16 bits
 uniform highp sampler2D u_bdepth_id; // back-face pass: window depth 24 bits, object id 8 bits
+uniform int u_back_band;             // the back-face maps' guard band: texel = window pixel + band
 
 highp vec2 g_size;                   // target size in pixels
 
@@ -83,9 +84,11 @@ highp vec3 window(highp vec4 c)
 // off the screen) is outside: the invalid-texel rule.
 bool inside(highp vec3 w, bool away)
 {
-    if (!(all(greaterThanEqual(w.xy, vec2(0.0))) && all(lessThan(w.xy, g_size)))) return false;
-    ivec2 px = ivec2(w.xy);
-    highp float z = away ? map_depth(u_bdepth_id, px) : map_depth(u_gdepth_id, px);
+    // the back-face maps reach band pixels past the target's edge, the G-buffer does not
+    highp float band = away ? float(u_back_band) : 0.0;
+    if (!(all(greaterThanEqual(w.xy, vec2(-band))) && all(lessThan(w.xy, g_size + band)))) return false;
+    ivec2 px = ivec2(floor(w.xy));
+    highp float z = away ? map_depth(u_bdepth_id, px + u_back_band) : map_depth(u_gdepth_id, px);
     if (z < 0.0) return false;
     return away ? w.z < z : w.z > z;
 }
@@ -129,7 +132,8 @@ highp float search(highp vec3 p, highp vec3 d, out ivec2 px_out, out bool away_o
         // a step within one pixel: the maps resolve nothing finer
         if (dot(span, span) < 1.0) break;
     }
-    px_out = ivec2(clamp(ws, vec2(0.0), g_size - 1.0));
+    highp float band = away ? float(u_back_band) : 0.0;
+    px_out = ivec2(floor(clamp(ws, vec2(-band), g_size + band - 1.0)));
     away_out = away;
     return s;
 }
@@ -159,8 +163,9 @@ void main()
         p += t * dir;
         length_inside += t;
         vec3 n2;
-        if ((away ? map_depth(u_bdepth_id, px) : map_depth(u_gdepth_id, px)) >= 0.0) {
-            n2 = away ? map_normal(u_bnormal, px) : map_normal(u_gnormal, px);
+        ivec2 tex = away ? px + u_back_band : px;
+        if ((away ? map_depth(u_bdepth_id, tex) : map_depth(u_gdepth_id, tex)) >= 0.0) {
+            n2 = away ? map_normal(u_bnormal, tex) : map_normal(u_gnormal, tex);
         } else {
             // not one sample was inside (the first step already left the
             // silhouette): Wyman's fallback, a normal perpendicular to the

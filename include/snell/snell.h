@@ -408,7 +408,12 @@ typedef enum snell_back_detail {
 /* SNELL_METHOD_WYMAN's parameters (material.wyman); zero = the default. */
 typedef struct snell_wyman_params {
     snell_back_detail back_detail;
+    int guard_band;            /* percent of the target height drawn around it in the back-face pass for an
+                                * object that crosses the target's edge (its light may leave off-screen);
+                                * -1 none, 1..25, default 10 */
 } snell_wyman_params;
+
+#define SNELL_MAX_GUARD_BAND 25
 
 /* SNELL_METHOD_OLIVEIRA's parameters (material.oliveira); zero = the default.
  * Step counts are compile-time constants of its shader, as for the cubemap
@@ -421,6 +426,7 @@ typedef struct snell_oliveira_params {
     int max_interfaces;        /* surfaces processed per path, 2..8 (2 = entry + exit, more = internal
                                 * reflections; default 2) */
     snell_back_detail back_detail;
+    int guard_band;            /* as snell_wyman_params.guard_band */
 } snell_oliveira_params;
 
 #define SNELL_OLIVEIRA_MAX_LINEAR_STEPS 32
@@ -638,8 +644,37 @@ typedef struct snell_frame_stats {
     int background_drawn;           /* 1 if the background pass ran */
     int back_face_pass;             /* 1 if the shared back-face pass ran (a method of the frame needs the
                                      * glass's back faces: WYMAN, OLIVEIRA); one pass for all objects that need it */
+    int back_face_guard;            /* pixels of guard band it drew around the target (an object crossing the
+                                     * target's edge asked for it: guard_band), 0 if none */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
 } snell_frame_stats;
+
+/* ------------------------------------------------------------ scene files */
+/* A glTF 2.0 scene (.gltf/.glb) as frame lists: every node instance of every
+ * triangle primitive of the default scene becomes a glass object when its
+ * material has KHR_materials_transmission with transmissionFactor > 0, else
+ * an opaque object (base colour; glTF's default material is opaque white).
+ * Glass: KHR_materials_ior's ior (default 1.5), baseColorFactor as the tint,
+ * KHR_materials_volume with thicknessFactor > 0 a solid with its attenuation
+ * colour and distance, without it a thin wall (glTF's "infinitely thin"; a
+ * 1e-4 wall here). Geometry stays in each node's local space, the node's
+ * world transform is the object's model matrix; primitives instanced by
+ * several nodes share one mesh. The first camera met in the node tree, if
+ * any, becomes snell_scene_file_camera (eye and view direction kept, roll
+ * dropped: snell's camera keeps +Y up). Other extensions are ignored with
+ * one INFO log line; a file that requires a KHR_materials_* extension other
+ * than those three is SNELL_E_UNSUPPORTED, beyond that the rules and trust
+ * model of snell_mesh_load_gltf_ex apply (flags likewise). More than
+ * SNELL_MAX_GLASS glass or SNELL_MAX_OPAQUE opaque objects is SNELL_E_LIMIT. */
+typedef struct snell_scene_file snell_scene_file;
+snell_status snell_scene_load_gltf(snell_ctx *ctx, const char *path, unsigned flags, snell_scene_file **out);
+snell_status snell_scene_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_scene_file **out);
+void snell_scene_file_destroy(snell_scene_file *scene);
+/* The objects (valid until the scene is destroyed), for snell_frame_desc.glass / .opaque. */
+const snell_glass *snell_scene_file_glass(const snell_scene_file *scene, int *count);
+const snell_opaque *snell_scene_file_opaque(const snell_scene_file *scene, int *count);
+/* 1 and *camera set if the file has a camera, else 0. */
+int snell_scene_file_camera(const snell_scene_file *scene, snell_camera *camera);
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);
 void snell_renderer_destroy(snell_renderer *r);

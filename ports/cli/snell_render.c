@@ -28,6 +28,7 @@ typedef struct render_scene {
     float opaque_models[SNELL_MAX_OPAQUE][16];
     int opaque_count;
     int orbit_first, orbit;         /* opaque[orbit_first ..] are the --opaque N cubes */
+    snell_scene_file *file;         /* --scene: owns the meshes and matrices the lists point to */
 } render_scene;
 
 static int g_verbose;
@@ -68,6 +69,23 @@ static snell_status build_scene(snell_ctx *ctx, const render_options *o, render_
     snell_status st;
     int i;
     memset(s, 0, sizeof *s);
+    if (o->scene_file) {
+        const snell_glass *g;
+        const snell_opaque *p;
+        if ((st = snell_scene_load_gltf(ctx, o->scene_file, 0, &s->file)) != SNELL_OK) {
+            fprintf(stderr, "snell-render: scene: %s\n", snell_last_error(ctx));
+            return st;
+        }
+        g = snell_scene_file_glass(s->file, &s->glass_count);
+        p = snell_scene_file_opaque(s->file, &s->opaque_count);
+        for (i = 0; i < s->glass_count; i++) {
+            s->glass[i] = g[i];
+            s->glass_names[i] = "scene glass";
+        }
+        for (i = 0; i < s->opaque_count; i++) s->opaque[i] = p[i];
+        s->orbit_first = s->opaque_count;
+        return SNELL_OK;
+    }
     s->glass_count = o->glass_count ? o->glass_count : 1;
     for (i = 0; i < s->glass_count; i++) {
         const render_object *g = &glass[i];
@@ -250,6 +268,8 @@ int main(int argc, char **argv)
     fd.camera.elevation = (float)(o.el_deg * PI / 180.0);
     fd.camera.distance = o.dist;
     fd.camera.fov_y = (float)(o.fov_deg * PI / 180.0);
+    if (scene.file && !o.camera_given && snell_scene_file_camera(scene.file, &fd.camera) && o.fov_given)
+        fd.camera.fov_y = (float)(o.fov_deg * PI / 180.0);
 
     if (!render_frames(ctx, r, &o, &scene, &fd, &fs)) goto done;
     if (o.stats) print_stats(stdout, &fs, &scene);
@@ -263,6 +283,7 @@ done:
     snell_renderer_destroy(r);
     snell_env_destroy(env);
     for (i = 0; i < scene.mesh_count; i++) snell_mesh_destroy(scene.meshes[i]);
+    snell_scene_file_destroy(scene.file);
     snell_ctx_destroy(ctx);
     return rc;
 }

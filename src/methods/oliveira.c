@@ -28,7 +28,7 @@ typedef struct oli_prog {
     snell__glass_program g;    /* g.prog == 0: empty slot */
     int linear, iterations, screen, absorb;
     unsigned long last_use;
-    int bnormal, bdepth_id, max_interfaces;
+    int bnormal, bdepth_id, max_interfaces, back_band;
 } oli_prog;
 
 typedef struct oliveira_state {
@@ -72,6 +72,7 @@ static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int 
     p->bnormal = glGetUniformLocation(p->g.prog, "u_bnormal");
     p->bdepth_id = glGetUniformLocation(p->g.prog, "u_bdepth_id");
     p->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    p->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
     *out = p;
     return SNELL_OK;
 }
@@ -144,6 +145,7 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
     glUniform1i(p->bnormal, SNELL__BACK_UNIT_NORMAL);
     glUniform1i(p->bdepth_id, SNELL__BACK_UNIT_DEPTH_ID);
     glUniform1i(p->max_interfaces, c->max_interfaces);
+    glUniform1i(p->back_band, v->back.band);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;
@@ -157,14 +159,17 @@ static const snell_param_info g_params[] = {
     {"interfaces", "surfaces processed per path (2 = entry + exit, more = TIR bounces)", 2,
      SNELL_OLIVEIRA_MAX_INTERFACES, 2, NULL},
     {"backdetail", SNELL__BACK_DETAIL_HELP, 0, 2, SNELL_BACK_DETAIL_AUTO, snell__back_detail_names},
+    {"guard", SNELL__GUARD_HELP, -1, SNELL_MAX_GUARD_BAND, SNELL__GUARD_DEFAULT, NULL},
 };
 
 static const size_t g_offsets[] = {offsetof(snell_glass_material, oliveira.linear_steps),
                                    offsetof(snell_glass_material, oliveira.iterations),
                                    offsetof(snell_glass_material, oliveira.max_interfaces),
-                                   offsetof(snell_glass_material, oliveira.back_detail)};
+                                   offsetof(snell_glass_material, oliveira.back_detail),
+                                   offsetof(snell_glass_material, oliveira.guard_band)};
 
 static snell_back_detail oliveira_back_detail(const snell_glass_resolved *g) { return g->material.oliveira.back_detail; }
+static int oliveira_guard(const snell_glass_resolved *g) { return g->material.oliveira.guard_band; }
 
 static const snell_method_info g_info = {
     SNELL_METHOD_OLIVEIRA, "oliveira",
@@ -184,5 +189,6 @@ const snell__method snell__method_oliveira = {
     .software_screen_ppt = 1e9f,
     .needs_back_faces = 1,
     .back_detail = oliveira_back_detail,
+    .back_guard_percent = oliveira_guard,
     .screen_space_only = 1,
 };

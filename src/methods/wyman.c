@@ -37,7 +37,7 @@ typedef struct wyman_prepared {
 
 typedef struct wyman_prog {
     snell__glass_program g;
-    int bnormal, bdepth_id, gaux, dn_scale;
+    int bnormal, bdepth_id, gaux, dn_scale, back_band;
 } wyman_prog;
 
 /* [shading: forward or SNELL__SCREEN_*][absorption]; built on first use. */
@@ -61,6 +61,7 @@ static snell_status get_prog(snell_ctx *ctx, wyman_state *s, int screen, int abs
         p->bdepth_id = glGetUniformLocation(p->g.prog, "u_bdepth_id");
         p->gaux = glGetUniformLocation(p->g.prog, "u_gaux");
         p->dn_scale = glGetUniformLocation(p->g.prog, "u_dn_scale");
+        p->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
     }
     *out = p;
     return SNELL_OK;
@@ -248,6 +249,7 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
     glUniform1i(p->bdepth_id, SNELL__BACK_UNIT_DEPTH_ID);
     glUniform1i(p->gaux, SNELL__GBUFFER_UNIT_AUX);
     glUniform1f(p->dn_scale, wp ? wp->dn_scale : 0.0f);
+    glUniform1i(p->back_band, v->back.band);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;
@@ -255,11 +257,14 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
 
 static const snell_param_info g_params[] = {
     {"backdetail", SNELL__BACK_DETAIL_HELP, 0, 2, SNELL_BACK_DETAIL_AUTO, snell__back_detail_names},
+    {"guard", SNELL__GUARD_HELP, -1, SNELL_MAX_GUARD_BAND, SNELL__GUARD_DEFAULT, NULL},
 };
 
-static const size_t g_offsets[] = {offsetof(snell_glass_material, wyman.back_detail)};
+static const size_t g_offsets[] = {offsetof(snell_glass_material, wyman.back_detail),
+                                   offsetof(snell_glass_material, wyman.guard_band)};
 
 static snell_back_detail wyman_back_detail(const snell_glass_resolved *g) { return g->material.wyman.back_detail; }
+static int wyman_guard(const snell_glass_resolved *g) { return g->material.wyman.guard_band; }
 
 static const snell_method_info g_info = {
     SNELL_METHOD_WYMAN, "wyman",
@@ -283,5 +288,6 @@ const snell__method snell__method_wyman = {
     .software_screen_ppt = WYMAN_SOFTWARE_SCREEN_PPT,
     .needs_back_faces = 1,
     .back_detail = wyman_back_detail,
+    .back_guard_percent = wyman_guard,
     .vertex_array = wyman_vertex_array,
 };

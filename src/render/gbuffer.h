@@ -46,6 +46,7 @@ typedef struct snell__gbuffer {
     int u_model, u_normal_matrix, u_view_proj, u_gid;
     unsigned aux_tex, prog_aux;     /* the aux target and the program that writes it, made on first use */
     int ua_model, ua_normal_matrix, ua_view_proj, ua_gid;
+    int band;                       /* back-face maps: the guard band they were made with (pixels per side) */
 } snell__gbuffer;
 
 void snell__gbuffer_destroy(snell__gbuffer *g);
@@ -63,9 +64,13 @@ snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell_
  * light leaves) as the G-buffer stores the front: normal, window depth + id
  * o->gid; binds them on SNELL__BACK_UNIT_*. Overlapping objects: the farther
  * one's back faces win the texel (the nearer sees another id there). g is a
- * G-buffer of its own (made on first use). */
+ * G-buffer of its own (made on first use). band > 0: a guard band of that
+ * many pixels on every side is drawn too (the projection widened), for
+ * objects whose light leaves past the target's edge; the maps keep the
+ * largest band asked for. *maps says how to address them this frame. */
 snell_status snell__gbuffer_draw_back(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v,
-                                      snell__object *const *objects, int count, snell_object_stats *stats);
+                                      snell__object *const *objects, int count, int band, snell__back_maps *maps,
+                                      snell_object_stats *stats);
 /* How a device shades, for the AUTO shading rule; found once per renderer. */
 typedef enum snell__device_class {
     SNELL__DEVICE_SOFTWARE = 0,     /* software rasteriser: 4x4 blocks */
