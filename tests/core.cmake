@@ -8,10 +8,17 @@ target_link_libraries(test_optics_twin PRIVATE PkgConfig::GLES m)
 snell_add_test(test_render_single SOURCES test_render_single.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_render_single PRIVATE m)
 
-# Installed package: find_package(snell) from a separate project, and pkg-config.
+# Installed package, moved after installing: find_package(snell) from a separate
+# C-only project (shared and static, the static one loading a .glb), and cc with
+# the pkg-config flags (shared and --static).
+set(consumer_glb "")
+if(SNELL_WITH_GLTF)
+  set(consumer_glb ${CMAKE_CURRENT_SOURCE_DIR}/data/nodes.glb)
+endif()
 add_test(NAME install_consumer
   COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
-          -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/consumer -P ${CMAKE_CURRENT_SOURCE_DIR}/consumer/run.cmake)
+          -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/consumer -DCC=${CMAKE_C_COMPILER}
+          -DGLB=${consumer_glb} -P ${CMAKE_CURRENT_SOURCE_DIR}/consumer/run.cmake)
 set_tests_properties(install_consumer PROPERTIES LABELS "install" TIMEOUT 300)
 
 # The CLI: default run, flags, and clear failures with a non-zero exit.
