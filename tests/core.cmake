@@ -50,6 +50,11 @@ target_link_libraries(test_env PRIVATE m)
 snell_add_test(test_alloc SOURCES test_alloc.c LABELS "unit;gl")
 snell_add_test(test_exit_dir SOURCES test_exit_dir.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_exit_dir PRIVATE PkgConfig::GLES m)
+# Again as on a driver without GL_EXT_color_buffer_float (a Pi's v3d must be
+# probed for it): Mesa hides it, and EXIT_DIRECTION must fall back to RGBA8.
+add_test(NAME test_exit_dir_no_float COMMAND test_exit_dir WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(test_exit_dir_no_float PROPERTIES LABELS "render;gl" SKIP_RETURN_CODE 77 TIMEOUT 300
+  ENVIRONMENT "SNELL_TEST_DATA=${CMAKE_CURRENT_SOURCE_DIR}/data;SNELL_TEST_OUT=${CMAKE_CURRENT_BINARY_DIR};MESA_EXTENSION_OVERRIDE=-GL_EXT_color_buffer_float;SNELL_TEST_HIDDEN_EXTENSION=GL_EXT_color_buffer_float")
 
 # valgrind on the CLI: no definite leaks, no invalid accesses (driver-internal
 # records are suppressed in tests/valgrind.supp with the evidence).
