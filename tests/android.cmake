@@ -12,3 +12,8 @@ snell_add_test(test_android_scene SOURCES test_android_scene.c ${SNELL_ANDROID_D
 target_include_directories(test_android_scene PRIVATE ${SNELL_ANDROID_DIR})
 target_link_libraries(test_android_scene PRIVATE PkgConfig::EGL PkgConfig::GLES)
 target_compile_definitions(test_android_scene PRIVATE $<$<BOOL:${SNELL_WITH_GLTF}>:SNELL_WITH_GLTF=1>)
+# ctest does not install packages: without them the check reports itself skipped
+# (.ci/run runs the script directly, which installs them as root).
+add_test(NAME android_syntax COMMAND bash ${SNELL_ANDROID_DIR}/syntax_check.sh)
+set_tests_properties(android_syntax PROPERTIES LABELS "android" SKIP_RETURN_CODE 77 TIMEOUT 120
+                     ENVIRONMENT "SNELL_NO_INSTALL=1")
