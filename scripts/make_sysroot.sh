@@ -8,8 +8,9 @@
 # multi-arch would let APT move the host's own Mesa to match the foreign one.
 #
 # DIR defaults to build-sysroot/ARCH (git-ignored by /build*/). A stamp keyed by
-# the package list makes a rerun with the same list a no-op; downloaded .debs
-# stay in DIR.apt/archives, so a rebuild after `rm -rf DIR` does not download.
+# the package list makes a rerun with the same list a no-op (remove DIR to
+# take newer Debian versions); downloaded .debs stay in DIR.apt/archives, so
+# remaking DIR downloads only what changed.
 # Needs network access to the mirror (SNELL_SYSROOT_MIRROR, default
 # http://deb.debian.org/debian, and its -security twin) and apt, dpkg-deb.
 set -euo pipefail
@@ -71,18 +72,23 @@ apt-get update -qq
 # alternatives' first choice is taken by --recurse as it lists them).
 mapfile -t closure < <(apt-cache depends --recurse --no-recommends --no-suggests --no-conflicts \
     --no-breaks --no-replaces --no-enhances "${PACKAGES[@]}" | grep -v '^ ' | grep -v '^<' | sort -u)
-echo "make_sysroot: ${#closure[@]} packages"
-(cd "$apt_dir/archives" && apt-get download -qq "${closure[@]}" 2>&1 | grep -v "^W: Download is performed unsandboxed" || true)
-
+# The exact files of this closure (name_version_arch.deb): fetched only when
+# not already in the archive folder, and only these are unpacked (older
+# versions left there by an earlier run are not).
+mapfile -t debs < <(apt-get download --print-uris "${closure[@]}" | awk '{print $2}')
+fetch=()
+for deb in "${debs[@]}"; do
+    [ -f "$apt_dir/archives/$deb" ] || fetch+=("${deb%%_*}")
+done
+echo "make_sysroot: ${#closure[@]} packages, ${#fetch[@]} to download"
+if [ ${#fetch[@]} -gt 0 ]; then
+    (cd "$apt_dir/archives" && apt-get download -qq "${fetch[@]}" 2>&1 | grep -v "^W: Download is performed unsandboxed" || true)
+fi
 rm -rf "$root"
 mkdir -p "$root"
-for deb in "$apt_dir"/archives/*.deb; do
-    name=$(dpkg-deb -f "$deb" Package)
-    printf '%s\n' "${closure[@]}" | grep -qx "$name" || continue  # left over from another list
-    dpkg-deb -x "$deb" "$root"
-done
-for p in "${closure[@]}"; do
-    compgen -G "$apt_dir/archives/${p}_*.deb" >/dev/null || { echo "make_sysroot: $p was not downloaded" >&2; exit 1; }
+for deb in "${debs[@]}"; do
+    [ -f "$apt_dir/archives/$deb" ] || { echo "make_sysroot: $deb was not downloaded" >&2; exit 1; }
+    dpkg-deb -x "$apt_dir/archives/$deb" "$root"
 done
 
 # Absolute symlinks (e.g. lib*.so -> /lib/...) would point into the host:
