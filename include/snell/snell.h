@@ -340,6 +340,12 @@ typedef struct snell_env_desc {
     const char *face_paths[6];   /* SNELL_ENV_FACES */
     const char *equirect_path;   /* SNELL_ENV_EQUIRECT */
     int face_size;               /* cubemap face size in texels; 0 = 512 (FACES: the images' size) */
+    /* SNELL_ENV_EQUIRECT from memory, used when equirect_path is NULL: RGBA8,
+     * top row first, equirect_width x equirect_height (at most 16384 a side and
+     * 2^25 pixels, as images), e.g. an asset decoded by snell_image_decode.
+     * Copied into the faces: the caller keeps ownership. */
+    const uint8_t *equirect_rgba;
+    int equirect_width, equirect_height;
 } snell_env_desc;
 
 /* Creates the cubemap texture (ctx needed) and keeps a CPU copy of the faces so
