@@ -29,9 +29,10 @@ mirror=${SNELL_SYSROOT_MIRROR:-http://deb.debian.org/debian}
 security=${SNELL_SYSROOT_SECURITY_MIRROR:-http://deb.debian.org/debian-security}
 
 # What snell builds and links against (the README's package list, target side),
-# and Mesa's drivers so that tests run under qemu-user on llvmpipe.
+# and Mesa's drivers so that tests run under qemu-user on llvmpipe; libdrm and gbm for
+# snell-kiosk (ports/kms, SNELL_WITH_KMS), which the Pi runs on its KMS display.
 PACKAGES=(libc6-dev libstdc++-12-dev
-          libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libgbm1
+          libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libgbm1 libgbm-dev libdrm-dev
           libcglm-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libmeshoptimizer-dev)
 
 stamp=$root/.snell-sysroot
