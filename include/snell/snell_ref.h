@@ -16,7 +16,7 @@
  *  - a glass object: an interface, as the mode below says. A solid object
  *    (thickness 0) bounds a volume of glass; a thin-walled one (thickness > 0)
  *    is a slab at each of its surfaces: reflectance rs and transmittance ts of
- *    all inner bounces (snell_optd_thin_slab: Schlick at both faces,
+ *    all inner bounces (snell_optd_thin_slab_model: the mode's Fresnel at both faces,
  *    Beer-Lambert along the refracted chord thickness / cos_t), light going
  *    through leaves in the direction it came; a ray is never inside it.
  * Inside/outside is tracked per object: a ray inside solid object A sees only
@@ -47,11 +47,14 @@
  *    weight drops below 1e-5 (as FULL's branches are); the chain, which the
  *    path records, never is.
  *  SNELL_REF_FULL — a Whitted tree: reflection and refraction at every
- *    interface weighted by Schlick's F (n1/n2 of the side the ray is on),
+ *    interface weighted by the exact Fresnel reflectance of unpolarised
+ *    light, F = (rs^2 + rp^2) / 2 (snell_optd_fresnel_exact; n1/n2 of the side
+ *    the ray is on; 0 at matched indices), as real glass and Blender Cycles'
+ *    Glass BSDF have it (the groundtruth test compares with Cycles),
  *    Beer-Lambert on every inner segment, tint on every entering refraction
  *    (once for a convex object), every wall of a thin object a slab (a
- *    reflected branch of weight rs, a straight-on one of weight ts * tint);
- *    what a glass object really looks like. A branch whose throughput drops
+ *    reflected branch of weight rs, a straight-on one of weight ts * tint,
+ *    the exact F at both faces); what a glass object really looks like. A branch whose throughput drops
  *    below 1e-5 ends with an env lookup in its direction instead of being
  *    traced on (error < 1e-5 per branch, far below 1/255).
  *

@@ -2,7 +2,8 @@
  * MATCHED chain and the FULL Whitted tree through a scene of glass and opaque
  * objects (ref_scene.c), camera rays, the pthread image loop and light paths.
  * Optics are the shared kernel of optics.h (Unger 2.1: Snell with TIR, mirror
- * reflection, Schlick, Beer-Lambert, the thin slab); the chain follows Unger
+ * reflection, Fresnel (MATCHED: Schlick, as the kernels; FULL: exact), Beer-Lambert,
+ * the thin slab); the chain follows Unger
  * 4.1 with exact ray casts in place of the cubemap binary search. */
 #define _POSIX_C_SOURCE 200809L
 #include "ref/ref_trace.h"
@@ -85,12 +86,20 @@ static double facing(const ref_surf *s, const double d[3], double n[3])
     return nd > 0.0 ? nd : -nd;
 }
 
-/* A thin wall at incidence cosine c: slab reflectance rs, transmittance ts,
- * and the refracted chord through it. */
-static double slab(const ref_glass *g, double c, double rs[3], double ts[3])
+/* The reflectance of an interface in the mode's model: FULL the exact
+ * unpolarised dielectric Fresnel (what real glass and Cycles do), MATCHED the
+ * kernels' Schlick. Both are 0 at matched indices. */
+static double fresnel(const optics *op, double c, double n1, double n2)
+{
+    return op->mode == SNELL_REF_FULL ? snell_optd_fresnel_exact(c, n1, n2) : snell_optd_fresnel_schlick(c, n1, n2);
+}
+
+/* A thin wall at incidence cosine c: slab reflectance rs, transmittance ts
+ * (the mode's Fresnel at both faces), and the refracted chord through it. */
+static double slab(const optics *op, const ref_glass *g, double c, double rs[3], double ts[3])
 {
     double s2 = (1.0 - c * c) / (g->ior * g->ior), ct = sqrt(1.0 - (s2 < 1.0 ? s2 : 1.0));
-    snell_optd_thin_slab(c, g->ior, g->sigma, g->thickness, rs, ts);
+    snell_optd_thin_slab_model(c, g->ior, g->sigma, g->thickness, op->mode == SNELL_REF_FULL, rs, ts);
     return g->thickness / (ct > 1e-6 ? ct : 1e-6);
 }
 
@@ -154,7 +163,7 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
     snell_optd_reflect(d, n, rdir);
     snell__ref_normalize3(rdir);
     if (g->thin) {
-        double rs[3], ts[3], L[3], chord = slab(g, c, rs, ts);
+        double rs[3], ts[3], L[3], chord = slab(op, g, c, rs, ts);
         if (path) {
             if (path->interfaces == 0) path->fresnel = (rs[0] + rs[1] + rs[2]) / 3.0;
             path_point(path, s.p, SNELL_REF_EVENT_REFRACT, s.object);
@@ -168,7 +177,7 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
         m_air(r, op, s.p, d, s.prim, s.object, depth + 1, wt, path, L);
         for (k = 0; k < 3; k++) rgb[k] = rs[k] * refl[k] + ts[k] * g->tint[k] * L[k];
     } else {
-        double F = snell_optd_fresnel_schlick(c, 1.0, g->ior), t1[3], L[3], len = 0.0, dist, T;
+        double F = fresnel(op, c, 1.0, g->ior), t1[3], L[3], len = 0.0, dist, T;
         int tir = !snell_optd_refract(d, n, 1.0 / g->ior, t1);
         if (tir) F = 1.0; /* IOR < 1 at a grazing angle */
         if (path) {
@@ -298,7 +307,7 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
     snell__ref_normalize3(dir_r);
     if (g->thin) { /* every wall is a slab: reflected, or straight through */
         double rs[3], ts[3];
-        slab(g, c, rs, ts);
+        slab(op, g, c, rs, ts);
         for (k = 0; k < 3; k++) {
             wr[k] = w[k] * rs[k];
             wt[k] = w[k] * ts[k] * g->tint[k];
@@ -307,7 +316,7 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
         whitted(r, op, s.p, d, s.prim, -1, home, depth + 1, wt, acc);
     } else {
         int in = medium == s.object, tir;
-        double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = snell_optd_fresnel_schlick(c, n1, n2);
+        double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = fresnel(op, c, n1, n2);
         tir = !snell_optd_refract(d, n, n1 / n2, dir_t);
         if (tir) F = 1.0;
         if (F > 0.0) {
@@ -346,7 +355,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
         if (home < 0) home = s.object;
         c = facing(&s, dir, n);
         if (g->thin) {
-            double rs[3], ts[3], chord = slab(g, c, rs, ts);
+            double rs[3], ts[3], chord = slab(op, g, c, rs, ts);
             if (depth == 0) path->fresnel = (rs[0] + rs[1] + rs[2]) / 3.0;
             if (rs[0] + rs[1] + rs[2] > ts[0] + ts[1] + ts[2]) {
                 snell_optd_reflect(dir, n, out);
@@ -358,7 +367,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
             }
         } else {
             int in = medium == s.object;
-            double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = snell_optd_fresnel_schlick(c, n1, n2);
+            double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = fresnel(op, c, n1, n2);
             if (!snell_optd_refract(dir, n, n1 / n2, out)) {
                 ev = SNELL_REF_EVENT_TIR;
                 F = 1.0;
