@@ -89,6 +89,7 @@ extern "C" {
 #define SNELL_REF_MAX_INTERFACES 64
 #define SNELL_REF_MAX_SIZE 16384   /* width, height limit */
 #define SNELL_REF_MAX_THREADS 256  /* more are clamped */
+#define SNELL_REF_MAX_SAMPLES 16   /* snell_ref_params.samples limit (S x S rays a pixel) */
 
 typedef struct snell_ref snell_ref;
 
@@ -159,6 +160,12 @@ typedef struct snell_ref_params {
     snell_camera camera;                 /* as snell_frame_desc.camera */
     int width, height;                   /* pixels; 0 = 512 */
     int threads;                         /* 0 = online CPUs; > SNELL_REF_MAX_THREADS clamped */
+    /* S: the colour of a pixel is the mean of S x S rays through the centres
+     * of an S x S grid over it (a box filter: the area-averaged image that
+     * snell_renderer_desc.ssaa = S gives on the GPU); 0 or 1 = the centre ray.
+     * The path outputs (exit_dir, interfaces, hit, object) are always those
+     * of the centre ray. 0..SNELL_REF_MAX_SAMPLES. */
+    int samples;
 } snell_ref_params;
 
 /* Caller-owned output buffers, width*height pixels each, top row first. */
@@ -172,6 +179,14 @@ typedef struct snell_ref_output {
     uint8_t *hit;         /* optional: 1 if the view ray hits a glass object first, else 0 */
     int16_t *object;      /* optional: what the view ray hits first: glass i -> i, opaque j ->
                            * -2 - j, nothing -> -1 */
+    /* optional: 3 per pixel, the per-sample variance of a path tracer that
+     * samples the pixel's box (uniformly, when samples > 1; the centre ray
+     * otherwise) and, in FULL mode, at each interface one branch by its
+     * Fresnel weight (reflection with probability F, as Cycles' sharp Glass
+     * BSDF): its N-sample estimate of rgb has variance sample_var / N. Second
+     * moment summed over the Whitted tree (MATCHED: deterministic rays, so
+     * only the box's spread). */
+    float *sample_var;
 } snell_ref_output;
 
 /* Renders the whole image with params->threads worker threads (pthreads). */
