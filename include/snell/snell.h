@@ -506,7 +506,16 @@ typedef struct snell_renderer_desc {
     snell_target target;
     snell_output output;
     snell_shading shading;
+    /* Supersampling S (0 or 1 = off, up to SNELL_MAX_SSAA): the frame is drawn
+     * S times as wide and high and each pixel is the mean of its S x S block
+     * (a box filter over the pixel's area, as snell_ref_params.samples = S),
+     * for stills and for error measurement on area-averaged images; costs
+     * about S^2 the shading. Offscreen colour renderers only
+     * (SNELL_E_INVALID_ARG otherwise). */
+    int ssaa;
 } snell_renderer_desc;
+
+#define SNELL_MAX_SSAA 8
 
 /* A glass object of the scene. */
 typedef struct snell_glass {
