@@ -34,3 +34,7 @@ if(TARGET snell-render)
 endif()
 snell_add_test(test_cubemap_env SOURCES test_cubemap_env.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_cubemap_env PRIVATE m)
+# Inner-surface Fresnel (cubemap param inner): energy in a white world, the
+# gain against FULL on the sphere, AUTO on convex meshes only.
+snell_add_test(test_inner_fresnel SOURCES test_inner_fresnel.c LABELS "render;gl" SHADINGS forward screen)
+target_link_libraries(test_inner_fresnel PRIVATE m)

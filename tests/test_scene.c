@@ -282,6 +282,8 @@ int main(void)
         glass[i].mesh = sphere;
         glass[i].model = gm[i];
         glass[i].material.ior = 1.3f + 0.05f * (float)i;
+        /* compared with the MATCHED model, which has no Fresnel at the exit */
+        glass[i].material.cubemap.inner_fresnel = SNELL_INNER_FRESNEL_OFF;
     }
     glass[1].mesh = cube;                                   /* closed, split at its edges: still closed */
     glass[2].mesh = open;                                   /* AUTO must not take the cubemap */
