@@ -32,6 +32,7 @@ uniform mat4 u_view_proj;
 uniform highp sampler2D u_bnormal;   // back-face pass: octahedral 16+16 bits
 uniform highp sampler2D u_bdepth_id; // back-face pass: window depth 24 bits, object id 8 bits
 uniform float u_dn_scale;            // object units of a d_N value of 1 (the mesh's bounding diameter)
+uniform int u_back_band;             // the back-face maps' guard band: texel = window pixel + band
 
 #ifdef SNELL_SCREEN_SPACE
 uniform highp sampler2D u_gaux;      // the G-buffer's aux target: d_N / u_dn_scale in 16 bits
@@ -53,16 +54,18 @@ float wyman_dn()
 }
 #endif
 
-// The back face at pixel px, if it is this object's: world position and outward normal.
+// The back face at window pixel px (-band .. size + band - 1), if it is this
+// object's: world position and outward normal.
 bool back_face(ivec2 px, out highp vec3 pos, out highp vec3 normal)
 {
-    highp uvec4 b = uvec4(texelFetch(u_bdepth_id, px, 0) * 255.0 + 0.5);
+    ivec2 t = px + u_back_band;
+    highp uvec4 b = uvec4(texelFetch(u_bdepth_id, t, 0) * 255.0 + 0.5);
     if (int(b.a) != u_gid) return false;
     highp float depth = float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
     highp vec4 ndc = vec4((vec2(px) + 0.5) * u_inv_size * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     highp vec4 w = u_inv_view_proj * ndc;
     pos = w.xyz / w.w;
-    highp vec4 g = texelFetch(u_bnormal, px, 0);
+    highp vec4 g = texelFetch(u_bnormal, t, 0);
     normal = snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0);
     return true;
 }
@@ -96,7 +99,7 @@ void main()
     highp vec4 c = u_view_proj * vec4(p2, 1.0);
     ivec2 q = ivec2(floor((c.xy / c.w * 0.5 + 0.5) * vec2(size)));
     vec3 n2;
-    bool inside = c.w > 0.0 && all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size));
+    bool inside = c.w > 0.0 && all(greaterThanEqual(q, ivec2(-u_back_band))) && all(lessThan(q, size + u_back_band));
     if (!(inside && back_face(q, pb, n2))) {
         // Wyman's fallback: a normal perpendicular to the view vector (in the plane of V and T1)
         vec3 side = t1 - dot(t1, v) * v;

@@ -283,6 +283,45 @@ static void test_limits(void)
     CHECK(snell_mesh_create_shape(NULL, NULL, &m) == SNELL_E_INVALID_ARG, "NULL desc");
 }
 
+/* snell_mesh_set_vertices: deformation keeps the triangles, recomputes
+ * bounds and (when not given) normals; bad input leaves the mesh unchanged. */
+static void test_set_vertices(void)
+{
+    snell_mesh *m = make(SNELL_SHAPE_CUBE, 0, 0);
+    float pos[24 * 3], nrm[24 * 3], mn[3], mx[3], before[24 * 3];
+    uint32_t i;
+    if (!m) return;
+    memcpy(before, snell_mesh_positions(m), sizeof before);
+    for (i = 0; i < 24 * 3; i++) pos[i] = before[i] * (i % 3 == 1 ? 0.5f : 2.0f);
+    CHECK(snell_mesh_set_vertices(m, pos, NULL) == SNELL_OK, "set_vertices: %s", snell_last_error(NULL));
+    snell_mesh_bounds(m, mn, mx);
+    CHECK(mn[0] == -2 && mx[0] == 2 && mn[1] == -0.5f && mx[1] == 0.5f && mx[2] == 2, "bounds after deformation");
+    check_closed(m, "deformed cube");
+    check_normals_outward(m, "deformed cube", 0.9999999); /* recomputed: still flat faces */
+    CHECK(fabs(signed_volume(m) - 16.0) < 1e-6, "deformed volume %.9f", signed_volume(m));
+    memcpy(before, snell_mesh_positions(m), sizeof before);
+    memcpy(pos, before, sizeof pos);
+    pos[7] = NAN;
+    CHECK(snell_mesh_set_vertices(m, pos, NULL) == SNELL_E_INVALID_ARG, "NaN coordinate accepted");
+    pos[7] = 3e38f;
+    pos[10] = -3e38f;
+    CHECK(snell_mesh_set_vertices(m, pos, NULL) == SNELL_E_LIMIT, "extent beyond the float range accepted");
+    memcpy(pos, before, sizeof pos);
+    memset(nrm, 0, sizeof nrm);
+    CHECK(snell_mesh_set_vertices(m, pos, nrm) == SNELL_E_INVALID_ARG, "zero normals accepted");
+    CHECK(memcmp(before, snell_mesh_positions(m), sizeof before) == 0, "a refused call changed the mesh");
+    CHECK(snell_mesh_set_vertices(m, NULL, NULL) == SNELL_E_INVALID_ARG && snell_mesh_set_vertices(NULL, pos, NULL) ==
+              SNELL_E_INVALID_ARG, "NULL arguments accepted");
+    for (i = 0; i < 24; i++) {
+        nrm[3 * i] = 0.0f;
+        nrm[3 * i + 1] = 3.0f; /* renormalised */
+        nrm[3 * i + 2] = 0.0f;
+    }
+    CHECK(snell_mesh_set_vertices(m, pos, nrm) == SNELL_OK && fabsf(snell_mesh_normals(m)[1] - 1.0f) < 1e-7f,
+          "caller normals not renormalised");
+    snell_mesh_destroy(m);
+}
+
 int main(void)
 {
     test_sphere(0, 0);
@@ -293,5 +332,6 @@ int main(void)
     test_goblet(0, 0);
     test_goblet(24, 12);
     test_limits();
+    test_set_vertices();
     return test_finish();
 }

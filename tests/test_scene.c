@@ -292,6 +292,7 @@ int main(void)
     glass[4].material.method = SNELL_METHOD_SINGLE;         /* explicit, adequate or not: no warning */
     glass[5].material.thickness = 0.02f;                    /* thin wall: slab model */
     glass[6].mesh = torus;
+    glass[6].material.method = SNELL_METHOD_CUBEMAP;        /* its known limit, checked below (AUTO: oliveira) */
     {
         const float sigma[3] = {0.9f, 0.3f, 0.05f};
         snell_glass_set_absorption(&glass[7].material, sigma);
@@ -483,9 +484,9 @@ int main(void)
         if (r2) {
             r2->method_status[SNELL_METHOD_CUBEMAP] = SNELL_E_UNSUPPORTED;
             snprintf(r2->method_error[SNELL_METHOD_CUBEMAP], sizeof r2->method_error[0], "test: no such device");
-            /* the other two-sided method, which AUTO would take next for the sphere */
-            r2->method_status[SNELL_METHOD_WYMAN] = SNELL_E_UNSUPPORTED;
-            snprintf(r2->method_error[SNELL_METHOD_WYMAN], sizeof r2->method_error[0], "test: no such device");
+            /* the image-space method, which AUTO would take next for the sphere */
+            r2->method_status[SNELL_METHOD_OLIVEIRA] = SNELL_E_UNSUPPORTED;
+            snprintf(r2->method_error[SNELL_METHOD_OLIVEIRA], sizeof r2->method_error[0], "test: no such device");
             memset(&g1, 0, sizeof g1);
             g1.mesh = sphere;
             f1.glass = &g1;

@@ -206,6 +206,17 @@ snell_status snell_mesh_create_shape(snell_ctx *ctx, const snell_shape_desc *des
  * exceeds FLT_MAX fails with SNELL_E_LIMIT, giving the size.) */
 snell_status snell_mesh_normalize(snell_mesh *mesh, float radius);
 
+/* Deformation: replaces every vertex position (3 * vertex_count floats, same
+ * count and triangles) and the normals (NULL = smooth normals recomputed),
+ * e.g. each frame of an animated mesh. The mesh gets a new geometry version:
+ * its GPU copy is re-uploaded on the next frame that draws it, and what is
+ * cached per version (the analysis, a method's prepared resources such as the
+ * cubemap's bake or Wyman's thicknesses) is rebuilt when next needed; image-
+ * space methods with nothing prepared (OLIVEIRA) redo nothing else. Rejects
+ * non-finite values, zero normals and extents beyond the float range
+ * (SNELL_E_INVALID_ARG / SNELL_E_LIMIT) and then leaves the mesh unchanged. */
+snell_status snell_mesh_set_vertices(snell_mesh *mesh, const float *positions, const float *normals);
+
 uint32_t snell_mesh_vertex_count(const snell_mesh *mesh);
 uint32_t snell_mesh_triangle_count(const snell_mesh *mesh);
 const float *snell_mesh_positions(const snell_mesh *mesh);   /* 3 * vertex_count */
@@ -351,6 +362,9 @@ typedef enum snell_method {
     SNELL_METHOD_WYMAN,        /* two-sided in image space (Wyman 2005): exit point interpolated between the
                                 * view-ray and inward-normal thicknesses, normal from a per-frame back-face
                                 * pass; needs no bake, so works for any closed mesh */
+    SNELL_METHOD_OLIVEIRA,     /* two-sided in image space (Oliveira and Brauwers 2007): the exit found by a
+                                * conservative linear + binary search along the refracted ray against the
+                                * back-face pass, TIR bounces; always shaded in screen space */
     SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 
@@ -401,6 +415,44 @@ typedef struct snell_cubemap_params {
 #define SNELL_CUBEMAP_MAX_LINEAR_STEPS 32
 #define SNELL_CUBEMAP_MAX_INTERFACES 8
 
+/* How finely the image-space methods' back-face pass draws the mesh. */
+typedef enum snell_back_detail {
+    SNELL_BACK_DETAIL_DEFAULT = 0, /* SNELL_BACK_DETAIL_AUTO */
+    SNELL_BACK_DETAIL_AUTO,        /* a coarse copy (a quarter of the triangles, within 1% of the extent,
+                                    * made once per mesh) when the mesh's triangles are below 8 px each:
+                                    * 0.3-0.5x single's frame cheaper on a 70k-triangle mesh on llvmpipe,
+                                    * 1-1.5 degrees less accurate (bench/BENCHMARKS.md) */
+    SNELL_BACK_DETAIL_FULL         /* always the mesh itself */
+} snell_back_detail;
+
+/* SNELL_METHOD_WYMAN's parameters (material.wyman); zero = the default. */
+typedef struct snell_wyman_params {
+    snell_back_detail back_detail;
+    int guard_band;            /* percent of the target height drawn around it in the back-face pass for an
+                                * object that crosses the target's edge (its light may leave off-screen);
+                                * -1 none, 1..25, default 10 */
+} snell_wyman_params;
+
+#define SNELL_MAX_GUARD_BAND 25
+
+/* SNELL_METHOD_OLIVEIRA's parameters (material.oliveira); zero = the default.
+ * Step counts are compile-time constants of its shader, as for the cubemap
+ * (one program per (linear_steps, iterations) pair, 8 kept). */
+typedef struct snell_oliveira_params {
+    int linear_steps;          /* linear steps along the refracted ray before the binary search, 0..32
+                                * (default 8) */
+    int iterations;            /* binary-search steps per interface, 1..32 (default 6); the search also
+                                * stops when a step spans less than a pixel */
+    int max_interfaces;        /* surfaces processed per path, 2..8 (2 = entry + exit, more = internal
+                                * reflections; default 2) */
+    snell_back_detail back_detail;
+    int guard_band;            /* as snell_wyman_params.guard_band */
+} snell_oliveira_params;
+
+#define SNELL_OLIVEIRA_MAX_LINEAR_STEPS 32
+#define SNELL_OLIVEIRA_MAX_ITERATIONS 32
+#define SNELL_OLIVEIRA_MAX_INTERFACES 8
+
 /* A glass material, named as glTF 2.0 names it so that a glTF material maps
  * onto it field by field. Zero means the default (snell_glass_defaults). */
 typedef struct snell_glass_material {
@@ -417,6 +469,8 @@ typedef struct snell_glass_material {
                                     * KHR_materials_transmission); all zero = white */
     snell_method method;           /* SNELL_METHOD_AUTO = chosen per object and frame */
     snell_cubemap_params cubemap;  /* used when the method (or AUTO's choice) is CUBEMAP */
+    snell_wyman_params wyman;      /* used when it is WYMAN */
+    snell_oliveira_params oliveira; /* used when it is OLIVEIRA */
 } snell_glass_material;
 
 /* A material with every default applied, and the per-unit absorption derived
@@ -511,13 +565,13 @@ typedef enum snell_output {
  * triangles; a rasteriser that shades pixels in blocks (llvmpipe: 4x4, GPUs:
  * 2x2 quads) then wastes most lanes on meshes whose triangles cover a pixel
  * or two. The screen-space stage draws the glass's front surface once with a
- * trivial shader into a G-buffer (depth texture + RGBA8 normal and object id;
- * GLES 3.0, no extension) and runs each kernel once per covered pixel, at the
+ * trivial shader into a G-buffer (two RGBA8 textures: the normal, the depth and
+ * object id; GLES 3.0, no extension) and runs each kernel once per covered pixel, at the
  * cost of one more pass and a G-buffer's memory (8 bytes per pixel). */
 typedef enum snell_shading {
     SNELL_SHADING_AUTO = 0,         /* per object: screen space when its projected triangles are
                                      * smaller than the renderer's threshold (snell_frame_stats says) */
-    SNELL_SHADING_FORWARD,
+    SNELL_SHADING_FORWARD,          /* every object whose method can: OLIVEIRA's are always in screen space */
     SNELL_SHADING_SCREEN
 } snell_shading;
 
@@ -584,13 +638,16 @@ typedef enum snell_skip {
     SNELL_SKIP_ENV_UPDATE = 1 << 3,   /* its dynamic environment reused: nothing in it moved */
     SNELL_SKIP_BACK_FACES = 1 << 4,   /* back faces culled (closed mesh of known winding) */
     SNELL_SKIP_ANALYSIS = 1 << 5,     /* no mesh analysis: an explicit method that needs none */
-    SNELL_SKIP_SEARCH = 1 << 6        /* CUBEMAP with one interface and no absorption: no exit search */
+    SNELL_SKIP_SEARCH = 1 << 6,       /* CUBEMAP with one interface and no absorption: no exit search */
+    SNELL_SKIP_BACK_DETAIL = 1 << 7   /* the back-face pass drew its mesh's coarse copy (a quarter of the
+                                       * triangles, within 1% of its extent): its triangles are below
+                                       * 8 px each, finer than the per-pixel map holds */
 } snell_skip;
 
 #define SNELL_REASON_SIZE 160
 
 typedef struct snell_object_stats {
-    snell_method method_used;       /* SINGLE, CUBEMAP, WYMAN (what drew it, or would have) */
+    snell_method method_used;       /* SINGLE, CUBEMAP, WYMAN, OLIVEIRA (what drew it, or would have) */
     char reason[SNELL_REASON_SIZE]; /* why this method: AUTO's choice or the explicit request,
                                      * with the mesh facts it rests on */
     int warning;                    /* 1: an explicit method whose preconditions the mesh fails
@@ -615,7 +672,9 @@ typedef struct snell_frame_stats {
     int opaque_drawn;               /* opaque objects drawn in the view */
     int background_drawn;           /* 1 if the background pass ran */
     int back_face_pass;             /* 1 if the shared back-face pass ran (a method of the frame needs the
-                                     * glass's back faces: WYMAN); one pass for all objects that need it */
+                                     * glass's back faces: WYMAN, OLIVEIRA); one pass for all objects that need it */
+    int back_face_guard;            /* pixels of guard band it drew around the target (an object crossing the
+                                     * target's edge asked for it: guard_band), 0 if none */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
 } snell_frame_stats;
 

@@ -166,7 +166,9 @@ void bench_spec_help(FILE *f)
  * its default sweep, and which MATCHED reference model it approximates. */
 const char *bench_default_sweep(const snell_method_info *m)
 {
-    return m->method == SNELL_METHOD_CUBEMAP ? "iterations=4,6,12" : "";
+    if (m->method == SNELL_METHOD_CUBEMAP) return "iterations=4,6,12";
+    if (m->method == SNELL_METHOD_OLIVEIRA) return "linear=0,8,16";
+    return "";
 }
 
 /* Sets the MATCHED reference model from the method and its resolved parameters. */
@@ -180,9 +182,11 @@ static void reference_model(bench_config *c)
         return;
     }
     c->ref_absorb = SNELL_REF_ABSORB_PATH;
-    c->ref_interfaces = 10;
-    if (c->method->method == SNELL_METHOD_CUBEMAP && snell_glass_defaults(&c->glass, &r) == SNELL_OK)
-        c->ref_interfaces = r.material.cubemap.max_interfaces;
+    /* Wyman's model stops after two interfaces (TIR reflects and leaves) */
+    c->ref_interfaces = c->method->method == SNELL_METHOD_WYMAN ? 2 : 10;
+    if (snell_glass_defaults(&c->glass, &r) != SNELL_OK) return;
+    if (c->method->method == SNELL_METHOD_CUBEMAP) c->ref_interfaces = r.material.cubemap.max_interfaces;
+    if (c->method->method == SNELL_METHOD_OLIVEIRA) c->ref_interfaces = r.material.oliveira.max_interfaces;
 }
 
 /* ------------------------------------------------------------- expansion */

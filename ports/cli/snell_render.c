@@ -124,7 +124,7 @@ static void move_orbit(render_scene *s, int frame)
 static void skipped_str(unsigned bits, char *buf, size_t n)
 {
     static const char *const names[] = {"passthrough", "outside-view", "prepare", "env-update",
-                                        "back-faces",  "analysis",     "search"};
+                                        "back-faces",  "analysis",     "search",    "back-detail"};
     size_t k, len = 0;
     buf[0] = '\0';
     for (k = 0; k < sizeof names / sizeof *names; k++)

@@ -210,13 +210,15 @@ void snell_mesh_destroy(snell_mesh *m)
 {
     snell_alloc al;
     if (!m) return;
-    if (m->vao || m->vbo || m->ibo) {
+    if (m->vao || m->vbo || m->ibo || m->coarse_vao || m->coarse_ibo) {
         /* In the GL context that holds them; nowhere if it is gone. */
         snell__gl_scope sc;
         if (snell__gl_scope_enter(m->gpu_ctx, &sc)) {
             if (m->vao) glDeleteVertexArrays(1, &m->vao);
             if (m->vbo) glDeleteBuffers(1, &m->vbo);
             if (m->ibo) glDeleteBuffers(1, &m->ibo);
+            if (m->coarse_vao) glDeleteVertexArrays(1, &m->coarse_vao);
+            if (m->coarse_ibo) glDeleteBuffers(1, &m->coarse_ibo);
         }
         snell__gl_scope_leave(&sc);
     }
@@ -264,6 +266,51 @@ snell_status snell_mesh_normalize(snell_mesh *m, float radius)
         }
     m->version = next_version();
     st = compute_bounds(m); /* cannot fail: extent <= 2 * radius (a float rounding above) < FLT_MAX */
+    return st;
+}
+
+snell_status snell_mesh_set_vertices(snell_mesh *m, const float *positions, const float *normals)
+{
+    double c[3];
+    size_t i, n;
+    int k;
+    snell_status st;
+    if (!m || !positions)
+        return snell__fail(m ? m->ctx : NULL, SNELL_E_INVALID_ARG, "snell_mesh_set_vertices: mesh and positions required");
+    n = 3 * (size_t)m->vertex_count;
+    /* everything checked before anything changes: a refused call leaves the mesh as it was */
+    for (i = 0; i < n; i++)
+        if (!isfinite(positions[i]) || (normals && !isfinite(normals[i])))
+            return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_set_vertices: vertex %zu has a non-finite %s",
+                               i / 3, isfinite(positions[i]) ? "normal" : "coordinate");
+    for (i = 0; normals && i < n; i += 3) {
+        double len = sqrt((double)normals[i] * normals[i] + (double)normals[i + 1] * normals[i + 1] +
+                          (double)normals[i + 2] * normals[i + 2]);
+        if (!(len > 0.0)) return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_set_vertices: normal %zu is zero", i / 3);
+    }
+    /* the extent must stay representable, as compute_bounds requires */
+    for (k = 0; k < 3; k++) {
+        double lo = HUGE_VAL, hi = -HUGE_VAL;
+        for (i = (size_t)k; i < n; i += 3) {
+            lo = fmin(lo, positions[i]);
+            hi = fmax(hi, positions[i]);
+        }
+        c[k] = hi - lo;
+        if (!(c[k] < FLT_MAX))
+            return snell__fail(m->ctx, SNELL_E_LIMIT, "snell_mesh_set_vertices: extent %g exceeds the float range", c[k]);
+    }
+    memcpy(m->positions, positions, n * sizeof(float));
+    if (normals) {
+        for (i = 0; i < n; i += 3) {
+            double len = sqrt((double)normals[i] * normals[i] + (double)normals[i + 1] * normals[i + 1] +
+                              (double)normals[i + 2] * normals[i + 2]);
+            for (k = 0; k < 3; k++) m->normals[i + k] = (float)(normals[i + k] / len);
+        }
+    } else {
+        snell__mesh_compute_normals(m->positions, m->indices, m->vertex_count, m->triangle_count, m->normals);
+    }
+    m->version = next_version();
+    st = compute_bounds(m);
     return st;
 }
 

@@ -32,6 +32,12 @@ struct snell_mesh {
     unsigned vao, vbo, ibo;
     unsigned index_type;       /* GL_UNSIGNED_SHORT or GL_UNSIGNED_INT (mesh_gpu.c) */
     unsigned uploaded_version;
+    /* A coarse index buffer over the same GPU vertices (snell__mesh_coarse),
+     * made once: the GPU copy's vertex order depends only on the triangles,
+     * which never change (snell_mesh_set_vertices moves vertices only). */
+    int coarse_state;          /* 0 not tried, 1 made, -1 none (no gain, no meshoptimizer, failure) */
+    unsigned coarse_vao, coarse_ibo;
+    uint32_t coarse_index_count;
 };
 
 /* Limits that protect against absurd inputs (files claiming 2^40 vertices). */
@@ -75,6 +81,15 @@ snell_status snell__mesh_weld(const snell_mesh *mesh, const unsigned char *used,
  * floats each, vertex_count of them) and indices (3 * triangle_count),
  * reordered for the vertex cache and fetch when built with meshoptimizer. */
 snell_status snell__mesh_gpu_layout(const snell_mesh *mesh, float *vertices, uint32_t *indices);
+/* The uploaded mesh at about a quarter of its triangles (meshoptimizer's
+ * simplifier on the GPU copy, within 1% of the extent), for passes that
+ * need the surface only at pixel resolution: the VAO to draw with
+ * snell__mesh_coarse_draw, or 0 (not built with meshoptimizer, fewer than
+ * SNELL__COARSE_MIN_TRIANGLES triangles, no gain, out of budget or memory:
+ * then draw the mesh itself). Allocates on the first call only. */
+#define SNELL__COARSE_MIN_TRIANGLES 4096u
+unsigned snell__mesh_coarse(snell_mesh *mesh);
+void snell__mesh_coarse_draw(const snell_mesh *mesh);
 /* Average cache miss ratio (transformed vertices per triangle, 16-entry cache). */
 float snell__mesh_acmr(const uint32_t *indices, uint32_t triangle_count, uint32_t vertex_count);
 /* Draws the uploaded mesh's triangles (its VAO and index type). */

@@ -19,12 +19,20 @@ typedef enum snell__output_kind {
     SNELL__OUT_KINDS
 } snell__output_kind;
 
+/* The frame's back-face maps (render/gbuffer.h): texel = window pixel +
+ * band, valid for window pixels -band .. size + band - 1. */
+typedef struct snell__back_maps {
+    int band;                       /* guard band on every side, pixels */
+    int width, height;              /* map size: the target's + 2 band */
+} snell__back_maps;
+
 /* The frame's camera and target, shared by every object (world space). */
 typedef struct snell__view {
     mat4 view, proj, view_proj, inv_view_proj;
     float eye[3];
     int width, height;
     snell__output_kind out;
+    snell__back_maps back;          /* this frame's back-face maps (band 0 and the target's size if none) */
 } snell__view;
 
 /* One glass object of a frame, resolved by the scene stage (render/scene.c). */
@@ -48,6 +56,9 @@ typedef struct snell__object {
     unsigned vao;                   /* 0: draw the mesh's own VAO; else the method's (vertex_array()):
                                      * the mesh's attributes plus attribute 2, a per-vertex scalar that
                                      * the kernel reads forward and the G-buffer keeps (its aux target) */
+    int back_coarse;                /* the back-face pass draws the mesh's coarse copy (render/gbuffer.h) */
+    int crosses_edge;               /* its projected bounding sphere reaches past the target's edge */
+    int back_guard;                 /* pixels of guard band it asks of the back-face pass (0: none) */
 } snell__object;
 
 /* How well a method serves an object. */
@@ -93,10 +104,27 @@ typedef struct snell__method {
      * render/gbuffer.h SNELL__BACK_UNIT_*) is drawn before this method's
      * objects and bound while they draw. */
     int needs_back_faces;
+    /* May be NULL (always full detail). The object's snell_back_detail
+     * parameter: AUTO lets the back-face pass draw a coarse copy of dense
+     * meshes (SNELL__BACK_COARSE_PPT). */
+    snell_back_detail (*back_detail)(const snell_glass_resolved *glass);
+    /* May be NULL (none). The object's guard band, in percent of the target
+     * height, for when it crosses the target's edge. */
+    int (*back_guard_percent)(const snell_glass_resolved *glass);
     /* May be NULL. The VAO of the prepared resources (the mesh's attributes
      * plus attribute 2), 0 for none: becomes snell__object.vao. */
     unsigned (*vertex_array)(const void *prepared);
+    /* Nonzero: its objects are shaded in screen space whatever the shading
+     * rule or snell_renderer_desc.shading says, because the kernel reads the
+     * G-buffer at pixels other than its own (oliveira.c). */
+    int screen_space_only;
 } snell__method;
+
+/* Value names of snell_back_detail parameters (registry.c). */
+extern const char *const snell__back_detail_names[3];
+#define SNELL__BACK_DETAIL_HELP "back-face pass detail: auto (a coarse copy of meshes below 8 px per triangle) or full"
+#define SNELL__GUARD_HELP "back-face guard band for objects crossing the target's edge, percent of its height (-1 none)"
+#define SNELL__GUARD_DEFAULT 10
 
 /* The registry entry of a method id (registry.c), NULL for AUTO or unknown. */
 const snell__method *snell__method_get(snell_method id);

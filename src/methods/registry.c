@@ -12,13 +12,17 @@
 extern const snell__method snell__method_single;
 extern const snell__method snell__method_cubemap;
 extern const snell__method snell__method_wyman;
+extern const snell__method snell__method_oliveira;
 
 static const snell__method *const g_methods[] = {
     &snell__method_single,
     &snell__method_cubemap,
     &snell__method_wyman,
+    &snell__method_oliveira,
 };
 #define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
+
+const char *const snell__back_detail_names[3] = {"default", "auto", "full"};
 
 int snell_method_count(void) { return METHOD_COUNT; }
 

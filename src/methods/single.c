@@ -93,5 +93,11 @@ static const snell_method_info g_info = {
 
 /* llvmpipe, 512x512 (BENCHMARKS.md): screen space 0.87x forward on the bunny
  * (5.1 estimated px/triangle), 0.99x at 5.5, 1.14x at 22. */
-const snell__method snell__method_single = {&g_info, NULL, 0, single_fit, single_create, single_destroy,
-                                            0, NULL, NULL, NULL, single_draw, 8.0f, 0, NULL};
+const snell__method snell__method_single = {
+    .info = &g_info,
+    .fit = single_fit,
+    .create = single_create,
+    .destroy = single_destroy,
+    .draw = single_draw,
+    .software_screen_ppt = 8.0f,
+};

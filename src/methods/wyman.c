@@ -13,6 +13,7 @@
 #include "render/gbuffer.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -36,7 +37,7 @@ typedef struct wyman_prepared {
 
 typedef struct wyman_prog {
     snell__glass_program g;
-    int bnormal, bdepth_id, gaux, dn_scale;
+    int bnormal, bdepth_id, gaux, dn_scale, back_band;
 } wyman_prog;
 
 /* [shading: forward or SNELL__SCREEN_*][absorption]; built on first use. */
@@ -60,6 +61,7 @@ static snell_status get_prog(snell_ctx *ctx, wyman_state *s, int screen, int abs
         p->bdepth_id = glGetUniformLocation(p->g.prog, "u_bdepth_id");
         p->gaux = glGetUniformLocation(p->g.prog, "u_gaux");
         p->dn_scale = glGetUniformLocation(p->g.prog, "u_dn_scale");
+        p->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
     }
     *out = p;
     return SNELL_OK;
@@ -121,9 +123,14 @@ static snell__fit wyman_fit(const snell_mesh_analysis *an, const snell_glass_res
                            "surfaces before the farthest back face", an->hidden_fraction, WYMAN_MAX_HIDDEN);
         return SNELL__FIT_RUNS;
     }
-    snell__why(why, n, "closed, %.2f <= %.2f hidden: entry and farthest back face in image space, no centre needed",
-               an->hidden_fraction, WYMAN_MAX_HIDDEN);
-    return SNELL__FIT_ADEQUATE;
+    /* Even where its preconditions hold, the interpolated exit distance is
+     * an approximation that oliveira's search (later in cost order) removes
+     * for 1.1-1.4x the cost: vs FULL at 512x512 (bench/BENCHMARKS.md) sphere
+     * 14.3 degrees against 2.9, torus 29.1 against 21.9, bunny 40.9 against
+     * 33.2. So AUTO uses it only as a fallback; explicit use is never warned. */
+    snell__why(why, n, "closed, %.2f <= %.2f hidden: entry and farthest back face in image space; the exit distance "
+                       "is interpolated (oliveira searches it)", an->hidden_fraction, WYMAN_MAX_HIDDEN);
+    return SNELL__FIT_RUNS;
 }
 
 static void wyman_key(const snell__object *o, int key[4])
@@ -242,20 +249,33 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
     glUniform1i(p->bdepth_id, SNELL__BACK_UNIT_DEPTH_ID);
     glUniform1i(p->gaux, SNELL__GBUFFER_UNIT_AUX);
     glUniform1f(p->dn_scale, wp ? wp->dn_scale : 0.0f);
+    glUniform1i(p->back_band, v->back.band);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;
 }
 
+static const snell_param_info g_params[] = {
+    {"backdetail", SNELL__BACK_DETAIL_HELP, 0, 2, SNELL_BACK_DETAIL_AUTO, snell__back_detail_names},
+    {"guard", SNELL__GUARD_HELP, -1, SNELL_MAX_GUARD_BAND, SNELL__GUARD_DEFAULT, NULL},
+};
+
+static const size_t g_offsets[] = {offsetof(snell_glass_material, wyman.back_detail),
+                                   offsetof(snell_glass_material, wyman.guard_band)};
+
+static snell_back_detail wyman_back_detail(const snell_glass_resolved *g) { return g->material.wyman.back_detail; }
+static int wyman_guard(const snell_glass_resolved *g) { return g->material.wyman.guard_band; }
+
 static const snell_method_info g_info = {
     SNELL_METHOD_WYMAN, "wyman",
     "two-sided in image space: exit interpolated between view-ray and normal thickness, back-face normal "
     "(Wyman 2005)",
-    "a closed mesh (no centre, no star shape); per frame a back-face pass", 3, 0, NULL};
+    "a closed mesh (no centre, no star shape); per frame a back-face pass", 3,
+    (int)(sizeof g_params / sizeof *g_params), g_params};
 
 const snell__method snell__method_wyman = {
     .info = &g_info,
-    .param_offsets = NULL,
+    .param_offsets = g_offsets,
     .needs_analysis = 1,
     .fit = wyman_fit,
     .create = wyman_create,
@@ -267,5 +287,7 @@ const snell__method snell__method_wyman = {
     .draw = wyman_draw,
     .software_screen_ppt = WYMAN_SOFTWARE_SCREEN_PPT,
     .needs_back_faces = 1,
+    .back_detail = wyman_back_detail,
+    .back_guard_percent = wyman_guard,
     .vertex_array = wyman_vertex_array,
 };

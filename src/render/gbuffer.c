@@ -106,19 +106,26 @@ static snell_status create_aux(snell_ctx *ctx, snell__gbuffer *g)
 /* The front (G-buffer) or the farthest surface (back-face pass) of the objects. */
 static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v,
                                   snell__object *const *objects, int count, unsigned target_depth, int back,
-                                  snell_object_stats *stats)
+                                  int band, snell_object_stats *stats)
 {
     static const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     snell__pass pass;
     snell_status st;
-    int i, aux = 0;
+    mat4 view_proj;
+    int i, aux = 0, b;
+    /* The maps keep the largest guard band a frame has asked for (they grow
+     * once, not back and forth); frames that need none draw only the centre. */
+    if (g->fbo && band > g->band) snell__gbuffer_destroy(g);
     if (!g->fbo) {
-        st = create(ctx, g, v->width, v->height);
+        int keep = band;
+        st = create(ctx, g, v->width + 2 * band, v->height + 2 * band);
         if (st != SNELL_OK) {
             snell__gbuffer_destroy(g);
             return st;
         }
+        g->band = keep;
     }
+    b = g->band;
     for (i = 0; i < count && !back; i++) aux |= objects[i]->vao != 0;
     /* Front: the target's depth already holds the opaque objects, so glass
      * behind them fails the test here and costs nothing later; only colour is
@@ -130,6 +137,17 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
         return st;
     }
     glDrawBuffers(aux ? 3 : 2, bufs);
+    glm_mat4_copy((vec4 *)v->view_proj, view_proj);
+    if (band > 0) {
+        /* the whole map: the projection widened so the target's pixels land
+         * at texel + b, the band around them showing what lies just off it */
+        mat4 widen = GLM_MAT4_IDENTITY_INIT;
+        widen[0][0] = (float)v->width / (float)g->width;
+        widen[1][1] = (float)v->height / (float)g->height;
+        glm_mat4_mul(widen, (vec4 *)v->view_proj, view_proj);
+    } else {
+        glViewport(b, b, v->width, v->height);
+    }
     {
         /* Only the depth+id target needs clearing, and only where a kernel
          * will read it: inside the objects' scissor rectangles (the normal
@@ -146,6 +164,16 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
             if (rect[0] + rect[2] > hi[0]) hi[0] = rect[0] + rect[2];
             if (rect[1] + rect[3] > hi[1]) hi[1] = rect[1] + rect[3];
         }
+        if (band > 0) { /* the band too */
+            lo[0] = lo[1] = 0;
+            hi[0] = g->width;
+            hi[1] = g->height;
+        } else if (b > 0) {
+            lo[0] += b;
+            lo[1] += b;
+            hi[0] += b;
+            hi[1] += b;
+        }
         glEnable(GL_SCISSOR_TEST);
         glScissor(lo[0], lo[1], hi[0] > lo[0] ? hi[0] - lo[0] : 0, hi[1] > lo[1] ? hi[1] - lo[1] : 0);
         glClearBufferfv(GL_COLOR, 1, zero);
@@ -153,7 +181,7 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
         glDisable(GL_SCISSOR_TEST);
     }
     glUseProgram(aux ? g->prog_aux : g->prog);
-    glUniformMatrix4fv(aux ? g->ua_view_proj : g->u_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
+    glUniformMatrix4fv(aux ? g->ua_view_proj : g->u_view_proj, 1, GL_FALSE, (const GLfloat *)view_proj);
     for (i = 0; i < count; i++) {
         const snell__object *o = objects[i];
         snell_object_stats *st = &stats[o->index];
@@ -173,7 +201,13 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
             /* thin walls are walls from both sides; every kernel starts at the front surface */
             snell__cull_back_faces(o, st);
         }
-        snell__draw_object(o);
+        if (back && o->back_coarse && snell__mesh_coarse(o->mesh)) {
+            snell__mesh_coarse_draw(o->mesh);
+            glDisable(GL_CULL_FACE);
+            st->skipped |= SNELL_SKIP_BACK_DETAIL;
+        } else {
+            snell__draw_object(o);
+        }
         st->passes++;
     }
     snell__pass_end(&pass);
@@ -192,13 +226,18 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
 snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v, snell__object *const *objects,
                                  int count, unsigned target_depth, snell_object_stats *stats)
 {
-    return draw_surfaces(ctx, g, v, objects, count, target_depth, 0, stats);
+    return draw_surfaces(ctx, g, v, objects, count, target_depth, 0, 0, stats);
 }
 
 snell_status snell__gbuffer_draw_back(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v,
-                                      snell__object *const *objects, int count, snell_object_stats *stats)
+                                      snell__object *const *objects, int count, int band, snell__back_maps *maps,
+                                      snell_object_stats *stats)
 {
-    return draw_surfaces(ctx, g, v, objects, count, 0, 1, stats);
+    snell_status st = draw_surfaces(ctx, g, v, objects, count, 0, 1, band, stats);
+    maps->band = g->band;
+    maps->width = g->width;
+    maps->height = g->height;
+    return st;
 }
 
 snell__device_class snell__device_class_of(const char *gl_renderer)
@@ -222,6 +261,24 @@ float snell__screen_threshold(snell__device_class device, const snell__method *m
     case SNELL__DEVICE_TILER: return 1.0f;
     default: return 4.0f;
     }
+}
+
+/* Does the sphere reach past one of the frustum's four side planes (the
+ * target's edges)? Planes from the rows of view_proj (Gribb and Hartmann):
+ * w +- x >= 0, w +- y >= 0 inside. */
+static int sphere_crosses_sides(const snell__view *v, const float s[4])
+{
+    const float(*m)[4] = (const float(*)[4])v->view_proj;
+    int axis, sign;
+    for (axis = 0; axis < 2; axis++)
+        for (sign = -1; sign <= 1; sign += 2) {
+            float p[4], len;
+            int k;
+            for (k = 0; k < 4; k++) p[k] = m[k][3] + (float)sign * m[k][axis];
+            len = sqrtf(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+            if (len > 0.0f && (p[0] * s[0] + p[1] * s[1] + p[2] * s[2] + p[3]) / len < s[3]) return 1;
+        }
+    return 0;
 }
 
 /* Window-space bounds of the sphere, from its bounding box's 8 corners. */
@@ -250,11 +307,13 @@ void snell__object_project(const snell__view *v, snell__object *o)
     int x0, y0, x1, y1;
     if (!project_sphere(v, o->bsphere, lo, hi)) {
         o->pixels_per_triangle = 0.0f; /* very near: treat as dense */
+        o->crosses_edge = 1;
         o->scissor[0] = o->scissor[1] = 0;
         o->scissor[2] = v->width;
         o->scissor[3] = v->height;
         return;
     }
+    o->crosses_edge = sphere_crosses_sides(v, o->bsphere);
     /* clipped to the target */
     lo[0] = fmaxf(lo[0], 0.0f);
     lo[1] = fmaxf(lo[1], 0.0f);

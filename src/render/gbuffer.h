@@ -23,6 +23,16 @@
 #define SNELL__BACK_UNIT_NORMAL 5
 #define SNELL__BACK_UNIT_DEPTH_ID 6
 
+/* The back-face pass may draw a mesh's coarse copy (a quarter of its
+ * triangles, within 1% of its extent: snell__mesh_coarse) when its front
+ * triangles are estimated below this many pixels each and its method's
+ * back_detail parameter allows (snell__object.back_coarse): the pass
+ * rasterises every back triangle again and is bound by triangle setup on
+ * llvmpipe there (bunny at 512x512, ~5 px/triangle: 0.6-0.7x a
+ * single-surface frame; bench/BENCHMARKS.md "Oliveira"). The same
+ * crossover as single-surface's screen-space rule. */
+#define SNELL__BACK_COARSE_PPT 8.0f
+
 /* How a screen-space kernel gets its depth into the target (snell__object.screen_space). */
 #define SNELL__SCREEN_SHARED_DEPTH 1  /* the G-buffer pass wrote the target's own depth buffer */
 #define SNELL__SCREEN_WRITES_DEPTH 2  /* the G-buffer had its own; the kernel writes gl_FragDepth */
@@ -36,6 +46,7 @@ typedef struct snell__gbuffer {
     int u_model, u_normal_matrix, u_view_proj, u_gid;
     unsigned aux_tex, prog_aux;     /* the aux target and the program that writes it, made on first use */
     int ua_model, ua_normal_matrix, ua_view_proj, ua_gid;
+    int band;                       /* back-face maps: the guard band they were made with (pixels per side) */
 } snell__gbuffer;
 
 void snell__gbuffer_destroy(snell__gbuffer *g);
@@ -53,9 +64,13 @@ snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell_
  * light leaves) as the G-buffer stores the front: normal, window depth + id
  * o->gid; binds them on SNELL__BACK_UNIT_*. Overlapping objects: the farther
  * one's back faces win the texel (the nearer sees another id there). g is a
- * G-buffer of its own (made on first use). */
+ * G-buffer of its own (made on first use). band > 0: a guard band of that
+ * many pixels on every side is drawn too (the projection widened), for
+ * objects whose light leaves past the target's edge; the maps keep the
+ * largest band asked for. *maps says how to address them this frame. */
 snell_status snell__gbuffer_draw_back(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v,
-                                      snell__object *const *objects, int count, snell_object_stats *stats);
+                                      snell__object *const *objects, int count, int band, snell__back_maps *maps,
+                                      snell_object_stats *stats);
 /* How a device shades, for the AUTO shading rule; found once per renderer. */
 typedef enum snell__device_class {
     SNELL__DEVICE_SOFTWARE = 0,     /* software rasteriser: 4x4 blocks */

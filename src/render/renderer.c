@@ -195,7 +195,7 @@ static void choose_shading(snell_renderer *r, snell__object *o, snell_object_sta
     snell__object_project(&r->scene.view, o);
     st->pixels_per_triangle = o->pixels_per_triangle;
     float threshold = snell__screen_threshold(r->device, r->object_method[o->index]);
-    int screen = r->shading == SNELL_SHADING_SCREEN ||
+    int screen = r->shading == SNELL_SHADING_SCREEN || r->object_method[o->index]->screen_space_only ||
                  (r->shading == SNELL_SHADING_AUTO && st->pixels_per_triangle < threshold);
     /* An offscreen target's depth buffer is the renderer's own, so the
      * G-buffer pass can write it; a host's framebuffer gets gl_FragDepth. */
@@ -281,7 +281,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     snell__scene *sc;
     snell_glstate saved;
     snell_status st;
-    int external, i, n_screen = 0, n_back = 0;
+    int external, i, n_screen = 0, n_back = 0, band = 0;
     double t0 = snell__now_ms();
     if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
     s = &r->stats;
@@ -309,13 +309,25 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         int k = sc->order[i];
         st = set_up_glass(r, fd, &sc->obj[k], &s->glass[k]);
         if (st == SNELL_OK && sc->obj[k].screen_space) r->screen_list[n_screen++] = &sc->obj[k];
-        if (st == SNELL_OK && r->object_method[k]->needs_back_faces) r->back_list[n_back++] = &sc->obj[k];
+        if (st == SNELL_OK && r->object_method[k]->needs_back_faces) {
+            const snell__method *m = r->object_method[k];
+            snell__object *o = &sc->obj[k];
+            o->back_coarse = m->back_detail && m->back_detail(o->glass) == SNELL_BACK_DETAIL_AUTO &&
+                             o->pixels_per_triangle < SNELL__BACK_COARSE_PPT;
+            o->back_guard = o->crosses_edge && m->back_guard_percent && m->back_guard_percent(o->glass) > 0
+                                ? (m->back_guard_percent(o->glass) * r->height + 99) / 100
+                                : 0;
+            if (o->back_guard > band) band = o->back_guard;
+            r->back_list[n_back++] = o;
+        }
     }
     /* One back-face pass for every object whose method reads back faces;
      * none in frames without such an object. */
     if (st == SNELL_OK && n_back > 0) {
-        st = snell__gbuffer_draw_back(r->ctx, &r->backfaces, &sc->view, r->back_list, n_back, s->glass);
+        st = snell__gbuffer_draw_back(r->ctx, &r->backfaces, &sc->view, r->back_list, n_back, band,
+                                      &sc->view.back, s->glass);
         s->back_face_pass = 1;
+        s->back_face_guard = band;
     }
     if (st == SNELL_OK && n_screen > 0)
         st = snell__gbuffer_draw(r->ctx, &r->gbuffer, &sc->view, r->screen_list, n_screen,

@@ -118,6 +118,9 @@ snell_status snell__scene_build(snell_ctx *ctx, const snell_frame_desc *fd, int 
     v->width = width;
     v->height = height;
     v->out = out;
+    v->back.band = 0; /* until a back-face pass says otherwise */
+    v->back.width = width;
+    v->back.height = height;
     sc->count = fd->glass_count;
     sc->drawn = 0;
     stats->glass_count = fd->glass_count;

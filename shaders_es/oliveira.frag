@@ -1,0 +1,190 @@
+// oliveira.frag - two-sided refraction by a conservative search in image
+// space (Oliveira and Brauwers 2007; seed 000 3.4.2, Listing 1). Refract the
+// view ray at the front surface P1 into T1, then search along T1 for where it
+// leaves the object: the segment from S = P1 to E is walked in linear steps,
+// then halved in binary steps, and a sample counts as still inside while it
+// lies in front of the object's farthest back face at its pixel (the frame's
+// back-face pass). The invalid-texel rule: a sample whose pixel holds no back
+// face of this object (outside the silhouette) is outside: S is kept and the
+// step halved, so the search ends on a texel that has a back face, whose
+// normal is the exit normal. The search stops when a step spans less than a
+// pixel.
+//
+// Departures from the seed, each for a reason:
+// - E is where T1 leaves the object's bounding sphere, not where it meets the
+//   plane z = Z_max of the back faces: every back face lies inside the sphere,
+//   so E is as conservative as the seed's, is never farther than a diameter
+//   (the plane is arbitrarily far for rays nearly parallel to it) and needs no
+//   Z-range pass.
+// - Total internal reflection: where the seed clamps the angle, the ray is
+//   reflected and the same search continues up to u_max_interfaces surfaces.
+//   A reflected ray usually heads back towards the eye; it leaves where it
+//   passes in front of the object's front surface, which the screen-space
+//   G-buffer holds (surface.glsl), so the method always shades in screen
+//   space. Past the last interface the light leaves along the reflected
+//   direction, as the cubemap method and the reference's MATCHED model cap it.
+// Schlick Fresnel at the entry, Beer-Lambert over the path inside.
+//
+// SNELL_LINEAR_STEPS (0..32) and SNELL_SEARCH_ITERATIONS (1..32) are defined
+// by the method (methods/oliveira.c): loop bounds are constants, one program
+// per pair. highp throughout: depth comparisons and projections.
+precision highp float;
+
+#include "common/optics.glsl"
+#include "common/output.glsl"
+#include "common/surface.glsl"
+
+#ifndef SNELL_SCREEN_SPACE
+#error "oliveira.frag shades in screen space only: the search reads the G-buffer's front surface"
+#endif
+
+#define MAX_INTERFACES 8
+
+uniform highp vec3 u_eye;
+uniform samplerCube u_env;
+uniform float u_ior;
+uniform vec3 u_sigma;
+uniform vec3 u_tint;
+uniform highp mat4 u_view_proj;
+uniform highp vec4 u_bsphere;        // world bounding sphere: centre, radius
+uniform int u_max_interfaces;        // 2..MAX_INTERFACES
+
+uniform highp sampler2D u_bnormal;   // back-face pass: octahedral 16+16 bits
+uniform highp sampler2D u_bdepth_id; // back-face pass: window depth 24 bits, object id 8 bits
+uniform int u_back_band;             // the back-face maps' guard band: texel = window pixel + band
+
+highp vec2 g_size;                   // target size in pixels
+
+// Window depth at pixel px of a depth+id map, or -1 where the map holds no
+// surface of this object.
+highp float map_depth(highp sampler2D depth_id, ivec2 px)
+{
+    highp uvec4 b = uvec4(texelFetch(depth_id, px, 0) * 255.0 + 0.5);
+    if (int(b.a) != u_gid) return -1.0;
+    return float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+}
+
+vec3 map_normal(highp sampler2D normal, ivec2 px)
+{
+    highp vec4 g = texelFetch(normal, px, 0);
+    return snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0);
+}
+
+// Window position (pixels, depth) of clip coordinates c; w <= 0 maps off-screen.
+highp vec3 window(highp vec4 c)
+{
+    if (c.w <= 0.0) return vec3(-1.0, -1.0, 2.0);
+    return vec3((c.xy / c.w * 0.5 + 0.5) * g_size, c.z / c.w * 0.5 + 0.5);
+}
+
+// Is the sample at window position w still inside the object? Against the
+// back-face map (away = the ray moves away from the eye) it is while in front
+// of the farthest back face; against the G-buffer's front surface while
+// behind it. A pixel without this object's surface (off the silhouette or
+// off the screen) is outside: the invalid-texel rule.
+bool inside(highp vec3 w, bool away)
+{
+    // the back-face maps reach band pixels past the target's edge, the G-buffer does not
+    highp float band = away ? float(u_back_band) : 0.0;
+    if (!(all(greaterThanEqual(w.xy, vec2(-band))) && all(lessThan(w.xy, g_size + band)))) return false;
+    ivec2 px = ivec2(floor(w.xy));
+    highp float z = away ? map_depth(u_bdepth_id, px + u_back_band) : map_depth(u_gdepth_id, px);
+    if (z < 0.0) return false;
+    return away ? w.z < z : w.z > z;
+}
+
+// Distance along unit d from p (inside the sphere) to where it leaves the sphere.
+highp float sphere_exit(highp vec3 p, highp vec3 d)
+{
+    highp vec3 oc = p - u_bsphere.xyz;
+    highp float b = dot(oc, d), c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
+    return max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
+}
+
+// The conservative search from p along unit d: returns the distance to the
+// last point known to be inside, px_out its pixel, away_out which map it was
+// tested against.
+highp float search(highp vec3 p, highp vec3 d, out ivec2 px_out, out bool away_out)
+{
+    highp float t_end = sphere_exit(p, d) * 1.001 + 1e-6 * u_bsphere.w;
+    // clip coordinates are affine in the world position: c(t) = c0 + t dc
+    highp vec4 c0 = u_view_proj * vec4(p, 1.0), dc = u_view_proj * vec4(d, 0.0);
+    highp vec3 w0 = window(c0), w_end = window(c0 + t_end * dc);
+    bool away = w_end.z > w0.z;
+    highp float s = 0.0, step = t_end;
+#if SNELL_LINEAR_STEPS > 0
+    step = t_end / float(SNELL_LINEAR_STEPS + 1);
+    for (int j = 0; j < SNELL_LINEAR_STEPS; j++) {
+        if (!inside(window(c0 + (s + step) * dc), away)) break;
+        s += step;
+    }
+#endif
+    // Listing 1: halve the step; advance S only onto samples still inside
+    highp vec2 ws = window(c0 + s * dc).xy;
+    for (int i = 0; i < SNELL_SEARCH_ITERATIONS; i++) {
+        step *= 0.5;
+        highp vec3 w = window(c0 + (s + step) * dc);
+        highp vec2 span = w.xy - ws;
+        if (inside(w, away)) {
+            s += step;
+            ws = w.xy;
+        }
+        // a step within one pixel: the maps resolve nothing finer
+        if (dot(span, span) < 1.0) break;
+    }
+    highp float band = away ? float(u_back_band) : 0.0;
+    px_out = ivec2(floor(clamp(ws, vec2(-band), g_size + band - 1.0)));
+    away_out = away;
+    return s;
+}
+
+void main()
+{
+    g_size = 1.0 / u_inv_size;
+    highp vec3 p1, n1;
+    snell_surface(p1, n1);
+    highp vec3 v = normalize(p1 - u_eye);
+    vec3 n = normalize(n1);
+    if (dot(n, v) > 0.0) n = -n;
+    vec3 r = snell_reflect(v, n);
+    highp vec3 dir;
+    snell_refract(v, n, 1.0 / u_ior, dir);
+    dir = normalize(dir);
+    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+
+    highp vec3 p = p1;
+    highp float length_inside = 0.0;
+    for (int k = 2; k <= MAX_INTERFACES; k++) {
+        ivec2 px;
+        bool away;
+        highp float t = search(p, dir, px, away);
+        // the exit point: the bracket's far end is outside, so the surface is
+        // within a pixel of the last inside sample; its normal is the map's there
+        p += t * dir;
+        length_inside += t;
+        vec3 n2;
+        ivec2 tex = away ? px + u_back_band : px;
+        if ((away ? map_depth(u_bdepth_id, tex) : map_depth(u_gdepth_id, tex)) >= 0.0) {
+            n2 = away ? map_normal(u_bnormal, tex) : map_normal(u_gnormal, tex);
+        } else {
+            // not one sample was inside (the first step already left the
+            // silhouette): Wyman's fallback, a normal perpendicular to the
+            // view vector, in the plane of V and the ray
+            highp vec3 side = dir - dot(dir, v) * v;
+            n2 = dot(side, side) > 1e-12 ? normalize(side) : -n;
+        }
+        if (dot(n2, dir) > 0.0) n2 = -n2; // face the ray (it comes from inside)
+        highp vec3 next;
+        bool out_of_glass = snell_refract(dir, n2, u_ior, next); // on TIR: the mirror direction
+        dir = normalize(next);
+        if (out_of_glass || k >= u_max_interfaces) break;
+    }
+
+#if SNELL_ABSORB
+    vec3 transmitted = texture(u_env, dir).rgb * u_tint * snell_beer_lambert(u_sigma, length_inside);
+#else
+    vec3 transmitted = texture(u_env, dir).rgb * u_tint;
+#endif
+    vec3 reflected = texture(u_env, r).rgb;
+    snell_write(mix(transmitted, reflected, fresnel), dir);
+}

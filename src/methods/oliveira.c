@@ -1,0 +1,194 @@
+/* oliveira.c — two-sided refraction by a conservative image-space search
+ * (Oliveira and Brauwers 2007, the seed's 3.4.2): refract at the front
+ * surface, walk the refracted ray in linear then binary steps against the
+ * frame's back-face pass (and, after a total internal reflection, against the
+ * G-buffer's front surface) until it leaves, refract out with the normal
+ * found there (oliveira.frag). It prepares nothing: a deforming mesh costs
+ * what a rigid one does. It always shades in screen space, because a
+ * reflected ray leaves through the front surface, which only the G-buffer
+ * holds for pixels other than its own. */
+#include "methods/glass_program.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "render/gbuffer.h"
+
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#define DEFAULT_LINEAR_STEPS 8
+#define DEFAULT_ITERATIONS 6
+#define PROG_CACHE 8
+
+/* fit(): as Wyman's (wyman.c): a solid's back faces, few enough surfaces
+ * along a ray that the farthest back face is where light leaves. */
+#define OLIVEIRA_MAX_HIDDEN 0.6f
+
+typedef struct oli_prog {
+    snell__glass_program g;    /* g.prog == 0: empty slot */
+    int linear, iterations, screen, absorb;
+    unsigned long last_use;
+    int bnormal, bdepth_id, max_interfaces, back_band;
+} oli_prog;
+
+typedef struct oliveira_state {
+    snell__output_kind out;
+    oli_prog prog[PROG_CACHE];
+    unsigned long clock;
+} oliveira_state;
+
+static void oliveira_destroy(snell_ctx *ctx, void *state);
+
+/* The program of these compile-time constants: cached, else built into the
+ * least recently used slot. */
+static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int iterations, int screen, int absorb,
+                             const oli_prog **out)
+{
+    oli_prog *p = &s->prog[0];
+    char def[160];
+    snell_status st;
+    int i;
+    s->clock++;
+    for (i = 0; i < PROG_CACHE; i++) {
+        oli_prog *c = &s->prog[i];
+        if (c->g.prog && c->linear == linear && c->iterations == iterations && c->screen == screen &&
+            c->absorb == absorb) {
+            c->last_use = s->clock;
+            *out = c;
+            return SNELL_OK;
+        }
+        if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
+    }
+    snell__glass_program_destroy(&p->g);
+    snprintf(def, sizeof def, "#define SNELL_LINEAR_STEPS %d\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_ABSORB %d\n",
+             linear, iterations, absorb);
+    st = snell__glass_program_build(ctx, "oliveira.frag", s->out, def, screen, &p->g);
+    if (st != SNELL_OK) return st;
+    p->linear = linear;
+    p->iterations = iterations;
+    p->screen = screen;
+    p->absorb = absorb;
+    p->last_use = s->clock;
+    p->bnormal = glGetUniformLocation(p->g.prog, "u_bnormal");
+    p->bdepth_id = glGetUniformLocation(p->g.prog, "u_bdepth_id");
+    p->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    p->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
+    *out = p;
+    return SNELL_OK;
+}
+
+static snell_status oliveira_create(snell_ctx *ctx, snell__output_kind out, void **state)
+{
+    oliveira_state *s = (oliveira_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
+    const oli_prog *p;
+    snell_status st;
+    if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
+    s->out = out;
+    /* the default program, so that a device that cannot build it fails here, once */
+    st = get_prog(ctx, s, DEFAULT_LINEAR_STEPS, DEFAULT_ITERATIONS, SNELL__SCREEN_SHARED_DEPTH, 0, &p);
+    if (st != SNELL_OK) {
+        oliveira_destroy(ctx, s);
+        return st;
+    }
+    *state = s;
+    return SNELL_OK;
+}
+
+static void oliveira_destroy(snell_ctx *ctx, void *state)
+{
+    oliveira_state *s = (oliveira_state *)state;
+    int i;
+    if (!s) return;
+    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].g);
+    snell__free(&ctx->alloc, s);
+}
+
+/* The seed's limits (3.4.2) are Wyman's: the exit is searched on the
+ * farthest back face (or, after a reflection, the nearest front face), so
+ * light leaving through a surface between them is wrong by construction,
+ * and an open or non-manifold mesh has no solid's back faces. */
+static snell__fit oliveira_fit(const snell_mesh_analysis *an, const snell_glass_resolved *g, char *why, size_t n)
+{
+    (void)g;
+    if (!an) {
+        snell__why(why, n, "mesh analysis failed: closedness unknown");
+        return SNELL__FIT_RUNS;
+    }
+    if (!an->closed) {
+        snell__why(why, n, "open or non-manifold (%u boundary, %u non-manifold, %u flipped edges): no solid's back "
+                           "faces", (unsigned)an->boundary_edges, (unsigned)an->nonmanifold_edges,
+                   (unsigned)an->flipped_edges);
+        return SNELL__FIT_RUNS;
+    }
+    if (an->hidden_fraction > OLIVEIRA_MAX_HIDDEN) {
+        snell__why(why, n, "closed, but %.2f > %.2f of the surface is hidden from the centre: light leaves through "
+                           "surfaces before the farthest back face", an->hidden_fraction, OLIVEIRA_MAX_HIDDEN);
+        return SNELL__FIT_RUNS;
+    }
+    snell__why(why, n, "closed, %.2f <= %.2f hidden: exit searched along the ray in image space, nothing prepared",
+               an->hidden_fraction, OLIVEIRA_MAX_HIDDEN);
+    return SNELL__FIT_ADEQUATE;
+}
+
+static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                                  snell_object_stats *stats)
+{
+    oliveira_state *s = (oliveira_state *)state;
+    const snell_oliveira_params *c = &o->glass->material.oliveira;
+    const oli_prog *p;
+    snell_status st;
+    if (!o->screen_space)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: oliveira shades in screen space only", o->index);
+    st = get_prog(ctx, s, c->linear_steps, c->iterations, o->screen_space, o->glass->absorbs, &p);
+    if (st != SNELL_OK) return st;
+    snell__glass_program_use(&p->g, v, o);
+    glUniform1i(p->bnormal, SNELL__BACK_UNIT_NORMAL);
+    glUniform1i(p->bdepth_id, SNELL__BACK_UNIT_DEPTH_ID);
+    glUniform1i(p->max_interfaces, c->max_interfaces);
+    glUniform1i(p->back_band, v->back.band);
+    snell__draw_surface(o, stats);
+    stats->passes++;
+    return SNELL_OK;
+}
+
+static const snell_param_info g_params[] = {
+    {"linear", "linear steps along the refracted ray before the binary search", 0, SNELL_OLIVEIRA_MAX_LINEAR_STEPS,
+     DEFAULT_LINEAR_STEPS, NULL},
+    {"iterations", "binary-search steps per interface (stops earlier at one pixel)", 1, SNELL_OLIVEIRA_MAX_ITERATIONS,
+     DEFAULT_ITERATIONS, NULL},
+    {"interfaces", "surfaces processed per path (2 = entry + exit, more = TIR bounces)", 2,
+     SNELL_OLIVEIRA_MAX_INTERFACES, 2, NULL},
+    {"backdetail", SNELL__BACK_DETAIL_HELP, 0, 2, SNELL_BACK_DETAIL_AUTO, snell__back_detail_names},
+    {"guard", SNELL__GUARD_HELP, -1, SNELL_MAX_GUARD_BAND, SNELL__GUARD_DEFAULT, NULL},
+};
+
+static const size_t g_offsets[] = {offsetof(snell_glass_material, oliveira.linear_steps),
+                                   offsetof(snell_glass_material, oliveira.iterations),
+                                   offsetof(snell_glass_material, oliveira.max_interfaces),
+                                   offsetof(snell_glass_material, oliveira.back_detail),
+                                   offsetof(snell_glass_material, oliveira.guard_band)};
+
+static snell_back_detail oliveira_back_detail(const snell_glass_resolved *g) { return g->material.oliveira.back_detail; }
+static int oliveira_guard(const snell_glass_resolved *g) { return g->material.oliveira.guard_band; }
+
+static const snell_method_info g_info = {
+    SNELL_METHOD_OLIVEIRA, "oliveira",
+    "two-sided in image space: exit by a conservative linear + binary search against the back faces, TIR bounces "
+    "(Oliveira and Brauwers 2007)",
+    "a closed mesh (no centre, no star shape, nothing prepared); per frame a back-face pass; screen space", 4,
+    (int)(sizeof g_params / sizeof *g_params), g_params};
+
+const snell__method snell__method_oliveira = {
+    .info = &g_info,
+    .param_offsets = g_offsets,
+    .needs_analysis = 1,
+    .fit = oliveira_fit,
+    .create = oliveira_create,
+    .destroy = oliveira_destroy,
+    .draw = oliveira_draw,
+    .software_screen_ppt = 1e9f,
+    .needs_back_faces = 1,
+    .back_detail = oliveira_back_detail,
+    .back_guard_percent = oliveira_guard,
+    .screen_space_only = 1,
+};
