@@ -587,6 +587,15 @@ typedef struct snell_renderer_desc {
      * about S^2 the shading. Offscreen colour renderers only
      * (SNELL_E_INVALID_ARG otherwise). */
     int ssaa;
+    /* Multisampling (GLES 3.0 multisample renderbuffers, resolved by a blit):
+     * 0 or 1 = off, else the sample count (SNELL_E_UNSUPPORTED beyond
+     * GL_MAX_SAMPLES). Antialiases the edges of triangles - glass silhouettes,
+     * opaque objects against the background - not what is inside the glass
+     * (shaded once per pixel). With it AUTO shades glass forward (the
+     * screen-space stage's G-buffer is single-sample, its silhouettes would
+     * stay aliased); SCREEN is still honoured. Offscreen colour renderers
+     * only, not with ssaa. */
+    int msaa;
 } snell_renderer_desc;
 
 #define SNELL_MAX_SSAA 8

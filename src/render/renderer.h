@@ -16,6 +16,8 @@ struct snell_renderer {
     int width, height;                                /* the frame's size: the output's times ssaa.factor */
     int out_width, out_height;                        /* what snell_renderer_read_* return */
     snell__ssaa ssaa;
+    int msaa;                                         /* samples of the colour and depth targets; 0 = off */
+    unsigned msaa_fbo, msaa_rb;                       /* the single-sample target it is resolved into */
     snell_target target;
     snell__output_kind out;
     unsigned fbo, color_rb, depth_rb;
