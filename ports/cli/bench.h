@@ -60,6 +60,8 @@ typedef struct bench_config {
     int ref_interfaces;            /* MATCHED reference cap (the method's own) */
     snell_ref_absorption ref_absorb;
     snell_shading shading;         /* shading= (the renderer's; default auto) */
+    int ssaa, msaa;                /* ssaa=, msaa=: the renderer's antialiasing, timed and measured (0: none;
+                                    * then the measured colour frame uses --aa) */
     float lod;                     /* lod=: glass meshes simplified to this triangle ratio; 1 = the
                                     * original (the default); references always use the original */
 

@@ -103,7 +103,9 @@ static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, int aa, benc
     desc.width = c->width;
     desc.height = c->height;
     desc.shading = c->shading;
-    desc.ssaa = aa;
+    /* The configuration's own antialiasing if it has one, else --aa's. */
+    desc.ssaa = c->ssaa || c->msaa ? c->ssaa : aa;
+    desc.msaa = c->msaa;
     if (snell_renderer_create(ctx, &desc, &r) != SNELL_OK) bench_fail(c, "renderer", ctx);
     else if (snell_render(r, fd, &fs) != SNELL_OK) bench_fail(c, "render", ctx);
     else if (snell_renderer_read_rgba(r, b->rgba) != SNELL_OK) bench_fail(c, "readback", ctx);
