@@ -2,9 +2,10 @@
  * MATCHED chain and the FULL Whitted tree through a scene of glass and opaque
  * objects (ref_scene.c), camera rays, the pthread image loop and light paths.
  * Optics are the shared kernel of optics.h (Unger 2.1: Snell with TIR, mirror
- * reflection, Fresnel (MATCHED: Schlick, as the kernels; FULL: exact), Beer-Lambert,
- * the thin slab); the chain follows Unger
- * 4.1 with exact ray casts in place of the cubemap binary search. */
+ * reflection, Fresnel - MATCHED: Schlick, as the kernels; FULL: the exact
+ * unpolarised reflectance - Beer-Lambert, the thin slab); the chain follows
+ * Unger 4.1 with exact ray casts in place of the cubemap binary search. Pixels
+ * are the centre ray or the mean of an S x S grid (params.samples). */
 #define _POSIX_C_SOURCE 200809L
 #include "ref/ref_trace.h"
 #include "ref/ref_scene.h"
