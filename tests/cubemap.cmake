@@ -19,7 +19,7 @@ if(TARGET snell-render)
     PASS_REGULAR_EXPRESSION "stats: glass 0 \\(sphere, ior 1.5\\): method cubemap, warning 0, passes [0-9]+, prepared 0.*hidden_fraction 0.0000")
   add_test(NAME cli_auto_goblet COMMAND ${cli} --mesh shape:goblet --method auto --size 32x32 --stats
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto.png)
-  set_tests_properties(cli_auto_goblet PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\(goblet[^)]*\\): method single")
+  set_tests_properties(cli_auto_goblet PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\(goblet[^)]*\\): method peel")
   add_test(NAME cli_auto_sphere COMMAND ${cli} --mesh shape:sphere --method auto --size 32x32 --stats
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto.png)
   set_tests_properties(cli_auto_sphere PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\(sphere[^)]*\\): method cubemap")

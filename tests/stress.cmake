@@ -2,7 +2,7 @@
 # grazing views, mesh scale and thin shells; zero NaN/Inf, stated error bounds.
 # One test per method so a failure names it. Configure with
 # -DSNELL_FP16_EMULATION=ON in a separate build dir for the mediump study.
-foreach(method single cubemap)
+foreach(method single cubemap peel)
   snell_add_test(test_stress_${method} SOURCES test_stress.c LABELS "stress;gl" ARGS ${method} TIMEOUT 240 SHADINGS forward screen)
   target_link_libraries(test_stress_${method} PRIVATE m)
   if(SNELL_FP16_EMULATION)

@@ -819,7 +819,8 @@ static void scene_frame(host_scene *s, const snell_env *env, snell_frame_desc *f
     s->g[0].material.attenuation_color[2] = 0.3f;
     s->g[1].mesh = s->torus;
     s->g[1].model = s->m_torus;
-    s->g[1].material.method = SNELL_METHOD_SINGLE;
+    /* peel: its layer passes (own framebuffer, texture array, occlusion query) under the host's state */
+    s->g[1].material.method = SNELL_METHOD_PEEL;
     s->g[1].material.ior = 1.33f;
     memset(&s->op, 0, sizeof s->op);
     s->op.mesh = s->cube;

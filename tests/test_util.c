@@ -37,6 +37,13 @@ snell_shading test_shading(void)
     return SNELL_SHADING_AUTO;
 }
 
+double test_time_scale(void)
+{
+    const char *s = getenv("SNELL_TEST_TIME_SCALE");
+    double v = s ? atof(s) : 1.0;
+    return v >= 1.0 ? v : 1.0;
+}
+
 int test_host_context(EGLDisplay *dpy, EGLContext *ctx)
 {
     typedef EGLDisplay (*gpd_fn)(EGLenum, void *, const EGLint *);

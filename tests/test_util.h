@@ -65,6 +65,9 @@ snell_status test_ref_render(const snell_ref *ref, const snell_ref_params *p, fl
 /* The renderer shading the tests run with: SNELL_TEST_SHADING=forward|screen
  * (ctest registers the render tests once per path with SHADINGS), else AUTO. */
 snell_shading test_shading(void);
+/* Factor for wall-clock bounds: SNELL_TEST_TIME_SCALE (set for tests run
+ * through an emulator, tests/CMakeLists.txt), else 1. */
+double test_time_scale(void);
 /* Makes a GLES 3 context the way a host app would (surfaceless Mesa display,
  * no surface) and makes it current: 1 on success. For EXTERNAL-backend tests. */
 int test_host_context(EGLDisplay *dpy, EGLContext *ctx);

@@ -258,6 +258,12 @@ typedef struct snell_mesh_analysis {
     int inside;              /* closed and the centre's crossing parity was odd along 3 rays */
     int winding;             /* closed: +1 counter-clockwise triangles face outward (signed
                               * volume > 0), -1 they face inward; 0 open or zero volume */
+    /* Depth complexity: surfaces crossed by lines through the bounding
+     * sphere along sampled view directions (16 directions x 12x12 parallel
+     * lines), what depth peeling needs (SNELL_METHOD_PEEL): a convex mesh
+     * gives 2, a torus 4. */
+    int depth_complexity;    /* the most surfaces any sampled line crosses */
+    float deep_fraction;     /* of the sampled lines that hit the mesh, the share crossing more than 2 */
 } snell_mesh_analysis;
 
 /* Analyzes the mesh (O(triangles) memory; 0.16 s for the 70k-triangle bunny on
@@ -334,6 +340,12 @@ typedef struct snell_env_desc {
     const char *face_paths[6];   /* SNELL_ENV_FACES */
     const char *equirect_path;   /* SNELL_ENV_EQUIRECT */
     int face_size;               /* cubemap face size in texels; 0 = 512 (FACES: the images' size) */
+    /* SNELL_ENV_EQUIRECT from memory, used when equirect_path is NULL: RGBA8,
+     * top row first, equirect_width x equirect_height (at most 16384 a side and
+     * 2^25 pixels, as images), e.g. an asset decoded by snell_image_decode.
+     * Copied into the faces: the caller keeps ownership. */
+    const uint8_t *equirect_rgba;
+    int equirect_width, equirect_height;
 } snell_env_desc;
 
 /* Creates the cubemap texture (ctx needed) and keeps a CPU copy of the faces so
@@ -365,6 +377,9 @@ typedef enum snell_method {
     SNELL_METHOD_OLIVEIRA,     /* two-sided in image space (Oliveira and Brauwers 2007): the exit found by a
                                 * conservative linear + binary search along the refracted ray against the
                                 * back-face pass, TIR bounces; always shaded in screen space */
+    SNELL_METHOD_PEEL,         /* multi-layer in image space (Wang 2014): depth-peeled layers of normal and
+                                * depth, a ray-height-field search between them, up to N interfaces with TIR;
+                                * for concave meshes (a view ray crossing more than two surfaces) */
     SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 
@@ -452,6 +467,34 @@ typedef struct snell_oliveira_params {
 #define SNELL_OLIVEIRA_MAX_LINEAR_STEPS 32
 #define SNELL_OLIVEIRA_MAX_ITERATIONS 32
 #define SNELL_OLIVEIRA_MAX_INTERFACES 8
+/* Which of the seed's fixes for the layer search (Wang 2014, 3.5) run in
+ * SNELL_METHOD_PEEL; the others are for measuring each fix's effect. */
+typedef enum snell_peel_fixes {
+    SNELL_PEEL_FIXES_DEFAULT = 0, /* SNELL_PEEL_FIXES_BOTH */
+    SNELL_PEEL_FIXES_NONE,        /* the plain layer-pair search */
+    SNELL_PEEL_FIXES_DISCONTINUITY, /* 3.5.1: a crossing at a depth jump larger than the linear step is
+                                     * re-checked against the layers there and skipped if the medium is
+                                     * unchanged (case 2) */
+    SNELL_PEEL_FIXES_MERGE,       /* 3.5.2: where layers 2k, 2k+1 are empty, an inside ray uses 2k-2, 2k-1 */
+    SNELL_PEEL_FIXES_BOTH
+} snell_peel_fixes;
+
+/* SNELL_METHOD_PEEL's parameters (material.peel); zero = the default. Step
+ * counts are compile-time constants of the search program (one per setting,
+ * built on first use). */
+typedef struct snell_peel_params {
+    int layers;                /* depth layers peeled, 2..8 (default 4, as the seed argues; fewer are
+                                * peeled where the mesh's depth_complexity or an empty layer allows) */
+    int linear_steps;          /* linear search steps over the bounding diameter, 1..128 (default 16; the
+                                * seed's 50 cost 1.4x for 2-10% less error, bench/BENCHMARKS.md) */
+    int binary_steps;          /* binary refinement steps after a linear crossing, 1..16 (default 6) */
+    int max_interfaces;        /* surfaces processed per path, 1..10 (1 = single surface; then exits,
+                                * re-entries, TIR bounces; default 8) */
+    snell_peel_fixes fixes;
+} snell_peel_params;
+
+#define SNELL_PEEL_MAX_LAYERS 8
+#define SNELL_PEEL_MAX_INTERFACES 10
 
 /* A glass material, named as glTF 2.0 names it so that a glTF material maps
  * onto it field by field. Zero means the default (snell_glass_defaults). */
@@ -471,6 +514,7 @@ typedef struct snell_glass_material {
     snell_cubemap_params cubemap;  /* used when the method (or AUTO's choice) is CUBEMAP */
     snell_wyman_params wyman;      /* used when it is WYMAN */
     snell_oliveira_params oliveira; /* used when it is OLIVEIRA */
+    snell_peel_params peel;        /* used when the method (or AUTO's choice) is PEEL */
 } snell_glass_material;
 
 /* A material with every default applied, and the per-unit absorption derived
@@ -671,6 +715,10 @@ typedef struct snell_object_stats {
     int screen_space;               /* 1: shaded in screen space (G-buffer), 0: forward */
     float pixels_per_triangle;      /* estimate AUTO shading decided on: projected bounding-sphere
                                      * area / front triangles (half the mesh's) */
+    int layers_peeled;              /* PEEL: depth layers drawn this frame (at most material.peel.layers,
+                                     * fewer where the mesh's depth_complexity bounds them or a layer came
+                                     * out empty: the peels after it are not drawn) */
+    int layers_used;                /* PEEL: of those, the non-empty ones the search reads */
 } snell_object_stats;
 
 typedef struct snell_frame_stats {
@@ -686,6 +734,33 @@ typedef struct snell_frame_stats {
                                      * target's edge asked for it: guard_band), 0 if none */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
 } snell_frame_stats;
+
+/* ------------------------------------------------------------ scene files */
+/* A glTF 2.0 scene (.gltf/.glb) as frame lists: every node instance of every
+ * triangle primitive of the default scene becomes a glass object when its
+ * material has KHR_materials_transmission with transmissionFactor > 0, else
+ * an opaque object (base colour; glTF's default material is opaque white).
+ * Glass: KHR_materials_ior's ior (default 1.5), baseColorFactor as the tint,
+ * KHR_materials_volume with thicknessFactor > 0 a solid with its attenuation
+ * colour and distance, without it a thin wall (glTF's "infinitely thin"; a
+ * 1e-4 wall here). Geometry stays in each node's local space, the node's
+ * world transform is the object's model matrix; primitives instanced by
+ * several nodes share one mesh. The first camera met in the node tree, if
+ * any, becomes snell_scene_file_camera (eye and view direction kept, roll
+ * dropped: snell's camera keeps +Y up). Other extensions are ignored with
+ * one INFO log line; a file that requires a KHR_materials_* extension other
+ * than those three is SNELL_E_UNSUPPORTED, beyond that the rules and trust
+ * model of snell_mesh_load_gltf_ex apply (flags likewise). More than
+ * SNELL_MAX_GLASS glass or SNELL_MAX_OPAQUE opaque objects is SNELL_E_LIMIT. */
+typedef struct snell_scene_file snell_scene_file;
+snell_status snell_scene_load_gltf(snell_ctx *ctx, const char *path, unsigned flags, snell_scene_file **out);
+snell_status snell_scene_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_scene_file **out);
+void snell_scene_file_destroy(snell_scene_file *scene);
+/* The objects (valid until the scene is destroyed), for snell_frame_desc.glass / .opaque. */
+const snell_glass *snell_scene_file_glass(const snell_scene_file *scene, int *count);
+const snell_opaque *snell_scene_file_opaque(const snell_scene_file *scene, int *count);
+/* 1 and *camera set if the file has a camera, else 0. */
+int snell_scene_file_camera(const snell_scene_file *scene, snell_camera *camera);
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);
 void snell_renderer_destroy(snell_renderer *r);

@@ -142,6 +142,11 @@ int bench_same_group(const bench_config *a, const bench_config *b);
 typedef struct bench_run_info {
     const char *renderer, *date, *load_before, *load_after;
     int timer;                     /* GL timer queries available */
+    /* Another tool writing this JSON (snell-kiosk) names itself and says how
+     * it timed; NULL: "snell-bench" and snell-bench's timing. */
+    const char *tool, *timing;
+    int no_errors;                 /* errors not measured: the error fields are null and the JSON does
+                                    * not describe a reference or mask policy */
 } bench_run_info;
 
 void bench_mark_pareto(bench_config *cs, int n, const bench_options *o);

@@ -86,7 +86,9 @@ static void json_header(FILE *f, const bench_options *o, const bench_run_info *r
 {
     char why[64];
     int lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
-    fprintf(f, "{\n  \"tool\": \"snell-bench\",\n  \"date\": ");
+    fprintf(f, "{\n  \"tool\": ");
+    json_str(f, run->tool ? run->tool : "snell-bench");
+    fprintf(f, ",\n  \"date\": ");
     json_str(f, run->date);
     fprintf(f, ",\n  \"gl_renderer\": ");
     json_str(f, run->renderer);
@@ -95,22 +97,25 @@ static void json_header(FILE *f, const bench_options *o, const bench_run_info *r
     fprintf(f, ",\n  \"llvmpipe_threads_from\": ");
     json_str(f, why);
     fprintf(f, ",\n  \"timer_query\": %s,\n  \"timing\": ", run->timer ? "true" : "false");
-    json_str(f, "median of frames after warm-up; each frame = snell_render + glFinish (CPU wall clock); the "
-                "configurations of one scene and size take turns frame by frame; vs_single = median over rounds of "
-                "the ratio to the single-surface configuration's frame of the same round");
+    json_str(f, run->timing ? run->timing
+                            : "median of frames after warm-up; each frame = snell_render + glFinish (CPU wall clock); "
+                              "the configurations of one scene and size take turns frame by frame; vs_single = median "
+                              "over rounds of the ratio to the single-surface configuration's frame of the same round");
     fprintf(f, ",\n  \"frames\": %d,\n  \"warmup\": %d,\n  \"full_interfaces\": %d,\n  \"area_samples\": %d,"
                "\n  \"loadavg_before\": ",
             o->frames, o->warmup, o->full_interfaces, o->aa);
     json_str(f, run->load_before);
     fprintf(f, ",\n  \"loadavg_after\": ");
     json_str(f, run->load_after);
-    fprintf(f, ",\n  \"mask_policy\": ");
-    json_str(f, "angles over pixels that are glass in both the reference hit mask and the method's coverage; "
-                "mismatches counted, not compared");
-    fprintf(f, ",\n  \"reference\": ");
-    json_str(f, "snell_ref of the same scene with isolate_glass = 1: light that left a glass object sees the "
-                "environment and the opaque objects but no other glass object, as the renderer draws it, so the "
-                "error is the method's own");
+    if (!run->no_errors) {
+        fprintf(f, ",\n  \"mask_policy\": ");
+        json_str(f, "angles over pixels that are glass in both the reference hit mask and the method's coverage; "
+                    "mismatches counted, not compared");
+        fprintf(f, ",\n  \"reference\": ");
+        json_str(f, "snell_ref of the same scene with isolate_glass = 1: light that left a glass object sees the "
+                    "environment and the opaque objects but no other glass object, as the renderer draws it, so the "
+                    "error is the method's own");
+    }
     fprintf(f, ",\n  \"results\": [\n");
 }
 

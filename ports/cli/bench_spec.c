@@ -182,6 +182,7 @@ const char *bench_default_sweep(const snell_method_info *m)
 {
     if (m->method == SNELL_METHOD_CUBEMAP) return "iterations=4,6,12";
     if (m->method == SNELL_METHOD_OLIVEIRA) return "linear=0,8,16";
+    if (m->method == SNELL_METHOD_PEEL) return "linear=8,16"; /* layers and fixes: bench/BENCHMARKS.md */
     return "";
 }
 
@@ -201,6 +202,9 @@ static void reference_model(bench_config *c)
     if (snell_glass_defaults(&c->glass, &r) != SNELL_OK) return;
     if (c->method->method == SNELL_METHOD_CUBEMAP) c->ref_interfaces = r.material.cubemap.max_interfaces;
     if (c->method->method == SNELL_METHOD_OLIVEIRA) c->ref_interfaces = r.material.oliveira.max_interfaces;
+    /* peel's cap; MATCHED stops at the first exit, peel goes on through
+     * re-entries as FULL's dominant branch does: FULL is its model */
+    if (c->method->method == SNELL_METHOD_PEEL) c->ref_interfaces = r.material.peel.max_interfaces;
 }
 
 /* ------------------------------------------------------------- expansion */

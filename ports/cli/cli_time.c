@@ -1,5 +1,5 @@
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, sysconf */
-/* cli_time.c — monotonic wall clock and medians shared by the CLI ports. */
+/* cli_time.c — monotonic wall clock, medians and the load average shared by the ports. */
 #include "cli_time.h"
 
 #include <stdio.h>
@@ -13,6 +13,15 @@ double cli_now_ms(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+void cli_loadavg(char *buf, size_t n)
+{
+    FILE *f = fopen("/proc/loadavg", "r");
+    float a = 0, b = 0, c = 0;
+    if (f && fscanf(f, "%f %f %f", &a, &b, &c) == 3) snprintf(buf, n, "%.2f %.2f %.2f", a, b, c);
+    else snprintf(buf, n, "unknown");
+    if (f) fclose(f);
 }
 
 static int cmp_double(const void *a, const void *b)

@@ -1,11 +1,15 @@
 /* cli_time.h — the ports' one clock: monotonic wall time in milliseconds,
- * the median of a sample (snell-render --frames, snell-bench 3D and --2d),
- * and how many threads a software renderer times with. */
+ * the median of a sample (snell-render --frames, snell-bench 3D and --2d,
+ * snell-kiosk), the load average and how many threads a software renderer
+ * times with. */
 #ifndef SNELL_CLI_TIME_H
 #define SNELL_CLI_TIME_H
 
 #include <stddef.h>
 
+/* The 1, 5 and 15 minute load averages ("0.52 0.61 0.70"), "unknown" if
+ * /proc/loadavg cannot be read: what the benchmarks record beside a time. */
+void cli_loadavg(char *buf, size_t n);
 /* CLOCK_MONOTONIC in ms (arbitrary origin; differences only). */
 double cli_now_ms(void);
 /* Median of v[0..n), n >= 1; sorts v in place (so v[0], v[n-1] are min, max). */

@@ -39,6 +39,9 @@ typedef struct render_options {
     int verbose;                   /* -v: the same on stderr, and the library's INFO messages */
     int trace_xy[32];              /* --trace-pixel X,Y (repeatable, up to 16) */
     int trace_count;
+    const char *scene_file;        /* --scene: a glTF scene instead of --mesh/--opaque */
+    int camera_given;              /* --camera was given (it overrides a scene file's camera) */
+    int fov_given;                 /* --fov was given (it overrides a scene file camera's) */
 } render_options;
 
 /* Parses argv into *o. 1: render; 0: bad usage (message printed: exit 2);

@@ -31,7 +31,10 @@ void render_usage(FILE *f)
             "  --opaque N             demo: N opaque cubes orbiting the origin, moving every frame\n"
             "  --place X,Y,Z[,S]      position and uniform scale of the last --mesh or --opaque (default 0,0,0,1)\n"
             "  --color R,G,B          albedo of the last --opaque, 0..1 (default 0.8 grey)\n"
-            "  --no-normalize         keep the meshes' own scale (default: fit each in the unit sphere)\n\n"
+            "  --no-normalize         keep the meshes' own scale (default: fit each in the unit sphere)\n"
+            "  --scene FILE           a glTF scene (.gltf/.glb): its glass (KHR_materials_transmission) and\n"
+            "                         opaque objects, placed as its nodes say, and its camera unless --camera\n"
+            "                         is given (instead of --mesh/--opaque)\n\n"
             "glass (apply to the most recent --mesh):\n"
             "  --ior N                index of refraction, 0.05..100 (default %g)\n"
             "  --absorption R,G,B     Beer-Lambert coefficient per unit length, or one value for all (default 0)\n"
@@ -236,9 +239,11 @@ static int view_option(const char *a, const char *v, render_options *o)
         o->az_deg = c[0];
         o->el_deg = c[1];
         o->dist = c[2];
+        o->camera_given = 1;
     } else if (!strcmp(a, "--fov")) {
         if (!parse_floats(v, &o->fov_deg, 1) || !(o->fov_deg > 1.0f && o->fov_deg < 179.0f))
             return usage_error("%s wants degrees in 1..179, got '%s'", a, v);
+        o->fov_given = 1;
     } else if (!strcmp(a, "--backend")) {
         if (!strcmp(v, "surfaceless")) o->backend = SNELL_BACKEND_SURFACELESS;
         else if (!strcmp(v, "pbuffer")) o->backend = SNELL_BACKEND_PBUFFER;
@@ -313,7 +318,9 @@ int render_parse_args(int argc, char **argv, render_options *o)
             return 0;
         }
         i++;
-        if (!strcmp(a, "--mesh")) {
+        if (!strcmp(a, "--scene")) {
+            o->scene_file = v;
+        } else if (!strcmp(a, "--mesh")) {
             if (!(cur = glass = add_object(o, v, 0))) return 0;
             opaque = NULL;
         } else if (!strcmp(a, "--opaque") && is_count(v)) {
@@ -340,6 +347,8 @@ int render_parse_args(int argc, char **argv, render_options *o)
             return 0;
         }
     }
+    if (o->scene_file && (o->glass_count > 0 || o->opaque_count > 0 || o->orbit > 0))
+        return usage_error("--scene %s gives the objects; it does not combine with --mesh or --opaque%s", o->scene_file, "");
     if (o->glass_count > 0 && o->base.placed) {
         fprintf(stderr, PROG ": --place before the first --mesh places nothing when --mesh is given; put it after "
                         "the --mesh it moves\n");

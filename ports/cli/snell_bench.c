@@ -24,15 +24,6 @@
 #include <string.h>
 #include <time.h>
 
-static void read_loadavg(char *buf, size_t n)
-{
-    FILE *f = fopen("/proc/loadavg", "r");
-    float a = 0, b = 0, c = 0;
-    if (f && fscanf(f, "%f %f %f", &a, &b, &c) == 3) snprintf(buf, n, "%.2f %.2f %.2f", a, b, c);
-    else snprintf(buf, n, "unknown");
-    if (f) fclose(f);
-}
-
 /* Default sweep: every method of the registry that renders here, with the
  * parameters bench_default_sweep names. 0 on a bad spec. */
 static int default_sweep(snell_ctx *ctx, const snell_env *env, const bench_options *o, bench_config *cs, int *n)
@@ -129,7 +120,7 @@ int main(int argc, char **argv)
     memset(&run, 0, sizeof run);
     run.renderer = snell_ctx_gl_renderer(ctx);
     run.timer = bench_timer_init(ctx);
-    read_loadavg(load_before, sizeof load_before);
+    cli_loadavg(load_before, sizeof load_before);
     strftime(date, sizeof date, "%Y-%m-%d %H:%M", localtime(&now));
     run.date = date;
     run.load_before = load_before;
@@ -142,7 +133,7 @@ int main(int argc, char **argv)
     }
     bench_time_all(ctx, env, &o, cs, n);
     if (measure_all(ctx, env, &o, cs, n, t_start) > 0) rc = 1;
-    read_loadavg(load_after, sizeof load_after);
+    cli_loadavg(load_after, sizeof load_after);
     bench_mark_pareto(cs, n, &o);
     if (!write_outputs(cs, n, &o, &run)) rc = 1;
     bench_print_table(cs, n);

@@ -28,6 +28,7 @@ typedef struct render_scene {
     float opaque_models[SNELL_MAX_OPAQUE][16];
     int opaque_count;
     int orbit_first, orbit;         /* opaque[orbit_first ..] are the --opaque N cubes */
+    snell_scene_file *file;         /* --scene: owns the meshes and matrices the lists point to */
 } render_scene;
 
 static int g_verbose;
@@ -68,6 +69,23 @@ static snell_status build_scene(snell_ctx *ctx, const render_options *o, render_
     snell_status st;
     int i;
     memset(s, 0, sizeof *s);
+    if (o->scene_file) {
+        const snell_glass *g;
+        const snell_opaque *p;
+        if ((st = snell_scene_load_gltf(ctx, o->scene_file, 0, &s->file)) != SNELL_OK) {
+            fprintf(stderr, "snell-render: scene: %s\n", snell_last_error(ctx));
+            return st;
+        }
+        g = snell_scene_file_glass(s->file, &s->glass_count);
+        p = snell_scene_file_opaque(s->file, &s->opaque_count);
+        for (i = 0; i < s->glass_count; i++) {
+            s->glass[i] = g[i];
+            s->glass_names[i] = "scene glass";
+        }
+        for (i = 0; i < s->opaque_count; i++) s->opaque[i] = p[i];
+        s->orbit_first = s->opaque_count;
+        return SNELL_OK;
+    }
     s->glass_count = o->glass_count ? o->glass_count : 1;
     for (i = 0; i < s->glass_count; i++) {
         const render_object *g = &glass[i];
@@ -143,16 +161,18 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
         snell_glass_resolved m;
-        char skipped[160];
+        char skipped[160], layers[64] = "";
         skipped_str(g->skipped, skipped, sizeof skipped);
+        if (g->method_used == SNELL_METHOD_PEEL)
+            snprintf(layers, sizeof layers, ", layers peeled %d used %d", g->layers_peeled, g->layers_used);
         if (snell_glass_defaults(&s->glass[i].material, &m) != SNELL_OK) m.material.ior = NAN;
         fprintf(f,
                 "stats: glass %d (%s, ior %g): method %s, warning %d, passes %d, prepared %d, env_updated %d, "
-                "skipped %s, draw_order %d, view_depth %.3f, hidden_fraction %.4f, shading %s (%.1f px/triangle), "
+                "skipped %s, draw_order %d, view_depth %.3f, hidden_fraction %.4f, shading %s (%.1f px/triangle)%s, "
                 "reason: %s\n",
                 i, s->glass_names[i], m.material.ior, snell_method_str(g->method_used), g->warning, g->passes,
                 g->prepared, g->env_updated, skipped, g->draw_order, g->view_depth, g->hidden_fraction,
-                g->screen_space ? "screen" : "forward", g->pixels_per_triangle, g->reason);
+                g->screen_space ? "screen" : "forward", g->pixels_per_triangle, layers, g->reason);
     }
 }
 
@@ -252,6 +272,8 @@ int main(int argc, char **argv)
     fd.camera.elevation = (float)(o.el_deg * PI / 180.0);
     fd.camera.distance = o.dist;
     fd.camera.fov_y = (float)(o.fov_deg * PI / 180.0);
+    if (scene.file && !o.camera_given && snell_scene_file_camera(scene.file, &fd.camera) && o.fov_given)
+        fd.camera.fov_y = (float)(o.fov_deg * PI / 180.0);
 
     if (!render_frames(ctx, r, &o, &scene, &fd, &fs)) goto done;
     if (o.stats) print_stats(stdout, &fs, &scene);
@@ -265,6 +287,7 @@ done:
     snell_renderer_destroy(r);
     snell_env_destroy(env);
     for (i = 0; i < scene.mesh_count; i++) snell_mesh_destroy(scene.meshes[i]);
+    snell_scene_file_destroy(scene.file);
     snell_ctx_destroy(ctx);
     return rc;
 }

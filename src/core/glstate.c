@@ -89,6 +89,7 @@ void snell__glstate_save(snell_glstate *s)
         glActiveTexture((GLenum)(GL_TEXTURE0 + i));
         glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->tex_2d[i]);
         glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &s->tex_cube[i]);
+        glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &s->tex_2d_array[i]);
         glGetIntegerv(GL_SAMPLER_BINDING, &s->sampler[i]);
     }
     glActiveTexture((GLenum)s->active_texture);
@@ -140,6 +141,7 @@ void snell__glstate_restore(const snell_glstate *s)
         glActiveTexture((GLenum)(GL_TEXTURE0 + i));
         glBindTexture(GL_TEXTURE_2D, (GLuint)s->tex_2d[i]);
         glBindTexture(GL_TEXTURE_CUBE_MAP, (GLuint)s->tex_cube[i]);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, (GLuint)s->tex_2d_array[i]);
         glBindSampler((GLuint)i, (GLuint)s->sampler[i]);
     }
     glActiveTexture((GLenum)s->active_texture);

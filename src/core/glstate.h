@@ -14,6 +14,7 @@ typedef struct snell__pixel_store {
 typedef struct snell_glstate {
     int draw_fbo, read_fbo, renderbuffer, program, vao, array_buffer, active_texture;
     int tex_2d[SNELL_GLSTATE_UNITS], tex_cube[SNELL_GLSTATE_UNITS];
+    int tex_2d_array[SNELL_GLSTATE_UNITS]; /* the depth-peeled layers (methods/peel.c) */
     int viewport[4], scissor_box[4];
     unsigned char depth_test, cull_face, blend, scissor_test, stencil_test, polygon_offset, dither;
     unsigned char color_mask[4], depth_mask;

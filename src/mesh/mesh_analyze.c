@@ -35,6 +35,12 @@
  * cost up to 3 per triangle), so hitting it costs at most about as long as
  * analysing a clean mesh of that size; beyond it: SNELL_E_LIMIT. */
 #define WORK_BASE 8388608.0 /* 2^23 */
+/* Depth complexity (snell_mesh_analysis.depth_complexity): lines along
+ * DEPTH_DIRS directions spread over a hemisphere (a line's crossings do not
+ * depend on its sense), DEPTH_GRID^2 parallel lines each over the bounding
+ * sphere's disc. Bunny: 2304 lines, ~2.5e5 BVH steps. */
+#define DEPTH_DIRS 16
+#define DEPTH_GRID 12
 #define WORK_PER_TRIANGLE 256.0
 
 /* Three fixed directions with irrational-looking components, so that a parity
@@ -639,6 +645,44 @@ static int crossings(analyzer *an, const double p[3], const double dir[3])
     return n;
 }
 
+/* The most surfaces a line crosses, and the share of hitting lines that
+ * cross more than two, over parallel lines in directions of a Fibonacci
+ * hemisphere (irrational offsets: no line through a grid of vertices). */
+static void depth_complexity(analyzer *an, const double c[3], double radius, int *most, float *deep)
+{
+    int d, i, j, k, hits = 0, deep_lines = 0;
+    *most = 0;
+    for (d = 0; d < DEPTH_DIRS && !over_budget(an); d++) {
+        double z = 1.0 - (d + 0.5) / DEPTH_DIRS, s = sqrt(fmax(1.0 - z * z, 0.0)), phi = 2.399963229728653 * d;
+        double dir[3] = {s * cos(phi), s * sin(phi), z}, a[3], b[3], len;
+        /* a, b: an orthonormal basis of the plane across dir */
+        if (fabs(dir[0]) < 0.9) {
+            a[0] = 0.0, a[1] = dir[2], a[2] = -dir[1];
+        } else {
+            a[0] = -dir[2], a[1] = 0.0, a[2] = dir[0];
+        }
+        len = sqrt(dot3(a, a));
+        for (k = 0; k < 3; k++) a[k] /= len;
+        b[0] = dir[1] * a[2] - dir[2] * a[1];
+        b[1] = dir[2] * a[0] - dir[0] * a[2];
+        b[2] = dir[0] * a[1] - dir[1] * a[0];
+        for (i = 0; i < DEPTH_GRID; i++)
+            for (j = 0; j < DEPTH_GRID; j++) {
+                double u = ((i + 0.5 + 0.0618 * d) / DEPTH_GRID * 2.0 - 1.0) * radius;
+                double v = ((j + 0.5 + 0.0377 * d) / DEPTH_GRID * 2.0 - 1.0) * radius, p[3];
+                int n;
+                if (u * u + v * v > radius * radius) continue;
+                for (k = 0; k < 3; k++) p[k] = c[k] + u * a[k] + v * b[k] - 2.0 * radius * dir[k];
+                n = crossings(an, p, dir);
+                if (n == 0) continue;
+                hits++;
+                deep_lines += n > 2;
+                if (n > *most) *most = n;
+            }
+    }
+    *deep = hits ? (float)deep_lines / (float)hits : 0.0f;
+}
+
 /* Odd crossing count along all three parity rays: inside a closed mesh. */
 static int parity_inside(analyzer *an, const double p[3])
 {
@@ -790,6 +834,12 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
     }
     out->samples = FINE_SAMPLES;
     out->hidden_fraction = (float)hidden_fraction(&an, best_c, FINE_SAMPLES);
+    {
+        /* about the box centre, over the sphere about it that holds every vertex */
+        double bc[3];
+        for (k = 0; k < 3; k++) bc[k] = 0.5 * ((double)m->bmin[k] + m->bmax[k]);
+        depth_complexity(&an, bc, (double)m->bradius * 1.0001, &out->depth_complexity, &out->deep_fraction);
+    }
     if (over_budget(&an)) {
         snell__bvh_destroy(an.bvh);
         snell__free(&m->alloc, an.cdf);

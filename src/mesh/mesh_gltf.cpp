@@ -12,12 +12,25 @@ extern "C" {
 #include <unistd.h>
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
+
+/* A loaded scene file: the frame lists and what they point to. */
+struct snell_scene_file {
+    snell_alloc alloc;
+    int glass_count, opaque_count, mesh_count, has_camera;
+    snell_glass glass[SNELL_MAX_GLASS];
+    snell_opaque opaque[SNELL_MAX_OPAQUE];
+    float glass_model[SNELL_MAX_GLASS][16];
+    float opaque_model[SNELL_MAX_OPAQUE][16];
+    snell_mesh *meshes[SNELL_MAX_GLASS + SNELL_MAX_OPAQUE]; /* owned: one per distinct primitive */
+    snell_camera camera;
+};
 
 namespace {
 
@@ -715,78 +728,90 @@ void check_parse_budget(snell_ctx *ctx, size_t json_bytes, size_t bin_bytes, FsP
     fail(st, snell_last_error(ctx));
 }
 
+/* Parses and checks a glTF 2.0 file in memory into model (throws LoadError). */
+void parse(snell_ctx *ctx, const unsigned char *data, size_t size, const std::string &base_dir, bool allow_files,
+           unsigned flags, tinygltf::Model &model)
+{
+    if (size > kMaxInputBytes) fail(SNELL_E_LIMIT, "glTF input larger than 1 GiB");
+    tinygltf::TinyGLTF loader;
+    FsPolicy pol;
+    pol.allow_files = allow_files;
+    pol.allow_outside = (flags & SNELL_LOAD_ALLOW_OUTSIDE_FOLDER) != 0;
+    pol.base_dir = base_dir;
+    pol.budget = snell__ctx_budget(ctx);
+    pol.used = 0;
+    if (allow_files) {
+        char *rp = realpath(base_dir.empty() ? "." : base_dir.c_str(), nullptr);
+        if (rp) {
+            pol.root = rp;
+            std::free(rp);
+            if (pol.root.back() != '/') pol.root += '/';
+        }
+    }
+    tinygltf::FsCallbacks fs = {fs_exists, fs_expand, fs_read, fs_write, &pol};
+    loader.SetFsCallbacks(fs);
+    loader.SetImageLoader(skip_image, nullptr);
+    std::string err, warn;
+    bool ok;
+    bool glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+    if (glb) {
+        check_glb(data, size);
+        uint32_t jlen;
+        std::memcpy(&jlen, data + 12, 4);
+        check_json_depth(data + 20, jlen);
+        check_parse_budget(ctx, jlen, size - 20 - jlen, &pol);
+        ok = loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned int>(size), base_dir);
+    } else {
+        check_json_depth(data, size);
+        check_parse_budget(ctx, size, 0, &pol);
+        ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char *>(data),
+                                        static_cast<unsigned int>(size), base_dir);
+    }
+    check_version_and_extensions(model);
+    if (!pol.limit.empty()) fail(SNELL_E_LIMIT, pol.limit);
+    if (!ok && !pol.refused.empty())
+        fail(SNELL_E_IO, "refused to read " + pol.refused +
+                             ": URIs may name regular files in the model's folder only "
+                             "(SNELL_LOAD_ALLOW_OUTSIDE_FOLDER lifts the folder rule)");
+    if (!ok) {
+        while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
+        fail(SNELL_E_PARSE, "tinygltf: " + (err.empty() ? std::string("unknown error") : err));
+    }
+    if (!pol.refused.empty()) /* only images can be refused without failing the load */
+        snell__log(ctx, SNELL_LOG_WARN, "glTF: image files not read: %s", pol.refused.c_str());
+}
+
+/* The builder's triangles as a mesh (the arrays copied into the context's allocator). */
+snell_status adopt(snell_ctx *ctx, const Builder &b, snell_mesh **out)
+{
+    const snell_alloc *al = snell__ctx_alloc(ctx);
+    size_t nv = b.pos.size() / 3, nt = b.idx.size() / 3;
+    float *pos = static_cast<float *>(snell__calloc(al, 3 * nv, sizeof(float)));
+    float *nrm = static_cast<float *>(snell__calloc(al, 3 * nv, sizeof(float)));
+    uint32_t *idx = static_cast<uint32_t *>(snell__calloc(al, 3 * nt, sizeof(uint32_t)));
+    if (!pos || !nrm || !idx) {
+        snell__free(al, pos);
+        snell__free(al, nrm);
+        snell__free(al, idx);
+        fail(SNELL_E_NOMEM, "out of memory for the mesh");
+    }
+    std::memcpy(pos, b.pos.data(), 3 * nv * sizeof(float));
+    std::memcpy(nrm, b.nrm.data(), 3 * nv * sizeof(float));
+    std::memcpy(idx, b.idx.data(), 3 * nt * sizeof(uint32_t));
+    return snell__mesh_adopt(ctx, al, pos, nrm, idx, static_cast<uint32_t>(nv), static_cast<uint32_t>(nt), out);
+}
+
 snell_status load(snell_ctx *ctx, const unsigned char *data, size_t size, const std::string &base_dir,
                   bool allow_files, unsigned flags, snell_mesh **out)
 {
     try {
-        if (size > kMaxInputBytes) fail(SNELL_E_LIMIT, "glTF input larger than 1 GiB");
-        tinygltf::TinyGLTF loader;
         tinygltf::Model model;
-        FsPolicy pol;
-        pol.allow_files = allow_files;
-        pol.allow_outside = (flags & SNELL_LOAD_ALLOW_OUTSIDE_FOLDER) != 0;
-        pol.base_dir = base_dir;
-        pol.budget = snell__ctx_budget(ctx);
-        pol.used = 0;
-        if (allow_files) {
-            char *rp = realpath(base_dir.empty() ? "." : base_dir.c_str(), nullptr);
-            if (rp) {
-                pol.root = rp;
-                std::free(rp);
-                if (pol.root.back() != '/') pol.root += '/';
-            }
-        }
-        tinygltf::FsCallbacks fs = {fs_exists, fs_expand, fs_read, fs_write, &pol};
-        loader.SetFsCallbacks(fs);
-        loader.SetImageLoader(skip_image, nullptr);
-        std::string err, warn;
-        bool ok;
-        bool glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
-        if (glb) {
-            check_glb(data, size);
-            uint32_t jlen;
-            std::memcpy(&jlen, data + 12, 4);
-            check_json_depth(data + 20, jlen);
-            check_parse_budget(ctx, jlen, size - 20 - jlen, &pol);
-            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned int>(size), base_dir);
-        } else {
-            check_json_depth(data, size);
-            check_parse_budget(ctx, size, 0, &pol);
-            ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char *>(data),
-                                            static_cast<unsigned int>(size), base_dir);
-        }
-        check_version_and_extensions(model);
-        if (!pol.limit.empty()) fail(SNELL_E_LIMIT, pol.limit);
-        if (!ok && !pol.refused.empty())
-            fail(SNELL_E_IO, "refused to read " + pol.refused +
-                                 ": URIs may name regular files in the model's folder only "
-                                 "(SNELL_LOAD_ALLOW_OUTSIDE_FOLDER lifts the folder rule)");
-        if (!ok) {
-            while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
-            fail(SNELL_E_PARSE, "tinygltf: " + (err.empty() ? std::string("unknown error") : err));
-        }
-        if (!pol.refused.empty()) /* only images can be refused without failing the load */
-            snell__log(ctx, SNELL_LOG_WARN, "glTF: image files not read: %s", pol.refused.c_str());
+        parse(ctx, data, size, base_dir, allow_files, flags, model);
         Builder b(model, ctx);
         Mat4 id = identity();
         for (int r : scene_roots(model)) b.visit(r, id, 0);
         if (b.idx.empty()) fail(SNELL_E_PARSE, "no triangle primitives in the scene");
-
-        const snell_alloc *al = snell__ctx_alloc(ctx);
-        size_t nv = b.pos.size() / 3, nt = b.idx.size() / 3;
-        float *pos = static_cast<float *>(snell__calloc(al, 3 * nv, sizeof(float)));
-        float *nrm = static_cast<float *>(snell__calloc(al, 3 * nv, sizeof(float)));
-        uint32_t *idx = static_cast<uint32_t *>(snell__calloc(al, 3 * nt, sizeof(uint32_t)));
-        if (!pos || !nrm || !idx) {
-            snell__free(al, pos);
-            snell__free(al, nrm);
-            snell__free(al, idx);
-            fail(SNELL_E_NOMEM, "out of memory for the mesh");
-        }
-        std::memcpy(pos, b.pos.data(), 3 * nv * sizeof(float));
-        std::memcpy(nrm, b.nrm.data(), 3 * nv * sizeof(float));
-        std::memcpy(idx, b.idx.data(), 3 * nt * sizeof(uint32_t));
-        return snell__mesh_adopt(ctx, al, pos, nrm, idx, static_cast<uint32_t>(nv), static_cast<uint32_t>(nt), out);
+        return adopt(ctx, b, out);
     } catch (const LoadError &e) {
         return snell__fail(ctx, e.status, "glTF: %s", e.msg.c_str());
     } catch (const std::bad_alloc &) {
@@ -795,6 +820,272 @@ snell_status load(snell_ctx *ctx, const unsigned char *data, size_t size, const 
         return snell__fail(ctx, SNELL_E_PARSE, "glTF: %s", e.what());
     } catch (...) {
         return snell__fail(ctx, SNELL_E_PARSE, "glTF: unexpected exception");
+    }
+}
+
+/* --- scene files (snell_scene_load_gltf) ----------------------------------- */
+/* Thin-walled glass (KHR_materials_transmission without KHR_materials_volume,
+ * or with thicknessFactor 0) is infinitely thin in glTF; the renderer's thin
+ * wall needs a thickness, so it gets one too small to absorb or displace
+ * anything visible (world units). */
+const float kThinWall = 1e-4f;
+
+/* Material extensions the scene loader reads; other KHR_materials_* ones are
+ * logged once per file and ignored (an error when required). */
+bool scene_extension_known(const std::string &e)
+{
+    return e == "KHR_materials_transmission" || e == "KHR_materials_ior" || e == "KHR_materials_volume";
+}
+
+double number_or(const tinygltf::Value &obj, const char *key, double def)
+{
+    if (!obj.IsObject() || !obj.Has(key)) return def;
+    const tinygltf::Value &v = obj.Get(key);
+    if (!v.IsNumber()) fail(SNELL_E_PARSE, std::string("material extension field \"") + key + "\" is not a number");
+    double d = v.GetNumberAsDouble();
+    if (!std::isfinite(d)) fail(SNELL_E_PARSE, std::string("material extension field \"") + key + "\" is not finite");
+    return d;
+}
+
+struct SceneBuilder {
+    const tinygltf::Model &model;
+    snell_ctx *ctx;
+    snell_scene_file *out;
+    std::map<std::pair<int, int>, snell_mesh *> meshes; /* (mesh, primitive) -> its mesh, shared by instances */
+    std::string ignored;                                /* extensions ignored, for one log line */
+    size_t instances = 0;
+    int camera_node = -1;
+    Mat4 camera_world;
+    SceneBuilder(const tinygltf::Model &m, snell_ctx *c, snell_scene_file *o) : model(m), ctx(c), out(o) {}
+    void visit(int node, const Mat4 &parent, int depth);
+    void add(const tinygltf::Primitive &p, int mesh_idx, int prim_idx, const Mat4 &world, int node);
+    snell_mesh *mesh_of(const tinygltf::Primitive &p, int mesh_idx, int prim_idx);
+    void note_ignored(const tinygltf::ExtensionMap &ext);
+};
+
+void SceneBuilder::note_ignored(const tinygltf::ExtensionMap &ext)
+{
+    for (const auto &e : ext)
+        if (!scene_extension_known(e.first) && ignored.find(e.first) == std::string::npos)
+            ignored += (ignored.empty() ? "" : ", ") + shown_uri(e.first);
+}
+
+snell_mesh *SceneBuilder::mesh_of(const tinygltf::Primitive &p, int mesh_idx, int prim_idx)
+{
+    auto key = std::make_pair(mesh_idx, prim_idx);
+    auto it = meshes.find(key);
+    if (it != meshes.end()) return it->second;
+    Builder b(model, ctx);
+    b.add_primitive(p, identity(), mesh_idx);
+    snell_mesh *m = nullptr;
+    if (!b.idx.empty()) {
+        snell_status st = adopt(ctx, b, &m);
+        if (st != SNELL_OK) fail(st, snell_last_error(ctx));
+        if (out->mesh_count >= SNELL_MAX_GLASS + SNELL_MAX_OPAQUE) {
+            snell_mesh_destroy(m);
+            fail(SNELL_E_LIMIT, "more distinct primitives than the scene's object limits");
+        }
+        out->meshes[out->mesh_count++] = m;
+    }
+    meshes[key] = m;
+    return m;
+}
+
+void SceneBuilder::add(const tinygltf::Primitive &p, int mesh_idx, int prim_idx, const Mat4 &world, int node)
+{
+    char buf[200];
+    if (p.material < -1 || (p.material >= 0 && static_cast<size_t>(p.material) >= model.materials.size())) {
+        std::snprintf(buf, sizeof buf, "mesh %d primitive %d: material %d does not exist", mesh_idx, prim_idx,
+                      p.material);
+        fail(SNELL_E_PARSE, buf);
+    }
+    snell_mesh *m = mesh_of(p, mesh_idx, prim_idx);
+    if (!m) return; /* no triangles */
+    /* glTF's default material: opaque, base colour 1 */
+    double base[4] = {1.0, 1.0, 1.0, 1.0};
+    const tinygltf::Material *mat = p.material >= 0 ? &model.materials[static_cast<size_t>(p.material)] : nullptr;
+    if (mat) {
+        const std::vector<double> &bc = mat->pbrMetallicRoughness.baseColorFactor;
+        if (bc.size() == 4)
+            for (int k = 0; k < 4; k++) base[k] = std::isfinite(bc[static_cast<size_t>(k)]) ? bc[static_cast<size_t>(k)] : 1.0;
+        note_ignored(mat->extensions);
+    }
+    double transmission = 0.0;
+    auto ext = [&](const char *name) -> const tinygltf::Value * {
+        if (!mat) return nullptr;
+        auto e = mat->extensions.find(name);
+        return e == mat->extensions.end() ? nullptr : &e->second;
+    };
+    if (const tinygltf::Value *t = ext("KHR_materials_transmission")) transmission = number_or(*t, "transmissionFactor", 0.0);
+    float *model_m;
+    if (transmission > 0.0) {
+        if (out->glass_count >= SNELL_MAX_GLASS) {
+            std::snprintf(buf, sizeof buf, "more than %d glass objects (node %d)", SNELL_MAX_GLASS, node);
+            fail(SNELL_E_LIMIT, buf);
+        }
+        snell_glass *g = &out->glass[out->glass_count];
+        model_m = out->glass_model[out->glass_count];
+        out->glass_count++;
+        g->mesh = m;
+        g->model = model_m;
+        double ior = 1.5;
+        if (const tinygltf::Value *e = ext("KHR_materials_ior")) ior = number_or(*e, "ior", 1.5);
+        if (!(ior >= 0.05 && ior <= 100.0)) {
+            std::snprintf(buf, sizeof buf, "material %d: ior %g outside 0.05..100", p.material, ior);
+            fail(SNELL_E_PARSE, buf);
+        }
+        g->material.ior = static_cast<float>(ior);
+        for (int k = 0; k < 3; k++) g->material.tint[k] = static_cast<float>(std::min(std::max(base[k], 0.0), 1.0));
+        if (g->material.tint[0] == 0.0f && g->material.tint[1] == 0.0f && g->material.tint[2] == 0.0f)
+            g->material.tint[0] = g->material.tint[1] = g->material.tint[2] = 1e-6f; /* black, not "default white" */
+        const tinygltf::Value *vol = ext("KHR_materials_volume");
+        double thick = vol ? number_or(*vol, "thicknessFactor", 0.0) : 0.0;
+        if (thick > 0.0) {
+            double dist = number_or(*vol, "attenuationDistance", 0.0);
+            if (dist < 0.0) fail(SNELL_E_PARSE, "KHR_materials_volume: attenuationDistance is negative");
+            g->material.attenuation_distance = std::isinf(dist) ? 0.0f : static_cast<float>(dist);
+            if (vol->Has("attenuationColor")) {
+                const tinygltf::Value &c = vol->Get("attenuationColor");
+                if (!c.IsArray() || c.ArrayLen() != 3) fail(SNELL_E_PARSE, "KHR_materials_volume: attenuationColor is not 3 numbers");
+                for (int k = 0; k < 3; k++) {
+                    const tinygltf::Value &ck = c.Get(k);
+                    if (!ck.IsNumber() || !std::isfinite(ck.GetNumberAsDouble()))
+                        fail(SNELL_E_PARSE, "KHR_materials_volume: attenuationColor is not 3 numbers");
+                    g->material.attenuation_color[k] = static_cast<float>(std::min(std::max(ck.GetNumberAsDouble(), 0.0), 1.0));
+                }
+            }
+        } else {
+            g->material.thickness = kThinWall;
+        }
+    } else {
+        if (out->opaque_count >= SNELL_MAX_OPAQUE) {
+            std::snprintf(buf, sizeof buf, "more than %d opaque objects (node %d)", SNELL_MAX_OPAQUE, node);
+            fail(SNELL_E_LIMIT, buf);
+        }
+        snell_opaque *o = &out->opaque[out->opaque_count];
+        model_m = out->opaque_model[out->opaque_count];
+        out->opaque_count++;
+        o->mesh = m;
+        o->model = model_m;
+        for (int k = 0; k < 3; k++) o->color[k] = static_cast<float>(std::min(std::max(base[k], 0.0), 1.0));
+        if (o->color[0] == 0.0f && o->color[1] == 0.0f && o->color[2] == 0.0f) o->color[0] = 1e-6f; /* black */
+    }
+    for (int k = 0; k < 16; k++) {
+        if (!std::isfinite(world.m[k]) || std::fabs(world.m[k]) > 3.0e38) {
+            std::snprintf(buf, sizeof buf, "node %d: its world transform is not finite", node);
+            fail(SNELL_E_PARSE, buf);
+        }
+        model_m[k] = static_cast<float>(world.m[k]);
+    }
+}
+
+void SceneBuilder::visit(int node, const Mat4 &parent, int depth)
+{
+    char buf[160];
+    if (node < 0 || static_cast<size_t>(node) >= model.nodes.size()) {
+        std::snprintf(buf, sizeof buf, "node %d does not exist (%zu nodes)", node, model.nodes.size());
+        fail(SNELL_E_PARSE, buf);
+    }
+    if (depth > kMaxDepth) {
+        std::snprintf(buf, sizeof buf, "node hierarchy deeper than %d at node %d (cycle?)", kMaxDepth, node);
+        fail(SNELL_E_PARSE, buf);
+    }
+    if (++instances > kMaxInstances) {
+        std::snprintf(buf, sizeof buf, "more than %zu node instances", kMaxInstances);
+        fail(SNELL_E_LIMIT, buf);
+    }
+    const tinygltf::Node &n = model.nodes[static_cast<size_t>(node)];
+    Mat4 world = mul(parent, local_transform(n, node));
+    if (n.camera >= 0 && camera_node < 0) {
+        if (static_cast<size_t>(n.camera) >= model.cameras.size()) {
+            std::snprintf(buf, sizeof buf, "node %d references missing camera %d", node, n.camera);
+            fail(SNELL_E_PARSE, buf);
+        }
+        camera_node = node;
+        camera_world = world;
+    }
+    if (n.mesh >= 0) {
+        if (static_cast<size_t>(n.mesh) >= model.meshes.size()) {
+            std::snprintf(buf, sizeof buf, "node %d references missing mesh %d", node, n.mesh);
+            fail(SNELL_E_PARSE, buf);
+        }
+        const std::vector<tinygltf::Primitive> &prims = model.meshes[static_cast<size_t>(n.mesh)].primitives;
+        for (size_t i = 0; i < prims.size(); i++) add(prims[i], n.mesh, static_cast<int>(i), world, node);
+    }
+    for (int c : n.children) visit(c, world, depth + 1);
+}
+
+/* The glTF camera (a pose and a perspective) as snell's orbit camera: the
+ * eye and view direction are kept, the target put on the view axis at the
+ * depth of the scene's centre, the roll dropped (snell's up is +Y). */
+void convert_camera(const tinygltf::Camera &c, const Mat4 &w, const snell_scene_file *s, snell_camera *cam)
+{
+    double eye[3] = {w.m[12], w.m[13], w.m[14]}, fwd[3] = {-w.m[8], -w.m[9], -w.m[10]}, centre[3] = {0, 0, 0};
+    double len = std::sqrt(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]), dist = 0.0;
+    int n = 0;
+    if (!(len > 0.0)) fail(SNELL_E_PARSE, "the camera's node transform is degenerate");
+    for (int k = 0; k < 3; k++) fwd[k] /= len;
+    /* the scene's centre: the mean of the objects' origins */
+    for (int i = 0; i < s->glass_count; i++, n++)
+        for (int k = 0; k < 3; k++) centre[k] += s->glass_model[i][12 + k];
+    for (int i = 0; i < s->opaque_count; i++, n++)
+        for (int k = 0; k < 3; k++) centre[k] += s->opaque_model[i][12 + k];
+    for (int k = 0; k < 3 && n; k++) dist += (centre[k] / n - eye[k]) * fwd[k];
+    if (!(dist > 1e-3)) dist = 1.0;
+    std::memset(cam, 0, sizeof *cam);
+    for (int k = 0; k < 3; k++) cam->target[k] = static_cast<float>(eye[k] + dist * fwd[k]);
+    cam->distance = static_cast<float>(dist);
+    cam->elevation = static_cast<float>(std::asin(std::min(std::max(-fwd[1], -1.0), 1.0)));
+    cam->azimuth = static_cast<float>(std::atan2(-fwd[0], -fwd[2]));
+    if (c.type == "perspective") {
+        if (!(c.perspective.yfov > 0.0 && c.perspective.yfov < 3.14159))
+            fail(SNELL_E_PARSE, "camera: perspective yfov outside (0, pi)");
+        cam->fov_y = static_cast<float>(c.perspective.yfov);
+        if (c.perspective.znear > 0.0) cam->z_near = static_cast<float>(c.perspective.znear);
+        if (c.perspective.zfar > c.perspective.znear) cam->z_far = static_cast<float>(c.perspective.zfar);
+    }
+}
+
+snell_status load_scene(snell_ctx *ctx, const unsigned char *data, size_t size, const std::string &base_dir,
+                        bool allow_files, unsigned flags, snell_scene_file **out)
+{
+    const snell_alloc *al = snell__ctx_alloc(ctx);
+    snell_scene_file *s = static_cast<snell_scene_file *>(snell__calloc(al, 1, sizeof(snell_scene_file)));
+    if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "glTF scene: out of memory");
+    s->alloc = *al;
+    try {
+        tinygltf::Model model;
+        parse(ctx, data, size, base_dir, allow_files, flags, model);
+        std::string bad;
+        for (const std::string &e : model.extensionsRequired)
+            if (e.compare(0, 14, "KHR_materials_") == 0 && !scene_extension_known(e))
+                bad += (bad.empty() ? "" : ", ") + shown_uri(e);
+        if (!bad.empty()) fail(SNELL_E_UNSUPPORTED, "the scene requires material extensions that are not supported: " + bad);
+        SceneBuilder b(model, ctx, s);
+        Mat4 id = identity();
+        for (int r : scene_roots(model)) b.visit(r, id, 0);
+        if (s->glass_count + s->opaque_count == 0) fail(SNELL_E_PARSE, "no triangle primitives in the scene");
+        if (!b.ignored.empty())
+            snell__log(ctx, SNELL_LOG_INFO, "glTF scene: ignored extensions %s", b.ignored.c_str());
+        if (b.camera_node >= 0) {
+            convert_camera(model.cameras[static_cast<size_t>(model.nodes[static_cast<size_t>(b.camera_node)].camera)],
+                           b.camera_world, s, &s->camera);
+            s->has_camera = 1;
+        }
+        *out = s;
+        return SNELL_OK;
+    } catch (const LoadError &e) {
+        snell_scene_file_destroy(s);
+        return snell__fail(ctx, e.status, "glTF scene: %s", e.msg.c_str());
+    } catch (const std::bad_alloc &) {
+        snell_scene_file_destroy(s);
+        return snell__fail(ctx, SNELL_E_NOMEM, "glTF scene: out of memory");
+    } catch (const std::exception &e) {
+        snell_scene_file_destroy(s);
+        return snell__fail(ctx, SNELL_E_PARSE, "glTF scene: %s", e.what());
+    } catch (...) {
+        snell_scene_file_destroy(s);
+        return snell__fail(ctx, SNELL_E_PARSE, "glTF scene: unexpected exception");
     }
 }
 
@@ -869,4 +1160,61 @@ extern "C" snell_status snell_mesh_load_gltf_ex(snell_ctx *ctx, const char *path
 extern "C" snell_status snell_mesh_load_gltf(snell_ctx *ctx, const char *path, snell_mesh **out)
 {
     return snell_mesh_load_gltf_ex(ctx, path, 0, out);
+}
+
+extern "C" void snell_scene_file_destroy(snell_scene_file *s)
+{
+    if (!s) return;
+    snell_alloc al = s->alloc;
+    for (int i = 0; i < s->mesh_count; i++) snell_mesh_destroy(s->meshes[i]);
+    snell__free(&al, s);
+}
+
+extern "C" snell_status snell_scene_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size,
+                                                   snell_scene_file **out)
+{
+    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_scene_load_gltf_mem: out is NULL");
+    *out = NULL;
+    if (!data || !size) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_scene_load_gltf_mem: no data");
+    return load_scene(ctx, static_cast<const unsigned char *>(data), size, "", false, 0, out);
+}
+
+extern "C" snell_status snell_scene_load_gltf(snell_ctx *ctx, const char *path, unsigned flags, snell_scene_file **out)
+{
+    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_scene_load_gltf: out is NULL");
+    *out = NULL;
+    if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_scene_load_gltf: path is NULL");
+    if (flags & ~static_cast<unsigned>(SNELL_LOAD_ALLOW_OUTSIDE_FOLDER))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_scene_load_gltf: unknown flags 0x%x", flags);
+    try {
+        std::vector<unsigned char> bytes;
+        snell_status st = read_model_file(ctx, path, &bytes);
+        if (st != SNELL_OK) return st;
+        if (bytes.empty()) return snell__fail(ctx, SNELL_E_PARSE, "glTF: '%s' is empty", path);
+        std::string p(path), dir;
+        size_t slash = p.find_last_of('/');
+        if (slash != std::string::npos) dir = p.substr(0, slash + 1);
+        return load_scene(ctx, bytes.data(), bytes.size(), dir, true, flags, out);
+    } catch (...) {
+        return snell__fail(ctx, SNELL_E_NOMEM, "glTF: out of memory reading '%s'", path);
+    }
+}
+
+extern "C" const snell_glass *snell_scene_file_glass(const snell_scene_file *s, int *count)
+{
+    if (count) *count = s ? s->glass_count : 0;
+    return s && s->glass_count ? s->glass : NULL;
+}
+
+extern "C" const snell_opaque *snell_scene_file_opaque(const snell_scene_file *s, int *count)
+{
+    if (count) *count = s ? s->opaque_count : 0;
+    return s && s->opaque_count ? s->opaque : NULL;
+}
+
+extern "C" int snell_scene_file_camera(const snell_scene_file *s, snell_camera *camera)
+{
+    if (!s || !s->has_camera) return 0;
+    if (camera) *camera = s->camera;
+    return 1;
 }

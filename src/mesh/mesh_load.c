@@ -49,4 +49,41 @@ snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *data, size_t s
     if (out) *out = NULL;
     return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell was built without glTF support (SNELL_WITH_GLTF=OFF)");
 }
+
+snell_status snell_scene_load_gltf(snell_ctx *ctx, const char *path, unsigned flags, snell_scene_file **out)
+{
+    (void)flags;
+    if (out) *out = NULL;
+    return snell__fail(ctx, SNELL_E_UNSUPPORTED, "cannot load '%s': snell was built without glTF support "
+                       "(SNELL_WITH_GLTF=OFF)", path ? path : "(null)");
+}
+
+snell_status snell_scene_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_scene_file **out)
+{
+    (void)data;
+    (void)size;
+    if (out) *out = NULL;
+    return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell was built without glTF support (SNELL_WITH_GLTF=OFF)");
+}
+
+/* Nothing can be loaded, so there is nothing to destroy or read. */
+void snell_scene_file_destroy(snell_scene_file *s) { (void)s; }
+const snell_glass *snell_scene_file_glass(const snell_scene_file *s, int *count)
+{
+    (void)s;
+    if (count) *count = 0;
+    return NULL;
+}
+const snell_opaque *snell_scene_file_opaque(const snell_scene_file *s, int *count)
+{
+    (void)s;
+    if (count) *count = 0;
+    return NULL;
+}
+int snell_scene_file_camera(const snell_scene_file *s, snell_camera *camera)
+{
+    (void)s;
+    (void)camera;
+    return 0;
+}
 #endif

@@ -13,12 +13,14 @@ extern const snell__method snell__method_single;
 extern const snell__method snell__method_cubemap;
 extern const snell__method snell__method_wyman;
 extern const snell__method snell__method_oliveira;
+extern const snell__method snell__method_peel;
 
 static const snell__method *const g_methods[] = {
     &snell__method_single,
     &snell__method_cubemap,
     &snell__method_wyman,
     &snell__method_oliveira,
+    &snell__method_peel,
 };
 #define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
 

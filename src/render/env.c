@@ -172,20 +172,13 @@ static void equirect_sample(const uint8_t *img, int w, int h, const double d[3],
     }
 }
 
-static snell_status load_equirect(snell_ctx *ctx, snell_env *env, const char *path)
+/* Resamples a lat-long RGBA8 image into the six faces. */
+static snell_status equirect_to_faces(snell_ctx *ctx, snell_env *env, const uint8_t *img, int w, int h)
 {
-    int w, h, f, x, y;
-    uint8_t *img = NULL;
-    snell_status st;
-    if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "equirectangular environment needs a path");
-    st = snell__image_read_budget(path, snell__ctx_budget(ctx), &w, &h, &img);
-    if (st != SNELL_OK) return image_failure(ctx, st);
+    int f, x, y;
     for (f = 0; f < 6; f++) {
         env->faces[f] = (uint8_t *)snell__malloc(&env->alloc, (size_t)env->size * env->size * 4);
-        if (!env->faces[f]) {
-            snell_image_free(img);
-            return snell__fail(ctx, SNELL_E_NOMEM, "out of memory for cube faces");
-        }
+        if (!env->faces[f]) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory for cube faces");
         for (y = 0; y < env->size; y++)
             for (x = 0; x < env->size; x++) {
                 double d[3], c[3];
@@ -195,8 +188,30 @@ static snell_status load_equirect(snell_ctx *ctx, snell_env *env, const char *pa
                 px[0] = to_u8(c[0]); px[1] = to_u8(c[1]); px[2] = to_u8(c[2]); px[3] = 255;
             }
     }
-    snell_image_free(img);
     return SNELL_OK;
+}
+
+static snell_status load_equirect(snell_ctx *ctx, snell_env *env, const snell_env_desc *d)
+{
+    int w, h;
+    uint8_t *img = NULL;
+    snell_status st;
+    if (!d->equirect_path) {
+        if (!d->equirect_rgba)
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "equirectangular environment needs a path or pixels");
+        /* the limits of a decoded image (snell_image_read) */
+        if (d->equirect_width <= 0 || d->equirect_height <= 0 || d->equirect_width > 16384 ||
+            d->equirect_height > 16384 || (size_t)d->equirect_width * (size_t)d->equirect_height > ((size_t)1 << 25))
+            return snell__fail(ctx, SNELL_E_LIMIT,
+                               "equirectangular pixels %dx%d: each side 1..16384 and at most 2^25 pixels",
+                               d->equirect_width, d->equirect_height);
+        return equirect_to_faces(ctx, env, d->equirect_rgba, d->equirect_width, d->equirect_height);
+    }
+    st = snell__image_read_budget(d->equirect_path, snell__ctx_budget(ctx), &w, &h, &img);
+    if (st != SNELL_OK) return image_failure(ctx, st);
+    st = equirect_to_faces(ctx, env, img, w, h);
+    snell_image_free(img);
+    return st;
 }
 
 /* -------------------------------------------------------------------- GL */
@@ -269,7 +284,7 @@ snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_
         if (st == SNELL_OK) fill_procedural(env);
         break;
     case SNELL_ENV_FACES: st = load_faces(ctx, env, d.face_paths); break;
-    case SNELL_ENV_EQUIRECT: st = load_equirect(ctx, env, d.equirect_path); break;
+    case SNELL_ENV_EQUIRECT: st = load_equirect(ctx, env, &d); break;
     default: st = snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown environment source %d", (int)d.source);
     }
     if (st == SNELL_OK && ctx) st = upload(ctx, env);

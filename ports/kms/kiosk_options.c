@@ -1,0 +1,144 @@
+/* kiosk_options.c — snell-kiosk's command line. */
+#include "kiosk.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: snell-kiosk [options]\n"
+            "Refractive glass full screen on a DRM/KMS display, no window system: GBM + EGL, one frame per\n"
+            "page flip (vsync), drawn by libsnell inside the kiosk's own GLES context (EXTERNAL backend,\n"
+            "bound framebuffer). Stop with Ctrl-C or SIGTERM: the display gets back what it showed before.\n\n"
+            "  -b SPEC             what to show, as snell-bench names a configuration:\n"
+            "                      METHOD[:scene=S][:camera=AZ,EL,DIST][:ior=N][:KEY=V]... (snell-bench --list);\n"
+            "                      default cubemap:scene=sphere. With --bench, repeatable, comma lists sweep\n"
+            "  --device PATH       the DRM card (default: the first /dev/dri/card* with KMS resources and a\n"
+            "                      connected display; a Pi 4's v3d card has none, its vc4 card does)\n"
+            "  --dri-dir DIR       where to look for card* (default /dev/dri)\n"
+            "  --connector ID      connector id (default: the first connected, else the first unknown)\n"
+            "  --mode WxH[@R]      display mode (default: the connector's preferred mode)\n"
+            "  --atomic            show frames by atomic commits (default: legacy page flips; the kiosk\n"
+            "                      reports whether the driver has atomic modesetting)\n"
+            "  --spin DEG          camera azimuth step per frame, degrees (default 0.5; 0 with --bench)\n"
+            "  --frames N          stop after N frames (default: run until SIGINT/SIGTERM; --bench: 60)\n"
+            "  --hold              after the last frame keep it on screen until SIGINT/SIGTERM\n"
+            "  --report S          print frames per second every S seconds (default 5; 0: at the end only)\n"
+            "  --bench             time each -b configuration (default: every method on scene=bunny) for\n"
+            "                      --warmup then --frames frames; glmark2-style lines, snell-bench's JSON\n"
+            "  --warmup N          benchmark warm-up frames (default 5)\n"
+            "  --json FILE         benchmark JSON (default snell-kiosk.json)\n"
+            "  -h, --help          this text\n"
+            "Exit status: 0, 1 on failure, 2 on bad usage, %d when there is no DRM/KMS display.\n",
+            KIOSK_EXIT_NO_DISPLAY);
+}
+
+static int parse_long(const char *opt, const char *v, long lo, long hi, long *out)
+{
+    char *end;
+    long x;
+    errno = 0;
+    x = strtol(v, &end, 10);
+    if (errno || end == v || *end || x < lo || x > hi) {
+        fprintf(stderr, "snell-kiosk: %s %s: want an integer %ld..%ld\n", opt, v, lo, hi);
+        return 0;
+    }
+    *out = x;
+    return 1;
+}
+
+static int parse_double(const char *opt, const char *v, double lo, double hi, double *out)
+{
+    char *end;
+    double x;
+    errno = 0;
+    x = strtod(v, &end);
+    if (errno || end == v || *end || !isfinite(x) || x < lo || x > hi) {
+        fprintf(stderr, "snell-kiosk: %s %s: want a number %g..%g\n", opt, v, lo, hi);
+        return 0;
+    }
+    *out = x;
+    return 1;
+}
+
+/* Options with a value; 1 taken, 0 bad value (message printed), -1 unknown. */
+static int value_option(const char *a, const char *v, kiosk_options *o)
+{
+    long l;
+    double x;
+    if (!strcmp(a, "-b")) {
+        if (o->spec_count == KIOSK_MAX_SPECS)
+            return fprintf(stderr, "snell-kiosk: more than %d -b\n", KIOSK_MAX_SPECS), 0;
+        o->specs[o->spec_count++] = v;
+    } else if (!strcmp(a, "--device")) {
+        o->display.device = v;
+    } else if (!strcmp(a, "--dri-dir")) {
+        o->display.dri_dir = v;
+    } else if (!strcmp(a, "--connector")) {
+        if (!parse_long(a, v, 1, 0xffffffffL, &l)) return 0;
+        o->display.connector_id = (uint32_t)l;
+    } else if (!strcmp(a, "--mode")) {
+        if (!kms_parse_mode(v, &o->display.mode))
+            return fprintf(stderr, "snell-kiosk: --mode %s: want WxH or WxH@R (e.g. 1920x1080@60)\n", v), 0;
+    } else if (!strcmp(a, "--spin")) {
+        if (!parse_double(a, v, -360.0, 360.0, &x)) return 0;
+        o->spin_deg = (float)x;
+    } else if (!strcmp(a, "--frames")) {
+        if (!parse_long(a, v, 1, 1000000000L, &o->frames)) return 0;
+    } else if (!strcmp(a, "--report")) {
+        if (!parse_double(a, v, 0.0, 86400.0, &o->report_s)) return 0;
+    } else if (!strcmp(a, "--warmup")) {
+        if (!parse_long(a, v, 0, 100000, &l)) return 0;
+        o->warmup = (int)l;
+    } else if (!strcmp(a, "--json")) {
+        o->json = v;
+    } else {
+        return -1;
+    }
+    return 1;
+}
+
+int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
+{
+    int i, r, spin_set = 0;
+    memset(o, 0, sizeof *o);
+    o->spin_deg = 0.5f;
+    o->report_s = 5.0;
+    o->warmup = 5;
+    o->json = "snell-kiosk.json";
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            return -1;
+        } else if (!strcmp(a, "--hold")) {
+            o->hold = 1;
+        } else if (!strcmp(a, "--bench")) {
+            o->bench = 1;
+        } else if (!strcmp(a, "--atomic")) {
+            o->display.atomic = 1;
+        } else if (!v) {
+            fprintf(stderr, "snell-kiosk: %s needs a value (or is unknown); see --help\n", a);
+            return 0;
+        } else if ((r = value_option(a, v, o)) < 0) {
+            fprintf(stderr, "snell-kiosk: unknown option '%s'; see --help\n", a);
+            return 0;
+        } else if (!r) {
+            return 0;
+        } else {
+            spin_set |= !strcmp(a, "--spin");
+            i++;
+        }
+    }
+    if (o->bench && !spin_set) o->spin_deg = 0.0f; /* timed frames of one view, as snell-bench times them */
+    if (o->bench && !o->frames) o->frames = 60;
+    if (!o->bench && o->spec_count > 1) {
+        fprintf(stderr, "snell-kiosk: one -b shows one configuration; several need --bench\n");
+        return 0;
+    }
+    return 1;
+}

@@ -1,0 +1,283 @@
+// peel.frag - multi-layer refraction from depth-peeled layers (Wang 2014,
+// seed 001 3.3-3.6). The object's surfaces along each pixel's view ray are
+// in u_layers (methods/peel.c, peel_layer.frag): layer k's normal in array
+// slice 2k, its depth (the view-axis distance mapped onto the bounding
+// sphere's range, 24 bits) and a flag (0 = empty) in slice 2k + 1; layers
+// alternate front and back faces on a closed mesh. Between layer k - 1 and
+// layer k lies gap k: gap 0 before the first surface, odd gaps inside the
+// glass, even ones in air.
+//
+// Refract the view ray at the front surface (Schlick Fresnel there); the ray
+// is then in gap 1. The ray-height-field search (3.3): march along the ray
+// from its point in steps of the bounding diameter / SNELL_PEEL_LINEAR (the
+// seed's size is 1/50 of the depth range), to where the ray leaves the
+// bounding sphere grown by a step (the Z_min/Z_max bound); at each step project the point to
+// its pixel and compare its depth with the two layers bounding the ray's gap
+// there. Where it leaves the gap, bisect SNELL_PEEL_BINARY times between the
+// last point in the gap and the first out of it; the crossed layer (the
+// lower bound: upward into gap k - 1, the upper: downward into k + 1) gives
+// the normal. Refract, or past the critical angle reflect and stay in the
+// gap (3.6), restarting from the last point inside the gap (not the first
+// beyond the surface: the seed's false hit on the surface just left), up to
+// u_max_interfaces surfaces; then look the direction up in the environment.
+// Beer-Lambert over the length inside, tint at every entry (as the FULL
+// reference). A ray still inside at the cap leaves in its current direction
+// after the next surface (the reference's cap rule); so does an inside ray
+// whose gap has no far layer here (more surfaces than layers peeled).
+//
+// The seed's fixes, compile-time (SNELL_PEEL_FIX_*, to measure each alone):
+// DISCONTINUITY (3.5.1): a crossing where the crossed layer's depth jumps
+// between the bracket's two pixels by more than one linear step is a layer
+// boundary, not necessarily a surface (case 2 against case 3): the gap is
+// found afresh from the layers at the far pixel (how many lie in front of
+// the point); if the medium is the same there, the search goes on from that
+// gap. MERGE (3.5.2): where an inside ray's gap 2k + 1 has no layers at a
+// pixel (the far part of a torus is layers 3, 4 where it is behind the near
+// part, layers 1, 2 where it is not), gap 2k - 1 there stands in for it.
+//
+// highp throughout: positions, projections and 24-bit depths.
+precision highp float;
+
+#include "common/optics.glsl"
+#include "common/output.glsl"
+#include "common/surface.glsl"
+
+#define MAX_LAYERS 8          // SNELL_PEEL_MAX_LAYERS
+#define MAX_INTERFACES 10     // SNELL_PEEL_MAX_INTERFACES
+#define EMPTY 2.0             // depth of an empty texel: behind every stored depth (0..1)
+// SNELL_PEEL_LINEAR, SNELL_PEEL_BINARY, SNELL_PEEL_FIX_DISCONTINUITY,
+// SNELL_PEEL_FIX_MERGE, SNELL_ABSORB: the program's variant (methods/peel.c).
+
+uniform highp vec3 u_eye;
+uniform samplerCube u_env;
+uniform float u_ior;
+uniform vec3 u_sigma;
+uniform vec3 u_tint;
+uniform highp mat4 u_view_proj;
+uniform highp vec4 u_bsphere;        // world bounding sphere: centre, radius
+
+uniform highp sampler2DArray u_layers;
+uniform int u_layer_count;           // non-empty layers peeled, 1..MAX_LAYERS
+uniform highp vec3 u_fwd;            // unit view axis
+uniform highp float u_near;          // view depth of depth value 0
+uniform highp float u_inv_range;     // depth values per world unit of view depth
+uniform highp vec2 u_size;           // target size in pixels
+uniform int u_max_interfaces;        // 2..MAX_INTERFACES
+
+highp float depth_of(highp vec3 p)
+{
+    return (dot(p - u_eye, u_fwd) - u_near) * u_inv_range;
+}
+
+// The pixel p projects to; (-1, -1) outside the target or behind the eye.
+ivec2 pixel_of(highp vec3 p)
+{
+    highp vec4 c = u_view_proj * vec4(p, 1.0);
+    if (c.w <= 0.0) return ivec2(-1);
+    highp vec2 w = (c.xy / c.w * 0.5 + 0.5) * u_size;
+    if (any(lessThan(w, vec2(0.0))) || any(greaterThanEqual(w, u_size))) return ivec2(-1);
+    return ivec2(w);
+}
+
+highp float layer_depth(ivec2 px, int k)
+{
+    if (px.x < 0 || k < 0 || k >= u_layer_count) return EMPTY;
+    highp uvec4 b = uvec4(texelFetch(u_layers, ivec3(px, 2 * k + 1), 0) * 255.0 + 0.5);
+    if (b.a == 0u) return EMPTY;
+    return float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+}
+
+vec3 layer_normal(ivec2 px, int k)
+{
+    highp vec4 g = texelFetch(u_layers, ivec3(px, 2 * k), 0);
+    return snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0);
+}
+
+// Layer k's normal at point q: the four texels around q's position,
+// bilinearly, those of the same smooth surface as the texel q projects to
+// (depth within a linear step of q's, normal within 18 degrees of that
+// texel's: not across a depth jump or a crease, e.g. a cube's edge); that
+// texel's alone if none is. Measured at 256x256 against the FULL reference,
+// pixel-centre normals alone gave 1.16-1.57x this mean error (bunny, torus,
+// sphere, goblet).
+vec3 layer_normal_at(highp vec3 q, int k)
+{
+    highp vec4 c = u_view_proj * vec4(q, 1.0);
+    highp vec2 w = (c.xy / c.w * 0.5 + 0.5) * u_size - 0.5;
+    ivec2 base = ivec2(floor(w));
+    highp vec2 f = w - floor(w);
+    highp float z = depth_of(q);
+    ivec2 own = pixel_of(q);
+    vec3 n0 = layer_normal(own, k), sum = vec3(0.0);
+    for (int i = 0; i < 4; i++) {
+        ivec2 px = base + ivec2(i & 1, i >> 1);
+        if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(px, ivec2(u_size)))) continue;
+        if (abs(layer_depth(px, k) - z) > 1.0 / float(SNELL_PEEL_LINEAR)) continue;
+        vec3 n = layer_normal(px, k);
+        if (dot(n, n0) < 0.95) continue;
+        float wt = ((i & 1) == 1 ? f.x : 1.0 - f.x) * ((i >> 1) == 1 ? f.y : 1.0 - f.y);
+        sum += wt * n;
+    }
+    return dot(sum, sum) > 1e-12 ? sum : n0;
+}
+
+// How many layers at px lie in front of depth z: the gap z is in there.
+int gap_at(ivec2 px, highp float z)
+{
+    int n = 0;
+    for (int k = 0; k < MAX_LAYERS; k++)
+        if (layer_depth(px, k) < z) n = k + 1;
+    return n;
+}
+
+// The depths bounding gap j at px: lo = layer j - 1 (none for gap 0 or an
+// empty layer: -1), hi = layer j (EMPTY if absent). m: the gap whose layers
+// stand for it there (MERGE). False for an inside gap with no layers at px:
+// the ray has left through the silhouette.
+bool gap_bounds(ivec2 px, int j, out int m, out highp float lo, out highp float hi)
+{
+    m = j;
+    lo = layer_depth(px, j - 1);
+#if SNELL_PEEL_FIX_MERGE
+    for (int i = 0; i < MAX_LAYERS / 2; i++) {
+        if ((m & 1) == 0 || m < 3 || lo != EMPTY) break;
+        m -= 2;
+        lo = layer_depth(px, m - 1);
+    }
+#endif
+    hi = layer_depth(px, m);
+    if ((m & 1) == 1 && lo == EMPTY) return false;
+    if (lo == EMPTY) lo = -1.0;
+    return true;
+}
+
+// 0: z lies in gap j at px; 1: above it (crossed layer m - 1); 2: below it
+// (crossed layer m); 3: no such gap here (silhouette).
+int classify(ivec2 px, int j, highp float z, out int m)
+{
+    highp float lo, hi;
+    if (!gap_bounds(px, j, m, lo, hi)) return 3;
+    return z < lo ? 1 : z > hi ? 2 : 0;
+}
+
+void main()
+{
+    highp vec3 p1, n1;
+    snell_surface(p1, n1);
+    highp vec3 v = normalize(p1 - u_eye);
+    vec3 n = normalize(n1);
+    if (dot(n, v) > 0.0) n = -n;
+    vec3 r = snell_reflect(v, n);
+    vec3 dir;
+    snell_refract(v, n, 1.0 / u_ior, dir);
+    dir = normalize(dir);
+    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+
+    highp vec3 p = p1;
+    highp float step = 2.0 * u_bsphere.w / float(SNELL_PEEL_LINEAR);
+    highp float path = 0.0;
+    vec3 tint = u_tint;
+    int j = 1;             // the gap the ray is in
+    int done = 1;          // interfaces processed (the entry)
+    for (int it = 0; it < MAX_INTERFACES; it++) {
+        bool capped = done >= u_max_interfaces;  // inside at the cap: this search gives the length only
+        if (capped && ((j & 1) == 0 || SNELL_ABSORB == 0)) break;
+        // the search range: to the far side of the bounding sphere grown by
+        // one step, so that the last sample lies clearly beyond a surface on
+        // the sphere (a tessellated sphere's vertices are on it): a point just
+        // beyond it can still test as before it, against the depth at its
+        // pixel's centre
+        highp vec3 oc = p - u_bsphere.xyz;
+        highp float b = dot(oc, dir), rs = u_bsphere.w + step;
+        highp float t_max = max(-b + sqrt(max(b * b - dot(oc, oc) + rs * rs, 0.0)), 0.0);
+        highp float ta = 0.0, tb = -1.0;
+        int kind = 0, m = j;
+        for (int i = 1; i <= SNELL_PEEL_LINEAR + 1; i++) {
+            highp float t = min(float(i) * step, t_max);
+            highp vec3 q = p + t * dir;
+            ivec2 px = pixel_of(q);
+            kind = classify(px, j, depth_of(q), m);
+            if (kind != 0) {
+                // bisect [ta, t]: ta in the gap, tb out of it
+                tb = t;
+                for (int s = 0; s < SNELL_PEEL_BINARY; s++) {
+                    highp float tm = 0.5 * (ta + tb);
+                    highp vec3 qm = p + tm * dir;
+                    int mm;
+                    int km = classify(pixel_of(qm), j, depth_of(qm), mm);
+                    if (km == 0) ta = tm;
+                    else {
+                        tb = tm;
+                        kind = km;
+                        m = mm;
+                    }
+                }
+#if SNELL_PEEL_FIX_DISCONTINUITY
+                highp vec3 qa = p + ta * dir, qb = p + tb * dir;
+                ivec2 pa = pixel_of(qa), pb = pixel_of(qb);
+                int crossed = kind == 1 ? m - 1 : m;
+                if (kind != 3 && abs(layer_depth(pa, crossed) - layer_depth(pb, crossed)) > 1.0 / float(SNELL_PEEL_LINEAR)) {
+                    int g = gap_at(pb, depth_of(qb));
+                    if ((g & 1) == (j & 1)) {
+                        // case 2: a layer boundary, not a surface; go on in the gap found there
+                        j = g;
+                        ta = tb;
+                        tb = -1.0;
+                        kind = 0;
+                        continue;
+                    }
+                }
+#endif
+                break;
+            }
+            ta = t;
+            if (t >= t_max) break;
+        }
+        if (kind == 0) {
+            // no surface before the bounding sphere's far side
+            if ((j & 1) == 1) path += t_max;
+            break;
+        }
+        if ((j & 1) == 1) path += tb;
+        if (capped) break;
+        // the crossed layer's normal where the ray crossed it
+        highp vec3 qb = p + tb * dir, qa = p + ta * dir;
+        ivec2 pb = pixel_of(qb);
+        vec3 n2;
+        int next;
+        if (kind == 3) {
+            // out through the silhouette: its normal is the last pixel's
+            // layer nearest the point (the side wall there)
+            ivec2 pa = pixel_of(qa);
+            highp float za = depth_of(qa);
+            int near_k = abs(layer_depth(pa, m - 1) - za) < abs(layer_depth(pa, m) - za) ? m - 1 : m;
+            n2 = pa.x >= 0 && layer_depth(pa, near_k) != EMPTY ? layer_normal(pa, near_k) : -dir;
+            next = j + 1;
+        } else {
+            n2 = layer_normal_at(qb, kind == 1 ? m - 1 : m);
+            next = kind == 1 ? j - 1 : j + 1;
+        }
+        n2 = normalize(n2);
+        if (dot(n2, dir) > 0.0) n2 = -n2;   // face the ray
+        vec3 out_dir;
+        bool inside = (j & 1) == 1;
+        bool through = snell_refract(dir, n2, inside ? u_ior : 1.0 / u_ior, out_dir);
+        dir = normalize(out_dir);
+        done++;
+        if (through) {
+            j = next;
+            p = qb;                          // just beyond the surface
+            if (!inside) tint *= u_tint;     // entering again
+        } else {
+            p = qa;                          // TIR: from the last point inside the gap (3.6)
+        }
+    }
+
+#if SNELL_ABSORB
+    vec3 transmitted = texture(u_env, dir).rgb * tint * snell_beer_lambert(u_sigma, path);
+#else
+    vec3 transmitted = texture(u_env, dir).rgb * tint;
+#endif
+    vec3 reflected = texture(u_env, r).rgb;
+    snell_write(mix(transmitted, reflected, fresnel), dir);
+}

@@ -1,0 +1,47 @@
+// peel_layer.frag - one depth peel of a glass object (methods/peel.c; Wang
+// 2014 3.4, after Everitt's depth peeling): every face, front and back, is
+// drawn with depth test LESS, and a fragment no deeper than the previous
+// layer at its pixel is discarded, so the pass keeps the next surface behind
+// it. Depth is the view-axis distance mapped linearly onto the object's
+// bounding-sphere range [u_near, u_near + 1 / u_inv_range] in 24 bits; the
+// test compares the same quantised value the previous pass stored, so a
+// surface is never kept twice (two surfaces closer than 2r / 2^24 merge).
+// Writes the unit world normal octahedrally in 16+16 bits (as gbuffer.frag),
+// the depth + a flag (1; 0, the clear, marks an empty texel) to the layer,
+// and the depth + flag again to the ping-pong texture the next peel reads.
+// On a closed mesh the layers alternate front and back faces by
+// construction (every face is drawn, nearest first); the kernel takes the
+// gap's parity for inside or outside.
+precision highp float;
+
+#include "common/pack.glsl"
+
+in highp vec3 v_world_pos;
+in highp vec3 v_world_normal;
+
+uniform highp vec3 u_eye;
+uniform highp vec3 u_fwd;           // unit view axis, world space
+uniform highp float u_near;         // view depth of the bounding sphere's near side
+uniform highp float u_inv_range;    // 1 / the sphere's diameter
+uniform int u_first;                // 1: the nearest layer (nothing to peel yet)
+uniform highp sampler2D u_prev;     // the previous layer's depth + flag
+
+layout(location = 0) out highp vec4 o_normal;
+layout(location = 1) out highp vec4 o_depth;
+layout(location = 2) out highp vec4 o_next;
+
+void main()
+{
+    highp float z = clamp((dot(v_world_pos - u_eye, u_fwd) - u_near) * u_inv_range, 0.0, 1.0);
+    highp uint q = uint(z * 16777215.0 + 0.5);
+    if (u_first == 0) {
+        highp uvec4 p = uvec4(texelFetch(u_prev, ivec2(gl_FragCoord.xy), 0) * 255.0 + 0.5);
+        // an empty previous layer: nothing lies behind it either
+        if (p.a == 0u || q <= ((p.r << 16u) | (p.g << 8u) | p.b)) discard;
+    }
+    highp uvec4 b = uvec4(q >> 16u, (q >> 8u) & 255u, q & 255u, 1u);
+    o_normal = snell_pack_dir_rgba8(normalize(v_world_normal));
+    // (b + 0.25) / 255: stored as b whether the driver rounds or truncates (pack.glsl)
+    o_depth = (vec4(b) + 0.25) / 255.0;
+    o_next = o_depth;
+}

@@ -1,0 +1,390 @@
+/* peel.c — multi-layer refraction from depth-peeled layers (Wang 2014, seed
+ * 001 3.1-3.6), for concave objects whose view rays cross more than two
+ * surfaces (a torus, a goblet, ears and legs). Per object and frame: up to
+ * material.peel.layers depth peels (peel_layer.frag) of every face, front
+ * and back, each keeping the next surface behind the previous layer, into
+ * one RGBA8 texture array (slice 2k: layer k's normal, octahedral 16+16
+ * bits; slice 2k + 1: its depth in 24 bits over the bounding sphere's range
+ * and a flag, 0 = empty); then the kernel (peel.frag), forward or in screen
+ * space, searches along the refracted ray between the layers. Only GLES 3.0
+ * core formats: RGBA8 colour targets, a texture array, an occlusion query.
+ *
+ * Peels are skipped where they cannot hold anything: no more than the
+ * mesh's depth complexity (snell_mesh_analysis.depth_complexity, surfaces
+ * crossed along sampled lines, rounded up to a front/back pair), and none
+ * after one that came out empty (an ANY_SAMPLES_PASSED query on each peel
+ * after the first, read before the next is drawn). The layer textures are
+ * the method's (per renderer), sized to the target and the most layers
+ * asked for; objects peel one after the other into them. */
+#include "methods/glass_program.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "core/program.h"
+#include "render/pass.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#define DEFAULT_LAYERS 4
+#define DEFAULT_LINEAR 16
+#define DEFAULT_BINARY 6
+#define DEFAULT_INTERFACES 8
+#define PROG_CACHE 8
+/* The texture unit of the layers (render/gbuffer.h: 0 env, 1 the kernel's). */
+#define LAYER_UNIT 1
+
+/* AUTO shading on llvmpipe: the peels are drawn forward either way; the
+ * kernel's per-pixel search is costlier than the cubemap's, whose measured
+ * rule is "always screen space" (its full 4x4 blocks win at every density). */
+#define PEEL_SOFTWARE_SCREEN_PPT 1e9f
+
+typedef struct peel_prog {
+    snell__glass_program g; /* g.prog == 0: empty slot */
+    int screen, absorb, linear, binary, fixes;
+    unsigned long last_use;
+    int layers, layer_count, fwd, near_, inv_range, size, max_interfaces;
+} peel_prog;
+
+typedef struct peel_state {
+    snell__output_kind out;
+    peel_prog prog[PROG_CACHE];
+    unsigned long clock;
+    /* the peel pass */
+    unsigned layer_prog;
+    int u_model, u_normal_matrix, u_view_proj, u_eye, u_fwd, u_near, u_inv_range, u_first, u_prev;
+    unsigned fbo, array_tex, next_tex[2], depth_rb, query;
+    int width, height, capacity; /* of the textures: target size, layers */
+} peel_state;
+
+static void peel_destroy(snell_ctx *ctx, void *state);
+
+static snell_status build_prog(snell_ctx *ctx, peel_state *s, int screen, int absorb, int linear, int binary,
+                               int fixes, peel_prog *p)
+{
+    char def[256];
+    snell_status st;
+    snprintf(def, sizeof def,
+             "#define SNELL_PEEL_LINEAR %d\n#define SNELL_PEEL_BINARY %d\n#define SNELL_PEEL_FIX_DISCONTINUITY %d\n"
+             "#define SNELL_PEEL_FIX_MERGE %d\n#define SNELL_ABSORB %d\n",
+             linear, binary, fixes == SNELL_PEEL_FIXES_DISCONTINUITY || fixes == SNELL_PEEL_FIXES_BOTH,
+             fixes == SNELL_PEEL_FIXES_MERGE || fixes == SNELL_PEEL_FIXES_BOTH, absorb);
+    st = snell__glass_program_build(ctx, "peel.frag", s->out, def, screen, &p->g);
+    if (st != SNELL_OK) return st;
+    p->screen = screen;
+    p->absorb = absorb;
+    p->linear = linear;
+    p->binary = binary;
+    p->fixes = fixes;
+    p->layers = glGetUniformLocation(p->g.prog, "u_layers");
+    p->layer_count = glGetUniformLocation(p->g.prog, "u_layer_count");
+    p->fwd = glGetUniformLocation(p->g.prog, "u_fwd");
+    p->near_ = glGetUniformLocation(p->g.prog, "u_near");
+    p->inv_range = glGetUniformLocation(p->g.prog, "u_inv_range");
+    p->size = glGetUniformLocation(p->g.prog, "u_size");
+    p->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    return SNELL_OK;
+}
+
+/* The kernel of these settings: cached, else built into the least recently used slot. */
+static snell_status get_prog(snell_ctx *ctx, peel_state *s, int screen, int absorb, const snell_peel_params *pp,
+                             const peel_prog **out)
+{
+    peel_prog *p = &s->prog[0];
+    snell_status st;
+    int i;
+    s->clock++;
+    for (i = 0; i < PROG_CACHE; i++) {
+        peel_prog *c = &s->prog[i];
+        if (c->g.prog && c->screen == screen && c->absorb == absorb && c->linear == pp->linear_steps &&
+            c->binary == pp->binary_steps && c->fixes == (int)pp->fixes) {
+            c->last_use = s->clock;
+            *out = c;
+            return SNELL_OK;
+        }
+        if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
+    }
+    snell__glass_program_destroy(&p->g);
+    st = build_prog(ctx, s, screen, absorb, pp->linear_steps, pp->binary_steps, (int)pp->fixes, p);
+    if (st != SNELL_OK) return st;
+    p->last_use = s->clock;
+    *out = p;
+    return SNELL_OK;
+}
+
+static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, void **state)
+{
+    peel_state *s = (peel_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
+    const peel_prog *p;
+    snell_peel_params d = {DEFAULT_LAYERS, DEFAULT_LINEAR, DEFAULT_BINARY, DEFAULT_INTERFACES, SNELL_PEEL_FIXES_BOTH};
+    snell_status st;
+    if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
+    s->out = out;
+    st = snell__program_build(ctx, "object.vert", "peel_layer.frag", NULL, &s->layer_prog);
+    if (st == SNELL_OK) st = get_prog(ctx, s, 0, 0, &d, &p);
+    if (st != SNELL_OK) {
+        peel_destroy(ctx, s);
+        return st;
+    }
+    s->u_model = glGetUniformLocation(s->layer_prog, "u_model");
+    s->u_normal_matrix = glGetUniformLocation(s->layer_prog, "u_normal_matrix");
+    s->u_view_proj = glGetUniformLocation(s->layer_prog, "u_view_proj");
+    s->u_eye = glGetUniformLocation(s->layer_prog, "u_eye");
+    s->u_fwd = glGetUniformLocation(s->layer_prog, "u_fwd");
+    s->u_near = glGetUniformLocation(s->layer_prog, "u_near");
+    s->u_inv_range = glGetUniformLocation(s->layer_prog, "u_inv_range");
+    s->u_first = glGetUniformLocation(s->layer_prog, "u_first");
+    s->u_prev = glGetUniformLocation(s->layer_prog, "u_prev");
+    *state = s;
+    return SNELL_OK;
+}
+
+static void release_targets(peel_state *s)
+{
+    if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
+    if (s->array_tex) glDeleteTextures(1, &s->array_tex);
+    if (s->next_tex[0]) glDeleteTextures(2, s->next_tex);
+    if (s->depth_rb) glDeleteRenderbuffers(1, &s->depth_rb);
+    if (s->query) glDeleteQueries(1, &s->query);
+    s->fbo = s->array_tex = s->next_tex[0] = s->next_tex[1] = s->depth_rb = s->query = 0;
+    s->width = s->height = s->capacity = 0;
+}
+
+static void peel_destroy(snell_ctx *ctx, void *state)
+{
+    peel_state *s = (peel_state *)state;
+    int i;
+    if (!s) return;
+    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].g);
+    if (s->layer_prog) glDeleteProgram(s->layer_prog);
+    release_targets(s);
+    snell__free(&ctx->alloc, s);
+}
+
+static void nearest_texture(GLenum target)
+{
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+/* Layer textures for a w x h target and `layers` layers (made or grown on demand). */
+static snell_status ensure_targets(snell_ctx *ctx, peel_state *s, int w, int h, int layers)
+{
+    int i;
+    if (s->fbo && s->width == w && s->height == h && s->capacity >= layers) return SNELL_OK;
+    release_targets(s);
+    glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
+    glGenTextures(1, &s->array_tex);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, s->array_tex);
+    nearest_texture(GL_TEXTURE_2D_ARRAY);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA8, w, h, 2 * layers);
+    glGenTextures(2, s->next_tex);
+    for (i = 0; i < 2; i++) {
+        glBindTexture(GL_TEXTURE_2D, s->next_tex[i]);
+        nearest_texture(GL_TEXTURE_2D);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    glGenRenderbuffers(1, &s->depth_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, s->depth_rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glGenFramebuffers(1, &s->fbo);
+    glGenQueries(1, &s->query);
+    s->width = w;
+    s->height = h;
+    s->capacity = layers;
+    if (glGetError() != GL_NO_ERROR) {
+        release_targets(s);
+        return snell__fail(ctx, SNELL_E_GL, "GL error creating %d peel layers of %dx%d", layers, w, h);
+    }
+    return SNELL_OK;
+}
+
+/* The view axis and the object's depth range along it (the bounding sphere). */
+static void depth_frame(const snell__view *v, const snell__object *o, float fwd[3], float *near_, float *inv_range)
+{
+    int k;
+    float c = 0.0f;
+    for (k = 0; k < 3; k++) {
+        fwd[k] = -v->view[k][2];
+        c += (o->bsphere[k] - v->eye[k]) * fwd[k];
+    }
+    *near_ = c - o->bsphere[3];
+    *inv_range = 0.5f / o->bsphere[3];
+}
+
+/* Draws up to `want` peels of the object; returns how many were drawn in
+ * *peeled and how many hold something in *used. */
+static snell_status peel_layers(snell_ctx *ctx, peel_state *s, const snell__view *v, const snell__object *o,
+                                int want, int *peeled, int *used)
+{
+    static const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    float fwd[3], near_, inv_range;
+    snell__pass pass;
+    GLenum fst;
+    int k;
+    *peeled = *used = 0;
+    depth_frame(v, o, fwd, &near_, &inv_range);
+    snell__pass_begin(&pass, s->fbo, v->width, v->height, 0, GL_LESS, 1.0f);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->depth_rb);
+    glUseProgram(s->layer_prog);
+    glUniformMatrix4fv(s->u_model, 1, GL_FALSE, (const GLfloat *)o->model);
+    glUniformMatrix3fv(s->u_normal_matrix, 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
+    glUniformMatrix4fv(s->u_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
+    glUniform3fv(s->u_eye, 1, v->eye);
+    glUniform3fv(s->u_fwd, 1, fwd);
+    glUniform1f(s->u_near, near_);
+    glUniform1f(s->u_inv_range, inv_range);
+    glUniform1i(s->u_prev, LAYER_UNIT);
+    /* only the object's rectangle: clears and peels */
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(o->scissor[0], o->scissor[1], o->scissor[2], o->scissor[3]);
+    glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
+    for (k = 0; k < want; k++) {
+        GLuint any = 1;
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->array_tex, 0, 2 * k);
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, s->array_tex, 0, 2 * k + 1);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->next_tex[k & 1], 0);
+        glDrawBuffers(3, bufs);
+        if (k == 0) {
+            fst = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+            if (fst != GL_FRAMEBUFFER_COMPLETE) {
+                glDisable(GL_SCISSOR_TEST);
+                snell__pass_end(&pass);
+                return snell__fail(ctx, SNELL_E_GL, "peel framebuffer incomplete (0x%x)", (unsigned)fst);
+            }
+        }
+        /* the flag channel 0 marks empty texels; the previous layer is read, not written */
+        glClearBufferfv(GL_COLOR, 0, zero);
+        glClearBufferfv(GL_COLOR, 1, zero);
+        glClearBufferfv(GL_COLOR, 2, zero);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glBindTexture(GL_TEXTURE_2D, s->next_tex[(k + 1) & 1]);
+        glUniform1i(s->u_first, k == 0);
+        if (k > 0) glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, s->query);
+        snell__draw_object(o);
+        (*peeled)++;
+        if (k > 0) {
+            glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
+            glGetQueryObjectuiv(s->query, GL_QUERY_RESULT, &any);
+        }
+        if (!any) break; /* nothing behind the last layer: no further peel can hold anything */
+        (*used)++;
+    }
+    glDisable(GL_SCISSOR_TEST);
+    snell__pass_end(&pass);
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error peeling layers");
+}
+
+/* Peels needed: the layers asked for, bounded by the mesh's depth
+ * complexity rounded up to a front/back pair (a convex mesh: 2). */
+static int layers_wanted(const snell__object *o)
+{
+    int want = o->glass->material.peel.layers;
+    if (o->analysis && o->analysis->depth_complexity > 0) {
+        int dc = (o->analysis->depth_complexity + 1) & ~1;
+        if (dc < want) want = dc;
+    }
+    return want < 2 ? 2 : want;
+}
+
+static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                              snell_object_stats *stats)
+{
+    peel_state *s = (peel_state *)state;
+    const snell_peel_params *pp = &o->glass->material.peel;
+    float fwd[3], near_, inv_range;
+    const peel_prog *p;
+    int peeled, used;
+    snell_status st = get_prog(ctx, s, o->screen_space, o->glass->absorbs, pp, &p);
+    if (st == SNELL_OK) st = ensure_targets(ctx, s, v->width, v->height, pp->layers);
+    if (st == SNELL_OK) st = peel_layers(ctx, s, v, o, layers_wanted(o), &peeled, &used);
+    if (st != SNELL_OK) return st;
+    stats->passes += peeled;
+    stats->layers_peeled = peeled;
+    stats->layers_used = used;
+    depth_frame(v, o, fwd, &near_, &inv_range);
+    snell__glass_program_use(&p->g, v, o);
+    glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, s->array_tex);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(p->layers, LAYER_UNIT);
+    glUniform1i(p->layer_count, used);
+    glUniform3fv(p->fwd, 1, fwd);
+    glUniform1f(p->near_, near_);
+    glUniform1f(p->inv_range, inv_range);
+    glUniform2f(p->size, (float)v->width, (float)v->height);
+    glUniform1i(p->max_interfaces, pp->max_interfaces);
+    snell__draw_surface(o, stats);
+    stats->passes++;
+    return SNELL_OK;
+}
+
+/* The seed's case (3.1): convex meshes need two layers, and the cubemap and
+ * Wyman's method serve them for less; this one is for meshes whose view
+ * rays cross more surfaces. A closed mesh is what the layers' front/back
+ * alternation assumes; on an open one the layers are still the surfaces, but
+ * inside and outside are a guess. */
+static snell__fit peel_fit(const snell_mesh_analysis *an, const snell_glass_resolved *g, char *why, size_t n)
+{
+    (void)g;
+    if (!an) {
+        snell__why(why, n, "mesh analysis failed: closedness and depth complexity unknown");
+        return SNELL__FIT_RUNS;
+    }
+    if (!an->closed) {
+        snell__why(why, n, "open or non-manifold (%u boundary, %u non-manifold, %u flipped edges): layers do not "
+                           "alternate between glass and air", (unsigned)an->boundary_edges,
+                   (unsigned)an->nonmanifold_edges, (unsigned)an->flipped_edges);
+        return SNELL__FIT_RUNS;
+    }
+    if (an->depth_complexity <= 2) {
+        snell__why(why, n, "closed, depth complexity %d: two surfaces, which two-sided methods serve for less",
+                   an->depth_complexity);
+        return SNELL__FIT_RUNS;
+    }
+    snell__why(why, n, "closed, depth complexity %d (%.0f%% of sampled lines cross more than 2 surfaces): "
+                       "layers between them", an->depth_complexity, 100.0f * an->deep_fraction);
+    return SNELL__FIT_ADEQUATE;
+}
+
+static const char *const g_fix_names[] = {"default", "none", "discontinuity", "merge", "both"};
+
+static const snell_param_info g_params[] = {
+    {"layers", "depth layers peeled (front and back faces alternate; fewer where the mesh needs fewer)", 2,
+     SNELL_PEEL_MAX_LAYERS, DEFAULT_LAYERS, NULL},
+    /* "linear" and "interfaces" are also the cubemap's names (a CLI's
+     * --linear sets both): their ranges include the cubemap's, 0 the default */
+    {"linear", "linear search steps over the bounding diameter (0: the default)", 0, 128, DEFAULT_LINEAR, NULL},
+    {"binary", "binary refinement steps after a linear crossing", 1, 16, DEFAULT_BINARY, NULL},
+    {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
+     SNELL_PEEL_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
+    {"fixes", "the seed's search fixes (3.5): none, discontinuity, merge or both", 0, 4, SNELL_PEEL_FIXES_BOTH,
+     g_fix_names},
+};
+
+static const size_t g_offsets[] = {
+    offsetof(snell_glass_material, peel.layers), offsetof(snell_glass_material, peel.linear_steps),
+    offsetof(snell_glass_material, peel.binary_steps), offsetof(snell_glass_material, peel.max_interfaces),
+    offsetof(snell_glass_material, peel.fixes)};
+
+static const snell_method_info g_info = {
+    SNELL_METHOD_PEEL, "peel",
+    "multi-layer in image space: depth-peeled layers, ray-height-field search between them, TIR (Wang 2014)",
+    "a closed mesh of depth complexity above 2 (concave); per object and frame a few depth peels", 5,
+    (int)(sizeof g_params / sizeof *g_params), g_params};
+
+const snell__method snell__method_peel = {
+    .info = &g_info,
+    .param_offsets = g_offsets,
+    .needs_analysis = 1,
+    .fit = peel_fit,
+    .create = peel_create,
+    .destroy = peel_destroy,
+    .draw = peel_draw,
+    .software_screen_ppt = PEEL_SOFTWARE_SCREEN_PPT,
+};

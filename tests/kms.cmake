@@ -1,0 +1,41 @@
+# snell-kiosk (issue 16). Its choices (card, connector, mode, CRTC, format)
+# and its page-flip state machine are plain C, tested on made-up resources
+# whether or not the kiosk is built (ports/kms/kms_select.c, kms_flip.c).
+snell_add_test(test_kms SOURCES test_kms.c ${PROJECT_SOURCE_DIR}/ports/kms/kms_select.c
+               ${PROJECT_SOURCE_DIR}/ports/kms/kms_flip.c LABELS "unit")
+target_include_directories(test_kms PRIVATE ${PROJECT_SOURCE_DIR}/ports/kms)
+
+if(TARGET snell-kiosk)
+  set(kiosk $<TARGET_FILE:snell-kiosk>)
+  set(expect ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+  # No DRM device, or none with KMS resources: a clear message and the skip code.
+  add_test(NAME kiosk_no_device COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+           "-DARGS=--dri-dir|${CMAKE_CURRENT_BINARY_DIR}/no_such_dri" -DCODE=77
+           "-DERR=snell-kiosk: no DRM device: no card\\* in .*no_such_dri .*; nothing to show on \\(exit 77\\)" -P ${expect})
+  file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/not_dri/card0 "") # opens, but is no DRM card
+  add_test(NAME kiosk_no_kms_card COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+           "-DARGS=--dri-dir|${CMAKE_CURRENT_BINARY_DIR}/not_dri" -DCODE=77
+           "-DERR=no DRM/KMS display: .*not_dri/card0: no KMS resources" -P ${expect})
+  # A card that cannot be opened is a failure (1), not a missing display.
+  add_test(NAME kiosk_device_missing COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=--device|/nonexistent/card0"
+           -DCODE=1 "-DERR=cannot use a DRM device: /nonexistent/card0: No such file" -P ${expect})
+  set_tests_properties(kiosk_no_device kiosk_no_kms_card kiosk_device_missing PROPERTIES LABELS "cli")
+  foreach(bad "--mode|1920x" "--mode|1920x1080@" "--frames|0" "--spin|nan" "-b|cubemap|-b|single"
+              "--connector|x" "--nosuch")
+    string(MAKE_C_IDENTIFIER "kiosk_bad_${bad}" name)
+    add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=${bad}" -DCODE=2 "-DERR=snell-kiosk: "
+             -P ${expect})
+    set_tests_properties(${name} PROPERTIES LABELS "cli")
+  endforeach()
+
+  # The real KMS test: Debian's kernel in qemu (TCG) with a bochs display,
+  # snell-kiosk on it, the screen against an offscreen render (tests/kms/).
+  # 95-145 s here; skipped (77) when qemu, busybox-static, kmod or
+  # linux-image-amd64 is missing (.ci/run installs them).
+  add_executable(kms_compare kms/kms_compare.c)
+  target_link_libraries(kms_compare PRIVATE snell_static)
+  target_compile_options(kms_compare PRIVATE ${SNELL_WARNINGS})
+  add_test(NAME kms_vm COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/kms/run_vm_test.sh ${kiosk}
+           $<TARGET_FILE:snell-render> $<TARGET_FILE:kms_compare> ${CMAKE_CURRENT_BINARY_DIR}/kms_vm)
+  set_tests_properties(kms_vm PROPERTIES LABELS "kms" SKIP_RETURN_CODE 77 TIMEOUT 900)
+endif()
