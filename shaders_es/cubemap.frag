@@ -3,7 +3,9 @@
 // exit point along the refracted ray by a binary search against the distance
 // stored per direction from the centre, refract out there (or reflect on total
 // internal reflection and search again, up to u_max_interfaces surfaces), look
-// the final direction up in the environment; Schlick Fresnel at the entry,
+// the final direction up in the environment; Fresnel at the entry (Schlick,
+// or the exact one with SNELL_FRESNEL_EXACT), and with SNELL_INNER_FRESNEL
+// at the exit too, with its internal reflection followed by one more search;
 // Beer-Lambert over the path length inside.
 //
 // Spaces: the cubemap is in object space about u_centre; the search runs in
@@ -18,8 +20,9 @@ precision highp float;
 #include "common/surface.glsl"
 
 #define MAX_INTERFACES 8     // SNELL_CUBEMAP_MAX_INTERFACES
-// SNELL_SEARCH_ITERATIONS (1..32) and SNELL_LINEAR_STEPS (0..32) are defined
-// by the program's variant (method_cubemap.c).
+// SNELL_SEARCH_ITERATIONS (1..32), SNELL_LINEAR_STEPS (0..32),
+// SNELL_FRESNEL_EXACT (0/1) and SNELL_INNER_FRESNEL (0/1) are defined by the
+// program's variant (methods/cubemap.c).
 
 
 uniform highp vec3 u_eye;
@@ -129,6 +132,30 @@ float search_exit(vec3 p, vec3 d)
     return 0.5 * (lo + hi);
 }
 
+#if SNELL_INNER_FRESNEL
+// The branch reflected inside at the exit (weight F there): one more search
+// from the exit point q along rdir, refracted out at the next surface with
+// (1 - F'), whose own reflection F' leaves in its mirror direction (the rest
+// of the tree, lumped so that no energy is lost). Radiance, before the tint.
+vec3 inner_branch(vec3 q, vec3 rdir, float path)
+{
+    vec3 d = mat3(u_inv_model) * rdir;
+    float t = search_exit(q, d);
+    q += t * d;
+    vec3 n3 = normalize(u_normal_matrix * fetch_normal(q));
+    if (dot(n3, rdir) > 0.0) n3 = -n3;
+    vec3 out_dir;
+    vec3 mirror = snell_reflect(rdir, n3);
+    bool exited = snell_refract(rdir, n3, u_ior, out_dir);
+    float f = exited ? snell_fresnel(-dot(rdir, n3), u_ior, 1.0) : 1.0;
+    vec3 l = (1.0 - f) * texture(u_env, normalize(out_dir)).rgb + f * texture(u_env, mirror).rgb;
+#if SNELL_ABSORB
+    l *= snell_beer_lambert(u_sigma, path + t);
+#endif
+    return l;
+}
+#endif
+
 void main()
 {
     highp vec3 world_pos, world_normal;
@@ -139,7 +166,13 @@ void main()
     vec3 r = snell_reflect(v, n);
     vec3 dir;
     snell_refract(v, n, 1.0 / u_ior, dir);
-    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, u_ior);
+#if SNELL_INNER_FRESNEL
+    float exit_fresnel = 0.0;   // F at the exit the chain refracted out of (0: capped, no exit)
+    vec3 exit_in = dir;         // the direction that reached it from inside
+    vec3 exit_n = n;
+    float exit_path = 0.0;
+#endif
 
     mat3 inv3 = mat3(u_inv_model);
     vec3 p = (u_inv_model * vec4(world_pos, 1.0)).xyz - u_centre;    // object, about the centre
@@ -164,6 +197,14 @@ void main()
         if (dot(n2, dir) > 0.0) n2 = -n2;                      // face the ray (it comes from inside)
         vec3 out_dir;
         bool exited = snell_refract(dir, n2, u_ior, out_dir);
+#if SNELL_INNER_FRESNEL
+        if (exited) {
+            exit_fresnel = snell_fresnel(-dot(dir, n2), u_ior, 1.0);
+            exit_in = dir;
+            exit_n = n2;
+            exit_path = path;
+        }
+#endif
         dir = normalize(out_dir);                               // refracted out, or totally reflected
         if (exited || (k == u_max_interfaces && SNELL_ABSORB == 0)) break;
     }
@@ -173,6 +214,15 @@ void main()
     vec3 transmitted = texture(u_env, dir).rgb * u_tint * snell_beer_lambert(u_sigma, path);
 #else
     vec3 transmitted = texture(u_env, dir).rgb * u_tint;
+#endif
+#if SNELL_INNER_FRESNEL && !SNELL_NO_SEARCH
+    // Fresnel inside too (cubemap param inner=1): the exit transmits 1 - F
+    // of the chain and reflects F back in, the strongest of the branches the
+    // two-interface model drops (the first internal reflection: the ghost);
+    // one more search follows it (inner_branch).
+    if (exit_fresnel > 0.0)
+        transmitted = (1.0 - exit_fresnel) * transmitted +
+                      exit_fresnel * u_tint * inner_branch(p, snell_reflect(exit_in, exit_n), exit_path);
 #endif
     vec3 reflected = texture(u_env, r).rgb;
     snell_write(mix(transmitted, reflected, fresnel), dir);

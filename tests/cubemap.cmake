@@ -34,3 +34,23 @@ if(TARGET snell-render)
 endif()
 snell_add_test(test_cubemap_env SOURCES test_cubemap_env.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_cubemap_env PRIVATE m)
+# Inner-surface Fresnel (cubemap param inner): energy in a white world, the
+# gain against FULL on the sphere, AUTO on convex meshes only.
+snell_add_test(test_inner_fresnel SOURCES test_inner_fresnel.c LABELS "render;gl" SHADINGS forward screen)
+target_link_libraries(test_inner_fresnel PRIVATE m)
+# CLI antialiasing (snell_renderer_desc.ssaa / msaa): a still each, and clear
+# failures for bad values (exit 2) and for msaa with ssaa (the library's message).
+if(TARGET snell-render)
+  add_test(NAME cli_ssaa COMMAND ${cli} --ssaa 2 --size 48x48 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_ssaa.png)
+  add_test(NAME cli_msaa COMMAND ${cli} --msaa 4 --size 48x48 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_msaa.png)
+  set_tests_properties(cli_ssaa cli_msaa PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "wrote .*48x48")
+  foreach(bad "--ssaa;0" "--ssaa;9" "--msaa;x")
+    string(MAKE_C_IDENTIFIER "cli_bad_aa_${bad}" name)
+    string(REPLACE ";" "|" bad_args "${bad}")
+    add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=${bad_args}" -DCODE=2 "-DERR=snell-render: "
+             -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+    set_tests_properties(${name} PROPERTIES LABELS "cli")
+  endforeach()
+  add_test(NAME cli_msaa_with_ssaa COMMAND ${cli} --msaa 2 --ssaa 2 --size 48x48 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_x.png)
+  set_tests_properties(cli_msaa_with_ssaa PROPERTIES LABELS "cli" WILL_FAIL TRUE)
+endif()

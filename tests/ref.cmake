@@ -11,3 +11,6 @@ snell_add_test(test_ref_render SOURCES test_ref_render.c LABELS "render")
 target_link_libraries(test_ref_render PRIVATE m)
 snell_add_test(test_ref_gpu_single SOURCES test_ref_gpu_single.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_ref_gpu_single PRIVATE m)
+# Supersampling (snell_renderer_desc.ssaa, render/ssaa.c): the resolved frame
+# against the block means of the large one; refused settings.
+snell_add_test(test_ssaa SOURCES test_ssaa.c LABELS "render;gl" SHADINGS forward screen)

@@ -182,8 +182,48 @@ static void test_packed_encoding_error(void)
     CHECK(worst > 5e-6, "packed encoding error %g rad implausibly small", worst);
 }
 
+/* SSIM: 1 for identical images; for two constant images a and b the
+ * variances vanish and SSIM = (2ab + C1) / (a^2 + b^2 + C1) exactly; a
+ * pattern against its inverted copy scores below 0 (negative covariance)
+ * while the same pattern shifted by a constant keeps the structure term 1
+ * (SSIM > 0.9 for a small offset), which PSNR cannot tell apart; masks. */
+static void test_ssim(void)
+{
+    enum { W = 24, H = 20 };
+    static uint8_t a[W * H * 4], b[W * H * 4], m[W * H];
+    double s, c1 = (0.01 * 255) * (0.01 * 255), want;
+    int i;
+    for (i = 0; i < W * H; i++) {
+        int x = i % W, y = i / W, v = ((x / 3 + y / 3) & 1) ? 200 : 60;
+        a[4 * i] = a[4 * i + 1] = a[4 * i + 2] = (uint8_t)v;
+        b[4 * i] = b[4 * i + 1] = b[4 * i + 2] = (uint8_t)(260 - v);
+        a[4 * i + 3] = b[4 * i + 3] = 255;
+        m[i] = x > 5 && y > 4;
+    }
+    CHECK_OK(snell_metrics_ssim(a, a, W, H, NULL, &s));
+    CHECK(fabs(s - 1.0) < 1e-12, "SSIM of an image with itself %.15f", s);
+    CHECK_OK(snell_metrics_ssim(a, b, W, H, m, &s));
+    CHECK(s < 0.0, "SSIM of a pattern and its inverse %.4f should be negative", s);
+    for (i = 0; i < W * H * 4; i++) b[i] = (uint8_t)(i % 4 == 3 ? 255 : a[i] + 10);
+    CHECK_OK(snell_metrics_ssim(a, b, W, H, NULL, &s));
+    CHECK(s > 0.9 && s < 1.0, "SSIM of a pattern and its copy +10 %.4f", s);
+    for (i = 0; i < W * H * 4; i++) {
+        a[i] = (uint8_t)(i % 4 == 3 ? 255 : 100);
+        b[i] = (uint8_t)(i % 4 == 3 ? 255 : 140);
+    }
+    want = (2.0 * 100 * 140 + c1) / (100.0 * 100 + 140.0 * 140 + c1);
+    CHECK_OK(snell_metrics_ssim(a, b, W, H, m, &s));
+    CHECK(fabs(s - want) < 1e-12, "SSIM of constants 100, 140: %.15f, want %.15f", s, want);
+    memset(m, 0, sizeof m);
+    CHECK_OK(snell_metrics_ssim(a, b, W, H, m, &s));
+    CHECK(s == 1.0, "SSIM over an empty mask is 1");
+    CHECK(snell_metrics_ssim(NULL, b, W, H, NULL, &s) == SNELL_E_INVALID_ARG, "NULL image refused");
+    CHECK(snell_metrics_ssim(a, b, 0, H, NULL, &s) == SNELL_E_INVALID_ARG, "zero width refused");
+}
+
 int main(void)
 {
+    test_ssim();
     test_angle();
     test_dir_error();
     test_coverage();

@@ -8,7 +8,11 @@
  * (incidence cosines 1..0 and negative, IOR 0.75..4, thickness 0..3,
  * absorption none to strong), also against its analytic cases: without
  * absorption rs + ts = 1 and rs = 2R / (1 + R), R = Schlick at one face; with
- * it, the sum of the bounce series computed term by term. */
+ * it, the sum of the bounce series computed term by term. The exact
+ * unpolarised Fresnel reflectance (snell_opt_fresnel_exact /
+ * snell_fresnel_exact) against its angle form and its physical properties
+ * (reciprocity, Brewster's angle, grazing, critical angle); no reflection at
+ * matched indices in either model. */
 #include "test_util.h"
 #include "core/gl.h"
 #include "core/optics.h"
@@ -26,20 +30,65 @@ static const char vs[] =
     "layout(location = 2) in vec4 a_p; // eta, n1, n2, path length\n"
     "out vec4 o_t;   // refracted dir, refracted? 1 : 0\n"
     "out vec4 o_r;   // reflected dir, Schlick(n1 -> n2)\n"
-    "out vec4 o_bl;  // Beer-Lambert for sigma (0.1, 0.5, 2.0)\n"
+    "out vec4 o_bl;  // Beer-Lambert for sigma (0.1, 0.5, 2.0), exact Fresnel(n1 -> n2)\n"
     "void main() {\n"
     "    vec3 t;\n"
     "    bool ok = snell_refract(a_i, a_n, a_p.x, t);\n"
     "    o_t = vec4(t, ok ? 1.0 : 0.0);\n"
     "    o_r = vec4(snell_reflect(a_i, a_n), snell_fresnel_schlick(-dot(a_i, a_n), a_p.y, a_p.z));\n"
-    "    o_bl = vec4(snell_beer_lambert(vec3(0.1, 0.5, 2.0), a_p.w), 0.0);\n"
+    "    o_bl = vec4(snell_beer_lambert(vec3(0.1, 0.5, 2.0), a_p.w), snell_fresnel_exact(-dot(a_i, a_n), a_p.y, a_p.z));\n"
     "    gl_Position = vec4(0.0);\n"
     "}\n";
 
 typedef struct input { float i[3], n[3], p[4]; } input;
 
 static const double angles_deg[] = {0, 1, 10, 30, 41.8, 45, 48.6, 60, 75, 85, 89, 89.9, 89.99, 89.999};
-static const double iors[] = {1.0001, 1.33, 1.5, 2.42, 4.0};
+static const double iors[] = {1.0, 1.0001, 1.33, 1.5, 2.42, 4.0};
+
+/* The unpolarised dielectric reflectance in the angle form of the Fresnel
+ * equations (Born & Wolf 1.5 (21a)): Rs = sin^2(ti - tt) / sin^2(ti + tt),
+ * Rp = tan^2(ti - tt) / tan^2(ti + tt), at normal incidence their common
+ * limit ((n1 - n2) / (n1 + n2))^2; 1 beyond the critical angle, 0 at matched
+ * indices. Written apart from optics.h's cosine form to check it. */
+static double fresnel_angles(double cos_i, double n1, double n2)
+{
+    double ti = acos(fabs(cos_i) < 1.0 ? fabs(cos_i) : 1.0), st = n1 / n2 * sin(ti), tt, a, b;
+    if (n1 == n2) return 0.0;
+    if (st >= 1.0) return 1.0;
+    if (ti < 1e-7) return ((n1 - n2) / (n1 + n2)) * ((n1 - n2) / (n1 + n2));
+    tt = asin(st);
+    a = sin(ti - tt) / sin(ti + tt);
+    b = tan(ti - tt) / tan(ti + tt);
+    return 0.5 * (a * a + b * b);
+}
+
+/* Properties any correct Fresnel reflectance has, independent of the formula:
+ * reciprocity R(ti, n1 -> n2) = R(tt, n2 -> n1), Rp = 0 at Brewster's angle
+ * (R = Rs / 2 there), R -> 1 at grazing incidence, R = 1 from the critical
+ * angle on. */
+static void exact_fresnel_properties(void)
+{
+    int m, a, bad = 0;
+    for (m = 0; m < (int)(sizeof iors / sizeof *iors); m++) {
+        double n = iors[m], tb = atan(n), tt = atan(1.0 / n), rs = sin(tb - tt) / sin(tb + tt), crit;
+        if (n == 1.0) {
+            bad += snell_optd_fresnel_exact(0.3, 1.0, 1.0) != 0.0 || snell_optd_fresnel_schlick(0.3, 1.0, 1.0) != 0.0;
+            continue;
+        }
+        bad += fabs(snell_optd_fresnel_exact(cos(tb), 1.0, n) - 0.5 * rs * rs) > 1e-14;
+        bad += fabs(snell_optd_fresnel_exact(cos(tt), n, 1.0) - 0.5 * rs * rs) > 1e-14; /* Brewster inside */
+        bad += fabs(snell_optd_fresnel_exact(1e-12, 1.0, n) - 1.0) > 1e-8;
+        crit = asin(1.0 / n);
+        bad += snell_optd_fresnel_exact(cos(crit + 1e-6), n, 1.0) != 1.0;
+        for (a = 0; a < 90; a++) {
+            double ti = a * SNELL_PI / 180.0, ttr = asin(sin(ti) / n);
+            double r1 = snell_optd_fresnel_exact(cos(ti), 1.0, n), r2 = snell_optd_fresnel_exact(cos(ttr), n, 1.0);
+            bad += fabs(r1 - r2) > 1e-11 || fabs(r1 - fresnel_angles(cos(ti), 1.0, n)) > 1e-11;
+        }
+    }
+    CHECK(bad == 0, "%d exact-Fresnel properties fail (reciprocity, Brewster, grazing, critical angle, angle form)",
+          bad);
+}
 
 /* The slab in GLSL, one input per vertex. */
 static const char slab_vs[] = "precision highp float;\n"
@@ -235,7 +284,7 @@ int main(void)
     float out[3][N][4];
     GLuint prog = 0, vao, vbo, tfb[3], fbo, rb;
     int k, c, tir_cases = 0, grazing_cases = 0;
-    double max_dir_err = 0, max_f_err = 0, max_bl_err = 0;
+    double max_dir_err = 0, max_f_err = 0, max_fx_err = 0, max_bl_err = 0;
     if (!ctx) SKIP("no GL context");
     CHECK_OK(snell__program_build_feedback(ctx, vs, NULL, varyings, 3, &prog));
     if (!prog) return test_finish();
@@ -341,6 +390,19 @@ int main(void)
                       out[1][k][3], f, fd);
             CHECK(out[1][k][3] >= 0.0f && out[1][k][3] <= 1.0f, "Fresnel in [0,1]");
         }
+        {
+            double fd = snell_optd_fresnel_exact(cos_i, in[k].p[1], in[k].p[2]);
+            double fc = snell_opt_fresnel_exact(-snell_opt_dot(in[k].i, in[k].n), in[k].p[1], in[k].p[2]);
+            double fa = fresnel_angles(cos_i, in[k].p[1], in[k].p[2]);
+            double ef = fabs(out[2][k][3] - fd);
+            if (fabs(k_disc) > 1e-5 && ef > max_fx_err) max_fx_err = ef;
+            if (fabs(k_disc) > 1e-5)
+                CHECK(ef <= 2e-5 && fabs(fc - fd) <= 2e-5 && fabs(fd - fa) <= 1e-9,
+                      "input %d exact Fresnel GL %.7g C %.7g double %.9g angle form %.9g", k, out[2][k][3], fc, fd, fa);
+            CHECK(out[2][k][3] >= 0.0f && out[2][k][3] <= 1.0f, "exact Fresnel in [0,1]");
+            if (in[k].p[1] == in[k].p[2])
+                CHECK(out[2][k][3] == 0.0f && out[1][k][3] == 0.0f, "input %d: reflection at matched indices", k);
+        }
         for (c = 0; c < 3; c++) {
             double e = fabs(out[2][k][c] - bl[c]) / (bl[c] > 1e-30f ? bl[c] : 1.0f);
             if (e > max_bl_err) max_bl_err = e;
@@ -349,8 +411,10 @@ int main(void)
     }
     CHECK(tir_cases > 20, "the grid must exercise TIR (%d cases)", tir_cases);
     CHECK(grazing_cases >= 8, "the grid must exercise grazing angles (%d cases)", grazing_cases);
-    printf("%d inputs, %d TIR, %d grazing; max |GL - double| direction %.3g, Fresnel %.3g, Beer-Lambert rel %.3g\n",
-           N, tir_cases, grazing_cases, max_dir_err, max_f_err, max_bl_err);
+    printf("%d inputs, %d TIR, %d grazing; max |GL - double| direction %.3g, Schlick %.3g, exact Fresnel %.3g, "
+           "Beer-Lambert rel %.3g\n",
+           N, tir_cases, grazing_cases, max_dir_err, max_f_err, max_fx_err, max_bl_err);
+    exact_fresnel_properties();
 
     glDeleteFramebuffers(1, &fbo);
     glDeleteRenderbuffers(1, &rb);

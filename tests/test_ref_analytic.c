@@ -63,11 +63,26 @@ static double dist(const double a[3], const double b[3])
     return sqrt(dot(d, d));
 }
 
+/* MATCHED's Fresnel (the kernels'), air into n. */
 static double schlick(double cos_i, double n)
 {
     double r0 = (1 - n) / (1 + n), m = 1 - cos_i;
     r0 *= r0;
     return r0 + (1 - r0) * m * m * m * m * m;
+}
+
+/* FULL's Fresnel, air into n: the unpolarised mean of the Fresnel equations
+ * in their angle form, Rs = sin^2(ti - tt) / sin^2(ti + tt), Rp = tan^2(ti -
+ * tt) / tan^2(ti + tt) (optics.h uses the cosine form). Equal from either
+ * side of the interface (reciprocity), so F inside equals F outside. */
+static double fresnel(double cos_i, double n)
+{
+    double ti = acos(cos_i), tt, a, b;
+    if (ti < 1e-7) return ((n - 1) / (n + 1)) * ((n - 1) / (n + 1));
+    tt = asin(sin(ti) / n);
+    a = sin(ti - tt) / sin(ti + tt);
+    b = tan(ti - tt) / tan(ti + tt);
+    return 0.5 * (a * a + b * b);
 }
 
 /* Sets glass object i's material (ior; absorption per unit length s0..s2 via
@@ -218,12 +233,13 @@ static void sphere_tests(void)
                         bad_col++;
                     p.max_interfaces = 0;
                     p.absorption_model = SNELL_REF_ABSORB_PATH;
-                    /* FULL: the Whitted series; F inside equals F outside
-                     * (Schlick uses the larger angle). Terms below 1e-5 are
-                     * pruned (ref_trace.c), so compare to 1e-4. */
+                    /* FULL: the Whitted series with the exact Fresnel F,
+                     * equal inside and outside (reciprocity). Terms below
+                     * 1e-5 are pruned (ref_trace.c), so compare to 1e-4. */
                     if (h < 0.8 * r) {
                         p.mode = SNELL_REF_FULL;
                         CHECK_OK(snell_ref_trace_ray(ref, &p, o, d, &path));
+                        F = fresnel(cos(ti), iors[ii]);
                         fa = F * a;
                         for (k = 0; k < 8; k++) series += pow(fa, k);
                         full = F + (1 - F) * (1 - F) * a * series;
@@ -794,14 +810,15 @@ static void bsphere_tests(void)
 }
 
 /* Slab of index n, thickness th, absorption sig, tint t at incidence theta
- * (one channel), as the FULL tree sums it: reflectance R and transmittance T
- * of the slab with every inner bounce, F at both faces (Schlick gives the
- * same F inside: it uses the larger angle), a = exp(-sig th / cos theta_t). */
+ * (one channel): MATCHED's entry reflectance F_out (Schlick), and as the FULL
+ * tree sums it, reflectance R and transmittance T of the slab with every
+ * inner bounce, the exact F at both faces (equal inside: reciprocity),
+ * a = exp(-sig th / cos theta_t). */
 static void solid_slab(double cos_i, double n, double th, double sig, double t, double *F_out, double *a_out, double *R,
                        double *T)
 {
-    double F = schlick(cos_i, n), st = sqrt(1 - cos_i * cos_i) / n, a = exp(-sig * th / sqrt(1 - st * st));
-    *F_out = F;
+    double F = fresnel(cos_i, n), st = sqrt(1 - cos_i * cos_i) / n, a = exp(-sig * th / sqrt(1 - st * st));
+    *F_out = schlick(cos_i, n);
     *a_out = a;
     *R = F + (1 - F) * (1 - F) * t * F * a * a / (1 - F * F * a * a);
     *T = (1 - F) * (1 - F) * t * a / (1 - F * F * a * a);
@@ -981,7 +998,7 @@ static void two_slab_tests(void)
 
 /* (h) A thin wall: the box of (b) with material thickness 0.05, n 1.5, rgb
  * absorption and tint. The slab's rs and ts are summed here bounce by bounce
- * (r = Schlick at theta, a = exp(-sigma 0.05 / cos theta_t): ts = sum (1-r)^2
+ * (r = Schlick at theta for MATCHED, the exact Fresnel for FULL, a = exp(-sigma 0.05 / cos theta_t): ts = sum (1-r)^2
  * a (r a)^(2k), rs = r + sum (1-r)^2 r a^2 (r a)^(2k)). MATCHED: C = rs
  * env(R) + ts t env(d), the box's back faces unseen, 1 interface. FULL: both
  * walls are slabs, T_w = ts t: C = T_w^2 / (1 - rs^2) env(d) + (rs + T_w^2
@@ -1010,20 +1027,25 @@ static void thin_tests(void)
         double th_i = (i / 20) * (0.7 / 9.0), ph = (i % 20) * (2 * 3.14159265358979 / 20);
         double d[3] = {sin(th_i) * cos(ph), sin(th_i) * sin(ph), -cos(th_i)}, R[3] = {d[0], d[1], -d[2]};
         double target[3] = {0.4 * cos(i * 0.7), 0.4 * sin(i * 1.3), 0.5}, o[3], eR[3], eD[3], rs[3], ts[3];
-        double ct = sqrt(1 - sin(th_i) * sin(th_i) / (n * n)), r = schlick(cos(th_i), n), rs_mean;
+        double ct = sqrt(1 - sin(th_i) * sin(th_i) / (n * n)), r = schlick(cos(th_i), n), rx = fresnel(cos(th_i), n);
+        double rs_mean, rsx[3], tsx[3];
         snell_ref_path path;
         int k, q;
         for (k = 0; k < 3; k++) o[k] = target[k] - 3.0 * d[k];
         sky(R, eR, NULL);
         sky(d, eD, NULL);
         for (k = 0; k < 3; k++) {
-            double a = exp(-sig[k] * thick / ct), term = 1.0;
-            ts[k] = 0.0;
+            double a = exp(-sig[k] * thick / ct), term = 1.0, termx = 1.0;
+            ts[k] = tsx[k] = 0.0;
             rs[k] = r;
+            rsx[k] = rx;
             for (q = 0; q < 60; q++) {
                 ts[k] += (1 - r) * (1 - r) * a * term;
                 rs[k] += (1 - r) * (1 - r) * r * a * a * term;
                 term *= r * a * r * a;
+                tsx[k] += (1 - rx) * (1 - rx) * a * termx;
+                rsx[k] += (1 - rx) * (1 - rx) * rx * a * a * termx;
+                termx *= rx * a * rx * a;
             }
         }
         rs_mean = (rs[0] + rs[1] + rs[2]) / 3.0;
@@ -1041,8 +1063,8 @@ static void thin_tests(void)
         p.mode = SNELL_REF_FULL;
         CHECK_OK(snell_ref_trace_ray(ref, &p, o, d, &path));
         for (k = 0; k < 3; k++) {
-            double Tw = ts[k] * tint[k], want = Tw * Tw / (1 - rs[k] * rs[k]) * eD[k] +
-                                                (rs[k] + Tw * Tw * rs[k] / (1 - rs[k] * rs[k])) * eR[k];
+            double Tw = tsx[k] * tint[k], want = Tw * Tw / (1 - rsx[k] * rsx[k]) * eD[k] +
+                                                 (rsx[k] + Tw * Tw * rsx[k] / (1 - rsx[k] * rsx[k])) * eR[k];
             if (fabs(path.rgb[k] - want) > 2e-5) bad_f++;
         }
         if (path.interfaces != 2 || fabs(path.points[2][2] + 0.5) > 1e-12 || angle(path.exit_dir, d) > 1e-12 ||

@@ -17,6 +17,8 @@
  *    as {A, wall} on A's side and {B, wall} on B's (no path can cross the
  *    wall), MATCHED and FULL; with isolate_glass, {A, B} renders as {A} where
  *    A is seen first and as {B} where B is;
+ *  - area sampling (samples = S) is the S x S block mean of the S-times image;
+ *    sample_var is the block spread in MATCHED mode, 0 in a white world;
  *  - snell_ref_set_material gives the image of a reference created with that
  *    material; bad input gives a status and a message;
  *  - renders of the bunny, a sphere and a scene (MATCHED and FULL) are written
@@ -76,6 +78,7 @@ static void img_free(img *m)
 static snell_status render(const snell_ref *ref, snell_ref_params *p, img *m)
 {
     snell_ref_output o;
+    memset(&o, 0, sizeof o);
     o.rgb = m->rgb;
     o.exit_dir = m->dir;
     o.interfaces = m->nif;
@@ -854,6 +857,82 @@ static void scene_properties(const snell_mesh *sphere, const snell_mesh *torus, 
     }
 }
 
+/* Area sampling: with samples = S the pixel is the mean of an S x S grid of
+ * rays, whose sub-pixel centres are exactly the pixel centres of the image S
+ * times as large, so the S x S block means of that image are the result (up
+ * to the rounding of the two NDC computations, 1e-5 allowed); path outputs
+ * stay the centre ray's (the S = 1 image's); sample_var is 0 where the box
+ * sees one colour (white environment, no absorption: every ray is 1) and
+ * equals the block's spread in MATCHED mode (deterministic rays). */
+static void area_sampling(const snell_ref *ref, snell_ref_params p)
+{
+    enum { W = 24, H = 20, S = 3 };
+    int mode;
+    for (mode = 0; mode < 2; mode++) {
+        img big = img_new(W * S, H * S), small = img_new(W, H), centre = img_new(W, H);
+        float *var = (float *)calloc((size_t)W * H * 3, sizeof(float));
+        snell_ref_output o;
+        int x, y, k, a, b, bad = 0, bad_var = 0;
+        p.mode = mode ? SNELL_REF_FULL : SNELL_REF_MATCHED;
+        p.samples = 1;
+        CHECK_OK(render(ref, &p, &big));
+        CHECK_OK(render(ref, &p, &centre));
+        p.samples = S;
+        memset(&o, 0, sizeof o);
+        o.rgb = small.rgb;
+        o.exit_dir = small.dir;
+        o.hit = small.hit;
+        o.sample_var = var;
+        p.width = W;
+        p.height = H;
+        CHECK_OK(snell_ref_render(ref, &p, &o));
+        for (y = 0; y < H; y++)
+            for (x = 0; x < W; x++) {
+                size_t i = (size_t)y * W + x;
+                for (k = 0; k < 3; k++) {
+                    double m = 0.0, m2 = 0.0, v;
+                    for (b = 0; b < S; b++)
+                        for (a = 0; a < S; a++) {
+                            double c = big.rgb[3 * ((size_t)(y * S + b) * W * S + x * S + a) + k];
+                            m += c / (S * S);
+                            m2 += c * c / (S * S);
+                        }
+                    v = m2 - m * m;
+                    bad += fabs(small.rgb[3 * i + k] - m) > 1e-5;
+                    if (!mode) bad_var += fabs(var[3 * i + k] - v) > 1e-5;
+                    bad += memcmp(small.dir + 3 * i, centre.dir + 3 * i, 3 * sizeof(float)) != 0 ||
+                           small.hit[i] != centre.hit[i];
+                }
+            }
+        CHECK(bad == 0, "mode %d: %d area-sampled values differ from the %dx block means or the centre ray", mode, bad,
+              S);
+        CHECK(bad_var == 0, "MATCHED: %d sample variances differ from the block spread", bad_var);
+        img_free(&big);
+        img_free(&small);
+        img_free(&centre);
+        free(var);
+    }
+    {
+        float rgb[3 * 16], var[3 * 16];
+        snell_ref_output o;
+        int i, bad = 0;
+        p.env = NULL;
+        p.env_fn = white;
+        p.mode = SNELL_REF_FULL;
+        p.samples = 2;
+        p.width = p.height = 4;
+        memset(&o, 0, sizeof o);
+        o.rgb = rgb;
+        o.sample_var = var;
+        CHECK_OK(snell_ref_render(ref, &p, &o));
+        for (i = 0; i < 3 * 16; i++) bad += fabs(rgb[i] - 1.0) > 1e-6 || var[i] > 1e-6;
+        CHECK(bad == 0, "white environment: %d values with colour != 1 or variance != 0", bad);
+        p.samples = SNELL_REF_MAX_SAMPLES + 1;
+        CHECK(snell_ref_render(ref, &p, &o) == SNELL_E_INVALID_ARG && strstr(snell_last_error(NULL), "samples"),
+              "samples beyond the limit are refused with a message");
+    }
+}
+
 static void timed_render(const char *label, const char *png, const snell_ref *ref, snell_ref_params p, int size)
 {
     img a = img_new(size, size);
@@ -925,6 +1004,11 @@ int main(int argc, char **argv)
     separation(sphere, torus, cube, p);
     isolation(sphere, p);
     scene_properties(sphere, torus, cube, p);
+    {
+        snell_glass_material w = material(0, 0, 0, 0, 0, 0, 0, 0);
+        CHECK_OK(snell_ref_set_material(ref, 0, &w));
+        area_sampling(ref, p);
+    }
 
     p.threads = 0;
     m = material(0, 0.25f, 0.08f, 0.05f, 0, 0, 0, 0);

@@ -246,7 +246,7 @@ int main(void)
     snell_mesh *sphere = NULL, *cube = NULL, *torus = NULL, *open = NULL;
     snell_env *env = NULL;
     snell_renderer *r = NULL;
-    snell_renderer_desc rd = {W, H, SNELL_TARGET_OFFSCREEN, SNELL_OUTPUT_COLOR, SNELL_SHADING_AUTO};
+    snell_renderer_desc rd = {W, H, SNELL_TARGET_OFFSCREEN, SNELL_OUTPUT_COLOR, SNELL_SHADING_AUTO, 0, 0};
     snell_env_desc ed;
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 32, 16};
     snell_glass glass[NG + 1];
@@ -282,6 +282,8 @@ int main(void)
         glass[i].mesh = sphere;
         glass[i].model = gm[i];
         glass[i].material.ior = 1.3f + 0.05f * (float)i;
+        /* compared with the MATCHED model, which has no Fresnel at the exit */
+        glass[i].material.cubemap.inner_fresnel = SNELL_INNER_FRESNEL_OFF;
     }
     glass[1].mesh = cube;                                   /* closed, split at its edges: still closed */
     glass[2].mesh = open;                                   /* AUTO must not take the cubemap */

@@ -390,6 +390,19 @@ typedef enum snell_ndcube_encoding {
     SNELL_NDCUBE_OCT           /* octahedral normal in RG (8+8 bits), distance in BA (16 bits), nearest */
 } snell_ndcube_encoding;
 
+/* How a kernel computes reflectance at an interface. */
+typedef enum snell_fresnel_model {
+    SNELL_FRESNEL_DEFAULT = 0, /* the method's default (cubemap: SCHLICK) */
+    SNELL_FRESNEL_SCHLICK,     /* Schlick's approximation, the MATCHED reference's model */
+    SNELL_FRESNEL_EXACT        /* unpolarised dielectric Fresnel (mean of s and p), the FULL reference's */
+} snell_fresnel_model;
+
+typedef enum snell_inner_fresnel {
+    SNELL_INNER_FRESNEL_AUTO = 0, /* on where it pays (cubemap: convex meshes; bench/BENCHMARKS.md) */
+    SNELL_INNER_FRESNEL_OFF,
+    SNELL_INNER_FRESNEL_ON
+} snell_inner_fresnel;
+
 /* SNELL_METHOD_CUBEMAP's parameters (material.cubemap); zero = the default
  * snell_glass_defaults() reports. All changeable per frame: the first frame
  * with a new (iterations, linear_steps, encoding, max_interfaces == 1 without
@@ -404,6 +417,13 @@ typedef struct snell_cubemap_params {
                                 * exit, more = internal reflections; default 2) */
     int face_size;             /* normal+distance cubemap face, 16..2048 texels (default 256) */
     snell_ndcube_encoding encoding;
+    snell_fresnel_model fresnel; /* reflectance at the interfaces (default Schlick, the MATCHED model) */
+    /* Fresnel at the exit too (the FULL model's next terms): the chain's exit
+     * transmits 1 - F, and the light it reflects back inside is followed by
+     * one more search to the next surface and out (2 more environment
+     * look-ups); OFF: no loss at the exit, no internal-reflection ghost (the
+     * MATCHED model). AUTO (default): on for convex meshes, where it pays. */
+    snell_inner_fresnel inner_fresnel;
 } snell_cubemap_params;
 
 #define SNELL_CUBEMAP_MAX_ITERATIONS 32
@@ -604,7 +624,25 @@ typedef struct snell_renderer_desc {
     snell_target target;
     snell_output output;
     snell_shading shading;
+    /* Supersampling S (0 or 1 = off, up to SNELL_MAX_SSAA): the frame is drawn
+     * S times as wide and high and each pixel is the mean of its S x S block
+     * (a box filter over the pixel's area, as snell_ref_params.samples = S),
+     * for stills and for error measurement on area-averaged images; costs
+     * about S^2 the shading. Offscreen colour renderers only
+     * (SNELL_E_INVALID_ARG otherwise). */
+    int ssaa;
+    /* Multisampling (GLES 3.0 multisample renderbuffers, resolved by a blit):
+     * 0 or 1 = off, else the sample count (SNELL_E_UNSUPPORTED beyond
+     * GL_MAX_SAMPLES). Antialiases the edges of triangles - glass silhouettes,
+     * opaque objects against the background - not what is inside the glass
+     * (shaded once per pixel). With it AUTO shades glass forward (the
+     * screen-space stage's G-buffer is single-sample, its silhouettes would
+     * stay aliased); SCREEN is still honoured. Offscreen colour renderers
+     * only, not with ssaa. */
+    int msaa;
 } snell_renderer_desc;
+
+#define SNELL_MAX_SSAA 8
 
 /* A glass object of the scene. */
 typedef struct snell_glass {

@@ -1,6 +1,6 @@
 /* snell_metrics.h — error metrics of a method against the reference (issue 3):
- * per-pixel exit-direction angle, image RMSE/PSNR, shares above 1 and 5 degrees,
- * NaN/Inf counts. Pure CPU functions on caller-owned buffers; no allocation.
+ * per-pixel exit-direction angle, image RMSE/PSNR, SSIM, shares above 1 and 5
+ * degrees, NaN/Inf counts. Pure CPU functions on caller-owned buffers; no allocation.
  *
  * Pixel sets. A "glass pixel" is one whose light path met the glass. For the
  * reference it is snell_ref_output.hit; for a GPU method it is a pixel whose
@@ -74,6 +74,18 @@ typedef struct snell_image_error {
  * pixel gives pixels = 0, rmse 0, psnr +INFINITY. */
 snell_status snell_metrics_image_error(const uint8_t *test_rgba, const uint8_t *ref_rgba, int width, int height,
                                        const uint8_t *mask, snell_image_error *out);
+
+/* Structural similarity (Wang, Bovik, Sheikh, Simoncelli 2004, "Image
+ * quality assessment: from error visibility to structural similarity"), as
+ * there defined: 11x11 Gaussian window, sigma 1.5 pixels (weights renormalised
+ * where the window leaves the image), C1 = (0.01 * 255)^2, C2 = (0.03 *
+ * 255)^2, on each of R, G, B in 8-bit units; *out = the mean over the
+ * considered pixels (mask nonzero; NULL = all) of the mean over the channels
+ * of SSIM(window centred there). 1 for identical images, 1 also for an empty
+ * mask. A perceptual companion of PSNR: it weighs structure (edges, the
+ * refracted pattern) over uniform offsets. */
+snell_status snell_metrics_ssim(const uint8_t *test_rgba, const uint8_t *ref_rgba, int width, int height,
+                                const uint8_t *mask, double *out);
 
 /* Non-finite values in n floats. */
 long snell_metrics_count_nonfinite(const float *v, long n);

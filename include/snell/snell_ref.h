@@ -16,7 +16,7 @@
  *  - a glass object: an interface, as the mode below says. A solid object
  *    (thickness 0) bounds a volume of glass; a thin-walled one (thickness > 0)
  *    is a slab at each of its surfaces: reflectance rs and transmittance ts of
- *    all inner bounces (snell_optd_thin_slab: Schlick at both faces,
+ *    all inner bounces (snell_optd_thin_slab_model: the mode's Fresnel at both faces,
  *    Beer-Lambert along the refracted chord thickness / cos_t), light going
  *    through leaves in the direction it came; a ray is never inside it.
  * Inside/outside is tracked per object: a ray inside solid object A sees only
@@ -47,11 +47,14 @@
  *    weight drops below 1e-5 (as FULL's branches are); the chain, which the
  *    path records, never is.
  *  SNELL_REF_FULL — a Whitted tree: reflection and refraction at every
- *    interface weighted by Schlick's F (n1/n2 of the side the ray is on),
+ *    interface weighted by the exact Fresnel reflectance of unpolarised
+ *    light, F = (rs^2 + rp^2) / 2 (snell_optd_fresnel_exact; n1/n2 of the side
+ *    the ray is on; 0 at matched indices), as real glass and Blender Cycles'
+ *    Glass BSDF have it (the groundtruth test compares with Cycles),
  *    Beer-Lambert on every inner segment, tint on every entering refraction
  *    (once for a convex object), every wall of a thin object a slab (a
- *    reflected branch of weight rs, a straight-on one of weight ts * tint);
- *    what a glass object really looks like. A branch whose throughput drops
+ *    reflected branch of weight rs, a straight-on one of weight ts * tint,
+ *    the exact F at both faces); what a glass object really looks like. A branch whose throughput drops
  *    below 1e-5 ends with an env lookup in its direction instead of being
  *    traced on (error < 1e-5 per branch, far below 1/255).
  *
@@ -86,6 +89,7 @@ extern "C" {
 #define SNELL_REF_MAX_INTERFACES 64
 #define SNELL_REF_MAX_SIZE 16384   /* width, height limit */
 #define SNELL_REF_MAX_THREADS 256  /* more are clamped */
+#define SNELL_REF_MAX_SAMPLES 16   /* snell_ref_params.samples limit (S x S rays a pixel) */
 
 typedef struct snell_ref snell_ref;
 
@@ -156,6 +160,12 @@ typedef struct snell_ref_params {
     snell_camera camera;                 /* as snell_frame_desc.camera */
     int width, height;                   /* pixels; 0 = 512 */
     int threads;                         /* 0 = online CPUs; > SNELL_REF_MAX_THREADS clamped */
+    /* S: the colour of a pixel is the mean of S x S rays through the centres
+     * of an S x S grid over it (a box filter: the area-averaged image that
+     * snell_renderer_desc.ssaa = S gives on the GPU); 0 or 1 = the centre ray.
+     * The path outputs (exit_dir, interfaces, hit, object) are always those
+     * of the centre ray. 0..SNELL_REF_MAX_SAMPLES. */
+    int samples;
 } snell_ref_params;
 
 /* Caller-owned output buffers, width*height pixels each, top row first. */
@@ -169,6 +179,14 @@ typedef struct snell_ref_output {
     uint8_t *hit;         /* optional: 1 if the view ray hits a glass object first, else 0 */
     int16_t *object;      /* optional: what the view ray hits first: glass i -> i, opaque j ->
                            * -2 - j, nothing -> -1 */
+    /* optional: 3 per pixel, the per-sample variance of a path tracer that
+     * samples the pixel's box (uniformly, when samples > 1; the centre ray
+     * otherwise) and, in FULL mode, at each interface one branch by its
+     * Fresnel weight (reflection with probability F, as Cycles' sharp Glass
+     * BSDF): its N-sample estimate of rgb has variance sample_var / N. Second
+     * moment summed over the Whitted tree (MATCHED: deterministic rays, so
+     * only the box's spread). */
+    float *sample_var;
 } snell_ref_output;
 
 /* Renders the whole image with params->threads worker threads (pthreads). */

@@ -36,6 +36,7 @@ typedef struct bench_options {
     const char *images_dir;
     int full_interfaces;
     int threads;
+    int aa;                        /* --aa S: errors on S x S area-averaged images (1 = pixel centres) */
     const char *plot_y;
     int quiet;
 } bench_options;
@@ -59,6 +60,8 @@ typedef struct bench_config {
     int ref_interfaces;            /* MATCHED reference cap (the method's own) */
     snell_ref_absorption ref_absorb;
     snell_shading shading;         /* shading= (the renderer's; default auto) */
+    int ssaa, msaa;                /* ssaa=, msaa=: the renderer's antialiasing, timed and measured (0: none;
+                                    * then the measured colour frame uses --aa) */
     float lod;                     /* lod=: glass meshes simplified to this triangle ratio; 1 = the
                                     * original (the default); references always use the original */
 
@@ -78,6 +81,10 @@ typedef struct bench_config {
     snell_dir_error dir[2];        /* [0] vs MATCHED, [1] vs FULL */
     snell_image_error img[2];      /* whole image */
     snell_image_error img_glass[2];/* pixels that are glass in either mask */
+    double ssim_glass[2];          /* snell_metrics_ssim over the same pixels */
+    int angles_meaningful;         /* exit-direction angles compared per pixel mean something: a smooth
+                                    * built-in shape or scene of them (on a bumpy scan such as the bunny
+                                    * they are chaotic: an exit moved by a hair gives a large angle) */
     int ref_cached[2];
 } bench_config;
 
@@ -98,6 +105,7 @@ typedef struct bench_scene {
     snell_glass glass[SNELL_MAX_GLASS];
     snell_opaque opaque[SNELL_MAX_OPAQUE];
     float glass_models[SNELL_MAX_GLASS][16], opaque_models[SNELL_MAX_OPAQUE][16];
+    int analytic;                  /* built from shapes (smooth, analytic), not a scanned mesh file */
 } bench_scene;
 
 /* The scene called name, built on first use: a named multi-object scene

@@ -5,7 +5,11 @@
  * runs with isolate_glass = 1: light that has left a glass object sees the
  * environment and the opaque objects but no other glass object, as the
  * renderer draws it, so the error measured is the method's own and not the
- * glass-through-glass light the renderer does not draw yet. */
+ * glass-through-glass light the renderer does not draw yet. Colour is
+ * compared over the glass pixels as PSNR and SSIM, on area-averaged images
+ * with --aa S (the GPU frame supersampled S x S, the references with S x S
+ * rays a pixel): pixel-centre colours of a bumpy scan alias. The exit
+ * directions are always the pixel centres'. */
 #include "bench.h"
 #include "bench_ref.h"
 
@@ -86,8 +90,10 @@ static void buf_free(measure_buf *b)
 }
 
 /* The colour frame (timing was done before, in bench_time_all), with the
- * per-object statistics: how many glass objects warn. */
-static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, bench_config *c, measure_buf *b)
+ * per-object statistics: how many glass objects warn. aa > 1: supersampled
+ * (snell_renderer_desc.ssaa), the area-averaged image the reference's
+ * samples = aa is compared with. */
+static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, int aa, bench_config *c, measure_buf *b)
 {
     snell_renderer *r = NULL;
     snell_renderer_desc desc;
@@ -97,6 +103,9 @@ static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, bench_config
     desc.width = c->width;
     desc.height = c->height;
     desc.shading = c->shading;
+    /* The configuration's own antialiasing if it has one, else --aa's. */
+    desc.ssaa = c->ssaa || c->msaa ? c->ssaa : aa;
+    desc.msaa = c->msaa;
     if (snell_renderer_create(ctx, &desc, &r) != SNELL_OK) bench_fail(c, "renderer", ctx);
     else if (snell_render(r, fd, &fs) != SNELL_OK) bench_fail(c, "render", ctx);
     else if (snell_renderer_read_rgba(r, b->rgba) != SNELL_OK) bench_fail(c, "readback", ctx);
@@ -185,6 +194,7 @@ static int compare(const snell_frame_desc *fd, const snell_glass *ref_glass, con
     p.width = c->width;
     p.height = c->height;
     p.threads = o->threads;
+    p.samples = o->aa;
     if (!o->quiet)
         fprintf(stderr, "    reference %s (%d interfaces)...\n", mode ? "FULL" : "MATCHED", p.max_interfaces);
     if (bench_ref_get(&scene, &p, env_name, o->cache_dir, &ref, &c->ref_cached[mode]) != SNELL_OK) {
@@ -203,6 +213,7 @@ static int compare(const snell_frame_desc *fd, const snell_glass *ref_glass, con
     snell_metrics_image_error(b->rgba, ref.rgba, c->width, c->height, NULL, &c->img[mode]);
     for (j = 0; j < b->n; j++) b->either[j] = (uint8_t)(b->mask[j] || ref.hit[j]);
     snell_metrics_image_error(b->rgba, ref.rgba, c->width, c->height, b->either, &c->img_glass[mode]);
+    snell_metrics_ssim(b->rgba, ref.rgba, c->width, c->height, b->either, &c->ssim_glass[mode]);
     if (o->images_dir) write_images(o, c, mode, b, &ref);
     bench_ref_free(&ref);
     return 1;
@@ -226,9 +237,10 @@ void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, c
         bench_scene_frame(c, s, env, glass, &fd);
         memcpy(ref_glass, glass, sizeof(snell_glass) * (size_t)fd.glass_count);
         c->glass_objects = fd.glass_count;
+        c->angles_meaningful = s->analytic;
         c->opaque_objects = fd.opaque_count;
         if (bench_scene_lod(ctx, c, glass, fd.glass_count) != SNELL_OK) bench_fail(c, "lod", ctx);
-        else if (colour_frame(ctx, &fd, c, &b) && exit_dir_frames(ctx, &fd, c, &b) &&
+        else if (colour_frame(ctx, &fd, o->aa, c, &b) && exit_dir_frames(ctx, &fd, c, &b) &&
                  compare(&fd, ref_glass, env_name, o, c, 0, &b))
             compare(&fd, ref_glass, env_name, o, c, 1, &b);
     }

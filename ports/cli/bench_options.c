@@ -37,6 +37,9 @@ static void usage(FILE *f)
             "  --warmup N             untimed frames first (default 3)\n"
             "  --full-interfaces N    interface cap of the FULL reference (default 10)\n"
             "  --threads N            reference tracer threads (default: all CPUs)\n"
+            "  --aa S                 colour errors on area-averaged images: the GPU frame with\n"
+            "                         ssaa = S, the references with S x S rays a pixel (default 1:\n"
+            "                         pixel centres); timing stays the plain frame\n"
             "                         (llvmpipe's own threads come from LP_NUM_THREADS, unset: one per\n"
             "                         CPU; reported in the table, JSON and CSV)\n"
             "  --env FILE|procedural  environment: procedural (default), an equirectangular image,\n"
@@ -93,6 +96,7 @@ static int value_option(const char *a, const char *v, bench_options *o)
     if (!strcmp(a, "--warmup")) return bench_parse_int(a, v, 0, 100000, &o->warmup);
     if (!strcmp(a, "--full-interfaces")) return bench_parse_int(a, v, 1, SNELL_REF_MAX_INTERFACES, &o->full_interfaces);
     if (!strcmp(a, "--threads")) return bench_parse_int(a, v, 0, SNELL_REF_MAX_THREADS, &o->threads);
+    if (!strcmp(a, "--aa")) return bench_parse_int(a, v, 1, SNELL_MAX_SSAA, &o->aa);
     if (!strcmp(a, "--env")) {
         char why[160];
         if (!cli_env_spec_check(v, why, sizeof why)) {
@@ -125,6 +129,7 @@ int bench_parse_options(int argc, char **argv, bench_options *o)
     o->out_prefix = "snell-bench";
     o->cache_dir = "snell-bench-cache";
     o->full_interfaces = 10;
+    o->aa = 1;
     o->plot_y = "full-mean";
     for (i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;

@@ -77,6 +77,8 @@ static void json_errors(FILE *f, const bench_config *c, int m)
     json_num(f, c->img_glass[m].rmse);
     fprintf(f, ", \"psnr_glass_db\": ");
     json_num(f, c->img_glass[m].psnr_db);
+    fprintf(f, ", \"ssim_glass\": ");
+    json_num(f, c->ssim_glass[m]);
     fprintf(f, ", \"reference_cached\": %s}", c->ref_cached[m] ? "true" : "false");
 }
 
@@ -99,8 +101,9 @@ static void json_header(FILE *f, const bench_options *o, const bench_run_info *r
                             : "median of frames after warm-up; each frame = snell_render + glFinish (CPU wall clock); "
                               "the configurations of one scene and size take turns frame by frame; vs_single = median "
                               "over rounds of the ratio to the single-surface configuration's frame of the same round");
-    fprintf(f, ",\n  \"frames\": %d,\n  \"warmup\": %d,\n  \"full_interfaces\": %d,\n  \"loadavg_before\": ", o->frames,
-            o->warmup, o->full_interfaces);
+    fprintf(f, ",\n  \"frames\": %d,\n  \"warmup\": %d,\n  \"full_interfaces\": %d,\n  \"area_samples\": %d,"
+               "\n  \"loadavg_before\": ",
+            o->frames, o->warmup, o->full_interfaces, o->aa);
     json_str(f, run->load_before);
     fprintf(f, ",\n  \"loadavg_after\": ");
     json_str(f, run->load_after);
@@ -133,8 +136,8 @@ static void json_result(FILE *f, const bench_config *c)
         fprintf(f, "}");
         return;
     }
-    fprintf(f, ", \"glass_objects\": %d, \"opaque_objects\": %d, \"warnings\": %d", c->glass_objects,
-            c->opaque_objects, c->warnings);
+    fprintf(f, ", \"glass_objects\": %d, \"opaque_objects\": %d, \"warnings\": %d, \"angles_meaningful\": %s",
+            c->glass_objects, c->opaque_objects, c->warnings, c->angles_meaningful ? "true" : "false");
     fprintf(f, ", \"time_ms\": {\"median\": ");
     json_num(f, c->t_median);
     fprintf(f, ", \"min\": ");
@@ -173,7 +176,7 @@ int bench_write_json(const char *path, const bench_config *cs, int n, const benc
 }
 
 /* ------------------------------------------------------------------- CSV */
-#define CSV_MODE_FIELDS 12
+#define CSV_MODE_FIELDS 14
 
 static void csv_num(FILE *f, double v)
 {
@@ -195,6 +198,8 @@ static void csv_errors(FILE *f, const bench_config *c, int m)
     csv_num(f, c->img[m].rmse);
     csv_num(f, c->img[m].psnr_db);
     csv_num(f, c->img_glass[m].rmse);
+    csv_num(f, c->img_glass[m].psnr_db);
+    csv_num(f, c->ssim_glass[m]);
 }
 
 int bench_write_csv(const char *path, const bench_config *cs, int n)
@@ -208,8 +213,9 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
     for (m = 0; m < 2; m++) {
         const char *p = m ? "full" : "matched";
         fprintf(f, ",%s_mean_deg,%s_rms_deg,%s_median_deg,%s_p99_deg,%s_max_deg,%s_frac_above_1deg,"
-                   "%s_frac_above_5deg,%s_compared,%s_mask_mismatch,%s_rmse,%s_psnr_db,%s_rmse_glass",
-                p, p, p, p, p, p, p, p, p, p, p, p);
+                   "%s_frac_above_5deg,%s_compared,%s_mask_mismatch,%s_rmse,%s_psnr_db,%s_rmse_glass,"
+                   "%s_psnr_glass_db,%s_ssim_glass",
+                p, p, p, p, p, p, p, p, p, p, p, p, p, p);
     }
     fprintf(f, ",error,llvmpipe_threads\n");
     for (i = 0; i < n; i++) {
@@ -357,17 +363,25 @@ void bench_print_table(const bench_config *cs, int n)
     char why[64];
     int i, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
     if (lp >= 0) printf("llvmpipe threads: %d (%s)\n", lp, why);
-    printf("%-58s %9s %7s %9s %9s %7s %7s %6s %6s\n", "configuration", "ms/frame", "xsingle", "deg/MATCH", "deg/FULL",
-           ">1deg", ">5deg", "NaN", "pareto");
+    printf("%-58s %9s %7s %8s %7s %9s %9s %7s %7s %6s %6s\n", "configuration", "ms/frame", "xsingle", "dB/FULL",
+           "SSIM", "deg/MATCH", "deg/FULL", ">1deg", ">5deg", "NaN", "pareto");
     for (i = 0; i < n; i++) {
         const bench_config *c = &cs[i];
         if (!c->ok) {
             printf("%-58s FAILED: %s\n", c->spec, c->error);
             continue;
         }
-        printf("%-58s %9.2f %7.3f %9.3g %9.3g %6.1f%% %6.1f%% %6ld %6s%s\n", c->spec, c->t_median, c->vs_single,
-               c->dir[0].mean_deg, c->dir[1].mean_deg, 100.0 * c->dir[1].frac_above_1deg,
-               100.0 * c->dir[1].frac_above_5deg, c->nan_inf, c->pareto ? "*" : "",
+        printf("%-58s %9.2f %7.3f %8.2f %7.4f ", c->spec, c->t_median, c->vs_single, c->img_glass[1].psnr_db,
+               c->ssim_glass[1]);
+        /* Per-pixel angles only where they mean something (bench.h). */
+        if (c->angles_meaningful)
+            printf("%9.3g %9.3g %6.1f%% %6.1f%%", c->dir[0].mean_deg, c->dir[1].mean_deg,
+                   100.0 * c->dir[1].frac_above_1deg, 100.0 * c->dir[1].frac_above_5deg);
+        else
+            printf("%9s %9s %7s %7s", "-", "-", "-", "-");
+        printf(" %6ld %6s%s\n", c->nan_inf, c->pareto ? "*" : "",
                c->warnings ? "  (method warns: preconditions fail)" : "");
     }
+    printf("dB/FULL, SSIM: colour over the glass pixels against the FULL reference (area-averaged with --aa); "
+           "deg: mean exit-direction error, '-' on meshes where per-pixel angles are chaotic\n");
 }

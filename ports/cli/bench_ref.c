@@ -15,7 +15,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define CACHE_MAGIC "SNELLBENCHREF3\n"
+/* 4: FULL uses the exact Fresnel; the key holds the area samples. */
+#define CACHE_MAGIC "SNELLBENCHREF4\n"
 
 static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
 {
@@ -140,10 +141,10 @@ static int scene_key(const snell_ref_desc *scene, const snell_ref_params *p, con
     size_t len = 0;
     int i;
     key_add(key, size, &len, "env=%s size=%dx%d cam=%.9g/%.9g/%.9g/%.9g/%.9g/%.9g/%.9g/%.9g/%.9g mode=%d "
-            "interfaces=%d absorb=%d isolate=%d",
+            "interfaces=%d absorb=%d isolate=%d samples=%d",
             env_key, p->width, p->height, cam->azimuth, cam->elevation, cam->distance, cam->fov_y, cam->target[0],
             cam->target[1], cam->target[2], cam->z_near, cam->z_far, (int)p->mode, p->max_interfaces,
-            (int)p->absorption_model, p->isolate_glass != 0);
+            (int)p->absorption_model, p->isolate_glass != 0, p->samples > 1 ? p->samples : 1);
     for (i = 0; i < scene->glass_count; i++) {
         const snell_glass *g = &scene->glass[i];
         snell_glass_resolved r;

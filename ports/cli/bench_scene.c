@@ -169,8 +169,13 @@ static snell_status build_scene(snell_ctx *ctx, const char *name, bench_scene *s
         if ((st = get_mesh(ctx, name, &m)) != SNELL_OK) return st;
         s->glass[0].mesh = m;
         s->glass_count = 1;
+        {
+            snell_shape shape;
+            s->analytic = cli_shape_from_name(name, &shape);
+        }
         return SNELL_OK;
     }
+    s->analytic = 1; /* the presets are made of shapes */
     if (p->glass_count < 0) return ring_scene(ctx, s, -p->glass_count, -p->opaque_count);
     for (k = 0; k < p->glass_count && st == SNELL_OK; k++) st = add_glass(ctx, s, p->glass[k].mesh, p->glass[k].place);
     for (k = 0; k < p->opaque_count && st == SNELL_OK; k++)

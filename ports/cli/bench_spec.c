@@ -114,6 +114,18 @@ static int k_shading(bench_config *c, const char *v)
     return 1;
 }
 
+/* ssaa=S, msaa=N: the renderer's antialiasing (snell_renderer_desc), in the
+ * timed frames and the measured colour frame. */
+static int k_ssaa(bench_config *c, const char *v)
+{
+    return bench_parse_int("ssaa", v, 1, SNELL_MAX_SSAA, &c->ssaa);
+}
+
+static int k_msaa(bench_config *c, const char *v)
+{
+    return bench_parse_int("msaa", v, 1, 64, &c->msaa);
+}
+
 /* lod=R: the scene's glass meshes simplified to the ratio R of their
  * triangles (snell_mesh_simplify) before timing; the references keep the
  * original meshes, so the error measured includes the simplification. */
@@ -140,6 +152,8 @@ static const common_key g_common[] = {
     {"tint", "transmission tint r/g/b (default %g/%g/%g)", k_tint},
     {"camera", "orbit camera az/el/dist, degrees (default: the scene's, 30/20/3.5 for one mesh)", k_camera},
     {"shading", "auto (default), forward or screen (the renderer's screen-space stage)", k_shading},
+    {"ssaa", "supersampling S (the renderer's ssaa: S x S, box-resolved), timed and measured", k_ssaa},
+    {"msaa", "multisampling N (the renderer's msaa), timed and measured", k_msaa},
     {"lod", "glass meshes simplified to this share of their triangles, 0..1 (default 1: the original; the "
             "reference keeps the original)", k_lod},
 };

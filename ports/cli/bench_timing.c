@@ -76,6 +76,8 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
     desc.width = t->c->width;
     desc.height = t->c->height;
     desc.shading = t->c->shading;
+    desc.ssaa = t->c->ssaa;
+    desc.msaa = t->c->msaa;
     if (snell_renderer_create(ctx, &desc, &t->r) != SNELL_OK) {
         bench_fail(t->c, "renderer", ctx);
         return;

@@ -62,6 +62,8 @@ void render_usage(FILE *f)
             "  --backend NAME         surfaceless (default), pbuffer\n"
             "  --frames N             render N frames and print the median time per frame\n"
             "  --shading MODE         auto (default: screen space for dense meshes), forward, screen\n"
+            "  --ssaa S               supersample S x S, box-resolved (2..8; the area average)\n"
+            "  --msaa N               multisample N (triangle edges only; not with --ssaa)\n"
             "  --stats                print the last frame's statistics: per glass object the method used\n"
             "                         and why, warnings, passes, what was skipped\n"
             "  -v, --verbose          the statistics on stderr, and the library's info messages\n"
@@ -251,6 +253,12 @@ static int view_option(const char *a, const char *v, render_options *o)
         else if (!strcmp(v, "forward")) o->shading = SNELL_SHADING_FORWARD;
         else if (!strcmp(v, "screen")) o->shading = SNELL_SHADING_SCREEN;
         else return usage_error("%s: unknown shading '%s' (auto, forward, screen)", a, v);
+    } else if (!strcmp(a, "--ssaa")) {
+        if (!parse_int(v, &o->ssaa) || o->ssaa < 1 || o->ssaa > SNELL_MAX_SSAA)
+            return usage_error("%s wants 1..8, got '%s'", a, v);
+    } else if (!strcmp(a, "--msaa")) {
+        if (!parse_int(v, &o->msaa) || o->msaa < 1 || o->msaa > 64)
+            return usage_error("%s wants 1..64, got '%s'", a, v);
     } else if (!strcmp(a, "--frames")) {
         if (!parse_int(v, &o->frames) || o->frames < 1 || o->frames > 100000)
             return usage_error("%s wants 1..100000, got '%s'", a, v);

@@ -256,6 +256,8 @@ int main(int argc, char **argv)
     rd.width = o.width;
     rd.height = o.height;
     rd.shading = o.shading;
+    rd.ssaa = o.ssaa;
+    rd.msaa = o.msaa;
     if (snell_renderer_create(ctx, &rd, &r) != SNELL_OK) {
         fprintf(stderr, "snell-render: renderer: %s\n", snell_last_error(ctx));
         goto done;

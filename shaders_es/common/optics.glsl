@@ -21,9 +21,11 @@ bool snell_refract(vec3 i, vec3 n, float eta, out vec3 t)
     return true;
 }
 
-// Schlick reflectance from n1 into n2; uses the transmitted cosine when n1 > n2, 1 on TIR.
+// Schlick reflectance from n1 into n2; uses the transmitted cosine when n1 > n2, 1 on TIR,
+// 0 at matched indices (no interface).
 float snell_fresnel_schlick(float cos_i, float n1, float n2)
 {
+    if (n1 == n2) return 0.0;
     float r0 = (n1 - n2) / (n1 + n2);
     float c = abs(cos_i);
     r0 *= r0;
@@ -35,6 +37,35 @@ float snell_fresnel_schlick(float cos_i, float n1, float n2)
     }
     float m = 1.0 - c;
     return r0 + (1.0 - r0) * m * m * m * m * m;
+}
+
+// Exact unpolarised dielectric reflectance from n1 into n2: the mean of the s and p
+// Fresnel equations; 1 on TIR, 0 at matched indices (src/core/optics.h).
+float snell_fresnel_exact(float cos_i, float n1, float n2)
+{
+    if (n1 == n2) return 0.0;
+    float ci = min(abs(cos_i), 1.0);
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - ci * ci);
+    if (sin2_t >= 1.0) return 1.0;
+    float ct = sqrt(1.0 - sin2_t);
+    float rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+    float rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+// The Fresnel model a kernel is built with: SNELL_FRESNEL_EXACT 1 selects the
+// exact reflectance (the FULL reference's), else Schlick's (the MATCHED model).
+#ifndef SNELL_FRESNEL_EXACT
+#define SNELL_FRESNEL_EXACT 0
+#endif
+float snell_fresnel(float cos_i, float n1, float n2)
+{
+#if SNELL_FRESNEL_EXACT
+    return snell_fresnel_exact(cos_i, n1, n2);
+#else
+    return snell_fresnel_schlick(cos_i, n1, n2);
+#endif
 }
 
 // Transmittance of a path of length d through a medium with coefficient sigma.

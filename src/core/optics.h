@@ -1,6 +1,7 @@
 /* optics.h — the optics kernel shared by every method and the references:
  * Snell refraction with total internal reflection, mirror reflection, Schlick
- * Fresnel and Beer-Lambert attenuation (Unger 2.1). Its GLSL twin is
+ * and exact (unpolarised dielectric) Fresnel and Beer-Lambert attenuation
+ * (Unger 2.1). Its GLSL twin is
  * shaders_es/common/optics.glsl; tests/test_optics_twin.c runs both on the
  * same inputs. Float versions (snell_opt_*) mirror the GPU; double versions
  * (snell_optd_*) serve the reference tracers.
@@ -44,10 +45,13 @@
     }                                                                                              \
     /* Schlick's reflectance for light going from n1 into n2 at incidence cosine                   \
      * cos_i. Going into a thinner medium the transmitted angle's cosine is used                   \
-     * (Schlick is symmetric in the larger angle), and TIR gives 1. */                             \
+     * (Schlick is symmetric in the larger angle), and TIR gives 1. Matched                        \
+     * indices are no interface: 0 (Schlick's formula would leave a rim of                         \
+     * (1 - cos_i)^5 there). */                                                                    \
     static inline T snell_opt##SUF##_fresnel_schlick(T cos_i, T n1, T n2)                          \
     {                                                                                              \
         T r0 = (n1 - n2) / (n1 + n2), c = cos_i < (T)0 ? -cos_i : cos_i, m;                        \
+        if (n1 == n2) return (T)0;                                                                 \
         r0 *= r0;                                                                                  \
         if (n1 > n2) {                                                                             \
             T eta = n1 / n2, sin2_t = eta * eta * ((T)1 - c * c);                                  \
@@ -56,6 +60,24 @@
         }                                                                                          \
         m = (T)1 - c;                                                                              \
         return r0 + ((T)1 - r0) * m * m * m * m * m;                                               \
+    }                                                                                              \
+    /* The exact reflectance of unpolarised light at a smooth dielectric                           \
+     * interface, n1 into n2 at incidence cosine cos_i: the mean of the s and p                    \
+     * Fresnel equations (Born & Wolf 1.5.2; Pharr et al., PBRT 8.2.1),                            \
+     * rs = (n1 ci - n2 ct) / (n1 ci + n2 ct), rp = (n2 ci - n1 ct) / (n2 ci + n1 ct),             \
+     * R = (rs^2 + rp^2) / 2; 1 on TIR, 0 at matched indices. What FULL and                        \
+     * Cycles' Glass BSDF use. */                                                                  \
+    static inline T snell_opt##SUF##_fresnel_exact(T cos_i, T n1, T n2)                            \
+    {                                                                                              \
+        T ci = cos_i < (T)0 ? -cos_i : cos_i, eta = n1 / n2, sin2_t, ct, rs, rp;                   \
+        if (n1 == n2) return (T)0;                                                                 \
+        if (ci > (T)1) ci = (T)1;                                                                  \
+        sin2_t = eta * eta * ((T)1 - ci * ci);                                                     \
+        if (sin2_t >= (T)1) return (T)1;                                                           \
+        ct = SQRT((T)1 - sin2_t);                                                                  \
+        rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);                                            \
+        rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);                                            \
+        return (T)0.5 * (rs * rs + rp * rp);                                                       \
     }                                                                                              \
     /* Transmittance exp(-sigma * d) of a path of length d (sigma per unit length). */             \
     static inline void snell_opt##SUF##_beer_lambert(const T sigma[3], T d, T out[3])              \
@@ -66,12 +88,15 @@
     }                                                                                              \
     /* A thin wall (slab of the given thickness, index ior, in air) hit at                         \
      * incidence cosine cos_i: reflectance rs and transmittance ts (rgb) of all                    \
-     * inner bounces summed, Schlick at both faces, Beer-Lambert along the                         \
-     * refracted chord thickness / cos_t. Light leaves parallel to how it came. */                 \
-    static inline void snell_opt##SUF##_thin_slab(T cos_i, T ior, const T sigma[3], T thickness,   \
-                                                  T rs[3], T ts[3])                                \
+     * inner bounces summed (incoherently, with the unpolarised reflectance r of                   \
+     * one face, as the Whitted tree treats a solid slab), Beer-Lambert along the                  \
+     * refracted chord thickness / cos_t. Light leaves parallel to how it came.                    \
+     * exact: r is snell_opt_fresnel_exact (FULL), else Schlick (the kernels). */                  \
+    static inline void snell_opt##SUF##_thin_slab_model(T cos_i, T ior, const T sigma[3], T thickness, \
+                                                        int exact, T rs[3], T ts[3])               \
     {                                                                                              \
-        T c = cos_i < (T)0 ? -cos_i : cos_i, r = snell_opt##SUF##_fresnel_schlick(c, (T)1, ior);    \
+        T c = cos_i < (T)0 ? -cos_i : cos_i;                                                       \
+        T r = exact ? snell_opt##SUF##_fresnel_exact(c, (T)1, ior) : snell_opt##SUF##_fresnel_schlick(c, (T)1, ior); \
         T s2 = ((T)1 - c * c) / (ior * ior), ct = SQRT((T)1 - (s2 < (T)1 ? s2 : (T)1));             \
         int k;                                                                                     \
         for (k = 0; k < 3; k++) {                                                                  \
@@ -84,6 +109,12 @@
             rs[k] = r + ((T)1 - r) * ((T)1 - r) * r * ti * ti / d;                                 \
             ts[k] = ((T)1 - r) * ((T)1 - r) * ti / d;                                              \
         }                                                                                          \
+    }                                                                                              \
+    /* The kernels' thin wall: Schlick at both faces. */                                           \
+    static inline void snell_opt##SUF##_thin_slab(T cos_i, T ior, const T sigma[3], T thickness,   \
+                                                  T rs[3], T ts[3])                                \
+    {                                                                                              \
+        snell_opt##SUF##_thin_slab_model(cos_i, ior, sigma, thickness, 0, rs, ts);                 \
     }
 
 SNELL_OPTICS_DEFINE(float, , sqrtf, expf)

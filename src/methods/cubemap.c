@@ -17,6 +17,10 @@
 #include <string.h>
 
 #define DEFAULT_ITERATIONS 6
+/* Schlick by default: the MATCHED model the tests and the reference share
+ * (the exact reflectance gains 0.05-0.6 dB against FULL at no measurable
+ * cost; BENCHMARKS.md). DEFAULT_FRESNEL 1 = exact. */
+#define DEFAULT_FRESNEL 0
 
 #define PROG_CACHE 8
 
@@ -46,7 +50,7 @@ typedef struct cube_prepared {
 typedef struct cube_prog {
     snell__glass_program g;    /* g.prog == 0: empty slot */
     snell_ndcube_encoding enc;
-    int iterations, linear, no_search, screen, absorb;
+    int iterations, linear, no_search, screen, absorb, fresnel_exact, inner;
     unsigned long last_use;
     int ndcube, inv_model, centre, radius, inner_radius, max_interfaces, texel_angle;
 } cube_prog;
@@ -63,17 +67,19 @@ static void cubemap_destroy(snell_ctx *ctx, void *state);
 /* What selects a search program: its compile-time constants. */
 typedef struct prog_key {
     snell_ndcube_encoding enc;
-    int iterations, linear, no_search, screen, absorb;
+    int iterations, linear, no_search, screen, absorb, fresnel_exact, inner;
 } prog_key;
 
 static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const prog_key *k, cube_prog *p)
 {
-    char def[240];
+    char def[320];
     snell_status st;
     snprintf(def, sizeof def,
              "#define SNELL_NDCUBE_%s 1\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_LINEAR_STEPS %d\n"
-             "#define SNELL_NO_SEARCH %d\n#define SNELL_ABSORB %d\n",
-             k->enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", k->iterations, k->linear, k->no_search, k->absorb);
+             "#define SNELL_NO_SEARCH %d\n#define SNELL_ABSORB %d\n#define SNELL_FRESNEL_EXACT %d\n"
+             "#define SNELL_INNER_FRESNEL %d\n",
+             k->enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", k->iterations, k->linear, k->no_search, k->absorb,
+             k->fresnel_exact, k->inner);
     st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->g);
     if (st != SNELL_OK) return st;
     p->enc = k->enc;
@@ -82,6 +88,8 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
     p->no_search = k->no_search;
     p->screen = k->screen;
     p->absorb = k->absorb;
+    p->fresnel_exact = k->fresnel_exact;
+    p->inner = k->inner;
     p->ndcube = glGetUniformLocation(p->g.prog, "u_ndcube");
     p->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
     p->centre = glGetUniformLocation(p->g.prog, "u_centre");
@@ -103,7 +111,8 @@ static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, const prog_key *k
     for (i = 0; i < PROG_CACHE; i++) {
         cube_prog *c = &s->prog[i];
         if (c->g.prog && c->enc == k->enc && c->iterations == k->iterations && c->linear == k->linear &&
-            c->no_search == k->no_search && c->screen == k->screen && c->absorb == k->absorb) {
+            c->no_search == k->no_search && c->screen == k->screen && c->absorb == k->absorb &&
+            c->fresnel_exact == k->fresnel_exact && c->inner == k->inner) {
             c->last_use = s->clock;
             *out = c;
             return SNELL_OK;
@@ -125,7 +134,7 @@ static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void 
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
-    prog_key k = {SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, 0, 0};
+    prog_key k = {SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, 0, 0, DEFAULT_FRESNEL, 0};
     st = get_prog(ctx, s, &k, &p);
     if (st == SNELL_OK) st = snell__ndcube_baker_create(ctx, &s->baker);
     if (st != SNELL_OK) {
@@ -226,6 +235,14 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     k.no_search = c->max_interfaces == 1 && !o->glass->absorbs;
     k.screen = o->screen_space;
     k.absorb = o->glass->absorbs;
+    k.fresnel_exact = c->fresnel == SNELL_FRESNEL_EXACT;
+    /* Where it pays (BENCHMARKS.md, "Inner-surface Fresnel"): on a convex
+     * mesh the two-interface search is nearly exact and the missing exit
+     * Fresnel is the largest error left (sphere 256^2, area-averaged PSNR
+     * against FULL 31.1 -> 35.8 dB at --aa 4 for 1.38x the frame); on the torus and the
+     * bunny the exit search's own error dominates (+0.1-0.2 dB for 1.3-1.6x). */
+    k.inner = !k.no_search && (c->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
+                               (c->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && o->analysis && o->analysis->convex));
     st = get_prog(ctx, s, &k, &p);
     if (st != SNELL_OK) return st;
     if (k.no_search) stats->skipped |= SNELL_SKIP_SEARCH;
@@ -252,6 +269,8 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
 }
 
 static const char *const g_encoding_names[] = {"default", "plain", "oct"};
+static const char *const g_fresnel_names[] = {"default", "schlick", "exact"};
+static const char *const g_inner_names[] = {"auto", "off", "on"};
 
 static const snell_param_info g_params[] = {
     {"iterations", "binary-search steps per interface", 1, SNELL_CUBEMAP_MAX_ITERATIONS, DEFAULT_ITERATIONS, NULL},
@@ -262,12 +281,17 @@ static const snell_param_info g_params[] = {
     /* PLAIN: filtered, lower error than OCT, which is 3-7% cheaper on llvmpipe */
     {"encoding", "texel packing: plain (Unger 4.1, filtered) or oct (octahedral normal, 16-bit distance)", 0, 2,
      SNELL_NDCUBE_PLAIN, g_encoding_names},
+    {"fresnel", "reflectance at the interfaces: schlick (the MATCHED model) or exact (unpolarised, as FULL)", 0, 2,
+     DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, g_fresnel_names},
+    {"inner", "Fresnel at the exit too (1 - F out, the internal reflection followed by one more search): auto (on "
+     "for convex meshes), off, on", 0, 2, SNELL_INNER_FRESNEL_AUTO, g_inner_names},
 };
 
 static const size_t g_offsets[] = {
     offsetof(snell_glass_material, cubemap.iterations), offsetof(snell_glass_material, cubemap.linear_steps),
     offsetof(snell_glass_material, cubemap.max_interfaces), offsetof(snell_glass_material, cubemap.face_size),
-    offsetof(snell_glass_material, cubemap.encoding)};
+    offsetof(snell_glass_material, cubemap.encoding), offsetof(snell_glass_material, cubemap.fresnel),
+    offsetof(snell_glass_material, cubemap.inner_fresnel)};
 
 static const snell_method_info g_info = {
     SNELL_METHOD_CUBEMAP, "cubemap",

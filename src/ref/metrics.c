@@ -174,6 +174,58 @@ snell_status snell_metrics_image_error(const uint8_t *test_rgba, const uint8_t *
     return SNELL_OK;
 }
 
+#define SSIM_RADIUS 5 /* 11 x 11 */
+
+snell_status snell_metrics_ssim(const uint8_t *test_rgba, const uint8_t *ref_rgba, int width, int height,
+                                const uint8_t *mask, double *out)
+{
+    const double c1 = (0.01 * 255.0) * (0.01 * 255.0), c2 = (0.03 * 255.0) * (0.03 * 255.0);
+    double g[2 * SSIM_RADIUS + 1], sum = 0.0;
+    long count = 0;
+    int x, y, k;
+    if (!test_rgba || !ref_rgba || !out)
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_metrics_ssim: NULL argument");
+    if (width < 1 || height < 1 || width > 65536 || height > 65536)
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_metrics_ssim: size %dx%d outside 1..65536", width,
+                           height);
+    for (k = -SSIM_RADIUS; k <= SSIM_RADIUS; k++) g[k + SSIM_RADIUS] = exp(-(double)(k * k) / (2.0 * 1.5 * 1.5));
+    for (y = 0; y < height; y++)
+        for (x = 0; x < width; x++) {
+            double m[3][5] = {{0}}, wsum = 0.0, s = 0.0;
+            int dx, dy, c;
+            if (mask && !mask[(size_t)y * width + x]) continue;
+            for (dy = -SSIM_RADIUS; dy <= SSIM_RADIUS; dy++) {
+                int yy = y + dy;
+                if (yy < 0 || yy >= height) continue;
+                for (dx = -SSIM_RADIUS; dx <= SSIM_RADIUS; dx++) {
+                    int xx = x + dx;
+                    size_t i = 4 * ((size_t)yy * width + xx);
+                    double w;
+                    if (xx < 0 || xx >= width) continue;
+                    w = g[dx + SSIM_RADIUS] * g[dy + SSIM_RADIUS];
+                    wsum += w;
+                    for (c = 0; c < 3; c++) {
+                        double a = test_rgba[i + c], b = ref_rgba[i + c];
+                        m[c][0] += w * a;
+                        m[c][1] += w * b;
+                        m[c][2] += w * a * a;
+                        m[c][3] += w * b * b;
+                        m[c][4] += w * a * b;
+                    }
+                }
+            }
+            for (c = 0; c < 3; c++) {
+                double ma = m[c][0] / wsum, mb = m[c][1] / wsum;
+                double va = m[c][2] / wsum - ma * ma, vb = m[c][3] / wsum - mb * mb, cov = m[c][4] / wsum - ma * mb;
+                s += (2.0 * ma * mb + c1) * (2.0 * cov + c2) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+            }
+            sum += s / 3.0;
+            count++;
+        }
+    *out = count ? sum / (double)count : 1.0;
+    return SNELL_OK;
+}
+
 long snell_metrics_count_nonfinite(const float *v, long n)
 {
     long i, c = 0;

@@ -2,8 +2,10 @@
  * MATCHED chain and the FULL Whitted tree through a scene of glass and opaque
  * objects (ref_scene.c), camera rays, the pthread image loop and light paths.
  * Optics are the shared kernel of optics.h (Unger 2.1: Snell with TIR, mirror
- * reflection, Schlick, Beer-Lambert, the thin slab); the chain follows Unger
- * 4.1 with exact ray casts in place of the cubemap binary search. */
+ * reflection, Fresnel - MATCHED: Schlick, as the kernels; FULL: the exact
+ * unpolarised reflectance - Beer-Lambert, the thin slab); the chain follows
+ * Unger 4.1 with exact ray casts in place of the cubemap binary search. Pixels
+ * are the centre ray or the mean of an S x S grid (params.samples). */
 #define _POSIX_C_SOURCE 200809L
 #include "ref/ref_trace.h"
 #include "ref/ref_scene.h"
@@ -32,6 +34,7 @@ typedef struct optics {
     const snell_env *env;
     snell_ref_env_fn env_fn;
     void *env_user;
+    int samples; /* S: S x S rays per pixel */
 } optics;
 
 /* ------------------------------------------------------------ vectors */
@@ -85,12 +88,20 @@ static double facing(const ref_surf *s, const double d[3], double n[3])
     return nd > 0.0 ? nd : -nd;
 }
 
-/* A thin wall at incidence cosine c: slab reflectance rs, transmittance ts,
- * and the refracted chord through it. */
-static double slab(const ref_glass *g, double c, double rs[3], double ts[3])
+/* The reflectance of an interface in the mode's model: FULL the exact
+ * unpolarised dielectric Fresnel (what real glass and Cycles do), MATCHED the
+ * kernels' Schlick. Both are 0 at matched indices. */
+static double fresnel(const optics *op, double c, double n1, double n2)
+{
+    return op->mode == SNELL_REF_FULL ? snell_optd_fresnel_exact(c, n1, n2) : snell_optd_fresnel_schlick(c, n1, n2);
+}
+
+/* A thin wall at incidence cosine c: slab reflectance rs, transmittance ts
+ * (the mode's Fresnel at both faces), and the refracted chord through it. */
+static double slab(const optics *op, const ref_glass *g, double c, double rs[3], double ts[3])
 {
     double s2 = (1.0 - c * c) / (g->ior * g->ior), ct = sqrt(1.0 - (s2 < 1.0 ? s2 : 1.0));
-    snell_optd_thin_slab(c, g->ior, g->sigma, g->thickness, rs, ts);
+    snell_optd_thin_slab_model(c, g->ior, g->sigma, g->thickness, op->mode == SNELL_REF_FULL, rs, ts);
     return g->thickness / (ct > 1e-6 ? ct : 1e-6);
 }
 
@@ -154,7 +165,7 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
     snell_optd_reflect(d, n, rdir);
     snell__ref_normalize3(rdir);
     if (g->thin) {
-        double rs[3], ts[3], L[3], chord = slab(g, c, rs, ts);
+        double rs[3], ts[3], L[3], chord = slab(op, g, c, rs, ts);
         if (path) {
             if (path->interfaces == 0) path->fresnel = (rs[0] + rs[1] + rs[2]) / 3.0;
             path_point(path, s.p, SNELL_REF_EVENT_REFRACT, s.object);
@@ -168,7 +179,7 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
         m_air(r, op, s.p, d, s.prim, s.object, depth + 1, wt, path, L);
         for (k = 0; k < 3; k++) rgb[k] = rs[k] * refl[k] + ts[k] * g->tint[k] * L[k];
     } else {
-        double F = snell_optd_fresnel_schlick(c, 1.0, g->ior), t1[3], L[3], len = 0.0, dist, T;
+        double F = fresnel(op, c, 1.0, g->ior), t1[3], L[3], len = 0.0, dist, T;
         int tir = !snell_optd_refract(d, n, 1.0 / g->ior, t1);
         if (tir) F = 1.0; /* IOR < 1 at a grazing angle */
         if (path) {
@@ -263,12 +274,27 @@ static void m_inside(const snell_ref *r, const optics *op, int j, const double p
 
 /* ------------------------------------------------------------ FULL */
 
+/* A leaf of the Whitted tree: radiance col reached with throughput w by a
+ * branch of probability prob (below). */
+static void leaf(const double w[3], double prob, const double col[3], double acc[3], double acc2[3])
+{
+    int k;
+    for (k = 0; k < 3; k++) acc[k] += w[k] * col[k];
+    if (acc2)
+        for (k = 0; k < 3; k++) acc2[k] += w[k] * w[k] / prob * col[k] * col[k];
+}
+
 /* Whitted recursion. medium: the solid glass object the ray is in, -1 air;
  * home: the first glass object of the path (what isolate_glass still shows);
  * w: throughput of this ray; adds its radiance contribution to acc; depth:
- * interfaces already processed on this branch. */
+ * interfaces already processed on this branch. prob: the probability with
+ * which a path tracer that picks one branch per interface by its Fresnel
+ * weight (reflection with F, refraction with 1 - F, as Cycles' sharp Glass
+ * BSDF does; a thin wall by its mean rs against mean ts) follows this branch;
+ * acc2 (NULL: not wanted) sums that tracer's second moment, w^2 / prob * L^2
+ * per leaf, so that its per-sample variance is acc2 - acc^2. */
 static void whitted(const snell_ref *r, const optics *op, const double o[3], const double d[3], uint32_t prim,
-                    int medium, int home, int depth, const double w_in[3], double acc[3])
+                    int medium, int home, int depth, const double w_in[3], double prob, double acc[3], double acc2[3])
 {
     double w[3] = {w_in[0], w_in[1], w_in[2]}, n[3], c, dir_r[3], dir_t[3], col[3], wr[3], wt[3];
     ref_view v = medium >= 0 ? inside_view(medium) : air_view(op, depth, -1, home);
@@ -277,18 +303,18 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
     int k;
     if (max3(w) < MIN_WEIGHT || !snell__ref_hit(r, o, d, prim, &v, &s)) {
         env_rgb(op, d, col);
-        for (k = 0; k < 3; k++) acc[k] += w[k] * col[k];
+        leaf(w, prob, col, acc, acc2);
         return;
     }
     if (medium >= 0 && r->glass[medium].has_sigma)
         for (k = 0; k < 3; k++) w[k] *= exp(-r->glass[medium].sigma[k] * s.t);
     if (s.object < 0) {
         snell__ref_shade_opaque(r, -2 - s.object, &s, col);
-        for (k = 0; k < 3; k++) acc[k] += w[k] * col[k];
+        leaf(w, prob, col, acc, acc2);
         return;
     }
     if (depth >= op->max_if) { /* cap (only met inside): leaves through this surface in its direction */
-        whitted(r, op, s.p, d, s.prim, -1, home, depth, w, acc);
+        whitted(r, op, s.p, d, s.prim, -1, home, depth, w, prob, acc, acc2);
         return;
     }
     g = &r->glass[s.object];
@@ -298,26 +324,28 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
     snell__ref_normalize3(dir_r);
     if (g->thin) { /* every wall is a slab: reflected, or straight through */
         double rs[3], ts[3];
-        slab(g, c, rs, ts);
+        double pr;
+        slab(op, g, c, rs, ts);
+        pr = (rs[0] + rs[1] + rs[2]) / (rs[0] + rs[1] + rs[2] + ts[0] + ts[1] + ts[2] + 1e-300);
         for (k = 0; k < 3; k++) {
             wr[k] = w[k] * rs[k];
             wt[k] = w[k] * ts[k] * g->tint[k];
         }
-        whitted(r, op, s.p, dir_r, s.prim, -1, home, depth + 1, wr, acc);
-        whitted(r, op, s.p, d, s.prim, -1, home, depth + 1, wt, acc);
+        if (pr > 0.0) whitted(r, op, s.p, dir_r, s.prim, -1, home, depth + 1, wr, prob * pr, acc, acc2);
+        if (pr < 1.0) whitted(r, op, s.p, d, s.prim, -1, home, depth + 1, wt, prob * (1.0 - pr), acc, acc2);
     } else {
         int in = medium == s.object, tir;
-        double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = snell_optd_fresnel_schlick(c, n1, n2);
+        double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = fresnel(op, c, n1, n2);
         tir = !snell_optd_refract(d, n, n1 / n2, dir_t);
         if (tir) F = 1.0;
         if (F > 0.0) {
             for (k = 0; k < 3; k++) wr[k] = w[k] * F;
-            whitted(r, op, s.p, dir_r, s.prim, medium, home, depth + 1, wr, acc);
+            whitted(r, op, s.p, dir_r, s.prim, medium, home, depth + 1, wr, prob * F, acc, acc2);
         }
         if (!tir && F < 1.0) {
             for (k = 0; k < 3; k++) wt[k] = w[k] * (1.0 - F) * (in ? 1.0 : g->tint[k]);
             snell__ref_normalize3(dir_t);
-            whitted(r, op, s.p, dir_t, s.prim, in ? -1 : s.object, home, depth + 1, wt, acc);
+            whitted(r, op, s.p, dir_t, s.prim, in ? -1 : s.object, home, depth + 1, wt, prob * (1.0 - F), acc, acc2);
         }
     }
 }
@@ -346,7 +374,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
         if (home < 0) home = s.object;
         c = facing(&s, dir, n);
         if (g->thin) {
-            double rs[3], ts[3], chord = slab(g, c, rs, ts);
+            double rs[3], ts[3], chord = slab(op, g, c, rs, ts);
             if (depth == 0) path->fresnel = (rs[0] + rs[1] + rs[2]) / 3.0;
             if (rs[0] + rs[1] + rs[2] > ts[0] + ts[1] + ts[2]) {
                 snell_optd_reflect(dir, n, out);
@@ -358,7 +386,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
             }
         } else {
             int in = medium == s.object;
-            double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = snell_optd_fresnel_schlick(c, n1, n2);
+            double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = fresnel(op, c, n1, n2);
             if (!snell_optd_refract(dir, n, n1 / n2, out)) {
                 ev = SNELL_REF_EVENT_TIR;
                 F = 1.0;
@@ -383,9 +411,10 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
 }
 
 /* Traces one ray (unit d). want_path: the walk is needed (path outputs) even
- * in FULL mode, where the colour comes from the tree. */
+ * in FULL mode, where the colour comes from the tree. moment2 (FULL only, NULL
+ * = not wanted): the second moment of a branch-sampling path tracer (whitted). */
 static void trace(const snell_ref *r, const optics *op, const double o[3], const double d[3], int want_path,
-                  snell_ref_path *path)
+                  snell_ref_path *path, double moment2[3])
 {
     static const double one[3] = {1.0, 1.0, 1.0};
     path->hit = 0;
@@ -402,7 +431,8 @@ static void trace(const snell_ref *r, const optics *op, const double o[3], const
         m_air(r, op, o, d, SNELL__BVH_NONE, -1, 0, one, path, path->rgb);
     } else {
         path->rgb[0] = path->rgb[1] = path->rgb[2] = 0.0;
-        whitted(r, op, o, d, SNELL__BVH_NONE, -1, -1, 0, one, path->rgb);
+        if (moment2) moment2[0] = moment2[1] = moment2[2] = 0.0;
+        whitted(r, op, o, d, SNELL__BVH_NONE, -1, -1, 0, one, 1.0, path->rgb, moment2);
         if (want_path) full_walk(r, op, o, d, path);
     }
 }
@@ -420,6 +450,9 @@ static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, opt
     if (p->max_interfaces < 0 || p->max_interfaces > SNELL_REF_MAX_INTERFACES)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: max_interfaces %d outside 0..%d",
                            p->max_interfaces, SNELL_REF_MAX_INTERFACES);
+    if (p->samples < 0 || p->samples > SNELL_REF_MAX_SAMPLES)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: samples %d outside 0..%d", p->samples,
+                           SNELL_REF_MAX_SAMPLES);
     if (!p->env && !p->env_fn)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: an environment (env or env_fn) is required");
     if (!p->env_fn && !p->env->faces[0])
@@ -432,6 +465,7 @@ static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, opt
     op->env = p->env;
     op->env_fn = p->env_fn;
     op->env_user = p->env_user;
+    op->samples = p->samples ? p->samples : 1;
     return SNELL_OK;
 }
 
@@ -516,12 +550,13 @@ static void unproject(const double inv[16], double x, double y, double z, double
     for (i = 0; i < 3; i++) out[i] = v[i] / v[3];
 }
 
-/* Ray through the centre of pixel (x, y), y = 0 the top row (GL's window row
- * h - 1 - y): direction from the near-plane point to the far-plane point. */
-static void camera_ray(const camera_rays *cr, int x, int y, double dir[3])
+/* Ray through the point (fx, fy) of pixel (x, y) (0.5, 0.5: its centre), y =
+ * 0 the top row (GL's window row h - 1 - y): direction from the near-plane
+ * point to the far-plane point. */
+static void camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double dir[3])
 {
-    double nx = 2.0 * ((double)x + 0.5) / (double)cr->w - 1.0;
-    double ny = 1.0 - 2.0 * ((double)y + 0.5) / (double)cr->h;
+    double nx = 2.0 * ((double)x + fx) / (double)cr->w - 1.0;
+    double ny = 1.0 - 2.0 * ((double)y + fy) / (double)cr->h;
     double pn[3], pf[3];
     unproject(cr->inv, nx, ny, -1.0, pn);
     unproject(cr->inv, nx, ny, 1.0, pf);
@@ -542,19 +577,51 @@ typedef struct job {
     int next_row;
 } job;
 
+/* Pixel (x, y)'s colour: the mean over its S x S sub-pixel grid (a box
+ * filter; S = 1 the centre ray), and with out->sample_var the per-sample
+ * variance of a path tracer sampling the same box and branches (FULL). */
+static void pixel_colour(job *jb, int x, int y, size_t i)
+{
+    const camera_rays *cr = jb->cr;
+    const snell_ref_output *out = jb->out;
+    int S = jb->op->samples, a, b, k;
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, m2[3];
+    snell_ref_path path;
+    for (b = 0; b < S; b++)
+        for (a = 0; a < S; a++) {
+            double dir[3];
+            camera_ray(cr, x, y, (a + 0.5) / S, (b + 0.5) / S, dir);
+            trace(jb->ref, jb->op, cr->eye, dir, 0, &path, out->sample_var ? m2 : NULL);
+            for (k = 0; k < 3; k++) {
+                sum[k] += path.rgb[k];
+                /* MATCHED is deterministic per ray: its second moment is rgb^2. */
+                sum2[k] += out->sample_var && jb->op->mode == SNELL_REF_FULL ? m2[k] : path.rgb[k] * path.rgb[k];
+            }
+        }
+    for (k = 0; k < 3; k++) {
+        double mean = sum[k] / (S * S), var = sum2[k] / (S * S) - mean * mean;
+        out->rgb[3 * i + k] = (float)mean;
+        if (out->sample_var) out->sample_var[3 * i + k] = (float)(var > 0.0 ? var : 0.0);
+    }
+}
+
 static void render_row(job *jb, int y)
 {
     const camera_rays *cr = jb->cr;
     const snell_ref_output *out = jb->out;
     int want_path = out->exit_dir || out->interfaces || out->hit || out->object;
+    int centre_colour = jb->op->samples == 1 && !out->sample_var;
     snell_ref_path path;
     int x, k;
     for (x = 0; x < cr->w; x++) {
         size_t i = (size_t)y * (size_t)cr->w + (size_t)x;
         double dir[3];
-        camera_ray(cr, x, y, dir);
-        trace(jb->ref, jb->op, cr->eye, dir, want_path, &path);
-        for (k = 0; k < 3; k++) out->rgb[3 * i + k] = (float)path.rgb[k];
+        if (!centre_colour) pixel_colour(jb, x, y, i);
+        if (!centre_colour && !want_path) continue;
+        camera_ray(cr, x, y, 0.5, 0.5, dir);
+        trace(jb->ref, jb->op, cr->eye, dir, want_path, &path, NULL);
+        if (centre_colour)
+            for (k = 0; k < 3; k++) out->rgb[3 * i + k] = (float)path.rgb[k];
         if (out->exit_dir)
             for (k = 0; k < 3; k++) out->exit_dir[3 * i + k] = (float)path.exit_dir[k];
         if (out->interfaces) out->interfaces[i] = (uint8_t)path.interfaces;
@@ -657,7 +724,7 @@ snell_status snell_ref_trace_ray(const snell_ref *ref, const snell_ref_params *p
         d[k] = dir[k];
     }
     if (!snell__ref_normalize3(d)) return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_trace_ray: dir is zero");
-    trace(ref, &op, org, d, 1, path);
+    trace(ref, &op, org, d, 1, path, NULL);
     return SNELL_OK;
 }
 
@@ -676,7 +743,7 @@ snell_status snell_ref_trace_pixel(const snell_ref *ref, const snell_ref_params 
     if (x < 0 || y < 0 || x >= cr.w || y >= cr.h)
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_trace_pixel: pixel (%d, %d) outside %dx%d", x,
                            y, cr.w, cr.h);
-    camera_ray(&cr, x, y, d);
-    trace(ref, &op, cr.eye, d, 1, path);
+    camera_ray(&cr, x, y, 0.5, 0.5, d);
+    trace(ref, &op, cr.eye, d, 1, path, NULL);
     return SNELL_OK;
 }

@@ -25,15 +25,39 @@ static snell_status make_target(snell_renderer *r)
 {
     GLenum status;
     glGenFramebuffers(1, &r->fbo);
-    glGenRenderbuffers(1, &r->color_rb);
     glGenRenderbuffers(1, &r->depth_rb);
-    glBindRenderbuffer(GL_RENDERBUFFER, r->color_rb);
-    glRenderbufferStorage(GL_RENDERBUFFER, r->out == SNELL__OUT_DIR_FLOAT ? GL_RGBA32F : GL_RGBA8, r->width,
-                          r->height);
     glBindRenderbuffer(GL_RENDERBUFFER, r->depth_rb);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, r->width, r->height);
-    glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
+    if (r->ssaa.factor > 1) { /* the large colour texture the resolve reads */
+        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->ssaa.frame_tex, 0);
+    } else if (r->msaa > 1) { /* multisampled colour and depth, resolved by a blit after the frame */
+        glBindRenderbuffer(GL_RENDERBUFFER, r->depth_rb);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, r->msaa, GL_DEPTH_COMPONENT24, r->width, r->height);
+        glGenRenderbuffers(1, &r->color_rb);
+        glBindRenderbuffer(GL_RENDERBUFFER, r->color_rb);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, r->msaa, GL_RGBA8, r->width, r->height);
+        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
+        glGenRenderbuffers(1, &r->msaa_rb);
+        glBindRenderbuffer(GL_RENDERBUFFER, r->msaa_rb);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, r->width, r->height);
+        glGenFramebuffers(1, &r->msaa_fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, r->msaa_fbo);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->msaa_rb);
+        status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE)
+            return snell__fail(r->ctx, SNELL_E_GL, "MSAA resolve %dx%d framebuffer incomplete (0x%x)", r->width,
+                               r->height, (unsigned)status);
+        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    } else {
+        glGenRenderbuffers(1, &r->color_rb);
+        glBindRenderbuffer(GL_RENDERBUFFER, r->color_rb);
+        glRenderbufferStorage(GL_RENDERBUFFER, r->out == SNELL__OUT_DIR_FLOAT ? GL_RGBA32F : GL_RGBA8, r->width,
+                              r->height);
+        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
+    }
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->depth_rb);
     status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
@@ -46,8 +70,8 @@ static snell_status make_target(snell_renderer *r)
 
 static snell_status create_resources(snell_renderer *r)
 {
-    snell_status st = SNELL_OK;
-    if (r->target == SNELL_TARGET_OFFSCREEN) st = make_target(r);
+    snell_status st = snell__ssaa_create(r->ctx, &r->ssaa, r->ssaa.factor, r->out_width, r->out_height);
+    if (st == SNELL_OK && r->target == SNELL_TARGET_OFFSCREEN) st = make_target(r);
     if (st == SNELL_OK && r->out != SNELL__OUT_COLOR) {
         size_t n = (size_t)r->width * (size_t)r->height;
         r->readback = (float *)snell__calloc(&r->ctx->alloc, n, 4 * sizeof(float));
@@ -84,11 +108,35 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
                            (int)d.output);
     if (d.output != SNELL_OUTPUT_COLOR && d.target != SNELL_TARGET_OFFSCREEN)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "exit-direction output needs an offscreen target");
+    if (d.ssaa < 0 || d.ssaa > SNELL_MAX_SSAA)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "ssaa %d outside 0..%d", d.ssaa, SNELL_MAX_SSAA);
+    if (d.ssaa > 1 && (d.target != SNELL_TARGET_OFFSCREEN || d.output != SNELL_OUTPUT_COLOR))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "ssaa %d needs an offscreen colour renderer", d.ssaa);
+    if (d.msaa < 0 || (d.msaa > 1 && (d.target != SNELL_TARGET_OFFSCREEN || d.output != SNELL_OUTPUT_COLOR)))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d needs an offscreen colour renderer (0 or 1 = off)",
+                           d.msaa);
+    if (d.msaa > 1 && d.ssaa > 1)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d and ssaa %d: one antialiasing at a time", d.msaa,
+                           d.ssaa);
+    if (d.msaa > 1) {
+        GLint max_samples = 0;
+        glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+        if (d.msaa > max_samples)
+            return snell__fail(ctx, SNELL_E_UNSUPPORTED, "msaa %d: this GL has at most %d samples", d.msaa,
+                               (int)max_samples);
+    }
+    if (d.ssaa > 1 && (d.width * d.ssaa > max_rb || d.height * d.ssaa > max_rb))
+        return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d with ssaa %d exceeds %d pixels a side", d.width,
+                           d.height, d.ssaa, max_rb);
     r = (snell_renderer *)snell__calloc(&ctx->alloc, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     r->ctx = ctx;
-    r->width = d.width;
-    r->height = d.height;
+    r->ssaa.factor = d.ssaa > 1 ? d.ssaa : 1;
+    r->out_width = d.width;
+    r->out_height = d.height;
+    r->msaa = d.msaa > 1 ? d.msaa : 0;
+    r->width = d.width * r->ssaa.factor;
+    r->height = d.height * r->ssaa.factor;
     r->target = d.target;
     if ((unsigned)d.shading > SNELL_SHADING_SCREEN) {
         snell__free(&ctx->alloc, r);
@@ -129,6 +177,9 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__composite_destroy(&r->comp);
     snell__gbuffer_destroy(&r->gbuffer);
     snell__gbuffer_destroy(&r->backfaces);
+    snell__ssaa_destroy(&r->ssaa);
+    if (r->msaa_fbo) glDeleteFramebuffers(1, &r->msaa_fbo);
+    if (r->msaa_rb) glDeleteRenderbuffers(1, &r->msaa_rb);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
     if (r->color_rb) glDeleteRenderbuffers(1, &r->color_rb);
     if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
@@ -179,12 +230,16 @@ static void choose_shading(snell_renderer *r, snell__object *o, snell_object_sta
     snell__object_project(&r->scene.view, o);
     st->pixels_per_triangle = o->pixels_per_triangle;
     float threshold = snell__screen_threshold(r->device, r->object_method[o->index]);
+    /* With MSAA, AUTO draws glass forward: the screen-space stage shades
+     * whole pixels from a single-sample G-buffer, so its silhouettes would
+     * stay aliased. */
     int screen = r->shading == SNELL_SHADING_SCREEN || r->object_method[o->index]->screen_space_only ||
-                 (r->shading == SNELL_SHADING_AUTO && st->pixels_per_triangle < threshold);
+                 (r->shading == SNELL_SHADING_AUTO && !r->msaa && st->pixels_per_triangle < threshold);
     /* An offscreen target's depth buffer is the renderer's own, so the
-     * G-buffer pass can write it; a host's framebuffer gets gl_FragDepth. */
-    o->screen_space = !screen ? 0 : r->target == SNELL_TARGET_OFFSCREEN ? SNELL__SCREEN_SHARED_DEPTH
-                                                                          : SNELL__SCREEN_WRITES_DEPTH;
+     * G-buffer pass can write it; a host's framebuffer, or a multisampled
+     * one, gets gl_FragDepth. */
+    o->screen_space = !screen ? 0 : r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? SNELL__SCREEN_SHARED_DEPTH
+                                                                                      : SNELL__SCREEN_WRITES_DEPTH;
     o->gid = o->index + 1;
     st->screen_space = screen;
 }
@@ -315,7 +370,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     }
     if (st == SNELL_OK && n_screen > 0)
         st = snell__gbuffer_draw(r->ctx, &r->gbuffer, &sc->view, r->screen_list, n_screen,
-                                 r->target == SNELL_TARGET_OFFSCREEN ? r->depth_rb : 0, s->glass);
+                                 r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? r->depth_rb : 0, s->glass);
     for (i = 0; i < n_screen && st == SNELL_OK; i++) st = draw_glass(r, r->screen_list[i], &s->glass[r->screen_list[i]->index]);
     for (i = 0; i < sc->drawn && st == SNELL_OK; i++) {
         int k = sc->order[i];
@@ -333,6 +388,16 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         glBindTexture(GL_TEXTURE_CUBE_MAP, fd->env->texture);
         st = snell__composite_background(r->ctx, &r->comp, r->out, (const float *)vp);
         s->background_drawn = 1;
+    }
+    if (st == SNELL_OK && r->ssaa.factor > 1) {
+        snell__ssaa_resolve(&r->ssaa, r->out_width, r->out_height);
+        s->passes++;
+    }
+    if (st == SNELL_OK && r->msaa) { /* resolve: the samples' mean per pixel */
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->msaa_fbo);
+        glBlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        s->passes++;
     }
     /* Leave no program of ours current: one deleted while current (renderer
      * destroyed) lives on until replaced, and a later pass that saved and
@@ -359,8 +424,8 @@ static snell_status read_target(snell_renderer *r, GLenum type, void *pixels)
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev_fbo);
     /* Into client memory, tightly packed, whatever pixel buffer or pack state the host has set. */
     snell__pixel_pack_begin(&pack, 1);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
-    glReadPixels(0, 0, r->width, r->height, GL_RGBA, type, pixels);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->ssaa.factor > 1 ? r->ssaa.resolve_fbo : r->msaa ? r->msaa_fbo : r->fbo);
+    glReadPixels(0, 0, r->out_width, r->out_height, GL_RGBA, type, pixels);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev_fbo);
     snell__pixel_pack_end(&pack);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "glReadPixels failed");
@@ -376,9 +441,9 @@ snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "read_rgba needs an offscreen colour renderer");
     if ((st = read_target(r, GL_UNSIGNED_BYTE, pixels)) != SNELL_OK) return st;
     /* GL's row 0 is the bottom; flip in place so row 0 is the top. */
-    row = (size_t)r->width * 4;
-    for (y = 0; y < r->height / 2; y++) {
-        uint8_t *a = pixels + (size_t)y * row, *b = pixels + (size_t)(r->height - 1 - y) * row;
+    row = (size_t)r->out_width * 4;
+    for (y = 0; y < r->out_height / 2; y++) {
+        uint8_t *a = pixels + (size_t)y * row, *b = pixels + (size_t)(r->out_height - 1 - y) * row;
         size_t i;
         for (i = 0; i < row; i++) {
             uint8_t t = a[i];

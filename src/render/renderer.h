@@ -9,10 +9,15 @@
 #include "render/gbuffer.h"
 #include "render/prepared.h"
 #include "render/scene.h"
+#include "render/ssaa.h"
 
 struct snell_renderer {
     snell_ctx *ctx;
-    int width, height;
+    int width, height;                                /* the frame's size: the output's times ssaa.factor */
+    int out_width, out_height;                        /* what snell_renderer_read_* return */
+    snell__ssaa ssaa;
+    int msaa;                                         /* samples of the colour and depth targets; 0 = off */
+    unsigned msaa_fbo, msaa_rb;                       /* the single-sample target it is resolved into */
     snell_target target;
     snell__output_kind out;
     unsigned fbo, color_rb, depth_rb;

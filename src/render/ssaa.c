@@ -1,0 +1,64 @@
+/* ssaa.c — supersampling resolve; see ssaa.h. */
+#include "render/ssaa.h"
+#include "core/gl.h"
+#include "core/program.h"
+
+#include <stdio.h>
+#include <string.h>
+
+snell_status snell__ssaa_create(snell_ctx *ctx, snell__ssaa *s, int factor, int w, int h)
+{
+    char def[64];
+    GLenum status;
+    snell_status st;
+    memset(s, 0, sizeof *s);
+    s->factor = factor;
+    if (factor <= 1) return SNELL_OK;
+    glGenTextures(1, &s->frame_tex);
+    glBindTexture(GL_TEXTURE_2D, s->frame_tex);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w * factor, h * factor);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glGenRenderbuffers(1, &s->resolve_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, s->resolve_rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    glGenFramebuffers(1, &s->resolve_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->resolve_fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, s->resolve_rb);
+    status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        return snell__fail(ctx, SNELL_E_GL, "SSAA resolve %dx%d framebuffer incomplete (0x%x)", w, h, (unsigned)status);
+    snprintf(def, sizeof def, "#define SNELL_SSAA %d\n", factor);
+    st = snell__program_build(ctx, "skybox.vert", "ssaa_resolve.frag", def, &s->prog);
+    if (st != SNELL_OK) return st;
+    s->u_frame = glGetUniformLocation(s->prog, "u_frame");
+    glGenVertexArrays(1, &s->vao);
+    return glGetError() == GL_NO_ERROR
+               ? SNELL_OK
+               : snell__fail(ctx, SNELL_E_GL, "GL error creating the %dx SSAA targets (%dx%d)", factor, w, h);
+}
+
+void snell__ssaa_destroy(snell__ssaa *s)
+{
+    if (s->frame_tex) glDeleteTextures(1, &s->frame_tex);
+    if (s->resolve_rb) glDeleteRenderbuffers(1, &s->resolve_rb);
+    if (s->resolve_fbo) glDeleteFramebuffers(1, &s->resolve_fbo);
+    if (s->prog) glDeleteProgram(s->prog);
+    if (s->vao) glDeleteVertexArrays(1, &s->vao);
+    memset(s, 0, sizeof *s);
+}
+
+void snell__ssaa_resolve(const snell__ssaa *s, int w, int h)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, s->resolve_fbo);
+    glViewport(0, 0, w, h);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glUseProgram(s->prog);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, s->frame_tex);
+    glUniform1i(s->u_frame, 0);
+    glBindVertexArray(s->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
