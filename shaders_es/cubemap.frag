@@ -219,10 +219,13 @@ void main()
     // Fresnel inside too (cubemap param inner=1): the exit transmits 1 - F
     // of the chain and reflects F back in, the strongest of the branches the
     // two-interface model drops (the first internal reflection: the ghost);
-    // one more search follows it (inner_branch).
-    if (exit_fresnel > 0.0)
-        transmitted = (1.0 - exit_fresnel) * transmitted +
-                      exit_fresnel * u_tint * inner_branch(p, snell_reflect(exit_in, exit_n), exit_path);
+    // one more search follows it (inner_branch). Called for every pixel and
+    // selected, not branched on: its environment look-ups take implicit
+    // derivatives, which GLSL ES 3.0 leaves undefined in non-uniform control
+    // flow (8.9); on llvmpipe the whole 4x4 block runs the branch anyway.
+    vec3 inner = inner_branch(p, snell_reflect(exit_in, exit_n), exit_path);
+    transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner
+                                     : transmitted;
 #endif
     vec3 reflected = texture(u_env, r).rgb;
     snell_write(mix(transmitted, reflected, fresnel), dir);
