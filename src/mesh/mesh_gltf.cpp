@@ -1125,6 +1125,20 @@ snell_status read_model_file(snell_ctx *ctx, const char *path, std::vector<unsig
     return SNELL_OK;
 }
 
+/* The model file (non-empty) and its folder, which external buffers are
+ * resolved against. */
+snell_status read_model_file_and_dir(snell_ctx *ctx, const char *path, std::vector<unsigned char> *bytes,
+                                     std::string *dir)
+{
+    snell_status st = read_model_file(ctx, path, bytes);
+    if (st != SNELL_OK) return st;
+    if (bytes->empty()) return snell__fail(ctx, SNELL_E_PARSE, "glTF: '%s' is empty", path);
+    std::string p(path);
+    size_t slash = p.find_last_of('/');
+    if (slash != std::string::npos) *dir = p.substr(0, slash + 1);
+    return SNELL_OK;
+}
+
 } // namespace
 
 extern "C" snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_mesh **out)
@@ -1144,14 +1158,9 @@ extern "C" snell_status snell_mesh_load_gltf_ex(snell_ctx *ctx, const char *path
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_gltf_ex: unknown flags 0x%x", flags);
     try {
         std::vector<unsigned char> bytes;
-        snell_status st = read_model_file(ctx, path, &bytes);
-        if (st != SNELL_OK) return st;
-        if (bytes.empty()) return snell__fail(ctx, SNELL_E_PARSE, "glTF: '%s' is empty", path);
-        /* external buffers are resolved relative to the file's directory */
-        std::string p(path), dir;
-        size_t slash = p.find_last_of('/');
-        if (slash != std::string::npos) dir = p.substr(0, slash + 1);
-        return load(ctx, bytes.data(), bytes.size(), dir, true, flags, out);
+        std::string dir;
+        snell_status st = read_model_file_and_dir(ctx, path, &bytes, &dir);
+        return st != SNELL_OK ? st : load(ctx, bytes.data(), bytes.size(), dir, true, flags, out);
     } catch (...) {
         return snell__fail(ctx, SNELL_E_NOMEM, "glTF: out of memory reading '%s'", path);
     }
@@ -1188,13 +1197,9 @@ extern "C" snell_status snell_scene_load_gltf(snell_ctx *ctx, const char *path, 
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_scene_load_gltf: unknown flags 0x%x", flags);
     try {
         std::vector<unsigned char> bytes;
-        snell_status st = read_model_file(ctx, path, &bytes);
-        if (st != SNELL_OK) return st;
-        if (bytes.empty()) return snell__fail(ctx, SNELL_E_PARSE, "glTF: '%s' is empty", path);
-        std::string p(path), dir;
-        size_t slash = p.find_last_of('/');
-        if (slash != std::string::npos) dir = p.substr(0, slash + 1);
-        return load_scene(ctx, bytes.data(), bytes.size(), dir, true, flags, out);
+        std::string dir;
+        snell_status st = read_model_file_and_dir(ctx, path, &bytes, &dir);
+        return st != SNELL_OK ? st : load_scene(ctx, bytes.data(), bytes.size(), dir, true, flags, out);
     } catch (...) {
         return snell__fail(ctx, SNELL_E_NOMEM, "glTF: out of memory reading '%s'", path);
     }

@@ -72,6 +72,26 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     }
 }
 
+int snell__fit_solid_few_surfaces(const snell_mesh_analysis *an, float max_hidden, char *why, size_t n)
+{
+    if (!an) {
+        snell__why(why, n, "mesh analysis failed: closedness unknown");
+        return 0;
+    }
+    if (!an->closed) {
+        snell__why(why, n, "open or non-manifold (%u boundary, %u non-manifold, %u flipped edges): no solid's back "
+                           "faces", (unsigned)an->boundary_edges, (unsigned)an->nonmanifold_edges,
+                   (unsigned)an->flipped_edges);
+        return 0;
+    }
+    if (an->hidden_fraction > max_hidden) {
+        snell__why(why, n, "closed, but %.2f > %.2f of the surface is hidden from the centre: light leaves through "
+                           "surfaces before the farthest back face", an->hidden_fraction, max_hidden);
+        return 0;
+    }
+    return 1;
+}
+
 int snell__cull_back_faces(const snell__object *o, snell_object_stats *stats)
 {
     int winding = snell__mesh_winding(o->mesh), flip;

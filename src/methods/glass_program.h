@@ -18,6 +18,11 @@ typedef struct snell__glass_program {
 snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, snell__output_kind out,
                                         const char *extra_defines, int screen_space, snell__glass_program *g);
 void snell__glass_program_destroy(snell__glass_program *g);
+/* The image-space methods' precondition (wyman.c, oliveira.c): their back
+ * faces are a solid's, so the mesh must be analysed, closed, and at most
+ * max_hidden hidden from its centre (more surfaces along a ray than the
+ * farthest back face stands for). 1 if so; else 0 with why written. */
+int snell__fit_solid_few_surfaces(const snell_mesh_analysis *an, float max_hidden, char *why, size_t n);
 /* glUseProgram + the shared uniforms (the object's environment on texture unit 0). */
 void snell__glass_program_use(const snell__glass_program *g, const snell__view *v, const snell__object *o);
 /* Only surfaces facing the eye start a path (every kernel refracts at the

@@ -110,21 +110,7 @@ static void oliveira_destroy(snell_ctx *ctx, void *state)
 static snell__fit oliveira_fit(const snell_mesh_analysis *an, const snell_glass_resolved *g, char *why, size_t n)
 {
     (void)g;
-    if (!an) {
-        snell__why(why, n, "mesh analysis failed: closedness unknown");
-        return SNELL__FIT_RUNS;
-    }
-    if (!an->closed) {
-        snell__why(why, n, "open or non-manifold (%u boundary, %u non-manifold, %u flipped edges): no solid's back "
-                           "faces", (unsigned)an->boundary_edges, (unsigned)an->nonmanifold_edges,
-                   (unsigned)an->flipped_edges);
-        return SNELL__FIT_RUNS;
-    }
-    if (an->hidden_fraction > OLIVEIRA_MAX_HIDDEN) {
-        snell__why(why, n, "closed, but %.2f > %.2f of the surface is hidden from the centre: light leaves through "
-                           "surfaces before the farthest back face", an->hidden_fraction, OLIVEIRA_MAX_HIDDEN);
-        return SNELL__FIT_RUNS;
-    }
+    if (!snell__fit_solid_few_surfaces(an, OLIVEIRA_MAX_HIDDEN, why, n)) return SNELL__FIT_RUNS;
     snell__why(why, n, "closed, %.2f <= %.2f hidden: exit searched along the ray in image space, nothing prepared",
                an->hidden_fraction, OLIVEIRA_MAX_HIDDEN);
     return SNELL__FIT_ADEQUATE;

@@ -104,25 +104,11 @@ static void wyman_destroy(snell_ctx *ctx, void *state)
 static snell__fit wyman_fit(const snell_mesh_analysis *an, const snell_glass_resolved *g, char *why, size_t n)
 {
     (void)g;
-    if (!an) {
-        snell__why(why, n, "mesh analysis failed: closedness unknown");
-        return SNELL__FIT_RUNS;
-    }
-    if (!an->closed) {
-        snell__why(why, n, "open or non-manifold (%u boundary, %u non-manifold, %u flipped edges): no solid's back "
-                           "faces", (unsigned)an->boundary_edges, (unsigned)an->nonmanifold_edges,
-                   (unsigned)an->flipped_edges);
-        return SNELL__FIT_RUNS;
-    }
     /* Measured (tests/test_wyman.c, 160x160, vs the reference with 2
      * interfaces): torus (hidden 0.45) 0.20 rad mean against single's 0.63;
      * goblet (0.97, a view ray crosses four surfaces) 0.56 against 0.46,
-     * worse than single. The same threshold as the cubemap's separates them. */
-    if (an->hidden_fraction > WYMAN_MAX_HIDDEN) {
-        snell__why(why, n, "closed, but %.2f > %.2f of the surface is hidden from the centre: light leaves through "
-                           "surfaces before the farthest back face", an->hidden_fraction, WYMAN_MAX_HIDDEN);
-        return SNELL__FIT_RUNS;
-    }
+     * worse than single: WYMAN_MAX_HIDDEN separates them. */
+    if (!snell__fit_solid_few_surfaces(an, WYMAN_MAX_HIDDEN, why, n)) return SNELL__FIT_RUNS;
     /* Even where its preconditions hold, the interpolated exit distance is
      * an approximation that oliveira's search (later in cost order) removes
      * for 1.1-1.4x the cost: vs FULL at 512x512 (bench/BENCHMARKS.md) sphere
