@@ -462,6 +462,10 @@ typedef struct snell_oliveira_params {
                                 * reflections; default 2) */
     snell_back_detail back_detail;
     int guard_band;            /* as snell_wyman_params.guard_band */
+    snell_fresnel_model fresnel; /* reflectance at the interfaces (default Schlick, the MATCHED model) */
+    snell_inner_fresnel inner_fresnel; /* as the cubemap's: the exit transmits 1 - F and the internal
+                                        * reflection is searched once more and refracted out; AUTO
+                                        * (default) on for convex meshes (bench/BENCHMARKS.md) */
 } snell_oliveira_params;
 
 #define SNELL_OLIVEIRA_MAX_LINEAR_STEPS 32
