@@ -307,8 +307,9 @@ static int layers_wanted(const snell__object *o)
  * peel"): unlike the cubemap's two-surface search, the layer search is
  * close enough on concave meshes too that the missing exit Fresnel is a
  * large part of the error left (256^2, area-averaged PSNR against FULL:
- * goblet +2.0 dB, torus +0.5, sphere +8.9), and the peels, not the kernel,
- * are most of the frame's cost (+8-16% on the torus and goblet). */
+ * goblet +2.0 dB, bunny +0.9, torus +0.5, sphere +8.9), and the peels, not
+ * the kernel, are most of the frame's cost (the frame +4-33% on the goblet,
+ * bunny and torus; 1.6x on the sphere, which peels twice only). */
 static int inner_wanted(const snell__object *o)
 {
     return o->glass->material.peel.inner_fresnel != SNELL_INNER_FRESNEL_OFF;
