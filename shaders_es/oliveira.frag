@@ -138,6 +138,37 @@ highp float search(highp vec3 p, highp vec3 d, out ivec2 px_out, out bool away_o
     return s;
 }
 
+#if SNELL_INNER_FRESNEL
+// The branch reflected inside at the exit: one more search from q along d,
+// refracted out at the surface found with (1 - F'), its own reflection F'
+// leaving along the mirror (the rest of the tree lumped, so no energy is
+// lost). Radiance before the tint. v, n: the view ray and entry normal, for
+// the fallback normal where no sample was inside.
+vec3 inner_branch(highp vec3 q, highp vec3 d, highp float len, highp vec3 v, vec3 n)
+{
+    ivec2 px;
+    bool away;
+    highp float t = search(q, d, px, away);
+    ivec2 tex = away ? px + u_back_band : px;
+    vec3 n3;
+    if ((away ? map_depth(u_bdepth_id, tex) : map_depth(u_gdepth_id, tex)) >= 0.0) {
+        n3 = away ? map_normal(u_bnormal, tex) : map_normal(u_gnormal, tex);
+    } else {
+        highp vec3 side = d - dot(d, v) * v;
+        n3 = dot(side, side) > 1e-12 ? normalize(side) : -n;
+    }
+    if (dot(n3, d) > 0.0) n3 = -n3;
+    highp vec3 out_dir;
+    bool exited = snell_refract(d, n3, u_ior, out_dir);
+    float f = exited ? snell_fresnel(-dot(d, n3), u_ior, 1.0) : 1.0;
+    vec3 l = (1.0 - f) * texture(u_env, normalize(out_dir)).rgb + f * texture(u_env, snell_reflect(d, n3)).rgb;
+#if SNELL_ABSORB
+    l *= snell_beer_lambert(u_sigma, len + t);
+#endif
+    return l;
+}
+#endif
+
 void main()
 {
     g_size = 1.0 / u_inv_size;
@@ -150,10 +181,16 @@ void main()
     highp vec3 dir;
     snell_refract(v, n, 1.0 / u_ior, dir);
     dir = normalize(dir);
-    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, u_ior);
 
     highp vec3 p = p1;
     highp float length_inside = 0.0;
+#if SNELL_INNER_FRESNEL
+    float exit_fresnel = 0.0;   // F at the exit the path refracted out of (0: capped, no exit)
+    highp vec3 exit_in = dir, exit_p = p1;
+    vec3 exit_n = n;
+    highp float exit_length = 0.0;
+#endif
     for (int k = 2; k <= MAX_INTERFACES; k++) {
         ivec2 px;
         bool away;
@@ -176,6 +213,15 @@ void main()
         if (dot(n2, dir) > 0.0) n2 = -n2; // face the ray (it comes from inside)
         highp vec3 next;
         bool out_of_glass = snell_refract(dir, n2, u_ior, next); // on TIR: the mirror direction
+#if SNELL_INNER_FRESNEL
+        if (out_of_glass) {
+            exit_fresnel = snell_fresnel(-dot(dir, n2), u_ior, 1.0);
+            exit_in = dir;
+            exit_n = n2;
+            exit_p = p;
+            exit_length = length_inside;
+        }
+#endif
         dir = normalize(next);
         if (out_of_glass || k >= u_max_interfaces) break;
     }
@@ -184,6 +230,14 @@ void main()
     vec3 transmitted = texture(u_env, dir).rgb * u_tint * snell_beer_lambert(u_sigma, length_inside);
 #else
     vec3 transmitted = texture(u_env, dir).rgb * u_tint;
+#endif
+#if SNELL_INNER_FRESNEL
+    // Fresnel at the exit too: it transmits 1 - F and reflects F back in,
+    // which one more search follows (inner_branch). Computed for every pixel
+    // and selected: its look-ups take implicit derivatives, undefined in
+    // non-uniform control flow (GLSL ES 3.0, 8.9).
+    vec3 inner = inner_branch(exit_p, snell_reflect(exit_in, exit_n), exit_length, v, n);
+    transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner : transmitted;
 #endif
     vec3 reflected = texture(u_env, r).rgb;
     snell_write(mix(transmitted, reflected, fresnel), dir);

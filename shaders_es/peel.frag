@@ -7,7 +7,10 @@
 // layer k lies gap k: gap 0 before the first surface, odd gaps inside the
 // glass, even ones in air.
 //
-// Refract the view ray at the front surface (Schlick Fresnel there); the ray
+// Refract the view ray at the front surface (Schlick Fresnel there, or the
+// exact one with SNELL_FRESNEL_EXACT; with SNELL_INNER_FRESNEL the last exit
+// into air weights the chain by 1 - F too and adds its internal reflection,
+// followed by one more search: inner_branch); the ray
 // is then in gap 1. The ray-height-field search (3.3): march along the ray
 // from its point in steps of the bounding diameter / SNELL_PEEL_LINEAR (the
 // seed's size is 1/50 of the depth range), to where the ray leaves the
@@ -46,7 +49,8 @@ precision highp float;
 #define MAX_INTERFACES 10     // SNELL_PEEL_MAX_INTERFACES
 #define EMPTY 2.0             // depth of an empty texel: behind every stored depth (0..1)
 // SNELL_PEEL_LINEAR, SNELL_PEEL_BINARY, SNELL_PEEL_FIX_DISCONTINUITY,
-// SNELL_PEEL_FIX_MERGE, SNELL_ABSORB: the program's variant (methods/peel.c).
+// SNELL_PEEL_FIX_MERGE, SNELL_ABSORB, SNELL_FRESNEL_EXACT, SNELL_INNER_FRESNEL:
+// the program's variant (methods/peel.c).
 
 uniform highp vec3 u_eye;
 uniform samplerCube u_env;
@@ -160,6 +164,114 @@ int classify(ivec2 px, int j, highp float z, out int m)
     return z < lo ? 1 : z > hi ? 2 : 0;
 }
 
+// The search (3.3) from p along dir in gap j, out to the bounding sphere
+// grown by a step (t_max). Returns the crossing's kind (classify; 0: none
+// before t_max); ta: the last ray parameter in the gap, tb: the first out of
+// it; m: the gap whose layers stood for j there. DISCONTINUITY may move the
+// ray to another gap of the same medium (j).
+int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m, out highp float ta,
+               out highp float tb, out highp float t_max)
+{
+    // the search range: to the far side of the bounding sphere grown by
+    // one step, so that the last sample lies clearly beyond a surface on
+    // the sphere (a tessellated sphere's vertices are on it): a point just
+    // beyond it can still test as before it, against the depth at its
+    // pixel's centre
+    highp vec3 oc = p - u_bsphere.xyz;
+    highp float b = dot(oc, dir), rs = u_bsphere.w + step;
+    t_max = max(-b + sqrt(max(b * b - dot(oc, oc) + rs * rs, 0.0)), 0.0);
+    ta = 0.0;
+    tb = -1.0;
+    m = j;
+    int kind = 0;
+    for (int i = 1; i <= SNELL_PEEL_LINEAR + 1; i++) {
+        highp float t = min(float(i) * step, t_max);
+        highp vec3 q = p + t * dir;
+        ivec2 px = pixel_of(q);
+        kind = classify(px, j, depth_of(q), m);
+        if (kind != 0) {
+            // bisect [ta, t]: ta in the gap, tb out of it
+            tb = t;
+            for (int s = 0; s < SNELL_PEEL_BINARY; s++) {
+                highp float tm = 0.5 * (ta + tb);
+                highp vec3 qm = p + tm * dir;
+                int mm;
+                int km = classify(pixel_of(qm), j, depth_of(qm), mm);
+                if (km == 0) ta = tm;
+                else {
+                    tb = tm;
+                    kind = km;
+                    m = mm;
+                }
+            }
+#if SNELL_PEEL_FIX_DISCONTINUITY
+            highp vec3 qa = p + ta * dir, qb = p + tb * dir;
+            ivec2 pa = pixel_of(qa), pb = pixel_of(qb);
+            int crossed = kind == 1 ? m - 1 : m;
+            if (kind != 3 && abs(layer_depth(pa, crossed) - layer_depth(pb, crossed)) > 1.0 / float(SNELL_PEEL_LINEAR)) {
+                int g = gap_at(pb, depth_of(qb));
+                if ((g & 1) == (j & 1)) {
+                    // case 2: a layer boundary, not a surface; go on in the gap found there
+                    j = g;
+                    ta = tb;
+                    tb = -1.0;
+                    kind = 0;
+                    continue;
+                }
+            }
+#endif
+            break;
+        }
+        ta = t;
+        if (t >= t_max) break;
+    }
+    return kind;
+}
+
+// The normal (not normalised) of the surface a search from p along dir
+// crossed (kind != 0), and the gap beyond it (next).
+vec3 crossing_normal(highp vec3 p, vec3 dir, int kind, int j, int m, highp float ta, highp float tb, out int next)
+{
+    highp vec3 qb = p + tb * dir, qa = p + ta * dir;
+    if (kind == 3) {
+        // out through the silhouette: its normal is the last pixel's
+        // layer nearest the point (the side wall there)
+        ivec2 pa = pixel_of(qa);
+        highp float za = depth_of(qa);
+        int near_k = abs(layer_depth(pa, m - 1) - za) < abs(layer_depth(pa, m) - za) ? m - 1 : m;
+        next = j + 1;
+        return pa.x >= 0 && layer_depth(pa, near_k) != EMPTY ? layer_normal(pa, near_k) : -dir;
+    }
+    next = kind == 1 ? j - 1 : j + 1;
+    return layer_normal_at(qb, kind == 1 ? m - 1 : m);
+}
+
+#if SNELL_INNER_FRESNEL
+// The branch reflected inside at the last exit (weight F there): one more
+// search from q (in inside gap j) along rdir, refracted out at the surface
+// it finds with (1 - F'), whose own reflection F' leaves in its mirror
+// direction (the rest of the tree, lumped so that no energy is lost); no
+// surface found (no far layer): it leaves along rdir, as the chain does.
+// Radiance, before the tint.
+vec3 inner_branch(highp vec3 q, vec3 rdir, int j, highp float step, highp float path)
+{
+    int m, next;
+    highp float ta, tb, t_max;
+    int kind = search_gap(q, rdir, step, j, m, ta, tb, t_max);
+    vec3 n2 = normalize(crossing_normal(q, rdir, kind == 0 ? 2 : kind, j, m, ta, tb, next));
+    if (dot(n2, rdir) > 0.0) n2 = -n2;
+    vec3 out_dir;
+    bool exited = snell_refract(rdir, n2, u_ior, out_dir);
+    float f = kind == 0 ? 0.0 : exited ? snell_fresnel(-dot(rdir, n2), u_ior, 1.0) : 1.0;
+    out_dir = kind == 0 ? rdir : normalize(out_dir);
+    vec3 l = (1.0 - f) * texture(u_env, out_dir).rgb + f * texture(u_env, snell_reflect(rdir, n2)).rgb;
+#if SNELL_ABSORB
+    l *= snell_beer_lambert(u_sigma, path + (kind == 0 ? t_max : tb));
+#endif
+    return l;
+}
+#endif
+
 void main()
 {
     highp vec3 p1, n1;
@@ -171,7 +283,7 @@ void main()
     vec3 dir;
     snell_refract(v, n, 1.0 / u_ior, dir);
     dir = normalize(dir);
-    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, u_ior);
 
     highp vec3 p = p1;
     highp float step = 2.0 * u_bsphere.w / float(SNELL_PEEL_LINEAR);
@@ -179,60 +291,21 @@ void main()
     vec3 tint = u_tint;
     int j = 1;             // the gap the ray is in
     int done = 1;          // interfaces processed (the entry)
+#if SNELL_INNER_FRESNEL
+    float exit_fresnel = 0.0;   // F at the last exit into air (0: none)
+    vec3 exit_in = dir;         // the direction that reached it from inside
+    vec3 exit_n = n;
+    highp vec3 exit_q = p;      // the last point inside before it
+    int exit_gap = 1;
+    highp float exit_path = 0.0;
+    vec3 exit_tint = tint;
+#endif
     for (int it = 0; it < MAX_INTERFACES; it++) {
         bool capped = done >= u_max_interfaces;  // inside at the cap: this search gives the length only
         if (capped && ((j & 1) == 0 || SNELL_ABSORB == 0)) break;
-        // the search range: to the far side of the bounding sphere grown by
-        // one step, so that the last sample lies clearly beyond a surface on
-        // the sphere (a tessellated sphere's vertices are on it): a point just
-        // beyond it can still test as before it, against the depth at its
-        // pixel's centre
-        highp vec3 oc = p - u_bsphere.xyz;
-        highp float b = dot(oc, dir), rs = u_bsphere.w + step;
-        highp float t_max = max(-b + sqrt(max(b * b - dot(oc, oc) + rs * rs, 0.0)), 0.0);
-        highp float ta = 0.0, tb = -1.0;
-        int kind = 0, m = j;
-        for (int i = 1; i <= SNELL_PEEL_LINEAR + 1; i++) {
-            highp float t = min(float(i) * step, t_max);
-            highp vec3 q = p + t * dir;
-            ivec2 px = pixel_of(q);
-            kind = classify(px, j, depth_of(q), m);
-            if (kind != 0) {
-                // bisect [ta, t]: ta in the gap, tb out of it
-                tb = t;
-                for (int s = 0; s < SNELL_PEEL_BINARY; s++) {
-                    highp float tm = 0.5 * (ta + tb);
-                    highp vec3 qm = p + tm * dir;
-                    int mm;
-                    int km = classify(pixel_of(qm), j, depth_of(qm), mm);
-                    if (km == 0) ta = tm;
-                    else {
-                        tb = tm;
-                        kind = km;
-                        m = mm;
-                    }
-                }
-#if SNELL_PEEL_FIX_DISCONTINUITY
-                highp vec3 qa = p + ta * dir, qb = p + tb * dir;
-                ivec2 pa = pixel_of(qa), pb = pixel_of(qb);
-                int crossed = kind == 1 ? m - 1 : m;
-                if (kind != 3 && abs(layer_depth(pa, crossed) - layer_depth(pb, crossed)) > 1.0 / float(SNELL_PEEL_LINEAR)) {
-                    int g = gap_at(pb, depth_of(qb));
-                    if ((g & 1) == (j & 1)) {
-                        // case 2: a layer boundary, not a surface; go on in the gap found there
-                        j = g;
-                        ta = tb;
-                        tb = -1.0;
-                        kind = 0;
-                        continue;
-                    }
-                }
-#endif
-                break;
-            }
-            ta = t;
-            if (t >= t_max) break;
-        }
+        int m;
+        highp float ta, tb, t_max;
+        int kind = search_gap(p, dir, step, j, m, ta, tb, t_max);
         if (kind == 0) {
             // no surface before the bounding sphere's far side
             if ((j & 1) == 1) path += t_max;
@@ -241,27 +314,24 @@ void main()
         if ((j & 1) == 1) path += tb;
         if (capped) break;
         // the crossed layer's normal where the ray crossed it
-        highp vec3 qb = p + tb * dir, qa = p + ta * dir;
-        ivec2 pb = pixel_of(qb);
-        vec3 n2;
         int next;
-        if (kind == 3) {
-            // out through the silhouette: its normal is the last pixel's
-            // layer nearest the point (the side wall there)
-            ivec2 pa = pixel_of(qa);
-            highp float za = depth_of(qa);
-            int near_k = abs(layer_depth(pa, m - 1) - za) < abs(layer_depth(pa, m) - za) ? m - 1 : m;
-            n2 = pa.x >= 0 && layer_depth(pa, near_k) != EMPTY ? layer_normal(pa, near_k) : -dir;
-            next = j + 1;
-        } else {
-            n2 = layer_normal_at(qb, kind == 1 ? m - 1 : m);
-            next = kind == 1 ? j - 1 : j + 1;
-        }
-        n2 = normalize(n2);
+        vec3 n2 = normalize(crossing_normal(p, dir, kind, j, m, ta, tb, next));
         if (dot(n2, dir) > 0.0) n2 = -n2;   // face the ray
         vec3 out_dir;
         bool inside = (j & 1) == 1;
         bool through = snell_refract(dir, n2, inside ? u_ior : 1.0 / u_ior, out_dir);
+#if SNELL_INNER_FRESNEL
+        if (through && inside) {
+            exit_fresnel = snell_fresnel(-dot(dir, n2), u_ior, 1.0);
+            exit_in = dir;
+            exit_n = n2;
+            exit_q = p + ta * dir;       // qa
+            exit_gap = j;
+            exit_path = path;
+            exit_tint = tint;
+        }
+#endif
+        highp vec3 qb = p + tb * dir, qa = p + ta * dir;
         dir = normalize(out_dir);
         done++;
         if (through) {
@@ -277,6 +347,18 @@ void main()
     vec3 transmitted = texture(u_env, dir).rgb * tint * snell_beer_lambert(u_sigma, path);
 #else
     vec3 transmitted = texture(u_env, dir).rgb * tint;
+#endif
+#if SNELL_INNER_FRESNEL
+    // Fresnel inside too (peel param inner=on): the last exit transmits
+    // 1 - F of the chain and reflects F back in, the strongest branch the
+    // chain drops (the first internal reflection at the exit: the ghost);
+    // one more search through the layers follows it (inner_branch). Called
+    // for every pixel and selected, not branched on: its environment
+    // look-ups take implicit derivatives, which GLSL ES 3.0 leaves
+    // undefined in non-uniform control flow (8.9).
+    vec3 inner = inner_branch(exit_q, snell_reflect(exit_in, exit_n), exit_gap, step, exit_path);
+    transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * exit_tint * inner
+                                     : transmitted;
 #endif
     vec3 reflected = texture(u_env, r).rgb;
     snell_write(mix(transmitted, reflected, fresnel), dir);

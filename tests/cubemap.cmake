@@ -34,8 +34,9 @@ if(TARGET snell-render)
 endif()
 snell_add_test(test_cubemap_env SOURCES test_cubemap_env.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_cubemap_env PRIVATE m)
-# Inner-surface Fresnel (cubemap param inner): energy in a white world, the
-# gain against FULL on the sphere, AUTO on convex meshes only.
+# Inner-surface Fresnel (cubemap and peel param inner): energy in a grey world,
+# the gain against FULL (cubemap: the sphere; peel: sphere, torus, goblet),
+# AUTO on convex meshes only for the cubemap, on every mesh for peel. ~7 s.
 snell_add_test(test_inner_fresnel SOURCES test_inner_fresnel.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_inner_fresnel PRIVATE m)
 # CLI antialiasing (snell_renderer_desc.ssaa / msaa): a still each, and clear

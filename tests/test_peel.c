@@ -411,6 +411,7 @@ static void test_absorption(snell_ctx *ctx, snell_env *env)
     double sum = 0.0, dark = 0.0;
     if (!mesh) return;
     test_frame_one(&fd, &g, mesh, env);
+    g.material.peel.inner_fresnel = SNELL_INNER_FRESNEL_OFF; /* the MATCHED model: no exit Fresnel */
     fd.camera.azimuth = 0.5f;
     fd.camera.elevation = 0.4f;
     render(ctx, &fd, &g, SNELL_METHOD_PEEL, NULL, clear, &st);

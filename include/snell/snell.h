@@ -462,6 +462,10 @@ typedef struct snell_oliveira_params {
                                 * reflections; default 2) */
     snell_back_detail back_detail;
     int guard_band;            /* as snell_wyman_params.guard_band */
+    snell_fresnel_model fresnel; /* reflectance at the interfaces (default Schlick, the MATCHED model) */
+    snell_inner_fresnel inner_fresnel; /* as the cubemap's: the exit transmits 1 - F and the internal
+                                        * reflection is searched once more and refracted out; AUTO
+                                        * (default) on for convex meshes (bench/BENCHMARKS.md) */
 } snell_oliveira_params;
 
 #define SNELL_OLIVEIRA_MAX_LINEAR_STEPS 32
@@ -491,6 +495,15 @@ typedef struct snell_peel_params {
     int max_interfaces;        /* surfaces processed per path, 1..10 (1 = single surface; then exits,
                                 * re-entries, TIR bounces; default 8) */
     snell_peel_fixes fixes;
+    snell_fresnel_model fresnel; /* reflectance at the interfaces (default Schlick, the MATCHED model) */
+    /* Fresnel where the path leaves the glass for the last time too: that
+     * exit transmits 1 - F, and the light it reflects back inside is followed
+     * by one more search through the layers and out (2 more environment
+     * look-ups); OFF: no loss at the exit, no internal-reflection ghost (the
+     * MATCHED model). AUTO (default): on for every mesh, where peel's layer
+     * search is close enough for it to pay, concave ones too (measured in
+     * bench/BENCHMARKS.md, "Inner-surface Fresnel in peel"). */
+    snell_inner_fresnel inner_fresnel;
 } snell_peel_params;
 
 #define SNELL_PEEL_MAX_LAYERS 8

@@ -26,7 +26,7 @@
 
 typedef struct oli_prog {
     snell__glass_program g;    /* g.prog == 0: empty slot */
-    int linear, iterations, screen, absorb;
+    int linear, iterations, screen, absorb, fresnel_exact, inner;
     unsigned long last_use;
     int bnormal, bdepth_id, max_interfaces, back_band;
 } oli_prog;
@@ -42,17 +42,17 @@ static void oliveira_destroy(snell_ctx *ctx, void *state);
 /* The program of these compile-time constants: cached, else built into the
  * least recently used slot. */
 static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int iterations, int screen, int absorb,
-                             const oli_prog **out)
+                             int fresnel_exact, int inner, const oli_prog **out)
 {
     oli_prog *p = &s->prog[0];
-    char def[160];
+    char def[224];
     snell_status st;
     int i;
     s->clock++;
     for (i = 0; i < PROG_CACHE; i++) {
         oli_prog *c = &s->prog[i];
         if (c->g.prog && c->linear == linear && c->iterations == iterations && c->screen == screen &&
-            c->absorb == absorb) {
+            c->absorb == absorb && c->fresnel_exact == fresnel_exact && c->inner == inner) {
             c->last_use = s->clock;
             *out = c;
             return SNELL_OK;
@@ -60,14 +60,18 @@ static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int 
         if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
     }
     snell__glass_program_destroy(&p->g);
-    snprintf(def, sizeof def, "#define SNELL_LINEAR_STEPS %d\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_ABSORB %d\n",
-             linear, iterations, absorb);
+    snprintf(def, sizeof def,
+             "#define SNELL_LINEAR_STEPS %d\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_ABSORB %d\n"
+             "#define SNELL_FRESNEL_EXACT %d\n#define SNELL_INNER_FRESNEL %d\n",
+             linear, iterations, absorb, fresnel_exact, inner);
     st = snell__glass_program_build(ctx, "oliveira.frag", s->out, def, screen, &p->g);
     if (st != SNELL_OK) return st;
     p->linear = linear;
     p->iterations = iterations;
     p->screen = screen;
     p->absorb = absorb;
+    p->fresnel_exact = fresnel_exact;
+    p->inner = inner;
     p->last_use = s->clock;
     p->bnormal = glGetUniformLocation(p->g.prog, "u_bnormal");
     p->bdepth_id = glGetUniformLocation(p->g.prog, "u_bdepth_id");
@@ -85,7 +89,7 @@ static snell_status oliveira_create(snell_ctx *ctx, snell__output_kind out, void
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
     /* the default program, so that a device that cannot build it fails here, once */
-    st = get_prog(ctx, s, DEFAULT_LINEAR_STEPS, DEFAULT_ITERATIONS, SNELL__SCREEN_SHARED_DEPTH, 0, &p);
+    st = get_prog(ctx, s, DEFAULT_LINEAR_STEPS, DEFAULT_ITERATIONS, SNELL__SCREEN_SHARED_DEPTH, 0, 0, 0, &p);
     if (st != SNELL_OK) {
         oliveira_destroy(ctx, s);
         return st;
@@ -125,7 +129,12 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
     snell_status st;
     if (!o->screen_space)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: oliveira shades in screen space only", o->index);
-    st = get_prog(ctx, s, c->linear_steps, c->iterations, o->screen_space, o->glass->absorbs, &p);
+    /* AUTO inner Fresnel: on for convex meshes, as for the cubemap (measured
+     * for this kernel in bench/BENCHMARKS.md "Inner-surface Fresnel") */
+    int inner = c->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
+                (c->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && o->analysis && o->analysis->convex);
+    st = get_prog(ctx, s, c->linear_steps, c->iterations, o->screen_space, o->glass->absorbs,
+                  c->fresnel == SNELL_FRESNEL_EXACT, inner, &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
     glUniform1i(p->bnormal, SNELL__BACK_UNIT_NORMAL);
@@ -137,6 +146,9 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
     return SNELL_OK;
 }
 
+static const char *const g_fresnel_names[] = {"default", "schlick", "exact"};
+static const char *const g_inner_names[] = {"auto", "off", "on"};
+
 static const snell_param_info g_params[] = {
     {"linear", "linear steps along the refracted ray before the binary search", 0, SNELL_OLIVEIRA_MAX_LINEAR_STEPS,
      DEFAULT_LINEAR_STEPS, NULL},
@@ -146,13 +158,19 @@ static const snell_param_info g_params[] = {
      SNELL_OLIVEIRA_MAX_INTERFACES, 2, NULL},
     {"backdetail", SNELL__BACK_DETAIL_HELP, 0, 2, SNELL_BACK_DETAIL_AUTO, snell__back_detail_names},
     {"guard", SNELL__GUARD_HELP, -1, SNELL_MAX_GUARD_BAND, SNELL__GUARD_DEFAULT, NULL},
+    {"fresnel", "reflectance model: schlick (the MATCHED model) or exact (unpolarised dielectric)", 0, 2,
+     SNELL_FRESNEL_SCHLICK, g_fresnel_names},
+    {"inner", "Fresnel at the exit and one internal reflection: auto (on for convex meshes), off, on", 0, 2,
+     SNELL_INNER_FRESNEL_AUTO, g_inner_names},
 };
 
 static const size_t g_offsets[] = {offsetof(snell_glass_material, oliveira.linear_steps),
                                    offsetof(snell_glass_material, oliveira.iterations),
                                    offsetof(snell_glass_material, oliveira.max_interfaces),
                                    offsetof(snell_glass_material, oliveira.back_detail),
-                                   offsetof(snell_glass_material, oliveira.guard_band)};
+                                   offsetof(snell_glass_material, oliveira.guard_band),
+                                   offsetof(snell_glass_material, oliveira.fresnel),
+                                   offsetof(snell_glass_material, oliveira.inner_fresnel)};
 
 static snell_back_detail oliveira_back_detail(const snell_glass_resolved *g) { return g->material.oliveira.back_detail; }
 static int oliveira_guard(const snell_glass_resolved *g) { return g->material.oliveira.guard_band; }

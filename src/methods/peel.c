@@ -31,6 +31,8 @@
 #define DEFAULT_LINEAR 16
 #define DEFAULT_BINARY 6
 #define DEFAULT_INTERFACES 8
+/* Fresnel reflectance model: 0 = Schlick (the MATCHED model), 1 = exact. */
+#define DEFAULT_FRESNEL 0
 #define PROG_CACHE 8
 /* The texture unit of the layers (render/gbuffer.h: 0 env, 1 the kernel's). */
 #define LAYER_UNIT 1
@@ -42,7 +44,7 @@
 
 typedef struct peel_prog {
     snell__glass_program g; /* g.prog == 0: empty slot */
-    int screen, absorb, linear, binary, fixes;
+    int screen, absorb, linear, binary, fixes, fresnel_exact, inner;
     unsigned long last_use;
     int layers, layer_count, fwd, near_, inv_range, size, max_interfaces;
 } peel_prog;
@@ -60,23 +62,31 @@ typedef struct peel_state {
 
 static void peel_destroy(snell_ctx *ctx, void *state);
 
-static snell_status build_prog(snell_ctx *ctx, peel_state *s, int screen, int absorb, int linear, int binary,
-                               int fixes, peel_prog *p)
+/* What selects a kernel: its compile-time constants. */
+typedef struct prog_key {
+    int screen, absorb, linear, binary, fixes, fresnel_exact, inner;
+} prog_key;
+
+static snell_status build_prog(snell_ctx *ctx, peel_state *s, const prog_key *k, peel_prog *p)
 {
-    char def[256];
+    char def[320];
     snell_status st;
     snprintf(def, sizeof def,
              "#define SNELL_PEEL_LINEAR %d\n#define SNELL_PEEL_BINARY %d\n#define SNELL_PEEL_FIX_DISCONTINUITY %d\n"
-             "#define SNELL_PEEL_FIX_MERGE %d\n#define SNELL_ABSORB %d\n",
-             linear, binary, fixes == SNELL_PEEL_FIXES_DISCONTINUITY || fixes == SNELL_PEEL_FIXES_BOTH,
-             fixes == SNELL_PEEL_FIXES_MERGE || fixes == SNELL_PEEL_FIXES_BOTH, absorb);
-    st = snell__glass_program_build(ctx, "peel.frag", s->out, def, screen, &p->g);
+             "#define SNELL_PEEL_FIX_MERGE %d\n#define SNELL_ABSORB %d\n#define SNELL_FRESNEL_EXACT %d\n"
+             "#define SNELL_INNER_FRESNEL %d\n",
+             k->linear, k->binary, k->fixes == SNELL_PEEL_FIXES_DISCONTINUITY || k->fixes == SNELL_PEEL_FIXES_BOTH,
+             k->fixes == SNELL_PEEL_FIXES_MERGE || k->fixes == SNELL_PEEL_FIXES_BOTH, k->absorb, k->fresnel_exact,
+             k->inner);
+    st = snell__glass_program_build(ctx, "peel.frag", s->out, def, k->screen, &p->g);
     if (st != SNELL_OK) return st;
-    p->screen = screen;
-    p->absorb = absorb;
-    p->linear = linear;
-    p->binary = binary;
-    p->fixes = fixes;
+    p->screen = k->screen;
+    p->absorb = k->absorb;
+    p->linear = k->linear;
+    p->binary = k->binary;
+    p->fixes = k->fixes;
+    p->fresnel_exact = k->fresnel_exact;
+    p->inner = k->inner;
     p->layers = glGetUniformLocation(p->g.prog, "u_layers");
     p->layer_count = glGetUniformLocation(p->g.prog, "u_layer_count");
     p->fwd = glGetUniformLocation(p->g.prog, "u_fwd");
@@ -88,8 +98,7 @@ static snell_status build_prog(snell_ctx *ctx, peel_state *s, int screen, int ab
 }
 
 /* The kernel of these settings: cached, else built into the least recently used slot. */
-static snell_status get_prog(snell_ctx *ctx, peel_state *s, int screen, int absorb, const snell_peel_params *pp,
-                             const peel_prog **out)
+static snell_status get_prog(snell_ctx *ctx, peel_state *s, const prog_key *k, const peel_prog **out)
 {
     peel_prog *p = &s->prog[0];
     snell_status st;
@@ -97,8 +106,9 @@ static snell_status get_prog(snell_ctx *ctx, peel_state *s, int screen, int abso
     s->clock++;
     for (i = 0; i < PROG_CACHE; i++) {
         peel_prog *c = &s->prog[i];
-        if (c->g.prog && c->screen == screen && c->absorb == absorb && c->linear == pp->linear_steps &&
-            c->binary == pp->binary_steps && c->fixes == (int)pp->fixes) {
+        if (c->g.prog && c->screen == k->screen && c->absorb == k->absorb && c->linear == k->linear &&
+            c->binary == k->binary && c->fixes == k->fixes && c->fresnel_exact == k->fresnel_exact &&
+            c->inner == k->inner) {
             c->last_use = s->clock;
             *out = c;
             return SNELL_OK;
@@ -106,7 +116,7 @@ static snell_status get_prog(snell_ctx *ctx, peel_state *s, int screen, int abso
         if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
     }
     snell__glass_program_destroy(&p->g);
-    st = build_prog(ctx, s, screen, absorb, pp->linear_steps, pp->binary_steps, (int)pp->fixes, p);
+    st = build_prog(ctx, s, k, p);
     if (st != SNELL_OK) return st;
     p->last_use = s->clock;
     *out = p;
@@ -117,12 +127,12 @@ static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, void **s
 {
     peel_state *s = (peel_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
     const peel_prog *p;
-    snell_peel_params d = {DEFAULT_LAYERS, DEFAULT_LINEAR, DEFAULT_BINARY, DEFAULT_INTERFACES, SNELL_PEEL_FIXES_BOTH};
+    const prog_key d = {0, 0, DEFAULT_LINEAR, DEFAULT_BINARY, SNELL_PEEL_FIXES_BOTH, DEFAULT_FRESNEL, 0};
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
     st = snell__program_build(ctx, "object.vert", "peel_layer.frag", NULL, &s->layer_prog);
-    if (st == SNELL_OK) st = get_prog(ctx, s, 0, 0, &d, &p);
+    if (st == SNELL_OK) st = get_prog(ctx, s, &d, &p);
     if (st != SNELL_OK) {
         peel_destroy(ctx, s);
         return st;
@@ -292,6 +302,19 @@ static int layers_wanted(const snell__object *o)
     return want < 2 ? 2 : want;
 }
 
+/* Whether the last exit's Fresnel is applied (material.peel.inner_fresnel).
+ * AUTO is on for every mesh (BENCHMARKS.md, "Inner-surface Fresnel in
+ * peel"): unlike the cubemap's two-surface search, the layer search is
+ * close enough on concave meshes too that the missing exit Fresnel is a
+ * large part of the error left (256^2, area-averaged PSNR against FULL:
+ * goblet +2.0 dB, bunny +0.9, torus +0.5, sphere +8.9), and the peels, not
+ * the kernel, are most of the frame's cost (the frame +4-33% on the goblet,
+ * bunny and torus; 1.6x on the sphere, which peels twice only). */
+static int inner_wanted(const snell__object *o)
+{
+    return o->glass->material.peel.inner_fresnel != SNELL_INNER_FRESNEL_OFF;
+}
+
 static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
                               snell_object_stats *stats)
 {
@@ -300,7 +323,17 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     float fwd[3], near_, inv_range;
     const peel_prog *p;
     int peeled, used;
-    snell_status st = get_prog(ctx, s, o->screen_space, o->glass->absorbs, pp, &p);
+    prog_key k;
+    snell_status st;
+    k.screen = o->screen_space;
+    k.absorb = o->glass->absorbs;
+    k.linear = pp->linear_steps;
+    k.binary = pp->binary_steps;
+    k.fixes = (int)pp->fixes;
+    k.fresnel_exact = pp->fresnel == SNELL_FRESNEL_EXACT;
+    /* One interface is the single-surface model: no exit to weight. */
+    k.inner = pp->max_interfaces > 1 && inner_wanted(o);
+    st = get_prog(ctx, s, &k, &p);
     if (st == SNELL_OK) st = ensure_targets(ctx, s, v->width, v->height, pp->layers);
     if (st == SNELL_OK) st = peel_layers(ctx, s, v, o, layers_wanted(o), &peeled, &used);
     if (st != SNELL_OK) return st;
@@ -353,6 +386,8 @@ static snell__fit peel_fit(const snell_mesh_analysis *an, const snell_glass_reso
 }
 
 static const char *const g_fix_names[] = {"default", "none", "discontinuity", "merge", "both"};
+static const char *const g_fresnel_names[] = {"default", "schlick", "exact"};
+static const char *const g_inner_names[] = {"auto", "off", "on"};
 
 static const snell_param_info g_params[] = {
     {"layers", "depth layers peeled (front and back faces alternate; fewer where the mesh needs fewer)", 2,
@@ -365,12 +400,18 @@ static const snell_param_info g_params[] = {
      SNELL_PEEL_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
     {"fixes", "the seed's search fixes (3.5): none, discontinuity, merge or both", 0, 4, SNELL_PEEL_FIXES_BOTH,
      g_fix_names},
+    /* "fresnel" and "inner" are also the cubemap's names, with the same values */
+    {"fresnel", "reflectance at the interfaces: schlick (the MATCHED model) or exact (unpolarised, as FULL)", 0, 2,
+     DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, g_fresnel_names},
+    {"inner", "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more search): "
+     "auto (on), off, on", 0, 2, SNELL_INNER_FRESNEL_AUTO, g_inner_names},
 };
 
 static const size_t g_offsets[] = {
     offsetof(snell_glass_material, peel.layers), offsetof(snell_glass_material, peel.linear_steps),
     offsetof(snell_glass_material, peel.binary_steps), offsetof(snell_glass_material, peel.max_interfaces),
-    offsetof(snell_glass_material, peel.fixes)};
+    offsetof(snell_glass_material, peel.fixes), offsetof(snell_glass_material, peel.fresnel),
+    offsetof(snell_glass_material, peel.inner_fresnel)};
 
 static const snell_method_info g_info = {
     SNELL_METHOD_PEEL, "peel",
