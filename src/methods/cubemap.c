@@ -48,10 +48,7 @@ typedef struct cube_prepared {
 } cube_prepared;
 
 typedef struct cube_prog {
-    snell__glass_program g;    /* g.prog == 0: empty slot */
-    snell_ndcube_encoding enc;
-    int iterations, linear, no_search, screen, absorb, fresnel_exact, inner;
-    unsigned long last_use;
+    snell__program_slot slot;  /* key: prog_key's fields in order */
     int ndcube, inv_model, centre, radius, inner_radius, max_interfaces, texel_angle;
 } cube_prog;
 
@@ -80,23 +77,15 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
              "#define SNELL_INNER_FRESNEL %d\n",
              k->enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", k->iterations, k->linear, k->no_search, k->absorb,
              k->fresnel_exact, k->inner);
-    st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->g);
+    st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->slot.g);
     if (st != SNELL_OK) return st;
-    p->enc = k->enc;
-    p->iterations = k->iterations;
-    p->linear = k->linear;
-    p->no_search = k->no_search;
-    p->screen = k->screen;
-    p->absorb = k->absorb;
-    p->fresnel_exact = k->fresnel_exact;
-    p->inner = k->inner;
-    p->ndcube = glGetUniformLocation(p->g.prog, "u_ndcube");
-    p->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
-    p->centre = glGetUniformLocation(p->g.prog, "u_centre");
-    p->radius = glGetUniformLocation(p->g.prog, "u_radius");
-    p->inner_radius = glGetUniformLocation(p->g.prog, "u_inner_radius");
-    p->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
-    p->texel_angle = glGetUniformLocation(p->g.prog, "u_texel_angle");
+    p->ndcube = glGetUniformLocation(p->slot.g.prog, "u_ndcube");
+    p->inv_model = glGetUniformLocation(p->slot.g.prog, "u_inv_model");
+    p->centre = glGetUniformLocation(p->slot.g.prog, "u_centre");
+    p->radius = glGetUniformLocation(p->slot.g.prog, "u_radius");
+    p->inner_radius = glGetUniformLocation(p->slot.g.prog, "u_inner_radius");
+    p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
+    p->texel_angle = glGetUniformLocation(p->slot.g.prog, "u_texel_angle");
     return SNELL_OK;
 }
 
@@ -104,27 +93,13 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
  * used slot. */
 static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, const prog_key *k, const cube_prog **out)
 {
-    cube_prog *p = &s->prog[0];
-    snell_status st;
-    int i;
-    s->clock++;
-    for (i = 0; i < PROG_CACHE; i++) {
-        cube_prog *c = &s->prog[i];
-        if (c->g.prog && c->enc == k->enc && c->iterations == k->iterations && c->linear == k->linear &&
-            c->no_search == k->no_search && c->screen == k->screen && c->absorb == k->absorb &&
-            c->fresnel_exact == k->fresnel_exact && c->inner == k->inner) {
-            c->last_use = s->clock;
-            *out = c;
-            return SNELL_OK;
-        }
-        if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
-    }
-    snell__glass_program_destroy(&p->g);
-    st = build_prog(ctx, s->out, k, p);
-    if (st != SNELL_OK) return st;
-    p->last_use = s->clock;
-    *out = p;
-    return SNELL_OK;
+    const int key[8] = {(int)k->enc, k->iterations, k->linear, k->no_search, k->screen, k->absorb, k->fresnel_exact,
+                        k->inner};
+    int hit;
+    cube_prog *p = (cube_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 8, &s->clock, &hit);
+    snell_status st = hit ? SNELL_OK : build_prog(ctx, s->out, k, p);
+    if (st == SNELL_OK) *out = p;
+    return st;
 }
 
 static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void **state)
@@ -150,7 +125,7 @@ static void cubemap_destroy(snell_ctx *ctx, void *state)
     cubemap_state *s = (cubemap_state *)state;
     int i;
     if (!s) return;
-    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].g);
+    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
     snell__ndcube_baker_destroy(&s->baker);
     snell__free(&ctx->alloc, s);
 }
@@ -246,7 +221,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     st = get_prog(ctx, s, &k, &p);
     if (st != SNELL_OK) return st;
     if (k.no_search) stats->skipped |= SNELL_SKIP_SEARCH;
-    snell__glass_program_use(&p->g, v, o);
+    snell__glass_program_use(&p->slot.g, v, o);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_CUBE_MAP, cp->cube.texture);
     glActiveTexture(GL_TEXTURE0);

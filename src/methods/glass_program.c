@@ -45,6 +45,29 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     return SNELL_OK;
 }
 
+snell__program_slot *snell__program_cache_get(void *slots, size_t stride, int count, const int *key, int n,
+                                              unsigned long *clock, int *hit)
+{
+    snell__program_slot *victim = (snell__program_slot *)slots;
+    int i;
+    ++*clock;
+    for (i = 0; i < count; i++) {
+        snell__program_slot *c = (snell__program_slot *)((char *)slots + (size_t)i * stride);
+        if (c->g.prog && !memcmp(c->key, key, (size_t)n * sizeof *key)) {
+            c->last_use = *clock;
+            *hit = 1;
+            return c;
+        }
+        if (!c->g.prog || (victim->g.prog && c->last_use < victim->last_use)) victim = c;
+    }
+    snell__glass_program_destroy(&victim->g);
+    memset(victim->key, 0, sizeof victim->key);
+    memcpy(victim->key, key, (size_t)n * sizeof *key);
+    victim->last_use = *clock;
+    *hit = 0;
+    return victim;
+}
+
 void snell__glass_program_destroy(snell__glass_program *g)
 {
     if (g->prog) glDeleteProgram(g->prog);

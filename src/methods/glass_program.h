@@ -12,6 +12,23 @@ typedef struct snell__glass_program {
     int gnormal, gdepth_id, inv_view_proj, inv_size, gid;
 } snell__glass_program;
 
+/* One slot of a kernel's small cache of programs, keyed by their
+ * compile-time constants (cubemap.c, oliveira.c, peel.c keep 8): the first
+ * member of the kernel's own slot struct, which adds its uniform locations. */
+#define SNELL__PROGRAM_KEY_INTS 8
+typedef struct snell__program_slot {
+    snell__glass_program g;    /* g.prog == 0: empty */
+    int key[SNELL__PROGRAM_KEY_INTS];
+    unsigned long last_use;
+} snell__program_slot;
+
+/* The slot (in slots[0..count-1], stride bytes apart) whose program was built
+ * for key (n ints, n <= SNELL__PROGRAM_KEY_INTS): *hit = 1. Else *hit = 0 and
+ * the empty or least recently used slot, its program destroyed and its key
+ * set: the caller builds into it (a failed build leaves it empty). */
+snell__program_slot *snell__program_cache_get(void *slots, size_t stride, int count, const int *key, int n,
+                                              unsigned long *clock, int *hit);
+
 /* The kernel fs_path with the output kind's defines and extra_defines (may be
  * NULL), forward (screen_space 0: object.vert) or for the screen-space stage
  * (SNELL__SCREEN_*: screen.vert, common/surface.glsl reads the G-buffer). */

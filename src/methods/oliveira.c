@@ -25,9 +25,7 @@
 #define OLIVEIRA_MAX_HIDDEN 0.6f
 
 typedef struct oli_prog {
-    snell__glass_program g;    /* g.prog == 0: empty slot */
-    int linear, iterations, screen, absorb, fresnel_exact, inner;
-    unsigned long last_use;
+    snell__program_slot slot;  /* key: get_prog's arguments in order */
     int bnormal, bdepth_id, max_interfaces, back_band;
 } oli_prog;
 
@@ -44,39 +42,25 @@ static void oliveira_destroy(snell_ctx *ctx, void *state);
 static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int iterations, int screen, int absorb,
                              int fresnel_exact, int inner, const oli_prog **out)
 {
-    oli_prog *p = &s->prog[0];
+    const int key[6] = {linear, iterations, screen, absorb, fresnel_exact, inner};
     char def[224];
+    int hit;
+    oli_prog *p = (oli_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 6, &s->clock, &hit);
     snell_status st;
-    int i;
-    s->clock++;
-    for (i = 0; i < PROG_CACHE; i++) {
-        oli_prog *c = &s->prog[i];
-        if (c->g.prog && c->linear == linear && c->iterations == iterations && c->screen == screen &&
-            c->absorb == absorb && c->fresnel_exact == fresnel_exact && c->inner == inner) {
-            c->last_use = s->clock;
-            *out = c;
-            return SNELL_OK;
-        }
-        if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
+    if (hit) {
+        *out = p;
+        return SNELL_OK;
     }
-    snell__glass_program_destroy(&p->g);
     snprintf(def, sizeof def,
              "#define SNELL_LINEAR_STEPS %d\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_ABSORB %d\n"
              "#define SNELL_FRESNEL_EXACT %d\n#define SNELL_INNER_FRESNEL %d\n",
              linear, iterations, absorb, fresnel_exact, inner);
-    st = snell__glass_program_build(ctx, "oliveira.frag", s->out, def, screen, &p->g);
+    st = snell__glass_program_build(ctx, "oliveira.frag", s->out, def, screen, &p->slot.g);
     if (st != SNELL_OK) return st;
-    p->linear = linear;
-    p->iterations = iterations;
-    p->screen = screen;
-    p->absorb = absorb;
-    p->fresnel_exact = fresnel_exact;
-    p->inner = inner;
-    p->last_use = s->clock;
-    p->bnormal = glGetUniformLocation(p->g.prog, "u_bnormal");
-    p->bdepth_id = glGetUniformLocation(p->g.prog, "u_bdepth_id");
-    p->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
-    p->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
+    p->bnormal = glGetUniformLocation(p->slot.g.prog, "u_bnormal");
+    p->bdepth_id = glGetUniformLocation(p->slot.g.prog, "u_bdepth_id");
+    p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
+    p->back_band = glGetUniformLocation(p->slot.g.prog, "u_back_band");
     *out = p;
     return SNELL_OK;
 }
@@ -103,7 +87,7 @@ static void oliveira_destroy(snell_ctx *ctx, void *state)
     oliveira_state *s = (oliveira_state *)state;
     int i;
     if (!s) return;
-    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].g);
+    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
     snell__free(&ctx->alloc, s);
 }
 
@@ -136,7 +120,7 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
     st = get_prog(ctx, s, c->linear_steps, c->iterations, o->screen_space, o->glass->absorbs,
                   c->fresnel == SNELL_FRESNEL_EXACT, inner, &p);
     if (st != SNELL_OK) return st;
-    snell__glass_program_use(&p->g, v, o);
+    snell__glass_program_use(&p->slot.g, v, o);
     glUniform1i(p->bnormal, SNELL__BACK_UNIT_NORMAL);
     glUniform1i(p->bdepth_id, SNELL__BACK_UNIT_DEPTH_ID);
     glUniform1i(p->max_interfaces, c->max_interfaces);

@@ -43,9 +43,7 @@
 #define PEEL_SOFTWARE_SCREEN_PPT 1e9f
 
 typedef struct peel_prog {
-    snell__glass_program g; /* g.prog == 0: empty slot */
-    int screen, absorb, linear, binary, fixes, fresnel_exact, inner;
-    unsigned long last_use;
+    snell__program_slot slot; /* key: prog_key's fields in order */
     int layers, layer_count, fwd, near_, inv_range, size, max_interfaces;
 } peel_prog;
 
@@ -78,49 +76,27 @@ static snell_status build_prog(snell_ctx *ctx, peel_state *s, const prog_key *k,
              k->linear, k->binary, k->fixes == SNELL_PEEL_FIXES_DISCONTINUITY || k->fixes == SNELL_PEEL_FIXES_BOTH,
              k->fixes == SNELL_PEEL_FIXES_MERGE || k->fixes == SNELL_PEEL_FIXES_BOTH, k->absorb, k->fresnel_exact,
              k->inner);
-    st = snell__glass_program_build(ctx, "peel.frag", s->out, def, k->screen, &p->g);
+    st = snell__glass_program_build(ctx, "peel.frag", s->out, def, k->screen, &p->slot.g);
     if (st != SNELL_OK) return st;
-    p->screen = k->screen;
-    p->absorb = k->absorb;
-    p->linear = k->linear;
-    p->binary = k->binary;
-    p->fixes = k->fixes;
-    p->fresnel_exact = k->fresnel_exact;
-    p->inner = k->inner;
-    p->layers = glGetUniformLocation(p->g.prog, "u_layers");
-    p->layer_count = glGetUniformLocation(p->g.prog, "u_layer_count");
-    p->fwd = glGetUniformLocation(p->g.prog, "u_fwd");
-    p->near_ = glGetUniformLocation(p->g.prog, "u_near");
-    p->inv_range = glGetUniformLocation(p->g.prog, "u_inv_range");
-    p->size = glGetUniformLocation(p->g.prog, "u_size");
-    p->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    p->layers = glGetUniformLocation(p->slot.g.prog, "u_layers");
+    p->layer_count = glGetUniformLocation(p->slot.g.prog, "u_layer_count");
+    p->fwd = glGetUniformLocation(p->slot.g.prog, "u_fwd");
+    p->near_ = glGetUniformLocation(p->slot.g.prog, "u_near");
+    p->inv_range = glGetUniformLocation(p->slot.g.prog, "u_inv_range");
+    p->size = glGetUniformLocation(p->slot.g.prog, "u_size");
+    p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
     return SNELL_OK;
 }
 
 /* The kernel of these settings: cached, else built into the least recently used slot. */
 static snell_status get_prog(snell_ctx *ctx, peel_state *s, const prog_key *k, const peel_prog **out)
 {
-    peel_prog *p = &s->prog[0];
-    snell_status st;
-    int i;
-    s->clock++;
-    for (i = 0; i < PROG_CACHE; i++) {
-        peel_prog *c = &s->prog[i];
-        if (c->g.prog && c->screen == k->screen && c->absorb == k->absorb && c->linear == k->linear &&
-            c->binary == k->binary && c->fixes == k->fixes && c->fresnel_exact == k->fresnel_exact &&
-            c->inner == k->inner) {
-            c->last_use = s->clock;
-            *out = c;
-            return SNELL_OK;
-        }
-        if (!c->g.prog || (p->g.prog && c->last_use < p->last_use)) p = c;
-    }
-    snell__glass_program_destroy(&p->g);
-    st = build_prog(ctx, s, k, p);
-    if (st != SNELL_OK) return st;
-    p->last_use = s->clock;
-    *out = p;
-    return SNELL_OK;
+    const int key[7] = {k->screen, k->absorb, k->linear, k->binary, k->fixes, k->fresnel_exact, k->inner};
+    int hit;
+    peel_prog *p = (peel_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 7, &s->clock, &hit);
+    snell_status st = hit ? SNELL_OK : build_prog(ctx, s, k, p);
+    if (st == SNELL_OK) *out = p;
+    return st;
 }
 
 static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, void **state)
@@ -166,7 +142,7 @@ static void peel_destroy(snell_ctx *ctx, void *state)
     peel_state *s = (peel_state *)state;
     int i;
     if (!s) return;
-    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].g);
+    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
     if (s->layer_prog) glDeleteProgram(s->layer_prog);
     release_targets(s);
     snell__free(&ctx->alloc, s);
@@ -341,7 +317,7 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     stats->layers_peeled = peeled;
     stats->layers_used = used;
     depth_frame(v, o, fwd, &near_, &inv_range);
-    snell__glass_program_use(&p->g, v, o);
+    snell__glass_program_use(&p->slot.g, v, o);
     glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
     glBindTexture(GL_TEXTURE_2D_ARRAY, s->array_tex);
     glActiveTexture(GL_TEXTURE0);
