@@ -16,6 +16,7 @@
 precision highp float;
 
 #include "common/optics.glsl"
+#include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
 
@@ -26,7 +27,6 @@ precision highp float;
 
 
 uniform highp vec3 u_eye;
-uniform samplerCube u_env;
 uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
@@ -148,7 +148,7 @@ vec3 inner_branch(vec3 q, vec3 rdir, float path)
     vec3 mirror = snell_reflect(rdir, n3);
     bool exited = snell_refract(rdir, n3, u_ior, out_dir);
     float f = exited ? snell_fresnel(-dot(rdir, n3), u_ior, 1.0) : 1.0;
-    vec3 l = (1.0 - f) * texture(u_env, normalize(out_dir)).rgb + f * texture(u_env, mirror).rgb;
+    vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(mirror);
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, path + t);
 #endif
@@ -211,9 +211,9 @@ void main()
 #endif
 
 #if SNELL_ABSORB
-    vec3 transmitted = texture(u_env, dir).rgb * u_tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_env(dir) * u_tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = texture(u_env, dir).rgb * u_tint;
+    vec3 transmitted = snell_env(dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL && !SNELL_NO_SEARCH
     // Fresnel inside too (cubemap param inner=1): the exit transmits 1 - F
@@ -227,6 +227,6 @@ void main()
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner
                                      : transmitted;
 #endif
-    vec3 reflected = texture(u_env, r).rgb;
+    vec3 reflected = snell_env(r);
     snell_write(mix(transmitted, reflected, fresnel), dir);
 }

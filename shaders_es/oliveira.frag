@@ -31,6 +31,7 @@
 precision highp float;
 
 #include "common/optics.glsl"
+#include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
 
@@ -41,7 +42,6 @@ precision highp float;
 #define MAX_INTERFACES 8
 
 uniform highp vec3 u_eye;
-uniform samplerCube u_env;
 uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
@@ -161,7 +161,7 @@ vec3 inner_branch(highp vec3 q, highp vec3 d, highp float len, highp vec3 v, vec
     highp vec3 out_dir;
     bool exited = snell_refract(d, n3, u_ior, out_dir);
     float f = exited ? snell_fresnel(-dot(d, n3), u_ior, 1.0) : 1.0;
-    vec3 l = (1.0 - f) * texture(u_env, normalize(out_dir)).rgb + f * texture(u_env, snell_reflect(d, n3)).rgb;
+    vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(snell_reflect(d, n3));
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, len + t);
 #endif
@@ -227,9 +227,9 @@ void main()
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = texture(u_env, dir).rgb * u_tint * snell_beer_lambert(u_sigma, length_inside);
+    vec3 transmitted = snell_env(dir) * u_tint * snell_beer_lambert(u_sigma, length_inside);
 #else
-    vec3 transmitted = texture(u_env, dir).rgb * u_tint;
+    vec3 transmitted = snell_env(dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel at the exit too: it transmits 1 - F and reflects F back in,
@@ -239,6 +239,6 @@ void main()
     vec3 inner = inner_branch(exit_p, snell_reflect(exit_in, exit_n), exit_length, v, n);
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner : transmitted;
 #endif
-    vec3 reflected = texture(u_env, r).rgb;
+    vec3 reflected = snell_env(r);
     snell_write(mix(transmitted, reflected, fresnel), dir);
 }

@@ -42,6 +42,7 @@
 precision highp float;
 
 #include "common/optics.glsl"
+#include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
 
@@ -53,7 +54,6 @@ precision highp float;
 // the program's variant (methods/peel.c).
 
 uniform highp vec3 u_eye;
-uniform samplerCube u_env;
 uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
@@ -264,7 +264,7 @@ vec3 inner_branch(highp vec3 q, vec3 rdir, int j, highp float step, highp float 
     bool exited = snell_refract(rdir, n2, u_ior, out_dir);
     float f = kind == 0 ? 0.0 : exited ? snell_fresnel(-dot(rdir, n2), u_ior, 1.0) : 1.0;
     out_dir = kind == 0 ? rdir : normalize(out_dir);
-    vec3 l = (1.0 - f) * texture(u_env, out_dir).rgb + f * texture(u_env, snell_reflect(rdir, n2)).rgb;
+    vec3 l = (1.0 - f) * snell_env(out_dir) + f * snell_env(snell_reflect(rdir, n2));
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, path + (kind == 0 ? t_max : tb));
 #endif
@@ -344,9 +344,9 @@ void main()
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = texture(u_env, dir).rgb * tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_env(dir) * tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = texture(u_env, dir).rgb * tint;
+    vec3 transmitted = snell_env(dir) * tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel inside too (peel param inner=on): the last exit transmits
@@ -360,6 +360,6 @@ void main()
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * exit_tint * inner
                                      : transmitted;
 #endif
-    vec3 reflected = texture(u_env, r).rgb;
+    vec3 reflected = snell_env(r);
     snell_write(mix(transmitted, reflected, fresnel), dir);
 }

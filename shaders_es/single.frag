@@ -10,12 +10,12 @@ precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 
 #include "common/fp16.glsl"
 #include "common/optics.glsl"
+#include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
 
 
 uniform highp vec3 u_eye;
-uniform samplerCube u_env;
 uniform float u_ior;             // glass IOR; outside is 1
 uniform vec3 u_sigma;            // Beer-Lambert coefficient per world unit
 uniform vec3 u_tint;
@@ -38,7 +38,7 @@ void main()
 #ifdef SNELL_THIN
     vec3 rs, ts;
     snell_thin_slab(-dot(v, n), u_ior, u_sigma, u_thickness, rs, ts);
-    snell_write(texture(u_env, v).rgb * u_tint * ts + texture(u_env, r).rgb * rs, v);
+    snell_write(snell_env(v) * u_tint * ts + snell_env(r) * rs, v);
 #else
     vec3 t;
     snell_refract(snell_h(v), n, snell_h(1.0 / u_ior), t);
@@ -53,11 +53,11 @@ void main()
     highp float c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
     highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
 
-    vec3 transmitted = snell_h(texture(u_env, t).rgb * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
+    vec3 transmitted = snell_h(snell_env(t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
 #else
-    vec3 transmitted = snell_h(texture(u_env, t).rgb * u_tint);
+    vec3 transmitted = snell_h(snell_env(t) * u_tint);
 #endif
-    vec3 reflected = snell_h(texture(u_env, r).rgb);
+    vec3 reflected = snell_h(snell_env(r));
     snell_write(mix(transmitted, reflected, fresnel), t);
 #endif
 }

@@ -2,17 +2,17 @@
 // view direction through each pixel, rotation only, looked up in the cubemap.
 precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 
+#include "common/env.glsl"
 #include "common/output.glsl"
 
 in highp vec2 v_ndc;
 
 uniform highp mat4 u_inv_view_proj_rot;  // inverse(proj * view without translation)
-uniform samplerCube u_env;
 
 
 void main()
 {
     highp vec4 d = u_inv_view_proj_rot * vec4(v_ndc, 1.0, 1.0);
     highp vec3 dir = d.xyz / d.w;
-    snell_write(texture(u_env, dir).rgb, dir);
+    snell_write(snell_env(dir), dir);
 }

@@ -18,11 +18,11 @@
 precision highp float;
 
 #include "common/optics.glsl"
+#include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
 
 uniform highp vec3 u_eye;
-uniform samplerCube u_env;
 uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
@@ -111,10 +111,10 @@ void main()
     dir = normalize(dir);
 
 #if SNELL_ABSORB
-    vec3 transmitted = texture(u_env, dir).rgb * u_tint * snell_beer_lambert(u_sigma, d);
+    vec3 transmitted = snell_env(dir) * u_tint * snell_beer_lambert(u_sigma, d);
 #else
-    vec3 transmitted = texture(u_env, dir).rgb * u_tint;
+    vec3 transmitted = snell_env(dir) * u_tint;
 #endif
-    vec3 reflected = texture(u_env, r).rgb;
+    vec3 reflected = snell_env(r);
     snell_write(mix(transmitted, reflected, fresnel), dir);
 }
