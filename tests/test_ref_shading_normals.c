@@ -4,8 +4,9 @@
  * round off, FULL against Blender Cycles had a systematic 3.7/255).
  *
  * The mesh: a cube [-1,1]^3 of 4 x 4 quads a face with shared vertices and
- * the smooth normals snell_mesh_create computes, so the normals of the outer
- * ring of quads lean towards the neighbouring faces as the bunny's base's do.
+ * the smooth normals snell_mesh_create computes (test_smooth_cube), so the
+ * normals of the outer ring of quads lean towards the neighbouring faces as
+ * the bunny's base's do.
  * Rays from above graze its top face (the plane y = 1) near the edge z = 1,
  * travelling towards +z: there the interpolated normal leans so far towards
  * +z that it faces away from the ray (checked here from the mesh's own
@@ -33,8 +34,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define N 4                     /* quads per cube edge */
-#define SIDE (N + 1)            /* grid points per cube edge */
 #define EPS_COLOUR 1e-12
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -46,61 +45,6 @@ static void split_world(const double dir[3], double rgb[3], void *user)
     rgb[0] = dir[1] > 0.0 ? 1.0 : 0.0;
     rgb[1] = dir[1] < 0.0 ? 1.0 : 0.0;
     rgb[2] = 0.0;
-}
-
-static void grid_point(int i, int j, int k, float p[3])
-{
-    p[0] = -1.0f + 2.0f * (float)i / N;
-    p[1] = -1.0f + 2.0f * (float)j / N;
-    p[2] = -1.0f + 2.0f * (float)k / N;
-}
-
-/* The cube with shared vertices (the grid points on its surface),
- * counter-clockwise seen from outside. */
-static snell_mesh *smooth_cube(void)
-{
-    static float pos[3 * SIDE * SIDE * SIDE];
-    static uint32_t idx[6 * N * N * 6];
-    int map[SIDE * SIDE * SIDE];
-    snell_mesh_desc md;
-    snell_mesh *m = NULL;
-    int i, j, k, axis, s, a, b, t = 0, nv = 0;
-    for (i = 0; i < SIDE; i++)
-        for (j = 0; j < SIDE; j++)
-            for (k = 0; k < SIDE; k++) {
-                int surface = i == 0 || i == N || j == 0 || j == N || k == 0 || k == N;
-                map[(i * SIDE + j) * SIDE + k] = surface ? nv : -1;
-                if (surface) grid_point(i, j, k, pos + 3 * nv++);
-            }
-    for (axis = 0; axis < 3; axis++)
-        for (s = 0; s < 2; s++)
-            for (a = 0; a < N; a++)
-                for (b = 0; b < N; b++) {
-                    /* (u, v) span the face with u x v = +axis: the +axis face (s = 1) keeps this order. */
-                    int c[3], q, u = (axis + 1) % 3, v = (axis + 2) % 3;
-                    static const int du[4] = {0, 1, 1, 0}, dv[4] = {0, 0, 1, 1};
-                    uint32_t w[4];
-                    for (q = 0; q < 4; q++) {
-                        c[axis] = s ? N : 0;
-                        c[u] = a + du[q];
-                        c[v] = b + dv[q];
-                        w[q] = (uint32_t)map[(c[0] * SIDE + c[1]) * SIDE + c[2]];
-                    }
-                    if (!s) { /* the -axis face: reversed */
-                        uint32_t tmp = w[1];
-                        w[1] = w[3];
-                        w[3] = tmp;
-                    }
-                    idx[t++] = w[0], idx[t++] = w[1], idx[t++] = w[2];
-                    idx[t++] = w[0], idx[t++] = w[2], idx[t++] = w[3];
-                }
-    memset(&md, 0, sizeof md);
-    md.positions = pos;
-    md.indices = idx;
-    md.vertex_count = (uint32_t)nv;
-    md.triangle_count = (uint32_t)(t / 3);
-    CHECK_OK(snell_mesh_create(NULL, &md, &m));
-    return m;
 }
 
 /* The mesh's smooth normal at point p of the top face (y = 1): the
@@ -231,11 +175,12 @@ static void path_sides(const snell_ref *ref)
 
 int main(void)
 {
-    snell_mesh *mesh = smooth_cube();
+    snell_mesh *mesh = test_smooth_cube(4);
     snell_glass g;
     snell_ref_desc rd;
     snell_ref *ref = NULL;
     double top[3] = {0.0, 1.0, 0.0}, n[3];
+    CHECK(mesh != NULL, "the smooth cube: %s", snell_last_error(NULL));
     if (!mesh) return test_finish();
     /* Outward normals where the faces are flat: the top face's middle. */
     CHECK(top_normal(mesh, top, n) && n[1] > 0.999999, "smooth normal at the top face's centre (%.6f %.6f %.6f)",
