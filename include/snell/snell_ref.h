@@ -207,7 +207,8 @@ void snell_ref_rgb_to_rgba8(const float *rgb, int width, int height, uint8_t *rg
 /* ---------------------------------------------------- light path (Unger 4.2.2) */
 typedef enum snell_ref_event {
     SNELL_REF_EVENT_EYE = 0,   /* points[0]: the ray origin (camera) */
-    SNELL_REF_EVENT_REFRACT,   /* refracted through the surface (into or out of the glass) */
+    SNELL_REF_EVENT_REFRACT,   /* refracted through the surface (into or out of the glass; FULL:
+                                * leaving about a bent normal it can stay inside) */
     SNELL_REF_EVENT_REFLECT,   /* Fresnel-dominant reflection (FULL only) */
     SNELL_REF_EVENT_TIR        /* total internal reflection */
 } snell_ref_event;
