@@ -20,7 +20,9 @@
  * 3. Stats: the stage runs with 3 glass + 2 opaque (peels 2..8, layers
  *    used > 2, no dynamic environment made: SNELL_SKIP_DYNAMIC_ENV), does
  *    not run for one glass object alone, and scene_layers = -1 turns it off;
- *    out-of-range values are refused.
+ *    out-of-range values are refused. A still frame reuses the last frame's
+ *    layers (no peel; the image bitwise the same as one peeled afresh); a
+ *    moved object, a moved camera or another mesh version peels again.
  * 4. Two spheres on the view axis, one behind the other: through both, the
  *    image is bent twice; the exit directions match MATCHED as in 1.
  * 5. A thin-walled, strongly tinted sphere behind a solid one: through the
@@ -254,6 +256,48 @@ out:
     free_scene(&s);
 }
 
+/* Reuse of the layers across frames by one renderer. */
+static void test_reuse(snell_ctx *ctx, snell_env *env)
+{
+    static uint8_t a[W * H * 4], b[W * H * 4];
+    snell_renderer *r = NULL;
+    snell_renderer_desc rd;
+    snell_frame_stats st;
+    scene s;
+    if (!make_scene(ctx, env, &s)) goto out;
+    memset(&rd, 0, sizeof rd);
+    rd.width = W;
+    rd.height = H;
+    rd.shading = test_shading();
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    if (!r) goto out;
+    CHECK_OK_CTX(ctx, snell_render(r, &s.fd, &st));
+    CHECK(!st.scene_layers_reused && st.scene_layer_passes >= 2, "first frame: reused %d, %d peels",
+          st.scene_layers_reused, st.scene_layer_passes);
+    CHECK_OK(snell_renderer_read_rgba(r, a));
+    CHECK_OK_CTX(ctx, snell_render(r, &s.fd, &st));
+    CHECK(st.scene_layers_reused && st.scene_layer_passes == 0, "still frame: reused %d, %d peels",
+          st.scene_layers_reused, st.scene_layer_passes);
+    CHECK_OK(snell_renderer_read_rgba(r, b));
+    CHECK(!memcmp(a, b, sizeof a), "the still frame's image differs from the peeled one");
+    s.om[0][12] += 0.05f;
+    CHECK_OK_CTX(ctx, snell_render(r, &s.fd, &st));
+    CHECK(!st.scene_layers_reused && st.scene_layer_passes >= 2, "moved opaque object: reused %d",
+          st.scene_layers_reused);
+    s.fd.camera.azimuth += 0.01f;
+    CHECK_OK_CTX(ctx, snell_render(r, &s.fd, &st));
+    CHECK(!st.scene_layers_reused, "moved camera: layers reused");
+    CHECK_OK(snell_mesh_normalize(s.cube, 1.0f)); /* a new geometry version */
+    CHECK_OK_CTX(ctx, snell_render(r, &s.fd, &st));
+    CHECK(!st.scene_layers_reused, "new mesh version: layers reused");
+    s.glass[0].material.ior = 1.33f; /* materials are the table's, rewritten every frame */
+    CHECK_OK_CTX(ctx, snell_render(r, &s.fd, &st));
+    CHECK(st.scene_layers_reused, "a material change re-peeled");
+    snell_renderer_destroy(r);
+out:
+    free_scene(&s);
+}
+
 static void test_stage_rule(snell_ctx *ctx, snell_env *env)
 {
     static float d[W * H * 3];
@@ -375,6 +419,7 @@ int main(void)
     if (!env) return test_finish();
     test_three_glass_two_opaque(ctx, env);
     test_stage_rule(ctx, env);
+    test_reuse(ctx, env);
     test_two_on_axis(ctx, env);
     test_thin_behind(ctx, env);
     snell_env_destroy(env);
