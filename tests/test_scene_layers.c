@@ -218,7 +218,10 @@ static void test_three_glass_two_opaque(snell_ctx *ctx, snell_env *env)
 
     reference(ctx, &s.fd, SNELL_REF_MATCHED, rgb, ref, hit, ifs);
     CHECK_OK(render(ctx, &s.fd, on, NULL, &st));
-    CHECK(st.scene_layer_passes >= 2 && st.scene_layers > 2, "scene layers: %d peels, %d used (%s)",
+    /* up to 7 surfaces along a view ray here: more than the 4 layers first
+     * made room for, so the stage grows them and peels again in this frame */
+    printf("3 glass + 2 opaque: %d peels, %d layers used\n", st.scene_layer_passes, st.scene_layers);
+    CHECK(st.scene_layers > 4 && st.scene_layer_passes > st.scene_layers + 1, "scene layers: %d peels, %d used (%s)",
           st.scene_layer_passes, st.scene_layers, st.scene_layers_reason);
     for (int i = 0; i < 3; i++)
         CHECK(st.glass[i].skipped & SNELL_SKIP_DYNAMIC_ENV, "glass %d made a dynamic environment", i);
