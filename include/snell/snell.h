@@ -42,6 +42,7 @@ typedef struct snell_ctx snell_ctx;
 typedef struct snell_mesh snell_mesh;
 typedef struct snell_env snell_env;
 typedef struct snell_renderer snell_renderer;
+typedef struct snell_water snell_water;  /* snell_water.h */
 
 /* Detailed message of the last failure. With ctx == NULL: the last failure on
  * this thread of a call that had no context (or of snell_ctx_create). */
@@ -694,6 +695,11 @@ typedef struct snell_frame_desc {
     int opaque_count;
     int draw_background;            /* 0 = default (draw skybox); -1 = leave background untouched */
     int dynamic_env_size;           /* dynamic environment face size, 16..2048; 0 = half of env's, at most 256 */
+    /* A water surface in its container (snell_water.h), drawn after the
+     * opaque objects and before the glass; NULL = none. It must belong to the
+     * renderer's context. Glass and opaque objects are not yet seen through
+     * the water (its refracted rays meet only the container). */
+    snell_water *water;
 } snell_frame_desc;
 
 /* What a frame did not do for an object, and why (bits of snell_object_stats.skipped). */
@@ -746,6 +752,8 @@ typedef struct snell_frame_stats {
     int back_face_guard;            /* pixels of guard band it drew around the target (an object crossing the
                                      * target's edge asked for it: guard_band), 0 if none */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
+    int water_drawn;                /* 1: the frame's water surface and container were drawn */
+    int water_uploaded;             /* 1: its CPU-simulated heights changed and were uploaded this frame */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

@@ -171,6 +171,7 @@ void snell_renderer_destroy(snell_renderer *r)
      * calls below reach no context (snell__gl_scope_enter). */
     snell__gl_scope_enter(r->ctx, &sc);
     snell__prepared_destroy(r->ctx, &r->prepared);
+    snell__water_programs_destroy(&r->water);
     for (m = 0; m < SNELL_METHOD_COUNT_; m++)
         if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
@@ -292,6 +293,8 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the environment belongs to another context");
     if (fd->dynamic_env_size != 0 && (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048))
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "dynamic_env_size %d outside 16..2048", fd->dynamic_env_size);
+    if (fd->water && fd->water->ctx != r->ctx)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the water belongs to another context (or to none)");
     return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
 }
 
@@ -340,6 +343,10 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         s->opaque_drawn = fd->opaque_count;
         s->passes++;
     }
+    /* The water and its container are opaque to what follows: glass behind
+     * them is depth-tested away, glass in front is drawn over them. */
+    if (st == SNELL_OK && fd->water)
+        st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, fd->env->texture, s);
     /* Glass: the objects shaded in screen space share one G-buffer pass,
      * which leaves each pixel the nearest of their surfaces, then run their
      * kernels (in any order: they cover disjoint pixels); then the forward

@@ -10,6 +10,7 @@
 #include "render/prepared.h"
 #include "render/scene.h"
 #include "render/ssaa.h"
+#include "water/water_draw.h"
 
 struct snell_renderer {
     snell_ctx *ctx;
@@ -37,6 +38,7 @@ struct snell_renderer {
     snell__object *screen_list[SNELL_MAX_GLASS];      /* objects shaded in screen space */
     snell__gbuffer backfaces;                         /* the shared back-face pass, made on first use */
     snell__object *back_list[SNELL_MAX_GLASS];        /* objects whose method needs it */
+    snell__water_programs water;                      /* the water kernel's programs, made on first use */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */
     uint8_t *readback8;
