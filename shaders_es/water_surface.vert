@@ -16,6 +16,7 @@ float height_at(ivec2 p)
     return uintBitsToFloat(texelFetch(u_heights, p, 0).r);
 }
 #else
+precision highp sampler2D;
 uniform sampler2D u_heights;
 float height_at(ivec2 p)
 {
