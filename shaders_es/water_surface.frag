@@ -4,7 +4,14 @@
 // positive one choosing the floor or a wall - where the tiles are seen,
 // attenuated by Beer-Lambert over the path in the water; the mirror ray sees
 // the environment; Schlick's Fresnel weighs the two (the seed adds them).
-// Exit-direction output: the refracted direction.
+// SNELL_WATER_OBJECTS: the frame's opaque objects, drawn before the water,
+// are seen through it: their colour and depth (copied from the target) are
+// searched along the refracted ray in screen space, 24 linear steps over the
+// way to the container and 6 binary ones (the seed has no objects; the
+// search is Oliveira's idea applied to the opaque depth). A step counts as a
+// hit where it lies behind the copied depth by less than two linear steps
+// (along the view axis): a ray passing farther behind an object's visible
+// surface goes on; one leaving the screen misses. Exit-direction output: the refracted direction.
 precision highp float;
 
 #include "common/optics.glsl"
@@ -18,6 +25,51 @@ in vec3 v_world_normal;
 uniform vec3 u_eye;
 uniform float u_ior;
 uniform vec3 u_sigma;      // Beer-Lambert absorption per world unit
+
+#ifdef SNELL_WATER_OBJECTS
+uniform highp sampler2D u_scene_depth; // the opaque objects' window depth (1: none)
+uniform sampler2D u_scene_color;
+uniform mat4 u_view_proj;
+uniform vec2 u_depth_ab;    // proj[2][2], proj[3][2]: view depth = b / (ndc z + a)
+
+// 1 if world point x lies behind an opaque surface by less than thickness.
+bool behind_object(vec3 x, float thickness, out ivec2 pix)
+{
+    vec4 c = u_view_proj * vec4(x, 1.0);
+    vec3 ndc = c.xyz / c.w;
+    ivec2 size = textureSize(u_scene_depth, 0);
+    pix = ivec2(floor((ndc.xy * 0.5 + 0.5) * vec2(size)));
+    if (c.w <= 0.0 || any(lessThan(pix, ivec2(0))) || any(greaterThanEqual(pix, size))) return false;
+    float zs = texelFetch(u_scene_depth, pix, 0).r;
+    if (zs >= 1.0) return false;
+    float ds = u_depth_ab.y / (2.0 * zs - 1.0 + u_depth_ab.x), dx = u_depth_ab.y / (ndc.z + u_depth_ab.x);
+    return dx > ds && dx - ds < thickness;
+}
+
+// Distance along t from p to the first opaque surface before dmax (its colour in col), or -1.
+float find_object(vec3 p, vec3 t, float dmax, out vec3 col)
+{
+    ivec2 pix;
+    float lo = 0.0, hi = -1.0, thickness = 2.0 * dmax / 24.0;
+    for (int k = 1; k <= 24; k++) {
+        float s = dmax * float(k) / 24.0;
+        if (behind_object(p + s * t, thickness, pix)) {
+            hi = s;
+            break;
+        }
+        lo = s;
+    }
+    if (hi < 0.0) return -1.0;
+    for (int k = 0; k < 6; k++) {
+        float m = 0.5 * (lo + hi);
+        if (behind_object(p + m * t, thickness, pix)) hi = m;
+        else lo = m;
+    }
+    behind_object(p + hi * t, thickness, pix);
+    col = texelFetch(u_scene_color, pix, 0).rgb;
+    return hi;
+}
+#endif
 
 void main()
 {
@@ -46,6 +98,15 @@ void main()
         }
     }
     d = max(d, 0.0);
-    vec3 seen = water_tile(face, p + d * t) * snell_beer_lambert(u_sigma, d);
+    vec3 seen = water_tile(face, p + d * t);
+#ifdef SNELL_WATER_OBJECTS
+    vec3 col;
+    float e = find_object(p, t, d, col);
+    if (e >= 0.0) {
+        seen = col;
+        d = e;
+    }
+#endif
+    seen *= snell_beer_lambert(u_sigma, d);
     snell_write(mix(seen, snell_env(r), fresnel), t);
 }

@@ -697,8 +697,10 @@ typedef struct snell_frame_desc {
     int dynamic_env_size;           /* dynamic environment face size, 16..2048; 0 = half of env's, at most 256 */
     /* A water surface in its container (snell_water.h), drawn after the
      * opaque objects and before the glass; NULL = none. It must belong to the
-     * renderer's context. Glass and opaque objects are not yet seen through
-     * the water (its refracted rays meet only the container). */
+     * renderer's context. Opaque objects standing in it are seen through the
+     * surface (a screen-space search along the refracted rays; offscreen
+     * colour renderers without msaa: snell_frame_stats.water_objects); glass
+     * objects are not. */
     snell_water *water;
 } snell_frame_desc;
 
@@ -754,6 +756,9 @@ typedef struct snell_frame_stats {
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
     int water_drawn;                /* 1: the frame's water surface and container were drawn */
     int water_uploaded;             /* 1: its CPU-simulated heights changed and were uploaded this frame */
+    int water_objects;              /* 1: the opaque objects were searched for along its refracted rays (an
+                                     * offscreen single-sample colour renderer with opaque objects; else the
+                                     * water shows only the container below it) */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

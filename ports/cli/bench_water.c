@@ -79,7 +79,7 @@ static int error_line(snell_ctx *ctx, snell_water *w, const snell_frame_desc *fd
     ok = ok && snell_render(rc, fd, NULL) == SNELL_OK && snell_renderer_read_rgba(rc, gpu) == SNELL_OK;
     ok = ok && snell_render(rd, fd, NULL) == SNELL_OK && snell_renderer_read_exit_dirs(rd, gdir) == SNELL_OK;
     t0 = cli_now_ms();
-    ok = ok && snell_ref_water_render(w, &p, &out) == SNELL_OK;
+    ok = ok && snell_ref_water_render(w, NULL, &p, &out) == SNELL_OK;
     if (ok) {
         double ref_ms = cli_now_ms() - t0;
         snell_ref_rgb_to_rgba8(rgb, size, size, ref);

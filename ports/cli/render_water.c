@@ -22,8 +22,17 @@ typedef struct water_drop_opt {
     int frame;                     /* dropped before this frame's step */
 } water_drop_opt;
 
+#define MAX_OBJECTS 8
+
+typedef struct water_object_opt {
+    char mesh[256];                /* shape name or OBJ/glTF file */
+    float place[4];                /* x, y, z, scale of the unit-sphere-normalised mesh */
+} water_object_opt;
+
 typedef struct water_options {
     snell_water_desc desc;
+    water_object_opt objects[MAX_OBJECTS];
+    int object_count;
     water_drop_opt drops[MAX_DROPS];
     int drop_count;
     int frames, save_every, steps;
@@ -43,6 +52,8 @@ static void usage(FILE *f)
             "  --sim cpu|gpu          where the simulation runs (default gpu)\n"
             "  --drop X,Z[,R[,A[,F]]] a drop at world (X, Z), radius R (default 0.08), amplitude A\n"
             "                         (default -0.03; > 0 lifts), before frame F (default 0); repeatable\n"
+            "  --object MESH:X,Y,Z,S  an opaque object (shape or file, fitted in the unit sphere) at (X, Y, Z)\n"
+            "                         scaled by S, standing in the water; repeatable (up to 8)\n"
             "  --frames N             frames to simulate and render (default 1)\n"
             "  --steps S              simulation steps per frame (default 2)\n"
             "  --dt SECONDS           step (default 1/120; clamped to the stability limit)\n"
@@ -108,6 +119,17 @@ static int parse(int argc, char **argv, water_options *o)
             }
             d->frame = (int)f;
             o->drop_count++;
+        } else if (!strcmp(a, "--object")) {
+            water_object_opt *ob = &o->objects[o->object_count];
+            const char *colon = strrchr(v, ':');
+            if (o->object_count == MAX_OBJECTS || !colon || colon == v || (size_t)(colon - v) >= sizeof ob->mesh ||
+                sscanf(colon + 1, "%f,%f,%f,%f", &ob->place[0], &ob->place[1], &ob->place[2], &ob->place[3]) != 4) {
+                fprintf(stderr, "snell-render --water: --object %s: MESH:X,Y,Z,S (at most %d)\n", v, MAX_OBJECTS);
+                return 0;
+            }
+            memcpy(ob->mesh, v, (size_t)(colon - v));
+            ob->mesh[colon - v] = '\0';
+            o->object_count++;
         } else if (!strcmp(a, "--frames")) {
             o->frames = atoi(v);
         } else if (!strcmp(a, "--steps")) {
@@ -170,6 +192,9 @@ static int run(snell_ctx *ctx, const water_options *o)
     snell_env *env = NULL;
     snell_renderer *r = NULL;
     snell_frame_desc fd;
+    snell_mesh *meshes[MAX_OBJECTS] = {0};
+    snell_opaque opaque[MAX_OBJECTS];
+    float models[MAX_OBJECTS][16];
     uint8_t *px = NULL;
     int f, k, rc = 1;
     if (snell_water_create(ctx, &o->desc, &w) != SNELL_OK) {
@@ -186,9 +211,25 @@ static int run(snell_ctx *ctx, const water_options *o)
     }
     px = (uint8_t *)malloc((size_t)o->width * (size_t)o->height * 4);
     if (!px) goto done;
+    memset(opaque, 0, sizeof opaque);
+    for (k = 0; k < o->object_count; k++) {
+        if (cli_mesh_open(ctx, o->objects[k].mesh, 1, &meshes[k]) != SNELL_OK) {
+            fprintf(stderr, "snell-render --water: --object %s: %s\n", o->objects[k].mesh, snell_last_error(ctx));
+            rc = 2;
+            goto done;
+        }
+        cli_place_matrix(o->objects[k].place, models[k]);
+        opaque[k].mesh = meshes[k];
+        opaque[k].model = models[k];
+        opaque[k].color[0] = (float)(0.55 + 0.4 * cos(2.1 * k));
+        opaque[k].color[1] = (float)(0.55 + 0.4 * cos(2.1 * k + 2.1));
+        opaque[k].color[2] = (float)(0.55 + 0.4 * cos(2.1 * k + 4.2));
+    }
     memset(&fd, 0, sizeof fd);
     fd.env = env;
     fd.water = w;
+    fd.opaque = o->object_count ? opaque : NULL;
+    fd.opaque_count = o->object_count;
     fd.camera.azimuth = (float)(o->az_deg * PI / 180.0);
     fd.camera.elevation = (float)(o->el_deg * PI / 180.0);
     fd.camera.distance = o->dist;
@@ -208,10 +249,11 @@ static int run(snell_ctx *ctx, const water_options *o)
             goto done;
         }
         if (o->stats)
-            printf("frame %d: %s, %d steps of %.5f s%s, max |h - mean| %.3g, %s, heights %s\n", f,
+            printf("frame %d: %s, %d steps of %.5f s%s, max |h - mean| %.3g, %s, heights %s%s\n", f,
                    ws.skipped_settled ? "simulation skipped (settled, undisturbed)" : "simulated", ws.steps_run,
                    (double)ws.dt, ws.dt_clamped ? " (clamped to the stability limit)" : "", (double)ws.max_deviation,
-                   ws.settled ? "settled" : "moving", fs.water_uploaded ? "uploaded" : "not uploaded");
+                   ws.settled ? "settled" : "moving", fs.water_uploaded ? "uploaded" : "not uploaded",
+                   fs.water_objects ? ", objects searched under the surface" : "");
         if (o->save_every > 0 && (f % o->save_every == 0 || f == o->frames - 1)) {
             char path[1024];
             frame_path(o->out, f, path, sizeof path);
@@ -222,6 +264,7 @@ static int run(snell_ctx *ctx, const water_options *o)
     rc = 0;
 done:
     free(px);
+    for (k = 0; k < MAX_OBJECTS; k++) snell_mesh_destroy(meshes[k]);
     snell_renderer_destroy(r);
     snell_env_destroy(env);
     snell_water_destroy(w);

@@ -7,7 +7,9 @@
  * of the nodes' (-dh/dx, 1, -dh/dz), normalised; Schlick Fresnel between
  * the environment in the mirror direction and the tiles where the refracted
  * ray meets the floor or a wall (the nearest of the five distances, floor
- * first, then x, then z on ties), Beer-Lambert over that distance. */
+ * first, then x, then z on ties), Beer-Lambert over that distance. Opaque
+ * objects (a reference of them, ref_scene.c's BVH) are met exactly by the
+ * view ray and the refracted ray. */
 #include "core/optics.h"
 #include "ref/ref_scene.h"
 #include "ref/ref_trace.h"
@@ -20,6 +22,7 @@
 
 typedef struct water_scene {
     const snell_water *w;
+    const snell_ref *objects;   /* opaque objects (its glass objects refused), or NULL */
     const float *h;             /* heights, n * n */
     double half, dx, hmin, hmax, ior, sigma[3];
     int n;
@@ -181,10 +184,19 @@ static int container_hit(const water_scene *s, const double o[3], const double d
     return face;
 }
 
-/* The refracted ray from p inside the water: the seed's five wall distances. */
+/* The nearest opaque object along o + t d (t > eps), or 0. */
+static int object_hit(const water_scene *s, const double o[3], const double d[3], ref_surf *surf)
+{
+    const ref_view view = {-1, REF_SEE_NONE, -1};
+    return s->objects && snell__ref_hit(s->objects, o, d, SNELL__BVH_NONE, &view, surf);
+}
+
+/* The refracted ray from p inside the water: the seed's five wall
+ * distances, or an opaque object before them. */
 static void under_water(const water_scene *s, const double p[3], const double t[3], double rgb[3])
 {
     double d = HUGE_VAL, q[3], tile[3];
+    ref_surf os;
     int face = 0, k;
     if (t[1] < 0.0) d = (-s->w->d.depth - p[1]) / t[1];
     if (t[0] != 0.0) {
@@ -203,7 +215,12 @@ static void under_water(const water_scene *s, const double p[3], const double t[
     }
     if (d < 0.0) d = 0.0;
     for (k = 0; k < 3; k++) q[k] = p[k] + d * t[k];
-    snell__water_tile(&s->w->d, face, q, tile);
+    if (object_hit(s, p, t, &os) && os.t < d) {
+        d = os.t;
+        snell__ref_shade_opaque(s->objects, -2 - os.object, &os, tile);
+    } else {
+        snell__water_tile(&s->w->d, face, q, tile);
+    }
     for (k = 0; k < 3; k++) rgb[k] = tile[k] * exp(-s->sigma[k] * d);
 }
 
@@ -211,8 +228,13 @@ static void under_water(const water_scene *s, const double p[3], const double t[
 static int trace(const water_scene *s, const double o[3], const double d[3], double rgb[3], double exit_dir[3])
 {
     double tw = HUGE_VAL, tc, nrm[3];
+    ref_surf os;
     int water = surface_hit(s, o, d, &tw, nrm), face = container_hit(s, o, d, &tc), k;
     memcpy(exit_dir, d, 3 * sizeof(double));
+    if (object_hit(s, o, d, &os) && (!water || os.t < tw) && (face < 0 || os.t < tc)) {
+        snell__ref_shade_opaque(s->objects, -2 - os.object, &os, rgb);
+        return 0;
+    }
     if (water && (face < 0 || tw <= tc)) {
         double p[3], r[3], t[3], f, seen[3], sky[3];
         for (k = 0; k < 3; k++) p[k] = o[k] + tw * d[k];
@@ -277,7 +299,8 @@ static void *worker(void *arg)
     return NULL;
 }
 
-snell_status snell_ref_water_render(snell_water *w, const snell_ref_params *params, const snell_ref_output *out)
+snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, const snell_ref_params *params,
+                                    const snell_ref_output *out)
 {
     water_scene s;
     camera_rays cr;
@@ -294,6 +317,9 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref_params *para
     if (params->samples < 0 || params->samples > SNELL_REF_MAX_SAMPLES || params->threads < 0)
         return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: samples %d outside 0..%d or threads %d < 0",
                            params->samples, SNELL_REF_MAX_SAMPLES, params->threads);
+    if (objects && (objects->glass_count > 0 || objects->analytic))
+        return snell__fail(w->ctx, SNELL_E_INVALID_ARG,
+                           "snell_ref_water_render: objects may hold opaque objects only (%d glass)", objects->glass_count);
     if ((st = snell__ref_camera_setup(w->ctx, params, &cr)) != SNELL_OK) return st;
     nodes = (size_t)w->n * (size_t)w->n;
     h = (float *)snell__calloc(&w->alloc, nodes, sizeof(float));
@@ -304,6 +330,7 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref_params *para
     }
     memset(&s, 0, sizeof s);
     s.w = w;
+    s.objects = objects;
     s.h = h;
     s.n = w->n;
     s.half = 0.5 * (double)w->d.width;

@@ -345,8 +345,20 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     }
     /* The water and its container are opaque to what follows: glass behind
      * them is depth-tested away, glass in front is drawn over them. */
-    if (st == SNELL_OK && fd->water)
-        st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, fd->env->texture, s);
+    if (st == SNELL_OK && fd->water) {
+        /* Objects in the water are searched for in a copy of what the opaque
+         * pass drew: an offscreen single-sample colour target (a host's
+         * framebuffer or a multisampled one cannot be copied with its depth
+         * format known; exit directions need no colour). */
+        int objects = fd->opaque_count > 0 && r->target == SNELL_TARGET_OFFSCREEN && !r->msaa && r->out == SNELL__OUT_COLOR;
+        if (objects) {
+            st = snell__water_copy_scene(r->ctx, &r->water, r->fbo, r->width, r->height);
+            glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+        }
+        if (st == SNELL_OK)
+            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, fd->env->texture, objects, s);
+        s->water_objects = objects;
+    }
     /* Glass: the objects shaded in screen space share one G-buffer pass,
      * which leaves each pixel the nearest of their surfaces, then run their
      * kernels (in any order: they cover disjoint pixels); then the forward

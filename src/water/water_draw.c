@@ -14,11 +14,14 @@
 static snell_status make_programs(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out)
 {
     char defines[256];
-    snell_status st;
-    snprintf(defines, sizeof defines, "%s", snell__output_defines(out));
-    st = snell__program_build(ctx, "water_surface.vert", "water_surface.frag", defines, &p->surface[0]);
-    snprintf(defines, sizeof defines, "%s#define SNELL_WATER_STATE_UINT 1\n", snell__output_defines(out));
-    if (st == SNELL_OK) st = snell__program_build(ctx, "water_surface.vert", "water_surface.frag", defines, &p->surface[1]);
+    snell_status st = SNELL_OK;
+    int gpu, objects;
+    for (gpu = 0; gpu < 2; gpu++)
+        for (objects = 0; objects < 2 && st == SNELL_OK; objects++) {
+            snprintf(defines, sizeof defines, "%s%s%s", snell__output_defines(out),
+                     gpu ? "#define SNELL_WATER_STATE_UINT 1\n" : "", objects ? "#define SNELL_WATER_OBJECTS 1\n" : "");
+            st = snell__program_build(ctx, "water_surface.vert", "water_surface.frag", defines, &p->surface[gpu][objects]);
+        }
     if (st == SNELL_OK)
         st = snell__program_build(ctx, "water_wall.vert", "water_wall.frag", snell__output_defines(out), &p->wall);
     p->made = st == SNELL_OK;
@@ -28,9 +31,12 @@ static snell_status make_programs(snell_ctx *ctx, snell__water_programs *p, snel
 void snell__water_programs_destroy(snell__water_programs *p)
 {
     int k;
-    for (k = 0; k < 2; k++)
-        if (p->surface[k]) glDeleteProgram(p->surface[k]);
+    for (k = 0; k < 4; k++)
+        if (p->surface[k / 2][k % 2]) glDeleteProgram(p->surface[k / 2][k % 2]);
     if (p->wall) glDeleteProgram(p->wall);
+    if (p->scene_fbo) glDeleteFramebuffers(1, &p->scene_fbo);
+    if (p->scene_color) glDeleteTextures(1, &p->scene_color);
+    if (p->scene_depth) glDeleteTextures(1, &p->scene_depth);
     memset(p, 0, sizeof *p);
 }
 
@@ -105,6 +111,38 @@ static snell_status make_geometry(snell_water *w)
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(w->ctx, SNELL_E_GL, "water: GL error making its geometry");
 }
 
+static void nearest_texture(GLuint tex, GLenum format, int width, int height)
+{
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexStorage2D(GL_TEXTURE_2D, 1, format, width, height);
+}
+
+snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, unsigned read_fbo, int width, int height)
+{
+    if (!p->scene_fbo) {
+        GLenum status;
+        glGenTextures(1, &p->scene_color);
+        nearest_texture(p->scene_color, GL_RGBA8, width, height);
+        glGenTextures(1, &p->scene_depth);
+        nearest_texture(p->scene_depth, GL_DEPTH_COMPONENT24, width, height); /* the target's depth format: blit needs it */
+        glGenFramebuffers(1, &p->scene_fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, p->scene_fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, p->scene_color, 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, p->scene_depth, 0);
+        status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE)
+            return snell__fail(ctx, SNELL_E_GL, "water: scene copy framebuffer incomplete (0x%x)", (unsigned)status);
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, p->scene_fbo);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "water: copying the opaque objects failed");
+}
+
 static void tile_uniforms(GLuint prog, const snell_water *w)
 {
     glUniform1f(glGetUniformLocation(prog, "u_half"), 0.5f * w->d.width);
@@ -113,7 +151,7 @@ static void tile_uniforms(GLuint prog, const snell_water *w)
 }
 
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
-                               const snell__view *v, unsigned env_texture, snell_frame_stats *stats)
+                               const snell__view *v, unsigned env_texture, int objects, snell_frame_stats *stats)
 {
     snell_status st;
     GLuint prog;
@@ -148,8 +186,18 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     glBindVertexArray(w->wall_vao);
     glDrawArrays(GL_TRIANGLES, 0, 30);
 
-    prog = p->surface[w->d.sim == SNELL_WATER_SIM_GPU];
+    prog = p->surface[w->d.sim == SNELL_WATER_SIM_GPU][objects != 0];
     glUseProgram(prog);
+    if (objects) {
+        glActiveTexture(GL_TEXTURE2);
+        glBindTexture(GL_TEXTURE_2D, p->scene_color);
+        glActiveTexture(GL_TEXTURE3);
+        glBindTexture(GL_TEXTURE_2D, p->scene_depth);
+        glActiveTexture(GL_TEXTURE0);
+        glUniform1i(glGetUniformLocation(prog, "u_scene_color"), 2);
+        glUniform1i(glGetUniformLocation(prog, "u_scene_depth"), 3);
+        glUniform2f(glGetUniformLocation(prog, "u_depth_ab"), v->proj[2][2], v->proj[3][2]);
+    }
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, (const float *)v->view_proj);
     glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, v->eye);
     glUniform1i(glGetUniformLocation(prog, "u_env"), 0);

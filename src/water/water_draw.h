@@ -13,17 +13,29 @@
 #include "water/water.h"
 
 typedef struct snell__water_programs {
-    unsigned surface[2];           /* heights from R32F (CPU simulation) or from the RG32UI state (GPU) */
+    unsigned surface[2][2];        /* [heights from R32F (CPU simulation) or from the RG32UI state (GPU)]
+                                    * [without, with the search for opaque objects in the water] */
     unsigned wall;
     int made;
+    /* The opaque objects as the frame drew them (colour and depth), for the
+     * search: copied from the target before the water, made on first use at
+     * the target's size. */
+    unsigned scene_fbo, scene_color, scene_depth;
 } snell__water_programs;
 
+
+/* Copies the bound target's colour and depth (the opaque objects just
+ * drawn, read from read_fbo, width x height) for the search; the caller
+ * rebinds its target after. */
+snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, unsigned read_fbo, int width, int height);
+
 /* Draws the water and its container into the bound target (depth test LESS,
- * depth write); env_texture on unit 0 for snell_env, the heights on unit 1.
- * Uploads a CPU simulation's heights when they changed since the last draw
- * (stats->water_uploaded). */
+ * depth write); env_texture on unit 0 for snell_env, the heights on unit 1,
+ * with objects (after snell__water_copy_scene) their colour and depth on
+ * units 2 and 3. Uploads a CPU simulation's heights when they changed since
+ * the last draw (stats->water_uploaded). */
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
-                               const snell__view *v, unsigned env_texture, snell_frame_stats *stats);
+                               const snell__view *v, unsigned env_texture, int objects, snell_frame_stats *stats);
 void snell__water_programs_destroy(snell__water_programs *p);
 
 #endif
