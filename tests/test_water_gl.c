@@ -7,6 +7,8 @@
 #include "snell/snell_water.h"
 #include "test_util.h"
 
+#include <GLES3/gl3.h>
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -158,6 +160,18 @@ int main(void)
         compare(ctx, gpu, env, ob, 2, "water_objects", 30.0, 1e-3, 1e-2);
         snell_mesh_destroy(sphere);
         snell_mesh_destroy(cube);
+    }
+    /* A host's GL state survives the simulation passes (EXTERNAL backends step inside a render loop). */
+    {
+        GLint vp[4], fbo = -1, prog = -1;
+        glViewport(3, 5, 7, 11);
+        CHECK_OK_CTX(ctx, snell_water_drop(gpu, 0.0f, 0.0f, 0.1f, 0.01f));
+        CHECK_OK_CTX(ctx, snell_water_step(gpu, 0.0f, 3, NULL));
+        glGetIntegerv(GL_VIEWPORT, vp);
+        glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fbo);
+        glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
+        CHECK(vp[0] == 3 && vp[1] == 5 && vp[2] == 7 && vp[3] == 11 && fbo == 0 && prog == 0,
+              "GL state changed by the water: viewport %d,%d,%d,%d fbo %d program %d", vp[0], vp[1], vp[2], vp[3], fbo, prog);
     }
     /* The GPU settle check: heavy damping settles it, then steps are skipped. */
     {
