@@ -105,6 +105,15 @@ int main(void)
     CHECK_OK_CTX(ctx, snell_water_create(ctx, &(snell_water_desc){.grid = N, .sim = SNELL_WATER_SIM_CPU}, &cpu));
     CHECK_OK_CTX(ctx, snell_water_create(ctx, &(snell_water_desc){.grid = N, .sim = SNELL_WATER_SIM_GPU}, &gpu));
     if (!cpu || !gpu) return test_finish();
+    {
+        snell_water *a = NULL;
+        snell_water_desc d;
+        CHECK_OK_CTX(ctx, snell_water_create(ctx, &(snell_water_desc){.grid = 64}, &a));
+        snell_water_get_desc(a, &d);
+        CHECK(d.sim == SNELL_WATER_SIM_CPU, "AUTO on %s picks the CPU simulation (got %d)", snell_ctx_gl_renderer(ctx),
+              (int)d.sim);
+        snell_water_destroy(a);
+    }
 
     /* Still surface first (both flat), then the same drops and steps. */
     /* Measured (256x256, 128^2 grid): 73.3 dB still, 74.4 dB rippled, exit

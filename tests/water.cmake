@@ -10,7 +10,7 @@ target_link_libraries(test_water_gl PRIVATE m)
 # the settled surface skipping its simulation, a bad drop refused (exit 2).
 if(TARGET snell-render)
   set(cli $<TARGET_FILE:snell-render>)
-  add_test(NAME cli_water_frames COMMAND ${cli} --water --grid 64 --size 48x48 --frames 5 --save-every 2
+  add_test(NAME cli_water_frames COMMAND ${cli} --water --sim gpu --grid 64 --size 48x48 --frames 5 --save-every 2
            --drop 0,0,0.1,-0.03 --drop 0.5,0.5,0.1,0.02,3 --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_water.png)
   set_tests_properties(cli_water_frames PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
     "frame 0: simulated, 2 steps.*frame 4: simulated, 2 steps")

@@ -49,7 +49,7 @@ static void usage(FILE *f)
             "usage: snell-render --water [options]\n"
             "  a water surface in a tiled box container (snell_water.h), seen by an orbit camera\n"
             "  --grid N               simulation nodes per side, 64..512 (default 128)\n"
-            "  --sim cpu|gpu          where the simulation runs (default gpu)\n"
+            "  --sim cpu|gpu          where the simulation runs (default: the library's AUTO, cpu on software GL)\n"
             "  --drop X,Z[,R[,A[,F]]] a drop at world (X, Z), radius R (default 0.08), amplitude A\n"
             "                         (default -0.03; > 0 lifts), before frame F (default 0); repeatable\n"
             "  --object MESH:X,Y,Z,S  an opaque object (shape or file, fitted in the unit sphere) at (X, Y, Z)\n"
