@@ -91,12 +91,14 @@ snell_status snell_water_drop(snell_water *w, float x, float z, float radius, fl
 typedef struct snell_water_stats {
     int steps_run;                 /* steps integrated by this call */
     int skipped_settled;           /* 1: the surface was settled and undisturbed: no step ran */
-    int settled;                   /* 1: settled after this call (the next undisturbed call skips) */
+    int settled;                   /* 1: settled (the next undisturbed call skips). GPU: judged on the state
+                                    * after the previous call, whose check is read back now (one call late, so
+                                    * it never waits for the GPU); a drop in between cancels it */
     float dt;                      /* the step used, seconds */
     int dt_clamped;                /* 1: the requested dt was above snell_water_dt_limit */
-    float max_deviation;           /* largest |height - mean| after the call (world units) */
-    double ms;                     /* wall time of the call (GPU: issued and, for the settle
-                                    * check, read back) */
+    float max_deviation;           /* largest |height - mean| after the call (world units); GPU: after
+                                    * the previous call, -1 where that is not known (first call, a drop) */
+    double ms;                     /* wall time of the call (GPU: the passes issued, not finished) */
 } snell_water_stats;
 
 /* Advances the surface by `steps` steps of dt seconds (dt <= 0: 1/60;
@@ -105,7 +107,8 @@ typedef struct snell_water_stats {
  * (h_n - h), neighbours beyond the walls left out (no flux: reflecting
  * walls); v = (v + (c dt / dx)^2 / dt * f) * exp(-damping dt); h += dt v.
  * The settle check runs once at the end of the call (GPU: a reduction pass
- * and a small read-back). stats may be NULL. steps 0..100000. */
+ * and a small asynchronous read-back, evaluated on the next call). stats may
+ * be NULL. steps 0..100000. */
 snell_status snell_water_step(snell_water *w, float dt, int steps, snell_water_stats *stats);
 
 /* Heights, grid * grid floats (row j = z index, column i = x index). GPU

@@ -26,7 +26,9 @@ struct snell_water {
     int cur;                       /* state_tex[cur] holds the current state */
     unsigned prog_step, prog_drop, prog_reduce, reduce_tex, reduce_fbo, empty_vao;
     int reduce_size;               /* reduce target side: grid / 16 rounded up */
-    uint32_t *reduce_px;
+    uint32_t *reduce_px;           /* read-back scratch (the whole state for snell_water_read_heights) */
+    unsigned reduce_pbo;           /* the settle check's reduction, read asynchronously into it */
+    void *reduce_fence;            /* GLsync of that read-back; NULL: none pending */
     /* drawing (water_draw.c) */
     unsigned grid_ibo, grid_vao, height_tex, wall_vbo, wall_vao;
     unsigned uploaded_version;     /* version the CPU heights texture holds */
@@ -49,7 +51,10 @@ snell_status snell__water_gpu_create(snell_water *w);
 void snell__water_gpu_destroy(snell_water *w);
 snell_status snell__water_gpu_step(snell_water *w, float k, float dt, float damp, int steps);
 snell_status snell__water_gpu_drop(snell_water *w, float x, float z, float radius, float amplitude);
-snell_status snell__water_gpu_deviation(snell_water *w, float *dev_h, float *dev_v);
+/* The settle check without stalling: the reduction of the state after this
+ * call is read into a pixel buffer, and the one of the previous call (if
+ * any, and no drop came since) is evaluated: *known = 0 when there is none. */
+snell_status snell__water_gpu_deviation(snell_water *w, float *dev_h, float *dev_v, int *known);
 snell_status snell__water_gpu_read(snell_water *w, float *h, float *v);
 
 /* Drawing resources owned by the water (water_draw.c). */

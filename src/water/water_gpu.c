@@ -2,7 +2,8 @@
  * fp32 bits of (height, velocity) per node, ping-ponged by one full-grid
  * fragment pass per step (shaders_es/water_step.frag), drops as a pass of
  * their own (water_drop.frag), the settle check as a 16 x 16 max-reduction
- * pass read back (water_reduce.frag). Why RG32UI: it is colour-renderable in
+ * pass read back one call later through a pixel buffer and a fence, so the
+ * check never waits for the GPU (water_reduce.frag). Why RG32UI: it is colour-renderable in
  * GLES 3.0 without extensions and keeps the state exactly (floatBitsToUint),
  * so the GPU integrates the same fp32 numbers as the CPU; float targets need
  * GL_EXT_color_buffer_float, RGBA8 would quantise the state every step.
@@ -73,6 +74,11 @@ snell_status snell__water_gpu_create(snell_water *w)
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, w->reduce_tex, 0);
         st = check_fbo(w, "reduction");
         glGenVertexArrays(1, &w->empty_vao);
+        glGenBuffers(1, &w->reduce_pbo);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, w->reduce_pbo);
+        glBufferData(GL_PIXEL_PACK_BUFFER, (GLsizeiptr)w->reduce_size * w->reduce_size * 4 * sizeof(uint32_t), NULL,
+                     GL_STREAM_READ);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     }
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR)
         st = snell__fail(w->ctx, SNELL_E_GL, "water: GL error creating the %dx%d RG32UI simulation targets", n, n);
@@ -80,8 +86,16 @@ snell_status snell__water_gpu_create(snell_water *w)
     return st;
 }
 
+static void drop_pending(snell_water *w)
+{
+    if (w->reduce_fence) glDeleteSync((GLsync)w->reduce_fence);
+    w->reduce_fence = NULL;
+}
+
 void snell__water_gpu_destroy(snell_water *w)
 {
+    drop_pending(w);
+    if (w->reduce_pbo) glDeleteBuffers(1, &w->reduce_pbo);
     if (w->prog_step) glDeleteProgram(w->prog_step);
     if (w->prog_drop) glDeleteProgram(w->prog_drop);
     if (w->prog_reduce) glDeleteProgram(w->prog_reduce);
@@ -146,6 +160,7 @@ snell_status snell__water_gpu_step(snell_water *w, float k, float dt, float damp
 snell_status snell__water_gpu_drop(snell_water *w, float x, float z, float radius, float amplitude)
 {
     snell_glstate saved;
+    drop_pending(w); /* a settle check from before the drop says nothing now */
     snell__glstate_save(&saved);
     begin_pass(w, w->prog_drop);
     glUniform1f(glGetUniformLocation(w->prog_drop, "u_half"), 0.5f * w->d.width);
@@ -155,14 +170,35 @@ snell_status snell__water_gpu_drop(snell_water *w, float x, float z, float radiu
     return end_pass(w, &saved, "drop");
 }
 
-snell_status snell__water_gpu_deviation(snell_water *w, float *dev_h, float *dev_v)
+snell_status snell__water_gpu_deviation(snell_water *w, float *dev_h, float *dev_v, int *known)
 {
     snell_glstate saved;
-    snell_status st;
     snell__pixel_store pack;
     int i, m = w->reduce_size;
+    GLsizeiptr bytes = (GLsizeiptr)m * m * 4 * sizeof(uint32_t);
     float mh = 0.0f, mv = 0.0f;
+    *known = 0;
     snell__glstate_save(&saved);
+    if (w->reduce_fence) {
+        /* Issued a call ago: on a GPU long finished; waits only if not. */
+        GLenum r = glClientWaitSync((GLsync)w->reduce_fence, GL_SYNC_FLUSH_COMMANDS_BIT, (GLuint64)1000000000);
+        const uint32_t *px = NULL;
+        drop_pending(w);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, w->reduce_pbo);
+        if (r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED)
+            px = (const uint32_t *)glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, bytes, GL_MAP_READ_BIT);
+        if (px) {
+            for (i = 0; i < m * m; i++) {
+                float a, b;
+                memcpy(&a, &px[4 * i], sizeof a);
+                memcpy(&b, &px[4 * i + 1], sizeof b);
+                if (a > mh) mh = a;
+                if (b > mv) mv = b;
+            }
+            glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+            *known = 1;
+        }
+    }
     begin_pass(w, w->prog_reduce);
     glUniform1i(glGetUniformLocation(w->prog_reduce, "u_n"), w->n);
     glUniform1f(glGetUniformLocation(w->prog_reduce, "u_mean"), (float)w->mean);
@@ -171,19 +207,13 @@ snell_status snell__water_gpu_deviation(snell_water *w, float *dev_h, float *dev
     glBindTexture(GL_TEXTURE_2D, w->state_tex[w->cur]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     snell__pixel_pack_begin(&pack, 4);
-    glReadPixels(0, 0, m, m, GL_RGBA_INTEGER, GL_UNSIGNED_INT, w->reduce_px);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, w->reduce_pbo);
+    glReadPixels(0, 0, m, m, GL_RGBA_INTEGER, GL_UNSIGNED_INT, (void *)0);
     snell__pixel_pack_end(&pack);
-    st = end_pass(w, &saved, "settle reduction");
-    for (i = 0; i < m * m; i++) {
-        float a, b;
-        memcpy(&a, &w->reduce_px[4 * i], sizeof a);
-        memcpy(&b, &w->reduce_px[4 * i + 1], sizeof b);
-        if (a > mh) mh = a;
-        if (b > mv) mv = b;
-    }
+    w->reduce_fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     *dev_h = mh;
     *dev_v = mv * w->dx / w->d.wave_speed;
-    return st;
+    return end_pass(w, &saved, "settle reduction");
 }
 
 snell_status snell__water_gpu_read(snell_water *w, float *h, float *v)

@@ -199,9 +199,18 @@ snell_status snell_water_drop(snell_water *w, float x, float z, float radius, fl
     {
         /* The added volume is the same sum on both simulations (to rounding). */
         double added = 0.0;
-        int i, j;
-        for (j = 0; j < w->n; j++)
-            for (i = 0; i < w->n; i++) {
+        int i, j, i0, i1, j0, j1;
+        /* only the nodes within the bell's square (the profile is 0 beyond radius) */
+        i0 = (int)floorf((x - radius + half) / w->dx);
+        i1 = (int)ceilf((x + radius + half) / w->dx);
+        j0 = (int)floorf((z - radius + half) / w->dx);
+        j1 = (int)ceilf((z + radius + half) / w->dx);
+        i0 = i0 < 0 ? 0 : i0;
+        j0 = j0 < 0 ? 0 : j0;
+        i1 = i1 > w->n - 1 ? w->n - 1 : i1;
+        j1 = j1 > w->n - 1 ? w->n - 1 : j1;
+        for (j = j0; j <= j1; j++)
+            for (i = i0; i <= i1; i++) {
                 float px = -half + (float)i * w->dx, pz = -half + (float)j * w->dx;
                 float b = snell__water_bell(sqrtf((px - x) * (px - x) + (pz - z) * (pz - z)), radius, amplitude);
                 if (w->d.sim == SNELL_WATER_SIM_CPU) w->h[(size_t)j * w->n + i] += b;
@@ -263,7 +272,7 @@ snell_status snell_water_step(snell_water *w, float dt, int steps, snell_water_s
     snell_status st = SNELL_OK;
     double t0 = snell__now_ms();
     float k, damp, dev_h = 0.0f, dev_v = 0.0f;
-    int n;
+    int n, known = 1;
     memset(&s, 0, sizeof s);
     if (!w) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_water_step: water is NULL");
     if (!isfinite(dt) || steps < 0 || steps > 100000)
@@ -290,11 +299,11 @@ snell_status snell_water_step(snell_water *w, float dt, int steps, snell_water_s
             snell__water_cpu_deviation(w, &dev_h, &dev_v);
         } else {
             st = snell__water_gpu_step(w, k, dt, damp, steps);
-            if (st == SNELL_OK) st = snell__water_gpu_deviation(w, &dev_h, &dev_v);
+            if (st == SNELL_OK) st = snell__water_gpu_deviation(w, &dev_h, &dev_v, &known);
         }
         s.steps_run = steps;
-        s.max_deviation = dev_h;
-        w->settled = st == SNELL_OK && dev_h < w->d.settle_threshold && dev_v < w->d.settle_threshold;
+        s.max_deviation = known ? dev_h : -1.0f;
+        w->settled = st == SNELL_OK && known && dev_h < w->d.settle_threshold && dev_v < w->d.settle_threshold;
         s.settled = w->settled;
         w->version++;
     }
