@@ -170,6 +170,21 @@ int main(void)
         snell_mesh_destroy(sphere);
         snell_mesh_destroy(cube);
     }
+    /* A CPU-only water (no context) cannot be drawn: a clear error, not a crash. */
+    {
+        snell_water *cpu_only = NULL;
+        snell_renderer *r = NULL;
+        snell_frame_desc fd;
+        CHECK_OK(snell_water_create(NULL, &(snell_water_desc){.grid = 64}, &cpu_only));
+        CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &(snell_renderer_desc){.width = 16, .height = 16}, &r));
+        memset(&fd, 0, sizeof fd);
+        fd.env = env;
+        fd.water = cpu_only;
+        CHECK(snell_render(r, &fd, NULL) == SNELL_E_INVALID_ARG, "a water without a context is refused");
+        printf("%s\n", snell_last_error(ctx));
+        snell_renderer_destroy(r);
+        snell_water_destroy(cpu_only);
+    }
     /* A host's GL state survives the simulation passes (EXTERNAL backends step inside a render loop). */
     {
         GLint vp[4], fbo = -1, prog = -1;
