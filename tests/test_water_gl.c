@@ -185,6 +185,38 @@ int main(void)
         snell_renderer_destroy(r);
         snell_water_destroy(cpu_only);
     }
+    /* Water beside glass and opaque objects (the scene-layers stage runs): it draws, and the glass over it. */
+    {
+        snell_mesh *sphere = NULL;
+        snell_renderer *r = NULL;
+        snell_glass g;
+        snell_opaque op;
+        snell_frame_desc fd;
+        snell_frame_stats fs;
+        float mg[16] = {0.3f, 0, 0, 0, 0, 0.3f, 0, 0, 0, 0, 0.3f, 0, 0, 0.5f, 0, 1};
+        float mo[16] = {0.2f, 0, 0, 0, 0, 0.2f, 0, 0, 0, 0, 0.2f, 0, 0.5f, -0.1f, 0.3f, 1};
+        CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &(snell_shape_desc){.shape = SNELL_SHAPE_SPHERE}, &sphere));
+        CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &(snell_renderer_desc){.width = 64, .height = 64}, &r));
+        memset(&g, 0, sizeof g);
+        g.mesh = sphere;
+        g.model = mg;
+        memset(&op, 0, sizeof op);
+        op.mesh = sphere;
+        op.model = mo;
+        memset(&fd, 0, sizeof fd);
+        fd.env = env;
+        fd.water = gpu;
+        fd.glass = &g;
+        fd.glass_count = 1;
+        fd.opaque = &op;
+        fd.opaque_count = 1;
+        fd.camera.elevation = 0.5f;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+        CHECK(fs.water_drawn && fs.water_objects && fs.glass[0].draw_order == 0, "water %d objects %d glass drawn %d",
+              fs.water_drawn, fs.water_objects, fs.glass[0].draw_order);
+        snell_renderer_destroy(r);
+        snell_mesh_destroy(sphere);
+    }
     /* A host's GL state survives the simulation passes (EXTERNAL backends step inside a render loop). */
     {
         GLint vp[4], fbo = -1, prog = -1;
