@@ -6,12 +6,13 @@
 // the environment; Schlick's Fresnel weighs the two (the seed adds them).
 // SNELL_WATER_OBJECTS: the frame's opaque objects, drawn before the water,
 // are seen through it: their colour and depth (copied from the target) are
-// searched along the refracted ray in screen space, 24 linear steps over the
-// way to the container and 6 binary ones (the seed has no objects; the
-// search is Oliveira's idea applied to the opaque depth). A step counts as a
-// hit where it lies behind the copied depth by less than two linear steps
-// (along the view axis): a ray passing farther behind an object's visible
-// surface goes on; one leaving the screen misses. Exit-direction output: the refracted direction.
+// searched along the refracted ray in screen space (the seed has no objects;
+// the search is Oliveira's applied to the opaque depth), 24 linear steps and
+// 6 binary ones over the part of the ray inside the objects' bounding
+// spheres. A step counts as a hit where it lies behind the copied depth by
+// less than a twelfth of the way to the container (view depth): a ray
+// passing farther behind an object's visible surface goes on; one leaving
+// the screen misses. Exit-direction output: the refracted direction.
 precision highp float;
 
 #include "common/optics.glsl"
@@ -31,43 +32,67 @@ uniform highp sampler2D u_scene_depth; // the opaque objects' window depth (1: n
 uniform sampler2D u_scene_color;
 uniform mat4 u_view_proj;
 uniform vec2 u_depth_ab;    // proj[2][2], proj[3][2]: view depth = b / (ndc z + a)
+// World bounding spheres of the opaque objects (centre, radius; one enclosing
+// sphere when there are more than SNELL_WATER_MAX_SPHERES): the search runs
+// only over the part of the refracted segment inside them.
+#define SNELL_WATER_MAX_SPHERES 16
+uniform vec4 u_spheres[SNELL_WATER_MAX_SPHERES];
+uniform int u_sphere_count;
 
-// 1 if world point x lies behind an opaque surface by less than thickness.
-bool behind_object(vec3 x, float thickness, out ivec2 pix)
+// The search runs in clip space, where the refracted segment p .. p + dmax t
+// is a straight line (c0 .. c1, clip w = view depth): one matrix product per
+// pixel, none per step. 1 if the point at fraction f lies behind an opaque
+// surface by less than thickness (view depth).
+bool behind_object(vec4 c0, vec4 c1, float f, float thickness, ivec2 size, out ivec2 pix)
 {
-    vec4 c = u_view_proj * vec4(x, 1.0);
-    vec3 ndc = c.xyz / c.w;
-    ivec2 size = textureSize(u_scene_depth, 0);
-    pix = ivec2(floor((ndc.xy * 0.5 + 0.5) * vec2(size)));
+    vec4 c = mix(c0, c1, f);
+    pix = ivec2(floor((c.xy / c.w * 0.5 + 0.5) * vec2(size)));
     if (c.w <= 0.0 || any(lessThan(pix, ivec2(0))) || any(greaterThanEqual(pix, size))) return false;
     float zs = texelFetch(u_scene_depth, pix, 0).r;
     if (zs >= 1.0) return false;
-    float ds = u_depth_ab.y / (2.0 * zs - 1.0 + u_depth_ab.x), dx = u_depth_ab.y / (ndc.z + u_depth_ab.x);
-    return dx > ds && dx - ds < thickness;
+    float ds = u_depth_ab.y / (2.0 * zs - 1.0 + u_depth_ab.x);
+    return c.w > ds && c.w - ds < thickness;
 }
 
 // Distance along t from p to the first opaque surface before dmax (its colour in col), or -1.
 float find_object(vec3 p, vec3 t, float dmax, out vec3 col)
 {
-    ivec2 pix;
+    ivec2 pix, size = textureSize(u_scene_depth, 0);
+    float a = dmax, b = 0.0;
+    for (int k = 0; k < SNELL_WATER_MAX_SPHERES; k++) {
+        if (k >= u_sphere_count) break;
+        vec3 oc = p - u_spheres[k].xyz;
+        float hb = dot(oc, t), c = dot(oc, oc) - u_spheres[k].w * u_spheres[k].w, disc = hb * hb - c;
+        if (disc < 0.0) continue;
+        float q = sqrt(disc), s0 = max(-hb - q, 0.0), s1 = min(-hb + q, dmax);
+        if (s0 < s1) {
+            a = min(a, s0);
+            b = max(b, s1);
+        }
+    }
+    if (a >= b) return -1.0;
+    vec4 c0 = u_view_proj * vec4(p + a * t, 1.0), c1 = u_view_proj * vec4(p + b * t, 1.0);
+    // a twelfth of the way to the container: thick enough for a step over the
+    // objects' spheres to land inside, thin enough not to stop behind them
+    // (measured: 35.0 dB against 32.7 for two steps over the spheres' part)
     float lo = 0.0, hi = -1.0, thickness = 2.0 * dmax / 24.0;
     for (int k = 1; k <= 24; k++) {
-        float s = dmax * float(k) / 24.0;
-        if (behind_object(p + s * t, thickness, pix)) {
-            hi = s;
+        float f = float(k) / 24.0;
+        if (behind_object(c0, c1, f, thickness, size, pix)) {
+            hi = f;
             break;
         }
-        lo = s;
+        lo = f;
     }
     if (hi < 0.0) return -1.0;
     for (int k = 0; k < 6; k++) {
         float m = 0.5 * (lo + hi);
-        if (behind_object(p + m * t, thickness, pix)) hi = m;
+        if (behind_object(c0, c1, m, thickness, size, pix)) hi = m;
         else lo = m;
     }
-    behind_object(p + hi * t, thickness, pix);
+    behind_object(c0, c1, hi, thickness, size, pix);
     col = texelFetch(u_scene_color, pix, 0).rgb;
-    return hi;
+    return a + hi * (b - a);
 }
 #endif
 

@@ -118,7 +118,11 @@ int snell_bench_water_main(int argc, char **argv)
     snell_water *cpu = NULL, *gpu = NULL;
     snell_renderer *r = NULL;
     snell_frame_desc fd;
-    double t_cpu[MAX_ROUNDS], t_gpu[MAX_ROUNDS], t_frame_cpu[MAX_ROUNDS], t_frame_gpu[MAX_ROUNDS];
+    double t_cpu[MAX_ROUNDS], t_gpu[MAX_ROUNDS], t_frame_cpu[MAX_ROUNDS], t_frame_gpu[MAX_ROUNDS], t_frame_obj[MAX_ROUNDS];
+    snell_mesh *sphere = NULL;
+    snell_opaque objects[2];
+    static const float m0[16] = {0.35f, 0, 0, 0, 0, 0.35f, 0, 0, 0, 0, 0.35f, 0, 0.35f, -0.2f, 0.1f, 1};
+    static const float m1[16] = {0.2f, 0, 0, 0, 0, 0.2f, 0, 0, 0, 0, 0.2f, 0, -0.45f, -0.5f, -0.3f, 1};
     char load[64], threads_why[96];
     int k, rc = 1, threads;
     if (!parse(argc, argv, &b)) return 2;
@@ -129,10 +133,15 @@ int snell_bench_water_main(int argc, char **argv)
     if (snell_env_create(ctx, &(snell_env_desc){0}, &env) != SNELL_OK ||
         snell_water_create(ctx, &(snell_water_desc){.grid = b.grid, .sim = SNELL_WATER_SIM_CPU}, &cpu) != SNELL_OK ||
         snell_water_create(ctx, &(snell_water_desc){.grid = b.grid, .sim = SNELL_WATER_SIM_GPU}, &gpu) != SNELL_OK ||
-        snell_renderer_create(ctx, &(snell_renderer_desc){.width = b.size, .height = b.size}, &r) != SNELL_OK) {
+        snell_renderer_create(ctx, &(snell_renderer_desc){.width = b.size, .height = b.size}, &r) != SNELL_OK ||
+        snell_mesh_create_shape(ctx, &(snell_shape_desc){.shape = SNELL_SHAPE_SPHERE}, &sphere) != SNELL_OK) {
         fprintf(stderr, "snell-bench --water: %s\n", snell_last_error(ctx));
         goto done;
     }
+    memset(objects, 0, sizeof objects);
+    objects[0].mesh = objects[1].mesh = sphere;
+    objects[0].model = m0;
+    objects[1].model = m1;
     memset(&fd, 0, sizeof fd);
     fd.env = env;
     fd.camera.azimuth = 0.5f;
@@ -166,6 +175,14 @@ int snell_bench_water_main(int argc, char **argv)
         snell_render(r, &fd, NULL);
         snell_renderer_finish(r);
         t_frame_gpu[k] = cli_now_ms() - t0;
+        fd.opaque = objects; /* two spheres in the water: their pass, the copy and the search */
+        fd.opaque_count = 2;
+        t0 = cli_now_ms();
+        snell_render(r, &fd, NULL);
+        snell_renderer_finish(r);
+        t_frame_obj[k] = cli_now_ms() - t0;
+        fd.opaque = NULL;
+        fd.opaque_count = 0;
     }
     cli_loadavg(load, sizeof load);
     threads = cli_llvmpipe_threads(snell_ctx_gl_renderer(ctx), threads_why, sizeof threads_why);
@@ -175,11 +192,13 @@ int snell_bench_water_main(int argc, char **argv)
            cli_median(t_cpu, b.rounds), cli_median(t_gpu, b.rounds));
     printf("render frame: %.2f ms with the CPU simulation's heights uploaded, %.2f ms from the GPU state (medians, "
            "finished)\n", cli_median(t_frame_cpu, b.rounds), cli_median(t_frame_gpu, b.rounds));
+    printf("render frame with two opaque spheres in the water (GPU heights): %.2f ms\n", cli_median(t_frame_obj, b.rounds));
     fd.water = gpu;
     if (!error_line(ctx, gpu, &fd, b.size, "rippled")) goto done;
     rc = 0;
 done:
     snell_renderer_destroy(r);
+    snell_mesh_destroy(sphere);
     snell_water_destroy(cpu);
     snell_water_destroy(gpu);
     snell_env_destroy(env);

@@ -391,7 +391,8 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
             glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
         }
         if (st == SNELL_OK)
-            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, fd->env->texture, objects, s);
+            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, fd->env->texture, fd->opaque,
+                                   objects ? fd->opaque_count : 0, s);
         s->water_objects = objects;
     }
     if (st == SNELL_OK) n_layers = choose_scene_layers(r, fd, s);

@@ -8,6 +8,9 @@
 #include "core/gl.h"
 #include "core/glstate.h"
 #include "core/program.h"
+#include "mesh/mesh.h"
+
+#include <math.h>
 
 #include <string.h>
 
@@ -150,8 +153,59 @@ static void tile_uniforms(GLuint prog, const snell_water *w)
     glUniform1f(glGetUniformLocation(prog, "u_tile_size"), w->d.tile_size);
 }
 
+#define MAX_SPHERES 16 /* water_surface.frag's SNELL_WATER_MAX_SPHERES */
+
+/* World bounding sphere of an opaque object: the mesh's box centre through
+ * the model, its radius times the model's largest axis scale. */
+static void object_sphere(const snell_opaque *o, float s[4])
+{
+    const snell_mesh *m = o->mesh;
+    float c[3], scale = 1.0f;
+    int k;
+    for (k = 0; k < 3; k++) c[k] = 0.5f * (m->bmin[k] + m->bmax[k]);
+    if (o->model) {
+        const float *mm = o->model;
+        scale = 0.0f;
+        for (k = 0; k < 3; k++) {
+            float len = sqrtf(mm[4 * k] * mm[4 * k] + mm[4 * k + 1] * mm[4 * k + 1] + mm[4 * k + 2] * mm[4 * k + 2]);
+            if (len > scale) scale = len;
+        }
+        for (k = 0; k < 3; k++) s[k] = mm[k] * c[0] + mm[4 + k] * c[1] + mm[8 + k] * c[2] + mm[12 + k];
+    } else {
+        for (k = 0; k < 3; k++) s[k] = c[k];
+    }
+    s[3] = m->bradius * scale * 1.001f;
+}
+
+/* The spheres the search is limited to: one per object, or one around them all beyond MAX_SPHERES. */
+static int object_spheres(const snell_opaque *objects, int count, float out[MAX_SPHERES][4])
+{
+    int i, k;
+    if (count <= MAX_SPHERES) {
+        for (i = 0; i < count; i++) object_sphere(&objects[i], out[i]);
+        return count;
+    }
+    {
+        float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF}, hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}, r = 0.0f, s[4];
+        for (i = 0; i < count; i++) {
+            object_sphere(&objects[i], s);
+            for (k = 0; k < 3; k++) {
+                lo[k] = fminf(lo[k], s[k] - s[3]);
+                hi[k] = fmaxf(hi[k], s[k] + s[3]);
+            }
+        }
+        for (k = 0; k < 3; k++) {
+            out[0][k] = 0.5f * (lo[k] + hi[k]);
+            r += 0.25f * (hi[k] - lo[k]) * (hi[k] - lo[k]);
+        }
+        out[0][3] = sqrtf(r) * 1.001f; /* half the box diagonal: holds every sphere's box */
+        return 1;
+    }
+}
+
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
-                               const snell__view *v, unsigned env_texture, int objects, snell_frame_stats *stats)
+                               const snell__view *v, unsigned env_texture, const snell_opaque *objects,
+                               int object_count, snell_frame_stats *stats)
 {
     snell_status st;
     GLuint prog;
@@ -186,9 +240,13 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     glBindVertexArray(w->wall_vao);
     glDrawArrays(GL_TRIANGLES, 0, 30);
 
-    prog = p->surface[w->d.sim == SNELL_WATER_SIM_GPU][objects != 0];
+    prog = p->surface[w->d.sim == SNELL_WATER_SIM_GPU][object_count > 0];
     glUseProgram(prog);
-    if (objects) {
+    if (object_count > 0) {
+        float spheres[MAX_SPHERES][4];
+        int n_spheres = object_spheres(objects, object_count, spheres);
+        glUniform4fv(glGetUniformLocation(prog, "u_spheres"), n_spheres, &spheres[0][0]);
+        glUniform1i(glGetUniformLocation(prog, "u_sphere_count"), n_spheres);
         glActiveTexture(GL_TEXTURE2);
         glBindTexture(GL_TEXTURE_2D, p->scene_color);
         glActiveTexture(GL_TEXTURE3);

@@ -31,11 +31,12 @@ snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, u
 
 /* Draws the water and its container into the bound target (depth test LESS,
  * depth write); env_texture on unit 0 for snell_env, the heights on unit 1,
- * with objects (after snell__water_copy_scene) their colour and depth on
- * units 2 and 3. Uploads a CPU simulation's heights when they changed since
+ * with objects (object_count > 0, after snell__water_copy_scene) their
+ * colour and depth on units 2 and 3 and their bounding spheres. Uploads a CPU simulation's heights when they changed since
  * the last draw (stats->water_uploaded). */
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
-                               const snell__view *v, unsigned env_texture, int objects, snell_frame_stats *stats);
+                               const snell__view *v, unsigned env_texture, const snell_opaque *objects,
+                               int object_count, snell_frame_stats *stats);
 void snell__water_programs_destroy(snell__water_programs *p);
 
 #endif
