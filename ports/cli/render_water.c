@@ -37,7 +37,7 @@ typedef struct water_options {
     int drop_count;
     int frames, save_every, steps;
     float dt;
-    int width, height;
+    int width, height, ssaa;
     float az_deg, el_deg, dist;
     const char *out, *env;
     int stats;
@@ -61,6 +61,7 @@ static void usage(FILE *f)
             "  --damping D            velocity decay per second (default 0.4; < 0 none)\n"
             "  --wave-speed C         world units per second (default 0.6)\n"
             "  --size WxH             image size (default 512x512)\n"
+            "  --ssaa S               supersample S x S per pixel (2..8; default off)\n"
             "  --camera AZ,EL,DIST    degrees, degrees, distance (default 30,35,3.6)\n"
             "  --env procedural|FILE  environment (default procedural)\n"
             "  -o FILE                output PNG (default water.png)\n"
@@ -147,6 +148,8 @@ static int parse(int argc, char **argv, water_options *o)
                 fprintf(stderr, "snell-render --water: --size %s: WxH\n", v);
                 return 0;
             }
+        } else if (!strcmp(a, "--ssaa")) {
+            o->ssaa = atoi(v);
         } else if (!strcmp(a, "--camera")) {
             if (sscanf(v, "%f,%f,%f", &o->az_deg, &o->el_deg, &o->dist) != 3) {
                 fprintf(stderr, "snell-render --water: --camera %s: AZ,EL,DIST\n", v);
@@ -205,7 +208,8 @@ static int run(snell_ctx *ctx, const water_options *o)
         fprintf(stderr, "snell-render --water: environment: %s\n", snell_last_error(ctx));
         goto done;
     }
-    if (snell_renderer_create(ctx, &(snell_renderer_desc){.width = o->width, .height = o->height}, &r) != SNELL_OK) {
+    if (snell_renderer_create(ctx, &(snell_renderer_desc){.width = o->width, .height = o->height, .ssaa = o->ssaa}, &r) !=
+        SNELL_OK) {
         fprintf(stderr, "snell-render --water: renderer: %s\n", snell_last_error(ctx));
         goto done;
     }
