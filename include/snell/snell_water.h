@@ -91,13 +91,14 @@ snell_status snell_water_drop(snell_water *w, float x, float z, float radius, fl
 typedef struct snell_water_stats {
     int steps_run;                 /* steps integrated by this call */
     int skipped_settled;           /* 1: the surface was settled and undisturbed: no step ran */
-    int settled;                   /* 1: settled (the next undisturbed call skips). GPU: judged on the state
-                                    * after the previous call, whose check is read back now (one call late, so
-                                    * it never waits for the GPU); a drop in between cancels it */
+    int settled;                   /* 1: settled (the next undisturbed call skips), judged on the state after
+                                    * the previous call: the GPU's check is read back one call late (so it never
+                                    * waits for the GPU) and the CPU follows the same rule, so that the twins
+                                    * settle on the same call; a drop in between cancels it */
     float dt;                      /* the step used, seconds */
     int dt_clamped;                /* 1: the requested dt was above snell_water_dt_limit */
-    float max_deviation;           /* largest |height - mean| after the call (world units); GPU: after
-                                    * the previous call, -1 where that is not known (first call, a drop) */
+    float max_deviation;           /* largest |height - mean| (world units) after the previous call, -1
+                                    * where that is not known (the first call after a drop) */
     double ms;                     /* wall time of the call (GPU: the passes issued, not finished) */
 } snell_water_stats;
 

@@ -20,6 +20,8 @@ struct snell_water {
     float *h, *v;                  /* CPU simulation (also a GPU water's read-back scratch: h) */
     double mean;                   /* mean height: 0 + every drop's added height / nodes */
     int settled;
+    float cpu_dev[2];              /* CPU: max |h - mean|, max |v| dx / c after the last call ... */
+    int cpu_dev_known;             /* ... if a call ran since the last drop (the GPU's one-call-late rule) */
     unsigned version;              /* bumped whenever the heights change (draw re-uploads) */
     /* GPU simulation (water_gpu.c) */
     unsigned state_tex[2], state_fbo[2];

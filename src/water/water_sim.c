@@ -223,6 +223,7 @@ snell_status snell_water_drop(snell_water *w, float x, float z, float radius, fl
         if (st != SNELL_OK) return st;
     }
     w->settled = 0;
+    w->cpu_dev_known = 0; /* a settle check from before the drop says nothing now */
     w->version++;
     return SNELL_OK;
 }
@@ -295,8 +296,14 @@ snell_status snell_water_step(snell_water *w, float dt, int steps, snell_water_s
     } else if (steps > 0) {
         int i;
         if (w->d.sim == SNELL_WATER_SIM_CPU) {
+            /* The GPU's rule, so the twins settle on the same call: judged on
+             * the state after the previous call (none after a drop). */
+            known = w->cpu_dev_known;
+            dev_h = w->cpu_dev[0];
+            dev_v = w->cpu_dev[1];
             for (i = 0; i < steps; i++) snell__water_cpu_step(w->h, w->v, n, k, dt, damp);
-            snell__water_cpu_deviation(w, &dev_h, &dev_v);
+            snell__water_cpu_deviation(w, &w->cpu_dev[0], &w->cpu_dev[1]);
+            w->cpu_dev_known = 1;
         } else {
             st = snell__water_gpu_step(w, k, dt, damp, steps);
             if (st == SNELL_OK) st = snell__water_gpu_deviation(w, &dev_h, &dev_v, &known);
