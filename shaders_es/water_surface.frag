@@ -3,7 +3,8 @@
 // container exactly - the seed's five ray-wall distances, the nearest
 // positive one choosing the floor or a wall - where the tiles are seen,
 // attenuated by Beer-Lambert over the path in the water; the mirror ray sees
-// the environment; Schlick's Fresnel weighs the two (the seed adds them).
+// the walls' inner side above the water or the environment (the seed: the
+// sky box only); Schlick's Fresnel weighs the two (the seed adds them).
 // SNELL_WATER_OBJECTS: the frame's opaque objects, drawn before the water,
 // are seen through it: their colour and depth (copied from the target) are
 // searched along the refracted ray in screen space (the seed has no objects;
@@ -26,6 +27,32 @@ in vec3 v_world_normal;
 uniform vec3 u_eye;
 uniform float u_ior;
 uniform vec3 u_sigma;      // Beer-Lambert absorption per world unit
+uniform float u_rim;       // top of the walls above the rest level
+
+// What the mirror ray from p sees: the walls' inner side where a rising ray
+// meets them below the rim, else the environment (a falling one would meet
+// the water again: the environment too, unmodelled).
+vec3 reflected(vec3 p, vec3 r)
+{
+    if (r.y > 0.0) {
+        float e = 3.0e38;
+        int face = 0;
+        if (r.x != 0.0) {
+            e = ((r.x > 0.0 ? u_half : -u_half) - p.x) / r.x;
+            face = r.x > 0.0 ? 2 : 1;
+        }
+        if (r.z != 0.0) {
+            float s = ((r.z > 0.0 ? u_half : -u_half) - p.z) / r.z;
+            if (s < e) {
+                e = s;
+                face = r.z > 0.0 ? 4 : 3;
+            }
+        }
+        vec3 q = p + max(e, 0.0) * r;
+        if (q.y <= u_rim) return water_tile(face, q);
+    }
+    return snell_env(r);
+}
 
 #ifdef SNELL_WATER_OBJECTS
 uniform highp sampler2D u_scene_depth; // the opaque objects' window depth (1: none)
@@ -133,5 +160,5 @@ void main()
     }
 #endif
     seen *= snell_beer_lambert(u_sigma, d);
-    snell_write(mix(seen, snell_env(r), fresnel), t);
+    snell_write(mix(seen, reflected(p, r), fresnel), t);
 }

@@ -166,6 +166,13 @@ static void fresnel_check(snell_ctx *ctx, snell_water *flat)
             pz = eye[2] + t * d[2];
             /* inside the opening, away from the rim that may hide the surface near the walls */
             if (!(d[1] < 0.0) || fabs(px) > 0.7 || fabs(pz) > 0.7) continue;
+            {
+                /* and whose mirror ray (d with y flipped) clears the rim (it would see the wall) */
+                double ex = d[0] != 0.0 ? ((d[0] > 0.0 ? 1.0 : -1.0) - px) / d[0] : HUGE_VAL;
+                double ez = d[2] != 0.0 ? ((d[2] > 0.0 ? 1.0 : -1.0) - pz) / d[2] : HUGE_VAL;
+                double e = ex < ez ? ex : ez; /* to the wall, in units of d; the mirror ray rises -d.y per unit */
+                if (-d[1] * e <= 0.08) continue; /* rim = 0.1 * depth 0.8 */
+            }
             c = -d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             m = 1.0 - c;
             f = r0 + (1.0 - r0) * m * m * m * m * m;

@@ -204,11 +204,12 @@ void snell_ref_rgb_to_rgba8(const float *rgb, int width, int height, uint8_t *rg
  * per grid cell), intersected exactly; its normal the barycentric blend of
  * the nodes' (-dh/dx, 1, -dh/dz), normalised. A ray meeting the surface gives
  * F * E(R) + (1 - F) * tile(Q) * exp(-sigma d): F Schlick's (1 -> ior), R the
- * mirror direction, Q where the refracted ray first meets the floor or a
+ * mirror direction (E: see below), Q where the refracted ray first meets the floor or a
  * wall, d its distance; a ray meeting the container first, that face's tile;
  * else the environment. The refracted ray sees the container and the opaque
  * objects (nearest first; upward refracted rays go to the walls too); the
- * mirror ray only the environment. Uses
+ * mirror ray, when rising, the walls' inner side below the rim, else the
+ * environment. Uses
  * params' env (or env_fn), camera, width, height, threads and samples (as
  * snell_ref_render); mode, max_interfaces, absorption_model and
  * isolate_glass do not apply. Outputs rgb, exit_dir (water pixels: the

@@ -5,7 +5,8 @@
  * the lowest and highest node; the container's five faces as exact planes.
  * The optics are water_surface.frag's: the normal is the barycentric blend
  * of the nodes' (-dh/dx, 1, -dh/dz), normalised; Schlick Fresnel between
- * the environment in the mirror direction and the tiles where the refracted
+ * what the mirror ray sees (the walls above the water below the rim, else
+ * the environment) and the tiles where the refracted
  * ray meets the floor or a wall (the nearest of the five distances, floor
  * first, then x, then z on ties), Beer-Lambert over that distance. Opaque
  * objects (a reference of them, ref_scene.c's BVH) are met exactly by the
@@ -224,6 +225,34 @@ static void under_water(const water_scene *s, const double p[3], const double t[
     for (k = 0; k < 3; k++) rgb[k] = tile[k] * exp(-s->sigma[k] * d);
 }
 
+/* What the mirror ray from p sees: the walls' inner side where a rising ray
+ * meets them below the rim, else the environment (water_surface.frag). */
+static void reflected(const water_scene *s, const double p[3], const double r[3], double rgb[3])
+{
+    if (r[1] > 0.0) {
+        double e = HUGE_VAL, q[3];
+        int face = 0, k;
+        if (r[0] != 0.0) {
+            e = ((r[0] > 0.0 ? s->half : -s->half) - p[0]) / r[0];
+            face = r[0] > 0.0 ? 2 : 1;
+        }
+        if (r[2] != 0.0) {
+            double f = ((r[2] > 0.0 ? s->half : -s->half) - p[2]) / r[2];
+            if (f < e) {
+                e = f;
+                face = r[2] > 0.0 ? 4 : 3;
+            }
+        }
+        if (e < 0.0) e = 0.0;
+        for (k = 0; k < 3; k++) q[k] = p[k] + e * r[k];
+        if (q[1] <= s->w->d.rim) {
+            snell__water_tile(&s->w->d, face, q, rgb);
+            return;
+        }
+    }
+    env(s, r, rgb);
+}
+
 /* One view ray: rgb, exit direction, hit (1: the water surface). */
 static int trace(const water_scene *s, const double o[3], const double d[3], double rgb[3], double exit_dir[3])
 {
@@ -246,7 +275,7 @@ static int trace(const water_scene *s, const double o[3], const double d[3], dou
         snell__ref_normalize3(t);
         f = snell_optd_fresnel_schlick(-snell__ref_dot3(d, nrm), 1.0, s->ior);
         under_water(s, p, t, seen);
-        env(s, r, sky);
+        reflected(s, p, r, sky);
         for (k = 0; k < 3; k++) rgb[k] = (1.0 - f) * seen[k] + f * sky[k];
         memcpy(exit_dir, t, sizeof t);
         return 1;

@@ -263,6 +263,7 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     glUniform1i(glGetUniformLocation(prog, "u_n"), w->n);
     glUniform1f(glGetUniformLocation(prog, "u_dx"), w->dx);
     glUniform1f(glGetUniformLocation(prog, "u_ior"), w->d.ior);
+    glUniform1f(glGetUniformLocation(prog, "u_rim"), w->d.rim);
     glUniform3fv(glGetUniformLocation(prog, "u_sigma"), 1, w->sigma);
     tile_uniforms(prog, w);
     glBindVertexArray(w->grid_vao);
