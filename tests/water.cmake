@@ -3,7 +3,8 @@
 snell_add_test(test_water_sim SOURCES test_water_sim.c LABELS "unit")
 target_link_libraries(test_water_sim PRIVATE m)
 # test_water_gl: GPU simulation against the CPU one, its settle check, and the
-# still and rippled water frames against snell_ref_water_render (~10 s).
+# still and rippled water frames against snell_ref_water_render, objects in the water, Fresnel against
+# Schlick, tiles bending, the twins settling together (~3-5 s here).
 snell_add_test(test_water_gl SOURCES test_water_gl.c LABELS "render;gl")
 target_link_libraries(test_water_gl PRIVATE m)
 # snell-render --water: a frame sequence with drops from flags (one at frame 3),
