@@ -1,5 +1,6 @@
 # Water (snell_water_*, src/water/, ref/ref_water.c; issue 17).
-# test_water_sim: the CPU simulation, no GL (100,000 steps of 64^2 twice; ~3 s).
+# test_water_sim: the CPU simulation, no GL (100,000 steps of 64^2, and a run past the stability
+# limit that overflows early; ~3-5 s).
 snell_add_test(test_water_sim SOURCES test_water_sim.c LABELS "unit")
 target_link_libraries(test_water_sim PRIVATE m)
 # test_water_gl: GPU simulation against the CPU one, its settle check, and the
