@@ -247,7 +247,7 @@ int main(void)
 
     fresnel_check(ctx, cpu);
     /* Still surface first (both flat), then the same drops and steps. */
-    /* Measured (256x256, 128^2 grid): 73.3 dB still, 74.4 dB rippled, exit
+    /* Measured (256x256, 128^2 grid): 73.8 dB still, 75.1 dB rippled, exit
      * directions within 1e-4 degrees; bounds 60 dB, mean 1e-3 and p99 1e-2
      * degrees. Heights sampled at the vertex stage's default lowp precision
      * gave 47.2 dB rippled: this fails on such faults. */
