@@ -9,7 +9,7 @@
  * past which it takes the single-surface answer (counted in
  * snell_object_stats.exact_fallback_pixels on RGBA32F exit-direction
  * renderers). A deformed mesh (snell_mesh_set_vertices: a new version) is
- * rebuilt, not refitted: see exact_prepare. */
+ * refitted, not rebuilt: see exact_prepare. */
 #include "methods/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
@@ -38,17 +38,35 @@
 enum { NODES_DEFAULT = 0, NODES_F32, NODES_Q16 };
 
 /* llvmpipe: per-pixel traversal costs so much more than the G-buffer pass
- * that full 4x4 blocks win at every density (as for the cubemap). */
+ * that full 4x4 blocks win at every density, as for the cubemap: at 256x256
+ * forward shading took 5.5x the screen-space frame on the bunny (2578 vs
+ * 470 ms, 5 px/triangle) and 1.7x on a 1024-triangle torus (276 vs 161 ms)
+ * (bench/BENCHMARKS.md, "Exact"). */
 #define EXACT_SOFTWARE_SCREEN_PPT 1e9f
 
-/* One mesh version's flattened BVH (the prepared resource). */
+/* A node in depth-first order: a leaf's entries, or an interior node's
+ * escape (the node after its subtree; its first child is the next node). */
+typedef struct flat_node {
+    uint32_t escape;           /* every node: where the walk goes on a miss */
+    uint32_t first, count;     /* a leaf: its leaf-order entries; count 0: interior */
+} flat_node;
+
+/* One mesh's flattened BVH (the prepared resource), with what a refit needs:
+ * the tree's shape and the CPU copy of the texture. */
 typedef struct exact_prepared {
+    snell_alloc alloc;         /* release() has no context */
     unsigned texture;          /* RGBA32F (f32 nodes) or RGBA32UI (q16 nodes), TEX_WIDTH wide */
     int format;                /* NODES_F32 or NODES_Q16 */
     int node_count;
     int tri_base;              /* texel of the first triangle entry */
-    int depth;                 /* of the tree (root = 1): nothing in the traversal depends on it */
+    int rows;                  /* of the texture */
+    int builds, refits;        /* SAH builds and refits this resource has had */
     float qlo[3], qstep[3];    /* NODES_Q16: bound = qlo + q * qstep (object space) */
+    uint32_t triangle_count;
+    flat_node *nodes;          /* node_count, depth-first */
+    double *boxes;             /* 6 per node: lo, hi (object space) */
+    uint32_t *tri_ids;         /* leaf order -> the mesh's triangle */
+    void *texels;              /* rows * TEX_WIDTH texels of 16 bytes */
 } exact_prepared;
 
 typedef struct exact_prog {
@@ -149,8 +167,7 @@ static void exact_key(const snell__object *o, int key[4])
 
 typedef struct flat_ctx {
     const snell__bvh *bvh;
-    uint32_t *order;           /* depth-first position -> node of the build */
-    uint32_t *escape;          /* per depth-first position: the position after its subtree */
+    exact_prepared *p;
     uint32_t next;
 } flat_ctx;
 
@@ -162,17 +179,59 @@ static void flatten(flat_ctx *f, uint32_t node)
 {
     const snell__bvh_node *n = &f->bvh->nodes[node];
     uint32_t at = f->next++;
-    f->order[at] = node;
+    int k;
+    for (k = 0; k < 3; k++) {
+        f->p->boxes[6 * (size_t)at + k] = n->bmin[k];
+        f->p->boxes[6 * (size_t)at + 3 + k] = n->bmax[k];
+    }
+    f->p->nodes[at].first = n->count ? n->index : 0;
+    f->p->nodes[at].count = n->count;
     if (!n->count) {
         flatten(f, n->index);
         flatten(f, n->index + 1);
     }
-    f->escape[at] = f->next;
+    f->p->nodes[at].escape = f->next;
 }
 
-static float fmax3(const double v[3])
+/* Refit: every box again from the moved vertices, children before parents
+ * (reverse depth-first order: an interior node's children are the next
+ * node and that one's escape), padded as ref_bvh.c pads. */
+static void refit_boxes(exact_prepared *p, const snell_mesh *mesh)
 {
-    return (float)fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+    double ext = 0.0, pad;
+    int i, k;
+    for (i = p->node_count - 1; i >= 0; i--) {
+        const flat_node *n = &p->nodes[i];
+        double *b = p->boxes + 6 * (size_t)i;
+        for (k = 0; k < 3; k++) {
+            b[k] = HUGE_VAL;
+            b[3 + k] = -HUGE_VAL;
+        }
+        if (n->count) {
+            uint32_t e, j;
+            for (e = n->first; e < n->first + n->count; e++)
+                for (j = 0; j < 3; j++) {
+                    const float *v = mesh->positions + 3 * (size_t)mesh->indices[3 * (size_t)p->tri_ids[e] + j];
+                    for (k = 0; k < 3; k++) {
+                        b[k] = fmin(b[k], (double)v[k]);
+                        b[3 + k] = fmax(b[3 + k], (double)v[k]);
+                    }
+                }
+        } else {
+            const double *c0 = p->boxes + 6 * (size_t)(i + 1), *c1 = p->boxes + 6 * (size_t)p->nodes[i + 1].escape;
+            for (k = 0; k < 3; k++) {
+                b[k] = fmin(c0[k], c1[k]);
+                b[3 + k] = fmax(c0[3 + k], c1[3 + k]);
+            }
+        }
+    }
+    for (k = 0; k < 6; k++) ext = fmax(ext, fabs(p->boxes[k]));
+    pad = 1e-10 * (ext > 0.0 ? ext : 1.0);
+    for (i = 0; i < p->node_count; i++)
+        for (k = 0; k < 3; k++) {
+            p->boxes[6 * (size_t)i + k] -= pad;
+            p->boxes[6 * (size_t)i + 3 + k] += pad;
+        }
 }
 
 /* Quantised 16-bit bounds, rounded outward: the frame is the root box grown
@@ -189,48 +248,49 @@ static uint32_t quant(double x, double lo, double step, int up)
  * hi + count; q16: 1 texel, bounds as 6 x 16 bits + a word: interior the
  * escape, leaf 0x80000000 | first << 2 | count - 1), then per triangle entry
  * 6 texels: v0, v1, v2, n0, n1, n2 (object space; q16: the floats' bits). */
-static void pack_texels(const snell__bvh *bvh, const snell_mesh *mesh, const flat_ctx *f, exact_prepared *p,
-                        void *texels)
+static void pack_texels(exact_prepared *p, const snell_mesh *mesh)
 {
-    float *tf = (float *)texels;
-    uint32_t *tu = (uint32_t *)texels, i;
-    double lo[3], step[3];
+    float *tf = (float *)p->texels;
+    uint32_t *tu = (uint32_t *)p->texels, i;
+    const double *root = p->boxes;
+    double lo[3], step[3], scale = 0.0;
+    float pad;
     int k;
     /* the largest coordinate: float slab tests round at a few ulps of it */
-    const float scale = fmax3(bvh->bmin) > fmax3(bvh->bmax) ? fmax3(bvh->bmin) : fmax3(bvh->bmax);
-    const float pad = 1e-5f * scale;
+    for (k = 0; k < 6; k++) scale = fmax(scale, fabs(root[k]));
+    pad = (float)(1e-5 * scale);
     for (k = 0; k < 3; k++) {
         /* 65531 steps over the extent (a flat axis: 1e-6 of the scale), 2 more a side */
-        step[k] = fmax(bvh->bmax[k] - bvh->bmin[k], 1e-6 * scale + 1e-30) / 65531.0;
-        lo[k] = bvh->bmin[k] - 2.0 * step[k];
+        step[k] = fmax(root[3 + k] - root[k], 1e-6 * scale + 1e-30) / 65531.0;
+        lo[k] = root[k] - 2.0 * step[k];
         p->qlo[k] = (float)lo[k];
         p->qstep[k] = (float)step[k];
     }
-    for (i = 0; i < bvh->node_count; i++) {
-        const snell__bvh_node *n = &bvh->nodes[f->order[i]];
+    for (i = 0; i < (uint32_t)p->node_count; i++) {
+        const flat_node *n = &p->nodes[i];
+        const double *b = p->boxes + 6 * (size_t)i;
         if (p->format == NODES_F32) {
             float *t = tf + 8 * (size_t)i;
             for (k = 0; k < 3; k++) {
-                t[k] = (float)n->bmin[k] - pad;
-                t[4 + k] = (float)n->bmax[k] + pad;
+                t[k] = (float)b[k] - pad;
+                t[4 + k] = (float)b[3 + k] + pad;
             }
-            t[3] = (float)(n->count ? n->index : f->escape[i]);
+            t[3] = (float)(n->count ? n->first : n->escape);
             t[7] = (float)n->count;
         } else {
             uint32_t *t = tu + 4 * (size_t)i, q[6];
             for (k = 0; k < 3; k++) {
-                /* the node's bounds are the double ones, padded 1e-10 (ref_bvh.c) */
-                q[k] = quant(n->bmin[k], lo[k], step[k], 0);
-                q[3 + k] = quant(n->bmax[k], lo[k], step[k], 1);
+                q[k] = quant(b[k], lo[k], step[k], 0);
+                q[3 + k] = quant(b[3 + k], lo[k], step[k], 1);
             }
             t[0] = q[0] | q[1] << 16;
             t[1] = q[2] | q[3] << 16;
             t[2] = q[4] | q[5] << 16;
-            t[3] = n->count ? 0x80000000u | n->index << 2 | (n->count - 1) : f->escape[i];
+            t[3] = n->count ? 0x80000000u | n->first << 2 | (n->count - 1) : n->escape;
         }
     }
-    for (i = 0; i < bvh->triangle_count; i++) {
-        const uint32_t *tri = mesh->indices + 3 * (size_t)bvh->tri_ids[i];
+    for (i = 0; i < p->triangle_count; i++) {
+        const uint32_t *tri = mesh->indices + 3 * (size_t)p->tri_ids[i];
         float v[24];
         int j;
         memset(v, 0, sizeof v);
@@ -245,27 +305,28 @@ static void pack_texels(const snell__bvh *bvh, const snell_mesh *mesh, const fla
     }
 }
 
-/* Builds with the reference tracer's SAH builder in object space (so one
- * BVH serves every model matrix), flattens, uploads. A deformed mesh is a new
- * version and is rebuilt from scratch: the SAH build of the 69k-triangle
- * bunny takes tens of milliseconds (bench/BENCHMARKS.md), and a refit would
- * keep a tree whose splits no longer suit the moved triangles. */
-static snell_status exact_prepare(snell_ctx *ctx, void *state, const snell__object *o, void *prepared,
-                                  snell_object_stats *stats)
+static void free_arrays(exact_prepared *p)
 {
-    exact_prepared *p = (exact_prepared *)prepared;
+    snell__free(&p->alloc, p->nodes);
+    snell__free(&p->alloc, p->boxes);
+    snell__free(&p->alloc, p->tri_ids);
+    snell__free(&p->alloc, p->texels);
+    p->nodes = NULL;
+    p->boxes = NULL;
+    p->tri_ids = NULL;
+    p->texels = NULL;
+}
+
+/* The reference tracer's SAH build in object space (one BVH serves every
+ * model matrix), flattened. */
+static snell_status build(snell_ctx *ctx, const snell_mesh *mesh, int format, exact_prepared *p)
+{
     snell__bvh *bvh = NULL;
     flat_ctx f;
-    void *texels = NULL;
     GLint max_size = 0;
     size_t texels_n, rows;
     uint32_t i;
-    snell_status st;
-    (void)state;
-    (void)stats;
-    memset(&f, 0, sizeof f);
-    p->format = o->glass->material.exact.node_format;
-    st = snell__bvh_build_mesh(ctx, o->mesh, NULL, &bvh);
+    snell_status st = snell__bvh_build_mesh(ctx, mesh, NULL, &bvh);
     if (st != SNELL_OK) return st;
     for (i = 0; i < bvh->node_count; i++)
         if (bvh->nodes[i].count > LEAF_MAX) {
@@ -273,52 +334,90 @@ static snell_status exact_prepare(snell_ctx *ctx, void *state, const snell__obje
                              bvh->nodes[i].count, LEAF_MAX);
             goto out;
         }
-    p->node_count = (int)bvh->node_count;
-    p->depth = bvh->depth;
-    p->tri_base = (int)(bvh->node_count * (p->format == NODES_F32 ? 2u : 1u));
-    texels_n = (size_t)p->tri_base + 6 * (size_t)bvh->triangle_count;
+    texels_n = (size_t)bvh->node_count * (format == NODES_F32 ? 2u : 1u) + 6 * (size_t)bvh->triangle_count;
     rows = (texels_n + TEX_WIDTH - 1) / TEX_WIDTH;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    if (rows > (size_t)max_size || (p->format == NODES_F32 && bvh->node_count >= F32_INDEX_LIMIT) ||
+    if (rows > (size_t)max_size || (format == NODES_F32 && bvh->node_count >= F32_INDEX_LIMIT) ||
         bvh->triangle_count >= (1u << 29)) {
         st = snell__fail(ctx, SNELL_E_LIMIT, "exact: %u triangles need a %dx%zu BVH texture (at most %d rows here)",
                          bvh->triangle_count, TEX_WIDTH, rows, (int)max_size);
         goto out;
     }
-    f.bvh = bvh;
-    f.order = (uint32_t *)snell__calloc(&ctx->alloc, bvh->node_count, sizeof(uint32_t));
-    f.escape = (uint32_t *)snell__calloc(&ctx->alloc, bvh->node_count, sizeof(uint32_t));
-    texels = snell__calloc(&ctx->alloc, rows * TEX_WIDTH, 16);
-    if (!f.order || !f.escape || !texels) {
+    free_arrays(p);
+    p->format = format;
+    p->node_count = (int)bvh->node_count;
+    p->triangle_count = bvh->triangle_count;
+    p->tri_base = (int)(bvh->node_count * (format == NODES_F32 ? 2u : 1u));
+    p->rows = (int)rows;
+    p->nodes = (flat_node *)snell__calloc(&p->alloc, bvh->node_count, sizeof *p->nodes);
+    p->boxes = (double *)snell__calloc(&p->alloc, 6 * (size_t)bvh->node_count, sizeof(double));
+    p->tri_ids = (uint32_t *)snell__calloc(&p->alloc, bvh->triangle_count, sizeof(uint32_t));
+    p->texels = snell__calloc(&p->alloc, rows * TEX_WIDTH, 16);
+    if (!p->nodes || !p->boxes || !p->tri_ids || !p->texels) {
+        free_arrays(p);
         st = snell__fail(ctx, SNELL_E_NOMEM, "exact: out of memory for a %u-node BVH", bvh->node_count);
         goto out;
     }
+    memcpy(p->tri_ids, bvh->tri_ids, bvh->triangle_count * sizeof(uint32_t));
+    f.bvh = bvh;
+    f.p = p;
+    f.next = 0;
     flatten(&f, 0);
-    pack_texels(bvh, o->mesh, &f, p, texels);
-    {
-        snell__pixel_store unpack;
-        snell__pixel_unpack_begin(&unpack, 4);
+    p->builds++;
+    p->refits = 0;
+out:
+    snell__bvh_destroy(bvh);
+    return st;
+}
+
+/* Built once per mesh, refitted for each new version of it: the prepared
+ * cache hands a deformed mesh (snell_mesh_set_vertices: a new version, the
+ * same triangles) the slot of its previous version, so the tree's shape is
+ * here and only its boxes are recomputed (O(n), no SAH build: bunny 69k
+ * triangles, bench/BENCHMARKS.md "Exact"); the splits stay those of the
+ * first shape, which a large deformation makes worse to traverse, never
+ * wrong. A new node format or triangle count builds again. */
+static snell_status exact_prepare(snell_ctx *ctx, void *state, const snell__object *o, void *prepared,
+                                  snell_object_stats *stats)
+{
+    exact_prepared *p = (exact_prepared *)prepared;
+    const int format = o->glass->material.exact.node_format;
+    const int refit = p->texture && p->nodes && p->format == format && p->triangle_count == o->mesh->triangle_count;
+    snell__pixel_store unpack;
+    snell_status st;
+    (void)state;
+    (void)stats;
+    p->alloc = ctx->alloc;
+    if (refit) {
+        refit_boxes(p, o->mesh);
+        p->refits++;
+    } else if ((st = build(ctx, o->mesh, format, p)) != SNELL_OK) {
+        return st;
+    }
+    pack_texels(p, o->mesh);
+    snell__pixel_unpack_begin(&unpack, 4);
+    glActiveTexture(GL_TEXTURE0 + BVH_UNIT);
+    if (!refit) {
+        if (p->texture) glDeleteTextures(1, &p->texture);
         glGenTextures(1, &p->texture);
-        glActiveTexture(GL_TEXTURE0 + BVH_UNIT);
         glBindTexture(GL_TEXTURE_2D, p->texture);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         if (p->format == NODES_F32)
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, TEX_WIDTH, (GLsizei)rows, 0, GL_RGBA, GL_FLOAT, texels);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, TEX_WIDTH, p->rows, 0, GL_RGBA, GL_FLOAT, p->texels);
         else
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, TEX_WIDTH, (GLsizei)rows, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                         texels);
-        glActiveTexture(GL_TEXTURE0);
-        snell__pixel_unpack_end(&unpack);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, TEX_WIDTH, p->rows, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                         p->texels);
+    } else {
+        glBindTexture(GL_TEXTURE_2D, p->texture);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, TEX_WIDTH, p->rows, p->format == NODES_F32 ? GL_RGBA : GL_RGBA_INTEGER,
+                        p->format == NODES_F32 ? GL_FLOAT : GL_UNSIGNED_INT, p->texels);
     }
+    glActiveTexture(GL_TEXTURE0);
+    snell__pixel_unpack_end(&unpack);
     if (glGetError() != GL_NO_ERROR)
-        st = snell__fail(ctx, SNELL_E_GL, "exact: uploading a %dx%zu BVH texture failed", TEX_WIDTH, rows);
-out:
-    snell__free(&ctx->alloc, texels);
-    snell__free(&ctx->alloc, f.order);
-    snell__free(&ctx->alloc, f.escape);
-    snell__bvh_destroy(bvh);
-    return st;
+        return snell__fail(ctx, SNELL_E_GL, "exact: uploading a %dx%d BVH texture failed", TEX_WIDTH, p->rows);
+    return SNELL_OK;
 }
 
 static void exact_release(void *prepared)
@@ -326,6 +425,8 @@ static void exact_release(void *prepared)
     exact_prepared *p = (exact_prepared *)prepared;
     if (p->texture) glDeleteTextures(1, &p->texture);
     p->texture = 0;
+    free_arrays(p);
+    p->builds = p->refits = 0;
 }
 
 /* Pixels of this object that took the fallback: the kernel marks them with
