@@ -133,7 +133,7 @@ static agreement agree(snell_ctx *ctx, const snell_frame_desc *fd, const float *
     return agree_with(ctx, NULL, fd, ref_dirs, hit, stable);
 }
 
-/* Both node formats against the reference with the cap `interfaces`. Cap 2
+/* The node formats against the reference with the cap `interfaces`. Cap 2
  * (entry and exit, the model the cheap kernels are measured in): 99.9% of
  * all glass pixels within 0.01 degrees. A higher cap follows chains of total
  * internal reflections, along which a bumpy mesh amplifies rounding
@@ -167,7 +167,9 @@ static void check_mesh(snell_ctx *ctx, snell_env *env, snell_mesh *mesh, const c
         for (i = 0; i < W * H; i++)
             stable[i] = hit[i] && hit_moved[i] && anglef(moved + 3 * i, ref_dirs + 3 * i) <= TOL_RAD;
     }
-    for (f = 1; f <= 2; f++) {
+    /* q16 at cap 2 only: a box rounded inward shows there as a missed
+     * surface; the long chains add time, not coverage of the format */
+    for (f = 1; f <= (interfaces > 2 ? 1 : 2); f++) {
         agreement a;
         g.material.exact.node_format = f;
         a = agree(ctx, &fd, ref_dirs, hit, interfaces > 2 ? stable : NULL);
