@@ -29,6 +29,7 @@ precision highp int;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 
 #define MAX_INTERFACES 10    // SNELL_EXACT_MAX_INTERFACES
 #define LEAF_MAX 4           // exact.c LEAF_MAX
@@ -44,6 +45,7 @@ uniform vec3 u_tint;
 uniform highp vec4 u_bsphere;    // world bounding sphere: the fallback's absorption chord
 uniform mat3 u_normal_matrix;    // object -> world normals
 uniform mat4 u_inv_model;        // world -> object
+uniform highp mat4 u_model;      // object -> world (object.vert's; the exit point for snell_exit)
 #if SNELL_NODES_Q16
 uniform highp usampler2D u_bvh;
 #else
@@ -281,12 +283,13 @@ void main()
         highp float ob = dot(oc, dir), oc2 = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
         path = max(-ob + sqrt(max(ob * ob - oc2, 0.0)), 0.0);
     }
+    highp vec3 exit_p = g_over ? world_pos : (u_model * vec4(p, 1.0)).xyz;
     // The look-ups after the branches: their implicit derivatives are
     // undefined in non-uniform control flow (GLSL ES 3.00, 8.9).
 #if SNELL_ABSORB
-    vec3 transmitted = snell_env(dir) * u_tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_exit(exit_p, dir) * u_tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = snell_env(dir) * u_tint;
+    vec3 transmitted = snell_exit(exit_p, dir) * u_tint;
 #endif
     vec3 reflected = snell_env(r);
     snell_write(mix(transmitted, reflected, fresnel), dir);

@@ -70,7 +70,7 @@ typedef struct exact_prepared {
 } exact_prepared;
 
 typedef struct exact_prog {
-    snell__program_slot slot; /* key: budget, q16, absorb, screen */
+    snell__program_slot slot; /* key: budget, q16, absorb, variant (snell__glass_variant) */
     int bvh, inv_model, node_count, tri_base, max_interfaces, eps, qlo, qstep, mark, cam_basis, cam_proj, pixel_to_ndc;
 } exact_prog;
 
@@ -84,10 +84,10 @@ typedef struct exact_state {
 
 static void exact_destroy(snell_ctx *ctx, void *state);
 
-static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16, int absorb, int screen,
+static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16, int absorb, int variant,
                              const exact_prog **out)
 {
-    const int key[4] = {budget, q16, absorb, screen};
+    const int key[4] = {budget, q16, absorb, variant};
     char def[160];
     int hit;
     exact_prog *p = (exact_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 4, &s->clock, &hit);
@@ -98,7 +98,7 @@ static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16
     }
     snprintf(def, sizeof def, "#define SNELL_NODE_BUDGET %d\n#define SNELL_NODES_Q16 %d\n#define SNELL_ABSORB %d\n",
              budget, q16, absorb);
-    st = snell__glass_program_build(ctx, "exact.frag", s->out, def, screen, &p->slot.g);
+    st = snell__glass_program_build(ctx, "exact.frag", s->out, def, variant, &p->slot.g);
     if (st != SNELL_OK) return st;
     p->bvh = glGetUniformLocation(p->slot.g.prog, "u_bvh");
     p->inv_model = glGetUniformLocation(p->slot.g.prog, "u_inv_model");
@@ -462,7 +462,8 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
     const snell_exact_params *e = &o->glass->material.exact;
     const exact_prepared *ep = (const exact_prepared *)o->prepared;
     const exact_prog *p;
-    snell_status st = get_prog(ctx, s, e->node_budget, ep->format == NODES_Q16, o->glass->absorbs, o->screen_space, &p);
+    snell_status st = get_prog(ctx, s, e->node_budget, ep->format == NODES_Q16, o->glass->absorbs,
+                                snell__glass_variant(o), &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);
     glActiveTexture(GL_TEXTURE0 + BVH_UNIT);
