@@ -383,7 +383,7 @@ typedef enum snell_method {
     SNELL_METHOD_EXACT,        /* exact: the mesh's BVH ray-traced per pixel (watertight triangles, TIR, up
                                 * to N interfaces), the MATCHED reference's model on the GPU; the accuracy
                                 * ceiling, the most expensive; AUTO picks it only where the material's
-                                * exact.auto allows it (snell_exact_params) */
+                                * exact.auto_pick allows it (snell_exact_params) */
     SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 
@@ -524,7 +524,10 @@ typedef enum snell_exact_auto {
 
 /* SNELL_METHOD_EXACT's parameters (material.exact); zero = the default. The
  * budget is a compile-time constant of the traversal program (one program per
- * (budget, interfaces > 1 or absorption) pair, built on first use, 8 kept). */
+ * (budget, node format, absorption, shading), built on first use, 8 kept); the
+ * BVH is built once per mesh and node format (the reference tracer's SAH
+ * build, about 0.4 s for a 70k-triangle mesh on llvmpipe's host) and refitted,
+ * not rebuilt, when snell_mesh_set_vertices moves the vertices. */
 typedef struct snell_exact_params {
     int max_interfaces;        /* surfaces processed per path, 1..10 (1 = single surface with the exact path
                                 * length for absorption; default 8); the MATCHED reference's cap */
