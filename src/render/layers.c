@@ -136,6 +136,7 @@ static void table_column(snell__layers *l, const layer_item *it, const snell_opa
             r0[1 + k] = g->material.tint[k];
             r1[k] = g->absorbs ? g->absorption[k] : 0.0f;
         }
+        r1[3] = g->material.thickness; /* > 0: a thin wall */
     } else {
         /* composite.c's rule: all zero = 0.8 grey */
         int grey = opaque->color[0] == 0.0f && opaque->color[1] == 0.0f && opaque->color[2] == 0.0f;

@@ -12,8 +12,8 @@
  * of its surfaces in front of the point at its pixel, so a change of medium
  * along the ray is a surface crossed; it refracts into and out of the other
  * glass objects (TIR inside them), stops at an opaque one (shaded as
- * opaque.frag shades it), and looks the environment up when it leaves them
- * all. Passes per frame: the peels, at most SNELL_MAX_SCENE_LAYERS, each
+ * opaque.frag shades it), crosses thin walls by the slab model, and looks
+ * the environment up when it leaves them all. Passes per frame: the peels, at most SNELL_MAX_SCENE_LAYERS, each
  * drawing every object once, whatever the number of objects; nothing is
  * copied per object. */
 #ifndef SNELL_LAYERS_H
@@ -40,7 +40,7 @@ typedef struct snell__layers {
 
 void snell__layers_destroy(snell__layers *l);
 
-/* Peels glass[0..glass_count-1] (drawn, uploaded, solid) and opaque[0..opaque_count-1]
+/* Peels glass[0..glass_count-1] (drawn, uploaded; solid or thin walls) and opaque[0..opaque_count-1]
  * (uploaded) into up to max_layers layers and binds them and the table on
  * the units above; fills v->layers for the kernels. *passes: peels drawn. */
 snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v, snell__object *const *glass,

@@ -293,9 +293,11 @@ static int choose_scene_layers(snell_renderer *r, const snell_frame_desc *fd, sn
 {
     snell__scene *sc = &r->scene;
     int i, n = 0;
+    int solid = 0;
     for (i = 0; i < sc->drawn; i++) {
         snell__object *o = &sc->obj[sc->order[i]];
-        if (o->glass->material.thickness <= 0.0f) r->layer_list[n++] = o;
+        r->layer_list[n++] = o;
+        solid += o->glass->material.thickness <= 0.0f;
     }
     if (fd->scene_layers < 0) {
         snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "off (scene_layers -1)");
@@ -303,12 +305,12 @@ static int choose_scene_layers(snell_renderer *r, const snell_frame_desc *fd, sn
     }
     if (n == 0 || (n == 1 && fd->opaque_count == 0)) {
         snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason,
-                   "not needed: %s", n == 0 ? "no solid glass object drawn" : "one solid glass object and nothing else");
+                   "not needed: %s", n == 0 ? "no glass object drawn" : "one glass object and nothing else");
         return 0;
     }
     for (i = 0; i < n; i++) r->layer_list[i]->beyond = 1;
-    snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "%d solid glass and %d opaque objects: exit rays "
-               "meet the others", n, fd->opaque_count);
+    snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "%d glass (%d solid, %d thin walls) and %d opaque "
+               "objects: exit rays meet the others", n, solid, n - solid, fd->opaque_count);
     return n;
 }
 
