@@ -9,9 +9,10 @@
  *  2. colour with absorption (Beer-Lambert over the exact path, Schlick at
  *     the entry) vs the MATCHED colour: mean difference below 1/255;
  *  3. the node budget: a budget too small for the bunny makes pixels fall
- *     back to the single-surface answer, counted in the stats (and equal in
- *     number to the pixels whose direction is single's); the default budget
- *     counts none on the sphere; a colour renderer reports -1 (not counted);
+ *     back to the single-surface answer, counted in the stats (the pixels
+ *     that switch to single's direction: at most as many, at least 90%;
+ *     measured: equal); the default budget counts none; a colour renderer
+ *     reports -1 (not counted);
  *  4. AUTO: never EXACT by default (the open cat gets single's fallback),
  *     EXACT for the cat when material.exact.auto_pick allows it, still the
  *     cubemap for the sphere then;
@@ -246,32 +247,37 @@ static void check_colour(snell_ctx *ctx, snell_env *env, snell_mesh *torus)
     snell_renderer_destroy(r);
 }
 
-/* 3. The node budget and its fallback count. */
+/* 3. The node budget and its fallback count. A pixel within the budget is
+ * traversed exactly as with the default budget, so a pixel whose direction
+ * is single's with the small budget and not with the default one fell back:
+ * there are at most as many as counted, and nearly all counted ones are such
+ * (a fallback pixel whose exact exit is single's too is not). */
 static void check_budget(snell_ctx *ctx, snell_env *env, snell_mesh *mesh)
 {
-    static float dirs[W * H * 3], single[W * H * 3];
+    static float small[W * H * 3], full[W * H * 3], single[W * H * 3];
     snell_frame_desc fd;
     snell_frame_stats st;
     snell_glass g;
-    int i, same = 0;
+    int i, switched = 0, counted;
     test_frame_one(&fd, &g, mesh, env);
     fd.camera.distance = 3.0f;
     g.material.method = SNELL_METHOD_SINGLE;
     render_dirs(ctx, &fd, single, NULL);
     g.material.method = SNELL_METHOD_EXACT;
+    render_dirs(ctx, &fd, full, &st);
+    CHECK(st.glass[0].exact_fallback_pixels == 0, "the default budget: no fallback (%d)",
+          st.glass[0].exact_fallback_pixels);
     g.material.exact.node_budget = 192;
-    render_dirs(ctx, &fd, dirs, &st);
+    render_dirs(ctx, &fd, small, &st);
+    counted = st.glass[0].exact_fallback_pixels;
     /* single.frag is mediump (up to ~1e-3 rad on fp16 drivers; highp here) */
-    for (i = 0; i < W * H; i++) same += anglef(dirs + 3 * i, single + 3 * i) < 2e-3;
-    printf("budget 192 nodes: %d fallback pixels counted, %d pixels with single's exit direction\n",
-           st.glass[0].exact_fallback_pixels, same);
-    CHECK(st.glass[0].exact_fallback_pixels > W * H / 20, "a small budget makes pixels fall back (%d)",
-          st.glass[0].exact_fallback_pixels);
-    /* every fallback pixel has single's direction; pixels that finished within
-     * the budget and still equal single's are the background and the few
-     * whose exact exit happens to be single's */
-    CHECK(same >= st.glass[0].exact_fallback_pixels, "fallback pixels take single's answer (%d of %d)", same,
-          st.glass[0].exact_fallback_pixels);
+    for (i = 0; i < W * H; i++)
+        switched += anglef(small + 3 * i, single + 3 * i) < 2e-3 && !(anglef(full + 3 * i, single + 3 * i) < 2e-3);
+    printf("budget 192 nodes: %d fallback pixels counted, %d pixels switched to single's exit direction\n", counted,
+           switched);
+    CHECK(counted > W * H / 20, "a small budget makes pixels fall back (%d)", counted);
+    CHECK(switched <= counted && switched * 10 >= counted * 9, "%d pixels switched to single's answer, %d counted",
+          switched, counted);
 }
 
 /* 4. AUTO and its opt-in. */
