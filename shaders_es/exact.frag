@@ -13,8 +13,8 @@
 //
 // The BVH (one 2D texture, TEX_WIDTH texels a row, texelFetch only): nodes in
 // depth-first order, a node's first child right after it and its escape
-// index where the walk goes on a miss (a leaf's escape is the next node), so
-// traversal needs no stack and no depth bound; then 6 texels per triangle
+// index where the walk goes on a miss (a leaf's escape is the next node, and
+// an interior node's second child its first child's escape); then 6 texels per triangle
 // entry: v0, v1, v2, n0, n1, n2 in object space. SNELL_NODES_Q16: the
 // texture is RGBA32UI, nodes one texel of 16-bit bounds (qlo + q * qstep,
 // rounded outward) and a word, triangles the floats' bits.
@@ -35,7 +35,8 @@ precision highp int;
 #define LEAF_MAX 4           // exact.c LEAF_MAX
 #define TEX_SHIFT 11         // exact.c TEX_WIDTH = 2048
 #define TEX_MASK 2047
-// SNELL_NODE_BUDGET, SNELL_NODES_Q16 (0/1) and SNELL_ABSORB (0/1) are
+// SNELL_NODE_BUDGET, SNELL_NODES_Q16 (0/1), SNELL_ABSORB (0/1) and
+// SNELL_STACK_WALK (0: stackless, 1: near-first with a short stack) are
 // defined by the program's variant (methods/exact.c).
 
 uniform highp vec3 u_eye;
@@ -167,10 +168,32 @@ bool box_hit(Ray r, vec3 lo, vec3 hi, float tmax)
     return max(max(tn.x, tn.y), max(tn.z, 0.0)) <= min(min(tf.x, tf.y), min(tf.z, tmax));
 }
 
+// The leaf's triangles (first .. first + count - 1) against the ray: the closest
+// hit so far in best, tbest and b.
+void leaf_hits(Ray r, int first, int count, float tmin, inout float tbest, int skip, inout int best, inout vec3 b)
+{
+    for (int k = 0; k < LEAF_MAX; k++) {
+        if (k >= count) break;
+        int e = first + k;
+        if (e == skip) continue;
+        int base = u_tri_base + 6 * e;
+        float t;
+        vec3 bb;
+        if (tri_hit(r, fetch_f(base).xyz, fetch_f(base + 1).xyz, fetch_f(base + 2).xyz, tmin, tbest, t, bb)) {
+            tbest = t;
+            best = e;
+            b = bb;
+        }
+    }
+}
+
 // Closest hit with t in (tmin, tbest), skipping entry skip: its entry (tbest
-// and b set) or -1. Stackless: on a hit box the walk descends (next node),
-// on a miss or after a leaf it takes the node's escape. Sets g_over when the
-// pixel's budget runs out (the answer is then not to be used).
+// and b set) or -1; sets g_over when the pixel's budget (or the stack) runs
+// out, and the answer is then not to be used. Stackless: on a hit box the
+// walk descends (next node), on a miss or after a leaf it takes the node's
+// escape; it needs no stack and has no depth bound, but visits children in
+// build order.
+#if !SNELL_STACK_WALK
 int closest(Ray r, float tmin, inout float tbest, int skip, out vec3 b)
 {
     int best = -1;
@@ -192,23 +215,90 @@ int closest(Ray r, float tmin, inout float tbest, int skip, out vec3 b)
             continue;
         }
         node++;
-        if (!in_box) continue;
-        for (int k = 0; k < LEAF_MAX; k++) {
-            if (k >= count) break;
-            int e = first + k;
-            if (e == skip) continue;
-            int base = u_tri_base + 6 * e;
-            float t;
-            vec3 bb;
-            if (tri_hit(r, fetch_f(base).xyz, fetch_f(base + 1).xyz, fetch_f(base + 2).xyz, tmin, tbest, t, bb)) {
-                tbest = t;
-                best = e;
-                b = bb;
+        if (in_box) leaf_hits(r, first, count, tmin, tbest, skip, best, b);
+    }
+    return best;
+}
+#else
+#define STACK_SIZE 32
+// Slab entry parameter, or 3e38 on a miss.
+float box_enter(Ray r, vec3 lo, vec3 hi, float tmax)
+{
+    vec3 t0 = (lo - r.o) * r.inv, t1 = (hi - r.o) * r.inv;
+    vec3 tn = min(t0, t1), tf = max(t0, t1);
+    float a = max(max(tn.x, tn.y), max(tn.z, 0.0));
+    return a <= min(min(tf.x, tf.y), min(tf.z, tmax)) ? a : 3.0e38;
+}
+
+// Near-first with a short stack: both children's boxes tested, the nearer
+// visited, the farther pushed with its entry parameter (skipped on pop once
+// a hit is nearer). At most one push per level, so STACK_SIZE bounds the
+// tree depth it walks; a pixel that would overflow it falls back.
+int closest(Ray r, float tmin, inout float tbest, int skip, out vec3 b)
+{
+    int stack[STACK_SIZE];
+    float stack_t[STACK_SIZE];
+    int sp = 0, best = -1;
+    vec3 lo, hi;
+    int first, count;
+    b = vec3(0.0);
+    g_visits++;
+    fetch_node(0, lo, hi, first, count);
+    if (box_enter(r, lo, hi, tbest) > 1.0e38) return -1;
+    int node = 0;
+    for (int it = 0; it < SNELL_NODE_BUDGET; it++) {
+        if (g_visits >= SNELL_NODE_BUDGET) {
+            g_over = true;
+            break;
+        }
+        bool pop = true;
+        if (count > 0) {
+            leaf_hits(r, first, count, tmin, tbest, skip, best, b);
+        } else {
+            vec3 lo0, hi0, lo1, hi1;
+            int f0, n0, f1, n1;
+            int c0 = node + 1;
+            g_visits += 2;
+            fetch_node(c0, lo0, hi0, f0, n0);
+            int c1 = n0 > 0 ? c0 + 1 : f0;
+            fetch_node(c1, lo1, hi1, f1, n1);
+            float t0 = box_enter(r, lo0, hi0, tbest), t1 = box_enter(r, lo1, hi1, tbest);
+            bool near0 = t0 <= t1;
+            float tn = near0 ? t0 : t1, tf = near0 ? t1 : t0;
+            if (tf < 1.0e38) {
+                if (sp >= STACK_SIZE) {
+                    g_over = true;                               // deeper than the stack: the fallback
+                    break;
+                }
+                stack[sp] = near0 ? c1 : c0;
+                stack_t[sp] = tf;
+                sp++;
             }
+            if (tn < 1.0e38) {
+                node = near0 ? c0 : c1;
+                first = near0 ? f0 : f1;
+                count = near0 ? n0 : n1;
+                pop = false;
+            }
+        }
+        if (pop) {
+            bool found = false;
+            for (int q = 0; q < STACK_SIZE; q++) {
+                if (sp == 0) break;
+                sp--;
+                if (stack_t[sp] < tbest) {
+                    node = stack[sp];
+                    found = true;
+                    break;
+                }
+            }
+            if (!found) break;
+            fetch_node(node, lo, hi, first, count);
         }
     }
     return best;
 }
+#endif
 
 // Entry e's point at weights b (object space, on the triangle, as the
 // reference's hit point) and its smooth world normal facing the ray d

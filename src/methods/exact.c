@@ -2,7 +2,8 @@
  * fragment shader (exact.frag): the MATCHED reference's model (ref_trace.c)
  * on the GPU. Prepared once per mesh version: the reference tracer's SAH
  * build (ref_bvh.c, object space) flattened into depth-first order with an
- * escape index per node, so the shader walks it without a stack, and packed
+ * escape index per node (so the shader can walk it near-first with a short
+ * stack, the default, or without any stack: the `walk` parameter), and packed
  * with the triangles (vertices and vertex normals, leaf order) into one 2D
  * texture read with texelFetch (core GLES 3.0). Per frame one pass over the
  * front faces; each pixel's node visits are capped by a compile-time budget,
@@ -36,6 +37,13 @@
 
 /* How node bounds are stored (the `nodes` parameter). */
 enum { NODES_DEFAULT = 0, NODES_F32, NODES_Q16 };
+/* How the tree is walked (the `walk` parameter): near-first with a short
+ * stack is 0.74x the frame of the stackless walk on the bunny at 256x256,
+ * 0.77x on a 1024-triangle torus (llvmpipe, bench/BENCHMARKS.md "Exact"):
+ * it visits the nearer child first, so the closest hit shortens the ray
+ * sooner. The stackless walk needs no per-pixel array and has no depth
+ * bound (drei's 60-entry stack is what mobile GPUs choked on). */
+enum { WALK_DEFAULT = 0, WALK_STACKLESS, WALK_STACK };
 
 /* llvmpipe: per-pixel traversal costs so much more than the G-buffer pass
  * that full 4x4 blocks win at every density, as for the cubemap: at 256x256
@@ -70,7 +78,7 @@ typedef struct exact_prepared {
 } exact_prepared;
 
 typedef struct exact_prog {
-    snell__program_slot slot; /* key: budget, q16, absorb, variant (snell__glass_variant) */
+    snell__program_slot slot; /* key: budget, q16, absorb, variant (snell__glass_variant), stack walk */
     int bvh, inv_model, node_count, tri_base, max_interfaces, eps, qlo, qstep, mark, cam_basis, cam_proj, pixel_to_ndc;
 } exact_prog;
 
@@ -85,19 +93,20 @@ typedef struct exact_state {
 static void exact_destroy(snell_ctx *ctx, void *state);
 
 static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16, int absorb, int variant,
-                             const exact_prog **out)
+                             int stack, const exact_prog **out)
 {
-    const int key[4] = {budget, q16, absorb, variant};
+    const int key[5] = {budget, q16, absorb, variant, stack};
     char def[160];
     int hit;
-    exact_prog *p = (exact_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 4, &s->clock, &hit);
+    exact_prog *p = (exact_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 5, &s->clock, &hit);
     snell_status st;
     if (hit) {
         *out = p;
         return SNELL_OK;
     }
-    snprintf(def, sizeof def, "#define SNELL_NODE_BUDGET %d\n#define SNELL_NODES_Q16 %d\n#define SNELL_ABSORB %d\n",
-             budget, q16, absorb);
+    snprintf(def, sizeof def,
+             "#define SNELL_NODE_BUDGET %d\n#define SNELL_NODES_Q16 %d\n#define SNELL_ABSORB %d\n#define SNELL_STACK_WALK %d\n",
+             budget, q16, absorb, stack);
     st = snell__glass_program_build(ctx, "exact.frag", s->out, def, variant, &p->slot.g);
     if (st != SNELL_OK) return st;
     p->bvh = glGetUniformLocation(p->slot.g.prog, "u_bvh");
@@ -123,7 +132,7 @@ static snell_status exact_create(snell_ctx *ctx, snell__output_kind out, void **
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
-    st = get_prog(ctx, s, DEFAULT_BUDGET, 0, 0, 0, &p);
+    st = get_prog(ctx, s, DEFAULT_BUDGET, 0, 0, 0, 1, &p);
     if (st != SNELL_OK) {
         exact_destroy(ctx, s);
         return st;
@@ -463,7 +472,7 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
     const exact_prepared *ep = (const exact_prepared *)o->prepared;
     const exact_prog *p;
     snell_status st = get_prog(ctx, s, e->node_budget, ep->format == NODES_Q16, o->glass->absorbs,
-                                snell__glass_variant(o), &p);
+                                snell__glass_variant(o), e->walk == WALK_STACK, &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);
     glActiveTexture(GL_TEXTURE0 + BVH_UNIT);
@@ -501,6 +510,7 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
 
 static const char *const g_nodes_names[] = {"default", "f32", "q16"};
 static const char *const g_auto_names[] = {"default", "never", "allow"};
+static const char *const g_walk_names[] = {"default", "stackless", "stack"};
 
 static const snell_param_info g_params[] = {
     {"interfaces", "surfaces processed per path (1 = single surface with the exact path length; more = exit and "
@@ -511,11 +521,14 @@ static const snell_param_info g_params[] = {
      2, NODES_F32, g_nodes_names},
     {"auto", "whether AUTO may pick it (where no cheaper method is adequate): never or allow", 0, 2,
      SNELL_EXACT_AUTO_NEVER, g_auto_names},
+    {"walk", "traversal: stack (near-first, a 32-entry stack a pixel; deeper trees fall back) or stackless (escape "
+     "indices: no stack, no depth bound, for GPUs where the stack spills)", 0, 2, WALK_STACK, g_walk_names},
 };
 
 static const size_t g_offsets[] = {
     offsetof(snell_glass_material, exact.max_interfaces), offsetof(snell_glass_material, exact.node_budget),
-    offsetof(snell_glass_material, exact.node_format), offsetof(snell_glass_material, exact.auto_pick)};
+    offsetof(snell_glass_material, exact.node_format), offsetof(snell_glass_material, exact.auto_pick),
+    offsetof(snell_glass_material, exact.walk)};
 
 static const snell_method_info g_info = {
     SNELL_METHOD_EXACT, "exact",
