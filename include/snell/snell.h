@@ -544,7 +544,7 @@ typedef struct snell_exact_params {
     snell_exact_auto auto_pick;
     /* How the tree is walked: 0 = default (2, stack); 1 = stackless: escape
      * indices, no per-pixel array, no depth bound; 2 = stack: near-first with
-     * a 32-entry stack a pixel, 0.74-0.77x the stackless frame on llvmpipe; a
+     * a 32-entry stack a pixel, 0.71-0.81x the stackless frame on llvmpipe; a
      * tree deeper than the stack (the reference's SAH build of a 70k-triangle
      * mesh is 20 deep) makes the pixels that would overflow it fall back as
      * past the budget. Stackless is for GPUs where the stack spills. */

@@ -38,8 +38,9 @@
 /* How node bounds are stored (the `nodes` parameter). */
 enum { NODES_DEFAULT = 0, NODES_F32, NODES_Q16 };
 /* How the tree is walked (the `walk` parameter): near-first with a short
- * stack is 0.74x the frame of the stackless walk on the bunny at 256x256,
- * 0.77x on a 1024-triangle torus (llvmpipe, bench/BENCHMARKS.md "Exact"):
+ * stack takes 0.75-0.79x the frame of the stackless walk on the bunny at
+ * 256x256 and 512x512, 0.71-0.81x on a 1024-triangle torus (llvmpipe,
+ * bench/BENCHMARKS.md "Exact"):
  * it visits the nearer child first, so the closest hit shortens the ray
  * sooner. The stackless walk needs no per-pixel array and has no depth
  * bound (drei's 60-entry stack is what mobile GPUs choked on). */
