@@ -1,7 +1,7 @@
 /* exact.c — exact refraction by ray traversal of the mesh's BVH in the
  * fragment shader (exact.frag): the MATCHED reference's model (ref_trace.c)
- * on the GPU. Prepared once per mesh version: the reference tracer's SAH
- * build (ref_bvh.c, object space) flattened into depth-first order with an
+ * on the GPU. Prepared per mesh version: the reference tracer's SAH build
+ * (ref_bvh.c, object space; refitted for later versions) flattened into depth-first order with an
  * escape index per node (so the shader can walk it near-first with a short
  * stack, the default, or without any stack: the `walk` parameter), and packed
  * with the triangles (vertices and vertex normals, leaf order) into one 2D
