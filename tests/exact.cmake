@@ -20,7 +20,7 @@ if(TARGET snell-render)
   set_tests_properties(cli_auto_exact PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\([^)]*cat.obj[^)]*\\): method exact")
   # Clear failures (exit 2, the library's range message) for bad values.
   foreach(bad "exact.interfaces=11" "exact.interfaces=0" "exact.budget=63" "exact.budget=65537" "exact.nodes=f16"
-          "exact.auto=always")
+          "exact.auto=always" "exact.walk=sideways")
     string(MAKE_C_IDENTIFIER "cli_bad_exact_${bad}" name)
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>"
              "-DARGS=--mesh|sphere|--method|exact|--param|${bad}" -DCODE=2 "-DERR=snell-render: "
