@@ -360,6 +360,11 @@ int snell_env_face_size(const snell_env *env);
 void snell_env_sample(const snell_env *env, const float dir[3], float rgb[3]);
 /* Double-precision variant for the reference tracer. */
 void snell_env_sample_d(const snell_env *env, const double dir[3], double rgb[3]);
+/* The built-in procedural environment's exact radiance along dir (need not be
+ * unit), rgb in [0,1]: what its faces sample (3x3 per texel) before they are
+ * quantised and filtered, for measuring a look-up's error. Black for a NULL,
+ * zero or non-finite dir. */
+void snell_env_procedural_radiance(const double dir[3], double rgb[3]);
 
 /* ------------------------------------------------------------------ glass */
 /* How the exit of a light path through the glass is found. Methods are the
@@ -632,6 +637,20 @@ typedef enum snell_shading {
     SNELL_SHADING_SCREEN
 } snell_shading;
 
+/* How the kernels and the background look the environment up
+ * (shaders_es/common/env.glsl): the GL cube texture, or dual-paraboloid maps
+ * (Heidrich and Seidel 1998, Dachsbacher 2002): two 180-degree maps of the
+ * +Z and -Z hemispheres, made on the GPU from the cube (the static
+ * environment's once, kept with it; a dynamic one's each time it is
+ * re-rendered) at twice its face size, RGBA8, in one 2D array texture. */
+typedef enum snell_env_lookup {
+    SNELL_ENV_LOOKUP_AUTO = 0,      /* per use, what measured better on this machine (bench/BENCHMARKS.md
+                                     * "Environment look-up"): the cube for the static and dynamic
+                                     * environments alike */
+    SNELL_ENV_LOOKUP_CUBE,
+    SNELL_ENV_LOOKUP_DUAL_PARABOLOID
+} snell_env_lookup;
+
 typedef struct snell_renderer_desc {
     int width, height;              /* pixels; 0 = 512 */
     snell_target target;
@@ -653,6 +672,7 @@ typedef struct snell_renderer_desc {
      * stay aliased); SCREEN is still honoured. Offscreen colour renderers
      * only, not with ssaa. */
     int msaa;
+    snell_env_lookup env_lookup;    /* for every glass object and the background */
 } snell_renderer_desc;
 
 #define SNELL_MAX_SSAA 8
@@ -732,6 +752,7 @@ typedef struct snell_object_stats {
                                      * fewer where the mesh's depth_complexity bounds them or a layer came
                                      * out empty: the peels after it are not drawn) */
     int layers_used;                /* PEEL: of those, the non-empty ones the search reads */
+    int env_paraboloid;             /* 1: it looked its environment up in dual-paraboloid maps, 0: the cube */
 } snell_object_stats;
 
 typedef struct snell_frame_stats {
@@ -746,6 +767,7 @@ typedef struct snell_frame_stats {
     int back_face_guard;            /* pixels of guard band it drew around the target (an object crossing the
                                      * target's edge asked for it: guard_band), 0 if none */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
+    int background_paraboloid;      /* 1: the background looked the environment up in dual-paraboloid maps */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */
@@ -785,6 +807,15 @@ snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels);
 snell_status snell_renderer_read_exit_dirs(snell_renderer *r, float *xyz);
 /* "float" or "packed-rgba8": how an EXIT_DIRECTION renderer stores directions. */
 const char *snell_renderer_exit_dir_encoding(const snell_renderer *r);
+/* The environment look-up the kernels and the background use
+ * (snell_env_lookup: CUBE or DUAL_PARABOLOID; AUTO is the static
+ * environment's choice), evaluated on the GPU for n directions (xyz, need not
+ * be unit) into n rgb triples: for measuring a look-up's error. Read from an
+ * RGBA32F target where GL_EXT_color_buffer_float allows, else RGBA8 (to
+ * 1/255). Makes and deletes its GL objects; GL state is left as it was.
+ * n in 1..2^20. */
+snell_status snell_renderer_env_probe(snell_renderer *r, const snell_env *env, snell_env_lookup lookup,
+                                      const float *dirs, int n, float *rgb);
 /* Blocks until the GPU finished the frame (glFinish); for timing. */
 void snell_renderer_finish(snell_renderer *r);
 

@@ -8,10 +8,15 @@
 
 const char *snell__output_defines(snell__output_kind out)
 {
-    switch (out) {
-    case SNELL__OUT_DIR_FLOAT: return "#define SNELL_OUTPUT_EXIT_DIR_FLOAT 1\n";
-    case SNELL__OUT_DIR_PACKED: return "#define SNELL_OUTPUT_EXIT_DIR_PACKED 1\n";
-    default: return "";
+    int paraboloid = (out & SNELL__OUT_ENV_PARABOLOID) != 0;
+    switch (out & SNELL__OUT_KIND_MASK) {
+    case SNELL__OUT_DIR_FLOAT:
+        return paraboloid ? "#define SNELL_OUTPUT_EXIT_DIR_FLOAT 1\n#define SNELL_ENV_DUAL_PARABOLOID 1\n"
+                          : "#define SNELL_OUTPUT_EXIT_DIR_FLOAT 1\n";
+    case SNELL__OUT_DIR_PACKED:
+        return paraboloid ? "#define SNELL_OUTPUT_EXIT_DIR_PACKED 1\n#define SNELL_ENV_DUAL_PARABOLOID 1\n"
+                          : "#define SNELL_OUTPUT_EXIT_DIR_PACKED 1\n";
+    default: return paraboloid ? "#define SNELL_ENV_DUAL_PARABOLOID 1\n" : "";
     }
 }
 

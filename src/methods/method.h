@@ -19,6 +19,16 @@ typedef enum snell__output_kind {
     SNELL__OUT_KINDS
 } snell__output_kind;
 
+/* The environment look-up a kernel's programs are built for
+ * (common/env.glsl): a bit above the output kind in the `out` that create()
+ * receives. Kernels hand `out` to snell__glass_program_build unchanged,
+ * which turns the bit into the define, so a kernel needs no code for it; the
+ * renderer keeps one state per method and look-up. The object's environment
+ * texture on unit 0 is then a 2D array of dual-paraboloid maps
+ * (render/env_paraboloid.h) instead of a cube. */
+#define SNELL__OUT_ENV_PARABOLOID 0x10
+#define SNELL__OUT_KIND_MASK 0x0f
+
 /* The frame's back-face maps (render/gbuffer.h): texel = window pixel +
  * band, valid for window pixels -band .. size + band - 1. */
 typedef struct snell__back_maps {
@@ -46,7 +56,9 @@ typedef struct snell__object {
     float bsphere[4];               /* world bounding sphere: centre, radius */
     float view_depth;               /* of the sphere's centre, along the view axis */
     const snell_mesh_analysis *analysis; /* NULL: not analysed (not needed, or failed) */
-    unsigned env_texture;           /* the cubemap it sees: static env or its dynamic one */
+    unsigned env_texture;           /* what it sees: static env or its dynamic one, a cube or (env_paraboloid)
+                                     * a 2D array of dual-paraboloid maps */
+    int env_paraboloid;
     int screen_space;               /* 0 forward, else shaded on the screen-space stage's G-buffer:
                                      * SNELL__SCREEN_* (render/gbuffer.h) */
     int gid;                        /* its id in the G-buffer (index + 1) */
@@ -132,7 +144,8 @@ const snell__method *snell__method_get(snell_method id);
 /* Resolves (zero = default) and range-checks the method's nested parameters in m. */
 snell_status snell__method_params_resolve(const snell__method *e, snell_glass_material *m, int object);
 
-/* Defines for a program variant of the given output kind ("#define ...\n"). */
+/* Defines for a program variant of the given output kind ("#define ...\n"),
+ * and its environment look-up (SNELL__OUT_ENV_PARABOLOID) if set. */
 const char *snell__output_defines(snell__output_kind out);
 
 /* snprintf that tolerates truncation (reasons are for people). */

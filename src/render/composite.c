@@ -30,7 +30,8 @@ void snell__composite_destroy(snell__composite *c)
     int k;
     for (k = 0; k < SNELL__OUT_KINDS; k++) {
         if (c->opaque[k].prog) glDeleteProgram(c->opaque[k].prog);
-        if (c->sky[k]) glDeleteProgram(c->sky[k]);
+        if (c->sky[k][0]) glDeleteProgram(c->sky[k][0]);
+        if (c->sky[k][1]) glDeleteProgram(c->sky[k][1]);
     }
     if (c->empty_vao) glDeleteVertexArrays(1, &c->empty_vao);
     memset(c, 0, sizeof *c);
@@ -99,24 +100,37 @@ snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell_
     return SNELL_OK;
 }
 
-snell_status snell__composite_prepare(snell_ctx *ctx, snell__composite *c, snell__output_kind kind)
+static snell_status sky_prog(snell_ctx *ctx, snell__composite *c, snell__output_kind kind, int paraboloid)
 {
-    if (!c->sky[kind]) {
-        snell_status st = snell__program_build(ctx, "skybox.vert", "skybox.frag", snell__output_defines(kind),
-                                               &c->sky[kind]);
+    if (!c->sky[kind][paraboloid]) {
+        snell_status st = snell__program_build(
+            ctx, "skybox.vert", "skybox.frag",
+            snell__output_defines((snell__output_kind)(kind | (paraboloid ? SNELL__OUT_ENV_PARABOLOID : 0))),
+            &c->sky[kind][paraboloid]);
         if (st != SNELL_OK) return st;
-        c->sky_inv[kind] = glGetUniformLocation(c->sky[kind], "u_inv_view_proj_rot");
-        c->sky_env[kind] = glGetUniformLocation(c->sky[kind], "u_env");
+        c->sky_inv[kind][paraboloid] = glGetUniformLocation(c->sky[kind][paraboloid], "u_inv_view_proj_rot");
+        c->sky_env[kind][paraboloid] = glGetUniformLocation(c->sky[kind][paraboloid], "u_env");
     }
     if (!c->empty_vao) glGenVertexArrays(1, &c->empty_vao);
     return SNELL_OK;
 }
 
+snell_status snell__composite_prepare(snell_ctx *ctx, snell__composite *c, snell__output_kind kind)
+{
+    return sky_prog(ctx, c, kind, 0);
+}
+
 snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                          const float rot_view_proj[16])
 {
+    return snell__composite_background_lookup(ctx, c, kind, 0, rot_view_proj);
+}
+
+snell_status snell__composite_background_lookup(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                                int paraboloid, const float rot_view_proj[16])
+{
     mat4 inv;
-    snell_status st = snell__composite_prepare(ctx, c, kind);
+    snell_status st = sky_prog(ctx, c, kind, paraboloid);
     if (st != SNELL_OK) return st;
     glm_mat4_inv((vec4 *)rot_view_proj, inv);
     /* The triangle lies at the far plane (z = w): LEQUAL passes only where
@@ -124,9 +138,9 @@ snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, sn
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
-    glUseProgram(c->sky[kind]);
-    glUniformMatrix4fv(c->sky_inv[kind], 1, GL_FALSE, (const GLfloat *)inv);
-    glUniform1i(c->sky_env[kind], 0);
+    glUseProgram(c->sky[kind][paraboloid]);
+    glUniformMatrix4fv(c->sky_inv[kind][paraboloid], 1, GL_FALSE, (const GLfloat *)inv);
+    glUniform1i(c->sky_env[kind][paraboloid], 0);
     glBindVertexArray(c->empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDepthMask(GL_TRUE);

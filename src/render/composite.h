@@ -14,8 +14,8 @@ typedef struct snell__opaque_prog {
 
 typedef struct snell__composite {
     snell__opaque_prog opaque[SNELL__OUT_KINDS];
-    unsigned sky[SNELL__OUT_KINDS];
-    int sky_inv[SNELL__OUT_KINDS], sky_env[SNELL__OUT_KINDS];
+    unsigned sky[SNELL__OUT_KINDS][2];  /* [kind][look-up: cube, dual paraboloid] */
+    int sky_inv[SNELL__OUT_KINDS][2], sky_env[SNELL__OUT_KINDS][2];
     unsigned empty_vao;             /* the background draws without attributes */
 } snell__composite;
 
@@ -35,5 +35,9 @@ snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell_
  * is proj * view without the translation. */
 snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                          const float rot_view_proj[16]);
+/* The same with the environment on unit 0 as dual-paraboloid maps (a 2D
+ * array, render/env_paraboloid.h) if paraboloid, else the cube. */
+snell_status snell__composite_background_lookup(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                                int paraboloid, const float rot_view_proj[16]);
 
 #endif

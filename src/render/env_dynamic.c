@@ -19,8 +19,10 @@ void snell__env_dynamic_destroy(snell_ctx *ctx, snell__env_dynamic *d)
 {
     int i;
     if (d->views)
-        for (i = 0; i < SNELL_MAX_GLASS; i++)
+        for (i = 0; i < SNELL_MAX_GLASS; i++) {
             if (d->views[i].texture) glDeleteTextures(1, &d->views[i].texture);
+            if (d->views[i].paraboloid) glDeleteTextures(1, &d->views[i].paraboloid);
+        }
     snell__free(&ctx->alloc, d->views);
     if (d->fbo) glDeleteFramebuffers(1, &d->fbo);
     if (d->depth_rb) glDeleteRenderbuffers(1, &d->depth_rb);
@@ -60,6 +62,25 @@ static void remember(snell__env_view *v, const snell_env *env, const snell_opaqu
     }
 }
 
+/* The view's cube, or with dp its dual-paraboloid maps, made from the cube
+ * once per re-render (one pass per map). */
+static snell_status paraboloid_of(snell_ctx *ctx, snell__env_view *v, snell__paraboloid_gen *dp, unsigned *texture,
+                                  snell_object_stats *stats)
+{
+    snell_status st;
+    *texture = v->texture;
+    if (!dp) return SNELL_OK;
+    if (!v->paraboloid_valid) {
+        st = snell__paraboloid_from_cube(ctx, dp, v->texture, snell__paraboloid_size(v->size), &v->paraboloid,
+                                         &v->paraboloid_size);
+        if (st != SNELL_OK) return st;
+        v->paraboloid_valid = 1;
+        stats->passes += 2;
+    }
+    *texture = v->paraboloid;
+    return SNELL_OK;
+}
+
 static snell_status make_targets(snell_ctx *ctx, snell__env_dynamic *d, snell__env_view *v, int size)
 {
     if (!d->fbo) glGenFramebuffers(1, &d->fbo);
@@ -82,8 +103,8 @@ static snell_status make_targets(snell_ctx *ctx, snell__env_dynamic *d, snell__e
 
 snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, snell__composite *comp, int slot,
                                        const snell_env *env, const snell_opaque *list, int count,
-                                       const float centre[3], float radius, int size, unsigned *texture,
-                                       snell_object_stats *stats)
+                                       const float centre[3], float radius, int size, snell__paraboloid_gen *dp,
+                                       unsigned *texture, snell_object_stats *stats)
 {
     snell__env_view *v;
     snell__pass pass;
@@ -103,8 +124,7 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, sn
     v = &d->views[slot];
     if (!changed(v, env, list, count, centre, size)) {
         stats->skipped |= SNELL_SKIP_ENV_UPDATE;
-        *texture = v->texture;
-        return SNELL_OK;
+        return paraboloid_of(ctx, v, dp, texture, stats);
     }
     if ((st = make_targets(ctx, d, v, size)) != SNELL_OK) return st;
     /* Seen from the glass centre: objects beyond the glass's own bounding
@@ -137,7 +157,7 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, sn
     if (st != SNELL_OK) return st;
     if (glGetError() != GL_NO_ERROR) return snell__fail(ctx, SNELL_E_GL, "GL error rendering a dynamic environment");
     remember(v, env, list, count, centre);
+    v->paraboloid_valid = 0;
     stats->env_updated = 1;
-    *texture = v->texture;
-    return SNELL_OK;
+    return paraboloid_of(ctx, v, dp, texture, stats);
 }

@@ -6,10 +6,13 @@
 #define SNELL_ENV_DYNAMIC_H
 
 #include "render/composite.h"
+#include "render/env_paraboloid.h"
 
 typedef struct snell__env_view {
     unsigned texture;                 /* GL cubemap, 0 = none yet */
     int size;
+    unsigned paraboloid;              /* its dual-paraboloid maps, made from it when asked for; 0 = none yet */
+    int paraboloid_size, paraboloid_valid;
     /* what the texture shows (for the "nothing moved" skip) */
     int valid;
     const snell_env *env;
@@ -31,10 +34,12 @@ void snell__env_dynamic_destroy(snell_ctx *ctx, snell__env_dynamic *d);
 
 /* The cubemap glass object `slot` sees from centre: re-rendered when
  * anything changed (stats->env_updated, passes) or reused
- * (SNELL_SKIP_ENV_UPDATE). size: face size, 0 = half of env's, 16..256. */
+ * (SNELL_SKIP_ENV_UPDATE). size: face size, 0 = half of env's, 16..256.
+ * With dp (not NULL) *texture is instead its dual-paraboloid maps
+ * (snell__paraboloid_size(size)), made from the cube after each re-render. */
 snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, snell__composite *comp, int slot,
                                        const snell_env *env, const snell_opaque *list, int count,
-                                       const float centre[3], float radius, int size, unsigned *texture,
-                                       snell_object_stats *stats);
+                                       const float centre[3], float radius, int size, snell__paraboloid_gen *dp,
+                                       unsigned *texture, snell_object_stats *stats);
 
 #endif

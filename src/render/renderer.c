@@ -143,6 +143,11 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown shading %d", (int)d.shading);
     }
     r->shading = d.shading;
+    if ((unsigned)d.env_lookup > SNELL_ENV_LOOKUP_DUAL_PARABOLOID) {
+        snell__free(&ctx->alloc, r);
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown env_lookup %d", (int)d.env_lookup);
+    }
+    r->env_lookup = d.env_lookup;
     r->device = snell__device_class_of(snell_ctx_gl_renderer(ctx));
     r->out = d.output == SNELL_OUTPUT_COLOR ? SNELL__OUT_COLOR
              : d.output == SNELL_OUTPUT_EXIT_DIRECTION && snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float")
@@ -164,16 +169,18 @@ void snell_renderer_destroy(snell_renderer *r)
 {
     snell_ctx *ctx;
     snell__gl_scope sc;
-    int m;
+    int m, dp;
     if (!r) return;
     /* Its GL objects are deleted in its context, made current for the moment
      * if need be; after snell_ctx_destroy they are gone with it and the GL
      * calls below reach no context (snell__gl_scope_enter). */
     snell__gl_scope_enter(r->ctx, &sc);
     snell__prepared_destroy(r->ctx, &r->prepared);
-    for (m = 0; m < SNELL_METHOD_COUNT_; m++)
-        if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
+    for (dp = 0; dp < 2; dp++)
+        for (m = 0; m < SNELL_METHOD_COUNT_; m++)
+            if (r->method_state[dp][m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[dp][m]);
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
+    snell__paraboloid_gen_destroy(&r->dp);
     snell__composite_destroy(&r->comp);
     snell__gbuffer_destroy(&r->gbuffer);
     snell__gbuffer_destroy(&r->backfaces);
@@ -191,27 +198,35 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__ctx_release(ctx);
 }
 
-/* Methods are created on first use; one that fails (a device that cannot
- * compile its shaders, say) fails alone and is not retried, except after
- * running out of memory. */
+/* Methods are created on first use, per environment look-up (their
+ * programs are built for one: SNELL__OUT_ENV_PARABOLOID); one that fails (a
+ * device that cannot compile its shaders, say) fails alone and is not
+ * retried, except after running out of memory. */
 static snell_status method_state(void *user, const snell__method *m, void **state)
 {
     snell_renderer *r = (snell_renderer *)user;
-    int id = (int)m->info->method;
-    if (!r->method_state[id] && r->method_status[id] == SNELL_OK) {
-        snell_status st = m->create(r->ctx, r->out, &r->method_state[id]);
+    int id = (int)m->info->method, dp = r->choosing_paraboloid;
+    if (!r->method_state[dp][id] && r->method_status[dp][id] == SNELL_OK) {
+        snell__output_kind out = (snell__output_kind)(r->out | (dp ? SNELL__OUT_ENV_PARABOLOID : 0));
+        snell_status st = m->create(r->ctx, out, &r->method_state[dp][id]);
         if (st == SNELL_E_NOMEM) return st;
         if (st != SNELL_OK) {
-            r->method_status[id] = st;
-            snprintf(r->method_error[id], sizeof r->method_error[id], "%s", snell_last_error(r->ctx));
-            snell__log(r->ctx, SNELL_LOG_WARN, "method %s unavailable: %s", m->info->name, r->method_error[id]);
+            r->method_status[dp][id] = st;
+            snprintf(r->method_error[dp][id], sizeof r->method_error[dp][id], "%s", snell_last_error(r->ctx));
+            snell__log(r->ctx, SNELL_LOG_WARN, "method %s unavailable: %s", m->info->name, r->method_error[dp][id]);
         }
     }
-    if (r->method_status[id] != SNELL_OK)
-        return snell__fail(r->ctx, r->method_status[id], "method %s unavailable: %s", m->info->name,
-                           r->method_error[id]);
-    *state = r->method_state[id];
+    if (r->method_status[dp][id] != SNELL_OK)
+        return snell__fail(r->ctx, r->method_status[dp][id], "method %s unavailable: %s", m->info->name,
+                           r->method_error[dp][id]);
+    *state = r->method_state[dp][id];
     return SNELL_OK;
+}
+
+int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic)
+{
+    (void)dynamic;
+    return r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID;
 }
 
 /* Logs a method warning once per (object slot, mesh version, method). */
@@ -251,7 +266,12 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
                                  snell_object_stats *st)
 {
     void *state = NULL;
-    snell_status s = snell__scene_choose(r->ctx, o, method_state, r, &r->object_method[o->index], &state, st);
+    int dynamic = fd->opaque_count > 0;
+    snell_status s;
+    o->env_paraboloid = snell__renderer_env_paraboloid(r, dynamic);
+    st->env_paraboloid = o->env_paraboloid;
+    r->choosing_paraboloid = o->env_paraboloid;
+    s = snell__scene_choose(r->ctx, o, method_state, r, &r->object_method[o->index], &state, st);
     if (s != SNELL_OK) return s;
     r->object_state[o->index] = state;
     if (st->warning) warn_once(r, o, st);
@@ -260,11 +280,14 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
     if (r->object_method[o->index]->vertex_array && o->prepared)
         o->vao = r->object_method[o->index]->vertex_array(o->prepared);
     o->env_texture = fd->env->texture;
-    if (fd->opaque_count > 0) {
+    if (dynamic) {
         /* The glass sees the opaque objects through its dynamic environment. */
         s = snell__env_dynamic_update(r->ctx, &r->dyn, &r->comp, o->index, fd->env, fd->opaque, fd->opaque_count,
-                                      o->bsphere, o->bsphere[3], fd->dynamic_env_size, &o->env_texture, st);
+                                      o->bsphere, o->bsphere[3], fd->dynamic_env_size,
+                                      o->env_paraboloid ? &r->dp : NULL, &o->env_texture, st);
         if (s != SNELL_OK) return s;
+    } else if (o->env_paraboloid) {
+        if ((s = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &o->env_texture)) != SNELL_OK) return s;
     }
     choose_shading(r, o, st);
     return SNELL_OK;
@@ -273,7 +296,7 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
 static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *st)
 {
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, o->env_texture);
+    glBindTexture(o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, o->env_texture);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -384,10 +407,14 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         glm_mat4_copy(sc->view.view, rot);
         rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
         glm_mat4_mul(sc->view.proj, rot, vp);
+        int paraboloid = snell__renderer_env_paraboloid(r, 0);
+        unsigned tex = fd->env->texture;
+        if (paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &tex);
         glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_CUBE_MAP, fd->env->texture);
-        st = snell__composite_background(r->ctx, &r->comp, r->out, (const float *)vp);
+        glBindTexture(paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, tex);
+        if (st == SNELL_OK) st = snell__composite_background_lookup(r->ctx, &r->comp, r->out, paraboloid, (const float *)vp);
         s->background_drawn = 1;
+        s->background_paraboloid = paraboloid;
     }
     if (st == SNELL_OK && r->ssaa.factor > 1) {
         snell__ssaa_resolve(&r->ssaa, r->out_width, r->out_height);

@@ -6,6 +6,7 @@
 
 #include "render/composite.h"
 #include "render/env_dynamic.h"
+#include "render/env_paraboloid.h"
 #include "render/gbuffer.h"
 #include "render/prepared.h"
 #include "render/scene.h"
@@ -21,9 +22,13 @@ struct snell_renderer {
     snell_target target;
     snell__output_kind out;
     unsigned fbo, color_rb, depth_rb;
-    void *method_state[SNELL_METHOD_COUNT_];
-    snell_status method_status[SNELL_METHOD_COUNT_];  /* creation failed: not retried */
-    char method_error[SNELL_METHOD_COUNT_][160];
+    /* per environment look-up (0 cube, 1 dual paraboloid: SNELL__OUT_ENV_PARABOLOID) and method */
+    void *method_state[2][SNELL_METHOD_COUNT_];
+    snell_status method_status[2][SNELL_METHOD_COUNT_]; /* creation failed: not retried */
+    char method_error[2][SNELL_METHOD_COUNT_][160];
+    snell_env_lookup env_lookup;
+    int choosing_paraboloid;                          /* the look-up of the object being set up */
+    snell__paraboloid_gen dp;                         /* makes dual-paraboloid maps, on first use */
     unsigned warned[SNELL_MAX_GLASS];                 /* warn_once keys */
     snell__composite comp;
     snell__prepared_cache prepared;
@@ -41,5 +46,10 @@ struct snell_renderer {
     float *readback;                                  /* RGBA32F scratch for exit directions */
     uint8_t *readback8;
 };
+
+/* Is the environment looked up in dual-paraboloid maps, for the static
+ * environment (dynamic 0) or an object's dynamic one? AUTO: what measured
+ * better here (bench/BENCHMARKS.md "Environment look-up"). */
+int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic);
 
 #endif
