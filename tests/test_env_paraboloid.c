@@ -180,6 +180,32 @@ static snell_status frame_rgba(snell_ctx *ctx, snell_env_lookup lookup, const sn
     return st;
 }
 
+/* Exit-direction output does not read the environment: the paraboloid
+ * variant's programs (built with both defines) give the cube's directions. */
+static void exit_dir_check(snell_ctx *ctx, const snell_frame_desc *fd)
+{
+    enum { W = 64, H = 48 };
+    static float dirs[2][W * H * 3];
+    snell_renderer_desc rd;
+    snell_renderer *r = NULL;
+    int l, same = 1, i;
+    for (l = 0; l < 2; l++) {
+        memset(&rd, 0, sizeof rd);
+        rd.width = W;
+        rd.height = H;
+        rd.output = SNELL_OUTPUT_EXIT_DIRECTION;
+        rd.env_lookup = l ? SNELL_ENV_LOOKUP_DUAL_PARABOLOID : SNELL_ENV_LOOKUP_CUBE;
+        CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));
+        if (!r) return;
+        CHECK_OK_CTX(ctx, snell_render(r, fd, NULL));
+        CHECK_OK_CTX(ctx, snell_renderer_read_exit_dirs(r, dirs[l]));
+        snell_renderer_destroy(r);
+        r = NULL;
+    }
+    for (i = 0; i < W * H * 3; i++) same &= dirs[0][i] == dirs[1][i];
+    CHECK(same, "exit directions differ between the look-ups");
+}
+
 static void render_checks(snell_ctx *ctx, const snell_env *env)
 {
     enum { W = 160, H = 120 };
@@ -205,6 +231,7 @@ static void render_checks(snell_ctx *ctx, const snell_env *env)
     printf("static environment, %s: paraboloid vs cube PSNR %.2f dB, max %d/255\n", snell_method_str(fs.glass[0].method_used),
            e.psnr_db, e.max_abs);
     CHECK(e.psnr_db >= PSNR_STATIC_DB, "paraboloid frame %.2f dB from the cube frame < %.0f", e.psnr_db, PSNR_STATIC_DB);
+    exit_dir_check(ctx, &fd);
     /* a dynamic environment: an opaque cube beside the glass */
     memset(&op, 0, sizeof op);
     op.mesh = cube;
@@ -234,6 +261,9 @@ int main(void)
     CHECK_OK_CTX(ctx, snell_env_create(ctx, NULL, &env));
     memset(&rd, 0, sizeof rd);
     rd.width = rd.height = 16;
+    rd.env_lookup = (snell_env_lookup)7;
+    CHECK(snell_renderer_create(ctx, &rd, &r) == SNELL_E_INVALID_ARG && !r, "unknown env_lookup accepted");
+    rd.env_lookup = SNELL_ENV_LOOKUP_AUTO;
     CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));
     if (env && r) {
         lookup_checks(ctx, r, env);
