@@ -31,6 +31,7 @@
 #define MEAN_ERR_RATIO 1.5
 #define PSNR_STATIC_DB 36.0
 #define PSNR_DYNAMIC_DB 36.0
+#define PSNR_DIRECT_DB 34.0
 
 static unsigned long rng = 12345;
 static double urand(void)
@@ -218,6 +219,7 @@ static void render_checks(snell_ctx *ctx, const snell_env *env)
     snell_opaque op;
     snell_frame_stats fs;
     snell_image_error e;
+    int passes_from_cube;
     float model[16] = {0.4f, 0, 0, 0, 0, 0.4f, 0, 0, 0, 0, 0.4f, 0, 1.2f, -0.3f, -0.8f, 1};
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &sphere));
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &cd, &cube));
@@ -246,6 +248,17 @@ static void render_checks(snell_ctx *ctx, const snell_env *env)
     printf("dynamic environment: paraboloid vs cube PSNR %.2f dB, max %d/255\n", e.psnr_db, e.max_abs);
     CHECK(e.psnr_db >= PSNR_DYNAMIC_DB, "paraboloid frame %.2f dB from the cube frame < %.0f", e.psnr_db,
           PSNR_DYNAMIC_DB);
+    passes_from_cube = fs.glass[0].passes;
+    /* its maps rendered straight: 2 views instead of 6 faces and 2 resamplings */
+    CHECK_OK_CTX(ctx, frame_rgba(ctx, SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT, &fd, W, H, b, &fs));
+    CHECK(fs.glass[0].env_paraboloid && fs.glass[0].env_updated, "direct paraboloid maps not made");
+    CHECK(fs.glass[0].passes == passes_from_cube - 10, "direct maps: %d passes, want %d - 10 (2 x 2 instead of "
+          "6 x 2 + 2)", fs.glass[0].passes, passes_from_cube);
+    CHECK_OK(snell_metrics_image_error(b, a, W, H, NULL, &e));
+    printf("dynamic environment, maps rendered directly: paraboloid vs cube PSNR %.2f dB, max %d/255\n", e.psnr_db,
+           e.max_abs);
+    CHECK(e.psnr_db >= PSNR_DIRECT_DB, "direct paraboloid frame %.2f dB from the cube frame < %.0f", e.psnr_db,
+          PSNR_DIRECT_DB);
     snell_mesh_destroy(sphere);
     snell_mesh_destroy(cube);
 }

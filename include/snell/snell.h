@@ -648,7 +648,12 @@ typedef enum snell_env_lookup {
                                      * "Environment look-up"): the cube for the static and dynamic
                                      * environments alike */
     SNELL_ENV_LOOKUP_CUBE,
-    SNELL_ENV_LOOKUP_DUAL_PARABOLOID
+    SNELL_ENV_LOOKUP_DUAL_PARABOLOID,
+    /* the same, but a dynamic environment's maps are rendered straight from
+     * the glass centre (2 views instead of 6 cube faces): opaque objects are
+     * projected per vertex, which bends no edge, so they come out right only
+     * where their triangles are small as seen from the centre */
+    SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT
 } snell_env_lookup;
 
 typedef struct snell_renderer_desc {
@@ -808,8 +813,8 @@ snell_status snell_renderer_read_exit_dirs(snell_renderer *r, float *xyz);
 /* "float" or "packed-rgba8": how an EXIT_DIRECTION renderer stores directions. */
 const char *snell_renderer_exit_dir_encoding(const snell_renderer *r);
 /* The environment look-up the kernels and the background use
- * (snell_env_lookup: CUBE or DUAL_PARABOLOID; AUTO is the static
- * environment's choice), evaluated on the GPU for n directions (xyz, need not
+ * (snell_env_lookup: CUBE or DUAL_PARABOLOID, which DUAL_PARABOLOID_DIRECT
+ * is for a static environment; AUTO is the renderer's choice for one), evaluated on the GPU for n directions (xyz, need not
  * be unit) into n rgb triples: for measuring a look-up's error. Read from an
  * RGBA32F target where GL_EXT_color_buffer_float allows, else RGBA8 (to
  * 1/255). Makes and deletes its GL objects; GL state is left as it was.

@@ -12,10 +12,12 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stdint.h>
 #include <string.h>
 
 #define N_CASES 5
 #define N_DIRS 200000
+#define N_LOOKUPS 3 /* cube, dual paraboloid, dual paraboloid with dynamic maps rendered directly */
 
 typedef struct env_case {
     const char *name;
@@ -51,11 +53,11 @@ static double urand(void)
     return (double)(g_rng >> 11) / 9007199254740992.0;
 }
 
-/* One timed frame of case c, ended by glFinish. */
-static int render_case(snell_renderer *r, const snell_env *env, const env_case *c, const snell_mesh *sphere,
-                       const snell_mesh *cube, double *ms)
+/* One timed frame of case c, ended by glFinish, the opaque cube (if any) at
+ * orbit position frame. */
+static int render_case_at(snell_renderer *r, const snell_env *env, const env_case *c, const snell_mesh *sphere,
+                          const snell_mesh *cube, int frame, double *ms)
 {
-    static int frame; /* every call moves the opaque cube: no renderer's dynamic environment is ever reused */
     snell_frame_desc fd;
     snell_glass g;
     snell_opaque op;
@@ -76,7 +78,6 @@ static int render_case(snell_renderer *r, const snell_env *env, const env_case *
     if (c->opaque) {
         /* moves every frame, so every frame re-renders the dynamic environment */
         memset(&op, 0, sizeof op);
-        frame++;
         model[12] = 1.6f * cosf(0.1f * (float)frame);
         model[14] = 1.6f * sinf(0.1f * (float)frame);
         op.mesh = cube;
@@ -90,6 +91,38 @@ static int render_case(snell_renderer *r, const snell_env *env, const env_case *
     snell_renderer_finish(r);
     *ms = cli_now_ms() - t0;
     return 1;
+}
+
+/* PSNR (RGB, 8 bits) of one frame of case c through each look-up against
+ * the cube's (psnr[0] unused). */
+static int frame_psnr(snell_renderer *const *r, const snell_env *env, const env_case *c, const snell_mesh *sphere,
+                      const snell_mesh *cube, int size, double psnr[N_LOOKUPS])
+{
+    size_t n = (size_t)size * size * 4, i;
+    uint8_t *px[N_LOOKUPS];
+    int l, ok = 1;
+    double ms;
+    for (l = 0; l < N_LOOKUPS; l++) px[l] = (uint8_t *)malloc(n);
+    for (l = 0; l < N_LOOKUPS && ok; l++) /* the opaque cube at one position for all */
+        ok = px[l] && render_case_at(r[l], env, c, sphere, cube, 7, &ms) && snell_renderer_read_rgba(r[l], px[l]) == SNELL_OK;
+    for (l = 1; l < N_LOOKUPS && ok; l++) {
+        double se = 0.0;
+        for (i = 0; i < n; i++)
+            if (i % 4 != 3) se += ((double)px[l][i] - px[0][i]) * ((double)px[l][i] - px[0][i]);
+        se /= (double)(n / 4 * 3);
+        psnr[l] = se > 0.0 ? 20.0 * log10(255.0 / sqrt(se)) : INFINITY;
+    }
+    for (l = 0; l < N_LOOKUPS; l++) free(px[l]);
+    return ok;
+}
+
+/* The same, the opaque cube moved at every call: no renderer's dynamic
+ * environment is ever reused. */
+static int render_case(snell_renderer *r, const snell_env *env, const env_case *c, const snell_mesh *sphere,
+                       const snell_mesh *cube, double *ms)
+{
+    static int frame;
+    return render_case_at(r, env, c, sphere, cube, ++frame, ms);
 }
 
 typedef struct err_acc {
@@ -167,9 +200,11 @@ int snell_bench_env_main(int argc, char **argv)
     snell_ctx *ctx = NULL;
     snell_env *env = NULL;
     snell_mesh *sphere = NULL, *cube = NULL;
-    snell_renderer *r[2] = {NULL, NULL};
+    static const snell_env_lookup lookups[N_LOOKUPS] = {SNELL_ENV_LOOKUP_CUBE, SNELL_ENV_LOOKUP_DUAL_PARABOLOID,
+                                                        SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT};
+    snell_renderer *r[N_LOOKUPS] = {NULL, NULL, NULL};
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 64, 32}, cd = {SNELL_SHAPE_CUBE, 0, 0};
-    static double t[N_CASES][2][256], ratio[N_CASES][256];
+    static double t[N_CASES][N_LOOKUPS][256], ratio[N_CASES][256];
     float *dirs = (float *)malloc(sizeof(float) * 3 * N_DIRS);
     for (i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--env-lookup")) continue;
@@ -195,11 +230,11 @@ int snell_bench_env_main(int argc, char **argv)
         rc = 1;
         goto done;
     }
-    for (l = 0; l < 2; l++) {
+    for (l = 0; l < N_LOOKUPS; l++) {
         snell_renderer_desc rd;
         memset(&rd, 0, sizeof rd);
         rd.width = rd.height = size;
-        rd.env_lookup = l ? SNELL_ENV_LOOKUP_DUAL_PARABOLOID : SNELL_ENV_LOOKUP_CUBE;
+        rd.env_lookup = lookups[l];
         if (snell_renderer_create(ctx, &rd, &r[l]) != SNELL_OK) {
             fprintf(stderr, "snell-bench --env-lookup: %s\n", snell_last_error(ctx));
             rc = 1;
@@ -208,11 +243,11 @@ int snell_bench_env_main(int argc, char **argv)
     }
     printf("renderer: %s\nframe %dx%d, environment face %d (paraboloid maps 2 x %d^2), %d rounds after 2 of warm-up\n",
            snell_ctx_gl_renderer(ctx), size, size, face, 2 * face, frames);
-    /* Round by round, every case with both look-ups, the order alternating. */
+    /* Round by round, every case with every look-up, the order rotating. */
     for (i = -2; i < frames; i++)
         for (c = 0; c < N_CASES; c++)
-            for (l = 0; l < 2; l++) {
-                int which = (i & 1) ? 1 - l : l;
+            for (l = 0; l < N_LOOKUPS; l++) {
+                int which = (l + i + 2) % N_LOOKUPS;
                 double ms;
                 if (!render_case(r[which], env, &k_cases[c], sphere, cube, &ms)) {
                     fprintf(stderr, "snell-bench --env-lookup: %s: %s\n", k_cases[c].name, snell_last_error(ctx));
@@ -221,11 +256,21 @@ int snell_bench_env_main(int argc, char **argv)
                 }
                 if (i >= 0) t[c][which][i] = ms;
             }
-    printf("\n| case | cube ms | paraboloid ms | paraboloid / cube (median of rounds) |\n| --- | --- | --- | --- |\n");
+    printf("\n| case | cube ms | paraboloid ms | direct ms | paraboloid / cube | direct / cube | paraboloid PSNR | direct PSNR |\n"
+           "| --- | --- | --- | --- | --- | --- | --- | --- |\n");
     for (c = 0; c < N_CASES; c++) {
-        for (i = 0; i < frames; i++) ratio[c][i] = t[c][1][i] / t[c][0][i];
-        printf("| %s | %.2f | %.2f | %.3f |\n", k_cases[c].name, median(t[c][0], frames), median(t[c][1], frames),
-               median(ratio[c], frames));
+        double q[N_LOOKUPS], psnr[N_LOOKUPS];
+        if (!frame_psnr(r, env, &k_cases[c], sphere, cube, size, psnr)) {
+            fprintf(stderr, "snell-bench --env-lookup: %s: %s\n", k_cases[c].name, snell_last_error(ctx));
+            rc = 1;
+            goto done;
+        }
+        for (l = 1; l < N_LOOKUPS; l++) {
+            for (i = 0; i < frames; i++) ratio[c][i] = t[c][l][i] / t[c][0][i];
+            q[l] = median(ratio[c], frames);
+        }
+        printf("| %s | %.2f | %.2f | %.2f | %.3f | %.3f | %.2f | %.2f |\n", k_cases[c].name, median(t[c][0], frames),
+               median(t[c][1], frames), median(t[c][2], frames), q[1], q[2], psnr[1], psnr[2]);
     }
     printf("\n| directions | cube RMS /255 | cube max | paraboloid RMS /255 | paraboloid max |\n| --- | --- | --- | --- | --- |\n");
     for (c = 0; c < 2; c++) {
@@ -244,8 +289,7 @@ int snell_bench_env_main(int argc, char **argv)
                    sqrt(dp_e[l].sum / (3.0 * dp_e[l].n)), dp_e[l].max);
     }
 done:
-    snell_renderer_destroy(r[0]);
-    snell_renderer_destroy(r[1]);
+    for (l = 0; l < N_LOOKUPS; l++) snell_renderer_destroy(r[l]);
     snell_mesh_destroy(sphere);
     snell_mesh_destroy(cube);
     snell_env_destroy(env);

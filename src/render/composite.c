@@ -28,6 +28,7 @@ static snell_status opaque_prog(snell_ctx *ctx, snell__composite *c, snell__outp
 void snell__composite_destroy(snell__composite *c)
 {
     int k;
+    if (c->opaque_dp.prog) glDeleteProgram(c->opaque_dp.prog);
     for (k = 0; k < SNELL__OUT_KINDS; k++) {
         if (c->opaque[k].prog) glDeleteProgram(c->opaque[k].prog);
         if (c->sky[k][0]) glDeleteProgram(c->sky[k][0]);
@@ -63,23 +64,10 @@ snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, in
     return SNELL_OK;
 }
 
-snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
-                                     const snell_opaque *list, int count, const float view_proj[16],
-                                     const float eye[3])
+/* Each object's model, normal matrix and colour, then its mesh, with p in use. */
+static void draw_opaque_list(const snell__opaque_prog *p, const snell_opaque *list, int count)
 {
-    const snell__opaque_prog *p;
-    snell_status st;
     int i;
-    if (count == 0) return SNELL_OK;
-    for (i = 0; i < count; i++)
-        if ((st = snell__mesh_upload((snell_mesh *)list[i].mesh)) != SNELL_OK) return st;
-    if ((st = opaque_prog(ctx, c, kind, &p)) != SNELL_OK) return st;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glUseProgram(p->prog);
-    glUniformMatrix4fv(p->view_proj, 1, GL_FALSE, view_proj);
-    glUniform3fv(p->eye, 1, eye);
     for (i = 0; i < count; i++) {
         const snell_opaque *o = &list[i];
         const snell_mesh *m = o->mesh;
@@ -97,6 +85,62 @@ snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell_
         glUniform3fv(p->color, 1, color);
         snell__mesh_draw(m);
     }
+}
+
+snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                     const snell_opaque *list, int count, const float view_proj[16],
+                                     const float eye[3])
+{
+    const snell__opaque_prog *p;
+    snell_status st;
+    int i;
+    if (count == 0) return SNELL_OK;
+    for (i = 0; i < count; i++)
+        if ((st = snell__mesh_upload((snell_mesh *)list[i].mesh)) != SNELL_OK) return st;
+    if ((st = opaque_prog(ctx, c, kind, &p)) != SNELL_OK) return st;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(p->prog);
+    glUniformMatrix4fv(p->view_proj, 1, GL_FALSE, view_proj);
+    glUniform3fv(p->eye, 1, eye);
+    draw_opaque_list(p, list, count);
+    return SNELL_OK;
+}
+
+snell_status snell__composite_opaque_paraboloid(snell_ctx *ctx, snell__composite *c, const snell_opaque *list,
+                                               int count, const float centre[3], int layer, int size, float z_near,
+                                               float z_far)
+{
+    snell__opaque_prog *p = &c->opaque_dp;
+    snell_status st;
+    int i;
+    if (count == 0) return SNELL_OK;
+    for (i = 0; i < count; i++)
+        if ((st = snell__mesh_upload((snell_mesh *)list[i].mesh)) != SNELL_OK) return st;
+    if (!p->prog) {
+        st = snell__program_build(ctx, "opaque_paraboloid.vert", "opaque.frag", "#define SNELL_PARABOLOID_VIEW 1\n",
+                                  &p->prog);
+        if (st != SNELL_OK) return st;
+        p->model = glGetUniformLocation(p->prog, "u_model");
+        p->normal_matrix = glGetUniformLocation(p->prog, "u_normal_matrix");
+        p->eye = glGetUniformLocation(p->prog, "u_eye");
+        p->color = glGetUniformLocation(p->prog, "u_color");
+        c->dp_centre = glGetUniformLocation(p->prog, "u_centre");
+        c->dp_layer = glGetUniformLocation(p->prog, "u_layer");
+        c->dp_size = glGetUniformLocation(p->prog, "u_size");
+        c->dp_depth_range = glGetUniformLocation(p->prog, "u_depth_range");
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(p->prog);
+    glUniform3fv(p->eye, 1, centre);
+    glUniform3fv(c->dp_centre, 1, centre);
+    glUniform1f(c->dp_layer, (float)layer);
+    glUniform1f(c->dp_size, (float)size);
+    glUniform2f(c->dp_depth_range, z_near, z_far);
+    draw_opaque_list(p, list, count);
     return SNELL_OK;
 }
 

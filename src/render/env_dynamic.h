@@ -28,6 +28,8 @@ typedef struct snell__env_dynamic {
     snell__env_view *views;           /* SNELL_MAX_GLASS, allocated on first use */
     unsigned fbo, depth_rb;
     int depth_size;
+    unsigned dp_depth_rb;             /* for maps rendered directly (direct = 1) */
+    int dp_depth_size;
 } snell__env_dynamic;
 
 void snell__env_dynamic_destroy(snell_ctx *ctx, snell__env_dynamic *d);
@@ -36,10 +38,12 @@ void snell__env_dynamic_destroy(snell_ctx *ctx, snell__env_dynamic *d);
  * anything changed (stats->env_updated, passes) or reused
  * (SNELL_SKIP_ENV_UPDATE). size: face size, 0 = half of env's, 16..256.
  * With dp (not NULL) *texture is instead its dual-paraboloid maps
- * (snell__paraboloid_size(size)), made from the cube after each re-render. */
+ * (snell__paraboloid_size(size)): made from the cube after each re-render,
+ * or with direct rendered straight (2 views, no cube: opaque objects projected
+ * per vertex, opaque_paraboloid.vert). */
 snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, snell__composite *comp, int slot,
                                        const snell_env *env, const snell_opaque *list, int count,
                                        const float centre[3], float radius, int size, snell__paraboloid_gen *dp,
-                                       unsigned *texture, snell_object_stats *stats);
+                                       int direct, unsigned *texture, snell_object_stats *stats);
 
 #endif

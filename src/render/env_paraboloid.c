@@ -74,6 +74,30 @@ static unsigned texture_create(int size)
     return tex;
 }
 
+void snell__paraboloid_texture(int size, unsigned *tex, int *tex_size)
+{
+    if (*tex && *tex_size == size) return;
+    if (*tex) glDeleteTextures(1, tex);
+    *tex = texture_create(size);
+    *tex_size = size;
+}
+
+snell_status snell__paraboloid_draw_layer(snell_ctx *ctx, snell__paraboloid_gen *g, unsigned cube, int layer,
+                                          int size)
+{
+    snell_status st = make_generator(ctx, g);
+    if (st != SNELL_OK) return st;
+    glUseProgram(g->prog);
+    glUniform1i(g->u_env, 0);
+    glUniform1f(g->u_size, (float)size);
+    glUniform1f(g->u_layer, (float)layer);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, cube);
+    glBindVertexArray(0);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    return SNELL_OK;
+}
+
 snell_status snell__paraboloid_from_cube(snell_ctx *ctx, snell__paraboloid_gen *g, unsigned cube, int size,
                                          unsigned *tex, int *tex_size)
 {
@@ -86,25 +110,15 @@ snell_status snell__paraboloid_from_cube(snell_ctx *ctx, snell__paraboloid_gen *
     glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &prev_cube);
     glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &prev_array);
     glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &prev_vao);
-    if (!*tex || *tex_size != size) {
-        if (*tex) glDeleteTextures(1, tex);
-        *tex = texture_create(size);
-        *tex_size = size;
-    }
+    snell__paraboloid_texture(size, tex, tex_size);
     snell__pass_begin(&pass, g->fbo, size, size, 0, GL_ALWAYS, 1.0f); /* no depth attachment */
-    glUseProgram(g->prog);
-    glUniform1i(g->u_env, 0);
-    glUniform1f(g->u_size, (float)size);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, cube);
-    glBindVertexArray(0);
     for (layer = 0; layer < 2 && st == SNELL_OK; layer++) {
         glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, *tex, 0, layer);
         if (layer == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
             st = snell__fail(ctx, SNELL_E_GL, "dual-paraboloid framebuffer incomplete");
             break;
         }
-        glUniform1f(g->u_layer, (float)layer);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        st = snell__paraboloid_draw_layer(ctx, g, cube, layer, size);
     }
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0, 0);
     snell__pass_end(&pass);

@@ -31,6 +31,16 @@ int snell__paraboloid_size(int cube_size);
 void snell__dp_coords(const double dir[3], int size, double *u, double *v, int *layer);
 void snell__dp_dir(double u, double v, int layer, int size, double dir[3]);
 
+/* *tex made (if 0, or of another size than *tex_size): a size^2 x 2 RGBA8 2D
+ * array, GL_LINEAR, CLAMP_TO_EDGE; left bound to GL_TEXTURE_2D_ARRAY if made. */
+void snell__paraboloid_texture(int size, unsigned *tex, int *tex_size);
+
+/* Draws map `layer` (0: +Z, 1: -Z) of size^2 maps from the cubemap cube
+ * into the bound framebuffer at the far plane (depth 1: a LEQUAL test keeps
+ * what is nearer), binding its program, cube on unit 0 and no vertex array. */
+snell_status snell__paraboloid_draw_layer(snell_ctx *ctx, snell__paraboloid_gen *g, unsigned cube, int layer,
+                                          int size);
+
 /* Makes *tex (if 0, or its size changed: a size^2 x 2 RGBA8 2D array,
  * GL_LINEAR, CLAMP_TO_EDGE) and renders both layers from the cubemap cube.
  * Leaves the framebuffer, viewport, depth state, vertex array and texture

@@ -114,7 +114,7 @@ snell_status snell_renderer_env_probe(snell_renderer *r, const snell_env *env, s
         return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_renderer_env_probe: NULL argument");
     if (n < 1 || n > PROBE_MAX)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "snell_renderer_env_probe: n %d outside 1..%d", n, PROBE_MAX);
-    if ((unsigned)lookup > SNELL_ENV_LOOKUP_DUAL_PARABOLOID)
+    if ((unsigned)lookup > SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "snell_renderer_env_probe: unknown look-up %d", (int)lookup);
     if ((st = snell__ctx_check_current(r->ctx, "snell_renderer_env_probe")) != SNELL_OK) return st;
     if (!env->texture || (env->ctx && env->ctx != r->ctx))
@@ -125,8 +125,7 @@ snell_status snell_renderer_env_probe(snell_renderer *r, const snell_env *env, s
     p.height = (n + PROBE_WIDTH - 1) / PROBE_WIDTH;
     snell__glstate_save(&saved);
     st = run_probe(r, env,
-                   lookup == SNELL_ENV_LOOKUP_AUTO ? snell__renderer_env_paraboloid(r, 0)
-                                                   : lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID,
+                   lookup == SNELL_ENV_LOOKUP_AUTO ? snell__renderer_env_paraboloid(r, 0) : lookup != SNELL_ENV_LOOKUP_CUBE,
                    &p, dirs, n, rgb);
     probe_release(&p);
     glUseProgram(0); /* before restoring: ours is deleted (render/renderer.c says why) */

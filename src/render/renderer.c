@@ -143,7 +143,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown shading %d", (int)d.shading);
     }
     r->shading = d.shading;
-    if ((unsigned)d.env_lookup > SNELL_ENV_LOOKUP_DUAL_PARABOLOID) {
+    if ((unsigned)d.env_lookup > SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT) {
         snell__free(&ctx->alloc, r);
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown env_lookup %d", (int)d.env_lookup);
     }
@@ -226,7 +226,7 @@ static snell_status method_state(void *user, const snell__method *m, void **stat
 int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic)
 {
     (void)dynamic;
-    return r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID;
+    return r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID || r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT;
 }
 
 /* Logs a method warning once per (object slot, mesh version, method). */
@@ -284,7 +284,8 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
         /* The glass sees the opaque objects through its dynamic environment. */
         s = snell__env_dynamic_update(r->ctx, &r->dyn, &r->comp, o->index, fd->env, fd->opaque, fd->opaque_count,
                                       o->bsphere, o->bsphere[3], fd->dynamic_env_size,
-                                      o->env_paraboloid ? &r->dp : NULL, &o->env_texture, st);
+                                      o->env_paraboloid ? &r->dp : NULL,
+                                      r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT, &o->env_texture, st);
         if (s != SNELL_OK) return s;
     } else if (o->env_paraboloid) {
         if ((s = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &o->env_texture)) != SNELL_OK) return s;
