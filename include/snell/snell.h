@@ -644,9 +644,9 @@ typedef enum snell_shading {
  * environment's once, kept with it; a dynamic one's each time it is
  * re-rendered) at twice its face size, RGBA8, in one 2D array texture. */
 typedef enum snell_env_lookup {
-    SNELL_ENV_LOOKUP_AUTO = 0,      /* per use, what measured better on this machine (bench/BENCHMARKS.md
+    SNELL_ENV_LOOKUP_AUTO = 0,      /* per use, what measured better on llvmpipe (bench/BENCHMARKS.md
                                      * "Environment look-up"): the cube for the static and dynamic
-                                     * environments alike */
+                                     * environments alike (as fast, more accurate; cheaper updates) */
     SNELL_ENV_LOOKUP_CUBE,
     SNELL_ENV_LOOKUP_DUAL_PARABOLOID,
     /* the same, but a dynamic environment's maps are rendered straight from

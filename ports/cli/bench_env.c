@@ -1,8 +1,9 @@
 /* bench_env.c — snell-bench --env-lookup: the cube against the dual-paraboloid
- * environment look-up (snell_renderer_desc.env_lookup), both in one run.
- * Time: frames that take turns round by round (skybox alone, full-screen
- * kernels, a dynamic environment re-rendered every frame), medians and the
- * median of per-round ratios. Error: each look-up on the GPU
+ * environment look-up (snell_renderer_desc.env_lookup: dynamic maps made from
+ * the cube, or rendered directly), all in one run. Time: frames that take
+ * turns round by round (skybox alone, full-screen kernels, a dynamic
+ * environment re-rendered every frame), medians and the median of per-round
+ * ratios, and each case's frame against the cube's (PSNR). Error: each look-up on the GPU
  * (snell_renderer_env_probe) against the procedural environment's exact
  * radiance (snell_env_procedural_radiance), for uniformly random directions
  * and for directions within 1 degree of the paraboloids' rim (z = 0). */
@@ -15,7 +16,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#define N_CASES 5
+#define N_CASES 6
 #define N_DIRS 200000
 #define N_LOOKUPS 3 /* cube, dual paraboloid, dual paraboloid with dynamic maps rendered directly */
 
@@ -23,7 +24,8 @@ typedef struct env_case {
     const char *name;
     snell_method method;      /* glass drawn; SNELL_METHOD_COUNT_ = no glass (skybox alone) */
     float distance;           /* camera distance (a sphere of radius 1 at the origin) */
-    int opaque;               /* an opaque cube moving every frame: the dynamic environment re-renders */
+    int opaque;               /* an opaque object moving every frame, so the dynamic environment re-renders:
+                               * 1 a cube (12 triangles), 2 a dense sphere (65,536 triangles) */
 } env_case;
 
 static const env_case k_cases[N_CASES] = {
@@ -32,6 +34,7 @@ static const env_case k_cases[N_CASES] = {
     {"cubemap full-screen", SNELL_METHOD_CUBEMAP, 1.05f, 0},
     {"single, dynamic env", SNELL_METHOD_SINGLE, 3.5f, 1},
     {"cubemap, dynamic env", SNELL_METHOD_CUBEMAP, 3.5f, 1},
+    {"single, dynamic env, dense opaque", SNELL_METHOD_SINGLE, 3.5f, 2},
 };
 
 static int cmp_double(const void *a, const void *b)
@@ -53,10 +56,10 @@ static double urand(void)
     return (double)(g_rng >> 11) / 9007199254740992.0;
 }
 
-/* One timed frame of case c, ended by glFinish, the opaque cube (if any) at
+/* One timed frame of case c, ended by glFinish, its opaque object (if any) at
  * orbit position frame. */
 static int render_case_at(snell_renderer *r, const snell_env *env, const env_case *c, const snell_mesh *sphere,
-                          const snell_mesh *cube, int frame, double *ms)
+                          const snell_mesh *const *opaque, int frame, double *ms)
 {
     snell_frame_desc fd;
     snell_glass g;
@@ -80,7 +83,7 @@ static int render_case_at(snell_renderer *r, const snell_env *env, const env_cas
         memset(&op, 0, sizeof op);
         model[12] = 1.6f * cosf(0.1f * (float)frame);
         model[14] = 1.6f * sinf(0.1f * (float)frame);
-        op.mesh = cube;
+        op.mesh = opaque[c->opaque - 1];
         op.model = model;
         op.color[0] = 0.9f; op.color[1] = 0.4f; op.color[2] = 0.2f;
         fd.opaque = &op;
@@ -96,15 +99,15 @@ static int render_case_at(snell_renderer *r, const snell_env *env, const env_cas
 /* PSNR (RGB, 8 bits) of one frame of case c through each look-up against
  * the cube's (psnr[0] unused). */
 static int frame_psnr(snell_renderer *const *r, const snell_env *env, const env_case *c, const snell_mesh *sphere,
-                      const snell_mesh *cube, int size, double psnr[N_LOOKUPS])
+                      const snell_mesh *const *opaque, int size, double psnr[N_LOOKUPS])
 {
     size_t n = (size_t)size * size * 4, i;
     uint8_t *px[N_LOOKUPS];
     int l, ok = 1;
     double ms;
     for (l = 0; l < N_LOOKUPS; l++) px[l] = (uint8_t *)malloc(n);
-    for (l = 0; l < N_LOOKUPS && ok; l++) /* the opaque cube at one position for all */
-        ok = px[l] && render_case_at(r[l], env, c, sphere, cube, 7, &ms) && snell_renderer_read_rgba(r[l], px[l]) == SNELL_OK;
+    for (l = 0; l < N_LOOKUPS && ok; l++) /* the opaque object at one position for all */
+        ok = px[l] && render_case_at(r[l], env, c, sphere, opaque, 7, &ms) && snell_renderer_read_rgba(r[l], px[l]) == SNELL_OK;
     for (l = 1; l < N_LOOKUPS && ok; l++) {
         double se = 0.0;
         for (i = 0; i < n; i++)
@@ -116,13 +119,13 @@ static int frame_psnr(snell_renderer *const *r, const snell_env *env, const env_
     return ok;
 }
 
-/* The same, the opaque cube moved at every call: no renderer's dynamic
+/* The same, the opaque object moved at every call: no renderer's dynamic
  * environment is ever reused. */
 static int render_case(snell_renderer *r, const snell_env *env, const env_case *c, const snell_mesh *sphere,
-                       const snell_mesh *cube, double *ms)
+                       const snell_mesh *const *opaque, double *ms)
 {
     static int frame;
-    return render_case_at(r, env, c, sphere, cube, ++frame, ms);
+    return render_case_at(r, env, c, sphere, opaque, ++frame, ms);
 }
 
 typedef struct err_acc {
@@ -199,11 +202,12 @@ int snell_bench_env_main(int argc, char **argv)
     snell_env_desc ed;
     snell_ctx *ctx = NULL;
     snell_env *env = NULL;
-    snell_mesh *sphere = NULL, *cube = NULL;
+    snell_mesh *sphere = NULL, *opaque[2] = {NULL, NULL};
     static const snell_env_lookup lookups[N_LOOKUPS] = {SNELL_ENV_LOOKUP_CUBE, SNELL_ENV_LOOKUP_DUAL_PARABOLOID,
                                                         SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT};
     snell_renderer *r[N_LOOKUPS] = {NULL, NULL, NULL};
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 64, 32}, cd = {SNELL_SHAPE_CUBE, 0, 0};
+    snell_shape_desc dd = {SNELL_SHAPE_SPHERE, 256, 128};
     static double t[N_CASES][N_LOOKUPS][256], ratio[N_CASES][256];
     float *dirs = (float *)malloc(sizeof(float) * 3 * N_DIRS);
     for (i = 1; i < argc; i++) {
@@ -225,7 +229,8 @@ int snell_bench_env_main(int argc, char **argv)
     memset(&ed, 0, sizeof ed);
     ed.face_size = face;
     if (snell_ctx_create(NULL, &ctx) != SNELL_OK || snell_env_create(ctx, &ed, &env) != SNELL_OK ||
-        snell_mesh_create_shape(ctx, &sd, &sphere) != SNELL_OK || snell_mesh_create_shape(ctx, &cd, &cube) != SNELL_OK) {
+        snell_mesh_create_shape(ctx, &sd, &sphere) != SNELL_OK || snell_mesh_create_shape(ctx, &cd, &opaque[0]) != SNELL_OK ||
+        snell_mesh_create_shape(ctx, &dd, &opaque[1]) != SNELL_OK) {
         fprintf(stderr, "snell-bench --env-lookup: %s\n", snell_last_error(ctx));
         rc = 1;
         goto done;
@@ -249,7 +254,7 @@ int snell_bench_env_main(int argc, char **argv)
             for (l = 0; l < N_LOOKUPS; l++) {
                 int which = (l + i + 2) % N_LOOKUPS;
                 double ms;
-                if (!render_case(r[which], env, &k_cases[c], sphere, cube, &ms)) {
+                if (!render_case(r[which], env, &k_cases[c], sphere, (const snell_mesh *const *)opaque, &ms)) {
                     fprintf(stderr, "snell-bench --env-lookup: %s: %s\n", k_cases[c].name, snell_last_error(ctx));
                     rc = 1;
                     goto done;
@@ -260,7 +265,7 @@ int snell_bench_env_main(int argc, char **argv)
            "| --- | --- | --- | --- | --- | --- | --- | --- |\n");
     for (c = 0; c < N_CASES; c++) {
         double q[N_LOOKUPS], psnr[N_LOOKUPS];
-        if (!frame_psnr(r, env, &k_cases[c], sphere, cube, size, psnr)) {
+        if (!frame_psnr(r, env, &k_cases[c], sphere, (const snell_mesh *const *)opaque, size, psnr)) {
             fprintf(stderr, "snell-bench --env-lookup: %s: %s\n", k_cases[c].name, snell_last_error(ctx));
             rc = 1;
             goto done;
@@ -291,7 +296,8 @@ int snell_bench_env_main(int argc, char **argv)
 done:
     for (l = 0; l < N_LOOKUPS; l++) snell_renderer_destroy(r[l]);
     snell_mesh_destroy(sphere);
-    snell_mesh_destroy(cube);
+    snell_mesh_destroy(opaque[0]);
+    snell_mesh_destroy(opaque[1]);
     snell_env_destroy(env);
     snell_ctx_destroy(ctx);
     free(dirs);
