@@ -13,6 +13,7 @@ precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 
 
 uniform highp vec3 u_eye;
@@ -38,7 +39,8 @@ void main()
 #ifdef SNELL_THIN
     vec3 rs, ts;
     snell_thin_slab(-dot(v, n), u_ior, u_sigma, u_thickness, rs, ts);
-    snell_write(snell_env(v) * u_tint * ts + snell_env(r) * rs, v);
+    highp vec3 through = v; // straight on through the wall (snell_exit: to what lies beyond)
+    snell_write(snell_exit(world_pos, through) * u_tint * ts + snell_env(r) * rs, through);
 #else
     vec3 t;
     snell_refract(snell_h(v), n, snell_h(1.0 / u_ior), t);
@@ -53,9 +55,9 @@ void main()
     highp float c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
     highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
 
-    vec3 transmitted = snell_h(snell_env(t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
+    vec3 transmitted = snell_h(snell_exit(world_pos, t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
 #else
-    vec3 transmitted = snell_h(snell_env(t) * u_tint);
+    vec3 transmitted = snell_h(snell_exit(world_pos, t) * u_tint);
 #endif
     vec3 reflected = snell_h(snell_env(r));
     snell_write(mix(transmitted, reflected, fresnel), t);

@@ -241,6 +241,16 @@ static void render_checks(snell_ctx *ctx, const snell_env *env)
     op.color[0] = 0.9f; op.color[1] = 0.3f; op.color[2] = 0.2f;
     fd.opaque = &op;
     fd.opaque_count = 1;
+    /* seen through the scene layers (the default with opaque objects): exit
+     * rays march them, then look the static environment up */
+    CHECK_OK_CTX(ctx, frame_rgba(ctx, SNELL_ENV_LOOKUP_CUBE, &fd, W, H, a, &fs));
+    CHECK_OK_CTX(ctx, frame_rgba(ctx, SNELL_ENV_LOOKUP_DUAL_PARABOLOID, &fd, W, H, b, &fs));
+    CHECK(fs.glass[0].env_paraboloid && fs.scene_layer_passes > 0, "scene layers with paraboloid maps not used");
+    CHECK_OK(snell_metrics_image_error(b, a, W, H, NULL, &e));
+    printf("scene layers: paraboloid vs cube PSNR %.2f dB, max %d/255\n", e.psnr_db, e.max_abs);
+    CHECK(e.psnr_db >= PSNR_STATIC_DB, "paraboloid frame %.2f dB from the cube frame < %.0f", e.psnr_db, PSNR_STATIC_DB);
+    /* through a dynamic environment */
+    fd.scene_layers = -1;
     CHECK_OK_CTX(ctx, frame_rgba(ctx, SNELL_ENV_LOOKUP_CUBE, &fd, W, H, a, &fs));
     CHECK_OK_CTX(ctx, frame_rgba(ctx, SNELL_ENV_LOOKUP_DUAL_PARABOLOID, &fd, W, H, b, &fs));
     CHECK(fs.glass[0].env_paraboloid && fs.glass[0].env_updated, "dynamic paraboloid maps not made");

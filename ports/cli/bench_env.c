@@ -88,6 +88,7 @@ static int render_case_at(snell_renderer *r, const snell_env *env, const env_cas
         op.color[0] = 0.9f; op.color[1] = 0.4f; op.color[2] = 0.2f;
         fd.opaque = &op;
         fd.opaque_count = 1;
+        fd.scene_layers = -1; /* seen through the dynamic environment, not the scene layers */
     }
     t0 = cli_now_ms();
     if (snell_render(r, &fd, NULL) != SNELL_OK) return 0;

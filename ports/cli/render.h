@@ -35,6 +35,7 @@ typedef struct render_options {
     snell_shading shading;         /* --shading */
     snell_env_lookup env_lookup;   /* --env-lookup */
     int ssaa, msaa;                /* --ssaa S, --msaa N (snell_renderer_desc) */
+    int scene_layers;              /* --scene-layers N|auto|off (snell_frame_desc.scene_layers) */
     int normalize;                 /* fit each mesh into the unit sphere before placing it */
     int stats;                     /* --stats: frame and per-object statistics on stdout */
     int verbose;                   /* -v: the same on stderr, and the library's INFO messages */
