@@ -2,7 +2,10 @@
  * rendered from the centre with the background and all other objects", at a
  * lower resolution than the static one). Unlike the seed, which re-renders
  * every frame, a cubemap is re-rendered only when an opaque object, its
- * model or colour, the glass centre or the static environment changed. */
+ * model or colour, the glass centre or the static environment changed.
+ * With the dual-paraboloid look-up (render/env_paraboloid.h) the glass
+ * reads two maps instead: made from that cube, or rendered straight (2 views,
+ * no cube; SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT). */
 #include "render/env_dynamic.h"
 #include "render/env.h"
 #include "render/pass.h"
