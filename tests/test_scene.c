@@ -485,11 +485,11 @@ int main(void)
         rd.shading = test_shading();
         CHECK_OK(snell_renderer_create(ctx, &rd, &r2));
         if (r2) {
-            r2->method_status[0][SNELL_METHOD_CUBEMAP] = SNELL_E_UNSUPPORTED; /* [0]: the cube look-up's state */
-            snprintf(r2->method_error[0][SNELL_METHOD_CUBEMAP], sizeof r2->method_error[0][0], "test: no such device");
+            r2->method_status[SNELL_METHOD_CUBEMAP] = SNELL_E_UNSUPPORTED;
+            snprintf(r2->method_error[SNELL_METHOD_CUBEMAP], sizeof r2->method_error[0], "test: no such device");
             /* the image-space method, which AUTO would take next for the sphere */
-            r2->method_status[0][SNELL_METHOD_OLIVEIRA] = SNELL_E_UNSUPPORTED;
-            snprintf(r2->method_error[0][SNELL_METHOD_OLIVEIRA], sizeof r2->method_error[0][0], "test: no such device");
+            r2->method_status[SNELL_METHOD_OLIVEIRA] = SNELL_E_UNSUPPORTED;
+            snprintf(r2->method_error[SNELL_METHOD_OLIVEIRA], sizeof r2->method_error[0], "test: no such device");
             memset(&g1, 0, sizeof g1);
             g1.mesh = sphere;
             f1.glass = &g1;

@@ -19,15 +19,9 @@ typedef enum snell__output_kind {
     SNELL__OUT_KINDS
 } snell__output_kind;
 
-/* The environment look-up a kernel's programs are built for
- * (common/env.glsl): a bit above the output kind in the `out` that create()
- * receives. Kernels hand `out` to snell__glass_program_build unchanged,
- * which turns the bit into the define, so a kernel needs no code for it; the
- * renderer keeps one state per method and look-up. The object's environment
- * texture on unit 0 is then a 2D array of dual-paraboloid maps
- * (render/env_paraboloid.h) instead of a cube. */
-#define SNELL__OUT_ENV_PARABOLOID 0x10
-#define SNELL__OUT_KIND_MASK 0x0f
+/* What a program defines to look the environment up in dual-paraboloid
+ * maps instead of the cube (common/env.glsl; render/env_paraboloid.h). */
+#define SNELL__ENV_PARABOLOID_DEFINE "#define SNELL_ENV_DUAL_PARABOLOID 1\n"
 
 /* The frame's back-face maps (render/gbuffer.h): texel = window pixel +
  * band, valid for window pixels -band .. size + band - 1. */
@@ -69,7 +63,7 @@ typedef struct snell__object {
     const snell_mesh_analysis *analysis; /* NULL: not analysed (not needed, or failed) */
     unsigned env_texture;           /* what it sees: static env or its dynamic one, a cube or (env_paraboloid)
                                      * a 2D array of dual-paraboloid maps */
-    int env_paraboloid;
+    int env_paraboloid;             /* env_texture is a 2D array of dual-paraboloid maps (SNELL__GLASS_ENV_PARABOLOID) */
     int screen_space;               /* 0 forward, else shaded on the screen-space stage's G-buffer:
                                      * SNELL__SCREEN_* (render/gbuffer.h) */
     int gid;                        /* its id in the G-buffer (index + 1) */
@@ -157,8 +151,7 @@ const snell__method *snell__method_get(snell_method id);
 /* Resolves (zero = default) and range-checks the method's nested parameters in m. */
 snell_status snell__method_params_resolve(const snell__method *e, snell_glass_material *m, int object);
 
-/* Defines for a program variant of the given output kind ("#define ...\n"),
- * and its environment look-up (SNELL__OUT_ENV_PARABOLOID) if set. */
+/* Defines for a program variant of the given output kind ("#define ...\n"). */
 const char *snell__output_defines(snell__output_kind out);
 
 /* snprintf that tolerates truncation (reasons are for people). */

@@ -147,10 +147,11 @@ snell_status snell__composite_opaque_paraboloid(snell_ctx *ctx, snell__composite
 static snell_status sky_prog(snell_ctx *ctx, snell__composite *c, snell__output_kind kind, int paraboloid)
 {
     if (!c->sky[kind][paraboloid]) {
-        snell_status st = snell__program_build(
-            ctx, "skybox.vert", "skybox.frag",
-            snell__output_defines((snell__output_kind)(kind | (paraboloid ? SNELL__OUT_ENV_PARABOLOID : 0))),
-            &c->sky[kind][paraboloid]);
+        char defines[160];
+        snell_status st;
+        snprintf(defines, sizeof defines, "%s%s", snell__output_defines(kind),
+                 paraboloid ? SNELL__ENV_PARABOLOID_DEFINE : "");
+        st = snell__program_build(ctx, "skybox.vert", "skybox.frag", defines, &c->sky[kind][paraboloid]);
         if (st != SNELL_OK) return st;
         c->sky_inv[kind][paraboloid] = glGetUniformLocation(c->sky[kind][paraboloid], "u_inv_view_proj_rot");
         c->sky_env[kind][paraboloid] = glGetUniformLocation(c->sky[kind][paraboloid], "u_env");

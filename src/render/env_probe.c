@@ -57,7 +57,7 @@ static snell_status run_probe(snell_renderer *r, const snell_env *env, int parab
     scratch = (float *)snell__malloc(&r->ctx->alloc, (size_t)p->width * p->height * 4 * sizeof(float));
     if (!scratch) return snell__fail(r->ctx, SNELL_E_NOMEM, "env probe: out of memory for %d directions", n);
     st = snell__program_build(r->ctx, "screen.vert", "env_probe.frag",
-                              paraboloid ? "#define SNELL_ENV_DUAL_PARABOLOID 1\n" : NULL, &p->prog);
+                              paraboloid ? SNELL__ENV_PARABOLOID_DEFINE : NULL, &p->prog);
     if (st == SNELL_OK && paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, env, &env_tex);
     if (st == SNELL_OK) st = upload_dirs(r, p, dirs, n, scratch);
     if (st == SNELL_OK) {

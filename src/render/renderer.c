@@ -172,16 +172,15 @@ void snell_renderer_destroy(snell_renderer *r)
 {
     snell_ctx *ctx;
     snell__gl_scope sc;
-    int m, dp;
+    int m;
     if (!r) return;
     /* Its GL objects are deleted in its context, made current for the moment
      * if need be; after snell_ctx_destroy they are gone with it and the GL
      * calls below reach no context (snell__gl_scope_enter). */
     snell__gl_scope_enter(r->ctx, &sc);
     snell__prepared_destroy(r->ctx, &r->prepared);
-    for (dp = 0; dp < 2; dp++)
-        for (m = 0; m < SNELL_METHOD_COUNT_; m++)
-            if (r->method_state[dp][m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[dp][m]);
+    for (m = 0; m < SNELL_METHOD_COUNT_; m++)
+        if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
     snell__paraboloid_gen_destroy(&r->dp);
     snell__composite_destroy(&r->comp);
@@ -202,28 +201,26 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__ctx_release(ctx);
 }
 
-/* Methods are created on first use, per environment look-up (their
- * programs are built for one: SNELL__OUT_ENV_PARABOLOID); one that fails (a
- * device that cannot compile its shaders, say) fails alone and is not
- * retried, except after running out of memory. */
+/* Methods are created on first use; one that fails (a device that cannot
+ * compile its shaders, say) fails alone and is not retried, except after
+ * running out of memory. */
 static snell_status method_state(void *user, const snell__method *m, void **state)
 {
     snell_renderer *r = (snell_renderer *)user;
-    int id = (int)m->info->method, dp = r->choosing_paraboloid;
-    if (!r->method_state[dp][id] && r->method_status[dp][id] == SNELL_OK) {
-        snell__output_kind out = (snell__output_kind)(r->out | (dp ? SNELL__OUT_ENV_PARABOLOID : 0));
-        snell_status st = m->create(r->ctx, out, &r->method_state[dp][id]);
+    int id = (int)m->info->method;
+    if (!r->method_state[id] && r->method_status[id] == SNELL_OK) {
+        snell_status st = m->create(r->ctx, r->out, &r->method_state[id]);
         if (st == SNELL_E_NOMEM) return st;
         if (st != SNELL_OK) {
-            r->method_status[dp][id] = st;
-            snprintf(r->method_error[dp][id], sizeof r->method_error[dp][id], "%s", snell_last_error(r->ctx));
-            snell__log(r->ctx, SNELL_LOG_WARN, "method %s unavailable: %s", m->info->name, r->method_error[dp][id]);
+            r->method_status[id] = st;
+            snprintf(r->method_error[id], sizeof r->method_error[id], "%s", snell_last_error(r->ctx));
+            snell__log(r->ctx, SNELL_LOG_WARN, "method %s unavailable: %s", m->info->name, r->method_error[id]);
         }
     }
-    if (r->method_status[dp][id] != SNELL_OK)
-        return snell__fail(r->ctx, r->method_status[dp][id], "method %s unavailable: %s", m->info->name,
-                           r->method_error[dp][id]);
-    *state = r->method_state[dp][id];
+    if (r->method_status[id] != SNELL_OK)
+        return snell__fail(r->ctx, r->method_status[id], "method %s unavailable: %s", m->info->name,
+                           r->method_error[id]);
+    *state = r->method_state[id];
     return SNELL_OK;
 }
 
@@ -274,7 +271,6 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
     snell_status s;
     o->env_paraboloid = snell__renderer_env_paraboloid(r, dynamic);
     st->env_paraboloid = o->env_paraboloid;
-    r->choosing_paraboloid = o->env_paraboloid;
     s = snell__scene_choose(r->ctx, o, method_state, r, &r->object_method[o->index], &state, st);
     if (s != SNELL_OK) return s;
     r->object_state[o->index] = state;

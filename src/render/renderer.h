@@ -23,12 +23,10 @@ struct snell_renderer {
     snell_target target;
     snell__output_kind out;
     unsigned fbo, color_rb, depth_rb;
-    /* per environment look-up (0 cube, 1 dual paraboloid: SNELL__OUT_ENV_PARABOLOID) and method */
-    void *method_state[2][SNELL_METHOD_COUNT_];
-    snell_status method_status[2][SNELL_METHOD_COUNT_]; /* creation failed: not retried */
-    char method_error[2][SNELL_METHOD_COUNT_][160];
+    void *method_state[SNELL_METHOD_COUNT_];
+    snell_status method_status[SNELL_METHOD_COUNT_];  /* creation failed: not retried */
+    char method_error[SNELL_METHOD_COUNT_][160];
     snell_env_lookup env_lookup;
-    int choosing_paraboloid;                          /* the look-up of the object being set up */
     snell__paraboloid_gen dp;                         /* makes dual-paraboloid maps, on first use */
     unsigned warned[SNELL_MAX_GLASS];                 /* warn_once keys */
     snell__composite comp;
