@@ -8,12 +8,13 @@
  * horizon) are left out, since there both look-ups report the faces' 3x3 box
  * filter and the texel grid's aliasing, not their parameterisation.
  * (3) A frame through the paraboloid path against the cube path, by PSNR:
- * every kernel with the static environment, the scene layers, and a dynamic
+ * every kernel with the static environment, the water, the scene layers, and a dynamic
  * environment with an opaque object (its maps made from the cube or
  * rendered directly). */
 #include "test_util.h"
 #include "render/env_paraboloid.h"
 #include "snell/snell_metrics.h"
+#include "snell/snell_water.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -284,6 +285,34 @@ static void render_checks(snell_ctx *ctx, const snell_env *env)
     snell_mesh_destroy(cube);
 }
 
+/* The water (src/water/) reflects the static environment through the same look-up. */
+static void water_check(snell_ctx *ctx, const snell_env *env)
+{
+    enum { W = 128, H = 96 };
+    static uint8_t a[W * H * 4], b[W * H * 4];
+    snell_water *w = NULL;
+    snell_frame_desc fd;
+    snell_frame_stats fs;
+    snell_image_error e;
+    CHECK_OK_CTX(ctx, snell_water_create(ctx, &(snell_water_desc){.grid = 64, .sim = SNELL_WATER_SIM_CPU}, &w));
+    if (!w) return;
+    CHECK_OK(snell_water_drop(w, 0.3f, -0.2f, 0.15f, -0.03f));
+    CHECK_OK_CTX(ctx, snell_water_step(w, 0.0f, 20, NULL));
+    memset(&fd, 0, sizeof fd);
+    fd.env = env;
+    fd.water = w;
+    fd.camera.elevation = 0.6f;
+    fd.camera.distance = 3.6f;
+    CHECK_OK_CTX(ctx, frame_rgba(ctx, SNELL_ENV_LOOKUP_CUBE, &fd, W, H, a, &fs));
+    CHECK_OK_CTX(ctx, frame_rgba(ctx, SNELL_ENV_LOOKUP_DUAL_PARABOLOID, &fd, W, H, b, &fs));
+    CHECK(fs.water_drawn, "no water drawn");
+    CHECK_OK(snell_metrics_image_error(b, a, W, H, NULL, &e));
+    printf("water: paraboloid vs cube PSNR %.2f dB, max %d/255\n", e.psnr_db, e.max_abs);
+    CHECK(e.psnr_db >= PSNR_STATIC_DB, "water: paraboloid frame %.2f dB from the cube frame < %.0f", e.psnr_db,
+          PSNR_STATIC_DB);
+    snell_water_destroy(w);
+}
+
 int main(void)
 {
     snell_ctx *ctx;
@@ -302,6 +331,7 @@ int main(void)
     if (env && r) {
         lookup_checks(ctx, r, env);
         render_checks(ctx, env);
+        water_check(ctx, env);
     }
     snell_renderer_destroy(r);
     snell_env_destroy(env);

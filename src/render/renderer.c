@@ -413,8 +413,11 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
             st = snell__water_copy_scene(r->ctx, &r->water, r->fbo, r->width, r->height);
             glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
         }
+        unsigned env_tex = fd->env->texture;
+        int paraboloid = snell__renderer_env_paraboloid(r, 0); /* the water sees the static environment */
+        if (st == SNELL_OK && paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &env_tex);
         if (st == SNELL_OK)
-            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, fd->env->texture, fd->opaque,
+            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, env_tex, paraboloid, fd->opaque,
                                    objects ? fd->opaque_count : 0, s);
         s->water_objects = objects;
     }
