@@ -224,7 +224,7 @@ static void render_checks(snell_ctx *ctx, const snell_env *env)
     snell_image_error e;
     int passes_from_cube, m;
     static const snell_method methods[] = {SNELL_METHOD_SINGLE, SNELL_METHOD_CUBEMAP, SNELL_METHOD_WYMAN,
-                                           SNELL_METHOD_OLIVEIRA, SNELL_METHOD_PEEL};
+                                           SNELL_METHOD_OLIVEIRA, SNELL_METHOD_PEEL, SNELL_METHOD_EXACT};
     float model[16] = {0.4f, 0, 0, 0, 0, 0.4f, 0, 0, 0, 0, 0.4f, 0, 1.2f, -0.3f, -0.8f, 1};
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &sphere));
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &cd, &cube));
