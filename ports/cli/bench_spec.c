@@ -142,8 +142,8 @@ static int k_lod(bench_config *c, const char *v)
 }
 
 static const common_key g_common[] = {
-    {"scene", "a scene below, sphere|cube|torus|goblet|bunny, or a mesh file (normalised to the unit sphere)",
-     k_scene},
+    {"scene", "a scene below, a glTF scene file (.gltf/.glb), sphere|cube|torus|goblet|bunny, or a mesh file "
+              "(normalised to the unit sphere)", k_scene},
     {"size", "WxH image size", k_size},
     {"ior", "index of refraction of every glass object (default %g)", k_ior},
     {"absorption", "Beer-Lambert coefficient per unit length, a or r/g/b (default 0)", k_absorption},
@@ -265,7 +265,15 @@ static void config_defaults(bench_config *c, const snell_method_info *m)
     c->glass.method = m->method;
     c->width = c->height = 256;
     c->gpu_median = -1.0;
+    c->vs_scene = -1.0;
     c->lod = 1.0f;
+}
+
+/* The material keys: a scene file brings its own materials. */
+static int is_material_key(const common_key *k)
+{
+    return k && (k->apply == k_ior || k->apply == k_absorption || k->apply == k_attenuation ||
+                 k->apply == k_thickness || k->apply == k_tint);
 }
 
 static int apply_key(bench_config *c, const spec_key *k, const char *value)
@@ -291,6 +299,11 @@ static int expand(expansion *e, int depth, const char **chosen)
         config_defaults(c, e->method);
         len = (size_t)snprintf(c->spec, sizeof c->spec, "%s", e->method->name);
         for (k = 0; k < e->key_count; k++) {
+            if (is_material_key(e->keys[k].common) && bench_scene_is_file(chosen[0])) {
+                fprintf(stderr, "snell-bench: %s=: scene=%s brings its own materials; the material keys apply to "
+                                "mesh and named scenes only\n", e->keys[k].key, chosen[0]);
+                return 0;
+            }
             if (!apply_key(c, &e->keys[k], chosen[k])) return 0;
             if (len < sizeof c->spec)
                 len += (size_t)snprintf(c->spec + len, sizeof c->spec - len, ":%s=%s", e->keys[k].key, chosen[k]);
