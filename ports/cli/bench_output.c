@@ -446,18 +446,20 @@ int bench_write_plot(const char *path, const bench_config *cs, int n, const benc
 void bench_print_table(const bench_config *cs, int n)
 {
     char why[64];
-    int i, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
+    int i, xscene = 0, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
+    for (i = 0; i < n; i++) xscene |= cs[i].ok && cs[i].vs_scene >= 0;
     if (lp >= 0) printf("llvmpipe threads: %d (%s)\n", lp, why);
-    printf("%-58s %9s %7s %8s %7s %9s %9s %7s %7s %6s %6s\n", "configuration", "ms/frame", "xsingle", "dB/FULL",
-           "SSIM", "deg/MATCH", "deg/FULL", ">1deg", ">5deg", "NaN", "pareto");
+    printf("%-58s %9s %7s%s %8s %7s %9s %9s %7s %7s %6s %6s\n", "configuration", "ms/frame", "xsingle",
+           xscene ? "  xscene" : "", "dB/FULL", "SSIM", "deg/MATCH", "deg/FULL", ">1deg", ">5deg", "NaN", "pareto");
     for (i = 0; i < n; i++) {
         const bench_config *c = &cs[i];
         if (!c->ok) {
             printf("%-58s FAILED: %s\n", c->spec, c->error);
             continue;
         }
-        printf("%-58s %9.2f %7.3f %8.2f %7.4f ", c->spec, c->t_median, c->vs_single, c->img_glass[1].psnr_db,
-               c->ssim_glass[1]);
+        printf("%-58s %9.2f %7.3f", c->spec, c->t_median, c->vs_single);
+        if (xscene) printf(" %7.3f", c->vs_scene);
+        printf(" %8.2f %7.4f ", c->img_glass[1].psnr_db, c->ssim_glass[1]);
         /* Per-pixel angles only where they mean something (bench.h). */
         if (c->angles_meaningful)
             printf("%9.3g %9.3g %6.1f%% %6.1f%%", c->dir[0].mean_deg, c->dir[1].mean_deg,
@@ -468,7 +470,8 @@ void bench_print_table(const bench_config *cs, int n)
                c->warnings ? "  (method warns: preconditions fail)" : "");
     }
     printf("dB/FULL, SSIM: colour over the glass pixels against the FULL reference (area-averaged with --aa); "
-           "deg: mean exit-direction error, '-' on meshes where per-pixel angles are chaotic\n");
+           "deg: mean exit-direction error, '-' on meshes where per-pixel angles are chaotic%s\n",
+           xscene ? "; xscene: time over the same spec's on --baseline-scene, frames side by side" : "");
     bench_print_scene_table(cs, n);
 }
 
@@ -488,7 +491,10 @@ void bench_print_scene_table(const bench_config *cs, int n)
         for (m = 0; m < 3; m++) {
             const bench_scene_error *e = &c->whole[m];
             printf("%-58s %-9s", m ? "" : c->spec, rows[m]);
-            for (k = 0; k < BENCH_CLASS_COUNT; k++) printf(" %8.2f %6.4f", e->cls[k].img.psnr_db, e->cls[k].ssim);
+            for (k = 0; k < BENCH_CLASS_COUNT; k++) {
+                if (e->cls[k].img.pixels) printf(" %8.2f %6.4f", e->cls[k].img.psnr_db, e->cls[k].ssim);
+                else printf(" %15s", "-"); /* no pixel of this class */
+            }
             if (c->angles_meaningful)
                 printf(" %9.3g %9.3g %6.1f%%\n", e->dir.mean_deg, e->dir.p99_deg, 100.0 * e->dir.frac_above_5deg);
             else

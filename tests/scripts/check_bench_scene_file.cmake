@@ -1,0 +1,115 @@
+# snell-bench on glTF scene files (issue 13 item 5), in OUT_DIR; SCENES is
+# tests/data/scenes. Checks what follows from the scenes and the references:
+#  - exit 0, the per-class table printed (method, alone, ref-alone rows, pixel counts);
+#  - the file's objects: three_glass_two_opaque 3 glass + 2 opaque, glass_box 1 + 1;
+#  - the classes of the reference's first hit partition the image, none empty;
+#  - the method's frame and the objects drawn alone and composed cover >= 90% of the
+#    reference's glass pixels (their exit directions are compared there);
+#  - the method's background (the skybox, the reference's env lookup) within 1/255
+#    RMSE, its glass pixels far worse: classes not swapped;
+#  - the isolated reference differs from the whole-scene one only where the view ray
+#    meets glass first (an opaque or background pixel's path never meets glass), and
+#    on three_glass_two_opaque it does differ there (glass seen through glass);
+#  - with one glass object (glass_box) "alone" is the method's frame and the isolated
+#    reference is the whole-scene one;
+#  - --baseline-scene: overlap_1 is its own baseline (vs_scene 1), overlap_2 has a ratio.
+file(REMOVE_RECURSE "${OUT_DIR}")
+file(MAKE_DIRECTORY "${OUT_DIR}")
+set(three ${SCENES}/three_glass_two_opaque.gltf)
+set(box ${SCENES}/glass_box.gltf)
+execute_process(COMMAND ${EXE} -b single:scene=${three}:size=48x48 -b cubemap:scene=${three}:size=48x48
+                        -b single:scene=${box}:size=48x48 --frames 1 --warmup 0 --no-cache -q -o ${OUT_DIR}/bench
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "snell-bench exit ${rc}: ${err}")
+endif()
+if(NOT out MATCHES "whole scene against FULL with glass seen through glass" OR NOT out MATCHES " method  "
+   OR NOT out MATCHES " alone  " OR NOT out MATCHES " ref-alone " OR NOT out MATCHES " pixels  ")
+  message(FATAL_ERROR "no per-class table in:\n${out}")
+endif()
+file(READ "${OUT_DIR}/bench.json" json)
+string(JSON n LENGTH "${json}" results)
+if(NOT n EQUAL 3)
+  message(FATAL_ERROR "expected 3 results, got ${n}")
+endif()
+math(EXPR last "${n} - 1")
+foreach(i RANGE ${last})
+  string(JSON spec GET "${json}" results ${i} spec)
+  string(JSON ok GET "${json}" results ${i} ok)
+  if(NOT ok STREQUAL "ON" AND NOT ok STREQUAL "true")
+    string(JSON error ERROR_VARIABLE e GET "${json}" results ${i} error)
+    message(FATAL_ERROR "${spec} not ok: ${error}")
+  endif()
+  string(JSON glass GET "${json}" results ${i} glass_objects)
+  string(JSON opaque GET "${json}" results ${i} opaque_objects)
+  if(spec MATCHES "three_glass_two_opaque" AND NOT (glass EQUAL 3 AND opaque EQUAL 2))
+    message(FATAL_ERROR "${spec}: ${glass} glass, ${opaque} opaque objects")
+  endif()
+  if(spec MATCHES "glass_box" AND NOT (glass EQUAL 1 AND opaque EQUAL 1))
+    message(FATAL_ERROR "${spec}: ${glass} glass, ${opaque} opaque objects")
+  endif()
+  set(sum 0)
+  foreach(cls glass opaque background)
+    string(JSON px GET "${json}" results ${i} whole_scene method ${cls} pixels)
+    if(NOT px GREATER 0)
+      message(FATAL_ERROR "${spec}: no ${cls} pixel")
+    endif()
+    math(EXPR sum "${sum} + ${px}")
+  endforeach()
+  string(JSON all GET "${json}" results ${i} whole_scene method all pixels)
+  # the method's frame and the composed objects alone cover the glass pixels (exit directions compared)
+  foreach(img method alone)
+    string(JSON cmp GET "${json}" results ${i} whole_scene ${img} exit_dir_glass compared)
+    string(JSON gpx GET "${json}" results ${i} whole_scene ${img} glass pixels)
+    math(EXPR want "${gpx} * 9 / 10")
+    if(NOT cmp GREATER_EQUAL want)
+      message(FATAL_ERROR "${spec}: ${img}: ${cmp} of ${gpx} glass pixels compared")
+    endif()
+  endforeach()
+  if(NOT sum EQUAL 2304 OR NOT all EQUAL 2304)
+    message(FATAL_ERROR "${spec}: classes sum to ${sum}, all ${all}, image 2304")
+  endif()
+  string(JSON bg GET "${json}" results ${i} whole_scene method background rmse)
+  string(JSON gl GET "${json}" results ${i} whole_scene method glass rmse)
+  if(NOT bg LESS 1.0 OR NOT gl GREATER 10.0)
+    message(FATAL_ERROR "${spec}: background rmse ${bg} (want < 1), glass ${gl} (want > 10)")
+  endif()
+  foreach(cls opaque background)
+    string(JSON r GET "${json}" results ${i} whole_scene reference_isolated ${cls} rmse)
+    if(NOT r EQUAL 0)
+      message(FATAL_ERROR "${spec}: isolated reference differs on ${cls} pixels (rmse ${r})")
+    endif()
+  endforeach()
+  string(JSON r GET "${json}" results ${i} whole_scene reference_isolated glass rmse)
+  if(spec MATCHES "three_glass_two_opaque" AND NOT r GREATER 1.0)
+    message(FATAL_ERROR "${spec}: isolated reference equals the whole scene on glass (rmse ${r})")
+  endif()
+  if(spec MATCHES "glass_box")
+    if(NOT r EQUAL 0)
+      message(FATAL_ERROR "${spec}: one glass object, yet isolation changed its pixels (rmse ${r})")
+    endif()
+    foreach(cls glass opaque background all)
+      string(JSON m GET "${json}" results ${i} whole_scene method ${cls} rmse)
+      string(JSON a GET "${json}" results ${i} whole_scene alone ${cls} rmse)
+      if(NOT m STREQUAL a)
+        message(FATAL_ERROR "${spec}: one glass object, yet alone (${a}) differs from the frame (${m}) on ${cls}")
+      endif()
+    endforeach()
+  endif()
+endforeach()
+
+execute_process(COMMAND ${EXE} -b single:scene=${SCENES}/overlap_1.gltf:size=32x32
+                        -b single:scene=${SCENES}/overlap_2.gltf:size=32x32 --baseline-scene ${SCENES}/overlap_1.gltf
+                        --frames 3 --warmup 0 --no-cache -q -o ${OUT_DIR}/overlap
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "snell-bench --baseline-scene exit ${rc}: ${err}")
+endif()
+file(READ "${OUT_DIR}/overlap.json" json)
+string(JSON r1 GET "${json}" results 0 vs_scene)
+string(JSON r2 GET "${json}" results 1 vs_scene)
+string(JSON g2 GET "${json}" results 1 glass_objects)
+if(NOT r1 EQUAL 1 OR NOT r2 GREATER 0 OR NOT g2 EQUAL 2 OR NOT out MATCHES "xscene")
+  message(FATAL_ERROR "--baseline-scene: vs_scene ${r1} (want 1), ${r2} (want > 0), ${g2} glass objects:\n${out}")
+endif()
+message(STATUS "snell-bench on scene files: ${n} configurations ok, vs_scene ${r2}")
