@@ -141,6 +141,7 @@ static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, int aa, benc
         for (i = 0; i < fs.glass_count; i++) {
             c->warnings += fs.glass[i].warning != 0;
             b->draw_order[i] = fs.glass[i].draw_order;
+            c->methods_used[i] = fs.glass[i].method_used;
         }
     }
     snell_renderer_destroy(r);

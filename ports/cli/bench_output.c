@@ -182,6 +182,12 @@ static void json_result(FILE *f, const bench_config *c)
     }
     fprintf(f, ", \"glass_objects\": %d, \"opaque_objects\": %d, \"warnings\": %d, \"angles_meaningful\": %s",
             c->glass_objects, c->opaque_objects, c->warnings, c->angles_meaningful ? "true" : "false");
+    if (c->whole_measured) {
+        int k;
+        fprintf(f, ", \"methods_used\": [");
+        for (k = 0; k < c->glass_objects; k++) fprintf(f, "%s\"%s\"", k ? ", " : "", snell_method_str(c->methods_used[k]));
+        fprintf(f, "]");
+    }
     fprintf(f, ", \"time_ms\": {\"median\": ");
     json_num(f, c->t_median);
     fprintf(f, ", \"min\": ");

@@ -301,6 +301,7 @@ void bench_scene_frame(const bench_config *c, const bench_scene *s, const snell_
         glass[i].material.oliveira = c->glass.oliveira;
         glass[i].material.peel = c->glass.peel;
     }
+    for (i = 0; i < s->glass_count && i < c->object_method_count; i++) glass[i].material.method = c->object_methods[i];
     fd->env = env;
     fd->glass = glass;
     fd->glass_count = s->glass_count;

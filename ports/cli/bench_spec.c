@@ -141,6 +141,28 @@ static int k_lod(bench_config *c, const char *v)
     return 1;
 }
 
+/* methods=M0/M1/...: glass object i drawn with Mi (a registry name or auto),
+ * the objects past the list with the spec's method. */
+static int k_methods(bench_config *c, const char *v)
+{
+    const char *p = v;
+    c->object_method_count = 0;
+    for (;;) {
+        const char *e = strchr(p, '/');
+        size_t n = e ? (size_t)(e - p) : strlen(p);
+        char name[64];
+        if (n == 0 || n >= sizeof name || c->object_method_count == SNELL_MAX_GLASS)
+            return bad("methods", v, "method names (or auto) separated by /, one per glass object");
+        memcpy(name, p, n);
+        name[n] = '\0';
+        if (snell_method_from_str(name, &c->object_methods[c->object_method_count]) != SNELL_OK)
+            return bad("methods", v, "method names (or auto) separated by /, one per glass object");
+        c->object_method_count++;
+        if (!e) return 1;
+        p = e + 1;
+    }
+}
+
 static const common_key g_common[] = {
     {"scene", "a scene below, a glTF scene file (.gltf/.glb), sphere|cube|torus|goblet|bunny, or a mesh file "
               "(normalised to the unit sphere)", k_scene},
@@ -156,6 +178,8 @@ static const common_key g_common[] = {
     {"msaa", "multisampling N (the renderer's msaa), timed and measured", k_msaa},
     {"lod", "glass meshes simplified to this share of their triangles, 0..1 (default 1: the original; the "
             "reference keeps the original)", k_lod},
+    {"methods", "per glass object (scene order) a method or auto, M0/M1/...; the rest take the spec's method, "
+                "the MATCHED reference stays the spec method's model", k_methods},
 };
 #define COMMON_COUNT ((int)(sizeof g_common / sizeof *g_common))
 

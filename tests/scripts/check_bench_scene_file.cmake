@@ -12,13 +12,15 @@
 #    on three_glass_two_opaque it does differ there (glass seen through glass);
 #  - with one glass object (glass_box) "alone" is the method's frame and the isolated
 #    reference is the whole-scene one;
+#  - methods=peel/single: objects 0 and 1 drawn so, object 2 with the spec's cubemap;
 #  - --baseline-scene: overlap_1 is its own baseline (vs_scene 1), overlap_2 has a ratio.
 file(REMOVE_RECURSE "${OUT_DIR}")
 file(MAKE_DIRECTORY "${OUT_DIR}")
 set(three ${SCENES}/three_glass_two_opaque.gltf)
 set(box ${SCENES}/glass_box.gltf)
 execute_process(COMMAND ${EXE} -b single:scene=${three}:size=48x48 -b cubemap:scene=${three}:size=48x48
-                        -b single:scene=${box}:size=48x48 --frames 1 --warmup 0 --no-cache -q -o ${OUT_DIR}/bench
+                        -b single:scene=${box}:size=48x48 -b cubemap:scene=${three}:size=48x48:methods=peel/single
+                        --frames 1 --warmup 0 --no-cache -q -o ${OUT_DIR}/bench
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "snell-bench exit ${rc}: ${err}")
@@ -29,8 +31,16 @@ if(NOT out MATCHES "whole scene against FULL with glass seen through glass" OR N
 endif()
 file(READ "${OUT_DIR}/bench.json" json)
 string(JSON n LENGTH "${json}" results)
-if(NOT n EQUAL 3)
-  message(FATAL_ERROR "expected 3 results, got ${n}")
+if(NOT n EQUAL 4)
+  message(FATAL_ERROR "expected 4 results, got ${n}")
+endif()
+# methods=: objects 0 and 1 by the list, object 2 by the spec's method
+foreach(k 0 1 2)
+  string(JSON used GET "${json}" results 3 methods_used ${k})
+  list(APPEND used_list ${used})
+endforeach()
+if(NOT used_list STREQUAL "peel;single;cubemap")
+  message(FATAL_ERROR "methods=peel/single on cubemap: drawn with ${used_list}")
 endif()
 math(EXPR last "${n} - 1")
 foreach(i RANGE ${last})
