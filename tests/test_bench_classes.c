@@ -16,7 +16,11 @@
  *    class's RMSE is 20 * sqrt(changed / (3 * opaque pixels)); glass and
  *    background stay exact in PSNR.
  * 4. Only glass object 1's pixels differ: the glass class alone, in PSNR.
- * A mask or class mapping that put a pixel in the wrong class fails 2-4. */
+ * 5. The glass-through-glass class is the through mask within glass: given
+ *    glass object 2's block plus some background pixels, it counts the
+ *    block only; with 4.'s change (object 1) it stays exact, with the block
+ *    changed it shows the error; without a mask it is empty.
+ * A mask or class mapping that put a pixel in the wrong class fails 2-5. */
 #include "bench.h"
 #include "test_util.h"
 
@@ -39,7 +43,8 @@ static const block g_blocks[] = {
 #define BLOCKS ((int)(sizeof g_blocks / sizeof *g_blocks))
 
 static int16_t g_ids[W * H];
-static uint8_t g_ref[W * H * 4], g_test[W * H * 4], g_mask[W * H];
+static uint8_t g_ref[W * H * 4], g_test[W * H * 4], g_mask[W * H], g_through[W * H];
+static const uint8_t *g_through_in; /* the through mask given to bench_class_errors */
 
 static void layout(long count[BENCH_CLASS_COUNT])
 {
@@ -58,6 +63,7 @@ static void layout(long count[BENCH_CLASS_COUNT])
         count[g_ids[x] >= 0 ? BENCH_CLASS_GLASS : g_ids[x] == -1 ? BENCH_CLASS_BACKGROUND : BENCH_CLASS_OPAQUE]++;
     }
     count[BENCH_CLASS_ALL] = W * H;
+    count[BENCH_CLASS_GLASS_THROUGH] = 0; /* no through mask */
 }
 
 /* Distance (Chebyshev) from pixel (x, y) to the nearest non-background pixel, capped at 99. */
@@ -76,7 +82,7 @@ static int object_distance(int x, int y)
 static void errors(bench_class_error e[BENCH_CLASS_COUNT])
 {
     memset(e, 0, sizeof(bench_class_error) * BENCH_CLASS_COUNT);
-    CHECK_OK(bench_class_errors(g_test, g_ref, g_ids, W, H, g_mask, e));
+    CHECK_OK(bench_class_errors(g_test, g_ref, g_ids, g_through_in, W, H, g_mask, e));
 }
 
 static void check_exact(const bench_class_error *e, const char *what, int with_ssim)
@@ -107,7 +113,9 @@ int main(void)
         CHECK(e[c].img.pixels == count[c], "%s: %ld pixels, layout %ld", bench_class_names[c], e[c].img.pixels, count[c]);
         check_exact(&e[c], bench_class_names[c], 1);
     }
-    CHECK(e[0].img.pixels + e[1].img.pixels + e[2].img.pixels == e[3].img.pixels, "classes do not partition");
+    CHECK(e[BENCH_CLASS_GLASS].img.pixels + e[BENCH_CLASS_OPAQUE].img.pixels + e[BENCH_CLASS_BACKGROUND].img.pixels ==
+              e[BENCH_CLASS_ALL].img.pixels,
+          "classes do not partition");
 
     /* 2. background only, far from every object */
     for (y = 0; y < H; y++)
@@ -148,5 +156,18 @@ int main(void)
     check_exact(&e[BENCH_CLASS_BACKGROUND], "background, glass changed", 0);
     CHECK(e[BENCH_CLASS_GLASS].img.rmse > 0 && e[BENCH_CLASS_GLASS].img.max_abs == 5, "glass rmse %g",
           e[BENCH_CLASS_GLASS].img.rmse);
+
+    /* 5. through mask: glass object 2's block and a background strip */
+    for (x = 0; x < W * H; x++) g_through[x] = (uint8_t)(g_ids[x] == 2 || (g_ids[x] == -1 && x < 2 * W));
+    g_through_in = g_through;
+    errors(e);
+    CHECK(e[BENCH_CLASS_GLASS_THROUGH].img.pixels == 100, "through: %ld pixels, want object 2's 100",
+          e[BENCH_CLASS_GLASS_THROUGH].img.pixels);
+    check_exact(&e[BENCH_CLASS_GLASS_THROUGH], "through, object 1 changed", 0);
+    for (x = 0; x < W * H; x++)
+        if (g_ids[x] == 2) g_test[4 * x + 2] = (uint8_t)(g_ref[4 * x + 2] + 30);
+    errors(e);
+    CHECK(fabs(e[BENCH_CLASS_GLASS_THROUGH].img.rmse - 30.0 / sqrt(3.0)) < 1e-9, "through rmse %g",
+          e[BENCH_CLASS_GLASS_THROUGH].img.rmse);
     return test_finish();
 }

@@ -53,16 +53,21 @@ int bench_parse_int(const char *key, const char *v, int lo, int hi, int *out);
 
 /* ------------------------------------------------------- object classes */
 /* What a pixel's view ray meets first in the reference (snell_ref_output.object:
- * glass i -> i, opaque j -> -2 - j, nothing -> -1), and the whole image. */
+ * glass i -> i, opaque j -> -2 - j, nothing -> -1), and the whole image;
+ * GLASS_THROUGH is the part of GLASS where other glass shows: the pixels
+ * whose whole-scene reference colour differs from the isolated reference's
+ * (each object alone). GLASS, OPAQUE and BACKGROUND partition ALL. */
 typedef enum bench_class {
     BENCH_CLASS_GLASS = 0,
+    BENCH_CLASS_GLASS_THROUGH,
     BENCH_CLASS_OPAQUE,
     BENCH_CLASS_BACKGROUND,
     BENCH_CLASS_ALL,
     BENCH_CLASS_COUNT
 } bench_class;
 
-extern const char *const bench_class_names[BENCH_CLASS_COUNT]; /* "glass", "opaque", "background", "all" */
+/* "glass", "glass_through_glass", "opaque", "background", "all" */
+extern const char *const bench_class_names[BENCH_CLASS_COUNT];
 
 /* The colour error of one class of pixels. */
 typedef struct bench_class_error {
@@ -70,13 +75,15 @@ typedef struct bench_class_error {
     double ssim;                   /* snell_metrics_ssim over the same pixels */
 } bench_class_error;
 
-/* The class of a first-hit object id. */
+/* The class of a first-hit object id (GLASS, OPAQUE or BACKGROUND). */
 bench_class bench_class_of(int16_t object);
 /* The error of test against ref (RGBA8, w x h) over each class of the ids
- * object[] (the reference's); mask: w * h bytes of scratch. SNELL_OK or the
- * metrics' status. */
-snell_status bench_class_errors(const uint8_t *test, const uint8_t *ref, const int16_t *object, int w, int h,
-                                uint8_t *mask, bench_class_error out[BENCH_CLASS_COUNT]);
+ * object[] (the reference's); through: nonzero where glass shows other glass
+ * (NULL: nowhere); mask: w * h bytes of scratch. SNELL_OK or the metrics'
+ * status. */
+snell_status bench_class_errors(const uint8_t *test, const uint8_t *ref, const int16_t *object,
+                                const uint8_t *through, int w, int h, uint8_t *mask,
+                                bench_class_error out[BENCH_CLASS_COUNT]);
 
 /* The results of one image (the method's, or each glass object drawn alone)
  * against the FULL reference of the whole scene. */

@@ -76,7 +76,7 @@ typedef struct measure_buf {
     uint8_t *rgba, *mask, *either;
     float *dirs, *bgdirs, *err;
     int draw_order[SNELL_MAX_GLASS]; /* the colour frame's (snell_object_stats.draw_order) */
-    uint8_t *alone_rgba, *alone_mask, *one_rgba, *bg_rgba;
+    uint8_t *alone_rgba, *alone_mask, *one_rgba, *bg_rgba, *through;
     float *alone_dirs, *one_dirs;
 } measure_buf;
 
@@ -95,7 +95,8 @@ static int buf_alloc(measure_buf *b, const bench_config *c)
     b->bg_rgba = (uint8_t *)malloc(b->n * 4);
     b->alone_dirs = (float *)malloc(b->n * 3 * sizeof(float));
     b->one_dirs = (float *)malloc(b->n * 3 * sizeof(float));
-    return b->rgba && b->mask && b->either && b->dirs && b->bgdirs && b->err && b->alone_rgba && b->alone_mask &&
+    b->through = (uint8_t *)malloc(b->n);
+    return b->through && b->rgba && b->mask && b->either && b->dirs && b->bgdirs && b->err && b->alone_rgba && b->alone_mask &&
            b->one_rgba && b->bg_rgba && b->alone_dirs && b->one_dirs;
 }
 
@@ -113,6 +114,7 @@ static void buf_free(measure_buf *b)
     free(b->bg_rgba);
     free(b->alone_dirs);
     free(b->one_dirs);
+    free(b->through);
 }
 
 /* The colour frame (timing was done before, in bench_time_all), with the
@@ -335,6 +337,7 @@ static void whole_scene(snell_ctx *ctx, const snell_frame_desc *fd, const snell_
     const float *dirs[3];
     const uint8_t *masks[3];
     int cached, k;
+    size_t j;
     memset(&whole, 0, sizeof whole);
     if (fd->glass_count > 1) {
         if (!reference(fd, ref_glass, env_name, o, c, 1, 0, &whole, &cached)) return;
@@ -351,8 +354,10 @@ static void whole_scene(snell_ctx *ctx, const snell_frame_desc *fd, const snell_
     rgba[0] = b->rgba, rgba[1] = b->alone_rgba, rgba[2] = iso->rgba;
     dirs[0] = b->dirs, dirs[1] = b->alone_dirs, dirs[2] = iso->exit_dir;
     masks[0] = b->mask, masks[1] = b->alone_mask, masks[2] = iso->hit;
+    /* where other glass shows: the whole scene's colour is not the isolated one's */
+    for (j = 0; j < b->n; j++) b->through[j] = (uint8_t)(memcmp(ref->rgba + 4 * j, iso->rgba + 4 * j, 3) != 0);
     for (k = 0; k < 3; k++) {
-        if (bench_class_errors(rgba[k], ref->rgba, ref->object, c->width, c->height, b->either,
+        if (bench_class_errors(rgba[k], ref->rgba, ref->object, b->through, c->width, c->height, b->either,
                                c->whole[k].cls) != SNELL_OK) {
             bench_fail(c, "class errors", NULL);
             break;
