@@ -34,6 +34,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 
 #ifndef SNELL_SCREEN_SPACE
 #error "oliveira.frag shades in screen space only: the search reads the G-buffer's front surface"
@@ -227,9 +228,9 @@ void main()
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_env(dir) * u_tint * snell_beer_lambert(u_sigma, length_inside);
+    vec3 transmitted = snell_exit(p, dir) * u_tint * snell_beer_lambert(u_sigma, length_inside);
 #else
-    vec3 transmitted = snell_env(dir) * u_tint;
+    vec3 transmitted = snell_exit(p, dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel at the exit too: it transmits 1 - F and reflects F back in,

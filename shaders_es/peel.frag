@@ -45,6 +45,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 
 #define MAX_LAYERS 8          // SNELL_PEEL_MAX_LAYERS
 #define MAX_INTERFACES 10     // SNELL_PEEL_MAX_INTERFACES
@@ -344,9 +345,9 @@ void main()
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_env(dir) * tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_exit(p, dir) * tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = snell_env(dir) * tint;
+    vec3 transmitted = snell_exit(p, dir) * tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel inside too (peel param inner=on): the last exit transmits

@@ -13,6 +13,7 @@ precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 
 
 uniform highp vec3 u_eye;
@@ -53,9 +54,9 @@ void main()
     highp float c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
     highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
 
-    vec3 transmitted = snell_h(snell_env(t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
+    vec3 transmitted = snell_h(snell_exit(world_pos, t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
 #else
-    vec3 transmitted = snell_h(snell_env(t) * u_tint);
+    vec3 transmitted = snell_h(snell_exit(world_pos, t) * u_tint);
 #endif
     vec3 reflected = snell_h(snell_env(r));
     snell_write(mix(transmitted, reflected, fresnel), t);

@@ -21,6 +21,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 
 uniform highp vec3 u_eye;
 uniform float u_ior;
@@ -111,9 +112,9 @@ void main()
     dir = normalize(dir);
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_env(dir) * u_tint * snell_beer_lambert(u_sigma, d);
+    vec3 transmitted = snell_exit(p2, dir) * u_tint * snell_beer_lambert(u_sigma, d);
 #else
-    vec3 transmitted = snell_env(dir) * u_tint;
+    vec3 transmitted = snell_exit(p2, dir) * u_tint;
 #endif
     vec3 reflected = snell_env(r);
     snell_write(mix(transmitted, reflected, fresnel), dir);

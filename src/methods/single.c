@@ -12,8 +12,8 @@
  * on first use. */
 typedef struct single_state {
     snell__output_kind out;
-    snell__glass_program prog[3][2][2];
-    int u_thickness[3][2][2];
+    snell__glass_program prog[SNELL__GLASS_VARIANTS][2][2];
+    int u_thickness[SNELL__GLASS_VARIANTS][2][2];
 } single_state;
 
 static void single_destroy(snell_ctx *ctx, void *state);
@@ -56,7 +56,7 @@ static void single_destroy(snell_ctx *ctx, void *state)
     single_state *s = (single_state *)state;
     int i;
     if (!s) return;
-    for (i = 0; i < 12; i++) snell__glass_program_destroy(&s->prog[i >> 2][(i >> 1) & 1][i & 1]);
+    for (i = 0; i < 4 * SNELL__GLASS_VARIANTS; i++) snell__glass_program_destroy(&s->prog[i >> 2][(i >> 1) & 1][i & 1]);
     snell__free(&ctx->alloc, s);
 }
 
@@ -76,7 +76,7 @@ static snell_status single_draw(snell_ctx *ctx, void *state, const snell__view *
                                 snell_object_stats *stats)
 {
     single_state *s = (single_state *)state;
-    int thin = o->glass->material.thickness > 0.0f, screen = o->screen_space, absorb = o->glass->absorbs;
+    int thin = o->glass->material.thickness > 0.0f, screen = snell__glass_variant(o), absorb = o->glass->absorbs;
     const snell__glass_program *p;
     snell_status st = get_prog(ctx, s, screen, thin, absorb, &p);
     if (st != SNELL_OK) return st;
