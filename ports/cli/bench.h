@@ -110,6 +110,7 @@ typedef struct bench_config {
                                     * then the measured colour frame uses --aa) */
     float lod;                     /* lod=: glass meshes simplified to this triangle ratio; 1 = the
                                     * original (the default); references always use the original */
+    int scene_layers;              /* layers=: snell_frame_desc.scene_layers (0 auto, -1 off, 2..8) */
     snell_method object_methods[SNELL_MAX_GLASS]; /* methods=: glass object i's method (AUTO allowed), */
     int object_method_count;       /* for i < object_method_count; the others take glass.method */
 
@@ -125,6 +126,8 @@ typedef struct bench_config {
     int glass_objects, opaque_objects;
     int warnings;                  /* glass objects whose stats warn (method's preconditions fail) */
     snell_method methods_used[SNELL_MAX_GLASS]; /* what drew each glass object (the measured frame's stats) */
+    int layers_drawn;              /* the measured frame drew the scene layers (glass seen through glass):
+                                    * then the MATCHED and FULL comparisons are with isolate_glass = 0 */
     const char *encoding;          /* exit-direction storage: "float" or "packed-rgba8" */
     long nan_inf;                  /* non-finite exit-direction pixels (float target only) */
     snell_dir_error dir[2];        /* [0] vs MATCHED, [1] vs FULL */

@@ -2,10 +2,11 @@
  * colour frame and exit directions (SNELL_OUTPUT_EXIT_DIRECTION) compared with
  * the reference of the same scene in the MATCHED model (the method's own,
  * with its interface cap) and the FULL model (Whitted tree). The reference
- * runs with isolate_glass = 1: light that has left a glass object sees the
- * environment and the opaque objects but no other glass object, as the
- * renderer draws it, so the error measured is the method's own and not the
- * glass-through-glass light the renderer does not draw yet. Colour is
+ * models what the frame drew: where the renderer drew each glass object over
+ * its own environment (scene layers off) it runs with isolate_glass = 1
+ * (light that has left a glass object sees the environment and the opaque
+ * objects but no other glass object), where the frame drew the scene layers
+ * with isolate_glass = 0, so the error measured is the method's own. Colour is
  * compared over the glass pixels as PSNR and SSIM, on area-averaged images
  * with --aa S (the GPU frame supersampled S x S, the references with S x S
  * rays a pixel): pixel-centre colours of a bumpy scan alias. The exit
@@ -145,6 +146,7 @@ static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, int aa, benc
             b->draw_order[i] = fs.glass[i].draw_order;
             c->methods_used[i] = fs.glass[i].method_used;
         }
+        c->layers_drawn = fs.scene_layer_passes > 0;
     }
     snell_renderer_destroy(r);
     return ok;
@@ -226,10 +228,10 @@ static int reference(const snell_frame_desc *fd, const snell_glass *ref_glass, c
     p.threads = o->threads;
     p.samples = o->aa;
     if (!o->quiet)
-        fprintf(stderr, "    reference %s (%d interfaces%s)...\n", mode ? "FULL" : "MATCHED", p.max_interfaces,
-                isolate ? "" : ", the whole scene");
+        fprintf(stderr, "    reference %s (%d interfaces, %s)...\n", mode ? "FULL" : "MATCHED", p.max_interfaces,
+                isolate ? "glass objects isolated" : "the whole scene");
     if (bench_ref_get(&scene, &p, env_name, o->cache_dir, ref, cached) != SNELL_OK) {
-        bench_fail(c, isolate ? (mode ? "FULL reference" : "MATCHED reference") : "whole-scene FULL reference",
+        bench_fail(c, mode ? (isolate ? "isolated FULL reference" : "whole-scene FULL reference") : "MATCHED reference",
                    NULL);
         return 0;
     }
@@ -251,14 +253,16 @@ static void dir_error(const float *test, const uint8_t *test_mask, const bench_r
     snell_metrics_dir_error(&dd, out);
 }
 
-/* mode 0: MATCHED, 1: FULL, both isolate_glass = 1. keep: the reference is
- * handed back there (the caller frees it) instead of freed. */
+/* mode 0: MATCHED, 1: FULL, both with isolate_glass = 1 unless the frame drew
+ * the scene layers (then glass seen through glass is the renderer's to draw
+ * too). keep: the reference is handed back there (the caller frees it)
+ * instead of freed. */
 static int compare(const snell_frame_desc *fd, const snell_glass *ref_glass, const char *env_name,
                    const bench_options *o, bench_config *c, int mode, measure_buf *b, bench_ref_image *keep)
 {
     bench_ref_image ref;
     size_t j;
-    if (!reference(fd, ref_glass, env_name, o, c, mode, 1, &ref, &c->ref_cached[mode])) return 0;
+    if (!reference(fd, ref_glass, env_name, o, c, mode, !c->layers_drawn, &ref, &c->ref_cached[mode])) return 0;
     dir_error(b->dirs, b->mask, &ref, b->err, &c->dir[mode]);
     snell_metrics_image_error(b->rgba, ref.rgba, c->width, c->height, NULL, &c->img[mode]);
     for (j = 0; j < b->n; j++) b->either[j] = (uint8_t)(b->mask[j] || ref.hit[j]);
@@ -326,24 +330,27 @@ static int alone_frames(snell_ctx *ctx, const snell_frame_desc *fd, int aa, benc
 }
 
 /* c->whole[]: the method's frame, the objects drawn alone and the isolated
- * FULL reference iso against the FULL reference of the whole scene (with
- * one glass object that is iso itself: nothing else to see through). */
+ * FULL reference against the FULL reference of the whole scene. full: the
+ * FULL reference compare() used (isolated unless the frame drew the scene
+ * layers); the other one is rendered here. With one glass object both are
+ * the same: nothing else to see through. */
 static void whole_scene(snell_ctx *ctx, const snell_frame_desc *fd, const snell_glass *ref_glass, const char *env_name,
-                        const bench_options *o, bench_config *c, measure_buf *b, const bench_ref_image *iso)
+                        const bench_options *o, bench_config *c, measure_buf *b, const bench_ref_image *full)
 {
-    bench_ref_image whole;
-    const bench_ref_image *ref = iso;
+    bench_ref_image other;
+    const bench_ref_image *ref = full, *iso = full;
     const uint8_t *rgba[3];
     const float *dirs[3];
     const uint8_t *masks[3];
     int cached, k;
     size_t j;
-    memset(&whole, 0, sizeof whole);
+    memset(&other, 0, sizeof other);
     if (fd->glass_count > 1) {
-        if (!reference(fd, ref_glass, env_name, o, c, 1, 0, &whole, &cached)) return;
-        ref = &whole;
+        if (!reference(fd, ref_glass, env_name, o, c, 1, c->layers_drawn, &other, &cached)) return;
+        if (c->layers_drawn) iso = &other;
+        else ref = &other;
         if (!alone_frames(ctx, fd, o->aa, c, b)) {
-            bench_ref_free(&whole);
+            bench_ref_free(&other);
             return;
         }
     } else {
@@ -374,7 +381,7 @@ static void whole_scene(snell_ctx *ctx, const snell_frame_desc *fd, const snell_
         snprintf(path, sizeof path, "%s/%s.ref-scene.png", o->images_dir, name);
         snell_write_png(path, c->width, c->height, ref->rgba);
     }
-    bench_ref_free(&whole);
+    bench_ref_free(&other);
 }
 
 void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, const bench_options *o,
@@ -400,10 +407,10 @@ void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, c
         if (bench_scene_lod(ctx, c, glass, fd.glass_count) != SNELL_OK) bench_fail(c, "lod", ctx);
         else if (colour_frame(ctx, &fd, o->aa, c, &b) && exit_dir_frames(ctx, &fd, c, &b) &&
                  compare(&fd, ref_glass, env_name, o, c, 0, &b, NULL)) {
-            bench_ref_image iso;
-            if (compare(&fd, ref_glass, env_name, o, c, 1, &b, &iso)) {
-                whole_scene(ctx, &fd, ref_glass, env_name, o, c, &b, &iso);
-                bench_ref_free(&iso);
+            bench_ref_image full;
+            if (compare(&fd, ref_glass, env_name, o, c, 1, &b, &full)) {
+                whole_scene(ctx, &fd, ref_glass, env_name, o, c, &b, &full);
+                bench_ref_free(&full);
             }
         }
     }

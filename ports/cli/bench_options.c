@@ -56,9 +56,10 @@ static void usage(FILE *f)
             "  --2d ...               the 2D lightmap benchmarks (see --2d --help)\n"
             "  -q                     no progress lines\n"
             "  -h, --help             this text\n\n"
-            "The error is measured against the reference tracer rendering the same scene with\n"
-            "isolate_glass = 1: light that left a glass object sees the environment and the opaque\n"
-            "objects but no other glass object, as the renderer draws it, so the error is the method's own.\n"
+            "The error is measured against the reference tracer rendering the same scene as the frame\n"
+            "drew it: isolate_glass = 1 (light that left a glass object sees the environment and the opaque\n"
+            "objects but no other glass object) unless the frame drew the scene layers (glass seen through\n"
+            "glass), so the error is the method's own.\n"
             "Then against FULL of the whole scene (glass seen through glass), per class of the reference's first\n"
             "hit (glass, opaque, background, all), beside each glass object drawn alone by the method.\n\n"
             "example: snell-bench -b single:scene=bunny:size=256x256,512x512 -b cubemap:scene=pair:iterations=4,8\n");

@@ -156,9 +156,11 @@ static void json_header(FILE *f, const bench_options *o, const bench_run_info *r
         json_str(f, "angles over pixels that are glass in both the reference hit mask and the method's coverage; "
                     "mismatches counted, not compared");
         fprintf(f, ",\n  \"reference\": ");
-        json_str(f, "snell_ref of the same scene with isolate_glass = 1: light that left a glass object sees the "
-                    "environment and the opaque objects but no other glass object, as the renderer draws it, so the "
-                    "error is the method's own");
+        json_str(f, "snell_ref of the same scene, as the frame drew it: with isolate_glass = 1 (light that left a "
+                    "glass object sees the environment and the opaque objects but no other glass object) where the "
+                    "renderer drew each glass object over its own environment, with isolate_glass = 0 where it drew "
+                    "the scene layers (reference_isolate_glass per result), so the error is the method's own; "
+                    "whole_scene: against FULL with isolate_glass = 0 in any case");
     }
     fprintf(f, ",\n  \"results\": [\n");
 }
@@ -182,6 +184,8 @@ static void json_result(FILE *f, const bench_config *c)
     }
     fprintf(f, ", \"glass_objects\": %d, \"opaque_objects\": %d, \"warnings\": %d, \"angles_meaningful\": %s",
             c->glass_objects, c->opaque_objects, c->warnings, c->angles_meaningful ? "true" : "false");
+    fprintf(f, ", \"scene_layers\": %d, \"reference_isolate_glass\": %s", c->scene_layers,
+            c->layers_drawn ? "false" : "true");
     if (c->whole_measured) {
         int k;
         fprintf(f, ", \"methods_used\": [");

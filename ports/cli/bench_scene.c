@@ -307,6 +307,7 @@ void bench_scene_frame(const bench_config *c, const bench_scene *s, const snell_
     fd->glass_count = s->glass_count;
     fd->opaque = s->opaque_count ? s->opaque : NULL;
     fd->opaque_count = s->opaque_count;
+    fd->scene_layers = c->scene_layers;
     if (s->has_camera && !c->cam_set) {
         fd->camera = s->camera;
         return;

@@ -141,6 +141,14 @@ static int k_lod(bench_config *c, const char *v)
     return 1;
 }
 
+/* layers=L: the frame's scene layers (snell_frame_desc.scene_layers). */
+static int k_layers(bench_config *c, const char *v)
+{
+    if (!bench_parse_int("layers", v, -1, SNELL_MAX_SCENE_LAYERS, &c->scene_layers)) return 0;
+    if (c->scene_layers == 1) return bad("layers", v, "-1 (off), 0 (auto) or 2..8");
+    return 1;
+}
+
 /* methods=M0/M1/...: glass object i drawn with Mi (a registry name or auto),
  * the objects past the list with the spec's method. */
 static int k_methods(bench_config *c, const char *v)
@@ -178,6 +186,7 @@ static const common_key g_common[] = {
     {"msaa", "multisampling N (the renderer's msaa), timed and measured", k_msaa},
     {"lod", "glass meshes simplified to this share of their triangles, 0..1 (default 1: the original; the "
             "reference keeps the original)", k_lod},
+    {"layers", "scene layers, glass seen through glass: 0 auto (default), -1 off, 2..8 layers at most", k_layers},
     {"methods", "per glass object (scene order) a method or auto, M0/M1/...; the rest take the spec's method, "
                 "the MATCHED reference stays the spec method's model", k_methods},
 };
