@@ -126,6 +126,8 @@ typedef struct bench_config {
     int glass_objects, opaque_objects;
     int warnings;                  /* glass objects whose stats warn (method's preconditions fail) */
     snell_method methods_used[SNELL_MAX_GLASS]; /* what drew each glass object (the measured frame's stats) */
+    int passes;                    /* GL draw passes of the frame after warm-up (snell_frame_stats.passes), */
+    int layer_passes, layers_used; /* of which scene-layer peels, and the layers that held something */
     int layers_drawn;              /* the measured frame drew the scene layers (glass seen through glass):
                                     * then the MATCHED and FULL comparisons are with isolate_glass = 0 */
     const char *encoding;          /* exit-direction storage: "float" or "packed-rgba8" */

@@ -186,6 +186,9 @@ static void json_result(FILE *f, const bench_config *c)
             c->glass_objects, c->opaque_objects, c->warnings, c->angles_meaningful ? "true" : "false");
     fprintf(f, ", \"scene_layers\": %d, \"reference_isolate_glass\": %s", c->scene_layers,
             c->layers_drawn ? "false" : "true");
+    if (c->passes > 0) /* timed by snell-bench (snell-kiosk times its own way) */
+        fprintf(f, ", \"passes\": %d, \"scene_layer_passes\": %d, \"scene_layers_used\": %d", c->passes,
+                c->layer_passes, c->layers_used);
     if (c->whole_measured) {
         int k;
         fprintf(f, ", \"methods_used\": [");
@@ -512,7 +515,7 @@ void bench_print_scene_table(const bench_config *cs, int n)
         }
         printf("%-58s %-9s", "", "pixels");
         for (k = 0; k < BENCH_CLASS_COUNT; k++) printf(" %15ld", c->whole[0].cls[k].img.pixels);
-        printf("\n");
+        printf("   passes %d (scene-layer peels %d, %d used)\n", c->passes, c->layer_passes, c->layers_used);
     }
     printf("method: the configuration's frame; alone: each glass object drawn alone by the method over the environment "
            "and the opaque objects, composed back to front; ref-alone: the FULL reference with isolate_glass = 1 "

@@ -89,6 +89,18 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
         return;
     }
     for (k = 0; k < o->warmup && t->c->ok; k++) time_frame(ctx, t, 0, 0);
+    if (t->c->ok) {
+        /* the passes of a frame after warm-up (the first frame's also bake and prepare), untimed */
+        snell_frame_stats fs;
+        if (snell_render(t->r, &t->fd, &fs) != SNELL_OK) {
+            bench_fail(t->c, "render", ctx);
+            return;
+        }
+        snell_renderer_finish(t->r);
+        t->c->passes = fs.passes;
+        t->c->layer_passes = fs.scene_layer_passes;
+        t->c->layers_used = fs.scene_layers;
+    }
 }
 
 /* Medians of a slot, then its resources freed. */
