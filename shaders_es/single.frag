@@ -39,7 +39,8 @@ void main()
 #ifdef SNELL_THIN
     vec3 rs, ts;
     snell_thin_slab(-dot(v, n), u_ior, u_sigma, u_thickness, rs, ts);
-    snell_write(snell_env(v) * u_tint * ts + snell_env(r) * rs, v);
+    highp vec3 through = v; // straight on through the wall (snell_exit: to what lies beyond)
+    snell_write(snell_exit(world_pos, through) * u_tint * ts + snell_env(r) * rs, through);
 #else
     vec3 t;
     snell_refract(snell_h(v), n, snell_h(1.0 / u_ior), t);

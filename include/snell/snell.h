@@ -695,20 +695,20 @@ typedef struct snell_frame_desc {
     int draw_background;            /* 0 = default (draw skybox); -1 = leave background untouched */
     int dynamic_env_size;           /* dynamic environment face size, 16..2048; 0 = half of env's, at most 256 */
     int scene_layers;               /* glass seen through glass, and opaque objects seen through glass where
-                                     * they are: 0 = auto (on when the frame draws two or more solid glass
+                                     * they are: 0 = auto (on when the frame draws two or more glass
                                      * objects, or one with opaque objects), -1 = off (each glass object sees
                                      * only the environment, or its dynamic one with the opaque objects),
                                      * 2..SNELL_MAX_SCENE_LAYERS = on with at most that many layers. On, every
-                                     * solid glass and opaque object is depth peeled together (at most that
+                                     * glass and opaque object is depth peeled together (at most that
                                      * many passes, each drawing every object once; fewer where fewer layers
                                      * hold something) and each glass kernel's exit ray is marched through
                                      * those layers: it refracts through the other glass objects (TIR inside
-                                     * them, Schlick at their entry, their tint and absorption), stops at an
-                                     * opaque one, and sees the environment past them all, so no dynamic
-                                     * environment is made. Limits: what lies off the target or behind the
-                                     * last layer of a full peel is not seen (the ray leaves to the
-                                     * environment); a concave object's exit ray passes through its own
-                                     * other parts; thin walls are not in the layers. */
+                                     * them, Schlick at their entry, their tint and absorption), crosses thin
+                                     * walls as slabs, stops at an opaque one, and sees the environment past
+                                     * them all, so no dynamic environment is made. Limits: what lies off the
+                                     * target or behind the last layer of a full peel is not seen (the ray
+                                     * leaves to the environment); an exit ray passes through the other parts
+                                     * of its own object and of the object it last left (concave objects). */
 } snell_frame_desc;
 
 #define SNELL_MAX_SCENE_LAYERS 8
@@ -768,6 +768,8 @@ typedef struct snell_frame_stats {
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
     int scene_layer_passes;         /* depth peels of the scene layers drawn (0: the stage did not run) */
     int scene_layers;               /* of those, the layers that hold something */
+    int scene_layers_reused;        /* 1: the last frame's layers, nothing they depend on having changed
+                                     * (camera, models, geometry, which objects, size): no peel drawn */
     char scene_layers_reason[SNELL_REASON_SIZE]; /* why the stage ran or did not */
 } snell_frame_stats;
 

@@ -6,9 +6,9 @@
 // other glass and opaque object of the frame (Wang 2014, seed 001 3.7, with
 // the layers of all objects in one peel instead of one peel per object):
 //
-// - The medium at a point is the innermost object with an odd number of its
-//   surfaces in front of the point at the point's pixel (entered and not
-//   left); 0 is air. The kernel's own object is skipped (its kernel has
+// - The medium at a point is the object the point's pixel's layers in front
+//   of it leave it in (walked from the eye, each surface entering or leaving
+//   an object); 0 is air. The kernel's own object is skipped (its kernel has
 //   traced it), and so is the object the ray last left: a point just past
 //   a surface can test as behind it at its pixel (the layer holds the
 //   surface's depth at the pixel's centre), which read as a re-entry made
@@ -26,6 +26,10 @@
 //   entry and Beer-Lambert over each length inside; up to
 //   BEYOND_MAX_INTERFACES surfaces. Opaque: shaded as opaque.frag shades it
 //   (the path ends). Past the last object: the environment.
+// - Thin walls (material.thickness > 0) are never a medium: a change in the
+//   parity of the thin-wall surfaces in front of the point is a wall
+//   crossed, which transmits by the slab model (snell_thin_slab, as the
+//   single kernel's thin walls do: no bend, its reflection added).
 // - Where the march leaves what the layers know (the target's edge, behind
 //   the eye, behind the last of a capped peel) the ray leaves in its
 //   direction to the environment.
@@ -36,14 +40,15 @@
 #ifdef SNELL_BEYOND
 #define BEYOND_MAX_LAYERS 8         // SNELL_MAX_SCENE_LAYERS
 #define BEYOND_MAX_INTERFACES 8
-#define BEYOND_LINEAR 32
-#define BEYOND_BINARY 8
+#define BEYOND_LINEAR 16
+#define BEYOND_BINARY 6
 #define BEYOND_OPAQUE_ID0 33        // SNELL__LAYERS_OPAQUE_ID0
 #define BEYOND_UNKNOWN (-2)
 
 uniform highp sampler2DArray u_scene_layers; // slice 2k: normal; 2k + 1: depth 24 bits + id 8 bits
 uniform highp sampler2D u_scene_table;       // per id - 1: row 0 (ior, tint; ior 0 = opaque),
-                                             // row 1 absorption, row 2 bounding sphere, row 3 albedo
+                                             // row 1 (absorption, thin-wall thickness: 0 solid),
+                                             // row 2 bounding sphere, row 3 albedo
 uniform int u_scene_layer_count;             // non-empty layers peeled, 1..BEYOND_MAX_LAYERS
 uniform int u_scene_capped;                  // 1: surfaces may lie behind the last layer
 uniform int u_scene_glass_ids;               // glass ids 1..u_scene_glass_ids may be present
@@ -80,38 +85,54 @@ highp float beyond_layer(ivec2 px, int k, out int id)
     return id == 0 ? 2.0 : float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
 }
 
-// The medium at p (see the header): 0 air, an id, or BEYOND_UNKNOWN; the
-// object excl is skipped as the kernel's own is.
+// Layer ids: glass i + 1, opaque BEYOND_OPAQUE_ID0 + j, and thin walls with
+// BEYOND_THIN_ID added (render/layers.h), so no table look-up tells them.
+#define BEYOND_THIN_ID 128
+
+vec4 beyond_table(int id, int row)
+{
+    return texelFetch(u_scene_table, ivec2((id & (BEYOND_THIN_ID - 1)) - 1, row), 0);
+}
+
+bool beyond_thin(int id)
+{
+    return id >= BEYOND_THIN_ID;
+}
+
+// The medium at p (see the header): 0 air, an id, or BEYOND_UNKNOWN; plus
+// BEYOND_THIN_ODD where the thin-wall surfaces in front of p are odd in
+// number. The object excl is skipped as the kernel's own is. The layers in
+// front of p are walked from the eye: a surface of the object the walk is
+// in leaves it, another enters one (objects are disjoint or nested, two
+// deep at most). Scalars only: the first version kept the ids in an array
+// and counted each one's parity, whose dynamically indexed look-ups made
+// the whole stage several times slower on llvmpipe.
+#define BEYOND_THIN_ODD 256
 int beyond_medium(highp vec3 p, int excl)
 {
     ivec2 px;
     if (!beyond_pixel(p, px)) return BEYOND_UNKNOWN;
     highp float z = beyond_depth(p);
-    int ids[BEYOND_MAX_LAYERS];
-    int n = 0;
+    int cur = 0, outer = 0, thin = 0, n = 0;
     for (int k = 0; k < BEYOND_MAX_LAYERS; k++) {
         if (k >= u_scene_layer_count) break;
         int id;
         highp float d = beyond_layer(px, k, id);
         if (id == 0 || d >= z) break; // layers are sorted by depth; empty ones come last
-        ids[n++] = id;
+        n++;
+        if (id == u_scene_self || id == excl) continue;
+        if (beyond_thin(id)) {
+            thin ^= BEYOND_THIN_ODD;
+        } else if (id == cur) {
+            cur = outer; // left it
+            outer = 0;
+        } else {
+            outer = cur; // entered it (inside cur, if any)
+            cur = id;
+        }
     }
     if (n == u_scene_layer_count && u_scene_capped != 0) return BEYOND_UNKNOWN;
-    // the object of the nearest layer (in front of p) whose surfaces in front
-    // of p are odd in number: p is inside it and inside nothing nearer in
-    for (int i = BEYOND_MAX_LAYERS - 1; i >= 0; i--) {
-        if (i >= n || ids[i] == u_scene_self || ids[i] == excl) continue;
-        int c = 0;
-        for (int j = 0; j < BEYOND_MAX_LAYERS; j++)
-            if (j < n && ids[j] == ids[i]) c++;
-        if ((c & 1) == 1) return ids[i];
-    }
-    return 0;
-}
-
-vec4 beyond_table(int id, int row)
-{
-    return texelFetch(u_scene_table, ivec2(id - 1, row), 0);
+    return cur | thin;
 }
 
 float beyond_ior(int medium)
@@ -162,7 +183,7 @@ bool beyond_stretch(highp vec3 o, highp vec3 dir, highp float t0, out highp floa
     for (int i = 0; i < 128; i++) { // SNELL_MAX_GLASS + SNELL_MAX_OPAQUE ids at most
         if (i >= count) break;
         int id = i < u_scene_glass_ids ? i + 1 : BEYOND_OPAQUE_ID0 + i - u_scene_glass_ids;
-        if (id == u_scene_self) continue;
+        if (id == (u_scene_self & (BEYOND_THIN_ID - 1))) continue;
         highp vec4 s = beyond_table(id, 2);
         if (s.w <= 0.0) continue; // not in this frame's layers
         highp float st = 2.0 * s.w / float(BEYOND_LINEAR), r = s.w + st;
@@ -198,8 +219,8 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
     vec3 radiance = vec3(0.0); // reflections met on the way
     vec3 thr = vec3(1.0);      // what reaches the eye of the light along the current ray
     // a ray that leaves its object inside another (nested glass) starts in it
-    int medium = beyond_medium(p, 0);
-    if (medium < 0 || medium >= BEYOND_OPAQUE_ID0) medium = 0;
+    int medium = beyond_medium(p, 0); // the medium, and the thin walls' parity (BEYOND_THIN_ODD)
+    if (medium < 0 || (medium & 255) >= BEYOND_OPAQUE_ID0) medium = 0;
     int crossed = 0;
     int left = 0; // the object the ray last left: not re-entered (see the header)
     highp vec3 o = p;
@@ -208,9 +229,10 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
     // one object's bounding sphere
     for (int round = 0; round < BEYOND_MAX_INTERFACES + 32; round++) {
         highp float ta, tb, step;
-        if (medium > 0) {
+        int inside = medium & 255; // the glass object the ray is in, 0 air
+        if (inside > 0) {
             ta = 0.0;
-            tb = beyond_inside_stretch(medium, o, dir, step);
+            tb = beyond_inside_stretch(inside, o, dir, step);
         } else if (!beyond_stretch(o, dir, t0, ta, tb, step)) {
             break;
         }
@@ -235,11 +257,11 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
         }
         if (unknown) break;
         if (ib < 0.0) {
-            if (medium > 0) {
+            if (inside > 0) {
                 // no far surface in the layers: it leaves in its direction (peel.frag's rule)
-                thr *= snell_beer_lambert(beyond_table(medium, 1).rgb, tb);
-                left = medium;
-                medium = 0;
+                thr *= snell_beer_lambert(beyond_table(inside, 1).rgb, tb);
+                left = inside;
+                medium &= BEYOND_THIN_ODD;
                 o += tb * dir;
                 t0 = 0.0;
             } else {
@@ -258,29 +280,62 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
             }
         }
         highp vec3 qa = o + ia * dir, qb = o + ib * dir;
-        if (medium > 0) thr *= snell_beer_lambert(beyond_table(medium, 1).rgb, ib);
-        vec3 n = beyond_normal(qa, qb, m_new > 0 ? m_new : medium, dir);
-        if (m_new >= BEYOND_OPAQUE_ID0) {
+        if (inside > 0) thr *= snell_beer_lambert(beyond_table(inside, 1).rgb, ib);
+        int entered = m_new & 255;
+        if (entered == inside && (m_new ^ medium) == BEYOND_THIN_ODD) {
+            // a thin wall: which one is the nearest thin layer to the crossing
+            int wall = 0;
+            ivec2 px;
+            if (beyond_pixel(qb, px)) {
+                highp float z = beyond_depth(qb), best = 4.0;
+                for (int k = 0; k < BEYOND_MAX_LAYERS; k++) {
+                    if (k >= u_scene_layer_count) break;
+                    int lid;
+                    highp float d = beyond_layer(px, k, lid);
+                    if (lid == 0) break;
+                    if (lid != u_scene_self && beyond_thin(lid) && abs(d - z) < best) {
+                        best = abs(d - z);
+                        wall = lid;
+                    }
+                }
+            }
+            if (wall > 0) {
+                vec3 nw = beyond_normal(qa, qb, wall, dir);
+                vec3 rs, ts;
+                vec4 w0 = beyond_table(wall, 0), w1 = beyond_table(wall, 1);
+                snell_thin_slab(dot(nw, dir), w0.x, w1.rgb, w1.w, rs, ts);
+                if (dot(nw, dir) > 0.0) nw = -nw;
+                radiance += thr * rs * snell_env(snell_reflect(dir, nw));
+                thr *= ts * w0.yzw;
+            }
+            medium = m_new;
+            o = qb;
+            t0 = 0.0;
+            if (++crossed >= BEYOND_MAX_INTERFACES) break;
+            continue;
+        }
+        vec3 n = beyond_normal(qa, qb, entered > 0 ? entered : inside, dir);
+        if (entered >= BEYOND_OPAQUE_ID0) {
             // opaque.frag's light: half-Lambert from the sky, the mesh's own normal
             float l = 0.5 + 0.5 * dot(n, normalize(vec3(0.3, 1.0, 0.2)));
-            radiance += thr * beyond_table(m_new, 3).rgb * (0.25 + 0.75 * l);
+            radiance += thr * beyond_table(entered, 3).rgb * (0.25 + 0.75 * l);
             return radiance;
         }
         if (dot(n, dir) > 0.0) n = -n; // face the ray
-        float n1 = beyond_ior(medium), n2 = beyond_ior(m_new);
+        float n1 = beyond_ior(inside), n2 = beyond_ior(entered);
         vec3 out_dir;
         bool through = snell_refract(dir, n, n1 / n2, out_dir);
-        if (medium == 0) {
+        if (inside == 0) {
             // an entry from air: its reflection, and the tint
             float f = snell_fresnel(-dot(dir, n), n1, n2);
             // one texture level (no mipmaps): the look-up needs no derivatives here
             radiance += thr * f * snell_env(snell_reflect(dir, n));
-            thr *= (1.0 - f) * beyond_table(m_new, 0).yzw;
+            thr *= (1.0 - f) * beyond_table(entered, 0).yzw;
         }
         dir = normalize(out_dir);
         if (through) {
             o = qb;
-            if (medium > 0) left = medium;
+            if (inside > 0) left = inside;
             medium = m_new;
         } else {
             o = qa; // TIR: from the last point inside

@@ -20,6 +20,7 @@ static void release_targets(snell__layers *l)
     if (l->table_tex) glDeleteTextures(1, &l->table_tex);
     l->fbo = l->array_tex = l->next_tex[0] = l->next_tex[1] = l->depth_rb = l->query = l->table_tex = 0;
     l->width = l->height = l->capacity = 0;
+    l->last.count = -1; /* the layers are gone with them */
 }
 
 void snell__layers_destroy(snell__layers *l)
@@ -27,6 +28,7 @@ void snell__layers_destroy(snell__layers *l)
     release_targets(l);
     if (l->prog) glDeleteProgram(l->prog);
     memset(l, 0, sizeof *l);
+    l->last.count = -1;
 }
 
 static void nearest_texture(GLenum target)
@@ -136,6 +138,7 @@ static void table_column(snell__layers *l, const layer_item *it, const snell_opa
             r0[1 + k] = g->material.tint[k];
             r1[k] = g->absorbs ? g->absorption[k] : 0.0f;
         }
+        r1[3] = g->material.thickness; /* > 0: a thin wall */
     } else {
         /* composite.c's rule: all zero = 0.8 grey */
         int grey = opaque->color[0] == 0.0f && opaque->color[1] == 0.0f && opaque->color[2] == 0.0f;
@@ -145,7 +148,7 @@ static void table_column(snell__layers *l, const layer_item *it, const snell_opa
 
 snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v, snell__object *const *glass,
                                 int glass_count, const snell_opaque *opaque, int opaque_count, int max_layers,
-                                int *passes)
+                                int *passes, int *reused)
 {
     static const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -156,6 +159,7 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
     snell_status st;
     int n = 0, i, k, used = 0;
     *passes = 0;
+    *reused = 0;
     memset(sl, 0, sizeof *sl);
     for (i = 0; i < glass_count; i++) {
         layer_item *it = &items[n++];
@@ -185,11 +189,35 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
     /* the table: a radius of 0 marks an id without an object this frame */
     memset(l->table, 0, sizeof l->table);
     for (i = 0; i < n; i++) table_column(l, &items[i], items[i].glass ? NULL : &opaque[items[i].id - SNELL__LAYERS_OPAQUE_ID0]);
+    for (i = 0; i < glass_count; i++) /* after the table: the column is the object's */
+        if (glass[i]->glass->material.thickness > 0.0f) items[i].id += SNELL__LAYERS_THIN_ID;
     glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_TABLE_UNIT);
     glBindTexture(GL_TEXTURE_2D, l->table_tex);
     for (k = 0; k < SNELL__LAYERS_TABLE_ROWS; k++)
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, k, SNELL__LAYERS_IDS, 1, GL_RGBA, GL_FLOAT, l->table[k]);
 
+    /* the key: what the peels depend on */
+    memset(&l->key, 0, sizeof l->key);
+    memcpy(l->key.view_proj, v->view_proj, sizeof l->key.view_proj);
+    l->key.width = v->width;
+    l->key.height = v->height;
+    l->key.max_layers = max_layers;
+    l->key.count = n;
+    for (i = 0; i < n; i++) {
+        memcpy(l->key.item[i].model, items[i].model, sizeof l->key.item[i].model);
+        l->key.item[i].mesh_version = items[i].mesh->version;
+        l->key.item[i].id = items[i].id;
+    }
+    if (l->last.count == n && !memcmp(&l->key, &l->last, sizeof l->key)) {
+        *sl = l->last_layers;
+        *reused = 1;
+        glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, l->array_tex);
+        glActiveTexture(GL_TEXTURE0);
+        return SNELL_OK;
+    }
+
+    l->last.count = -1; /* until these peels are complete */
     snell__pass_begin(&pass, l->fbo, v->width, v->height, 0, GL_LESS, 1.0f);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, l->depth_rb);
     glUseProgram(l->prog);
@@ -239,6 +267,8 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
         if (glass[i]->index + 1 > sl->glass_ids) sl->glass_ids = glass[i]->index + 1;
     sl->opaque_count = opaque_count;
     sl->capped = used == max_layers;
+    l->last = l->key;
+    l->last_layers = *sl;
     glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
     glBindTexture(GL_TEXTURE_2D_ARRAY, l->array_tex);
     glActiveTexture(GL_TEXTURE0);

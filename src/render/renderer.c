@@ -133,6 +133,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     r = (snell_renderer *)snell__calloc(&ctx->alloc, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     r->ctx = ctx;
+    r->layers.last.count = -1; /* no layers peeled yet */
     r->ssaa.factor = d.ssaa > 1 ? d.ssaa : 1;
     r->out_width = d.width;
     r->out_height = d.height;
@@ -293,9 +294,11 @@ static int choose_scene_layers(snell_renderer *r, const snell_frame_desc *fd, sn
 {
     snell__scene *sc = &r->scene;
     int i, n = 0;
+    int solid = 0;
     for (i = 0; i < sc->drawn; i++) {
         snell__object *o = &sc->obj[sc->order[i]];
-        if (o->glass->material.thickness <= 0.0f) r->layer_list[n++] = o;
+        r->layer_list[n++] = o;
+        solid += o->glass->material.thickness <= 0.0f;
     }
     if (fd->scene_layers < 0) {
         snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "off (scene_layers -1)");
@@ -303,12 +306,12 @@ static int choose_scene_layers(snell_renderer *r, const snell_frame_desc *fd, sn
     }
     if (n == 0 || (n == 1 && fd->opaque_count == 0)) {
         snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason,
-                   "not needed: %s", n == 0 ? "no solid glass object drawn" : "one solid glass object and nothing else");
+                   "not needed: %s", n == 0 ? "no glass object drawn" : "one glass object and nothing else");
         return 0;
     }
     for (i = 0; i < n; i++) r->layer_list[i]->beyond = 1;
-    snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "%d solid glass and %d opaque objects: exit rays "
-               "meet the others", n, fd->opaque_count);
+    snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "%d glass (%d solid, %d thin walls) and %d opaque "
+               "objects: exit rays meet the others", n, solid, n - solid, fd->opaque_count);
     return n;
 }
 
@@ -402,7 +405,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         int peels = 0;
         st = snell__layers_draw(r->ctx, &r->layers, &sc->view, r->layer_list, n_layers, fd->opaque,
                                 fd->opaque_count, fd->scene_layers > 0 ? fd->scene_layers : SNELL_DEFAULT_SCENE_LAYERS,
-                                &peels);
+                                &peels, &s->scene_layers_reused);
         s->scene_layer_passes = peels;
         s->scene_layers = sc->view.layers.count;
         s->passes += peels;
