@@ -99,7 +99,8 @@ int main(void)
     int c, x, y;
 
     layout(count);
-    CHECK(count[BENCH_CLASS_GLASS] == 12 * 12 + 12 * 12 - 4 * 10 + 10 * 10 && count[BENCH_CLASS_OPAQUE] == 100 + 16 * 14,
+    CHECK(count[BENCH_CLASS_GLASS] == 12 * 12 + 12 * 12 - 4 * 10 + 10 * 10 &&
+              count[BENCH_CLASS_OPAQUE] == 100 + 16 * 14,
           "layout: glass %ld opaque %ld", count[BENCH_CLASS_GLASS], count[BENCH_CLASS_OPAQUE]);
     CHECK(bench_class_of(0) == BENCH_CLASS_GLASS && bench_class_of(7) == BENCH_CLASS_GLASS &&
               bench_class_of(-1) == BENCH_CLASS_BACKGROUND && bench_class_of(-2) == BENCH_CLASS_OPAQUE &&
@@ -110,7 +111,8 @@ int main(void)
     memcpy(g_test, g_ref, sizeof g_test);
     errors(e);
     for (c = 0; c < BENCH_CLASS_COUNT; c++) {
-        CHECK(e[c].img.pixels == count[c], "%s: %ld pixels, layout %ld", bench_class_names[c], e[c].img.pixels, count[c]);
+        CHECK(e[c].img.pixels == count[c], "%s: %ld pixels, layout %ld", bench_class_names[c], e[c].img.pixels,
+              count[c]);
         check_exact(&e[c], bench_class_names[c], 1);
     }
     CHECK(e[BENCH_CLASS_GLASS].img.pixels + e[BENCH_CLASS_OPAQUE].img.pixels + e[BENCH_CLASS_BACKGROUND].img.pixels ==
@@ -129,12 +131,13 @@ int main(void)
     CHECK(changed > 500, "%ld background pixels changed", changed);
     check_exact(&e[BENCH_CLASS_GLASS], "glass, background changed", 1);
     check_exact(&e[BENCH_CLASS_OPAQUE], "opaque, background changed", 1);
-    CHECK(fabs(e[BENCH_CLASS_BACKGROUND].img.rmse - 10.0 * sqrt((double)changed / count[BENCH_CLASS_BACKGROUND])) < 1e-9,
+    CHECK(fabs(e[BENCH_CLASS_BACKGROUND].img.rmse - 10.0 * sqrt((double)changed / count[BENCH_CLASS_BACKGROUND])) <
+              1e-9,
           "background rmse %g", e[BENCH_CLASS_BACKGROUND].img.rmse);
     CHECK(fabs(e[BENCH_CLASS_ALL].img.rmse - 10.0 * sqrt((double)changed / (W * H))) < 1e-9, "all rmse %g",
           e[BENCH_CLASS_ALL].img.rmse);
-    CHECK(e[BENCH_CLASS_BACKGROUND].ssim < 1.0 && e[BENCH_CLASS_BACKGROUND].img.max_abs == 10, "background ssim %g max %d",
-          e[BENCH_CLASS_BACKGROUND].ssim, e[BENCH_CLASS_BACKGROUND].img.max_abs);
+    CHECK(e[BENCH_CLASS_BACKGROUND].ssim < 1.0 && e[BENCH_CLASS_BACKGROUND].img.max_abs == 10,
+          "background ssim %g max %d", e[BENCH_CLASS_BACKGROUND].ssim, e[BENCH_CLASS_BACKGROUND].img.max_abs);
 
     /* 3. opaque object -3 only, red + 20 */
     memcpy(g_test, g_ref, sizeof g_test);
@@ -144,7 +147,8 @@ int main(void)
     errors(e);
     check_exact(&e[BENCH_CLASS_GLASS], "glass, opaque changed", 0);
     check_exact(&e[BENCH_CLASS_BACKGROUND], "background, opaque changed", 0);
-    CHECK(fabs(e[BENCH_CLASS_OPAQUE].img.rmse - 20.0 * sqrt((double)changed / (3.0 * count[BENCH_CLASS_OPAQUE]))) < 1e-9,
+    CHECK(fabs(e[BENCH_CLASS_OPAQUE].img.rmse - 20.0 * sqrt((double)changed / (3.0 * count[BENCH_CLASS_OPAQUE]))) <
+              1e-9,
           "opaque rmse %g", e[BENCH_CLASS_OPAQUE].img.rmse);
 
     /* 4. glass object 1 only */

@@ -17,9 +17,8 @@ bench_class bench_class_of(int16_t object)
     return object == -1 ? BENCH_CLASS_BACKGROUND : BENCH_CLASS_OPAQUE;
 }
 
-snell_status bench_class_errors(const uint8_t *test, const uint8_t *ref, const int16_t *object,
-                                const uint8_t *through, int w, int h, uint8_t *mask,
-                                bench_class_error out[BENCH_CLASS_COUNT])
+snell_status bench_class_errors(const uint8_t *test, const uint8_t *ref, const int16_t *object, const uint8_t *through,
+                                int w, int h, uint8_t *mask, bench_class_error out[BENCH_CLASS_COUNT])
 {
     long i, n = (long)w * h;
     int c;
