@@ -111,6 +111,9 @@ typedef struct bench_config {
     float lod;                     /* lod=: glass meshes simplified to this triangle ratio; 1 = the
                                     * original (the default); references always use the original */
     int scene_layers;              /* layers=: snell_frame_desc.scene_layers (0 auto, -1 off, 2..8) */
+    float spin;                    /* spin=: degrees of camera azimuth added every timed frame (0: a still
+                                    * scene, whose frames may reuse what the last one drew); errors are
+                                    * measured on the unmoved frame */
     snell_method object_methods[SNELL_MAX_GLASS]; /* methods=: glass object i's method (AUTO allowed), */
     int object_method_count;       /* for i < object_method_count; the others take glass.method */
 

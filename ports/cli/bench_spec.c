@@ -141,6 +141,12 @@ static int k_lod(bench_config *c, const char *v)
     return 1;
 }
 
+/* spin=D: the camera turns D degrees about its target every timed frame. */
+static int k_spin(bench_config *c, const char *v)
+{
+    return parse_vec("spin", v, &c->spin, 1, -360.0f, 360.0f);
+}
+
 /* layers=L: the frame's scene layers (snell_frame_desc.scene_layers). */
 static int k_layers(bench_config *c, const char *v)
 {
@@ -186,6 +192,8 @@ static const common_key g_common[] = {
     {"msaa", "multisampling N (the renderer's msaa), timed and measured", k_msaa},
     {"lod", "glass meshes simplified to this share of their triangles, 0..1 (default 1: the original; the "
             "reference keeps the original)", k_lod},
+    {"spin", "degrees the camera turns about its target every timed frame (default 0: a still scene, whose "
+             "frames may reuse the last one's work, e.g. the scene layers)", k_spin},
     {"layers", "scene layers, glass seen through glass: 0 auto (default), -1 off, 2..8 layers at most", k_layers},
     {"methods", "per glass object (scene order) a method or auto, M0/M1/...; the rest take the spec's method, "
                 "the MATCHED reference stays the spec method's model", k_methods},

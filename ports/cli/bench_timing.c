@@ -30,10 +30,18 @@ int bench_same_group(const bench_config *a, const bench_config *b)
 
 /* One frame of t; recorded as round `round` if record, else warm-up. A
  * failure marks the configuration failed (c->ok = 0). */
+/* spin=: the camera turns about its target before every frame. */
+static void turn_camera(timing_slot *t)
+{
+    t->fd.camera.azimuth += (float)(t->c->spin * 3.14159265358979323846 / 180.0);
+}
+
 static void time_frame(snell_ctx *ctx, timing_slot *t, int record, int round)
 {
-    double t0 = cli_now_ms(), g;
+    double t0, g;
     snell_status st;
+    turn_camera(t);
+    t0 = cli_now_ms();
     bench_timer_begin();
     st = snell_render(t->r, &t->fd, NULL);
     bench_timer_end();
@@ -92,6 +100,7 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
     if (t->c->ok) {
         /* the passes of a frame after warm-up (the first frame's also bake and prepare), untimed */
         snell_frame_stats fs;
+        turn_camera(t);
         if (snell_render(t->r, &t->fd, &fs) != SNELL_OK) {
             bench_fail(t->c, "render", ctx);
             return;

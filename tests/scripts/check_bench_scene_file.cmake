@@ -17,7 +17,8 @@
 #  - glass seen through glass (whole-scene and isolated references differ) on part of
 #    three_glass_two_opaque's glass pixels, nowhere on glass_box;
 #  - methods=peel/single: objects 0 and 1 drawn so, object 2 with the spec's cubemap;
-#  - --baseline-scene: overlap_1 is its own baseline (vs_scene 1), overlap_2 has a ratio.
+#  - --baseline-scene: overlap_1 is its own baseline (vs_scene 1), overlap_2 has a ratio;
+#  - spin=: the frame after warm-up peels its scene layers again (a still one reuses them).
 file(REMOVE_RECURSE "${OUT_DIR}")
 file(MAKE_DIRECTORY "${OUT_DIR}")
 set(three ${SCENES}/three_glass_two_opaque.gltf)
@@ -153,8 +154,9 @@ foreach(i RANGE ${last})
 endforeach()
 
 execute_process(COMMAND ${EXE} -b single:scene=${SCENES}/overlap_1.gltf:size=32x32
-                        -b single:scene=${SCENES}/overlap_2.gltf:size=32x32 --baseline-scene ${SCENES}/overlap_1.gltf
-                        --frames 3 --warmup 0 --no-cache -q -o ${OUT_DIR}/overlap
+                        -b single:scene=${SCENES}/overlap_2.gltf:size=32x32
+                        -b single:scene=${SCENES}/overlap_2.gltf:size=32x32:spin=2 --baseline-scene ${SCENES}/overlap_1.gltf
+                        --frames 3 --warmup 1 --no-cache -q -o ${OUT_DIR}/overlap
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "snell-bench --baseline-scene exit ${rc}: ${err}")
@@ -165,5 +167,11 @@ string(JSON r2 GET "${json}" results 1 vs_scene)
 string(JSON g2 GET "${json}" results 1 glass_objects)
 if(NOT r1 EQUAL 1 OR NOT r2 GREATER 0 OR NOT g2 EQUAL 2 OR NOT out MATCHES "xscene")
   message(FATAL_ERROR "--baseline-scene: vs_scene ${r1} (want 1), ${r2} (want > 0), ${g2} glass objects:\n${out}")
+endif()
+# a still scene's frame after warm-up reuses its scene layers; spin=2 turns the camera, so they are peeled again
+string(JSON still GET "${json}" results 1 scene_layer_passes)
+string(JSON moving GET "${json}" results 2 scene_layer_passes)
+if(NOT still EQUAL 0 OR NOT moving GREATER 0)
+  message(FATAL_ERROR "scene-layer peels after warm-up: ${still} still (want 0), ${moving} with spin=2 (want > 0)")
 endif()
 message(STATUS "snell-bench on scene files: ${n} configurations ok, vs_scene ${r2}")
