@@ -32,6 +32,8 @@
 #define SNELL__LAYERS_OPAQUE_ID0 (SNELL_MAX_GLASS + 1)
 #define SNELL__LAYERS_IDS (SNELL_MAX_GLASS + SNELL_MAX_OPAQUE)
 #define SNELL__LAYERS_TABLE_ROWS 4
+/* Layers first made room for (snell__layers_draw grows them when full). */
+#define SNELL__LAYERS_START 4
 
 /* What the peels depend on: a frame whose key equals the last one's reuses
  * them (a still scene, a kiosk's idle frames). */
@@ -52,6 +54,7 @@ typedef struct snell__layers {
     int u_model, u_normal_matrix, u_view_proj, u_eye, u_fwd, u_near, u_inv_range, u_first, u_prev, u_id;
     unsigned fbo, array_tex, next_tex[2], depth_rb, query, table_tex;
     int width, height, capacity;
+    int grown;                  /* layers the scenes so far have needed (0: SNELL__LAYERS_START) */
     float table[SNELL__LAYERS_TABLE_ROWS][SNELL__LAYERS_IDS][4]; /* the frame's object table, uploaded */
     snell__layers_key key, last;  /* this frame's and the last peeled one's (last.count < 0: none) */
     snell__scene_layers last_layers;
