@@ -19,6 +19,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/dispersion.glsl"
 
 #define MAX_INTERFACES 8     // SNELL_CUBEMAP_MAX_INTERFACES
 // SNELL_SEARCH_ITERATIONS (1..32), SNELL_LINEAR_STEPS (0..32),
@@ -27,7 +28,6 @@ precision highp float;
 
 
 uniform highp vec3 u_eye;
-uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform mat3 u_normal_matrix;    // object -> world normals
@@ -146,8 +146,8 @@ vec3 inner_branch(vec3 q, vec3 rdir, float path)
     if (dot(n3, rdir) > 0.0) n3 = -n3;
     vec3 out_dir;
     vec3 mirror = snell_reflect(rdir, n3);
-    bool exited = snell_refract(rdir, n3, u_ior, out_dir);
-    float f = exited ? snell_fresnel(-dot(rdir, n3), u_ior, 1.0) : 1.0;
+    bool exited = snell_refract(rdir, n3, snell_ior, out_dir);
+    float f = exited ? snell_fresnel(-dot(rdir, n3), snell_ior, 1.0) : 1.0;
     vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(mirror);
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, path + t);
@@ -156,7 +156,8 @@ vec3 inner_branch(vec3 q, vec3 rdir, float path)
 }
 #endif
 
-void main()
+// The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
+vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 world_pos, world_normal;
     snell_surface(world_pos, world_normal);
@@ -165,8 +166,9 @@ void main()
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);
     vec3 dir;
-    snell_refract(v, n, 1.0 / u_ior, dir);
-    float fresnel = snell_fresnel(-dot(v, n), 1.0, u_ior);
+    snell_refract(v, n, 1.0 / snell_ior, dir);
+    snell_disp_enter(v, n);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
 #if SNELL_INNER_FRESNEL
     float exit_fresnel = 0.0;   // F at the exit the chain refracted out of (0: capped, no exit)
     vec3 exit_in = dir;         // the direction that reached it from inside
@@ -196,10 +198,11 @@ void main()
         vec3 n2 = normalize(u_normal_matrix * fetch_normal(p));
         if (dot(n2, dir) > 0.0) n2 = -n2;                      // face the ray (it comes from inside)
         vec3 out_dir;
-        bool exited = snell_refract(dir, n2, u_ior, out_dir);
+        bool exited = snell_refract(dir, n2, snell_ior, out_dir);
+        snell_disp_cross(n2, exited, true);
 #if SNELL_INNER_FRESNEL
         if (exited) {
-            exit_fresnel = snell_fresnel(-dot(dir, n2), u_ior, 1.0);
+            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
             exit_in = dir;
             exit_n = n2;
             exit_path = path;
@@ -211,9 +214,9 @@ void main()
 #endif
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_env(dir) * u_tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_disp_env(dir) * u_tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = snell_env(dir) * u_tint;
+    vec3 transmitted = snell_disp_env(dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL && !SNELL_NO_SEARCH
     // Fresnel inside too (cubemap param inner=1): the exit transmits 1 - F
@@ -228,5 +231,6 @@ void main()
                                      : transmitted;
 #endif
     vec3 reflected = snell_env(r);
-    snell_write(mix(transmitted, reflected, fresnel), dir);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
 }

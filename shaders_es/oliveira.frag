@@ -34,6 +34,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/dispersion.glsl"
 
 #ifndef SNELL_SCREEN_SPACE
 #error "oliveira.frag shades in screen space only: the search reads the G-buffer's front surface"
@@ -42,7 +43,6 @@ precision highp float;
 #define MAX_INTERFACES 8
 
 uniform highp vec3 u_eye;
-uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform highp mat4 u_view_proj;
@@ -159,8 +159,8 @@ vec3 inner_branch(highp vec3 q, highp vec3 d, highp float len, highp vec3 v, vec
     }
     if (dot(n3, d) > 0.0) n3 = -n3;
     highp vec3 out_dir;
-    bool exited = snell_refract(d, n3, u_ior, out_dir);
-    float f = exited ? snell_fresnel(-dot(d, n3), u_ior, 1.0) : 1.0;
+    bool exited = snell_refract(d, n3, snell_ior, out_dir);
+    float f = exited ? snell_fresnel(-dot(d, n3), snell_ior, 1.0) : 1.0;
     vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(snell_reflect(d, n3));
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, len + t);
@@ -169,7 +169,8 @@ vec3 inner_branch(highp vec3 q, highp vec3 d, highp float len, highp vec3 v, vec
 }
 #endif
 
-void main()
+// The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
+vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     g_size = 1.0 / u_inv_size;
     highp vec3 p1, n1;
@@ -179,9 +180,10 @@ void main()
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);
     highp vec3 dir;
-    snell_refract(v, n, 1.0 / u_ior, dir);
+    snell_refract(v, n, 1.0 / snell_ior, dir);
     dir = normalize(dir);
-    float fresnel = snell_fresnel(-dot(v, n), 1.0, u_ior);
+    snell_disp_enter(v, n);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
 
     highp vec3 p = p1;
     highp float length_inside = 0.0;
@@ -212,10 +214,11 @@ void main()
         }
         if (dot(n2, dir) > 0.0) n2 = -n2; // face the ray (it comes from inside)
         highp vec3 next;
-        bool out_of_glass = snell_refract(dir, n2, u_ior, next); // on TIR: the mirror direction
+        bool out_of_glass = snell_refract(dir, n2, snell_ior, next); // on TIR: the mirror direction
+        snell_disp_cross(n2, out_of_glass, true);
 #if SNELL_INNER_FRESNEL
         if (out_of_glass) {
-            exit_fresnel = snell_fresnel(-dot(dir, n2), u_ior, 1.0);
+            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
             exit_in = dir;
             exit_n = n2;
             exit_p = p;
@@ -227,9 +230,9 @@ void main()
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_env(dir) * u_tint * snell_beer_lambert(u_sigma, length_inside);
+    vec3 transmitted = snell_disp_env(dir) * u_tint * snell_beer_lambert(u_sigma, length_inside);
 #else
-    vec3 transmitted = snell_env(dir) * u_tint;
+    vec3 transmitted = snell_disp_env(dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel at the exit too: it transmits 1 - F and reflects F back in,
@@ -240,5 +243,6 @@ void main()
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner : transmitted;
 #endif
     vec3 reflected = snell_env(r);
-    snell_write(mix(transmitted, reflected, fresnel), dir);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
 }

@@ -45,6 +45,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/dispersion.glsl"
 
 #define MAX_LAYERS 8          // SNELL_PEEL_MAX_LAYERS
 #define MAX_INTERFACES 10     // SNELL_PEEL_MAX_INTERFACES
@@ -54,7 +55,6 @@ precision highp float;
 // the program's variant (methods/peel.c).
 
 uniform highp vec3 u_eye;
-uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform highp mat4 u_view_proj;
@@ -261,8 +261,8 @@ vec3 inner_branch(highp vec3 q, vec3 rdir, int j, highp float step, highp float 
     vec3 n2 = normalize(crossing_normal(q, rdir, kind == 0 ? 2 : kind, j, m, ta, tb, next));
     if (dot(n2, rdir) > 0.0) n2 = -n2;
     vec3 out_dir;
-    bool exited = snell_refract(rdir, n2, u_ior, out_dir);
-    float f = kind == 0 ? 0.0 : exited ? snell_fresnel(-dot(rdir, n2), u_ior, 1.0) : 1.0;
+    bool exited = snell_refract(rdir, n2, snell_ior, out_dir);
+    float f = kind == 0 ? 0.0 : exited ? snell_fresnel(-dot(rdir, n2), snell_ior, 1.0) : 1.0;
     out_dir = kind == 0 ? rdir : normalize(out_dir);
     vec3 l = (1.0 - f) * snell_env(out_dir) + f * snell_env(snell_reflect(rdir, n2));
 #if SNELL_ABSORB
@@ -272,7 +272,8 @@ vec3 inner_branch(highp vec3 q, vec3 rdir, int j, highp float step, highp float 
 }
 #endif
 
-void main()
+// The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
+vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 p1, n1;
     snell_surface(p1, n1);
@@ -281,9 +282,10 @@ void main()
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);
     vec3 dir;
-    snell_refract(v, n, 1.0 / u_ior, dir);
+    snell_refract(v, n, 1.0 / snell_ior, dir);
     dir = normalize(dir);
-    float fresnel = snell_fresnel(-dot(v, n), 1.0, u_ior);
+    snell_disp_enter(v, n);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
 
     highp vec3 p = p1;
     highp float step = 2.0 * u_bsphere.w / float(SNELL_PEEL_LINEAR);
@@ -319,10 +321,11 @@ void main()
         if (dot(n2, dir) > 0.0) n2 = -n2;   // face the ray
         vec3 out_dir;
         bool inside = (j & 1) == 1;
-        bool through = snell_refract(dir, n2, inside ? u_ior : 1.0 / u_ior, out_dir);
+        bool through = snell_refract(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+        snell_disp_cross(n2, through, inside);
 #if SNELL_INNER_FRESNEL
         if (through && inside) {
-            exit_fresnel = snell_fresnel(-dot(dir, n2), u_ior, 1.0);
+            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
             exit_in = dir;
             exit_n = n2;
             exit_q = p + ta * dir;       // qa
@@ -344,9 +347,9 @@ void main()
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_env(dir) * tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_disp_env(dir) * tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = snell_env(dir) * tint;
+    vec3 transmitted = snell_disp_env(dir) * tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel inside too (peel param inner=on): the last exit transmits
@@ -361,5 +364,6 @@ void main()
                                      : transmitted;
 #endif
     vec3 reflected = snell_env(r);
-    snell_write(mix(transmitted, reflected, fresnel), dir);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
 }
