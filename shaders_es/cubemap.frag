@@ -132,6 +132,24 @@ float search_exit(vec3 p, vec3 d)
     return 0.5 * (lo + hi);
 }
 
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the red or blue ray from q along d (object space per
+// world length) over the green ray's length t, then one Newton step on the
+// insideness f = stored distance - |q| with the stored distance taken as
+// constant (exact for a sphere about the centre): where that ray meets the
+// surface, without a search of its own. Updates q; returns the world normal
+// there, facing the ray.
+vec3 disp_exit(inout vec3 q, vec3 d, float t, vec3 dir)
+{
+    q += t * d;
+    float lq = length(q);
+    float rate = dot(q, d) / lq; // d|q|/dt
+    if (rate > 1e-3) q += clamp((fetch_dist(q) - lq) / rate, -t, t) * d;
+    vec3 n = normalize(u_normal_matrix * fetch_normal(q));
+    return dot(n, dir) > 0.0 ? -n : n;
+}
+#endif
+
 #if SNELL_INNER_FRESNEL
 // The branch reflected inside at the exit (weight F there): one more search
 // from the exit point q along rdir, refracted out at the next surface with
@@ -179,6 +197,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     mat3 inv3 = mat3(u_inv_model);
     vec3 p = (u_inv_model * vec4(world_pos, 1.0)).xyz - u_centre;    // object, about the centre
     float path = 0.0;
+#if SNELL_DISPERSION == 2
+    vec3 p_red = p, p_blue = p; // where the red and blue rays are, after the green ray's lengths
+#endif
     // Interface 1 was the entry; pass k searches for interface k. After
     // u_max_interfaces the light is capped while inside: it leaves along its
     // current direction and absorption runs on to the next surface (the
@@ -199,7 +220,16 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         if (dot(n2, dir) > 0.0) n2 = -n2;                      // face the ray (it comes from inside)
         vec3 out_dir;
         bool exited = snell_refract(dir, n2, snell_ior, out_dir);
+#if SNELL_DISPERSION == 2
+        // red and blue meet the surface near where their own rays are after
+        // the green ray's length: the cubemap's normal there (a curved exit
+        // bends them by its change of normal as much as by their IORs)
+        vec3 n_red = disp_exit(p_red, inv3 * snell_disp_dirs[0], t, snell_disp_dirs[0]);
+        vec3 n_blue = disp_exit(p_blue, inv3 * snell_disp_dirs[2], t, snell_disp_dirs[2]);
+        snell_disp_cross3(mat3(n_red, n2, n_blue), exited, true);
+#else
         snell_disp_cross(n2, exited, true);
+#endif
 #if SNELL_INNER_FRESNEL
         if (exited) {
             exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);

@@ -246,6 +246,23 @@ vec3 crossing_normal(highp vec3 p, vec3 dir, int kind, int j, int m, highp float
     return layer_normal_at(qb, kind == 1 ? m - 1 : m);
 }
 
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the red or blue ray from q along dir over the green
+// ray's length t towards layer k, then one Newton step on its depth against
+// the layer's at its pixel: near where that ray crosses the layer, without a
+// search of its own. Updates q; returns the layer's normal there, facing the
+// ray.
+vec3 disp_crossing(inout highp vec3 q, vec3 dir, highp float t, int k)
+{
+    q += t * dir;
+    highp float rate = dot(dir, u_fwd) * u_inv_range; // depth per unit of t
+    highp float z = layer_depth(pixel_of(q), k);
+    if (z != EMPTY && abs(rate) > 1e-6) q += clamp((z - depth_of(q)) / rate, -t, t) * dir;
+    vec3 n = normalize(layer_normal_at(q, k));
+    return dot(n, dir) > 0.0 ? -n : n;
+}
+#endif
+
 #if SNELL_INNER_FRESNEL
 // The branch reflected inside at the last exit (weight F there): one more
 // search from q (in inside gap j) along rdir, refracted out at the surface
@@ -291,6 +308,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     highp float step = 2.0 * u_bsphere.w / float(SNELL_PEEL_LINEAR);
     highp float path = 0.0;
     vec3 tint = u_tint;
+#if SNELL_DISPERSION == 2
+    highp vec3 p_red = p, p_blue = p; // where the red and blue rays are, after the green ray's lengths
+#endif
     int j = 1;             // the gap the ray is in
     int done = 1;          // interfaces processed (the entry)
 #if SNELL_INNER_FRESNEL
@@ -322,7 +342,24 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         vec3 out_dir;
         bool inside = (j & 1) == 1;
         bool through = snell_refract(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+#if SNELL_DISPERSION == 2
+        // red and blue cross the layer near where their own rays are after
+        // the green ray's length: its normal there (a curved surface bends
+        // them by its change of normal as much as by their IORs); through
+        // the silhouette, green's
+        mat3 n_rgb = mat3(n2, n2, n2);
+        if (kind != 3) {
+            int layer = kind == 1 ? m - 1 : m;
+            n_rgb[0] = disp_crossing(p_red, snell_disp_dirs[0], tb, layer);
+            n_rgb[2] = disp_crossing(p_blue, snell_disp_dirs[2], tb, layer);
+        } else {
+            p_red += tb * snell_disp_dirs[0];
+            p_blue += tb * snell_disp_dirs[2];
+        }
+        snell_disp_cross3(n_rgb, through, inside);
+#else
         snell_disp_cross(n2, through, inside);
+#endif
 #if SNELL_INNER_FRESNEL
         if (through && inside) {
             exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);

@@ -10,10 +10,12 @@
 //     (SNELL_DISPERSION_PER_CHANNEL);
 //  2: once, at the green IOR, with the red and blue directions refracted at
 //     the entry and at every interface of that path with their own IORs (its
-//     normals and its events: refracted or totally reflected), and the
-//     transmitted light looked up per channel at the end
-//     (SNELL_DISPERSION_ONE_PATH): the kernel marks the entry, each interface
-//     and the final look-up with snell_disp_enter, snell_disp_cross and
+//     events: refracted or totally reflected; its normals, or where the
+//     kernel can look one up cheaply, the normal where the channel's own ray
+//     reaches the surface after the green ray's length), and the transmitted
+//     light looked up per channel at the end (SNELL_DISPERSION_ONE_PATH): the
+//     kernel marks the entry, each interface and the final look-up with
+//     snell_disp_enter, snell_disp_cross (or snell_disp_cross3) and
 //     snell_disp_env, which are plain pass-throughs in the other variants.
 // The exit direction written is the green one's.
 #ifndef SNELL_DISPERSION
@@ -36,25 +38,31 @@ void snell_disp_enter(vec3 v, vec3 n)
 {
 #if SNELL_DISPERSION == 2
     mat3 t;
-    snell_refract_rgb(mat3(v, v, v), n, 1.0 / u_ior_rgb, t);
+    snell_refract_rgb(mat3(v, v, v), mat3(n, n, n), 1.0 / u_ior_rgb, t);
     snell_disp_dirs = mat3(normalize(t[0]), normalize(t[1]), normalize(t[2]));
 #endif
 }
 
-// The traced ray meets an interface of normal n (facing it): refracted says
-// whether it went through (else it was totally reflected), from_inside
-// whether it came from inside the glass.
-void snell_disp_cross(vec3 n, bool refracted, bool from_inside)
+// The traced ray meets an interface: refracted says whether it went through
+// (else it was totally reflected), from_inside whether it came from inside
+// the glass; n holds each channel's normal there (facing its ray).
+void snell_disp_cross3(mat3 n, bool refracted, bool from_inside)
 {
 #if SNELL_DISPERSION == 2
     mat3 t;
     if (refracted)
         snell_refract_rgb(snell_disp_dirs, n, from_inside ? u_ior_rgb : 1.0 / u_ior_rgb, t);
     else
-        t = mat3(snell_reflect(snell_disp_dirs[0], n), snell_reflect(snell_disp_dirs[1], n),
-                 snell_reflect(snell_disp_dirs[2], n));
+        t = mat3(snell_reflect(snell_disp_dirs[0], n[0]), snell_reflect(snell_disp_dirs[1], n[1]),
+                 snell_reflect(snell_disp_dirs[2], n[2]));
     snell_disp_dirs = mat3(normalize(t[0]), normalize(t[1]), normalize(t[2]));
 #endif
+}
+
+// The same with the traced ray's normal n (facing it) for every channel.
+void snell_disp_cross(vec3 n, bool refracted, bool from_inside)
+{
+    snell_disp_cross3(mat3(n, n, n), refracted, from_inside);
 }
 
 // The environment seen along the traced path's final direction dir: per

@@ -133,14 +133,14 @@
         out[2] = disperses ? snell_opt##SUF##_dispersion_ior(ior, dispersion, (T)486.1) : ior;     \
     }                                                                                              \
     /* Per colour channel c, the direction i[c] refracted with eta[c] at the                       \
-     * normal n into t[c] (its mirror direction where that channel is totally                      \
+     * normal n[c] into t[c] (its mirror direction where that channel is totally                   \
      * reflected); returns a bit per channel that refracted (1 red, 2 green, 4                     \
      * blue). What the kernels' one-path dispersion does at each interface. */                     \
-    static inline int snell_opt##SUF##_refract_rgb(const T i[3][3], const T n[3], const T eta[3], T t[3][3]) \
+    static inline int snell_opt##SUF##_refract_rgb(const T i[3][3], const T n[3][3], const T eta[3], T t[3][3]) \
     {                                                                                              \
         int c, through = 0;                                                                        \
         for (c = 0; c < 3; c++)                                                                    \
-            if (snell_opt##SUF##_refract(i[c], n, eta[c], t[c])) through |= 1 << c;                \
+            if (snell_opt##SUF##_refract(i[c], n[c], eta[c], t[c])) through |= 1 << c;             \
         return through;                                                                            \
     }                                                                                              \
     /* The kernels' thin wall: Schlick at both faces. */                                           \
