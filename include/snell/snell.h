@@ -787,14 +787,15 @@ typedef struct snell_frame_stats {
  * an opaque object (base colour; glTF's default material is opaque white).
  * Glass: KHR_materials_ior's ior (default 1.5), baseColorFactor as the tint,
  * KHR_materials_volume with thicknessFactor > 0 a solid with its attenuation
- * colour and distance, without it a thin wall (glTF's "infinitely thin"; a
+ * colour and distance and KHR_materials_dispersion's dispersion (0..20, else
+ * SNELL_E_PARSE), without it a thin wall (glTF's "infinitely thin"; a
  * 1e-4 wall here). Geometry stays in each node's local space, the node's
  * world transform is the object's model matrix; primitives instanced by
  * several nodes share one mesh. The first camera met in the node tree, if
  * any, becomes snell_scene_file_camera (eye and view direction kept, roll
  * dropped: snell's camera keeps +Y up). Other extensions are ignored with
  * one INFO log line; a file that requires a KHR_materials_* extension other
- * than those three is SNELL_E_UNSUPPORTED, beyond that the rules and trust
+ * than those four is SNELL_E_UNSUPPORTED, beyond that the rules and trust
  * model of snell_mesh_load_gltf_ex apply (flags likewise). More than
  * SNELL_MAX_GLASS glass or SNELL_MAX_OPAQUE opaque objects is SNELL_E_LIMIT. */
 typedef struct snell_scene_file snell_scene_file;
