@@ -138,6 +138,24 @@ highp float search(highp vec3 p, highp vec3 d, out ivec2 px_out, out bool away_o
     return s;
 }
 
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the red or blue ray from q along dir over the green
+// ray's length t (updates q), and the normal of the map the green search
+// ended in at that point's pixel, facing the ray; where the map holds no
+// surface of this object there, n_green's.
+vec3 disp_exit_normal(inout highp vec3 q, vec3 dir, highp float t, bool away, vec3 n_green)
+{
+    q += t * dir;
+    highp vec3 w = window(u_view_proj * vec4(q, 1.0));
+    highp float band = away ? float(u_back_band) : 0.0;
+    ivec2 px = ivec2(floor(clamp(w.xy, vec2(-band), g_size + band - 1.0)));
+    ivec2 tex = away ? px + u_back_band : px;
+    bool found = (away ? map_depth(u_bdepth_id, tex) : map_depth(u_gdepth_id, tex)) >= 0.0;
+    vec3 n = found ? (away ? map_normal(u_bnormal, tex) : map_normal(u_gnormal, tex)) : n_green;
+    return dot(n, dir) > 0.0 ? -n : n;
+}
+#endif
+
 #if SNELL_INNER_FRESNEL
 // The branch reflected inside at the exit: one more search from q along d,
 // refracted out at the surface found with (1 - F'), its own reflection F'
@@ -187,6 +205,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 
     highp vec3 p = p1;
     highp float length_inside = 0.0;
+#if SNELL_DISPERSION == 2
+    highp vec3 p_red = p1, p_blue = p1; // where the red and blue rays are, after the green ray's lengths
+#endif
 #if SNELL_INNER_FRESNEL
     float exit_fresnel = 0.0;   // F at the exit the path refracted out of (0: capped, no exit)
     highp vec3 exit_in = dir, exit_p = p1;
@@ -215,7 +236,15 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         if (dot(n2, dir) > 0.0) n2 = -n2; // face the ray (it comes from inside)
         highp vec3 next;
         bool out_of_glass = snell_refract(dir, n2, snell_ior, next); // on TIR: the mirror direction
+#if SNELL_DISPERSION == 2
+        // red and blue meet the surface near where their own rays are after
+        // the green ray's length: the map's normal there (a curved exit bends
+        // them by its change of normal as much as by their IORs)
+        snell_disp_cross3(mat3(disp_exit_normal(p_red, snell_disp_dirs[0], t, away, n2), n2,
+                               disp_exit_normal(p_blue, snell_disp_dirs[2], t, away, n2)), out_of_glass, true);
+#else
         snell_disp_cross(n2, out_of_glass, true);
+#endif
 #if SNELL_INNER_FRESNEL
         if (out_of_glass) {
             exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);

@@ -70,6 +70,21 @@ bool back_face(ivec2 px, out highp vec3 pos, out highp vec3 normal)
     return true;
 }
 
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the back-face map's normal at the projection of q, a
+// red or blue ray's exit estimate, facing that ray's direction dir; n_green
+// where the map holds no back face of this object there.
+vec3 disp_exit_normal(highp vec3 q, vec3 dir, ivec2 size, vec3 n_green)
+{
+    highp vec3 pb, n;
+    highp vec4 c = u_view_proj * vec4(q, 1.0);
+    ivec2 px = ivec2(floor((c.xy / c.w * 0.5 + 0.5) * vec2(size)));
+    bool inside = c.w > 0.0 && all(greaterThanEqual(px, ivec2(-u_back_band))) && all(lessThan(px, size + u_back_band));
+    if (!(inside && back_face(px, pb, n))) n = n_green;
+    return dot(n, dir) > 0.0 ? -n : n;
+}
+#endif
+
 // The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
 vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
@@ -111,7 +126,15 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 dir;
     bool exited = snell_refract(t1, n2, snell_ior, dir); // refracted out, or on TIR reflected: the capped direction
     dir = normalize(dir);
+#if SNELL_DISPERSION == 2
+    // red and blue leave near where their own rays are after the green ray's
+    // length d: the back-face map's normal there (a curved exit bends them by
+    // its change of normal as much as by their IORs), else green's
+    snell_disp_cross3(mat3(disp_exit_normal(p1 + d * snell_disp_dirs[0], snell_disp_dirs[0], size, n2), n2,
+                           disp_exit_normal(p1 + d * snell_disp_dirs[2], snell_disp_dirs[2], size, n2)), exited, true);
+#else
     snell_disp_cross(n2, exited, true);
+#endif
 
 #if SNELL_ABSORB
     vec3 transmitted = snell_disp_env(dir) * u_tint * snell_beer_lambert(u_sigma, d);
