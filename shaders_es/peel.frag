@@ -251,15 +251,18 @@ vec3 crossing_normal(highp vec3 p, vec3 dir, int kind, int j, int m, highp float
 // ray's length t towards layer k, then one Newton step on its depth against
 // the layer's at its pixel: near where that ray crosses the layer, without a
 // search of its own. Updates q; returns the layer's normal there, facing the
-// ray.
-vec3 disp_crossing(inout highp vec3 q, vec3 dir, highp float t, int k)
+// ray; n_green (green's, facing green's ray) where that normal is more than
+// 18 degrees off it: across a crease (a prism's edge) the texel is another
+// face's, not the one green crossed.
+vec3 disp_crossing(inout highp vec3 q, vec3 dir, highp float t, int k, vec3 n_green)
 {
     q += t * dir;
     highp float rate = dot(dir, u_fwd) * u_inv_range; // depth per unit of t
     highp float z = layer_depth(pixel_of(q), k);
     if (z != EMPTY && abs(rate) > 1e-6) q += clamp((z - depth_of(q)) / rate, -t, t) * dir;
     vec3 n = normalize(layer_normal_at(q, k));
-    return dot(n, dir) > 0.0 ? -n : n;
+    n = dot(n, dir) > 0.0 ? -n : n;
+    return dot(n, n_green) < 0.95 ? n_green : n;
 }
 #endif
 
@@ -350,8 +353,8 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         mat3 n_rgb = mat3(n2, n2, n2);
         if (kind != 3) {
             int layer = kind == 1 ? m - 1 : m;
-            n_rgb[0] = disp_crossing(p_red, snell_disp_dirs[0], tb, layer);
-            n_rgb[2] = disp_crossing(p_blue, snell_disp_dirs[2], tb, layer);
+            n_rgb[0] = disp_crossing(p_red, snell_disp_dirs[0], tb, layer, n2);
+            n_rgb[2] = disp_crossing(p_blue, snell_disp_dirs[2], tb, layer, n2);
         } else {
             p_red += tb * snell_disp_dirs[0];
             p_blue += tb * snell_disp_dirs[2];

@@ -196,7 +196,7 @@ static double psnr(const uint8_t *a, const uint8_t *b, const uint8_t *hit)
  * llvmpipe at 128x128, forward and screen shading within 0.2 dB, dispersion 1
  * (no dispersion / per-channel / one-path):
  *   prism  single 29.9 / 58.9 / 59.4   cubemap 23.6 / 24.9 / 25.0
- *          wyman 24.0 / 26.5 / 26.5   oliveira 24.9 / 28.3 / 28.4   peel 25.9 / 32.2 / 30.6
+ *          wyman 24.0 / 26.5 / 26.5   oliveira 24.9 / 28.3 / 28.4   peel 25.9 / 32.2 / 31.8
  *   sphere single 27.1 / 53.8 / 55.5   cubemap 25.1 / 31.2 / 31.2
  *          wyman 16.9 / 17.0 / 16.9   oliveira 19.3 / 19.2 / 19.1   peel 25.6 / 36.8 / 36.6
  * On the sphere wyman's and oliveira's own exit error (image-space exit
@@ -213,7 +213,7 @@ typedef struct kernel_case {
 static const kernel_case g_cases[] = {
     {SNELL_METHOD_SINGLE, 0, 50.0, 50.0, 1},   {SNELL_METHOD_CUBEMAP, 0, 24.5, 24.5, 1},
     {SNELL_METHOD_WYMAN, 0, 26.0, 26.0, 1},    {SNELL_METHOD_OLIVEIRA, 0, 27.5, 27.5, 1},
-    {SNELL_METHOD_PEEL, 0, 31.5, 30.0, 1},     {SNELL_METHOD_SINGLE, 1, 50.0, 50.0, 1},
+    {SNELL_METHOD_PEEL, 0, 31.5, 31.0, 1},      {SNELL_METHOD_SINGLE, 1, 50.0, 50.0, 1},
     {SNELL_METHOD_CUBEMAP, 1, 30.5, 30.5, 1},  {SNELL_METHOD_WYMAN, 1, 16.5, 16.5, 0},
     {SNELL_METHOD_OLIVEIRA, 1, 18.7, 18.7, 0}, {SNELL_METHOD_PEEL, 1, 36.0, 36.0, 1},
 };
