@@ -19,6 +19,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 #include "common/dispersion.glsl"
 
 #define MAX_INTERFACES 8     // SNELL_CUBEMAP_MAX_INTERFACES
@@ -34,6 +35,7 @@ uniform mat3 u_normal_matrix;    // object -> world normals
 
 uniform highp samplerCube u_ndcube;
 uniform mat4 u_inv_model;        // world -> object
+uniform highp mat4 u_model;      // object -> world (object.vert's; the exit point for snell_exit)
 uniform vec3 u_centre;           // cubemap centre, object space
 uniform float u_radius;          // distance scale of the cubemap, object units
 uniform float u_inner_radius;    // no surface closer to the centre, object units
@@ -243,10 +245,11 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     }
 #endif
 
+    highp vec3 exit_p = (u_model * vec4(p + u_centre, 1.0)).xyz;
 #if SNELL_ABSORB
-    vec3 transmitted = snell_disp_env(dir) * u_tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_disp_exit(exit_p, dir) * u_tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = snell_disp_env(dir) * u_tint;
+    vec3 transmitted = snell_disp_exit(exit_p, dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL && !SNELL_NO_SEARCH
     // Fresnel inside too (cubemap param inner=1): the exit transmits 1 - F

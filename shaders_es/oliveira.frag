@@ -34,6 +34,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 #include "common/dispersion.glsl"
 
 #ifndef SNELL_SCREEN_SPACE
@@ -259,9 +260,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_disp_env(dir) * u_tint * snell_beer_lambert(u_sigma, length_inside);
+    vec3 transmitted = snell_disp_exit(p, dir) * u_tint * snell_beer_lambert(u_sigma, length_inside);
 #else
-    vec3 transmitted = snell_disp_env(dir) * u_tint;
+    vec3 transmitted = snell_disp_exit(p, dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel at the exit too: it transmits 1 - F and reflects F back in,

@@ -45,6 +45,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 #include "common/dispersion.glsl"
 
 #define MAX_LAYERS 8          // SNELL_PEEL_MAX_LAYERS
@@ -387,9 +388,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_disp_env(dir) * tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_disp_exit(p, dir) * tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = snell_disp_env(dir) * tint;
+    vec3 transmitted = snell_disp_exit(p, dir) * tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel inside too (peel param inner=on): the last exit transmits

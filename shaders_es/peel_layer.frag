@@ -25,6 +25,8 @@ uniform highp float u_near;         // view depth of the bounding sphere's near 
 uniform highp float u_inv_range;    // 1 / the sphere's diameter
 uniform int u_first;                // 1: the nearest layer (nothing to peel yet)
 uniform highp sampler2D u_prev;     // the previous layer's depth + flag
+uniform int u_id;                   // the flag: 1 for the peel kernel, the object's id for the
+                                    // scene layers (render/layers.c), 1..255
 
 layout(location = 0) out highp vec4 o_normal;
 layout(location = 1) out highp vec4 o_depth;
@@ -39,7 +41,7 @@ void main()
         // an empty previous layer: nothing lies behind it either
         if (p.a == 0u || q <= ((p.r << 16u) | (p.g << 8u) | p.b)) discard;
     }
-    highp uvec4 b = uvec4(q >> 16u, (q >> 8u) & 255u, q & 255u, 1u);
+    highp uvec4 b = uvec4(q >> 16u, (q >> 8u) & 255u, q & 255u, uint(u_id));
     o_normal = snell_pack_dir_rgba8(normalize(v_world_normal));
     // (b + 0.25) / 255: stored as b whether the driver rounds or truncates (pack.glsl)
     o_depth = (vec4(b) + 0.25) / 255.0;

@@ -13,6 +13,7 @@ precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 #include "common/dispersion.glsl"
 
 
@@ -39,8 +40,10 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 #ifdef SNELL_THIN
     vec3 rs, ts;
     snell_thin_slab(-dot(v, n), snell_ior, u_sigma, u_thickness, rs, ts);
-    exit_dir = v;
-    return snell_env(v) * u_tint * ts + snell_env(r) * rs;
+    highp vec3 through = v; // straight on through the wall (snell_exit: to what lies beyond)
+    vec3 color = snell_exit(world_pos, through) * u_tint * ts + snell_env(r) * rs;
+    exit_dir = through;
+    return color;
 #else
     vec3 t;
     snell_refract(snell_h(v), n, snell_h(1.0 / snell_ior), t);
@@ -56,9 +59,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     highp float c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
     highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
 
-    vec3 transmitted = snell_h(snell_disp_env(t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
+    vec3 transmitted = snell_h(snell_disp_exit(world_pos, t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
 #else
-    vec3 transmitted = snell_h(snell_disp_env(t) * u_tint);
+    vec3 transmitted = snell_h(snell_disp_exit(world_pos, t) * u_tint);
 #endif
     vec3 reflected = snell_h(snell_env(r));
     exit_dir = t;

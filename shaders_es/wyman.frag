@@ -21,6 +21,7 @@ precision highp float;
 #include "common/env.glsl"
 #include "common/output.glsl"
 #include "common/surface.glsl"
+#include "common/beyond.glsl"
 #include "common/dispersion.glsl"
 
 uniform highp vec3 u_eye;
@@ -137,9 +138,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 #endif
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_disp_env(dir) * u_tint * snell_beer_lambert(u_sigma, d);
+    vec3 transmitted = snell_disp_exit(p2, dir) * u_tint * snell_beer_lambert(u_sigma, d);
 #else
-    vec3 transmitted = snell_disp_env(dir) * u_tint;
+    vec3 transmitted = snell_disp_exit(p2, dir) * u_tint;
 #endif
     vec3 reflected = snell_env(r);
     exit_dir = dir;

@@ -200,6 +200,7 @@ static void scene_frames(void)
     fd.opaque = ob;
     fd.opaque_count = NO;
     fd.camera.distance = 4.0f;
+    fd.scene_layers = -1; /* first the dynamic environments; the scene layers below */
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
     for (i = 0; i < NG; i++) ok &= fs.glass[i].draw_order >= 0 && fs.glass[i].env_updated == 1;
     CHECK(ok && fs.opaque_drawn == NO, "every object drawn, every dynamic environment rendered");
@@ -218,6 +219,21 @@ static void scene_frames(void)
         CHECK(ok, "frame %d: a moved opaque object re-renders every environment", f);
     }
     CHECK(c.total == before, "moving objects: frames allocated %ld times", c.total - before);
+    /* The default for such a frame: the scene layers instead of dynamic
+     * environments (render/layers.c); after the frame that makes them,
+     * frames allocate nothing either. */
+    fd.scene_layers = 0;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK(fs.scene_layer_passes >= 2 && (fs.glass[0].skipped & SNELL_SKIP_DYNAMIC_ENV) && fs.glass[0].env_updated == 0,
+          "scene layers: %d peels, skipped 0x%x (%s)", fs.scene_layer_passes, fs.glass[0].skipped,
+          fs.scene_layers_reason);
+    before = c.total;
+    for (f = 0; f < 4; f++) {
+        om[f % NO][13] += 0.05f;
+        gm[f % NG][12] += 0.01f;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    }
+    CHECK(c.total == before, "scene layers, moving objects: frames allocated %ld times", c.total - before);
 out:
     snell_renderer_destroy(r);
     snell_env_destroy(env);

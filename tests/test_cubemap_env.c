@@ -84,6 +84,9 @@ int main(void)
 
     fd.opaque = ob;
     fd.opaque_count = 2;
+    /* this test is the dynamic environment's: the scene layers (the default
+     * with opaque objects, test_scene_layers) off */
+    fd.scene_layers = -1;
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
     CHECK(fs.glass[0].env_updated == 1 && !(fs.glass[0].skipped & SNELL_SKIP_ENV_UPDATE) && fs.opaque_drawn == 2,
           "first frame with objects renders the environment");

@@ -315,6 +315,9 @@ int main(void)
     fd.camera.elevation = 0.15f;
     fd.camera.azimuth = 0.2f;
     fd.dynamic_env_size = 128; /* the static map's own size: the comparison is not about its blur */
+    /* the dynamic environments and each object against the reference with
+     * isolate_glass: the scene layers (the default here) are test_scene_layers' */
+    fd.scene_layers = -1;
 
     g_log[0] = '\0';
     CHECK_OK(snell_render(r, &fd, &st));

@@ -726,7 +726,25 @@ typedef struct snell_frame_desc {
     int opaque_count;
     int draw_background;            /* 0 = default (draw skybox); -1 = leave background untouched */
     int dynamic_env_size;           /* dynamic environment face size, 16..2048; 0 = half of env's, at most 256 */
+    int scene_layers;               /* glass seen through glass, and opaque objects seen through glass where
+                                     * they are: 0 = auto (on when the frame draws two or more glass
+                                     * objects, or one with opaque objects), -1 = off (each glass object sees
+                                     * only the environment, or its dynamic one with the opaque objects),
+                                     * 2..SNELL_MAX_SCENE_LAYERS = on with at most that many layers. On, every
+                                     * glass and opaque object is depth peeled together (at most that
+                                     * many passes, each drawing every object once; fewer where fewer layers
+                                     * hold something) and each glass kernel's exit ray is marched through
+                                     * those layers: it refracts through the other glass objects (TIR inside
+                                     * them, Schlick at their entry, their tint and absorption), crosses thin
+                                     * walls as slabs, stops at an opaque one, and sees the environment past
+                                     * them all, so no dynamic environment is made. Limits: what lies off the
+                                     * target or behind the last layer of a full peel is not seen (the ray
+                                     * leaves to the environment); an exit ray passes through the other parts
+                                     * of its own object and of the object it last left (concave objects). */
 } snell_frame_desc;
+
+#define SNELL_MAX_SCENE_LAYERS 8
+#define SNELL_DEFAULT_SCENE_LAYERS 8
 
 /* What a frame did not do for an object, and why (bits of snell_object_stats.skipped). */
 typedef enum snell_skip {
@@ -737,9 +755,11 @@ typedef enum snell_skip {
     SNELL_SKIP_BACK_FACES = 1 << 4,   /* back faces culled (closed mesh of known winding) */
     SNELL_SKIP_ANALYSIS = 1 << 5,     /* no mesh analysis: an explicit method that needs none */
     SNELL_SKIP_SEARCH = 1 << 6,       /* CUBEMAP with one interface and no absorption: no exit search */
-    SNELL_SKIP_BACK_DETAIL = 1 << 7   /* the back-face pass drew its mesh's coarse copy (a quarter of the
+    SNELL_SKIP_BACK_DETAIL = 1 << 7,  /* the back-face pass drew its mesh's coarse copy (a quarter of the
                                        * triangles, within 1% of its extent): its triangles are below
                                        * 8 px each, finer than the per-pixel map holds */
+    SNELL_SKIP_DYNAMIC_ENV = 1 << 8   /* no dynamic environment although the frame has opaque objects: its
+                                       * exit rays meet them in the scene layers (snell_frame_desc.scene_layers) */
 } snell_skip;
 
 #define SNELL_REASON_SIZE 160
@@ -778,6 +798,9 @@ typedef struct snell_frame_stats {
     int back_face_guard;            /* pixels of guard band it drew around the target (an object crossing the
                                      * target's edge asked for it: guard_band), 0 if none */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
+    int scene_layer_passes;         /* depth peels of the scene layers drawn (0: the stage did not run) */
+    int scene_layers;               /* of those, the layers that hold something */
+    char scene_layers_reason[SNELL_REASON_SIZE]; /* why the stage ran or did not */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

@@ -34,6 +34,7 @@ typedef struct render_options {
     int frames;                    /* >1: time the frames and print the median */
     snell_shading shading;         /* --shading */
     int ssaa, msaa;                /* --ssaa S, --msaa N (snell_renderer_desc) */
+    int scene_layers;              /* --scene-layers N|auto|off (snell_frame_desc.scene_layers) */
     int normalize;                 /* fit each mesh into the unit sphere before placing it */
     int stats;                     /* --stats: frame and per-object statistics on stdout */
     int verbose;                   /* -v: the same on stderr, and the library's INFO messages */

@@ -69,6 +69,9 @@ void render_usage(FILE *f)
             "  --shading MODE         auto (default: screen space for dense meshes), forward, screen\n"
             "  --ssaa S               supersample S x S, box-resolved (2..8; the area average)\n"
             "  --msaa N               multisample N (triangle edges only; not with --ssaa)\n"
+            "  --scene-layers L       glass through glass and opaque objects through glass: auto (default: on\n"
+            "                         with 2+ glass or glass + opaque objects), off (each glass sees only the\n"
+            "                         environment, or its dynamic one), or 2..%d, the most layers peeled\n"
             "  --stats                print the last frame's statistics: per glass object the method used\n"
             "                         and why, warnings, passes, what was skipped\n"
             "  -v, --verbose          the statistics on stderr, and the library's info messages\n"
@@ -76,7 +79,7 @@ void render_usage(FILE *f)
             "  --trace-pixel X,Y      reference light path of pixel X,Y through the whole scene (repeatable):\n"
             "                         drawn over a second view into FILE_trace.png, points in FILE_trace.json\n"
             "  --2d SCENE             2D lightmap mode (see the 2D options with --2d --help)\n"
-            "  -h, --help             this text\n");
+            "  -h, --help             this text\n", SNELL_MAX_SCENE_LAYERS);
 }
 
 /* n comma-separated finite floats, the whole string. */
@@ -276,6 +279,11 @@ static int view_option(const char *a, const char *v, render_options *o)
     } else if (!strcmp(a, "--msaa")) {
         if (!parse_int(v, &o->msaa) || o->msaa < 1 || o->msaa > 64)
             return usage_error("%s wants 1..64, got '%s'", a, v);
+    } else if (!strcmp(a, "--scene-layers")) {
+        if (!strcmp(v, "auto")) o->scene_layers = 0;
+        else if (!strcmp(v, "off")) o->scene_layers = -1;
+        else if (!parse_int(v, &o->scene_layers) || o->scene_layers < 2 || o->scene_layers > SNELL_MAX_SCENE_LAYERS)
+            return usage_error("%s wants auto, off or 2..8 (SNELL_MAX_SCENE_LAYERS), got '%s'", a, v);
     } else if (!strcmp(a, "--frames")) {
         if (!parse_int(v, &o->frames) || o->frames < 1 || o->frames > 100000)
             return usage_error("%s wants 1..100000, got '%s'", a, v);

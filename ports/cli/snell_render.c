@@ -142,7 +142,7 @@ static void move_orbit(render_scene *s, int frame)
 static void skipped_str(unsigned bits, char *buf, size_t n)
 {
     static const char *const names[] = {"passthrough", "outside-view", "prepare", "env-update",
-                                        "back-faces",  "analysis",     "search",    "back-detail"};
+                                        "back-faces",  "analysis",     "search",    "back-detail", "dynamic-env"};
     size_t k, len = 0;
     buf[0] = '\0';
     for (k = 0; k < sizeof names / sizeof *names; k++)
@@ -155,9 +155,11 @@ static void skipped_str(unsigned bits, char *buf, size_t n)
 static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene *s)
 {
     int i;
-    fprintf(f, "stats: frame passes %d, cpu %.3f ms, glass %d, opaque drawn %d, background %d, fragment %s\n",
+    fprintf(f, "stats: frame passes %d, cpu %.3f ms, glass %d, opaque drawn %d, background %d, fragment %s, "
+            "scene layers %d peeled %d used (%s)\n",
             fs->passes, fs->cpu_ms, fs->glass_count, fs->opaque_drawn, fs->background_drawn,
-            fs->fragment_mediump ? "mediump" : "highp");
+            fs->fragment_mediump ? "mediump" : "highp", fs->scene_layer_passes, fs->scene_layers,
+            fs->scene_layers_reason);
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
         snell_glass_resolved m;
@@ -268,6 +270,7 @@ int main(int argc, char **argv)
     fd.glass_count = scene.glass_count;
     fd.opaque = scene.opaque_count ? scene.opaque : NULL;
     fd.opaque_count = scene.opaque_count;
+    fd.scene_layers = o.scene_layers;
     fd.camera.azimuth = (float)(o.az_deg * PI / 180.0);
     fd.camera.elevation = (float)(o.el_deg * PI / 180.0);
     fd.camera.distance = o.dist;

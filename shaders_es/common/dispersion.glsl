@@ -16,7 +16,7 @@
 //     light looked up per channel at the end (SNELL_DISPERSION_ONE_PATH): the
 //     kernel marks the entry, each interface and the final look-up with
 //     snell_disp_enter, snell_disp_cross (or snell_disp_cross3) and
-//     snell_disp_env, which are plain pass-throughs in the other variants.
+//     snell_disp_exit, which are plain pass-throughs in the other variants.
 // The exit direction written is the green one's.
 #ifndef SNELL_DISPERSION
 #define SNELL_DISPERSION 0
@@ -65,14 +65,17 @@ void snell_disp_cross(vec3 n, bool refracted, bool from_inside)
     snell_disp_cross3(mat3(n, n, n), refracted, from_inside);
 }
 
-// The environment seen along the traced path's final direction dir: per
-// channel along that channel's direction in the one-path variant.
-vec3 snell_disp_env(vec3 dir)
+// What the traced path sees leaving the object at p along dir (snell_exit,
+// common/beyond.glsl; dir is updated as it updates it): in the one-path
+// variant per channel, along that channel's direction from the same point.
+vec3 snell_disp_exit(highp vec3 p, inout highp vec3 dir)
 {
 #if SNELL_DISPERSION == 2
-    return vec3(snell_env(snell_disp_dirs[0]).r, snell_env(dir).g, snell_env(snell_disp_dirs[2]).b);
+    highp vec3 d_red = snell_disp_dirs[0], d_blue = snell_disp_dirs[2];
+    vec3 green = snell_exit(p, dir);
+    return vec3(snell_exit(p, d_red).r, green.g, snell_exit(p, d_blue).b);
 #else
-    return snell_env(dir);
+    return snell_exit(p, dir);
 #endif
 }
 

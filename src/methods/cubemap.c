@@ -208,7 +208,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     k.iterations = c->iterations;
     k.linear = c->linear_steps;
     k.no_search = c->max_interfaces == 1 && !o->glass->absorbs;
-    k.screen = o->screen_space;
+    k.screen = snell__glass_variant(o);
     k.absorb = o->glass->absorbs;
     k.fresnel_exact = c->fresnel == SNELL_FRESNEL_EXACT;
     /* Where it pays (BENCHMARKS.md, "Inner-surface Fresnel"): on a convex

@@ -8,9 +8,22 @@
 typedef struct snell__glass_program {
     unsigned prog;
     int screen_space;               /* 0 forward, else SNELL__SCREEN_* (render/gbuffer.h): screen.vert */
+    int beyond;                     /* SNELL_BEYOND: the exit look-up marches the scene layers */
     int model, normal_matrix, view_proj, eye, env, ior, ior_rgb, sigma, tint, bsphere;
     int gnormal, gdepth_id, inv_view_proj, inv_size, gid;
+    /* common/beyond.glsl's uniforms (beyond only) */
+    int s_layers, s_table, s_layer_count, s_capped, s_glass_ids, s_opaque_count, s_self, s_view_proj, s_eye, s_fwd,
+        s_near, s_inv_range, s_size;
 } snell__glass_program;
+
+/* A kernel program's variant for an object (what snell__glass_program_build
+ * takes): its shading (0 forward or SNELL__SCREEN_*, the low two bits) and
+ * SNELL__GLASS_BEYOND if its exit rays march the scene layers. Kernels key
+ * their programs by it; it is below SNELL__GLASS_VARIANTS. */
+#define SNELL__GLASS_SHADING_MASK 3
+#define SNELL__GLASS_BEYOND 4
+#define SNELL__GLASS_VARIANTS 8
+int snell__glass_variant(const snell__object *o);
 
 /* One slot of a kernel's small cache of programs, keyed by their
  * compile-time constants (cubemap.c, oliveira.c, peel.c keep 8): the first
@@ -30,10 +43,11 @@ snell__program_slot *snell__program_cache_get(void *slots, size_t stride, int co
                                               unsigned long *clock, int *hit);
 
 /* The kernel fs_path with the output kind's defines and extra_defines (may be
- * NULL), forward (screen_space 0: object.vert) or for the screen-space stage
- * (SNELL__SCREEN_*: screen.vert, common/surface.glsl reads the G-buffer). */
+ * NULL), for a variant (snell__glass_variant): forward (object.vert) or for
+ * the screen-space stage (SNELL__SCREEN_*: screen.vert, common/surface.glsl
+ * reads the G-buffer), with or without SNELL_BEYOND. */
 snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, snell__output_kind out,
-                                        const char *extra_defines, int screen_space, snell__glass_program *g);
+                                        const char *extra_defines, int variant, snell__glass_program *g);
 void snell__glass_program_destroy(snell__glass_program *g);
 /* The kernel variant a material needs (SNELL_DISPERSION, common/dispersion.glsl):
  * 0 no dispersion, 1 three traces (SNELL_DISPERSION_PER_CHANNEL), 2 one path

@@ -26,6 +26,16 @@ typedef struct snell__back_maps {
     int width, height;              /* map size: the target's + 2 band */
 } snell__back_maps;
 
+/* The frame's scene layers (render/layers.h), which the kernels' exit
+ * look-ups read when an object's beyond flag is set. */
+typedef struct snell__scene_layers {
+    int count;                      /* layers peeled that hold something; 0: none this frame */
+    int capped;                     /* 1: the peel stopped at its cap with surfaces left behind */
+    int glass_ids, opaque_count;     /* ids 1..glass_ids and the opaque ids of opaque_count objects may be in it */
+    float fwd[3];                   /* unit view axis */
+    float near_, inv_range;         /* depth value 0 at view depth near_, 1 at near_ + 1 / inv_range */
+} snell__scene_layers;
+
 /* The frame's camera and target, shared by every object (world space). */
 typedef struct snell__view {
     mat4 view, proj, view_proj, inv_view_proj;
@@ -33,6 +43,7 @@ typedef struct snell__view {
     int width, height;
     snell__output_kind out;
     snell__back_maps back;          /* this frame's back-face maps (band 0 and the target's size if none) */
+    snell__scene_layers layers;     /* this frame's scene layers (count 0 if none) */
 } snell__view;
 
 /* One glass object of a frame, resolved by the scene stage (render/scene.c). */
@@ -59,6 +70,8 @@ typedef struct snell__object {
     int back_coarse;                /* the back-face pass draws the mesh's coarse copy (render/gbuffer.h) */
     int crosses_edge;               /* its projected bounding sphere reaches past the target's edge */
     int back_guard;                 /* pixels of guard band it asks of the back-face pass (0: none) */
+    int beyond;                     /* its exit rays continue through the scene layers (view.layers), not
+                                     * straight to the environment: the kernel's SNELL_BEYOND variant */
 } snell__object;
 
 /* How well a method serves an object. */

@@ -117,7 +117,7 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
      * for this kernel in bench/BENCHMARKS.md "Inner-surface Fresnel") */
     int inner = c->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
                 (c->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && o->analysis && o->analysis->convex);
-    st = get_prog(ctx, s, c->linear_steps, c->iterations, o->screen_space, o->glass->absorbs,
+    st = get_prog(ctx, s, c->linear_steps, c->iterations, snell__glass_variant(o), o->glass->absorbs,
                   c->fresnel == SNELL_FRESNEL_EXACT, inner, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);

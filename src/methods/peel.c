@@ -123,6 +123,9 @@ static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, void **s
     s->u_inv_range = glGetUniformLocation(s->layer_prog, "u_inv_range");
     s->u_first = glGetUniformLocation(s->layer_prog, "u_first");
     s->u_prev = glGetUniformLocation(s->layer_prog, "u_prev");
+    glUseProgram(s->layer_prog);
+    glUniform1i(glGetUniformLocation(s->layer_prog, "u_id"), 1); /* the flag: non-empty */
+    glUseProgram(0);
     *state = s;
     return SNELL_OK;
 }
@@ -302,7 +305,7 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     int peeled, used;
     prog_key k;
     snell_status st;
-    k.screen = o->screen_space;
+    k.screen = snell__glass_variant(o);
     k.absorb = o->glass->absorbs;
     k.linear = pp->linear_steps;
     k.binary = pp->binary_steps;

@@ -7,14 +7,14 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 
-/* Program variants: [shading: forward or SNELL__SCREEN_*][thin wall][absorption][dispersion variant,
+/* Program variants: [snell__glass_variant: shading, scene layers][thin wall][absorption][dispersion variant,
  * snell__dispersion_variant: a thin wall has none]; the forward solid
  * one without absorption (the default) is built with the method, the others
  * on first use. */
 typedef struct single_state {
     snell__output_kind out;
-    snell__glass_program prog[3][2][2][3];
-    int u_thickness[3][2][2][3];
+    snell__glass_program prog[SNELL__GLASS_VARIANTS][2][2][3];
+    int u_thickness[SNELL__GLASS_VARIANTS][2][2][3];
 } single_state;
 
 static void single_destroy(snell_ctx *ctx, void *state);
@@ -57,7 +57,8 @@ static void single_destroy(snell_ctx *ctx, void *state)
     single_state *s = (single_state *)state;
     int i;
     if (!s) return;
-    for (i = 0; i < 36; i++) snell__glass_program_destroy(&s->prog[i / 12][(i / 6) % 2][(i / 3) % 2][i % 3]);
+    for (i = 0; i < 12 * SNELL__GLASS_VARIANTS; i++)
+        snell__glass_program_destroy(&s->prog[i / 12][(i / 6) % 2][(i / 3) % 2][i % 3]);
     snell__free(&ctx->alloc, s);
 }
 
@@ -77,7 +78,7 @@ static snell_status single_draw(snell_ctx *ctx, void *state, const snell__view *
                                 snell_object_stats *stats)
 {
     single_state *s = (single_state *)state;
-    int thin = o->glass->material.thickness > 0.0f, screen = o->screen_space, absorb = o->glass->absorbs;
+    int thin = o->glass->material.thickness > 0.0f, screen = snell__glass_variant(o), absorb = o->glass->absorbs;
     const snell__glass_program *p;
     snell_status st = get_prog(ctx, s, screen, thin, absorb, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;

@@ -40,11 +40,11 @@ typedef struct wyman_prog {
     int bnormal, bdepth_id, gaux, dn_scale, back_band;
 } wyman_prog;
 
-/* [shading: forward or SNELL__SCREEN_*][absorption][dispersion variant,
+/* [snell__glass_variant: shading, scene layers][absorption][dispersion variant,
  * snell__dispersion_variant]; built on first use. */
 typedef struct wyman_state {
     snell__output_kind out;
-    wyman_prog prog[3][2][3];
+    wyman_prog prog[SNELL__GLASS_VARIANTS][2][3];
 } wyman_state;
 
 static void wyman_destroy(snell_ctx *ctx, void *state);
@@ -91,7 +91,7 @@ static void wyman_destroy(snell_ctx *ctx, void *state)
     wyman_state *s = (wyman_state *)state;
     int i;
     if (!s) return;
-    for (i = 0; i < 18; i++) snell__glass_program_destroy(&s->prog[i / 6][(i / 3) % 2][i % 3].g);
+    for (i = 0; i < 6 * SNELL__GLASS_VARIANTS; i++) snell__glass_program_destroy(&s->prog[i / 6][(i / 3) % 2][i % 3].g);
     snell__free(&ctx->alloc, s);
 }
 
@@ -223,12 +223,12 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
 {
     wyman_state *s = (wyman_state *)state;
     const wyman_prepared *wp = (const wyman_prepared *)o->prepared;
-    int screen = o->screen_space, absorb = o->glass->absorbs;
+    int screen = snell__glass_variant(o), absorb = o->glass->absorbs;
     const wyman_prog *p;
     snell_status st = get_prog(ctx, s, screen, absorb, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
-    if (!screen) {
+    if (!o->screen_space) {
         /* what surface.glsl's screen-space path has set: the back-face lookup needs them forward too */
         glUniformMatrix4fv(p->g.inv_view_proj, 1, GL_FALSE, (const GLfloat *)v->inv_view_proj);
         glUniform2f(p->g.inv_size, 1.0f / (float)v->width, 1.0f / (float)v->height);

@@ -2,7 +2,9 @@
  * (scene.c), draw the opaque objects (composite.c), then each glass object
  * back to front with its method (methods/): prepare its resources (cached,
  * prepared.c), update its dynamic environment if it sees opaque objects
- * (env_dynamic.c), draw; the background last where nothing was drawn. Into
+ * (env_dynamic.c) and the frame has no scene layers (layers.c: every object
+ * peeled together, which the kernels' exit rays march through when the
+ * frame has several objects), draw; the background last where nothing was drawn. Into
  * the renderer's offscreen target or the bound framebuffer. After the first
  * frame with given meshes and settings a frame allocates nothing. */
 #include "render/renderer.h"
@@ -177,6 +179,7 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__composite_destroy(&r->comp);
     snell__gbuffer_destroy(&r->gbuffer);
     snell__gbuffer_destroy(&r->backfaces);
+    snell__layers_destroy(&r->layers);
     snell__ssaa_destroy(&r->ssaa);
     if (r->msaa_fbo) glDeleteFramebuffers(1, &r->msaa_fbo);
     if (r->msaa_rb) glDeleteRenderbuffers(1, &r->msaa_rb);
@@ -260,7 +263,9 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
     if (r->object_method[o->index]->vertex_array && o->prepared)
         o->vao = r->object_method[o->index]->vertex_array(o->prepared);
     o->env_texture = fd->env->texture;
-    if (fd->opaque_count > 0) {
+    if (fd->opaque_count > 0 && o->beyond) {
+        st->skipped |= SNELL_SKIP_DYNAMIC_ENV; /* its exit rays meet them in the scene layers */
+    } else if (fd->opaque_count > 0) {
         /* The glass sees the opaque objects through its dynamic environment. */
         s = snell__env_dynamic_update(r->ctx, &r->dyn, &r->comp, o->index, fd->env, fd->opaque, fd->opaque_count,
                                       o->bsphere, o->bsphere[3], fd->dynamic_env_size, &o->env_texture, st);
@@ -280,6 +285,35 @@ static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object
     return r->object_method[o->index]->draw(r->ctx, r->object_state[o->index], &r->scene.view, o, st);
 }
 
+/* Whether the frame needs the scene layers (snell_frame_desc.scene_layers):
+ * only where a glass object's exit ray has something other than the
+ * environment to meet. Marks the objects whose kernels march them and lists
+ * the glass objects peeled; returns how many. */
+static int choose_scene_layers(snell_renderer *r, const snell_frame_desc *fd, snell_frame_stats *s)
+{
+    snell__scene *sc = &r->scene;
+    int i, n = 0;
+    int solid = 0;
+    for (i = 0; i < sc->drawn; i++) {
+        snell__object *o = &sc->obj[sc->order[i]];
+        r->layer_list[n++] = o;
+        solid += o->glass->material.thickness <= 0.0f;
+    }
+    if (fd->scene_layers < 0) {
+        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "off (scene_layers -1)");
+        return 0;
+    }
+    if (n == 0 || (n == 1 && fd->opaque_count == 0)) {
+        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason,
+                   "not needed: %s", n == 0 ? "no glass object drawn" : "one glass object and nothing else");
+        return 0;
+    }
+    for (i = 0; i < n; i++) r->layer_list[i]->beyond = 1;
+    snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "%d glass (%d solid, %d thin walls) and %d opaque "
+               "objects: exit rays meet the others", n, solid, n - solid, fd->opaque_count);
+    return n;
+}
+
 static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd)
 {
     snell_status st = snell__ctx_check_current(r->ctx, "snell_render");
@@ -292,6 +326,9 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the environment belongs to another context");
     if (fd->dynamic_env_size != 0 && (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048))
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "dynamic_env_size %d outside 16..2048", fd->dynamic_env_size);
+    if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d",
+                           fd->scene_layers, SNELL_MAX_SCENE_LAYERS);
     return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
 }
 
@@ -320,7 +357,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     snell__scene *sc;
     snell_glstate saved;
     snell_status st;
-    int external, i, n_screen = 0, n_back = 0, band = 0;
+    int external, i, n_screen = 0, n_back = 0, band = 0, n_layers = 0;
     double t0 = snell__now_ms();
     if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
     s = &r->stats;
@@ -340,6 +377,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         s->opaque_drawn = fd->opaque_count;
         s->passes++;
     }
+    if (st == SNELL_OK) n_layers = choose_scene_layers(r, fd, s);
     /* Glass: the objects shaded in screen space share one G-buffer pass,
      * which leaves each pixel the nearest of their surfaces, then run their
      * kernels (in any order: they cover disjoint pixels); then the forward
@@ -359,6 +397,17 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
             if (o->back_guard > band) band = o->back_guard;
             r->back_list[n_back++] = o;
         }
+    }
+    /* The scene layers: every solid glass object drawn and every opaque one,
+     * peeled together once, before any kernel reads them. */
+    if (st == SNELL_OK && n_layers > 0) {
+        int peels = 0;
+        st = snell__layers_draw(r->ctx, &r->layers, &sc->view, r->layer_list, n_layers, fd->opaque,
+                                fd->opaque_count, fd->scene_layers > 0 ? fd->scene_layers : SNELL_DEFAULT_SCENE_LAYERS,
+                                &peels);
+        s->scene_layer_passes = peels;
+        s->scene_layers = sc->view.layers.count;
+        s->passes += peels;
     }
     /* One back-face pass for every object whose method reads back faces;
      * none in frames without such an object. */

@@ -7,6 +7,7 @@
 #include "render/composite.h"
 #include "render/env_dynamic.h"
 #include "render/gbuffer.h"
+#include "render/layers.h"
 #include "render/prepared.h"
 #include "render/scene.h"
 #include "render/ssaa.h"
@@ -37,6 +38,8 @@ struct snell_renderer {
     snell__object *screen_list[SNELL_MAX_GLASS];      /* objects shaded in screen space */
     snell__gbuffer backfaces;                         /* the shared back-face pass, made on first use */
     snell__object *back_list[SNELL_MAX_GLASS];        /* objects whose method needs it */
+    snell__layers layers;                             /* the scene layers, made on first use */
+    snell__object *layer_list[SNELL_MAX_GLASS];       /* the glass objects peeled into them */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */
     uint8_t *readback8;

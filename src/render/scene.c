@@ -14,9 +14,7 @@ static int is_passthrough(const snell_glass_resolved *g)
     return g->material.ior == 1.0f && !g->absorbs && t[0] == 1.0f && t[1] == 1.0f && t[2] == 1.0f;
 }
 
-/* World-space bounding sphere: centre of the object-space box, radius =
- * farthest vertex, scaled by the model's largest axis scale. */
-static void bounding_sphere(const snell_mesh *m, mat4 model, float out[4])
+void snell__bounding_sphere(const snell_mesh *m, mat4 model, float out[4])
 {
     vec3 c, wc;
     float s = 0.0f;
@@ -79,7 +77,7 @@ static snell_status build_object(snell_ctx *ctx, const snell_glass *g, int i, sn
     glm_mat4_transpose_to(o->inv_model, inv);
     glm_mat4_pick3(inv, o->normal_matrix);
     o->mirrored = glm_mat4_det(o->model) < 0.0f;
-    bounding_sphere(o->mesh, o->model, o->bsphere);
+    snell__bounding_sphere(o->mesh, o->model, o->bsphere);
     glm_mat4_mulv(sc->view.view, (vec4){o->bsphere[0], o->bsphere[1], o->bsphere[2], 1.0f}, c);
     o->view_depth = -c[2];
     st->view_depth = o->view_depth;

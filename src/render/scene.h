@@ -18,6 +18,11 @@ typedef struct snell__scene {
 
 /* Validates and resolves fd's glass list into sc and fills stats->glass[]
  * (view depth, skips, draw order). Allocates nothing. */
+/* World-space bounding sphere of a mesh under model: centre of the
+ * object-space box, radius = farthest vertex, scaled by the model's largest
+ * axis scale. */
+void snell__bounding_sphere(const snell_mesh *m, mat4 model, float out[4]);
+
 snell_status snell__scene_build(snell_ctx *ctx, const snell_frame_desc *fd, int width, int height,
                                 snell__output_kind out, snell__scene *sc, snell_frame_stats *stats);
 

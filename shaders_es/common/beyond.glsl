@@ -1,0 +1,347 @@
+// beyond.glsl - what a ray sees once it leaves the kernel's glass object.
+// snell_exit(p, dir): the light arriving back along the ray that leaves the
+// object at p in direction dir. Without SNELL_BEYOND, the environment. With
+// it (render/layers.h: the frame has other objects for the ray to meet), the
+// ray is marched through the scene layers, the depth-peeled surfaces of every
+// other glass and opaque object of the frame (Wang 2014, seed 001 3.7, with
+// the layers of all objects in one peel instead of one peel per object):
+//
+// - The medium at a point is the innermost object with an odd number of its
+//   surfaces in front of the point at the point's pixel (entered and not
+//   left); 0 is air. The kernel's own object is skipped (its kernel has
+//   traced it), and so is the object the ray last left: a point just past
+//   a surface can test as behind it at its pixel (the layer holds the
+//   surface's depth at the pixel's centre), which read as a re-entry made
+//   1-3% of the rays through two spheres wander (measured, test_scene_layers);
+//   so a ray that would re-enter a concave object passes it.
+// - The ray is sampled in steps of 1/BEYOND_LINEAR of the bounding diameter
+//   of each object whose bounding sphere it passes (nearest first), or of
+//   the object it is inside; where the medium changes it bisects
+//   BEYOND_BINARY times: the surface crossed is the layer of the object
+//   entered (or left) nearest the crossing, whose normal it reads.
+// - Glass: Snell's law with the two media's indices, total internal
+//   reflection inside, Schlick's Fresnel at each entry from air (the
+//   reflected part looks the environment up, as every kernel's first entry
+//   does; inner surfaces have none, the MATCHED model), the object's tint at
+//   entry and Beer-Lambert over each length inside; up to
+//   BEYOND_MAX_INTERFACES surfaces. Opaque: shaded as opaque.frag shades it
+//   (the path ends). Past the last object: the environment.
+// - Thin walls (material.thickness > 0) are never a medium: a change in the
+//   parity of the thin-wall surfaces in front of the point is a wall
+//   crossed, which transmits by the slab model (snell_thin_slab, as the
+//   single kernel's thin walls do: no bend, its reflection added).
+// - Where the march leaves what the layers know (the target's edge, behind
+//   the eye, behind the last of a capped peel) the ray leaves in its
+//   direction to the environment.
+//
+// dir is updated to the direction the path finally leaves in (exit-direction
+// output). highp: positions, projections and 24-bit depths.
+
+#ifdef SNELL_BEYOND
+#define BEYOND_MAX_LAYERS 8         // SNELL_MAX_SCENE_LAYERS
+#define BEYOND_MAX_INTERFACES 8
+#define BEYOND_LINEAR 32
+#define BEYOND_BINARY 8
+#define BEYOND_OPAQUE_ID0 33        // SNELL__LAYERS_OPAQUE_ID0
+#define BEYOND_UNKNOWN (-2)
+
+uniform highp sampler2DArray u_scene_layers; // slice 2k: normal; 2k + 1: depth 24 bits + id 8 bits
+uniform highp sampler2D u_scene_table;       // per id - 1: row 0 (ior, tint; ior 0 = opaque),
+                                             // row 1 (absorption, thin-wall thickness: 0 solid),
+                                             // row 2 bounding sphere, row 3 albedo
+uniform int u_scene_layer_count;             // non-empty layers peeled, 1..BEYOND_MAX_LAYERS
+uniform int u_scene_capped;                  // 1: surfaces may lie behind the last layer
+uniform int u_scene_glass_ids;               // glass ids 1..u_scene_glass_ids may be present
+uniform int u_scene_opaque_count;            // opaque ids BEYOND_OPAQUE_ID0 + 0..count - 1
+uniform int u_scene_self;                    // the kernel's object's id, skipped
+uniform highp mat4 u_scene_view_proj;
+uniform highp vec3 u_scene_eye;
+uniform highp vec3 u_scene_fwd;              // unit view axis
+uniform highp float u_scene_near;            // view depth of depth value 0
+uniform highp float u_scene_inv_range;       // depth values per world unit
+uniform highp vec2 u_scene_size;             // target size in pixels
+
+bool beyond_pixel(highp vec3 p, out ivec2 px)
+{
+    highp vec4 c = u_scene_view_proj * vec4(p, 1.0);
+    px = ivec2(0);
+    if (c.w <= 0.0) return false;
+    highp vec2 w = (c.xy / c.w * 0.5 + 0.5) * u_scene_size;
+    if (any(lessThan(w, vec2(0.0))) || any(greaterThanEqual(w, u_scene_size))) return false;
+    px = ivec2(w);
+    return true;
+}
+
+highp float beyond_depth(highp vec3 p)
+{
+    return (dot(p - u_scene_eye, u_scene_fwd) - u_scene_near) * u_scene_inv_range;
+}
+
+// Layer k at px: its depth (2.0: empty) and id (0: empty).
+highp float beyond_layer(ivec2 px, int k, out int id)
+{
+    highp uvec4 b = uvec4(texelFetch(u_scene_layers, ivec3(px, 2 * k + 1), 0) * 255.0 + 0.5);
+    id = int(b.a);
+    return id == 0 ? 2.0 : float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+}
+
+vec4 beyond_table(int id, int row)
+{
+    return texelFetch(u_scene_table, ivec2(id - 1, row), 0);
+}
+
+bool beyond_thin(int id)
+{
+    return id < BEYOND_OPAQUE_ID0 && beyond_table(id, 1).w > 0.0;
+}
+
+// The medium at p (see the header): 0 air, an id, or BEYOND_UNKNOWN; plus
+// BEYOND_THIN_ODD where the thin-wall surfaces in front of p are odd in
+// number. The object excl is skipped as the kernel's own is.
+#define BEYOND_THIN_ODD 256
+int beyond_medium(highp vec3 p, int excl)
+{
+    ivec2 px;
+    if (!beyond_pixel(p, px)) return BEYOND_UNKNOWN;
+    highp float z = beyond_depth(p);
+    int ids[BEYOND_MAX_LAYERS];
+    int n = 0;
+    for (int k = 0; k < BEYOND_MAX_LAYERS; k++) {
+        if (k >= u_scene_layer_count) break;
+        int id;
+        highp float d = beyond_layer(px, k, id);
+        if (id == 0 || d >= z) break; // layers are sorted by depth; empty ones come last
+        ids[n++] = id;
+    }
+    if (n == u_scene_layer_count && u_scene_capped != 0) return BEYOND_UNKNOWN;
+    int thin = 0;
+    for (int i = 0; i < BEYOND_MAX_LAYERS; i++)
+        if (i < n && ids[i] != u_scene_self && beyond_thin(ids[i])) thin ^= BEYOND_THIN_ODD;
+    // the object of the nearest layer (in front of p) whose surfaces in front
+    // of p are odd in number: p is inside it and inside nothing nearer in
+    for (int i = BEYOND_MAX_LAYERS - 1; i >= 0; i--) {
+        if (i >= n || ids[i] == u_scene_self || ids[i] == excl || beyond_thin(ids[i])) continue;
+        int c = 0;
+        for (int j = 0; j < BEYOND_MAX_LAYERS; j++)
+            if (j < n && ids[j] == ids[i]) c++;
+        if ((c & 1) == 1) return ids[i] | thin;
+    }
+    return thin;
+}
+
+float beyond_ior(int medium)
+{
+    return medium > 0 ? beyond_table(medium, 0).x : 1.0;
+}
+
+// The normal of object id's surface crossed between qa and qb: its layer
+// nearest the crossing's depth at qb's pixel, else at qa's; -dir if neither
+// has one (no bend).
+vec3 beyond_normal(highp vec3 qa, highp vec3 qb, int id, highp vec3 dir)
+{
+    for (int e = 0; e < 2; e++) {
+        highp vec3 q = e == 0 ? qb : qa;
+        ivec2 px;
+        if (!beyond_pixel(q, px)) continue;
+        highp float z = beyond_depth(q), best = 4.0;
+        int best_k = -1;
+        for (int k = 0; k < BEYOND_MAX_LAYERS; k++) {
+            if (k >= u_scene_layer_count) break;
+            int lid;
+            highp float d = beyond_layer(px, k, lid);
+            if (lid == 0) break;
+            if (lid == id && abs(d - z) < best) {
+                best = abs(d - z);
+                best_k = k;
+            }
+        }
+        if (best_k >= 0) {
+            highp vec4 g = texelFetch(u_scene_layers, ivec3(px, 2 * best_k), 0);
+            return normalize(snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0));
+        }
+    }
+    return -dir;
+}
+
+// The next stretch of o + t dir with t > t0 inside the bounding sphere (grown
+// by one step) of an object other than self: [ta, tb] and that object's
+// step. False: the ray meets no other object.
+bool beyond_stretch(highp vec3 o, highp vec3 dir, highp float t0, out highp float ta, out highp float tb,
+                    out highp float step)
+{
+    ta = 1e30;
+    tb = 0.0;
+    step = 1.0;
+    bool found = false;
+    int count = u_scene_glass_ids + u_scene_opaque_count;
+    for (int i = 0; i < 128; i++) { // SNELL_MAX_GLASS + SNELL_MAX_OPAQUE ids at most
+        if (i >= count) break;
+        int id = i < u_scene_glass_ids ? i + 1 : BEYOND_OPAQUE_ID0 + i - u_scene_glass_ids;
+        if (id == u_scene_self) continue;
+        highp vec4 s = beyond_table(id, 2);
+        if (s.w <= 0.0) continue; // not in this frame's layers
+        highp float st = 2.0 * s.w / float(BEYOND_LINEAR), r = s.w + st;
+        highp vec3 oc = o - s.xyz;
+        highp float b = dot(oc, dir), disc = b * b - dot(oc, oc) + r * r;
+        if (disc < 0.0) continue;
+        highp float q = sqrt(disc), t1 = max(-b - q, t0), t2 = -b + q;
+        if (t2 <= t0) continue;
+        if (t1 < ta) {
+            ta = t1;
+            tb = t2;
+            step = st;
+            found = true;
+        }
+    }
+    return found;
+}
+
+// Where a ray inside glass object `medium` from o must have left it: the far
+// side of its bounding sphere grown by a step.
+highp float beyond_inside_stretch(int medium, highp vec3 o, highp vec3 dir, out highp float step)
+{
+    highp vec4 s = beyond_table(medium, 2);
+    step = 2.0 * s.w / float(BEYOND_LINEAR);
+    highp float r = s.w + step;
+    highp vec3 oc = o - s.xyz;
+    highp float b = dot(oc, dir);
+    return max(-b + sqrt(max(b * b - dot(oc, oc) + r * r, 0.0)), 0.0);
+}
+
+vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
+{
+    vec3 radiance = vec3(0.0); // reflections met on the way
+    vec3 thr = vec3(1.0);      // what reaches the eye of the light along the current ray
+    // a ray that leaves its object inside another (nested glass) starts in it
+    int medium = beyond_medium(p, 0); // the medium, and the thin walls' parity (BEYOND_THIN_ODD)
+    if (medium < 0 || (medium & 255) >= BEYOND_OPAQUE_ID0) medium = 0;
+    int crossed = 0;
+    int left = 0; // the object the ray last left: not re-entered (see the header)
+    highp vec3 o = p;
+    highp float t0 = 0.0;
+    // each round crosses a surface (at most BEYOND_MAX_INTERFACES) or passes
+    // one object's bounding sphere
+    for (int round = 0; round < BEYOND_MAX_INTERFACES + 32; round++) {
+        highp float ta, tb, step;
+        int inside = medium & 255; // the glass object the ray is in, 0 air
+        if (inside > 0) {
+            ta = 0.0;
+            tb = beyond_inside_stretch(inside, o, dir, step);
+        } else if (!beyond_stretch(o, dir, t0, ta, tb, step)) {
+            break;
+        }
+        // linear: the first sample whose medium differs
+        highp float ia = ta, ib = -1.0;
+        int m_new = medium;
+        bool unknown = false;
+        for (int i = 1; i <= 4 * BEYOND_LINEAR; i++) { // a stretch is at most a grown diameter: < 2 LINEAR steps
+            highp float t = min(ta + float(i) * step, tb);
+            int m = beyond_medium(o + t * dir, left);
+            if (m == BEYOND_UNKNOWN) {
+                unknown = true;
+                break;
+            }
+            if (m != medium) {
+                ib = t;
+                m_new = m;
+                break;
+            }
+            ia = t;
+            if (t >= tb) break;
+        }
+        if (unknown) break;
+        if (ib < 0.0) {
+            if (inside > 0) {
+                // no far surface in the layers: it leaves in its direction (peel.frag's rule)
+                thr *= snell_beer_lambert(beyond_table(inside, 1).rgb, tb);
+                left = inside;
+                medium &= BEYOND_THIN_ODD;
+                o += tb * dir;
+                t0 = 0.0;
+            } else {
+                t0 = tb; // on to the next object's sphere
+            }
+            continue;
+        }
+        for (int s = 0; s < BEYOND_BINARY; s++) {
+            highp float tm = 0.5 * (ia + ib);
+            int m = beyond_medium(o + tm * dir, left);
+            if (m == medium) {
+                ia = tm;
+            } else {
+                ib = tm;
+                if (m != BEYOND_UNKNOWN) m_new = m;
+            }
+        }
+        highp vec3 qa = o + ia * dir, qb = o + ib * dir;
+        if (inside > 0) thr *= snell_beer_lambert(beyond_table(inside, 1).rgb, ib);
+        int entered = m_new & 255;
+        if (entered == inside && (m_new ^ medium) == BEYOND_THIN_ODD) {
+            // a thin wall: which one is the nearest thin layer to the crossing
+            int wall = 0;
+            ivec2 px;
+            if (beyond_pixel(qb, px)) {
+                highp float z = beyond_depth(qb), best = 4.0;
+                for (int k = 0; k < BEYOND_MAX_LAYERS; k++) {
+                    if (k >= u_scene_layer_count) break;
+                    int lid;
+                    highp float d = beyond_layer(px, k, lid);
+                    if (lid == 0) break;
+                    if (lid != u_scene_self && beyond_thin(lid) && abs(d - z) < best) {
+                        best = abs(d - z);
+                        wall = lid;
+                    }
+                }
+            }
+            if (wall > 0) {
+                vec3 nw = beyond_normal(qa, qb, wall, dir);
+                vec3 rs, ts;
+                vec4 w0 = beyond_table(wall, 0), w1 = beyond_table(wall, 1);
+                snell_thin_slab(dot(nw, dir), w0.x, w1.rgb, w1.w, rs, ts);
+                if (dot(nw, dir) > 0.0) nw = -nw;
+                radiance += thr * rs * snell_env(snell_reflect(dir, nw));
+                thr *= ts * w0.yzw;
+            }
+            medium = m_new;
+            o = qb;
+            t0 = 0.0;
+            if (++crossed >= BEYOND_MAX_INTERFACES) break;
+            continue;
+        }
+        vec3 n = beyond_normal(qa, qb, entered > 0 ? entered : inside, dir);
+        if (entered >= BEYOND_OPAQUE_ID0) {
+            // opaque.frag's light: half-Lambert from the sky, the mesh's own normal
+            float l = 0.5 + 0.5 * dot(n, normalize(vec3(0.3, 1.0, 0.2)));
+            radiance += thr * beyond_table(entered, 3).rgb * (0.25 + 0.75 * l);
+            return radiance;
+        }
+        if (dot(n, dir) > 0.0) n = -n; // face the ray
+        float n1 = beyond_ior(inside), n2 = beyond_ior(entered);
+        vec3 out_dir;
+        bool through = snell_refract(dir, n, n1 / n2, out_dir);
+        if (inside == 0) {
+            // an entry from air: its reflection, and the tint
+            float f = snell_fresnel(-dot(dir, n), n1, n2);
+            // one texture level (no mipmaps): the look-up needs no derivatives here
+            radiance += thr * f * snell_env(snell_reflect(dir, n));
+            thr *= (1.0 - f) * beyond_table(entered, 0).yzw;
+        }
+        dir = normalize(out_dir);
+        if (through) {
+            o = qb;
+            if (inside > 0) left = inside;
+            medium = m_new;
+        } else {
+            o = qa; // TIR: from the last point inside
+        }
+        t0 = 0.0;
+        if (++crossed >= BEYOND_MAX_INTERFACES) break; // the cap: leaves in its direction
+    }
+    return radiance + thr * snell_env(dir);
+}
+#else
+vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
+{
+    return snell_env(dir);
+}
+#endif

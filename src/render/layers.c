@@ -1,0 +1,247 @@
+/* layers.c — see layers.h. */
+#include "render/layers.h"
+#include "render/pass.h"
+#include "render/scene.h"
+#include "methods/glass_program.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "core/program.h"
+
+#include <math.h>
+#include <string.h>
+
+static void release_targets(snell__layers *l)
+{
+    if (l->fbo) glDeleteFramebuffers(1, &l->fbo);
+    if (l->array_tex) glDeleteTextures(1, &l->array_tex);
+    if (l->next_tex[0]) glDeleteTextures(2, l->next_tex);
+    if (l->depth_rb) glDeleteRenderbuffers(1, &l->depth_rb);
+    if (l->query) glDeleteQueries(1, &l->query);
+    if (l->table_tex) glDeleteTextures(1, &l->table_tex);
+    l->fbo = l->array_tex = l->next_tex[0] = l->next_tex[1] = l->depth_rb = l->query = l->table_tex = 0;
+    l->width = l->height = l->capacity = 0;
+}
+
+void snell__layers_destroy(snell__layers *l)
+{
+    release_targets(l);
+    if (l->prog) glDeleteProgram(l->prog);
+    memset(l, 0, sizeof *l);
+}
+
+static void nearest_texture(GLenum target)
+{
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+static snell_status create_program(snell_ctx *ctx, snell__layers *l)
+{
+    snell_status st = snell__program_build(ctx, "object.vert", "peel_layer.frag", NULL, &l->prog);
+    if (st != SNELL_OK) return st;
+    l->u_model = glGetUniformLocation(l->prog, "u_model");
+    l->u_normal_matrix = glGetUniformLocation(l->prog, "u_normal_matrix");
+    l->u_view_proj = glGetUniformLocation(l->prog, "u_view_proj");
+    l->u_eye = glGetUniformLocation(l->prog, "u_eye");
+    l->u_fwd = glGetUniformLocation(l->prog, "u_fwd");
+    l->u_near = glGetUniformLocation(l->prog, "u_near");
+    l->u_inv_range = glGetUniformLocation(l->prog, "u_inv_range");
+    l->u_first = glGetUniformLocation(l->prog, "u_first");
+    l->u_prev = glGetUniformLocation(l->prog, "u_prev");
+    l->u_id = glGetUniformLocation(l->prog, "u_id");
+    return SNELL_OK;
+}
+
+/* Layer textures for a w x h target and `layers` layers (made or grown on
+ * demand; kept across frames), and the object table. */
+static snell_status ensure_targets(snell_ctx *ctx, snell__layers *l, int w, int h, int layers)
+{
+    int i;
+    if (l->fbo && l->width == w && l->height == h && l->capacity >= layers) return SNELL_OK;
+    release_targets(l);
+    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
+    glGenTextures(1, &l->array_tex);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, l->array_tex);
+    nearest_texture(GL_TEXTURE_2D_ARRAY);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA8, w, h, 2 * layers);
+    glGenTextures(2, l->next_tex);
+    for (i = 0; i < 2; i++) {
+        glBindTexture(GL_TEXTURE_2D, l->next_tex[i]);
+        nearest_texture(GL_TEXTURE_2D);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+    }
+    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_TABLE_UNIT);
+    glGenTextures(1, &l->table_tex);
+    glBindTexture(GL_TEXTURE_2D, l->table_tex);
+    nearest_texture(GL_TEXTURE_2D);
+    /* RGBA32F is sampleable unfiltered in core GLES 3.0 (texelFetch) */
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, SNELL__LAYERS_IDS, SNELL__LAYERS_TABLE_ROWS);
+    glActiveTexture(GL_TEXTURE0);
+    glGenRenderbuffers(1, &l->depth_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, l->depth_rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glGenFramebuffers(1, &l->fbo);
+    glGenQueries(1, &l->query);
+    l->width = w;
+    l->height = h;
+    l->capacity = layers;
+    if (glGetError() != GL_NO_ERROR) {
+        release_targets(l);
+        return snell__fail(ctx, SNELL_E_GL, "GL error creating %d scene layers of %dx%d", layers, w, h);
+    }
+    return SNELL_OK;
+}
+
+/* One object of the peel: what the layer pass draws and the table holds. */
+typedef struct layer_item {
+    const snell_mesh *mesh;
+    const snell__object *glass; /* NULL: opaque */
+    mat4 model;
+    mat3 normal_matrix;
+    float bsphere[4];
+    int id;
+} layer_item;
+
+static void opaque_item(const snell_opaque *o, int j, layer_item *it)
+{
+    mat4 inv;
+    memset(it, 0, sizeof *it);
+    it->mesh = o->mesh;
+    if (o->model) memcpy(it->model, o->model, sizeof it->model);
+    else glm_mat4_identity(it->model);
+    glm_mat4_inv(it->model, inv);
+    glm_mat4_transpose(inv);
+    glm_mat4_pick3(inv, it->normal_matrix);
+    snell__bounding_sphere(o->mesh, it->model, it->bsphere);
+    it->id = SNELL__LAYERS_OPAQUE_ID0 + j;
+}
+
+/* The table's column for an item: row 0 (IOR, tint; IOR 0 = opaque), row 1
+ * (absorption per world unit), row 2 (bounding sphere), row 3 (opaque albedo). */
+static void table_column(snell__layers *l, const layer_item *it, const snell_opaque *opaque)
+{
+    float *r0 = l->table[0][it->id - 1], *r1 = l->table[1][it->id - 1], *r2 = l->table[2][it->id - 1],
+          *r3 = l->table[3][it->id - 1];
+    int k;
+    memset(r0, 0, 4 * sizeof *r0);
+    memset(r1, 0, 4 * sizeof *r1);
+    memset(r3, 0, 4 * sizeof *r3);
+    memcpy(r2, it->bsphere, 4 * sizeof *r2);
+    if (it->glass) {
+        const snell_glass_resolved *g = it->glass->glass;
+        r0[0] = g->material.ior;
+        for (k = 0; k < 3; k++) {
+            r0[1 + k] = g->material.tint[k];
+            r1[k] = g->absorbs ? g->absorption[k] : 0.0f;
+        }
+        r1[3] = g->material.thickness; /* > 0: a thin wall */
+    } else {
+        /* composite.c's rule: all zero = 0.8 grey */
+        int grey = opaque->color[0] == 0.0f && opaque->color[1] == 0.0f && opaque->color[2] == 0.0f;
+        for (k = 0; k < 3; k++) r3[k] = grey ? 0.8f : opaque->color[k];
+    }
+}
+
+snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v, snell__object *const *glass,
+                                int glass_count, const snell_opaque *opaque, int opaque_count, int max_layers,
+                                int *passes)
+{
+    static const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    layer_item items[SNELL_MAX_GLASS + SNELL_MAX_OPAQUE];
+    float lo = HUGE_VALF, hi = -HUGE_VALF;
+    snell__scene_layers *sl = &v->layers;
+    snell__pass pass;
+    snell_status st;
+    int n = 0, i, k, used = 0;
+    *passes = 0;
+    memset(sl, 0, sizeof *sl);
+    for (i = 0; i < glass_count; i++) {
+        layer_item *it = &items[n++];
+        memset(it, 0, sizeof *it);
+        it->mesh = glass[i]->mesh;
+        it->glass = glass[i];
+        glm_mat4_copy((vec4 *)glass[i]->model, it->model);
+        glm_mat3_copy((vec3 *)glass[i]->normal_matrix, it->normal_matrix);
+        memcpy(it->bsphere, glass[i]->bsphere, sizeof it->bsphere);
+        it->id = glass[i]->index + 1;
+    }
+    for (i = 0; i < opaque_count; i++) opaque_item(&opaque[i], i, &items[n++]);
+    if (!l->prog && (st = create_program(ctx, l)) != SNELL_OK) return st;
+    if ((st = ensure_targets(ctx, l, v->width, v->height, max_layers)) != SNELL_OK) return st;
+
+    /* the depth frame: the view-axis range of every item's bounding sphere */
+    for (k = 0; k < 3; k++) sl->fwd[k] = -v->view[k][2];
+    for (i = 0; i < n; i++) {
+        float c = 0.0f;
+        for (k = 0; k < 3; k++) c += (items[i].bsphere[k] - v->eye[k]) * sl->fwd[k];
+        if (c - items[i].bsphere[3] < lo) lo = c - items[i].bsphere[3];
+        if (c + items[i].bsphere[3] > hi) hi = c + items[i].bsphere[3];
+    }
+    sl->near_ = lo;
+    sl->inv_range = hi > lo ? 1.0f / (hi - lo) : 1.0f;
+
+    /* the table: a radius of 0 marks an id without an object this frame */
+    memset(l->table, 0, sizeof l->table);
+    for (i = 0; i < n; i++) table_column(l, &items[i], items[i].glass ? NULL : &opaque[items[i].id - SNELL__LAYERS_OPAQUE_ID0]);
+    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_TABLE_UNIT);
+    glBindTexture(GL_TEXTURE_2D, l->table_tex);
+    for (k = 0; k < SNELL__LAYERS_TABLE_ROWS; k++)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, k, SNELL__LAYERS_IDS, 1, GL_RGBA, GL_FLOAT, l->table[k]);
+
+    snell__pass_begin(&pass, l->fbo, v->width, v->height, 0, GL_LESS, 1.0f);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, l->depth_rb);
+    glUseProgram(l->prog);
+    glUniformMatrix4fv(l->u_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
+    glUniform3fv(l->u_eye, 1, v->eye);
+    glUniform3fv(l->u_fwd, 1, sl->fwd);
+    glUniform1f(l->u_near, sl->near_);
+    glUniform1f(l->u_inv_range, sl->inv_range);
+    glUniform1i(l->u_prev, SNELL__LAYERS_UNIT);
+    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
+    for (k = 0; k < max_layers; k++) {
+        GLuint any = 1;
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, l->array_tex, 0, 2 * k);
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, l->array_tex, 0, 2 * k + 1);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, l->next_tex[k & 1], 0);
+        glDrawBuffers(3, bufs);
+        if (k == 0) {
+            GLenum fst = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+            if (fst != GL_FRAMEBUFFER_COMPLETE) {
+                snell__pass_end(&pass);
+                return snell__fail(ctx, SNELL_E_GL, "scene layer framebuffer incomplete (0x%x)", (unsigned)fst);
+            }
+        }
+        /* id 0 marks empty texels; the previous layer is read, not written */
+        glClearBufferfv(GL_COLOR, 0, zero);
+        glClearBufferfv(GL_COLOR, 1, zero);
+        glClearBufferfv(GL_COLOR, 2, zero);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glBindTexture(GL_TEXTURE_2D, l->next_tex[(k + 1) & 1]);
+        glUniform1i(l->u_first, k == 0);
+        glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, l->query);
+        for (i = 0; i < n; i++) {
+            glUniformMatrix4fv(l->u_model, 1, GL_FALSE, (const GLfloat *)items[i].model);
+            glUniformMatrix3fv(l->u_normal_matrix, 1, GL_FALSE, (const GLfloat *)items[i].normal_matrix);
+            glUniform1i(l->u_id, items[i].id);
+            snell__mesh_draw(items[i].mesh); /* every face, front and back */
+        }
+        glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
+        (*passes)++;
+        glGetQueryObjectuiv(l->query, GL_QUERY_RESULT, &any);
+        if (!any) break; /* nothing behind the last layer: no further peel can hold anything */
+        used++;
+    }
+    snell__pass_end(&pass);
+    sl->count = used;
+    for (i = 0; i < glass_count; i++)
+        if (glass[i]->index + 1 > sl->glass_ids) sl->glass_ids = glass[i]->index + 1;
+    sl->opaque_count = opaque_count;
+    sl->capped = used == max_layers;
+    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, l->array_tex);
+    glActiveTexture(GL_TEXTURE0);
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error peeling scene layers");
+}
