@@ -5,7 +5,8 @@
  *    values refused, snell_glass_set_abbe;
  *  - the reference tracer's per-channel image: channel c of a dispersive
  *    scene is channel c of the same scene without dispersion at IOR
- *    ior_rgb[c] (so a swap of channels or IORs fails);
+ *    ior_rgb[c] (so a swap of channels or IORs fails), and through the prism
+ *    at minimum deviation blue is bent more than green, green more than red;
  *  - every kernel (single, cubemap, wyman, oliveira, peel) in both variants
  *    (PER_CHANNEL: three traces; ONE_PATH: red and blue re-refracted along
  *    the green path) on a prism and a sphere: glass-pixel PSNR against the
@@ -169,6 +170,46 @@ static void test_reference_channels(snell_ctx *ctx, const scene *s, const snell_
     free(rgba);
 }
 
+/* Blue is bent more: a ray through the prism's two faces beside its apex at
+ * minimum deviation for IOR 1.5 (48.6 degrees in, parallel to the base
+ * inside) is deviated by 37.2 degrees; at the red, green and blue IORs of
+ * the dispersive material (what the per-channel traces use, checked above)
+ * the deviation grows from red to blue. */
+static void test_blue_bends_more(snell_ctx *ctx, const scene *s, const snell_env *env)
+{
+    static const double org[3] = {-0.707, 0.0, 3.276}, dir[3] = {0.3194, 0.0, -0.9476};
+    snell_glass_material m;
+    snell_glass_resolved r;
+    snell_frame_desc fd;
+    snell_glass g;
+    snell_ref_params p;
+    double dev[3];
+    int c;
+    memset(&m, 0, sizeof m);
+    m.dispersion = DISPERSION;
+    CHECK_OK(snell_glass_defaults(&m, &r));
+    for (c = 0; c < 3; c++) {
+        snell_ref *ref = NULL;
+        snell_ref_path path;
+        test_frame_one(&fd, &g, s->mesh, env);
+        g.material.ior = r.ior_rgb[c];
+        CHECK_OK(test_ref_create(ctx, &fd, &ref));
+        test_ref_params(&fd, W, H, 2, &p);
+        dev[c] = 0.0;
+        if (ref && snell_ref_trace_ray(ref, &p, org, dir, &path) == SNELL_OK) {
+            double l = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+            double cs = (path.exit_dir[0] * dir[0] + path.exit_dir[1] * dir[1] + path.exit_dir[2] * dir[2]) / l;
+            CHECK(path.interfaces == 2 && path.events[1] == SNELL_REF_EVENT_REFRACT &&
+                      path.events[2] == SNELL_REF_EVENT_REFRACT, "prism ray: %d interfaces", path.interfaces);
+            dev[c] = acos(cs > 1.0 ? 1.0 : cs) * 180.0 / PI;
+        }
+        snell_ref_destroy(ref);
+    }
+    printf("prism at minimum deviation: deviation red %.3f, green %.3f, blue %.3f degrees\n", dev[0], dev[1], dev[2]);
+    CHECK(fabs(dev[1] - 37.18) < 0.05, "green's deviation %.3f, not 37.18 degrees", dev[1]);
+    CHECK(dev[0] < dev[1] - 0.1 && dev[2] > dev[1] + 0.1, "blue is not bent more than green, green more than red");
+}
+
 /* The interface cap of a kernel's MATCHED model (snell-bench's reference_model). */
 static int model_interfaces(snell_method method)
 {
@@ -289,6 +330,7 @@ int main(void)
     CHECK_OK_CTX(ctx, snell_env_create(ctx, &ed, &env));
     if (!scenes[0].mesh || !scenes[1].mesh || !env) return test_finish();
     test_reference_channels(ctx, &scenes[0], env);
+    test_blue_bends_more(ctx, &scenes[0], env);
     test_kernels(ctx, scenes, env);
     snell_mesh_destroy(scenes[0].mesh);
     snell_mesh_destroy(scenes[1].mesh);
