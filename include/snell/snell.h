@@ -800,6 +800,8 @@ typedef struct snell_frame_stats {
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
     int scene_layer_passes;         /* depth peels of the scene layers drawn (0: the stage did not run) */
     int scene_layers;               /* of those, the layers that hold something */
+    int scene_layers_reused;        /* 1: the last frame's layers, nothing they depend on having changed
+                                     * (camera, models, geometry, which objects, size): no peel drawn */
     char scene_layers_reason[SNELL_REASON_SIZE]; /* why the stage ran or did not */
 } snell_frame_stats;
 

@@ -6,9 +6,9 @@
 // other glass and opaque object of the frame (Wang 2014, seed 001 3.7, with
 // the layers of all objects in one peel instead of one peel per object):
 //
-// - The medium at a point is the innermost object with an odd number of its
-//   surfaces in front of the point at the point's pixel (entered and not
-//   left); 0 is air. The kernel's own object is skipped (its kernel has
+// - The medium at a point is the object the point's pixel's layers in front
+//   of it leave it in (walked from the eye, each surface entering or leaving
+//   an object); 0 is air. The kernel's own object is skipped (its kernel has
 //   traced it), and so is the object the ray last left: a point just past
 //   a surface can test as behind it at its pixel (the layer holds the
 //   surface's depth at the pixel's centre), which read as a re-entry made
@@ -40,8 +40,8 @@
 #ifdef SNELL_BEYOND
 #define BEYOND_MAX_LAYERS 8         // SNELL_MAX_SCENE_LAYERS
 #define BEYOND_MAX_INTERFACES 8
-#define BEYOND_LINEAR 32
-#define BEYOND_BINARY 8
+#define BEYOND_LINEAR 16
+#define BEYOND_BINARY 6
 #define BEYOND_OPAQUE_ID0 33        // SNELL__LAYERS_OPAQUE_ID0
 #define BEYOND_UNKNOWN (-2)
 
@@ -85,48 +85,54 @@ highp float beyond_layer(ivec2 px, int k, out int id)
     return id == 0 ? 2.0 : float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
 }
 
+// Layer ids: glass i + 1, opaque BEYOND_OPAQUE_ID0 + j, and thin walls with
+// BEYOND_THIN_ID added (render/layers.h), so no table look-up tells them.
+#define BEYOND_THIN_ID 128
+
 vec4 beyond_table(int id, int row)
 {
-    return texelFetch(u_scene_table, ivec2(id - 1, row), 0);
+    return texelFetch(u_scene_table, ivec2((id & (BEYOND_THIN_ID - 1)) - 1, row), 0);
 }
 
 bool beyond_thin(int id)
 {
-    return id < BEYOND_OPAQUE_ID0 && beyond_table(id, 1).w > 0.0;
+    return id >= BEYOND_THIN_ID;
 }
 
 // The medium at p (see the header): 0 air, an id, or BEYOND_UNKNOWN; plus
 // BEYOND_THIN_ODD where the thin-wall surfaces in front of p are odd in
-// number. The object excl is skipped as the kernel's own is.
+// number. The object excl is skipped as the kernel's own is. The layers in
+// front of p are walked from the eye: a surface of the object the walk is
+// in leaves it, another enters one (objects are disjoint or nested, two
+// deep at most). Scalars only: the first version kept the ids in an array
+// and counted each one's parity, whose dynamically indexed look-ups made
+// the whole stage several times slower on llvmpipe.
 #define BEYOND_THIN_ODD 256
 int beyond_medium(highp vec3 p, int excl)
 {
     ivec2 px;
     if (!beyond_pixel(p, px)) return BEYOND_UNKNOWN;
     highp float z = beyond_depth(p);
-    int ids[BEYOND_MAX_LAYERS];
-    int n = 0;
+    int cur = 0, outer = 0, thin = 0, n = 0;
     for (int k = 0; k < BEYOND_MAX_LAYERS; k++) {
         if (k >= u_scene_layer_count) break;
         int id;
         highp float d = beyond_layer(px, k, id);
         if (id == 0 || d >= z) break; // layers are sorted by depth; empty ones come last
-        ids[n++] = id;
+        n++;
+        if (id == u_scene_self || id == excl) continue;
+        if (beyond_thin(id)) {
+            thin ^= BEYOND_THIN_ODD;
+        } else if (id == cur) {
+            cur = outer; // left it
+            outer = 0;
+        } else {
+            outer = cur; // entered it (inside cur, if any)
+            cur = id;
+        }
     }
     if (n == u_scene_layer_count && u_scene_capped != 0) return BEYOND_UNKNOWN;
-    int thin = 0;
-    for (int i = 0; i < BEYOND_MAX_LAYERS; i++)
-        if (i < n && ids[i] != u_scene_self && beyond_thin(ids[i])) thin ^= BEYOND_THIN_ODD;
-    // the object of the nearest layer (in front of p) whose surfaces in front
-    // of p are odd in number: p is inside it and inside nothing nearer in
-    for (int i = BEYOND_MAX_LAYERS - 1; i >= 0; i--) {
-        if (i >= n || ids[i] == u_scene_self || ids[i] == excl || beyond_thin(ids[i])) continue;
-        int c = 0;
-        for (int j = 0; j < BEYOND_MAX_LAYERS; j++)
-            if (j < n && ids[j] == ids[i]) c++;
-        if ((c & 1) == 1) return ids[i] | thin;
-    }
-    return thin;
+    return cur | thin;
 }
 
 float beyond_ior(int medium)
@@ -177,7 +183,7 @@ bool beyond_stretch(highp vec3 o, highp vec3 dir, highp float t0, out highp floa
     for (int i = 0; i < 128; i++) { // SNELL_MAX_GLASS + SNELL_MAX_OPAQUE ids at most
         if (i >= count) break;
         int id = i < u_scene_glass_ids ? i + 1 : BEYOND_OPAQUE_ID0 + i - u_scene_glass_ids;
-        if (id == u_scene_self) continue;
+        if (id == (u_scene_self & (BEYOND_THIN_ID - 1))) continue;
         highp vec4 s = beyond_table(id, 2);
         if (s.w <= 0.0) continue; // not in this frame's layers
         highp float st = 2.0 * s.w / float(BEYOND_LINEAR), r = s.w + st;

@@ -125,7 +125,7 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
         glUniform1i(g->s_capped, l->capped);
         glUniform1i(g->s_glass_ids, l->glass_ids);
         glUniform1i(g->s_opaque_count, l->opaque_count);
-        glUniform1i(g->s_self, o->index + 1);
+        glUniform1i(g->s_self, o->index + 1 + (o->glass->material.thickness > 0.0f ? SNELL__LAYERS_THIN_ID : 0));
         glUniformMatrix4fv(g->s_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
         glUniform3fv(g->s_eye, 1, v->eye);
         glUniform3fv(g->s_fwd, 1, l->fwd);

@@ -5,6 +5,7 @@
 #include "methods/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
+#include "core/glstate.h"
 #include "core/program.h"
 
 #include <math.h>
@@ -20,6 +21,7 @@ static void release_targets(snell__layers *l)
     if (l->table_tex) glDeleteTextures(1, &l->table_tex);
     l->fbo = l->array_tex = l->next_tex[0] = l->next_tex[1] = l->depth_rb = l->query = l->table_tex = 0;
     l->width = l->height = l->capacity = 0;
+    l->last.count = -1; /* the layers are gone with them */
 }
 
 void snell__layers_destroy(snell__layers *l)
@@ -27,6 +29,7 @@ void snell__layers_destroy(snell__layers *l)
     release_targets(l);
     if (l->prog) glDeleteProgram(l->prog);
     memset(l, 0, sizeof *l);
+    l->last.count = -1;
 }
 
 static void nearest_texture(GLenum target)
@@ -144,53 +147,35 @@ static void table_column(snell__layers *l, const layer_item *it, const snell_opa
     }
 }
 
-snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v, snell__object *const *glass,
-                                int glass_count, const snell_opaque *opaque, int opaque_count, int max_layers,
-                                int *passes)
+/* Uploads the frame's object table (materials change without a new peel)
+ * and binds it and the layers on their units. */
+static void bind(snell__layers *l)
+{
+    snell__pixel_store unpack;
+    int k;
+    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_TABLE_UNIT);
+    glBindTexture(GL_TEXTURE_2D, l->table_tex);
+    /* from client memory, tightly packed, whatever pixel buffer or unpack state the host has set */
+    snell__pixel_unpack_begin(&unpack, 4);
+    for (k = 0; k < SNELL__LAYERS_TABLE_ROWS; k++)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, k, SNELL__LAYERS_IDS, 1, GL_RGBA, GL_FLOAT, l->table[k]);
+    snell__pixel_unpack_end(&unpack);
+    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, l->array_tex);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+/* Draws up to `layers` peels of the items into the layer textures (which
+ * hold that many); *used: those that hold something. */
+static snell_status peel(snell_ctx *ctx, snell__layers *l, const snell__view *v, const layer_item *items, int n,
+                         int layers, int *passes, int *used)
 {
     static const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    layer_item items[SNELL_MAX_GLASS + SNELL_MAX_OPAQUE];
-    float lo = HUGE_VALF, hi = -HUGE_VALF;
-    snell__scene_layers *sl = &v->layers;
+    const snell__scene_layers *sl = &v->layers;
     snell__pass pass;
-    snell_status st;
-    int n = 0, i, k, used = 0;
-    *passes = 0;
-    memset(sl, 0, sizeof *sl);
-    for (i = 0; i < glass_count; i++) {
-        layer_item *it = &items[n++];
-        memset(it, 0, sizeof *it);
-        it->mesh = glass[i]->mesh;
-        it->glass = glass[i];
-        glm_mat4_copy((vec4 *)glass[i]->model, it->model);
-        glm_mat3_copy((vec3 *)glass[i]->normal_matrix, it->normal_matrix);
-        memcpy(it->bsphere, glass[i]->bsphere, sizeof it->bsphere);
-        it->id = glass[i]->index + 1;
-    }
-    for (i = 0; i < opaque_count; i++) opaque_item(&opaque[i], i, &items[n++]);
-    if (!l->prog && (st = create_program(ctx, l)) != SNELL_OK) return st;
-    if ((st = ensure_targets(ctx, l, v->width, v->height, max_layers)) != SNELL_OK) return st;
-
-    /* the depth frame: the view-axis range of every item's bounding sphere */
-    for (k = 0; k < 3; k++) sl->fwd[k] = -v->view[k][2];
-    for (i = 0; i < n; i++) {
-        float c = 0.0f;
-        for (k = 0; k < 3; k++) c += (items[i].bsphere[k] - v->eye[k]) * sl->fwd[k];
-        if (c - items[i].bsphere[3] < lo) lo = c - items[i].bsphere[3];
-        if (c + items[i].bsphere[3] > hi) hi = c + items[i].bsphere[3];
-    }
-    sl->near_ = lo;
-    sl->inv_range = hi > lo ? 1.0f / (hi - lo) : 1.0f;
-
-    /* the table: a radius of 0 marks an id without an object this frame */
-    memset(l->table, 0, sizeof l->table);
-    for (i = 0; i < n; i++) table_column(l, &items[i], items[i].glass ? NULL : &opaque[items[i].id - SNELL__LAYERS_OPAQUE_ID0]);
-    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_TABLE_UNIT);
-    glBindTexture(GL_TEXTURE_2D, l->table_tex);
-    for (k = 0; k < SNELL__LAYERS_TABLE_ROWS; k++)
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, k, SNELL__LAYERS_IDS, 1, GL_RGBA, GL_FLOAT, l->table[k]);
-
+    int i, k;
+    *used = 0;
     snell__pass_begin(&pass, l->fbo, v->width, v->height, 0, GL_LESS, 1.0f);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, l->depth_rb);
     glUseProgram(l->prog);
@@ -201,7 +186,7 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
     glUniform1f(l->u_inv_range, sl->inv_range);
     glUniform1i(l->u_prev, SNELL__LAYERS_UNIT);
     glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
-    for (k = 0; k < max_layers; k++) {
+    for (k = 0; k < layers; k++) {
         GLuint any = 1;
         glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, l->array_tex, 0, 2 * k);
         glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, l->array_tex, 0, 2 * k + 1);
@@ -232,16 +217,95 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
         (*passes)++;
         glGetQueryObjectuiv(l->query, GL_QUERY_RESULT, &any);
         if (!any) break; /* nothing behind the last layer: no further peel can hold anything */
-        used++;
+        (*used)++;
     }
     snell__pass_end(&pass);
+    return SNELL_OK;
+}
+
+snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v, snell__object *const *glass,
+                                int glass_count, const snell_opaque *opaque, int opaque_count, int max_layers,
+                                int *passes, int *reused)
+{
+    layer_item items[SNELL_MAX_GLASS + SNELL_MAX_OPAQUE];
+    float lo = HUGE_VALF, hi = -HUGE_VALF;
+    snell__scene_layers *sl = &v->layers;
+    snell_status st;
+    int n = 0, i, k, used = 0;
+    *passes = 0;
+    *reused = 0;
+    memset(sl, 0, sizeof *sl);
+    for (i = 0; i < glass_count; i++) {
+        layer_item *it = &items[n++];
+        memset(it, 0, sizeof *it);
+        it->mesh = glass[i]->mesh;
+        it->glass = glass[i];
+        glm_mat4_copy((vec4 *)glass[i]->model, it->model);
+        glm_mat3_copy((vec3 *)glass[i]->normal_matrix, it->normal_matrix);
+        memcpy(it->bsphere, glass[i]->bsphere, sizeof it->bsphere);
+        it->id = glass[i]->index + 1;
+    }
+    for (i = 0; i < opaque_count; i++) opaque_item(&opaque[i], i, &items[n++]);
+    if (!l->prog && (st = create_program(ctx, l)) != SNELL_OK) return st;
+
+    /* the depth frame: the view-axis range of every item's bounding sphere */
+    for (k = 0; k < 3; k++) sl->fwd[k] = -v->view[k][2];
+    for (i = 0; i < n; i++) {
+        float c = 0.0f;
+        for (k = 0; k < 3; k++) c += (items[i].bsphere[k] - v->eye[k]) * sl->fwd[k];
+        if (c - items[i].bsphere[3] < lo) lo = c - items[i].bsphere[3];
+        if (c + items[i].bsphere[3] > hi) hi = c + items[i].bsphere[3];
+    }
+    sl->near_ = lo;
+    sl->inv_range = hi > lo ? 1.0f / (hi - lo) : 1.0f;
+
+    /* the table: a radius of 0 marks an id without an object this frame */
+    memset(l->table, 0, sizeof l->table);
+    for (i = 0; i < n; i++) table_column(l, &items[i], items[i].glass ? NULL : &opaque[items[i].id - SNELL__LAYERS_OPAQUE_ID0]);
+    for (i = 0; i < glass_count; i++) /* after the table: the column is the object's */
+        if (glass[i]->glass->material.thickness > 0.0f) items[i].id += SNELL__LAYERS_THIN_ID;
+
+    /* the key: what the peels depend on */
+    memset(&l->key, 0, sizeof l->key);
+    memcpy(l->key.view_proj, v->view_proj, sizeof l->key.view_proj);
+    l->key.width = v->width;
+    l->key.height = v->height;
+    l->key.max_layers = max_layers;
+    l->key.count = n;
+    for (i = 0; i < n; i++) {
+        memcpy(l->key.item[i].model, items[i].model, sizeof l->key.item[i].model);
+        l->key.item[i].mesh_version = items[i].mesh->version;
+        l->key.item[i].id = items[i].id;
+    }
+    if (l->last.count == n && !memcmp(&l->key, &l->last, sizeof l->key)) {
+        *sl = l->last_layers;
+        *reused = 1;
+        bind(l);
+        return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error binding scene layers");
+    }
+
+    l->last.count = -1; /* until these peels are complete */
+    /* The layers start at SNELL__LAYERS_START and grow (up to max_layers,
+     * kept for later frames) when every one came out full: memory and peels
+     * follow what the scene needs (8 layers of 1920x1080 RGBA8 pairs are
+     * 133 MB). A grown frame peels again at once, so no frame shows a cut. */
+    for (;;) {
+        int cap = l->grown > 0 ? l->grown : SNELL__LAYERS_START;
+        if (cap > max_layers) cap = max_layers;
+        if ((st = ensure_targets(ctx, l, v->width, v->height, cap)) != SNELL_OK) return st;
+        if ((st = peel(ctx, l, v, items, n, cap, passes, &used)) != SNELL_OK) return st;
+        if (used < cap || cap >= max_layers) {
+            sl->capped = used == cap;
+            break;
+        }
+        l->grown = 2 * cap < max_layers ? 2 * cap : max_layers;
+    }
     sl->count = used;
     for (i = 0; i < glass_count; i++)
         if (glass[i]->index + 1 > sl->glass_ids) sl->glass_ids = glass[i]->index + 1;
     sl->opaque_count = opaque_count;
-    sl->capped = used == max_layers;
-    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, l->array_tex);
-    glActiveTexture(GL_TEXTURE0);
+    l->last = l->key;
+    l->last_layers = *sl;
+    bind(l);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error peeling scene layers");
 }

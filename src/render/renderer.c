@@ -133,6 +133,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     r = (snell_renderer *)snell__calloc(&ctx->alloc, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     r->ctx = ctx;
+    r->layers.last.count = -1; /* no layers peeled yet */
     r->ssaa.factor = d.ssaa > 1 ? d.ssaa : 1;
     r->out_width = d.width;
     r->out_height = d.height;
@@ -404,7 +405,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         int peels = 0;
         st = snell__layers_draw(r->ctx, &r->layers, &sc->view, r->layer_list, n_layers, fd->opaque,
                                 fd->opaque_count, fd->scene_layers > 0 ? fd->scene_layers : SNELL_DEFAULT_SCENE_LAYERS,
-                                &peels);
+                                &peels, &s->scene_layers_reused);
         s->scene_layer_passes = peels;
         s->scene_layers = sc->view.layers.count;
         s->passes += peels;
