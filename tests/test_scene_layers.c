@@ -33,9 +33,11 @@
  *    and above that of the dynamic environment (layers off), whose one
  *    centre per sphere misplaces a box this near.
  * 5. A thin-walled, strongly tinted sphere behind a solid one: through the
- *    solid sphere it is seen by the slab model (colour against MATCHED over
- *    the pixels whose path crosses both: the mean worst-channel error with
- *    the layers at most half that without). */
+ *    solid sphere it is seen by the slab model, the whole object one slab as
+ *    in the reference (colour against MATCHED over the pixels whose path
+ *    crosses both: the mean worst-channel error with the layers below
+ *    15/255 and a fifth of that without; measured 7.4 against 144; both
+ *    walls as slabs: 25). */
 #include "test_util.h"
 #include "snell/snell_metrics.h"
 
@@ -411,7 +413,7 @@ static void test_thin_behind(snell_ctx *ctx, snell_env *env)
     printf("thin wall behind a sphere, %d pixels through both: mean worst-channel error against MATCHED %.2f/255 "
            "with layers, %.2f/255 without\n", n, e_on, e_off);
     CHECK(n > W * H / 50, "only %d pixels see the thin wall through the sphere", n);
-    CHECK(e_on <= 0.5 * e_off, "error %.2f/255 with layers, %.2f without", e_on, e_off);
+    CHECK(e_on <= 0.2 * e_off && e_on < 15.0, "error %.2f/255 with layers, %.2f without", e_on, e_off);
     write_png("thin_behind.png", c_on);
 out:
     free_scene(&s);

@@ -42,6 +42,7 @@ typedef struct snell_ctx snell_ctx;
 typedef struct snell_mesh snell_mesh;
 typedef struct snell_env snell_env;
 typedef struct snell_renderer snell_renderer;
+typedef struct snell_water snell_water;  /* snell_water.h */
 
 /* Detailed message of the last failure. With ctx == NULL: the last failure on
  * this thread of a call that had no context (or of snell_ctx_create). */
@@ -741,6 +742,15 @@ typedef struct snell_frame_desc {
                                      * target or behind the last layer of a full peel is not seen (the ray
                                      * leaves to the environment); an exit ray passes through the other parts
                                      * of its own object and of the object it last left (concave objects). */
+    /* A water surface in its container (snell_water.h), drawn after the
+     * opaque objects and before the glass; NULL = none. It must belong to the
+     * renderer's context. Opaque objects standing in it are seen through the
+     * surface (a screen-space search along the refracted rays; offscreen
+     * colour renderers without msaa: snell_frame_stats.water_objects); glass
+     * objects are not, and glass does not see the water (scene_layers holds
+     * glass and opaque objects only: the water is depth-tested against the
+     * glass, not refracted through it). */
+    snell_water *water;
 } snell_frame_desc;
 
 #define SNELL_MAX_SCENE_LAYERS 8
@@ -803,6 +813,11 @@ typedef struct snell_frame_stats {
     int scene_layers_reused;        /* 1: the last frame's layers, nothing they depend on having changed
                                      * (camera, models, geometry, which objects, size): no peel drawn */
     char scene_layers_reason[SNELL_REASON_SIZE]; /* why the stage ran or did not */
+    int water_drawn;                /* 1: the frame's water surface and container were drawn */
+    int water_uploaded;             /* 1: its CPU-simulated heights changed and were uploaded this frame */
+    int water_objects;              /* 1: the opaque objects were searched for along its refracted rays (an
+                                     * offscreen single-sample colour renderer with opaque objects; else the
+                                     * water shows only the container below it) */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

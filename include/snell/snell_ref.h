@@ -204,6 +204,28 @@ snell_status snell_ref_render(const snell_ref *ref, const snell_ref_params *para
  * alpha = 255. rgba: 4 * width * height bytes. */
 void snell_ref_rgb_to_rgba8(const float *rgb, int width, int height, uint8_t *rgba);
 
+/* The water scene (snell_water.h): the container's floor and walls, the
+ * water surface, whose heights are read from the water (a GPU simulation's
+ * context must be current), and the opaque objects of `objects` (a
+ * reference made with opaque objects only, or NULL for none), lit as
+ * snell_ref_render lights them. The surface is the triangles the GPU draws (two
+ * per grid cell), intersected exactly; its normal the barycentric blend of
+ * the nodes' (-dh/dx, 1, -dh/dz), normalised. A ray meeting the surface gives
+ * F * E(R) + (1 - F) * tile(Q) * exp(-sigma d): F Schlick's (1 -> ior), R the
+ * mirror direction (E: see below), Q where the refracted ray first meets the floor or a
+ * wall, d its distance; a ray meeting the container first, that face's tile;
+ * else the environment. The refracted ray sees the container and the opaque
+ * objects (nearest first; upward refracted rays go to the walls too); the
+ * mirror ray, when rising, the walls' inner side below the rim, else the
+ * environment. Uses
+ * params' env (or env_fn), camera, width, height, threads and samples (as
+ * snell_ref_render); mode, max_interfaces, absorption_model and
+ * isolate_glass do not apply. Outputs rgb, exit_dir (water pixels: the
+ * refracted direction; others the view ray) and hit (1: the view ray meets
+ * the water surface first); the other outputs are not written. */
+snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects, const snell_ref_params *params,
+                                    const snell_ref_output *out);
+
 /* ---------------------------------------------------- light path (Unger 4.2.2) */
 typedef enum snell_ref_event {
     SNELL_REF_EVENT_EYE = 0,   /* points[0]: the ray origin (camera) */

@@ -159,5 +159,7 @@ void bench_print_table(const bench_config *cs, int n);
 
 /* snell-bench --2d (bench2d.c). */
 int snell_bench2d_main(int argc, char **argv);
+/* snell-bench --water (bench_water.c): the water scene's simulation and rendering timed apart. */
+int snell_bench_water_main(int argc, char **argv);
 
 #endif

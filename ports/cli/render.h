@@ -50,6 +50,9 @@ typedef struct render_options {
 int render_parse_args(int argc, char **argv, render_options *o);
 void render_usage(FILE *f);
 
+/* snell-render --water ... (render_water.c). */
+int snell_render_water_main(int argc, char **argv);
+
 /* snell-render --2d ... (render2d.c). */
 int snell_render2d_main(int argc, char **argv);
 

@@ -239,6 +239,7 @@ int main(int argc, char **argv)
 
     for (i = 1; i < argc; i++)
         if (!strcmp(argv[i], "--2d")) return snell_render2d_main(argc, argv);
+        else if (!strcmp(argv[i], "--water")) return snell_render_water_main(argc, argv);
     if ((i = render_parse_args(argc, argv, &o)) <= 0) return i < 0 ? 0 : 2;
     g_verbose = o.verbose;
 

@@ -29,7 +29,9 @@
 // - Thin walls (material.thickness > 0) are never a medium: a change in the
 //   parity of the thin-wall surfaces in front of the point is a wall
 //   crossed, which transmits by the slab model (snell_thin_slab, as the
-//   single kernel's thin walls do: no bend, its reflection added).
+//   single kernel's thin walls do: no bend, its reflection added); the
+//   object is one slab, as there and in the reference: its far wall is not
+//   crossed again.
 // - Where the march leaves what the layers know (the target's edge, behind
 //   the eye, behind the last of a capped peel) the ray leaves in its
 //   direction to the environment.
@@ -308,8 +310,12 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
                 radiance += thr * rs * snell_env(snell_reflect(dir, nw));
                 thr *= ts * w0.yzw;
             }
-            medium = m_new;
+            // the whole object is one slab (the single kernel's thin walls,
+            // the reference's model): its other wall is not crossed again
             o = qb;
+            if (wall > 0) left = wall;
+            medium = beyond_medium(o, left);
+            if (medium == BEYOND_UNKNOWN) break;
             t0 = 0.0;
             if (++crossed >= BEYOND_MAX_INTERFACES) break;
             continue;

@@ -504,11 +504,6 @@ static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, opt
 
 /* ------------------------------------------------------------ camera rays */
 
-typedef struct camera_rays {
-    double eye[3], inv[16]; /* inverse of proj * view, column-major */
-    int w, h;
-} camera_rays;
-
 /* Gauss-Jordan with partial pivoting; column-major in and out. */
 static int invert4(const double m[16], double out[16])
 {
@@ -546,21 +541,21 @@ static int invert4(const double m[16], double out[16])
     return 1;
 }
 
-static snell_status camera_setup(const snell_ref *ref, const snell_ref_params *p, camera_rays *cr)
+snell_status snell__ref_camera_setup(snell_ctx *ctx, const snell_ref_params *p, camera_rays *cr)
 {
     float eye[3], view[16], proj[16];
     double vp[16];
     int i, j, k;
     snell_status st;
     if (p->width < 0 || p->height < 0)
-        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "reference: negative image size %dx%d", p->width,
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: negative image size %dx%d", p->width,
                            p->height);
     cr->w = p->width ? p->width : 512;
     cr->h = p->height ? p->height : 512;
     if (cr->w > SNELL_REF_MAX_SIZE || cr->h > SNELL_REF_MAX_SIZE)
-        return snell__fail(ref->ctx, SNELL_E_LIMIT, "reference: image %dx%d exceeds %d pixels a side", cr->w, cr->h,
+        return snell__fail(ctx, SNELL_E_LIMIT, "reference: image %dx%d exceeds %d pixels a side", cr->w, cr->h,
                            SNELL_REF_MAX_SIZE);
-    st = snell__camera_validate(ref->ctx, &p->camera, (float)cr->w / (float)cr->h, "reference");
+    st = snell__camera_validate(ctx, &p->camera, (float)cr->w / (float)cr->h, "reference");
     if (st != SNELL_OK) return st;
     snell_camera_matrices(&p->camera, (float)cr->w / (float)cr->h, eye, view, proj);
     for (i = 0; i < 4; i++)
@@ -571,7 +566,7 @@ static snell_status camera_setup(const snell_ref *ref, const snell_ref_params *p
         }
     for (k = 0; k < 3; k++) cr->eye[k] = eye[k];
     if (!invert4(vp, cr->inv) || !isfinite(cr->eye[0]) || !isfinite(cr->eye[1]) || !isfinite(cr->eye[2]))
-        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "reference: camera matrices are singular or not finite");
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: camera matrices are singular or not finite");
     return SNELL_OK;
 }
 
@@ -586,7 +581,7 @@ static void unproject(const double inv[16], double x, double y, double z, double
 /* Ray through the point (fx, fy) of pixel (x, y) (0.5, 0.5: its centre), y =
  * 0 the top row (GL's window row h - 1 - y): direction from the near-plane
  * point to the far-plane point. */
-static void camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double dir[3])
+void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double dir[3])
 {
     double nx = 2.0 * ((double)x + fx) / (double)cr->w - 1.0;
     double ny = 1.0 - 2.0 * ((double)y + fy) / (double)cr->h;
@@ -623,7 +618,7 @@ static void pixel_colour(job *jb, int x, int y, size_t i)
     for (b = 0; b < S; b++)
         for (a = 0; a < S; a++) {
             double dir[3];
-            camera_ray(cr, x, y, (a + 0.5) / S, (b + 0.5) / S, dir);
+            snell__ref_camera_ray(cr, x, y, (a + 0.5) / S, (b + 0.5) / S, dir);
             trace(jb->ref, jb->op, cr->eye, dir, 0, &path, out->sample_var ? m2 : NULL);
             for (k = 0; k < 3; k++) {
                 sum[k] += path.rgb[k];
@@ -651,7 +646,7 @@ static void render_row(job *jb, int y)
         double dir[3];
         if (!centre_colour) pixel_colour(jb, x, y, i);
         if (!centre_colour && !want_path) continue;
-        camera_ray(cr, x, y, 0.5, 0.5, dir);
+        snell__ref_camera_ray(cr, x, y, 0.5, 0.5, dir);
         trace(jb->ref, jb->op, cr->eye, dir, want_path, &path, NULL);
         if (centre_colour)
             for (k = 0; k < 3; k++) out->rgb[3 * i + k] = (float)path.rgb[k];
@@ -692,7 +687,7 @@ snell_status snell_ref_render(const snell_ref *ref, const snell_ref_params *para
         return snell__fail(ref ? ref->ctx : NULL, SNELL_E_INVALID_ARG,
                            "snell_ref_render: ref, params, out and out->rgb are required");
     if ((st = resolve(ref, params, &op)) != SNELL_OK) return st;
-    if ((st = camera_setup(ref, params, &cr)) != SNELL_OK) return st;
+    if ((st = snell__ref_camera_setup(ref->ctx, params, &cr)) != SNELL_OK) return st;
     if (params->threads < 0)
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_render: threads %d is negative",
                            params->threads);
@@ -772,11 +767,11 @@ snell_status snell_ref_trace_pixel(const snell_ref *ref, const snell_ref_params 
         return snell__fail(ref ? ref->ctx : NULL, SNELL_E_INVALID_ARG,
                            "snell_ref_trace_pixel: ref, params and path are required");
     if ((st = resolve(ref, params, &op)) != SNELL_OK) return st;
-    if ((st = camera_setup(ref, params, &cr)) != SNELL_OK) return st;
+    if ((st = snell__ref_camera_setup(ref->ctx, params, &cr)) != SNELL_OK) return st;
     if (x < 0 || y < 0 || x >= cr.w || y >= cr.h)
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_trace_pixel: pixel (%d, %d) outside %dx%d", x,
                            y, cr.w, cr.h);
-    camera_ray(&cr, x, y, 0.5, 0.5, d);
+    snell__ref_camera_ray(&cr, x, y, 0.5, 0.5, d);
     trace(ref, &op, cr.eye, d, 1, path, NULL);
     return SNELL_OK;
 }

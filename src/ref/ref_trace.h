@@ -18,4 +18,15 @@ snell_status snell__ref_create_spheres(snell_ctx *ctx, int count, const double *
 /* One sphere. */
 snell_status snell__ref_create_sphere(snell_ctx *ctx, const double centre[3], double radius, snell_ref **out);
 
+/* Camera rays of an image as the renderer rasterises it (snell_camera_matrices,
+ * inverted in double): shared by the mesh tracer and the water's (ref_water.c). */
+typedef struct camera_rays {
+    double eye[3], inv[16]; /* inverse of proj * view, column-major */
+    int w, h;
+} camera_rays;
+/* Validates params' camera and size (width/height 0 = 512) and fills cr. */
+snell_status snell__ref_camera_setup(snell_ctx *ctx, const snell_ref_params *p, camera_rays *cr);
+/* Unit ray through the point (fx, fy) of pixel (x, y) (0.5, 0.5: its centre), y = 0 the top row. */
+void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double dir[3]);
+
 #endif

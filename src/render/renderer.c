@@ -174,6 +174,7 @@ void snell_renderer_destroy(snell_renderer *r)
      * calls below reach no context (snell__gl_scope_enter). */
     snell__gl_scope_enter(r->ctx, &sc);
     snell__prepared_destroy(r->ctx, &r->prepared);
+    snell__water_programs_destroy(&r->water);
     for (m = 0; m < SNELL_METHOD_COUNT_; m++)
         if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
@@ -327,6 +328,8 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the environment belongs to another context");
     if (fd->dynamic_env_size != 0 && (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048))
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "dynamic_env_size %d outside 16..2048", fd->dynamic_env_size);
+    if (fd->water && fd->water->ctx != r->ctx)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the water belongs to another context (or to none)");
     if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d",
                            fd->scene_layers, SNELL_MAX_SCENE_LAYERS);
@@ -377,6 +380,23 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     if (fd->opaque_count > 0) {
         s->opaque_drawn = fd->opaque_count;
         s->passes++;
+    }
+    /* The water and its container are opaque to what follows: glass behind
+     * them is depth-tested away, glass in front is drawn over them. */
+    if (st == SNELL_OK && fd->water) {
+        /* Objects in the water are searched for in a copy of what the opaque
+         * pass drew: an offscreen single-sample colour target (a host's
+         * framebuffer or a multisampled one cannot be copied with its depth
+         * format known; exit directions need no colour). */
+        int objects = fd->opaque_count > 0 && r->target == SNELL_TARGET_OFFSCREEN && !r->msaa && r->out == SNELL__OUT_COLOR;
+        if (objects) {
+            st = snell__water_copy_scene(r->ctx, &r->water, r->fbo, r->width, r->height);
+            glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+        }
+        if (st == SNELL_OK)
+            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, fd->env->texture, fd->opaque,
+                                   objects ? fd->opaque_count : 0, s);
+        s->water_objects = objects;
     }
     if (st == SNELL_OK) n_layers = choose_scene_layers(r, fd, s);
     /* Glass: the objects shaded in screen space share one G-buffer pass,

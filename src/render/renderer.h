@@ -11,6 +11,7 @@
 #include "render/prepared.h"
 #include "render/scene.h"
 #include "render/ssaa.h"
+#include "water/water_draw.h"
 
 struct snell_renderer {
     snell_ctx *ctx;
@@ -38,6 +39,7 @@ struct snell_renderer {
     snell__object *screen_list[SNELL_MAX_GLASS];      /* objects shaded in screen space */
     snell__gbuffer backfaces;                         /* the shared back-face pass, made on first use */
     snell__object *back_list[SNELL_MAX_GLASS];        /* objects whose method needs it */
+    snell__water_programs water;                      /* the water kernel's programs, made on first use */
     snell__layers layers;                             /* the scene layers, made on first use */
     snell__object *layer_list[SNELL_MAX_GLASS];       /* the glass objects peeled into them */
     snell_frame_stats stats;                          /* filled, then copied to the caller */

@@ -1,0 +1,16 @@
+// water_wall.frag - the container's tiles where the view sees them directly
+// (outside, and inside above the water); exit-direction output: the view ray.
+precision highp float;
+
+#include "common/output.glsl"
+#include "common/water_tiles.glsl"
+
+in vec3 v_world_pos;
+flat in int v_face;
+
+uniform vec3 u_eye;
+
+void main()
+{
+    snell_write(water_tile(v_face, v_world_pos), v_world_pos - u_eye);
+}

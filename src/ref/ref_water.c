@@ -1,0 +1,397 @@
+/* ref_water.c — the reference for the water scene (snell_ref_water_render):
+ * the height field intersected exactly, in double, as the triangles the GPU
+ * draws (two per cell, split along (i, j)-(i+1, j+1)), found by walking the
+ * cells the ray's projection crosses (Amanatides-Woo) inside the slab between
+ * the lowest and highest node; the container's five faces as exact planes.
+ * The optics are water_surface.frag's: the normal is the barycentric blend
+ * of the nodes' (-dh/dx, 1, -dh/dz), normalised; Schlick Fresnel between
+ * what the mirror ray sees (the walls above the water below the rim, else
+ * the environment) and the tiles where the refracted
+ * ray meets the floor or a wall (the nearest of the five distances, floor
+ * first, then x, then z on ties), Beer-Lambert over that distance. Opaque
+ * objects (a reference of them, ref_scene.c's BVH) are met exactly by the
+ * view ray and the refracted ray. */
+#include "core/optics.h"
+#include "ref/ref_scene.h"
+#include "ref/ref_trace.h"
+#include "snell/snell_water.h"
+#include "water/water.h"
+
+#include <pthread.h>
+#include <string.h>
+#include <unistd.h>
+
+typedef struct water_scene {
+    const snell_water *w;
+    const snell_ref *objects;   /* opaque objects (its glass objects refused), or NULL */
+    const float *h;             /* heights, n * n */
+    double half, dx, hmin, hmax, ior, sigma[3];
+    int n;
+    const snell_ref_params *p;
+    const camera_rays *cr;
+    const snell_ref_output *out;
+    int samples;
+    pthread_mutex_t lock;
+    int next_row;
+} water_scene;
+
+static void env(const water_scene *s, const double d[3], double rgb[3])
+{
+    if (s->p->env_fn) s->p->env_fn(d, rgb, s->p->env_user);
+    else snell_env_sample_d(s->p->env, d, rgb);
+}
+
+/* Node (i, j): world position and the vertex shader's unnormalised normal. */
+static void node(const water_scene *s, int i, int j, double p[3], double nrm[3])
+{
+    int n = s->n, il = i > 0 ? i - 1 : 0, ir = i + 1 < n ? i + 1 : n - 1, jd = j > 0 ? j - 1 : 0, ju = j + 1 < n ? j + 1 : n - 1;
+    const float *h = s->h;
+    p[0] = -s->half + i * s->dx;
+    p[1] = h[(size_t)j * n + i];
+    p[2] = -s->half + j * s->dx;
+    nrm[0] = -((double)h[(size_t)j * n + ir] - h[(size_t)j * n + il]) / ((ir - il) * s->dx);
+    nrm[1] = 1.0;
+    nrm[2] = -((double)h[(size_t)ju * n + i] - h[(size_t)jd * n + i]) / ((ju - jd) * s->dx);
+}
+
+/* Moeller-Trumbore: t and barycentrics (b1 for v1, b2 for v2) if o + t d hits triangle v0 v1 v2. */
+static int triangle(const double o[3], const double d[3], const double v0[3], const double v1[3], const double v2[3],
+                    double *t, double *b1, double *b2)
+{
+    double e1[3], e2[3], pv[3], tv[3], qv[3], det, inv, u, v;
+    int k;
+    for (k = 0; k < 3; k++) {
+        e1[k] = v1[k] - v0[k];
+        e2[k] = v2[k] - v0[k];
+        tv[k] = o[k] - v0[k];
+    }
+    pv[0] = d[1] * e2[2] - d[2] * e2[1];
+    pv[1] = d[2] * e2[0] - d[0] * e2[2];
+    pv[2] = d[0] * e2[1] - d[1] * e2[0];
+    det = snell__ref_dot3(e1, pv);
+    if (fabs(det) < 1e-300) return 0;
+    inv = 1.0 / det;
+    u = snell__ref_dot3(tv, pv) * inv;
+    if (u < 0.0 || u > 1.0) return 0;
+    qv[0] = tv[1] * e1[2] - tv[2] * e1[1];
+    qv[1] = tv[2] * e1[0] - tv[0] * e1[2];
+    qv[2] = tv[0] * e1[1] - tv[1] * e1[0];
+    v = snell__ref_dot3(d, qv) * inv;
+    if (v < 0.0 || u + v > 1.0) return 0;
+    *t = snell__ref_dot3(e2, qv) * inv;
+    *b1 = u;
+    *b2 = v;
+    return *t > 0.0;
+}
+
+/* The two triangles of cell (i, j): nearest hit, its point and normal. */
+static int cell_hit(const water_scene *s, int i, int j, const double o[3], const double d[3], double *t, double nrm[3])
+{
+    double p[4][3], q[4][3], tt, b1, b2, best = HUGE_VAL;
+    int k, hit = 0;
+    node(s, i, j, p[0], q[0]);
+    node(s, i + 1, j, p[1], q[1]);
+    node(s, i + 1, j + 1, p[2], q[2]);
+    node(s, i, j + 1, p[3], q[3]);
+    if (triangle(o, d, p[0], p[1], p[2], &tt, &b1, &b2) && tt < best) {
+        best = tt;
+        for (k = 0; k < 3; k++) nrm[k] = (1.0 - b1 - b2) * q[0][k] + b1 * q[1][k] + b2 * q[2][k];
+        hit = 1;
+    }
+    if (triangle(o, d, p[0], p[2], p[3], &tt, &b1, &b2) && tt < best) {
+        best = tt;
+        for (k = 0; k < 3; k++) nrm[k] = (1.0 - b1 - b2) * q[0][k] + b1 * q[2][k] + b2 * q[3][k];
+        hit = 1;
+    }
+    *t = best;
+    return hit;
+}
+
+/* Nearest hit of the surface: the ray clipped to the box |x|, |z| <= half,
+ * hmin <= y <= hmax, then the cells its xz projection crosses, in order. */
+static int surface_hit(const water_scene *s, const double o[3], const double d[3], double *t_out, double nrm[3])
+{
+    double lo[3] = {-s->half, s->hmin, -s->half}, hi[3] = {s->half, s->hmax, s->half}, t0 = 0.0, t1 = HUGE_VAL;
+    double tnx, tnz, tdx, tdz;
+    int k, ci, cj, si, sj, last = s->n - 2;
+    for (k = 0; k < 3; k++) {
+        if (d[k] == 0.0) {
+            if (o[k] < lo[k] || o[k] > hi[k]) return 0;
+            continue;
+        }
+        {
+            double a = (lo[k] - o[k]) / d[k], b = (hi[k] - o[k]) / d[k];
+            if (a > b) {
+                double c = a;
+                a = b;
+                b = c;
+            }
+            if (a > t0) t0 = a;
+            if (b < t1) t1 = b;
+        }
+    }
+    if (t0 > t1) return 0;
+    {
+        double x = o[0] + t0 * d[0], z = o[2] + t0 * d[2];
+        ci = (int)floor((x + s->half) / s->dx);
+        cj = (int)floor((z + s->half) / s->dx);
+    }
+    ci = ci < 0 ? 0 : ci > last ? last : ci;
+    cj = cj < 0 ? 0 : cj > last ? last : cj;
+    si = d[0] > 0.0 ? 1 : -1;
+    sj = d[2] > 0.0 ? 1 : -1;
+    tnx = d[0] != 0.0 ? (-s->half + (ci + (si > 0)) * s->dx - o[0]) / d[0] : HUGE_VAL;
+    tnz = d[2] != 0.0 ? (-s->half + (cj + (sj > 0)) * s->dx - o[2]) / d[2] : HUGE_VAL;
+    tdx = d[0] != 0.0 ? s->dx / fabs(d[0]) : HUGE_VAL;
+    tdz = d[2] != 0.0 ? s->dx / fabs(d[2]) : HUGE_VAL;
+    for (;;) {
+        if (cell_hit(s, ci, cj, o, d, t_out, nrm)) return 1;
+        if (tnx > t1 && tnz > t1) return 0;
+        if (tnx < tnz) {
+            ci += si;
+            tnx += tdx;
+        } else {
+            cj += sj;
+            tnz += tdz;
+        }
+        if (ci < 0 || cj < 0 || ci > last || cj > last) return 0;
+    }
+}
+
+/* Nearest face of the container (0 floor, 1..4 walls as snell_water_tile_color), seen from anywhere. */
+static int container_hit(const water_scene *s, const double o[3], const double d[3], double *t_out)
+{
+    const snell_water_desc *wd = &s->w->d;
+    double best = HUGE_VAL;
+    int face = -1, f;
+    for (f = 0; f < 5; f++) {
+        int axis = f == 0 ? 1 : f <= 2 ? 0 : 2;
+        double plane = f == 0 ? -wd->depth : (f == 1 || f == 3) ? -s->half : s->half, t, p[3];
+        int k, inside = 1;
+        if (d[axis] == 0.0) continue;
+        t = (plane - o[axis]) / d[axis];
+        if (!(t > 1e-9) || t >= best) continue;
+        for (k = 0; k < 3; k++) p[k] = o[k] + t * d[k];
+        for (k = 0; k < 3; k++) {
+            if (k == axis) continue;
+            if (k == 1 ? (p[1] < -wd->depth || p[1] > wd->rim) : fabs(p[k]) > s->half) inside = 0;
+        }
+        if (inside) {
+            best = t;
+            face = f;
+        }
+    }
+    *t_out = best;
+    return face;
+}
+
+/* The nearest opaque object along o + t d (t > eps), or 0. */
+static int object_hit(const water_scene *s, const double o[3], const double d[3], ref_surf *surf)
+{
+    const ref_view view = {-1, REF_SEE_NONE, -1};
+    return s->objects && snell__ref_hit(s->objects, o, d, SNELL__BVH_NONE, &view, surf);
+}
+
+/* The refracted ray from p inside the water: the seed's five wall
+ * distances, or an opaque object before them. */
+static void under_water(const water_scene *s, const double p[3], const double t[3], double rgb[3])
+{
+    double d = HUGE_VAL, q[3], tile[3];
+    ref_surf os;
+    int face = 0, k;
+    if (t[1] < 0.0) d = (-s->w->d.depth - p[1]) / t[1];
+    if (t[0] != 0.0) {
+        double e = ((t[0] > 0.0 ? s->half : -s->half) - p[0]) / t[0];
+        if (e < d) {
+            d = e;
+            face = t[0] > 0.0 ? 2 : 1;
+        }
+    }
+    if (t[2] != 0.0) {
+        double e = ((t[2] > 0.0 ? s->half : -s->half) - p[2]) / t[2];
+        if (e < d) {
+            d = e;
+            face = t[2] > 0.0 ? 4 : 3;
+        }
+    }
+    if (d < 0.0) d = 0.0;
+    for (k = 0; k < 3; k++) q[k] = p[k] + d * t[k];
+    if (object_hit(s, p, t, &os) && os.t < d) {
+        d = os.t;
+        snell__ref_shade_opaque(s->objects, -2 - os.object, &os, tile);
+    } else {
+        snell__water_tile(&s->w->d, face, q, tile);
+    }
+    for (k = 0; k < 3; k++) rgb[k] = tile[k] * exp(-s->sigma[k] * d);
+}
+
+/* What the mirror ray from p sees: the walls' inner side where a rising ray
+ * meets them below the rim, else the environment (water_surface.frag). */
+static void reflected(const water_scene *s, const double p[3], const double r[3], double rgb[3])
+{
+    if (r[1] > 0.0) {
+        double e = HUGE_VAL, q[3];
+        int face = 0, k;
+        if (r[0] != 0.0) {
+            e = ((r[0] > 0.0 ? s->half : -s->half) - p[0]) / r[0];
+            face = r[0] > 0.0 ? 2 : 1;
+        }
+        if (r[2] != 0.0) {
+            double f = ((r[2] > 0.0 ? s->half : -s->half) - p[2]) / r[2];
+            if (f < e) {
+                e = f;
+                face = r[2] > 0.0 ? 4 : 3;
+            }
+        }
+        if (e < 0.0) e = 0.0;
+        for (k = 0; k < 3; k++) q[k] = p[k] + e * r[k];
+        if (q[1] <= s->w->d.rim) {
+            snell__water_tile(&s->w->d, face, q, rgb);
+            return;
+        }
+    }
+    env(s, r, rgb);
+}
+
+/* One view ray: rgb, exit direction, hit (1: the water surface). */
+static int trace(const water_scene *s, const double o[3], const double d[3], double rgb[3], double exit_dir[3])
+{
+    double tw = HUGE_VAL, tc, nrm[3];
+    ref_surf os;
+    int water = surface_hit(s, o, d, &tw, nrm), face = container_hit(s, o, d, &tc), k;
+    memcpy(exit_dir, d, 3 * sizeof(double));
+    if (object_hit(s, o, d, &os) && (!water || os.t < tw) && (face < 0 || os.t < tc)) {
+        snell__ref_shade_opaque(s->objects, -2 - os.object, &os, rgb);
+        return 0;
+    }
+    if (water && (face < 0 || tw <= tc)) {
+        double p[3], r[3], t[3], f, seen[3], sky[3];
+        for (k = 0; k < 3; k++) p[k] = o[k] + tw * d[k];
+        snell__ref_normalize3(nrm);
+        if (snell__ref_dot3(nrm, d) > 0.0)
+            for (k = 0; k < 3; k++) nrm[k] = -nrm[k];
+        snell_optd_reflect(d, nrm, r);
+        snell_optd_refract(d, nrm, 1.0 / s->ior, t);
+        snell__ref_normalize3(t);
+        f = snell_optd_fresnel_schlick(-snell__ref_dot3(d, nrm), 1.0, s->ior);
+        under_water(s, p, t, seen);
+        reflected(s, p, r, sky);
+        for (k = 0; k < 3; k++) rgb[k] = (1.0 - f) * seen[k] + f * sky[k];
+        memcpy(exit_dir, t, sizeof t);
+        return 1;
+    }
+    if (face >= 0) {
+        double p[3];
+        for (k = 0; k < 3; k++) p[k] = o[k] + tc * d[k];
+        snell__water_tile(&s->w->d, face, p, rgb);
+        return 0;
+    }
+    env(s, d, rgb);
+    return 0;
+}
+
+static void row(water_scene *s, int y)
+{
+    const camera_rays *cr = s->cr;
+    const snell_ref_output *out = s->out;
+    int x, a, b, k, S = s->samples;
+    for (x = 0; x < cr->w; x++) {
+        size_t i = (size_t)y * (size_t)cr->w + (size_t)x;
+        double dir[3], rgb[3], ex[3], sum[3] = {0, 0, 0};
+        int hit;
+        for (b = 0; b < S; b++)
+            for (a = 0; a < S; a++) {
+                snell__ref_camera_ray(cr, x, y, (a + 0.5) / S, (b + 0.5) / S, dir);
+                trace(s, cr->eye, dir, rgb, ex);
+                for (k = 0; k < 3; k++) sum[k] += rgb[k];
+            }
+        for (k = 0; k < 3; k++) out->rgb[3 * i + k] = (float)(sum[k] / (S * S));
+        snell__ref_camera_ray(cr, x, y, 0.5, 0.5, dir);
+        hit = trace(s, cr->eye, dir, rgb, ex);
+        if (out->exit_dir)
+            for (k = 0; k < 3; k++) out->exit_dir[3 * i + k] = (float)ex[k];
+        if (out->hit) out->hit[i] = (uint8_t)hit;
+    }
+}
+
+static void *worker(void *arg)
+{
+    water_scene *s = (water_scene *)arg;
+    for (;;) {
+        int y;
+        pthread_mutex_lock(&s->lock);
+        y = s->next_row++;
+        pthread_mutex_unlock(&s->lock);
+        if (y >= s->cr->h) break;
+        row(s, y);
+    }
+    return NULL;
+}
+
+snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, const snell_ref_params *params,
+                                    const snell_ref_output *out)
+{
+    water_scene s;
+    camera_rays cr;
+    pthread_t tids[SNELL_REF_MAX_THREADS];
+    snell_status st;
+    size_t i, nodes;
+    float *h;
+    int k, nthreads, started = 0;
+    if (!w || !params || !out || !out->rgb)
+        return snell__fail(w ? w->ctx : NULL, SNELL_E_INVALID_ARG,
+                           "snell_ref_water_render: water, params, out and out->rgb are required");
+    if (!params->env && !params->env_fn)
+        return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: params need env or env_fn");
+    if (params->samples < 0 || params->samples > SNELL_REF_MAX_SAMPLES || params->threads < 0)
+        return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: samples %d outside 0..%d or threads %d < 0",
+                           params->samples, SNELL_REF_MAX_SAMPLES, params->threads);
+    if (objects && (objects->glass_count > 0 || objects->analytic))
+        return snell__fail(w->ctx, SNELL_E_INVALID_ARG,
+                           "snell_ref_water_render: objects may hold opaque objects only (%d glass)", objects->glass_count);
+    if ((st = snell__ref_camera_setup(w->ctx, params, &cr)) != SNELL_OK) return st;
+    nodes = (size_t)w->n * (size_t)w->n;
+    h = (float *)snell__calloc(&w->alloc, nodes, sizeof(float));
+    if (!h) return snell__fail(w->ctx, SNELL_E_NOMEM, "snell_ref_water_render: out of memory for the heights");
+    if ((st = snell_water_read_heights(w, h)) != SNELL_OK) {
+        snell__free(&w->alloc, h);
+        return st;
+    }
+    memset(&s, 0, sizeof s);
+    s.w = w;
+    s.objects = objects;
+    s.h = h;
+    s.n = w->n;
+    s.half = 0.5 * (double)w->d.width;
+    s.dx = w->dx;
+    s.ior = w->d.ior;
+    for (k = 0; k < 3; k++) s.sigma[k] = w->sigma[k];
+    s.hmin = s.hmax = h[0];
+    for (i = 1; i < nodes; i++) {
+        if (h[i] < s.hmin) s.hmin = h[i];
+        if (h[i] > s.hmax) s.hmax = h[i];
+    }
+    s.p = params;
+    s.cr = &cr;
+    s.out = out;
+    s.samples = params->samples > 1 ? params->samples : 1;
+    nthreads = params->threads;
+    if (nthreads == 0) {
+        long c = sysconf(_SC_NPROCESSORS_ONLN);
+        nthreads = c > 0 ? (int)(c < SNELL_REF_MAX_THREADS ? c : SNELL_REF_MAX_THREADS) : 1;
+    }
+    if (nthreads > SNELL_REF_MAX_THREADS) nthreads = SNELL_REF_MAX_THREADS;
+    if (pthread_mutex_init(&s.lock, NULL) != 0) {
+        snell__free(&w->alloc, h);
+        return snell__fail(w->ctx, SNELL_E_NOMEM, "snell_ref_water_render: cannot create a mutex");
+    }
+    for (k = 1; k < nthreads; k++) {
+        if (pthread_create(&tids[started], NULL, worker, &s) != 0) break;
+        started++;
+    }
+    worker(&s);
+    for (k = 0; k < started; k++) pthread_join(tids[k], NULL);
+    pthread_mutex_destroy(&s.lock);
+    snell__free(&w->alloc, h);
+    return SNELL_OK;
+}

@@ -1,0 +1,42 @@
+/* water_draw.h — the water surface as an object of a frame (renderer.c):
+ * its kernel's programs, owned by the renderer because they depend on the
+ * renderer's output kind, and the draw of one water surface and its
+ * container. A sibling of the glass method seam (methods/method.h), not an
+ * entry of it: a method serves a mesh and is chosen by the mesh's analysis,
+ * prepared once per mesh version; the water has no mesh, changes every
+ * frame (its state is the simulation's) and brings its own geometry (the
+ * grid and the container). */
+#ifndef SNELL_WATER_DRAW_H
+#define SNELL_WATER_DRAW_H
+
+#include "methods/method.h"
+#include "water/water.h"
+
+typedef struct snell__water_programs {
+    unsigned surface[2][2];        /* [heights from R32F (CPU simulation) or from the RG32UI state (GPU)]
+                                    * [without, with the search for opaque objects in the water] */
+    unsigned wall;
+    int made;
+    /* The opaque objects as the frame drew them (colour and depth), for the
+     * search: copied from the target before the water, made on first use at
+     * the target's size. */
+    unsigned scene_fbo, scene_color, scene_depth;
+} snell__water_programs;
+
+
+/* Copies the bound target's colour and depth (the opaque objects just
+ * drawn, read from read_fbo, width x height) for the search; the caller
+ * rebinds its target after. */
+snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, unsigned read_fbo, int width, int height);
+
+/* Draws the water and its container into the bound target (depth test LESS,
+ * depth write); env_texture on unit 0 for snell_env, the heights on unit 1,
+ * with objects (object_count > 0, after snell__water_copy_scene) their
+ * colour and depth on units 2 and 3 and their bounding spheres. Uploads a CPU simulation's heights when they changed since
+ * the last draw (stats->water_uploaded). */
+snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
+                               const snell__view *v, unsigned env_texture, const snell_opaque *objects,
+                               int object_count, snell_frame_stats *stats);
+void snell__water_programs_destroy(snell__water_programs *p);
+
+#endif

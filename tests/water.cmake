@@ -1,0 +1,26 @@
+# Water (snell_water_*, src/water/, ref/ref_water.c; issue 17).
+# test_water_sim: the CPU simulation, no GL (100,000 steps of 64^2, and a run past the stability
+# limit that overflows early; ~3-5 s).
+snell_add_test(test_water_sim SOURCES test_water_sim.c LABELS "unit")
+target_link_libraries(test_water_sim PRIVATE m)
+# test_water_gl: GPU simulation against the CPU one, its settle check, and the
+# still and rippled water frames against snell_ref_water_render, objects in the water, Fresnel against
+# Schlick, tiles bending, the twins settling together (~3-5 s here).
+snell_add_test(test_water_gl SOURCES test_water_gl.c LABELS "render;gl")
+target_link_libraries(test_water_gl PRIVATE m)
+# snell-render --water: a frame sequence with drops from flags (one at frame 3),
+# the settled surface skipping its simulation, a bad drop refused (exit 2).
+if(TARGET snell-render)
+  set(cli $<TARGET_FILE:snell-render>)
+  add_test(NAME cli_water_frames COMMAND ${cli} --water --sim gpu --grid 64 --size 48x48 --frames 5 --save-every 2
+           --drop 0,0,0.1,-0.03 --drop 0.5,0.5,0.1,0.02,3 --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_water.png)
+  set_tests_properties(cli_water_frames PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
+    "frame 0: simulated, 2 steps.*frame 4: simulated, 2 steps")
+  add_test(NAME cli_water_settled COMMAND ${cli} --water --sim cpu --grid 64 --size 32x32 --frames 2 --stats
+           -o ${CMAKE_CURRENT_BINARY_DIR}/cli_water_still.png)
+  set_tests_properties(cli_water_settled PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
+    "frame 0: simulation skipped \\(settled, undisturbed\\), 0 steps.*heights uploaded.*frame 1: simulation skipped.*heights not uploaded")
+  add_test(NAME cli_water_bad_drop COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--water|--drop|5,0|--size|16x16"
+           -DCODE=2 "-DERR=outside the container" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+  set_tests_properties(cli_water_bad_drop PROPERTIES LABELS "cli;gl")
+endif()
