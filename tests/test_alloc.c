@@ -65,7 +65,7 @@ static snell_status cycle(counter *c, int render)
     snell_env_desc ed;
     snell_renderer_desc rd;
     snell_frame_desc fd;
-    snell_glass g, scene[3];
+    snell_glass g, scene[4];
     snell_opaque ob;
     float moved[16] = {0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.8f, 0, 0, 1};
     static uint8_t px[32 * 32 * 4];
@@ -100,15 +100,17 @@ static snell_status cycle(counter *c, int render)
          * dynamic environments (all allocated on first use) fail cleanly too. */
         memset(scene, 0, sizeof scene);
         memset(&ob, 0, sizeof ob);
-        scene[0].mesh = scene[1].mesh = scene[2].mesh = mesh;
+        scene[0].mesh = scene[1].mesh = scene[2].mesh = scene[3].mesh = mesh;
         scene[1].model = moved;
         scene[1].material.method = SNELL_METHOD_CUBEMAP;
         scene[1].material.cubemap.face_size = 16;
         scene[2].material.thickness = 0.05f;
+        scene[3].model = moved;
+        scene[3].material.method = SNELL_METHOD_EXACT; /* its BVH: build, flatten, texture */
         ob.mesh = mesh;
         ob.model = moved;
         fd.glass = scene;
-        fd.glass_count = 3;
+        fd.glass_count = 4;
         fd.opaque = &ob;
         fd.opaque_count = 1;
         st = snell_render(r, &fd, NULL);
@@ -349,6 +351,13 @@ int main(void)
         CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         CHECK(c.total == before, "frames after the first allocated %ld times", c.total - before);
+        /* exact: after its first frame (BVH build, program), frames allocate nothing */
+        g.material.method = SNELL_METHOD_EXACT;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
+        before = c.total;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
+        CHECK(c.total == before, "exact frames after the first allocated %ld times", c.total - before);
         /* The cubemap method: after its first frame (analysis, bake), frames
          * allocate nothing; a new search setting builds its program once
          * (the step counts are compile-time constants of the shader), after

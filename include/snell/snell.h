@@ -384,6 +384,10 @@ typedef enum snell_method {
     SNELL_METHOD_PEEL,         /* multi-layer in image space (Wang 2014): depth-peeled layers of normal and
                                 * depth, a ray-height-field search between them, up to N interfaces with TIR;
                                 * for concave meshes (a view ray crossing more than two surfaces) */
+    SNELL_METHOD_EXACT,        /* exact: the mesh's BVH ray-traced per pixel (watertight triangles, TIR, up
+                                * to N interfaces), the MATCHED reference's model on the GPU; the accuracy
+                                * ceiling, the most expensive; AUTO picks it only where the material's
+                                * exact.auto_pick allows it (snell_exact_params) */
     SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 
@@ -525,6 +529,48 @@ typedef enum snell_dispersion_model {
                                        * up per channel at the end */
 } snell_dispersion_model;
 
+/* Whether AUTO may choose SNELL_METHOD_EXACT. */
+typedef enum snell_exact_auto {
+    SNELL_EXACT_AUTO_DEFAULT = 0, /* SNELL_EXACT_AUTO_NEVER */
+    SNELL_EXACT_AUTO_NEVER,       /* only an explicit material.method = EXACT uses it */
+    SNELL_EXACT_AUTO_ALLOW        /* AUTO may pick it where no cheaper method is adequate (open or
+                                   * non-manifold meshes, which AUTO otherwise draws with single); on a mesh a
+                                   * cheaper method represents AUTO still picks that one */
+} snell_exact_auto;
+
+/* SNELL_METHOD_EXACT's parameters (material.exact); zero = the default. The
+ * budget is a compile-time constant of the traversal program (one program per
+ * (budget, node format, absorption, shading), built on first use, 8 kept); the
+ * BVH is built once per mesh and node format (the reference tracer's SAH
+ * build, about 0.4 s for a 70k-triangle mesh on llvmpipe's host) and refitted,
+ * not rebuilt, when snell_mesh_set_vertices moves the vertices. */
+typedef struct snell_exact_params {
+    int max_interfaces;        /* surfaces processed per path, 1..10 (1 = single surface with the exact path
+                                * length for absorption; default 8); the MATCHED reference's cap */
+    /* BVH nodes a pixel may visit over all its rays, 64..65536 (default 4096):
+     * past it the pixel takes the single-surface answer (refraction at the
+     * entry, absorption over the bounding-sphere chord), computed in the same
+     * shader, instead of running on (weak GPUs, watchdogs); counted in
+     * snell_object_stats.exact_fallback_pixels. */
+    int node_budget;
+    /* How node bounds are stored: 0 = default (1, f32); 1 = f32: RGBA32F, two
+     * texels a node; 2 = q16: 16 bits a coordinate relative to the root box,
+     * rounded outward, one RGBA32UI texel a node (bench/BENCHMARKS.md, "Exact"). */
+    int node_format;
+    snell_exact_auto auto_pick;
+    /* How the tree is walked: 0 = default (2, stack); 1 = stackless: escape
+     * indices, no per-pixel array, no depth bound; 2 = stack: near-first with
+     * a 32-entry stack a pixel, 0.71-0.81x the stackless frame on llvmpipe; a
+     * tree deeper than the stack (the reference's SAH build of a 70k-triangle
+     * mesh is 20 deep) makes the pixels that would overflow it fall back as
+     * past the budget. Stackless is for GPUs where the stack spills. */
+    int walk;
+} snell_exact_params;
+
+#define SNELL_EXACT_MAX_INTERFACES 10
+#define SNELL_EXACT_MIN_BUDGET 64
+#define SNELL_EXACT_MAX_BUDGET 65536
+
 /* A glass material, named as glTF 2.0 names it so that a glTF material maps
  * onto it field by field. Zero means the default (snell_glass_defaults). */
 typedef struct snell_glass_material {
@@ -554,6 +600,7 @@ typedef struct snell_glass_material {
     snell_wyman_params wyman;      /* used when it is WYMAN */
     snell_oliveira_params oliveira; /* used when it is OLIVEIRA */
     snell_peel_params peel;        /* used when the method (or AUTO's choice) is PEEL */
+    snell_exact_params exact;      /* used when it is EXACT (which AUTO picks only if exact.auto_pick allows) */
 } snell_glass_material;
 
 /* A material with every default applied, and the per-unit absorption derived
@@ -794,6 +841,13 @@ typedef struct snell_object_stats {
                                      * fewer where the mesh's depth_complexity bounds them or a layer came
                                      * out empty: the peels after it are not drawn) */
     int layers_used;                /* PEEL: of those, the non-empty ones the search reads */
+    /* EXACT: pixels that ran out of material.exact.node_budget and took the
+     * single-surface answer. Counted only by SNELL_OUTPUT_EXIT_DIRECTION
+     * renderers with an RGBA32F target (the pixel's alpha marks it, read back
+     * once per object and frame; GLES 3.0's occlusion queries say only
+     * whether any sample passed, and it has no atomic counters); -1 where not
+     * counted (colour output, the packed RGBA8 target, other methods). */
+    int exact_fallback_pixels;
 } snell_object_stats;
 
 typedef struct snell_frame_stats {

@@ -125,8 +125,9 @@ static int exit_dir_frames(snell_ctx *ctx, const snell_frame_desc *fd, bench_con
     snell_renderer *r = NULL;
     snell_renderer_desc desc;
     snell_frame_desc bg = *fd;
+    snell_frame_stats fs;
     size_t i;
-    int ok = 0;
+    int ok = 0, g;
     memset(&desc, 0, sizeof desc);
     desc.width = c->width;
     desc.height = c->height;
@@ -139,11 +140,16 @@ static int exit_dir_frames(snell_ctx *ctx, const snell_frame_desc *fd, bench_con
         return 0;
     }
     c->encoding = snell_renderer_exit_dir_encoding(r);
+    c->exact_fallback_pixels = -1;
     if (snell_render(r, &bg, NULL) != SNELL_OK || snell_renderer_read_exit_dirs(r, b->bgdirs) != SNELL_OK ||
-        snell_render(r, fd, NULL) != SNELL_OK || snell_renderer_read_exit_dirs(r, b->dirs) != SNELL_OK) {
+        snell_render(r, fd, &fs) != SNELL_OK || snell_renderer_read_exit_dirs(r, b->dirs) != SNELL_OK) {
         bench_fail(c, "exit-direction frame", ctx);
     } else {
         ok = 1;
+        for (g = 0; g < fs.glass_count; g++)
+            if (fs.glass[g].exact_fallback_pixels >= 0)
+                c->exact_fallback_pixels = (c->exact_fallback_pixels < 0 ? 0 : c->exact_fallback_pixels) +
+                                           fs.glass[g].exact_fallback_pixels;
         snell_metrics_coverage_mask(b->dirs, b->bgdirs, (long)b->n, b->mask);
         c->nan_inf = 0;
         for (i = 0; i < b->n; i++)

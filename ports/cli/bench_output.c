@@ -150,8 +150,9 @@ static void json_result(FILE *f, const bench_config *c)
     json_num(f, c->vs_single >= 0 ? c->vs_single : NAN);
     fprintf(f, ", \"pareto\": %s, \"exit_dir_encoding\": ", c->pareto ? "true" : "false");
     json_str(f, c->encoding);
-    fprintf(f, ", \"nan_inf\": %ld, \"matched_interfaces\": %d,\n     \"vs_matched\": ", c->nan_inf,
-            c->ref_interfaces);
+    fprintf(f, ", \"nan_inf\": %ld, \"exact_fallback_pixels\": ", c->nan_inf);
+    json_num(f, c->exact_fallback_pixels >= 0 ? (double)c->exact_fallback_pixels : NAN);
+    fprintf(f, ", \"matched_interfaces\": %d,\n     \"vs_matched\": ", c->ref_interfaces);
     json_errors(f, c, 0);
     fprintf(f, ",\n     \"vs_full\": ");
     json_errors(f, c, 1);

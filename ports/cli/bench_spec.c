@@ -222,6 +222,8 @@ static void reference_model(bench_config *c)
     /* peel's cap; MATCHED stops at the first exit, peel goes on through
      * re-entries as FULL's dominant branch does: FULL is its model */
     if (c->method->method == SNELL_METHOD_PEEL) c->ref_interfaces = r.material.peel.max_interfaces;
+    /* exact is the MATCHED model itself: its error there is float rounding */
+    if (c->method->method == SNELL_METHOD_EXACT) c->ref_interfaces = r.material.exact.max_interfaces;
 }
 
 /* ------------------------------------------------------------- expansion */

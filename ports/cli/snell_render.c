@@ -167,6 +167,10 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
         skipped_str(g->skipped, skipped, sizeof skipped);
         if (g->method_used == SNELL_METHOD_PEEL)
             snprintf(layers, sizeof layers, ", layers peeled %d used %d", g->layers_peeled, g->layers_used);
+        if (g->method_used == SNELL_METHOD_EXACT && g->exact_fallback_pixels >= 0)
+            snprintf(layers, sizeof layers, ", fallback pixels %d", g->exact_fallback_pixels);
+        else if (g->method_used == SNELL_METHOD_EXACT)
+            snprintf(layers, sizeof layers, ", fallback pixels not counted (colour output)");
         if (snell_glass_defaults(&s->glass[i].material, &m) != SNELL_OK) m.material.ior = NAN;
         fprintf(f,
                 "stats: glass %d (%s, ior %g): method %s, warning %d, passes %d, prepared %d, env_updated %d, "

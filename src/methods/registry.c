@@ -14,6 +14,7 @@ extern const snell__method snell__method_cubemap;
 extern const snell__method snell__method_wyman;
 extern const snell__method snell__method_oliveira;
 extern const snell__method snell__method_peel;
+extern const snell__method snell__method_exact;
 
 static const snell__method *const g_methods[] = {
     &snell__method_single,
@@ -21,6 +22,7 @@ static const snell__method *const g_methods[] = {
     &snell__method_wyman,
     &snell__method_oliveira,
     &snell__method_peel,
+    &snell__method_exact,
 };
 #define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
 
