@@ -7,7 +7,7 @@
  *    scene is channel c of the same scene without dispersion at IOR
  *    ior_rgb[c] (so a swap of channels or IORs fails), and through the prism
  *    at minimum deviation blue is bent more than green, green more than red;
- *  - every kernel (single, cubemap, wyman, oliveira, peel) in both variants
+ *  - every kernel (single, cubemap, wyman, oliveira, peel, exact) in both variants
  *    (PER_CHANNEL: three traces; ONE_PATH: red and blue re-refracted along
  *    the green path) on a prism and a sphere: glass-pixel PSNR against the
  *    reference's per-channel MATCHED image (the kernel's interface cap,
@@ -220,6 +220,7 @@ static int model_interfaces(snell_method method)
     case SNELL_METHOD_CUBEMAP: return r.material.cubemap.max_interfaces;
     case SNELL_METHOD_OLIVEIRA: return r.material.oliveira.max_interfaces;
     case SNELL_METHOD_PEEL: return r.material.peel.max_interfaces;
+    case SNELL_METHOD_EXACT: return r.material.exact.max_interfaces;
     default: return 2;
     }
 }
@@ -240,6 +241,7 @@ static double psnr(const uint8_t *a, const uint8_t *b, const uint8_t *hit)
  *          wyman 24.0 / 26.5 / 26.5   oliveira 24.9 / 28.3 / 28.4   peel 25.9 / 32.2 / 31.8
  *   sphere single 27.1 / 53.8 / 55.5   cubemap 25.1 / 31.2 / 31.2
  *          wyman 16.9 / 17.0 / 16.9   oliveira 19.3 / 19.2 / 19.1   peel 25.6 / 36.8 / 36.6
+ *   exact (three traces in both variants: exact.c) prism 26.8 / 58.3, sphere 25.6 / 46.4
  * On the sphere wyman's and oliveira's own exit error (image-space exit
  * normals on a sphere 90 pixels across, 17-19 dB) hides the fringes: no
  * bound there tells dispersion apart, and the check is only that it does not
@@ -257,6 +259,7 @@ static const kernel_case g_cases[] = {
     {SNELL_METHOD_PEEL, 0, 31.5, 31.0, 1},      {SNELL_METHOD_SINGLE, 1, 50.0, 50.0, 1},
     {SNELL_METHOD_CUBEMAP, 1, 30.5, 30.5, 1},  {SNELL_METHOD_WYMAN, 1, 16.5, 16.5, 0},
     {SNELL_METHOD_OLIVEIRA, 1, 18.7, 18.7, 0}, {SNELL_METHOD_PEEL, 1, 36.0, 36.0, 1},
+    {SNELL_METHOD_EXACT, 0, 55.0, 55.0, 1},    {SNELL_METHOD_EXACT, 1, 44.0, 44.0, 1},
 };
 
 static void test_kernels(snell_ctx *ctx, const scene *scenes, const snell_env *env)

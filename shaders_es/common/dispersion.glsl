@@ -79,9 +79,9 @@ vec3 snell_disp_exit(highp vec3 p, inout highp vec3 dir)
 #endif
 }
 
-void main()
+// The kernel's colour as SNELL_DISPERSION says, and the exit direction to write.
+vec3 snell_disp_trace(out highp vec3 exit_dir)
 {
-    highp vec3 exit_dir;
 #if SNELL_DISPERSION == 1
     vec3 color;
     snell_ior = u_ior_rgb.r;
@@ -97,5 +97,16 @@ void main()
     snell_ior = u_ior;
     vec3 color = snell_glass_trace(exit_dir);
 #endif
+    return color;
+}
+
+// A kernel that writes more than colour and direction defines SNELL_KERNEL_MAIN
+// and a main of its own around snell_disp_trace (exact.frag).
+#ifndef SNELL_KERNEL_MAIN
+void main()
+{
+    highp vec3 exit_dir;
+    vec3 color = snell_disp_trace(exit_dir);
     snell_write(color, exit_dir);
 }
+#endif
