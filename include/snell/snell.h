@@ -517,7 +517,9 @@ typedef struct snell_peel_params {
 #define SNELL_PEEL_MAX_LAYERS 8
 #define SNELL_PEEL_MAX_INTERFACES 10
 
-/* How a kernel renders a dispersive material (snell_glass_material.dispersion > 0). */
+/* How a kernel renders a dispersive material (snell_glass_material.dispersion > 0).
+ * SNELL_METHOD_EXACT always traces per channel (its traversal finds each
+ * channel's true exits). */
 typedef enum snell_dispersion_model {
     SNELL_DISPERSION_AUTO = 0,        /* the measured better trade: ONE_PATH (bench/BENCHMARKS.md,
                                        * "Dispersion") */
