@@ -9,6 +9,13 @@ if(TARGET snell-bench)
              -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_bench_lod.cmake)
     set_tests_properties(bench_lod PROPERTIES LABELS "cli;gl" TIMEOUT 300)
   endif()
+  # --env-lookup: both look-ups timed and probed (64x64, 3 rounds: ~3 s); that it runs and prints both tables
+  add_test(NAME bench_env_lookup COMMAND ${bench} --env-lookup --frames 3 --size 64)
+  set_tests_properties(bench_env_lookup PROPERTIES LABELS "cli;gl" TIMEOUT 120
+    PASS_REGULAR_EXPRESSION "cubemap, dynamic env .*within 1 deg of the rim, smooth")
+  add_test(NAME bench_env_lookup_bad COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--env-lookup|--frames|1" -DCODE=2
+           "-DERR=snell-bench --env-lookup: " -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+  set_tests_properties(bench_env_lookup_bad PROPERTIES LABELS "cli")
   foreach(bad "-b|nosuch" "-b|cubemap:iterations=0" "-b|cubemap:face=99999" "--frames|0" "-b|auto"
               "-b|single:iterations=4" "-b|cubemap:encoding=rgb" "-b|cubemap:scene=pair:attenuation=2/1/1/1"
               "-b|single:lod=0" "-b|single:lod=1.5" "-b|single:lod=nan" "-b|single:dispersion=-1"

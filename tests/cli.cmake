@@ -36,6 +36,15 @@ if(TARGET snell-render)
   add_test(NAME cli_help_registry COMMAND ${cli} --help)
   set_tests_properties(cli_help_registry PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
     "method cubemap: .*--iterations V +1\\.\\.32 \\(default 6\\).*--encoding V +default\\|plain\\|oct \\(default plain\\)")
+  # --env-lookup: the stats say which look-up each object used
+  add_test(NAME cli_env_lookup COMMAND ${cli} --mesh sphere --opaque cube --place 0,0,-2,0.5 --env-lookup paraboloid-direct
+           --stats --size 32x32 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_env_lookup.png)
+  set_tests_properties(cli_env_lookup PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
+    "glass 0 \\(sphere, ior 1.5\\): method cubemap.*env dual-paraboloid.*wrote .*cli_env_lookup.png")
+  add_test(NAME cli_env_lookup_bad COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--env-lookup|sphere" -DCODE=2
+           "-DERR=snell-render: --env-lookup: unknown look-up 'sphere' \\(auto, cube, paraboloid, paraboloid-direct\\)"
+           -P ${expect})
+  set_tests_properties(cli_env_lookup_bad PROPERTIES LABELS "cli")
   foreach(bad "--color|1,1,1" "--place|1,0,0|--mesh|cube" "--mesh|cube|--place|1,2" "--mesh|cube|--place|0,0,0,0"
               "--param|nosuch=1" "--param|cubemap.iterations=99" "--param|iterations" "--attenuation|1,1,1"
               "--mesh|cube|--thickness|-1" "--opaque|shape:blob" "--opaque|65" "--mesh|cube|--encoding|rgb")

@@ -78,3 +78,9 @@ file(GLOB SNELL_SCENE2D_FUZZ_INPUTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR
      ${CMAKE_CURRENT_SOURCE_DIR}/data/lm2d/*.txt)
 snell_add_test(fuzz_scene2d SOURCES fuzz/fuzz_scene2d.c LABELS "unit;fuzz" ARGS ${SNELL_SCENE2D_FUZZ_INPUTS})
 target_link_libraries(fuzz_scene2d PRIVATE m)
+# Dual-paraboloid environment maps: the parameterisation's twin, the GPU
+# look-up against exact radiance (random and rim directions), and frames
+# through the paraboloid path against the cube path for every kernel (~10 s a run on
+# llvmpipe, three runs: AUTO, forward, screen shading).
+snell_add_test(test_env_paraboloid SOURCES test_env_paraboloid.c LABELS "render;gl" SHADINGS forward screen)
+target_link_libraries(test_env_paraboloid PRIVATE m)

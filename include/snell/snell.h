@@ -364,6 +364,11 @@ int snell_env_face_size(const snell_env *env);
 void snell_env_sample(const snell_env *env, const float dir[3], float rgb[3]);
 /* Double-precision variant for the reference tracer. */
 void snell_env_sample_d(const snell_env *env, const double dir[3], double rgb[3]);
+/* The built-in procedural environment's exact radiance along dir (need not be
+ * unit), rgb in [0,1]: what its faces sample (3x3 per texel) before they are
+ * quantised and filtered, for measuring a look-up's error. Black for a NULL,
+ * zero or non-finite dir. */
+void snell_env_procedural_radiance(const double dir[3], double rgb[3]);
 
 /* ------------------------------------------------------------------ glass */
 /* How the exit of a light path through the glass is found. Methods are the
@@ -714,6 +719,25 @@ typedef enum snell_shading {
     SNELL_SHADING_SCREEN
 } snell_shading;
 
+/* How the kernels and the background look the environment up
+ * (shaders_es/common/env.glsl): the GL cube texture, or dual-paraboloid maps
+ * (Heidrich and Seidel 1998, Dachsbacher 2002): two 180-degree maps of the
+ * +Z and -Z hemispheres, made on the GPU from the cube (the static
+ * environment's once, kept with it; a dynamic one's each time it is
+ * re-rendered) at twice its face size, RGBA8, in one 2D array texture. */
+typedef enum snell_env_lookup {
+    SNELL_ENV_LOOKUP_AUTO = 0,      /* per use, what measured better on llvmpipe (bench/BENCHMARKS.md
+                                     * "Environment look-up"): the cube for the static and dynamic
+                                     * environments alike (as fast, more accurate; cheaper updates) */
+    SNELL_ENV_LOOKUP_CUBE,
+    SNELL_ENV_LOOKUP_DUAL_PARABOLOID,
+    /* the same, but a dynamic environment's maps are rendered straight from
+     * the glass centre (2 views instead of 6 cube faces): opaque objects are
+     * projected per vertex, which bends no edge, so they come out right only
+     * where their triangles are small as seen from the centre */
+    SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT
+} snell_env_lookup;
+
 typedef struct snell_renderer_desc {
     int width, height;              /* pixels; 0 = 512 */
     snell_target target;
@@ -735,6 +759,7 @@ typedef struct snell_renderer_desc {
      * stay aliased); SCREEN is still honoured. Offscreen colour renderers
      * only, not with ssaa. */
     int msaa;
+    snell_env_lookup env_lookup;    /* for every glass object and the background */
 } snell_renderer_desc;
 
 #define SNELL_MAX_SSAA 8
@@ -850,6 +875,7 @@ typedef struct snell_object_stats {
      * whether any sample passed, and it has no atomic counters); -1 where not
      * counted (colour output, the packed RGBA8 target, other methods). */
     int exact_fallback_pixels;
+    int env_paraboloid;             /* 1: it looked its environment up in dual-paraboloid maps, 0: the cube */
 } snell_object_stats;
 
 typedef struct snell_frame_stats {
@@ -874,6 +900,7 @@ typedef struct snell_frame_stats {
     int water_objects;              /* 1: the opaque objects were searched for along its refracted rays (an
                                      * offscreen single-sample colour renderer with opaque objects; else the
                                      * water shows only the container below it) */
+    int background_paraboloid;      /* 1: the background looked the environment up in dual-paraboloid maps */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */
@@ -914,6 +941,15 @@ snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels);
 snell_status snell_renderer_read_exit_dirs(snell_renderer *r, float *xyz);
 /* "float" or "packed-rgba8": how an EXIT_DIRECTION renderer stores directions. */
 const char *snell_renderer_exit_dir_encoding(const snell_renderer *r);
+/* The environment look-up the kernels and the background use
+ * (snell_env_lookup: CUBE or DUAL_PARABOLOID, which DUAL_PARABOLOID_DIRECT
+ * is for a static environment; AUTO is the renderer's choice for one), evaluated on the GPU for n directions (xyz, need not
+ * be unit) into n rgb triples: for measuring a look-up's error. Read from an
+ * RGBA32F target where GL_EXT_color_buffer_float allows, else RGBA8 (to
+ * 1/255). Makes and deletes its GL objects; GL state is left as it was.
+ * n in 1..2^20. */
+snell_status snell_renderer_env_probe(snell_renderer *r, const snell_env *env, snell_env_lookup lookup,
+                                      const float *dirs, int n, float *rgb);
 /* Blocks until the GPU finished the frame (glFinish); for timing. */
 void snell_renderer_finish(snell_renderer *r);
 

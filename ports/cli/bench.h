@@ -10,6 +10,7 @@
  *   bench_plot.c     the time-vs-error PNG                                   (bench_plot.h)
  *   bench_timer.c    GL_EXT_disjoint_timer_query                             (bench_timer.h)
  *   bench2d.c        snell-bench --2d, the 2D lightmap benchmarks
+ *   bench_env.c      snell-bench --env-lookup, the cube against the dual-paraboloid environment look-up
  * Exit status 0 on success, 1 if a configuration or an output failed, 2 on bad usage. */
 #ifndef SNELL_BENCH_H
 #define SNELL_BENCH_H
@@ -161,6 +162,8 @@ void bench_print_table(const bench_config *cs, int n);
 
 /* snell-bench --2d (bench2d.c). */
 int snell_bench2d_main(int argc, char **argv);
+/* snell-bench --env-lookup (bench_env.c). */
+int snell_bench_env_main(int argc, char **argv);
 /* snell-bench --water (bench_water.c): the water scene's simulation and rendering timed apart. */
 int snell_bench_water_main(int argc, char **argv);
 

@@ -33,6 +33,7 @@ typedef struct render_options {
     snell_backend backend;
     int frames;                    /* >1: time the frames and print the median */
     snell_shading shading;         /* --shading */
+    snell_env_lookup env_lookup;   /* --env-lookup */
     int ssaa, msaa;                /* --ssaa S, --msaa N (snell_renderer_desc) */
     int scene_layers;              /* --scene-layers N|auto|off (snell_frame_desc.scene_layers) */
     int normalize;                 /* fit each mesh into the unit sphere before placing it */

@@ -67,6 +67,8 @@ void render_usage(FILE *f)
             "  --backend NAME         surfaceless (default), pbuffer\n"
             "  --frames N             render N frames and print the median time per frame\n"
             "  --shading MODE         auto (default: screen space for dense meshes), forward, screen\n"
+            "  --env-lookup L         environment look-up: auto (default), cube, paraboloid (dual-paraboloid maps),\n"
+            "                         paraboloid-direct (dynamic environments' maps rendered straight)\n"
             "  --ssaa S               supersample S x S, box-resolved (2..8; the area average)\n"
             "  --msaa N               multisample N (triangle edges only; not with --ssaa)\n"
             "  --scene-layers L       glass through glass and opaque objects through glass: auto (default: on\n"
@@ -273,6 +275,12 @@ static int view_option(const char *a, const char *v, render_options *o)
         else if (!strcmp(v, "forward")) o->shading = SNELL_SHADING_FORWARD;
         else if (!strcmp(v, "screen")) o->shading = SNELL_SHADING_SCREEN;
         else return usage_error("%s: unknown shading '%s' (auto, forward, screen)", a, v);
+    } else if (!strcmp(a, "--env-lookup")) {
+        if (!strcmp(v, "auto")) o->env_lookup = SNELL_ENV_LOOKUP_AUTO;
+        else if (!strcmp(v, "cube")) o->env_lookup = SNELL_ENV_LOOKUP_CUBE;
+        else if (!strcmp(v, "paraboloid")) o->env_lookup = SNELL_ENV_LOOKUP_DUAL_PARABOLOID;
+        else if (!strcmp(v, "paraboloid-direct")) o->env_lookup = SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT;
+        else return usage_error("%s: unknown look-up '%s' (auto, cube, paraboloid, paraboloid-direct)", a, v);
     } else if (!strcmp(a, "--ssaa")) {
         if (!parse_int(v, &o->ssaa) || o->ssaa < 1 || o->ssaa > SNELL_MAX_SSAA)
             return usage_error("%s wants 1..8, got '%s'", a, v);

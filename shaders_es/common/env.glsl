@@ -2,9 +2,56 @@
 // cubemap indexed by direction only, the light from infinitely far). Every
 // kernel looks the environment up through snell_env, so that another
 // representation of it (or of what lies beyond the glass) changes one place.
+//
+// SNELL_ENV_DUAL_PARABOLOID (a program variant the renderer chooses,
+// render/env_paraboloid.h): the environment is two 180-degree paraboloid
+// maps (Heidrich and Seidel 1998; Dachsbacher 2002, seed 003) in the two
+// layers of a 2D array texture, layer 0 the +Z hemisphere, layer 1 the -Z
+// one. A unit direction d of hemisphere sign(d.z) lands at
+//     st = d.xy / (1 + |d.z|)    (|st| <= 1, = tan of half its angle to the axis)
+// which is the stereographic projection: conformal (texels stay square, no
+// sphere map's singularity), solid angle per texel 4/(1 + |st|^2)^2, from 4 at
+// the axis to 1 at the rim. The back map is not mirrored, so on the rim
+// (d.z = 0) both maps give a direction the same st = d.xy. The disc |st| <= 1
+// is shrunk so that the rim lies SNELL_DP_MARGIN texels inside the texture
+// edge, and every texel, inside the disc or not, holds the radiance of its own
+// direction (the projection continued past 90 degrees): the bilinear
+// footprint of a look-up at the rim never reaches a clamped or empty texel.
+
+#define SNELL_DP_MARGIN 2.0
+
+// The texture coordinate (xy, layer in z) of direction dir in size^2 maps.
+highp vec3 snell_dp_coords(highp vec3 dir, highp float size)
+{
+    highp vec3 d = normalize(dir);
+    highp vec2 st = d.xy / (1.0 + abs(d.z));
+    highp float scale = 0.5 * (size - 2.0 * SNELL_DP_MARGIN) / size;
+    return vec3(0.5 + scale * st, d.z < 0.0 ? 1.0 : 0.0);
+}
+
+// The unit direction of texture coordinate uv in map layer (0: +Z, 1: -Z);
+// the inverse of snell_dp_coords, continued past the rim.
+highp vec3 snell_dp_dir(highp vec2 uv, highp float layer, highp float size)
+{
+    highp float scale = 0.5 * (size - 2.0 * SNELL_DP_MARGIN) / size;
+    highp vec2 st = (uv - 0.5) / scale;
+    highp float r2 = dot(st, st);
+    highp float z = (1.0 - r2) / (1.0 + r2);
+    return vec3(2.0 * st / (1.0 + r2), layer > 0.5 ? -z : z);
+}
+
+#ifdef SNELL_ENV_DUAL_PARABOLOID
+uniform highp sampler2DArray u_env;
+
+vec3 snell_env(vec3 dir)
+{
+    return texture(u_env, snell_dp_coords(dir, float(textureSize(u_env, 0).x))).rgb;
+}
+#else
 uniform samplerCube u_env;
 
 vec3 snell_env(vec3 dir)
 {
     return texture(u_env, dir).rgb;
 }
+#endif

@@ -18,7 +18,8 @@ const char *snell__output_defines(snell__output_kind out)
 
 int snell__glass_variant(const snell__object *o)
 {
-    return o->screen_space | (o->beyond ? SNELL__GLASS_BEYOND : 0);
+    return o->screen_space | (o->beyond ? SNELL__GLASS_BEYOND : 0) |
+           (o->env_paraboloid ? SNELL__GLASS_ENV_PARABOLOID : 0);
 }
 
 snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, snell__output_kind out,
@@ -27,10 +28,12 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     char defines[1024];
     snell_status st;
     int screen_space = variant & SNELL__GLASS_SHADING_MASK;
-    snprintf(defines, sizeof defines, "%s%s%s%s%s", snell__output_defines(out),
+    snprintf(defines, sizeof defines, "%s%s%s%s%s%s", snell__output_defines(out),
              screen_space ? "#define SNELL_SCREEN_SPACE 1\n" : "",
              screen_space == SNELL__SCREEN_WRITES_DEPTH ? "#define SNELL_SCREEN_WRITES_DEPTH 1\n" : "",
-             variant & SNELL__GLASS_BEYOND ? "#define SNELL_BEYOND 1\n" : "", extra_defines ? extra_defines : "");
+             variant & SNELL__GLASS_BEYOND ? "#define SNELL_BEYOND 1\n" : "",
+             variant & SNELL__GLASS_ENV_PARABOLOID ? SNELL__ENV_PARABOLOID_DEFINE : "",
+             extra_defines ? extra_defines : "");
     memset(g, 0, sizeof *g);
     st = snell__program_build(ctx, screen_space ? "screen.vert" : "object.vert", fs_path, defines, &g->prog);
     if (st != SNELL_OK) return st;

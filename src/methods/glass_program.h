@@ -17,12 +17,16 @@ typedef struct snell__glass_program {
 } snell__glass_program;
 
 /* A kernel program's variant for an object (what snell__glass_program_build
- * takes): its shading (0 forward or SNELL__SCREEN_*, the low two bits) and
- * SNELL__GLASS_BEYOND if its exit rays march the scene layers. Kernels key
- * their programs by it; it is below SNELL__GLASS_VARIANTS. */
+ * takes): its shading (0 forward or SNELL__SCREEN_*, the low two bits),
+ * SNELL__GLASS_BEYOND if its exit rays march the scene layers, and
+ * SNELL__GLASS_ENV_PARABOLOID if it looks its environment up in
+ * dual-paraboloid maps (common/env.glsl; its env_texture on unit 0 is then a
+ * 2D array, render/env_paraboloid.h). Kernels key their programs by it; it is
+ * below SNELL__GLASS_VARIANTS. */
 #define SNELL__GLASS_SHADING_MASK 3
 #define SNELL__GLASS_BEYOND 4
-#define SNELL__GLASS_VARIANTS 8
+#define SNELL__GLASS_ENV_PARABOLOID 8
+#define SNELL__GLASS_VARIANTS 16
 int snell__glass_variant(const snell__object *o);
 
 /* One slot of a kernel's small cache of programs, keyed by their

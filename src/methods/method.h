@@ -19,6 +19,10 @@ typedef enum snell__output_kind {
     SNELL__OUT_KINDS
 } snell__output_kind;
 
+/* What a program defines to look the environment up in dual-paraboloid
+ * maps instead of the cube (common/env.glsl; render/env_paraboloid.h). */
+#define SNELL__ENV_PARABOLOID_DEFINE "#define SNELL_ENV_DUAL_PARABOLOID 1\n"
+
 /* The frame's back-face maps (render/gbuffer.h): texel = window pixel +
  * band, valid for window pixels -band .. size + band - 1. */
 typedef struct snell__back_maps {
@@ -57,7 +61,9 @@ typedef struct snell__object {
     float bsphere[4];               /* world bounding sphere: centre, radius */
     float view_depth;               /* of the sphere's centre, along the view axis */
     const snell_mesh_analysis *analysis; /* NULL: not analysed (not needed, or failed) */
-    unsigned env_texture;           /* the cubemap it sees: static env or its dynamic one */
+    unsigned env_texture;           /* what it sees: static env or its dynamic one, a cube or (env_paraboloid)
+                                     * a 2D array of dual-paraboloid maps */
+    int env_paraboloid;             /* env_texture is a 2D array of dual-paraboloid maps (SNELL__GLASS_ENV_PARABOLOID) */
     int screen_space;               /* 0 forward, else shaded on the screen-space stage's G-buffer:
                                      * SNELL__SCREEN_* (render/gbuffer.h) */
     int gid;                        /* its id in the G-buffer (index + 1) */

@@ -28,9 +28,11 @@ static snell_status opaque_prog(snell_ctx *ctx, snell__composite *c, snell__outp
 void snell__composite_destroy(snell__composite *c)
 {
     int k;
+    if (c->opaque_dp.prog) glDeleteProgram(c->opaque_dp.prog);
     for (k = 0; k < SNELL__OUT_KINDS; k++) {
         if (c->opaque[k].prog) glDeleteProgram(c->opaque[k].prog);
-        if (c->sky[k]) glDeleteProgram(c->sky[k]);
+        if (c->sky[k][0]) glDeleteProgram(c->sky[k][0]);
+        if (c->sky[k][1]) glDeleteProgram(c->sky[k][1]);
     }
     if (c->empty_vao) glDeleteVertexArrays(1, &c->empty_vao);
     memset(c, 0, sizeof *c);
@@ -62,23 +64,10 @@ snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, in
     return SNELL_OK;
 }
 
-snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
-                                     const snell_opaque *list, int count, const float view_proj[16],
-                                     const float eye[3])
+/* Each object's model, normal matrix and colour, then its mesh, with p in use. */
+static void draw_opaque_list(const snell__opaque_prog *p, const snell_opaque *list, int count)
 {
-    const snell__opaque_prog *p;
-    snell_status st;
     int i;
-    if (count == 0) return SNELL_OK;
-    for (i = 0; i < count; i++)
-        if ((st = snell__mesh_upload((snell_mesh *)list[i].mesh)) != SNELL_OK) return st;
-    if ((st = opaque_prog(ctx, c, kind, &p)) != SNELL_OK) return st;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glUseProgram(p->prog);
-    glUniformMatrix4fv(p->view_proj, 1, GL_FALSE, view_proj);
-    glUniform3fv(p->eye, 1, eye);
     for (i = 0; i < count; i++) {
         const snell_opaque *o = &list[i];
         const snell_mesh *m = o->mesh;
@@ -96,27 +85,97 @@ snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell_
         glUniform3fv(p->color, 1, color);
         snell__mesh_draw(m);
     }
+}
+
+snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                     const snell_opaque *list, int count, const float view_proj[16],
+                                     const float eye[3])
+{
+    const snell__opaque_prog *p;
+    snell_status st;
+    int i;
+    if (count == 0) return SNELL_OK;
+    for (i = 0; i < count; i++)
+        if ((st = snell__mesh_upload((snell_mesh *)list[i].mesh)) != SNELL_OK) return st;
+    if ((st = opaque_prog(ctx, c, kind, &p)) != SNELL_OK) return st;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(p->prog);
+    glUniformMatrix4fv(p->view_proj, 1, GL_FALSE, view_proj);
+    glUniform3fv(p->eye, 1, eye);
+    draw_opaque_list(p, list, count);
     return SNELL_OK;
 }
 
-snell_status snell__composite_prepare(snell_ctx *ctx, snell__composite *c, snell__output_kind kind)
+snell_status snell__composite_opaque_paraboloid(snell_ctx *ctx, snell__composite *c, const snell_opaque *list,
+                                               int count, const float centre[3], int layer, int size, float z_near,
+                                               float z_far)
 {
-    if (!c->sky[kind]) {
-        snell_status st = snell__program_build(ctx, "skybox.vert", "skybox.frag", snell__output_defines(kind),
-                                               &c->sky[kind]);
+    snell__opaque_prog *p = &c->opaque_dp;
+    snell_status st;
+    int i;
+    if (count == 0) return SNELL_OK;
+    for (i = 0; i < count; i++)
+        if ((st = snell__mesh_upload((snell_mesh *)list[i].mesh)) != SNELL_OK) return st;
+    if (!p->prog) {
+        st = snell__program_build(ctx, "opaque_paraboloid.vert", "opaque.frag", "#define SNELL_PARABOLOID_VIEW 1\n",
+                                  &p->prog);
         if (st != SNELL_OK) return st;
-        c->sky_inv[kind] = glGetUniformLocation(c->sky[kind], "u_inv_view_proj_rot");
-        c->sky_env[kind] = glGetUniformLocation(c->sky[kind], "u_env");
+        p->model = glGetUniformLocation(p->prog, "u_model");
+        p->normal_matrix = glGetUniformLocation(p->prog, "u_normal_matrix");
+        p->eye = glGetUniformLocation(p->prog, "u_eye");
+        p->color = glGetUniformLocation(p->prog, "u_color");
+        c->dp_centre = glGetUniformLocation(p->prog, "u_centre");
+        c->dp_layer = glGetUniformLocation(p->prog, "u_layer");
+        c->dp_size = glGetUniformLocation(p->prog, "u_size");
+        c->dp_depth_range = glGetUniformLocation(p->prog, "u_depth_range");
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(p->prog);
+    glUniform3fv(p->eye, 1, centre);
+    glUniform3fv(c->dp_centre, 1, centre);
+    glUniform1f(c->dp_layer, (float)layer);
+    glUniform1f(c->dp_size, (float)size);
+    glUniform2f(c->dp_depth_range, z_near, z_far);
+    draw_opaque_list(p, list, count);
+    return SNELL_OK;
+}
+
+static snell_status sky_prog(snell_ctx *ctx, snell__composite *c, snell__output_kind kind, int paraboloid)
+{
+    if (!c->sky[kind][paraboloid]) {
+        char defines[160];
+        snell_status st;
+        snprintf(defines, sizeof defines, "%s%s", snell__output_defines(kind),
+                 paraboloid ? SNELL__ENV_PARABOLOID_DEFINE : "");
+        st = snell__program_build(ctx, "skybox.vert", "skybox.frag", defines, &c->sky[kind][paraboloid]);
+        if (st != SNELL_OK) return st;
+        c->sky_inv[kind][paraboloid] = glGetUniformLocation(c->sky[kind][paraboloid], "u_inv_view_proj_rot");
+        c->sky_env[kind][paraboloid] = glGetUniformLocation(c->sky[kind][paraboloid], "u_env");
     }
     if (!c->empty_vao) glGenVertexArrays(1, &c->empty_vao);
     return SNELL_OK;
 }
 
+snell_status snell__composite_prepare(snell_ctx *ctx, snell__composite *c, snell__output_kind kind)
+{
+    return sky_prog(ctx, c, kind, 0);
+}
+
 snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                          const float rot_view_proj[16])
 {
+    return snell__composite_background_lookup(ctx, c, kind, 0, rot_view_proj);
+}
+
+snell_status snell__composite_background_lookup(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                                int paraboloid, const float rot_view_proj[16])
+{
     mat4 inv;
-    snell_status st = snell__composite_prepare(ctx, c, kind);
+    snell_status st = sky_prog(ctx, c, kind, paraboloid);
     if (st != SNELL_OK) return st;
     glm_mat4_inv((vec4 *)rot_view_proj, inv);
     /* The triangle lies at the far plane (z = w): LEQUAL passes only where
@@ -124,9 +183,9 @@ snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, sn
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
-    glUseProgram(c->sky[kind]);
-    glUniformMatrix4fv(c->sky_inv[kind], 1, GL_FALSE, (const GLfloat *)inv);
-    glUniform1i(c->sky_env[kind], 0);
+    glUseProgram(c->sky[kind][paraboloid]);
+    glUniformMatrix4fv(c->sky_inv[kind][paraboloid], 1, GL_FALSE, (const GLfloat *)inv);
+    glUniform1i(c->sky_env[kind][paraboloid], 0);
     glBindVertexArray(c->empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDepthMask(GL_TRUE);

@@ -14,8 +14,10 @@ typedef struct snell__opaque_prog {
 
 typedef struct snell__composite {
     snell__opaque_prog opaque[SNELL__OUT_KINDS];
-    unsigned sky[SNELL__OUT_KINDS];
-    int sky_inv[SNELL__OUT_KINDS], sky_env[SNELL__OUT_KINDS];
+    snell__opaque_prog opaque_dp;   /* into a dual-paraboloid map (opaque_paraboloid.vert), colour only */
+    int dp_centre, dp_layer, dp_size, dp_depth_range;
+    unsigned sky[SNELL__OUT_KINDS][2];  /* [kind][look-up: cube, dual paraboloid] */
+    int sky_inv[SNELL__OUT_KINDS][2], sky_env[SNELL__OUT_KINDS][2];
     unsigned empty_vao;             /* the background draws without attributes */
 } snell__composite;
 
@@ -30,10 +32,20 @@ snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, in
 snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                      const snell_opaque *list, int count, const float view_proj[16],
                                      const float eye[3]);
+/* The same straight into map `layer` (0: +Z, 1: -Z) of size^2 dual-paraboloid
+ * maps about centre (render/env_paraboloid.h), depth the distance from it
+ * between z_near and z_far; colour output. */
+snell_status snell__composite_opaque_paraboloid(snell_ctx *ctx, snell__composite *c, const snell_opaque *list,
+                                               int count, const float centre[3], int layer, int size, float z_near,
+                                               float z_far);
 /* The environment cubemap bound on unit 0 drawn at the far plane under
  * LEQUAL without depth write (only where nothing was drawn); rot_view_proj
  * is proj * view without the translation. */
 snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                          const float rot_view_proj[16]);
+/* The same with the environment on unit 0 as dual-paraboloid maps (a 2D
+ * array, render/env_paraboloid.h) if paraboloid, else the cube. */
+snell_status snell__composite_background_lookup(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                                int paraboloid, const float rot_view_proj[16]);
 
 #endif

@@ -92,6 +92,19 @@ static void procedural_radiance(const double d[3], double rgb[3])
     for (k = 0; k < 3; k++) rgb[k] = clamp01(rgb[k]);
 }
 
+void snell_env_procedural_radiance(const double dir[3], double rgb[3])
+{
+    double len, d[3];
+    if (!rgb) return;
+    len = dir ? sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]) : 0.0;
+    if (!(len > 0.0) || !isfinite(len)) {
+        rgb[0] = rgb[1] = rgb[2] = 0.0;
+        return;
+    }
+    d[0] = dir[0] / len; d[1] = dir[1] / len; d[2] = dir[2] / len;
+    procedural_radiance(d, rgb);
+}
+
 static uint8_t to_u8(double v) { return (uint8_t)(clamp01(v) * 255.0 + 0.5); }
 
 /* Texel centres supersampled 3x3 so the checker edges are antialiased. */
@@ -304,7 +317,10 @@ void snell_env_destroy(snell_env *env)
     if (env->texture) {
         /* In its context; after snell_ctx_destroy the texture is gone with it. */
         snell__gl_scope sc;
-        if (snell__gl_scope_enter(env->ctx, &sc)) glDeleteTextures(1, &env->texture);
+        if (snell__gl_scope_enter(env->ctx, &sc)) {
+            glDeleteTextures(1, &env->texture);
+            if (env->paraboloid) glDeleteTextures(1, &env->paraboloid);
+        }
         snell__gl_scope_leave(&sc);
     }
     snell__ctx_release(env->ctx);

@@ -2,7 +2,10 @@
  * rendered from the centre with the background and all other objects", at a
  * lower resolution than the static one). Unlike the seed, which re-renders
  * every frame, a cubemap is re-rendered only when an opaque object, its
- * model or colour, the glass centre or the static environment changed. */
+ * model or colour, the glass centre or the static environment changed.
+ * With the dual-paraboloid look-up (render/env_paraboloid.h) the glass
+ * reads two maps instead: made from that cube, or rendered straight (2 views,
+ * no cube; SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT). */
 #include "render/env_dynamic.h"
 #include "render/env.h"
 #include "render/pass.h"
@@ -19,11 +22,14 @@ void snell__env_dynamic_destroy(snell_ctx *ctx, snell__env_dynamic *d)
 {
     int i;
     if (d->views)
-        for (i = 0; i < SNELL_MAX_GLASS; i++)
+        for (i = 0; i < SNELL_MAX_GLASS; i++) {
             if (d->views[i].texture) glDeleteTextures(1, &d->views[i].texture);
+            if (d->views[i].paraboloid) glDeleteTextures(1, &d->views[i].paraboloid);
+        }
     snell__free(&ctx->alloc, d->views);
     if (d->fbo) glDeleteFramebuffers(1, &d->fbo);
     if (d->depth_rb) glDeleteRenderbuffers(1, &d->depth_rb);
+    if (d->dp_depth_rb) glDeleteRenderbuffers(1, &d->dp_depth_rb);
     memset(d, 0, sizeof *d);
 }
 
@@ -60,6 +66,70 @@ static void remember(snell__env_view *v, const snell_env *env, const snell_opaqu
     }
 }
 
+/* The view's cube, or with dp its dual-paraboloid maps, made from the cube
+ * once per re-render (one pass per map). */
+static snell_status paraboloid_of(snell_ctx *ctx, snell__env_view *v, snell__paraboloid_gen *dp, unsigned *texture,
+                                  snell_object_stats *stats)
+{
+    snell_status st;
+    *texture = v->texture;
+    if (!dp) return SNELL_OK;
+    if (!v->paraboloid_valid) {
+        st = snell__paraboloid_from_cube(ctx, dp, v->texture, snell__paraboloid_size(v->size), &v->paraboloid,
+                                         &v->paraboloid_size);
+        if (st != SNELL_OK) return st;
+        v->paraboloid_valid = 1;
+        stats->passes += 2;
+    }
+    *texture = v->paraboloid;
+    return SNELL_OK;
+}
+
+/* The two maps rendered straight from centre (no cube): per map the opaque
+ * objects projected per vertex, then the static environment where nothing
+ * was drawn (its maps' texels from its cube). Maps of snell__paraboloid_size(size). */
+static snell_status render_paraboloid_views(snell_ctx *ctx, snell__env_dynamic *d, snell__composite *comp,
+                                            snell__paraboloid_gen *dp, snell__env_view *v, const snell_env *env,
+                                            const snell_opaque *list, int count, const float centre[3],
+                                            float z_near, float z_far, int size, snell_object_stats *stats)
+{
+    snell__pass pass;
+    snell_status st = SNELL_OK;
+    int n = snell__paraboloid_size(size), layer;
+    if (!d->fbo) glGenFramebuffers(1, &d->fbo);
+    if (!d->dp_depth_rb) glGenRenderbuffers(1, &d->dp_depth_rb);
+    if (d->dp_depth_size != n) {
+        glBindRenderbuffer(GL_RENDERBUFFER, d->dp_depth_rb);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, n, n);
+        d->dp_depth_size = n;
+    }
+    snell__paraboloid_texture(n, &v->paraboloid, &v->paraboloid_size);
+    snell__pass_begin(&pass, d->fbo, n, n, 0, GL_LESS, 1.0f);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, d->dp_depth_rb);
+    for (layer = 0; layer < 2 && st == SNELL_OK; layer++) {
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, v->paraboloid, 0, layer);
+        if (layer == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            st = snell__fail(ctx, SNELL_E_GL, "dynamic dual-paraboloid framebuffer incomplete");
+            break;
+        }
+        glDepthMask(GL_TRUE);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        st = snell__composite_opaque_paraboloid(ctx, comp, list, count, centre, layer, n, z_near, z_far);
+        glDepthFunc(GL_LEQUAL);
+        glDepthMask(GL_FALSE);
+        if (st == SNELL_OK) st = snell__paraboloid_draw_layer(ctx, dp, env->texture, layer, n);
+        glDepthFunc(GL_LESS);
+        stats->passes += 1 + (count > 0);
+    }
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, 0);
+    snell__pass_end(&pass);
+    if (st == SNELL_OK && glGetError() != GL_NO_ERROR)
+        st = snell__fail(ctx, SNELL_E_GL, "GL error rendering dynamic dual-paraboloid maps");
+    if (st == SNELL_OK) v->paraboloid_valid = 1;
+    return st;
+}
+
 static snell_status make_targets(snell_ctx *ctx, snell__env_dynamic *d, snell__env_view *v, int size)
 {
     if (!d->fbo) glGenFramebuffers(1, &d->fbo);
@@ -82,8 +152,8 @@ static snell_status make_targets(snell_ctx *ctx, snell__env_dynamic *d, snell__e
 
 snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, snell__composite *comp, int slot,
                                        const snell_env *env, const snell_opaque *list, int count,
-                                       const float centre[3], float radius, int size, unsigned *texture,
-                                       snell_object_stats *stats)
+                                       const float centre[3], float radius, int size, snell__paraboloid_gen *dp,
+                                       int direct, unsigned *texture, snell_object_stats *stats)
 {
     snell__env_view *v;
     snell__pass pass;
@@ -101,16 +171,27 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, sn
         if (!d->views) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory for dynamic environments");
     }
     v = &d->views[slot];
+    /* A renderer's look-up is fixed at its creation, so a slot's view is
+     * always made the same way: valid means its textures show what is
+     * remembered, a cube (and maps made from it) or directly rendered maps. */
     if (!changed(v, env, list, count, centre, size)) {
         stats->skipped |= SNELL_SKIP_ENV_UPDATE;
-        *texture = v->texture;
-        return SNELL_OK;
+        return paraboloid_of(ctx, v, dp, texture, stats);
     }
-    if ((st = make_targets(ctx, d, v, size)) != SNELL_OK) return st;
     /* Seen from the glass centre: objects beyond the glass's own bounding
      * sphere matter; the near plane sits at 1% of its radius. */
     z_near = radius > 0.0f ? 0.01f * radius : 0.01f;
     z_far = 1e4f * z_near + 1000.0f;
+    if (dp && direct) {
+        st = render_paraboloid_views(ctx, d, comp, dp, v, env, list, count, centre, z_near, z_far, size, stats);
+        if (st != SNELL_OK) return st;
+        remember(v, env, list, count, centre);
+        v->size = size;
+        stats->env_updated = 1;
+        *texture = v->paraboloid;
+        return SNELL_OK;
+    }
+    if ((st = make_targets(ctx, d, v, size)) != SNELL_OK) return st;
     snell__pass_begin(&pass, d->fbo, size, size, 0, GL_LESS, 1.0f);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, d->depth_rb);
     glActiveTexture(GL_TEXTURE0);
@@ -137,7 +218,7 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, sn
     if (st != SNELL_OK) return st;
     if (glGetError() != GL_NO_ERROR) return snell__fail(ctx, SNELL_E_GL, "GL error rendering a dynamic environment");
     remember(v, env, list, count, centre);
+    v->paraboloid_valid = 0;
     stats->env_updated = 1;
-    *texture = v->texture;
-    return SNELL_OK;
+    return paraboloid_of(ctx, v, dp, texture, stats);
 }

@@ -146,6 +146,11 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown shading %d", (int)d.shading);
     }
     r->shading = d.shading;
+    if ((unsigned)d.env_lookup > SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT) {
+        snell__free(&ctx->alloc, r);
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown env_lookup %d", (int)d.env_lookup);
+    }
+    r->env_lookup = d.env_lookup;
     r->device = snell__device_class_of(snell_ctx_gl_renderer(ctx));
     r->out = d.output == SNELL_OUTPUT_COLOR ? SNELL__OUT_COLOR
              : d.output == SNELL_OUTPUT_EXIT_DIRECTION && snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float")
@@ -178,6 +183,7 @@ void snell_renderer_destroy(snell_renderer *r)
     for (m = 0; m < SNELL_METHOD_COUNT_; m++)
         if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
+    snell__paraboloid_gen_destroy(&r->dp);
     snell__composite_destroy(&r->comp);
     snell__gbuffer_destroy(&r->gbuffer);
     snell__gbuffer_destroy(&r->backfaces);
@@ -219,6 +225,12 @@ static snell_status method_state(void *user, const snell__method *m, void **stat
     return SNELL_OK;
 }
 
+int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic)
+{
+    (void)dynamic;
+    return r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID || r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT;
+}
+
 /* Logs a method warning once per (object slot, mesh version, method). */
 static void warn_once(snell_renderer *r, const snell__object *o, const snell_object_stats *st)
 {
@@ -256,7 +268,11 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
                                  snell_object_stats *st)
 {
     void *state = NULL;
-    snell_status s = snell__scene_choose(r->ctx, o, method_state, r, &r->object_method[o->index], &state, st);
+    int dynamic = fd->opaque_count > 0 && !o->beyond; /* sees them through a dynamic environment */
+    snell_status s;
+    o->env_paraboloid = snell__renderer_env_paraboloid(r, dynamic);
+    st->env_paraboloid = o->env_paraboloid;
+    s = snell__scene_choose(r->ctx, o, method_state, r, &r->object_method[o->index], &state, st);
     if (s != SNELL_OK) return s;
     r->object_state[o->index] = state;
     if (st->warning) warn_once(r, o, st);
@@ -265,13 +281,17 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
     if (r->object_method[o->index]->vertex_array && o->prepared)
         o->vao = r->object_method[o->index]->vertex_array(o->prepared);
     o->env_texture = fd->env->texture;
-    if (fd->opaque_count > 0 && o->beyond) {
+    if (fd->opaque_count > 0 && o->beyond)
         st->skipped |= SNELL_SKIP_DYNAMIC_ENV; /* its exit rays meet them in the scene layers */
-    } else if (fd->opaque_count > 0) {
+    if (dynamic) {
         /* The glass sees the opaque objects through its dynamic environment. */
         s = snell__env_dynamic_update(r->ctx, &r->dyn, &r->comp, o->index, fd->env, fd->opaque, fd->opaque_count,
-                                      o->bsphere, o->bsphere[3], fd->dynamic_env_size, &o->env_texture, st);
+                                      o->bsphere, o->bsphere[3], fd->dynamic_env_size,
+                                      o->env_paraboloid ? &r->dp : NULL,
+                                      r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT, &o->env_texture, st);
         if (s != SNELL_OK) return s;
+    } else if (o->env_paraboloid) {
+        if ((s = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &o->env_texture)) != SNELL_OK) return s;
     }
     choose_shading(r, o, st);
     return SNELL_OK;
@@ -280,7 +300,7 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
 static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *st)
 {
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, o->env_texture);
+    glBindTexture(o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, o->env_texture);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -393,8 +413,11 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
             st = snell__water_copy_scene(r->ctx, &r->water, r->fbo, r->width, r->height);
             glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
         }
+        unsigned env_tex = fd->env->texture;
+        int paraboloid = snell__renderer_env_paraboloid(r, 0); /* the water sees the static environment */
+        if (st == SNELL_OK && paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &env_tex);
         if (st == SNELL_OK)
-            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, fd->env->texture, fd->opaque,
+            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, env_tex, paraboloid, fd->opaque,
                                    objects ? fd->opaque_count : 0, s);
         s->water_objects = objects;
     }
@@ -454,10 +477,14 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         glm_mat4_copy(sc->view.view, rot);
         rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
         glm_mat4_mul(sc->view.proj, rot, vp);
+        int paraboloid = snell__renderer_env_paraboloid(r, 0);
+        unsigned tex = fd->env->texture;
+        if (paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &tex);
         glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_CUBE_MAP, fd->env->texture);
-        st = snell__composite_background(r->ctx, &r->comp, r->out, (const float *)vp);
+        glBindTexture(paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, tex);
+        if (st == SNELL_OK) st = snell__composite_background_lookup(r->ctx, &r->comp, r->out, paraboloid, (const float *)vp);
         s->background_drawn = 1;
+        s->background_paraboloid = paraboloid;
     }
     if (st == SNELL_OK && r->ssaa.factor > 1) {
         snell__ssaa_resolve(&r->ssaa, r->out_width, r->out_height);

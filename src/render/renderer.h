@@ -6,6 +6,7 @@
 
 #include "render/composite.h"
 #include "render/env_dynamic.h"
+#include "render/env_paraboloid.h"
 #include "render/gbuffer.h"
 #include "render/layers.h"
 #include "render/prepared.h"
@@ -26,6 +27,8 @@ struct snell_renderer {
     void *method_state[SNELL_METHOD_COUNT_];
     snell_status method_status[SNELL_METHOD_COUNT_];  /* creation failed: not retried */
     char method_error[SNELL_METHOD_COUNT_][160];
+    snell_env_lookup env_lookup;
+    snell__paraboloid_gen dp;                         /* makes dual-paraboloid maps, on first use */
     unsigned warned[SNELL_MAX_GLASS];                 /* warn_once keys */
     snell__composite comp;
     snell__prepared_cache prepared;
@@ -46,5 +49,10 @@ struct snell_renderer {
     float *readback;                                  /* RGBA32F scratch for exit directions */
     uint8_t *readback8;
 };
+
+/* Is the environment looked up in dual-paraboloid maps, for the static
+ * environment (dynamic 0) or an object's dynamic one? AUTO: what measured
+ * better here (bench/BENCHMARKS.md "Environment look-up"). */
+int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic);
 
 #endif

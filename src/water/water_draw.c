@@ -14,15 +14,16 @@
 
 #include <string.h>
 
-static snell_status make_programs(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out)
+static snell_status make_programs(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, int env_paraboloid)
 {
     char defines[256];
     snell_status st = SNELL_OK;
     int gpu, objects;
     for (gpu = 0; gpu < 2; gpu++)
         for (objects = 0; objects < 2 && st == SNELL_OK; objects++) {
-            snprintf(defines, sizeof defines, "%s%s%s", snell__output_defines(out),
-                     gpu ? "#define SNELL_WATER_STATE_UINT 1\n" : "", objects ? "#define SNELL_WATER_OBJECTS 1\n" : "");
+            snprintf(defines, sizeof defines, "%s%s%s%s", snell__output_defines(out),
+                     gpu ? "#define SNELL_WATER_STATE_UINT 1\n" : "", objects ? "#define SNELL_WATER_OBJECTS 1\n" : "",
+                     env_paraboloid ? SNELL__ENV_PARABOLOID_DEFINE : "");
             st = snell__program_build(ctx, "water_surface.vert", "water_surface.frag", defines, &p->surface[gpu][objects]);
         }
     if (st == SNELL_OK)
@@ -204,12 +205,12 @@ static int object_spheres(const snell_opaque *objects, int count, float out[MAX_
 }
 
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
-                               const snell__view *v, unsigned env_texture, const snell_opaque *objects,
-                               int object_count, snell_frame_stats *stats)
+                               const snell__view *v, unsigned env_texture, int env_paraboloid,
+                               const snell_opaque *objects, int object_count, snell_frame_stats *stats)
 {
     snell_status st;
     GLuint prog;
-    if (!p->made && (st = make_programs(ctx, p, out)) != SNELL_OK) return st;
+    if (!p->made && (st = make_programs(ctx, p, out, env_paraboloid)) != SNELL_OK) return st;
     if (!w->grid_vao && (st = make_geometry(w)) != SNELL_OK) return st;
     glActiveTexture(GL_TEXTURE1);
     if (w->d.sim == SNELL_WATER_SIM_CPU) {
@@ -227,7 +228,7 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
         glBindTexture(GL_TEXTURE_2D, w->state_tex[w->cur]);
     }
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, env_texture);
+    glBindTexture(env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, env_texture);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);

@@ -30,13 +30,15 @@ typedef struct snell__water_programs {
 snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, unsigned read_fbo, int width, int height);
 
 /* Draws the water and its container into the bound target (depth test LESS,
- * depth write); env_texture on unit 0 for snell_env, the heights on unit 1,
+ * depth write); env_texture on unit 0 for snell_env (a cube, or with
+ * env_paraboloid dual-paraboloid maps: the renderer's one choice, the programs
+ * are built for it on first use), the heights on unit 1,
  * with objects (object_count > 0, after snell__water_copy_scene) their
  * colour and depth on units 2 and 3 and their bounding spheres. Uploads a CPU simulation's heights when they changed since
  * the last draw (stats->water_uploaded). */
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
-                               const snell__view *v, unsigned env_texture, const snell_opaque *objects,
-                               int object_count, snell_frame_stats *stats);
+                               const snell__view *v, unsigned env_texture, int env_paraboloid,
+                               const snell_opaque *objects, int object_count, snell_frame_stats *stats);
 void snell__water_programs_destroy(snell__water_programs *p);
 
 #endif
