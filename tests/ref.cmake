@@ -7,6 +7,10 @@ snell_add_test(test_ref_bvh SOURCES test_ref_bvh.c LABELS "unit")
 target_link_libraries(test_ref_bvh PRIVATE m)
 snell_add_test(test_ref_analytic SOURCES test_ref_analytic.c LABELS "unit")
 target_link_libraries(test_ref_analytic PRIVATE m)
+# FULL where smooth normals and the triangles' planes disagree (issue 15's
+# bunny base): a smooth-shaded cube's grazing rays and every path's sides.
+snell_add_test(test_ref_shading_normals SOURCES test_ref_shading_normals.c LABELS "unit")
+target_link_libraries(test_ref_shading_normals PRIVATE m)
 snell_add_test(test_ref_render SOURCES test_ref_render.c LABELS "render")
 target_link_libraries(test_ref_render PRIVATE m)
 snell_add_test(test_ref_gpu_single SOURCES test_ref_gpu_single.c LABELS "render;gl" SHADINGS forward screen)

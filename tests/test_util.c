@@ -114,3 +114,56 @@ snell_status test_ref_render(const snell_ref *ref, const snell_ref_params *p, fl
     o.hit = hit;
     return snell_ref_render(ref, p, &o);
 }
+
+snell_mesh *test_smooth_cube(int quads)
+{
+    enum { MAXQ = 16, MAXS = MAXQ + 1 };
+    static float pos[3 * MAXS * MAXS * MAXS];
+    static uint32_t idx[6 * MAXQ * MAXQ * 6];
+    static int map[MAXS * MAXS * MAXS];
+    snell_mesh_desc md;
+    snell_mesh *m = NULL;
+    int n = quads, side = quads + 1, i, j, k, axis, s, a, b, t = 0, nv = 0;
+    if (quads < 1 || quads > MAXQ) return NULL;
+    for (i = 0; i < side; i++)
+        for (j = 0; j < side; j++)
+            for (k = 0; k < side; k++) {
+                int surface = i == 0 || i == n || j == 0 || j == n || k == 0 || k == n;
+                map[(i * side + j) * side + k] = surface ? nv : -1;
+                if (surface) {
+                    pos[3 * nv] = -1.0f + 2.0f * (float)i / (float)n;
+                    pos[3 * nv + 1] = -1.0f + 2.0f * (float)j / (float)n;
+                    pos[3 * nv + 2] = -1.0f + 2.0f * (float)k / (float)n;
+                    nv++;
+                }
+            }
+    for (axis = 0; axis < 3; axis++)
+        for (s = 0; s < 2; s++)
+            for (a = 0; a < n; a++)
+                for (b = 0; b < n; b++) {
+                    /* (u, v) span the face with u x v = +axis: the +axis face (s = 1) keeps this order. */
+                    static const int du[4] = {0, 1, 1, 0}, dv[4] = {0, 0, 1, 1};
+                    int c[3], q, u = (axis + 1) % 3, v = (axis + 2) % 3;
+                    uint32_t w[4];
+                    for (q = 0; q < 4; q++) {
+                        c[axis] = s ? n : 0;
+                        c[u] = a + du[q];
+                        c[v] = b + dv[q];
+                        w[q] = (uint32_t)map[(c[0] * side + c[1]) * side + c[2]];
+                    }
+                    if (!s) { /* the -axis face: reversed */
+                        uint32_t tmp = w[1];
+                        w[1] = w[3];
+                        w[3] = tmp;
+                    }
+                    idx[t++] = w[0], idx[t++] = w[1], idx[t++] = w[2];
+                    idx[t++] = w[0], idx[t++] = w[2], idx[t++] = w[3];
+                }
+    memset(&md, 0, sizeof md);
+    md.positions = pos;
+    md.indices = idx;
+    md.vertex_count = (uint32_t)nv;
+    md.triangle_count = (uint32_t)(t / 3);
+    if (snell_mesh_create(NULL, &md, &m) != SNELL_OK) return NULL;
+    return m;
+}

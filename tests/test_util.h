@@ -59,6 +59,11 @@ void test_ref_params(const snell_frame_desc *fd, int w, int h, int max_interface
 snell_status test_ref_create(snell_ctx *ctx, const snell_frame_desc *fd, snell_ref **out);
 /* fd = a frame of one glass object g (mesh, model NULL, zero material) in env. */
 void test_frame_one(snell_frame_desc *fd, snell_glass *g, const snell_mesh *mesh, const snell_env *env);
+/* The cube [-1,1]^3 of quads x quads squares a face (1..16), its surface's
+ * grid points shared between faces, counter-clockwise seen from outside, with
+ * the smooth normals snell_mesh_create computes: its edges are creases that
+ * the normals round off, as a scanned mesh's sharp features. NULL on failure. */
+snell_mesh *test_smooth_cube(int quads);
 /* snell_ref_render with these outputs (rgb required; exit_dir, hit optional). */
 snell_status test_ref_render(const snell_ref *ref, const snell_ref_params *p, float *rgb, float *exit_dir,
                              uint8_t *hit);

@@ -56,7 +56,15 @@
  *    reflected branch of weight rs, a straight-on one of weight ts * tint,
  *    the exact F at both faces); what a glass object really looks like. A branch whose throughput drops
  *    below 1e-5 ends with an env lookup in its direction instead of being
- *    traced on (error < 1e-5 per branch, far below 1/255).
+ *    traced on (error < 1e-5 per branch, far below 1/255). Smooth normals are
+ *    a shading device, not the surface: at a mesh interface the triangle's
+ *    plane says which side the ray is on, the smooth normal is turned to
+ *    that side, and where the mirror direction about it would not stay on
+ *    the ray's side (silhouettes, rounded creases) it is bent towards the
+ *    plane's normal until it does (Cycles' rule; the same optics as Cycles
+ *    there); a refracted ray is in the medium on the side of the plane it
+ *    goes to. MATCHED, like the kernels, flips the smooth normal by its own
+ *    sign.
  *
  * Dispersion (both modes): where a glass object's material disperses
  * (snell_glass_material.dispersion > 0, a solid), every ray is traced three
@@ -81,7 +89,7 @@
  * through the pixel centre of snell_camera_matrices(camera, width/height);
  * smooth normal = normalize(barycentric interpolation of the world-space vertex
  * normals, inverse-transpose(model) * n), flipped to face the incoming ray at
- * glass; environment = snell_env_sample_d (GL_LINEAR model). All directions
+ * glass (FULL: turned and bent as above); environment = snell_env_sample_d (GL_LINEAR model). All directions
  * are world space, unit length. Results do not depend on the thread count
  * (bitwise). */
 #ifndef SNELL_SNELL_REF_H
@@ -229,7 +237,8 @@ snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects
 /* ---------------------------------------------------- light path (Unger 4.2.2) */
 typedef enum snell_ref_event {
     SNELL_REF_EVENT_EYE = 0,   /* points[0]: the ray origin (camera) */
-    SNELL_REF_EVENT_REFRACT,   /* refracted through the surface (into or out of the glass) */
+    SNELL_REF_EVENT_REFRACT,   /* refracted through the surface (into or out of the glass; FULL:
+                                * leaving about a bent normal it can stay inside) */
     SNELL_REF_EVENT_REFLECT,   /* Fresnel-dominant reflection (FULL only) */
     SNELL_REF_EVENT_TIR        /* total internal reflection */
 } snell_ref_event;

@@ -15,8 +15,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* 4: FULL uses the exact Fresnel; the key holds the area samples. */
-#define CACHE_MAGIC "SNELLBENCHREF4\n"
+/* 4: FULL uses the exact Fresnel; the key holds the area samples. 5: FULL
+ * takes the triangle's side and bends smooth normals that face away. */
+#define CACHE_MAGIC "SNELLBENCHREF5\n"
 
 static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
 {

@@ -60,7 +60,10 @@ static int sphere_hit(const snell_ref *r, const ref_sphere *sp, const double o[3
     if (!snell__ref_normalize3(s->n)) return 0;
     /* Put the point exactly on the sphere (its radius error would otherwise
      * accumulate along a chain). */
-    for (k = 0; k < 3; k++) s->p[k] = sp->c[k] + sp->r * s->n[k];
+    for (k = 0; k < 3; k++) {
+        s->p[k] = sp->c[k] + sp->r * s->n[k];
+        s->ng[k] = s->n[k];
+    }
     s->prim = SNELL__BVH_NONE;
     return 1;
 }
@@ -81,6 +84,7 @@ int snell__ref_hit(const snell_ref *r, const double o[3], const double d[3], uin
     snell__bvh_hit h;
     const uint32_t *tri;
     query q;
+    double vsum[3];
     int k;
     if (!any_seen(r, v)) return 0;
     if (r->analytic) {
@@ -105,21 +109,28 @@ int snell__ref_hit(const snell_ref *r, const double o[3], const double d[3], uin
          * interpolates v_world_normal (perspective-correct = barycentric). */
         s->n[k] = h.b[0] * r->normals[3 * (size_t)tri[0] + k] + h.b[1] * r->normals[3 * (size_t)tri[1] + k] +
                   h.b[2] * r->normals[3 * (size_t)tri[2] + k];
+        vsum[k] = r->normals[3 * (size_t)tri[0] + k] + r->normals[3 * (size_t)tri[1] + k] +
+                  r->normals[3 * (size_t)tri[2] + k];
     }
-    if (!snell__ref_normalize3(s->n)) {
-        /* Opposite vertex normals cancelled: fall back to the face normal. */
+    {
+        /* The plane's normal, on the side of the vertex normals (their sum:
+         * not the interpolated one, which can cancel or tilt past 90 degrees). */
         const double *w = r->bvh->tri_verts + 9 * (size_t)h.entry;
         double e1[3] = {w[3] - w[0], w[4] - w[1], w[5] - w[2]}, e2[3] = {w[6] - w[0], w[7] - w[1], w[8] - w[2]};
-        s->n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        s->n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        s->n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        if (!snell__ref_normalize3(s->n)) {
-            s->n[0] = -d[0];
-            s->n[1] = -d[1];
-            s->n[2] = -d[2];
-            snell__ref_normalize3(s->n);
+        s->ng[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        s->ng[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        s->ng[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        if (!snell__ref_normalize3(s->ng)) { /* degenerate triangle (the BVH hit it edge-on) */
+            s->ng[0] = -d[0];
+            s->ng[1] = -d[1];
+            s->ng[2] = -d[2];
+            snell__ref_normalize3(s->ng);
         }
+        if (snell__ref_dot3(s->ng, vsum) < 0.0)
+            for (k = 0; k < 3; k++) s->ng[k] = -s->ng[k];
     }
+    if (!snell__ref_normalize3(s->n)) /* opposite vertex normals cancelled: the face normal */
+        memcpy(s->n, s->ng, sizeof s->n);
     return 1;
 }
 

@@ -61,6 +61,8 @@ typedef struct ref_view {
 typedef struct ref_surf {
     double t, p[3];
     double n[3];   /* unit smooth world normal (interpolated, then normalised), not flipped */
+    double ng[3];  /* unit geometric normal (the triangle's plane; spheres: n), on the side its vertex
+                    * normals point to (outward for a closed mesh with outward normals), not flipped */
     uint32_t prim; /* triangle id, to skip when a ray leaves this point; spheres: SNELL__BVH_NONE */
     int object;    /* glass i -> i, opaque j -> -2 - j (as snell_ref_output.object) */
 } ref_surf;

@@ -96,6 +96,73 @@ static double ior_of(const optics *op, const ref_glass *g)
     return g->ior_rgb[op->channel];
 }
 
+/* Cycles' threshold (ensure_valid_reflection): a mirror direction may be as
+ * shallow as the incoming ray (0.9 of its height over the plane), at most
+ * this high (radians, about). */
+#define VALID_REFLECTION_HEIGHT 0.01
+
+/* FULL: the normal an interface of a triangle mesh refracts and reflects
+ * about, cos_i = dot(n, -d) > 0; ngf: the plane's normal turned to face the
+ * ray. The smooth (shading) normal is not the surface: near a silhouette or
+ * a sharp crease (the bunny's base) it can face away from a ray that the
+ * triangle itself faces. Flipping it by its own sign (facing(): the kernels'
+ * rule, which MATCHED keeps) then treats a ray entering the glass as one
+ * grazing the far side: the refracted ray bends back out through the plane it
+ * entered, the reflection goes into the glass, each with the medium the
+ * tracer records for the other side. Here the plane says which side the ray
+ * is on, the smooth normal is turned with it, and where the mirror direction
+ * about it would not stay on the ray's side it is bent towards the plane's
+ * normal, in the plane of the two, just enough that the mirror direction's
+ * height over the plane is VALID_REFLECTION_HEIGHT (or 0.9 of the incoming
+ * ray's, if lower): Cycles' rule (ensure_valid_reflection, after the Iray
+ * system's; Keller et al. 2017), so that both tracers follow one model.
+ * The bent normal n' = x X + z ngf (X: the unit part of n normal to ngf,
+ * x^2 + z^2 = 1) with mirror height 2 (n'.I) z - I.z = h, I = -d, gives
+ * z^2 = (c +- b) / 2a with a = I.x^2 + I.z^2, b = sqrt(I.x^2 (a - h^2)),
+ * c = a + h I.z (squaring admits spurious roots: those whose mirror height
+ * is not positive are dropped, of two good ones the lower is the smaller
+ * bend); no root: the plane's normal. */
+static double interface_normal(const ref_surf *s, const double d[3], double n[3], double ngf[3])
+{
+    double I[3] = {-d[0], -d[1], -d[2]}, side = snell__ref_dot3(s->ng, I) >= 0.0 ? 1.0 : -1.0;
+    double h, cos_n, nz, X[3], ix, iz, a, b, c, z2[2], best = -1.0;
+    int k, j;
+    for (k = 0; k < 3; k++) {
+        ngf[k] = side * s->ng[k];
+        n[k] = side * s->n[k];
+    }
+    iz = snell__ref_dot3(ngf, I);
+    h = fmin(0.9 * iz, VALID_REFLECTION_HEIGHT);
+    cos_n = snell__ref_dot3(n, I);
+    nz = snell__ref_dot3(n, ngf);
+    if (2.0 * cos_n * nz - iz >= h) return cos_n; /* the mirror direction's height is enough */
+    for (k = 0; k < 3; k++) X[k] = n[k] - nz * ngf[k];
+    if (!snell__ref_normalize3(X)) { /* n along ngf: nothing to bend towards */
+        memcpy(n, ngf, 3 * sizeof(double));
+        return iz;
+    }
+    ix = snell__ref_dot3(I, X);
+    a = ix * ix + iz * iz;
+    b = sqrt(fmax(ix * ix * (a - h * h), 0.0));
+    c = a + h * iz;
+    z2[0] = 0.5 * (c + b) / a;
+    z2[1] = 0.5 * (c - b) / a;
+    for (j = 0; j < 2; j++) {
+        double z, x, height;
+        if (!(z2[j] > 1e-10 && z2[j] <= 1.0 + 1e-10)) continue;
+        z = sqrt(fmin(z2[j], 1.0));
+        x = sqrt(fmax(1.0 - z * z, 0.0));
+        height = 2.0 * (x * ix + z * iz) * z - iz;
+        if (!(height > 1e-10)) continue;
+        if (best < 0.0 || height < best) {
+            best = height;
+            for (k = 0; k < 3; k++) n[k] = x * X[k] + z * ngf[k];
+        }
+    }
+    if (best < 0.0) memcpy(n, ngf, 3 * sizeof(double));
+    return snell__ref_dot3(n, I);
+}
+
 /* The reflectance of an interface in the mode's model: FULL the exact
  * unpolarised dielectric Fresnel (what real glass and Cycles do), MATCHED the
  * kernels' Schlick. Both are 0 at matched indices. */
@@ -304,7 +371,7 @@ static void leaf(const double w[3], double prob, const double col[3], double acc
 static void whitted(const snell_ref *r, const optics *op, const double o[3], const double d[3], uint32_t prim,
                     int medium, int home, int depth, const double w_in[3], double prob, double acc[3], double acc2[3])
 {
-    double w[3] = {w_in[0], w_in[1], w_in[2]}, n[3], c, dir_r[3], dir_t[3], col[3], wr[3], wt[3];
+    double w[3] = {w_in[0], w_in[1], w_in[2]}, n[3], ngf[3], c, dir_r[3], dir_t[3], col[3], wr[3], wt[3];
     ref_view v = medium >= 0 ? inside_view(medium) : air_view(op, depth, -1, home);
     const ref_glass *g;
     ref_surf s;
@@ -327,7 +394,7 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
     }
     g = &r->glass[s.object];
     if (home < 0) home = s.object;
-    c = facing(&s, d, n);
+    c = interface_normal(&s, d, n, ngf);
     snell_optd_reflect(d, n, dir_r);
     snell__ref_normalize3(dir_r);
     if (g->thin) { /* every wall is a slab: reflected, or straight through */
@@ -351,9 +418,13 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
             whitted(r, op, s.p, dir_r, s.prim, medium, home, depth + 1, wr, prob * F, acc, acc2);
         }
         if (!tir && F < 1.0) {
-            for (k = 0; k < 3; k++) wt[k] = w[k] * (1.0 - F) * (in ? 1.0 : g->tint[k]);
+            /* The refracted ray is in the medium on the side of the plane it
+             * goes to: leaving at a grazing angle about a bent normal it can
+             * stay inside (entering, it always crosses). */
+            int crosses = snell__ref_dot3(dir_t, ngf) < 0.0, next = crosses ? (in ? -1 : s.object) : medium;
+            for (k = 0; k < 3; k++) wt[k] = w[k] * (1.0 - F) * (in || !crosses ? 1.0 : g->tint[k]);
             snell__ref_normalize3(dir_t);
-            whitted(r, op, s.p, dir_t, s.prim, in ? -1 : s.object, home, depth + 1, wt, prob * (1.0 - F), acc, acc2);
+            whitted(r, op, s.p, dir_t, s.prim, next, home, depth + 1, wt, prob * (1.0 - F), acc, acc2);
         }
     }
 }
@@ -370,7 +441,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
     for (;;) {
         ref_view v = medium >= 0 ? inside_view(medium) : air_view(op, depth, -1, home);
         const ref_glass *g;
-        double n[3], c, out[3];
+        double n[3], ngf[3], c, out[3];
         snell_ref_event ev;
         ref_surf s;
         int found = snell__ref_hit(r, pos, dir, prim, &v, &s);
@@ -380,7 +451,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
         if (s.object < 0 || depth >= op->max_if) break; /* opaque: ends there; cap: leaves in its direction */
         g = &r->glass[s.object];
         if (home < 0) home = s.object;
-        c = facing(&s, dir, n);
+        c = interface_normal(&s, dir, n, ngf);
         if (g->thin) {
             double rs[3], ts[3], chord = slab(op, g, c, rs, ts);
             if (depth == 0) path->fresnel = (rs[0] + rs[1] + rs[2]) / 3.0;
@@ -403,7 +474,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
                 ev = SNELL_REF_EVENT_REFLECT;
             } else {
                 ev = SNELL_REF_EVENT_REFRACT;
-                medium = in ? -1 : s.object;
+                if (snell__ref_dot3(out, ngf) < 0.0) medium = in ? -1 : s.object; /* as whitted() */
             }
             if (depth == 0) path->fresnel = F;
         }
