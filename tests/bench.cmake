@@ -19,7 +19,8 @@ if(TARGET snell-bench)
   foreach(bad "-b|nosuch" "-b|cubemap:iterations=0" "-b|cubemap:face=99999" "--frames|0" "-b|auto"
               "-b|single:iterations=4" "-b|cubemap:encoding=rgb" "-b|cubemap:scene=pair:attenuation=2/1/1/1"
               "-b|single:lod=0" "-b|single:lod=1.5" "-b|single:lod=nan" "-b|single:dispersion=-1"
-              "-b|single:dispersion=21" "-b|single:dispersion_model=spectral")
+              "-b|single:dispersion=21" "-b|single:dispersion_model=spectral"
+              "-b|single:methods=nosuch" "-b|single:methods=peel//single")
     string(MAKE_C_IDENTIFIER "bench_bad_${bad}" name)
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=${bad}" -DCODE=2 "-DERR=snell-bench: "
              -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
@@ -37,3 +38,11 @@ target_compile_options(bench_floor PRIVATE ${SNELL_WARNINGS})
 # that it runs (two rounds on a sphere), not how fast
 add_test(NAME bench_floor_runs COMMAND bench_floor sphere cubemap 64 3)
 set_tests_properties(bench_floor_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "frame / floor")
+
+# snell-bench's errors per object class (issue 13 item 5): hand-placed
+# differences must land in their class only. A CPU test on the bench's own code.
+if(TARGET snell_bench_common)
+  snell_add_test(test_bench_classes SOURCES test_bench_classes.c LABELS "unit;cli")
+  target_link_libraries(test_bench_classes PRIVATE snell_bench_common)
+  target_include_directories(test_bench_classes PRIVATE ${PROJECT_SOURCE_DIR}/ports/cli)
+endif()

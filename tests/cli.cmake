@@ -66,6 +66,18 @@ if(TARGET snell-bench)
   add_test(NAME bench_scenes COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/bench_scenes"
            -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_bench_scenes.cmake)
   set_tests_properties(bench_scenes PROPERTIES LABELS "cli;gl" TIMEOUT 300)
+  # glTF scene files: per-class errors against the whole-scene reference (issue 13 item 5)
+  add_test(NAME bench_scene_file COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DSCENES=${d}/scenes"
+           "-DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/bench_scene_file" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_bench_scene_file.cmake)
+  set_tests_properties(bench_scene_file PROPERTIES LABELS "cli;gl" TIMEOUT 300)
+  add_test(NAME bench_scene_file_material COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}"
+           "-DARGS=-b|single:scene=${d}/scenes/glass_box.gltf:ior=1.3" -DCODE=2
+           "-DERR=snell-bench: ior=: scene=.*glass_box.gltf brings its own materials" -P ${expect})
+  set_tests_properties(bench_scene_file_material PROPERTIES LABELS "cli")
+  add_test(NAME bench_scene_file_missing COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}"
+           "-DARGS=-b|single:size=8x8|--scene|${CMAKE_CURRENT_BINARY_DIR}/no_such_scene.gltf|--no-cache" -DCODE=1
+           "-DERR=snell-bench: scene .*no_such_scene.gltf: " -P ${expect})
+  set_tests_properties(bench_scene_file_missing PROPERTIES LABELS "cli;gl")
   add_test(NAME bench_list_registry COMMAND ${bench} --list)
   set_tests_properties(bench_list_registry PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
     "pair .*many .*method cubemap: .*iterations +1\\.\\.32 \\(default 6\\)")

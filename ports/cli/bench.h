@@ -5,6 +5,7 @@
  *   bench_scene.c    scenes (one mesh, or named multi-object scenes) as frames and reference scenes
  *   bench_timing.c   interleaved timing of the configurations of one scene and size
  *   bench_measure.c  one configuration's error against the reference (exit directions, colour)
+ *   bench_classes.c  errors per object class (glass, opaque, background, all) of the reference's first hit
  *   bench_output.c   JSON, CSV, the Pareto front, the plot's points and the summary table
  *   bench_ref.c      reference images (snell_ref_render) cached on disk      (bench_ref.h)
  *   bench_plot.c     the time-vs-error PNG                                   (bench_plot.h)
@@ -40,12 +41,57 @@ typedef struct bench_options {
     int aa;                        /* --aa S: errors on S x S area-averaged images (1 = pixel centres) */
     const char *plot_y;
     int quiet;
+    /* --baseline-scene S: the configurations of one size take turns frame by
+     * frame whatever their scene, and vs_scene is each one's time over that of
+     * the same spec on scene S (NULL: groups of one scene, no vs_scene) */
+    const char *baseline_scene;
 } bench_options;
 
 /* 1: run; 0: bad usage (message printed, exit 2); -1: --help/--list printed (exit 0). */
 int bench_parse_options(int argc, char **argv, bench_options *o);
 /* 1 if v is an integer in lo..hi (else "snell-bench: KEY=V: want ..." printed). */
 int bench_parse_int(const char *key, const char *v, int lo, int hi, int *out);
+
+/* ------------------------------------------------------- object classes */
+/* What a pixel's view ray meets first in the reference (snell_ref_output.object:
+ * glass i -> i, opaque j -> -2 - j, nothing -> -1), and the whole image;
+ * GLASS_THROUGH is the part of GLASS where other glass shows: the pixels
+ * whose whole-scene reference colour differs from the isolated reference's
+ * (each object alone). GLASS, OPAQUE and BACKGROUND partition ALL. */
+typedef enum bench_class {
+    BENCH_CLASS_GLASS = 0,
+    BENCH_CLASS_GLASS_THROUGH,
+    BENCH_CLASS_OPAQUE,
+    BENCH_CLASS_BACKGROUND,
+    BENCH_CLASS_ALL,
+    BENCH_CLASS_COUNT
+} bench_class;
+
+/* "glass", "glass_through_glass", "opaque", "background", "all" */
+extern const char *const bench_class_names[BENCH_CLASS_COUNT];
+
+/* The colour error of one class of pixels. */
+typedef struct bench_class_error {
+    snell_image_error img;         /* RMSE/PSNR over the class's pixels (img.pixels: how many) */
+    double ssim;                   /* snell_metrics_ssim over the same pixels */
+} bench_class_error;
+
+/* The class of a first-hit object id (GLASS, OPAQUE or BACKGROUND). */
+bench_class bench_class_of(int16_t object);
+/* The error of test against ref (RGBA8, w x h) over each class of the ids
+ * object[] (the reference's); through: nonzero where glass shows other glass
+ * (NULL: nowhere); mask: w * h bytes of scratch. SNELL_OK or the metrics'
+ * status. */
+snell_status bench_class_errors(const uint8_t *test, const uint8_t *ref, const int16_t *object,
+                                const uint8_t *through, int w, int h, uint8_t *mask,
+                                bench_class_error out[BENCH_CLASS_COUNT]);
+
+/* The results of one image (the method's, or each glass object drawn alone)
+ * against the FULL reference of the whole scene. */
+typedef struct bench_scene_error {
+    bench_class_error cls[BENCH_CLASS_COUNT];
+    snell_dir_error dir;           /* exit directions over glass pixels (masks as in bench_measure) */
+} bench_scene_error;
 
 /* --------------------------------------------------------- configuration */
 /* One measured configuration: a method with its parameters on one scene at
@@ -65,6 +111,12 @@ typedef struct bench_config {
                                     * then the measured colour frame uses --aa) */
     float lod;                     /* lod=: glass meshes simplified to this triangle ratio; 1 = the
                                     * original (the default); references always use the original */
+    int scene_layers;              /* layers=: snell_frame_desc.scene_layers (0 auto, -1 off, 2..8) */
+    float spin;                    /* spin=: degrees of camera azimuth added every timed frame (0: a still
+                                    * scene, whose frames may reuse what the last one drew); errors are
+                                    * measured on the unmoved frame */
+    snell_method object_methods[SNELL_MAX_GLASS]; /* methods=: glass object i's method (AUTO allowed), */
+    int object_method_count;       /* for i < object_method_count; the others take glass.method */
 
     /* results */
     int ok;
@@ -77,6 +129,11 @@ typedef struct bench_config {
     int pareto;                    /* on the time vs error (plot's y) front of its scene and size */
     int glass_objects, opaque_objects;
     int warnings;                  /* glass objects whose stats warn (method's preconditions fail) */
+    snell_method methods_used[SNELL_MAX_GLASS]; /* what drew each glass object (the measured frame's stats) */
+    int passes;                    /* GL draw passes of the frame after warm-up (snell_frame_stats.passes), */
+    int layer_passes, layers_used; /* of which scene-layer peels, and the layers that held something */
+    int layers_drawn;              /* the measured frame drew the scene layers (glass seen through glass):
+                                    * then the MATCHED and FULL comparisons are with isolate_glass = 0 */
     const char *encoding;          /* exit-direction storage: "float" or "packed-rgba8" */
     long nan_inf;                  /* non-finite exit-direction pixels (float target only) */
     long exact_fallback_pixels;    /* EXACT: pixels past the node budget in the exit-direction frame, summed
@@ -89,6 +146,16 @@ typedef struct bench_config {
                                     * built-in shape or scene of them (on a bumpy scan such as the bunny
                                     * they are chaotic: an exit moved by a hair gives a large angle) */
     int ref_cached[2];
+    /* Against the FULL reference of the whole scene (isolate_glass = 0: glass
+     * seen through glass), per object class: [0] the method's frame, [1] each
+     * glass object drawn alone by the method over the environment and the
+     * opaque objects (one frame per object, composed back to front by the
+     * renderer's draw order; with one glass object, the frame itself), [2] the
+     * reference itself with isolate_glass = 1 (each object alone, exact). */
+    int whole_measured;            /* 0: not measured (failed, or a tool that times only) */
+    bench_scene_error whole[3];
+    double vs_scene;               /* --baseline-scene: median over rounds of time / time of the same spec on
+                                    * that scene; < 0 if none */
 } bench_config;
 
 /* "method:k=v:k=v1,v2" plus the options' scene and size lists -> configurations
@@ -109,17 +176,26 @@ typedef struct bench_scene {
     snell_opaque opaque[SNELL_MAX_OPAQUE];
     float glass_models[SNELL_MAX_GLASS][16], opaque_models[SNELL_MAX_OPAQUE][16];
     int analytic;                  /* built from shapes (smooth, analytic), not a scanned mesh file */
+    snell_scene_file *file;        /* a glTF scene file (owns its meshes, models, materials), else NULL */
+    int has_camera;                /* the file's camera, used when the spec gives no camera= */
+    snell_camera camera;
 } bench_scene;
 
 /* The scene called name, built on first use: a named multi-object scene
- * (bench_scene_help), "bunny" (glmark2's model) or a shape or mesh file
- * (normalised to the unit sphere, at the origin). */
+ * (bench_scene_help), a glTF scene file (.gltf/.glb: snell_scene_load_gltf,
+ * its objects, materials and camera), "bunny" (glmark2's model) or a shape or
+ * mesh file (normalised to the unit sphere, at the origin). */
 snell_status bench_scene_get(snell_ctx *ctx, const char *name, const bench_scene **out);
 void bench_scene_release_all(void);
+/* 1 if name is a glTF scene file (ends in .gltf or .glb). */
+int bench_scene_is_file(const char *name);
 /* The camera (azimuth, elevation in degrees, distance) of a scene when the spec has none. */
 void bench_scene_camera(const char *name, float cam[3]);
 void bench_scene_help(FILE *f);
-/* Configuration c on scene s: fills glass[] (the scene's objects with c's material) and *fd. */
+/* Configuration c on scene s: fills glass[] (the scene's objects with c's
+ * material; a scene file's objects keep their own material and take c's
+ * method and method parameters) and *fd (a scene file's camera unless c
+ * has camera=). */
 void bench_scene_frame(const bench_config *c, const bench_scene *s, const snell_env *env, snell_glass *glass,
                        snell_frame_desc *fd);
 /* Level of detail (c->lod < 1): replaces the meshes of glass[0..n) by their
@@ -158,7 +234,10 @@ int bench_write_json(const char *path, const bench_config *cs, int n, const benc
 int bench_write_csv(const char *path, const bench_config *cs, int n);
 int bench_write_plot(const char *path, const bench_config *cs, int n, const bench_options *o,
                      const bench_run_info *run);
+/* The summary table, then bench_print_scene_table. */
 void bench_print_table(const bench_config *cs, int n);
+/* Per object class against the whole-scene reference (configurations with whole_measured). */
+void bench_print_scene_table(const bench_config *cs, int n);
 
 /* snell-bench --2d (bench2d.c). */
 int snell_bench2d_main(int argc, char **argv);

@@ -2,14 +2,23 @@
  * colour frame and exit directions (SNELL_OUTPUT_EXIT_DIRECTION) compared with
  * the reference of the same scene in the MATCHED model (the method's own,
  * with its interface cap) and the FULL model (Whitted tree). The reference
- * runs with isolate_glass = 1: light that has left a glass object sees the
- * environment and the opaque objects but no other glass object, as the
- * renderer draws it, so the error measured is the method's own and not the
- * glass-through-glass light the renderer does not draw yet. Colour is
+ * models what the frame drew: where the renderer drew each glass object over
+ * its own environment (scene layers off) it runs with isolate_glass = 1
+ * (light that has left a glass object sees the environment and the opaque
+ * objects but no other glass object), where the frame drew the scene layers
+ * with isolate_glass = 0, so the error measured is the method's own. Colour is
  * compared over the glass pixels as PSNR and SSIM, on area-averaged images
  * with --aa S (the GPU frame supersampled S x S, the references with S x S
  * rays a pixel): pixel-centre colours of a bumpy scan alias. The exit
- * directions are always the pixel centres'. */
+ * directions are always the pixel centres'.
+ *
+ * Then the whole scene (issue 13): the same frame against the FULL reference
+ * with isolate_glass = 0 (light that leaves one glass object may enter
+ * another), per object class of the reference's first hit (bench_classes.c),
+ * beside two baselines: the scene drawn by the method one glass object at a
+ * time over the environment and the opaque objects, composed back to front
+ * (what drawing each object alone gives, whatever the renderer does with
+ * several), and the isolated FULL reference (each object alone, exactly). */
 #include "bench.h"
 #include "bench_ref.h"
 
@@ -60,11 +69,16 @@ static void sanitize(char *s)
             *s = '_';
 }
 
-/* Buffers of one measurement, c->width * c->height pixels each. */
+/* Buffers of one measurement, c->width * c->height pixels each. The
+ * alone_* images are the glass objects drawn one at a time and composed;
+ * one_* and bg_rgba the frames they are composed from. */
 typedef struct measure_buf {
     size_t n;
     uint8_t *rgba, *mask, *either;
     float *dirs, *bgdirs, *err;
+    int draw_order[SNELL_MAX_GLASS]; /* the colour frame's (snell_object_stats.draw_order) */
+    uint8_t *alone_rgba, *alone_mask, *one_rgba, *bg_rgba, *through;
+    float *alone_dirs, *one_dirs;
 } measure_buf;
 
 static int buf_alloc(measure_buf *b, const bench_config *c)
@@ -76,7 +90,15 @@ static int buf_alloc(measure_buf *b, const bench_config *c)
     b->dirs = (float *)malloc(b->n * 3 * sizeof(float));
     b->bgdirs = (float *)malloc(b->n * 3 * sizeof(float));
     b->err = (float *)malloc(b->n * sizeof(float));
-    return b->rgba && b->mask && b->either && b->dirs && b->bgdirs && b->err;
+    b->alone_rgba = (uint8_t *)malloc(b->n * 4);
+    b->alone_mask = (uint8_t *)malloc(b->n);
+    b->one_rgba = (uint8_t *)malloc(b->n * 4);
+    b->bg_rgba = (uint8_t *)malloc(b->n * 4);
+    b->alone_dirs = (float *)malloc(b->n * 3 * sizeof(float));
+    b->one_dirs = (float *)malloc(b->n * 3 * sizeof(float));
+    b->through = (uint8_t *)malloc(b->n);
+    return b->through && b->rgba && b->mask && b->either && b->dirs && b->bgdirs && b->err && b->alone_rgba && b->alone_mask &&
+           b->one_rgba && b->bg_rgba && b->alone_dirs && b->one_dirs;
 }
 
 static void buf_free(measure_buf *b)
@@ -87,6 +109,13 @@ static void buf_free(measure_buf *b)
     free(b->dirs);
     free(b->bgdirs);
     free(b->err);
+    free(b->alone_rgba);
+    free(b->alone_mask);
+    free(b->one_rgba);
+    free(b->bg_rgba);
+    free(b->alone_dirs);
+    free(b->one_dirs);
+    free(b->through);
 }
 
 /* The colour frame (timing was done before, in bench_time_all), with the
@@ -112,7 +141,12 @@ static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, int aa, benc
     else ok = 1;
     if (ok) {
         c->warnings = 0;
-        for (i = 0; i < fs.glass_count; i++) c->warnings += fs.glass[i].warning != 0;
+        for (i = 0; i < fs.glass_count; i++) {
+            c->warnings += fs.glass[i].warning != 0;
+            b->draw_order[i] = fs.glass[i].draw_order;
+            c->methods_used[i] = fs.glass[i].method_used;
+        }
+        c->layers_drawn = fs.scene_layer_passes > 0;
     }
     snell_renderer_destroy(r);
     return ok;
@@ -175,16 +209,14 @@ static void write_images(const bench_options *o, const bench_config *c, int mode
     write_error_map(path, b->err, b->mask, b->dirs, c->width, c->height);
 }
 
-/* mode 0: MATCHED, 1: FULL. The reference sees ref_glass (fd's objects with
- * their original meshes, lod= or not). */
-static int compare(const snell_frame_desc *fd, const snell_glass *ref_glass, const char *env_name,
-                   const bench_options *o, bench_config *c, int mode, measure_buf *b)
+/* The reference of fd's scene with its objects ref_glass (fd's objects with
+ * their original meshes, lod= or not); mode 0: MATCHED, 1: FULL; isolate:
+ * isolate_glass. *cached tells whether it came from the cache. */
+static int reference(const snell_frame_desc *fd, const snell_glass *ref_glass, const char *env_name,
+                     const bench_options *o, bench_config *c, int mode, int isolate, bench_ref_image *ref, int *cached)
 {
     snell_ref_params p;
     snell_ref_desc scene;
-    bench_ref_image ref;
-    snell_dir_error_desc dd;
-    size_t j;
     memset(&scene, 0, sizeof scene);
     scene.glass = ref_glass;
     scene.glass_count = fd->glass_count;
@@ -194,7 +226,7 @@ static int compare(const snell_frame_desc *fd, const snell_glass *ref_glass, con
     p.mode = mode ? SNELL_REF_FULL : SNELL_REF_MATCHED;
     p.max_interfaces = mode ? o->full_interfaces : c->ref_interfaces;
     p.absorption_model = mode ? SNELL_REF_ABSORB_PATH : c->ref_absorb;
-    p.isolate_glass = 1;
+    p.isolate_glass = isolate;
     p.env = fd->env;
     p.camera = fd->camera;
     p.width = c->width;
@@ -202,27 +234,160 @@ static int compare(const snell_frame_desc *fd, const snell_glass *ref_glass, con
     p.threads = o->threads;
     p.samples = o->aa;
     if (!o->quiet)
-        fprintf(stderr, "    reference %s (%d interfaces)...\n", mode ? "FULL" : "MATCHED", p.max_interfaces);
-    if (bench_ref_get(&scene, &p, env_name, o->cache_dir, &ref, &c->ref_cached[mode]) != SNELL_OK) {
-        bench_fail(c, mode ? "FULL reference" : "MATCHED reference", NULL);
+        fprintf(stderr, "    reference %s (%d interfaces, %s)...\n", mode ? "FULL" : "MATCHED", p.max_interfaces,
+                isolate ? "glass objects isolated" : "the whole scene");
+    if (bench_ref_get(&scene, &p, env_name, o->cache_dir, ref, cached) != SNELL_OK) {
+        bench_fail(c, mode ? (isolate ? "isolated FULL reference" : "whole-scene FULL reference") : "MATCHED reference",
+                   NULL);
         return 0;
     }
+    return 1;
+}
+
+static void dir_error(const float *test, const uint8_t *test_mask, const bench_ref_image *ref, float *err,
+                      snell_dir_error *out)
+{
+    snell_dir_error_desc dd;
     memset(&dd, 0, sizeof dd);
-    dd.test = b->dirs;
-    dd.ref = ref.exit_dir;
-    dd.ref_mask = ref.hit;
-    dd.test_mask = b->mask;
-    dd.width = c->width;
-    dd.height = c->height;
-    dd.error_deg = b->err;
-    snell_metrics_dir_error(&dd, &c->dir[mode]);
+    dd.test = test;
+    dd.ref = ref->exit_dir;
+    dd.ref_mask = ref->hit;
+    dd.test_mask = test_mask;
+    dd.width = ref->width;
+    dd.height = ref->height;
+    dd.error_deg = err;
+    snell_metrics_dir_error(&dd, out);
+}
+
+/* mode 0: MATCHED, 1: FULL, both with isolate_glass = 1 unless the frame drew
+ * the scene layers (then glass seen through glass is the renderer's to draw
+ * too). keep: the reference is handed back there (the caller frees it)
+ * instead of freed. */
+static int compare(const snell_frame_desc *fd, const snell_glass *ref_glass, const char *env_name,
+                   const bench_options *o, bench_config *c, int mode, measure_buf *b, bench_ref_image *keep)
+{
+    bench_ref_image ref;
+    size_t j;
+    if (!reference(fd, ref_glass, env_name, o, c, mode, !c->layers_drawn, &ref, &c->ref_cached[mode])) return 0;
+    dir_error(b->dirs, b->mask, &ref, b->err, &c->dir[mode]);
     snell_metrics_image_error(b->rgba, ref.rgba, c->width, c->height, NULL, &c->img[mode]);
     for (j = 0; j < b->n; j++) b->either[j] = (uint8_t)(b->mask[j] || ref.hit[j]);
     snell_metrics_image_error(b->rgba, ref.rgba, c->width, c->height, b->either, &c->img_glass[mode]);
     snell_metrics_ssim(b->rgba, ref.rgba, c->width, c->height, b->either, &c->ssim_glass[mode]);
     if (o->images_dir) write_images(o, c, mode, b, &ref);
-    bench_ref_free(&ref);
+    if (keep) *keep = ref;
+    else bench_ref_free(&ref);
     return 1;
+}
+
+/* b->alone_*: the glass objects of fd drawn one at a time (each frame: that
+ * object, every opaque object, the background), composed back to front in
+ * the colour frame's draw order: where an object's frame covers a pixel
+ * (its exit direction differs from the glass-free frame's, or its colour
+ * does: a supersampled edge) it replaces what the farther ones left. */
+static int alone_frames(snell_ctx *ctx, const snell_frame_desc *fd, int aa, bench_config *c, measure_buf *b)
+{
+    snell_renderer *rc = NULL, *rd = NULL;
+    snell_renderer_desc desc;
+    snell_frame_desc one = *fd;
+    int order, i, ok = 1;
+    size_t j;
+    memset(&desc, 0, sizeof desc);
+    desc.width = c->width;
+    desc.height = c->height;
+    desc.shading = c->shading;
+    desc.ssaa = c->ssaa || c->msaa ? c->ssaa : aa;
+    desc.msaa = c->msaa;
+    if (snell_renderer_create(ctx, &desc, &rc) != SNELL_OK) ok = 0;
+    desc.ssaa = desc.msaa = 0;
+    desc.output = SNELL_OUTPUT_EXIT_DIRECTION;
+    if (ok && snell_renderer_create(ctx, &desc, &rd) != SNELL_OK) ok = 0;
+    one.glass_count = 0;
+    if (ok && (snell_render(rc, &one, NULL) != SNELL_OK || snell_renderer_read_rgba(rc, b->bg_rgba) != SNELL_OK))
+        ok = 0;
+    if (ok) {
+        memcpy(b->alone_rgba, b->bg_rgba, b->n * 4);
+        memcpy(b->alone_dirs, b->bgdirs, b->n * 3 * sizeof(float));
+        memset(b->alone_mask, 0, b->n);
+    }
+    one.glass_count = 1;
+    for (order = 0; ok && order < fd->glass_count; order++)
+        for (i = 0; ok && i < fd->glass_count; i++) {
+            if (b->draw_order[i] != order) continue;
+            one.glass = &fd->glass[i];
+            if (snell_render(rc, &one, NULL) != SNELL_OK || snell_renderer_read_rgba(rc, b->one_rgba) != SNELL_OK ||
+                snell_render(rd, &one, NULL) != SNELL_OK || snell_renderer_read_exit_dirs(rd, b->one_dirs) != SNELL_OK) {
+                ok = 0;
+                break;
+            }
+            for (j = 0; j < b->n; j++) {
+                if (!memcmp(b->one_dirs + 3 * j, b->bgdirs + 3 * j, 3 * sizeof(float)) &&
+                    !memcmp(b->one_rgba + 4 * j, b->bg_rgba + 4 * j, 3))
+                    continue;
+                memcpy(b->alone_rgba + 4 * j, b->one_rgba + 4 * j, 4);
+                memcpy(b->alone_dirs + 3 * j, b->one_dirs + 3 * j, 3 * sizeof(float));
+                b->alone_mask[j] = 1;
+            }
+        }
+    if (!ok) bench_fail(c, "glass objects drawn alone", ctx);
+    snell_renderer_destroy(rc);
+    snell_renderer_destroy(rd);
+    return ok;
+}
+
+/* c->whole[]: the method's frame, the objects drawn alone and the isolated
+ * FULL reference against the FULL reference of the whole scene. full: the
+ * FULL reference compare() used (isolated unless the frame drew the scene
+ * layers); the other one is rendered here. With one glass object both are
+ * the same: nothing else to see through. */
+static void whole_scene(snell_ctx *ctx, const snell_frame_desc *fd, const snell_glass *ref_glass, const char *env_name,
+                        const bench_options *o, bench_config *c, measure_buf *b, const bench_ref_image *full)
+{
+    bench_ref_image other;
+    const bench_ref_image *ref = full, *iso = full;
+    const uint8_t *rgba[3];
+    const float *dirs[3];
+    const uint8_t *masks[3];
+    int cached, k;
+    size_t j;
+    memset(&other, 0, sizeof other);
+    if (fd->glass_count > 1) {
+        if (!reference(fd, ref_glass, env_name, o, c, 1, c->layers_drawn, &other, &cached)) return;
+        if (c->layers_drawn) iso = &other;
+        else ref = &other;
+        if (!alone_frames(ctx, fd, o->aa, c, b)) {
+            bench_ref_free(&other);
+            return;
+        }
+    } else {
+        memcpy(b->alone_rgba, b->rgba, b->n * 4);
+        memcpy(b->alone_dirs, b->dirs, b->n * 3 * sizeof(float));
+        memcpy(b->alone_mask, b->mask, b->n);
+    }
+    rgba[0] = b->rgba, rgba[1] = b->alone_rgba, rgba[2] = iso->rgba;
+    dirs[0] = b->dirs, dirs[1] = b->alone_dirs, dirs[2] = iso->exit_dir;
+    masks[0] = b->mask, masks[1] = b->alone_mask, masks[2] = iso->hit;
+    /* where other glass shows: the whole scene's colour is not the isolated one's */
+    for (j = 0; j < b->n; j++) b->through[j] = (uint8_t)(memcmp(ref->rgba + 4 * j, iso->rgba + 4 * j, 3) != 0);
+    for (k = 0; k < 3; k++) {
+        if (bench_class_errors(rgba[k], ref->rgba, ref->object, b->through, c->width, c->height, b->either,
+                               c->whole[k].cls) != SNELL_OK) {
+            bench_fail(c, "class errors", NULL);
+            break;
+        }
+        dir_error(dirs[k], masks[k], ref, b->err, &c->whole[k].dir);
+    }
+    c->whole_measured = k == 3;
+    if (o->images_dir && c->whole_measured) {
+        char path[1400], name[600];
+        snprintf(name, sizeof name, "%s", c->spec);
+        sanitize(name);
+        snprintf(path, sizeof path, "%s/%s.alone.png", o->images_dir, name);
+        snell_write_png(path, c->width, c->height, b->alone_rgba);
+        snprintf(path, sizeof path, "%s/%s.ref-scene.png", o->images_dir, name);
+        snell_write_png(path, c->width, c->height, ref->rgba);
+    }
+    bench_ref_free(&other);
 }
 
 void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, const bench_options *o,
@@ -247,8 +412,13 @@ void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, c
         c->opaque_objects = fd.opaque_count;
         if (bench_scene_lod(ctx, c, glass, fd.glass_count) != SNELL_OK) bench_fail(c, "lod", ctx);
         else if (colour_frame(ctx, &fd, o->aa, c, &b) && exit_dir_frames(ctx, &fd, c, &b) &&
-                 compare(&fd, ref_glass, env_name, o, c, 0, &b))
-            compare(&fd, ref_glass, env_name, o, c, 1, &b);
+                 compare(&fd, ref_glass, env_name, o, c, 0, &b, NULL)) {
+            bench_ref_image full;
+            if (compare(&fd, ref_glass, env_name, o, c, 1, &b, &full)) {
+                whole_scene(ctx, &fd, ref_glass, env_name, o, c, &b, &full);
+                bench_ref_free(&full);
+            }
+        }
     }
     buf_free(&b);
 }

@@ -82,6 +82,50 @@ static void json_errors(FILE *f, const bench_config *c, int m)
     fprintf(f, ", \"reference_cached\": %s}", c->ref_cached[m] ? "true" : "false");
 }
 
+static const char *const scene_image_names[3] = {"method", "alone", "reference_isolated"};
+
+/* One image of c->whole[] against the whole-scene reference, per class. */
+static void json_scene_image(FILE *f, const bench_scene_error *e)
+{
+    const snell_dir_error *d = &e->dir;
+    int k;
+    fprintf(f, "{");
+    for (k = 0; k < BENCH_CLASS_COUNT; k++) {
+        const bench_class_error *ce = &e->cls[k];
+        fprintf(f, "\"%s\": {\"pixels\": %ld, \"rmse\": ", bench_class_names[k], ce->img.pixels);
+        json_num(f, ce->img.rmse);
+        fprintf(f, ", \"psnr_db\": ");
+        /* identical pixels: +inf dB, which JSON cannot write; rmse 0 says it */
+        json_num(f, ce->img.psnr_db);
+        fprintf(f, ", \"mean_abs\": ");
+        json_num(f, ce->img.mean_abs);
+        fprintf(f, ", \"max_abs\": %d, \"ssim\": ", ce->img.max_abs);
+        json_num(f, ce->ssim);
+        fprintf(f, "}, ");
+    }
+    fprintf(f, "\"exit_dir_glass\": {\"mean_deg\": ");
+    json_num(f, d->mean_deg);
+    fprintf(f, ", \"median_deg\": ");
+    json_num(f, d->median_deg);
+    fprintf(f, ", \"p99_deg\": ");
+    json_num(f, d->p99_deg);
+    fprintf(f, ", \"frac_above_5deg\": ");
+    json_num(f, d->frac_above_5deg);
+    fprintf(f, ", \"compared\": %ld, \"mask_mismatch\": %ld}}", d->compared, d->mask_mismatch);
+}
+
+static void json_whole_scene(FILE *f, const bench_config *c)
+{
+    int k;
+    fprintf(f, ",\n     \"whole_scene\": {\"reference\": ");
+    json_str(f, "FULL with isolate_glass = 0 (glass seen through glass); classes by the reference's first hit");
+    for (k = 0; k < 3; k++) {
+        fprintf(f, ",\n       \"%s\": ", scene_image_names[k]);
+        json_scene_image(f, &c->whole[k]);
+    }
+    fprintf(f, "}");
+}
+
 static void json_header(FILE *f, const bench_options *o, const bench_run_info *run)
 {
     char why[64];
@@ -112,9 +156,11 @@ static void json_header(FILE *f, const bench_options *o, const bench_run_info *r
         json_str(f, "angles over pixels that are glass in both the reference hit mask and the method's coverage; "
                     "mismatches counted, not compared");
         fprintf(f, ",\n  \"reference\": ");
-        json_str(f, "snell_ref of the same scene with isolate_glass = 1: light that left a glass object sees the "
-                    "environment and the opaque objects but no other glass object, as the renderer draws it, so the "
-                    "error is the method's own");
+        json_str(f, "snell_ref of the same scene, as the frame drew it: with isolate_glass = 1 (light that left a "
+                    "glass object sees the environment and the opaque objects but no other glass object) where the "
+                    "renderer drew each glass object over its own environment, with isolate_glass = 0 where it drew "
+                    "the scene layers (reference_isolate_glass per result), so the error is the method's own; "
+                    "whole_scene: against FULL with isolate_glass = 0 in any case");
     }
     fprintf(f, ",\n  \"results\": [\n");
 }
@@ -138,6 +184,17 @@ static void json_result(FILE *f, const bench_config *c)
     }
     fprintf(f, ", \"glass_objects\": %d, \"opaque_objects\": %d, \"warnings\": %d, \"angles_meaningful\": %s",
             c->glass_objects, c->opaque_objects, c->warnings, c->angles_meaningful ? "true" : "false");
+    fprintf(f, ", \"scene_layers\": %d, \"reference_isolate_glass\": %s", c->scene_layers,
+            c->layers_drawn ? "false" : "true");
+    if (c->passes > 0) /* timed by snell-bench (snell-kiosk times its own way) */
+        fprintf(f, ", \"passes\": %d, \"scene_layer_passes\": %d, \"scene_layers_used\": %d", c->passes,
+                c->layer_passes, c->layers_used);
+    if (c->whole_measured) {
+        int k;
+        fprintf(f, ", \"methods_used\": [");
+        for (k = 0; k < c->glass_objects; k++) fprintf(f, "%s\"%s\"", k ? ", " : "", snell_method_str(c->methods_used[k]));
+        fprintf(f, "]");
+    }
     fprintf(f, ", \"time_ms\": {\"median\": ");
     json_num(f, c->t_median);
     fprintf(f, ", \"min\": ");
@@ -156,6 +213,11 @@ static void json_result(FILE *f, const bench_config *c)
     json_errors(f, c, 0);
     fprintf(f, ",\n     \"vs_full\": ");
     json_errors(f, c, 1);
+    if (c->vs_scene >= 0) {
+        fprintf(f, ", \"vs_scene\": ");
+        json_num(f, c->vs_scene);
+    }
+    if (c->whole_measured) json_whole_scene(f, c);
     fprintf(f, "}");
 }
 
@@ -178,6 +240,7 @@ int bench_write_json(const char *path, const bench_config *cs, int n, const benc
 
 /* ------------------------------------------------------------------- CSV */
 #define CSV_MODE_FIELDS 14
+#define CSV_SCENE_FIELDS (1 + 3 * (2 * BENCH_CLASS_COUNT + 2)) /* vs_scene, then per image of c->whole[] */
 
 static void csv_num(FILE *f, double v)
 {
@@ -203,6 +266,32 @@ static void csv_errors(FILE *f, const bench_config *c, int m)
     csv_num(f, c->ssim_glass[m]);
 }
 
+/* PSNR with identical pixels written as inf (csv_num leaves non-finite values empty). */
+static void csv_psnr(FILE *f, double v)
+{
+    if (isinf(v) && v > 0) fprintf(f, ",inf");
+    else csv_num(f, v);
+}
+
+static void csv_scene(FILE *f, const bench_config *c)
+{
+    int k, m;
+    csv_num(f, c->vs_scene >= 0 ? c->vs_scene : NAN);
+    for (m = 0; m < 3; m++) {
+        const bench_scene_error *e = &c->whole[m];
+        for (k = 0; k < BENCH_CLASS_COUNT; k++) {
+            if (!c->whole_measured) {
+                fprintf(f, ",,");
+                continue;
+            }
+            csv_psnr(f, e->cls[k].img.psnr_db);
+            csv_num(f, e->cls[k].ssim);
+        }
+        csv_num(f, c->whole_measured ? e->dir.mean_deg : NAN);
+        csv_num(f, c->whole_measured ? e->dir.p99_deg : NAN);
+    }
+}
+
 int bench_write_csv(const char *path, const bench_config *cs, int n)
 {
     FILE *f = fopen(path, "w");
@@ -218,6 +307,14 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
                    "%s_psnr_glass_db,%s_ssim_glass",
                 p, p, p, p, p, p, p, p, p, p, p, p, p, p);
     }
+    fprintf(f, ",vs_scene");
+    for (m = 0; m < 3; m++) {
+        int k;
+        for (k = 0; k < BENCH_CLASS_COUNT; k++)
+            fprintf(f, ",scene_%s_%s_psnr_db,scene_%s_%s_ssim", scene_image_names[m], bench_class_names[k],
+                    scene_image_names[m], bench_class_names[k]);
+        fprintf(f, ",scene_%s_glass_mean_deg,scene_%s_glass_p99_deg", scene_image_names[m], scene_image_names[m]);
+    }
     fprintf(f, ",error,llvmpipe_threads\n");
     for (i = 0; i < n; i++) {
         const bench_config *c = &cs[i];
@@ -232,10 +329,11 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
             fprintf(f, ",%d,%s,%ld,%d,%d,%d", c->pareto, c->encoding, c->nan_inf, c->glass_objects, c->opaque_objects,
                     c->warnings);
             for (m = 0; m < 2; m++) csv_errors(f, c, m);
+            csv_scene(f, c);
             fprintf(f, ",");
         } else {
             /* 11 empty fields from time_median_ms to warnings, the error fields, then the error */
-            for (m = 0; m < 11 + 2 * CSV_MODE_FIELDS + 1; m++) fputc(',', f);
+            for (m = 0; m < 11 + 2 * CSV_MODE_FIELDS + CSV_SCENE_FIELDS + 1; m++) fputc(',', f);
             fprintf(f, "\"%s\"", c->error);
         }
         if (lp >= 0) fprintf(f, ",%d\n", lp);
@@ -362,18 +460,20 @@ int bench_write_plot(const char *path, const bench_config *cs, int n, const benc
 void bench_print_table(const bench_config *cs, int n)
 {
     char why[64];
-    int i, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
+    int i, xscene = 0, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
+    for (i = 0; i < n; i++) xscene |= cs[i].ok && cs[i].vs_scene >= 0;
     if (lp >= 0) printf("llvmpipe threads: %d (%s)\n", lp, why);
-    printf("%-58s %9s %7s %8s %7s %9s %9s %7s %7s %6s %6s\n", "configuration", "ms/frame", "xsingle", "dB/FULL",
-           "SSIM", "deg/MATCH", "deg/FULL", ">1deg", ">5deg", "NaN", "pareto");
+    printf("%-58s %9s %7s%s %8s %7s %9s %9s %7s %7s %6s %6s\n", "configuration", "ms/frame", "xsingle",
+           xscene ? "  xscene" : "", "dB/FULL", "SSIM", "deg/MATCH", "deg/FULL", ">1deg", ">5deg", "NaN", "pareto");
     for (i = 0; i < n; i++) {
         const bench_config *c = &cs[i];
         if (!c->ok) {
             printf("%-58s FAILED: %s\n", c->spec, c->error);
             continue;
         }
-        printf("%-58s %9.2f %7.3f %8.2f %7.4f ", c->spec, c->t_median, c->vs_single, c->img_glass[1].psnr_db,
-               c->ssim_glass[1]);
+        printf("%-58s %9.2f %7.3f", c->spec, c->t_median, c->vs_single);
+        if (xscene) printf(" %7.3f", c->vs_scene);
+        printf(" %8.2f %7.4f ", c->img_glass[1].psnr_db, c->ssim_glass[1]);
         /* Per-pixel angles only where they mean something (bench.h). */
         if (c->angles_meaningful)
             printf("%9.3g %9.3g %6.1f%% %6.1f%%", c->dir[0].mean_deg, c->dir[1].mean_deg,
@@ -384,5 +484,42 @@ void bench_print_table(const bench_config *cs, int n)
                c->warnings ? "  (method warns: preconditions fail)" : "");
     }
     printf("dB/FULL, SSIM: colour over the glass pixels against the FULL reference (area-averaged with --aa); "
-           "deg: mean exit-direction error, '-' on meshes where per-pixel angles are chaotic\n");
+           "deg: mean exit-direction error, '-' on meshes where per-pixel angles are chaotic%s\n",
+           xscene ? "; xscene: time over the same spec's on --baseline-scene, frames side by side" : "");
+    bench_print_scene_table(cs, n);
+}
+
+void bench_print_scene_table(const bench_config *cs, int n)
+{
+    static const char *const rows[3] = {"method", "alone", "ref-alone"};
+    int i, k, m, any = 0;
+    for (i = 0; i < n; i++) any |= cs[i].ok && cs[i].whole_measured;
+    if (!any) return;
+    printf("\nwhole scene against FULL with glass seen through glass (isolate_glass = 0), per class of the "
+           "reference's first hit: dB SSIM\n");
+    printf("%-58s %-9s %15s %15s %15s %15s %15s %9s %9s %7s\n", "configuration", "image", "glass",
+           "glass>glass", "opaque", "background", "all", "deg mean", "deg p99", ">5deg");
+    for (i = 0; i < n; i++) {
+        const bench_config *c = &cs[i];
+        if (!c->ok || !c->whole_measured) continue;
+        for (m = 0; m < 3; m++) {
+            const bench_scene_error *e = &c->whole[m];
+            printf("%-58s %-9s", m ? "" : c->spec, rows[m]);
+            for (k = 0; k < BENCH_CLASS_COUNT; k++) {
+                if (e->cls[k].img.pixels) printf(" %8.2f %6.4f", e->cls[k].img.psnr_db, e->cls[k].ssim);
+                else printf(" %15s", "-"); /* no pixel of this class */
+            }
+            if (c->angles_meaningful)
+                printf(" %9.3g %9.3g %6.1f%%\n", e->dir.mean_deg, e->dir.p99_deg, 100.0 * e->dir.frac_above_5deg);
+            else
+                printf(" %9s %9s %7s\n", "-", "-", "-");
+        }
+        printf("%-58s %-9s", "", "pixels");
+        for (k = 0; k < BENCH_CLASS_COUNT; k++) printf(" %15ld", c->whole[0].cls[k].img.pixels);
+        printf("   passes %d (scene-layer peels %d, %d used)\n", c->passes, c->layer_passes, c->layers_used);
+    }
+    printf("method: the configuration's frame; alone: each glass object drawn alone by the method over the environment "
+           "and the opaque objects, composed back to front; ref-alone: the FULL reference with isolate_glass = 1 "
+           "(each object alone, exact); glass>glass: the glass pixels where other glass shows (the whole-scene and "
+           "isolated references differ); inf dB: identical pixels\n");
 }

@@ -15,9 +15,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* 4: FULL uses the exact Fresnel; the key holds the area samples. 5: FULL
+/* 4: FULL uses the exact Fresnel; the key holds the area samples. 5: the
+ * first-hit object ids are stored (snell-bench's per-class errors). 6: FULL
  * takes the triangle's side and bends smooth normals that face away. */
-#define CACHE_MAGIC "SNELLBENCHREF5\n"
+#define CACHE_MAGIC "SNELLBENCHREF6\n"
 
 static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
 {
@@ -50,6 +51,7 @@ void bench_ref_free(bench_ref_image *img)
     free(img->exit_dir);
     free(img->hit);
     free(img->rgba);
+    free(img->object);
     memset(img, 0, sizeof *img);
 }
 
@@ -63,7 +65,8 @@ static int alloc_image(bench_ref_image *img, int w, int h)
     img->exit_dir = (float *)malloc(n * 3 * sizeof(float));
     img->hit = (uint8_t *)malloc(n);
     img->rgba = (uint8_t *)malloc(n * 4);
-    if (img->rgb && img->exit_dir && img->hit && img->rgba) return 1;
+    img->object = (int16_t *)malloc(n * sizeof(int16_t));
+    if (img->rgb && img->exit_dir && img->hit && img->rgba && img->object) return 1;
     bench_ref_free(img);
     return 0;
 }
@@ -87,7 +90,7 @@ static int cache_load(const char *path, const char *full_key, bench_ref_image *i
     if (!read_exact(f, &w, 4) || !read_exact(f, &h, 4) || (int)w != img->width || (int)h != img->height) goto done;
     n = (size_t)w * h;
     ok = read_exact(f, img->rgb, n * 3 * sizeof(float)) && read_exact(f, img->exit_dir, n * 3 * sizeof(float)) &&
-         read_exact(f, img->hit, n);
+         read_exact(f, img->hit, n) && read_exact(f, img->object, n * sizeof(int16_t));
 done:
     free(key);
     fclose(f);
@@ -108,7 +111,7 @@ static void cache_store(const char *dir, const char *path, const char *full_key,
     ok = fwrite(CACHE_MAGIC, 1, sizeof CACHE_MAGIC - 1, f) == sizeof CACHE_MAGIC - 1 && fwrite(&key_len, 4, 1, f) == 1 &&
          fwrite(full_key, 1, key_len, f) == key_len && fwrite(&w, 4, 1, f) == 1 && fwrite(&h, 4, 1, f) == 1 &&
          fwrite(img->rgb, sizeof(float), n * 3, f) == n * 3 && fwrite(img->exit_dir, sizeof(float), n * 3, f) == n * 3 &&
-         fwrite(img->hit, 1, n, f) == n;
+         fwrite(img->hit, 1, n, f) == n && fwrite(img->object, sizeof(int16_t), n, f) == n;
     ok = (fclose(f) == 0) && ok;
     if (!ok || rename(tmp, path) != 0) remove(tmp);
 }
@@ -177,6 +180,7 @@ static snell_status render_ref(const snell_ref_desc *scene, const snell_ref_para
     o.rgb = out->rgb;
     o.exit_dir = out->exit_dir;
     o.hit = out->hit;
+    o.object = out->object;
     st = snell_ref_render(ref, p, &o);
     snell_ref_destroy(ref);
     return st;

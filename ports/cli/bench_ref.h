@@ -10,6 +10,7 @@ typedef struct bench_ref_image {
     int width, height;
     float *rgb, *exit_dir;
     uint8_t *hit, *rgba;
+    int16_t *object;               /* what the view ray hits first (snell_ref_output.object) */
 } bench_ref_image;
 
 /* Renders the reference of scene with params p, or loads it from cache_dir

@@ -155,9 +155,45 @@ static int k_lod(bench_config *c, const char *v)
     return 1;
 }
 
+/* spin=D: the camera turns D degrees about its target every timed frame. */
+static int k_spin(bench_config *c, const char *v)
+{
+    return parse_vec("spin", v, &c->spin, 1, -360.0f, 360.0f);
+}
+
+/* layers=L: the frame's scene layers (snell_frame_desc.scene_layers). */
+static int k_layers(bench_config *c, const char *v)
+{
+    if (!bench_parse_int("layers", v, -1, SNELL_MAX_SCENE_LAYERS, &c->scene_layers)) return 0;
+    if (c->scene_layers == 1) return bad("layers", v, "-1 (off), 0 (auto) or 2..8");
+    return 1;
+}
+
+/* methods=M0/M1/...: glass object i drawn with Mi (a registry name or auto),
+ * the objects past the list with the spec's method. */
+static int k_methods(bench_config *c, const char *v)
+{
+    const char *p = v;
+    c->object_method_count = 0;
+    for (;;) {
+        const char *e = strchr(p, '/');
+        size_t n = e ? (size_t)(e - p) : strlen(p);
+        char name[64];
+        if (n == 0 || n >= sizeof name || c->object_method_count == SNELL_MAX_GLASS)
+            return bad("methods", v, "method names (or auto) separated by /, one per glass object");
+        memcpy(name, p, n);
+        name[n] = '\0';
+        if (snell_method_from_str(name, &c->object_methods[c->object_method_count]) != SNELL_OK)
+            return bad("methods", v, "method names (or auto) separated by /, one per glass object");
+        c->object_method_count++;
+        if (!e) return 1;
+        p = e + 1;
+    }
+}
+
 static const common_key g_common[] = {
-    {"scene", "a scene below, sphere|cube|torus|goblet|bunny, or a mesh file (normalised to the unit sphere)",
-     k_scene},
+    {"scene", "a scene below, a glTF scene file (.gltf/.glb), sphere|cube|torus|goblet|bunny, or a mesh file "
+              "(normalised to the unit sphere)", k_scene},
     {"size", "WxH image size", k_size},
     {"ior", "index of refraction of every glass object (default %g)", k_ior},
     {"absorption", "Beer-Lambert coefficient per unit length, a or r/g/b (default 0)", k_absorption},
@@ -173,6 +209,11 @@ static const common_key g_common[] = {
     {"msaa", "multisampling N (the renderer's msaa), timed and measured", k_msaa},
     {"lod", "glass meshes simplified to this share of their triangles, 0..1 (default 1: the original; the "
             "reference keeps the original)", k_lod},
+    {"spin", "degrees the camera turns about its target every timed frame (default 0: a still scene, whose "
+             "frames may reuse the last one's work, e.g. the scene layers)", k_spin},
+    {"layers", "scene layers, glass seen through glass: 0 auto (default), -1 off, 2..8 layers at most", k_layers},
+    {"methods", "per glass object (scene order) a method or auto, M0/M1/...; the rest take the spec's method, "
+                "the MATCHED reference stays the spec method's model", k_methods},
 };
 #define COMMON_COUNT ((int)(sizeof g_common / sizeof *g_common))
 
@@ -284,7 +325,15 @@ static void config_defaults(bench_config *c, const snell_method_info *m)
     c->glass.method = m->method;
     c->width = c->height = 256;
     c->gpu_median = -1.0;
+    c->vs_scene = -1.0;
     c->lod = 1.0f;
+}
+
+/* The material keys: a scene file brings its own materials. */
+static int is_material_key(const common_key *k)
+{
+    return k && (k->apply == k_ior || k->apply == k_absorption || k->apply == k_attenuation ||
+                 k->apply == k_thickness || k->apply == k_tint);
 }
 
 static int apply_key(bench_config *c, const spec_key *k, const char *value)
@@ -310,6 +359,11 @@ static int expand(expansion *e, int depth, const char **chosen)
         config_defaults(c, e->method);
         len = (size_t)snprintf(c->spec, sizeof c->spec, "%s", e->method->name);
         for (k = 0; k < e->key_count; k++) {
+            if (is_material_key(e->keys[k].common) && bench_scene_is_file(chosen[0])) {
+                fprintf(stderr, "snell-bench: %s=: scene=%s brings its own materials; the material keys apply to "
+                                "mesh and named scenes only\n", e->keys[k].key, chosen[0]);
+                return 0;
+            }
             if (!apply_key(c, &e->keys[k], chosen[k])) return 0;
             if (len < sizeof c->spec)
                 len += (size_t)snprintf(c->spec + len, sizeof c->spec - len, ":%s=%s", e->keys[k].key, chosen[k]);

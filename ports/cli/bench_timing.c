@@ -30,10 +30,18 @@ int bench_same_group(const bench_config *a, const bench_config *b)
 
 /* One frame of t; recorded as round `round` if record, else warm-up. A
  * failure marks the configuration failed (c->ok = 0). */
+/* spin=: the camera turns about its target before every frame. */
+static void turn_camera(timing_slot *t)
+{
+    t->fd.camera.azimuth += (float)(t->c->spin * 3.14159265358979323846 / 180.0);
+}
+
 static void time_frame(snell_ctx *ctx, timing_slot *t, int record, int round)
 {
-    double t0 = cli_now_ms(), g;
+    double t0, g;
     snell_status st;
+    turn_camera(t);
+    t0 = cli_now_ms();
     bench_timer_begin();
     st = snell_render(t->r, &t->fd, NULL);
     bench_timer_end();
@@ -60,6 +68,7 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
     t->c->ok = 1;
     t->c->frames = o->frames;
     t->c->vs_single = -1.0;
+    t->c->vs_scene = -1.0;
     t->times = (double *)malloc(sizeof(double) * (size_t)o->frames);
     t->gpu = (double *)malloc(sizeof(double) * (size_t)o->frames);
     t->ratio = (double *)malloc(sizeof(double) * (size_t)o->frames);
@@ -88,6 +97,19 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
         return;
     }
     for (k = 0; k < o->warmup && t->c->ok; k++) time_frame(ctx, t, 0, 0);
+    if (t->c->ok) {
+        /* the passes of a frame after warm-up (the first frame's also bake and prepare), untimed */
+        snell_frame_stats fs;
+        turn_camera(t);
+        if (snell_render(t->r, &t->fd, &fs) != SNELL_OK) {
+            bench_fail(t->c, "render", ctx);
+            return;
+        }
+        snell_renderer_finish(t->r);
+        t->c->passes = fs.passes;
+        t->c->layer_passes = fs.scene_layer_passes;
+        t->c->layers_used = fs.scene_layers;
+    }
 }
 
 /* Medians of a slot, then its resources freed. */
@@ -105,12 +127,34 @@ static void close_slot(const bench_options *o, timing_slot *t)
     free(t->ratio);
 }
 
-/* Times the m configurations cs[idx[0..m)] (one scene and size; base = the
- * position in idx of its single-surface configuration, or -1): each gets its
- * warm-up frames, then o->frames rounds in which every configuration renders
- * one frame, the order rotating from round to round. */
+/* The spec after its scene (scene= leads the canonical spec: bench_spec.c). */
+static const char *spec_after_scene(const bench_config *c)
+{
+    size_t skip = strlen(c->method->name) + strlen(":scene=") + strlen(c->scene);
+    return strlen(c->spec) >= skip ? c->spec + skip : "";
+}
+
+/* The same configuration on another scene. */
+static int same_spec(const bench_config *a, const bench_config *b)
+{
+    return a->method == b->method && !strcmp(spec_after_scene(a), spec_after_scene(b));
+}
+
+/* Median over rounds of t's time over base's (each round's frames side by side). */
+static double round_ratio(const bench_options *o, const timing_slot *t, const timing_slot *base)
+{
+    int r;
+    for (r = 0; r < o->frames; r++) t->ratio[r] = t->times[r] / base->times[r];
+    return cli_median(t->ratio, o->frames);
+}
+
+/* Times the m configurations cs[idx[0..m)] (one size; one scene unless
+ * --baseline-scene): each gets its warm-up frames, then o->frames rounds in
+ * which every configuration renders one frame, the order rotating from round
+ * to round. vs_single: against the single-surface configuration of the same
+ * scene; vs_scene: against the same spec on the baseline scene. */
 static void time_group(snell_ctx *ctx, const snell_env *env, const bench_options *o, bench_config *cs, const int *idx,
-                       int m, int base)
+                       int m)
 {
     timing_slot *ts = (timing_slot *)calloc((size_t)m, sizeof *ts);
     int i, r, k;
@@ -132,13 +176,50 @@ static void time_group(snell_ctx *ctx, const snell_env *env, const bench_options
         }
     for (i = 0; i < m; i++) {
         timing_slot *t = &ts[i];
-        if (t->c->ok && base >= 0 && ts[base].c->ok) {
-            for (r = 0; r < o->frames; r++) t->ratio[r] = t->times[r] / ts[base].times[r];
-            t->c->vs_single = cli_median(t->ratio, o->frames);
+        if (!t->c->ok) continue;
+        for (k = 0; k < m; k++) {
+            const bench_config *b = ts[k].c;
+            if (!b->ok) continue;
+            if (t->c->vs_single < 0 && b->method->method == SNELL_METHOD_SINGLE && bench_same_group(b, t->c))
+                t->c->vs_single = round_ratio(o, t, &ts[k]);
+            if (t->c->vs_scene < 0 && o->baseline_scene && !strcmp(b->scene, o->baseline_scene) && same_spec(b, t->c))
+                t->c->vs_scene = round_ratio(o, t, &ts[k]);
         }
     }
     for (i = 0; i < m; i++) close_slot(o, &ts[i]);
     free(ts);
+}
+
+/* --baseline-scene: every configuration of one size takes turns with every
+ * other, so that ratios across scenes are taken side by side; at most
+ * MAX_INTERLEAVED of them. */
+static void time_across_scenes(snell_ctx *ctx, const snell_env *env, const bench_options *o, bench_config *cs, int n,
+                               int *done)
+{
+    int idx[MAX_INTERLEAVED], i, j, m;
+    for (i = 0; i < n; i++) {
+        if (done[i]) continue;
+        for (j = i, m = 0; j < n; j++) {
+            if (done[j] || cs[j].width != cs[i].width || cs[j].height != cs[i].height) continue;
+            done[j] = 1;
+            if (m < MAX_INTERLEAVED) idx[m] = j;
+            m++;
+        }
+        if (m > MAX_INTERLEAVED) {
+            for (j = i; j < n; j++)
+                if (cs[j].width == cs[i].width && cs[j].height == cs[i].height) {
+                    cs[j].ok = 0;
+                    snprintf(cs[j].error, sizeof cs[j].error,
+                             "--baseline-scene: %d configurations at %dx%d, at most %d take turns", m, cs[i].width,
+                             cs[i].height, MAX_INTERLEAVED);
+                }
+            continue;
+        }
+        if (!o->quiet)
+            fprintf(stderr, "timing %d configuration(s) at %dx%d across scenes, taking turns frame by frame\n", m,
+                    cs[i].width, cs[i].height);
+        time_group(ctx, env, o, cs, idx, m);
+    }
 }
 
 /* At most MAX_INTERLEAVED configurations at once; a larger group is timed in
@@ -153,6 +234,11 @@ void bench_time_all(snell_ctx *ctx, const snell_env *env, const bench_options *o
             cs[i].ok = 0;
             snprintf(cs[i].error, sizeof cs[i].error, "out of memory");
         }
+        return;
+    }
+    if (o->baseline_scene) {
+        time_across_scenes(ctx, env, o, cs, n, done);
+        free(done);
         return;
     }
     for (i = 0; i < n; i++) {
@@ -170,7 +256,7 @@ void bench_time_all(snell_ctx *ctx, const snell_env *env, const bench_options *o
             if (!o->quiet)
                 fprintf(stderr, "timing %d configuration(s) of %s at %dx%d, taking turns frame by frame\n", m,
                         cs[i].scene, cs[i].width, cs[i].height);
-            time_group(ctx, env, o, cs, idx, m, single >= 0 ? 0 : -1);
+            time_group(ctx, env, o, cs, idx, m);
             for (k = 0; k < m; k++) done[idx[k]] = 1;
             if (j >= n) break;
         }
