@@ -333,7 +333,8 @@ static void config_defaults(bench_config *c, const snell_method_info *m)
 static int is_material_key(const common_key *k)
 {
     return k && (k->apply == k_ior || k->apply == k_absorption || k->apply == k_attenuation ||
-                 k->apply == k_thickness || k->apply == k_tint);
+                 k->apply == k_thickness || k->apply == k_tint || k->apply == k_dispersion ||
+                 k->apply == k_dispersion_model);
 }
 
 static int apply_key(bench_config *c, const spec_key *k, const char *value)
