@@ -49,7 +49,7 @@ static const char *path_in(const char *dir, const char *name)
     static char buf[4][1024];
     static int k;
     k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
+    if (snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name) >= (int)sizeof buf[k]) buf[k][0] = '\0'; /* too long: no such file */
     return buf[k];
 }
 

@@ -256,7 +256,7 @@ static void reflected(const water_scene *s, const double p[3], const double r[3]
 /* One view ray: rgb, exit direction, hit (1: the water surface). */
 static int trace(const water_scene *s, const double o[3], const double d[3], double rgb[3], double exit_dir[3])
 {
-    double tw = HUGE_VAL, tc, nrm[3];
+    double tw = HUGE_VAL, tc, nrm[3] = {0.0, 1.0, 0.0}; /* set by surface_hit where it finds the water */
     ref_surf os;
     int water = surface_hit(s, o, d, &tw, nrm), face = container_hit(s, o, d, &tc), k;
     memcpy(exit_dir, d, 3 * sizeof(double));
