@@ -20,6 +20,7 @@ precision highp float;
 #include "common/output.glsl"
 #include "common/surface.glsl"
 #include "common/beyond.glsl"
+#include "common/dispersion.glsl"
 
 #define MAX_INTERFACES 8     // SNELL_CUBEMAP_MAX_INTERFACES
 // SNELL_SEARCH_ITERATIONS (1..32), SNELL_LINEAR_STEPS (0..32),
@@ -28,7 +29,6 @@ precision highp float;
 
 
 uniform highp vec3 u_eye;
-uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform mat3 u_normal_matrix;    // object -> world normals
@@ -134,6 +134,24 @@ float search_exit(vec3 p, vec3 d)
     return 0.5 * (lo + hi);
 }
 
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the red or blue ray from q along d (object space per
+// world length) over the green ray's length t, then one Newton step on the
+// insideness f = stored distance - |q| with the stored distance taken as
+// constant (exact for a sphere about the centre): where that ray meets the
+// surface, without a search of its own. Updates q; returns the world normal
+// there, facing the ray.
+vec3 disp_exit(inout vec3 q, vec3 d, float t, vec3 dir)
+{
+    q += t * d;
+    float lq = length(q);
+    float rate = dot(q, d) / lq; // d|q|/dt
+    if (rate > 1e-3) q += clamp((fetch_dist(q) - lq) / rate, -t, t) * d;
+    vec3 n = normalize(u_normal_matrix * fetch_normal(q));
+    return dot(n, dir) > 0.0 ? -n : n;
+}
+#endif
+
 #if SNELL_INNER_FRESNEL
 // The branch reflected inside at the exit (weight F there): one more search
 // from the exit point q along rdir, refracted out at the next surface with
@@ -148,8 +166,8 @@ vec3 inner_branch(vec3 q, vec3 rdir, float path)
     if (dot(n3, rdir) > 0.0) n3 = -n3;
     vec3 out_dir;
     vec3 mirror = snell_reflect(rdir, n3);
-    bool exited = snell_refract(rdir, n3, u_ior, out_dir);
-    float f = exited ? snell_fresnel(-dot(rdir, n3), u_ior, 1.0) : 1.0;
+    bool exited = snell_refract(rdir, n3, snell_ior, out_dir);
+    float f = exited ? snell_fresnel(-dot(rdir, n3), snell_ior, 1.0) : 1.0;
     vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(mirror);
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, path + t);
@@ -158,7 +176,8 @@ vec3 inner_branch(vec3 q, vec3 rdir, float path)
 }
 #endif
 
-void main()
+// The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
+vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 world_pos, world_normal;
     snell_surface(world_pos, world_normal);
@@ -167,8 +186,9 @@ void main()
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);
     vec3 dir;
-    snell_refract(v, n, 1.0 / u_ior, dir);
-    float fresnel = snell_fresnel(-dot(v, n), 1.0, u_ior);
+    snell_refract(v, n, 1.0 / snell_ior, dir);
+    snell_disp_enter(v, n);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
 #if SNELL_INNER_FRESNEL
     float exit_fresnel = 0.0;   // F at the exit the chain refracted out of (0: capped, no exit)
     vec3 exit_in = dir;         // the direction that reached it from inside
@@ -179,6 +199,9 @@ void main()
     mat3 inv3 = mat3(u_inv_model);
     vec3 p = (u_inv_model * vec4(world_pos, 1.0)).xyz - u_centre;    // object, about the centre
     float path = 0.0;
+#if SNELL_DISPERSION == 2
+    vec3 p_red = p, p_blue = p; // where the red and blue rays are, after the green ray's lengths
+#endif
     // Interface 1 was the entry; pass k searches for interface k. After
     // u_max_interfaces the light is capped while inside: it leaves along its
     // current direction and absorption runs on to the next surface (the
@@ -198,10 +221,20 @@ void main()
         vec3 n2 = normalize(u_normal_matrix * fetch_normal(p));
         if (dot(n2, dir) > 0.0) n2 = -n2;                      // face the ray (it comes from inside)
         vec3 out_dir;
-        bool exited = snell_refract(dir, n2, u_ior, out_dir);
+        bool exited = snell_refract(dir, n2, snell_ior, out_dir);
+#if SNELL_DISPERSION == 2
+        // red and blue meet the surface near where their own rays are after
+        // the green ray's length: the cubemap's normal there (a curved exit
+        // bends them by its change of normal as much as by their IORs)
+        vec3 n_red = disp_exit(p_red, inv3 * snell_disp_dirs[0], t, snell_disp_dirs[0]);
+        vec3 n_blue = disp_exit(p_blue, inv3 * snell_disp_dirs[2], t, snell_disp_dirs[2]);
+        snell_disp_cross3(mat3(n_red, n2, n_blue), exited, true);
+#else
+        snell_disp_cross(n2, exited, true);
+#endif
 #if SNELL_INNER_FRESNEL
         if (exited) {
-            exit_fresnel = snell_fresnel(-dot(dir, n2), u_ior, 1.0);
+            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
             exit_in = dir;
             exit_n = n2;
             exit_path = path;
@@ -214,9 +247,9 @@ void main()
 
     highp vec3 exit_p = (u_model * vec4(p + u_centre, 1.0)).xyz;
 #if SNELL_ABSORB
-    vec3 transmitted = snell_exit(exit_p, dir) * u_tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_disp_exit(exit_p, dir) * u_tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = snell_exit(exit_p, dir) * u_tint;
+    vec3 transmitted = snell_disp_exit(exit_p, dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL && !SNELL_NO_SEARCH
     // Fresnel inside too (cubemap param inner=1): the exit transmits 1 - F
@@ -231,5 +264,6 @@ void main()
                                      : transmitted;
 #endif
     vec3 reflected = snell_env(r);
-    snell_write(mix(transmitted, reflected, fresnel), dir);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
 }

@@ -30,6 +30,8 @@ precision highp int;
 #include "common/output.glsl"
 #include "common/surface.glsl"
 #include "common/beyond.glsl"
+#define SNELL_KERNEL_MAIN 1 // main below: the fallback mark goes after the write
+#include "common/dispersion.glsl"
 
 #define MAX_INTERFACES 10    // SNELL_EXACT_MAX_INTERFACES
 #define LEAF_MAX 4           // exact.c LEAF_MAX
@@ -40,7 +42,6 @@ precision highp int;
 // defined by the program's variant (methods/exact.c).
 
 uniform highp vec3 u_eye;
-uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform highp vec4 u_bsphere;    // world bounding sphere: the fallback's absorption chord
@@ -315,7 +316,9 @@ void surface_at(int e, vec3 b, vec3 d, out vec3 p, out vec3 n)
     if (dot(n, d) > 0.0) n = -n;
 }
 
-void main()
+// The colour for one IOR, snell_ior (common/dispersion.glsl); g_over
+// accumulates over the calls, as the budget counts all of a pixel's rays.
+vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 world_pos, world_normal;
     snell_surface(world_pos, world_normal);
@@ -339,8 +342,8 @@ void main()
 
     vec3 r = snell_reflect(v, n);
     vec3 dir;
-    bool entered = snell_refract(v, n, 1.0 / u_ior, dir);
-    float fresnel = entered ? snell_fresnel_schlick(-dot(v, n), 1.0, u_ior) : 1.0;
+    bool entered = snell_refract(v, n, 1.0 / snell_ior, dir);
+    float fresnel = entered ? snell_fresnel_schlick(-dot(v, n), 1.0, snell_ior) : 1.0;
     dir = entered ? normalize(dir) : r;   // an IOR below 1 at grazing incidence: the mirror, in air
     float path = 0.0;
     // Inside: interface k (k = 1 the first surface after the entry) is
@@ -357,7 +360,7 @@ void main()
         surface_at(h, b, dir, p, n2);
         if (k >= u_max_interfaces) break;                      // the cap
         vec3 out_dir;
-        bool exited = snell_refract(dir, n2, u_ior, out_dir);
+        bool exited = snell_refract(dir, n2, snell_ior, out_dir);
         dir = normalize(out_dir);                               // refracted out, or totally reflected
         if (exited) break;
     }
@@ -367,8 +370,8 @@ void main()
         n = normalize(world_normal);
         if (dot(n, v) > 0.0) n = -n;
         r = snell_reflect(v, n);
-        snell_refract(v, n, 1.0 / u_ior, dir);
-        fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+        snell_refract(v, n, 1.0 / snell_ior, dir);
+        fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, snell_ior);
         highp vec3 oc = world_pos - u_bsphere.xyz;
         highp float ob = dot(oc, dir), oc2 = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
         path = max(-ob + sqrt(max(ob * ob - oc2, 0.0)), 0.0);
@@ -382,7 +385,15 @@ void main()
     vec3 transmitted = snell_exit(exit_p, dir) * u_tint;
 #endif
     vec3 reflected = snell_env(r);
-    snell_write(mix(transmitted, reflected, fresnel), dir);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
+}
+
+void main()
+{
+    highp vec3 exit_dir;
+    vec3 color = snell_disp_trace(exit_dir);
+    snell_write(color, exit_dir);
 #ifdef SNELL_OUTPUT_EXIT_DIR_FLOAT
     if (g_over) o_color.a = u_fallback_mark;
 #endif

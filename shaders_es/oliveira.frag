@@ -35,6 +35,7 @@ precision highp float;
 #include "common/output.glsl"
 #include "common/surface.glsl"
 #include "common/beyond.glsl"
+#include "common/dispersion.glsl"
 
 #ifndef SNELL_SCREEN_SPACE
 #error "oliveira.frag shades in screen space only: the search reads the G-buffer's front surface"
@@ -43,7 +44,6 @@ precision highp float;
 #define MAX_INTERFACES 8
 
 uniform highp vec3 u_eye;
-uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform highp mat4 u_view_proj;
@@ -139,6 +139,24 @@ highp float search(highp vec3 p, highp vec3 d, out ivec2 px_out, out bool away_o
     return s;
 }
 
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the red or blue ray from q along dir over the green
+// ray's length t (updates q), and the normal of the map the green search
+// ended in at that point's pixel, facing the ray; where the map holds no
+// surface of this object there, n_green's.
+vec3 disp_exit_normal(inout highp vec3 q, vec3 dir, highp float t, bool away, vec3 n_green)
+{
+    q += t * dir;
+    highp vec3 w = window(u_view_proj * vec4(q, 1.0));
+    highp float band = away ? float(u_back_band) : 0.0;
+    ivec2 px = ivec2(floor(clamp(w.xy, vec2(-band), g_size + band - 1.0)));
+    ivec2 tex = away ? px + u_back_band : px;
+    bool found = (away ? map_depth(u_bdepth_id, tex) : map_depth(u_gdepth_id, tex)) >= 0.0;
+    vec3 n = found ? (away ? map_normal(u_bnormal, tex) : map_normal(u_gnormal, tex)) : n_green;
+    return dot(n, dir) > 0.0 ? -n : n;
+}
+#endif
+
 #if SNELL_INNER_FRESNEL
 // The branch reflected inside at the exit: one more search from q along d,
 // refracted out at the surface found with (1 - F'), its own reflection F'
@@ -160,8 +178,8 @@ vec3 inner_branch(highp vec3 q, highp vec3 d, highp float len, highp vec3 v, vec
     }
     if (dot(n3, d) > 0.0) n3 = -n3;
     highp vec3 out_dir;
-    bool exited = snell_refract(d, n3, u_ior, out_dir);
-    float f = exited ? snell_fresnel(-dot(d, n3), u_ior, 1.0) : 1.0;
+    bool exited = snell_refract(d, n3, snell_ior, out_dir);
+    float f = exited ? snell_fresnel(-dot(d, n3), snell_ior, 1.0) : 1.0;
     vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(snell_reflect(d, n3));
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, len + t);
@@ -170,7 +188,8 @@ vec3 inner_branch(highp vec3 q, highp vec3 d, highp float len, highp vec3 v, vec
 }
 #endif
 
-void main()
+// The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
+vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     g_size = 1.0 / u_inv_size;
     highp vec3 p1, n1;
@@ -180,12 +199,16 @@ void main()
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);
     highp vec3 dir;
-    snell_refract(v, n, 1.0 / u_ior, dir);
+    snell_refract(v, n, 1.0 / snell_ior, dir);
     dir = normalize(dir);
-    float fresnel = snell_fresnel(-dot(v, n), 1.0, u_ior);
+    snell_disp_enter(v, n);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
 
     highp vec3 p = p1;
     highp float length_inside = 0.0;
+#if SNELL_DISPERSION == 2
+    highp vec3 p_red = p1, p_blue = p1; // where the red and blue rays are, after the green ray's lengths
+#endif
 #if SNELL_INNER_FRESNEL
     float exit_fresnel = 0.0;   // F at the exit the path refracted out of (0: capped, no exit)
     highp vec3 exit_in = dir, exit_p = p1;
@@ -213,10 +236,19 @@ void main()
         }
         if (dot(n2, dir) > 0.0) n2 = -n2; // face the ray (it comes from inside)
         highp vec3 next;
-        bool out_of_glass = snell_refract(dir, n2, u_ior, next); // on TIR: the mirror direction
+        bool out_of_glass = snell_refract(dir, n2, snell_ior, next); // on TIR: the mirror direction
+#if SNELL_DISPERSION == 2
+        // red and blue meet the surface near where their own rays are after
+        // the green ray's length: the map's normal there (a curved exit bends
+        // them by its change of normal as much as by their IORs)
+        snell_disp_cross3(mat3(disp_exit_normal(p_red, snell_disp_dirs[0], t, away, n2), n2,
+                               disp_exit_normal(p_blue, snell_disp_dirs[2], t, away, n2)), out_of_glass, true);
+#else
+        snell_disp_cross(n2, out_of_glass, true);
+#endif
 #if SNELL_INNER_FRESNEL
         if (out_of_glass) {
-            exit_fresnel = snell_fresnel(-dot(dir, n2), u_ior, 1.0);
+            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
             exit_in = dir;
             exit_n = n2;
             exit_p = p;
@@ -228,9 +260,9 @@ void main()
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_exit(p, dir) * u_tint * snell_beer_lambert(u_sigma, length_inside);
+    vec3 transmitted = snell_disp_exit(p, dir) * u_tint * snell_beer_lambert(u_sigma, length_inside);
 #else
-    vec3 transmitted = snell_exit(p, dir) * u_tint;
+    vec3 transmitted = snell_disp_exit(p, dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel at the exit too: it transmits 1 - F and reflects F back in,
@@ -241,5 +273,6 @@ void main()
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner : transmitted;
 #endif
     vec3 reflected = snell_env(r);
-    snell_write(mix(transmitted, reflected, fresnel), dir);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
 }

@@ -46,6 +46,7 @@ precision highp float;
 #include "common/output.glsl"
 #include "common/surface.glsl"
 #include "common/beyond.glsl"
+#include "common/dispersion.glsl"
 
 #define MAX_LAYERS 8          // SNELL_PEEL_MAX_LAYERS
 #define MAX_INTERFACES 10     // SNELL_PEEL_MAX_INTERFACES
@@ -55,7 +56,6 @@ precision highp float;
 // the program's variant (methods/peel.c).
 
 uniform highp vec3 u_eye;
-uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform highp mat4 u_view_proj;
@@ -247,6 +247,26 @@ vec3 crossing_normal(highp vec3 p, vec3 dir, int kind, int j, int m, highp float
     return layer_normal_at(qb, kind == 1 ? m - 1 : m);
 }
 
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the red or blue ray from q along dir over the green
+// ray's length t towards layer k, then one Newton step on its depth against
+// the layer's at its pixel: near where that ray crosses the layer, without a
+// search of its own. Updates q; returns the layer's normal there, facing the
+// ray; n_green (green's, facing green's ray) where that normal is more than
+// 18 degrees off it: across a crease (a prism's edge) the texel is another
+// face's, not the one green crossed.
+vec3 disp_crossing(inout highp vec3 q, vec3 dir, highp float t, int k, vec3 n_green)
+{
+    q += t * dir;
+    highp float rate = dot(dir, u_fwd) * u_inv_range; // depth per unit of t
+    highp float z = layer_depth(pixel_of(q), k);
+    if (z != EMPTY && abs(rate) > 1e-6) q += clamp((z - depth_of(q)) / rate, -t, t) * dir;
+    vec3 n = normalize(layer_normal_at(q, k));
+    n = dot(n, dir) > 0.0 ? -n : n;
+    return dot(n, n_green) < 0.95 ? n_green : n;
+}
+#endif
+
 #if SNELL_INNER_FRESNEL
 // The branch reflected inside at the last exit (weight F there): one more
 // search from q (in inside gap j) along rdir, refracted out at the surface
@@ -262,8 +282,8 @@ vec3 inner_branch(highp vec3 q, vec3 rdir, int j, highp float step, highp float 
     vec3 n2 = normalize(crossing_normal(q, rdir, kind == 0 ? 2 : kind, j, m, ta, tb, next));
     if (dot(n2, rdir) > 0.0) n2 = -n2;
     vec3 out_dir;
-    bool exited = snell_refract(rdir, n2, u_ior, out_dir);
-    float f = kind == 0 ? 0.0 : exited ? snell_fresnel(-dot(rdir, n2), u_ior, 1.0) : 1.0;
+    bool exited = snell_refract(rdir, n2, snell_ior, out_dir);
+    float f = kind == 0 ? 0.0 : exited ? snell_fresnel(-dot(rdir, n2), snell_ior, 1.0) : 1.0;
     out_dir = kind == 0 ? rdir : normalize(out_dir);
     vec3 l = (1.0 - f) * snell_env(out_dir) + f * snell_env(snell_reflect(rdir, n2));
 #if SNELL_ABSORB
@@ -273,7 +293,8 @@ vec3 inner_branch(highp vec3 q, vec3 rdir, int j, highp float step, highp float 
 }
 #endif
 
-void main()
+// The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
+vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 p1, n1;
     snell_surface(p1, n1);
@@ -282,14 +303,18 @@ void main()
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);
     vec3 dir;
-    snell_refract(v, n, 1.0 / u_ior, dir);
+    snell_refract(v, n, 1.0 / snell_ior, dir);
     dir = normalize(dir);
-    float fresnel = snell_fresnel(-dot(v, n), 1.0, u_ior);
+    snell_disp_enter(v, n);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
 
     highp vec3 p = p1;
     highp float step = 2.0 * u_bsphere.w / float(SNELL_PEEL_LINEAR);
     highp float path = 0.0;
     vec3 tint = u_tint;
+#if SNELL_DISPERSION == 2
+    highp vec3 p_red = p, p_blue = p; // where the red and blue rays are, after the green ray's lengths
+#endif
     int j = 1;             // the gap the ray is in
     int done = 1;          // interfaces processed (the entry)
 #if SNELL_INNER_FRESNEL
@@ -320,10 +345,28 @@ void main()
         if (dot(n2, dir) > 0.0) n2 = -n2;   // face the ray
         vec3 out_dir;
         bool inside = (j & 1) == 1;
-        bool through = snell_refract(dir, n2, inside ? u_ior : 1.0 / u_ior, out_dir);
+        bool through = snell_refract(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+#if SNELL_DISPERSION == 2
+        // red and blue cross the layer near where their own rays are after
+        // the green ray's length: its normal there (a curved surface bends
+        // them by its change of normal as much as by their IORs); through
+        // the silhouette, green's
+        mat3 n_rgb = mat3(n2, n2, n2);
+        if (kind != 3) {
+            int layer = kind == 1 ? m - 1 : m;
+            n_rgb[0] = disp_crossing(p_red, snell_disp_dirs[0], tb, layer, n2);
+            n_rgb[2] = disp_crossing(p_blue, snell_disp_dirs[2], tb, layer, n2);
+        } else {
+            p_red += tb * snell_disp_dirs[0];
+            p_blue += tb * snell_disp_dirs[2];
+        }
+        snell_disp_cross3(n_rgb, through, inside);
+#else
+        snell_disp_cross(n2, through, inside);
+#endif
 #if SNELL_INNER_FRESNEL
         if (through && inside) {
-            exit_fresnel = snell_fresnel(-dot(dir, n2), u_ior, 1.0);
+            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
             exit_in = dir;
             exit_n = n2;
             exit_q = p + ta * dir;       // qa
@@ -345,9 +388,9 @@ void main()
     }
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_exit(p, dir) * tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_disp_exit(p, dir) * tint * snell_beer_lambert(u_sigma, path);
 #else
-    vec3 transmitted = snell_exit(p, dir) * tint;
+    vec3 transmitted = snell_disp_exit(p, dir) * tint;
 #endif
 #if SNELL_INNER_FRESNEL
     // Fresnel inside too (peel param inner=on): the last exit transmits
@@ -362,5 +405,6 @@ void main()
                                      : transmitted;
 #endif
     vec3 reflected = snell_env(r);
-    snell_write(mix(transmitted, reflected, fresnel), dir);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
 }

@@ -14,17 +14,18 @@ precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 #include "common/output.glsl"
 #include "common/surface.glsl"
 #include "common/beyond.glsl"
+#include "common/dispersion.glsl"
 
 
 uniform highp vec3 u_eye;
-uniform float u_ior;             // glass IOR; outside is 1
 uniform vec3 u_sigma;            // Beer-Lambert coefficient per world unit
 uniform vec3 u_tint;
 uniform highp vec4 u_bsphere;    // bounding sphere: world centre, radius
 uniform float u_thickness;       // SNELL_THIN: wall thickness, world units
 
 
-void main()
+// The colour for one IOR, snell_ior (outside is 1; common/dispersion.glsl calls it).
+vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 world_pos, world_normal;
     snell_surface(world_pos, world_normal);
@@ -38,14 +39,17 @@ void main()
     vec3 r = snell_h(snell_reflect(snell_h(v), n));
 #ifdef SNELL_THIN
     vec3 rs, ts;
-    snell_thin_slab(-dot(v, n), u_ior, u_sigma, u_thickness, rs, ts);
+    snell_thin_slab(-dot(v, n), snell_ior, u_sigma, u_thickness, rs, ts);
     highp vec3 through = v; // straight on through the wall (snell_exit: to what lies beyond)
-    snell_write(snell_exit(world_pos, through) * u_tint * ts + snell_env(r) * rs, through);
+    vec3 color = snell_exit(world_pos, through) * u_tint * ts + snell_env(r) * rs;
+    exit_dir = through;
+    return color;
 #else
     vec3 t;
-    snell_refract(snell_h(v), n, snell_h(1.0 / u_ior), t);
+    snell_refract(snell_h(v), n, snell_h(1.0 / snell_ior), t);
     t = snell_h(t);
-    float fresnel = snell_h(snell_fresnel_schlick(snell_h(-dot(v, n)), 1.0, u_ior));
+    snell_disp_enter(v, n);
+    float fresnel = snell_h(snell_fresnel_schlick(snell_h(-dot(v, n)), 1.0, snell_ior));
 
 #ifdef SNELL_ABSORB
     // Only in the variant with absorption: exp per lane was 16% of the
@@ -55,11 +59,12 @@ void main()
     highp float c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
     highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
 
-    vec3 transmitted = snell_h(snell_exit(world_pos, t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
+    vec3 transmitted = snell_h(snell_disp_exit(world_pos, t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
 #else
-    vec3 transmitted = snell_h(snell_exit(world_pos, t) * u_tint);
+    vec3 transmitted = snell_h(snell_disp_exit(world_pos, t) * u_tint);
 #endif
     vec3 reflected = snell_h(snell_env(r));
-    snell_write(mix(transmitted, reflected, fresnel), t);
+    exit_dir = t;
+    return mix(transmitted, reflected, fresnel);
 #endif
 }

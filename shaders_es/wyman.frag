@@ -22,9 +22,9 @@ precision highp float;
 #include "common/output.glsl"
 #include "common/surface.glsl"
 #include "common/beyond.glsl"
+#include "common/dispersion.glsl"
 
 uniform highp vec3 u_eye;
-uniform float u_ior;
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform mat4 u_model;                // object -> world
@@ -71,7 +71,23 @@ bool back_face(ivec2 px, out highp vec3 pos, out highp vec3 normal)
     return true;
 }
 
-void main()
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the back-face map's normal at the projection of q, a
+// red or blue ray's exit estimate, facing that ray's direction dir; n_green
+// where the map holds no back face of this object there.
+vec3 disp_exit_normal(highp vec3 q, vec3 dir, ivec2 size, vec3 n_green)
+{
+    highp vec3 pb, n;
+    highp vec4 c = u_view_proj * vec4(q, 1.0);
+    ivec2 px = ivec2(floor((c.xy / c.w * 0.5 + 0.5) * vec2(size)));
+    bool inside = c.w > 0.0 && all(greaterThanEqual(px, ivec2(-u_back_band))) && all(lessThan(px, size + u_back_band));
+    if (!(inside && back_face(px, pb, n))) n = n_green;
+    return dot(n, dir) > 0.0 ? -n : n;
+}
+#endif
+
+// The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
+vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 p1, n1;
     snell_surface(p1, n1);
@@ -80,9 +96,10 @@ void main()
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);
     vec3 t1;
-    snell_refract(v, n, 1.0 / u_ior, t1);
+    snell_refract(v, n, 1.0 / snell_ior, t1);
     t1 = normalize(t1);
-    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
+    snell_disp_enter(v, n);
+    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, snell_ior);
 
     // d_N in world units: the object-space thickness along the inward normal,
     // scaled as the model matrix stretches the normal's object direction.
@@ -93,7 +110,7 @@ void main()
     float d_v = back_face(ivec2(gl_FragCoord.xy), pb, nb) ? max(dot(pb - p1, v), 0.0) : d_n;
     float th_i = acos(clamp(-dot(v, n), 0.0, 1.0));
     float th_t = acos(clamp(-dot(t1, n), 0.0, 1.0));
-    float w = th_i > 1e-3 ? th_t / th_i : 1.0 / u_ior; // the ratio's limit at normal incidence
+    float w = th_i > 1e-3 ? th_t / th_i : 1.0 / snell_ior; // the ratio's limit at normal incidence
     float d = w * d_v + (1.0 - w) * d_n;
     highp vec3 p2 = p1 + d * t1;
 
@@ -108,14 +125,24 @@ void main()
     }
     if (dot(n2, t1) > 0.0) n2 = -n2; // face the ray (it comes from inside)
     vec3 dir;
-    snell_refract(t1, n2, u_ior, dir); // refracted out, or on TIR reflected: the capped direction
+    bool exited = snell_refract(t1, n2, snell_ior, dir); // refracted out, or on TIR reflected: the capped direction
     dir = normalize(dir);
+#if SNELL_DISPERSION == 2
+    // red and blue leave near where their own rays are after the green ray's
+    // length d: the back-face map's normal there (a curved exit bends them by
+    // its change of normal as much as by their IORs), else green's
+    snell_disp_cross3(mat3(disp_exit_normal(p1 + d * snell_disp_dirs[0], snell_disp_dirs[0], size, n2), n2,
+                           disp_exit_normal(p1 + d * snell_disp_dirs[2], snell_disp_dirs[2], size, n2)), exited, true);
+#else
+    snell_disp_cross(n2, exited, true);
+#endif
 
 #if SNELL_ABSORB
-    vec3 transmitted = snell_exit(p2, dir) * u_tint * snell_beer_lambert(u_sigma, d);
+    vec3 transmitted = snell_disp_exit(p2, dir) * u_tint * snell_beer_lambert(u_sigma, d);
 #else
-    vec3 transmitted = snell_exit(p2, dir) * u_tint;
+    vec3 transmitted = snell_disp_exit(p2, dir) * u_tint;
 #endif
     vec3 reflected = snell_env(r);
-    snell_write(mix(transmitted, reflected, fresnel), dir);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
 }

@@ -18,7 +18,8 @@ if(TARGET snell-bench)
   set_tests_properties(bench_env_lookup_bad PROPERTIES LABELS "cli")
   foreach(bad "-b|nosuch" "-b|cubemap:iterations=0" "-b|cubemap:face=99999" "--frames|0" "-b|auto"
               "-b|single:iterations=4" "-b|cubemap:encoding=rgb" "-b|cubemap:scene=pair:attenuation=2/1/1/1"
-              "-b|single:lod=0" "-b|single:lod=1.5" "-b|single:lod=nan"
+              "-b|single:lod=0" "-b|single:lod=1.5" "-b|single:lod=nan" "-b|single:dispersion=-1"
+              "-b|single:dispersion=21" "-b|single:dispersion_model=spectral"
               "-b|single:methods=nosuch" "-b|single:methods=peel//single")
     string(MAKE_C_IDENTIFIER "bench_bad_${bad}" name)
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=${bad}" -DCODE=2 "-DERR=snell-bench: "

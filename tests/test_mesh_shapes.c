@@ -193,6 +193,24 @@ static void test_cube(void)
     snell_mesh_destroy(m);
 }
 
+static void test_prism(void)
+{
+    snell_mesh *m = make(SNELL_SHAPE_PRISM, 0, 0);
+    double area = 3.0 * sqrt(3.0) / 4.0; /* equilateral triangle of circumradius 1 */
+    float mn[3], mx[3];
+    if (!m) return;
+    CHECK(snell_mesh_vertex_count(m) == 18 && snell_mesh_triangle_count(m) == 8, "prism counts");
+    check_closed(m, "prism");
+    CHECK(fabs(signed_volume(m) - 2.0 * area) < 1e-6, "prism volume %.9f vs %.9f", signed_volume(m), 2.0 * area);
+    check_normals_outward(m, "prism", 0.9999999); /* flat: vertex normal == face normal */
+    snell_mesh_bounds(m, mn, mx);
+    CHECK(mn[0] == -0.5f && mx[0] == 1.0f && mn[1] == -1.0f && mx[1] == 1.0f &&
+          fabsf(mx[2] - 0.8660254f) < 1e-6f && fabsf(mn[2] + 0.8660254f) < 1e-6f, "prism bounds");
+    CHECK(fabs(winding(m, 0.9, 0.5, 0.0) - 1.0) < 1e-9 && fabs(winding(m, -0.45, -0.9, 0.9)) < 1e-9 && fabs(winding(m, -0.45, -0.9, 0.8) - 1.0) < 1e-9 &&
+          fabs(winding(m, -0.6, 0, 0)) < 1e-9, "prism inside/outside");
+    snell_mesh_destroy(m);
+}
+
 static void test_torus(void)
 {
     snell_mesh *m = make(SNELL_SHAPE_TORUS, 64, 32);
@@ -328,6 +346,7 @@ int main(void)
     test_sphere(3, 2);
     test_sphere(7, 5);
     test_cube();
+    test_prism();
     test_torus();
     test_goblet(0, 0);
     test_goblet(24, 12);

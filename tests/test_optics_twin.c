@@ -12,7 +12,10 @@
  * unpolarised Fresnel reflectance (snell_opt_fresnel_exact /
  * snell_fresnel_exact) against its angle form and its physical properties
  * (reciprocity, Brewster's angle, grazing, critical angle); no reflection at
- * matched indices in either model. */
+ * matched indices in either model. The per-channel refraction of a
+ * dispersive material (snell_opt_refract_rgb / snell_refract_rgb) on a grid
+ * of its own. (The channels' IORs themselves, snell_opt_ior_rgb, are
+ * computed on the CPU only: test_dispersion.) */
 #include "test_util.h"
 #include "core/gl.h"
 #include "core/optics.h"
@@ -275,6 +278,144 @@ static void thin_slab_twin(snell_ctx *ctx)
     glDeleteProgram(prog);
 }
 
+/* The per-channel refraction of the one-path dispersion (snell_refract_rgb /
+ * snell_opt_refract_rgb): three directions, three normals and three etas,
+ * the channels' IORs of a dispersive material (snell_optd_ior_rgb) entering
+ * and leaving, so that some channels are totally reflected where others
+ * refract; each channel against optics.h's refraction in double. */
+static const char rgb_vs[] = "precision highp float;\n"
+                             "#include \"common/optics.glsl\"\n"
+                             "layout(location = 0) in vec3 a_i0;\n"
+                             "layout(location = 1) in vec3 a_i1;\n"
+                             "layout(location = 2) in vec3 a_i2;\n"
+                             "layout(location = 3) in vec3 a_n0;\n"
+                             "layout(location = 4) in vec3 a_n1;\n"
+                             "layout(location = 5) in vec3 a_n2;\n"
+                             "layout(location = 6) in vec3 a_eta;\n"
+                             "out vec4 o_t0, o_t1, o_t2; // direction, refracted? 1 : 0\n"
+                             "void main() {\n"
+                             "    mat3 t;\n"
+                             "    bvec3 ok = snell_refract_rgb(mat3(a_i0, a_i1, a_i2), mat3(a_n0, a_n1, a_n2), a_eta, t);\n"
+                             "    o_t0 = vec4(t[0], ok.x ? 1.0 : 0.0);\n"
+                             "    o_t1 = vec4(t[1], ok.y ? 1.0 : 0.0);\n"
+                             "    o_t2 = vec4(t[2], ok.z ? 1.0 : 0.0);\n"
+                             "    gl_Position = vec4(0.0);\n"
+                             "}\n";
+
+typedef struct rgb_input { float i[3][3], n[3][3], eta[3]; } rgb_input;
+
+static void refract_rgb_twin(snell_ctx *ctx)
+{
+    static const double rgb_ior[] = {1.33, 1.5, 2.42}, rgb_disp[] = {0.0, 0.36, 1.0, 3.0};
+    enum { NA = sizeof angles_deg / sizeof *angles_deg, NR = 3, ND = 4, N = NA * NR * ND * 2 };
+    const char *varyings[] = {"o_t0", "o_t1", "o_t2"};
+    static rgb_input in[N];
+    static float out[3][N][4];
+    GLuint prog = 0, vao, vbo, tfb[3], fbo, rb;
+    int k = 0, c, j, split = 0;
+    double max_err = 0.0;
+    CHECK_OK(snell__program_build_feedback(ctx, rgb_vs, NULL, varyings, 3, &prog));
+    if (!prog) return;
+    for (int a = 0; a < NA; a++)
+        for (int m = 0; m < NR; m++)
+            for (int d = 0; d < ND; d++)
+                for (int leave = 0; leave < 2; leave++) {
+                    double n_rgb[3];
+                    snell_optd_ior_rgb(rgb_ior[m], rgb_disp[d], n_rgb);
+                    for (c = 0; c < 3; c++) {
+                        /* each channel's own direction and normal: turned by (c - 1) * 0.01 rad */
+                        double th = angles_deg[a] * SNELL_PI / 180.0 + (c - 1) * 0.01, tilt = (c - 1) * 0.01;
+                        in[k].i[c][0] = (float)sin(th);
+                        in[k].i[c][1] = 0.0f;
+                        in[k].i[c][2] = (float)-cos(th);
+                        in[k].n[c][0] = (float)sin(tilt);
+                        in[k].n[c][1] = 0.0f;
+                        in[k].n[c][2] = (float)cos(tilt);
+                        in[k].eta[c] = (float)(leave ? n_rgb[c] : 1.0 / n_rgb[c]);
+                    }
+                    k++;
+                }
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof in, in, GL_STATIC_DRAW);
+    for (c = 0; c < 3; c++) {
+        glEnableVertexAttribArray((GLuint)c);
+        glVertexAttribPointer((GLuint)c, 3, GL_FLOAT, GL_FALSE, sizeof(rgb_input),
+                              (void *)(offsetof(rgb_input, i) + c * 3 * sizeof(float)));
+        glEnableVertexAttribArray((GLuint)(3 + c));
+        glVertexAttribPointer((GLuint)(3 + c), 3, GL_FLOAT, GL_FALSE, sizeof(rgb_input),
+                              (void *)(offsetof(rgb_input, n) + c * 3 * sizeof(float)));
+    }
+    glEnableVertexAttribArray(6);
+    glVertexAttribPointer(6, 3, GL_FLOAT, GL_FALSE, sizeof(rgb_input), (void *)offsetof(rgb_input, eta));
+    glGenBuffers(3, tfb);
+    for (c = 0; c < 3; c++) {
+        glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, tfb[c]);
+        glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, sizeof out[c], NULL, GL_STATIC_READ);
+        glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, (GLuint)c, tfb[c]);
+    }
+    glGenFramebuffers(1, &fbo);
+    glGenRenderbuffers(1, &rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+    glUseProgram(prog);
+    glEnable(GL_RASTERIZER_DISCARD);
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, N);
+    glEndTransformFeedback();
+    glDisable(GL_RASTERIZER_DISCARD);
+    for (c = 0; c < 3; c++) {
+        void *p;
+        glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, tfb[c]);
+        p = glMapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, sizeof out[c], GL_MAP_READ_BIT);
+        CHECK(p != NULL, "map per-channel feedback buffer %d", c);
+        if (p) memcpy(out[c], p, sizeof out[c]);
+        glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
+    }
+    CHECK(glGetError() == GL_NO_ERROR, "GL error (per-channel refraction)");
+    for (k = 0; k < N; k++) {
+        float t[3][3];
+        int through = snell_opt_refract_rgb((const float(*)[3])in[k].i, (const float(*)[3])in[k].n, in[k].eta, t);
+        int split_here = 0;
+        for (c = 0; c < 3; c++) {
+            double id[3], nd[3], td[3], cos_i, k_disc;
+            int okd;
+            for (j = 0; j < 3; j++) {
+                id[j] = in[k].i[c][j];
+                nd[j] = in[k].n[c][j];
+            }
+            okd = snell_optd_refract(id, nd, (double)in[k].eta[c], td);
+            cos_i = -snell_optd_dot(id, nd);
+            k_disc = 1.0 - (double)in[k].eta[c] * in[k].eta[c] * (1.0 - cos_i * cos_i);
+            split_here += okd;
+            if (fabs(k_disc) <= 1e-5) continue; /* the TIR decision within float rounding */
+            CHECK(((through >> c) & 1) == okd && (out[c][k][3] != 0.0f) == okd,
+                  "per-channel input %d channel %d: refracted C=%d GL=%g double=%d", k, c, (through >> c) & 1,
+                  out[c][k][3], okd);
+            for (j = 0; j < 3; j++) {
+                double tol = 2e-6 + 4e-7 / sqrt(fabs(k_disc)), eg = fabs(out[c][k][j] - td[j]), ec = fabs(t[c][j] - td[j]);
+                if (eg > max_err) max_err = eg;
+                CHECK(eg <= tol && ec <= tol, "per-channel input %d channel %d comp %d: GL %.9g C %.9g double %.9g", k,
+                      c, j, out[c][k][j], t[c][j], td[j]);
+            }
+        }
+        split += split_here == 1 || split_here == 2;
+    }
+    CHECK(split >= 4, "the grid must have channels refracted where others are totally reflected (%d)", split);
+    printf("per-channel refraction: %d inputs x 3 channels, %d with the channels split by TIR; max |GL - double| %.3g\n",
+           N, split, max_err);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &rb);
+    glDeleteBuffers(3, tfb);
+    glDeleteBuffers(1, &vbo);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteProgram(prog);
+}
+
 int main(void)
 {
     snell_ctx *ctx = test_ctx();
@@ -423,6 +564,7 @@ int main(void)
     glDeleteVertexArrays(1, &vao);
     glDeleteProgram(prog);
     thin_slab_twin(ctx);
+    refract_rgb_twin(ctx);
     snell_ctx_destroy(ctx);
     return test_finish();
 }

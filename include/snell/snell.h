@@ -188,7 +188,10 @@ typedef enum snell_shape {
     SNELL_SHAPE_SPHERE = 0,  /* UV sphere, radius 1 */
     SNELL_SHAPE_CUBE,        /* cube [-1,1]^3, flat faces (24 vertices) */
     SNELL_SHAPE_TORUS,       /* major radius 1, minor radius 0.4, around +Y */
-    SNELL_SHAPE_GOBLET       /* closed lathe goblet (concave bowl, stem, foot), height 2 */
+    SNELL_SHAPE_GOBLET,      /* closed lathe goblet (concave bowl, stem, foot), height 2 */
+    SNELL_SHAPE_PRISM        /* triangular prism, flat faces (18 vertices): an equilateral
+                              * triangle of circumradius 1 in the XZ plane with an edge (the apex)
+                              * on +X and the base face towards -X, y from -1 to 1 */
 } snell_shape;
 
 typedef struct snell_shape_desc {
@@ -519,6 +522,20 @@ typedef struct snell_peel_params {
 #define SNELL_PEEL_MAX_LAYERS 8
 #define SNELL_PEEL_MAX_INTERFACES 10
 
+/* How a kernel renders a dispersive material (snell_glass_material.dispersion > 0).
+ * SNELL_METHOD_EXACT always traces per channel (its traversal finds each
+ * channel's true exits). */
+typedef enum snell_dispersion_model {
+    SNELL_DISPERSION_AUTO = 0,        /* the measured better trade: ONE_PATH (bench/BENCHMARKS.md,
+                                       * "Dispersion") */
+    SNELL_DISPERSION_PER_CHANNEL,     /* the kernel's whole trace three times, once with each channel's
+                                       * IOR, each giving its own channel: 3x the cost */
+    SNELL_DISPERSION_ONE_PATH         /* one trace with the green IOR; the red and blue directions are
+                                       * refracted with their own IORs at the entry and at every
+                                       * interface of that path (its normals, its events), and looked
+                                       * up per channel at the end */
+} snell_dispersion_model;
+
 /* Whether AUTO may choose SNELL_METHOD_EXACT. */
 typedef enum snell_exact_auto {
     SNELL_EXACT_AUTO_DEFAULT = 0, /* SNELL_EXACT_AUTO_NEVER */
@@ -575,6 +592,16 @@ typedef struct snell_glass_material {
     float thickness;
     float tint[3];                 /* multiplies transmitted light (glTF baseColorFactor under
                                     * KHR_materials_transmission); all zero = white */
+    /* KHR_materials_dispersion "dispersion" = 20 / V_d (V_d the Abbe number,
+     * (n_d - 1) / (n_F - n_C)); 0 = none (every channel at ior), 0..20.
+     * Per channel the spec's two-term Cauchy fit through ior at 587.6 nm,
+     * n(l) = max(ior + (ior - 1) / V_d * (523655 / l^2 - 1.5168), 1), l in nm,
+     * at the Fraunhofer lines the Abbe number is defined by: red 656.3 nm
+     * (C), green 587.6 nm (d: ior itself), blue 486.1 nm (F): BK7 glass
+     * (V_d 64.2, 0.31) gives 1.5144, 1.5168, 1.5222. Solids only: a thin wall
+     * sends light on parallel to how it came, so it has no colour fringes. */
+    float dispersion;
+    snell_dispersion_model dispersion_model; /* used when dispersion > 0 */
     snell_method method;           /* SNELL_METHOD_AUTO = chosen per object and frame */
     snell_cubemap_params cubemap;  /* used when the method (or AUTO's choice) is CUBEMAP */
     snell_wyman_params wyman;      /* used when it is WYMAN */
@@ -592,6 +619,8 @@ typedef struct snell_glass_resolved {
                                     * HUGE_VALF when there is no absorption */
     float absorption[3];           /* per world unit, rgb; 0 = none */
     int absorbs;                   /* any absorption > 0 */
+    float ior_rgb[3];              /* the IOR of each colour channel (dispersion); all ior without */
+    int disperses;                 /* a solid with dispersion > 0: the channels' IORs differ */
 } snell_glass_resolved;
 
 /* Resolves and validates `in` (NULL = all defaults) into *out. SNELL_E_INVALID_ARG
@@ -601,6 +630,11 @@ snell_status snell_glass_defaults(const snell_glass_material *in, snell_glass_re
 /* Per-unit absorption -> the glTF form (distance 1, colour exp(-sigma)); for
  * callers that think in Beer-Lambert coefficients. */
 void snell_glass_set_absorption(snell_glass_material *m, const float sigma[3]);
+
+/* Dispersion from an Abbe number V_d (> 0; e.g. 64.2 for BK7, 55 for
+ * diamond): m->dispersion = 20 / V_d. SNELL_E_INVALID_ARG for V_d <= 1 or
+ * not finite (dispersion above 20), leaving m unchanged. */
+snell_status snell_glass_set_abbe(snell_glass_material *m, float abbe);
 
 /* ------------------------------------------------------- method registry */
 /* One integer parameter of a method (enums are integers with value names). */
@@ -876,14 +910,15 @@ typedef struct snell_frame_stats {
  * an opaque object (base colour; glTF's default material is opaque white).
  * Glass: KHR_materials_ior's ior (default 1.5), baseColorFactor as the tint,
  * KHR_materials_volume with thicknessFactor > 0 a solid with its attenuation
- * colour and distance, without it a thin wall (glTF's "infinitely thin"; a
+ * colour and distance and KHR_materials_dispersion's dispersion (0..20, else
+ * SNELL_E_PARSE), without it a thin wall (glTF's "infinitely thin"; a
  * 1e-4 wall here). Geometry stays in each node's local space, the node's
  * world transform is the object's model matrix; primitives instanced by
  * several nodes share one mesh. The first camera met in the node tree, if
  * any, becomes snell_scene_file_camera (eye and view direction kept, roll
  * dropped: snell's camera keeps +Y up). Other extensions are ignored with
  * one INFO log line; a file that requires a KHR_materials_* extension other
- * than those three is SNELL_E_UNSUPPORTED, beyond that the rules and trust
+ * than those four is SNELL_E_UNSUPPORTED, beyond that the rules and trust
  * model of snell_mesh_load_gltf_ex apply (flags likewise). More than
  * SNELL_MAX_GLASS glass or SNELL_MAX_OPAQUE opaque objects is SNELL_E_LIMIT. */
 typedef struct snell_scene_file snell_scene_file;

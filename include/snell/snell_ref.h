@@ -66,6 +66,14 @@
  *    goes to. MATCHED, like the kernels, flips the smooth normal by its own
  *    sign.
  *
+ * Dispersion (both modes): where a glass object's material disperses
+ * (snell_glass_material.dispersion > 0, a solid), every ray is traced three
+ * times, with every dispersive object at its red, its green (= ior) and its
+ * blue IOR (snell_glass_resolved.ior_rgb: the Cauchy fit at 656.3, 587.6 and
+ * 486.1 nm), each trace giving its own channel of rgb (and of sample_var):
+ * per channel, not spectral. The path outputs (exit_dir, interfaces, the
+ * traced path) are the green trace's.
+ *
  * Interface cap (both modes): an "interface" is one ray-glass surface hit that
  * is processed (refracted and/or reflected, or a thin wall crossed); the first
  * glass surface is interface 1, and the count runs on over every object along

@@ -158,6 +158,8 @@ static int scene_key(const snell_ref_desc *scene, const snell_ref_params *p, con
         key_add(key, size, &len, " ior=%.9g abs=%.9g/%.9g/%.9g tint=%.9g/%.9g/%.9g thickness=%.9g", r.material.ior,
                 r.absorption[0], r.absorption[1], r.absorption[2], r.material.tint[0], r.material.tint[1],
                 r.material.tint[2], r.material.thickness);
+        /* only when on, so that the keys of non-dispersive scenes stay those already cached */
+        if (r.disperses) key_add(key, size, &len, " dispersion=%.9g", r.material.dispersion);
     }
     for (i = 0; i < scene->opaque_count; i++) {
         const snell_opaque *q = &scene->opaque[i];

@@ -95,6 +95,20 @@ static int k_thickness(bench_config *c, const char *v)
     return parse_vec("thickness", v, &c->glass.thickness, 1, 0.0f, 1e6f);
 }
 
+static int k_dispersion(bench_config *c, const char *v)
+{
+    return parse_vec("dispersion", v, &c->glass.dispersion, 1, 0.0f, 20.0f);
+}
+
+static int k_dispersion_model(bench_config *c, const char *v)
+{
+    if (!strcmp(v, "auto")) c->glass.dispersion_model = SNELL_DISPERSION_AUTO;
+    else if (!strcmp(v, "per-channel")) c->glass.dispersion_model = SNELL_DISPERSION_PER_CHANNEL;
+    else if (!strcmp(v, "one-path")) c->glass.dispersion_model = SNELL_DISPERSION_ONE_PATH;
+    else return bad("dispersion_model", v, "auto, per-channel or one-path");
+    return 1;
+}
+
 static int k_tint(bench_config *c, const char *v) { return parse_vec("tint", v, c->glass.tint, 3, 0.0f, 1.0f); }
 
 static int k_camera(bench_config *c, const char *v)
@@ -186,6 +200,9 @@ static const common_key g_common[] = {
     {"attenuation", "glTF's form instead: r/g/b/distance, the colour white light turns after distance", k_attenuation},
     {"thickness", "thin walls of this thickness instead of solid glass (default 0: solid)", k_thickness},
     {"tint", "transmission tint r/g/b (default %g/%g/%g)", k_tint},
+    {"dispersion", "KHR_materials_dispersion's 20/Abbe number, 0..20 (default 0: none; BK7 0.31, diamond 0.36)",
+     k_dispersion},
+    {"dispersion_model", "auto (default: one-path), per-channel (three traces) or one-path", k_dispersion_model},
     {"camera", "orbit camera az/el/dist, degrees (default: the scene's, 30/20/3.5 for one mesh)", k_camera},
     {"shading", "auto (default), forward or screen (the renderer's screen-space stage)", k_shading},
     {"ssaa", "supersampling S (the renderer's ssaa: S x S, box-resolved), timed and measured", k_ssaa},
@@ -316,7 +333,8 @@ static void config_defaults(bench_config *c, const snell_method_info *m)
 static int is_material_key(const common_key *k)
 {
     return k && (k->apply == k_ior || k->apply == k_absorption || k->apply == k_attenuation ||
-                 k->apply == k_thickness || k->apply == k_tint);
+                 k->apply == k_thickness || k->apply == k_tint || k->apply == k_dispersion ||
+                 k->apply == k_dispersion_model);
 }
 
 static int apply_key(bench_config *c, const spec_key *k, const char *value)

@@ -5,9 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *const cli_shape_names = "sphere|cube|torus|goblet, @N for N segments";
+const char *const cli_shape_names = "sphere|cube|torus|goblet|prism, @N for N segments";
 
-static const char *const g_shapes[] = {"sphere", "cube", "torus", "goblet"}; /* snell_shape order */
+static const char *const g_shapes[] = {"sphere", "cube", "torus", "goblet", "prism"}; /* snell_shape order */
 
 int cli_is_shape_spec(const char *name) { return strncmp(name, "shape:", 6) == 0; }
 

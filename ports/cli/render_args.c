@@ -41,6 +41,11 @@ void render_usage(FILE *f)
             "  --attenuation R,G,B,D  glTF's form: the colour white light turns after distance D (default none)\n"
             "  --tint R,G,B           multiplies transmitted light (default %g,%g,%g)\n"
             "  --thickness T          a thin wall of thickness T instead of a solid (default 0: solid)\n"
+            "  --dispersion D         KHR_materials_dispersion's 20/Abbe number, 0..20 (default 0: none;\n"
+            "                         BK7 glass 0.31, diamond 0.36): red, green, blue at 656.3, 587.6, 486.1 nm\n"
+            "  --abbe V               the same as an Abbe number V > 1 (dispersion 20/V)\n"
+            "  --dispersion-model M   auto (default: one-path), per-channel (the whole trace per channel) or\n"
+            "                         one-path (one trace, red and blue re-refracted along it)\n"
             "  --method NAME          auto (default: the cheapest adequate method per object)",
             cli_shape_names, d.material.ior, d.material.tint[0], d.material.tint[1], d.material.tint[2]);
     {
@@ -185,6 +190,18 @@ static int glass_option(const char *a, const char *v, render_object *g)
     } else if (!strcmp(a, "--thickness")) {
         if (!parse_floats(v, &m->thickness, 1) || m->thickness < 0.0f)
             return usage_error("%s wants a thickness >= 0, got '%s'", a, v);
+    } else if (!strcmp(a, "--dispersion")) {
+        if (!parse_floats(v, &m->dispersion, 1) || m->dispersion < 0.0f || m->dispersion > 20.0f)
+            return usage_error("%s wants a number in 0..20, got '%s'", a, v);
+    } else if (!strcmp(a, "--abbe")) {
+        float abbe;
+        if (!parse_floats(v, &abbe, 1) || snell_glass_set_abbe(m, abbe) != SNELL_OK)
+            return usage_error("%s wants an Abbe number > 1, got '%s'", a, v);
+    } else if (!strcmp(a, "--dispersion-model")) {
+        if (!strcmp(v, "auto")) m->dispersion_model = SNELL_DISPERSION_AUTO;
+        else if (!strcmp(v, "per-channel")) m->dispersion_model = SNELL_DISPERSION_PER_CHANNEL;
+        else if (!strcmp(v, "one-path")) m->dispersion_model = SNELL_DISPERSION_ONE_PATH;
+        else return usage_error("%s wants auto, per-channel or one-path, got '%s'", a, v);
     } else if (!strcmp(a, "--method")) {
         if (!cli_method_parse(PROG, v, &m->method)) return 0;
     } else if (!strcmp(a, "--param")) {

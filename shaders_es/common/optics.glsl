@@ -21,6 +21,19 @@ bool snell_refract(vec3 i, vec3 n, float eta, out vec3 t)
     return true;
 }
 
+// Per colour channel c: i[c] refracted with eta[c] at the normal n[c] into
+// t[c] (its mirror direction where that channel is totally reflected); true
+// for each channel that refracted. What the one-path dispersion does at each
+// interface (common/dispersion.glsl).
+bvec3 snell_refract_rgb(mat3 i, mat3 n, vec3 eta, out mat3 t)
+{
+    vec3 r, g, b;
+    bvec3 through = bvec3(snell_refract(i[0], n[0], eta.r, r), snell_refract(i[1], n[1], eta.g, g),
+                          snell_refract(i[2], n[2], eta.b, b));
+    t = mat3(r, g, b);
+    return through;
+}
+
 // Schlick reflectance from n1 into n2; uses the transmitted cosine when n1 > n2, 1 on TIR,
 // 0 at matched indices (no interface).
 float snell_fresnel_schlick(float cos_i, float n1, float n2)

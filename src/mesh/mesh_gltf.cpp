@@ -834,7 +834,8 @@ const float kThinWall = 1e-4f;
  * logged once per file and ignored (an error when required). */
 bool scene_extension_known(const std::string &e)
 {
-    return e == "KHR_materials_transmission" || e == "KHR_materials_ior" || e == "KHR_materials_volume";
+    return e == "KHR_materials_transmission" || e == "KHR_materials_ior" || e == "KHR_materials_volume" ||
+           e == "KHR_materials_dispersion";
 }
 
 double number_or(const tinygltf::Value &obj, const char *key, double def)
@@ -953,6 +954,17 @@ void SceneBuilder::add(const tinygltf::Primitive &p, int mesh_idx, int prim_idx,
                         fail(SNELL_E_PARSE, "KHR_materials_volume: attenuationColor is not 3 numbers");
                     g->material.attenuation_color[k] = static_cast<float>(std::min(std::max(ck.GetNumberAsDouble(), 0.0), 1.0));
                 }
+            }
+            /* 20 / V_d (the spec: 0 none, any value >= 0 valid); on a volume
+             * only, as the spec builds it on KHR_materials_volume */
+            if (const tinygltf::Value *e = ext("KHR_materials_dispersion")) {
+                double disp = number_or(*e, "dispersion", 0.0);
+                if (!(disp >= 0.0 && disp <= 20.0)) {
+                    std::snprintf(buf, sizeof buf, "material %d: KHR_materials_dispersion %g outside 0..20", p.material,
+                                  disp);
+                    fail(SNELL_E_PARSE, buf);
+                }
+                g->material.dispersion = static_cast<float>(disp);
             }
         } else {
             g->material.thickness = kThinWall;

@@ -1,4 +1,4 @@
-/* mesh_shapes.c — procedural test objects: UV sphere, cube, torus and a lathe goblet.
+/* mesh_shapes.c — procedural test objects: UV sphere, cube, torus, a lathe goblet and a prism.
  * All are closed, wound counter-clockwise seen from outside, with analytic normals. */
 #include "mesh/mesh.h"
 
@@ -173,6 +173,59 @@ static snell_status make_cube(snell_ctx *ctx, snell_mesh **out)
     return snell__mesh_adopt(ctx, al, pos, nrm, idx, 24, 12, out);
 }
 
+/* The prism (a dispersion test object: light entering one face next to the
+ * apex and leaving through the other is spread by colour): three rectangular
+ * sides and two triangular caps, each with its own vertices and flat normal. */
+static snell_status make_prism(snell_ctx *ctx, snell_mesh **out)
+{
+    const snell_alloc *al = snell__ctx_alloc(ctx);
+    float *pos = (float *)snell__calloc(al, 54, sizeof(float));
+    float *nrm = (float *)snell__calloc(al, 54, sizeof(float));
+    uint32_t *idx = (uint32_t *)snell__calloc(al, 24, sizeof(uint32_t));
+    double cx[3], cz[3];
+    uint32_t v = 0, t = 0;
+    int i, k;
+    if (!pos || !nrm || !idx) {
+        snell__free(al, pos); snell__free(al, nrm); snell__free(al, idx);
+        return snell__fail(ctx, SNELL_E_NOMEM, "out of memory for a prism");
+    }
+    /* Corners at 0, 120, 240 degrees from +X towards -Z: counter-clockwise
+     * seen from +Y, as the lathe's angle runs (x = cos u, z = -sin u). */
+    for (i = 0; i < 3; i++) {
+        cx[i] = cos(2.0 * SHAPE_PI * i / 3.0);
+        cz[i] = -sin(2.0 * SHAPE_PI * i / 3.0);
+    }
+    for (i = 0; i < 3; i++) { /* side i from corner i to i + 1: outward normal along their mid-point */
+        int j = (i + 1) % 3;
+        double mx = 0.5 * (cx[i] + cx[j]), mz = 0.5 * (cz[i] + cz[j]), l = sqrt(mx * mx + mz * mz);
+        /* seen from outside, corner i is left of corner j: i bottom, j bottom, j top, i top is CCW */
+        const double q[4][3] = {{cx[i], -1, cz[i]}, {cx[j], -1, cz[j]}, {cx[j], 1, cz[j]}, {cx[i], 1, cz[i]}};
+        for (k = 0; k < 4; k++) {
+            pos[3 * (v + k)] = (float)q[k][0];
+            pos[3 * (v + k) + 1] = (float)q[k][1];
+            pos[3 * (v + k) + 2] = (float)q[k][2];
+            nrm[3 * (v + k)] = (float)(mx / l);
+            nrm[3 * (v + k) + 2] = (float)(mz / l);
+        }
+        idx[t++] = v; idx[t++] = v + 1; idx[t++] = v + 2;
+        idx[t++] = v; idx[t++] = v + 2; idx[t++] = v + 3;
+        v += 4;
+    }
+    for (k = 0; k < 2; k++) { /* caps: top (+Y) counter-clockwise seen from above, bottom reversed */
+        float y = k == 0 ? 1.0f : -1.0f;
+        for (i = 0; i < 3; i++) {
+            int c = k == 0 ? i : 2 - i;
+            pos[3 * (v + i)] = (float)cx[c];
+            pos[3 * (v + i) + 1] = y;
+            pos[3 * (v + i) + 2] = (float)cz[c];
+            nrm[3 * (v + i) + 1] = y;
+        }
+        idx[t++] = v; idx[t++] = v + 1; idx[t++] = v + 2;
+        v += 3;
+    }
+    return snell__mesh_adopt(ctx, al, pos, nrm, idx, 18, 8, out);
+}
+
 /* --- goblet ---------------------------------------------------------------
  * Profile (r, y), from the bottom pole of the foot to the pole at the bottom of
  * the bowl's inside. It is tangent-continuous everywhere (lines joined by
@@ -310,6 +363,7 @@ snell_status snell_mesh_create_shape(snell_ctx *ctx, const snell_shape_desc *des
         if (rings < 3) return snell__fail(ctx, SNELL_E_INVALID_ARG, "torus needs at least 3 rings");
         return make_torus(ctx, (uint32_t)seg, (uint32_t)rings, out);
     case SNELL_SHAPE_GOBLET: return make_goblet(ctx, (uint32_t)seg, (uint32_t)rings, out);
+    case SNELL_SHAPE_PRISM: return make_prism(ctx, out); /* segments/rings do not apply */
     }
     return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown shape %d", (int)desc->shape);
 }

@@ -64,7 +64,7 @@ static void cubemap_destroy(snell_ctx *ctx, void *state);
 /* What selects a search program: its compile-time constants. */
 typedef struct prog_key {
     snell_ndcube_encoding enc;
-    int iterations, linear, no_search, screen, absorb, fresnel_exact, inner;
+    int iterations, linear, no_search, screen, absorb, fresnel_exact, inner, dispersion;
 } prog_key;
 
 static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const prog_key *k, cube_prog *p)
@@ -74,9 +74,9 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
     snprintf(def, sizeof def,
              "#define SNELL_NDCUBE_%s 1\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_LINEAR_STEPS %d\n"
              "#define SNELL_NO_SEARCH %d\n#define SNELL_ABSORB %d\n#define SNELL_FRESNEL_EXACT %d\n"
-             "#define SNELL_INNER_FRESNEL %d\n",
+             "#define SNELL_INNER_FRESNEL %d\n#define SNELL_DISPERSION %d\n",
              k->enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", k->iterations, k->linear, k->no_search, k->absorb,
-             k->fresnel_exact, k->inner);
+             k->fresnel_exact, k->inner, k->dispersion);
     st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->slot.g);
     if (st != SNELL_OK) return st;
     p->ndcube = glGetUniformLocation(p->slot.g.prog, "u_ndcube");
@@ -93,10 +93,10 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
  * used slot. */
 static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, const prog_key *k, const cube_prog **out)
 {
-    const int key[8] = {(int)k->enc, k->iterations, k->linear, k->no_search, k->screen, k->absorb, k->fresnel_exact,
-                        k->inner};
+    const int key[9] = {(int)k->enc, k->iterations, k->linear, k->no_search, k->screen, k->absorb, k->fresnel_exact,
+                        k->inner, k->dispersion};
     int hit;
-    cube_prog *p = (cube_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 8, &s->clock, &hit);
+    cube_prog *p = (cube_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 9, &s->clock, &hit);
     snell_status st = hit ? SNELL_OK : build_prog(ctx, s->out, k, p);
     if (st == SNELL_OK) *out = p;
     return st;
@@ -109,7 +109,7 @@ static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void 
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
-    prog_key k = {SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, 0, 0, DEFAULT_FRESNEL, 0};
+    prog_key k = {SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, 0, 0, DEFAULT_FRESNEL, 0, 0};
     st = get_prog(ctx, s, &k, &p);
     if (st == SNELL_OK) st = snell__ndcube_baker_create(ctx, &s->baker);
     if (st != SNELL_OK) {
@@ -218,6 +218,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
      * bunny the exit search's own error dominates (+0.1-0.2 dB for 1.3-1.6x). */
     k.inner = !k.no_search && (c->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
                                (c->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && o->analysis && o->analysis->convex));
+    k.dispersion = snell__dispersion_variant(o->glass);
     st = get_prog(ctx, s, &k, &p);
     if (st != SNELL_OK) return st;
     if (k.no_search) stats->skipped |= SNELL_SKIP_SEARCH;

@@ -94,20 +94,21 @@ typedef struct exact_state {
 static void exact_destroy(snell_ctx *ctx, void *state);
 
 static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16, int absorb, int variant,
-                             int stack, const exact_prog **out)
+                             int stack, int dispersion, const exact_prog **out)
 {
-    const int key[5] = {budget, q16, absorb, variant, stack};
-    char def[160];
+    const int key[6] = {budget, q16, absorb, variant, stack, dispersion};
+    char def[192];
     int hit;
-    exact_prog *p = (exact_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 5, &s->clock, &hit);
+    exact_prog *p = (exact_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 6, &s->clock, &hit);
     snell_status st;
     if (hit) {
         *out = p;
         return SNELL_OK;
     }
     snprintf(def, sizeof def,
-             "#define SNELL_NODE_BUDGET %d\n#define SNELL_NODES_Q16 %d\n#define SNELL_ABSORB %d\n#define SNELL_STACK_WALK %d\n",
-             budget, q16, absorb, stack);
+             "#define SNELL_NODE_BUDGET %d\n#define SNELL_NODES_Q16 %d\n#define SNELL_ABSORB %d\n#define SNELL_STACK_WALK %d\n"
+             "#define SNELL_DISPERSION %d\n",
+             budget, q16, absorb, stack, dispersion);
     st = snell__glass_program_build(ctx, "exact.frag", s->out, def, variant, &p->slot.g);
     if (st != SNELL_OK) return st;
     p->bvh = glGetUniformLocation(p->slot.g.prog, "u_bvh");
@@ -133,7 +134,7 @@ static snell_status exact_create(snell_ctx *ctx, snell__output_kind out, void **
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
-    st = get_prog(ctx, s, DEFAULT_BUDGET, 0, 0, 0, 1, &p);
+    st = get_prog(ctx, s, DEFAULT_BUDGET, 0, 0, 0, 1, 0, &p);
     if (st != SNELL_OK) {
         exact_destroy(ctx, s);
         return st;
@@ -472,8 +473,11 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
     const snell_exact_params *e = &o->glass->material.exact;
     const exact_prepared *ep = (const exact_prepared *)o->prepared;
     const exact_prog *p;
+    /* Dispersion: always three traces (SNELL_DISPERSION 1), whatever the
+     * material's model: exact is the accuracy ceiling, and one path would
+     * give red and blue estimated exits where the traversal finds the true ones. */
     snell_status st = get_prog(ctx, s, e->node_budget, ep->format == NODES_Q16, o->glass->absorbs,
-                                snell__glass_variant(o), e->walk == WALK_STACK, &p);
+                                snell__glass_variant(o), e->walk == WALK_STACK, o->glass->disperses ? 1 : 0, &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);
     glActiveTexture(GL_TEXTURE0 + BVH_UNIT);

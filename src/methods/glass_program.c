@@ -65,6 +65,7 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     g->eye = glGetUniformLocation(g->prog, "u_eye");
     g->env = glGetUniformLocation(g->prog, "u_env");
     g->ior = glGetUniformLocation(g->prog, "u_ior");
+    g->ior_rgb = glGetUniformLocation(g->prog, "u_ior_rgb");
     g->sigma = glGetUniformLocation(g->prog, "u_sigma");
     g->tint = glGetUniformLocation(g->prog, "u_tint");
     g->bsphere = glGetUniformLocation(g->prog, "u_bsphere");
@@ -94,6 +95,12 @@ snell__program_slot *snell__program_cache_get(void *slots, size_t stride, int co
     return victim;
 }
 
+int snell__dispersion_variant(const snell_glass_resolved *g)
+{
+    if (!g->disperses) return 0;
+    return g->material.dispersion_model == SNELL_DISPERSION_PER_CHANNEL ? 1 : 2;
+}
+
 void snell__glass_program_destroy(snell__glass_program *g)
 {
     if (g->prog) glDeleteProgram(g->prog);
@@ -109,6 +116,7 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniform3fv(g->eye, 1, v->eye);
     glUniform1i(g->env, 0);
     glUniform1f(g->ior, o->glass->material.ior);
+    glUniform3fv(g->ior_rgb, 1, o->glass->ior_rgb);
     glUniform3fv(g->sigma, 1, o->glass->absorption);
     glUniform3fv(g->tint, 1, o->glass->material.tint);
     glUniform4fv(g->bsphere, 1, o->bsphere);

@@ -9,7 +9,7 @@ typedef struct snell__glass_program {
     unsigned prog;
     int screen_space;               /* 0 forward, else SNELL__SCREEN_* (render/gbuffer.h): screen.vert */
     int beyond;                     /* SNELL_BEYOND: the exit look-up marches the scene layers */
-    int model, normal_matrix, view_proj, eye, env, ior, sigma, tint, bsphere;
+    int model, normal_matrix, view_proj, eye, env, ior, ior_rgb, sigma, tint, bsphere;
     int gnormal, gdepth_id, inv_view_proj, inv_size, gid;
     /* common/beyond.glsl's uniforms (beyond only) */
     int s_layers, s_table, s_layer_count, s_capped, s_glass_ids, s_opaque_count, s_self, s_view_proj, s_eye, s_fwd,
@@ -32,7 +32,7 @@ int snell__glass_variant(const snell__object *o);
 /* One slot of a kernel's small cache of programs, keyed by their
  * compile-time constants (cubemap.c, oliveira.c, peel.c keep 8): the first
  * member of the kernel's own slot struct, which adds its uniform locations. */
-#define SNELL__PROGRAM_KEY_INTS 8
+#define SNELL__PROGRAM_KEY_INTS 10
 typedef struct snell__program_slot {
     snell__glass_program g;    /* g.prog == 0: empty */
     int key[SNELL__PROGRAM_KEY_INTS];
@@ -53,6 +53,10 @@ snell__program_slot *snell__program_cache_get(void *slots, size_t stride, int co
 snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, snell__output_kind out,
                                         const char *extra_defines, int variant, snell__glass_program *g);
 void snell__glass_program_destroy(snell__glass_program *g);
+/* The kernel variant a material needs (SNELL_DISPERSION, common/dispersion.glsl):
+ * 0 no dispersion, 1 three traces (SNELL_DISPERSION_PER_CHANNEL), 2 one path
+ * with the directions per channel (SNELL_DISPERSION_ONE_PATH). */
+int snell__dispersion_variant(const snell_glass_resolved *g);
 /* The image-space methods' precondition (wyman.c, oliveira.c): their back
  * faces are a solid's, so the mesh must be analysed, closed, and at most
  * max_hidden hidden from its centre (more surfaces along a ray than the

@@ -40,12 +40,12 @@ static void oliveira_destroy(snell_ctx *ctx, void *state);
 /* The program of these compile-time constants: cached, else built into the
  * least recently used slot. */
 static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int iterations, int screen, int absorb,
-                             int fresnel_exact, int inner, const oli_prog **out)
+                             int fresnel_exact, int inner, int dispersion, const oli_prog **out)
 {
-    const int key[6] = {linear, iterations, screen, absorb, fresnel_exact, inner};
-    char def[224];
+    const int key[7] = {linear, iterations, screen, absorb, fresnel_exact, inner, dispersion};
+    char def[256];
     int hit;
-    oli_prog *p = (oli_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 6, &s->clock, &hit);
+    oli_prog *p = (oli_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 7, &s->clock, &hit);
     snell_status st;
     if (hit) {
         *out = p;
@@ -53,8 +53,8 @@ static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int 
     }
     snprintf(def, sizeof def,
              "#define SNELL_LINEAR_STEPS %d\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_ABSORB %d\n"
-             "#define SNELL_FRESNEL_EXACT %d\n#define SNELL_INNER_FRESNEL %d\n",
-             linear, iterations, absorb, fresnel_exact, inner);
+             "#define SNELL_FRESNEL_EXACT %d\n#define SNELL_INNER_FRESNEL %d\n#define SNELL_DISPERSION %d\n",
+             linear, iterations, absorb, fresnel_exact, inner, dispersion);
     st = snell__glass_program_build(ctx, "oliveira.frag", s->out, def, screen, &p->slot.g);
     if (st != SNELL_OK) return st;
     p->bnormal = glGetUniformLocation(p->slot.g.prog, "u_bnormal");
@@ -73,7 +73,7 @@ static snell_status oliveira_create(snell_ctx *ctx, snell__output_kind out, void
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
     /* the default program, so that a device that cannot build it fails here, once */
-    st = get_prog(ctx, s, DEFAULT_LINEAR_STEPS, DEFAULT_ITERATIONS, SNELL__SCREEN_SHARED_DEPTH, 0, 0, 0, &p);
+    st = get_prog(ctx, s, DEFAULT_LINEAR_STEPS, DEFAULT_ITERATIONS, SNELL__SCREEN_SHARED_DEPTH, 0, 0, 0, 0, &p);
     if (st != SNELL_OK) {
         oliveira_destroy(ctx, s);
         return st;
@@ -118,7 +118,7 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
     int inner = c->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
                 (c->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && o->analysis && o->analysis->convex);
     st = get_prog(ctx, s, c->linear_steps, c->iterations, snell__glass_variant(o), o->glass->absorbs,
-                  c->fresnel == SNELL_FRESNEL_EXACT, inner, &p);
+                  c->fresnel == SNELL_FRESNEL_EXACT, inner, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);
     glUniform1i(p->bnormal, SNELL__BACK_UNIT_NORMAL);

@@ -40,21 +40,24 @@ typedef struct wyman_prog {
     int bnormal, bdepth_id, gaux, dn_scale, back_band;
 } wyman_prog;
 
-/* [shading: forward or SNELL__SCREEN_*][absorption]; built on first use. */
+/* [snell__glass_variant: shading, scene layers][absorption][dispersion variant,
+ * snell__dispersion_variant]; built on first use. */
 typedef struct wyman_state {
     snell__output_kind out;
-    wyman_prog prog[SNELL__GLASS_VARIANTS][2];
+    wyman_prog prog[SNELL__GLASS_VARIANTS][2][3];
 } wyman_state;
 
 static void wyman_destroy(snell_ctx *ctx, void *state);
 
-static snell_status get_prog(snell_ctx *ctx, wyman_state *s, int screen, int absorb, const wyman_prog **out)
+static snell_status get_prog(snell_ctx *ctx, wyman_state *s, int screen, int absorb, int dispersion,
+                             const wyman_prog **out)
 {
-    wyman_prog *p = &s->prog[screen][absorb];
+    wyman_prog *p = &s->prog[screen][absorb][dispersion];
     if (!p->g.prog) {
-        char defines[96];
+        char defines[128];
         snell_status st;
-        snprintf(defines, sizeof defines, "#define SNELL_VERTEX_AUX 1\n#define SNELL_ABSORB %d\n", absorb);
+        snprintf(defines, sizeof defines, "#define SNELL_VERTEX_AUX 1\n#define SNELL_ABSORB %d\n#define SNELL_DISPERSION %d\n",
+                 absorb, dispersion);
         st = snell__glass_program_build(ctx, "wyman.frag", s->out, defines, screen, &p->g);
         if (st != SNELL_OK) return st;
         p->bnormal = glGetUniformLocation(p->g.prog, "u_bnormal");
@@ -74,7 +77,7 @@ static snell_status wyman_create(snell_ctx *ctx, snell__output_kind out, void **
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
-    st = get_prog(ctx, s, 0, 0, &p);
+    st = get_prog(ctx, s, 0, 0, 0, &p);
     if (st != SNELL_OK) {
         wyman_destroy(ctx, s);
         return st;
@@ -88,7 +91,7 @@ static void wyman_destroy(snell_ctx *ctx, void *state)
     wyman_state *s = (wyman_state *)state;
     int i;
     if (!s) return;
-    for (i = 0; i < 2 * SNELL__GLASS_VARIANTS; i++) snell__glass_program_destroy(&s->prog[i >> 1][i & 1].g);
+    for (i = 0; i < 6 * SNELL__GLASS_VARIANTS; i++) snell__glass_program_destroy(&s->prog[i / 6][(i / 3) % 2][i % 3].g);
     snell__free(&ctx->alloc, s);
 }
 
@@ -222,7 +225,7 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
     const wyman_prepared *wp = (const wyman_prepared *)o->prepared;
     int screen = snell__glass_variant(o), absorb = o->glass->absorbs;
     const wyman_prog *p;
-    snell_status st = get_prog(ctx, s, screen, absorb, &p);
+    snell_status st = get_prog(ctx, s, screen, absorb, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
     if (!o->screen_space) {

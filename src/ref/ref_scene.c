@@ -4,6 +4,7 @@
  * object's world triangles with the object as the BVH part, filtered
  * closest-hit queries with the GPU's smooth normals, and opaque shading. */
 #include "ref/ref_scene.h"
+#include "core/optics.h"
 #include "ref/ref_trace.h"
 #include "core/ctx.h"
 #include "mesh/mesh.h"
@@ -158,6 +159,7 @@ static snell_status set_material(snell_ref *r, int index, const snell_glass_mate
     }
     g->res = res;
     g->ior = (double)res.material.ior;
+    snell_optd_ior_rgb(g->ior, res.disperses ? (double)res.material.dispersion : 0.0, g->ior_rgb);
     g->thickness = (double)res.material.thickness;
     g->thin = g->thickness > 0.0;
     g->has_sigma = 0;

@@ -16,6 +16,7 @@
 typedef struct ref_glass {
     snell_glass_resolved res; /* what snell_ref_set_material / snell_ref_create resolved */
     double ior;
+    double ior_rgb[3];        /* per colour channel (snell_optd_ior_rgb); all ior without dispersion */
     double sigma[3];          /* Beer-Lambert absorption per world unit (res.absorption) */
     double tint[3];
     double thickness;         /* thin wall (> 0) of this thickness, world units; 0 = solid */

@@ -35,6 +35,8 @@ typedef struct optics {
     snell_ref_env_fn env_fn;
     void *env_user;
     int samples; /* S: S x S rays per pixel */
+    int channel; /* the colour channel whose IOR the glass has on this trace (ref_glass.ior_rgb) */
+    int disperses; /* some glass object's channels have different IORs: a trace per channel */
 } optics;
 
 /* ------------------------------------------------------------ vectors */
@@ -86,6 +88,12 @@ static double facing(const ref_surf *s, const double d[3], double n[3])
     int k;
     for (k = 0; k < 3; k++) n[k] = nd > 0.0 ? -s->n[k] : s->n[k];
     return nd > 0.0 ? nd : -nd;
+}
+
+/* Glass object g's IOR on this trace: its channel's (dispersion; green is ior itself). */
+static double ior_of(const optics *op, const ref_glass *g)
+{
+    return g->ior_rgb[op->channel];
 }
 
 /* Cycles' threshold (ensure_valid_reflection): a mirror direction may be as
@@ -167,8 +175,8 @@ static double fresnel(const optics *op, double c, double n1, double n2)
  * (the mode's Fresnel at both faces), and the refracted chord through it. */
 static double slab(const optics *op, const ref_glass *g, double c, double rs[3], double ts[3])
 {
-    double s2 = (1.0 - c * c) / (g->ior * g->ior), ct = sqrt(1.0 - (s2 < 1.0 ? s2 : 1.0));
-    snell_optd_thin_slab_model(c, g->ior, g->sigma, g->thickness, op->mode == SNELL_REF_FULL, rs, ts);
+    double ior = ior_of(op, g), s2 = (1.0 - c * c) / (ior * ior), ct = sqrt(1.0 - (s2 < 1.0 ? s2 : 1.0));
+    snell_optd_thin_slab_model(c, ior, g->sigma, g->thickness, op->mode == SNELL_REF_FULL, rs, ts);
     return g->thickness / (ct > 1e-6 ? ct : 1e-6);
 }
 
@@ -246,8 +254,8 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
         m_air(r, op, s.p, d, s.prim, s.object, depth + 1, wt, path, L);
         for (k = 0; k < 3; k++) rgb[k] = rs[k] * refl[k] + ts[k] * g->tint[k] * L[k];
     } else {
-        double F = fresnel(op, c, 1.0, g->ior), t1[3], L[3], len = 0.0, dist, T;
-        int tir = !snell_optd_refract(d, n, 1.0 / g->ior, t1);
+        double F = fresnel(op, c, 1.0, ior_of(op, g)), t1[3], L[3], len = 0.0, dist, T;
+        int tir = !snell_optd_refract(d, n, 1.0 / ior_of(op, g), t1);
         if (tir) F = 1.0; /* IOR < 1 at a grazing angle */
         if (path) {
             if (path->interfaces == 0) path->fresnel = F;
@@ -321,7 +329,7 @@ static void m_inside(const snell_ref *r, const optics *op, int j, const double p
             break;
         }
         facing(&s, dir, n);
-        if (!snell_optd_refract(dir, n, g->ior, out)) {
+        if (!snell_optd_refract(dir, n, ior_of(op, g), out)) {
             snell_optd_reflect(dir, n, out);
             snell__ref_normalize3(out);
             if (path) path_point(path, s.p, SNELL_REF_EVENT_TIR, j);
@@ -402,7 +410,7 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
         if (pr < 1.0) whitted(r, op, s.p, d, s.prim, -1, home, depth + 1, wt, prob * (1.0 - pr), acc, acc2);
     } else {
         int in = medium == s.object, tir;
-        double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = fresnel(op, c, n1, n2);
+        double n1 = in ? ior_of(op, g) : 1.0, n2 = in ? 1.0 : ior_of(op, g), F = fresnel(op, c, n1, n2);
         tir = !snell_optd_refract(d, n, n1 / n2, dir_t);
         if (tir) F = 1.0;
         if (F > 0.0) {
@@ -457,7 +465,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
             }
         } else {
             int in = medium == s.object;
-            double n1 = in ? g->ior : 1.0, n2 = in ? 1.0 : g->ior, F = fresnel(op, c, n1, n2);
+            double n1 = in ? ior_of(op, g) : 1.0, n2 = in ? 1.0 : ior_of(op, g), F = fresnel(op, c, n1, n2);
             if (!snell_optd_refract(dir, n, n1 / n2, out)) {
                 ev = SNELL_REF_EVENT_TIR;
                 F = 1.0;
@@ -481,11 +489,9 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
     path->ended_inside = medium >= 0;
 }
 
-/* Traces one ray (unit d). want_path: the walk is needed (path outputs) even
- * in FULL mode, where the colour comes from the tree. moment2 (FULL only, NULL
- * = not wanted): the second moment of a branch-sampling path tracer (whitted). */
-static void trace(const snell_ref *r, const optics *op, const double o[3], const double d[3], int want_path,
-                  snell_ref_path *path, double moment2[3])
+/* One trace of the ray with the glass at op->channel's IOR. */
+static void trace_channel(const snell_ref *r, const optics *op, const double o[3], const double d[3], int want_path,
+                          snell_ref_path *path, double moment2[3])
 {
     static const double one[3] = {1.0, 1.0, 1.0};
     path->hit = 0;
@@ -508,11 +514,35 @@ static void trace(const snell_ref *r, const optics *op, const double o[3], const
     }
 }
 
+/* Traces one ray (unit d). want_path: the walk is needed (path outputs) even
+ * in FULL mode, where the colour comes from the tree. moment2 (FULL only, NULL
+ * = not wanted): the second moment of a branch-sampling path tracer (whitted).
+ * With a dispersive glass in the scene, per channel: three traces, the glass
+ * at the red, green and blue IOR in turn, each giving its own channel of rgb
+ * (and moment2); the path is the green trace's. */
+static void trace(const snell_ref *r, const optics *op, const double o[3], const double d[3], int want_path,
+                  snell_ref_path *path, double moment2[3])
+{
+    optics per_channel = *op;
+    snell_ref_path other;
+    double m2[3];
+    int c;
+    trace_channel(r, op, o, d, want_path, path, moment2);
+    if (!op->disperses) return;
+    for (c = 0; c < 3; c += 2) {
+        per_channel.channel = c;
+        trace_channel(r, &per_channel, o, d, 0, &other, moment2 ? m2 : NULL);
+        path->rgb[c] = other.rgb[c];
+        if (moment2) moment2[c] = m2[c];
+    }
+}
+
 /* ------------------------------------------------------------ parameters */
 
 static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, optics *op)
 {
     const snell_ctx *ctx = ref->ctx;
+    int i;
     if (p->mode != SNELL_REF_MATCHED && p->mode != SNELL_REF_FULL)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: unknown mode %d", (int)p->mode);
     if (p->absorption_model != SNELL_REF_ABSORB_PATH && p->absorption_model != SNELL_REF_ABSORB_BOUNDING_SPHERE)
@@ -537,6 +567,9 @@ static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, opt
     op->env_fn = p->env_fn;
     op->env_user = p->env_user;
     op->samples = p->samples ? p->samples : 1;
+    op->channel = 1; /* green: the material's ior */
+    for (i = 0; i < ref->glass_count; i++)
+        if (ref->glass[i].res.disperses) op->disperses = 1;
     return SNELL_OK;
 }
 

@@ -18,6 +18,10 @@ glass_box.gltf   a glass sphere in front of an opaque box (opaque default materi
   node 0  sphere, material 0, T(0,0,1)
   node 1  cube, no material (glTF default: opaque white), T(0,0,-1.5) S(1.2)
 bad_required.gltf  glass_row requiring KHR_materials_clearcoat (must be refused)
+dispersion.gltf  two glass spheres with KHR_materials_dispersion (required: it is read):
+  node 0  sphere, material 0 (ior 1.5, solid, dispersion 0.36: 20 / V_d for diamond's V_d 55), T(-1.1,0,0) S(0.6)
+  node 1  sphere, material 1 (ior 1.5, thin-walled, dispersion 1: a thin wall has none), T(1.1,0,0) S(0.6)
+bad_dispersion.gltf  dispersion.gltf with dispersion -1 on material 0 (must be refused)
 three_glass_two_opaque.gltf  issue 13's "Done means" scene: three glass objects overlapping on screen at
   different depths, an opaque box between two of them and an opaque wall behind (geometry set 2:
   sphere 32 x 16, cube, torus R 0.7 r 0.3 32 x 16; all glass solid, ior 1.5, no absorption):
@@ -144,10 +148,12 @@ def mesh(acc, material):
     return {"primitives": [p]}
 
 
-def glass(ior, volume=None, tint=(1, 1, 1)):
+def glass(ior, volume=None, tint=(1, 1, 1), dispersion=None):
     ext = {"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": ior}}
     if volume:
         ext["KHR_materials_volume"] = volume
+    if dispersion is not None:
+        ext["KHR_materials_dispersion"] = {"dispersion": dispersion}
     return {"pbrMetallicRoughness": {"baseColorFactor": list(tint) + [1.0], "roughnessFactor": 0.0},
             "extensions": ext}
 
@@ -192,6 +198,13 @@ write("nested.gltf", [glass(1.5, {"thicknessFactor": 2.0}), glass(1.33, {"thickn
 write("glass_box.gltf", [glass(1.5, {"thicknessFactor": 2.0})], [mesh(sph, 0), mesh(cub, None)],
       [{"mesh": 0, "translation": [0, 0, 1]}, {"mesh": 1, "translation": [0, 0, -1.5], "scale": [1.2, 1.2, 1.2]}],
       [0, 1], None, EXT)
+DISP_EXT = EXT + ["KHR_materials_dispersion"]
+disp_nodes = [{"mesh": 0, "translation": [-1.1, 0, 0], "scale": [0.6, 0.6, 0.6]},
+              {"mesh": 1, "translation": [1.1, 0, 0], "scale": [0.6, 0.6, 0.6]}]
+write("dispersion.gltf", [glass(1.5, {"thicknessFactor": 1.0}, dispersion=0.36), glass(1.5, None, dispersion=1.0)],
+      [mesh(sph, 0), mesh(sph, 1)], disp_nodes, [0, 1], None, DISP_EXT, ["KHR_materials_dispersion"])
+write("bad_dispersion.gltf", [glass(1.5, {"thicknessFactor": 1.0}, dispersion=-1.0), glass(1.5, None)],
+      [mesh(sph, 0), mesh(sph, 1)], disp_nodes, [0, 1], None, DISP_EXT)
 
 
 def quat_axis(axis, angle):
