@@ -42,7 +42,7 @@
 #ifdef SNELL_BEYOND
 #define BEYOND_MAX_LAYERS 8         // SNELL_MAX_SCENE_LAYERS
 #define BEYOND_MAX_INTERFACES 8
-#define BEYOND_LINEAR 32          // per bounding diameter: three_glass_two_opaque at 256², peel, glass dB vs FULL: 16: 19.5, 32: 22.0, 48: 22.4, 64: 22.5
+#define BEYOND_LINEAR 32          // per bounding diameter: three_glass_two_opaque at 256x256, peel, glass dB vs FULL: 16: 19.5, 32: 22.0, 48: 22.4, 64: 22.5
 #define BEYOND_BINARY 6           // 8: the same to 0.01 dB
 #define BEYOND_OPAQUE_ID0 33        // SNELL__LAYERS_OPAQUE_ID0
 #define BEYOND_UNKNOWN (-2)
