@@ -105,10 +105,13 @@ bool beyond_thin(int id)
 // BEYOND_THIN_ODD where the thin-wall surfaces in front of p are odd in
 // number. The object excl is skipped as the kernel's own is. The layers in
 // front of p are walked from the eye: a surface of the object the walk is
-// in leaves it, another enters one (objects are disjoint or nested, two
-// deep at most). Scalars only: the first version kept the ids in an array
-// and counted each one's parity, whose dynamically indexed look-ups made
-// the whole stage several times slower on llvmpipe.
+// in leaves it, a surface of the object around that one leaves that (one of
+// cur's surfaces is missing at this pixel: seen edge-on, or rasterised into
+// the neighbour), another enters one (objects are disjoint or nested, two
+// deep at most). This agrees with counting each object's surfaces' parity
+// (measured: the same 23.95 dB on three_glass_two_opaque, peel, 256x256,
+// against the whole-scene FULL) without an array of ids; without the
+// middle rule, a missing surface swapped two objects (22.0 dB).
 #define BEYOND_THIN_ODD 256
 int beyond_medium(highp vec3 p, int excl)
 {
@@ -128,6 +131,8 @@ int beyond_medium(highp vec3 p, int excl)
         } else if (id == cur) {
             cur = outer; // left it
             outer = 0;
+        } else if (id == outer) {
+            outer = 0; // left the outer one: a surface of cur's is missing here (see above)
         } else {
             outer = cur; // entered it (inside cur, if any)
             cur = id;
