@@ -11,9 +11,10 @@
 //   an object); 0 is air. The kernel's own object is skipped (its kernel has
 //   traced it), and so is the object the ray last left: a point just past
 //   a surface can test as behind it at its pixel (the layer holds the
-//   surface's depth at the pixel's centre), which read as a re-entry made
-//   1-3% of the rays through two spheres wander (measured, test_scene_layers);
-//   so a ray that would re-enter a concave object passes it.
+//   surface's depth at the pixel's centre), and read as a re-entry it made
+//   speckles of wandering rays through two spheres (seen in
+//   test_scene_layers' images); so a ray that would re-enter a concave
+//   object passes it.
 // - The ray is sampled in steps of 1/BEYOND_LINEAR of the bounding diameter
 //   of each object whose bounding sphere it passes (nearest first), or of
 //   the object it is inside; where the medium changes it bisects
