@@ -21,6 +21,7 @@
 #include "core/gl.h"
 #include "core/program.h"
 #include "render/pass.h"
+#include "render/peel_targets.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -54,8 +55,7 @@ typedef struct peel_state {
     /* the peel pass */
     unsigned layer_prog;
     int u_model, u_normal_matrix, u_view_proj, u_eye, u_fwd, u_near, u_inv_range, u_first, u_prev;
-    unsigned fbo, array_tex, next_tex[2], depth_rb, query;
-    int width, height, capacity; /* of the textures: target size, layers */
+    snell__peel_targets t;
 } peel_state;
 
 static void peel_destroy(snell_ctx *ctx, void *state);
@@ -130,17 +130,6 @@ static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, void **s
     return SNELL_OK;
 }
 
-static void release_targets(peel_state *s)
-{
-    if (s->fbo) glDeleteFramebuffers(1, &s->fbo);
-    if (s->array_tex) glDeleteTextures(1, &s->array_tex);
-    if (s->next_tex[0]) glDeleteTextures(2, s->next_tex);
-    if (s->depth_rb) glDeleteRenderbuffers(1, &s->depth_rb);
-    if (s->query) glDeleteQueries(1, &s->query);
-    s->fbo = s->array_tex = s->next_tex[0] = s->next_tex[1] = s->depth_rb = s->query = 0;
-    s->width = s->height = s->capacity = 0;
-}
-
 static void peel_destroy(snell_ctx *ctx, void *state)
 {
     peel_state *s = (peel_state *)state;
@@ -148,49 +137,8 @@ static void peel_destroy(snell_ctx *ctx, void *state)
     if (!s) return;
     for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
     if (s->layer_prog) glDeleteProgram(s->layer_prog);
-    release_targets(s);
+    snell__peel_targets_release(&s->t);
     snell__free(&ctx->alloc, s);
-}
-
-static void nearest_texture(GLenum target)
-{
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-}
-
-/* Layer textures for a w x h target and `layers` layers (made or grown on demand). */
-static snell_status ensure_targets(snell_ctx *ctx, peel_state *s, int w, int h, int layers)
-{
-    int i;
-    if (s->fbo && s->width == w && s->height == h && s->capacity >= layers) return SNELL_OK;
-    release_targets(s);
-    glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
-    glGenTextures(1, &s->array_tex);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, s->array_tex);
-    nearest_texture(GL_TEXTURE_2D_ARRAY);
-    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA8, w, h, 2 * layers);
-    glGenTextures(2, s->next_tex);
-    for (i = 0; i < 2; i++) {
-        glBindTexture(GL_TEXTURE_2D, s->next_tex[i]);
-        nearest_texture(GL_TEXTURE_2D);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-    }
-    glActiveTexture(GL_TEXTURE0);
-    glGenRenderbuffers(1, &s->depth_rb);
-    glBindRenderbuffer(GL_RENDERBUFFER, s->depth_rb);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
-    glGenFramebuffers(1, &s->fbo);
-    glGenQueries(1, &s->query);
-    s->width = w;
-    s->height = h;
-    s->capacity = layers;
-    if (glGetError() != GL_NO_ERROR) {
-        release_targets(s);
-        return snell__fail(ctx, SNELL_E_GL, "GL error creating %d peel layers of %dx%d", layers, w, h);
-    }
-    return SNELL_OK;
 }
 
 /* The view axis and the object's depth range along it (the bounding sphere). */
@@ -211,16 +159,14 @@ static void depth_frame(const snell__view *v, const snell__object *o, float fwd[
 static snell_status peel_layers(snell_ctx *ctx, peel_state *s, const snell__view *v, const snell__object *o,
                                 int want, int *peeled, int *used)
 {
-    static const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     float fwd[3], near_, inv_range;
     snell__pass pass;
-    GLenum fst;
+    snell_status st;
     int k;
     *peeled = *used = 0;
     depth_frame(v, o, fwd, &near_, &inv_range);
-    snell__pass_begin(&pass, s->fbo, v->width, v->height, 0, GL_LESS, 1.0f);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->depth_rb);
+    snell__pass_begin(&pass, s->t.fbo, v->width, v->height, 0, GL_LESS, 1.0f);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->t.depth_rb);
     glUseProgram(s->layer_prog);
     glUniformMatrix4fv(s->u_model, 1, GL_FALSE, (const GLfloat *)o->model);
     glUniformMatrix3fv(s->u_normal_matrix, 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
@@ -236,31 +182,18 @@ static snell_status peel_layers(snell_ctx *ctx, peel_state *s, const snell__view
     glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
     for (k = 0; k < want; k++) {
         GLuint any = 1;
-        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->array_tex, 0, 2 * k);
-        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, s->array_tex, 0, 2 * k + 1);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, s->next_tex[k & 1], 0);
-        glDrawBuffers(3, bufs);
-        if (k == 0) {
-            fst = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-            if (fst != GL_FRAMEBUFFER_COMPLETE) {
-                glDisable(GL_SCISSOR_TEST);
-                snell__pass_end(&pass);
-                return snell__fail(ctx, SNELL_E_GL, "peel framebuffer incomplete (0x%x)", (unsigned)fst);
-            }
+        if ((st = snell__peel_layer_begin(ctx, &s->t, k)) != SNELL_OK) {
+            glDisable(GL_SCISSOR_TEST);
+            snell__pass_end(&pass);
+            return st;
         }
-        /* the flag channel 0 marks empty texels; the previous layer is read, not written */
-        glClearBufferfv(GL_COLOR, 0, zero);
-        glClearBufferfv(GL_COLOR, 1, zero);
-        glClearBufferfv(GL_COLOR, 2, zero);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        glBindTexture(GL_TEXTURE_2D, s->next_tex[(k + 1) & 1]);
         glUniform1i(s->u_first, k == 0);
-        if (k > 0) glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, s->query);
+        if (k > 0) glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, s->t.query);
         snell__draw_object(o);
         (*peeled)++;
         if (k > 0) {
             glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
-            glGetQueryObjectuiv(s->query, GL_QUERY_RESULT, &any);
+            glGetQueryObjectuiv(s->t.query, GL_QUERY_RESULT, &any);
         }
         if (!any) break; /* nothing behind the last layer: no further peel can hold anything */
         (*used)++;
@@ -315,7 +248,10 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     k.inner = pp->max_interfaces > 1 && inner_wanted(o);
     k.dispersion = snell__dispersion_variant(o->glass);
     st = get_prog(ctx, s, &k, &p);
-    if (st == SNELL_OK) st = ensure_targets(ctx, s, v->width, v->height, pp->layers);
+    if (st == SNELL_OK) {
+        int remade;
+        st = snell__peel_targets_ensure(ctx, &s->t, v->width, v->height, pp->layers, LAYER_UNIT, "peel layers", &remade);
+    }
     if (st == SNELL_OK) st = peel_layers(ctx, s, v, o, layers_wanted(o), &peeled, &used);
     if (st != SNELL_OK) return st;
     stats->passes += peeled;
@@ -324,7 +260,7 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     depth_frame(v, o, fwd, &near_, &inv_range);
     snell__glass_program_use(&p->slot.g, v, o);
     glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, s->array_tex);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, s->t.array_tex);
     glActiveTexture(GL_TEXTURE0);
     glUniform1i(p->layers, LAYER_UNIT);
     glUniform1i(p->layer_count, used);

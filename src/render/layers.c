@@ -11,33 +11,13 @@
 #include <math.h>
 #include <string.h>
 
-static void release_targets(snell__layers *l)
-{
-    if (l->fbo) glDeleteFramebuffers(1, &l->fbo);
-    if (l->array_tex) glDeleteTextures(1, &l->array_tex);
-    if (l->next_tex[0]) glDeleteTextures(2, l->next_tex);
-    if (l->depth_rb) glDeleteRenderbuffers(1, &l->depth_rb);
-    if (l->query) glDeleteQueries(1, &l->query);
-    if (l->table_tex) glDeleteTextures(1, &l->table_tex);
-    l->fbo = l->array_tex = l->next_tex[0] = l->next_tex[1] = l->depth_rb = l->query = l->table_tex = 0;
-    l->width = l->height = l->capacity = 0;
-    l->last.count = -1; /* the layers are gone with them */
-}
-
 void snell__layers_destroy(snell__layers *l)
 {
-    release_targets(l);
+    snell__peel_targets_release(&l->t);
+    if (l->table_tex) glDeleteTextures(1, &l->table_tex);
     if (l->prog) glDeleteProgram(l->prog);
     memset(l, 0, sizeof *l);
     l->last.count = -1;
-}
-
-static void nearest_texture(GLenum target)
-{
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
 static snell_status create_program(snell_ctx *ctx, snell__layers *l)
@@ -57,42 +37,26 @@ static snell_status create_program(snell_ctx *ctx, snell__layers *l)
     return SNELL_OK;
 }
 
-/* Layer textures for a w x h target and `layers` layers (made or grown on
- * demand; kept across frames), and the object table. */
+/* Layer targets for a w x h target and `layers` layers (made or grown on
+ * demand; kept across frames), and the object table (made once). */
 static snell_status ensure_targets(snell_ctx *ctx, snell__layers *l, int w, int h, int layers)
 {
-    int i;
-    if (l->fbo && l->width == w && l->height == h && l->capacity >= layers) return SNELL_OK;
-    release_targets(l);
-    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
-    glGenTextures(1, &l->array_tex);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, l->array_tex);
-    nearest_texture(GL_TEXTURE_2D_ARRAY);
-    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA8, w, h, 2 * layers);
-    glGenTextures(2, l->next_tex);
-    for (i = 0; i < 2; i++) {
-        glBindTexture(GL_TEXTURE_2D, l->next_tex[i]);
-        nearest_texture(GL_TEXTURE_2D);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-    }
+    int remade;
+    snell_status st = snell__peel_targets_ensure(ctx, &l->t, w, h, layers, SNELL__LAYERS_UNIT, "scene layers", &remade);
+    if (remade) l->last.count = -1; /* the layers are gone with them */
+    if (st != SNELL_OK || l->table_tex) return st;
     glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_TABLE_UNIT);
     glGenTextures(1, &l->table_tex);
     glBindTexture(GL_TEXTURE_2D, l->table_tex);
-    nearest_texture(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     /* RGBA32F is sampleable unfiltered in core GLES 3.0 (texelFetch) */
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, SNELL__LAYERS_IDS, SNELL__LAYERS_TABLE_ROWS);
     glActiveTexture(GL_TEXTURE0);
-    glGenRenderbuffers(1, &l->depth_rb);
-    glBindRenderbuffer(GL_RENDERBUFFER, l->depth_rb);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
-    glGenFramebuffers(1, &l->fbo);
-    glGenQueries(1, &l->query);
-    l->width = w;
-    l->height = h;
-    l->capacity = layers;
     if (glGetError() != GL_NO_ERROR) {
-        release_targets(l);
-        return snell__fail(ctx, SNELL_E_GL, "GL error creating %d scene layers of %dx%d", layers, w, h);
+        glDeleteTextures(1, &l->table_tex);
+        l->table_tex = 0;
+        return snell__fail(ctx, SNELL_E_GL, "GL error creating the scene layers' object table");
     }
     return SNELL_OK;
 }
@@ -161,7 +125,7 @@ static void bind(snell__layers *l)
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, k, SNELL__LAYERS_IDS, 1, GL_RGBA, GL_FLOAT, l->table[k]);
     snell__pixel_unpack_end(&unpack);
     glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, l->array_tex);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, l->t.array_tex);
     glActiveTexture(GL_TEXTURE0);
 }
 
@@ -170,14 +134,12 @@ static void bind(snell__layers *l)
 static snell_status peel(snell_ctx *ctx, snell__layers *l, const snell__view *v, const layer_item *items, int n,
                          int layers, int *passes, int *used)
 {
-    static const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const snell__scene_layers *sl = &v->layers;
     snell__pass pass;
     int i, k;
     *used = 0;
-    snell__pass_begin(&pass, l->fbo, v->width, v->height, 0, GL_LESS, 1.0f);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, l->depth_rb);
+    snell__pass_begin(&pass, l->t.fbo, v->width, v->height, 0, GL_LESS, 1.0f);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, l->t.depth_rb);
     glUseProgram(l->prog);
     glUniformMatrix4fv(l->u_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
     glUniform3fv(l->u_eye, 1, v->eye);
@@ -188,25 +150,13 @@ static snell_status peel(snell_ctx *ctx, snell__layers *l, const snell__view *v,
     glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
     for (k = 0; k < layers; k++) {
         GLuint any = 1;
-        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, l->array_tex, 0, 2 * k);
-        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, l->array_tex, 0, 2 * k + 1);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, l->next_tex[k & 1], 0);
-        glDrawBuffers(3, bufs);
-        if (k == 0) {
-            GLenum fst = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-            if (fst != GL_FRAMEBUFFER_COMPLETE) {
-                snell__pass_end(&pass);
-                return snell__fail(ctx, SNELL_E_GL, "scene layer framebuffer incomplete (0x%x)", (unsigned)fst);
-            }
+        snell_status st = snell__peel_layer_begin(ctx, &l->t, k);
+        if (st != SNELL_OK) {
+            snell__pass_end(&pass);
+            return st;
         }
-        /* id 0 marks empty texels; the previous layer is read, not written */
-        glClearBufferfv(GL_COLOR, 0, zero);
-        glClearBufferfv(GL_COLOR, 1, zero);
-        glClearBufferfv(GL_COLOR, 2, zero);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        glBindTexture(GL_TEXTURE_2D, l->next_tex[(k + 1) & 1]);
         glUniform1i(l->u_first, k == 0);
-        glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, l->query);
+        glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, l->t.query);
         for (i = 0; i < n; i++) {
             glUniformMatrix4fv(l->u_model, 1, GL_FALSE, (const GLfloat *)items[i].model);
             glUniformMatrix3fv(l->u_normal_matrix, 1, GL_FALSE, (const GLfloat *)items[i].normal_matrix);
@@ -215,7 +165,7 @@ static snell_status peel(snell_ctx *ctx, snell__layers *l, const snell__view *v,
         }
         glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
         (*passes)++;
-        glGetQueryObjectuiv(l->query, GL_QUERY_RESULT, &any);
+        glGetQueryObjectuiv(l->t.query, GL_QUERY_RESULT, &any);
         if (!any) break; /* nothing behind the last layer: no further peel can hold anything */
         (*used)++;
     }

@@ -20,6 +20,7 @@
 #define SNELL_LAYERS_H
 
 #include "methods/method.h"
+#include "render/peel_targets.h"
 
 /* Texture units of the layers and the object table while kernels draw
  * (render/gbuffer.h uses 0..6). */
@@ -52,8 +53,8 @@ typedef struct snell__layers_key {
 typedef struct snell__layers {
     unsigned prog;
     int u_model, u_normal_matrix, u_view_proj, u_eye, u_fwd, u_near, u_inv_range, u_first, u_prev, u_id;
-    unsigned fbo, array_tex, next_tex[2], depth_rb, query, table_tex;
-    int width, height, capacity;
+    snell__peel_targets t;      /* the layers (render/peel_targets.h) */
+    unsigned table_tex;         /* the object table, RGBA32F, made on first use */
     int grown;                  /* layers the scenes so far have needed (0: SNELL__LAYERS_START) */
     float table[SNELL__LAYERS_TABLE_ROWS][SNELL__LAYERS_IDS][4]; /* the frame's object table, uploaded */
     snell__layers_key key, last;  /* this frame's and the last peeled one's (last.count < 0: none) */
