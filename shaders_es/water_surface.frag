@@ -5,54 +5,36 @@
 // attenuated by Beer-Lambert over the path in the water; the mirror ray sees
 // the walls' inner side above the water or the environment (the seed: the
 // sky box only); Schlick's Fresnel weighs the two (the seed adds them).
-// SNELL_WATER_OBJECTS: the frame's opaque objects, drawn before the water,
-// are seen through it: their colour and depth (copied from the target) are
-// searched along the refracted ray in screen space (the seed has no objects;
-// the search is Oliveira's applied to the opaque depth), 24 linear steps and
-// 6 binary ones over the part of the ray inside the objects' bounding
-// spheres. A step counts as a hit where it lies behind the copied depth by
-// less than a twelfth of the way to the container (view depth): a ray
-// passing farther behind an object's visible surface goes on; one leaving
-// the screen misses. Exit-direction output: the refracted direction.
+// Built with SNELL_WATER (common/water.glsl, through beyond.glsl).
+//
+// Objects in the water, two variants:
+// - SNELL_BEYOND (the frame has glass objects: render/layers.h): both rays
+//   are marched through the scene layers (common/beyond.glsl). The refracted
+//   one starts in the water (index and absorption the water's), refracts
+//   into and out of the glass objects it meets, stops at an opaque one, and
+//   ends at the container; the mirror one meets what stands above the water
+//   before the walls and the environment.
+// - SNELL_WATER_OBJECTS (opaque objects only): their colour and depth,
+//   drawn before the water and copied from the target, are searched along
+//   the refracted ray in screen space (the seed has no objects; the search
+//   is Oliveira's applied to the opaque depth), 24 linear steps and 6 binary
+//   ones over the part of the ray inside the objects' bounding spheres. A
+//   step counts as a hit where it lies behind the copied depth by less than
+//   a twelfth of the way to the container (view depth): a ray passing
+//   farther behind an object's visible surface goes on; one leaving the
+//   screen misses.
+// Exit-direction output: the refracted direction.
 precision highp float;
 
 #include "common/optics.glsl"
 #include "common/env.glsl"
 #include "common/output.glsl"
-#include "common/water_tiles.glsl"
+#include "common/beyond.glsl"
 
 in vec3 v_world_pos;
 in vec3 v_world_normal;
 
 uniform vec3 u_eye;
-uniform float u_ior;
-uniform vec3 u_sigma;      // Beer-Lambert absorption per world unit
-uniform float u_rim;       // top of the walls above the rest level
-
-// What the mirror ray from p sees: the walls' inner side where a rising ray
-// meets them below the rim, else the environment (a falling one would meet
-// the water again: the environment too, unmodelled).
-vec3 reflected(vec3 p, vec3 r)
-{
-    if (r.y > 0.0) {
-        float e = 3.0e38;
-        int face = 0;
-        if (r.x != 0.0) {
-            e = ((r.x > 0.0 ? u_half : -u_half) - p.x) / r.x;
-            face = r.x > 0.0 ? 2 : 1;
-        }
-        if (r.z != 0.0) {
-            float s = ((r.z > 0.0 ? u_half : -u_half) - p.z) / r.z;
-            if (s < e) {
-                e = s;
-                face = r.z > 0.0 ? 4 : 3;
-            }
-        }
-        vec3 q = p + max(e, 0.0) * r;
-        if (q.y <= u_rim) return water_tile(face, q);
-    }
-    return snell_env(r);
-}
 
 #ifdef SNELL_WATER_OBJECTS
 uniform highp sampler2D u_scene_depth; // the opaque objects' window depth (1: none)
@@ -125,31 +107,25 @@ float find_object(vec3 p, vec3 t, float dmax, out vec3 col)
 
 void main()
 {
-    vec3 p = v_world_pos;
-    vec3 v = normalize(p - u_eye);
-    vec3 n = normalize(v_world_normal);
+    highp vec3 p = v_world_pos;
+    highp vec3 v = normalize(p - u_eye);
+    highp vec3 n = normalize(v_world_normal);
     if (dot(n, v) > 0.0) n = -n;
-    vec3 r = snell_reflect(v, n), t;
-    snell_refract(v, n, 1.0 / u_ior, t);
-    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
-    float d = 3.0e38;
-    int face = 0;
-    if (t.y < 0.0) d = (-u_depth - p.y) / t.y;
-    if (t.x != 0.0) {
-        float s = ((t.x > 0.0 ? u_half : -u_half) - p.x) / t.x;
-        if (s < d) {
-            d = s;
-            face = t.x > 0.0 ? 2 : 1;
-        }
-    }
-    if (t.z != 0.0) {
-        float s = ((t.z > 0.0 ? u_half : -u_half) - p.z) / t.z;
-        if (s < d) {
-            d = s;
-            face = t.z > 0.0 ? 4 : 3;
-        }
-    }
-    d = max(d, 0.0);
+    highp vec3 r = snell_reflect(v, n), t;
+    snell_refract(v, n, 1.0 / u_water_ior, t);
+    t = normalize(t);
+    float fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, u_water_ior);
+#ifdef SNELL_BEYOND
+    highp vec3 dir = t;
+    beyond_water_start = 1;
+    vec3 seen = snell_exit(p, dir);
+    beyond_water_start = 2;
+    beyond_water_surface = false; // a rising ray does not meet the surface again
+    dir = r;
+    vec3 sky = snell_exit(p, dir);
+#else
+    int face;
+    highp float d = water_box_exit(p, t, face);
     vec3 seen = water_tile(face, p + d * t);
 #ifdef SNELL_WATER_OBJECTS
     vec3 col;
@@ -159,6 +135,8 @@ void main()
         d = e;
     }
 #endif
-    seen *= snell_beer_lambert(u_sigma, d);
-    snell_write(mix(seen, reflected(p, r), fresnel), t);
+    seen *= snell_beer_lambert(u_water_sigma, d);
+    vec3 sky = water_walls_above(p, r);
+#endif
+    snell_write(mix(seen, sky, fresnel), t);
 }

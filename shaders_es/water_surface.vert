@@ -8,24 +8,23 @@
 precision highp float;
 precision highp int;
 
+// (the uniforms as common/water.glsl declares them: one program, one set)
 #ifdef SNELL_WATER_STATE_UINT
-precision highp usampler2D;
-uniform usampler2D u_heights;
+uniform highp usampler2D u_water_heights;
 float height_at(ivec2 p)
 {
-    return uintBitsToFloat(texelFetch(u_heights, p, 0).r);
+    return uintBitsToFloat(texelFetch(u_water_heights, p, 0).r);
 }
 #else
-precision highp sampler2D;
-uniform sampler2D u_heights;
+uniform highp sampler2D u_water_heights;
 float height_at(ivec2 p)
 {
-    return texelFetch(u_heights, p, 0).r;
+    return texelFetch(u_water_heights, p, 0).r;
 }
 #endif
 
-uniform int u_n;
-uniform float u_half, u_dx;
+uniform int u_water_n;
+uniform highp float u_water_half, u_water_dx;
 uniform mat4 u_view_proj;
 
 out vec3 v_world_pos;
@@ -33,11 +32,11 @@ out vec3 v_world_normal;
 
 void main()
 {
-    int i = gl_VertexID % u_n, j = gl_VertexID / u_n;
-    int il = max(i - 1, 0), ir = min(i + 1, u_n - 1), jd = max(j - 1, 0), ju = min(j + 1, u_n - 1);
-    float dhdx = (height_at(ivec2(ir, j)) - height_at(ivec2(il, j))) / (float(ir - il) * u_dx);
-    float dhdz = (height_at(ivec2(i, ju)) - height_at(ivec2(i, jd))) / (float(ju - jd) * u_dx);
-    v_world_pos = vec3(-u_half + float(i) * u_dx, height_at(ivec2(i, j)), -u_half + float(j) * u_dx);
+    int i = gl_VertexID % u_water_n, j = gl_VertexID / u_water_n;
+    int il = max(i - 1, 0), ir = min(i + 1, u_water_n - 1), jd = max(j - 1, 0), ju = min(j + 1, u_water_n - 1);
+    float dhdx = (height_at(ivec2(ir, j)) - height_at(ivec2(il, j))) / (float(ir - il) * u_water_dx);
+    float dhdz = (height_at(ivec2(i, ju)) - height_at(ivec2(i, jd))) / (float(ju - jd) * u_water_dx);
+    v_world_pos = vec3(-u_water_half + float(i) * u_water_dx, height_at(ivec2(i, j)), -u_water_half + float(j) * u_water_dx);
     v_world_normal = vec3(-dhdx, 1.0, -dhdz);
     gl_Position = u_view_proj * vec4(v_world_pos, 1.0);
 }

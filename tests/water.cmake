@@ -24,3 +24,7 @@ if(TARGET snell-render)
            -DCODE=2 "-DERR=outside the container" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(cli_water_bad_drop PROPERTIES LABELS "cli;gl")
 endif()
+# test_water_glass: glass objects in the water (one through the surface, one under it) and an opaque
+# one, the frame against snell_ref_water_render with every medium traced, over the pixels the glass changes.
+snell_add_test(test_water_glass SOURCES test_water_glass.c LABELS "render;gl")
+target_link_libraries(test_water_glass PRIVATE m)

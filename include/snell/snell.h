@@ -818,12 +818,22 @@ typedef struct snell_frame_desc {
                                      * of its own object and of the object it last left (concave objects). */
     /* A water surface in its container (snell_water.h), drawn after the
      * opaque objects and before the glass; NULL = none. It must belong to the
-     * renderer's context. Opaque objects standing in it are seen through the
-     * surface (a screen-space search along the refracted rays; offscreen
-     * colour renderers without msaa: snell_frame_stats.water_objects); glass
-     * objects are not, and glass does not see the water (scene_layers holds
-     * glass and opaque objects only: the water is depth-tested against the
-     * glass, not refracted through it). */
+     * renderer's context. What stands in it is seen through the surface:
+     * with glass objects in the frame (and scene_layers not -1), the
+     * surface's refracted ray is marched through the scene layers in the
+     * water (the water's index between the objects, refracting through the
+     * glass, stopping at opaque objects, Beer-Lambert of the water over the
+     * path outside them) and its mirror ray meets the objects above the
+     * water; with opaque objects only, they are searched for in screen space
+     * along the refracted ray (offscreen colour renderers without msaa).
+     * snell_frame_stats.water_objects / water_layers say which. The glass
+     * kernels' exit rays (and the reflections the layers' march meets) see
+     * the water and the container (the surface found from the rest plane,
+     * refined by the heights) before the environment. Limits: a glass
+     * kernel's own first reflection looks up the environment only; a ray
+     * rising inside the water meets the walls, not the surface from below;
+     * the part of a ray inside the water that the glass's kernel traces (a
+     * glass object half under water) is traced as in air. */
     snell_water *water;
 } snell_frame_desc;
 
@@ -876,6 +886,9 @@ typedef struct snell_object_stats {
      * counted (colour output, the packed RGBA8 target, other methods). */
     int exact_fallback_pixels;
     int env_paraboloid;             /* 1: it looked its environment up in dual-paraboloid maps, 0: the cube */
+    int sees_water;                 /* 1: its exit rays meet the frame's water and container before the
+                                     * environment (common/water.glsl), and those leaving under the water
+                                     * are bent for its index (the scene layers hold the exit normal) */
 } snell_object_stats;
 
 typedef struct snell_frame_stats {
@@ -897,9 +910,10 @@ typedef struct snell_frame_stats {
     char scene_layers_reason[SNELL_REASON_SIZE]; /* why the stage ran or did not */
     int water_drawn;                /* 1: the frame's water surface and container were drawn */
     int water_uploaded;             /* 1: its CPU-simulated heights changed and were uploaded this frame */
-    int water_objects;              /* 1: the opaque objects were searched for along its refracted rays (an
-                                     * offscreen single-sample colour renderer with opaque objects; else the
-                                     * water shows only the container below it) */
+    int water_objects;              /* 1: objects in the water are seen through it (along its refracted rays:
+                                     * the scene layers, or with opaque objects only the screen-space search of
+                                     * an offscreen single-sample colour renderer); 0: only the container */
+    int water_layers;               /* 1: the water's rays marched the scene layers (glass in the frame) */
     int background_paraboloid;      /* 1: the background looked the environment up in dual-paraboloid maps */
 } snell_frame_stats;
 

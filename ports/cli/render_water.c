@@ -27,6 +27,7 @@ typedef struct water_drop_opt {
 typedef struct water_object_opt {
     char mesh[256];                /* shape name or OBJ/glTF file */
     float place[4];                /* x, y, z, scale of the unit-sphere-normalised mesh */
+    int glass;                     /* --glass: a glass object, else opaque */
 } water_object_opt;
 
 typedef struct water_options {
@@ -53,7 +54,8 @@ static void usage(FILE *f)
             "  --drop X,Z[,R[,A[,F]]] a drop at world (X, Z), radius R (default 0.08), amplitude A\n"
             "                         (default -0.03; > 0 lifts), before frame F (default 0); repeatable\n"
             "  --object MESH:X,Y,Z,S  an opaque object (shape or file, fitted in the unit sphere) at (X, Y, Z)\n"
-            "                         scaled by S, standing in the water; repeatable (up to 8)\n"
+            "                         scaled by S, standing in the water; repeatable (up to 8 objects)\n"
+            "  --glass MESH:X,Y,Z,S   a glass object (IOR 1.5, method AUTO), placed as --object; repeatable\n"
             "  --frames N             frames to simulate and render (default 1)\n"
             "  --steps S              simulation steps per frame (default 2)\n"
             "  --dt SECONDS           step (default 1/120; clamped to the stability limit)\n"
@@ -120,16 +122,17 @@ static int parse(int argc, char **argv, water_options *o)
             }
             d->frame = (int)f;
             o->drop_count++;
-        } else if (!strcmp(a, "--object")) {
+        } else if (!strcmp(a, "--object") || !strcmp(a, "--glass")) {
             water_object_opt *ob = &o->objects[o->object_count];
             const char *colon = strrchr(v, ':');
             if (o->object_count == MAX_OBJECTS || !colon || colon == v || (size_t)(colon - v) >= sizeof ob->mesh ||
                 sscanf(colon + 1, "%f,%f,%f,%f", &ob->place[0], &ob->place[1], &ob->place[2], &ob->place[3]) != 4) {
-                fprintf(stderr, "snell-render --water: --object %s: MESH:X,Y,Z,S (at most %d)\n", v, MAX_OBJECTS);
+                fprintf(stderr, "snell-render --water: %s %s: MESH:X,Y,Z,S (at most %d objects)\n", a, v, MAX_OBJECTS);
                 return 0;
             }
             memcpy(ob->mesh, v, (size_t)(colon - v));
             ob->mesh[colon - v] = '\0';
+            ob->glass = a[2] == 'g';
             o->object_count++;
         } else if (!strcmp(a, "--frames")) {
             o->frames = atoi(v);
@@ -197,6 +200,8 @@ static int run(snell_ctx *ctx, const water_options *o)
     snell_frame_desc fd;
     snell_mesh *meshes[MAX_OBJECTS] = {0};
     snell_opaque opaque[MAX_OBJECTS];
+    snell_glass glass[MAX_OBJECTS];
+    int n_opaque = 0, n_glass = 0;
     float models[MAX_OBJECTS][16];
     uint8_t *px = NULL;
     int f, k, rc = 1;
@@ -223,17 +228,28 @@ static int run(snell_ctx *ctx, const water_options *o)
             goto done;
         }
         cli_place_matrix(o->objects[k].place, models[k]);
-        opaque[k].mesh = meshes[k];
-        opaque[k].model = models[k];
-        opaque[k].color[0] = (float)(0.55 + 0.4 * cos(2.1 * k));
-        opaque[k].color[1] = (float)(0.55 + 0.4 * cos(2.1 * k + 2.1));
-        opaque[k].color[2] = (float)(0.55 + 0.4 * cos(2.1 * k + 4.2));
+        if (o->objects[k].glass) {
+            snell_glass *g = &glass[n_glass++];
+            memset(g, 0, sizeof *g);
+            g->mesh = meshes[k];
+            g->model = models[k];
+            g->material.ior = 1.5f;
+        } else {
+            snell_opaque *op = &opaque[n_opaque++];
+            op->mesh = meshes[k];
+            op->model = models[k];
+            op->color[0] = (float)(0.55 + 0.4 * cos(2.1 * k));
+            op->color[1] = (float)(0.55 + 0.4 * cos(2.1 * k + 2.1));
+            op->color[2] = (float)(0.55 + 0.4 * cos(2.1 * k + 4.2));
+        }
     }
     memset(&fd, 0, sizeof fd);
     fd.env = env;
     fd.water = w;
-    fd.opaque = o->object_count ? opaque : NULL;
-    fd.opaque_count = o->object_count;
+    fd.opaque = n_opaque ? opaque : NULL;
+    fd.opaque_count = n_opaque;
+    fd.glass = n_glass ? glass : NULL;
+    fd.glass_count = n_glass;
     fd.camera.azimuth = (float)(o->az_deg * PI / 180.0);
     fd.camera.elevation = (float)(o->el_deg * PI / 180.0);
     fd.camera.distance = o->dist;
@@ -257,7 +273,9 @@ static int run(snell_ctx *ctx, const water_options *o)
                    ws.skipped_settled ? "simulation skipped (settled, undisturbed)" : "simulated", ws.steps_run,
                    (double)ws.dt, ws.dt_clamped ? " (clamped to the stability limit)" : "", (double)ws.max_deviation,
                    ws.settled ? "settled" : "moving", fs.water_uploaded ? "uploaded" : "not uploaded",
-                   fs.water_objects ? ", objects searched under the surface" : "");
+                   fs.water_objects ? (fs.water_layers ? ", objects seen under the surface through the scene layers"
+                                                       : ", objects searched under the surface")
+                                    : "");
         if (o->save_every > 0 && (f % o->save_every == 0 || f == o->frames - 1)) {
             char path[1024];
             frame_path(o->out, f, path, sizeof path);

@@ -39,6 +39,36 @@
 //
 // dir is updated to the direction the path finally leaves in (exit-direction
 // output). highp: positions, projections and 24-bit depths.
+//
+// SNELL_WATER (the frame has a water surface, common/water.glsl): past the
+// objects the ray meets the water and its container before the
+// environment. In the air (the default) they are met where they lie nearer
+// than the next object's surface; beyond_water_surface = false leaves the
+// surface out (rays reflected off it, which rise). A ray is in the water
+// when it starts under the surface (beyond_water_start 0), or as
+// beyond_water_start says (1 in the water, 2 in the air: the water
+// surface's own rays, which start on it). In the water the
+// ambient index is the water's, Beer-Lambert with the water's absorption
+// runs over every stretch outside the objects, and the container ends the
+// ray (water_under). Reflections met on the way look up the same.
+#ifdef SNELL_WATER
+#include "common/water.glsl"
+int beyond_water_start = 0;
+bool beyond_in_water = false; // set by snell_exit from the above
+bool beyond_water_surface = true;
+#endif
+
+// What a ray from o along dir in the ambient medium sees past every object.
+vec3 beyond_miss(highp vec3 o, highp vec3 dir)
+{
+#ifdef SNELL_WATER
+    if (beyond_in_water) return water_under(o, dir);
+    highp float dist;
+    vec3 col;
+    if (water_air(o, dir, 3.0e38, beyond_water_surface, dist, col)) return col;
+#endif
+    return snell_env(dir);
+}
 
 #ifdef SNELL_BEYOND
 #define BEYOND_MAX_LAYERS 8         // SNELL_MAX_SCENE_LAYERS
@@ -145,6 +175,9 @@ int beyond_medium(highp vec3 p, int excl)
 
 float beyond_ior(int medium)
 {
+#ifdef SNELL_WATER
+    if (medium == 0 && beyond_in_water) return u_water_ior;
+#endif
     return medium > 0 ? beyond_table(medium, 0).x : 1.0;
 }
 
@@ -224,6 +257,20 @@ highp float beyond_inside_stretch(int medium, highp vec3 o, highp vec3 dir, out 
 
 vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
 {
+#ifdef SNELL_WATER
+    beyond_in_water = beyond_water_start == 1 || (beyond_water_start == 0 && water_contains(p));
+    if (beyond_in_water && beyond_water_start == 0 && u_scene_self > 0 && !beyond_thin(u_scene_self)) {
+        // The kernel refracted its ray out into air; it leaves under the
+        // water: bent again for the water's index (the tangential part
+        // scales by 1 / ior), with the normal of its object's surface there
+        // from the layers. A ray the kernel reflected totally (beyond
+        // glass-air's critical angle, short of glass-water's) stays so.
+        highp vec3 n = beyond_normal(p, p, u_scene_self, -dir);
+        if (dot(n, dir) < 0.0) n = -n;
+        highp vec3 tw = (dir - dot(dir, n) * n) / u_water_ior;
+        dir = normalize(tw + sqrt(max(1.0 - dot(tw, tw), 0.0)) * n);
+    }
+#endif
     vec3 radiance = vec3(0.0); // reflections met on the way
     vec3 thr = vec3(1.0);      // what reaches the eye of the light along the current ray
     // a ray that leaves its object inside another (nested glass) starts in it
@@ -238,17 +285,31 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
     for (int round = 0; round < BEYOND_MAX_INTERFACES + 32; round++) {
         highp float ta, tb, step;
         int inside = medium & 255; // the glass object the ray is in, 0 air
+        highp float water_t = 3.0e38; // in the air: where the water or the container is met
+#ifdef SNELL_WATER
+        highp vec3 water_n;
+        int water_what = -1;
+        if (inside == 0 && !beyond_in_water) {
+            water_what = water_air_hit(o, dir, 3.0e38, beyond_water_surface, water_t, water_n);
+            if (water_what < 0) water_t = 3.0e38;
+        }
+#endif
+        bool to_water = false;
         if (inside > 0) {
             ta = 0.0;
             tb = beyond_inside_stretch(inside, o, dir, step);
         } else if (!beyond_stretch(o, dir, t0, ta, tb, step)) {
-            break;
+            to_water = water_t < 3.0e38;
+            if (!to_water) break;
+        } else if (ta > water_t) {
+            to_water = true;
         }
         // linear: the first sample whose medium differs
         highp float ia = ta, ib = -1.0;
         int m_new = medium;
         bool unknown = false;
         for (int i = 1; i <= 4 * BEYOND_LINEAR; i++) { // a stretch is at most a grown diameter: < 2 LINEAR steps
+            if (to_water) break;
             highp float t = min(ta + float(i) * step, tb);
             int m = beyond_medium(o + t * dir, left);
             if (m == BEYOND_UNKNOWN) {
@@ -264,6 +325,27 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
             if (t >= tb) break;
         }
         if (unknown) break;
+        if (inside == 0 && (to_water || (ib < 0.0 ? tb : ib) > water_t)) {
+#ifdef SNELL_WATER
+            // the water (or the container) comes first: a face ends the
+            // ray; at the surface it is refracted into the water and goes on
+            // there (the reflected part from the walls and the sky)
+            highp vec3 q = o + water_t * dir;
+            if (water_what != WATER_SURFACE) return radiance + thr * (water_what == WATER_IN ? water_under(o, dir)
+                                                                                              : water_tile(water_what, q));
+            highp vec3 wn = dot(water_n, dir) > 0.0 ? -water_n : water_n, wt;
+            float wf = snell_fresnel_schlick(-dot(dir, wn), 1.0, u_water_ior);
+            radiance += thr * wf * water_walls_above(q, snell_reflect(dir, wn));
+            thr *= 1.0 - wf;
+            snell_refract(dir, wn, 1.0 / u_water_ior, wt);
+            dir = normalize(wt);
+            o = q;
+            t0 = 0.0;
+            beyond_in_water = true;
+            if (++crossed >= BEYOND_MAX_INTERFACES) break;
+            continue;
+#endif
+        }
         if (ib < 0.0) {
             if (inside > 0) {
                 // no far surface in the layers: it leaves in its direction (peel.frag's rule)
@@ -289,6 +371,9 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
         }
         highp vec3 qa = o + ia * dir, qb = o + ib * dir;
         if (inside > 0) thr *= snell_beer_lambert(beyond_table(inside, 1).rgb, ib);
+#ifdef SNELL_WATER
+        else if (beyond_in_water) thr *= snell_beer_lambert(u_water_sigma, ib);
+#endif
         int entered = m_new & 255;
         if (entered == inside && (m_new ^ medium) == BEYOND_THIN_ODD) {
             // a thin wall: which one is the nearest thin layer to the crossing
@@ -313,7 +398,7 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
                 vec4 w0 = beyond_table(wall, 0), w1 = beyond_table(wall, 1);
                 snell_thin_slab(dot(nw, dir), w0.x, w1.rgb, w1.w, rs, ts);
                 if (dot(nw, dir) > 0.0) nw = -nw;
-                radiance += thr * rs * snell_env(snell_reflect(dir, nw));
+                radiance += thr * rs * beyond_miss(qb, snell_reflect(dir, nw));
                 thr *= ts * w0.yzw;
             }
             // the whole object is one slab (the single kernel's thin walls,
@@ -341,7 +426,7 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
             // an entry from air: its reflection, and the tint
             float f = snell_fresnel(-dot(dir, n), n1, n2);
             // one texture level (no mipmaps): the look-up needs no derivatives here
-            radiance += thr * f * snell_env(snell_reflect(dir, n));
+            radiance += thr * f * beyond_miss(qb, snell_reflect(dir, n));
             thr *= (1.0 - f) * beyond_table(entered, 0).yzw;
         }
         dir = normalize(out_dir);
@@ -355,11 +440,11 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
         t0 = 0.0;
         if (++crossed >= BEYOND_MAX_INTERFACES) break; // the cap: leaves in its direction
     }
-    return radiance + thr * snell_env(dir);
+    return radiance + thr * beyond_miss(o, dir);
 }
 #else
 vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
 {
-    return snell_env(dir);
+    return beyond_miss(p, dir);
 }
 #endif

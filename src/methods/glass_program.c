@@ -4,6 +4,7 @@
 #include "core/program.h"
 #include "render/gbuffer.h"
 #include "render/layers.h"
+#include "water/water_draw.h"
 
 #include <string.h>
 
@@ -19,7 +20,8 @@ const char *snell__output_defines(snell__output_kind out)
 int snell__glass_variant(const snell__object *o)
 {
     return o->screen_space | (o->beyond ? SNELL__GLASS_BEYOND : 0) |
-           (o->env_paraboloid ? SNELL__GLASS_ENV_PARABOLOID : 0);
+           (o->env_paraboloid ? SNELL__GLASS_ENV_PARABOLOID : 0) | (o->water ? SNELL__GLASS_WATER : 0) |
+           (o->water > 1 ? SNELL__GLASS_WATER_UINT : 0);
 }
 
 snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, snell__output_kind out,
@@ -28,32 +30,20 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     char defines[1024];
     snell_status st;
     int screen_space = variant & SNELL__GLASS_SHADING_MASK;
-    snprintf(defines, sizeof defines, "%s%s%s%s%s%s", snell__output_defines(out),
+    snprintf(defines, sizeof defines, "%s%s%s%s%s%s%s%s", snell__output_defines(out),
              screen_space ? "#define SNELL_SCREEN_SPACE 1\n" : "",
              screen_space == SNELL__SCREEN_WRITES_DEPTH ? "#define SNELL_SCREEN_WRITES_DEPTH 1\n" : "",
              variant & SNELL__GLASS_BEYOND ? "#define SNELL_BEYOND 1\n" : "",
              variant & SNELL__GLASS_ENV_PARABOLOID ? SNELL__ENV_PARABOLOID_DEFINE : "",
+             variant & SNELL__GLASS_WATER ? "#define SNELL_WATER 1\n" : "",
+             variant & SNELL__GLASS_WATER_UINT ? "#define SNELL_WATER_STATE_UINT 1\n" : "",
              extra_defines ? extra_defines : "");
     memset(g, 0, sizeof *g);
     st = snell__program_build(ctx, screen_space ? "screen.vert" : "object.vert", fs_path, defines, &g->prog);
     if (st != SNELL_OK) return st;
     g->screen_space = screen_space;
     g->beyond = (variant & SNELL__GLASS_BEYOND) != 0;
-    if (g->beyond) {
-        g->s_layers = glGetUniformLocation(g->prog, "u_scene_layers");
-        g->s_table = glGetUniformLocation(g->prog, "u_scene_table");
-        g->s_layer_count = glGetUniformLocation(g->prog, "u_scene_layer_count");
-        g->s_capped = glGetUniformLocation(g->prog, "u_scene_capped");
-        g->s_glass_ids = glGetUniformLocation(g->prog, "u_scene_glass_ids");
-        g->s_opaque_count = glGetUniformLocation(g->prog, "u_scene_opaque_count");
-        g->s_self = glGetUniformLocation(g->prog, "u_scene_self");
-        g->s_view_proj = glGetUniformLocation(g->prog, "u_scene_view_proj");
-        g->s_eye = glGetUniformLocation(g->prog, "u_scene_eye");
-        g->s_fwd = glGetUniformLocation(g->prog, "u_scene_fwd");
-        g->s_near = glGetUniformLocation(g->prog, "u_scene_near");
-        g->s_inv_range = glGetUniformLocation(g->prog, "u_scene_inv_range");
-        g->s_size = glGetUniformLocation(g->prog, "u_scene_size");
-    }
+    g->water = (variant & SNELL__GLASS_WATER) != 0;
     g->gnormal = glGetUniformLocation(g->prog, "u_gnormal");
     g->gdepth_id = glGetUniformLocation(g->prog, "u_gdepth_id");
     g->inv_view_proj = glGetUniformLocation(g->prog, "u_inv_view_proj");
@@ -120,22 +110,9 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniform3fv(g->sigma, 1, o->glass->absorption);
     glUniform3fv(g->tint, 1, o->glass->material.tint);
     glUniform4fv(g->bsphere, 1, o->bsphere);
-    if (g->beyond) {
-        const snell__scene_layers *l = &v->layers;
-        glUniform1i(g->s_layers, SNELL__LAYERS_UNIT);
-        glUniform1i(g->s_table, SNELL__LAYERS_TABLE_UNIT);
-        glUniform1i(g->s_layer_count, l->count);
-        glUniform1i(g->s_capped, l->capped);
-        glUniform1i(g->s_glass_ids, l->glass_ids);
-        glUniform1i(g->s_opaque_count, l->opaque_count);
-        glUniform1i(g->s_self, o->index + 1 + (o->glass->material.thickness > 0.0f ? SNELL__LAYERS_THIN_ID : 0));
-        glUniformMatrix4fv(g->s_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
-        glUniform3fv(g->s_eye, 1, v->eye);
-        glUniform3fv(g->s_fwd, 1, l->fwd);
-        glUniform1f(g->s_near, l->near_);
-        glUniform1f(g->s_inv_range, l->inv_range);
-        glUniform2f(g->s_size, (float)v->width, (float)v->height);
-    }
+    if (g->beyond)
+        snell__layers_uniforms(g->prog, v, o->index + 1 + (o->glass->material.thickness > 0.0f ? SNELL__LAYERS_THIN_ID : 0));
+    if (g->water) snell__water_uniforms(g->prog, v->water);
     if (g->screen_space) {
         glUniform1i(g->gnormal, SNELL__GBUFFER_UNIT_NORMAL);
         glUniform1i(g->gdepth_id, SNELL__GBUFFER_UNIT_DEPTH_ID);

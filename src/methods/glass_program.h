@@ -9,11 +9,9 @@ typedef struct snell__glass_program {
     unsigned prog;
     int screen_space;               /* 0 forward, else SNELL__SCREEN_* (render/gbuffer.h): screen.vert */
     int beyond;                     /* SNELL_BEYOND: the exit look-up marches the scene layers */
+    int water;                      /* SNELL_WATER: the exit look-up meets the frame's water (view.water) */
     int model, normal_matrix, view_proj, eye, env, ior, ior_rgb, sigma, tint, bsphere;
     int gnormal, gdepth_id, inv_view_proj, inv_size, gid;
-    /* common/beyond.glsl's uniforms (beyond only) */
-    int s_layers, s_table, s_layer_count, s_capped, s_glass_ids, s_opaque_count, s_self, s_view_proj, s_eye, s_fwd,
-        s_near, s_inv_range, s_size;
 } snell__glass_program;
 
 /* A kernel program's variant for an object (what snell__glass_program_build
@@ -21,12 +19,15 @@ typedef struct snell__glass_program {
  * SNELL__GLASS_BEYOND if its exit rays march the scene layers, and
  * SNELL__GLASS_ENV_PARABOLOID if it looks its environment up in
  * dual-paraboloid maps (common/env.glsl; its env_texture on unit 0 is then a
- * 2D array, render/env_paraboloid.h). Kernels key their programs by it; it is
+ * 2D array, render/env_paraboloid.h), and SNELL__GLASS_WATER (+ _UINT)
+ * if the frame has a water surface its exit rays may meet. Kernels key their programs by it; it is
  * below SNELL__GLASS_VARIANTS. */
 #define SNELL__GLASS_SHADING_MASK 3
 #define SNELL__GLASS_BEYOND 4
 #define SNELL__GLASS_ENV_PARABOLOID 8
-#define SNELL__GLASS_VARIANTS 16
+#define SNELL__GLASS_WATER 16       /* the frame has water, heights in R32F (common/water.glsl) */
+#define SNELL__GLASS_WATER_UINT 32  /* ... in the GPU simulation's RG32UI state */
+#define SNELL__GLASS_VARIANTS 64
 int snell__glass_variant(const snell__object *o);
 
 /* One slot of a kernel's small cache of programs, keyed by their

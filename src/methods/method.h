@@ -48,6 +48,7 @@ typedef struct snell__view {
     snell__output_kind out;
     snell__back_maps back;          /* this frame's back-face maps (band 0 and the target's size if none) */
     snell__scene_layers layers;     /* this frame's scene layers (count 0 if none) */
+    const struct snell_water *water; /* the frame's water surface, NULL none (common/water.glsl) */
 } snell__view;
 
 /* One glass object of a frame, resolved by the scene stage (render/scene.c). */
@@ -78,6 +79,8 @@ typedef struct snell__object {
     int back_guard;                 /* pixels of guard band it asks of the back-face pass (0: none) */
     int beyond;                     /* its exit rays continue through the scene layers (view.layers), not
                                      * straight to the environment: the kernel's SNELL_BEYOND variant */
+    int water;                      /* the frame has water for its exit rays to meet (SNELL_WATER):
+                                     * 1 heights in R32F (CPU simulation), 2 in the GPU state */
 } snell__object;
 
 /* How well a method serves an object. */

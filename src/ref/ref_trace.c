@@ -37,6 +37,8 @@ typedef struct optics {
     int samples; /* S: S x S rays per pixel */
     int channel; /* the colour channel whose IOR the glass has on this trace (ref_glass.ior_rgb) */
     int disperses; /* some glass object's channels have different IORs: a trace per channel */
+    const snell__ref_surroundings *sur; /* MATCHED: NULL, air and the environment (ref_trace.h) */
+    const snell__ref_medium *first;     /* with sur: the medium a ray starting off every surface is in */
 } optics;
 
 /* ------------------------------------------------------------ vectors */
@@ -213,20 +215,47 @@ static void first_hit(snell_ref_path *path, int depth, int found, const ref_surf
 static void m_inside(const snell_ref *r, const optics *op, int j, const double p[3], const double t1[3], uint32_t prim,
                      int depth, const double w[3], snell_ref_path *path, double *len, double L[3]);
 
+static void m_surface(const snell_ref *r, const optics *op, const snell__ref_medium *med, const double d[3], int found,
+                      const ref_surf *sp, int depth, const double w[3], snell_ref_path *path, double rgb[3]);
+
 static void m_air(const snell_ref *r, const optics *op, const double o[3], const double d[3], uint32_t prim, int excl,
                   int depth, const double w[3], snell_ref_path *path, double rgb[3])
 {
     ref_view v = air_view(op, depth, excl, excl);
     ref_surf s;
-    const ref_glass *g;
-    double n[3], c, refl[3] = {0, 0, 0}, rdir[3], wr[3], wt[3];
     int found, k;
+    /* the medium it travels in (with surroundings): where it starts, or at the surface it leaves */
+    const snell__ref_medium *med = !op->sur ? NULL : prim == SNELL__BVH_NONE ? op->first : op->sur->at(op->sur->user, o);
     if (!path && max3(w) < MIN_WEIGHT) {
-        env_rgb(op, d, rgb);
+        if (!med || !med->meet(op->sur->user, o, d, HUGE_VAL, rgb)) env_rgb(op, d, rgb);
         return;
     }
     found = snell__ref_hit(r, o, d, prim, &v, &s);
     first_hit(path, depth, found, &s);
+    if (med) {
+        if (med->meet(op->sur->user, o, d, found ? s.t : HUGE_VAL, rgb)) {
+            if (path) memcpy(path->exit_dir, d, 3 * sizeof(double));
+            return;
+        }
+        if (found) { /* through the ambient medium to the object */
+            double wa[3];
+            for (k = 0; k < 3; k++) wa[k] = w[k] * exp(-med->sigma[k] * s.t);
+            m_surface(r, op, med, d, found, &s, depth, wa, path, rgb);
+            for (k = 0; k < 3; k++) rgb[k] *= exp(-med->sigma[k] * s.t);
+            return;
+        }
+    }
+    m_surface(r, op, med, d, found, &s, depth, w, path, rgb);
+}
+
+/* m_air's ray d at what it met (found: s, else nothing). */
+static void m_surface(const snell_ref *r, const optics *op, const snell__ref_medium *med, const double d[3], int found,
+                      const ref_surf *sp, int depth, const double w[3], snell_ref_path *path, double rgb[3])
+{
+    const ref_surf s = *sp;
+    const ref_glass *g;
+    double n[3], c, refl[3] = {0, 0, 0}, rdir[3], wr[3], wt[3], amb = med ? med->ior : 1.0;
+    int k;
     if (!found || s.object < 0) {
         if (found)
             snell__ref_shade_opaque(r, -2 - s.object, &s, rgb);
@@ -254,8 +283,8 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
         m_air(r, op, s.p, d, s.prim, s.object, depth + 1, wt, path, L);
         for (k = 0; k < 3; k++) rgb[k] = rs[k] * refl[k] + ts[k] * g->tint[k] * L[k];
     } else {
-        double F = fresnel(op, c, 1.0, ior_of(op, g)), t1[3], L[3], len = 0.0, dist, T;
-        int tir = !snell_optd_refract(d, n, 1.0 / ior_of(op, g), t1);
+        double F = fresnel(op, c, amb, ior_of(op, g)), t1[3], L[3], len = 0.0, dist, T;
+        int tir = !snell_optd_refract(d, n, amb / ior_of(op, g), t1);
         if (tir) F = 1.0; /* IOR < 1 at a grazing angle */
         if (path) {
             if (path->interfaces == 0) path->fresnel = F;
@@ -329,7 +358,7 @@ static void m_inside(const snell_ref *r, const optics *op, int j, const double p
             break;
         }
         facing(&s, dir, n);
-        if (!snell_optd_refract(dir, n, ior_of(op, g), out)) {
+        if (!snell_optd_refract(dir, n, ior_of(op, g) / (op->sur ? op->sur->at(op->sur->user, s.p)->ior : 1.0), out)) {
             snell_optd_reflect(dir, n, out);
             snell__ref_normalize3(out);
             if (path) path_point(path, s.p, SNELL_REF_EVENT_TIR, j);
@@ -571,6 +600,30 @@ static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, opt
     for (i = 0; i < ref->glass_count; i++)
         if (ref->glass[i].res.disperses) op->disperses = 1;
     return SNELL_OK;
+}
+
+void snell__ref_trace_matched(const snell_ref *ref, const snell_ref_params *params, const snell__ref_surroundings *sur,
+                              const snell__ref_medium *first, const double o[3], const double d[3], double rgb[3])
+{
+    static const double one[3] = {1.0, 1.0, 1.0};
+    snell_ref_params p = *params;
+    optics op;
+    int c;
+    p.mode = SNELL_REF_MATCHED;
+    if (resolve(ref, &p, &op) != SNELL_OK) { /* the caller validated params: not reached */
+        rgb[0] = rgb[1] = rgb[2] = 0.0;
+        return;
+    }
+    op.sur = sur;
+    op.first = first;
+    m_air(ref, &op, o, d, SNELL__BVH_NONE, -1, 0, one, NULL, rgb);
+    if (!op.disperses) return;
+    for (c = 0; c < 3; c += 2) {
+        double other[3];
+        op.channel = c;
+        m_air(ref, &op, o, d, SNELL__BVH_NONE, -1, 0, one, NULL, other);
+        rgb[c] = other[c];
+    }
 }
 
 /* ------------------------------------------------------------ camera rays */

@@ -29,4 +29,31 @@ snell_status snell__ref_camera_setup(snell_ctx *ctx, const snell_ref_params *p, 
 /* Unit ray through the point (fx, fy) of pixel (x, y) (0.5, 0.5: its centre), y = 0 the top row. */
 void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double dir[3]);
 
+/* What surrounds the objects when it is not the air and the environment
+ * alone (the water scene, ref_water.c). The rays between objects travel in
+ * a medium: its index, its Beer-Lambert absorption sigma, and meet(), asked
+ * first along each ray: 1 with rgb if the ray o + t d (unit d) meets the
+ * surroundings before t_limit (the nearest object surface ahead, HUGE_VAL
+ * none), rgb then the radiance arriving along it, its absorption included;
+ * 0 passes it on to the object (or, with none ahead, the environment).
+ * at() is the medium at a point of an object's surface (where a ray leaves
+ * an object, or is reflected off it). */
+typedef struct snell__ref_medium {
+    int (*meet)(const void *user, const double o[3], const double d[3], double t_limit, double rgb[3]);
+    double ior;
+    double sigma[3];
+} snell__ref_medium;
+
+typedef struct snell__ref_surroundings {
+    const void *user;
+    const snell__ref_medium *(*at)(const void *user, const double p[3]);
+} snell__ref_surroundings;
+
+/* The MATCHED model's radiance along o + t d (unit d) through ref's objects,
+ * starting in medium first of the surroundings sur (sur NULL: air and the
+ * environment), with params' environment (env or env_fn) and
+ * max_interfaces; no path recorded. params are valid (not checked again). */
+void snell__ref_trace_matched(const snell_ref *ref, const snell_ref_params *params, const snell__ref_surroundings *sur,
+                              const snell__ref_medium *first, const double o[3], const double d[3], double rgb[3]);
+
 #endif

@@ -23,7 +23,8 @@
 
 typedef struct water_scene {
     const snell_water *w;
-    const snell_ref *objects;   /* opaque objects (its glass objects refused), or NULL */
+    const snell_ref *objects;   /* the objects standing in (or above) the water, or NULL */
+    snell__ref_medium air, air_above, water; /* air_above: the mirror rays, which leave the surface out */
     const float *h;             /* heights, n * n */
     double half, dx, hmin, hmax, ior, sigma[3];
     int n;
@@ -81,7 +82,7 @@ static int triangle(const double o[3], const double d[3], const double v0[3], co
     *t = snell__ref_dot3(e2, qv) * inv;
     *b1 = u;
     *b2 = v;
-    return *t > 0.0;
+    return *t > 1e-9; /* not the triangle a mirror ray leaves */
 }
 
 /* The two triangles of cell (i, j): nearest hit, its point and normal. */
@@ -185,109 +186,171 @@ static int container_hit(const water_scene *s, const double o[3], const double d
     return face;
 }
 
-/* The nearest opaque object along o + t d (t > eps), or 0. */
-static int object_hit(const water_scene *s, const double o[3], const double d[3], ref_surf *surf)
-{
-    const ref_view view = {-1, REF_SEE_NONE, -1};
-    return s->objects && snell__ref_hit(s->objects, o, d, SNELL__BVH_NONE, &view, surf);
-}
+/* The media around the objects (ref_trace.h): a trace walks through them
+ * with its recursion depth (the water's shading traces its own two rays). */
+typedef struct water_walk {
+    const water_scene *s;
+    int depth;
+} water_walk;
 
-/* The refracted ray from p inside the water: the seed's five wall
- * distances, or an opaque object before them. */
-static void under_water(const water_scene *s, const double p[3], const double t[3], double rgb[3])
+#define WATER_MAX_DEPTH 3 /* deeper, the surface is shaded without objects */
+
+static void trace_in(const water_scene *s, int depth, const snell__ref_medium *m, const double o[3], const double d[3],
+                     double rgb[3]);
+
+/* In the water: the seed's five wall distances (a rising ray meets the
+ * walls, not the surface from below), Beer-Lambert over the distance; an
+ * object nearer than them is the trace's. */
+static int meet_water(const void *user, const double o[3], const double d[3], double t_limit, double rgb[3])
 {
-    double d = HUGE_VAL, q[3], tile[3];
-    ref_surf os;
+    const water_scene *s = ((const water_walk *)user)->s;
+    double t = HUGE_VAL, q[3];
     int face = 0, k;
-    if (t[1] < 0.0) d = (-s->w->d.depth - p[1]) / t[1];
-    if (t[0] != 0.0) {
-        double e = ((t[0] > 0.0 ? s->half : -s->half) - p[0]) / t[0];
-        if (e < d) {
-            d = e;
-            face = t[0] > 0.0 ? 2 : 1;
+    if (d[1] < 0.0) t = (-s->w->d.depth - o[1]) / d[1];
+    if (d[0] != 0.0) {
+        double e = ((d[0] > 0.0 ? s->half : -s->half) - o[0]) / d[0];
+        if (e < t) {
+            t = e;
+            face = d[0] > 0.0 ? 2 : 1;
         }
     }
-    if (t[2] != 0.0) {
-        double e = ((t[2] > 0.0 ? s->half : -s->half) - p[2]) / t[2];
-        if (e < d) {
-            d = e;
-            face = t[2] > 0.0 ? 4 : 3;
+    if (d[2] != 0.0) {
+        double e = ((d[2] > 0.0 ? s->half : -s->half) - o[2]) / d[2];
+        if (e < t) {
+            t = e;
+            face = d[2] > 0.0 ? 4 : 3;
         }
     }
-    if (d < 0.0) d = 0.0;
-    for (k = 0; k < 3; k++) q[k] = p[k] + d * t[k];
-    if (object_hit(s, p, t, &os) && os.t < d) {
-        d = os.t;
-        snell__ref_shade_opaque(s->objects, -2 - os.object, &os, tile);
-    } else {
-        snell__water_tile(&s->w->d, face, q, tile);
-    }
-    for (k = 0; k < 3; k++) rgb[k] = tile[k] * exp(-s->sigma[k] * d);
+    if (t < 0.0) t = 0.0;
+    if (t >= t_limit) return 0;
+    for (k = 0; k < 3; k++) q[k] = o[k] + t * d[k];
+    snell__water_tile(&s->w->d, face, q, rgb);
+    for (k = 0; k < 3; k++) rgb[k] *= exp(-s->sigma[k] * t);
+    return 1;
 }
 
-/* What the mirror ray from p sees: the walls' inner side where a rising ray
- * meets them below the rim, else the environment (water_surface.frag). */
-static void reflected(const water_scene *s, const double p[3], const double r[3], double rgb[3])
+/* The water surface met at p by the ray d from the air, normal nrm
+ * (unnormalised): Schlick's Fresnel between the mirror ray (in the air,
+ * leaving the surface out) and the refracted one (in the water). */
+static void shade_surface(const water_scene *s, int depth, const double p[3], const double d[3], double nrm[3],
+                          double rgb[3])
 {
-    if (r[1] > 0.0) {
-        double e = HUGE_VAL, q[3];
-        int face = 0, k;
-        if (r[0] != 0.0) {
-            e = ((r[0] > 0.0 ? s->half : -s->half) - p[0]) / r[0];
-            face = r[0] > 0.0 ? 2 : 1;
-        }
-        if (r[2] != 0.0) {
-            double f = ((r[2] > 0.0 ? s->half : -s->half) - p[2]) / r[2];
-            if (f < e) {
-                e = f;
-                face = r[2] > 0.0 ? 4 : 3;
-            }
-        }
-        if (e < 0.0) e = 0.0;
-        for (k = 0; k < 3; k++) q[k] = p[k] + e * r[k];
-        if (q[1] <= s->w->d.rim) {
-            snell__water_tile(&s->w->d, face, q, rgb);
-            return;
-        }
-    }
-    env(s, r, rgb);
+    double r[3], t[3], f, seen[3], sky[3];
+    int k;
+    snell__ref_normalize3(nrm);
+    if (snell__ref_dot3(nrm, d) > 0.0)
+        for (k = 0; k < 3; k++) nrm[k] = -nrm[k];
+    snell_optd_reflect(d, nrm, r);
+    snell__ref_normalize3(r);
+    snell_optd_refract(d, nrm, 1.0 / s->ior, t);
+    snell__ref_normalize3(t);
+    f = snell_optd_fresnel_schlick(-snell__ref_dot3(d, nrm), 1.0, s->ior);
+    trace_in(s, depth + 1, &s->water, p, t, seen);
+    trace_in(s, depth + 1, &s->air_above, p, r, sky);
+    for (k = 0; k < 3; k++) rgb[k] = (1.0 - f) * seen[k] + f * sky[k];
 }
 
-/* One view ray: rgb, exit direction, hit (1: the water surface). */
-static int trace(const water_scene *s, const double o[3], const double d[3], double rgb[3], double exit_dir[3])
+/* In the air: the water surface (with_surface) or a face of the container
+ * (either side, walls up to the rim), whichever comes first before t_limit. */
+static int meet_air_or_above(const water_walk *wk, const double o[3], const double d[3], double t_limit, int with_surface,
+                             double rgb[3])
 {
-    double tw = HUGE_VAL, tc, nrm[3] = {0.0, 1.0, 0.0}; /* set by surface_hit where it finds the water */
-    ref_surf os;
-    int water = surface_hit(s, o, d, &tw, nrm), face = container_hit(s, o, d, &tc), k;
-    memcpy(exit_dir, d, 3 * sizeof(double));
-    if (object_hit(s, o, d, &os) && (!water || os.t < tw) && (face < 0 || os.t < tc)) {
-        snell__ref_shade_opaque(s->objects, -2 - os.object, &os, rgb);
-        return 0;
-    }
-    if (water && (face < 0 || tw <= tc)) {
-        double p[3], r[3], t[3], f, seen[3], sky[3];
+    const water_scene *s = wk->s;
+    double tw = HUGE_VAL, tc, nrm[3] = {0.0, 1.0, 0.0}, p[3];
+    int water = with_surface && surface_hit(s, o, d, &tw, nrm), face = container_hit(s, o, d, &tc), k;
+    if (water && tw < t_limit && (face < 0 || tw <= tc)) {
         for (k = 0; k < 3; k++) p[k] = o[k] + tw * d[k];
-        snell__ref_normalize3(nrm);
-        if (snell__ref_dot3(nrm, d) > 0.0)
-            for (k = 0; k < 3; k++) nrm[k] = -nrm[k];
-        snell_optd_reflect(d, nrm, r);
-        snell_optd_refract(d, nrm, 1.0 / s->ior, t);
-        snell__ref_normalize3(t);
-        f = snell_optd_fresnel_schlick(-snell__ref_dot3(d, nrm), 1.0, s->ior);
-        under_water(s, p, t, seen);
-        reflected(s, p, r, sky);
-        for (k = 0; k < 3; k++) rgb[k] = (1.0 - f) * seen[k] + f * sky[k];
-        memcpy(exit_dir, t, sizeof t);
+        shade_surface(s, wk->depth, p, d, nrm, rgb);
         return 1;
     }
-    if (face >= 0) {
-        double p[3];
+    if (face >= 0 && tc < t_limit) {
         for (k = 0; k < 3; k++) p[k] = o[k] + tc * d[k];
         snell__water_tile(&s->w->d, face, p, rgb);
-        return 0;
+        return 1;
     }
-    env(s, d, rgb);
     return 0;
+}
+
+static int meet_air(const void *user, const double o[3], const double d[3], double t_limit, double rgb[3])
+{
+    return meet_air_or_above((const water_walk *)user, o, d, t_limit, 1, rgb);
+}
+
+static int meet_above(const void *user, const double o[3], const double d[3], double t_limit, double rgb[3])
+{
+    return meet_air_or_above((const water_walk *)user, o, d, t_limit, 0, rgb);
+}
+
+/* The height of the drawn surface (its triangles) at world (x, z) inside the container. */
+static double surface_height(const water_scene *s, double x, double z)
+{
+    double gx = (x + s->half) / s->dx, gz = (z + s->half) / s->dx, u, v;
+    int i = (int)floor(gx), j = (int)floor(gz), n = s->n;
+    const float *h = s->h;
+    i = i < 0 ? 0 : i > n - 2 ? n - 2 : i;
+    j = j < 0 ? 0 : j > n - 2 ? n - 2 : j;
+    u = gx - i;
+    v = gz - j;
+    {
+        double h00 = h[(size_t)j * n + i], h10 = h[(size_t)j * n + i + 1], h11 = h[(size_t)(j + 1) * n + i + 1],
+               h01 = h[(size_t)(j + 1) * n + i];
+        /* split along (i, j)-(i+1, j+1): below it (u >= v) the triangle 00-10-11, else 00-11-01 */
+        return u >= v ? h00 + u * (h10 - h00) + v * (h11 - h10) : h00 + v * (h01 - h00) + u * (h11 - h01);
+    }
+}
+
+/* The medium at a point on an object's surface: the water inside the box below the surface, else the air. */
+static const snell__ref_medium *medium_at(const void *user, const double p[3])
+{
+    const water_scene *s = ((const water_walk *)user)->s;
+    if (fabs(p[0]) <= s->half && fabs(p[2]) <= s->half && p[1] >= -s->w->d.depth &&
+        p[1] < surface_height(s, p[0], p[2]))
+        return &s->water;
+    return &s->air;
+}
+
+/* The radiance along o + t d starting in medium m: through the objects (a
+ * MATCHED trace within the media) or, without objects, straight to what the
+ * medium meets. */
+static void trace_in(const water_scene *s, int depth, const snell__ref_medium *m, const double o[3], const double d[3],
+                     double rgb[3])
+{
+    water_walk wk;
+    snell__ref_surroundings sur;
+    wk.s = s;
+    wk.depth = depth;
+    if (depth > WATER_MAX_DEPTH) { /* a path bounced between the surface and the glass: end it plainly */
+        if (m == &s->water) meet_water(&wk, o, d, HUGE_VAL, rgb);
+        else env(s, d, rgb);
+        return;
+    }
+    if (!s->objects) {
+        if (!m->meet(&wk, o, d, HUGE_VAL, rgb)) env(s, d, rgb);
+        return;
+    }
+    sur.user = &wk;
+    sur.at = medium_at;
+    snell__ref_trace_matched(s->objects, s->p, &sur, m, o, d, rgb);
+}
+
+/* One view ray: rgb, exit direction (the refracted one where it meets the
+ * water first), hit (1: the water surface first). */
+static int trace(const water_scene *s, const double o[3], const double d[3], double rgb[3], double exit_dir[3])
+{
+    const ref_view view = {-1, REF_SEE_ALL, -1};
+    double tw = HUGE_VAL, tc, nrm[3] = {0.0, 1.0, 0.0};
+    ref_surf os;
+    int water = surface_hit(s, o, d, &tw, nrm), face = container_hit(s, o, d, &tc), k;
+    trace_in(s, 0, &s->air, o, d, rgb);
+    memcpy(exit_dir, d, 3 * sizeof(double));
+    if (s->objects && snell__ref_hit(s->objects, o, d, SNELL__BVH_NONE, &view, &os) && (!water || os.t < tw)) return 0;
+    if (!water || (face >= 0 && tc < tw)) return 0;
+    snell__ref_normalize3(nrm);
+    if (snell__ref_dot3(nrm, d) > 0.0)
+        for (k = 0; k < 3; k++) nrm[k] = -nrm[k];
+    snell_optd_refract(d, nrm, 1.0 / s->ior, exit_dir);
+    snell__ref_normalize3(exit_dir);
+    return 1;
 }
 
 static void row(water_scene *s, int y)
@@ -346,9 +409,6 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, co
     if (params->samples < 0 || params->samples > SNELL_REF_MAX_SAMPLES || params->threads < 0)
         return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: samples %d outside 0..%d or threads %d < 0",
                            params->samples, SNELL_REF_MAX_SAMPLES, params->threads);
-    if (objects && (objects->glass_count > 0 || objects->analytic))
-        return snell__fail(w->ctx, SNELL_E_INVALID_ARG,
-                           "snell_ref_water_render: objects may hold opaque objects only (%d glass)", objects->glass_count);
     if ((st = snell__ref_camera_setup(w->ctx, params, &cr)) != SNELL_OK) return st;
     nodes = (size_t)w->n * (size_t)w->n;
     h = (float *)snell__calloc(&w->alloc, nodes, sizeof(float));
@@ -365,7 +425,12 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, co
     s.half = 0.5 * (double)w->d.width;
     s.dx = w->dx;
     s.ior = w->d.ior;
-    for (k = 0; k < 3; k++) s.sigma[k] = w->sigma[k];
+    for (k = 0; k < 3; k++) s.sigma[k] = s.water.sigma[k] = w->sigma[k];
+    s.air.meet = meet_air;
+    s.air_above.meet = meet_above;
+    s.water.meet = meet_water;
+    s.air.ior = s.air_above.ior = 1.0;
+    s.water.ior = w->d.ior;
     s.hmin = s.hmax = h[0];
     for (i = 1; i < nodes; i++) {
         if (h[i] < s.hmin) s.hmin = h[i];

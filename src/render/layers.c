@@ -259,3 +259,21 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
     bind(l);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error peeling scene layers");
 }
+
+void snell__layers_uniforms(unsigned prog, const snell__view *v, int self)
+{
+    const snell__scene_layers *l = &v->layers;
+    glUniform1i(glGetUniformLocation(prog, "u_scene_layers"), SNELL__LAYERS_UNIT);
+    glUniform1i(glGetUniformLocation(prog, "u_scene_table"), SNELL__LAYERS_TABLE_UNIT);
+    glUniform1i(glGetUniformLocation(prog, "u_scene_layer_count"), l->count);
+    glUniform1i(glGetUniformLocation(prog, "u_scene_capped"), l->capped);
+    glUniform1i(glGetUniformLocation(prog, "u_scene_glass_ids"), l->glass_ids);
+    glUniform1i(glGetUniformLocation(prog, "u_scene_opaque_count"), l->opaque_count);
+    glUniform1i(glGetUniformLocation(prog, "u_scene_self"), self);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_scene_view_proj"), 1, GL_FALSE, (const GLfloat *)v->view_proj);
+    glUniform3fv(glGetUniformLocation(prog, "u_scene_eye"), 1, v->eye);
+    glUniform3fv(glGetUniformLocation(prog, "u_scene_fwd"), 1, l->fwd);
+    glUniform1f(glGetUniformLocation(prog, "u_scene_near"), l->near_);
+    glUniform1f(glGetUniformLocation(prog, "u_scene_inv_range"), l->inv_range);
+    glUniform2f(glGetUniformLocation(prog, "u_scene_size"), (float)v->width, (float)v->height);
+}

@@ -73,4 +73,10 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
                                 int glass_count, const snell_opaque *opaque, int opaque_count, int max_layers,
                                 int *passes, int *reused);
 
+/* Sets common/beyond.glsl's uniforms of program prog (in use) for this
+ * frame's layers (v->layers), skipping the object of layer id self (0:
+ * none); the layers are on SNELL__LAYERS_UNIT and the table on
+ * SNELL__LAYERS_TABLE_UNIT (snell__layers_draw bound them). */
+void snell__layers_uniforms(unsigned prog, const snell__view *v, int self);
+
 #endif

@@ -270,6 +270,8 @@ static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, 
     void *state = NULL;
     int dynamic = fd->opaque_count > 0 && !o->beyond; /* sees them through a dynamic environment */
     snell_status s;
+    o->water = !fd->water ? 0 : fd->water->d.sim == SNELL_WATER_SIM_GPU ? 2 : 1; /* its exit rays meet the water */
+    st->sees_water = o->water != 0;
     o->env_paraboloid = snell__renderer_env_paraboloid(r, dynamic);
     st->env_paraboloid = o->env_paraboloid;
     s = snell__scene_choose(r->ctx, o, method_state, r, &r->object_method[o->index], &state, st);
@@ -325,14 +327,23 @@ static int choose_scene_layers(snell_renderer *r, const snell_frame_desc *fd, sn
         snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "off (scene_layers -1)");
         return 0;
     }
-    if (n == 0 || (n == 1 && fd->opaque_count == 0)) {
+    if (n == 0 || (n == 1 && fd->opaque_count == 0 && !fd->water)) {
         snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason,
                    "not needed: %s", n == 0 ? "no glass object drawn" : "one glass object and nothing else");
         return 0;
     }
+    /* With water, every glass object's kernel reads them too: its exit rays
+     * leaving under the water are bent for the water's index with the
+     * normal the layers hold (common/beyond.glsl). */
     for (i = 0; i < n; i++) r->layer_list[i]->beyond = 1;
+    if (n == 1 && fd->opaque_count == 0) {
+        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "one glass object in a frame with water: "
+                   "the water's rays meet it, its rays leave into the water");
+        return n;
+    }
     snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "%d glass (%d solid, %d thin walls) and %d opaque "
-               "objects: exit rays meet the others", n, solid, n - solid, fd->opaque_count);
+               "objects%s: exit rays meet the others", n, solid, n - solid, fd->opaque_count,
+               fd->water ? " and water" : "");
     return n;
 }
 
@@ -390,6 +401,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     st = validate_frame(r, fd);
     if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->width, r->height, r->out, sc, s);
     if (st != SNELL_OK) return st;
+    sc->view.water = fd->water;
     external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
     if (external) snell__glstate_save(&saved);
     begin_frame_state(r);
@@ -400,26 +412,6 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     if (fd->opaque_count > 0) {
         s->opaque_drawn = fd->opaque_count;
         s->passes++;
-    }
-    /* The water and its container are opaque to what follows: glass behind
-     * them is depth-tested away, glass in front is drawn over them. */
-    if (st == SNELL_OK && fd->water) {
-        /* Objects in the water are searched for in a copy of what the opaque
-         * pass drew: an offscreen single-sample colour target (a host's
-         * framebuffer or a multisampled one cannot be copied with its depth
-         * format known; exit directions need no colour). */
-        int objects = fd->opaque_count > 0 && r->target == SNELL_TARGET_OFFSCREEN && !r->msaa && r->out == SNELL__OUT_COLOR;
-        if (objects) {
-            st = snell__water_copy_scene(r->ctx, &r->water, r->fbo, r->width, r->height);
-            glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-        }
-        unsigned env_tex = fd->env->texture;
-        int paraboloid = snell__renderer_env_paraboloid(r, 0); /* the water sees the static environment */
-        if (st == SNELL_OK && paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &env_tex);
-        if (st == SNELL_OK)
-            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, env_tex, paraboloid, fd->opaque,
-                                   objects ? fd->opaque_count : 0, s);
-        s->water_objects = objects;
     }
     if (st == SNELL_OK) n_layers = choose_scene_layers(r, fd, s);
     /* Glass: the objects shaded in screen space share one G-buffer pass,
@@ -452,6 +444,33 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         s->scene_layer_passes = peels;
         s->scene_layers = sc->view.layers.count;
         s->passes += peels;
+    }
+    /* The water and its container are opaque to what follows: glass behind
+     * them is depth-tested away, glass in front is drawn over them; the
+     * glass kernels drawn after see the water along their exit rays
+     * (common/water.glsl), the water sees the glass and opaque objects in it
+     * through the scene layers. */
+    if (st == SNELL_OK && fd->water) {
+        /* Without layers, opaque objects in the water are searched for in a
+         * copy of what the opaque pass drew: an offscreen single-sample
+         * colour target (a host's framebuffer or a multisampled one cannot
+         * be copied with its depth format known; exit directions need no
+         * colour). */
+        int layers = n_layers > 0;
+        int objects = !layers && fd->opaque_count > 0 && r->target == SNELL_TARGET_OFFSCREEN && !r->msaa &&
+                      r->out == SNELL__OUT_COLOR;
+        if (objects) {
+            st = snell__water_copy_scene(r->ctx, &r->water, r->fbo, r->width, r->height);
+            glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+        }
+        unsigned env_tex = fd->env->texture;
+        int paraboloid = snell__renderer_env_paraboloid(r, 0); /* the water sees the static environment */
+        if (st == SNELL_OK && paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &env_tex);
+        if (st == SNELL_OK)
+            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, env_tex, paraboloid, fd->opaque,
+                                   objects ? fd->opaque_count : 0, layers, s);
+        s->water_objects = objects || (layers && (fd->opaque_count > 0 || sc->drawn > 0));
+        s->water_layers = layers;
     }
     /* One back-face pass for every object whose method reads back faces;
      * none in frames without such an object. */

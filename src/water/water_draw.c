@@ -9,6 +9,7 @@
 #include "core/glstate.h"
 #include "core/program.h"
 #include "mesh/mesh.h"
+#include "render/layers.h"
 
 #include <math.h>
 
@@ -16,15 +17,17 @@
 
 static snell_status make_programs(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, int env_paraboloid)
 {
+    static const char *const mode_defines[SNELL__WATER_MODES] = {"", "#define SNELL_WATER_OBJECTS 1\n",
+                                                                "#define SNELL_BEYOND 1\n"};
     char defines[256];
     snell_status st = SNELL_OK;
-    int gpu, objects;
+    int gpu, mode;
     for (gpu = 0; gpu < 2; gpu++)
-        for (objects = 0; objects < 2 && st == SNELL_OK; objects++) {
-            snprintf(defines, sizeof defines, "%s%s%s%s", snell__output_defines(out),
-                     gpu ? "#define SNELL_WATER_STATE_UINT 1\n" : "", objects ? "#define SNELL_WATER_OBJECTS 1\n" : "",
+        for (mode = 0; mode < SNELL__WATER_MODES && st == SNELL_OK; mode++) {
+            snprintf(defines, sizeof defines, "%s#define SNELL_WATER 1\n%s%s%s", snell__output_defines(out),
+                     gpu ? "#define SNELL_WATER_STATE_UINT 1\n" : "", mode_defines[mode],
                      env_paraboloid ? SNELL__ENV_PARABOLOID_DEFINE : "");
-            st = snell__program_build(ctx, "water_surface.vert", "water_surface.frag", defines, &p->surface[gpu][objects]);
+            st = snell__program_build(ctx, "water_surface.vert", "water_surface.frag", defines, &p->surface[gpu][mode]);
         }
     if (st == SNELL_OK)
         st = snell__program_build(ctx, "water_wall.vert", "water_wall.frag", snell__output_defines(out), &p->wall);
@@ -35,8 +38,9 @@ static snell_status make_programs(snell_ctx *ctx, snell__water_programs *p, snel
 void snell__water_programs_destroy(snell__water_programs *p)
 {
     int k;
-    for (k = 0; k < 4; k++)
-        if (p->surface[k / 2][k % 2]) glDeleteProgram(p->surface[k / 2][k % 2]);
+    for (k = 0; k < 2 * SNELL__WATER_MODES; k++)
+        if (p->surface[k / SNELL__WATER_MODES][k % SNELL__WATER_MODES])
+            glDeleteProgram(p->surface[k / SNELL__WATER_MODES][k % SNELL__WATER_MODES]);
     if (p->wall) glDeleteProgram(p->wall);
     if (p->scene_fbo) glDeleteFramebuffers(1, &p->scene_fbo);
     if (p->scene_color) glDeleteTextures(1, &p->scene_color);
@@ -147,11 +151,20 @@ snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, u
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "water: copying the opaque objects failed");
 }
 
-static void tile_uniforms(GLuint prog, const snell_water *w)
+void snell__water_uniforms(unsigned prog, const snell_water *w)
 {
-    glUniform1f(glGetUniformLocation(prog, "u_half"), 0.5f * w->d.width);
-    glUniform1f(glGetUniformLocation(prog, "u_depth"), w->d.depth);
-    glUniform1f(glGetUniformLocation(prog, "u_tile_size"), w->d.tile_size);
+    glUniform1f(glGetUniformLocation(prog, "u_water_half"), 0.5f * w->d.width);
+    glUniform1f(glGetUniformLocation(prog, "u_water_depth"), w->d.depth);
+    glUniform1f(glGetUniformLocation(prog, "u_water_tile_size"), w->d.tile_size);
+    glUniform1f(glGetUniformLocation(prog, "u_water_rim"), w->d.rim);
+    glUniform1f(glGetUniformLocation(prog, "u_water_ior"), w->d.ior);
+    glUniform3fv(glGetUniformLocation(prog, "u_water_sigma"), 1, w->sigma);
+    glUniform1i(glGetUniformLocation(prog, "u_water_n"), w->n);
+    glUniform1f(glGetUniformLocation(prog, "u_water_dx"), w->dx);
+    glUniform1i(glGetUniformLocation(prog, "u_water_heights"), SNELL__WATER_HEIGHTS_UNIT);
+    glActiveTexture(GL_TEXTURE0 + SNELL__WATER_HEIGHTS_UNIT);
+    glBindTexture(GL_TEXTURE_2D, w->d.sim == SNELL_WATER_SIM_GPU ? w->state_tex[w->cur] : w->height_tex);
+    glActiveTexture(GL_TEXTURE0);
 }
 
 #define MAX_SPHERES 16 /* water_surface.frag's SNELL_WATER_MAX_SPHERES */
@@ -206,26 +219,21 @@ static int object_spheres(const snell_opaque *objects, int count, float out[MAX_
 
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
                                const snell__view *v, unsigned env_texture, int env_paraboloid,
-                               const snell_opaque *objects, int object_count, snell_frame_stats *stats)
+                               const snell_opaque *objects, int object_count, int layers, snell_frame_stats *stats)
 {
     snell_status st;
     GLuint prog;
     if (!p->made && (st = make_programs(ctx, p, out, env_paraboloid)) != SNELL_OK) return st;
     if (!w->grid_vao && (st = make_geometry(w)) != SNELL_OK) return st;
-    glActiveTexture(GL_TEXTURE1);
-    if (w->d.sim == SNELL_WATER_SIM_CPU) {
+    if (w->d.sim == SNELL_WATER_SIM_CPU && (!w->uploaded || w->uploaded_version != w->version)) {
+        snell__pixel_store unpack;
         glBindTexture(GL_TEXTURE_2D, w->height_tex);
-        if (!w->uploaded || w->uploaded_version != w->version) {
-            snell__pixel_store unpack;
-            snell__pixel_unpack_begin(&unpack, 4);
-            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w->n, w->n, GL_RED, GL_FLOAT, w->h);
-            snell__pixel_unpack_end(&unpack);
-            w->uploaded = 1;
-            w->uploaded_version = w->version;
-            stats->water_uploaded = 1;
-        }
-    } else {
-        glBindTexture(GL_TEXTURE_2D, w->state_tex[w->cur]);
+        snell__pixel_unpack_begin(&unpack, 4);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w->n, w->n, GL_RED, GL_FLOAT, w->h);
+        snell__pixel_unpack_end(&unpack);
+        w->uploaded = 1;
+        w->uploaded_version = w->version;
+        stats->water_uploaded = 1;
     }
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, env_texture);
@@ -237,13 +245,15 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     glUseProgram(p->wall);
     glUniformMatrix4fv(glGetUniformLocation(p->wall, "u_view_proj"), 1, GL_FALSE, (const float *)v->view_proj);
     glUniform3fv(glGetUniformLocation(p->wall, "u_eye"), 1, v->eye);
-    tile_uniforms(p->wall, w);
+    snell__water_uniforms(p->wall, w);
     glBindVertexArray(w->wall_vao);
     glDrawArrays(GL_TRIANGLES, 0, 30);
 
-    prog = p->surface[w->d.sim == SNELL_WATER_SIM_GPU][object_count > 0];
+    prog = p->surface[w->d.sim == SNELL_WATER_SIM_GPU][layers ? 2 : object_count > 0 ? 1 : 0];
     glUseProgram(prog);
-    if (object_count > 0) {
+    if (layers) {
+        snell__layers_uniforms(prog, v, 0);
+    } else if (object_count > 0) {
         float spheres[MAX_SPHERES][4];
         int n_spheres = object_spheres(objects, object_count, spheres);
         glUniform4fv(glGetUniformLocation(prog, "u_spheres"), n_spheres, &spheres[0][0]);
@@ -260,13 +270,7 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, (const float *)v->view_proj);
     glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, v->eye);
     glUniform1i(glGetUniformLocation(prog, "u_env"), 0);
-    glUniform1i(glGetUniformLocation(prog, "u_heights"), 1);
-    glUniform1i(glGetUniformLocation(prog, "u_n"), w->n);
-    glUniform1f(glGetUniformLocation(prog, "u_dx"), w->dx);
-    glUniform1f(glGetUniformLocation(prog, "u_ior"), w->d.ior);
-    glUniform1f(glGetUniformLocation(prog, "u_rim"), w->d.rim);
-    glUniform3fv(glGetUniformLocation(prog, "u_sigma"), 1, w->sigma);
-    tile_uniforms(prog, w);
+    snell__water_uniforms(prog, w);
     glBindVertexArray(w->grid_vao);
     glDrawElements(GL_TRIANGLES, (GLsizei)((w->n - 1) * (w->n - 1) * 6), GL_UNSIGNED_INT, (const void *)0);
     glBindVertexArray(0);

@@ -12,9 +12,16 @@
 #include "methods/method.h"
 #include "water/water.h"
 
+/* Surface program variants: the refracted ray meets only the container,
+ * or also the opaque objects searched in a copy of the target
+ * (SNELL_WATER_OBJECTS), or every object through the scene layers
+ * (SNELL_BEYOND). */
+#define SNELL__WATER_MODES 3
+/* Texture unit of the heights while the water and the kernels that see it draw. */
+#define SNELL__WATER_HEIGHTS_UNIT 9
+
 typedef struct snell__water_programs {
-    unsigned surface[2][2];        /* [heights from R32F (CPU simulation) or from the RG32UI state (GPU)]
-                                    * [without, with the search for opaque objects in the water] */
+    unsigned surface[2][SNELL__WATER_MODES]; /* [heights from R32F (CPU simulation) or the RG32UI state (GPU)][mode] */
     unsigned wall;
     int made;
     /* The opaque objects as the frame drew them (colour and depth), for the
@@ -22,7 +29,6 @@ typedef struct snell__water_programs {
      * the target's size. */
     unsigned scene_fbo, scene_color, scene_depth;
 } snell__water_programs;
-
 
 /* Copies the bound target's colour and depth (the opaque objects just
  * drawn, read from read_fbo, width x height) for the search; the caller
@@ -32,13 +38,19 @@ snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, u
 /* Draws the water and its container into the bound target (depth test LESS,
  * depth write); env_texture on unit 0 for snell_env (a cube, or with
  * env_paraboloid dual-paraboloid maps: the renderer's one choice, the programs
- * are built for it on first use), the heights on unit 1,
- * with objects (object_count > 0, after snell__water_copy_scene) their
- * colour and depth on units 2 and 3 and their bounding spheres. Uploads a CPU simulation's heights when they changed since
- * the last draw (stats->water_uploaded). */
+ * are built for it on first use), the heights on SNELL__WATER_HEIGHTS_UNIT.
+ * layers: the frame's scene layers are bound (snell__layers_draw) and the
+ * surface's rays march them; else with objects (object_count > 0, after
+ * snell__water_copy_scene) their colour and depth on units 2 and 3 and their
+ * bounding spheres. Uploads a CPU simulation's heights when they changed
+ * since the last draw (stats->water_uploaded): kernels drawn after it may
+ * read them (snell__water_uniforms). */
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
                                const snell__view *v, unsigned env_texture, int env_paraboloid,
-                               const snell_opaque *objects, int object_count, snell_frame_stats *stats);
+                               const snell_opaque *objects, int object_count, int layers, snell_frame_stats *stats);
+/* Sets common/water.glsl's uniforms of program prog (in use) and binds the
+ * heights on SNELL__WATER_HEIGHTS_UNIT (the active unit is 0 after). */
+void snell__water_uniforms(unsigned prog, const snell_water *w);
 void snell__water_programs_destroy(snell__water_programs *p);
 
 #endif

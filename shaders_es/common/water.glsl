@@ -1,0 +1,190 @@
+// water.glsl - the water and its container as something a ray meets (issue
+// 17; GLSL twin of src/ref/ref_water.c): included by beyond.glsl under
+// SNELL_WATER, which every kernel's exit look-up and the water surface's own
+// shader use. World space as snell_water.h: the inner box |x|, |z| <= half,
+// -depth <= y <= rim, the water at rest at y = 0.
+//
+// - water_under(p, t): a ray inside the water from p; the seed's five
+//   ray-wall distances choose the floor or a wall (a rising ray goes to the
+//   walls too: the surface seen from below is not modelled), whose tile is
+//   attenuated by Beer-Lambert over the distance.
+// - water_walls_above(p, r): a ray from the surface upwards: the walls'
+//   inner side below the rim, else the environment.
+// - water_air_hit / water_air(o, d, limit, surface, dist, col): a ray in
+//   the air meeting the water surface or the container before distance
+//   limit (one starting under the surface is in the water: water_under):
+//   the surface shaded with
+//   Schlick's Fresnel between the two rays above (no objects: they are seen
+//   only by the surface's own fragments, water_surface.frag), a face its
+//   tile. The surface is found as the plane of the rest level refined
+//   three times by the heights under the point (bilinear in the cell), its
+//   normal the bilinear blend of the four nodes' (-dh/dx, 1, -dh/dz): close
+//   to the drawn triangles where the ray is steeper than the waves, which
+//   the reference meets exactly (test_water_glass measures the difference).
+#include "common/water_tiles.glsl"
+
+uniform highp float u_water_rim;       // top of the walls above the rest level
+uniform highp float u_water_ior;
+uniform highp vec3 u_water_sigma;      // Beer-Lambert absorption per world unit
+uniform highp int u_water_n;           // nodes per side
+uniform highp float u_water_dx;        // node spacing
+#ifdef SNELL_WATER_STATE_UINT
+uniform highp usampler2D u_water_heights; // the GPU simulation's state: fp32 bits of height (r), velocity (g)
+highp float water_height(ivec2 q)
+{
+    return uintBitsToFloat(texelFetch(u_water_heights, clamp(q, ivec2(0), ivec2(u_water_n - 1)), 0).r);
+}
+#else
+uniform highp sampler2D u_water_heights;  // R32F, from the CPU simulation
+highp float water_height(ivec2 q)
+{
+    return texelFetch(u_water_heights, clamp(q, ivec2(0), ivec2(u_water_n - 1)), 0).r;
+}
+#endif
+
+// Distance from p along t (unit) to the container's floor or a wall seen
+// from inside, and which face (0 floor, 1/2 x = -+half, 3/4 z = -+half).
+highp float water_box_exit(highp vec3 p, highp vec3 t, out int face)
+{
+    highp float d = 3.0e38;
+    face = 0;
+    if (t.y < 0.0) d = (-u_water_depth - p.y) / t.y;
+    if (t.x != 0.0) {
+        highp float s = ((t.x > 0.0 ? u_water_half : -u_water_half) - p.x) / t.x;
+        if (s < d) {
+            d = s;
+            face = t.x > 0.0 ? 2 : 1;
+        }
+    }
+    if (t.z != 0.0) {
+        highp float s = ((t.z > 0.0 ? u_water_half : -u_water_half) - p.z) / t.z;
+        if (s < d) {
+            d = s;
+            face = t.z > 0.0 ? 4 : 3;
+        }
+    }
+    return max(d, 0.0);
+}
+
+vec3 water_under(highp vec3 p, highp vec3 t)
+{
+    int face;
+    highp float d = water_box_exit(p, t, face);
+    return water_tile(face, p + d * t) * snell_beer_lambert(u_water_sigma, d);
+}
+
+vec3 water_walls_above(highp vec3 p, highp vec3 r)
+{
+    if (r.y > 0.0) {
+        int face;
+        highp float e = water_box_exit(p, r, face); // no floor for a rising ray
+        highp vec3 q = p + e * r;
+        if (face != 0 && q.y <= u_water_rim) return water_tile(face, q);
+    }
+    return snell_env(r);
+}
+
+// The height field at world (x, z) inside the container, bilinear in its cell.
+highp float water_height_at(highp vec2 xz, out highp vec2 cell, out ivec2 c0)
+{
+    highp vec2 g = clamp((xz + u_water_half) / u_water_dx, vec2(0.0), vec2(float(u_water_n - 1)));
+    c0 = min(ivec2(floor(g)), ivec2(u_water_n - 2));
+    cell = g - vec2(c0);
+    highp float h00 = water_height(c0), h10 = water_height(c0 + ivec2(1, 0));
+    highp float h01 = water_height(c0 + ivec2(0, 1)), h11 = water_height(c0 + ivec2(1, 1));
+    return mix(mix(h00, h10, cell.x), mix(h01, h11, cell.x), cell.y);
+}
+
+// Whether p lies in the water: inside the container, under the surface.
+bool water_contains(highp vec3 p)
+{
+    highp vec2 cell;
+    ivec2 c0;
+    return all(lessThan(abs(p.xz), vec2(u_water_half))) && p.y > -u_water_depth && p.y < water_height_at(p.xz, cell, c0);
+}
+
+// The vertex shader's per-node normal (unnormalised): central differences,
+// one-sided at the walls (water_surface.vert).
+highp vec3 water_node_normal(ivec2 q)
+{
+    ivec2 l = max(q - ivec2(1, 0), ivec2(0)), r = min(q + ivec2(1, 0), ivec2(u_water_n - 1));
+    ivec2 d = max(q - ivec2(0, 1), ivec2(0)), u = min(q + ivec2(0, 1), ivec2(u_water_n - 1));
+    highp float dhdx = (water_height(r) - water_height(l)) / (float(r.x - l.x) * u_water_dx);
+    highp float dhdz = (water_height(u) - water_height(d)) / (float(u.y - d.y) * u_water_dx);
+    return vec3(-dhdx, 1.0, -dhdz);
+}
+
+// The surface shaded for a ray in direction v meeting it at p with unit normal n.
+vec3 water_shade(highp vec3 p, highp vec3 v, highp vec3 n)
+{
+    if (dot(n, v) > 0.0) n = -n;
+    highp vec3 t;
+    snell_refract(v, n, 1.0 / u_water_ior, t);
+    float f = snell_fresnel_schlick(-dot(v, n), 1.0, u_water_ior);
+    return mix(water_under(p, normalize(t)), water_walls_above(p, snell_reflect(v, n)), f);
+}
+
+// What a ray in the air from o along unit d meets first before limit: -1
+// nothing, WATER_IN (it starts in the water), a face of the container
+// (0..4) or (surface: true) WATER_SURFACE at distance dist with unit normal n.
+#define WATER_SURFACE 5
+#define WATER_IN 6
+int water_air_hit(highp vec3 o, highp vec3 d, highp float limit, bool surface, out highp float dist, out highp vec3 n)
+{
+    dist = limit;
+    n = vec3(0.0, 1.0, 0.0);
+    // a ray leaving a glass object under the water is in the water (refracted as into air by the kernel)
+    if (water_contains(o)) {
+        dist = 0.0;
+        return WATER_IN;
+    }
+    int what = -1;
+    // the container's faces: the floor and the four walls up to the rim, either side
+    if (d.y != 0.0) {
+        highp float s = (-u_water_depth - o.y) / d.y;
+        highp vec3 q = o + s * d;
+        if (s > 0.0 && s < dist && abs(q.x) <= u_water_half && abs(q.z) <= u_water_half) {
+            dist = s;
+            what = 0;
+        }
+    }
+    for (int k = 0; k < 4; k++) {
+        highp float dk = k < 2 ? d.x : d.z, ok = k < 2 ? o.x : o.z;
+        if (dk == 0.0) continue;
+        highp float s = ((k % 2 == 0 ? -u_water_half : u_water_half) - ok) / dk;
+        highp vec3 q = o + s * d;
+        highp float other = k < 2 ? q.z : q.x;
+        if (s > 0.0 && s < dist && abs(other) <= u_water_half && q.y >= -u_water_depth && q.y <= u_water_rim) {
+            dist = s;
+            what = k + 1;
+        }
+    }
+    // the surface, from above: the rest plane, refined by the heights
+    if (surface && d.y < 0.0) {
+        highp vec2 cell;
+        ivec2 c0;
+        highp float s = -o.y / d.y;
+        for (int k = 0; k < 3; k++) s = (water_height_at((o + s * d).xz, cell, c0) - o.y) / d.y;
+        highp vec3 q = o + s * d;
+        if (s > 0.0 && s < dist && abs(q.x) <= u_water_half && abs(q.z) <= u_water_half) {
+            water_height_at(q.xz, cell, c0);
+            n = normalize(mix(mix(water_node_normal(c0), water_node_normal(c0 + ivec2(1, 0)), cell.x),
+                              mix(water_node_normal(c0 + ivec2(0, 1)), water_node_normal(c0 + ivec2(1, 1)), cell.x),
+                              cell.y));
+            dist = s;
+            what = WATER_SURFACE;
+        }
+    }
+    return what;
+}
+
+// The same, shaded: true with the radiance along the ray in col.
+bool water_air(highp vec3 o, highp vec3 d, highp float limit, bool surface, out highp float dist, out vec3 col)
+{
+    highp vec3 n;
+    int what = water_air_hit(o, d, limit, surface, dist, n);
+    col = what < 0 ? vec3(0.0)
+        : what == WATER_IN ? water_under(o, d)
+        : what == WATER_SURFACE ? water_shade(o + dist * d, d, n) : water_tile(what, o + dist * d);
+    return what >= 0;
+}
