@@ -153,9 +153,9 @@ static void water_case(snell_ctx *ctx, const snell_env *env, snell_water_sim sim
     snprintf(path, sizeof path, "%s_ref.png", name);
     snell_write_png(test_out(path), W, H, ref);
     CHECK(glass_px > W * H / 40, "the glass changes %ld pixels of the reference", glass_px);
-    /* Measured (256x256, llvmpipe): 21.08 dB over the glass class, 9.73
+    /* Measured (256x256, llvmpipe): 21.10 dB over the glass class, 9.73
      * without the water seeing the glass, 10.78 for no glass drawn; whole
-     * frame 32.32 dB. Exit rays under the water left bent for air (no
+     * frame 32.55 dB. Exit rays under the water left bent for air (no
      * re-bend with the layers' normal) gave 15.81 and 27.77; the single
      * kernel in place of the cubemap one 12.58. Bounds 18 dB, and 8 dB over
      * the frame without it, and 29 dB for the whole frame. */

@@ -9,7 +9,7 @@ target_link_libraries(test_water_sim PRIVATE m)
 snell_add_test(test_water_gl SOURCES test_water_gl.c LABELS "render;gl")
 target_link_libraries(test_water_gl PRIVATE m)
 # snell-render --water: a frame sequence with drops from flags (one at frame 3),
-# the settled surface skipping its simulation, a bad drop refused (exit 2).
+# the settled surface skipping its simulation, a bad drop refused (exit 2), glass in the water.
 if(TARGET snell-render)
   set(cli $<TARGET_FILE:snell-render>)
   add_test(NAME cli_water_frames COMMAND ${cli} --water --sim gpu --grid 64 --size 48x48 --frames 5 --save-every 2
@@ -23,6 +23,12 @@ if(TARGET snell-render)
   add_test(NAME cli_water_bad_drop COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--water|--drop|5,0|--size|16x16"
            -DCODE=2 "-DERR=outside the container" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(cli_water_bad_drop PROPERTIES LABELS "cli;gl")
+  # a glass object through the surface: the water sees it through the scene layers
+  add_test(NAME cli_water_glass COMMAND ${cli} --water --grid 64 --size 48x48 --frames 2 --drop 0.3,0.3
+           --glass sphere:0,-0.2,0,0.3 --object cube:0.5,-0.6,0.5,0.15 --stats
+           -o ${CMAKE_CURRENT_BINARY_DIR}/cli_water_glass.png)
+  set_tests_properties(cli_water_glass PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
+    "frame 1: simulated.*objects seen under the surface through the scene layers")
 endif()
 # test_water_glass: glass objects in the water (one through the surface, one under it) and an opaque
 # one, the frame against snell_ref_water_render with every medium traced, over the pixels the glass changes.

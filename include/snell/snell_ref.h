@@ -214,23 +214,28 @@ void snell_ref_rgb_to_rgba8(const float *rgb, int width, int height, uint8_t *rg
 
 /* The water scene (snell_water.h): the container's floor and walls, the
  * water surface, whose heights are read from the water (a GPU simulation's
- * context must be current), and the opaque objects of `objects` (a
- * reference made with opaque objects only, or NULL for none), lit as
- * snell_ref_render lights them. The surface is the triangles the GPU draws (two
- * per grid cell), intersected exactly; its normal the barycentric blend of
- * the nodes' (-dh/dx, 1, -dh/dz), normalised. A ray meeting the surface gives
- * F * E(R) + (1 - F) * tile(Q) * exp(-sigma d): F Schlick's (1 -> ior), R the
- * mirror direction (E: see below), Q where the refracted ray first meets the floor or a
- * wall, d its distance; a ray meeting the container first, that face's tile;
- * else the environment. The refracted ray sees the container and the opaque
- * objects (nearest first; upward refracted rays go to the walls too); the
- * mirror ray, when rising, the walls' inner side below the rim, else the
- * environment. Uses
- * params' env (or env_fn), camera, width, height, threads and samples (as
- * snell_ref_render); mode, max_interfaces, absorption_model and
- * isolate_glass do not apply. Outputs rgb, exit_dir (water pixels: the
- * refracted direction; others the view ray) and hit (1: the view ray meets
- * the water surface first); the other outputs are not written. */
+ * context must be current), and the glass and opaque objects of `objects`
+ * (or NULL for none), standing in the water or above it. The surface is the
+ * triangles the GPU draws (two per grid cell), intersected exactly; its
+ * normal the barycentric blend of the nodes' (-dh/dx, 1, -dh/dz),
+ * normalised. A ray meeting the surface from the air gives
+ * F * L(R) + (1 - F) * L_water(T): F Schlick's (1 -> ior), R the mirror
+ * direction, T the refracted one. Rays are traced by the MATCHED model
+ * (snell_ref_render's, Schlick at each entry, TIR inside) through every
+ * medium: in the air, the objects, the container's faces (either side,
+ * walls up to the rim) and the surface, else the environment; in the water
+ * (the water's index around the glass: a glass object below the surface
+ * refracts against it, one through the surface against the air above and
+ * the water below), the objects, else the floor or the wall the seed's five
+ * distances choose (a rising ray meets the walls, not the surface from
+ * below), Beer-Lambert with the water's absorption over every stretch in
+ * it; a mirror ray off the surface leaves the surface out. Opaque objects
+ * lit as snell_ref_render lights them. Uses params' env (or env_fn),
+ * camera, width, height, threads, samples and max_interfaces (as
+ * snell_ref_render); mode, absorption_model and isolate_glass do not apply.
+ * Outputs rgb, exit_dir (water pixels: the refracted direction; others the
+ * view ray) and hit (1: the view ray meets the water surface before any
+ * object or face); the other outputs are not written. */
 snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects, const snell_ref_params *params,
                                     const snell_ref_output *out);
 

@@ -51,9 +51,13 @@ static int parse(int argc, char **argv, water_bench *b)
     return 1;
 }
 
-/* The frame of fd against the reference: PSNR over the water pixels, exit-direction error. */
+/* The frame of fd against the reference (with fd's glass and opaque objects
+ * in it): PSNR over the water pixels and over the whole frame,
+ * exit-direction error. */
 static int error_line(snell_ctx *ctx, snell_water *w, const snell_frame_desc *fd, int size, const char *what)
 {
+    snell_ref *objects = NULL;
+    snell_image_error all;
     size_t n = (size_t)size * size;
     float *rgb = (float *)malloc(n * 3 * sizeof(float)), *rdir = (float *)malloc(n * 3 * sizeof(float));
     float *gdir = (float *)malloc(n * 3 * sizeof(float));
@@ -78,20 +82,26 @@ static int error_line(snell_ctx *ctx, snell_water *w, const snell_frame_desc *fd
                                                                  .output = SNELL_OUTPUT_EXIT_DIRECTION}, &rd) == SNELL_OK;
     ok = ok && snell_render(rc, fd, NULL) == SNELL_OK && snell_renderer_read_rgba(rc, gpu) == SNELL_OK;
     ok = ok && snell_render(rd, fd, NULL) == SNELL_OK && snell_renderer_read_exit_dirs(rd, gdir) == SNELL_OK;
+    if (ok && fd->glass_count + fd->opaque_count > 0)
+        ok = snell_ref_create(ctx, &(snell_ref_desc){.glass = fd->glass, .glass_count = fd->glass_count,
+                                                      .opaque = fd->opaque, .opaque_count = fd->opaque_count},
+                              &objects) == SNELL_OK;
     t0 = cli_now_ms();
-    ok = ok && snell_ref_water_render(w, NULL, &p, &out) == SNELL_OK;
+    ok = ok && snell_ref_water_render(w, objects, &p, &out) == SNELL_OK;
     if (ok) {
         double ref_ms = cli_now_ms() - t0;
         snell_ref_rgb_to_rgba8(rgb, size, size, ref);
         snell_metrics_image_error(gpu, ref, size, size, hit, &ie);
+        snell_metrics_image_error(gpu, ref, size, size, NULL, &all);
         snell_metrics_dir_error(&(snell_dir_error_desc){.test = gdir, .ref = rdir, .ref_mask = hit, .test_mask = hit,
                                                         .width = size, .height = size}, &de);
-        printf("error %-8s %ld water pixels: PSNR %.2f dB (rmse %.3f/255, max %d/255), exit direction mean %.2e deg, "
-               "p99 %.2e, max %.2e (reference %.0f ms)\n",
-               what, ie.pixels, ie.psnr_db, ie.rmse, ie.max_abs, de.mean_deg, de.p99_deg, de.max_deg, ref_ms);
+        printf("error %-14s %ld water pixels: PSNR %.2f dB (rmse %.3f/255, max %d/255), whole frame %.2f dB; exit "
+               "direction mean %.2e deg, p99 %.2e, max %.2e (reference %.0f ms)\n", what, ie.pixels, ie.psnr_db,
+               ie.rmse, ie.max_abs, all.psnr_db, de.mean_deg, de.p99_deg, de.max_deg, ref_ms);
     } else {
         fprintf(stderr, "snell-bench --water: error measurement: %s\n", snell_last_error(ctx));
     }
+    snell_ref_destroy(objects);
     snell_renderer_destroy(rc);
     snell_renderer_destroy(rd);
     free(rgb);
@@ -110,6 +120,14 @@ static void drops(snell_water *w)
     snell_water_drop(w, 0.6f, 0.6f, 0.08f, -0.02f);
 }
 
+static double frame_ms(snell_renderer *r, const snell_frame_desc *fd)
+{
+    double t0 = cli_now_ms();
+    snell_render(r, fd, NULL);
+    snell_renderer_finish(r);
+    return cli_now_ms() - t0;
+}
+
 int snell_bench_water_main(int argc, char **argv)
 {
     water_bench b;
@@ -118,11 +136,17 @@ int snell_bench_water_main(int argc, char **argv)
     snell_water *cpu = NULL, *gpu = NULL;
     snell_renderer *r = NULL;
     snell_frame_desc fd;
-    double t_cpu[MAX_ROUNDS], t_gpu[MAX_ROUNDS], t_frame_cpu[MAX_ROUNDS], t_frame_gpu[MAX_ROUNDS], t_frame_obj[MAX_ROUNDS];
+    double t_cpu[MAX_ROUNDS], t_gpu[MAX_ROUNDS], t_frame_cpu[MAX_ROUNDS], t_frame_gpu[MAX_ROUNDS];
+    double t_obj[MAX_ROUNDS], t_glass[MAX_ROUNDS], t_glass_off[MAX_ROUNDS];
     snell_mesh *sphere = NULL;
     snell_opaque objects[2];
+    snell_glass glass[2];
+    /* two opaque spheres, one through the surface; then two glass spheres (one through it) and the second
+     * opaque one (test_water_glass's kind of scene) */
     static const float m0[16] = {0.35f, 0, 0, 0, 0, 0.35f, 0, 0, 0, 0, 0.35f, 0, 0.35f, -0.2f, 0.1f, 1};
     static const float m1[16] = {0.2f, 0, 0, 0, 0, 0.2f, 0, 0, 0, 0, 0.2f, 0, -0.45f, -0.5f, -0.3f, 1};
+    static const float g0[16] = {0.35f, 0, 0, 0, 0, 0.35f, 0, 0, 0, 0, 0.35f, 0, -0.1f, -0.2f, 0.05f, 1};
+    static const float g1[16] = {0.2f, 0, 0, 0, 0, 0.2f, 0, 0, 0, 0, 0.2f, 0, 0.5f, -0.5f, -0.35f, 1};
     char load[64], threads_why[96];
     int k, rc = 1, threads;
     if (!parse(argc, argv, &b)) return 2;
@@ -142,6 +166,13 @@ int snell_bench_water_main(int argc, char **argv)
     objects[0].mesh = objects[1].mesh = sphere;
     objects[0].model = m0;
     objects[1].model = m1;
+    objects[0].color[0] = objects[1].color[2] = 0.9f;
+    objects[0].color[1] = objects[0].color[2] = objects[1].color[0] = objects[1].color[1] = 0.3f;
+    memset(glass, 0, sizeof glass);
+    glass[0].mesh = glass[1].mesh = sphere;
+    glass[0].model = g0;
+    glass[1].model = g1;
+    glass[0].material.ior = glass[1].material.ior = 1.5f;
     memset(&fd, 0, sizeof fd);
     fd.env = env;
     fd.camera.azimuth = 0.5f;
@@ -177,10 +208,17 @@ int snell_bench_water_main(int argc, char **argv)
         t_frame_gpu[k] = cli_now_ms() - t0;
         fd.opaque = objects; /* two spheres in the water: their pass, the copy and the search */
         fd.opaque_count = 2;
-        t0 = cli_now_ms();
-        snell_render(r, &fd, NULL);
-        snell_renderer_finish(r);
-        t_frame_obj[k] = cli_now_ms() - t0;
+        t_obj[k] = frame_ms(r, &fd);
+        fd.scene_layers = -1; /* the glass drawn, but not seen by the water */
+        fd.opaque = objects + 1;
+        fd.opaque_count = 1;
+        fd.glass = glass;
+        fd.glass_count = 2;
+        t_glass_off[k] = frame_ms(r, &fd);
+        fd.scene_layers = 0;
+        t_glass[k] = frame_ms(r, &fd);
+        fd.glass = NULL;
+        fd.glass_count = 0;
         fd.opaque = NULL;
         fd.opaque_count = 0;
     }
@@ -192,9 +230,23 @@ int snell_bench_water_main(int argc, char **argv)
            cli_median(t_cpu, b.rounds), cli_median(t_gpu, b.rounds));
     printf("render frame: %.2f ms with the CPU simulation's heights uploaded, %.2f ms from the GPU state (medians, "
            "finished)\n", cli_median(t_frame_cpu, b.rounds), cli_median(t_frame_gpu, b.rounds));
-    printf("render frame with two opaque spheres in the water (GPU heights): %.2f ms\n", cli_median(t_frame_obj, b.rounds));
+    printf("render frame with two opaque spheres in the water (GPU heights): %.2f ms\n", cli_median(t_obj, b.rounds));
+    printf("render frame with two glass spheres and an opaque one in the water (GPU heights, glass AUTO): %.2f ms, "
+           "%.2f ms with the water not seeing the glass (scene_layers -1)\n", cli_median(t_glass, b.rounds),
+           cli_median(t_glass_off, b.rounds));
     fd.water = gpu;
     if (!error_line(ctx, gpu, &fd, b.size, "rippled")) goto done;
+    fd.opaque = objects;
+    fd.opaque_count = 2;
+    if (!error_line(ctx, gpu, &fd, b.size, "opaque")) goto done;
+    fd.scene_layers = -1;
+    fd.opaque = objects + 1;
+    fd.opaque_count = 1;
+    fd.glass = glass;
+    fd.glass_count = 2;
+    if (!error_line(ctx, gpu, &fd, b.size, "glass/off")) goto done;
+    fd.scene_layers = 0;
+    if (!error_line(ctx, gpu, &fd, b.size, "glass")) goto done;
     rc = 0;
 done:
     snell_renderer_destroy(r);

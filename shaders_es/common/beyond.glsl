@@ -42,20 +42,21 @@
 //
 // SNELL_WATER (the frame has a water surface, common/water.glsl): past the
 // objects the ray meets the water and its container before the
-// environment. In the air (the default) they are met where they lie nearer
-// than the next object's surface; beyond_water_surface = false leaves the
-// surface out (rays reflected off it, which rise). A ray is in the water
-// when it starts under the surface (beyond_water_start 0), or as
-// beyond_water_start says (1 in the water, 2 in the air: the water
-// surface's own rays, which start on it). In the water the
-// ambient index is the water's, Beer-Lambert with the water's absorption
-// runs over every stretch outside the objects, and the container ends the
-// ray (water_under). Reflections met on the way look up the same.
+// environment. In the air they are met where they lie nearer than the next
+// object's surface; at the water surface the ray is refracted into the
+// water (its reflection from the walls and the sky) and goes on there. A ray
+// is in the water from the start when it starts under the surface, or with
+// beyond_start_in_water (the water surface's refracted rays, which start on
+// it). In the water the ambient index is the water's, Beer-Lambert with the
+// water's absorption runs over every stretch outside the objects, and the
+// container ends the ray (water_under). Reflections met on the way look up
+// the same. A kernel's ray that leaves its object under the water was
+// refracted out for air; it is bent again for the water's index (the exit
+// normal from the layers).
 #ifdef SNELL_WATER
 #include "common/water.glsl"
-int beyond_water_start = 0;
+bool beyond_start_in_water = false;
 bool beyond_in_water = false; // set by snell_exit from the above
-bool beyond_water_surface = true;
 #endif
 
 // What a ray from o along dir in the ambient medium sees past every object.
@@ -65,7 +66,7 @@ vec3 beyond_miss(highp vec3 o, highp vec3 dir)
     if (beyond_in_water) return water_under(o, dir);
     highp float dist;
     vec3 col;
-    if (water_air(o, dir, 3.0e38, beyond_water_surface, dist, col)) return col;
+    if (water_air(o, dir, 3.0e38, dist, col)) return col;
 #endif
     return snell_env(dir);
 }
@@ -258,8 +259,8 @@ highp float beyond_inside_stretch(int medium, highp vec3 o, highp vec3 dir, out 
 vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
 {
 #ifdef SNELL_WATER
-    beyond_in_water = beyond_water_start == 1 || (beyond_water_start == 0 && water_contains(p));
-    if (beyond_in_water && beyond_water_start == 0 && u_scene_self > 0 && !beyond_thin(u_scene_self)) {
+    beyond_in_water = beyond_start_in_water || water_contains(p);
+    if (beyond_in_water && !beyond_start_in_water && u_scene_self > 0 && !beyond_thin(u_scene_self)) {
         // The kernel refracted its ray out into air; it leaves under the
         // water: bent again for the water's index (the tangential part
         // scales by 1 / ior), with the normal of its object's surface there
@@ -280,17 +281,20 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
     int left = 0; // the object the ray last left: not re-entered (see the header)
     highp vec3 o = p;
     highp float t0 = 0.0;
+    highp float water_t = 3.0e38; // in the air: how far from o the water or the container is met
+#ifdef SNELL_WATER
+    highp vec3 water_n = vec3(0.0, 1.0, 0.0);
+    int water_what = -1;
+#endif
     // each round crosses a surface (at most BEYOND_MAX_INTERFACES) or passes
     // one object's bounding sphere
     for (int round = 0; round < BEYOND_MAX_INTERFACES + 32; round++) {
         highp float ta, tb, step;
         int inside = medium & 255; // the glass object the ray is in, 0 air
-        highp float water_t = 3.0e38; // in the air: where the water or the container is met
 #ifdef SNELL_WATER
-        highp vec3 water_n;
-        int water_what = -1;
-        if (inside == 0 && !beyond_in_water) {
-            water_what = water_air_hit(o, dir, 3.0e38, beyond_water_surface, water_t, water_n);
+        // once per start o (t0 > 0: the same o, on past an object's sphere)
+        if (inside == 0 && !beyond_in_water && t0 == 0.0) {
+            water_what = water_air_hit(o, dir, 3.0e38, water_t, water_n);
             if (water_what < 0) water_t = 3.0e38;
         }
 #endif
@@ -341,6 +345,7 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
             dir = normalize(wt);
             o = q;
             t0 = 0.0;
+            water_t = 3.0e38;
             beyond_in_water = true;
             if (++crossed >= BEYOND_MAX_INTERFACES) break;
             continue;

@@ -10,17 +10,18 @@
 //   attenuated by Beer-Lambert over the distance.
 // - water_walls_above(p, r): a ray from the surface upwards: the walls'
 //   inner side below the rim, else the environment.
-// - water_air_hit / water_air(o, d, limit, surface, dist, col): a ray in
-//   the air meeting the water surface or the container before distance
-//   limit (one starting under the surface is in the water: water_under):
-//   the surface shaded with
-//   Schlick's Fresnel between the two rays above (no objects: they are seen
-//   only by the surface's own fragments, water_surface.frag), a face its
-//   tile. The surface is found as the plane of the rest level refined
+// - water_air_hit(o, d, limit, dist, n): what a ray in the air meets first
+//   before distance limit: the water surface (point and normal), a face of
+//   the container, or nothing; a ray starting under the surface is in the
+//   water. The surface is found as the plane of the rest level refined
 //   three times by the heights under the point (bilinear in the cell), its
 //   normal the bilinear blend of the four nodes' (-dh/dx, 1, -dh/dz): close
 //   to the drawn triangles where the ray is steeper than the waves, which
 //   the reference meets exactly (test_water_glass measures the difference).
+//   beyond.glsl's march refracts into the water there and goes on.
+// - water_air(o, d, limit, dist, col): the same, shaded: the surface with
+//   Schlick's Fresnel between water_under and water_walls_above (no
+//   objects), a face its tile; for look-ups past every object.
 #include "common/water_tiles.glsl"
 
 uniform highp float u_water_rim;       // top of the walls above the rest level
@@ -126,10 +127,10 @@ vec3 water_shade(highp vec3 p, highp vec3 v, highp vec3 n)
 
 // What a ray in the air from o along unit d meets first before limit: -1
 // nothing, WATER_IN (it starts in the water), a face of the container
-// (0..4) or (surface: true) WATER_SURFACE at distance dist with unit normal n.
+// (0..4) or WATER_SURFACE, at distance dist (the surface: unit normal n).
 #define WATER_SURFACE 5
 #define WATER_IN 6
-int water_air_hit(highp vec3 o, highp vec3 d, highp float limit, bool surface, out highp float dist, out highp vec3 n)
+int water_air_hit(highp vec3 o, highp vec3 d, highp float limit, out highp float dist, out highp vec3 n)
 {
     dist = limit;
     n = vec3(0.0, 1.0, 0.0);
@@ -160,7 +161,7 @@ int water_air_hit(highp vec3 o, highp vec3 d, highp float limit, bool surface, o
         }
     }
     // the surface, from above: the rest plane, refined by the heights
-    if (surface && d.y < 0.0) {
+    if (d.y < 0.0) {
         highp vec2 cell;
         ivec2 c0;
         highp float s = -o.y / d.y;
@@ -179,10 +180,10 @@ int water_air_hit(highp vec3 o, highp vec3 d, highp float limit, bool surface, o
 }
 
 // The same, shaded: true with the radiance along the ray in col.
-bool water_air(highp vec3 o, highp vec3 d, highp float limit, bool surface, out highp float dist, out vec3 col)
+bool water_air(highp vec3 o, highp vec3 d, highp float limit, out highp float dist, out vec3 col)
 {
     highp vec3 n;
-    int what = water_air_hit(o, d, limit, surface, dist, n);
+    int what = water_air_hit(o, d, limit, dist, n);
     col = what < 0 ? vec3(0.0)
         : what == WATER_IN ? water_under(o, d)
         : what == WATER_SURFACE ? water_shade(o + dist * d, d, n) : water_tile(what, o + dist * d);

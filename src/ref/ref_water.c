@@ -3,17 +3,19 @@
  * draws (two per cell, split along (i, j)-(i+1, j+1)), found by walking the
  * cells the ray's projection crosses (Amanatides-Woo) inside the slab between
  * the lowest and highest node; the container's five faces as exact planes.
- * The optics are water_surface.frag's: the normal is the barycentric blend
- * of the nodes' (-dh/dx, 1, -dh/dz), normalised; Schlick Fresnel between
- * what the mirror ray sees (the walls above the water below the rim, else
- * the environment) and the tiles where the refracted
- * ray meets the floor or a wall (the nearest of the five distances, floor
- * first, then x, then z on ties), Beer-Lambert over that distance. Opaque
- * objects (a reference of them, ref_scene.c's BVH) are met exactly by the
- * view ray and the refracted ray. */
+ * The surface's optics are water_surface.frag's: the normal is the
+ * barycentric blend of the nodes' (-dh/dx, 1, -dh/dz), normalised; Schlick
+ * Fresnel between the mirror ray and the refracted one, the tiles where a
+ * ray in the water meets the floor or a wall (the nearest of the five
+ * distances, floor first, then x, then z on ties), Beer-Lambert over every
+ * stretch in the water. The objects (glass and opaque, ref_scene.c's BVH)
+ * are traced by ref_trace.c's MATCHED model within the two media: the air
+ * and the water are snell__ref_medium's, the water's chosen where a point
+ * lies inside the box below the surface. */
 #include "core/optics.h"
 #include "ref/ref_scene.h"
 #include "ref/ref_trace.h"
+#include "render/env.h"
 #include "snell/snell_water.h"
 #include "water/water.h"
 
@@ -406,6 +408,11 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, co
                            "snell_ref_water_render: water, params, out and out->rgb are required");
     if (!params->env && !params->env_fn)
         return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: params need env or env_fn");
+    if (!params->env_fn && !params->env->faces[0])
+        return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: the environment has no CPU faces");
+    if (params->max_interfaces < 0 || params->max_interfaces > SNELL_REF_MAX_INTERFACES)
+        return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: max_interfaces %d outside 0..%d",
+                           params->max_interfaces, SNELL_REF_MAX_INTERFACES);
     if (params->samples < 0 || params->samples > SNELL_REF_MAX_SAMPLES || params->threads < 0)
         return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: samples %d outside 0..%d or threads %d < 0",
                            params->samples, SNELL_REF_MAX_SAMPLES, params->threads);
