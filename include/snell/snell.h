@@ -791,7 +791,8 @@ typedef struct snell_opaque {
  * nothing was drawn. A glass object sees the environment and, when there are
  * opaque objects, a dynamic environment rendered from its bounding-sphere
  * centre with them in it (Unger 4.1), re-rendered only in frames where
- * something it shows moved. Glass does not yet see other glass objects. */
+ * something it shows moved; with the scene layers (scene_layers below) it
+ * sees the other glass and opaque objects through them instead. */
 typedef struct snell_frame_desc {
     const snell_env *env;           /* required */
     snell_camera camera;
@@ -803,7 +804,8 @@ typedef struct snell_frame_desc {
     int dynamic_env_size;           /* dynamic environment face size, 16..2048; 0 = half of env's, at most 256 */
     int scene_layers;               /* glass seen through glass, and opaque objects seen through glass where
                                      * they are: 0 = auto (on when the frame draws two or more glass
-                                     * objects, or one with opaque objects), -1 = off (each glass object sees
+                                     * objects, or one with opaque objects or with water: see water below),
+                                     * -1 = off (each glass object sees
                                      * only the environment, or its dynamic one with the opaque objects),
                                      * 2..SNELL_MAX_SCENE_LAYERS = on with at most that many layers. On, every
                                      * glass and opaque object is depth peeled together (at most that
