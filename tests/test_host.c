@@ -7,6 +7,7 @@
 #include "test_util.h"
 #include "gl_count.h"
 #include "snell/snell_2d.h"
+#include "snell/snell_water.h"
 
 #include <EGL/egl.h>
 #include <GLES3/gl3.h>
@@ -783,10 +784,14 @@ static void host_objects_make(host_objects *h)
     }
 }
 
-/* The scene: a CUBEMAP sphere (baked ndcube) and a SINGLE torus seeing an
- * opaque cube through their dynamic environments, the background last. */
+/* The scene: a CUBEMAP sphere (baked ndcube) and a PEEL torus seeing an
+ * opaque cube and each other through the scene layers, standing in rippled
+ * water (its grid, heights texture and programs made under the host's
+ * state; the water's rays march the layers, the kernels see the water), the
+ * background last. */
 typedef struct host_scene {
     snell_mesh *sphere, *torus, *cube;
+    snell_water *water;
     snell_glass g[2];
     snell_opaque op;
     float m_sphere[16], m_torus[16], m_cube[16];
@@ -833,6 +838,7 @@ static void scene_frame(host_scene *s, const snell_env *env, snell_frame_desc *f
     fd->glass_count = 2;
     fd->opaque = &s->op;
     fd->opaque_count = 1;
+    fd->water = s->water;
     fd->camera.azimuth = 0.4f;
     fd->camera.elevation = 0.3f;
     fd->camera.distance = 3.2f;
@@ -863,8 +869,10 @@ static int host_render(snell_ctx *ctx, host_scene *s, snell_env *env, snell_shad
     rd.shading = shading;
     st = snell_renderer_create(ctx, &rd, &r);
     if (st == SNELL_OK) {
+        snell_frame_stats fs;
         scene_frame(s, env, &fd);
-        st = snell_render(r, &fd, NULL);
+        st = snell_render(r, &fd, &fs);
+        CHECK(st != SNELL_OK || (fs.water_drawn && fs.water_layers), "the host scene's water drawn, marching the layers");
     }
     if (st == SNELL_OK) st = snell_renderer_read_rgba(r, px);
     if (st != SNELL_OK) printf("  %s %s\n", snell_status_str(st), snell_last_error(ctx));
@@ -905,6 +913,10 @@ static void check_external_state(void)
     s.sphere = shape(ctx, SNELL_SHAPE_SPHERE);
     s.torus = shape(ctx, SNELL_SHAPE_TORUS);
     s.cube = shape(ctx, SNELL_SHAPE_CUBE);
+    CHECK_OK_CTX(ctx, snell_water_create(ctx, &(snell_water_desc){.grid = 64, .width = 3.0f,
+                                                                   .sim = SNELL_WATER_SIM_CPU}, &s.water));
+    CHECK_OK_CTX(ctx, snell_water_drop(s.water, 0.2f, 0.3f, 0.2f, -0.05f));
+    CHECK_OK_CTX(ctx, snell_water_step(s.water, 0.0f, 40, NULL));
     env = env16(ctx);
     memset(&h, 0, sizeof h);
     host_objects_make(&h);
@@ -974,6 +986,7 @@ static void check_external_state(void)
     snell_mesh_destroy(s.sphere);
     snell_mesh_destroy(s.torus);
     snell_mesh_destroy(s.cube);
+    snell_water_destroy(s.water);
     snell_env_destroy(env);
     CHECK(eglGetCurrentContext() == host, "destroying objects after their EXTERNAL context keeps the host current");
     CHECK(glGetError() == GL_NO_ERROR, "GL error after the late destroys");
