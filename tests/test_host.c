@@ -437,7 +437,7 @@ static void check_camera(void)
 /* -------------------------------------------------- 4 + 5: EXTERNAL state */
 
 
-#define UNITS 5 /* texture units the library uses */
+#define UNITS 10 /* texture units the library uses: SNELL_GLSTATE_UNITS (core/glstate.h) */
 
 typedef struct host_objects {
     GLuint sampler, pack_pbo, unpack_pbo, fbo_draw, fbo_read, rb, tex[UNITS];
@@ -613,9 +613,10 @@ static int kept_bindings(const host_objects *h)
     ok = geti(GL_DRAW_FRAMEBUFFER_BINDING) == (GLint)h->fbo_draw &&
          geti(GL_READ_FRAMEBUFFER_BINDING) == (GLint)h->fbo_read &&
          geti(GL_RENDERBUFFER_BINDING) == (GLint)h->rb && geti(GL_ACTIVE_TEXTURE) == GL_TEXTURE3;
-    for (u = 0; u < UNITS; u++) {
+    for (u = 0; u < UNITS; u++) { /* the host's binding of its kind, and none of the other kind */
         glActiveTexture((GLenum)(GL_TEXTURE0 + u));
         ok &= geti(u & 1 ? GL_TEXTURE_BINDING_CUBE_MAP : GL_TEXTURE_BINDING_2D) == (GLint)h->tex[u];
+        ok &= geti(u & 1 ? GL_TEXTURE_BINDING_2D : GL_TEXTURE_BINDING_CUBE_MAP) == 0;
     }
     glActiveTexture(GL_TEXTURE3);
     glGetIntegerv(GL_VIEWPORT, v);
