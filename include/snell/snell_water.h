@@ -12,8 +12,10 @@
  * view ray refracted into the container and met exactly with its walls or
  * floor (procedural tiles), the sky reflected from the environment, Schlick
  * Fresnel between the two and Beer-Lambert colouring by the path length in
- * the water. The reference tracer renders the same scene (snell_ref_water_render
- * in snell_ref.h).
+ * the water. Glass and opaque objects of the frame standing in the water are
+ * seen through it, and the glass sees the water (snell_frame_desc.water in
+ * snell.h says how). The reference tracer renders the same scene
+ * (snell_ref_water_render in snell_ref.h).
  *
  * World space: the container's inner box is |x| <= width/2, |z| <= width/2,
  * -depth <= y <= rim; the water rests at y = 0, node (i, j) sits at
