@@ -263,7 +263,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner
                                      : transmitted;
 #endif
-    vec3 reflected = snell_env(r);
+    vec3 reflected = snell_reflection(world_pos, r);
     exit_dir = dir;
     return mix(transmitted, reflected, fresnel);
 }

@@ -384,7 +384,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 #else
     vec3 transmitted = snell_exit(exit_p, dir) * u_tint;
 #endif
-    vec3 reflected = snell_env(r);
+    vec3 reflected = snell_reflection(world_pos, r);
     exit_dir = dir;
     return mix(transmitted, reflected, fresnel);
 }

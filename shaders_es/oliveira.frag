@@ -272,7 +272,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 inner = inner_branch(exit_p, snell_reflect(exit_in, exit_n), exit_length, v, n);
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner : transmitted;
 #endif
-    vec3 reflected = snell_env(r);
+    vec3 reflected = snell_reflection(p1, r);
     exit_dir = dir;
     return mix(transmitted, reflected, fresnel);
 }

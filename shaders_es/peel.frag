@@ -404,7 +404,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * exit_tint * inner
                                      : transmitted;
 #endif
-    vec3 reflected = snell_env(r);
+    vec3 reflected = snell_reflection(p1, r);
     exit_dir = dir;
     return mix(transmitted, reflected, fresnel);
 }

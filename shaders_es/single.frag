@@ -41,7 +41,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 rs, ts;
     snell_thin_slab(-dot(v, n), snell_ior, u_sigma, u_thickness, rs, ts);
     highp vec3 through = v; // straight on through the wall (snell_exit: to what lies beyond)
-    vec3 color = snell_exit(world_pos, through) * u_tint * ts + snell_env(r) * rs;
+    vec3 color = snell_exit(world_pos, through) * u_tint * ts + snell_reflection(world_pos, r) * rs;
     exit_dir = through;
     return color;
 #else
@@ -63,7 +63,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 #else
     vec3 transmitted = snell_h(snell_disp_exit(world_pos, t) * u_tint);
 #endif
-    vec3 reflected = snell_h(snell_env(r));
+    vec3 reflected = snell_h(snell_reflection(world_pos, r));
     exit_dir = t;
     return mix(transmitted, reflected, fresnel);
 #endif

@@ -142,7 +142,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 #else
     vec3 transmitted = snell_disp_exit(p2, dir) * u_tint;
 #endif
-    vec3 reflected = snell_env(r);
+    vec3 reflected = snell_reflection(p1, r);
     exit_dir = dir;
     return mix(transmitted, reflected, fresnel);
 }

@@ -810,8 +810,8 @@ typedef struct snell_frame_desc {
                                      * 2..SNELL_MAX_SCENE_LAYERS = on with at most that many layers. On, every
                                      * glass and opaque object is depth peeled together (at most that
                                      * many passes, each drawing every object once; fewer where fewer layers
-                                     * hold something) and each glass kernel's exit ray is marched through
-                                     * those layers: it refracts through the other glass objects (TIR inside
+                                     * hold something) and each glass kernel's exit ray, and the mirror ray
+                                     * off its front, are marched through those layers: it refracts through the other glass objects (TIR inside
                                      * them, Schlick at their entry, their tint and absorption), crosses thin
                                      * walls as slabs, stops at an opaque one, and sees the environment past
                                      * them all, so no dynamic environment is made. Limits: what lies off the
@@ -825,15 +825,15 @@ typedef struct snell_frame_desc {
      * surface's refracted ray is marched through the scene layers in the
      * water (the water's index between the objects, refracting through the
      * glass, stopping at opaque objects, Beer-Lambert of the water over the
-     * path outside them) and its mirror ray meets the objects above the
-     * water; with opaque objects only, they are searched for in screen space
+     * path outside them; its mirror ray sees the walls and the
+     * environment); with opaque objects only, they are searched for in screen space
      * along the refracted ray (offscreen colour renderers without msaa).
      * snell_frame_stats.water_objects / water_layers say which. The glass
-     * kernels' exit rays (and the reflections the layers' march meets) see
-     * the water and the container (the surface found from the rest plane,
-     * refined by the heights) before the environment. Limits: a glass
-     * kernel's own first reflection looks up the environment only; a ray
-     * rising inside the water meets the walls, not the surface from below;
+     * kernels' exit rays and reflections (and the reflections the layers'
+     * march meets) see the water and the container (the surface found from
+     * the rest plane, refined by the heights) before the environment.
+     * Limits: a ray rising inside the water meets the walls, not the surface
+     * from below;
      * the part of a ray inside the water that the glass's kernel traces (a
      * glass object half under water) is traced as in air. */
     snell_water *water;

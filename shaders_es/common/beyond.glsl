@@ -40,6 +40,13 @@
 // dir is updated to the direction the path finally leaves in (exit-direction
 // output). highp: positions, projections and 24-bit depths.
 //
+// snell_reflection(p, r): the same for the mirror ray r off the kernel's
+// object at its front surface p (every kernel's reflection): marched
+// through the layers it sees the other objects (with the environment alone,
+// silhouettes that reflect most missed the opaque objects behind them:
+// three_glass_two_opaque, peel, 256x256 aa 2, opaque class 36.0 dB against
+// 41.3 with no layers and a dynamic environment; marched, 45.6).
+//
 // SNELL_WATER (the frame has a water surface, common/water.glsl): past the
 // objects the ray meets the water and its container before the
 // environment. In the air they are met where they lie nearer than the next
@@ -256,11 +263,14 @@ highp float beyond_inside_stretch(int medium, highp vec3 o, highp vec3 dir, out 
     return max(-b + sqrt(max(b * b - dot(oc, oc) + r * r, 0.0)), 0.0);
 }
 
-vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
+// The march (see the header). exit_of_self: dir is the kernel's refracted
+// exit ray (re-bent for the water where it leaves under it), else a mirror
+// ray off the object's front (snell_reflection).
+vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
 {
 #ifdef SNELL_WATER
     beyond_in_water = beyond_start_in_water || water_contains(p);
-    if (beyond_in_water && !beyond_start_in_water && u_scene_self > 0 && !beyond_thin(u_scene_self)) {
+    if (exit_of_self && beyond_in_water && !beyond_start_in_water && u_scene_self > 0 && !beyond_thin(u_scene_self)) {
         // The kernel refracted its ray out into air; it leaves under the
         // water: bent again for the water's index (the tangential part
         // scales by 1 / ior), with the normal of its object's surface there
@@ -447,9 +457,25 @@ vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
     }
     return radiance + thr * beyond_miss(o, dir);
 }
+
+vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
+{
+    return beyond_march(p, dir, true);
+}
+
+vec3 snell_reflection(highp vec3 p, highp vec3 r)
+{
+    highp vec3 d = r;
+    return beyond_march(p, d, false);
+}
 #else
 vec3 snell_exit(highp vec3 p, inout highp vec3 dir)
 {
     return beyond_miss(p, dir);
+}
+
+vec3 snell_reflection(highp vec3 p, highp vec3 r)
+{
+    return beyond_miss(p, r);
 }
 #endif
