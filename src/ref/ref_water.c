@@ -28,7 +28,7 @@ typedef struct water_scene {
     const snell_ref *objects;   /* the objects standing in (or above) the water, or NULL */
     snell__ref_medium air, air_above, water; /* air_above: the mirror rays, which leave the surface out */
     const float *h;             /* heights, n * n */
-    double half, dx, hmin, hmax, ior, sigma[3];
+    double half, dx, hmin, hmax;
     int n;
     const snell_ref_params *p;
     const camera_rays *cr;
@@ -227,7 +227,7 @@ static int meet_water(const void *user, const double o[3], const double d[3], do
     if (t >= t_limit) return 0;
     for (k = 0; k < 3; k++) q[k] = o[k] + t * d[k];
     snell__water_tile(&s->w->d, face, q, rgb);
-    for (k = 0; k < 3; k++) rgb[k] *= exp(-s->sigma[k] * t);
+    for (k = 0; k < 3; k++) rgb[k] *= exp(-s->water.sigma[k] * t);
     return 1;
 }
 
@@ -244,9 +244,9 @@ static void shade_surface(const water_scene *s, int depth, const double p[3], co
         for (k = 0; k < 3; k++) nrm[k] = -nrm[k];
     snell_optd_reflect(d, nrm, r);
     snell__ref_normalize3(r);
-    snell_optd_refract(d, nrm, 1.0 / s->ior, t);
+    snell_optd_refract(d, nrm, 1.0 / s->water.ior, t);
     snell__ref_normalize3(t);
-    f = snell_optd_fresnel_schlick(-snell__ref_dot3(d, nrm), 1.0, s->ior);
+    f = snell_optd_fresnel_schlick(-snell__ref_dot3(d, nrm), 1.0, s->water.ior);
     trace_in(s, depth + 1, &s->water, p, t, seen);
     trace_in(s, depth + 1, &s->air_above, p, r, sky);
     for (k = 0; k < 3; k++) rgb[k] = (1.0 - f) * seen[k] + f * sky[k];
@@ -335,22 +335,21 @@ static void trace_in(const water_scene *s, int depth, const snell__ref_medium *m
     snell__ref_trace_matched(s->objects, s->p, &sur, m, o, d, rgb);
 }
 
-/* One view ray: rgb, exit direction (the refracted one where it meets the
- * water first), hit (1: the water surface first). */
-static int trace(const water_scene *s, const double o[3], const double d[3], double rgb[3], double exit_dir[3])
+/* What a view ray meets first, for the outputs other than rgb: 1 if the
+ * water surface (exit_dir the refracted direction), else 0 (exit_dir d). */
+static int view_hit(const water_scene *s, const double o[3], const double d[3], double exit_dir[3])
 {
     const ref_view view = {-1, REF_SEE_ALL, -1};
     double tw = HUGE_VAL, tc, nrm[3] = {0.0, 1.0, 0.0};
     ref_surf os;
     int water = surface_hit(s, o, d, &tw, nrm), face = container_hit(s, o, d, &tc), k;
-    trace_in(s, 0, &s->air, o, d, rgb);
     memcpy(exit_dir, d, 3 * sizeof(double));
     if (s->objects && snell__ref_hit(s->objects, o, d, SNELL__BVH_NONE, &view, &os) && (!water || os.t < tw)) return 0;
     if (!water || (face >= 0 && tc < tw)) return 0;
     snell__ref_normalize3(nrm);
     if (snell__ref_dot3(nrm, d) > 0.0)
         for (k = 0; k < 3; k++) nrm[k] = -nrm[k];
-    snell_optd_refract(d, nrm, 1.0 / s->ior, exit_dir);
+    snell_optd_refract(d, nrm, 1.0 / s->water.ior, exit_dir);
     snell__ref_normalize3(exit_dir);
     return 1;
 }
@@ -367,12 +366,12 @@ static void row(water_scene *s, int y)
         for (b = 0; b < S; b++)
             for (a = 0; a < S; a++) {
                 snell__ref_camera_ray(cr, x, y, (a + 0.5) / S, (b + 0.5) / S, dir);
-                trace(s, cr->eye, dir, rgb, ex);
+                trace_in(s, 0, &s->air, cr->eye, dir, rgb);
                 for (k = 0; k < 3; k++) sum[k] += rgb[k];
             }
         for (k = 0; k < 3; k++) out->rgb[3 * i + k] = (float)(sum[k] / (S * S));
         snell__ref_camera_ray(cr, x, y, 0.5, 0.5, dir);
-        hit = trace(s, cr->eye, dir, rgb, ex);
+        hit = view_hit(s, cr->eye, dir, ex);
         if (out->exit_dir)
             for (k = 0; k < 3; k++) out->exit_dir[3 * i + k] = (float)ex[k];
         if (out->hit) out->hit[i] = (uint8_t)hit;
@@ -431,8 +430,7 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, co
     s.n = w->n;
     s.half = 0.5 * (double)w->d.width;
     s.dx = w->dx;
-    s.ior = w->d.ior;
-    for (k = 0; k < 3; k++) s.sigma[k] = s.water.sigma[k] = w->sigma[k];
+    for (k = 0; k < 3; k++) s.water.sigma[k] = w->sigma[k];
     s.air.meet = meet_air;
     s.air_above.meet = meet_above;
     s.water.meet = meet_water;
