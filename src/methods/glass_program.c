@@ -44,6 +44,7 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     g->screen_space = screen_space;
     g->beyond = (variant & SNELL__GLASS_BEYOND) != 0;
     g->water = (variant & SNELL__GLASS_WATER) != 0;
+    if (g->beyond) snell__layers_locate(g->prog, &g->layers);
     g->gnormal = glGetUniformLocation(g->prog, "u_gnormal");
     g->gdepth_id = glGetUniformLocation(g->prog, "u_gdepth_id");
     g->inv_view_proj = glGetUniformLocation(g->prog, "u_inv_view_proj");
@@ -111,7 +112,7 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniform3fv(g->tint, 1, o->glass->material.tint);
     glUniform4fv(g->bsphere, 1, o->bsphere);
     if (g->beyond)
-        snell__layers_uniforms(g->prog, v, o->index + 1 + (o->glass->material.thickness > 0.0f ? SNELL__LAYERS_THIN_ID : 0));
+        snell__layers_uniforms(&g->layers, v, o->index + 1 + (o->glass->material.thickness > 0.0f ? SNELL__LAYERS_THIN_ID : 0));
     if (g->water) snell__water_uniforms(g->prog, v->water);
     if (g->screen_space) {
         glUniform1i(g->gnormal, SNELL__GBUFFER_UNIT_NORMAL);

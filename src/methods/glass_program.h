@@ -4,6 +4,7 @@
 #define SNELL_GLASS_PROGRAM_H
 
 #include "methods/method.h"
+#include "render/layers.h"
 
 typedef struct snell__glass_program {
     unsigned prog;
@@ -12,6 +13,7 @@ typedef struct snell__glass_program {
     int water;                      /* SNELL_WATER: the exit look-up meets the frame's water (view.water) */
     int model, normal_matrix, view_proj, eye, env, ior, ior_rgb, sigma, tint, bsphere;
     int gnormal, gdepth_id, inv_view_proj, inv_size, gid;
+    snell__layers_locs layers;      /* common/beyond.glsl's uniforms (beyond only) */
 } snell__glass_program;
 
 /* A kernel program's variant for an object (what snell__glass_program_build

@@ -73,10 +73,17 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
                                 int glass_count, const snell_opaque *opaque, int opaque_count, int max_layers,
                                 int *passes, int *reused);
 
-/* Sets common/beyond.glsl's uniforms of program prog (in use) for this
- * frame's layers (v->layers), skipping the object of layer id self (0:
- * none); the layers are on SNELL__LAYERS_UNIT and the table on
- * SNELL__LAYERS_TABLE_UNIT (snell__layers_draw bound them). */
-void snell__layers_uniforms(unsigned prog, const snell__view *v, int self);
+/* common/beyond.glsl's uniform locations in a program: found once, when
+ * the program is built (snell__layers_locate), set every frame. */
+typedef struct snell__layers_locs {
+    int layers, table, layer_count, capped, glass_ids, opaque_count, self, view_proj, eye, fwd, near_, inv_range, size;
+} snell__layers_locs;
+void snell__layers_locate(unsigned prog, snell__layers_locs *l);
+
+/* Sets those uniforms of the program in use for this frame's layers
+ * (v->layers), skipping the object of layer id self (0: none); the layers
+ * are on SNELL__LAYERS_UNIT and the table on SNELL__LAYERS_TABLE_UNIT
+ * (snell__layers_draw bound them). */
+void snell__layers_uniforms(const snell__layers_locs *l, const snell__view *v, int self);
 
 #endif

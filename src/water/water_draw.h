@@ -10,6 +10,7 @@
 #define SNELL_WATER_DRAW_H
 
 #include "methods/method.h"
+#include "render/layers.h"
 #include "water/water.h"
 
 /* Surface program variants: the refracted ray meets only the container,
@@ -22,6 +23,7 @@
 
 typedef struct snell__water_programs {
     unsigned surface[2][SNELL__WATER_MODES]; /* [heights from R32F (CPU simulation) or the RG32UI state (GPU)][mode] */
+    snell__layers_locs layers[2];  /* the SNELL_BEYOND mode's layer uniforms, per heights format */
     unsigned wall;
     int made;
     /* The opaque objects as the frame drew them (colour and depth), for the
