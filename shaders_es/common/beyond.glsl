@@ -71,9 +71,8 @@ vec3 beyond_miss(highp vec3 o, highp vec3 dir)
 {
 #ifdef SNELL_WATER
     if (beyond_in_water) return water_under(o, dir);
-    highp float dist;
     vec3 col;
-    if (water_air(o, dir, 3.0e38, dist, col)) return col;
+    if (water_air(o, dir, col)) return col;
 #endif
     return snell_env(dir);
 }
@@ -304,7 +303,7 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
 #ifdef SNELL_WATER
         // once per start o (t0 > 0: the same o, on past an object's sphere)
         if (inside == 0 && !beyond_in_water && t0 == 0.0) {
-            water_what = water_air_hit(o, dir, 3.0e38, water_t, water_n);
+            water_what = water_air_hit(o, dir, water_t, water_n);
             if (water_what < 0) water_t = 3.0e38;
         }
 #endif

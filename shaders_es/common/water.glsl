@@ -10,8 +10,8 @@
 //   attenuated by Beer-Lambert over the distance.
 // - water_walls_above(p, r): a ray from the surface upwards: the walls'
 //   inner side below the rim, else the environment.
-// - water_air_hit(o, d, limit, dist, n): what a ray in the air meets first
-//   before distance limit: the water surface (point and normal), a face of
+// - water_air_hit(o, d, dist, n): what a ray in the air meets first: the
+//   water surface (point and normal), a face of
 //   the container, or nothing; a ray starting under the surface is in the
 //   water. The surface is found as the plane of the rest level refined
 //   three times by the heights under the point (bilinear in the cell), its
@@ -19,7 +19,7 @@
 //   to the drawn triangles where the ray is steeper than the waves, which
 //   the reference meets exactly (test_water_glass measures the difference).
 //   beyond.glsl's march refracts into the water there and goes on.
-// - water_air(o, d, limit, dist, col): the same, shaded: the surface with
+// - water_air(o, d, col): the same, shaded: the surface with
 //   Schlick's Fresnel between water_under and water_walls_above (no
 //   objects), a face its tile; for look-ups past every object.
 #include "common/water_tiles.glsl"
@@ -125,14 +125,14 @@ vec3 water_shade(highp vec3 p, highp vec3 v, highp vec3 n)
     return mix(water_under(p, normalize(t)), water_walls_above(p, snell_reflect(v, n)), f);
 }
 
-// What a ray in the air from o along unit d meets first before limit: -1
+// What a ray in the air from o along unit d meets first: -1
 // nothing, WATER_IN (it starts in the water), a face of the container
 // (0..4) or WATER_SURFACE, at distance dist (the surface: unit normal n).
 #define WATER_SURFACE 5
 #define WATER_IN 6
-int water_air_hit(highp vec3 o, highp vec3 d, highp float limit, out highp float dist, out highp vec3 n)
+int water_air_hit(highp vec3 o, highp vec3 d, out highp float dist, out highp vec3 n)
 {
-    dist = limit;
+    dist = 3.0e38;
     n = vec3(0.0, 1.0, 0.0);
     // a ray leaving a glass object under the water is in the water (refracted as into air by the kernel)
     if (water_contains(o)) {
@@ -180,10 +180,11 @@ int water_air_hit(highp vec3 o, highp vec3 d, highp float limit, out highp float
 }
 
 // The same, shaded: true with the radiance along the ray in col.
-bool water_air(highp vec3 o, highp vec3 d, highp float limit, out highp float dist, out vec3 col)
+bool water_air(highp vec3 o, highp vec3 d, out vec3 col)
 {
+    highp float dist;
     highp vec3 n;
-    int what = water_air_hit(o, d, limit, dist, n);
+    int what = water_air_hit(o, d, dist, n);
     col = what < 0 ? vec3(0.0)
         : what == WATER_IN ? water_under(o, d)
         : what == WATER_SURFACE ? water_shade(o + dist * d, d, n) : water_tile(what, o + dist * d);

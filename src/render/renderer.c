@@ -472,7 +472,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         if (st == SNELL_OK)
             st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, env_tex, paraboloid, fd->opaque,
                                    objects ? fd->opaque_count : 0, layers, s);
-        s->water_objects = objects || (layers && (fd->opaque_count > 0 || sc->drawn > 0));
+        s->water_objects = objects || layers; /* layers: at least one glass object drawn */
         s->water_layers = layers;
     }
     /* One back-face pass for every object whose method reads back faces;
