@@ -283,6 +283,42 @@ typedef struct snell_mesh_analysis {
  * one OBJ face of 40,000 repeated corners, which then fails in ~0.1 s). */
 snell_status snell_mesh_analyze(const snell_mesh *mesh, snell_mesh_analysis *out);
 
+/* How the renderer lays a mesh out for the GPU: the order of the triangles
+ * (the same triangles, each with its winding, either way) that the vertex
+ * cache sees. meshoptimizer's vertex-cache optimisation costs about the sum
+ * over vertices of (triangle corners on the vertex)^2 steps: ~6 per corner
+ * on real meshes (bunny: 1.3e6 for 209k corners, 27 ms), but 5.3e10 for one
+ * OBJ face of 120,000 repeated corners on 3 vertices (66 s, issue 26). Over
+ * its bound (2^25 + 64 per corner: what it admits costs at most ~1.5x a real
+ * mesh of its size plus ~40 ms) the optimisation is skipped for
+ * meshoptimizer's linear-time FIFO order (order SNELL_GPU_ORDER_LINEAR),
+ * copies of a triangle are not drawn twice (copies_hidden), this is
+ * logged once a mesh at WARN by the upload, and the coarse copy of the
+ * back-face pass (whose simplifier costs the same) is not made (logged
+ * when asked for): the full mesh is drawn. snell_mesh_simplify refuses such a
+ * mesh (SNELL_E_LIMIT) after removing its duplicate triangles. */
+typedef enum snell_gpu_order {
+    SNELL_GPU_ORDER_SOURCE = 0, /* the mesh's own order (built without meshoptimizer) */
+    SNELL_GPU_ORDER_CACHE,      /* meshoptimizer's vertex-cache optimisation (real meshes) */
+    SNELL_GPU_ORDER_LINEAR      /* reorder skipped: order_work > order_work_limit; its FIFO order */
+} snell_gpu_order;
+
+typedef struct snell_mesh_gpu_stats {
+    snell_gpu_order order;
+    double order_work;       /* the reorder's work estimate: sum over vertices of corners^2 */
+    double order_work_limit; /* its bound: 2^25 + 64 * 3 * triangle_count */
+    uint32_t max_valence;    /* the most triangle corners on one vertex */
+    int coarse_allowed;      /* 1: a coarse copy may be made (CACHE order, 4096+ triangles) */
+    uint32_t copies_hidden;  /* LINEAR only: same-facing copies of a triangle after its first, made
+                              * degenerate in the GPU copy (they would draw the same pixels again) */
+    char reason[192];        /* one line: the order and why */
+} snell_mesh_gpu_stats;
+
+/* The GPU layout decision for mesh, from its triangles alone (no GL needed;
+ * O(vertices + triangles), allocates a count per vertex): the one the
+ * renderer's upload makes. SNELL_E_INVALID_ARG for NULL, SNELL_E_NOMEM. */
+snell_status snell_mesh_gpu_stats_get(const snell_mesh *mesh, snell_mesh_gpu_stats *out);
+
 /* Level of detail: a simplified copy of a mesh, for meshes whose triangles
  * are far below a pixel (meshoptimizer's edge-collapse simplifier). OFF BY
  * DEFAULT: the renderer never simplifies on its own; a caller who wants LOD

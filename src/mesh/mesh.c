@@ -346,6 +346,15 @@ snell_status snell__mesh_upload(snell_mesh *m)
     idx = (uint32_t *)snell__calloc(&m->alloc, ni, sizeof(uint32_t));
     st = interleaved && idx ? snell__mesh_gpu_layout(m, interleaved, idx)
                             : snell__fail(m->ctx, SNELL_E_NOMEM, "out of memory uploading a mesh");
+    if (st == SNELL_OK && !m->order_warned) {
+        /* said once a mesh: the order depends on the triangles only, which
+         * snell_mesh_set_vertices (re-uploaded every frame it is called) keeps */
+        snell_mesh_gpu_stats gs;
+        if (snell__mesh_gpu_order(m, &gs) == SNELL_OK && gs.order == SNELL_GPU_ORDER_LINEAR)
+            snell__log(m->gpu_ctx, SNELL_LOG_WARN, "mesh of %u triangles: %s (snell_mesh_gpu_stats_get)",
+                       m->triangle_count, gs.reason);
+        m->order_warned = 1;
+    }
     if (st != SNELL_OK) {
         snell__free(&m->alloc, interleaved);
         snell__free(&m->alloc, idx);

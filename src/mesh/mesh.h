@@ -36,6 +36,7 @@ struct snell_mesh {
      * made once: the GPU copy's vertex order depends only on the triangles,
      * which never change (snell_mesh_set_vertices moves vertices only). */
     int coarse_state;          /* 0 not tried, 1 made, -1 none (no gain, no meshoptimizer, failure) */
+    int order_warned;          /* 1: the upload logged that the vertex-cache reorder was skipped (once a mesh) */
     unsigned coarse_vao, coarse_ibo;
     uint32_t coarse_index_count;
 };
@@ -81,6 +82,17 @@ snell_status snell__mesh_weld(const snell_mesh *mesh, const unsigned char *used,
  * floats each, vertex_count of them) and indices (3 * triangle_count),
  * reordered for the vertex cache and fetch when built with meshoptimizer. */
 snell_status snell__mesh_gpu_layout(const snell_mesh *mesh, float *vertices, uint32_t *indices);
+/* How snell__mesh_gpu_layout orders the triangles and whether the coarse
+ * copy may be made (snell_mesh_gpu_stats_get): from the triangles alone. */
+snell_status snell__mesh_gpu_order(const snell_mesh *mesh, snell_mesh_gpu_stats *out);
+/* The work estimate of meshoptimizer's vertex-cache order and simplifier on
+ * index_count indices over vertex_count vertices: sum over vertices of
+ * (corners on it)^2 (mesh_gpu.c says why), and the most corners on one
+ * vertex (may be NULL); SNELL_E_NOMEM (reported on ctx) for its counts. */
+snell_status snell__mesh_work_estimate(const snell_ctx *ctx, const snell_alloc *al, const uint32_t *indices,
+                                       size_t index_count, size_t vertex_count, double *work, uint32_t *max_valence);
+/* The bound on that estimate for index_count indices: 2^25 + 64 per index. */
+double snell__mesh_work_limit(size_t index_count);
 /* The uploaded mesh at about a quarter of its triangles (meshoptimizer's
  * simplifier on the GPU copy, within 1% of the extent), for passes that
  * need the surface only at pixel resolution: the VAO to draw with
