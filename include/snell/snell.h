@@ -361,7 +361,10 @@ typedef struct snell_simplify_report {
  * be NULL. SNELL_E_INVALID_ARG for NULL src/desc/out, a ratio outside [0, 1]
  * or NaN, an error < 0 or not finite, and a result with no triangle left (a
  * tiny ratio can collapse a closed mesh to nothing); SNELL_E_LIMIT beyond the
- * memory budget (scratch estimated at 120 bytes per source triangle and 100 per vertex); SNELL_E_UNSUPPORTED
+ * memory budget (scratch estimated at 120 bytes per source triangle and 100 per vertex) and for a mesh
+ * the simplifier would take too long on (the cleaning is done before it
+ * too; then the work estimate of snell_mesh_gpu_stats over
+ * its bound: hundreds of thousands of triangles on one vertex); SNELL_E_UNSUPPORTED
  * when built without SNELL_WITH_MESHOPT. Memory is ctx's allocator's
  * (meshoptimizer's own scratch, freed before the call returns, is its
  * process-wide allocator's). Takes ~70 ms for the 70k-triangle bunny. */

@@ -6,6 +6,10 @@
  *  1. weld by position with the analysis's own weld (snell__mesh_weld: chains
  *     within 1e-5 of the box diagonal), so seams of split vertices neither
  *     block collapses nor open up when the two sides collapse differently;
+ *     then step 3's cleaning (below) is done before the simplifier too, and a
+ *     mesh whose simplification would cost more than its bound (the
+ *     squared corners per vertex, as the vertex-cache reorder's in
+ *     mesh_gpu.c) is refused (SNELL_E_LIMIT);
  *  2. meshopt_simplify (quadric error, collapses onto existing vertices: no
  *     vertex moves, positions stay exactly the source's);
  *  3. remove triangles with a repeated corner, and triangles on the same three
@@ -379,6 +383,34 @@ static snell_status simplify(snell_ctx *ctx, const snell_mesh *src, const lod_pa
     if (st != SNELL_OK) {
         work_free(&w);
         return st;
+    }
+    /* Step 3's cleaning before the simplifier too: it would remove the same
+     * triangles afterwards, and each copy costs the simplifier as a distinct
+     * triangle on the same vertices (one OBJ face of 120,000 repeated
+     * corners is 40,000 copies of one triangle, 1.3 s in meshopt_simplify). */
+    ntw = clean_triangles(w.al, w.widx, ntw, rep, &nomem);
+    if (nomem) {
+        work_free(&w);
+        return snell__fail(ctx, SNELL_E_NOMEM, "snell_mesh_simplify: out of memory for %zu triangles", ntw);
+    }
+    {
+        /* meshoptimizer's simplifier tests each triangle of a vertex on every
+         * collapse onto it: its cost grows with the square of the corners on
+         * a vertex, as the vertex-cache reorder's does (mesh_gpu.c: the
+         * estimate and its bound, which real meshes stay 10x below; a disc of
+         * 100,000 triangles fanned about its centre took 62 s here) */
+        double work = 0.0, limit = snell__mesh_work_limit(3 * ntw);
+        uint32_t top = 0;
+        st = snell__mesh_work_estimate(ctx, w.al, w.widx, 3 * ntw, nw, &work, &top);
+        if (st == SNELL_OK && work > limit)
+            st = snell__fail(ctx, SNELL_E_LIMIT,
+                             "snell_mesh_simplify: the simplifier's work estimate %.3g (sum over vertices of their "
+                             "triangle corners squared) is over its bound %.3g: %u corners on one vertex",
+                             work, limit, top);
+        if (st != SNELL_OK) {
+            work_free(&w);
+            return st;
+        }
     }
     w.dst = (uint32_t *)snell__calloc(w.al, 3 * ntw, sizeof *w.dst);
     w.remap = (uint32_t *)snell__calloc(w.al, nw, sizeof *w.remap);
