@@ -1,6 +1,6 @@
 // peel.frag - multi-layer refraction from depth-peeled layers (Wang 2014,
 // seed 001 3.3-3.6). The object's surfaces along each pixel's view ray are
-// in u_layers (methods/peel.c, peel_layer.frag): layer k's normal in array
+// in u_layers (methods/peel.c, depth_peel.frag): layer k's normal in array
 // slice 2k, its depth (the view-axis distance mapped onto the bounding
 // sphere's range, 24 bits) and a flag (0 = empty) in slice 2k + 1; layers
 // alternate front and back faces on a closed mesh. Between layer k - 1 and

@@ -18,7 +18,7 @@
 #include "mesh/mesh.h"
 #include "methods/ndcube.h"
 #include "core/pack.h"
-#include "ref/ref_bvh.h"
+#include "mesh/bvh.h"
 #include "render/env.h"
 #include "snell/snell_ref.h"
 

@@ -9,7 +9,7 @@
  * folder layouts are made here at run time. */
 #define _POSIX_C_SOURCE 200809L /* mkdir, symlink, mkfifo, chdir, alarm */
 #include "test_util.h"
-#include "ref/ref_bvh.h"
+#include "mesh/bvh.h"
 #include "snell/snell_2d.h"
 
 #include <math.h>

@@ -54,7 +54,7 @@
 #include "core/core.h"
 #include "core/pack.h"
 #include "mesh/mesh.h"
-#include "ref/ref_bvh.h"
+#include "mesh/bvh.h"
 
 #include <math.h>
 #include <stdlib.h>

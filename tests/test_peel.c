@@ -1,5 +1,5 @@
 /* test_peel — multi-layer refraction from depth-peeled layers (Wang 2014,
- * methods/peel.c, shaders_es/peel.frag, peel_layer.frag).
+ * methods/peel.c, shaders_es/peel.frag, depth_peel.frag).
  *
  * 1. Depth complexity (mesh analysis): a sphere and a cube cross 2 surfaces
  *    along every line, a torus 4 (a line through both tubes); the peels it

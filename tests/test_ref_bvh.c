@@ -1,4 +1,4 @@
-/* test_ref_bvh — the reference BVH (src/ref_bvh.c):
+/* test_ref_bvh — the reference BVH (src/mesh/bvh.c):
  *  - closest hit equals brute force (the same watertight predicate over every
  *    triangle, world vertices computed independently here) for random rays on
  *    a torus and on the glmark2 bunny, with a model matrix; skip_tri and any-hit
@@ -13,7 +13,7 @@
  *  - bad input is rejected with a status and a message (naming the part). */
 #include "test_util.h"
 #include "mesh/mesh.h"
-#include "ref/ref_bvh.h"
+#include "mesh/bvh.h"
 
 #include <math.h>
 #include <stdlib.h>

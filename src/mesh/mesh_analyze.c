@@ -9,9 +9,9 @@
  * crosses the surface once (the mesh is star-shaped about the centre); Unger
  * 4.4 shows what goes wrong otherwise (Abb. 22/23). The seed takes the vertex
  * average as the centre; here candidates are scored by exact ray casts against
- * a CPU BVH (ref_bvh.h) in object space and the best one is kept. */
+ * a CPU BVH (bvh.h) in object space and the best one is kept. */
 #include "mesh/mesh.h"
-#include "ref/ref_bvh.h"
+#include "mesh/bvh.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -1,7 +1,7 @@
 /* exact.c — exact refraction by ray traversal of the mesh's BVH in the
  * fragment shader (exact.frag): the MATCHED reference's model (ref_trace.c)
  * on the GPU. Prepared per mesh version: the reference tracer's SAH build
- * (ref_bvh.c, object space; refitted for later versions) flattened into depth-first order with an
+ * (mesh/bvh.c, object space; refitted for later versions) flattened into depth-first order with an
  * escape index per node (so the shader can walk it near-first with a short
  * stack, the default, or without any stack: the `walk` parameter), and packed
  * with the triangles (vertices and vertex normals, leaf order) into one 2D
@@ -15,7 +15,7 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/glstate.h"
-#include "ref/ref_bvh.h"
+#include "mesh/bvh.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -29,7 +29,7 @@
 /* Texels per row of the BVH texture (exact.frag's TEX_SHIFT): GLES 3.0's
  * smallest GL_MAX_TEXTURE_SIZE, so every device takes the width. */
 #define TEX_WIDTH 2048
-/* ref_bvh.c's MAX_LEAF (leaves hold 1..4 triangles; more only if its build
+/* mesh/bvh.c's MAX_LEAF (leaves hold 1..4 triangles; more only if its build
  * changes: prepare then fails with a message rather than drop triangles). */
 #define LEAF_MAX 4
 /* Node indices are stored as float values in the RGBA32F layout: exact below 2^24. */
@@ -185,7 +185,7 @@ typedef struct flat_ctx {
 /* Depth-first (pre-order) numbering of the build's tree: a node's first
  * child follows it, and its escape is where the walk goes when the ray
  * misses it (or is done with a leaf): the next node after its subtree.
- * Recursion is bounded by the tree's depth (ref_bvh.c keeps it below 128). */
+ * Recursion is bounded by the tree's depth (mesh/bvh.c keeps it below 128). */
 static void flatten(flat_ctx *f, uint32_t node)
 {
     const snell__bvh_node *n = &f->bvh->nodes[node];
@@ -206,7 +206,7 @@ static void flatten(flat_ctx *f, uint32_t node)
 
 /* Refit: every box again from the moved vertices, children before parents
  * (reverse depth-first order: an interior node's children are the next
- * node and that one's escape), padded as ref_bvh.c pads. */
+ * node and that one's escape), padded as mesh/bvh.c pads. */
 static void refit_boxes(exact_prepared *p, const snell_mesh *mesh)
 {
     double ext = 0.0, pad;

@@ -1,7 +1,7 @@
 /* peel.c — multi-layer refraction from depth-peeled layers (Wang 2014, seed
  * 001 3.1-3.6), for concave objects whose view rays cross more than two
  * surfaces (a torus, a goblet, ears and legs). Per object and frame: up to
- * material.peel.layers depth peels (peel_layer.frag) of every face, front
+ * material.peel.layers depth peels (depth_peel.frag) of every face, front
  * and back, each keeping the next surface behind the previous layer, into
  * one RGBA8 texture array (slice 2k: layer k's normal, octahedral 16+16
  * bits; slice 2k + 1: its depth in 24 bits over the bounding sphere's range
@@ -108,7 +108,7 @@ static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, void **s
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
-    st = snell__program_build(ctx, "object.vert", "peel_layer.frag", NULL, &s->layer_prog);
+    st = snell__program_build(ctx, "object.vert", "depth_peel.frag", NULL, &s->layer_prog);
     if (st == SNELL_OK) st = get_prog(ctx, s, &d, &p);
     if (st != SNELL_OK) {
         peel_destroy(ctx, s);

@@ -9,7 +9,7 @@
 #include "methods/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
-#include "ref/ref_bvh.h"
+#include "mesh/bvh.h"
 #include "render/gbuffer.h"
 
 #include <math.h>

@@ -9,7 +9,7 @@
 #include <math.h>
 
 #include "core/core.h"
-#include "ref/ref_bvh.h"
+#include "mesh/bvh.h"
 #include "snell/snell_ref.h"
 
 /* A glass object: its material as snell_glass_defaults resolves it, in double. */

@@ -22,7 +22,7 @@ void snell__layers_destroy(snell__layers *l)
 
 static snell_status create_program(snell_ctx *ctx, snell__layers *l)
 {
-    snell_status st = snell__program_build(ctx, "object.vert", "peel_layer.frag", NULL, &l->prog);
+    snell_status st = snell__program_build(ctx, "object.vert", "depth_peel.frag", NULL, &l->prog);
     if (st != SNELL_OK) return st;
     l->u_model = glGetUniformLocation(l->prog, "u_model");
     l->u_normal_matrix = glGetUniformLocation(l->prog, "u_normal_matrix");

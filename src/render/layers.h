@@ -1,7 +1,7 @@
 /* layers.h — the scene layers (DESIGN.md "frame"; #13): what a ray sees
  * after it leaves a glass object, when the frame has other objects for it
  * to meet. Every drawn solid glass object and every opaque object is depth
- * peeled together (peel_layer.frag, the peel kernel's pass) into one RGBA8
+ * peeled together (depth_peel.frag, the peel kernel's pass) into one RGBA8
  * texture array: layer k's normal (octahedral 16+16 bits) in slice 2k, its
  * depth (24 bits over the view-depth range of all their bounding spheres)
  * and its object's id (8 bits, 0 = empty) in slice 2k + 1; a small RGBA32F

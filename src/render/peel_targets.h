@@ -3,7 +3,7 @@
  * object's layers) and the scene layers (render/layers.c: every object's):
  * an RGBA8 texture array (slice 2k: layer k's normal, 2k + 1: its depth and
  * flag/id, 0 = empty), two ping-pong RGBA8 textures holding the previous
- * layer's depth for peel_layer.frag's test, a depth renderbuffer, an
+ * layer's depth for depth_peel.frag's test, a depth renderbuffer, an
  * ANY_SAMPLES_PASSED query to stop at the first empty layer. */
 #ifndef SNELL_PEEL_TARGETS_H
 #define SNELL_PEEL_TARGETS_H

@@ -1,4 +1,4 @@
-// peel_layer.frag - one depth peel of a glass object (methods/peel.c; Wang
+// depth_peel.frag - one depth peel (the peel kernel, methods/peel.c, and the scene layers, render/layers.c; Wang
 // 2014 3.4, after Everitt's depth peeling): every face, front and back, is
 // drawn with depth test LESS, and a fragment no deeper than the previous
 // layer at its pixel is discarded, so the pass keeps the next surface behind

@@ -1,8 +1,8 @@
-/* ref_bvh.c — double-precision triangle BVH: binned SAH build (32 bins per
+/* mesh/bvh.c — double-precision triangle BVH: binned SAH build (32 bins per
  * axis over centroid bounds), depth-first flattened nodes with adjacent
  * children, near-first stack traversal, watertight ray-triangle test
- * (Woop/Benthin/Wald 2013), an optional per-part filter on hits. See ref_bvh.h. */
-#include "ref/ref_bvh.h"
+ * (Woop/Benthin/Wald 2013), an optional per-part filter on hits. See bvh.h. */
+#include "mesh/bvh.h"
 #include "mesh/mesh.h"
 
 #include <math.h>
