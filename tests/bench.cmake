@@ -40,8 +40,9 @@ add_test(NAME bench_floor_runs COMMAND bench_floor sphere cubemap 64 3)
 set_tests_properties(bench_floor_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "frame / floor")
 
 # snell-bench's errors per object class (issue 13 item 5): hand-placed
-# differences must land in their class only. A CPU test on the bench's own code.
-if(TARGET snell_bench_common)
+# differences must land in their class only. A CPU test on the bench's own code,
+# which measures with the metrics (SNELL_WITH_REF).
+if(TARGET snell_bench_common AND SNELL_WITH_REF)
   snell_add_test(test_bench_classes SOURCES test_bench_classes.c LABELS "unit;cli")
   target_link_libraries(test_bench_classes PRIVATE snell_bench_common)
   target_include_directories(test_bench_classes PRIVATE ${PROJECT_SOURCE_DIR}/ports/cli)

@@ -84,3 +84,16 @@ target_link_libraries(fuzz_scene2d PRIVATE m)
 # llvmpipe, three runs: AUTO, forward, screen shading).
 snell_add_test(test_env_paraboloid SOURCES test_env_paraboloid.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_env_paraboloid PRIVATE m)
+
+# Stored shaders (issue 24): stripped and as written render the same bytes.
+# The readable table is generated beside the embedded one for these tests only.
+snell_add_test(test_shader_strip SOURCES test_shader_strip.c LABELS "render;gl")
+snell_add_test(test_shader_strip_water SOURCES test_shader_strip_water.c LABELS "render;gl")
+foreach(t test_shader_strip test_shader_strip_water)
+  if(TARGET ${t})
+    target_link_libraries(${t} PRIVATE snell_shaders_readable)
+  endif()
+endforeach()
+
+# Component options (issue 24): what a preset leaves out answers SNELL_E_UNSUPPORTED.
+snell_add_test(test_components SOURCES test_components.c LABELS "unit;gl")

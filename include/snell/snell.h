@@ -38,6 +38,14 @@ typedef enum snell_status {
 /* Name of a status code ("SNELL_E_PARSE"). Never NULL. */
 const char *snell_status_str(snell_status s);
 
+/* The components this build of the library holds, by the names of its CMake
+ * options (README "Components"): "ref", "lm2d", "water", "png", "gltf" and
+ * each method's name ("peel", ...). 1 if built in; 0 if left out (its API
+ * then returns SNELL_E_UNSUPPORTED) or unknown. snell_build_components()
+ * lists those built in, separated by spaces. */
+int snell_build_has(const char *component);
+const char *snell_build_components(void);
+
 typedef struct snell_ctx snell_ctx;
 typedef struct snell_mesh snell_mesh;
 typedef struct snell_env snell_env;

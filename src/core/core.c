@@ -88,6 +88,23 @@ size_t snell__mul_size(size_t a, size_t b, int *ok)
     return a * b;
 }
 
+static const char g_components[] = SNELL__COMPONENTS;
+
+const char *snell_build_components(void) { return g_components; }
+
+int snell_build_has(const char *component)
+{
+    const char *p = g_components;
+    size_t n = component ? strlen(component) : 0;
+    if (n == 0) return 0;
+    while ((p = strstr(p, component)) != NULL) {
+        int starts = p == g_components || p[-1] == ' ', ends = p[n] == '\0' || p[n] == ' ';
+        if (starts && ends) return 1;
+        p += n;
+    }
+    return 0;
+}
+
 const char *snell_status_str(snell_status s)
 {
     switch (s) {

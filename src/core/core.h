@@ -5,6 +5,7 @@
 #define SNELL_CORE_H
 
 #include "snell/snell.h"
+#include "snell_components.h" /* generated: SNELL_WITH_<X> 0/1 (cmake/components.cmake) */
 #include <stdarg.h>
 
 #if defined(__GNUC__)

@@ -8,6 +8,7 @@
 
 #include <stdlib.h>
 
+#if SNELL_WITH_PNG
 /* No single stb allocation may exceed what the largest accepted image needs
  * (2^25 pixels as 16-bit RGBA plus PNG filter bytes, or as float RGBA while
  * an HDR decodes: 512 MiB). Without this a corrupt zlib stream in a 100-byte
@@ -248,11 +249,6 @@ snell_status snell__image_decode_budget(const void *data, size_t size, size_t bu
     return SNELL_OK;
 }
 
-snell_status snell_image_decode(const void *data, size_t size, int *width, int *height, uint8_t **rgba)
-{
-    return snell__image_decode_budget(data, size, SNELL_DEFAULT_MEMORY_BUDGET, width, height, rgba);
-}
-
 snell_status snell__image_read_budget(const char *path, size_t budget, int *width, int *height, uint8_t **rgba)
 {
     FILE *f;
@@ -306,6 +302,35 @@ snell_status snell__image_read_budget(const char *path, size_t budget, int *widt
         return snell__fail(NULL, st, "\"%s\": %s", path, msg);
     }
     return SNELL_OK;
+}
+
+#else /* !SNELL_WITH_PNG: no stb; image files are refused (environments from memory still work) */
+
+#define NO_PNG " built without SNELL_WITH_PNG (configure with -DSNELL_WITH_PNG=ON)"
+
+snell_status snell_write_png(const char *path, int width, int height, const uint8_t *rgba)
+{
+    (void)width, (void)height, (void)rgba;
+    return snell__fail(NULL, SNELL_E_UNSUPPORTED, "snell_write_png \"%s\":" NO_PNG, path ? path : "(null)");
+}
+
+snell_status snell__image_decode_budget(const void *data, size_t size, size_t budget, int *width, int *height,
+                                        uint8_t **rgba)
+{
+    (void)data, (void)size, (void)budget, (void)width, (void)height, (void)rgba;
+    return snell__fail(NULL, SNELL_E_UNSUPPORTED, "image decoding:" NO_PNG);
+}
+
+snell_status snell__image_read_budget(const char *path, size_t budget, int *width, int *height, uint8_t **rgba)
+{
+    (void)budget, (void)width, (void)height, (void)rgba;
+    return snell__fail(NULL, SNELL_E_UNSUPPORTED, "image file \"%s\":" NO_PNG, path ? path : "(null)");
+}
+#endif
+
+snell_status snell_image_decode(const void *data, size_t size, int *width, int *height, uint8_t **rgba)
+{
+    return snell__image_decode_budget(data, size, SNELL_DEFAULT_MEMORY_BUDGET, width, height, rgba);
 }
 
 snell_status snell_image_read(const char *path, int *width, int *height, uint8_t **rgba)

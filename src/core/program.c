@@ -5,15 +5,67 @@
 #include "core/gl.h"
 #include "core/shaders_embedded.h"
 
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 
 #define MAX_INCLUDES 16
 
+/* The table programs are built from: the embedded (stripped) one, or the
+ * readable one test_shader_strip sets. Programs already built keep theirs. */
+static const snell_shader_file *g_shader_table = snell_shader_files;
+
+void snell__shader_table_set(const snell_shader_file *table) { g_shader_table = table ? table : snell_shader_files; }
+
+/* Unpacks tools/shader_pack.c's stream; 0 if it does not fill the output
+ * exactly (never reads or writes outside either). */
+static int lz_unpack(const unsigned char *in, size_t n, char *out, size_t size)
+{
+    size_t i = 0, o = 0;
+    while (i < n) {
+        unsigned token = in[i++];
+        size_t lit = token >> 4, len = token & 15, off;
+        if (lit == 15)
+            do {
+                if (i >= n) return 0;
+                lit += in[i];
+            } while (in[i++] == 255);
+        if (lit > n - i || lit > size - o) return 0;
+        memcpy(out + o, in + i, lit);
+        i += lit, o += lit;
+        if (i == n) break; /* the last sequence: literals only */
+        if (n - i < 2) return 0;
+        off = (size_t)in[i] | (size_t)in[i + 1] << 8;
+        i += 2;
+        if (len == 15)
+            do {
+                if (i >= n) return 0;
+                len += in[i];
+            } while (in[i++] == 255);
+        len += 4;
+        if (off == 0 || off > o || len > size - o) return 0;
+        for (; len > 0; len--, o++) out[o] = out[o - off]; /* overlapping copies repeat */
+    }
+    return o == size;
+}
+
+static pthread_once_t g_unpack_once = PTHREAD_ONCE_INIT;
+static int g_unpacked_ok;
+
+static void unpack_embedded(void)
+{
+    const snell_shader_pack *p = &snell_shader_files_pack;
+    g_unpacked_ok = !p->packed || lz_unpack(p->packed, p->packed_size, p->unpacked, p->size);
+}
+
 const char *snell__shader_source(const char *path)
 {
     const snell_shader_file *f;
-    for (f = snell_shader_files; f->path; f++)
+    /* Unpacked on the first program a process builds (on any thread): a
+     * failure would be a build fault, and every look-up then finds nothing. */
+    pthread_once(&g_unpack_once, unpack_embedded);
+    if (!g_unpacked_ok && g_shader_table == snell_shader_files) return NULL;
+    for (f = g_shader_table; f->path; f++)
         if (strcmp(f->path, path) == 0) return f->source;
     return NULL;
 }
@@ -22,7 +74,7 @@ const char *snell__shader_source(const char *path)
 static const char *table_path(const char *source)
 {
     const snell_shader_file *f;
-    for (f = snell_shader_files; f->path; f++)
+    for (f = g_shader_table; f->path; f++)
         if (f->source == source) return f->path;
     return "";
 }

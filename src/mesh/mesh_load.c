@@ -28,7 +28,7 @@ snell_status snell_mesh_load(snell_ctx *ctx, const char *path, snell_mesh **out)
                        "'%s': unknown mesh file extension (supported: .obj, .gltf, .glb)", path);
 }
 
-#ifndef SNELL_WITH_GLTF
+#if !SNELL_WITH_GLTF
 snell_status snell_mesh_load_gltf(snell_ctx *ctx, const char *path, snell_mesh **out)
 {
     if (out) *out = NULL;

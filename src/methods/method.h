@@ -150,6 +150,10 @@ extern const char *const snell__back_detail_names[3];
 
 /* The registry entry of a method id (registry.c), NULL for AUTO or unknown. */
 const snell__method *snell__method_get(snell_method id);
+/* For a method id that snell__method_get does not know: SNELL_E_UNSUPPORTED
+ * naming its option if it is a method built without, else SNELL_E_INVALID_ARG
+ * (unknown); the message starts with who (e.g. "glass 2: "). */
+snell_status snell__method_unbuilt(snell_method id, const char *who);
 
 /* Resolves (zero = default) and range-checks the method's nested parameters in m. */
 snell_status snell__method_params_resolve(const snell__method *e, snell_glass_material *m, int object);

@@ -9,21 +9,43 @@
 #include <stdlib.h>
 #include <string.h>
 
-extern const snell__method snell__method_single;
-extern const snell__method snell__method_cubemap;
-extern const snell__method snell__method_wyman;
-extern const snell__method snell__method_oliveira;
-extern const snell__method snell__method_peel;
-extern const snell__method snell__method_exact;
+/* The registry: one line M(name, NAME) per method, in cost order (AUTO
+ * takes the first adequate one). cmake/components.cmake reads these lines:
+ * each method but single and cubemap becomes an option SNELL_WITH_<NAME>,
+ * and the entry of one built without is left out here (SNELL__BUILT_<name>,
+ * snell_components.h). */
+#define SNELL__REGISTRY(M) \
+    M(single, SINGLE)      \
+    M(cubemap, CUBEMAP)    \
+    M(wyman, WYMAN)        \
+    M(oliveira, OLIVEIRA)  \
+    M(peel, PEEL)          \
+    M(exact, EXACT)
 
-static const snell__method *const g_methods[] = {
-    &snell__method_single,
-    &snell__method_cubemap,
-    &snell__method_wyman,
-    &snell__method_oliveira,
-    &snell__method_peel,
-    &snell__method_exact,
-};
+/* SNELL__IF_<0|1>(x): x when built. Two levels so that SNELL__BUILT_<name>
+ * expands to its value before it is pasted. */
+#define SNELL__IF_0(...)
+#define SNELL__IF_1(...) __VA_ARGS__
+#define SNELL__IF(flag, ...) SNELL__IF_(flag, __VA_ARGS__)
+#define SNELL__IF_(flag, ...) SNELL__IF_##flag(__VA_ARGS__)
+
+#define DECLARE(name, NAME) SNELL__IF(SNELL__BUILT_##name, extern const snell__method snell__method_##name;)
+SNELL__REGISTRY(DECLARE)
+#undef DECLARE
+
+#define ENTRY(name, NAME) SNELL__IF(SNELL__BUILT_##name, &snell__method_##name, )
+static const snell__method *const g_methods[] = {SNELL__REGISTRY(ENTRY)};
+#undef ENTRY
+
+/* Every method of the enum, built or not, for messages about those left out. */
+#define NAME_OF(name, NAME) {SNELL_METHOD_##NAME, #name, "SNELL_WITH_" #NAME},
+static const struct {
+    snell_method id;
+    const char *name, *option;
+} g_all_methods[] = {SNELL__REGISTRY(NAME_OF)};
+#undef NAME_OF
+#define ALL_METHOD_COUNT ((int)(sizeof g_all_methods / sizeof *g_all_methods))
+
 #define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
 
 const char *const snell__back_detail_names[3] = {"default", "auto", "full"};
@@ -41,6 +63,16 @@ const snell__method *snell__method_get(snell_method id)
     for (i = 0; i < METHOD_COUNT; i++)
         if (g_methods[i]->info->method == id) return g_methods[i];
     return NULL;
+}
+
+snell_status snell__method_unbuilt(snell_method id, const char *who)
+{
+    int i;
+    for (i = 0; i < ALL_METHOD_COUNT; i++)
+        if (g_all_methods[i].id == id)
+            return snell__fail(NULL, SNELL_E_UNSUPPORTED, "%smethod %s: built without %s (configure with -D%s=ON)", who,
+                               g_all_methods[i].name, g_all_methods[i].option, g_all_methods[i].option);
+    return snell__fail(NULL, SNELL_E_INVALID_ARG, "%sunknown method %d", who, (int)id);
 }
 
 const snell_method_info *snell_method_info_of(snell_method m)
@@ -69,6 +101,8 @@ snell_status snell_method_from_str(const char *name, snell_method *out)
             *out = g_methods[i]->info->method;
             return SNELL_OK;
         }
+    for (i = 0; i < ALL_METHOD_COUNT; i++)
+        if (strcmp(name, g_all_methods[i].name) == 0) return snell__method_unbuilt(g_all_methods[i].id, "");
     return snell__fail(NULL, SNELL_E_INVALID_ARG, "unknown method \"%s\"", name);
 }
 

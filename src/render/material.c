@@ -8,6 +8,7 @@
 #include "core/optics.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #define DEFAULT_IOR 1.5f
@@ -40,8 +41,11 @@ snell_status snell__glass_resolve(const snell_glass_material *in, int object, sn
     if ((int)m.dispersion_model < 0 || (int)m.dispersion_model > (int)SNELL_DISPERSION_ONE_PATH)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: unknown dispersion_model %d", object,
                            (int)m.dispersion_model);
-    if ((int)m.method < 0 || (m.method != SNELL_METHOD_AUTO && !snell__method_get(m.method)))
-        return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: unknown method %d", object, (int)m.method);
+    if (m.method != SNELL_METHOD_AUTO && !snell__method_get(m.method)) {
+        char who[32];
+        snprintf(who, sizeof who, "glass %d: ", object);
+        return snell__method_unbuilt(m.method, who);
+    }
     for (i = 0; i < snell_method_count(); i++) {
         snell_status st = snell__method_params_resolve(snell__method_get(snell_method_info_at(i)->method), &m, object);
         if (st != SNELL_OK) return st;

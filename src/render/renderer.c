@@ -360,6 +360,8 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the environment belongs to another context");
     if (fd->dynamic_env_size != 0 && (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048))
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "dynamic_env_size %d outside 16..2048", fd->dynamic_env_size);
+    if (fd->water && !SNELL_WITH_WATER)
+        return snell__fail(r->ctx, SNELL_E_UNSUPPORTED, "frame has water: built without SNELL_WITH_WATER");
     if (fd->water && fd->water->ctx != r->ctx)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the water belongs to another context (or to none)");
     if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
