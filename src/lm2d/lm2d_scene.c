@@ -13,6 +13,13 @@
 
 #define LM2D_MAX_FILE (64u << 20)
 #define LM2D_MAX_POINTS 1000000
+/* Points all the objects of one scene file may hold. Each "object FILE.csv"
+ * line of a few bytes reads a CSV of up to LM2D_MAX_POINTS points (64 MiB),
+ * so without it a scene file's cost would not be bounded by its own size: a
+ * 20 KB file naming one 1M-point CSV a thousand times would parse 2e9 bytes
+ * and hold 8 GB of points (issue 26). Beyond it: SNELL_E_LIMIT, after at most
+ * one CSV more than the bound. */
+#define LM2D_MAX_SCENE_POINTS (4 * LM2D_MAX_POINTS)
 #define LM2D_MAX_RAYS 100000000
 #define LM2D_PI 3.14159265358979323846f
 
@@ -686,7 +693,8 @@ snell_status lm2d_scene_parse(snell_scene2d *s, const char *text, const char *na
                               int size[2])
 {
     const char *p = text, *end = text + strlen(text);
-    int line = 0;
+    int line = 0, i;
+    long points = 0;
     tok_line *t = (tok_line *)snell__malloc(s->al, sizeof *t);
     snell_status st = SNELL_OK;
     if (!t) return snell__fail(s->ctx, SNELL_E_NOMEM, "%s: out of memory", name);
@@ -710,7 +718,12 @@ snell_status lm2d_scene_parse(snell_scene2d *s, const char *text, const char *na
         }
         p = eol + 1;
         if (st != SNELL_OK || t->n == 0) continue;
+        i = s->n_objs;
         st = parse_line(s, t, name, line, base, view, size);
+        for (; i < s->n_objs; i++) points += s->objs[i].n;
+        if (st == SNELL_OK && points > LM2D_MAX_SCENE_POINTS)
+            st = snell__fail(s->ctx, SNELL_E_LIMIT, "%s:%d: the scene's objects hold more than %d points", name, line,
+                             LM2D_MAX_SCENE_POINTS);
     }
     snell__free(s->al, t);
     return st;
