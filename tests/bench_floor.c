@@ -11,7 +11,7 @@
  * usage: bench_floor MESH|sphere METHOD [SIZE] [ROUNDS]   e.g. bench_floor bunny.obj cubemap 512 61
  * (sphere: 256 x 128 segments, dense enough that AUTO would shade it in screen space) */
 #include "core/gl.h"
-#include "render/env.h"
+#include "frame/env.h"
 #include "render/renderer.h"
 
 #include <stdio.h>

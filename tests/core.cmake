@@ -97,3 +97,7 @@ endforeach()
 
 # Component options (issue 24): what a preset leaves out answers SNELL_E_UNSUPPORTED.
 snell_add_test(test_components SOURCES test_components.c LABELS "unit;gl")
+
+# The folders' import rule (docs/ARCHITECTURE.md "Layers"): nothing imports back up.
+add_test(NAME source_layers COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR}/src -P ${CMAKE_CURRENT_SOURCE_DIR}/check_layers.cmake)
+set_tests_properties(source_layers PROPERTIES LABELS "unit")

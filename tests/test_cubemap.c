@@ -16,10 +16,10 @@
 #include "test_util.h"
 #include "core/gl.h"
 #include "mesh/mesh.h"
-#include "methods/ndcube.h"
+#include "frame/ndcube.h"
 #include "core/pack.h"
 #include "mesh/bvh.h"
-#include "render/env.h"
+#include "frame/env.h"
 #include "snell/snell_ref.h"
 
 #include <math.h>

@@ -2,7 +2,7 @@
  * trip, six-face and equirectangular images land in the right directions, the
  * GPU skybox agrees with the CPU sampler, and bad images are refused cleanly. */
 #include "test_util.h"
-#include "render/env.h"
+#include "frame/env.h"
 
 #include <math.h>
 #include <stdio.h>

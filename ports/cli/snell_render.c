@@ -160,6 +160,7 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
             fs->passes, fs->cpu_ms, fs->glass_count, fs->opaque_drawn, fs->background_drawn,
             fs->fragment_mediump ? "mediump" : "highp", fs->scene_layer_passes, fs->scene_layers,
             fs->scene_layers_reason);
+    fprintf(f, "stats: stages run: %s\n", fs->stages);
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
         snell_glass_resolved m;

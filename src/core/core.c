@@ -88,6 +88,15 @@ size_t snell__mul_size(size_t a, size_t b, int *ok)
     return a * b;
 }
 
+void snell__why(char *why, size_t n, const char *fmt, ...)
+{
+    va_list ap;
+    if (!why || !n) return;
+    va_start(ap, fmt);
+    vsnprintf(why, n, fmt, ap);
+    va_end(ap);
+}
+
 static const char g_components[] = SNELL__COMPONENTS;
 
 const char *snell_build_components(void) { return g_components; }

@@ -58,4 +58,7 @@ snell_status snell__image_decode_budget(const void *data, size_t size, size_t bu
 /* size_t multiplication that reports overflow (returns 0 and sets *ok = 0). */
 size_t snell__mul_size(size_t a, size_t b, int *ok);
 
+/* snprintf that tolerates truncation (reasons are for people). */
+void snell__why(char *why, size_t n, const char *fmt, ...) SNELL_PRINTF(3, 4);
+
 #endif

@@ -3,8 +3,7 @@
 #ifndef SNELL_GLSTATE_H
 #define SNELL_GLSTATE_H
 
-#define SNELL_GLSTATE_UNITS 10 /* texture units the library may bind (0..6: render/gbuffer.h, 7..8: render/layers.h,
-                                * 9: the water's heights, water/water_draw.h) */
+#define SNELL_GLSTATE_UNITS 10 /* texture units saved and restored: frame/units.h's table must fit (it checks) */
 
 /* Pixel pack or unpack state (GLES 3.0 tables 6.29, 6.30) and the pixel
  * buffer bound for it. */

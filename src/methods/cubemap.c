@@ -6,10 +6,10 @@
  * (encoding, iterations, linear steps, search or none), because the step
  * counts are compile-time constants of the shader (cubemap.frag says why);
  * the default one is built with the method, others on first use. */
-#include "methods/glass_program.h"
+#include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
-#include "methods/ndcube.h"
+#include "frame/ndcube.h"
 #include "core/program.h"
 
 #include <math.h>

@@ -11,7 +11,7 @@
  * snell_object_stats.exact_fallback_pixels on RGBA32F exit-direction
  * renderers). A deformed mesh (snell_mesh_set_vertices: a new version) is
  * refitted, not rebuilt: see exact_prepare. */
-#include "methods/glass_program.h"
+#include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/glstate.h"

@@ -7,10 +7,10 @@
  * what a rigid one does. It always shades in screen space, because a
  * reflected ray leaves through the front surface, which only the G-buffer
  * holds for pixels other than its own. */
-#include "methods/glass_program.h"
+#include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
-#include "render/gbuffer.h"
+#include "frame/units.h"
 
 #include <stddef.h>
 #include <stdio.h>

@@ -16,12 +16,12 @@
  * after the first, read before the next is drawn). The layer textures are
  * the method's (per renderer), sized to the target and the most layers
  * asked for; objects peel one after the other into them. */
-#include "methods/glass_program.h"
+#include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/program.h"
-#include "render/pass.h"
-#include "render/peel_targets.h"
+#include "frame/pass.h"
+#include "frame/peel_targets.h"
 
 #include <math.h>
 #include <stddef.h>

@@ -3,7 +3,7 @@
  * the generic parameter code below resolves and validates each method's
  * nested struct from its snell_param_info table. Adding a method: its file
  * under src/methods/, its shaders, its tests, and one line here. */
-#include "methods/method.h"
+#include "frame/method.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -158,13 +158,4 @@ snell_status snell_glass_set_param(snell_glass_material *m, snell_method method,
         return SNELL_OK;
     }
     return snell__fail(NULL, SNELL_E_INVALID_ARG, "method %s has no parameter \"%s\"", e->info->name, name);
-}
-
-void snell__why(char *why, size_t n, const char *fmt, ...)
-{
-    va_list ap;
-    if (!why || !n) return;
-    va_start(ap, fmt);
-    vsnprintf(why, n, fmt, ap);
-    va_end(ap);
 }

@@ -3,7 +3,7 @@
  * (slab) model, which is exact for a thin-walled material whatever method
  * is asked for. Needs no analysis and prepares nothing. */
 #include <stdio.h>
-#include "methods/glass_program.h"
+#include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 

@@ -6,11 +6,11 @@
  * from the back-face map, refract out. d_N is this method's prepared
  * resource: one ray cast per vertex against the mesh (CPU BVH), per mesh
  * version, kept in a vertex buffer bound as attribute 2 (snell__object.vao). */
-#include "methods/glass_program.h"
+#include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "mesh/bvh.h"
-#include "render/gbuffer.h"
+#include "frame/units.h"
 
 #include <math.h>
 #include <stddef.h>

@@ -8,7 +8,7 @@
 #include "ref/ref_trace.h"
 #include "core/ctx.h"
 #include "mesh/mesh.h"
-#include "render/material.h"
+#include "frame/material.h"
 
 #include <math.h>
 #include <stdio.h>

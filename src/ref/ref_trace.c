@@ -9,8 +9,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "ref/ref_trace.h"
 #include "ref/ref_scene.h"
-#include "render/camera.h"
-#include "render/env.h"
+#include "frame/camera.h"
+#include "frame/env.h"
 #include "core/optics.h"
 
 #include <math.h>

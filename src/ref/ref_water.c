@@ -15,7 +15,7 @@
 #include "core/optics.h"
 #include "ref/ref_scene.h"
 #include "ref/ref_trace.h"
-#include "render/env.h"
+#include "frame/env.h"
 #include "snell/snell_water.h"
 #include "water/water.h"
 

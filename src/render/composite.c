@@ -3,7 +3,7 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/program.h"
-#include "render/camera.h"
+#include "frame/camera.h"
 
 #include <math.h>
 #include <string.h>

@@ -5,7 +5,7 @@
 #ifndef SNELL_COMPOSITE_H
 #define SNELL_COMPOSITE_H
 
-#include "methods/method.h"
+#include "frame/method.h"
 
 typedef struct snell__opaque_prog {
     unsigned prog;

@@ -7,11 +7,11 @@
  * reads two maps instead: made from that cube, or rendered straight (2 views,
  * no cube; SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT). */
 #include "render/env_dynamic.h"
-#include "render/env.h"
-#include "render/pass.h"
+#include "frame/env.h"
+#include "frame/pass.h"
 #include "core/ctx.h"
 #include "core/gl.h"
-#include "methods/ndcube.h"
+#include "frame/ndcube.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,8 +1,8 @@
 /* env_paraboloid.c — dual-paraboloid maps from a cubemap; see env_paraboloid.h
  * and common/env.glsl for the parameterisation and the rim. */
 #include "render/env_paraboloid.h"
-#include "render/env.h"
-#include "render/pass.h"
+#include "frame/env.h"
+#include "frame/pass.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/program.h"

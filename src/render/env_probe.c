@@ -2,7 +2,7 @@
  * (common/env.glsl) run on the GPU for given directions, one per pixel of a
  * scratch target, so its error can be measured against exact radiance. */
 #include "render/renderer.h"
-#include "render/env.h"
+#include "frame/env.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/glstate.h"

@@ -1,7 +1,7 @@
 /* gbuffer.c — see gbuffer.h. */
 #include "render/gbuffer.h"
-#include "render/pass.h"
-#include "methods/glass_program.h"
+#include "frame/pass.h"
+#include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/program.h"

@@ -8,20 +8,9 @@
 #ifndef SNELL_GBUFFER_H
 #define SNELL_GBUFFER_H
 
-#include "methods/method.h"
+#include "frame/method.h"
 
-/* Texture units the G-buffer is bound to while kernels shade (0: env, 1: a
- * kernel's own texture). */
-#define SNELL__GBUFFER_UNIT_NORMAL 2
-#define SNELL__GBUFFER_UNIT_DEPTH_ID 3
-/* The G-buffer's aux target (RGBA8, rg: 16 bits of a per-vertex scalar of
- * objects drawn with a method VAO, snell__object.vao), made and drawn only in
- * frames where a screen-space object has one. */
-#define SNELL__GBUFFER_UNIT_AUX 4
-/* The back-face pass (snell__gbuffer_draw_back): the same two textures for
- * the farthest surface. */
-#define SNELL__BACK_UNIT_NORMAL 5
-#define SNELL__BACK_UNIT_DEPTH_ID 6
+#include "frame/units.h" /* its textures' units: SNELL__GBUFFER_UNIT_*, SNELL__BACK_UNIT_* */
 
 /* The back-face pass may draw a mesh's coarse copy (a quarter of its
  * triangles, within 1% of its extent: snell__mesh_coarse) when its front
@@ -33,9 +22,6 @@
  * crossover as single-surface's screen-space rule. */
 #define SNELL__BACK_COARSE_PPT 8.0f
 
-/* How a screen-space kernel gets its depth into the target (snell__object.screen_space). */
-#define SNELL__SCREEN_SHARED_DEPTH 1  /* the G-buffer pass wrote the target's own depth buffer */
-#define SNELL__SCREEN_WRITES_DEPTH 2  /* the G-buffer had its own; the kernel writes gl_FragDepth */
 
 typedef struct snell__gbuffer {
     unsigned fbo, normal_tex, depth_id_tex;

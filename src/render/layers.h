@@ -19,17 +19,10 @@
 #ifndef SNELL_LAYERS_H
 #define SNELL_LAYERS_H
 
-#include "methods/method.h"
-#include "render/peel_targets.h"
+#include "frame/method.h"
+#include "frame/peel_targets.h"
 
-/* Texture units of the layers and the object table while kernels draw
- * (render/gbuffer.h uses 0..6). */
-#define SNELL__LAYERS_UNIT 7
-#define SNELL__LAYERS_TABLE_UNIT 8
-/* Ids: glass object i is i + 1, opaque object j is SNELL__LAYERS_OPAQUE_ID0 + j;
- * a thin-walled glass object's layers carry SNELL__LAYERS_THIN_ID more (the
- * shader tells them without a table look-up); its table column is i's. */
-#define SNELL__LAYERS_THIN_ID 128
+#include "frame/beyond.h" /* the ids, units and uniforms its readers share */
 #define SNELL__LAYERS_OPAQUE_ID0 (SNELL_MAX_GLASS + 1)
 #define SNELL__LAYERS_IDS (SNELL_MAX_GLASS + SNELL_MAX_OPAQUE)
 #define SNELL__LAYERS_TABLE_ROWS 4
@@ -73,17 +66,5 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
                                 int glass_count, const snell_opaque *opaque, int opaque_count, int max_layers,
                                 int *passes, int *reused);
 
-/* common/beyond.glsl's uniform locations in a program: found once, when
- * the program is built (snell__layers_locate), set every frame. */
-typedef struct snell__layers_locs {
-    int layers, table, layer_count, capped, glass_ids, opaque_count, self, view_proj, eye, fwd, near_, inv_range, size;
-} snell__layers_locs;
-void snell__layers_locate(unsigned prog, snell__layers_locs *l);
-
-/* Sets those uniforms of the program in use for this frame's layers
- * (v->layers), skipping the object of layer id self (0: none); the layers
- * are on SNELL__LAYERS_UNIT and the table on SNELL__LAYERS_TABLE_UNIT
- * (snell__layers_draw bound them). */
-void snell__layers_uniforms(const snell__layers_locs *l, const snell__view *v, int self);
 
 #endif

@@ -7,7 +7,7 @@
 #ifndef SNELL_PREPARED_H
 #define SNELL_PREPARED_H
 
-#include "methods/method.h"
+#include "frame/method.h"
 
 #define SNELL__PREPARED_SLOTS (2 * SNELL_MAX_GLASS)
 

@@ -1,21 +1,20 @@
-/* renderer.c — the frame (DESIGN.md "frame"): resolve the scene
- * (scene.c), draw the opaque objects (composite.c), then each glass object
- * back to front with its method (methods/): prepare its resources (cached,
- * prepared.c), update its dynamic environment if it sees opaque objects
- * (env_dynamic.c) and the frame has no scene layers (layers.c: every object
- * peeled together, which the kernels' exit rays march through when the
- * frame has several objects), draw; the background last where nothing was drawn. Into
- * the renderer's offscreen target or the bound framebuffer. After the first
- * frame with given meshes and settings a frame allocates nothing. */
+/* renderer.c — the renderer object (its target, method states, caches) and
+ * snell_render: validate the frame, resolve the scene (scene.c), then run
+ * the stage table (stages.c: opaque objects, glass set-up, scene layers,
+ * water, back faces, G-buffer, kernels, background, resolves) into the
+ * renderer's offscreen target or the bound framebuffer, restoring a host's
+ * GL state. After the first frame with given meshes and settings a frame
+ * allocates nothing. */
 #include "render/renderer.h"
+#include "render/stages.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/glstate.h"
 #include "core/pack.h"
 #include "core/program.h"
 #include "core/platform.h"
-#include "render/camera.h"
-#include "render/env.h"
+#include "frame/camera.h"
+#include "frame/env.h"
 #include "render/gbuffer.h"
 
 #include <math.h>
@@ -202,150 +201,10 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__ctx_release(ctx);
 }
 
-/* Methods are created on first use; one that fails (a device that cannot
- * compile its shaders, say) fails alone and is not retried, except after
- * running out of memory. */
-static snell_status method_state(void *user, const snell__method *m, void **state)
-{
-    snell_renderer *r = (snell_renderer *)user;
-    int id = (int)m->info->method;
-    if (!r->method_state[id] && r->method_status[id] == SNELL_OK) {
-        snell_status st = m->create(r->ctx, r->out, &r->method_state[id]);
-        if (st == SNELL_E_NOMEM) return st;
-        if (st != SNELL_OK) {
-            r->method_status[id] = st;
-            snprintf(r->method_error[id], sizeof r->method_error[id], "%s", snell_last_error(r->ctx));
-            snell__log(r->ctx, SNELL_LOG_WARN, "method %s unavailable: %s", m->info->name, r->method_error[id]);
-        }
-    }
-    if (r->method_status[id] != SNELL_OK)
-        return snell__fail(r->ctx, r->method_status[id], "method %s unavailable: %s", m->info->name,
-                           r->method_error[id]);
-    *state = r->method_state[id];
-    return SNELL_OK;
-}
-
 int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic)
 {
     (void)dynamic;
     return r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID || r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT;
-}
-
-/* Logs a method warning once per (object slot, mesh version, method). */
-static void warn_once(snell_renderer *r, const snell__object *o, const snell_object_stats *st)
-{
-    unsigned key = o->mesh->version * 16u + (unsigned)st->method_used;
-    if (r->warned[o->index] == key) return;
-    r->warned[o->index] = key;
-    snell__log(r->ctx, SNELL_LOG_WARN, "glass %d: %s %s", o->index, snell_method_str(st->method_used), st->reason);
-}
-
-/* Where an object is shaded (snell_shading): AUTO compares its projected
- * pixels per front triangle with the threshold for this device and method. */
-static void choose_shading(snell_renderer *r, snell__object *o, snell_object_stats *st)
-{
-    snell__object_project(&r->scene.view, o);
-    st->pixels_per_triangle = o->pixels_per_triangle;
-    float threshold = snell__screen_threshold(r->device, r->object_method[o->index]);
-    /* With MSAA, AUTO draws glass forward: the screen-space stage shades
-     * whole pixels from a single-sample G-buffer, so its silhouettes would
-     * stay aliased. */
-    int screen = r->shading == SNELL_SHADING_SCREEN || r->object_method[o->index]->screen_space_only ||
-                 (r->shading == SNELL_SHADING_AUTO && !r->msaa && st->pixels_per_triangle < threshold);
-    /* An offscreen target's depth buffer is the renderer's own, so the
-     * G-buffer pass can write it; a host's framebuffer, or a multisampled
-     * one, gets gl_FragDepth. */
-    o->screen_space = !screen ? 0 : r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? SNELL__SCREEN_SHARED_DEPTH
-                                                                                      : SNELL__SCREEN_WRITES_DEPTH;
-    o->gid = o->index + 1;
-    st->screen_space = screen;
-}
-
-/* Everything an object needs before any glass is drawn: its method, its
- * mesh on the GPU, its prepared resources and dynamic environment (passes
- * of their own), and where it is shaded. */
-static snell_status set_up_glass(snell_renderer *r, const snell_frame_desc *fd, snell__object *o,
-                                 snell_object_stats *st)
-{
-    void *state = NULL;
-    int dynamic = fd->opaque_count > 0 && !o->beyond; /* sees them through a dynamic environment */
-    snell_status s;
-    o->water = !fd->water ? 0 : fd->water->d.sim == SNELL_WATER_SIM_GPU ? 2 : 1; /* its exit rays meet the water */
-    st->sees_water = o->water != 0;
-    o->env_paraboloid = snell__renderer_env_paraboloid(r, dynamic);
-    st->env_paraboloid = o->env_paraboloid;
-    s = snell__scene_choose(r->ctx, o, method_state, r, &r->object_method[o->index], &state, st);
-    if (s != SNELL_OK) return s;
-    r->object_state[o->index] = state;
-    if (st->warning) warn_once(r, o, st);
-    if ((s = snell__mesh_upload(o->mesh)) != SNELL_OK) return s;
-    if ((s = snell__prepared_get(r->ctx, &r->prepared, r->object_method[o->index], state, o, st)) != SNELL_OK) return s;
-    if (r->object_method[o->index]->vertex_array && o->prepared)
-        o->vao = r->object_method[o->index]->vertex_array(o->prepared);
-    o->env_texture = fd->env->texture;
-    if (fd->opaque_count > 0 && o->beyond)
-        st->skipped |= SNELL_SKIP_DYNAMIC_ENV; /* its exit rays meet them in the scene layers */
-    if (dynamic) {
-        /* The glass sees the opaque objects through its dynamic environment. */
-        s = snell__env_dynamic_update(r->ctx, &r->dyn, &r->comp, o->index, fd->env, fd->opaque, fd->opaque_count,
-                                      o->bsphere, o->bsphere[3], fd->dynamic_env_size,
-                                      o->env_paraboloid ? &r->dp : NULL,
-                                      r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT, &o->env_texture, st);
-        if (s != SNELL_OK) return s;
-    } else if (o->env_paraboloid) {
-        if ((s = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &o->env_texture)) != SNELL_OK) return s;
-    }
-    choose_shading(r, o, st);
-    return SNELL_OK;
-}
-
-static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *st)
-{
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, o->env_texture);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    return r->object_method[o->index]->draw(r->ctx, r->object_state[o->index], &r->scene.view, o, st);
-}
-
-/* Whether the frame needs the scene layers (snell_frame_desc.scene_layers):
- * only where a glass object's exit ray, or the water's rays, have something
- * other than the environment and the container to meet. Marks the objects
- * whose kernels march them and lists the glass objects peeled in
- * r->layer_list; returns how many, or -1 for no layers. */
-static int choose_scene_layers(snell_renderer *r, const snell_frame_desc *fd, snell_frame_stats *s)
-{
-    snell__scene *sc = &r->scene;
-    int i, n = 0;
-    int solid = 0;
-    for (i = 0; i < sc->drawn; i++) {
-        snell__object *o = &sc->obj[sc->order[i]];
-        r->layer_list[n++] = o;
-        solid += o->glass->material.thickness <= 0.0f;
-    }
-    if (fd->scene_layers < 0) {
-        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "off (scene_layers -1)");
-        return -1;
-    }
-    if (n == 0 || (n == 1 && fd->opaque_count == 0 && !fd->water)) {
-        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason,
-                   "not needed: %s", n == 0 ? "no glass object drawn" : "one glass object and nothing else");
-        return -1;
-    }
-    /* With water, every glass object's kernel reads them too: its exit rays
-     * leaving under the water are bent for the water's index with the
-     * normal the layers hold (common/beyond.glsl). */
-    for (i = 0; i < n; i++) r->layer_list[i]->beyond = 1;
-    if (n == 1 && fd->opaque_count == 0) {
-        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "one glass object in a frame with water: "
-                   "the water's rays meet it, its rays leave into the water");
-        return n;
-    }
-    snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "%d glass (%d solid, %d thin walls) and %d opaque "
-               "objects%s: exit rays meet the others", n, solid, n - solid, fd->opaque_count,
-               fd->water ? " and water" : "");
-    return n;
 }
 
 static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd)
@@ -391,134 +250,33 @@ static void begin_frame_state(snell_renderer *r)
 
 snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_frame_stats *stats)
 {
+    snell__frame f;
     snell_frame_stats *s;
-    snell__scene *sc;
     snell_glstate saved;
     snell_status st;
-    int external, i, n_screen = 0, n_back = 0, band = 0, n_layers = -1;
+    int external, i;
+    size_t named = 0;
     double t0 = snell__now_ms();
     if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
     s = &r->stats;
-    sc = &r->scene;
     memset(s, 0, sizeof *s);
     st = validate_frame(r, fd);
-    if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->width, r->height, r->out, sc, s);
+    if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->width, r->height, r->out, &r->scene, s);
     if (st != SNELL_OK) return st;
-    sc->view.water = fd->water;
+    r->scene.view.water = fd->water;
+    memset(&f, 0, sizeof f);
+    f.r = r, f.fd = fd, f.s = s, f.sc = &r->scene, f.n_layers = -1;
     external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
     if (external) snell__glstate_save(&saved);
     begin_frame_state(r);
     snell__prepared_frame(&r->prepared);
-
-    st = snell__composite_opaque(r->ctx, &r->comp, r->out, fd->opaque, fd->opaque_count,
-                                 (const float *)sc->view.view_proj, sc->view.eye);
-    if (fd->opaque_count > 0) {
-        s->opaque_drawn = fd->opaque_count;
-        s->passes++;
-    }
-    if (st == SNELL_OK) n_layers = choose_scene_layers(r, fd, s);
-    /* Glass: the objects shaded in screen space share one G-buffer pass,
-     * which leaves each pixel the nearest of their surfaces, then run their
-     * kernels (in any order: they cover disjoint pixels); then the forward
-     * ones back to front (Franke), each depth-tested against all of those. */
-    for (i = 0; i < sc->drawn && st == SNELL_OK; i++) {
-        int k = sc->order[i];
-        st = set_up_glass(r, fd, &sc->obj[k], &s->glass[k]);
-        if (st == SNELL_OK && sc->obj[k].screen_space) r->screen_list[n_screen++] = &sc->obj[k];
-        if (st == SNELL_OK && r->object_method[k]->needs_back_faces) {
-            const snell__method *m = r->object_method[k];
-            snell__object *o = &sc->obj[k];
-            o->back_coarse = m->back_detail && m->back_detail(o->glass) == SNELL_BACK_DETAIL_AUTO &&
-                             o->pixels_per_triangle < SNELL__BACK_COARSE_PPT;
-            o->back_guard = o->crosses_edge && m->back_guard_percent && m->back_guard_percent(o->glass) > 0
-                                ? (m->back_guard_percent(o->glass) * r->height + 99) / 100
-                                : 0;
-            if (o->back_guard > band) band = o->back_guard;
-            r->back_list[n_back++] = o;
-        }
-    }
-    /* The scene layers: every solid glass object drawn and every opaque one,
-     * peeled together once, before any kernel reads them. */
-    if (st == SNELL_OK && n_layers >= 0) {
-        int peels = 0;
-        st = snell__layers_draw(r->ctx, &r->layers, &sc->view, r->layer_list, n_layers, fd->opaque,
-                                fd->opaque_count, fd->scene_layers > 0 ? fd->scene_layers : SNELL_DEFAULT_SCENE_LAYERS,
-                                &peels, &s->scene_layers_reused);
-        s->scene_layer_passes = peels;
-        s->scene_layers = sc->view.layers.count;
-        s->passes += peels;
-    }
-    /* The water and its container are opaque to what follows: glass behind
-     * them is depth-tested away, glass in front is drawn over them; the
-     * glass kernels drawn after see the water along their exit rays
-     * (common/water.glsl), the water sees the glass and opaque objects in it
-     * through the scene layers. */
-    if (st == SNELL_OK && fd->water) {
-        /* Without layers (no glass), opaque objects in the water are
-         * searched for in a copy of what the opaque pass drew: an offscreen
-         * single-sample colour target (a host's framebuffer or a
-         * multisampled one cannot be copied with its depth format known;
-         * exit directions need no colour). Measured against peeling them
-         * into layers for the water alone: 74 against 175 ms and 38.7
-         * against 36.1 dB (snell-bench --water --size 256, two spheres). */
-        int layers = n_layers >= 0;
-        int objects = !layers && fd->opaque_count > 0 && r->target == SNELL_TARGET_OFFSCREEN && !r->msaa &&
-                      r->out == SNELL__OUT_COLOR;
-        if (objects) {
-            st = snell__water_copy_scene(r->ctx, &r->water, r->fbo, r->width, r->height);
-            glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-        }
-        unsigned env_tex = fd->env->texture;
-        int paraboloid = snell__renderer_env_paraboloid(r, 0); /* the water sees the static environment */
-        if (st == SNELL_OK && paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &env_tex);
-        if (st == SNELL_OK)
-            st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &sc->view, env_tex, paraboloid, fd->opaque,
-                                   objects ? fd->opaque_count : 0, layers, s);
-        s->water_objects = objects || layers; /* layers: at least one glass object drawn */
-        s->water_layers = layers;
-    }
-    /* One back-face pass for every object whose method reads back faces;
-     * none in frames without such an object. */
-    if (st == SNELL_OK && n_back > 0) {
-        st = snell__gbuffer_draw_back(r->ctx, &r->backfaces, &sc->view, r->back_list, n_back, band,
-                                      &sc->view.back, s->glass);
-        s->back_face_pass = 1;
-        s->back_face_guard = band;
-    }
-    if (st == SNELL_OK && n_screen > 0)
-        st = snell__gbuffer_draw(r->ctx, &r->gbuffer, &sc->view, r->screen_list, n_screen,
-                                 r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? r->depth_rb : 0, s->glass);
-    for (i = 0; i < n_screen && st == SNELL_OK; i++) st = draw_glass(r, r->screen_list[i], &s->glass[r->screen_list[i]->index]);
-    for (i = 0; i < sc->drawn && st == SNELL_OK; i++) {
-        int k = sc->order[i];
-        if (!sc->obj[k].screen_space) st = draw_glass(r, &sc->obj[k], &s->glass[k]);
-    }
-    /* The background goes last, where the depth buffer is still clear, so
-     * pixels covered by glass or opaque objects are never shaded twice.
-     * Exit-direction output always needs it (misses = the view ray). */
-    if (st == SNELL_OK && (fd->draw_background >= 0 || r->out != SNELL__OUT_COLOR)) {
-        mat4 rot, vp;
-        glm_mat4_copy(sc->view.view, rot);
-        rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
-        glm_mat4_mul(sc->view.proj, rot, vp);
-        int paraboloid = snell__renderer_env_paraboloid(r, 0);
-        unsigned tex = fd->env->texture;
-        if (paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &tex);
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, tex);
-        if (st == SNELL_OK) st = snell__composite_background_lookup(r->ctx, &r->comp, r->out, paraboloid, (const float *)vp);
-        s->background_drawn = 1;
-        s->background_paraboloid = paraboloid;
-    }
-    if (st == SNELL_OK && r->ssaa.factor > 1) {
-        snell__ssaa_resolve(&r->ssaa, r->out_width, r->out_height);
-        s->passes++;
-    }
-    if (st == SNELL_OK && r->msaa) { /* resolve: the samples' mean per pixel */
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->msaa_fbo);
-        glBlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        s->passes++;
+    /* The stage table in frame order (stages.c); each says whether this frame wants it. */
+    for (i = 0; i < snell__stage_count && st == SNELL_OK; i++) {
+        const snell__stage *sg = &snell__stages[i];
+        if (sg->wanted && !sg->wanted(&f)) continue;
+        st = sg->run(&f);
+        named += (size_t)snprintf(s->stages + named, named < sizeof s->stages ? sizeof s->stages - named : 0, "%s%s",
+                                  named ? " " : "", sg->name);
     }
     /* Leave no program of ours current: one deleted while current (renderer
      * destroyed) lives on until replaced, and a later pass that saved and
@@ -527,7 +285,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     glBindVertexArray(0);
     if (external) snell__glstate_restore(&saved);
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(r->ctx, SNELL_E_GL, "GL error during the frame");
-    for (i = 0; i < sc->count; i++) s->passes += s->glass[i].passes;
+    for (i = 0; i < r->scene.count; i++) s->passes += s->glass[i].passes;
     s->passes += s->background_drawn;
     s->fragment_mediump = snell__ctx_fragment_mediump(r->ctx);
     s->cpu_ms = snell__now_ms() - t0;

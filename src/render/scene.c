@@ -1,7 +1,7 @@
 /* scene.c — see scene.h. */
 #include "render/scene.h"
-#include "render/camera.h"
-#include "render/material.h"
+#include "frame/camera.h"
+#include "frame/material.h"
 #include "core/ctx.h"
 
 #include <math.h>

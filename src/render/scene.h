@@ -6,7 +6,7 @@
 #ifndef SNELL_SCENE_H
 #define SNELL_SCENE_H
 
-#include "methods/method.h"
+#include "frame/method.h"
 
 typedef struct snell__scene {
     snell__view view;

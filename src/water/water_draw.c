@@ -27,7 +27,7 @@ static snell_status make_programs(snell_ctx *ctx, snell__water_programs *p, snel
                      gpu ? "#define SNELL_WATER_STATE_UINT 1\n" : "", mode_defines[mode],
                      env_paraboloid ? SNELL__ENV_PARABOLOID_DEFINE : "");
             st = snell__program_build(ctx, "water_surface.vert", "water_surface.frag", defines, &p->surface[gpu][mode]);
-            if (st == SNELL_OK && mode == 2) snell__layers_locate(p->surface[gpu][mode], &p->layers[gpu]);
+            if (st == SNELL_OK && mode == 2) snell__beyond_locate(p->surface[gpu][mode], &p->layers[gpu]);
         }
     if (st == SNELL_OK)
         st = snell__program_build(ctx, "water_wall.vert", "water_wall.frag", snell__output_defines(out), &p->wall);
@@ -252,7 +252,7 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     prog = p->surface[w->d.sim == SNELL_WATER_SIM_GPU][layers ? 2 : object_count > 0 ? 1 : 0];
     glUseProgram(prog);
     if (layers) {
-        snell__layers_uniforms(&p->layers[w->d.sim == SNELL_WATER_SIM_GPU], v, 0);
+        snell__beyond_uniforms(&p->layers[w->d.sim == SNELL_WATER_SIM_GPU], v, 0);
     } else if (object_count > 0) {
         float spheres[MAX_SPHERES][4];
         int n_spheres = object_spheres(objects, object_count, spheres);

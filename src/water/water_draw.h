@@ -9,8 +9,8 @@
 #ifndef SNELL_WATER_DRAW_H
 #define SNELL_WATER_DRAW_H
 
-#include "methods/method.h"
-#include "render/layers.h"
+#include "frame/method.h"
+#include "frame/beyond.h"
 #include "water/water.h"
 
 /* Surface program variants: the refracted ray meets only the container,
@@ -18,12 +18,11 @@
  * (SNELL_WATER_OBJECTS), or every object through the scene layers
  * (SNELL_BEYOND). */
 #define SNELL__WATER_MODES 3
-/* Texture unit of the heights while the water and the kernels that see it draw. */
-#define SNELL__WATER_HEIGHTS_UNIT 9
+#include "frame/units.h" /* SNELL__WATER_HEIGHTS_UNIT */
 
 typedef struct snell__water_programs {
     unsigned surface[2][SNELL__WATER_MODES]; /* [heights from R32F (CPU simulation) or the RG32UI state (GPU)][mode] */
-    snell__layers_locs layers[2];  /* the SNELL_BEYOND mode's layer uniforms, per heights format */
+    snell__beyond_locs layers[2];  /* the SNELL_BEYOND mode's layer uniforms, per heights format */
     unsigned wall;
     int made;
     /* The opaque objects as the frame drew them (colour and depth), for the

@@ -1,7 +1,7 @@
 /* env.c — environments: the built-in procedural sky/floor, six face images or
  * one equirectangular image, all turned into six RGBA8 faces kept on the CPU
  * (so references sample exactly the GPU's texels) and a GL cubemap. */
-#include "render/env.h"
+#include "frame/env.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/glstate.h"

@@ -3,26 +3,28 @@
 #ifndef SNELL_GLASS_PROGRAM_H
 #define SNELL_GLASS_PROGRAM_H
 
-#include "methods/method.h"
-#include "render/layers.h"
+#include "frame/method.h"
+#include "frame/stage.h"
 
 typedef struct snell__glass_program {
     unsigned prog;
-    int screen_space;               /* 0 forward, else SNELL__SCREEN_* (render/gbuffer.h): screen.vert */
-    int beyond;                     /* SNELL_BEYOND: the exit look-up marches the scene layers */
-    int water;                      /* SNELL_WATER: the exit look-up meets the frame's water (view.water) */
+    int screen_space;               /* 0 forward, else SNELL__SCREEN_* (frame/frame.h): screen.vert */
+    unsigned variant;               /* what it was built for (snell__glass_variant) */
     int model, normal_matrix, view_proj, eye, env, ior, ior_rgb, sigma, tint, bsphere;
     int gnormal, gdepth_id, inv_view_proj, inv_size, gid;
-    snell__layers_locs layers;      /* common/beyond.glsl's uniforms (beyond only) */
+    int hook_locs[SNELL__HOOK_LOCS]; /* the frame stages' uniforms (frame/stage.h) */
 } snell__glass_program;
 
 /* A kernel program's variant for an object (what snell__glass_program_build
- * takes): its shading (0 forward or SNELL__SCREEN_*, the low two bits),
- * SNELL__GLASS_BEYOND if its exit rays march the scene layers, and
- * SNELL__GLASS_ENV_PARABOLOID if it looks its environment up in
- * dual-paraboloid maps (common/env.glsl; its env_texture on unit 0 is then a
- * 2D array, render/env_paraboloid.h), and SNELL__GLASS_WATER (+ _UINT)
- * if the frame has a water surface its exit rays may meet. Kernels key their programs by it; it is
+ * takes): the one table of its bits. Its shading (0 forward or
+ * SNELL__SCREEN_*, the low two bits), SNELL__GLASS_ENV_PARABOLOID if it
+ * looks its environment up in dual-paraboloid maps (common/env.glsl; its
+ * env_texture on unit 0 is then a 2D array, render/env_paraboloid.h), and the
+ * bits the frame's stages add (snell__object.stage_bits, each stage's
+ * kernel hook: frame/stage.h): SNELL__GLASS_BEYOND, its exit rays march the
+ * scene layers (render/stages.c "layers"), SNELL__GLASS_WATER (+ _UINT),
+ * they meet the frame's water ("water"). A new stage takes the next free bit
+ * and doubles SNELL__GLASS_VARIANTS. Kernels key their programs by it; it is
  * below SNELL__GLASS_VARIANTS. */
 #define SNELL__GLASS_SHADING_MASK 3
 #define SNELL__GLASS_BEYOND 4

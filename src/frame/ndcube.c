@@ -1,13 +1,13 @@
 /* ndcube.c — bake the normal+distance cubemap (Unger 4.1, Li et al. 2007):
  * 6 passes (one per face) of the mesh from the centre with depth test GREATER
  * and culling off, so the farthest surface wins; see ndcube.h. */
-#include "methods/ndcube.h"
-#include "render/env.h"
+#include "frame/ndcube.h"
+#include "frame/env.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/glstate.h"
 #include "core/program.h"
-#include "render/pass.h"
+#include "frame/pass.h"
 
 #include <string.h>
 

@@ -1,6 +1,6 @@
 /* camera.c — the orbit camera shared by the renderer, the references and the
  * CLI: eye on a sphere around the target, +Y up, GL clip conventions. */
-#include "render/camera.h"
+#include "frame/camera.h"
 
 #include <cglm/cglm.h>
 #include <math.h>

@@ -1,10 +1,9 @@
 /* glass_program.c — build and bind a kernel's program; shared uniforms. */
-#include "methods/glass_program.h"
+#include "frame/glass_program.h"
 #include "core/gl.h"
 #include "core/program.h"
-#include "render/gbuffer.h"
-#include "render/layers.h"
-#include "water/water_draw.h"
+#include "frame/stage.h"
+#include "frame/units.h"
 
 #include <string.h>
 
@@ -19,32 +18,38 @@ const char *snell__output_defines(snell__output_kind out)
 
 int snell__glass_variant(const snell__object *o)
 {
-    return o->screen_space | (o->beyond ? SNELL__GLASS_BEYOND : 0) |
-           (o->env_paraboloid ? SNELL__GLASS_ENV_PARABOLOID : 0) | (o->water ? SNELL__GLASS_WATER : 0) |
-           (o->water > 1 ? SNELL__GLASS_WATER_UINT : 0);
+    return o->screen_space | (o->env_paraboloid ? SNELL__GLASS_ENV_PARABOLOID : 0) | (int)o->stage_bits;
 }
 
 snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, snell__output_kind out,
                                         const char *extra_defines, int variant, snell__glass_program *g)
 {
     char defines[1024];
+    size_t len;
     snell_status st;
-    int screen_space = variant & SNELL__GLASS_SHADING_MASK;
-    snprintf(defines, sizeof defines, "%s%s%s%s%s%s%s%s", snell__output_defines(out),
+    int screen_space = variant & SNELL__GLASS_SHADING_MASK, i;
+    snprintf(defines, sizeof defines, "%s%s%s%s", snell__output_defines(out),
              screen_space ? "#define SNELL_SCREEN_SPACE 1\n" : "",
              screen_space == SNELL__SCREEN_WRITES_DEPTH ? "#define SNELL_SCREEN_WRITES_DEPTH 1\n" : "",
-             variant & SNELL__GLASS_BEYOND ? "#define SNELL_BEYOND 1\n" : "",
-             variant & SNELL__GLASS_ENV_PARABOLOID ? SNELL__ENV_PARABOLOID_DEFINE : "",
-             variant & SNELL__GLASS_WATER ? "#define SNELL_WATER 1\n" : "",
-             variant & SNELL__GLASS_WATER_UINT ? "#define SNELL_WATER_STATE_UINT 1\n" : "",
-             extra_defines ? extra_defines : "");
+             variant & SNELL__GLASS_ENV_PARABOLOID ? SNELL__ENV_PARABOLOID_DEFINE : "");
+    /* What the frame's stages add (frame/stage.h), in frame order. */
+    for (i = 0; i < snell__stage_count; i++) {
+        const snell__kernel_hook *h = snell__stages[i].kernel;
+        if (!h || !((unsigned)variant & h->variant_mask)) continue;
+        len = strlen(defines);
+        snprintf(defines + len, sizeof defines - len, "%s", h->defines((unsigned)variant & h->variant_mask));
+    }
+    len = strlen(defines);
+    snprintf(defines + len, sizeof defines - len, "%s", extra_defines ? extra_defines : "");
     memset(g, 0, sizeof *g);
     st = snell__program_build(ctx, screen_space ? "screen.vert" : "object.vert", fs_path, defines, &g->prog);
     if (st != SNELL_OK) return st;
     g->screen_space = screen_space;
-    g->beyond = (variant & SNELL__GLASS_BEYOND) != 0;
-    g->water = (variant & SNELL__GLASS_WATER) != 0;
-    if (g->beyond) snell__layers_locate(g->prog, &g->layers);
+    g->variant = (unsigned)variant;
+    for (i = 0; i < snell__stage_count; i++) {
+        const snell__kernel_hook *h = snell__stages[i].kernel;
+        if (h && (g->variant & h->variant_mask) && h->locate) h->locate(g->prog, g->hook_locs + h->locs_offset);
+    }
     g->gnormal = glGetUniformLocation(g->prog, "u_gnormal");
     g->gdepth_id = glGetUniformLocation(g->prog, "u_gdepth_id");
     g->inv_view_proj = glGetUniformLocation(g->prog, "u_inv_view_proj");
@@ -100,6 +105,7 @@ void snell__glass_program_destroy(snell__glass_program *g)
 
 void snell__glass_program_use(const snell__glass_program *g, const snell__view *v, const snell__object *o)
 {
+    int i;
     glUseProgram(g->prog);
     glUniformMatrix4fv(g->model, 1, GL_FALSE, (const GLfloat *)o->model);
     glUniformMatrix3fv(g->normal_matrix, 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
@@ -111,9 +117,10 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniform3fv(g->sigma, 1, o->glass->absorption);
     glUniform3fv(g->tint, 1, o->glass->material.tint);
     glUniform4fv(g->bsphere, 1, o->bsphere);
-    if (g->beyond)
-        snell__layers_uniforms(&g->layers, v, o->index + 1 + (o->glass->material.thickness > 0.0f ? SNELL__LAYERS_THIN_ID : 0));
-    if (g->water) snell__water_uniforms(g->prog, v->water);
+    for (i = 0; i < snell__stage_count; i++) {
+        const snell__kernel_hook *h = snell__stages[i].kernel;
+        if (h && (g->variant & h->variant_mask)) h->uniforms(g->prog, g->hook_locs + h->locs_offset, v, o);
+    }
     if (g->screen_space) {
         glUniform1i(g->gnormal, SNELL__GBUFFER_UNIT_NORMAL);
         glUniform1i(g->gdepth_id, SNELL__GBUFFER_UNIT_DEPTH_ID);

@@ -7,7 +7,7 @@
 
 #include "core/core.h"
 #include "mesh/mesh.h"
-#include "methods/method.h"
+#include "frame/method.h"
 
 #include <cglm/cglm.h>
 

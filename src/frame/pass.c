@@ -2,7 +2,7 @@
  * frame around them relies on. Not the program: every draw binds its own,
  * and the current one may be a deleted program kept alive only by being
  * current, whose name would be invalid by the time it was restored. */
-#include "render/pass.h"
+#include "frame/pass.h"
 #include "core/gl.h"
 
 void snell__pass_begin(snell__pass *p, unsigned fbo, int width, int height, unsigned clear, int depth_func,

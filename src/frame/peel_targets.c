@@ -1,5 +1,5 @@
 /* peel_targets.c — see peel_targets.h. */
-#include "render/peel_targets.h"
+#include "frame/peel_targets.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 

@@ -3,8 +3,8 @@
  * parameters are resolved by the method's own table (methods/registry.c),
  * the per-unit absorption is derived from glTF's attenuation form, and the
  * channels' IORs from the dispersion (core/optics.h). */
-#include "render/material.h"
-#include "methods/method.h"
+#include "frame/material.h"
+#include "frame/method.h"
 #include "core/optics.h"
 
 #include <math.h>

@@ -1,0 +1,43 @@
+/* stage.h — the stage seam: a frame is the entries of one table
+ * (render/stages.c) run in order, each with whether this frame wants it,
+ * what it draws, and what it adds to every glass kernel's program (the
+ * kernel hook: bits of the program variant, their #defines, uniforms found
+ * once per program and set at each draw). Kernels (frame/glass_program.c)
+ * read the hooks from the table, so a new stage is one table entry, its
+ * files, its shader chunk and its tests: no kernel changes. */
+#ifndef SNELL_STAGE_H
+#define SNELL_STAGE_H
+
+#include "frame/frame.h"
+
+/* The renderer's per-frame state (render/stages.h); the floor only passes it on. */
+typedef struct snell__frame snell__frame;
+
+/* Uniform locations the hooks of one kernel program may keep, in all. */
+#define SNELL__HOOK_LOCS 16
+
+typedef struct snell__kernel_hook {
+    unsigned variant_mask;          /* its bits of a kernel program's variant (snell__glass_variant) */
+    /* The #defines for the bits of variant_mask a program is built with. */
+    const char *(*defines)(unsigned bits);
+    int locs_offset, locs_count;    /* its share of a program's SNELL__HOOK_LOCS locations */
+    void (*locate)(unsigned prog, int *locs);
+    /* Sets its uniforms of the program in use for object o of the frame. */
+    void (*uniforms)(unsigned prog, const int *locs, const snell__view *v, const snell__object *o);
+} snell__kernel_hook;
+
+typedef struct snell__stage {
+    const char *name;               /* as snell_frame_stats.stages lists it */
+    int (*wanted)(const snell__frame *f); /* NULL: every frame */
+    snell_status (*run)(snell__frame *f);
+    /* May be NULL. Which of kernel->variant_mask's bits object o's program
+     * needs this frame (set up before any kernel draws: o->stage_bits). */
+    unsigned (*kernel_variant)(const snell__frame *f, const snell__object *o);
+    const snell__kernel_hook *kernel; /* NULL: it adds nothing to the kernels */
+} snell__stage;
+
+/* The frame's stages in frame order (render/stages.c). */
+extern const snell__stage snell__stages[];
+extern const int snell__stage_count;
+
+#endif
