@@ -13,7 +13,7 @@ if(TARGET snell-render)
            --method exact --param exact.interfaces=4 --param exact.budget=2048 --param exact.nodes=q16 --size 48x48
            --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_exact.png)
   set_tests_properties(cli_exact PROPERTIES LABELS "cli"
-    PASS_REGULAR_EXPRESSION "stats: glass 0 \\([^)]*cat.obj[^)]*\\): method exact, .*fallback pixels not counted")
+    PASS_REGULAR_EXPRESSION "stats: glass 0 \\([^)]*cat.obj[^)]*\\): method exact, .*fallback_pixels not counted")
   # AUTO takes exact for the open cat only with the opt-in.
   add_test(NAME cli_auto_exact COMMAND $<TARGET_FILE:snell-render> --mesh ${CMAKE_CURRENT_SOURCE_DIR}/data/real/cat.obj
            --param exact.auto=allow --size 32x32 --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto_exact.png)

@@ -120,8 +120,8 @@ static agreement agree_with(snell_ctx *ctx, snell_renderer *r, const snell_frame
     int i;
     render_dirs_with(ctx, r, fd, gpu, &st);
     CHECK(st.glass[0].method_used == SNELL_METHOD_EXACT, "drawn with exact (%s)", st.glass[0].reason);
-    CHECK(st.glass[0].exact_fallback_pixels == 0, "no pixel ran out of the default budget (%d did)",
-          st.glass[0].exact_fallback_pixels);
+    CHECK(snell_object_counter(&st.glass[0], "fallback_pixels") == 0, "no pixel ran out of the default budget (%d did)",
+          snell_object_counter(&st.glass[0], "fallback_pixels"));
     coverage(ctx, fd, gpu, cov);
     for (i = 0; i < W * H; i++) {
         double e;
@@ -228,8 +228,8 @@ static void check_colour(snell_ctx *ctx, snell_env *env, snell_mesh *torus)
     reference(ctx, &fd, INTERFACES, rgb, ref_dirs, hit);
     snell_ref_rgb_to_rgba8(rgb, W, H, ref_px);
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &st));
-    CHECK(st.glass[0].exact_fallback_pixels == -1, "a colour renderer does not count fallbacks (%d)",
-          st.glass[0].exact_fallback_pixels);
+    CHECK(snell_object_counter(&st.glass[0], "fallback_pixels") == -1, "a colour renderer does not count fallbacks (%d)",
+          snell_object_counter(&st.glass[0], "fallback_pixels"));
     CHECK_OK(snell_renderer_read_rgba(r, px));
     for (i = 0; i < W * H; i++) {
         if (!hit[i]) continue;
@@ -269,11 +269,11 @@ static void check_budget(snell_ctx *ctx, snell_env *env, snell_mesh *mesh)
     render_dirs(ctx, &fd, single, NULL);
     g.material.method = SNELL_METHOD_EXACT;
     render_dirs(ctx, &fd, full, &st);
-    CHECK(st.glass[0].exact_fallback_pixels == 0, "the default budget: no fallback (%d)",
-          st.glass[0].exact_fallback_pixels);
+    CHECK(snell_object_counter(&st.glass[0], "fallback_pixels") == 0, "the default budget: no fallback (%d)",
+          snell_object_counter(&st.glass[0], "fallback_pixels"));
     g.material.exact.node_budget = 128;
     render_dirs(ctx, &fd, small, &st);
-    counted = st.glass[0].exact_fallback_pixels;
+    counted = snell_object_counter(&st.glass[0], "fallback_pixels");
     /* single.frag is mediump (up to ~1e-3 rad on fp16 drivers; highp here) */
     for (i = 0; i < W * H; i++)
         switched += anglef(small + 3 * i, single + 3 * i) < 2e-3 && !(anglef(full + 3 * i, single + 3 * i) < 2e-3);

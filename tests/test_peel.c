@@ -159,18 +159,18 @@ static void test_depth_complexity(snell_ctx *ctx, snell_env *env)
         if (i == 0) {
             g.material.peel.layers = 8;
             render(ctx, &fd, &g, SNELL_METHOD_PEEL, dirs, NULL, &st);
-            CHECK(st.glass[0].layers_peeled == 2 && st.glass[0].layers_used == 2, "sphere: %d peeled, %d used",
-                  st.glass[0].layers_peeled, st.glass[0].layers_used);
+            CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 2 && snell_object_counter(&st.glass[0], "layers_used") == 2, "sphere: %d peeled, %d used",
+                  snell_object_counter(&st.glass[0], "layers_peeled"), snell_object_counter(&st.glass[0], "layers_used"));
         }
         if (i == 2) {
             fd.camera.elevation = 1.5707f; /* from straight above: one tube per view ray */
             render(ctx, &fd, &g, SNELL_METHOD_PEEL, dirs, NULL, &st);
-            CHECK(st.glass[0].layers_peeled == 3 && st.glass[0].layers_used == 2,
-                  "torus from above: %d peeled, %d used", st.glass[0].layers_peeled, st.glass[0].layers_used);
+            CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 3 && snell_object_counter(&st.glass[0], "layers_used") == 2,
+                  "torus from above: %d peeled, %d used", snell_object_counter(&st.glass[0], "layers_peeled"), snell_object_counter(&st.glass[0], "layers_used"));
             fd.camera.elevation = 0.1f; /* nearly edge-on: both tubes */
             render(ctx, &fd, &g, SNELL_METHOD_PEEL, dirs, NULL, &st);
-            CHECK(st.glass[0].layers_peeled == 4 && st.glass[0].layers_used == 4, "torus edge-on: %d peeled, %d used",
-                  st.glass[0].layers_peeled, st.glass[0].layers_used);
+            CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 4 && snell_object_counter(&st.glass[0], "layers_used") == 4, "torus edge-on: %d peeled, %d used",
+                  snell_object_counter(&st.glass[0], "layers_peeled"), snell_object_counter(&st.glass[0], "layers_used"));
         }
         snell_mesh_destroy(mesh);
     }
@@ -193,7 +193,7 @@ static void test_two_layers(snell_ctx *ctx, snell_env *env)
     g.material.peel.layers = 2;
     g.material.peel.max_interfaces = 2;
     render(ctx, &fd, &g, SNELL_METHOD_PEEL, gpu, NULL, &st);
-    CHECK(st.glass[0].layers_peeled == 2, "%d layers peeled", st.glass[0].layers_peeled);
+    CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 2, "%d layers peeled", snell_object_counter(&st.glass[0], "layers_peeled"));
     reference(ctx, &fd, SNELL_REF_MATCHED, 2, ref, hit);
     for (i = 0; i < W * H; i++) {
         double e;
@@ -375,7 +375,7 @@ static void test_over_cap(snell_ctx *ctx, snell_env *env)
     fd.camera.elevation = 0.2f;
     g.material.peel.layers = 2;
     render(ctx, &fd, &g, SNELL_METHOD_PEEL, dirs, NULL, &st);
-    CHECK(st.glass[0].layers_peeled == 2, "%d layers peeled", st.glass[0].layers_peeled);
+    CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 2, "%d layers peeled", snell_object_counter(&st.glass[0], "layers_peeled"));
     render(ctx, &fd, &g, SNELL_METHOD_PEEL, NULL, rgba, &st);
     reference(ctx, &fd, SNELL_REF_MATCHED, 2, ref, hit);
     for (i = 0; i < W * H; i++) {
@@ -473,9 +473,9 @@ static void test_two_objects(snell_ctx *ctx, snell_env *env)
     fd.scene_layers = -1; /* the kernel's own layer textures are the point, not what the torus sees of the goblet */
     render(ctx, &fd, &g[0], SNELL_METHOD_PEEL, both, NULL, &st);
     CHECK(st.glass[0].method_used == SNELL_METHOD_PEEL && st.glass[1].method_used == SNELL_METHOD_PEEL &&
-              st.glass[0].layers_used >= 2 && st.glass[1].layers_used >= 2,
+              snell_object_counter(&st.glass[0], "layers_used") >= 2 && snell_object_counter(&st.glass[1], "layers_used") >= 2,
           "methods %d %d, layers used %d %d", (int)st.glass[0].method_used, (int)st.glass[1].method_used,
-          st.glass[0].layers_used, st.glass[1].layers_used);
+          snell_object_counter(&st.glass[0], "layers_used"), snell_object_counter(&st.glass[1], "layers_used"));
     fd.glass_count = 1;
     render(ctx, &fd, &g[0], SNELL_METHOD_PEEL, alone, NULL, &st);
     fd.glass_count = 0; /* the background's directions: where the torus is not */

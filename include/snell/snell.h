@@ -693,6 +693,13 @@ typedef struct snell_param_info {
     const char *const *value_names; /* enum parameters: name of each value min..max, else NULL */
 } snell_param_info;
 
+/* A number a method reports per object and frame (snell_object_stats.counters). */
+typedef struct snell_counter_info {
+    const char *name;              /* "layers_peeled" */
+    const char *help;              /* what it counts, one line */
+} snell_counter_info;
+#define SNELL_MAX_METHOD_COUNTERS 4
+
 typedef struct snell_method_info {
     snell_method method;
     const char *name;              /* "single", "cubemap" */
@@ -701,6 +708,15 @@ typedef struct snell_method_info {
     int cost_rank;                 /* AUTO tries lower ranks first */
     int param_count;
     const snell_param_info *params;
+    int counter_count;             /* 0..SNELL_MAX_METHOD_COUNTERS */
+    const snell_counter_info *counters;
+    /* The MATCHED reference model it approximates (snell_ref.h): surfaces per
+     * path, a fixed count, or 0 for its "interfaces" parameter's value; 1 if
+     * absorption runs over the bounding-sphere chord (the single-surface
+     * model), 0 over the traced path. */
+    int ref_interfaces;
+    int ref_chord_absorption;
+    const char *default_sweep;     /* the parameter sweep snell-bench runs by default ("" none) */
 } snell_method_info;
 
 /* Registry entries in cost order (i = 0 .. snell_method_count()-1), NULL past the end. */
@@ -710,8 +726,15 @@ const snell_method_info *snell_method_info_at(int i);
 const snell_method_info *snell_method_info_of(snell_method m);
 /* "auto", "single", "cubemap"; "unknown" for other values. Never NULL. */
 const char *snell_method_str(snell_method m);
-/* By name ("auto" included); SNELL_E_INVALID_ARG for an unknown one. */
+/* By name ("auto" included); SNELL_E_INVALID_ARG for an unknown one,
+ * SNELL_E_UNSUPPORTED for one this build left out (snell_build_has). */
 snell_status snell_method_from_str(const char *name, snell_method *out);
+/* A method parameter's value in m by name (as snell_glass_set_param names
+ * it), 0 = the default; SNELL_E_INVALID_ARG if the method has no such one. */
+snell_status snell_glass_get_param(const snell_glass_material *m, snell_method method, const char *name, int *value);
+/* Copies every method's nested parameters (material.cubemap, .peel, ...)
+ * from src to dst, leaving dst's optics and method choice. */
+void snell_glass_copy_method_params(snell_glass_material *dst, const snell_glass_material *src);
 /* Sets a method parameter of the material by name ("iterations", "encoding"
  * also by value name, e.g. "oct"), range-checked. */
 snell_status snell_glass_set_param(snell_glass_material *m, snell_method method, const char *name,
@@ -923,22 +946,19 @@ typedef struct snell_object_stats {
     int screen_space;               /* 1: shaded in screen space (G-buffer), 0: forward */
     float pixels_per_triangle;      /* estimate AUTO shading decided on: projected bounding-sphere
                                      * area / front triangles (half the mesh's) */
-    int layers_peeled;              /* PEEL: depth layers drawn this frame (at most material.peel.layers,
-                                     * fewer where the mesh's depth_complexity bounds them or a layer came
-                                     * out empty: the peels after it are not drawn) */
-    int layers_used;                /* PEEL: of those, the non-empty ones the search reads */
-    /* EXACT: pixels that ran out of material.exact.node_budget and took the
-     * single-surface answer. Counted only by SNELL_OUTPUT_EXIT_DIRECTION
-     * renderers with an RGBA32F target (the pixel's alpha marks it, read back
-     * once per object and frame; GLES 3.0's occlusion queries say only
-     * whether any sample passed, and it has no atomic counters); -1 where not
-     * counted (colour output, the packed RGBA8 target, other methods). */
-    int exact_fallback_pixels;
+    /* The counters of the method that drew it, in the order its
+     * snell_method_info.counters names them (e.g. PEEL: layers_peeled,
+     * layers_used; EXACT: fallback_pixels); -1 where not counted this frame.
+     * snell_object_counter() reads one by name. */
+    int counters[SNELL_MAX_METHOD_COUNTERS];
     int env_paraboloid;             /* 1: it looked its environment up in dual-paraboloid maps, 0: the cube */
     int sees_water;                 /* 1: its exit rays meet the frame's water and container before the
                                      * environment (common/water.glsl), and those leaving under the water
                                      * are bent for its index (the scene layers hold the exit normal) */
 } snell_object_stats;
+
+/* The counter name of the method that drew the object (snell_object_stats.counters), -1 if it has none. */
+int snell_object_counter(const snell_object_stats *st, const char *name);
 
 typedef struct snell_frame_stats {
     int passes;                     /* GL draw passes issued in all */

@@ -136,8 +136,8 @@ typedef struct bench_config {
                                     * then the MATCHED and FULL comparisons are with isolate_glass = 0 */
     const char *encoding;          /* exit-direction storage: "float" or "packed-rgba8" */
     long nan_inf;                  /* non-finite exit-direction pixels (float target only) */
-    long exact_fallback_pixels;    /* EXACT: pixels past the node budget in the exit-direction frame, summed
-                                    * over the glass objects; -1: not counted (other methods, RGBA8 target) */
+    long counters[SNELL_MAX_METHOD_COUNTERS]; /* the method's counters (snell_method_info.counters) in the
+                                    * exit-direction frame, summed over the glass objects it drew; -1: not counted */
     snell_dir_error dir[2];        /* [0] vs MATCHED, [1] vs FULL */
     snell_image_error img[2];      /* whole image */
     snell_image_error img_glass[2];/* pixels that are glass in either mask */

@@ -161,7 +161,7 @@ static int exit_dir_frames(snell_ctx *ctx, const snell_frame_desc *fd, bench_con
     snell_frame_desc bg = *fd;
     snell_frame_stats fs;
     size_t i;
-    int ok = 0, g;
+    int ok = 0, g, k;
     memset(&desc, 0, sizeof desc);
     desc.width = c->width;
     desc.height = c->height;
@@ -174,16 +174,16 @@ static int exit_dir_frames(snell_ctx *ctx, const snell_frame_desc *fd, bench_con
         return 0;
     }
     c->encoding = snell_renderer_exit_dir_encoding(r);
-    c->exact_fallback_pixels = -1;
+    for (k = 0; k < SNELL_MAX_METHOD_COUNTERS; k++) c->counters[k] = -1;
     if (snell_render(r, &bg, NULL) != SNELL_OK || snell_renderer_read_exit_dirs(r, b->bgdirs) != SNELL_OK ||
         snell_render(r, fd, &fs) != SNELL_OK || snell_renderer_read_exit_dirs(r, b->dirs) != SNELL_OK) {
         bench_fail(c, "exit-direction frame", ctx);
     } else {
         ok = 1;
         for (g = 0; g < fs.glass_count; g++)
-            if (fs.glass[g].exact_fallback_pixels >= 0)
-                c->exact_fallback_pixels = (c->exact_fallback_pixels < 0 ? 0 : c->exact_fallback_pixels) +
-                                           fs.glass[g].exact_fallback_pixels;
+            for (k = 0; k < SNELL_MAX_METHOD_COUNTERS; k++)
+                if (fs.glass[g].method_used == c->method->method && fs.glass[g].counters[k] >= 0)
+                    c->counters[k] = (c->counters[k] < 0 ? 0 : c->counters[k]) + fs.glass[g].counters[k];
         snell_metrics_coverage_mask(b->dirs, b->bgdirs, (long)b->n, b->mask);
         c->nan_inf = 0;
         for (i = 0; i < b->n; i++)

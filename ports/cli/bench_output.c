@@ -167,6 +167,7 @@ static void json_header(FILE *f, const bench_options *o, const bench_run_info *r
 
 static void json_result(FILE *f, const bench_config *c)
 {
+    int n;
     fprintf(f, "    {\"spec\": ");
     json_str(f, c->spec);
     fprintf(f, ", \"method\": ");
@@ -207,8 +208,14 @@ static void json_result(FILE *f, const bench_config *c)
     json_num(f, c->vs_single >= 0 ? c->vs_single : NAN);
     fprintf(f, ", \"pareto\": %s, \"exit_dir_encoding\": ", c->pareto ? "true" : "false");
     json_str(f, c->encoding);
-    fprintf(f, ", \"nan_inf\": %ld, \"exact_fallback_pixels\": ", c->nan_inf);
-    json_num(f, c->exact_fallback_pixels >= 0 ? (double)c->exact_fallback_pixels : NAN);
+    fprintf(f, ", \"nan_inf\": %ld, \"counters\": {", c->nan_inf);
+    for (n = 0; n < c->method->counter_count && n < SNELL_MAX_METHOD_COUNTERS; n++) {
+        fprintf(f, "%s", n ? ", " : "");
+        json_str(f, c->method->counters[n].name);
+        fprintf(f, ": ");
+        json_num(f, c->counters[n] >= 0 ? (double)c->counters[n] : NAN);
+    }
+    fprintf(f, "}");
     fprintf(f, ", \"matched_interfaces\": %d,\n     \"vs_matched\": ", c->ref_interfaces);
     json_errors(f, c, 0);
     fprintf(f, ",\n     \"vs_full\": ");

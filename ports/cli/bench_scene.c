@@ -296,10 +296,7 @@ void bench_scene_frame(const bench_config *c, const bench_scene *s, const snell_
         }
         /* the file's material; the configuration's method and its parameters */
         glass[i].material.method = c->glass.method;
-        glass[i].material.cubemap = c->glass.cubemap;
-        glass[i].material.wyman = c->glass.wyman;
-        glass[i].material.oliveira = c->glass.oliveira;
-        glass[i].material.peel = c->glass.peel;
+        snell_glass_copy_method_params(&glass[i].material, &c->glass);
     }
     for (i = 0; i < s->glass_count && i < c->object_method_count; i++) glass[i].material.method = c->object_methods[i];
     fd->env = env;

@@ -234,37 +234,21 @@ void bench_spec_help(FILE *f)
 }
 
 /* -------------------------------------------- per-method bench knowledge */
-/* What snell-bench knows of a method beyond the registry: the parameters of
- * its default sweep, and which MATCHED reference model it approximates. */
-const char *bench_default_sweep(const snell_method_info *m)
-{
-    if (m->method == SNELL_METHOD_CUBEMAP) return "iterations=4,6,12";
-    if (m->method == SNELL_METHOD_OLIVEIRA) return "linear=0,8,16";
-    if (m->method == SNELL_METHOD_PEEL) return "linear=8,16"; /* layers and fixes: bench/BENCHMARKS.md */
-    return "";
-}
+/* What snell-bench measures a method by comes from its registry entry: the
+ * parameters of its default sweep, and the MATCHED reference model it
+ * approximates (snell_method_info.ref_interfaces, ref_chord_absorption). */
+const char *bench_default_sweep(const snell_method_info *m) { return m->default_sweep ? m->default_sweep : ""; }
 
 /* Sets the MATCHED reference model from the method and its resolved parameters. */
 static void reference_model(bench_config *c)
 {
     snell_glass_resolved r;
-    if (c->method->method == SNELL_METHOD_SINGLE) {
-        /* Unger 3.3: one interface; absorption over the bounding-sphere chord. */
-        c->ref_interfaces = 1;
-        c->ref_absorb = SNELL_REF_ABSORB_BOUNDING_SPHERE;
-        return;
-    }
-    c->ref_absorb = SNELL_REF_ABSORB_PATH;
-    /* Wyman's model stops after two interfaces (TIR reflects and leaves) */
-    c->ref_interfaces = c->method->method == SNELL_METHOD_WYMAN ? 2 : 10;
-    if (snell_glass_defaults(&c->glass, &r) != SNELL_OK) return;
-    if (c->method->method == SNELL_METHOD_CUBEMAP) c->ref_interfaces = r.material.cubemap.max_interfaces;
-    if (c->method->method == SNELL_METHOD_OLIVEIRA) c->ref_interfaces = r.material.oliveira.max_interfaces;
-    /* peel's cap; MATCHED stops at the first exit, peel goes on through
-     * re-entries as FULL's dominant branch does: FULL is its model */
-    if (c->method->method == SNELL_METHOD_PEEL) c->ref_interfaces = r.material.peel.max_interfaces;
-    /* exact is the MATCHED model itself: its error there is float rounding */
-    if (c->method->method == SNELL_METHOD_EXACT) c->ref_interfaces = r.material.exact.max_interfaces;
+    int interfaces = 0;
+    c->ref_absorb = c->method->ref_chord_absorption ? SNELL_REF_ABSORB_BOUNDING_SPHERE : SNELL_REF_ABSORB_PATH;
+    c->ref_interfaces = c->method->ref_interfaces > 0 ? c->method->ref_interfaces : 10;
+    if (c->method->ref_interfaces > 0 || snell_glass_defaults(&c->glass, &r) != SNELL_OK) return;
+    if (snell_glass_get_param(&r.material, c->method->method, "interfaces", &interfaces) == SNELL_OK && interfaces > 0)
+        c->ref_interfaces = interfaces;
 }
 
 /* ------------------------------------------------------------- expansion */

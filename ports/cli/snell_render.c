@@ -164,14 +164,19 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
         snell_glass_resolved m;
-        char skipped[160], layers[64] = "";
+        const snell_method_info *info = snell_method_info_of(g->method_used);
+        char skipped[160], layers[160] = "";
+        size_t len = 0;
+        int k;
         skipped_str(g->skipped, skipped, sizeof skipped);
-        if (g->method_used == SNELL_METHOD_PEEL)
-            snprintf(layers, sizeof layers, ", layers peeled %d used %d", g->layers_peeled, g->layers_used);
-        if (g->method_used == SNELL_METHOD_EXACT && g->exact_fallback_pixels >= 0)
-            snprintf(layers, sizeof layers, ", fallback pixels %d", g->exact_fallback_pixels);
-        else if (g->method_used == SNELL_METHOD_EXACT)
-            snprintf(layers, sizeof layers, ", fallback pixels not counted (colour output)");
+        /* The method's own counters, as its registry entry names them. */
+        for (k = 0; info && k < info->counter_count && len < sizeof layers; k++) {
+            if (g->counters[k] >= 0)
+                len += (size_t)snprintf(layers + len, sizeof layers - len, ", %s %d", info->counters[k].name,
+                                        g->counters[k]);
+            else
+                len += (size_t)snprintf(layers + len, sizeof layers - len, ", %s not counted", info->counters[k].name);
+        }
         if (snell_glass_defaults(&s->glass[i].material, &m) != SNELL_OK) m.material.ior = NAN;
         fprintf(f,
                 "stats: glass %d (%s, ior %g): method %s, warning %d, passes %d, prepared %d, env_updated %d, "

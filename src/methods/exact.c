@@ -8,7 +8,7 @@
  * texture read with texelFetch (core GLES 3.0). Per frame one pass over the
  * front faces; each pixel's node visits are capped by a compile-time budget,
  * past which it takes the single-surface answer (counted in
- * snell_object_stats.exact_fallback_pixels on RGBA32F exit-direction
+ * the fallback_pixels counter (snell_object_stats.counters) on RGBA32F exit-direction
  * renderers). A deformed mesh (snell_mesh_set_vertices: a new version) is
  * refitted, not rebuilt: see exact_prepare. */
 #include "frame/glass_program.h"
@@ -508,8 +508,7 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
     }
     snell__draw_surface(o, stats);
     stats->passes++;
-    stats->exact_fallback_pixels = -1;
-    if (v->out == SNELL__OUT_DIR_FLOAT) return count_fallbacks(ctx, s, o, &stats->exact_fallback_pixels);
+    if (v->out == SNELL__OUT_DIR_FLOAT) return count_fallbacks(ctx, s, o, &stats->counters[0]);
     return SNELL_OK;
 }
 
@@ -535,11 +534,23 @@ static const size_t g_offsets[] = {
     offsetof(snell_glass_material, exact.node_format), offsetof(snell_glass_material, exact.auto_pick),
     offsetof(snell_glass_material, exact.walk)};
 
+static const snell_counter_info g_counters[] = {
+    /* Counted only by SNELL_OUTPUT_EXIT_DIRECTION renderers with an RGBA32F
+     * target (the pixel's alpha marks it, read back once per object and
+     * frame; GLES 3.0's occlusion queries say only whether any sample
+     * passed, and it has no atomic counters); -1 where not counted (colour
+     * output, the packed RGBA8 target). */
+    {"fallback_pixels", "pixels that ran out of exact.budget and took the single-surface answer (exit-direction "
+                        "output on an RGBA32F target only)"},
+};
+
+/* It is the MATCHED model itself: its error there is float rounding. */
 static const snell_method_info g_info = {
     SNELL_METHOD_EXACT, "exact",
     "exact: the mesh's BVH traversed per pixel (watertight triangles, TIR), the MATCHED reference on the GPU",
     "nothing (any mesh); AUTO only where material.exact.auto_pick allows", 6,
-    (int)(sizeof g_params / sizeof *g_params), g_params};
+    (int)(sizeof g_params / sizeof *g_params), g_params, (int)(sizeof g_counters / sizeof *g_counters), g_counters,
+    0, 0, ""};
 
 const snell__method snell__method_exact = {
     .info = &g_info,

@@ -255,8 +255,8 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     if (st == SNELL_OK) st = peel_layers(ctx, s, v, o, layers_wanted(o), &peeled, &used);
     if (st != SNELL_OK) return st;
     stats->passes += peeled;
-    stats->layers_peeled = peeled;
-    stats->layers_used = used;
+    stats->counters[0] = peeled;
+    stats->counters[1] = used;
     depth_frame(v, o, fwd, &near_, &inv_range);
     snell__glass_program_use(&p->slot.g, v, o);
     glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
@@ -330,11 +330,20 @@ static const size_t g_offsets[] = {
     offsetof(snell_glass_material, peel.fixes), offsetof(snell_glass_material, peel.fresnel),
     offsetof(snell_glass_material, peel.inner_fresnel)};
 
+static const snell_counter_info g_counters[] = {
+    {"layers_peeled", "depth layers drawn this frame (at most peel.layers, fewer where the mesh's depth complexity "
+                      "bounds them or a layer came out empty: the peels after it are not drawn)"},
+    {"layers_used", "of those, the non-empty ones the search reads"},
+};
+
+/* Its cap goes on through re-entries as FULL's dominant branch does, where
+ * MATCHED stops at the first exit: snell-bench measures it against FULL too. */
 static const snell_method_info g_info = {
     SNELL_METHOD_PEEL, "peel",
     "multi-layer in image space: depth-peeled layers, ray-height-field search between them, TIR (Wang 2014)",
     "a closed mesh of depth complexity above 2 (concave); per object and frame a few depth peels", 5,
-    (int)(sizeof g_params / sizeof *g_params), g_params};
+    (int)(sizeof g_params / sizeof *g_params), g_params, (int)(sizeof g_counters / sizeof *g_counters), g_counters,
+    0, 0, "linear=8,16"}; /* layers and fixes: bench/BENCHMARKS.md */
 
 const snell__method snell__method_peel = {
     .info = &g_info,

@@ -159,3 +159,36 @@ snell_status snell_glass_set_param(snell_glass_material *m, snell_method method,
     }
     return snell__fail(NULL, SNELL_E_INVALID_ARG, "method %s has no parameter \"%s\"", e->info->name, name);
 }
+
+snell_status snell_glass_get_param(const snell_glass_material *m, snell_method method, const char *name, int *value)
+{
+    const snell__method *e = snell__method_get(method);
+    int i;
+    if (!m || !name || !value) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_glass_get_param: NULL argument");
+    if (!e) return snell__method_unbuilt(method, "snell_glass_get_param: ");
+    for (i = 0; i < e->info->param_count; i++)
+        if (strcmp(e->info->params[i].name, name) == 0) {
+            *value = *param_ptr((snell_glass_material *)m, e, i);
+            return SNELL_OK;
+        }
+    return snell__fail(NULL, SNELL_E_INVALID_ARG, "method %s has no parameter \"%s\"", e->info->name, name);
+}
+
+void snell_glass_copy_method_params(snell_glass_material *dst, const snell_glass_material *src)
+{
+    int i, j;
+    if (!dst || !src) return;
+    for (i = 0; i < METHOD_COUNT; i++)
+        for (j = 0; j < g_methods[i]->info->param_count; j++)
+            *param_ptr(dst, g_methods[i], j) = *param_ptr((snell_glass_material *)src, g_methods[i], j);
+}
+
+int snell_object_counter(const snell_object_stats *st, const char *name)
+{
+    const snell_method_info *info = st ? snell_method_info_of(st->method_used) : NULL;
+    int i;
+    if (!info || !name) return -1;
+    for (i = 0; i < info->counter_count && i < SNELL_MAX_METHOD_COUNTERS; i++)
+        if (strcmp(info->counters[i].name, name) == 0) return st->counters[i];
+    return -1;
+}

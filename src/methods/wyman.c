@@ -260,7 +260,8 @@ static const snell_method_info g_info = {
     "two-sided in image space: exit interpolated between view-ray and normal thickness, back-face normal "
     "(Wyman 2005)",
     "a closed mesh (no centre, no star shape); per frame a back-face pass", 3,
-    (int)(sizeof g_params / sizeof *g_params), g_params};
+    (int)(sizeof g_params / sizeof *g_params), g_params, 0, NULL,
+    2, 0, ""}; /* its model stops after two interfaces (TIR reflects and leaves) */
 
 const snell__method snell__method_wyman = {
     .info = &g_info,

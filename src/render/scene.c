@@ -82,7 +82,7 @@ static snell_status build_object(snell_ctx *ctx, const snell_glass *g, int i, sn
     o->view_depth = -c[2];
     st->view_depth = o->view_depth;
     st->draw_order = -1;
-    st->exact_fallback_pixels = -1; /* counted only by exact (exact.c) */
+    for (k = 0; k < SNELL_MAX_METHOD_COUNTERS; k++) st->counters[k] = -1; /* the method counts what it counts */
     st->method_used = SNELL_METHOD_AUTO;
     if (outside_view(sc->view.view_proj, o->bsphere)) {
         st->skipped |= SNELL_SKIP_OUTSIDE_VIEW;

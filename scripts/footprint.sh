@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# footprint.sh — the size budgets of README "Footprint and components" (issue 24):
+# builds the stripped libsnell.so of the full build (Release) and of the device
+# preset (its default MinSizeRel), prints both and fails past 640 KiB / 192 KiB;
+# with "test", also runs the device preset's own test suite (the tests that need
+# none of what it leaves out, install_consumer among them: a C program built
+# against the installed device library). About 2 minutes on a 2-core box.
+#   bash scripts/footprint.sh [test]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+FULL_BUDGET=$((640 * 1024))
+DEVICE_BUDGET=$((192 * 1024))
+
+size_of() { # build dir -> stripped size in bytes
+    strip -o "$1/libsnell.stripped.so" "$1/libsnell.so"
+    stat -c %s "$1/libsnell.stripped.so"
+}
+
+cmake -S . -B build-footprint-full -DCMAKE_BUILD_TYPE=Release -DSNELL_BUILD_TESTS=OFF -DSNELL_BUILD_PORTS=OFF >/dev/null
+cmake --build build-footprint-full -j"$(nproc)" --target snell_shared >/dev/null
+BUILD_TESTS=OFF
+[ "${1:-}" = test ] && BUILD_TESTS=ON
+cmake -S . -B build-footprint-device -DSNELL_PRESET=device -DSNELL_BUILD_TESTS=$BUILD_TESTS >/dev/null
+cmake --build build-footprint-device -j"$(nproc)" >/dev/null
+full=$(size_of build-footprint-full)
+device=$(size_of build-footprint-device)
+echo "footprint: full Release $full bytes ($((full / 1024)) KiB, budget $((FULL_BUDGET / 1024)) KiB)"
+echo "footprint: device preset $device bytes ($((device / 1024)) KiB, budget $((DEVICE_BUDGET / 1024)) KiB)"
+status=0
+[ "$full" -le "$FULL_BUDGET" ] || { echo "footprint: the full build is over its budget" >&2; status=1; }
+[ "$device" -le "$DEVICE_BUDGET" ] || { echo "footprint: the device preset is over its budget" >&2; status=1; }
+if [ "$BUILD_TESTS" = ON ]; then
+    ctest --test-dir build-footprint-device --output-on-failure -j"$(nproc)" -LE longrun
+fi
+exit $status
