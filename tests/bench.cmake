@@ -20,7 +20,11 @@ if(TARGET snell-bench)
               "-b|single:iterations=4" "-b|cubemap:encoding=rgb" "-b|cubemap:scene=pair:attenuation=2/1/1/1"
               "-b|single:lod=0" "-b|single:lod=1.5" "-b|single:lod=nan" "-b|single:dispersion=-1"
               "-b|single:dispersion=21" "-b|single:dispersion_model=spectral"
-              "-b|single:methods=nosuch" "-b|single:methods=peel//single")
+              "-b|single:methods=nosuch" "-b|single:methods=peel//single"
+              # 0 means the default (8, 10) to the library: refused, not run as the default (issue 25)
+              "-b|oliveira:linear=0" "-b|wyman:guard=0"
+              # the frame's scene layers are scene_layers=; layers= is peel's own (2..8)
+              "-b|single:layers=2" "-b|peel:layers=1")
     string(MAKE_C_IDENTIFIER "bench_bad_${bad}" name)
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=${bad}" -DCODE=2 "-DERR=snell-bench: "
              -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
@@ -46,4 +50,13 @@ if(TARGET snell_bench_common AND SNELL_WITH_REF)
   snell_add_test(test_bench_classes SOURCES test_bench_classes.c LABELS "unit;cli")
   target_link_libraries(test_bench_classes PRIVATE snell_bench_common)
   target_include_directories(test_bench_classes PRIVATE ${PROJECT_SOURCE_DIR}/ports/cli)
+endif()
+
+# Every key the bench's spec parser accepts (its common keys and every method
+# parameter of the registry) changes the configuration field it names and no
+# other (issue 25 item 4). A CPU test of bench_spec.c.
+if(TARGET snell_bench_common)
+  snell_add_test(test_bench_keys SOURCES test_bench_keys.c LABELS "unit;cli")
+  target_link_libraries(test_bench_keys PRIVATE snell_bench_common)
+  target_include_directories(test_bench_keys PRIVATE ${PROJECT_SOURCE_DIR}/ports/cli)
 endif()

@@ -163,6 +163,10 @@ typedef struct bench_config {
 int bench_expand_spec(const char *spec, const bench_options *o, bench_config *out, int *n);
 /* The keys every method takes, for --help. */
 void bench_spec_help(FILE *f);
+/* The same keys by index (0 .. bench_spec_key_count() - 1; NULL past the end), so that a
+ * test can walk every key the parser accepts (tests/test_bench_keys.c). */
+int bench_spec_key_count(void);
+const char *bench_spec_key_name(int i);
 /* Parameters of the default sweep for a method ("" = its defaults). */
 const char *bench_default_sweep(const snell_method_info *m);
 

@@ -161,11 +161,14 @@ static int k_spin(bench_config *c, const char *v)
     return parse_vec("spin", v, &c->spin, 1, -360.0f, 360.0f);
 }
 
-/* layers=L: the frame's scene layers (snell_frame_desc.scene_layers). */
-static int k_layers(bench_config *c, const char *v)
+/* scene_layers=L: the frame's scene layers (snell_frame_desc.scene_layers).
+ * Not "layers": that is peel's own parameter (its depth layers), and a key
+ * that meant the frame's layers for one method and the kernel's for another
+ * made peel:layers=2,4,8 sweep the scene layers (issue 25). */
+static int k_scene_layers(bench_config *c, const char *v)
 {
-    if (!bench_parse_int("layers", v, -1, SNELL_MAX_SCENE_LAYERS, &c->scene_layers)) return 0;
-    if (c->scene_layers == 1) return bad("layers", v, "-1 (off), 0 (auto) or 2..8");
+    if (!bench_parse_int("scene_layers", v, -1, SNELL_MAX_SCENE_LAYERS, &c->scene_layers)) return 0;
+    if (c->scene_layers == 1) return bad("scene_layers", v, "-1 (off), 0 (auto) or 2..8");
     return 1;
 }
 
@@ -211,11 +214,16 @@ static const common_key g_common[] = {
             "reference keeps the original)", k_lod},
     {"spin", "degrees the camera turns about its target every timed frame (default 0: a still scene, whose "
              "frames may reuse the last one's work, e.g. the scene layers)", k_spin},
-    {"layers", "scene layers, glass seen through glass: 0 auto (default), -1 off, 2..8 layers at most", k_layers},
+    {"scene_layers", "the frame's scene layers, glass seen through glass: 0 auto (default), -1 off, 2..8 layers at "
+                     "most (snell_frame_desc.scene_layers; a method's own layers= is its parameter)", k_scene_layers},
     {"methods", "per glass object (scene order) a method or auto, M0/M1/...; the rest take the spec's method, "
                 "the MATCHED reference stays the spec method's model", k_methods},
 };
 #define COMMON_COUNT ((int)(sizeof g_common / sizeof *g_common))
+
+int bench_spec_key_count(void) { return COMMON_COUNT; }
+
+const char *bench_spec_key_name(int i) { return i >= 0 && i < COMMON_COUNT ? g_common[i].key : NULL; }
 
 void bench_spec_help(FILE *f)
 {
@@ -237,8 +245,6 @@ void bench_spec_help(FILE *f)
 /* What snell-bench measures a method by comes from its registry entry: the
  * parameters of its default sweep, and the MATCHED reference model it
  * approximates (snell_method_info.ref_interfaces, ref_chord_absorption). */
-const char *bench_default_sweep(const snell_method_info *m) { return m->default_sweep ? m->default_sweep : ""; }
-
 /* Sets the MATCHED reference model from the method and its resolved parameters. */
 static void reference_model(bench_config *c)
 {
@@ -275,12 +281,71 @@ static const common_key *find_common(const char *key)
     return NULL;
 }
 
-static int method_has(const snell_method_info *m, const char *key)
+static const snell_param_info *method_param(const snell_method_info *m, const char *key)
 {
     int k;
     for (k = 0; k < m->param_count; k++)
-        if (!strcmp(m->params[k].name, key)) return 1;
-    return 0;
+        if (!strcmp(m->params[k].name, key)) return &m->params[k];
+    return NULL;
+}
+
+/* 1 if value is an integer that the library cannot be asked for: every
+ * descriptor field reads 0 as "the default" (snell__method_params_resolve),
+ * so where a parameter's range holds 0 but its default is not 0 (oliveira's
+ * linear steps: 0..32, default 8), "=0" would run the default under the name
+ * 0 and a sweep 0,8,16 would time one configuration twice. Enum parameters
+ * are exempt: their 0 is named "default" and means it. */
+static int zero_inexpressible(const snell_param_info *p, const char *value)
+{
+    char *end;
+    long v;
+    if (p->value_names || p->def == 0 || p->min > 0 || p->max < 0) return 0;
+    errno = 0;
+    v = strtol(value, &end, 10);
+    return end != value && !*end && !errno && v == 0;
+}
+
+static void refuse_zero(const snell_method_info *m, const snell_param_info *p)
+{
+    char range[64];
+    if (p->min < 0) snprintf(range, sizeof range, "%d%s, 1..%d", p->min, p->min < -1 ? "..-1" : "", p->max);
+    else snprintf(range, sizeof range, "1..%d", p->max);
+    fprintf(stderr,
+            "snell-bench: %s:%s=0: the library reads 0 as the default (%d) for every parameter, so 0 itself "
+            "cannot be asked for; give %s, or leave %s= out for the default\n",
+            m->name, p->name, p->def, range, p->name);
+}
+
+/* The registry's default sweep less the values the bench refuses (above),
+ * with a note on stderr naming what was dropped. */
+const char *bench_default_sweep(const snell_method_info *m)
+{
+    static char out[1024];
+    char buf[1024], *tok, *save = NULL;
+    size_t len = 0;
+    if (!m->default_sweep || strlen(m->default_sweep) >= sizeof buf) return m->default_sweep ? m->default_sweep : "";
+    strcpy(buf, m->default_sweep);
+    out[0] = '\0';
+    for (tok = strtok_r(buf, ":", &save); tok; tok = strtok_r(NULL, ":", &save)) {
+        char *eq = strchr(tok, '='), *v, *vsave = NULL;
+        const snell_param_info *p;
+        int kept = 0;
+        if (!eq) return m->default_sweep; /* bench_expand_spec says what is wrong with it */
+        *eq = '\0';
+        p = method_param(m, tok);
+        for (v = strtok_r(eq + 1, ",", &vsave); v; v = strtok_r(NULL, ",", &vsave)) {
+            if (p && zero_inexpressible(p, v)) {
+                fprintf(stderr, "snell-bench: %s's default sweep %s: %s=0 dropped (0 means the default %d here)\n",
+                        m->name, m->default_sweep, p->name, p->def);
+                continue;
+            }
+            if (len < sizeof out)
+                len += (size_t)snprintf(out + len, sizeof out - len, "%s%s%s%s", kept ? "," : (len ? ":" : ""),
+                                        kept ? "" : tok, kept ? "" : "=", v);
+            kept = 1;
+        }
+    }
+    return out;
 }
 
 /* Splits "a,b,c" into k->values. */
@@ -399,11 +464,17 @@ int bench_expand_spec(const char *spec, const bench_options *o, bench_config *ou
         char *eq = strchr(tok, '=');
         spec_key *sk;
         const common_key *ck;
+        const snell_param_info *mp;
         if (!eq) return fprintf(stderr, "snell-bench: '%s' in '%s' is not key=value\n", tok, spec), 0;
         *eq = '\0';
-        ck = find_common(tok);
-        if (!ck && !method_has(e.method, tok)) {
-            fprintf(stderr, "snell-bench: method %s has no key '%s' (see --list)\n", e.method->name, tok);
+        /* the method's own parameters first: a method's key always reaches
+         * its kernel (tests/test_bench_keys.c checks that no parameter is
+         * named like a common key, so neither hides the other) */
+        mp = method_param(e.method, tok);
+        ck = mp ? NULL : find_common(tok);
+        if (!ck && !mp) {
+            fprintf(stderr, "snell-bench: method %s has no key '%s' (see --list)%s\n", e.method->name, tok,
+                    !strcmp(tok, "layers") ? "; the frame's scene layers are scene_layers=" : "");
             return 0;
         }
         if (!strcmp(tok, "scene")) sk = &e.keys[0], have_scene = 1;
@@ -413,6 +484,8 @@ int bench_expand_spec(const char *spec, const bench_options *o, bench_config *ou
         sk->common = ck;
         snprintf(sk->key, sizeof sk->key, "%s", tok);
         if (!split_values(sk, eq + 1)) return 0;
+        for (k = 0; mp && k < sk->count; k++)
+            if (zero_inexpressible(mp, sk->values[k])) return refuse_zero(e.method, mp), 0;
     }
     if (!have_scene && !default_key(&e.keys[0], "scene", o->scenes)) return 0;
     if (!have_size && !default_key(&e.keys[1], "size", o->sizes)) return 0;

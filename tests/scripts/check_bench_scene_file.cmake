@@ -8,7 +8,7 @@
 #  - the method's background (the skybox, the reference's env lookup) within 1/255
 #    RMSE, single's glass pixels far worse: classes not swapped;
 #  - the scene layers on by default there (the comparisons with isolate_glass = 0), off
-#    with layers=-1, and then the objects drawn alone match the frame (within 0.5 dB);
+#    with scene_layers=-1, and then the objects drawn alone match the frame (within 0.5 dB);
 #  - the isolated reference differs from the whole-scene one only where the view ray
 #    meets glass first (an opaque or background pixel's path never meets glass), and
 #    on three_glass_two_opaque it does differ there (glass seen through glass);
@@ -25,7 +25,7 @@ set(three ${SCENES}/three_glass_two_opaque.gltf)
 set(box ${SCENES}/glass_box.gltf)
 execute_process(COMMAND ${EXE} -b single:scene=${three}:size=48x48 -b cubemap:scene=${three}:size=48x48
                         -b single:scene=${box}:size=48x48 -b cubemap:scene=${three}:size=48x48:methods=peel/single
-                        -b cubemap:scene=${three}:size=48x48:layers=-1
+                        -b cubemap:scene=${three}:size=48x48:scene_layers=-1
                         --frames 1 --warmup 0 --no-cache -q -o ${OUT_DIR}/bench
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -41,12 +41,12 @@ if(NOT n EQUAL 5)
   message(FATAL_ERROR "expected 5 results, got ${n}")
 endif()
 # the scene layers: on by default for 3 glass + 2 opaque objects (the MATCHED/FULL comparisons then
-# see glass through glass too), off with layers=-1 (the isolated references)
+# see glass through glass too), off with scene_layers=-1 (the isolated references)
 string(JSON iso1 GET "${json}" results 1 reference_isolate_glass)
 string(JSON iso4 GET "${json}" results 4 reference_isolate_glass)
 string(JSON lay4 GET "${json}" results 4 scene_layers)
 if(iso1 OR NOT iso4 OR NOT lay4 EQUAL -1)
-  message(FATAL_ERROR "reference_isolate_glass: ${iso1} with the layers (want false), ${iso4} with layers=${lay4} (want true)")
+  message(FATAL_ERROR "reference_isolate_glass: ${iso1} with the layers (want false), ${iso4} with scene_layers=${lay4} (want true)")
 endif()
 # each object drawn alone and composed: with the layers off that is what the renderer draws
 # (CMake's math is integer: dB in tenths)
@@ -67,7 +67,7 @@ tenths(${m4} mt)
 tenths(${a4} at)
 math(EXPR diff "${mt} - ${at}")
 if(diff GREATER 5 OR diff LESS -5)
-  message(FATAL_ERROR "layers=-1: the frame's glass ${m4} dB, the objects alone ${a4} dB")
+  message(FATAL_ERROR "scene_layers=-1: the frame's glass ${m4} dB, the objects alone ${a4} dB")
 endif()
 # methods=: objects 0 and 1 by the list, object 2 by the spec's method
 foreach(k 0 1 2)
