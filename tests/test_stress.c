@@ -25,28 +25,85 @@
 #define PI 3.14159265358979323846
 
 /* Bounds per method, vs the MATCHED reference with the method's interface
- * cap. single: the same optical model as MATCHED(1), so only float precision
+ * cap. Methods are named, not SNELL_METHOD_* values, so that this file stays
+ * in a build that leaves some out (tests/stress.cmake registers one test per
+ * method of the registry; a method without a row here runs the checks every
+ * method must pass and reports its error bounds as not stated, exit 77).
+ * single: the same optical model as MATCHED(1), so only float precision
  * and coverage separate them (measured mean ~0.02 deg at 256^2). cubemap:
  * loose, an approximate exit search; tighten as the method matures. */
 typedef struct method_case {
     const char *name;
-    snell_method id;
-    int interfaces;
-    snell_ref_absorption absorb;
+    int interfaces;             /* MATCHED cap; 0: the registry's model (ref_interfaces, else its
+                                 * "interfaces" parameter's default) */
+    int absorb;                 /* a snell_ref_absorption; -1: the registry's (ref_chord_absorption) */
     double max_mean_deg;        /* mean angular error over compared pixels */
     double max_frac_above_5;    /* share of compared pixels above 5 degrees */
-    int needs_star;             /* error bounds only where snell_mesh_analyze finds the mesh
-                                 * star-shaped (hidden_fraction <= 0.05, AUTO's rule) */
+    double max_median_deg;      /* median angular error (0: not bounded) */
+    float max_hidden;           /* error bounds only where snell_mesh_analyze's hidden_fraction is at
+                                 * most this (the method's domain; 1: every mesh) */
 } method_case;
 
 static const method_case g_methods[] = {
-    {"single", SNELL_METHOD_SINGLE, 1, SNELL_REF_ABSORB_BOUNDING_SPHERE, 0.1, 0.002, 0},
-    {"cubemap", SNELL_METHOD_CUBEMAP, 3, SNELL_REF_ABSORB_PATH, 45.0, 0.9, 1},
+    {"single", 1, SNELL_REF_ABSORB_BOUNDING_SPHERE, 0.1, 0.002, 0.0, 1.0f},
+    /* cubemap: star-shaped meshes (hidden_fraction <= 0.05, AUTO's rule) */
+    {"cubemap", 3, SNELL_REF_ABSORB_PATH, 45.0, 0.9, 0.0, 0.05f},
     /* peel: MATCHED(8) is its path on convex meshes only (no re-entry), so
      * bounded on the star-shaped ones; measured at worst mean 1.3 deg, 2.6%
      * above 5 deg (sphere, IOR 4: grazing entries, steep exits) */
-    {"peel", SNELL_METHOD_PEEL, 8, SNELL_REF_ABSORB_PATH, 3.0, 0.05, 1},
+    {"peel", 8, SNELL_REF_ABSORB_PATH, 3.0, 0.05, 0.0, 0.05f},
+    /* wyman, oliveira, exact: vs the registry's MATCHED model (wyman 2, oliveira
+     * its interfaces default 2, exact 8; absorption over the path), bounds the
+     * worst case measured at 128^2 in all three shading runs (auto, forward,
+     * screen: within 0.01 deg of each other) plus about 10%, on llvmpipe.
+     * wyman and oliveira on the star-shaped meshes (sphere, cube) only: the
+     * torus (49% hidden) is inside their fit (0.6) but a view through its
+     * hole breaks the back-face exit estimate (torus grazing el 0: wyman mean
+     * 50.5, median 53.3 deg, 98.4% above 5; oliveira 41.3, 27.6, 74.5%) and
+     * the shell (100% hidden) outside it; both are still checked for NaN and
+     * coverage. Their worst star-shaped case is the sphere at IOR 4 (wyman mean
+     * 39.72, median 12.75 deg, 66.6% above 5; oliveira 18.58, 6.01, 58.9%);
+     * at IOR 1.5 wyman 12.26 / 1.55 / 31.3%, oliveira 3.49 / 0.96 / 6.2%. */
+    {"wyman", 0, -1, 44.0, 0.72, 14.0, 0.05f},
+    {"oliveira", 0, -1, 20.5, 0.65, 6.6, 0.05f},
+    /* exact is MATCHED on the GPU, on every mesh: measured mean <= 0.0002,
+     * median <= 0.0001, p99 <= 0.0031, max 0.307 deg (torus grazing el 0),
+     * none above 5 deg; the bounds leave room for float paths that part from
+     * the double ones after several bounces (0.2% of pixels above 5 deg). */
+    {"exact", 0, -1, 0.01, 0.002, 0.001, 1.0f},
 };
+
+/* A method as run: its registry entry, its row (NULL: none stated) and the
+ * MATCHED model it is compared with. */
+typedef struct stress_method {
+    const char *name;
+    snell_method id;
+    const method_case *bounds;
+    int interfaces;
+    snell_ref_absorption absorb;
+} stress_method;
+
+static int resolve_method(const snell_method_info *info, stress_method *out)
+{
+    size_t i;
+    int v = 0;
+    memset(out, 0, sizeof *out);
+    out->name = info->name;
+    out->id = info->method;
+    for (i = 0; i < sizeof g_methods / sizeof *g_methods; i++)
+        if (!strcmp(g_methods[i].name, info->name)) out->bounds = &g_methods[i];
+    /* the registry's MATCHED model (what snell-bench compares with) */
+    out->interfaces = info->ref_interfaces;
+    if (out->interfaces <= 0) {
+        for (i = 0; i < (size_t)info->param_count; i++)
+            if (!strcmp(info->params[i].name, "interfaces")) v = info->params[i].def;
+        out->interfaces = v > 0 ? v : 10;
+    }
+    out->absorb = info->ref_chord_absorption ? SNELL_REF_ABSORB_BOUNDING_SPHERE : SNELL_REF_ABSORB_PATH;
+    if (out->bounds && out->bounds->interfaces > 0) out->interfaces = out->bounds->interfaces;
+    if (out->bounds && out->bounds->absorb >= 0) out->absorb = (snell_ref_absorption)out->bounds->absorb;
+    return 1;
+}
 
 typedef struct scene_case {
     const char *label;
@@ -108,7 +165,7 @@ static long edge_pixels(const uint8_t *m)
     return c;
 }
 
-static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, const method_case *mc,
+static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, const stress_method *mc,
                     const scene_case *sc)
 {
     static float dirs[W * H * 3], bg[W * H * 3], rgb[W * H * 3], ref_dirs[W * H * 3];
@@ -162,10 +219,10 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
     dd.height = H;
     CHECK_OK(snell_metrics_dir_error(&dd, &e));
     edges = edge_pixels(hit);
-    printf("%-8s %-22s glass %5ld/%5ld mismatch %4ld (edge %4ld) NaN %ld  mean %.4f p99 %.4f max %.3f deg  >1 %.2f%% "
-           ">5 %.2f%%\n",
-           mc->name, sc->label, e.glass_ref, e.glass_test, e.mask_mismatch, edges, e.nan_inf, e.mean_deg, e.p99_deg,
-           e.max_deg, 100.0 * e.frac_above_1deg, 100.0 * e.frac_above_5deg);
+    printf("%-8s %-22s glass %5ld/%5ld mismatch %4ld (edge %4ld) NaN %ld  mean %.4f median %.4f p99 %.4f max %.3f "
+           "deg  >1 %.2f%% >5 %.2f%%\n",
+           mc->name, sc->label, e.glass_ref, e.glass_test, e.mask_mismatch, edges, e.nan_inf, e.mean_deg,
+           e.median_deg, e.p99_deg, e.max_deg, 100.0 * e.frac_above_1deg, 100.0 * e.frac_above_5deg);
 #define STRESS_CHECK(cond, ...)                                                                                        \
     do {                                                                                                               \
         ok &= !!(cond);                                                                                                \
@@ -178,19 +235,23 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
      * hit); in a flat grazing view the whole face is 'silhouette'. */
     STRESS_CHECK(e.mask_mismatch <= edges + W * H / 1000, "%s %s: %ld coverage mismatches vs %ld silhouette pixels",
                  mc->name, sc->label, e.mask_mismatch, edges);
-    if (mc->needs_star) {
+    if (!mc->bounds) return ok; /* no bounds stated: main says so */
+    if (mc->bounds->max_hidden < 1.0f) {
         snell_mesh_analysis an;
         CHECK_OK(snell_mesh_analyze(sc->mesh, &an));
-        if (an.hidden_fraction > 0.05f) {
-            printf("  (%s: %.0f%% of the surface hidden from the centre: outside the method's domain, "
-                   "error not bounded)\n", mc->name, 100.0 * an.hidden_fraction);
+        if (an.hidden_fraction > mc->bounds->max_hidden) {
+            printf("  (%s: %.0f%% of the surface hidden from the centre, above %.0f%%: outside the method's domain, "
+                   "error not bounded)\n", mc->name, 100.0 * an.hidden_fraction, 100.0 * mc->bounds->max_hidden);
             return ok;
         }
     }
-    STRESS_CHECK(e.mean_deg <= mc->max_mean_deg, "%s %s: mean error %.4f deg > %.4f", mc->name, sc->label, e.mean_deg,
-                 mc->max_mean_deg);
-    STRESS_CHECK(e.frac_above_5deg <= mc->max_frac_above_5, "%s %s: %.3f%% above 5 deg > %.3f%%", mc->name, sc->label,
-                 100.0 * e.frac_above_5deg, 100.0 * mc->max_frac_above_5);
+    STRESS_CHECK(e.mean_deg <= mc->bounds->max_mean_deg, "%s %s: mean error %.4f deg > %.4f", mc->name, sc->label,
+                 e.mean_deg, mc->bounds->max_mean_deg);
+    STRESS_CHECK(e.frac_above_5deg <= mc->bounds->max_frac_above_5, "%s %s: %.3f%% above 5 deg > %.3f%%", mc->name,
+                 sc->label, 100.0 * e.frac_above_5deg, 100.0 * mc->bounds->max_frac_above_5);
+    if (mc->bounds->max_median_deg > 0.0)
+        STRESS_CHECK(e.median_deg <= mc->bounds->max_median_deg, "%s %s: median error %.4f deg > %.4f", mc->name,
+                     sc->label, e.median_deg, mc->bounds->max_median_deg);
     return ok;
 }
 
@@ -204,7 +265,7 @@ int main(int argc, char **argv)
     snell_shape_desc sd;
     snell_env_desc ed;
     size_t m, k;
-    int broken = 0;
+    int broken = 0, ran = 0, not_run = 0, unbounded = 0, named = 0, rc;
     if (!ctx) SKIP("no GL context");
     memset(&sd, 0, sizeof sd);
     memset(&ed, 0, sizeof ed);
@@ -249,23 +310,33 @@ int main(int argc, char **argv)
             {"torus scale 1e3", torus, 1.5f, 30, 20, 1e3f},
             {"thin shell 2%", shell, 1.5f, 30, 20, 1.0f},
         };
-        for (m = 0; m < sizeof g_methods / sizeof *g_methods; m++) {
+        /* the registry's methods, or the one named (tests/stress.cmake: one test per method) */
+        for (m = 0; m < (size_t)snell_method_count(); m++) {
+            const snell_method_info *info = snell_method_info_at((int)m);
+            stress_method sm;
             snell_frame_desc probe;
             snell_glass pg;
-            if (argc > 1 && strcmp(argv[1], g_methods[m].name)) continue;
-            /* A method not built into this renderer yet is skipped, not failed. */
+            if (argc > 1 && strcmp(argv[1], info->name)) continue;
+            resolve_method(info, &sm);
+            named = 1;
             test_frame_one(&probe, &pg, sphere, env);
-            pg.material.method = g_methods[m].id;
+            pg.material.method = sm.id;
             if (snell_render(r, &probe, NULL) != SNELL_OK) {
-                printf("%s: not available (%s): skipped\n", g_methods[m].name, snell_last_error(ctx));
+                /* e.g. a method that shades in screen space only, with forward shading forced */
+                printf("%s: does not render here (%s)\n", sm.name, snell_last_error(ctx));
+                not_run++;
                 continue;
             }
+            ran++;
+            printf("%s vs MATCHED(%d), absorption %s\n", sm.name, sm.interfaces,
+                   sm.absorb == SNELL_REF_ABSORB_BOUNDING_SPHERE ? "over the bounding-sphere chord" : "over the path");
             for (k = 0; k < sizeof cases / sizeof *cases; k++)
                 if (getenv("STRESS_ONLY") && !strstr(cases[k].label, getenv("STRESS_ONLY"))) continue;
-                else if (!run_case(ctx, r, env, &g_methods[m], &cases[k])) {
-                    printf("  ^ BROKEN: %s %s\n", g_methods[m].name, cases[k].label);
+                else if (!run_case(ctx, r, env, &sm, &cases[k])) {
+                    printf("  ^ BROKEN: %s %s\n", sm.name, cases[k].label);
                     broken++;
                 }
+            if (!sm.bounds) unbounded++, printf("%s: no error bounds stated in tests/test_stress.c (g_methods)\n", sm.name);
         }
     }
     printf("%d case(s) broken\n", broken);
@@ -276,5 +347,10 @@ int main(int argc, char **argv)
     snell_mesh_destroy(cube);
     snell_mesh_destroy(sphere);
     snell_ctx_destroy(ctx);
-    return test_finish();
+    if (argc > 1 && !named) CHECK(0, "%s: not a method of this build's registry", argv[1]);
+    rc = test_finish();
+    /* what was not checked is reported as skipped, not passed */
+    if (rc == 0 && ran == 0 && not_run > 0) SKIP("%s does not render with this shading", argc > 1 ? argv[1] : "nothing");
+    if (rc == 0 && unbounded > 0 && broken == 0) SKIP("%d method(s) without stated error bounds (NaN and coverage checked)", unbounded);
+    return rc;
 }
