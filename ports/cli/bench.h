@@ -45,6 +45,7 @@ typedef struct bench_options {
      * frame whatever their scene, and vs_scene is each one's time over that of
      * the same spec on scene S (NULL: groups of one scene, no vs_scene) */
     const char *baseline_scene;
+    const char *markdown;          /* --markdown FILE: bench_write_markdown (NULL: none) */
 } bench_options;
 
 /* 1: run; 0: bad usage (message printed, exit 2); -1: --help/--list printed (exit 0). */
@@ -238,6 +239,11 @@ int bench_write_json(const char *path, const bench_config *cs, int n, const benc
 int bench_write_csv(const char *path, const bench_config *cs, int n);
 int bench_write_plot(const char *path, const bench_config *cs, int n, const bench_options *o,
                      const bench_run_info *run);
+/* --markdown FILE: per scene and size a markdown table (configuration, what
+ * drew it, ms/frame, x single, glass PSNR/SSIM vs FULL, Pareto) and the
+ * plot's image link (PREFIX.png as -o gave it), then the command. */
+int bench_write_markdown(const char *path, const bench_config *cs, int n, const bench_options *o,
+                         const bench_run_info *run, const char *command);
 /* The summary table, then bench_print_scene_table. */
 void bench_print_table(const bench_config *cs, int n);
 /* Per object class against the whole-scene reference (configurations with whole_measured). */

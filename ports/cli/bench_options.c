@@ -49,6 +49,9 @@ static void usage(FILE *f)
             "                         or six faces given as a pattern with %%s (px nx py ny pz nz;\n"
             "                         %%%% for a %%, no other %%)\n"
             "  -o PREFIX              outputs PREFIX.json, .csv, .png (default snell-bench)\n"
+            "  --markdown FILE        also a markdown table per scene and size (what drew each configuration,\n"
+            "                         ms, x single, glass PSNR/SSIM vs FULL, Pareto), the plot's link and the\n"
+            "                         command (bench/regen.sh makes bench/BENCHMARKS.md of these)\n"
             "  --cache DIR            reference cache (default snell-bench-cache); --no-cache\n"
             "  --images DIR           also write each configuration's colour image and error map\n"
             "  --plot-y WHAT          full-mean (default), full-p99, full-rmse, matched-mean\n"
@@ -124,6 +127,7 @@ static int value_option(const char *a, const char *v, bench_options *o)
         }
         o->env = strcmp(v, "procedural") ? v : NULL;
     } else if (!strcmp(a, "-o")) o->out_prefix = v;
+    else if (!strcmp(a, "--markdown")) o->markdown = v;
     else if (!strcmp(a, "--cache")) o->cache_dir = v;
     else if (!strcmp(a, "--images")) o->images_dir = v;
     else if (!strcmp(a, "--plot-y")) {

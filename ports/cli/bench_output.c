@@ -530,3 +530,91 @@ void bench_print_scene_table(const bench_config *cs, int n)
            "(each object alone, exact); glass>glass: the glass pixels where other glass shows (the whole-scene and "
            "isolated references differ); inf dB: identical pixels\n");
 }
+
+/* -------------------------------------------------------------- markdown */
+/* A scene's markdown table for a page a person reads (bench/BENCHMARKS.md
+ * is made of these by bench/regen.sh): per scene and size the configurations
+ * with what drew them (with methods=auto: AUTO's pick), the median frame,
+ * its ratio to single's, and the colour of the glass pixels against FULL
+ * (the dB/FULL and SSIM of the summary table), then the plot. Only what this
+ * run measured: the figures a page shows are the ones its command makes. */
+static void md_drawn_by(FILE *f, const bench_config *c)
+{
+    int k, j, first = 1;
+    for (k = 0; k < c->glass_objects && k < SNELL_MAX_GLASS; k++) {
+        for (j = 0; j < k && c->methods_used[j] != c->methods_used[k]; j++) {}
+        if (j < k) continue; /* named once */
+        fprintf(f, "%s%s", first ? "" : ", ", snell_method_str(c->methods_used[k]));
+        first = 0;
+    }
+    if (first) fprintf(f, "-");
+}
+
+/* The spec less scene= and size= (the section names them). */
+static const char *md_config(const bench_config *c, char *buf, size_t n)
+{
+    const char *p = c->spec;
+    size_t len = 0;
+    buf[0] = '\0';
+    while (p && *p) {
+        const char *e = strchr(p, ':');
+        size_t k = e ? (size_t)(e - p) : strlen(p);
+        if (!(k > 6 && !strncmp(p, "scene=", 6)) && !(k > 5 && !strncmp(p, "size=", 5)) && len + k + 2 < n) {
+            if (len) buf[len++] = ':';
+            memcpy(buf + len, p, k);
+            buf[len += k] = '\0';
+        }
+        p = e ? e + 1 : NULL;
+    }
+    return buf;
+}
+
+int bench_write_markdown(const char *path, const bench_config *cs, int n, const bench_options *o,
+                         const bench_run_info *run, const char *command)
+{
+    FILE *f = fopen(path, "w");
+    char why[64], cfg[512];
+    int i, j, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
+    if (!f) return 0;
+    for (i = 0; i < n; i++) {
+        int first_of_group = 1, auto_rows = 0;
+        for (j = 0; j < i; j++)
+            if (bench_same_group(&cs[j], &cs[i])) first_of_group = 0;
+        if (!first_of_group) continue;
+        fprintf(f, "### %s, %dx%d\n\n", cs[i].scene, cs[i].width, cs[i].height);
+        fprintf(f, "%s; %s; load average %s before, %s after; median of %d frames after %d warm-up, each "
+                   "ended by glFinish (CPU clock%s); colour %s",
+                run->renderer, run->date, run->load_before, run->load_after, o->frames, o->warmup,
+                run->timer ? ", GL timer query in the JSON" : "", o->aa > 1 ? "area-averaged, " : "at pixel centres");
+        if (o->aa > 1) fprintf(f, "%dx%d rays a pixel", o->aa, o->aa);
+        if (lp >= 0) fprintf(f, "; llvmpipe threads %d", lp);
+        fprintf(f, ".\n\n| configuration | drawn by | ms/frame | × single | glass PSNR vs FULL [dB] | "
+                   "glass SSIM vs FULL | Pareto |\n|---|---|---:|---:|---:|---:|:---:|\n");
+        for (j = i; j < n; j++) {
+            const bench_config *c = &cs[j];
+            if (!bench_same_group(c, &cs[i])) continue;
+            auto_rows += c->object_method_count > 0;
+            fprintf(f, "| `%s` | ", md_config(c, cfg, sizeof cfg));
+            if (!c->ok) {
+                fprintf(f, "failed: %s | | | | | |\n", c->error);
+                continue;
+            }
+            md_drawn_by(f, c);
+            fprintf(f, " | %.2f | ", c->t_median);
+            if (c->vs_single >= 0) fprintf(f, "%.2f", c->vs_single);
+            else fprintf(f, "-");
+            fprintf(f, " | %.2f | %.4f | %s |%s\n", c->img_glass[1].psnr_db, c->ssim_glass[1], c->pareto ? "*" : "",
+                    c->warnings ? " (the method warns: its preconditions fail)" : "");
+        }
+        fprintf(f, "\n");
+        if (auto_rows)
+            fprintf(f, "`methods=auto`: AUTO chooses per object (the spec's own method is only the MATCHED "
+                       "reference's model); \"drawn by\" is its pick.\n\n");
+        fprintf(f, "![frame time vs glass error, %s %dx%d](%s.png)\n\n", cs[i].scene, cs[i].width, cs[i].height,
+                o->out_prefix);
+    }
+    fprintf(f, "Pareto: not beaten in both median time and the plot's error (%s) by another configuration of the "
+               "scene and size. Command:\n\n```\n%s\n```\n\n",
+            y_label(o->plot_y), command ? command : "snell-bench");
+    return fclose(f) == 0;
+}

@@ -64,8 +64,23 @@ static int measure_all(snell_ctx *ctx, const snell_env *env, const bench_options
     return failed;
 }
 
-/* PREFIX.json, .csv, .png. 1 if all were written. */
-static int write_outputs(const bench_config *cs, int n, const bench_options *o, const bench_run_info *run)
+/* The command line, for the markdown page that shows what it measured:
+ * arguments with characters a shell reads quoted in single quotes. */
+static void command_line(int argc, char **argv, char *out, size_t n)
+{
+    size_t len = 0;
+    int i;
+    out[0] = '\0';
+    for (i = 0; i < argc && len < n; i++) {
+        const char *a = i ? argv[i] : "snell-bench";
+        int quote = !*a || strpbrk(a, " \t\"'$`\\*?[]{}()<>|&;~#!") != NULL;
+        len += (size_t)snprintf(out + len, n - len, "%s%s%s%s", i ? " " : "", quote ? "'" : "", a, quote ? "'" : "");
+    }
+}
+
+/* PREFIX.json, .csv, .png (and --markdown). 1 if all were written. */
+static int write_outputs(const bench_config *cs, int n, const bench_options *o, const bench_run_info *run,
+                         const char *command)
 {
     char path[1200];
     int ok = 1;
@@ -75,6 +90,8 @@ static int write_outputs(const bench_config *cs, int n, const bench_options *o, 
     if (!bench_write_csv(path, cs, n)) fprintf(stderr, "snell-bench: cannot write %s\n", path), ok = 0;
     snprintf(path, sizeof path, "%s.png", o->out_prefix);
     if (!bench_write_plot(path, cs, n, o, run)) fprintf(stderr, "snell-bench: cannot write %s\n", path), ok = 0;
+    if (o->markdown && !bench_write_markdown(o->markdown, cs, n, o, run, command))
+        fprintf(stderr, "snell-bench: cannot write %s\n", o->markdown), ok = 0;
     return ok;
 }
 
@@ -88,6 +105,7 @@ int main(int argc, char **argv)
     bench_run_info run;
     int i, n = 0, rc = 0;
     char load_before[64], load_after[64], date[64];
+    static char command[8192];
     double t_start = cli_now_ms();
     time_t now = time(NULL);
 
@@ -137,7 +155,8 @@ int main(int argc, char **argv)
     if (measure_all(ctx, env, &o, cs, n, t_start) > 0) rc = 1;
     cli_loadavg(load_after, sizeof load_after);
     bench_mark_pareto(cs, n, &o);
-    if (!write_outputs(cs, n, &o, &run)) rc = 1;
+    command_line(argc, argv, command, sizeof command);
+    if (!write_outputs(cs, n, &o, &run, command)) rc = 1;
     bench_print_table(cs, n);
     printf("wrote %s.json, %s.csv, %s.png (%.1f s)\n", o.out_prefix, o.out_prefix, o.out_prefix,
            (cli_now_ms() - t_start) / 1000.0);
