@@ -15,6 +15,7 @@
 precision highp float;
 
 #include "common/pack.glsl"
+#include "common/peel_depth.glsl"
 
 in highp vec3 v_world_pos;
 in highp vec3 v_world_normal;
@@ -34,16 +35,9 @@ layout(location = 2) out highp vec4 o_next;
 
 void main()
 {
-    highp float z = clamp((dot(v_world_pos - u_eye, u_fwd) - u_near) * u_inv_range, 0.0, 1.0);
-    highp uint q = uint(z * 16777215.0 + 0.5);
-    if (u_first == 0) {
-        highp uvec4 p = uvec4(texelFetch(u_prev, ivec2(gl_FragCoord.xy), 0) * 255.0 + 0.5);
-        // an empty previous layer: nothing lies behind it either
-        if (p.a == 0u || q <= ((p.r << 16u) | (p.g << 8u) | p.b)) discard;
-    }
-    highp uvec4 b = uvec4(q >> 16u, (q >> 8u) & 255u, q & 255u, uint(u_id));
+    highp uint q = snell_peel_q((dot(v_world_pos - u_eye, u_fwd) - u_near) * u_inv_range);
+    if (u_first == 0 && !snell_peel_behind(u_prev, q)) discard;
     o_normal = snell_pack_dir_rgba8(normalize(v_world_normal));
-    // (b + 0.25) / 255: stored as b whether the driver rounds or truncates (pack.glsl)
-    o_depth = (vec4(b) + 0.25) / 255.0;
+    o_depth = snell_peel_texel(q, uint(u_id));
     o_next = o_depth;
 }
