@@ -28,7 +28,7 @@ if(TARGET snell-render)
     "quad_ngon.obj, ior 1.5\\): method cubemap, warning 1.*reason: requested, but")
   # Registry names: a clear message listing the methods; parameters by name.
   add_test(NAME cli_unknown_method COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--mesh|sphere|--method|nosuch" -DCODE=2
-           "-DERR=snell-render: unknown method 'nosuch'; methods: auto, single, cubemap, wyman, oliveira, peel" -P ${expect})
+           "-DERR=snell-render: unknown method 'nosuch'; methods: auto, single, cubemap, wyman, oliveira, layered, peel" -P ${expect})
   set_tests_properties(cli_unknown_method PROPERTIES LABELS "cli")
   add_test(NAME cli_param COMMAND ${cli} --mesh sphere --method cubemap --param cubemap.iterations=3 --param encoding=oct
            --linear 2 --stats --size 16x16 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_param.png)
@@ -82,7 +82,7 @@ if(TARGET snell-bench)
   set_tests_properties(bench_list_registry PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
     "pair .*many .*method cubemap: .*iterations +1\\.\\.32 \\(default 6\\)")
   add_test(NAME bench_unknown_method COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=-b|nosuch:scene=pair" -DCODE=2
-           "-DERR=snell-bench: unknown method 'nosuch' in 'nosuch:scene=pair'; methods: single, cubemap, wyman, oliveira, peel"
+           "-DERR=snell-bench: unknown method 'nosuch' in 'nosuch:scene=pair'; methods: single, cubemap, wyman, oliveira, layered, peel"
            -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(bench_unknown_method PROPERTIES LABELS "cli")
 endif()

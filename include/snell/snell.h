@@ -440,6 +440,11 @@ typedef enum snell_method {
                                 * to N interfaces), the MATCHED reference's model on the GPU; the accuracy
                                 * ceiling, the most expensive; AUTO picks it only where the material's
                                 * exact.auto_pick allows it (snell_exact_params) */
+    SNELL_METHOD_LAYERED,      /* multi-layer, view-independent (Umenhoffer, Patow and Szirmay-Kalos 2007,
+                                * GPU Gems 3 ch. 17): up to 8 layers of normal + distance cube maps depth-peeled
+                                * from the analysed centre once per mesh version; per pixel a march + binary
+                                * search through the layers, refraction or TIR at each crossing, re-entries
+                                * included, up to N interfaces; rigid meshes pay no per-frame peel */
     SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 
@@ -622,6 +627,24 @@ typedef struct snell_exact_params {
 } snell_exact_params;
 
 #define SNELL_EXACT_MAX_INTERFACES 10
+
+/* SNELL_METHOD_LAYERED's parameters (material.layered); zero = the default.
+ * The layers are baked once per (mesh version, face size, layers) and kept
+ * in the renderer's prepared cache: face_size^2 * 6 * layers * 8 bytes of
+ * RGBA16F (128, 4: 3 MiB; snell_object_stats.counters reports the layers
+ * used, whether they were capped, and the KiB). */
+typedef struct snell_layered_params {
+    int layers;                /* distance-map layers, 1..8 (default 4): the first `layers` surfaces along each
+                                * direction from the centre; the bake stops at the first empty layer */
+    int face_size;             /* texels a cube face side, 16..1024 (default 128) */
+    int linear_steps;          /* linear march steps from a point to the bounding sphere's far side,
+                                * 1..64 (default 24) */
+    int binary_steps;          /* binary refinement steps after a crossing, 1..16 (default 6) */
+    int max_interfaces;        /* surfaces processed per path, 1..10 (default 8: exits, re-entries, TIR) */
+} snell_layered_params;
+
+#define SNELL_LAYERED_MAX_LAYERS 8
+#define SNELL_LAYERED_MAX_INTERFACES 10
 #define SNELL_EXACT_MIN_BUDGET 64
 #define SNELL_EXACT_MAX_BUDGET 65536
 
@@ -655,6 +678,7 @@ typedef struct snell_glass_material {
     snell_oliveira_params oliveira; /* used when it is OLIVEIRA */
     snell_peel_params peel;        /* used when the method (or AUTO's choice) is PEEL */
     snell_exact_params exact;      /* used when it is EXACT (which AUTO picks only if exact.auto_pick allows) */
+    snell_layered_params layered;  /* used when it is LAYERED */
 } snell_glass_material;
 
 /* A material with every default applied, and the per-unit absorption derived

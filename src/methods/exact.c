@@ -548,7 +548,7 @@ static const snell_counter_info g_counters[] = {
 static const snell_method_info g_info = {
     SNELL_METHOD_EXACT, "exact",
     "exact: the mesh's BVH traversed per pixel (watertight triangles, TIR), the MATCHED reference on the GPU",
-    "nothing (any mesh); AUTO only where material.exact.auto_pick allows", 6,
+    "nothing (any mesh); AUTO only where material.exact.auto_pick allows", 7,
     (int)(sizeof g_params / sizeof *g_params), g_params, (int)(sizeof g_counters / sizeof *g_counters), g_counters,
     0, 0, ""};
 

@@ -341,7 +341,7 @@ static const snell_counter_info g_counters[] = {
 static const snell_method_info g_info = {
     SNELL_METHOD_PEEL, "peel",
     "multi-layer in image space: depth-peeled layers, ray-height-field search between them, TIR (Wang 2014)",
-    "a closed mesh of depth complexity above 2 (concave); per object and frame a few depth peels", 5,
+    "a closed mesh of depth complexity above 2 (concave); per object and frame a few depth peels", 6,
     (int)(sizeof g_params / sizeof *g_params), g_params, (int)(sizeof g_counters / sizeof *g_counters), g_counters,
     0, 0, "linear=8,16"}; /* layers and fixes: bench/BENCHMARKS.md */
 

@@ -19,6 +19,7 @@
     M(cubemap, CUBEMAP)    \
     M(wyman, WYMAN)        \
     M(oliveira, OLIVEIRA)  \
+    M(layered, LAYERED)    \
     M(peel, PEEL)          \
     M(exact, EXACT)
 

@@ -1,0 +1,232 @@
+// layered.frag - multi-layer refraction through layered distance cube maps
+// (Umenhoffer, Patow and Szirmay-Kalos 2007, "Robust multiple specular
+// reflections and refractions", GPU Gems 3 ch. 17). The layers (baked once
+// per mesh version by layered_bake.frag, methods/layered.c) hold, per
+// direction from the analysed centre, the first SNELL_LAYERS surfaces'
+// normals and distances. From the entry, the refracted ray is marched in
+// SNELL_LINEAR steps to the bounding sphere's far side; a sample's count of
+// surfaces closer to the centre than itself along its direction changes where
+// the ray crosses one, and SNELL_BINARY bisections on that count find where.
+// There the crossed layer's normal refracts the ray out (or reflects it on
+// total internal reflection) and the march goes on, outside too: a concave
+// mesh's re-entries are followed (FULL's dominant branch: Schlick at the
+// entry, transmission on, TIR bounces), up to u_max_interfaces surfaces. The
+// final ray leaves through snell_exit (common/beyond.glsl).
+//
+// Spaces: layers and search in object space about u_centre, the ray's
+// parameter a world length (d = M^-1 * unit world direction, as cubemap.frag),
+// so absorption and steps are right for any model matrix.
+precision highp float;
+
+#include "common/optics.glsl"
+#include "common/env.glsl"
+#include "common/output.glsl"
+#include "common/surface.glsl"
+#include "common/beyond.glsl"
+#include "common/dispersion.glsl"
+
+#define MAX_INTERFACES 10    // SNELL_LAYERED_MAX_INTERFACES
+// SNELL_LAYERS (1..8), SNELL_LINEAR (1..64), SNELL_BINARY (1..16),
+// SNELL_ABSORB (0/1) and SNELL_REENTRY (0/1: the mesh is not convex, so a ray
+// that left may meet it again) are defined by the program's variant
+// (methods/layered.c).
+
+uniform highp vec3 u_eye;
+uniform vec3 u_sigma;
+uniform vec3 u_tint;
+uniform mat3 u_normal_matrix;    // object -> world normals
+
+uniform highp sampler2DArray u_layers;  // RGBA16F: object-space normal, distance / u_radius (4: none);
+                                        // slice face * u_stride + layer
+uniform int u_stride;            // layers baked a face (SNELL_LAYERS of them hold something)
+uniform highp mat4 u_inv_model;  // world -> object
+uniform highp mat4 u_model;      // object -> world
+uniform highp vec3 u_centre;     // object space
+uniform highp float u_radius;    // object units: every vertex lies within it
+uniform int u_max_interfaces;    // 1..MAX_INTERFACES
+
+// Where direction q (from the centre) looks its layers up: (s, t) in face
+// 0's slice of its face, by the GL cube-map face selection (GLES 3.0 table
+// 3.21), which the bake's face cameras render (snell__cube_face_view_proj).
+// Looked up filtered (Umenhoffer's distance maps are): the distance is then
+// continuous across texels, so the count of surfaces below a point changes
+// only where the ray meets the interpolated surface (nearest texels made it
+// change wherever a surface runs at a grazing angle to the centre's rays).
+highp vec3 layer_coord(highp vec3 q)
+{
+    highp vec3 a = abs(q);
+    highp float sc, tc, ma;
+    int face;
+    if (a.x >= a.y && a.x >= a.z) {
+        ma = a.x;
+        face = q.x > 0.0 ? 0 : 1;
+        sc = q.x > 0.0 ? -q.z : q.z;
+        tc = -q.y;
+    } else if (a.y >= a.z) {
+        ma = a.y;
+        face = q.y > 0.0 ? 2 : 3;
+        sc = q.x;
+        tc = q.y > 0.0 ? q.z : -q.z;
+    } else {
+        ma = a.z;
+        face = q.z > 0.0 ? 4 : 5;
+        sc = q.z > 0.0 ? q.x : -q.x;
+        tc = -q.y;
+    }
+    return vec3(vec2(sc, tc) / max(ma, 1e-30) * 0.5 + 0.5, float(face * u_stride));
+}
+
+// Surfaces closer to the centre than q along q's direction.
+int below(highp vec3 q)
+{
+    highp vec3 c = layer_coord(q);
+    highp float r = length(q) / u_radius;
+    int n = 0;
+    for (int l = 0; l < SNELL_LAYERS; l++) n += textureLod(u_layers, c + vec3(0.0, 0.0, float(l)), 0.0).a < r ? 1 : 0;
+    return n;
+}
+
+// The layer at q's direction whose surface lies nearest q (its index and
+// its object-space normal, not normalised).
+highp vec3 nearest_normal(highp vec3 q, out int index)
+{
+    highp vec3 c = layer_coord(q);
+    highp float r = length(q) / u_radius, best = 8.0;
+    highp vec3 n = q;
+    index = 0;
+    for (int l = 0; l < SNELL_LAYERS; l++) {
+        highp vec4 t = textureLod(u_layers, c + vec3(0.0, 0.0, float(l)), 0.0);
+        highp float e = abs(t.a - r);
+        if (e < best) {
+            best = e;
+            index = l;
+            n = t.xyz;
+        }
+    }
+    return n;
+}
+
+// Distance along p + t d (p about the centre) to the bounding sphere's far side.
+highp float sphere_exit(highp vec3 p, highp vec3 d)
+{
+    highp float a2 = dot(d, d), b = dot(p, d), pp = dot(p, p);
+    return max((-b + sqrt(max(b * b - a2 * (pp - u_radius * u_radius), 0.0))) / a2, 0.0);
+}
+
+// The first crossing along p + t d, 0 < t <= t_max, of a surface, starting
+// with c0 surfaces below: the bracket [lo, hi] around it (lo on the start's
+// side, hi beyond, with c_hi surfaces below there); false if none.
+bool next_crossing(highp vec3 p, highp vec3 d, int c0, highp float t_max, out highp float lo, out highp float hi,
+                   out int c_hi)
+{
+    highp float step = t_max / float(SNELL_LINEAR);
+    bool found = false;
+    lo = 0.0;
+    hi = t_max;
+    c_hi = c0;
+    for (int j = 1; j <= SNELL_LINEAR; j++) {
+        highp float t = float(j) * step;
+        int c = below(p + t * d);
+        if (c != c0) {
+            hi = t;
+            c_hi = c;
+            found = true;
+            break;
+        }
+        lo = t;
+    }
+    if (!found) return false;
+    for (int i = 0; i < SNELL_BINARY; i++) {
+        highp float m = 0.5 * (lo + hi);
+        int c = below(p + m * d);
+        if (c == c0) {
+            lo = m;
+        } else {
+            hi = m;
+            c_hi = c;
+        }
+    }
+    return true;
+}
+
+// The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
+vec3 snell_glass_trace(out highp vec3 exit_dir)
+{
+    highp vec3 world_pos, world_normal;
+    snell_surface(world_pos, world_normal);
+    highp vec3 v = normalize(world_pos - u_eye);
+    vec3 n = normalize(world_normal);
+    if (dot(n, v) > 0.0) n = -n;
+    vec3 r = snell_reflect(v, n);
+    highp vec3 dir;
+    snell_refract(v, n, 1.0 / snell_ior, dir);
+    dir = normalize(dir);
+    snell_disp_enter(v, n);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
+
+    mat3 inv3 = mat3(u_inv_model);
+    highp vec3 p = (u_inv_model * vec4(world_pos, 1.0)).xyz - u_centre;
+    highp vec3 d = inv3 * dir;
+    // Just inside the entry: the entry surface is the layer nearest p; a ray
+    // leaving the centre has it below, one heading for the centre not yet.
+    int entry;
+    nearest_normal(p, entry);
+    int c = below(p + 0.02 * u_radius * d / length(d));
+    bool inside = true;
+    highp float path = 0.0;
+    vec3 tint = u_tint;
+    int done = 1; // interfaces processed: the entry
+    for (int k = 0; k < MAX_INTERFACES; k++) {
+        bool capped = done >= u_max_interfaces; // inside at the cap: the length to the next surface only
+        if (capped && (!inside || SNELL_ABSORB == 0)) break;
+        highp float t_max = sphere_exit(p, d), lo, hi;
+        int c_hi;
+        if (!next_crossing(p, d, c, t_max, lo, hi, c_hi)) {
+            // nothing before the bounding sphere's far side: out in the air,
+            // the ray leaves from its last exit; inside, through an open
+            // mesh's hole
+            if (inside) {
+                path += t_max;
+                p += t_max * d;
+            }
+            break;
+        }
+        highp float t = 0.5 * (lo + hi);
+        if (inside) path += t;
+        if (capped) {
+            p += t * d;
+            break;
+        }
+        int layer;
+        vec3 n2 = normalize(u_normal_matrix * nearest_normal(p + t * d, layer));
+        if (dot(n2, dir) > 0.0) n2 = -n2; // face the ray
+        highp vec3 out_dir;
+        bool through = snell_refract(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+        snell_disp_cross(n2, through, inside);
+        // the next march starts on the side the ray goes on in: just beyond
+        // the surface (refracted through), or just before it (reflected)
+        if (through) {
+            p += hi * d;
+            c = c_hi;
+            inside = !inside;
+            if (inside) tint *= u_tint; // entering again
+        } else {
+            p += lo * d;
+        }
+        dir = normalize(out_dir);
+        d = inv3 * dir;
+        done++;
+        // out in the air: a convex mesh is not met again (SNELL_REENTRY 0),
+        // nor anything after the last interface
+        if (!inside && (SNELL_REENTRY == 0 || done >= u_max_interfaces)) break;
+    }
+    highp vec3 exit_p = (u_model * vec4(p + u_centre, 1.0)).xyz;
+#if SNELL_ABSORB
+    vec3 transmitted = snell_disp_exit(exit_p, dir) * tint * snell_beer_lambert(u_sigma, path);
+#else
+    vec3 transmitted = snell_disp_exit(exit_p, dir) * tint;
+#endif
+    vec3 reflected = snell_reflection(world_pos, r);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
+}

@@ -1,0 +1,416 @@
+/* layered.c — multi-layer refraction through layered distance cube maps
+ * (Umenhoffer, Patow and Szirmay-Kalos 2007, GPU Gems 3 ch. 17): prepared
+ * once per (mesh version, face size, layers) by depth peeling the mesh from
+ * its analysed centre into `layers` cube layers of normal and distance
+ * (layered_bake.frag), read back once and stored as RGBA16F (normal,
+ * distance), filtered (half floats filter in GLES 3.0 but need an extension
+ * to be rendered to), in one 2D array texture, slice face * layers + layer
+ * (GLES 3.0 has no cube map arrays); per frame one
+ * pass of layered.frag over the front faces, which
+ * marches the refracted ray through the layers, refracting or reflecting at
+ * each surface crossed, re-entries included. Rigid meshes pay no per-frame
+ * peel: the view-independent counterpart of peel.c. */
+#include "frame/glass_program.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "core/program.h"
+#include "frame/ndcube.h"
+#include "frame/pass.h"
+#include "frame/units.h"
+#include "core/glstate.h"
+#include "core/pack.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#define DEFAULT_LAYERS 4
+#define DEFAULT_FACE 128
+#define DEFAULT_LINEAR 24
+#define DEFAULT_BINARY 6
+#define DEFAULT_INTERFACES 8
+#define PROG_CACHE 8
+
+/* llvmpipe: the march costs so much per pixel that full 4x4 blocks of the
+ * screen-space stage pay at any density (as for cubemap.c and peel.c). */
+#define LAYERED_SOFTWARE_SCREEN_PPT 1e9f
+
+/* One mesh version's layers (the prepared resource). */
+typedef struct layered_prepared {
+    unsigned layers_tex;        /* GL_TEXTURE_2D_ARRAY, RGBA16F (normal, distance / radius), face_size^2 x 6 * layers */
+    int face_size, layers;      /* as allocated */
+    int used;                   /* layers holding a surface somewhere (the shader reads these) */
+    int capped;                 /* 1: the last layer is not empty: surfaces beyond it are not held */
+    float centre[3], radius;    /* object space */
+} layered_prepared;
+
+typedef struct layered_prog {
+    snell__program_slot slot;   /* key: layers, linear, binary, absorb, reentry, screen, dispersion */
+    int layers, stride, inv_model, model, centre, radius, max_interfaces;
+} layered_prog;
+
+typedef struct layered_state {
+    snell__output_kind out;
+    layered_prog prog[PROG_CACHE];
+    unsigned long clock;
+    unsigned bake_prog;
+    int u_view_proj, u_centre, u_inv_radius, u_first, u_prev;
+} layered_state;
+
+static void layered_destroy(snell_ctx *ctx, void *state);
+
+static snell_status layered_create(snell_ctx *ctx, snell__output_kind out, void **state)
+{
+    layered_state *s = (layered_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
+    snell_status st;
+    if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
+    s->out = out;
+    st = snell__program_build(ctx, "ndcube_bake.vert", "layered_bake.frag", NULL, &s->bake_prog);
+    if (st != SNELL_OK) {
+        layered_destroy(ctx, s);
+        return st;
+    }
+    s->u_view_proj = glGetUniformLocation(s->bake_prog, "u_view_proj");
+    s->u_centre = glGetUniformLocation(s->bake_prog, "u_centre");
+    s->u_inv_radius = glGetUniformLocation(s->bake_prog, "u_inv_radius");
+    s->u_first = glGetUniformLocation(s->bake_prog, "u_first");
+    s->u_prev = glGetUniformLocation(s->bake_prog, "u_prev");
+    *state = s;
+    return SNELL_OK;
+}
+
+static void layered_destroy(snell_ctx *ctx, void *state)
+{
+    layered_state *s = (layered_state *)state;
+    int i;
+    if (!s) return;
+    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
+    if (s->bake_prog) glDeleteProgram(s->bake_prog);
+    snell__free(&ctx->alloc, s);
+}
+
+/* Correct in kind for any mesh with its analysis (open and non-manifold ones
+ * too: a crossing is where the count of surfaces below changes, whatever the
+ * topology; a hole lets the ray leave). Not AUTO's pick until its
+ * measurements say where it pays (bench/BENCHMARKS.md). */
+static snell__fit layered_fit(const snell_mesh_analysis *an, const snell_glass_resolved *g, char *why, size_t n)
+{
+    (void)g;
+    if (!an) {
+        snell__why(why, n, "needs the mesh analysis (its centre), which failed");
+        return SNELL__FIT_FAILS;
+    }
+    snell__why(why, n, "%s, depth complexity %d: runs, not yet AUTO's pick (peel measured more accurate)",
+               an->closed ? "closed" : "open", an->depth_complexity);
+    return SNELL__FIT_RUNS;
+}
+
+static void layered_key(const snell__object *o, int key[4])
+{
+    key[0] = o->glass->material.layered.face_size;
+    key[1] = o->glass->material.layered.layers;
+    key[2] = key[3] = 0;
+}
+
+/* A finite float of magnitude at most 65504 as IEEE half, rounded to nearest. */
+static uint16_t half_of(float f)
+{
+    uint32_t x, m;
+    uint16_t sign = f < 0.0f ? 0x8000u : 0u;
+    float a = fabsf(f);
+    int e;
+    if (!(a > 0.0f)) return sign;
+    memcpy(&x, &a, sizeof x);
+    e = (int)((x >> 23) & 0xffu) - 127 + 15;
+    m = x & 0x7fffffu;
+    if (e <= 0) return (uint16_t)(sign | (uint16_t)(a * 16777216.0f + 0.5f)); /* subnormal: m * 2^-24 */
+    m = (m + 0x1000u) >> 13;
+    if (m == 0x400u) {
+        m = 0;
+        e++;
+    }
+    return (uint16_t)(sign | (e >= 31 ? 0x7bffu : ((unsigned)e << 10 | m)));
+}
+
+static void release_scratch(unsigned *fbo, unsigned next[2], unsigned *depth_rb, unsigned *query)
+{
+    if (*fbo) glDeleteFramebuffers(1, fbo);
+    if (next[0]) glDeleteTextures(2, next);
+    if (*depth_rb) glDeleteRenderbuffers(1, depth_rb);
+    if (*query) glDeleteQueries(1, query);
+    *fbo = *depth_rb = *query = next[0] = next[1] = 0;
+}
+
+/* depth 0: a 2D texture; else a 2D array of depth slices. */
+static unsigned make_texture(GLenum format, int size, int depth, GLint filter)
+{
+    GLenum target = depth ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D;
+    unsigned tex;
+    glGenTextures(1, &tex);
+    glBindTexture(target, tex);
+    if (depth)
+        glTexStorage3D(target, 1, format, size, size, depth);
+    else
+        glTexStorage2D(target, 1, format, size, size);
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return tex;
+}
+
+/* Peels layer after layer of each face, nearest first (every face drawn,
+ * culling off): a pass keeps, per texel, the nearest surface behind the
+ * previous layer's (ping-pong textures of its 24-bit distance). Each pass's
+ * normal (16+16 bits, octahedral) and distance are read back and packed as
+ * half floats for the filtered layers (once per mesh version: the stalls
+ * are part of the bake). An ANY_SAMPLES_PASSED query per pass counts the
+ * layers that hold something; a face's later layers are drawn empty. */
+static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, layered_prepared *p,
+                         snell_object_stats *stats)
+{
+    static const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    unsigned fbo = 0, normal_tex = 0, next[2] = {0, 0}, depth_rb = 0, query = 0;
+    snell__pass pass;
+    snell__pixel_store pack, unpack;
+    snell_status st = SNELL_OK;
+    int face, l, size = p->face_size;
+    size_t i, texels = (size_t)size * (size_t)size;
+    uint8_t *normal_px = (uint8_t *)snell__malloc(&ctx->alloc, 8 * texels), *dist_px = normal_px + 4 * texels;
+    uint16_t *half = (uint16_t *)snell__malloc(&ctx->alloc, 8 * texels * 6 * (size_t)p->layers);
+    GLenum fst;
+    if (!normal_px || !half) {
+        snell__free(&ctx->alloc, normal_px);
+        snell__free(&ctx->alloc, half);
+        return snell__fail(ctx, SNELL_E_NOMEM, "out of memory for the layered bake's read-back");
+    }
+    glGenFramebuffers(1, &fbo);
+    glGenRenderbuffers(1, &depth_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, size, size);
+    glActiveTexture(GL_TEXTURE1);
+    normal_tex = make_texture(GL_RGBA8, size, 0, GL_NEAREST);
+    next[0] = make_texture(GL_RGBA8, size, 0, GL_NEAREST);
+    next[1] = make_texture(GL_RGBA8, size, 0, GL_NEAREST);
+    glGenQueries(1, &query);
+    /* client memory, tight rows, whatever pixel buffers or store state a host set */
+    snell__pixel_pack_begin(&pack, 1);
+    snell__pixel_unpack_begin(&unpack, 1);
+    if (glGetError() != GL_NO_ERROR) st = snell__fail(ctx, SNELL_E_GL, "cannot make the layered bake's %dx%d targets",
+                                                      size, size);
+    snell__pass_begin(&pass, fbo, size, size, 0, GL_LESS, 1.0f);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, normal_tex, 0);
+    glDrawBuffers(2, bufs);
+    glUseProgram(s->bake_prog);
+    glUniform3fv(s->u_centre, 1, p->centre);
+    glUniform1f(s->u_inv_radius, 1.0f / p->radius);
+    glUniform1i(s->u_prev, 1);
+    glBindVertexArray(mesh->vao);
+    p->used = 0;
+    for (face = 0; face < 6 && st == SNELL_OK; face++) {
+        mat4 vp;
+        /* near: surfaces closer than 1e-4 radius to the centre are clipped;
+         * far: every vertex lies within the radius */
+        snell__cube_face_view_proj(face, p->centre, p->radius * 1e-4f, p->radius * 1.01f, vp);
+        glUniformMatrix4fv(s->u_view_proj, 1, GL_FALSE, (const GLfloat *)vp);
+        for (l = 0; l < p->layers && st == SNELL_OK; l++) {
+            uint16_t *out = half + 4 * texels * (size_t)(face * p->layers + l);
+            GLuint any = 0;
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, next[l & 1], 0);
+            if (face == 0 && l == 0 && (fst = glCheckFramebufferStatus(GL_FRAMEBUFFER)) != GL_FRAMEBUFFER_COMPLETE) {
+                st = snell__fail(ctx, SNELL_E_GL, "layered bake framebuffer incomplete (0x%x)", (unsigned)fst);
+                break;
+            }
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            glActiveTexture(GL_TEXTURE1);
+            glBindTexture(GL_TEXTURE_2D, next[(l + 1) & 1]); /* the previous layer's */
+            glUniform1i(s->u_first, l == 0);
+            glBeginQuery(GL_ANY_SAMPLES_PASSED, query);
+            snell__mesh_draw(mesh);
+            glEndQuery(GL_ANY_SAMPLES_PASSED);
+            glGetQueryObjectuiv(query, GL_QUERY_RESULT, &any);
+            if (any && l + 1 > p->used) p->used = l + 1;
+            stats->passes++;
+            glReadBuffer(GL_COLOR_ATTACHMENT0);
+            glReadPixels(0, 0, size, size, GL_RGBA, GL_UNSIGNED_BYTE, normal_px);
+            glReadBuffer(GL_COLOR_ATTACHMENT1);
+            glReadPixels(0, 0, size, size, GL_RGBA, GL_UNSIGNED_BYTE, dist_px);
+            /* Half floats: the distance 2^-11 relative (at most 2^-12 of the
+             * radius); 4 where the layer is empty, beyond any point of the
+             * bounding sphere, so filtering towards an empty texel moves
+             * the surface out, not in. */
+            for (i = 0; i < texels; i++) {
+                const uint8_t *b = dist_px + 4 * i;
+                float n[3];
+                snell_unpack_dir_rgba8(normal_px + 4 * i, n);
+                out[4 * i + 0] = half_of(n[0]);
+                out[4 * i + 1] = half_of(n[1]);
+                out[4 * i + 2] = half_of(n[2]);
+                out[4 * i + 3] =
+                    half_of(b[3] ? (float)((uint32_t)b[0] << 16 | (uint32_t)b[1] << 8 | b[2]) / 16777215.0f : 4.0f);
+            }
+        }
+    }
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, 0, 0);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glDrawBuffers(1, bufs);
+    snell__pass_end(&pass);
+    release_scratch(&fbo, next, &depth_rb, &query);
+    if (normal_tex) glDeleteTextures(1, &normal_tex);
+    if (st == SNELL_OK) {
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, p->layers_tex);
+        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, size, size, 6 * p->layers, GL_RGBA, GL_HALF_FLOAT, half);
+    }
+    snell__pixel_pack_end(&pack);
+    snell__pixel_unpack_end(&unpack);
+    snell__free(&ctx->alloc, normal_px);
+    snell__free(&ctx->alloc, half);
+    p->capped = p->used == p->layers;
+    if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(ctx, SNELL_E_GL, "GL error baking the layers");
+    return st;
+}
+
+static void layered_release(void *prepared)
+{
+    layered_prepared *p = (layered_prepared *)prepared;
+    if (p->layers_tex) glDeleteTextures(1, &p->layers_tex);
+    p->layers_tex = 0;
+}
+
+/* About the analysed centre (inside or not: the layers hold whatever lies
+ * around it); a mesh that could not be analysed uses its box centre. */
+static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__object *o, void *prepared,
+                                    snell_object_stats *stats)
+{
+    layered_state *s = (layered_state *)state;
+    layered_prepared *p = (layered_prepared *)prepared;
+    const snell_mesh_analysis *an = o->analysis;
+    const snell_layered_params *lp = &o->glass->material.layered;
+    int k;
+    for (k = 0; k < 3; k++) p->centre[k] = an ? an->centre[k] : 0.5f * (o->mesh->bmin[k] + o->mesh->bmax[k]);
+    /* 1e-4 margin: the farthest vertex stays strictly inside the range */
+    p->radius = (an ? an->radius : o->mesh->bradius) * 1.0001f;
+    if (!(p->radius > 0.0f)) p->radius = 1.0f;
+    if (!p->layers_tex || p->face_size != lp->face_size || p->layers != lp->layers) {
+        size_t bytes = (size_t)lp->face_size * (size_t)lp->face_size * 48u * (size_t)lp->layers;
+        snell_status st = snell__budget_check(ctx, bytes, "the layered method's distance cube maps");
+        if (st != SNELL_OK) return st;
+        layered_release(p);
+        glActiveTexture(GL_TEXTURE1);
+        p->layers_tex = make_texture(GL_RGBA16F, lp->face_size, 6 * lp->layers, GL_LINEAR);
+        p->face_size = lp->face_size;
+        p->layers = lp->layers;
+        if (glGetError() != GL_NO_ERROR) {
+            layered_release(p);
+            return snell__fail(ctx, SNELL_E_GL, "cannot make %d layers of %d^2 cube faces", lp->layers, lp->face_size);
+        }
+    }
+    return bake(ctx, s, o->mesh, p, stats);
+}
+
+static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[7], layered_prog *p)
+{
+    char def[256];
+    snell_status st;
+    snprintf(def, sizeof def,
+             "#define SNELL_LAYERS %d\n#define SNELL_LINEAR %d\n#define SNELL_BINARY %d\n#define SNELL_ABSORB %d\n"
+             "#define SNELL_REENTRY %d\n#define SNELL_DISPERSION %d\n",
+             key[0], key[1], key[2], key[3], key[4], key[6]);
+    st = snell__glass_program_build(ctx, "layered.frag", s->out, def, key[5], &p->slot.g);
+    if (st != SNELL_OK) return st;
+    p->layers = glGetUniformLocation(p->slot.g.prog, "u_layers");
+    p->stride = glGetUniformLocation(p->slot.g.prog, "u_stride");
+    p->inv_model = glGetUniformLocation(p->slot.g.prog, "u_inv_model");
+    p->model = glGetUniformLocation(p->slot.g.prog, "u_model");
+    p->centre = glGetUniformLocation(p->slot.g.prog, "u_centre");
+    p->radius = glGetUniformLocation(p->slot.g.prog, "u_radius");
+    p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
+    return SNELL_OK;
+}
+
+static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                                 snell_object_stats *stats)
+{
+    layered_state *s = (layered_state *)state;
+    const snell_layered_params *lp = &o->glass->material.layered;
+    const layered_prepared *lpr = (const layered_prepared *)o->prepared;
+    layered_prog *p;
+    snell_status st = SNELL_OK;
+    int hit;
+    /* Compile-time constants of the march: the layers read (those that hold
+     * something: a sphere needs 1), steps, absorption, whether a ray that
+     * left can meet the mesh again (not on a convex one), the variant. */
+    const int key[7] = {lpr->used > 0 ? lpr->used : 1, lp->linear_steps, lp->binary_steps, o->glass->absorbs,
+                        !(o->analysis && o->analysis->convex), snell__glass_variant(o),
+                        snell__dispersion_variant(o->glass)};
+    p = (layered_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 7, &s->clock, &hit);
+    if (!hit) st = build_prog(ctx, s, key, p);
+    if (st != SNELL_OK) return st;
+    snell__glass_program_use(&p->slot.g, v, o);
+    glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, lpr->layers_tex);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(p->layers, SNELL__UNIT_KERNEL);
+    glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
+    glUniformMatrix4fv(p->model, 1, GL_FALSE, (const GLfloat *)o->model);
+    glUniform3fv(p->centre, 1, lpr->centre);
+    glUniform1f(p->radius, lpr->radius);
+    glUniform1i(p->stride, lpr->layers);
+    glUniform1i(p->max_interfaces, lp->max_interfaces);
+    snell__draw_surface(o, stats);
+    stats->passes++;
+    stats->counters[0] = lpr->used;
+    stats->counters[1] = lpr->capped;
+    stats->counters[2] = (int)((size_t)lpr->face_size * (size_t)lpr->face_size * 48u * (size_t)lpr->layers / 1024u);
+    return SNELL_OK;
+}
+
+static const snell_param_info g_params[] = {
+    {"layers", "distance-map layers baked from the centre (the first surfaces along each direction)", 1,
+     SNELL_LAYERED_MAX_LAYERS, DEFAULT_LAYERS, NULL},
+    {"face", "cube face size of every layer, texels", 16, 1024, DEFAULT_FACE, NULL},
+    {"linear", "linear march steps from a point to the bounding sphere's far side", 1, 64, DEFAULT_LINEAR, NULL},
+    {"iterations", "binary steps at each crossing found", 1, 16, DEFAULT_BINARY, NULL},
+    {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
+     SNELL_LAYERED_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
+};
+
+static const size_t g_offsets[] = {
+    offsetof(snell_glass_material, layered.layers), offsetof(snell_glass_material, layered.face_size),
+    offsetof(snell_glass_material, layered.linear_steps), offsetof(snell_glass_material, layered.binary_steps),
+    offsetof(snell_glass_material, layered.max_interfaces)};
+
+static const snell_counter_info g_counters[] = {
+    {"layers_used", "layers that hold a surface in some direction (the march reads these)"},
+    {"layers_capped", "1 if the last layer baked holds surfaces: more lie beyond it, unseen"},
+    {"layers_kib", "memory of the baked layers, KiB"},
+};
+
+/* Its path goes on through re-entries as FULL's dominant branch does (as
+ * peel's): snell-bench measures it against FULL too. */
+static const snell_method_info g_info = {
+    SNELL_METHOD_LAYERED, "layered",
+    "multi-layer, view-independent: depth-peeled distance cube map layers from the centre, a march through them, "
+    "TIR, re-entries (Umenhoffer et al. 2007)",
+    "the mesh analysis (its centre); baked once per mesh version, nothing per frame", 5,
+    (int)(sizeof g_params / sizeof *g_params), g_params, (int)(sizeof g_counters / sizeof *g_counters), g_counters,
+    0, 0, "linear=12,24,48"};
+
+const snell__method snell__method_layered = {
+    .info = &g_info,
+    .param_offsets = g_offsets,
+    .needs_analysis = 1,
+    .fit = layered_fit,
+    .create = layered_create,
+    .destroy = layered_destroy,
+    .prepared_size = sizeof(layered_prepared),
+    .key = layered_key,
+    .prepare = layered_prepare,
+    .release = layered_release,
+    .draw = layered_draw,
+    .software_screen_ppt = LAYERED_SOFTWARE_SCREEN_PPT,
+};

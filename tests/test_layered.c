@@ -1,0 +1,230 @@
+/* test_layered — the layered method (methods/layered.c, shaders_es/layered*.frag):
+ * the bake (layers used and capped, its memory, once per mesh version: no
+ * pass of its own in later frames, again after snell_mesh_set_vertices), exit
+ * directions against the references (MATCHED on the sphere, FULL on the
+ * torus, the goblet and an open mesh, each beside single's), no NaN. */
+#include "test_util.h"
+#include "snell/snell_metrics.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define W 96
+#define H 96
+/* Bounds on the exit-direction error, degrees: what 96x96 measured
+ * (2026-12-03, llvmpipe; forward and screen space alike) with a margin.
+ * MATCHED sphere: median 0.007, mean 0.09 (single 18.7); FULL torus: median
+ * 3.1, mean 32.1 (single 44.8; the centre lies in the tube, whose walls its
+ * rays graze); goblet: 6.4, 16.4 (single 27.9; 4 layers capped, 5 needed);
+ * open sphere: 3.5, 6.8 (single 14.5). */
+#define BOUND_SPHERE_MEDIAN 0.05
+#define BOUND_SPHERE_MEAN 0.5
+#define BOUND_TORUS_MEDIAN 6.0
+#define BOUND_TORUS_MEAN 38.0
+#define BOUND_GOBLET_MEDIAN 10.0
+#define BOUND_GOBLET_MEAN 22.0
+#define BOUND_OPEN_MEDIAN 6.0
+#define BOUND_OPEN_MEAN 10.0
+
+static snell_mesh *shape(snell_ctx *ctx, snell_shape s)
+{
+    snell_shape_desc sd;
+    snell_mesh *mesh = NULL;
+    memset(&sd, 0, sizeof sd);
+    sd.shape = s;
+    CHECK_OK(snell_mesh_create_shape(ctx, &sd, &mesh));
+    if (mesh && s != SNELL_SHAPE_SPHERE) CHECK_OK(snell_mesh_normalize(mesh, 1.0f));
+    return mesh;
+}
+
+/* The sphere with every 7th triangle left out: open (boundary edges), so
+ * rays leave through its holes. */
+static snell_mesh *open_sphere(snell_ctx *ctx)
+{
+    snell_mesh *full = shape(ctx, SNELL_SHAPE_SPHERE), *open = NULL;
+    snell_mesh_desc md;
+    uint32_t *idx;
+    uint32_t i, n = 0, tris;
+    if (!full) return NULL;
+    tris = snell_mesh_triangle_count(full);
+    idx = (unsigned *)malloc(sizeof *idx * 3 * tris);
+    for (i = 0; idx && i < tris; i++)
+        if (i % 7 != 3) {
+            memcpy(idx + 3 * n, snell_mesh_indices(full) + 3 * i, 3 * sizeof *idx);
+            n++;
+        }
+    memset(&md, 0, sizeof md);
+    md.positions = snell_mesh_positions(full);
+    md.normals = snell_mesh_normals(full);
+    md.vertex_count = snell_mesh_vertex_count(full);
+    md.indices = idx;
+    md.triangle_count = n;
+    CHECK_OK(snell_mesh_create(ctx, &md, &open));
+    free(idx);
+    snell_mesh_destroy(full);
+    return open;
+}
+
+static void render(snell_ctx *ctx, snell_frame_desc *fd, snell_glass *g, snell_method m, float *dirs,
+                   snell_frame_stats *stats)
+{
+    snell_renderer *r = NULL;
+    snell_renderer_desc rd;
+    memset(&rd, 0, sizeof rd);
+    rd.width = W;
+    rd.height = H;
+    rd.output = SNELL_OUTPUT_EXIT_DIRECTION;
+    rd.shading = test_shading();
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    if (!r) return;
+    g->material.method = m;
+    CHECK_OK_CTX(ctx, snell_render(r, fd, stats));
+    CHECK_OK(snell_renderer_read_exit_dirs(r, dirs));
+    snell_renderer_destroy(r);
+}
+
+static void reference(snell_ctx *ctx, const snell_frame_desc *fd, snell_ref_mode mode, int interfaces, float *dirs,
+                      uint8_t *hit)
+{
+    static float rgb[W * H * 3];
+    snell_ref *ref = NULL;
+    snell_ref_params p;
+    CHECK_OK(test_ref_create(ctx, fd, &ref));
+    if (!ref) return;
+    test_ref_params(fd, W, H, interfaces, &p);
+    p.mode = mode;
+    p.isolate_glass = 1;
+    CHECK_OK(test_ref_render(ref, &p, rgb, dirs, hit));
+    snell_ref_destroy(ref);
+}
+
+static snell_dir_error compare(const float *test, const float *ref, const uint8_t *hit)
+{
+    snell_dir_error_desc d;
+    snell_dir_error e;
+    memset(&d, 0, sizeof d);
+    memset(&e, 0, sizeof e);
+    d.test = test;
+    d.ref = ref;
+    d.ref_mask = hit;
+    d.width = W;
+    d.height = H;
+    CHECK_OK(snell_metrics_dir_error(&d, &e));
+    CHECK(e.nan_inf == 0, "%ld non-finite exit directions", e.nan_inf);
+    return e;
+}
+
+/* One mesh: layered and single against the reference of mode/interfaces;
+ * bounds on layered's median and mean, and on its mean against single's. */
+static void accuracy(snell_ctx *ctx, snell_env *env, const char *name, snell_mesh *mesh, snell_ref_mode mode,
+                     double max_median, double max_mean, double max_mean_vs_single)
+{
+    static float ref[W * H * 3], lay[W * H * 3], one[W * H * 3];
+    static uint8_t hit[W * H];
+    snell_frame_desc fd;
+    snell_glass g;
+    snell_frame_stats st;
+    snell_dir_error el, es;
+    if (!mesh) return;
+    test_frame_one(&fd, &g, mesh, env);
+    fd.camera.elevation = 0.35f;
+    reference(ctx, &fd, mode, mode == SNELL_REF_FULL ? 10 : 8, ref, hit);
+    render(ctx, &fd, &g, SNELL_METHOD_LAYERED, lay, &st);
+    CHECK(st.glass[0].method_used == SNELL_METHOD_LAYERED, "%s: drawn by %s", name,
+          snell_method_str(st.glass[0].method_used));
+    render(ctx, &fd, &g, SNELL_METHOD_SINGLE, one, NULL);
+    el = compare(lay, ref, hit);
+    es = compare(one, ref, hit);
+    printf("%-13s vs %s: layered median %.3f mean %.2f p99 %.1f >5deg %.1f%% (layers used %d, capped %d); "
+           "single mean %.2f\n",
+           name, mode == SNELL_REF_FULL ? "FULL" : "MATCHED", el.median_deg, el.mean_deg, el.p99_deg,
+           100.0 * el.frac_above_5deg, snell_object_counter(&st.glass[0], "layers_used"),
+           snell_object_counter(&st.glass[0], "layers_capped"), es.mean_deg);
+    CHECK(el.compared > W * H / 20, "%s: %ld pixels compared", name, el.compared);
+    CHECK(el.median_deg <= max_median, "%s: median %.3f > %.3f degrees", name, el.median_deg, max_median);
+    CHECK(el.mean_deg <= max_mean, "%s: mean %.2f > %.2f degrees", name, el.mean_deg, max_mean);
+    CHECK(el.mean_deg <= max_mean_vs_single * es.mean_deg, "%s: mean %.2f not below %.2f x single's %.2f", name,
+          el.mean_deg, max_mean_vs_single, es.mean_deg);
+}
+
+/* The bake: what it reports, and that it runs once per mesh version. */
+static void test_bake(snell_ctx *ctx, snell_env *env)
+{
+    static float dirs[W * H * 3];
+    snell_mesh *sphere = shape(ctx, SNELL_SHAPE_SPHERE), *torus = shape(ctx, SNELL_SHAPE_TORUS);
+    snell_renderer *r = NULL;
+    snell_renderer_desc rd;
+    snell_frame_desc fd;
+    snell_glass g;
+    snell_frame_stats st;
+    int pass1, pass2;
+    if (!sphere || !torus) return;
+    memset(&rd, 0, sizeof rd);
+    rd.width = rd.height = 32;
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    if (!r) return;
+    test_frame_one(&fd, &g, sphere, env);
+    g.material.method = SNELL_METHOD_LAYERED;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &st));
+    pass1 = st.glass[0].passes;
+    /* one layer holds the sphere from its centre; 128^2 faces x 6 x 4 layers x 8 bytes */
+    CHECK(snell_object_counter(&st.glass[0], "layers_used") == 1, "sphere: %d layers used",
+          snell_object_counter(&st.glass[0], "layers_used"));
+    CHECK(snell_object_counter(&st.glass[0], "layers_capped") == 0, "sphere: capped");
+    CHECK(snell_object_counter(&st.glass[0], "layers_kib") == 128 * 128 * 6 * 4 * 8 / 1024, "sphere: %d KiB",
+          snell_object_counter(&st.glass[0], "layers_kib"));
+    CHECK(st.glass[0].prepared == 1, "the first frame bakes");
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &st));
+    pass2 = st.glass[0].passes;
+    CHECK(st.glass[0].prepared == 0 && pass1 == pass2 + 6 * 4, "baked once: %d then %d passes, prepared %d", pass1,
+          pass2, st.glass[0].prepared);
+    /* A new version of the mesh (moved vertices) is baked again. */
+    CHECK_OK(snell_mesh_set_vertices(sphere, snell_mesh_positions(sphere), snell_mesh_normals(sphere)));
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &st));
+    CHECK(st.glass[0].prepared == 1, "a new mesh version is baked again");
+    /* The torus from its centre needs 3 layers; with 2 the bake is capped. */
+    fd.glass = &g;
+    g.mesh = torus;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &st));
+    CHECK(snell_object_counter(&st.glass[0], "layers_used") >= 3 &&
+              snell_object_counter(&st.glass[0], "layers_capped") == 0,
+          "torus: %d layers used, capped %d", snell_object_counter(&st.glass[0], "layers_used"),
+          snell_object_counter(&st.glass[0], "layers_capped"));
+    g.material.layered.layers = 2;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &st));
+    CHECK(snell_object_counter(&st.glass[0], "layers_used") == 2 &&
+              snell_object_counter(&st.glass[0], "layers_capped") == 1,
+          "torus, 2 layers: %d used, capped %d", snell_object_counter(&st.glass[0], "layers_used"),
+          snell_object_counter(&st.glass[0], "layers_capped"));
+    snell_renderer_destroy(r);
+    (void)dirs;
+    snell_mesh_destroy(sphere);
+    snell_mesh_destroy(torus);
+}
+
+int main(void)
+{
+    snell_ctx *ctx = test_ctx();
+    snell_env *env = NULL;
+    snell_mesh *m;
+    if (!ctx) SKIP("no GL context");
+    CHECK_OK(snell_env_create(ctx, &(snell_env_desc){.face_size = 64}, &env));
+    test_bake(ctx, env);
+    /* Bounds: the measured values (printed) with a margin, see the note per line. */
+    m = shape(ctx, SNELL_SHAPE_SPHERE);
+    accuracy(ctx, env, "sphere", m, SNELL_REF_MATCHED, BOUND_SPHERE_MEDIAN, BOUND_SPHERE_MEAN, 0.2);
+    snell_mesh_destroy(m);
+    m = shape(ctx, SNELL_SHAPE_TORUS);
+    accuracy(ctx, env, "torus", m, SNELL_REF_FULL, BOUND_TORUS_MEDIAN, BOUND_TORUS_MEAN, 0.85);
+    snell_mesh_destroy(m);
+    m = shape(ctx, SNELL_SHAPE_GOBLET);
+    accuracy(ctx, env, "goblet", m, SNELL_REF_FULL, BOUND_GOBLET_MEDIAN, BOUND_GOBLET_MEAN, 0.75);
+    snell_mesh_destroy(m);
+    m = open_sphere(ctx);
+    accuracy(ctx, env, "open sphere", m, SNELL_REF_FULL, BOUND_OPEN_MEDIAN, BOUND_OPEN_MEAN, 0.6);
+    snell_mesh_destroy(m);
+    snell_env_destroy(env);
+    snell_ctx_destroy(ctx);
+    return test_finish();
+}
