@@ -392,15 +392,16 @@ static const char *y_label(const char *what)
     return "mean exit-direction error vs FULL reference [deg]";
 }
 
-/* Label of a point: the width when sizes differ, then the method's own keys
- * (scene and size lead the canonical spec). */
+/* Label of a point: the width when sizes differ, then the method and its
+ * own keys (scene and size lead the canonical spec): the method by name, as
+ * a marker alone is hard to tell apart among six. */
 static void point_label(const bench_config *c, int several_sizes, char *label, size_t n)
 {
     const char *params = strchr(c->spec, ':');
     int k;
     for (k = 0; params && k < 2; k++) params = strchr(params + 1, ':');
-    if (several_sizes) snprintf(label, n, "%d%s%s", c->width, params ? " " : "", params ? params + 1 : "");
-    else snprintf(label, n, "%s", params ? params + 1 : "");
+    if (several_sizes) snprintf(label, n, "%d %s%s", c->width, c->method->name, params ? params : "");
+    else snprintf(label, n, "%s%s", c->method->name, params ? params : "");
 }
 
 int bench_write_plot(const char *path, const bench_config *cs, int n, const bench_options *o,

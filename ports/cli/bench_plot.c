@@ -187,12 +187,17 @@ static void marker(canvas *c, int cx, int cy, int kind, const uint8_t rgb[3], in
     for (y = -r; y <= r; y++)
         for (x = -r; x <= r; x++) {
             int in;
-            switch (kind % 5) {
+            /* eight shapes, one per registry method up to eight (a sixth
+             * method once took the circle of the first) */
+            switch (kind % 8) {
             case 0: in = x * x + y * y <= r * r + r / 2; break;
             case 1: in = 1; break;
             case 2: in = y >= -r && 2 * abs(x) <= y + r; break;
             case 3: in = abs(x) + abs(y) <= r; break;
-            default: in = abs(x - y) <= 1 || abs(x + y) <= 1; break;
+            case 4: in = abs(x - y) <= 1 || abs(x + y) <= 1; break;
+            case 5: in = x * x + y * y <= r * r + r / 2 && x * x + y * y >= (r - 2) * (r - 2); break; /* ring */
+            case 6: in = abs(x) >= r - 1 || abs(y) >= r - 1; break;                                  /* box */
+            default: in = y <= r && 2 * abs(x) <= r - y; break;                                       /* down */
             }
             if (in) put(c, cx + x, cy + y, rgb);
         }
