@@ -281,8 +281,61 @@ static void layered_release(void *prepared)
     p->layers_tex = 0;
 }
 
-/* About the analysed centre (inside or not: the layers hold whatever lies
- * around it); a mesh that could not be analysed uses its box centre. */
+/* The centre the layers are baked about. Distance maps are exact where the
+ * centre's rays meet the surface head-on and worst where they graze it (a
+ * texel's distance then stands for a long stretch of surface): the cubemap's
+ * centre (the analysis', chosen to see the most surface as the farthest)
+ * lies in a torus's tube, whose walls its rays graze; the box centre lies in
+ * the hole, from where they meet the walls square. So among a few
+ * candidates (the analysis' centre, the box centre and the box centre moved
+ * a quarter of the box along each axis) the one whose rays meet the surface
+ * most squarely: the largest area-weighted mean |cos| between a triangle's
+ * normal and the ray from the centre to it. O(triangles) per candidate,
+ * once per mesh version. */
+static void choose_centre(const snell_mesh *m, const snell_mesh_analysis *an, float centre[3])
+{
+    float cand[8][3], best_score = -1.0f;
+    int nc = 0, c, k;
+    uint32_t t;
+    for (k = 0; k < 3; k++) cand[0][k] = 0.5f * (m->bmin[k] + m->bmax[k]);
+    nc = 1;
+    for (k = 0; k < 6; k++) {
+        int axis = k / 2;
+        memcpy(cand[nc], cand[0], sizeof cand[0]);
+        cand[nc][axis] += (k & 1 ? -0.25f : 0.25f) * (m->bmax[axis] - m->bmin[axis]);
+        nc++;
+    }
+    if (an) memcpy(cand[nc++], an->centre, sizeof cand[0]);
+    memcpy(centre, an ? an->centre : cand[0], 3 * sizeof(float));
+    for (c = 0; c < nc; c++) {
+        double sum = 0.0, area_sum = 0.0;
+        for (t = 0; t < m->triangle_count; t++) {
+            const float *a = m->positions + 3 * m->indices[3 * t], *b = m->positions + 3 * m->indices[3 * t + 1],
+                        *d = m->positions + 3 * m->indices[3 * t + 2];
+            float e1[3], e2[3], n[3], r[3], nn, rr;
+            for (k = 0; k < 3; k++) {
+                e1[k] = b[k] - a[k];
+                e2[k] = d[k] - a[k];
+                r[k] = (a[k] + b[k] + d[k]) / 3.0f - cand[c][k];
+            }
+            n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            nn = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            rr = sqrtf(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+            if (!(nn > 0.0f) || !(rr > 0.0f)) continue;
+            sum += fabsf(n[0] * r[0] + n[1] * r[1] + n[2] * r[2]) / rr; /* area * 2 * |cos| */
+            area_sum += nn;
+        }
+        if (area_sum > 0.0 && (float)(sum / area_sum) > best_score) {
+            best_score = (float)(sum / area_sum);
+            memcpy(centre, cand[c], 3 * sizeof(float));
+        }
+    }
+}
+
+/* About the centre choose_centre picks (inside the mesh or not: the layers
+ * hold whatever lies around it). */
 static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__object *o, void *prepared,
                                     snell_object_stats *stats)
 {
@@ -290,10 +343,16 @@ static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__ob
     layered_prepared *p = (layered_prepared *)prepared;
     const snell_mesh_analysis *an = o->analysis;
     const snell_layered_params *lp = &o->glass->material.layered;
-    int k;
-    for (k = 0; k < 3; k++) p->centre[k] = an ? an->centre[k] : 0.5f * (o->mesh->bmin[k] + o->mesh->bmax[k]);
+    uint32_t v;
+    float r2 = 0.0f;
+    choose_centre(o->mesh, an, p->centre);
+    for (v = 0; v < o->mesh->vertex_count; v++) {
+        const float *q = o->mesh->positions + 3 * v;
+        float dx = q[0] - p->centre[0], dy = q[1] - p->centre[1], dz = q[2] - p->centre[2];
+        if (dx * dx + dy * dy + dz * dz > r2) r2 = dx * dx + dy * dy + dz * dz;
+    }
     /* 1e-4 margin: the farthest vertex stays strictly inside the range */
-    p->radius = (an ? an->radius : o->mesh->bradius) * 1.0001f;
+    p->radius = sqrtf(r2) * 1.0001f;
     if (!(p->radius > 0.0f)) p->radius = 1.0f;
     if (!p->layers_tex || p->face_size != lp->face_size || p->layers != lp->layers) {
         size_t bytes = (size_t)lp->face_size * (size_t)lp->face_size * 48u * (size_t)lp->layers;
