@@ -102,5 +102,12 @@ endforeach()
 snell_add_test(test_components SOURCES test_components.c LABELS "unit;gl")
 
 # The folders' import rule (docs/ARCHITECTURE.md "Layers"): nothing imports back up.
-add_test(NAME source_layers COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR}/src -P ${CMAKE_CURRENT_SOURCE_DIR}/check_layers.cmake)
+add_test(NAME source_layers COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR}/src -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_layers.cmake)
 set_tests_properties(source_layers PROPERTIES LABELS "unit")
+
+# The shared library exports snell_* only (cmake/snell.map).
+if(CMAKE_NM)
+  add_test(NAME library_exports COMMAND ${CMAKE_COMMAND} -DNM=${CMAKE_NM} -DLIB=$<TARGET_FILE:snell_shared>
+           -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_exports.cmake)
+  set_tests_properties(library_exports PROPERTIES LABELS "unit")
+endif()
