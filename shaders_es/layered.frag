@@ -167,11 +167,14 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     mat3 inv3 = mat3(u_inv_model);
     highp vec3 p = (u_inv_model * vec4(world_pos, 1.0)).xyz - u_centre;
     highp vec3 d = inv3 * dir;
-    // Just inside the entry: the entry surface is the layer nearest p; a ray
-    // leaving the centre has it below, one heading for the centre not yet.
-    int entry;
-    nearest_normal(p, entry);
-    int c = below(p + 0.02 * u_radius * d / length(d));
+    // The count just inside the entry, sampled a little way in (2% of the
+    // radius): the entry surface's own texel distance is not reliable as
+    // close to it as the surface point itself. Measured at 96x96 against
+    // FULL (test_layered), mean degrees: torus 11.5, goblet 6.4, open sphere
+    // 2.75; the count inferred from the layer nearest the entry and the
+    // ray's heading gave 14.1, 10.1, 2.7; the offset capped at half the first
+    // march step (for walls thinner than it) 11.7, 7.0, 3.4.
+    int c = below(p + 0.02 * u_radius / length(d) * d);
     bool inside = true;
     highp float path = 0.0;
     vec3 tint = u_tint;
