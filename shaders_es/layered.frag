@@ -27,9 +27,10 @@ precision highp float;
 
 #define MAX_INTERFACES 10    // SNELL_LAYERED_MAX_INTERFACES
 // SNELL_LAYERS (1..8), SNELL_LINEAR (1..64), SNELL_BINARY (1..16),
-// SNELL_ABSORB (0/1) and SNELL_REENTRY (0/1: the mesh is not convex, so a ray
-// that left may meet it again) are defined by the program's variant
-// (methods/layered.c).
+// SNELL_ABSORB (0/1), SNELL_REENTRY (0/1: the mesh is not convex, so a ray
+// that left may meet it again) and SNELL_INNER_FRESNEL (0/1: Fresnel at the
+// last exit too, its internal reflection followed one march more) are
+// defined by the program's variant (methods/layered.c).
 
 uniform highp vec3 u_eye;
 uniform vec3 u_sigma;
@@ -149,6 +150,36 @@ bool next_crossing(highp vec3 p, highp vec3 d, int c0, highp float t_max, out hi
     return true;
 }
 
+#if SNELL_INNER_FRESNEL
+// The branch reflected inside at the last exit (weight F there): one more
+// march from the last point inside, q (c surfaces below it), along rdir,
+// refracted out at the next surface with (1 - F'), its own reflection F'
+// leaving in the mirror direction (the rest of the tree lumped, so that no
+// energy is lost), as cubemap.frag's inner_branch. Radiance, before the tint.
+vec3 inner_branch(highp vec3 q, vec3 rdir, int c, float path)
+{
+    highp vec3 d = mat3(u_inv_model) * rdir;
+    highp float t_max = sphere_exit(q, d), lo, hi;
+    int c_hi, layer;
+    float t = t_max;
+    vec3 n3 = rdir;
+    if (next_crossing(q, d, c, t_max, lo, hi, c_hi)) {
+        t = 0.5 * (lo + hi);
+        n3 = normalize(u_normal_matrix * nearest_normal(q + t * d, layer));
+    }
+    if (dot(n3, rdir) > 0.0) n3 = -n3;
+    vec3 out_dir;
+    vec3 mirror = snell_reflect(rdir, n3);
+    bool exited = snell_refract(rdir, n3, snell_ior, out_dir);
+    float f = exited ? snell_fresnel(-dot(rdir, n3), snell_ior, 1.0) : 1.0;
+    vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(mirror);
+#if SNELL_ABSORB
+    l *= snell_beer_lambert(u_sigma, path + t);
+#endif
+    return l;
+}
+#endif
+
 // The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
 vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
@@ -179,6 +210,15 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     highp float path = 0.0;
     vec3 tint = u_tint;
     int done = 1; // interfaces processed: the entry
+#if SNELL_INNER_FRESNEL
+    float exit_fresnel = 0.0;   // F at the last exit into air (0: none)
+    vec3 exit_in = dir;         // the direction that reached it from inside
+    vec3 exit_n = n;
+    highp vec3 exit_q = p;      // the last point inside before it
+    int exit_c = c;
+    float exit_path = 0.0;
+    vec3 exit_tint = tint;
+#endif
     for (int k = 0; k < MAX_INTERFACES; k++) {
         bool capped = done >= u_max_interfaces; // inside at the cap: the length to the next surface only
         if (capped && (!inside || SNELL_ABSORB == 0)) break;
@@ -206,6 +246,17 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         highp vec3 out_dir;
         bool through = snell_refract(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
         snell_disp_cross(n2, through, inside);
+#if SNELL_INNER_FRESNEL
+        if (through && inside) {
+            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
+            exit_in = dir;
+            exit_n = n2;
+            exit_q = p + lo * d;
+            exit_c = c;
+            exit_path = path;
+            exit_tint = tint;
+        }
+#endif
         // the next march starts on the side the ray goes on in: just beyond
         // the surface (refracted through), or just before it (reflected)
         if (through) {
@@ -228,6 +279,14 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 transmitted = snell_disp_exit(exit_p, dir) * tint * snell_beer_lambert(u_sigma, path);
 #else
     vec3 transmitted = snell_disp_exit(exit_p, dir) * tint;
+#endif
+#if SNELL_INNER_FRESNEL
+    // Called for every pixel and selected, not branched on: its environment
+    // look-ups take implicit derivatives, which GLSL ES 3.0 leaves undefined
+    // in non-uniform control flow (8.9).
+    vec3 inner = inner_branch(exit_q, snell_reflect(exit_in, exit_n), exit_c, exit_path);
+    transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * exit_tint * inner
+                                     : transmitted;
 #endif
     vec3 reflected = snell_reflection(world_pos, r);
     exit_dir = dir;

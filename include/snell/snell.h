@@ -641,6 +641,9 @@ typedef struct snell_layered_params {
                                 * 1..64 (default 24) */
     int binary_steps;          /* binary refinement steps after a crossing, 1..16 (default 6) */
     int max_interfaces;        /* surfaces processed per path, 1..10 (default 8: exits, re-entries, TIR) */
+    /* Fresnel at the last exit too (1 - F out; the internal reflection F
+     * followed one march more): AUTO on convex meshes (as the cubemap's). */
+    snell_inner_fresnel inner_fresnel;
 } snell_layered_params;
 
 #define SNELL_LAYERED_MAX_LAYERS 8

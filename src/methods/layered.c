@@ -371,14 +371,14 @@ static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__ob
     return bake(ctx, s, o->mesh, p, stats);
 }
 
-static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[7], layered_prog *p)
+static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[8], layered_prog *p)
 {
-    char def[256];
+    char def[320];
     snell_status st;
     snprintf(def, sizeof def,
              "#define SNELL_LAYERS %d\n#define SNELL_LINEAR %d\n#define SNELL_BINARY %d\n#define SNELL_ABSORB %d\n"
-             "#define SNELL_REENTRY %d\n#define SNELL_DISPERSION %d\n",
-             key[0], key[1], key[2], key[3], key[4], key[6]);
+             "#define SNELL_REENTRY %d\n#define SNELL_DISPERSION %d\n#define SNELL_INNER_FRESNEL %d\n",
+             key[0], key[1], key[2], key[3], key[4], key[6], key[7]);
     st = snell__glass_program_build(ctx, "layered.frag", s->out, def, key[5], &p->slot.g);
     if (st != SNELL_OK) return st;
     p->layers = glGetUniformLocation(p->slot.g.prog, "u_layers");
@@ -400,13 +400,18 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     layered_prog *p;
     snell_status st = SNELL_OK;
     int hit;
+    int convex = o->analysis && o->analysis->convex;
     /* Compile-time constants of the march: the layers read (those that hold
      * something: a sphere needs 1), steps, absorption, whether a ray that
-     * left can meet the mesh again (not on a convex one), the variant. */
-    const int key[7] = {lpr->used > 0 ? lpr->used : 1, lp->linear_steps, lp->binary_steps, o->glass->absorbs,
-                        !(o->analysis && o->analysis->convex), snell__glass_variant(o),
-                        snell__dispersion_variant(o->glass)};
-    p = (layered_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 7, &s->clock, &hit);
+     * left can meet the mesh again (not on a convex one), the variant, and
+     * the exit's Fresnel (auto: on convex meshes, as the cubemap's: there the
+     * march is nearly exact and the missing internal reflection is the
+     * largest error left). */
+    const int key[8] = {lpr->used > 0 ? lpr->used : 1, lp->linear_steps, lp->binary_steps, o->glass->absorbs,
+                        !convex, snell__glass_variant(o), snell__dispersion_variant(o->glass),
+                        lp->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
+                            (lp->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && convex)};
+    p = (layered_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 8, &s->clock, &hit);
     if (!hit) st = build_prog(ctx, s, key, p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);
@@ -428,6 +433,8 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     return SNELL_OK;
 }
 
+static const char *const g_inner_names[] = {"auto", "off", "on"};
+
 static const snell_param_info g_params[] = {
     {"layers", "distance-map layers baked from the centre (the first surfaces along each direction)", 1,
      SNELL_LAYERED_MAX_LAYERS, DEFAULT_LAYERS, NULL},
@@ -436,12 +443,14 @@ static const snell_param_info g_params[] = {
     {"iterations", "binary steps at each crossing found", 1, 16, DEFAULT_BINARY, NULL},
     {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
      SNELL_LAYERED_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
+    {"inner", "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more march): auto "
+     "(on for convex meshes), off, on", 0, 2, SNELL_INNER_FRESNEL_AUTO, g_inner_names},
 };
 
 static const size_t g_offsets[] = {
     offsetof(snell_glass_material, layered.layers), offsetof(snell_glass_material, layered.face_size),
     offsetof(snell_glass_material, layered.linear_steps), offsetof(snell_glass_material, layered.binary_steps),
-    offsetof(snell_glass_material, layered.max_interfaces)};
+    offsetof(snell_glass_material, layered.max_interfaces), offsetof(snell_glass_material, layered.inner_fresnel)};
 
 static const snell_counter_info g_counters[] = {
     {"layers_used", "layers that hold a surface in some direction (the march reads these)"},
