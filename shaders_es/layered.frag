@@ -150,6 +150,20 @@ bool next_crossing(highp vec3 p, highp vec3 d, int c0, highp float t_max, out hi
     return true;
 }
 
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the red or blue ray from q along d (object space per
+// world length) over the green ray's length t, and the normal of the layer
+// nearest where it got to, facing its ray: where that channel meets the
+// surface, without a march of its own (as cubemap.frag's disp_exit). Updates q.
+vec3 disp_normal(inout highp vec3 q, highp vec3 d, highp float t, vec3 dir)
+{
+    int layer;
+    q += t * d;
+    vec3 n = normalize(u_normal_matrix * nearest_normal(q, layer));
+    return dot(n, dir) > 0.0 ? -n : n;
+}
+#endif
+
 #if SNELL_INNER_FRESNEL
 // The branch reflected inside at the last exit (weight F there): one more
 // march from the last point inside, q (c surfaces below it), along rdir,
@@ -210,6 +224,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     highp float path = 0.0;
     vec3 tint = u_tint;
     int done = 1; // interfaces processed: the entry
+#if SNELL_DISPERSION == 2
+    highp vec3 p_red = p, p_blue = p; // where the red and blue rays are, after the green ray's lengths
+#endif
 #if SNELL_INNER_FRESNEL
     float exit_fresnel = 0.0;   // F at the last exit into air (0: none)
     vec3 exit_in = dir;         // the direction that reached it from inside
@@ -245,7 +262,16 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         if (dot(n2, dir) > 0.0) n2 = -n2; // face the ray
         highp vec3 out_dir;
         bool through = snell_refract(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+#if SNELL_DISPERSION == 2
+        // red and blue meet the surface near where their own rays are after
+        // the green ray's length: the layers' normal there (a curved surface
+        // bends them by its change of normal as much as by their IORs)
+        vec3 n_red = disp_normal(p_red, inv3 * snell_disp_dirs[0], t, snell_disp_dirs[0]);
+        vec3 n_blue = disp_normal(p_blue, inv3 * snell_disp_dirs[2], t, snell_disp_dirs[2]);
+        snell_disp_cross3(mat3(n_red, n2, n_blue), through, inside);
+#else
         snell_disp_cross(n2, through, inside);
+#endif
 #if SNELL_INNER_FRESNEL
         if (through && inside) {
             exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);

@@ -223,26 +223,25 @@ static void render_checks(snell_ctx *ctx, const snell_env *env)
     snell_frame_stats fs;
     snell_image_error e;
     int passes_from_cube, m;
-    static const snell_method methods[] = {SNELL_METHOD_SINGLE, SNELL_METHOD_CUBEMAP, SNELL_METHOD_WYMAN,
-                                           SNELL_METHOD_OLIVEIRA, SNELL_METHOD_PEEL, SNELL_METHOD_EXACT};
     float model[16] = {0.4f, 0, 0, 0, 0, 0.4f, 0, 0, 0, 0, 0.4f, 0, 1.2f, -0.3f, -0.8f, 1};
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &sphere));
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &cd, &cube));
     if (!sphere || !cube) return;
     test_frame_one(&fd, &g, sphere, env);
-    /* every kernel's paraboloid variant */
-    for (m = 0; m < (int)(sizeof methods / sizeof methods[0]); m++) {
-        g.material.method = methods[m];
+    /* every kernel's paraboloid variant: each method of the registry */
+    for (m = 0; m < snell_method_count(); m++) {
+        snell_method id = snell_method_info_at(m)->method;
+        g.material.method = id;
         CHECK_OK_CTX(ctx, frame_rgba(ctx, SNELL_ENV_LOOKUP_CUBE, &fd, W, H, a, &fs));
         CHECK(!fs.glass[0].env_paraboloid && !fs.background_paraboloid, "cube look-up asked for, paraboloid used");
         CHECK_OK_CTX(ctx, frame_rgba(ctx, SNELL_ENV_LOOKUP_DUAL_PARABOLOID, &fd, W, H, b, &fs));
-        CHECK(fs.glass[0].env_paraboloid && fs.background_paraboloid && fs.glass[0].method_used == methods[m],
+        CHECK(fs.glass[0].env_paraboloid && fs.background_paraboloid && fs.glass[0].method_used == id,
               "paraboloid look-up asked for, not used");
         CHECK_OK(snell_metrics_image_error(b, a, W, H, NULL, &e));
         printf("static environment, %s: paraboloid vs cube PSNR %.2f dB, max %d/255\n",
                snell_method_str(fs.glass[0].method_used), e.psnr_db, e.max_abs);
         CHECK(e.psnr_db >= PSNR_STATIC_DB, "%s: paraboloid frame %.2f dB from the cube frame < %.0f",
-              snell_method_str(methods[m]), e.psnr_db, PSNR_STATIC_DB);
+              snell_method_str(id), e.psnr_db, PSNR_STATIC_DB);
     }
     g.material.method = SNELL_METHOD_AUTO;
     exit_dir_check(ctx, &fd);
