@@ -178,7 +178,7 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
     int face, l, size = p->face_size;
     size_t i, texels = (size_t)size * (size_t)size;
     uint8_t *normal_px = (uint8_t *)snell__malloc(&ctx->alloc, 8 * texels), *dist_px = normal_px + 4 * texels;
-    uint16_t *half = (uint16_t *)snell__malloc(&ctx->alloc, 8 * texels * 6 * (size_t)p->layers);
+    uint16_t *half = (uint16_t *)snell__malloc(&ctx->alloc, 8 * texels); /* one slice at a time */
     GLenum fst;
     if (!normal_px || !half) {
         snell__free(&ctx->alloc, normal_px);
@@ -216,7 +216,7 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
         snell__cube_face_view_proj(face, p->centre, p->radius * 1e-4f, p->radius * 1.01f, vp);
         glUniformMatrix4fv(s->u_view_proj, 1, GL_FALSE, (const GLfloat *)vp);
         for (l = 0; l < p->layers && st == SNELL_OK; l++) {
-            uint16_t *out = half + 4 * texels * (size_t)(face * p->layers + l);
+            uint16_t *out = half;
             GLuint any = 0;
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, next[l & 1], 0);
             if (face == 0 && l == 0 && (fst = glCheckFramebufferStatus(GL_FRAMEBUFFER)) != GL_FRAMEBUFFER_COMPLETE) {
@@ -251,6 +251,10 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
                 out[4 * i + 3] =
                     half_of(b[3] ? (float)((uint32_t)b[0] << 16 | (uint32_t)b[1] << 8 | b[2]) / 16777215.0f : 4.0f);
             }
+            glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
+            glBindTexture(GL_TEXTURE_2D_ARRAY, p->layers_tex);
+            glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, face * p->layers + l, size, size, 1, GL_RGBA, GL_HALF_FLOAT,
+                            half);
         }
     }
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
@@ -260,11 +264,6 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
     snell__pass_end(&pass);
     release_scratch(&fbo, next, &depth_rb, &query);
     if (normal_tex) glDeleteTextures(1, &normal_tex);
-    if (st == SNELL_OK) {
-        glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D_ARRAY, p->layers_tex);
-        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, size, size, 6 * p->layers, GL_RGBA, GL_HALF_FLOAT, half);
-    }
     snell__pixel_pack_end(&pack);
     snell__pixel_unpack_end(&unpack);
     snell__free(&ctx->alloc, normal_px);
