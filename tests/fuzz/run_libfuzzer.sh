@@ -43,6 +43,16 @@ export F OUT
 
 echo "run_libfuzzer: building into $OUT"
 cmake -DSHADER_DIR="$PWD/shaders_es" -DOUTPUT="$OUT/shaders_embedded.c" -P cmake/embed_shaders.cmake
+# Every component built in (cmake/components.cmake's header for the full build;
+# the *_off.c stubs of components left out are not compiled).
+{
+    echo "#ifndef SNELL_COMPONENTS_H"; echo "#define SNELL_COMPONENTS_H"
+    for c in GLTF REF LM2D WATER PNG; do echo "#define SNELL_WITH_$c 1"; done
+    methods=$(sed -n 's/^ *M(\([a-z0-9_]*\), [A-Z0-9_]*).*/\1/p' src/methods/registry.c)
+    for m in $methods; do echo "#define SNELL__BUILT_$m 1"; done
+    echo "#define SNELL__COMPONENTS \"gltf ref lm2d water png $(echo $methods)\""; echo "#endif"
+} > "$OUT/snell_components.h"
+F="$F -I$OUT"
 # One object per library source (warnings are the gcc build's business: -w).
 compile() {
     local src=$1 obj
@@ -55,7 +65,7 @@ compile() {
     esac
 }
 export -f compile
-{ find src -name '*.c'; echo src/mesh/mesh_gltf.cpp; echo tests/fuzz/tinygltf_impl.cpp; echo "$OUT/shaders_embedded.c"; } |
+{ find src -name '*.c' ! -name '*_off.c'; echo src/mesh/mesh_gltf.cpp; echo tests/fuzz/tinygltf_impl.cpp; echo "$OUT/shaders_embedded.c"; } |
     xargs -P "$JOBS" -I{} bash -c 'compile {}'
 
 run() {
