@@ -934,6 +934,26 @@ typedef struct snell_frame_desc {
      * the part of a ray inside the water that the glass's kernel traces (a
      * glass object half under water) is traced as in air. */
     snell_water *water;
+    /* AUTO by frame budget: > 0 = the frame time to hold, in ms (snell_render's
+     * start to the GPU's completion, measured by a fence after each frame and
+     * read at the next: snell_renderer_finish, a read-back or the next
+     * snell_render). Each AUTO glass object is then drawn by one rung of its
+     * ladder: the configurations of the rung table (method + parameter, with
+     * their measured cost and glass PSNR per mesh class) that its mesh does
+     * not fail, cut to their Pareto front; the plan of the highest predicted
+     * PSNR (area-weighted over the objects) whose predicted time fits 90% of
+     * the budget, at the ms per unit learned from the frames measured. A frame
+     * measured over 105% of the budget steps down at once and bars plans as
+     * dear for a back-off that doubles with each failure; steps up wait 6
+     * frames after any change (no oscillation). snell_frame_stats.budget_*
+     * and each object's reason say what was chosen and why. 0 = none: AUTO
+     * takes the cheapest adequate method, as without a budget. Finite, at
+     * most 1e6. */
+    float budget_ms;
+    /* With budget_ms: no object below the rung whose predicted glass PSNR
+     * reaches this many dB (its best rung if none does), whatever the
+     * budget; 0 = none. 0..100. */
+    float quality_floor_db;
 } snell_frame_desc;
 
 #define SNELL_MAX_SCENE_LAYERS 8
@@ -1014,6 +1034,12 @@ typedef struct snell_frame_stats {
                                      * an offscreen single-sample colour renderer); 0: only the container */
     int water_layers;               /* 1: the water's rays marched the scene layers (glass in the frame) */
     int background_paraboloid;      /* 1: the background looked the environment up in dual-paraboloid maps */
+    /* AUTO by budget (snell_frame_desc.budget_ms; all 0 without one): */
+    float budget_ms;                /* the budget this frame was planned for */
+    double budget_measured_ms;      /* the last frame measured (start to GPU completion), -1 none yet */
+    double budget_predicted_ms;     /* this frame's plan at the learned ms per unit, -1 before a measurement */
+    int budget_changed;             /* 1: the plan changed this frame */
+    char budget_reason[SNELL_REASON_SIZE]; /* what the controller did and why */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

@@ -1,0 +1,331 @@
+/* budget.c — AUTO by frame budget: the rung table, each object's ladder,
+ * and the controller (see budget.h). */
+#include "render/budget.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* The rung table: what AUTO by budget chooses from. cost: frame time over
+ * single's; db: glass PSNR against FULL for a convex mesh (the sphere), a
+ * closed non-convex one (the mean of the torus and the bunny) and an open
+ * one (glmark2's horse, IOR 1.33). Measured side by side in one run (the
+ * command and the load: bench/BENCHMARKS.md "AUTO by budget"):
+ *   snell-bench --scenes sphere,torus,bunny,tests/data/real/horse.obj --sizes 256x256 --aa 2 \
+ *     -b single -b cubemap -b oliveira -b layered -b peel:layers=2,4 -b exact:interfaces=2,4
+ * On another device the ratios move; the controller learns the device's ms
+ * per unit, and the table's order only needs to hold. */
+static const snell__rung g_rungs[] = {
+    {SNELL_METHOD_SINGLE, NULL, 0, 1.00f, {9.84f, 11.10f, 10.0f}},
+    {SNELL_METHOD_CUBEMAP, NULL, 0, 1.80f, {33.35f, 15.87f, 11.0f}},
+    {SNELL_METHOD_OLIVEIRA, NULL, 0, 2.50f, {31.18f, 18.66f, 12.0f}},
+    {SNELL_METHOD_LAYERED, NULL, 0, 10.0f, {40.0f, 19.0f, 13.0f}},
+    {SNELL_METHOD_PEEL, "layers", 2, 8.0f, {38.0f, 18.0f, 0.0f}},
+    {SNELL_METHOD_PEEL, NULL, 0, 17.0f, {40.27f, 24.60f, 0.0f}},
+    {SNELL_METHOD_EXACT, "interfaces", 2, 10.0f, {32.0f, 20.0f, 14.0f}},
+    {SNELL_METHOD_EXACT, NULL, 0, 20.0f, {32.17f, 24.25f, 15.0f}},
+};
+#define RUNG_COUNT ((int)(sizeof g_rungs / sizeof *g_rungs))
+
+/* The cost of a frame without glass, in units (single's frame drawing the
+ * target full of glass is 1 + BASE_UNITS): background, opaque objects. */
+#define BASE_UNITS 0.25
+#define HEADROOM 0.90    /* plans aim at this share of the budget */
+#define OVER 1.05        /* a measured frame above this share of it is over */
+#define HOLD_FRAMES 6    /* after a change, no step up for this many frames */
+#define BACKOFF_MIN 30u  /* frames a plan found over budget is barred, at first */
+#define BACKOFF_MAX 480u
+#define LEARN 0.35       /* weight of the newest frame in the mean ms per unit */
+#define LEARN_RUNG 0.6   /* ... and in a rung's own, times its share of the frame */
+
+int snell__rung_count(void) { return RUNG_COUNT; }
+
+const snell__rung *snell__rung_at(int i) { return i >= 0 && i < RUNG_COUNT ? &g_rungs[i] : NULL; }
+
+void snell__rung_name(const snell__rung *g, char *buf, size_t n)
+{
+    if (g->param)
+        snprintf(buf, n, "%s %s=%d", snell_method_str(g->method), g->param, g->value);
+    else
+        snprintf(buf, n, "%s", snell_method_str(g->method));
+}
+
+int snell__budget_class(const snell_mesh_analysis *an)
+{
+    if (!an || !an->closed) return 2;
+    return an->convex ? 0 : 1;
+}
+
+void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resolved *glass, float quality_floor_db,
+                          int (*usable)(void *user, snell_method m), void *user, snell__budget_object *out)
+{
+    int i, j;
+    out->n = 0;
+    out->cls = snell__budget_class(an);
+    out->floor = 0;
+    out->fixed_cost = 1.0f;
+    for (i = 0; i < RUNG_COUNT; i++) {
+        const snell__rung *g = &g_rungs[i];
+        const snell__method *m = snell__method_get(g->method);
+        char why[SNELL_REASON_SIZE];
+        if (!m || g->db[out->cls] <= 0.0f || !usable(user, g->method)) continue;
+        if (m->fit && m->fit(an, glass, why, sizeof why) == SNELL__FIT_FAILS) continue;
+        /* Pareto: drop every rung this one beats (cheaper or as cheap, and better or as good). */
+        for (j = 0; j < out->n;) {
+            const snell__rung *h = &g_rungs[out->ladder[j]];
+            if (g->cost <= h->cost && g->db[out->cls] >= h->db[out->cls]) {
+                memmove(&out->ladder[j], &out->ladder[j + 1], sizeof(int) * (size_t)(out->n - j - 1));
+                out->n--;
+            } else
+                j++;
+        }
+        for (j = 0; j < out->n; j++) {
+            const snell__rung *h = &g_rungs[out->ladder[j]];
+            if (h->cost <= g->cost && h->db[out->cls] >= g->db[out->cls]) break; /* beaten */
+        }
+        if (j < out->n) continue;
+        /* insert in cost order (the Pareto front is then in PSNR order too) */
+        for (j = out->n; j > 0 && g_rungs[out->ladder[j - 1]].cost > g->cost; j--) out->ladder[j] = out->ladder[j - 1];
+        out->ladder[j] = i;
+        out->n++;
+    }
+    if (quality_floor_db > 0.0f) {
+        out->floor = out->n > 0 ? out->n - 1 : 0; /* none reaches it: the best there is */
+        for (j = 0; j < out->n; j++)
+            if (g_rungs[out->ladder[j]].db[out->cls] >= quality_floor_db) {
+                out->floor = j;
+                break;
+            }
+    }
+}
+
+void snell__budget_reset(snell__budget *b)
+{
+    int i;
+    memset(b, 0, sizeof *b);
+    b->last_ms = -1.0;
+    b->backoff = BACKOFF_MIN;
+    for (i = 0; i < SNELL_MAX_GLASS; i++) b->plan[i] = b->last_plan_rung[i] = -1;
+}
+
+static double rung_cost(const snell__budget_object *o, int k)
+{
+    return o->n == 0 ? o->fixed_cost : g_rungs[o->ladder[k]].cost;
+}
+
+static double rung_db(const snell__budget_object *o, int k) { return g_rungs[o->ladder[k]].db[o->cls]; }
+
+/* A plan in the table's units (what bars compare; device independent). */
+static double plan_units(const snell__budget_object *obj, int n, const int plan[])
+{
+    double u = BASE_UNITS;
+    int i;
+    for (i = 0; i < n; i++) u += obj[i].area * rung_cost(&obj[i], obj[i].n ? plan[i] : 0);
+    return u;
+}
+
+/* ms per unit of rung r of the table: learned on this device, else the frames' mean. */
+static double rung_k(const snell__budget *b, int r) { return b->rung_ms[r] > 0.0 ? b->rung_ms[r] : b->ms_per_unit; }
+
+static double object_ms(const snell__budget *b, const snell__budget_object *o, int k)
+{
+    if (!o->n) return o->area * o->fixed_cost * b->ms_per_unit;
+    return o->area * g_rungs[o->ladder[k]].cost * rung_k(b, o->ladder[k]);
+}
+
+/* A plan's predicted ms on this device. */
+static double plan_ms(const snell__budget *b, const snell__budget_object *obj, int n, const int plan[])
+{
+    double ms = BASE_UNITS * b->ms_per_unit;
+    int i;
+    for (i = 0; i < n; i++) ms += object_ms(b, &obj[i], plan[i]);
+    return ms;
+}
+
+static double plan_quality(const snell__budget_object *obj, int n, const int plan[])
+{
+    double q = 0.0, a = 0.0;
+    int i;
+    for (i = 0; i < n; i++)
+        if (obj[i].n) {
+            q += obj[i].area * rung_db(&obj[i], plan[i]);
+            a += obj[i].area;
+        }
+    return a > 0.0 ? q / a : 0.0;
+}
+
+void snell__budget_observe(snell__budget *b, double ms)
+{
+    double pred, rho, share[SNELL__BUDGET_MAX_RUNGS] = {0};
+    int i, r;
+    if (!(ms > 0.0) || !(b->last_units > 0.0)) return;
+    b->last_ms = ms;
+    b->fresh = 1;
+    if (b->ms_per_unit <= 0.0) {
+        b->ms_per_unit = ms / b->last_units; /* the first frame: the rungs drawn start from the mean */
+        for (i = 0; i < SNELL_MAX_GLASS; i++)
+            if (b->last_plan_rung[i] >= 0) b->rung_ms[b->last_plan_rung[i]] = b->ms_per_unit;
+        return;
+    }
+    pred = b->last_fixed * b->ms_per_unit;
+    for (i = 0; i < SNELL_MAX_GLASS; i++)
+        if ((r = b->last_plan_rung[i]) >= 0) {
+            double part = b->last_area[i] * g_rungs[r].cost * rung_k(b, r);
+            share[r] += part;
+            pred += part;
+        }
+    if (!(pred > 0.0)) return;
+    rho = ms / pred;
+    /* Each rung drawn takes the error in proportion to its share of the
+     * prediction (fully the first time it is measured); the mean moves more
+     * slowly and stands in for the base and the rungs not drawn yet. */
+    for (r = 0; r < RUNG_COUNT; r++)
+        if (share[r] > 0.0) {
+            double w = share[r] / pred;
+            b->rung_ms[r] = rung_k(b, r) * pow(rho, b->rung_ms[r] > 0.0 ? LEARN_RUNG * w : w);
+        }
+    b->ms_per_unit *= pow(rho, LEARN);
+}
+
+/* Greedy: from every object on its floor rung, the step up that buys the
+ * most area-weighted PSNR per ms, while the plan fits limit_ms and stays
+ * below the bar (in table units). */
+static void best_plan(const snell__budget *b, const snell__budget_object *obj, int n, double limit_ms, int plan[])
+{
+    int i;
+    double ms, units;
+    for (i = 0; i < n; i++) plan[i] = obj[i].n ? obj[i].floor : -1;
+    ms = plan_ms(b, obj, n, plan);
+    units = plan_units(obj, n, plan);
+    for (;;) {
+        int pick = -1;
+        double best = 0.0, dms_pick = 0.0, du_pick = 0.0;
+        for (i = 0; i < n; i++) {
+            double dms, du, dq, gain;
+            if (!obj[i].n || plan[i] + 1 >= obj[i].n) continue;
+            dms = object_ms(b, &obj[i], plan[i] + 1) - object_ms(b, &obj[i], plan[i]);
+            du = obj[i].area * (rung_cost(&obj[i], plan[i] + 1) - rung_cost(&obj[i], plan[i]));
+            dq = obj[i].area * (rung_db(&obj[i], plan[i] + 1) - rung_db(&obj[i], plan[i]));
+            if (ms + dms > limit_ms) continue;
+            if (b->blocked_until > b->frame && units + du >= b->blocked_units) continue;
+            gain = dq / (dms > 1e-9 ? dms : 1e-9);
+            if (gain > best) {
+                best = gain;
+                pick = i;
+                dms_pick = dms;
+                du_pick = du;
+            }
+        }
+        if (pick < 0) break;
+        plan[pick]++;
+        ms += dms_pick;
+        units += du_pick;
+    }
+}
+
+/* Every plan when there are few (the product of the ladders' lengths up to
+ * EXHAUSTIVE): the best quality that fits limit_ms and the bar, the cheaper
+ * of equals. Returns 0 (plan untouched) when there are too many. */
+#define EXHAUSTIVE 4096
+static int exhaustive_plan(const snell__budget *b, const snell__budget_object *obj, int n, double limit_ms, int plan[])
+{
+    int i, k[SNELL_MAX_GLASS], found = 0;
+    double combos = 1.0, best_q = -1.0, best_ms = 0.0;
+    for (i = 0; i < n; i++) {
+        k[i] = obj[i].n ? obj[i].floor : -1;
+        if (obj[i].n) combos *= (double)(obj[i].n - obj[i].floor);
+    }
+    if (combos > EXHAUSTIVE) return 0;
+    for (;;) {
+        double ms = plan_ms(b, obj, n, k), q = plan_quality(obj, n, k);
+        int fits = ms <= limit_ms && !(b->blocked_until > b->frame && plan_units(obj, n, k) >= b->blocked_units);
+        /* the first (floor) plan stands when nothing fits */
+        if (!found || (fits && (q > best_q + 1e-9 || (q > best_q - 1e-9 && ms < best_ms)))) {
+            memcpy(plan, k, sizeof(int) * (size_t)n);
+            best_q = fits ? q : -1.0;
+            best_ms = ms;
+            found = 1;
+        }
+        for (i = 0; i < n; i++) { /* the next plan, odometer order */
+            if (!obj[i].n) continue;
+            if (++k[i] < obj[i].n) break;
+            k[i] = obj[i].floor;
+        }
+        if (i == n) break;
+    }
+    return 1;
+}
+
+int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n, float budget_ms, int plan[],
+                       double *predicted_ms, char *why, size_t why_size)
+{
+    int i, changed = 0, same_objects = 1;
+    int cur[SNELL_MAX_GLASS];
+    int over = b->fresh && b->last_ms > OVER * budget_ms;
+    b->fresh = 0;
+    snell__why(why, why_size, "unchanged");
+    /* The current plan carried over (clamped to each ladder). */
+    for (i = 0; i < n; i++) {
+        cur[i] = obj[i].n ? b->plan[i] : -1;
+        if (obj[i].n && (cur[i] < obj[i].floor || cur[i] >= obj[i].n)) {
+            cur[i] = obj[i].floor;
+            same_objects = 0;
+        }
+    }
+    if (b->ms_per_unit <= 0.0) {
+        /* Nothing measured yet: start on the floor and measure it. */
+        for (i = 0; i < n; i++) plan[i] = obj[i].n ? obj[i].floor : -1;
+        snell__why(why, why_size, "first frame: every object on its lowest allowed rung, to measure");
+        changed = 1;
+    } else {
+        double cur_ms = plan_ms(b, obj, n, cur), new_ms;
+        if (over) {
+            /* Measured over budget: bar plans as dear as this one, longer each time. */
+            b->blocked_units = b->last_units;
+            b->blocked_until = b->frame + b->backoff;
+            b->backoff = b->backoff * 2 > BACKOFF_MAX ? BACKOFF_MAX : b->backoff * 2;
+            b->within_since = b->frame + 1;
+        } else if (b->frame - b->within_since >= 2 * BACKOFF_MIN && b->backoff > BACKOFF_MIN) {
+            b->backoff /= 2; /* a long stretch within budget forgives */
+            b->within_since = b->frame;
+        }
+        if (!exhaustive_plan(b, obj, n, HEADROOM * budget_ms, plan)) best_plan(b, obj, n, HEADROOM * budget_ms, plan);
+        new_ms = plan_ms(b, obj, n, plan);
+        if (!over && same_objects && new_ms > cur_ms && b->frame < b->hold_until && cur_ms <= budget_ms) {
+            memcpy(plan, cur, sizeof(int) * (size_t)n); /* hold: the last change is still being measured */
+            snell__why(why, why_size, "holding for %u frames after a change", b->hold_until - b->frame);
+        } else if (!over && same_objects && new_ms > cur_ms &&
+                   plan_quality(obj, n, plan) <= plan_quality(obj, n, cur)) {
+            memcpy(plan, cur, sizeof(int) * (size_t)n); /* dearer and no better */
+        } else if (!over && same_objects && new_ms < cur_ms && cur_ms <= budget_ms) {
+            /* predicted within the budget though above the aim: kept (the band 90-100% is the hysteresis) */
+            memcpy(plan, cur, sizeof(int) * (size_t)n);
+            snell__why(why, why_size, "kept: %.2f ms predicted, within the budget's %.2f", cur_ms, (double)budget_ms);
+        }
+        for (i = 0; i < n && !changed; i++) changed = plan[i] != cur[i];
+        new_ms = plan_ms(b, obj, n, plan);
+        if (changed || over)
+            snell__why(why, why_size, "%s: last frame %.2f ms, this plan %.2f ms predicted%s",
+                       !changed ? "over budget, nothing cheaper allowed" : over ? "over budget, stepped down"
+                       : new_ms > cur_ms ? "stepped up" : "stepped down",
+                       b->last_ms, new_ms, b->blocked_until > b->frame ? " (plans as dear as one found over are barred)" : "");
+        else if (!strcmp(why, "unchanged"))
+            snell__why(why, why_size, "unchanged: last frame %.2f ms, this plan %.2f ms predicted", b->last_ms, new_ms);
+    }
+    if (changed) {
+        b->hold_until = b->frame + HOLD_FRAMES;
+        b->changes++;
+    }
+    for (i = 0; i < SNELL_MAX_GLASS; i++) {
+        b->plan[i] = i < n ? plan[i] : -1;
+        b->last_plan_rung[i] = i < n && obj[i].n ? obj[i].ladder[plan[i]] : -1;
+        b->last_area[i] = i < n ? obj[i].area : 0.0f;
+    }
+    b->last_fixed = BASE_UNITS;
+    for (i = 0; i < n; i++)
+        if (!obj[i].n) b->last_fixed += obj[i].area * obj[i].fixed_cost;
+    b->last_units = plan_units(obj, n, plan);
+    *predicted_ms = b->ms_per_unit > 0.0 ? plan_ms(b, obj, n, plan) : -1.0;
+    b->frame++;
+    return changed;
+}
