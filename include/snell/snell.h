@@ -941,7 +941,7 @@ typedef struct snell_frame_desc {
      * ladder: the configurations of the rung table (method + parameter, with
      * their measured cost and glass PSNR per mesh class) that its mesh does
      * not fail, cut to their Pareto front; the plan of the highest predicted
-     * PSNR (area-weighted over the objects) whose predicted time fits 90% of
+     * PSNR (area-weighted over the objects) whose predicted time fits 95% of
      * the budget, at the ms per unit learned from the frames measured. A frame
      * measured over 105% of the budget steps down at once and bars plans as
      * dear for a back-off that doubles with each failure; steps up wait 6
@@ -1069,6 +1069,23 @@ const snell_glass *snell_scene_file_glass(const snell_scene_file *scene, int *co
 const snell_opaque *snell_scene_file_opaque(const snell_scene_file *scene, int *count);
 /* 1 and *camera set if the file has a camera, else 0. */
 int snell_scene_file_camera(const snell_scene_file *scene, snell_camera *camera);
+
+/* AUTO by budget's rung table (snell_frame_desc.budget_ms): the
+ * configurations it chooses among, each with its frame time relative to
+ * single's and its glass PSNR against FULL per mesh class, as measured on
+ * the project's reference device (bench/BENCHMARKS.md "AUTO by budget").
+ * An object's ladder is the rungs its mesh does not fail, cut to their
+ * Pareto front; the controller replaces the costs by what it measures. */
+typedef struct snell_budget_rung {
+    snell_method method;
+    const char *param;              /* a parameter of the method set to value, or NULL (its defaults) */
+    int value;
+    float cost[3];                  /* frame time over single's, same scene and size, per mesh class:
+                                     * convex, closed concave, open (or non-manifold) */
+    float db[3];                    /* glass PSNR vs FULL per class; 0 = not on that class's ladder */
+} snell_budget_rung;
+int snell_budget_rung_count(void);
+const snell_budget_rung *snell_budget_rung_at(int i); /* NULL outside 0..count-1 */
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);
 void snell_renderer_destroy(snell_renderer *r);

@@ -10,7 +10,7 @@
  * projected bounding sphere covers; the controller learns the device's ms
  * per unit from the frames it measures (a fence after each frame: the CPU
  * clock from snell_render's start to the GPU's completion) and picks the
- * plan of the highest area-weighted predicted PSNR that fits 90% of the
+ * plan of the highest area-weighted predicted PSNR that fits 95% of the
  * budget. Against oscillation: a step up waits a few frames after any
  * change; a plan found over budget is stepped down from at once and plans
  * as dear are barred for a back-off that doubles with each failure.
@@ -26,17 +26,11 @@
 #define SNELL__BUDGET_CLASSES 3 /* 0 convex, 1 closed (not convex), 2 open or unanalysed */
 #define SNELL__BUDGET_MAX_RUNGS 16
 
-/* One configuration of the table. */
-typedef struct snell__rung {
-    snell_method method;
-    const char *param;              /* one of the method's parameters, or NULL (all defaults) */
-    int value;
-    float cost;                     /* frame time relative to single's, same scene and size */
-    float db[SNELL__BUDGET_CLASSES]; /* glass PSNR against FULL per class; 0 = not measured: not used */
-} snell__rung;
+/* One configuration of the table (public: snell_budget_rung). */
+typedef snell_budget_rung snell__rung;
 
-int snell__rung_count(void);
-const snell__rung *snell__rung_at(int i);
+#define snell__rung_count snell_budget_rung_count
+#define snell__rung_at snell_budget_rung_at
 /* "peel layers=2" */
 void snell__rung_name(const snell__rung *g, char *buf, size_t n);
 /* The class of a mesh for the table (analysis may be NULL). */
@@ -57,7 +51,7 @@ typedef struct snell__budget {
     double rung_ms[SNELL__BUDGET_MAX_RUNGS]; /* learned ms per unit of each rung of the table, 0 = not yet
                                      * drawn (ms_per_unit stands in): the device's own cost table */
     int last_plan_rung[SNELL_MAX_GLASS]; /* the measured plan's rung (table index) per object, -1 none */
-    float last_area[SNELL_MAX_GLASS];
+    float last_area[SNELL_MAX_GLASS];   /* its units: area times the rung's cost */
     double last_fixed;              /* its units of base and fixed-cost objects */
     double last_ms;                 /* the last measured frame, -1 none */
     double last_units;              /* the plan it drew, in units */

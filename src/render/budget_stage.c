@@ -88,10 +88,14 @@ snell_status snell__budget_run(snell__frame *f)
         if (b->n == 0) {
             /* drawn as asked (or single for a thin wall): its table cost, else single's */
             snell_method m = g->thickness > 0.0f || g->method == SNELL_METHOD_AUTO ? SNELL_METHOD_SINGLE : g->method;
-            int k;
+            const snell_mesh_analysis *an = NULL;
+            int k, cls;
+            if (snell__mesh_analysis(o->mesh, &an) != SNELL_OK) an = NULL;
+            cls = snell__budget_class(an);
             b->fixed_cost = 1.0f;
             for (k = 0; k < snell__rung_count(); k++)
-                if (snell__rung_at(k)->method == m && !snell__rung_at(k)->param) b->fixed_cost = snell__rung_at(k)->cost;
+                if (snell__rung_at(k)->method == m && !snell__rung_at(k)->param)
+                    b->fixed_cost = snell__rung_at(k)->cost[cls];
         }
     }
     s->budget_changed = snell__budget_plan(&r->budget, r->budget_obj, sc->count, f->fd->budget_ms, plan, &predicted,
