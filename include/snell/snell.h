@@ -1039,6 +1039,9 @@ typedef struct snell_frame_stats {
     double budget_measured_ms;      /* the last frame measured (start to GPU completion), -1 none yet */
     double budget_predicted_ms;     /* this frame's plan at the learned ms per unit, -1 before a measurement */
     int budget_changed;             /* 1: the plan changed this frame */
+    int budget_first_use;           /* 1: the plan draws a configuration for the first time on this renderer:
+                                     * the frame may build its programs and per-mesh resources (a bake), so
+                                     * its time is neither learned from nor judged over the budget */
     char budget_reason[SNELL_REASON_SIZE]; /* what the controller did and why */
 } snell_frame_stats;
 

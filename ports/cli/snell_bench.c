@@ -113,6 +113,7 @@ int main(int argc, char **argv)
         if (!strcmp(argv[i], "--2d")) return snell_bench2d_main(argc, argv);
         else if (!strcmp(argv[i], "--env-lookup")) return snell_bench_env_main(argc, argv);
         else if (!strcmp(argv[i], "--water")) return snell_bench_water_main(argc, argv);
+        else if (!strcmp(argv[i], "--budget")) return snell_bench_budget_main(argc, argv);
     if ((i = bench_parse_options(argc, argv, &o)) <= 0) return i < 0 ? 0 : 2;
     cs = (bench_config *)calloc(BENCH_MAX_CONFIGS, sizeof *cs);
     if (!cs) return fprintf(stderr, "snell-bench: out of memory\n"), 1;

@@ -164,6 +164,7 @@ void snell__budget_observe(snell__budget *b, double ms)
     int i, r;
     if (!(ms > 0.0) || !(b->last_units > 0.0)) return;
     b->last_ms = ms;
+    if (b->first_use && b->ms_per_unit > 0.0) return; /* a first draw's builds say nothing of its cost */
     b->fresh = 1;
     if (b->ms_per_unit <= 0.0) {
         b->ms_per_unit = ms / b->last_units; /* the first frame: the rungs drawn start from the mean */
@@ -325,6 +326,12 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         b->last_plan_rung[i] = i < n && obj[i].n ? obj[i].ladder[plan[i]] : -1;
         b->last_area[i] = i < n && obj[i].n ? (float)(obj[i].area * rung_cost(&obj[i], plan[i])) : 0.0f;
     }
+    b->first_use = 0;
+    for (i = 0; i < n; i++)
+        if (obj[i].n && !b->drawn[obj[i].ladder[plan[i]]]) {
+            b->first_use = 1;
+            b->drawn[obj[i].ladder[plan[i]]] = 1;
+        }
     b->last_fixed = BASE_UNITS;
     for (i = 0; i < n; i++)
         if (!obj[i].n) b->last_fixed += obj[i].area * obj[i].fixed_cost;

@@ -62,6 +62,10 @@ typedef struct snell__budget {
     unsigned hold_until;            /* no step up before this frame */
     unsigned within_since;          /* frame since which the measured frames are within budget */
     int fresh;                      /* 1: last_ms was measured since the last plan */
+    unsigned char drawn[SNELL__BUDGET_MAX_RUNGS]; /* rungs drawn before on this renderer */
+    int first_use;                  /* the last plan draws a rung for the first time: its frame builds
+                                     * programs and per-mesh resources, so it is neither learned from
+                                     * nor judged over budget */
     int plan[SNELL_MAX_GLASS];      /* ladder index per object of the last plan, -1 none */
     int changes;                    /* plan changes so far */
 } snell__budget;

@@ -101,6 +101,7 @@ snell_status snell__budget_run(snell__frame *f)
     s->budget_changed = snell__budget_plan(&r->budget, r->budget_obj, sc->count, f->fd->budget_ms, plan, &predicted,
                                            s->budget_reason, sizeof s->budget_reason);
     s->budget_ms = f->fd->budget_ms;
+    s->budget_first_use = r->budget.first_use;
     s->budget_measured_ms = r->budget.last_ms;
     s->budget_predicted_ms = predicted;
     for (i = 0; i < sc->count; i++) {
