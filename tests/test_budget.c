@@ -61,6 +61,7 @@ static void check_ladder(const snell__budget_object *b, const char *what)
 /* The synthetic device: ms of a plan on it. */
 typedef struct device {
     double ms_per_unit;
+    double base;                   /* the frame's fixed part, in units (the controller assumes 0.25) */
     double skew[SNELL__BUDGET_MAX_RUNGS * 2]; /* true cost / table cost, per rung of the table */
     unsigned seed;
 } device;
@@ -73,7 +74,7 @@ static double noise(device *d)
 
 static double true_units(const device *d, const snell__budget_object *obj, int n, const int plan[])
 {
-    double u = 0.25;
+    double u = d->base;
     int i;
     for (i = 0; i < n; i++) {
         int r = obj[i].ladder[plan[i]];
@@ -201,6 +202,7 @@ int main(void)
         char what[64];
         memset(&d, 0, sizeof d);
         d.ms_per_unit = 9.0;
+        d.base = 0.25;
         d.seed = 7u + (unsigned)s;
         for (r = 0; r < snell__rung_count(); r++) d.skew[r] = 1.0 + (s < 3 ? 0.15 : 0.30) * sin(3.7 * r + 1.3 * s);
         strict = s < 3;
@@ -216,6 +218,11 @@ int main(void)
         run(what, &d, obj, 3, 60.0, 0.3, 300);
         snprintf(what, sizeof what, "device %d, three objects, tight budget", s);
         run(what, &d, obj, 3, 12.0, 0.3, 300);
+        /* a frame whose fixed part (scene layers, opaque objects) is most of it */
+        d.base = 2.5;
+        snprintf(what, sizeof what, "device %d, three objects, heavy fixed part", s);
+        run(what, &d, obj, 3, 60.0, 0.3, 300);
+        d.base = 0.25;
     }
 
     /* The floor wins over the budget, and says so by staying there. */

@@ -39,7 +39,6 @@ static const snell__rung g_rungs[] = {
 #define HOLD_FRAMES 6    /* after a change, no step up for this many frames */
 #define BACKOFF_MIN 30u  /* frames a plan found over budget is barred, at first */
 #define BACKOFF_MAX 480u
-#define LEARN 0.35       /* weight of the newest frame in the mean ms per unit */
 #define LEARN_RUNG 0.6   /* ... and in a rung's own, times its share of the frame */
 
 int snell_budget_rung_count(void) { return RUNG_COUNT; }
@@ -128,7 +127,7 @@ static double plan_units(const snell__budget_object *obj, int n, const int plan[
     return u;
 }
 
-/* ms per unit of rung r of the table: learned on this device, else the frames' mean. */
+/* ms per unit of rung r of the table: learned on this device, else the learned rungs' mean. */
 static double rung_k(const snell__budget *b, int r) { return b->rung_ms[r] > 0.0 ? b->rung_ms[r] : b->ms_per_unit; }
 
 static double object_ms(const snell__budget *b, const snell__budget_object *o, int k)
@@ -140,7 +139,7 @@ static double object_ms(const snell__budget *b, const snell__budget_object *o, i
 /* A plan's predicted ms on this device. */
 static double plan_ms(const snell__budget *b, const snell__budget_object *obj, int n, const int plan[])
 {
-    double ms = BASE_UNITS * b->ms_per_unit;
+    double ms = b->base_ms;
     int i;
     for (i = 0; i < n; i++) ms += object_ms(b, &obj[i], plan[i]);
     return ms;
@@ -158,38 +157,80 @@ static double plan_quality(const snell__budget_object *obj, int n, const int pla
     return a > 0.0 ? q / a : 0.0;
 }
 
+/* The prediction of a measured plan (rungs and units per object) with today's estimates. */
+static double measured_plan_ms(const snell__budget *b, const int rung[], const float units[], double fixed,
+                               double part[])
+{
+    double ms = b->base_ms + fixed * b->ms_per_unit;
+    int i, r;
+    for (i = 0; i < SNELL_MAX_GLASS; i++)
+        if ((r = rung[i]) >= 0) {
+            if (part) part[r] += units[i] * rung_k(b, r);
+            ms += units[i] * rung_k(b, r);
+        }
+    return ms;
+}
+
+static double clampd(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
+
 void snell__budget_observe(snell__budget *b, double ms)
 {
-    double pred, rho, share[SNELL__BUDGET_MAX_RUNGS] = {0};
-    int i, r;
+    double pred, part[SNELL__BUDGET_MAX_RUNGS] = {0};
+    int i, r, changed = 0, learned = 0;
     if (!(ms > 0.0) || !(b->last_units > 0.0)) return;
     b->last_ms = ms;
-    if (b->first_use && b->ms_per_unit > 0.0) return; /* a first draw's builds say nothing of its cost */
-    b->fresh = 1;
-    if (b->ms_per_unit <= 0.0) {
-        b->ms_per_unit = ms / b->last_units; /* the first frame: the rungs drawn start from the mean */
-        for (i = 0; i < SNELL_MAX_GLASS; i++)
-            if (b->last_plan_rung[i] >= 0) b->rung_ms[b->last_plan_rung[i]] = b->ms_per_unit;
+    if (b->first_use && b->ms_per_unit > 0.0) {
+        b->prev_valid = 0; /* a first draw's builds say nothing of its cost */
         return;
     }
-    pred = b->last_fixed * b->ms_per_unit;
-    for (i = 0; i < SNELL_MAX_GLASS; i++)
-        if ((r = b->last_plan_rung[i]) >= 0) {
-            double part = b->last_area[i] * rung_k(b, r);
-            share[r] += part;
-            pred += part;
+    b->fresh = 1;
+    if (b->ms_per_unit <= 0.0) {
+        /* The first frame: no split is known; the table's base share, every rung drawn at the mean. */
+        b->ms_per_unit = ms / b->last_units;
+        b->base_ms = BASE_UNITS * b->ms_per_unit;
+        for (i = 0; i < SNELL_MAX_GLASS; i++)
+            if (b->last_plan_rung[i] >= 0) b->rung_ms[b->last_plan_rung[i]] = b->ms_per_unit;
+    } else {
+        pred = measured_plan_ms(b, b->last_plan_rung, b->last_area, b->last_fixed, part);
+        for (i = 0; i < SNELL_MAX_GLASS && b->prev_valid; i++) changed |= b->prev_rung[i] != b->last_plan_rung[i];
+        if (changed) {
+            /* A new plan beside the last one measured: the difference of the two frames is what the
+             * rungs new to this plan cost more than the prediction said (the base cancels). */
+            double prev_pred = measured_plan_ms(b, b->prev_rung, b->prev_area, b->prev_fixed, NULL);
+            double d = (ms - b->prev_ms) - (pred - prev_pred), fresh_part = 0.0;
+            unsigned char fresh[SNELL__BUDGET_MAX_RUNGS] = {0};
+            for (i = 0; i < SNELL_MAX_GLASS; i++)
+                if ((r = b->last_plan_rung[i]) >= 0 && r != b->prev_rung[i] && !fresh[r]) {
+                    fresh[r] = 1;
+                    fresh_part += part[r];
+                }
+            for (r = 0; r < RUNG_COUNT && fresh_part > 0.0; r++)
+                if (fresh[r]) {
+                    b->rung_ms[r] = rung_k(b, r) * clampd((fresh_part + d) / fresh_part, 0.25, 4.0);
+                    learned = 1;
+                }
         }
-    if (!(pred > 0.0)) return;
-    rho = ms / pred;
-    /* Each rung drawn takes the error in proportion to its share of the
-     * prediction (fully the first time it is measured); the mean moves more
-     * slowly and stands in for the base and the rungs not drawn yet. */
-    for (r = 0; r < RUNG_COUNT; r++)
-        if (share[r] > 0.0) {
-            double w = share[r] / pred;
-            b->rung_ms[r] = rung_k(b, r) * pow(rho, b->rung_ms[r] > 0.0 ? LEARN_RUNG * w : w);
+        if (!learned) {
+            /* The same plan again: the error goes to the base and each rung by its share of the prediction. */
+            double rho = ms / pred;
+            b->base_ms *= pow(rho, LEARN_RUNG * b->base_ms / pred);
+            for (r = 0; r < RUNG_COUNT; r++)
+                if (part[r] > 0.0) b->rung_ms[r] = rung_k(b, r) * pow(rho, LEARN_RUNG * part[r] / pred);
         }
-    b->ms_per_unit *= pow(rho, LEARN);
+        /* the mean that stands in for rungs not drawn yet */
+        {
+            double sum = 0.0;
+            int m = 0;
+            for (r = 0; r < RUNG_COUNT; r++)
+                if (b->rung_ms[r] > 0.0) sum += b->rung_ms[r], m++;
+            if (m) b->ms_per_unit = sum / m;
+        }
+    }
+    b->prev_valid = 1;
+    b->prev_ms = ms;
+    b->prev_fixed = b->last_fixed;
+    memcpy(b->prev_rung, b->last_plan_rung, sizeof b->prev_rung);
+    memcpy(b->prev_area, b->last_area, sizeof b->prev_area);
 }
 
 /* Greedy: from every object on its floor rung, the step up that buys the
@@ -332,7 +373,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
             b->first_use = 1;
             b->drawn[obj[i].ladder[plan[i]]] = 1;
         }
-    b->last_fixed = BASE_UNITS;
+    b->last_fixed = 0.0;
     for (i = 0; i < n; i++)
         if (!obj[i].n) b->last_fixed += obj[i].area * obj[i].fixed_cost;
     b->last_units = plan_units(obj, n, plan);

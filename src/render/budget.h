@@ -47,12 +47,18 @@ typedef struct snell__budget_object {
 } snell__budget_object;
 
 typedef struct snell__budget {
-    double ms_per_unit;             /* learned over every frame; 0 until the first measured frame */
+    double ms_per_unit;             /* the mean of the learned rungs' ms per unit; 0 until the first frame */
+    double base_ms;                 /* learned: the frame's part that no rung changes (opaque objects,
+                                     * scene layers, background) */
     double rung_ms[SNELL__BUDGET_MAX_RUNGS]; /* learned ms per unit of each rung of the table, 0 = not yet
                                      * drawn (ms_per_unit stands in): the device's own cost table */
     int last_plan_rung[SNELL_MAX_GLASS]; /* the measured plan's rung (table index) per object, -1 none */
     float last_area[SNELL_MAX_GLASS];   /* its units: area times the rung's cost */
-    double last_fixed;              /* its units of base and fixed-cost objects */
+    double last_fixed;              /* its units of fixed-cost objects (explicit methods, thin walls) */
+    int prev_valid;                 /* the measured frame before: its plan's rungs and units, its ms */
+    int prev_rung[SNELL_MAX_GLASS];
+    float prev_area[SNELL_MAX_GLASS];
+    double prev_ms, prev_fixed;
     double last_ms;                 /* the last measured frame, -1 none */
     double last_units;              /* the plan it drew, in units */
     double blocked_units;           /* plans of at least this many units are barred ... */
