@@ -25,6 +25,8 @@ static void usage(FILE *f)
             "  --atomic            show frames by atomic commits (default: legacy page flips; the kiosk\n"
             "                      reports whether the driver has atomic modesetting)\n"
             "  --spin DEG          camera azimuth step per frame, degrees (default 0.5; 0 with --bench)\n"
+            "  --budget MS         show mode: AUTO by frame budget (snell_frame_desc.budget_ms): each AUTO object\n"
+            "                      drawn by the best configuration that holds MS a frame; the reports say which\n"
             "  --frames N          stop after N frames (default: run until SIGINT/SIGTERM; --bench: 60)\n"
             "  --hold              after the last frame keep it on screen until SIGINT/SIGTERM\n"
             "  --report S          print frames per second every S seconds (default 5; 0: at the end only)\n"
@@ -87,6 +89,9 @@ static int value_option(const char *a, const char *v, kiosk_options *o)
     } else if (!strcmp(a, "--spin")) {
         if (!parse_double(a, v, -360.0, 360.0, &x)) return 0;
         o->spin_deg = (float)x;
+    } else if (!strcmp(a, "--budget")) {
+        if (!parse_double(a, v, 0.1, 1e6, &x)) return 0;
+        o->budget_ms = (float)x;
     } else if (!strcmp(a, "--frames")) {
         if (!parse_long(a, v, 1, 1000000000L, &o->frames)) return 0;
     } else if (!strcmp(a, "--report")) {
