@@ -179,8 +179,8 @@ void snell__budget_observe(snell__budget *b, double ms)
     int i, r, changed = 0, learned = 0;
     if (!(ms > 0.0) || !(b->last_units > 0.0)) return;
     b->last_ms = ms;
-    if (b->first_use && b->ms_per_unit > 0.0) {
-        b->prev_valid = 0; /* a first draw's builds say nothing of its cost */
+    if (b->first_use) {
+        b->prev_valid = 0; /* a first draw's builds (programs, bakes) say nothing of its cost */
         return;
     }
     b->fresh = 1;
@@ -321,7 +321,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
     if (b->ms_per_unit <= 0.0) {
         /* Nothing measured yet: start on the floor and measure it. */
         for (i = 0; i < n; i++) plan[i] = obj[i].n ? obj[i].floor : -1;
-        snell__why(why, why_size, "first frame: every object on its lowest allowed rung, to measure");
+        snell__why(why, why_size, "nothing measured yet: every object on its lowest allowed rung, to measure it");
         changed = 1;
     } else {
         double cur_ms = plan_ms(b, obj, n, cur), new_ms;
