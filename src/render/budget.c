@@ -322,7 +322,8 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         /* Nothing measured yet: start on the floor and measure it. */
         for (i = 0; i < n; i++) plan[i] = obj[i].n ? obj[i].floor : -1;
         snell__why(why, why_size, "nothing measured yet: every object on its lowest allowed rung, to measure it");
-        changed = 1;
+        changed = b->frame == 0;
+        for (i = 0; i < n && !changed; i++) changed = plan[i] != cur[i];
     } else {
         double cur_ms = plan_ms(b, obj, n, cur), new_ms;
         if (over) {
