@@ -12,7 +12,7 @@
  *    pixels that differ (any channel by more than 6/255) cover 30-90% of the
  *    frame, and none lies on the frame's border (the sphere fits). The
  *    default camera (target at the origin, distance 3.5) sees 0% of either.
- * 3. Refusals: NULL scene or camera, aspect 0 or NaN. */
+ * 3. Refusals: NULL scene or camera, aspect 0 or NaN, a negative fov_y. */
 #include "test_util.h"
 
 #include <math.h>
@@ -132,6 +132,9 @@ int main(void)
               strstr(snell_last_error(NULL), "aspect"),
           "aspect 0: %s", snell_last_error(NULL));
     CHECK(snell_scene_file_frame(s, (float)NAN, &cam) == SNELL_E_INVALID_ARG, "aspect NaN");
+    cam.fov_y = -0.5f;
+    CHECK(snell_scene_file_frame(s, 1.0f, &cam) == SNELL_E_INVALID_ARG && strstr(snell_last_error(NULL), "fov_y"),
+          "fov_y -0.5: %s", snell_last_error(NULL));
     snell_scene_file_destroy(s);
     snell_env_destroy(env);
     snell_ctx_destroy(ctx);

@@ -1051,7 +1051,8 @@ int snell_scene_file_camera(const snell_scene_file *scene, snell_camera *camera)
  * becomes the centre of every glass and opaque object's world bounds, its
  * distance the one at which their bounding sphere fits the vertical and the
  * horizontal field of view (aspect = width / height) with 5% to spare, z_near
- * and z_far 0 (derived). SNELL_E_INVALID_ARG for NULL, aspect not > 0. */
+ * and z_far 0 (derived). SNELL_E_INVALID_ARG for NULL, aspect not > 0 or
+ * fov_y outside [0, pi). */
 snell_status snell_scene_file_frame(const snell_scene_file *scene, float aspect, snell_camera *camera);
 /* Object i's glTF node name ("node N" if it has none; a merged opaque object:
  * "K nodes of 'material'"), NULL if i is out of range. Valid with the scene. */

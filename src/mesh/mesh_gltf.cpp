@@ -1414,7 +1414,7 @@ extern "C" snell_status snell_scene_file_frame(const snell_scene_file *s, float 
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_scene_file_frame: aspect %g is not a finite width / height > 0",
                            static_cast<double>(aspect));
     double fov = camera->fov_y > 0.0f ? camera->fov_y : 45.0 * 3.14159265358979323846 / 180.0;
-    if (!(fov < 3.14159265358979323846) || !std::isfinite(fov))
+    if (!(camera->fov_y >= 0.0f) || !(fov < 3.14159265358979323846))
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_scene_file_frame: camera.fov_y %g outside [0, pi)",
                            static_cast<double>(camera->fov_y));
     /* the sphere fits the narrower of the two half-angles, with 5% to spare */
