@@ -1062,7 +1062,10 @@ typedef struct snell_frame_stats {
  * one INFO log line; a file that requires a KHR_materials_* extension other
  * than those four is SNELL_E_UNSUPPORTED, beyond that the rules and trust
  * model of snell_mesh_load_gltf_ex apply (flags likewise). More than
- * SNELL_MAX_GLASS glass or SNELL_MAX_OPAQUE opaque objects is SNELL_E_LIMIT. */
+ * SNELL_MAX_GLASS glass objects is SNELL_E_LIMIT (the message names both
+ * counts); more than SNELL_MAX_OPAQUE opaque ones are merged, one object per
+ * base colour with the node transforms baked into its mesh (SNELL_E_LIMIT if
+ * there are more colours than that). */
 typedef struct snell_scene_file snell_scene_file;
 snell_status snell_scene_load_gltf(snell_ctx *ctx, const char *path, unsigned flags, snell_scene_file **out);
 snell_status snell_scene_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_scene_file **out);
@@ -1072,6 +1075,18 @@ const snell_glass *snell_scene_file_glass(const snell_scene_file *scene, int *co
 const snell_opaque *snell_scene_file_opaque(const snell_scene_file *scene, int *count);
 /* 1 and *camera set if the file has a camera, else 0. */
 int snell_scene_file_camera(const snell_scene_file *scene, snell_camera *camera);
+/* For a file without a camera (snell_scene_file_camera 0): frames the scene.
+ * *camera's azimuth, elevation and fov_y (0 = 45 degrees) are kept; its target
+ * becomes the centre of every glass and opaque object's world bounds, its
+ * distance the one at which their bounding sphere fits the vertical and the
+ * horizontal field of view (aspect = width / height) with 5% to spare, z_near
+ * and z_far 0 (derived). SNELL_E_INVALID_ARG for NULL, aspect not > 0 or
+ * fov_y outside [0, pi). */
+snell_status snell_scene_file_frame(const snell_scene_file *scene, float aspect, snell_camera *camera);
+/* Object i's glTF node name ("node N" if it has none; a merged opaque object:
+ * "K nodes of 'material'"), NULL if i is out of range. Valid with the scene. */
+const char *snell_scene_file_glass_name(const snell_scene_file *scene, int i);
+const char *snell_scene_file_opaque_name(const snell_scene_file *scene, int i);
 
 /* AUTO by budget's rung table (snell_frame_desc.budget_ms): the
  * configurations it chooses among, each with its frame time relative to
