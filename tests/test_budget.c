@@ -20,7 +20,7 @@ static int all_usable(void *user, snell_method m)
     return 1;
 }
 
-static snell_mesh_analysis analysis(int closed, int convex, int depth)
+static snell_mesh_analysis analysis(int closed, int convex, int depth, float hidden)
 {
     snell_mesh_analysis a;
     memset(&a, 0, sizeof a);
@@ -32,7 +32,7 @@ static snell_mesh_analysis analysis(int closed, int convex, int depth)
     a.winding = closed ? 1 : 0;
     a.depth_complexity = depth;
     a.deep_fraction = depth > 2 ? 0.3f : 0.0f;
-    a.hidden_fraction = convex ? 0.0f : 0.3f;
+    a.hidden_fraction = hidden;
     a.boundary_edges = closed ? 0 : 40;
     return a;
 }
@@ -157,7 +157,10 @@ static void run(const char *what, device *d, snell__budget_object *obj, int n, d
 
 int main(void)
 {
-    snell_mesh_analysis convex = analysis(1, 1, 2), torus = analysis(1, 0, 4), open = analysis(0, 0, 3);
+    /* the classes: convex; closed concave that the cubemap serves (a bunny: 25% hidden from its centre);
+     * closed concave it does not (a torus: 49%); open */
+    snell_mesh_analysis convex = analysis(1, 1, 2, 0.0f), bunny = analysis(1, 0, 4, 0.25f),
+                        torus = analysis(1, 0, 4, 0.49f), open = analysis(0, 0, 3, 0.3f);
     snell_glass_resolved g = glass_of();
     snell__budget_object obj[3];
     device d;
@@ -168,11 +171,20 @@ int main(void)
     CHECK(obj[0].cls == 0, "convex class %d", obj[0].cls);
     check_ladder(&obj[0], "convex");
     snell__budget_ladder(&torus, &g, 0.0f, all_usable, NULL, &obj[1]);
-    CHECK(obj[1].cls == 1, "closed class %d", obj[1].cls);
-    check_ladder(&obj[1], "closed");
+    CHECK(obj[1].cls == 2, "deep concave class %d", obj[1].cls);
+    check_ladder(&obj[1], "deep concave");
     snell__budget_ladder(&open, &g, 0.0f, all_usable, NULL, &obj[2]);
-    CHECK(obj[2].cls == 2, "open class %d", obj[2].cls);
+    CHECK(obj[2].cls == 3, "open class %d", obj[2].cls);
     check_ladder(&obj[2], "open");
+    {
+        snell__budget_object bo;
+        snell__budget_ladder(&bunny, &g, 0.0f, all_usable, NULL, &bo);
+        CHECK(bo.cls == 1, "cubemap-served class %d", bo.cls);
+        check_ladder(&bo, "cubemap-served");
+        /* on it the cubemap beats oliveira (the table's bunny), where on the torus oliveira beats the cubemap */
+        for (r = 0; r < bo.n; r++)
+            CHECK(snell__rung_at(bo.ladder[r])->method != SNELL_METHOD_OLIVEIRA, "oliveira on the bunny's ladder");
+    }
     /* A method the mesh fails is not on it: exact unless the material lets AUTO pick it. */
     for (r = 0; r < obj[1].n; r++)
         CHECK(snell__rung_at(obj[1].ladder[r])->method != SNELL_METHOD_EXACT, "exact on a ladder without auto_pick");
@@ -181,15 +193,15 @@ int main(void)
         snell__budget_object ex;
         int has = 0;
         ga.material.exact.auto_pick = SNELL_EXACT_AUTO_ALLOW;
-        snell__budget_ladder(&torus, &ga, 0.0f, all_usable, NULL, &ex);
+        snell__budget_ladder(&bunny, &ga, 0.0f, all_usable, NULL, &ex);
         for (r = 0; r < ex.n; r++) has |= snell__rung_at(ex.ladder[r])->method == SNELL_METHOD_EXACT;
         CHECK(has, "exact allowed but not on the ladder");
     }
     {
         snell__budget_object fl;
         snell__budget_ladder(&torus, &g, 20.0f, all_usable, NULL, &fl);
-        CHECK(fl.floor > 0 && snell__rung_at(fl.ladder[fl.floor])->db[1] >= 20.0f &&
-                  snell__rung_at(fl.ladder[fl.floor - 1])->db[1] < 20.0f,
+        CHECK(fl.floor > 0 && snell__rung_at(fl.ladder[fl.floor])->db[fl.cls] >= 20.0f &&
+                  snell__rung_at(fl.ladder[fl.floor - 1])->db[fl.cls] < 20.0f,
               "quality floor 20 dB: floor rung %d", fl.floor);
     }
 

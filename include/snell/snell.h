@@ -1098,9 +1098,11 @@ typedef struct snell_budget_rung {
     snell_method method;
     const char *param;              /* a parameter of the method set to value, or NULL (its defaults) */
     int value;
-    float cost[3];                  /* frame time over single's, same scene and size, per mesh class:
-                                     * convex, closed concave, open (or non-manifold) */
-    float db[3];                    /* glass PSNR vs FULL per class; 0 = not on that class's ladder */
+    float cost[4];                  /* frame time over single's, same scene and size, per mesh class:
+                                     * convex; closed concave whose centre the cubemap serves (AUTO's
+                                     * cubemap: the bunny); closed concave it does not (the torus); open
+                                     * or non-manifold */
+    float db[4];                    /* glass PSNR vs FULL per class; 0 = not on that class's ladder */
 } snell_budget_rung;
 int snell_budget_rung_count(void);
 const snell_budget_rung *snell_budget_rung_at(int i); /* NULL outside 0..count-1 */

@@ -108,14 +108,15 @@ static void print_table(void)
 {
     int i, c;
     printf("the rung table (snell_budget_rung_at): frame time x single / glass PSNR vs FULL per mesh class\n");
-    printf("  %-22s %18s %18s %18s\n", "configuration", "convex", "closed concave", "open");
+    printf("  %-22s %18s %18s %18s %18s\n", "configuration", "convex", "cubemap-served", "deep concave",
+           "open");
     for (i = 0; i < snell_budget_rung_count(); i++) {
         const snell_budget_rung *g = snell_budget_rung_at(i);
         char name[64];
         if (g->param) snprintf(name, sizeof name, "%s %s=%d", snell_method_str(g->method), g->param, g->value);
         else snprintf(name, sizeof name, "%s", snell_method_str(g->method));
         printf("  %-22s", name);
-        for (c = 0; c < 3; c++) {
+        for (c = 0; c < 4; c++) {
             if (g->db[c] > 0.0f) printf("     %5.2fx %5.2f dB", (double)g->cost[c], (double)g->db[c]);
             else printf("     %18s", "-");
         }

@@ -23,7 +23,8 @@
 
 #include "frame/method.h"
 
-#define SNELL__BUDGET_CLASSES 3 /* 0 convex, 1 closed (not convex), 2 open or unanalysed */
+#define SNELL__BUDGET_CLASSES 4 /* 0 convex, 1 closed concave the cubemap serves, 2 closed concave it does
+                                 * not, 3 open, non-manifold or unanalysed */
 #define SNELL__BUDGET_MAX_RUNGS 16
 
 /* One configuration of the table (public: snell_budget_rung). */
@@ -34,7 +35,7 @@ typedef snell_budget_rung snell__rung;
 /* "peel layers=2" */
 void snell__rung_name(const snell__rung *g, char *buf, size_t n);
 /* The class of a mesh for the table (analysis may be NULL). */
-int snell__budget_class(const snell_mesh_analysis *an);
+int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolved *glass);
 
 /* One object as the controller sees it. */
 typedef struct snell__budget_object {

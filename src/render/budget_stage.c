@@ -10,6 +10,9 @@
 
 #include <string.h>
 
+static const char *const g_class_names[SNELL__BUDGET_CLASSES] = {
+    "convex", "closed concave (cubemap-served)", "closed concave (deep)", "open or non-manifold"};
+
 int snell__budget_wanted(const snell__frame *f) { return f->fd->budget_ms > 0.0f; }
 
 /* A method may be on a ladder if its GL state can be made here. */
@@ -91,7 +94,7 @@ snell_status snell__budget_run(snell__frame *f)
             const snell_mesh_analysis *an = NULL;
             int k, cls;
             if (snell__mesh_analysis(o->mesh, &an) != SNELL_OK) an = NULL;
-            cls = snell__budget_class(an);
+            cls = snell__budget_class(an, o->glass);
             b->fixed_cost = 1.0f;
             for (k = 0; k < snell__rung_count(); k++)
                 if (snell__rung_at(k)->method == m && !snell__rung_at(k)->param)
@@ -121,9 +124,8 @@ snell_status snell__budget_run(snell__frame *f)
                 return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "budget: rung %s=%d refused", g->param, g->value);
         }
         snell__rung_name(g, name, sizeof name);
-        snprintf(r->budget_note[i], sizeof r->budget_note[i], "%s (rung %d of %d, %.1f dB predicted for a%s mesh)",
-                 name, plan[i] + 1, b->n, (double)g->db[b->cls],
-                 b->cls == 0 ? " convex" : b->cls == 1 ? " closed concave" : "n open");
+        snprintf(r->budget_note[i], sizeof r->budget_note[i], "%s (rung %d of %d, %.1f dB predicted for a %s mesh)",
+                 name, plan[i] + 1, b->n, (double)g->db[b->cls], g_class_names[b->cls]);
         o->budget_note = r->budget_note[i];
     }
     return SNELL_OK;
