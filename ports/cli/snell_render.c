@@ -37,7 +37,9 @@ static int g_verbose;
 static void log_cb(snell_log_level level, const char *msg, void *user)
 {
     (void)user;
-    if (level >= SNELL_LOG_WARN || (g_verbose && level >= SNELL_LOG_INFO)) fprintf(stderr, "snell: %s\n", msg);
+    /* Errors come back as a status whose message (snell_last_error) main
+     * prints once where the call failed; -v shows the library's whole log. */
+    if (level == SNELL_LOG_WARN || (g_verbose && level >= SNELL_LOG_INFO)) fprintf(stderr, "snell: %s\n", msg);
 }
 
 /* The mesh called name (a shape or a file), loaded on first use. */

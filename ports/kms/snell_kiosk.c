@@ -53,7 +53,9 @@ typedef struct kiosk {
 static void log_cb(snell_log_level level, const char *msg, void *user)
 {
     (void)user;
-    if (level >= SNELL_LOG_WARN) fprintf(stderr, "snell-kiosk: snell: %s\n", msg);
+    /* Errors come back as a status whose message (snell_last_error) the kiosk
+     * prints where it fails: printing them here too said each one twice. */
+    if (level == SNELL_LOG_WARN) fprintf(stderr, "snell-kiosk: snell: %s\n", msg);
 }
 
 /* A frame reached the screen at t_ms (CLOCK_MONOTONIC, as cli_now_ms). */
@@ -327,8 +329,9 @@ static int bench(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_config *c
     for (i = 0; i < n; i++)
         if (!cs[i].ok && !cs[i].error[0]) snprintf(cs[i].error, sizeof cs[i].error, "not run (interrupted)");
     if (done) printf("snell-kiosk Score: %.0f\n", fps_sum / done);
+    errno = 0;
     if (!bench_write_json(o->json, cs, n, bo, &run)) {
-        fprintf(stderr, "snell-kiosk: cannot write %s\n", o->json);
+        fprintf(stderr, "snell-kiosk: cannot write '%s': %s\n", o->json, errno ? strerror(errno) : "write failed");
         ok = 0;
     } else {
         printf("wrote %s\n", o->json);

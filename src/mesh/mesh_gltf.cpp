@@ -12,6 +12,7 @@ extern "C" {
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <map>
 #include <cmath>
 #include <cstdlib>
@@ -176,8 +177,9 @@ bool fs_read(std::vector<unsigned char> *out, std::string *err, const std::strin
     int fd = open(real.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
     struct stat sb;
     if (fd < 0 || fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        int e = fd < 0 ? errno : 0;
         if (fd >= 0) close(fd);
-        if (err) *err += "cannot open '" + shown_uri(path) + "'\n";
+        if (err) *err += "cannot open '" + shown_uri(path) + "': " + (e ? std::strerror(e) : "not a regular file") + "\n";
         return false;
     }
     size_t size = static_cast<size_t>(sb.st_size);
@@ -1277,7 +1279,7 @@ snell_status read_model_file(snell_ctx *ctx, const char *path, std::vector<unsig
 {
     int fd = open(path, O_RDONLY | O_CLOEXEC);
     struct stat sb;
-    if (fd < 0) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s'", path);
+    if (fd < 0) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, std::strerror(errno));
     if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
         bool dir = S_ISDIR(sb.st_mode);
         close(fd);
