@@ -55,10 +55,15 @@ if(TARGET snell-bench)
            -DERR= "-DOUT=^usage: snell-bench --env-lookup" -P ${one_error})
   add_test(NAME msg_bench_2d_help COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--2d|--rays|--help" -DCODE=0
            -DERR= "-DOUT=^usage: snell-bench --2d" -P ${one_error})
+  add_test(NAME msg_bench_budget_help COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--budget|--help" -DCODE=0
+           -DERR= "-DOUT=^usage: snell-bench --budget" -P ${one_error})
+  add_test(NAME msg_bench_budget_unknown COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--budget|4x|--bogus" -DCODE=2
+           "-DERR=^snell-bench --budget: unknown option '--bogus'. see --budget --help$" -P ${one_error})
   add_test(NAME msg_bench_water_unknown COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--water|--grid|x" -DCODE=2
            "-DERR=^snell-bench --water: --grid wants a positive integer, got 'x'$" -P ${one_error})
   set_tests_properties(msg_bench_unknown msg_bench_no_value msg_bench_bad_value msg_bench_water_help
                        msg_bench_help_after_value msg_bench_env_help msg_bench_2d_help msg_bench_water_unknown
+                       msg_bench_budget_help msg_bench_budget_unknown
                        PROPERTIES LABELS "cli")
   # Progress lines, table and JSON of one small run say the same (item 6).
   add_test(NAME bench_consistency COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}"

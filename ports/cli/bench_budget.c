@@ -13,6 +13,7 @@
  * from. */
 #include "bench.h"
 #include "bench_ref.h"
+#include "cli_progress.h"
 #include "cli_time.h"
 
 #include <math.h>
@@ -57,9 +58,8 @@ static int parse(int argc, char **argv, budget_opts *o)
     o->every = 5;
     o->cache = "snell-bench-cache";
     for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        char *end = NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { /* wherever it is (issue 28 item 5) */
             printf("usage: snell-bench --budget MS|Nx [--scene S] [--size N] [--frames F] [--spin DEG] [--samples K]\n"
                    "                   [--fixed-every K] [--threads T] [--cache DIR]\n"
                    "AUTO by frame budget (snell_frame_desc.budget_ms) against every fixed configuration of its rung\n"
@@ -67,6 +67,18 @@ static int parse(int argc, char **argv, budget_opts *o)
                    "(measured first). AUTO draws every frame, the fixed configurations every K-th (and at the\n"
                    "samples). Defaults: --scene bunny --size 256 --frames 300 --spin 1.2 --samples 4 --fixed-every 5.\n");
             return -1;
+        }
+    }
+    for (i = 1; i < argc; i++) {
+        static const char *const valued[] = {"--budget", "--scene",   "--size",    "--frames", "--samples",
+                                             "--fixed-every", "--threads", "--spin", "--cache"};
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        char *end = NULL;
+        size_t k;
+        for (k = 0; k < sizeof valued / sizeof *valued && strcmp(a, valued[k]); k++) {}
+        if (k == sizeof valued / sizeof *valued) {
+            fprintf(stderr, "snell-bench --budget: unknown option '%s'; see --budget --help\n", a);
+            return 0;
         }
         if (!v) {
             fprintf(stderr, "snell-bench --budget: %s needs a value\n", a);
@@ -203,6 +215,7 @@ static int measure(const budget_opts *o, const bench_scene *s, budget_config *ks
     uint8_t *mask = (uint8_t *)malloc((size_t)o->size * o->size);
     snell_glass ref_glass[SNELL_MAX_GLASS];
     int cached = 0, k, i;
+    cli_progress bar;
     if (!mask) return 0;
     /* the reference's materials: the scene's optics (AUTO's configuration carries no method parameters) */
     memcpy(ref_glass, ks[0].glass, sizeof ref_glass);
@@ -222,6 +235,11 @@ static int measure(const budget_opts *o, const bench_scene *s, budget_config *ks
     p.width = p.height = o->size;
     p.threads = o->threads;
     p.samples = 1;
+    if (cli_progress_wanted(0)) { /* a trace (not a cache hit) shows its progress on a terminal */
+        cli_progress_start(&bar, "reference FULL");
+        p.progress = cli_progress_report;
+        p.progress_user = &bar;
+    }
     if (bench_ref_get(&scene, &p, "procedural", o->cache, &ref, &cached) != SNELL_OK) {
         fprintf(stderr, "snell-bench --budget: FULL reference: %s\n", snell_last_error(NULL));
         free(mask);
