@@ -40,6 +40,8 @@ uniform mat3 u_normal_matrix;    // object -> world normals
 uniform highp sampler2DArray u_layers;  // RGBA16F: object-space normal, distance / u_radius (4: none);
                                         // slice face * u_stride + layer
 uniform int u_stride;            // layers baked a face (SNELL_LAYERS of them hold something)
+uniform int u_dist_base;         // the first distance slice: slice u_dist_base + face * u_groups + g holds
+uniform int u_groups;            // layers 4g..4g+3's distances (4: none), four layers in one look-up
 uniform highp mat4 u_inv_model;  // world -> object
 uniform highp mat4 u_model;      // object -> world
 uniform highp vec3 u_centre;     // object space
@@ -74,16 +76,23 @@ highp vec3 layer_coord(highp vec3 q)
         sc = q.z > 0.0 ? q.x : -q.x;
         tc = -q.y;
     }
-    return vec3(vec2(sc, tc) / max(ma, 1e-30) * 0.5 + 0.5, float(face * u_stride));
+    return vec3(vec2(sc, tc) / max(ma, 1e-30) * 0.5 + 0.5, float(face));
 }
 
-// Surfaces closer to the centre than q along q's direction.
+#define GROUPS ((SNELL_LAYERS + 3) / 4)
+
+// Surfaces closer to the centre than q along q's direction: the distance
+// slices, four layers a look-up (layers beyond SNELL_LAYERS hold 4 there).
 int below(highp vec3 q)
 {
     highp vec3 c = layer_coord(q);
     highp float r = length(q) / u_radius;
+    c.z = float(u_dist_base) + c.z * float(u_groups);
     int n = 0;
-    for (int l = 0; l < SNELL_LAYERS; l++) n += textureLod(u_layers, c + vec3(0.0, 0.0, float(l)), 0.0).a < r ? 1 : 0;
+    for (int g = 0; g < GROUPS; g++) {
+        highp vec4 d = textureLod(u_layers, c + vec3(0.0, 0.0, float(g)), 0.0);
+        n += int(dot(vec4(lessThan(d, vec4(r))), vec4(1.0)));
+    }
     return n;
 }
 
@@ -93,18 +102,17 @@ highp vec3 nearest_normal(highp vec3 q, out int index)
 {
     highp vec3 c = layer_coord(q);
     highp float r = length(q) / u_radius, best = 8.0;
-    highp vec3 n = q;
+    highp vec3 cd = vec3(c.xy, float(u_dist_base) + c.z * float(u_groups));
     index = 0;
-    for (int l = 0; l < SNELL_LAYERS; l++) {
-        highp vec4 t = textureLod(u_layers, c + vec3(0.0, 0.0, float(l)), 0.0);
-        highp float e = abs(t.a - r);
-        if (e < best) {
-            best = e;
-            index = l;
-            n = t.xyz;
-        }
+    for (int g = 0; g < GROUPS; g++) {
+        highp vec4 e = abs(textureLod(u_layers, cd + vec3(0.0, 0.0, float(g)), 0.0) - r);
+        for (int k = 0; k < 4; k++)
+            if (4 * g + k < SNELL_LAYERS && e[k] < best) {
+                best = e[k];
+                index = 4 * g + k;
+            }
     }
-    return n;
+    return textureLod(u_layers, vec3(c.xy, c.z * float(u_stride) + float(index)), 0.0).xyz;
 }
 
 // Distance along p + t d (p about the centre) to the bounding sphere's far side.

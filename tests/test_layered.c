@@ -216,11 +216,12 @@ static void test_bake(snell_ctx *ctx, snell_env *env)
     g.material.method = SNELL_METHOD_LAYERED;
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &st));
     pass1 = st.glass[0].passes;
-    /* one layer holds the sphere from its centre; 128^2 faces x 6 x 4 layers x 8 bytes */
+    /* one layer holds the sphere from its centre; 128^2 faces x 6 x (4 layers + 1 slice of their
+     * distances) x 8 bytes */
     CHECK(snell_object_counter(&st.glass[0], "layers_used") == 1, "sphere: %d layers used",
           snell_object_counter(&st.glass[0], "layers_used"));
     CHECK(snell_object_counter(&st.glass[0], "layers_capped") == 0, "sphere: capped");
-    CHECK(snell_object_counter(&st.glass[0], "layers_kib") == 128 * 128 * 6 * 4 * 8 / 1024, "sphere: %d KiB",
+    CHECK(snell_object_counter(&st.glass[0], "layers_kib") == 128 * 128 * 6 * (4 + 1) * 8 / 1024, "sphere: %d KiB",
           snell_object_counter(&st.glass[0], "layers_kib"));
     CHECK(st.glass[0].prepared == 1, "the first frame bakes");
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &st));
