@@ -457,7 +457,8 @@ static const snell_param_info g_params[] = {
      SNELL_LAYERED_MAX_LAYERS, DEFAULT_LAYERS, NULL},
     {"face", "cube face size of every layer, texels", 16, 1024, DEFAULT_FACE, NULL},
     {"linear", "linear march steps from a point to the bounding sphere's far side", 1, 64, DEFAULT_LINEAR, NULL},
-    {"iterations", "binary steps at each crossing found", 1, 16, DEFAULT_BINARY, NULL},
+    {"iterations", "binary steps at each crossing found (regula falsi steps on a convex mesh that one layer holds)",
+     1, 16, DEFAULT_BINARY, NULL},
     {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
      SNELL_LAYERED_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
     {"inner", "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more march): auto "
