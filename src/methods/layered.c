@@ -5,7 +5,9 @@
  * (layered_bake.frag), read back once and stored as RGBA16F (normal,
  * distance), filtered (half floats filter in GLES 3.0 but need an extension
  * to be rendered to), in one 2D array texture, slice face * layers + layer
- * (GLES 3.0 has no cube map arrays); per frame one
+ * (GLES 3.0 has no cube map arrays), then per face one slice for each four
+ * layers' distances (the march's count in one look-up: bunny 512^2 548 ->
+ * 273 ms a frame, the image byte-identical); per frame one
  * pass of layered.frag over the front faces, which
  * marches the refracted ray through the layers, refracting or reflecting at
  * each surface crossed, re-entries included. Rigid meshes pay no per-frame
