@@ -13,24 +13,24 @@
  * and an open or non-manifold one (glmark2's horse), IOR 1.5, 256x256. A
  * class is a proxy for the mesh: the bunny and the torus order oliveira and
  * the cubemap the other way round, so they are two classes. Measured side by
- * side in one run on llvmpipe, 2 CPUs, at load 7.8 -> 11.1 (three other
- * builds beside it), 2026-12-03:
+ * side in one run on llvmpipe (LLVM 15), 2 CPUs, load 1.27 -> 1.37, 2026-12-03
+ * 15:42 UTC, a Release build of this tree (layered as of ec15e12):
  *   snell-bench -b single -b cubemap -b wyman -b oliveira -b layered -b peel:layers=2,4 \
  *     -b exact:interfaces=2,8 --scenes sphere,torus,bunny,tests/data/real/horse.obj \
- *     --sizes 256x256 --aa 2 --frames 7 --warmup 2 --threads 2
+ *     --sizes 256x256 --aa 2 --frames 15 --warmup 3 --threads 2
  * On another device the costs move: the controller learns each rung's cost
  * from the frames it draws; the table gives the order and the first guess. */
 static const snell__rung g_rungs[] = {
     /* method, param, value, cost: convex bunny-like torus-like open, db: the same classes */
     {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}},
-    {SNELL_METHOD_CUBEMAP, NULL, 0, {1.19f, 0.93f, 1.15f, 1.00f}, {34.95f, 17.09f, 15.50f, 15.98f}},
-    {SNELL_METHOD_WYMAN, NULL, 0, {1.48f, 1.19f, 1.20f, 2.08f}, {18.59f, 15.27f, 17.01f, 17.26f}},
-    {SNELL_METHOD_OLIVEIRA, NULL, 0, {2.17f, 1.34f, 1.46f, 1.70f}, {27.98f, 16.34f, 20.29f, 17.52f}},
-    {SNELL_METHOD_LAYERED, NULL, 0, {6.42f, 6.85f, 9.96f, 5.72f}, {40.68f, 17.99f, 23.66f, 16.49f}},
-    {SNELL_METHOD_PEEL, "layers", 2, {9.87f, 15.01f, 11.63f, 5.19f}, {40.32f, 21.88f, 22.70f, 20.71f}},
-    {SNELL_METHOD_PEEL, NULL, 0, {10.53f, 26.17f, 13.39f, 5.21f}, {40.32f, 22.48f, 26.42f, 21.66f}},
-    {SNELL_METHOD_EXACT, "interfaces", 2, {8.82f, 8.58f, 13.21f, 4.73f}, {32.30f, 18.17f, 20.65f, 18.80f}},
-    {SNELL_METHOD_EXACT, NULL, 0, {8.24f, 15.83f, 17.47f, 8.56f}, {32.31f, 24.95f, 24.48f, 22.71f}},
+    {SNELL_METHOD_CUBEMAP, NULL, 0, {2.00f, 1.21f, 1.39f, 0.97f}, {34.95f, 17.09f, 15.50f, 15.98f}},
+    {SNELL_METHOD_WYMAN, NULL, 0, {2.42f, 1.52f, 1.83f, 1.83f}, {18.59f, 15.27f, 17.01f, 17.26f}},
+    {SNELL_METHOD_OLIVEIRA, NULL, 0, {3.85f, 1.48f, 1.79f, 1.42f}, {27.98f, 16.34f, 20.29f, 17.52f}},
+    {SNELL_METHOD_LAYERED, NULL, 0, {3.66f, 5.18f, 10.36f, 4.22f}, {40.68f, 18.29f, 23.76f, 17.22f}},
+    {SNELL_METHOD_PEEL, "layers", 2, {15.33f, 11.51f, 9.01f, 4.56f}, {40.32f, 21.88f, 22.70f, 20.71f}},
+    {SNELL_METHOD_PEEL, NULL, 0, {15.46f, 17.75f, 12.25f, 6.34f}, {40.32f, 22.48f, 26.42f, 21.66f}},
+    {SNELL_METHOD_EXACT, "interfaces", 2, {12.03f, 5.97f, 10.33f, 4.90f}, {32.30f, 18.17f, 20.65f, 18.80f}},
+    {SNELL_METHOD_EXACT, NULL, 0, {12.02f, 10.98f, 13.44f, 7.50f}, {32.31f, 24.95f, 24.48f, 22.71f}},
 };
 #define RUNG_COUNT ((int)(sizeof g_rungs / sizeof *g_rungs))
 
@@ -42,6 +42,7 @@ static const snell__rung g_rungs[] = {
 #define HOLD_FRAMES 6    /* after a change, no step up for this many frames */
 #define BACKOFF_MIN 30u  /* frames a plan found over budget is barred, at first */
 #define BACKOFF_MAX 480u
+#define PROBE_REACH 2.0  /* a probe considers steps predicted within this many times the aim */
 #define LEARN_RUNG 0.6   /* ... and in a rung's own, times its share of the frame */
 
 int snell_budget_rung_count(void) { return RUNG_COUNT; }
@@ -114,6 +115,7 @@ void snell__budget_reset(snell__budget *b)
     memset(b, 0, sizeof *b);
     b->last_ms = -1.0;
     b->backoff = BACKOFF_MIN;
+    b->probe_every = BACKOFF_MIN;
     for (i = 0; i < SNELL_MAX_GLASS; i++) b->plan[i] = b->last_plan_rung[i] = -1;
 }
 
@@ -362,8 +364,40 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
             snell__why(why, why_size, "kept: %.2f ms predicted, within the budget's %.2f", cur_ms, (double)budget_ms);
         }
         for (i = 0; i < n && !changed; i++) changed = plan[i] != cur[i];
+        if (b->probing && !changed) {
+            /* the last probe's plan held within the budget: probes come back to their first pace */
+            b->probing = 0;
+            b->probe_every = BACKOFF_MIN;
+        } else if (b->probing && over) {
+            b->probing = 0;
+            b->probe_every = b->probe_every * 2 > BACKOFF_MAX ? BACKOFF_MAX : b->probe_every * 2;
+        }
+        if (!changed && !over && same_objects && b->frame - b->last_change >= b->probe_every &&
+            b->blocked_until <= b->frame) {
+            /* Held long enough: try the best single step up among those predicted within PROBE_REACH
+             * times the aim. The prediction splits the frame into base and rungs by the table's units
+             * until a change of plan measures the split; a step is how it is measured. */
+            int wide[SNELL_MAX_GLASS], pick = -1;
+            double best = 0.0;
+            if (!exhaustive_plan(b, obj, n, PROBE_REACH * HEADROOM * budget_ms, wide))
+                best_plan(b, obj, n, PROBE_REACH * HEADROOM * budget_ms, wide);
+            for (i = 0; i < n; i++)
+                if (obj[i].n && wide[i] > cur[i]) {
+                    double dq = obj[i].area * (rung_db(&obj[i], cur[i] + 1) - rung_db(&obj[i], cur[i]));
+                    if (dq > best) best = dq, pick = i;
+                }
+            if (pick >= 0) {
+                plan[pick] = cur[pick] + 1;
+                changed = 1;
+                b->probing = 1;
+                b->last_change = b->frame;
+                snell__why(why, why_size, "probing one step up after %u frames held", b->probe_every);
+            }
+        }
         new_ms = plan_ms(b, obj, n, plan);
-        if (changed || over)
+        if (b->probing && changed)
+            ; /* said above */
+        else if (changed || over)
             snell__why(why, why_size, "%s: last frame %.2f ms, this plan %.2f ms predicted%s",
                        !changed ? "over budget, nothing cheaper allowed" : over ? "over budget, stepped down"
                        : new_ms > cur_ms ? "stepped up" : "stepped down",
@@ -373,6 +407,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
     }
     if (changed) {
         b->hold_until = b->frame + HOLD_FRAMES;
+        b->last_change = b->frame;
         b->changes++;
     }
     for (i = 0; i < SNELL_MAX_GLASS; i++) {

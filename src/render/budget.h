@@ -69,6 +69,11 @@ typedef struct snell__budget {
     unsigned hold_until;            /* no step up before this frame */
     unsigned within_since;          /* frame since which the measured frames are within budget */
     int fresh;                      /* 1: last_ms was measured since the last plan */
+    unsigned last_change;           /* frame of the last change of plan */
+    unsigned probe_every;           /* a plan held this many frames tries one step up predicted over the
+                                     * aim (the prediction may be wrong: a frame can only be split into
+                                     * base and rungs by drawing another plan); doubles when it fails */
+    int probing;                    /* the last change was such a try */
     unsigned char drawn[SNELL__BUDGET_MAX_RUNGS]; /* rungs drawn before on this renderer */
     int first_use;                  /* the last plan draws a rung for the first time: its frame builds
                                      * programs and per-mesh resources, so it is neither learned from
