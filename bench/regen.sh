@@ -12,9 +12,11 @@
 # FRAMES (9), WARMUP (2), AA (2: colour errors area-averaged, 2x2 rays a
 # pixel), THREADS (reference tracer threads, default 1 so a shared machine
 # keeps a core), CACHE (reference cache, default BUILD_DIR/bench-cache),
-# BUDGET_SCENES (AUTO by frame budget, snell-bench --budget: default "bunny
-# tests/data/scenes/three_glass_two_opaque.gltf"), BUDGET (4x: times single's
-# frame), BUDGET_SIZE (256), BUDGET_FRAMES (300),
+# BUDGET_RUNS (AUTO by frame budget, snell-bench --budget: SCENE=BUDGET pairs,
+# a budget in ms or times single's frame; default "bunny=8x
+# tests/data/scenes/three_glass_two_opaque.gltf=2x": bands where the fixed
+# configurations split into those that hold it and those that do not),
+# BUDGET_SIZE (256), BUDGET_FRAMES (300),
 # REV (the source the build is of, stated in the page; default: git's HEAD,
 # "+ uncommitted changes" when the tree differs from it).
 # The history (every earlier measurement with its command) is
@@ -62,11 +64,12 @@ for s in $scenes; do
     fi
     rm -f "current/$name.csv" # the JSON holds the same and more
 done
-budget_scenes=${BUDGET_SCENES:-bunny $root/tests/data/scenes/three_glass_two_opaque.gltf}
-budget=${BUDGET:-4x}
+budget_runs=${BUDGET_RUNS:-bunny=8x $root/tests/data/scenes/three_glass_two_opaque.gltf=2x}
 budget_size=${BUDGET_SIZE:-256}
 budget_frames=${BUDGET_FRAMES:-300}
-for s in $budget_scenes; do
+for run in $budget_runs; do
+    s=${run%=*}
+    budget=${run##*=}
     name=$(basename "$s" | sed 's/\.[^.]*$//')
     echo "regen.sh: budget $budget on $s ($budget_size, $budget_frames frames) ..." >&2
     if ! "$bench" --budget "$budget" --scene "$s" --size "$budget_size" --frames "$budget_frames" \
@@ -124,21 +127,22 @@ EOF
                 "$name" "$(tail -n 5 "$tmp/$name.out")" ;;
         esac
     done
-    first=$(basename "${budget_scenes%% *}" | sed 's/\.[^.]*$//')
+    first=$(basename "${budget_runs%%=*}" | sed 's/\.[^.]*$//')
     cat <<EOF
 ## AUTO by frame budget
 
 \`snell_frame_desc.budget_ms\` (README "AUTO by frame budget"): AUTO with the budget beside every
 fixed configuration of its rung table, on a camera turning 1.2° a frame; AUTO draws every frame,
 the fixed configurations every 5th, taking turns; glass PSNR against FULL at pixel centres on 4
-frames spread over the run. The budget is $budget single's median frame; "within the budget":
-the 95th percentile. Command: \`snell-bench --budget $budget --scene SCENE --size $budget_size
---frames $budget_frames --threads $threads\`.
+frames spread over the run. A budget Nx is N times single's median frame along the first frames
+of the path; "within the budget": the 95th percentile. Command: \`snell-bench --budget BUDGET
+--scene SCENE --size $budget_size --frames $budget_frames --threads $threads\` with (SCENE=BUDGET)
+\`$(echo $budget_runs | sed "s|$root/||g")\`.
 
 EOF
-    for s in $budget_scenes; do
-        name=$(basename "$s" | sed 's/\.[^.]*$//')
-        echo "### $name, ${budget_size}x$budget_size"
+    for run in $budget_runs; do
+        name=$(basename "${run%=*}" | sed 's/\.[^.]*$//')
+        echo "### $name, ${budget_size}x$budget_size, budget ${run##*=}"
         echo
         sed -n '/^scene /,$p' "$tmp/budget_$name.out"
         echo

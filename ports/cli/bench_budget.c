@@ -313,7 +313,8 @@ int snell_bench_budget_main(int argc, char **argv)
             if (snell_budget_rung_at(ks[k].rung)->method == SNELL_METHOD_SINGLE) single = k;
         for (k = 1; k < n && ok; k++)
             for (f = 0; f < o.warmup; f++) frame(ctx, &ks[k], &o, az0, 0, NULL, &ok);
-        for (f = 0; f < 9 && ok && single >= 0; f++) single_ms[f] = frame(ctx, &ks[single], &o, az0, 0, NULL, &ok);
+        /* single along the first frames of the camera path, after its own warm-up */
+        for (f = 0; f < 9 && ok && single >= 0; f++) single_ms[f] = frame(ctx, &ks[single], &o, az0, f, NULL, &ok);
         if (o.budget_x > 0.0f) {
             if (single < 0) {
                 fprintf(stderr, "snell-bench --budget: Nx needs the single method\n");
