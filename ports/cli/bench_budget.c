@@ -28,6 +28,8 @@ typedef struct budget_opts {
     const char *scene;
     int size, frames, samples, threads, warmup, every;
     float spin, budget_ms, budget_x; /* budget_x > 0: the budget is that many times single's median */
+    float ior;                      /* of every glass object of a mesh scene (0: 1.5) */
+    int exact_auto;                 /* AUTO's objects let exact on their ladders (material.exact.auto_pick) */
     const char *cache;
 } budget_opts;
 
@@ -61,7 +63,8 @@ static int parse(int argc, char **argv, budget_opts *o)
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { /* wherever it is (issue 28 item 5) */
             printf("usage: snell-bench --budget MS|Nx [--scene S] [--size N] [--frames F] [--spin DEG] [--samples K]\n"
-                   "                   [--fixed-every K] [--threads T] [--cache DIR]\n"
+                   "                   [--fixed-every K] [--ior N] [--exact-auto allow|never] [--threads T]\n"
+                   "                   [--cache DIR]\n"
                    "AUTO by frame budget (snell_frame_desc.budget_ms) against every fixed configuration of its rung\n"
                    "table, frame by frame on a moving camera. MS: the budget in ms; Nx: N times single's median frame\n"
                    "(measured first). AUTO draws every frame, the fixed configurations every K-th (and at the\n"
@@ -71,7 +74,7 @@ static int parse(int argc, char **argv, budget_opts *o)
     }
     for (i = 1; i < argc; i++) {
         static const char *const valued[] = {"--budget", "--scene",   "--size",    "--frames", "--samples",
-                                             "--fixed-every", "--threads", "--spin", "--cache"};
+                                             "--fixed-every", "--threads", "--spin", "--cache", "--ior", "--exact-auto"};
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         char *end = NULL;
         size_t k;
@@ -97,6 +100,14 @@ static int parse(int argc, char **argv, budget_opts *o)
         else if (!strcmp(a, "--threads")) o->threads = atoi(v);
         else if (!strcmp(a, "--spin")) o->spin = (float)atof(v);
         else if (!strcmp(a, "--cache")) o->cache = v;
+        else if (!strcmp(a, "--ior")) o->ior = (float)atof(v);
+        else if (!strcmp(a, "--exact-auto")) {
+            if (strcmp(v, "allow") && strcmp(v, "never")) {
+                fprintf(stderr, "snell-bench --budget: --exact-auto %s: allow or never\n", v);
+                return 0;
+            }
+            o->exact_auto = !strcmp(v, "allow");
+        }
         else {
             fprintf(stderr, "snell-bench --budget: unknown option %s\n", a);
             return 0;
@@ -105,6 +116,10 @@ static int parse(int argc, char **argv, budget_opts *o)
     }
     if (!(o->budget_ms > 0.0f) && !(o->budget_x > 0.0f)) {
         fprintf(stderr, "snell-bench --budget: needs a budget in ms (e.g. 40) or times single's frame (e.g. 4x)\n");
+        return 0;
+    }
+    if (o->ior != 0.0f && !(o->ior >= 1.0f && o->ior <= 4.0f)) {
+        fprintf(stderr, "snell-bench --budget: --ior 1..4\n");
         return 0;
     }
     if (o->size < 16 || o->size > 2048 || o->frames < 10 || o->frames > 100000 || o->samples < 1 ||
@@ -137,7 +152,8 @@ static void print_table(void)
 }
 
 /* Configuration k's frame: the scene's objects with its material. */
-static void frame_of(const bench_scene *s, const snell_env *env, budget_config *k, const float cam[3])
+static void frame_of(const bench_scene *s, const snell_env *env, budget_config *k, const float cam[3],
+                     const budget_opts *o)
 {
     int i;
     memset(&k->fd, 0, sizeof k->fd);
@@ -145,7 +161,7 @@ static void frame_of(const bench_scene *s, const snell_env *env, budget_config *
         k->glass[i] = s->glass[i];
         if (!s->file) {
             memset(&k->glass[i].material, 0, sizeof k->glass[i].material);
-            k->glass[i].material.ior = 1.5f;
+            k->glass[i].material.ior = o->ior > 0.0f ? o->ior : 1.5f;
         }
         if (k->rung >= 0) {
             const snell_budget_rung *g = snell_budget_rung_at(k->rung);
@@ -155,8 +171,10 @@ static void frame_of(const bench_scene *s, const snell_env *env, budget_config *
                 snprintf(v, sizeof v, "%d", g->value);
                 snell_glass_set_param(&k->glass[i].material, g->method, g->param, v);
             }
-        } else
+        } else {
             k->glass[i].material.method = SNELL_METHOD_AUTO;
+            if (o->exact_auto) k->glass[i].material.exact.auto_pick = SNELL_EXACT_AUTO_ALLOW;
+        }
     }
     k->fd.env = env;
     k->fd.glass = k->glass;
@@ -291,7 +309,7 @@ int snell_bench_budget_main(int argc, char **argv)
             else snprintf(c->name, sizeof c->name, "%s", snell_method_str(g->method));
         } else
             snprintf(c->name, sizeof c->name, "auto, budget");
-        frame_of(s, env, c, cam);
+        frame_of(s, env, c, cam, &o);
         c->ms = (double *)calloc((size_t)o.frames, sizeof(double));
         c->first = (unsigned char *)calloc((size_t)o.frames, 1);
         for (k = 0; k < o.samples; k++) c->img[k] = (uint8_t *)malloc(px);

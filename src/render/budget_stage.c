@@ -11,7 +11,7 @@
 #include <string.h>
 
 static const char *const g_class_names[SNELL__BUDGET_CLASSES] = {
-    "convex", "closed concave (cubemap-served)", "closed concave (deep)", "open or non-manifold"};
+    "a convex", "a closed concave (cubemap-served)", "a closed concave (deep)", "an open or non-manifold"};
 
 int snell__budget_wanted(const snell__frame *f) { return f->fd->budget_ms > 0.0f; }
 
@@ -124,7 +124,7 @@ snell_status snell__budget_run(snell__frame *f)
                 return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "budget: rung %s=%d refused", g->param, g->value);
         }
         snell__rung_name(g, name, sizeof name);
-        snprintf(r->budget_note[i], sizeof r->budget_note[i], "%s (rung %d of %d, %.1f dB predicted for a %s mesh)",
+        snprintf(r->budget_note[i], sizeof r->budget_note[i], "%s (rung %d of %d, %.1f dB predicted for %s mesh)",
                  name, plan[i] + 1, b->n, (double)g->db[b->cls], g_class_names[b->cls]);
         o->budget_note = r->budget_note[i];
     }
