@@ -187,6 +187,7 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__gbuffer_destroy(&r->gbuffer);
     snell__gbuffer_destroy(&r->backfaces);
     snell__layers_destroy(&r->layers);
+    snell__caustics_destroy(&r->caustics);
     snell__ssaa_destroy(&r->ssaa);
     if (r->msaa_fbo) glDeleteFramebuffers(1, &r->msaa_fbo);
     if (r->msaa_rb) glDeleteRenderbuffers(1, &r->msaa_rb);
@@ -226,6 +227,7 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
     if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d",
                            fd->scene_layers, SNELL_MAX_SCENE_LAYERS);
+    if ((st = snell__caustics_validate(r->ctx, fd)) != SNELL_OK) return st;
     return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
 }
 

@@ -4,6 +4,7 @@
 #ifndef SNELL_RENDERER_H
 #define SNELL_RENDERER_H
 
+#include "render/caustics.h"
 #include "render/composite.h"
 #include "render/env_dynamic.h"
 #include "render/env_paraboloid.h"
@@ -45,6 +46,7 @@ struct snell_renderer {
     snell__water_programs water;                      /* the water kernel's programs, made on first use */
     snell__layers layers;                             /* the scene layers, made on first use */
     snell__object *layer_list[SNELL_MAX_GLASS];       /* the glass objects peeled into them */
+    snell__caustics caustics;                         /* the caustics stage's light map, made on first use */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */
     uint8_t *readback8;
