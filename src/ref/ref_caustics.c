@@ -1,0 +1,147 @@
+/* ref_caustics.c — the reference of the caustics stage (issue 27): the
+ * receiver plane's irradiance traced from the light in double precision:
+ * shadow rays for the direct light, and photons refracted through each glass
+ * object (the stage's optics: Schlick and Snell in and out, tint,
+ * Beer-Lambert) splatted bilinearly onto the plane's texels, flux-correct. */
+#include "ref/ref_scene.h"
+#include "core/ctx.h"
+#include "core/optics.h"
+
+#include <math.h>
+#include <string.h>
+
+typedef struct plane_map {
+    double cx, cz, h, ext, texel;
+    int size;
+    double *acc; /* 3 per texel */
+} plane_map;
+
+/* Adds flux (irradiance per texel area) bilinearly about plane point (x, z). */
+static void splat(plane_map *m, double x, double z, const double e[3])
+{
+    double tx = (x - (m->cx - m->ext)) / m->texel - 0.5, tz = (z - (m->cz - m->ext)) / m->texel - 0.5;
+    double fx = floor(tx), fz = floor(tz);
+    int k, c;
+    if (!(tx > -1.0 && tz > -1.0 && tx < m->size && tz < m->size)) return;
+    for (k = 0; k < 4; k++) {
+        int ix = (int)fx + (k & 1), iz = (int)fz + (k >> 1);
+        double w = ((k & 1) ? tx - fx : 1.0 - (tx - fx)) * ((k >> 1) ? tz - fz : 1.0 - (tz - fz));
+        if (ix < 0 || iz < 0 || ix >= m->size || iz >= m->size) continue;
+        for (c = 0; c < 3; c++) m->acc[3 * ((size_t)iz * (size_t)m->size + (size_t)ix) + c] += w * e[c];
+    }
+}
+
+static void basis(const double d[3], double u[3], double v[3])
+{
+    double a[3] = {0.0, 1.0, 0.0};
+    if (fabs(d[1]) > 0.99) a[0] = 1.0, a[1] = 0.0;
+    u[0] = a[1] * d[2] - a[2] * d[1], u[1] = a[2] * d[0] - a[0] * d[2], u[2] = a[0] * d[1] - a[1] * d[0];
+    snell__ref_normalize3(u);
+    v[0] = d[1] * u[2] - d[2] * u[1], v[1] = d[2] * u[0] - d[0] * u[2], v[2] = d[0] * u[1] - d[1] * u[0];
+}
+
+/* One photon along d from o through glass object g; adds it to m if it lands. */
+static void photon(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
+                   plane_map *m)
+{
+    const ref_glass *gl = &ref->glass[g];
+    ref_view air = {-1, REF_SEE_ALL, -1}, in = {g, REF_SEE_ALL, -1};
+    ref_surf s1, s2, s3;
+    double n[3], t[3], t2[3], ci, f1, f2, len, e[3], p[3];
+    int k;
+    if (!snell__ref_hit(ref, o, d, SNELL__BVH_NONE, &air, &s1) || s1.object != g) return;
+    memcpy(n, s1.n, sizeof n);
+    if (snell__ref_dot3(n, d) > 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
+    ci = -snell__ref_dot3(n, d);
+    f1 = snell_optd_fresnel_schlick(ci, 1.0, gl->ior);
+    if (!snell_optd_refract(d, n, 1.0 / gl->ior, t)) return;
+    snell__ref_normalize3(t);
+    if (!snell__ref_hit(ref, s1.p, t, s1.prim, &in, &s2) || s2.object != g) return;
+    memcpy(n, s2.n, sizeof n);
+    if (snell__ref_dot3(n, t) < 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2]; /* outward, along the ray */
+    f2 = snell_optd_fresnel_schlick(snell__ref_dot3(n, t), gl->ior, 1.0);
+    n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
+    if (!snell_optd_refract(t, n, gl->ior, t2)) return; /* TIR: dropped, as the stage drops it */
+    snell__ref_normalize3(t2);
+    if (!(t2[1] < 0.0)) return;
+    len = s2.t;
+    {
+        double sp = (m->h - s2.p[1]) / t2[1];
+        if (sp < 0.0) return;
+        /* anything between the exit and the plane stops it */
+        if (snell__ref_hit(ref, s2.p, t2, s2.prim, &air, &s3) && s3.t < sp) return;
+        for (k = 0; k < 3; k++) p[k] = s2.p[k] + t2[k] * sp;
+    }
+    for (k = 0; k < 3; k++) e[k] = flux[k] * gl->tint[k] * (1.0 - f1) * (1.0 - f2) * exp(-gl->sigma[k] * len);
+    splat(m, p[0], p[2], e);
+}
+
+snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *light, const snell_receiver *rc,
+                                       int photons, int samples, float *rgb, float *caustic)
+{
+    plane_map m;
+    double d[3], u[3], v[3], col[3], cosv, len;
+    int size, i, j, k, g, a, b;
+    size_t n;
+    if (!ref || !light || !rc || !rgb) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: NULL argument");
+    if (light->type != SNELL_LIGHT_DIRECTIONAL)
+        return snell__fail(ref->ctx, SNELL_E_UNSUPPORTED, "snell_ref_receiver_render: directional lights only");
+    if (!(rc->extent > 0.0f) || !isfinite(rc->extent) || (rc->map_size != 0 && (rc->map_size < 1 || rc->map_size > 4096)))
+        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: receiver extent %g > 0, "
+                           "map_size %d 0..4096", rc->extent, rc->map_size);
+    if (photons < 1 || photons > 4096 || samples < 1 || samples > 16)
+        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: photons %d (1..4096), "
+                           "samples %d (1..16)", photons, samples);
+    for (k = 0; k < 3; k++) d[k] = light->direction[k];
+    len = sqrt(snell__ref_dot3(d, d));
+    if (!(len > 0.0) || !isfinite(len))
+        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: light.direction zero or not finite");
+    for (k = 0; k < 3; k++) d[k] /= len;
+    for (k = 0; k < 3; k++)
+        col[k] = light->color[0] == 0.0f && light->color[1] == 0.0f && light->color[2] == 0.0f ? 1.0 : light->color[k];
+    size = rc->map_size ? rc->map_size : 256;
+    n = (size_t)size * (size_t)size;
+    m.cx = rc->center[0], m.cz = rc->center[1], m.h = rc->height, m.ext = rc->extent;
+    m.size = size, m.texel = 2.0 * rc->extent / size;
+    m.acc = (double *)snell__calloc(&ref->alloc, n, 3 * sizeof(double));
+    if (!m.acc) return snell__fail(ref->ctx, SNELL_E_NOMEM, "snell_ref_receiver_render: out of memory");
+    /* light through glass */
+    basis(d, u, v);
+    for (g = 0; g < ref->glass_count; g++) {
+        const ref_glass *gl = &ref->glass[g];
+        double r = gl->bs_r, cell = 2.0 * r / photons, flux[3];
+        if (gl->thin) continue; /* the stage passes thin walls */
+        for (k = 0; k < 3; k++) flux[k] = col[k] * cell * cell / (m.texel * m.texel);
+        for (j = 0; j < photons; j++)
+            for (i = 0; i < photons; i++) {
+                double x = -r + (i + 0.5) * cell, y = -r + (j + 0.5) * cell, o[3];
+                if (x * x + y * y > r * r) continue;
+                for (k = 0; k < 3; k++) o[k] = gl->bs_c[k] + u[k] * x + v[k] * y - d[k] * (r + 1.0);
+                photon(ref, g, o, d, flux, &m);
+            }
+    }
+    if (caustic)
+        for (i = 0; i < (int)(3 * n); i++) caustic[i] = (float)m.acc[i];
+    /* direct light */
+    cosv = -d[1] > 0.0 ? -d[1] : 0.0;
+    for (j = 0; j < size; j++)
+        for (i = 0; i < size; i++) {
+            int lit = 0;
+            double back[3] = {-d[0], -d[1], -d[2]};
+            ref_view air = {-1, REF_SEE_ALL, -1};
+            ref_surf s;
+            if (cosv > 0.0)
+                for (b = 0; b < samples; b++)
+                    for (a = 0; a < samples; a++) {
+                        double q[3] = {m.cx - m.ext + (i + (a + 0.5) / samples) * m.texel, m.h,
+                                       m.cz - m.ext + (j + (b + 0.5) / samples) * m.texel};
+                        lit += !snell__ref_hit(ref, q, back, SNELL__BVH_NONE, &air, &s);
+                    }
+            for (k = 0; k < 3; k++) {
+                size_t t = 3 * ((size_t)j * (size_t)size + (size_t)i) + (size_t)k;
+                rgb[t] = (float)(m.acc[t] + col[k] * cosv * lit / (double)(samples * samples));
+            }
+        }
+    snell__free(&ref->alloc, m.acc);
+    return SNELL_OK;
+}
