@@ -16,10 +16,16 @@ uniform sampler2D u_front_n, u_front_z, u_back_n, u_back_z;
 uniform mat4 u_light_vp;      // world -> the light's clip space (orthographic)
 uniform mat4 u_light_inv;     // its inverse
 uniform int u_size;           // the maps' texels per side = photons per side
-uniform vec3 u_dir;           // unit direction the light travels
+uniform vec3 u_dir;           // unit direction the light travels (directional)
+uniform int u_spot;           // 1: a spot light at u_pos, its photons leaving it
+uniform vec3 u_pos;           // the spot's position
+uniform vec3 u_axis;          // the spot's unit axis
+uniform float u_cos_cone;     // cosine of its half angle
+uniform float u_tan;          // tangent of the half angle of the light's view of the object
 uniform float u_ior;
 uniform vec3 u_sigma;         // Beer-Lambert absorption per world unit
-uniform vec3 u_flux;          // light colour * photon area / texel area (irradiance one photon adds)
+uniform vec3 u_flux;          // light colour * photon area / texel area (irradiance one photon adds);
+                              // spot: the area on the view's image plane at distance 1
 uniform vec4 u_plane;         // y, centre x, centre z, extent (half side)
 uniform float u_reach;        // the longest chord: the bounding sphere's diameter
 
@@ -73,10 +79,21 @@ void main()
     vec4 w = u_light_inv * vec4(vec3(uv, z) * 2.0 - 1.0, 1.0);
     vec3 p = w.xyz / w.w;
     vec3 n = normalize(fn.xyz * 2.0 - 1.0);
-    if (dot(n, u_dir) > 0.0) n = -n;
-    float f1 = snell_fresnel_schlick(dot(n, -u_dir), 1.0, u_ior);
+    vec3 dir = u_dir;
+    float share = 1.0;
+    if (u_spot == 1) {
+        // its solid angle: the image-plane cell at distance 1 seen at angle
+        // theta off the view's axis (cos^3 theta); none outside the cone
+        vec2 x = (uv * 2.0 - 1.0) * u_tan;
+        float c = inversesqrt(1.0 + dot(x, x));
+        dir = normalize(p - u_pos);
+        share = c * c * c * (dot(dir, u_axis) >= u_cos_cone ? 1.0 : 0.0);
+        if (share <= 0.0) return;
+    }
+    if (dot(n, dir) > 0.0) n = -n;
+    float f1 = snell_fresnel_schlick(dot(n, -dir), 1.0, u_ior);
     vec3 t;
-    if (!snell_refract(u_dir, n, 1.0 / u_ior, t)) return;
+    if (!snell_refract(dir, n, 1.0 / u_ior, t)) return;
     // linear search for the first point past the far surface, then bisection
     float lo = 0.0, hi = -1.0;
     for (int k = 1; k <= LINEAR_STEPS; k++) {
@@ -107,7 +124,7 @@ void main()
     float s = (u_plane.x - q.y) / t2.y;
     if (s < 0.0) return; // the object reaches below the plane
     vec3 h = q + t2 * s;
-    vec3 flux = u_flux * (1.0 - f1) * (1.0 - f2) * exp(-u_sigma * len);
+    vec3 flux = u_flux * share * (1.0 - f1) * (1.0 - f2) * exp(-u_sigma * len);
     v_flux = vec4(flux, (flux.r + flux.g + flux.b) / 3.0);
     gl_Position = vec4((h.x - u_plane.y) / u_plane.w, (h.z - u_plane.z) / u_plane.w, 0.0, 1.0);
 }

@@ -294,6 +294,61 @@ int main(void)
         CHECK(fabs(best / best_ref - 1.0) < 0.05, "GPU flux there %.4f, reference %.4f", best, best_ref);
     }
 
+    /* 3b. a spot light 6 above the centre (a point-like light; the ball
+     * lens images it at 1 / (1/f - 1/6) = 2 below the centre, paraxially):
+     * against the reference, the lit receiver, the flux through the glass,
+     * and the plane where the flux near the axis is largest (scanned) */
+    {
+        snell_frame_desc sp = fd;
+        double eg = 0, er = 0, best = 0, best_ref = 0, at = 0, at_ref = 0, s_i = 1.0 / (1.0 / kF - 1.0 / 6.0);
+        int step, n = 0;
+        sp.light.type = SNELL_LIGHT_SPOT;
+        sp.light.position[0] = 0.0f, sp.light.position[1] = 7.5f, sp.light.position[2] = 0.0f;
+        sp.light.direction[0] = 0.2f, sp.light.direction[1] = -1.0f, sp.light.direction[2] = 0.0f;
+        sp.light.spot_angle = 0.45f;
+        sp.light.color[0] = sp.light.color[1] = sp.light.color[2] = 36.0f; /* 1 at the sphere's centre */
+        sp.receiver.height = -1.0f, sp.receiver.center[0] = 0.0f, sp.receiver.extent = 3.0f;
+        CHECK_OK_CTX(ctx, snell_render(r, &sp, &fs));
+        CHECK(strstr(fs.caustics_reason, "made") && fs.caustics_photons == 256 * 256, "spot: %s", fs.caustics_reason);
+        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &n));
+        CHECK_OK(snell_ref_receiver_render(ref, &sp.light, &sp.receiver, 1024, 4, ref_rgb, ref_caustic));
+        for (i = 0; i < MAP * MAP; i++) {
+            eg += gpu[4 * i + 3];
+            er += (ref_caustic[3 * i] + ref_caustic[3 * i + 1] + ref_caustic[3 * i + 2]) / 3.0;
+        }
+        {
+            double db = psnr_shown(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
+            printf("spot: flux through glass GPU %.4f reference %.4f (%.2f%%), receiver %.2f dB\n", eg * 0.0234375 * 0.0234375,
+                   er * 0.0234375 * 0.0234375, 100.0 * (eg / er - 1.0), db);
+            CHECK(fabs(eg / er - 1.0) <= 0.05, "spot flux GPU %.4f reference %.4f", eg, er);
+            CHECK(db >= 30.0, "spot PSNR %.2f dB", db);
+        }
+        write_map("caustics_spot_gpu.png", gpu, 4, MAP, 0.8f);
+        write_map("caustics_spot_ref.png", ref_rgb, 3, MAP, 0.8f);
+        sp.receiver.extent = 0.3f, sp.receiver.map_size = 128;
+        for (step = 0; step <= 16; step++) {
+            double z = 1.60 + 0.025 * step, v = 0, v_ref = 0, tx = 0.6 / 128;
+            int j;
+            sp.receiver.height = (float)(1.5 - z);
+            CHECK_OK_CTX(ctx, snell_render(r, &sp, &fs));
+            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &n));
+            CHECK_OK(snell_ref_receiver_render(ref_exact, &sp.light, &sp.receiver, 384, 1, ref_rgb, ref_caustic));
+            for (j = 0; j < 128; j++)
+                for (i = 0; i < 128; i++) {
+                    double x = -0.3 + (i + 0.5) * tx, y = -0.3 + (j + 0.5) * tx;
+                    if (x * x + y * y > 0.02 * 0.02) continue;
+                    v += gpu[4 * (j * 128 + i) + 3];
+                    v_ref += ref_caustic[3 * (j * 128 + i) + 1];
+                }
+            if (v > best) best = v, at = z;
+            if (v_ref > best_ref) best_ref = v_ref, at_ref = z;
+        }
+        printf("spot: flux within 0.02 of the axis largest %.3f (GPU), %.3f (reference) below the centre; paraxial "
+               "image %.3f\n", at, at_ref, s_i);
+        CHECK(fabs(at - at_ref) <= 0.02 * s_i, "spot: GPU %.3f reference %.3f", at, at_ref);
+        CHECK(at < s_i && at > 0.8 * s_i, "spot: brightest %.3f short of the paraxial image %.3f (aberration)", at, s_i);
+    }
+
     /* 4. reuse: nothing moved; then the light moves */
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
     CHECK(fs.caustics_reused == 0, "the glass changed back: made again");
@@ -344,8 +399,16 @@ int main(void)
         CHECK(snell_render(r, &bad, &fs) == SNELL_E_INVALID_ARG, "type 7");
         bad = fd;
         bad.light.type = SNELL_LIGHT_SPOT;
-        CHECK(snell_render(r, &bad, &fs) == SNELL_E_UNSUPPORTED && strstr(snell_last_error(ctx), "SPOT"), "spot: %s",
-              snell_last_error(ctx));
+        bad.light.spot_angle = 2.0f;
+        CHECK(snell_render(r, &bad, &fs) == SNELL_E_INVALID_ARG && strstr(snell_last_error(ctx), "spot_angle"),
+              "spot angle 2: %s", snell_last_error(ctx));
+        bad.light.spot_angle = 0.0f;
+        bad.light.position[0] = INFINITY;
+        CHECK(snell_render(r, &bad, &fs) == SNELL_E_INVALID_ARG, "spot position inf");
+        /* a spot light inside the glass's bounding sphere: no photons, said so */
+        bad.light.position[0] = 0.0f, bad.light.position[1] = 1.5f;
+        CHECK_OK_CTX(ctx, snell_render(r, &bad, &fs));
+        CHECK(fs.caustics_photons == 0 && strstr(fs.caustics_reason, "inside"), "light inside: %s", fs.caustics_reason);
     }
 
     free(gpu), free(ref_rgb), free(ref_caustic), free(mono), free(img0), free(img1);

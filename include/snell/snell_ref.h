@@ -244,18 +244,21 @@ snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects
  * (snell_frame_desc.light / .receiver) defines it, traced in double
  * precision from the light: size x size texels (receiver->map_size, 0 =
  * 256), row 0 at z = center[1] - extent, x growing along a row, 3 floats
- * each, in units of the light's colour. Direct light: light colour *
- * max(0, -dir.y) times the fraction of samples x samples points of the
- * texel from which a ray towards the light meets no object (glass or
- * opaque). Through glass: per glass object a photons x photons grid of
- * parallel rays over its bounding sphere (cell centres) that meets it
- * first, refracted in (Schlick, Snell) and out at its next surface
+ * each, in units of the light's colour. Direct light: the mean over
+ * samples x samples points of the texel of the light's irradiance there
+ * (directional: colour * max(0, -dir.y); spot: colour * cosine / distance^2
+ * inside its cone) where a ray towards the light (up to it) meets no
+ * object (glass or opaque). Through glass: per glass object a photons x
+ * photons grid of rays (cell centres) over its bounding sphere (directional:
+ * parallel rays, each the flux through its cell; spot: a square of
+ * directions from the light on the plane at distance 1, each the flux of its
+ * solid angle cell^2 cos^3, none outside the cone nor from a light inside
+ * the sphere) that meets it first, refracted in (Schlick, Snell) and out at its next surface
  * (Schlick; TIR drops it), tint and Beer-Lambert over the chord, carrying
  * the light's flux through its cell, then, unless an object stops it, its
  * flux shared bilinearly by the 2 x 2 texel centres about where it meets the
  * plane (the stage's splat). caustic (optional, 3 floats a texel) receives
- * that part alone. DIRECTIONAL lights only (else SNELL_E_UNSUPPORTED);
- * photons 1..4096, samples 1..16. */
+ * that part alone. photons 1..4096, samples 1..16. */
 snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *light, const snell_receiver *receiver,
                                        int photons, int samples, float *rgb, float *caustic);
 

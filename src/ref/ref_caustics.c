@@ -80,12 +80,13 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
                                        int photons, int samples, float *rgb, float *caustic)
 {
     plane_map m;
-    double d[3], u[3], v[3], col[3], cosv, len;
+    double d[3], u[3], v[3], col[3], pos[3], cos_cone, len;
+    int spot = light->type == SNELL_LIGHT_SPOT;
     int size, i, j, k, g, a, b;
     size_t n;
     if (!ref || !light || !rc || !rgb) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: NULL argument");
-    if (light->type != SNELL_LIGHT_DIRECTIONAL)
-        return snell__fail(ref->ctx, SNELL_E_UNSUPPORTED, "snell_ref_receiver_render: directional lights only");
+    if (light->type != SNELL_LIGHT_DIRECTIONAL && light->type != SNELL_LIGHT_SPOT)
+        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: no light");
     if (!(rc->extent > 0.0f) || !isfinite(rc->extent) || (rc->map_size != 0 && (rc->map_size < 1 || rc->map_size > 4096)))
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: receiver extent %g > 0, "
                            "map_size %d 0..4096", rc->extent, rc->map_size);
@@ -96,7 +97,8 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
     len = sqrt(snell__ref_dot3(d, d));
     if (!(len > 0.0) || !isfinite(len))
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: light.direction zero or not finite");
-    for (k = 0; k < 3; k++) d[k] /= len;
+    for (k = 0; k < 3; k++) d[k] /= len, pos[k] = light->position[k];
+    cos_cone = cos(light->spot_angle > 0.0f ? (double)light->spot_angle : 0.5);
     for (k = 0; k < 3; k++)
         col[k] = light->color[0] == 0.0f && light->color[1] == 0.0f && light->color[2] == 0.0f ? 1.0 : light->color[k];
     size = rc->map_size ? rc->map_size : 256;
@@ -106,40 +108,70 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
     m.acc = (double *)snell__calloc(&ref->alloc, n, 3 * sizeof(double));
     if (!m.acc) return snell__fail(ref->ctx, SNELL_E_NOMEM, "snell_ref_receiver_render: out of memory");
     /* light through glass */
-    basis(d, u, v);
     for (g = 0; g < ref->glass_count; g++) {
         const ref_glass *gl = &ref->glass[g];
-        double r = gl->bs_r, cell = 2.0 * r / photons, flux[3];
+        double r = gl->bs_r, cell = 2.0 * r / photons, flux[3], w[3], tan_half = 0.0, dist = 0.0;
         if (gl->thin) continue; /* the stage passes thin walls */
+        if (spot) {
+            /* a square of directions from the light just holding the bounding
+             * sphere; a photon's cell is cell^2 on the plane at distance 1 */
+            for (k = 0; k < 3; k++) w[k] = gl->bs_c[k] - pos[k];
+            dist = sqrt(snell__ref_dot3(w, w));
+            if (dist <= r * 1.001) continue; /* the light inside: as the stage, no photons */
+            for (k = 0; k < 3; k++) w[k] /= dist;
+            tan_half = r / sqrt(dist * dist - r * r);
+            cell = 2.0 * tan_half / photons;
+            basis(w, u, v);
+        } else {
+            basis(d, u, v);
+        }
         for (k = 0; k < 3; k++) flux[k] = col[k] * cell * cell / (m.texel * m.texel);
         for (j = 0; j < photons; j++)
             for (i = 0; i < photons; i++) {
-                double x = -r + (i + 0.5) * cell, y = -r + (j + 0.5) * cell, o[3];
-                if (x * x + y * y > r * r) continue;
-                for (k = 0; k < 3; k++) o[k] = gl->bs_c[k] + u[k] * x + v[k] * y - d[k] * (r + 1.0);
-                photon(ref, g, o, d, flux, &m);
+                double o[3], dir[3], f[3];
+                if (spot) {
+                    double x = -tan_half + (i + 0.5) * cell, y = -tan_half + (j + 0.5) * cell, c;
+                    for (k = 0; k < 3; k++) dir[k] = w[k] + u[k] * x + v[k] * y;
+                    snell__ref_normalize3(dir);
+                    c = 1.0 / sqrt(1.0 + x * x + y * y); /* its solid angle: cell^2 cos^3 */
+                    if (snell__ref_dot3(dir, d) < cos_cone) continue;
+                    for (k = 0; k < 3; k++) o[k] = pos[k], f[k] = flux[k] * c * c * c;
+                } else {
+                    double x = -r + (i + 0.5) * cell, y = -r + (j + 0.5) * cell;
+                    if (x * x + y * y > r * r) continue;
+                    for (k = 0; k < 3; k++) o[k] = gl->bs_c[k] + u[k] * x + v[k] * y - d[k] * (r + 1.0);
+                    memcpy(dir, d, sizeof dir);
+                    memcpy(f, flux, sizeof f);
+                }
+                photon(ref, g, o, dir, f, &m);
             }
     }
     if (caustic)
         for (i = 0; i < (int)(3 * n); i++) caustic[i] = (float)m.acc[i];
     /* direct light */
-    cosv = -d[1] > 0.0 ? -d[1] : 0.0;
     for (j = 0; j < size; j++)
         for (i = 0; i < size; i++) {
-            int lit = 0;
-            double back[3] = {-d[0], -d[1], -d[2]};
+            double e = 0.0;
             ref_view air = {-1, REF_SEE_ALL, -1};
             ref_surf s;
-            if (cosv > 0.0)
-                for (b = 0; b < samples; b++)
-                    for (a = 0; a < samples; a++) {
-                        double q[3] = {m.cx - m.ext + (i + (a + 0.5) / samples) * m.texel, m.h,
-                                       m.cz - m.ext + (j + (b + 0.5) / samples) * m.texel};
-                        lit += !snell__ref_hit(ref, q, back, SNELL__BVH_NONE, &air, &s);
+            for (b = 0; b < samples; b++)
+                for (a = 0; a < samples; a++) {
+                    double q[3] = {m.cx - m.ext + (i + (a + 0.5) / samples) * m.texel, m.h,
+                                   m.cz - m.ext + (j + (b + 0.5) / samples) * m.texel};
+                    double back[3] = {-d[0], -d[1], -d[2]}, ek = -d[1] > 0.0 ? -d[1] : 0.0, far_ = HUGE_VAL;
+                    if (spot) { /* towards the light, up to it; inside its cone, cosine / distance^2 */
+                        double d2;
+                        for (k = 0; k < 3; k++) back[k] = pos[k] - q[k];
+                        d2 = snell__ref_dot3(back, back);
+                        far_ = sqrt(d2);
+                        snell__ref_normalize3(back);
+                        ek = -snell__ref_dot3(back, d) >= cos_cone && back[1] > 0.0 ? back[1] / d2 : 0.0;
                     }
+                    if (ek > 0.0 && !(snell__ref_hit(ref, q, back, SNELL__BVH_NONE, &air, &s) && s.t < far_)) e += ek;
+                }
             for (k = 0; k < 3; k++) {
                 size_t t = 3 * ((size_t)j * (size_t)size + (size_t)i) + (size_t)k;
-                rgb[t] = (float)(m.acc[t] + col[k] * cosv * lit / (double)(samples * samples));
+                rgb[t] = (float)(m.acc[t] + col[k] * e / (double)(samples * samples));
             }
         }
     snell__free(&ref->alloc, m.acc);

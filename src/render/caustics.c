@@ -40,9 +40,11 @@ snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd
         if (l->photons != 0 && (l->photons < 16 || l->photons > 1024))
             return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.photons %d outside 16..1024 (0 = %d)", l->photons,
                                DEFAULT_PHOTONS);
-        if (l->type == SNELL_LIGHT_SPOT)
-            return snell__fail(ctx, SNELL_E_UNSUPPORTED, "light.type SPOT: not implemented yet (issue 27); "
-                               "use SNELL_LIGHT_DIRECTIONAL");
+        if (l->type == SNELL_LIGHT_SPOT && !finite3(l->position))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.position must be finite");
+        if (l->type == SNELL_LIGHT_SPOT && (!isfinite(l->spot_angle) || l->spot_angle < 0.0f || l->spot_angle > 1.5f))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.spot_angle %g outside 0..1.5 radians (0 = 0.5)",
+                               l->spot_angle);
     }
     if (!isfinite(rc->extent) || rc->extent < 0.0f)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.extent %g: finite and >= 0 (0 = none)", rc->extent);
@@ -217,6 +219,42 @@ static snell_status map_target(snell_ctx *ctx, snell__caustics *c, int size)
 }
 
 /* --- the light's frame ------------------------------------------------------ */
+/* The frame's light, resolved: unit direction (directional) or position,
+ * unit axis and cone (spot), and its colour (all zero = 1). */
+typedef struct light_res {
+    int spot;
+    float d[3], pos[3], cos_cone, col[3];
+} light_res;
+
+static void resolve_light(const snell_light *l, light_res *o)
+{
+    float len = sqrtf(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                      l->direction[2] * l->direction[2]);
+    int k, white = l->color[0] == 0.0f && l->color[1] == 0.0f && l->color[2] == 0.0f;
+    o->spot = l->type == SNELL_LIGHT_SPOT;
+    for (k = 0; k < 3; k++) {
+        o->d[k] = l->direction[k] / len;
+        o->pos[k] = l->position[k];
+        o->col[k] = white ? 1.0f : l->color[k];
+    }
+    o->cos_cone = cosf(l->spot_angle > 0.0f ? l->spot_angle : 0.5f);
+}
+
+/* A perspective view from eye towards target (spot lights), frustum
+ * x/-z in [lo[0], hi[0]], y/-z in [lo[1], hi[1]]. */
+static void spot_view(const float eye[3], const float target[3], const float lo[2], const float hi[2], float near_,
+                      float far_, mat4 vp)
+{
+    vec3 up = {0.0f, 1.0f, 0.0f}, dir;
+    mat4 view, proj;
+    glm_vec3_sub((float *)target, (float *)eye, dir);
+    glm_vec3_normalize(dir);
+    if (fabsf(dir[1]) > 0.99f) up[0] = 0.0f, up[1] = 0.0f, up[2] = 1.0f;
+    glm_lookat((float *)eye, (float *)target, up, view);
+    glm_frustum(lo[0] * near_, hi[0] * near_, lo[1] * near_, hi[1] * near_, near_, far_, proj);
+    glm_mat4_mul(proj, view, vp);
+}
+
 /* An orthographic view along unit d centred on `centre`: x, y in [-half,
  * half] and depths [near, far] from an eye at centre - d * back. */
 static void light_view(const float d[3], const float centre[3], float back, float lo[2], float hi[2], float near_,
@@ -251,9 +289,11 @@ static void plane_uniform(GLuint prog, const snell_receiver *rc)
     glUniform4f(glGetUniformLocation(prog, "u_plane"), rc->height, rc->center[0], rc->center[1], rc->extent);
 }
 
-/* The shadow map over the receiver: every casting glass and opaque object. */
+/* The shadow map over the receiver: every casting glass and opaque object
+ * (directional: orthographic along the light; spot: a perspective view from
+ * it looking straight down, the receiver's corners inside). */
 static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
-                                 const snell__scene *sc, const float d[3], mat4 vp)
+                                 const snell__scene *sc, const light_res *L, mat4 vp)
 {
     const snell_receiver *rc = &fd->receiver;
     float centre[3] = {rc->center[0], rc->height, rc->center[1]};
@@ -261,40 +301,59 @@ static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell
     int size = rc->map_size ? rc->map_size : DEFAULT_MAP, i, k;
     mat4 view;
     snell_status st;
+    const float *d = L->d;
     size = size * 2 > 2048 ? 2048 : size * 2;
-    /* behind every caster: the eye's distance from the plane's centre along -d */
-    for (i = 0; i < sc->count; i++) {
-        const float *b = sc->obj[i].bsphere;
-        float t = -((b[0] - centre[0]) * d[0] + (b[1] - centre[1]) * d[1] + (b[2] - centre[2]) * d[2]) + b[3];
-        if (t + 1.0f > back) back = t + 1.0f;
-    }
-    for (i = 0; i < fd->opaque_count; i++) {
-        float b[4];
-        mat4 m;
-        if (fd->opaque[i].model) memcpy(m, fd->opaque[i].model, sizeof m);
-        else glm_mat4_identity(m);
-        snell__bounding_sphere(fd->opaque[i].mesh, m, b);
-        float t = -((b[0] - centre[0]) * d[0] + (b[1] - centre[1]) * d[1] + (b[2] - centre[2]) * d[2]) + b[3];
-        if (t + 1.0f > back) back = t + 1.0f;
+    if (L->spot) {
+        float below[3] = {L->pos[0], L->pos[1] - 1.0f, L->pos[2]}, up[3] = {0.0f, 0.0f, 1.0f};
+        glm_lookat((float *)L->pos, below, up, view);
+    } else {
+        /* behind every caster: the eye's distance from the plane's centre along -d */
+        for (i = 0; i < sc->count + fd->opaque_count; i++) {
+            float b[4], t;
+            if (i < sc->count) memcpy(b, sc->obj[i].bsphere, sizeof b);
+            else {
+                mat4 m;
+                const snell_opaque *o = &fd->opaque[i - sc->count];
+                if (o->model) memcpy(m, o->model, sizeof m);
+                else glm_mat4_identity(m);
+                snell__bounding_sphere(o->mesh, m, b);
+            }
+            t = -((b[0] - centre[0]) * d[0] + (b[1] - centre[1]) * d[1] + (b[2] - centre[2]) * d[2]) + b[3];
+            if (t + 1.0f > back) back = t + 1.0f;
+        }
+        {
+            vec3 eye, up = {0.0f, 1.0f, 0.0f};
+            if (fabsf(d[1]) > 0.99f) up[0] = 1.0f, up[1] = 0.0f;
+            for (k = 0; k < 3; k++) eye[k] = centre[k] - d[k] * back;
+            glm_lookat(eye, centre, up, view);
+        }
     }
     /* the square's corners in the light's view fix the window and the far plane */
-    {
-        vec3 eye, up = {0.0f, 1.0f, 0.0f};
-        if (fabsf(d[1]) > 0.99f) up[0] = 1.0f, up[1] = 0.0f;
-        for (k = 0; k < 3; k++) eye[k] = centre[k] - d[k] * back;
-        glm_lookat(eye, centre, up, view);
-    }
     for (k = 0; k < 4; k++) {
         vec4 p = {rc->center[0] + ((k & 1) ? rc->extent : -rc->extent), rc->height,
                   rc->center[1] + ((k & 2) ? rc->extent : -rc->extent), 1.0f}, q;
         glm_mat4_mulv(view, p, q);
+        if (L->spot) { /* directions x/-z, y/-z; the plane is below the light (else nothing is lit) */
+            float z = -q[2] > 1e-3f ? -q[2] : 1e-3f;
+            q[0] /= z, q[1] /= z;
+        }
         for (i = 0; i < 2; i++) {
             if (q[i] < lo[i]) lo[i] = q[i];
             if (q[i] > hi[i]) hi[i] = q[i];
         }
         if (-q[2] > far_) far_ = -q[2];
     }
-    light_view(d, centre, back, lo, hi, 0.01f, far_ + 1.0f, vp);
+    if (L->spot) {
+        float h = L->pos[1] - rc->height, t = 12.0f; /* at most ~170 degrees across */
+        for (i = 0; i < 2; i++) {
+            if (lo[i] < -t) lo[i] = -t;
+            if (hi[i] > t) hi[i] = t;
+        }
+        if (h <= 1e-3f) h = 1e-3f;
+        spot_view(L->pos, (float[3]){L->pos[0], L->pos[1] - 1.0f, L->pos[2]}, lo, hi, h * 0.01f, h * 1.01f + 1e-3f, vp);
+    } else {
+        light_view(d, centre, back, lo, hi, 0.01f, far_ + 1.0f, vp);
+    }
     if ((st = shadow_target(ctx, c, size)) != SNELL_OK) return st;
     glBindFramebuffer(GL_FRAMEBUFFER, c->shadow_fbo);
     glViewport(0, 0, size, size);
@@ -310,13 +369,18 @@ static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell
     return SNELL_OK;
 }
 
-/* The direct light into the light map (replacing what it held). */
-static void draw_direct(snell__caustics *c, const snell_frame_desc *fd, const float d[3], mat4 shadow_vp)
+static void light_uniforms(GLuint prog, const light_res *L)
 {
-    const snell_light *l = &fd->light;
-    float cosv = -d[1] > 0.0f ? -d[1] : 0.0f, col[3];
-    int k;
-    for (k = 0; k < 3; k++) col[k] = (l->color[0] == 0 && l->color[1] == 0 && l->color[2] == 0 ? 1.0f : l->color[k]) * cosv;
+    glUniform1i(glGetUniformLocation(prog, "u_spot"), L->spot);
+    glUniform3fv(glGetUniformLocation(prog, "u_dir"), 1, L->d);
+    glUniform3fv(glGetUniformLocation(prog, "u_pos"), 1, L->pos);
+    glUniform3fv(glGetUniformLocation(prog, "u_axis"), 1, L->d);
+    glUniform1f(glGetUniformLocation(prog, "u_cos_cone"), L->cos_cone);
+}
+
+/* The direct light into the light map (replacing what it held). */
+static void draw_direct(snell__caustics *c, const snell_frame_desc *fd, const light_res *L, mat4 shadow_vp)
+{
     glBindFramebuffer(GL_FRAMEBUFFER, c->map_fbo);
     glViewport(0, 0, c->map_size, c->map_size);
     glDisable(GL_DEPTH_TEST);
@@ -328,23 +392,37 @@ static void draw_direct(snell__caustics *c, const snell_frame_desc *fd, const fl
     glUniform1i(glGetUniformLocation(c->direct_prog, "u_shadow"), 0);
     glUniformMatrix4fv(glGetUniformLocation(c->direct_prog, "u_shadow_vp"), 1, GL_FALSE, (const GLfloat *)shadow_vp);
     plane_uniform(c->direct_prog, &fd->receiver);
-    glUniform3fv(glGetUniformLocation(c->direct_prog, "u_irradiance"), 1, col);
+    glUniform3fv(glGetUniformLocation(c->direct_prog, "u_color"), 1, L->col);
+    light_uniforms(c->direct_prog, L);
     glUniform1f(glGetUniformLocation(c->direct_prog, "u_texel"), 2.0f / (float)c->map_size);
     glUniform1f(glGetUniformLocation(c->direct_prog, "u_bias"), 2e-4f);
     glBindVertexArray(c->vao);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
-/* One glass object's photons, added into the light map. Returns how many were shot. */
-static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const snell__object *o, const float d[3])
+/* One glass object's photons, added into the light map. Returns how many
+ * were shot (0: a spot light inside its bounding sphere). */
+static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const snell__object *o, const light_res *L)
 {
-    const snell_light *l = &fd->light;
     const snell_receiver *rc = &fd->receiver;
-    int n = l->photons ? l->photons : DEFAULT_PHOTONS, i, k;
+    int n = fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS, i, k;
     float r = o->bsphere[3], lo[2] = {-r, -r}, hi[2] = {r, r}, flux[3], texel = 2.0f * rc->extent / (float)c->map_size;
-    float cell = 2.0f * r / (float)n;
+    float cell = 2.0f * r / (float)n, tan_half = 0.0f;
     mat4 vp, inv;
-    light_view(d, o->bsphere, r + 1.0f, lo, hi, 0.5f, 2.0f * r + 1.5f, vp);
+    if (L->spot) {
+        /* a perspective view from the light just holding the bounding sphere;
+         * a photon's cell is cell^2 on the image plane at distance 1 */
+        float dist = sqrtf((o->bsphere[0] - L->pos[0]) * (o->bsphere[0] - L->pos[0]) +
+                           (o->bsphere[1] - L->pos[1]) * (o->bsphere[1] - L->pos[1]) +
+                           (o->bsphere[2] - L->pos[2]) * (o->bsphere[2] - L->pos[2]));
+        if (dist <= r * 1.001f) return 0;
+        tan_half = r / sqrtf(dist * dist - r * r);
+        lo[0] = lo[1] = -tan_half, hi[0] = hi[1] = tan_half;
+        spot_view(L->pos, o->bsphere, lo, hi, (dist - r) * 0.5f, dist + r + 1.0f, vp);
+        cell = 2.0f * tan_half / (float)n;
+    } else {
+        light_view(L->d, o->bsphere, r + 1.0f, lo, hi, 0.5f, 2.0f * r + 1.5f, vp);
+    }
     glm_mat4_inv(vp, inv);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
@@ -379,14 +457,14 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
     glUniformMatrix4fv(glGetUniformLocation(c->photon_prog, "u_light_vp"), 1, GL_FALSE, (const GLfloat *)vp);
     glUniformMatrix4fv(glGetUniformLocation(c->photon_prog, "u_light_inv"), 1, GL_FALSE, (const GLfloat *)inv);
     glUniform1i(glGetUniformLocation(c->photon_prog, "u_size"), n);
-    glUniform3fv(glGetUniformLocation(c->photon_prog, "u_dir"), 1, d);
+    light_uniforms(c->photon_prog, L);
+    glUniform1f(glGetUniformLocation(c->photon_prog, "u_tan"), tan_half);
     glUniform1f(glGetUniformLocation(c->photon_prog, "u_ior"), o->glass->material.ior);
     glUniform3fv(glGetUniformLocation(c->photon_prog, "u_sigma"), 1, o->glass->absorption);
     /* each photon carries the light's flux through its cell of the beam
-     * (cell^2 facing the light); per texel area that is the irradiance it adds */
-    for (k = 0; k < 3; k++)
-        flux[k] = (l->color[0] == 0 && l->color[1] == 0 && l->color[2] == 0 ? 1.0f : l->color[k]) *
-                  o->glass->material.tint[k] * cell * cell / (texel * texel);
+     * (cell^2 facing the light; spot: its solid angle, the shader's share);
+     * per texel area that is the irradiance it adds */
+    for (k = 0; k < 3; k++) flux[k] = L->col[k] * o->glass->material.tint[k] * cell * cell / (texel * texel);
     glUniform3fv(glGetUniformLocation(c->photon_prog, "u_flux"), 1, flux);
     plane_uniform(c->photon_prog, rc);
     glUniform1f(glGetUniformLocation(c->photon_prog, "u_reach"), 2.0f * r);
@@ -422,9 +500,9 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
                                  const snell__scene *sc, snell_frame_stats *s)
 {
     GLint fbo = 0, viewport[4];
-    float d[3], len;
-    int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, key_len;
+    int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, shot = 0, key_len;
     snell_status st;
+    light_res L;
     mat4 shadow_vp;
     if (!c->map_format) {
         /* float32 blending is an extension of its own in ES (EXT_float_blend) */
@@ -449,9 +527,7 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
         return draw_receiver(c, fd, sc);
     }
     c->valid = 0;
-    len = sqrtf(fd->light.direction[0] * fd->light.direction[0] + fd->light.direction[1] * fd->light.direction[1] +
-                fd->light.direction[2] * fd->light.direction[2]);
-    for (i = 0; i < 3; i++) d[i] = fd->light.direction[i] / len;
+    resolve_light(&fd->light, &L);
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fbo);
     glGetIntegerv(GL_VIEWPORT, viewport);
     for (i = 0; i < fd->opaque_count; i++)
@@ -461,15 +537,17 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
     st = programs(ctx, c);
     if (st == SNELL_OK) st = map_target(ctx, c, size);
     if (st == SNELL_OK) st = glass_targets(ctx, c, fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS);
-    if (st == SNELL_OK) st = draw_shadows(ctx, c, fd, sc, d, shadow_vp);
+    if (st == SNELL_OK) st = draw_shadows(ctx, c, fd, sc, &L, shadow_vp);
     if (st == SNELL_OK) {
-        draw_direct(c, fd, d, shadow_vp);
+        draw_direct(c, fd, &L, shadow_vp);
         for (i = 0; i < sc->count; i++)
             if (casts(&sc->obj[i])) {
-                s->caustics_photons += draw_photons(c, fd, &sc->obj[i], d);
+                int n = draw_photons(c, fd, &sc->obj[i], &L);
+                s->caustics_photons += n;
+                shot += n > 0;
                 casters++;
             }
-        s->passes += 2 + 3 * casters;
+        s->passes += 2 + 3 * shot;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
@@ -478,9 +556,10 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
     memcpy(c->key, c->scratch, (size_t)key_len * sizeof(float));
     c->key_len = key_len;
     c->valid = 1;
-    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass object%s casting, %d opaque; %dx%d %s "
-               "light map", casters, casters == 1 ? "" : "s", fd->opaque_count, size, size,
-               c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
+    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass object%s casting%s, %d opaque; %dx%d %s "
+               "light map", casters, casters == 1 ? "" : "s",
+               shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count, size,
+               size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
     return draw_receiver(c, fd, sc);
 }
 
