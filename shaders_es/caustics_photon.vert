@@ -31,8 +31,10 @@ uniform float u_reach;        // the longest chord: the bounding sphere's diamet
 
 out vec4 v_flux;
 
-const int LINEAR_STEPS = 48;
-const int BISECT_STEPS = 12;
+// The exit: a few linear steps bracket the first point past the far
+// surface (one crossing for a convex object), bisection refines it.
+const int LINEAR_STEPS = 8;
+const int BISECT_STEPS = 14;
 
 // Covered-texel bilinear look-up of a map at light uv: rgb of the normals,
 // or r of the depth; w = summed weight of covered texels (0: none).
@@ -55,15 +57,26 @@ vec4 fetch4(sampler2D cov, sampler2D tex, vec2 uv, out float w)
     return w > 0.0 ? acc / w : acc;
 }
 
-// Light-space depth of the ray point minus the far surface's there (> 0: past it).
+// Light-space depth of the ray point minus the far surface's there (> 0:
+// past it), the far depths read bilinearly over covered texels (the far map
+// is cleared to depth 0, which no surface has).
 float past_back(vec3 p)
 {
     vec4 c = u_light_vp * vec4(p, 1.0);
     vec3 s = c.xyz / c.w * 0.5 + 0.5;
-    float w;
-    float z = fetch4(u_back_n, u_back_z, s.xy, w).r;
+    vec2 t = s.xy * float(u_size) - 0.5;
+    ivec2 b = ivec2(floor(t));
+    vec2 f = t - floor(t);
+    float z = 0.0, w = 0.0;
+    for (int k = 0; k < 4; k++) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        float zk = texelFetch(u_back_z, clamp(b + o, ivec2(0), ivec2(u_size - 1)), 0).r;
+        float wk = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) * (zk > 0.0 ? 1.0 : 0.0);
+        z += wk * zk;
+        w += wk;
+    }
     if (w <= 0.0) return 1.0; // off the object: out
-    return s.z - z;
+    return s.z - z / w;
 }
 
 void main()

@@ -14,3 +14,11 @@ if(TARGET snell-render)
            "-DARGS=--light|dir:0,0,0|--floor|0" -DCODE=2 "-DERR=wants dir:X,Y,Z" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(cli_caustics_bad_light PROPERTIES LABELS "cli;gl")
 endif()
+# bench_caustics: the frame cost off / light map reused / made every frame, rounds taking turns
+# (a tool, not a test: uses internals; numbers in the issue's note).
+add_executable(bench_caustics bench_caustics.c)
+target_link_libraries(bench_caustics PRIVATE snell_static)
+target_include_directories(bench_caustics PRIVATE ${PROJECT_SOURCE_DIR}/src ${CGLM_INCLUDE_DIR})
+target_compile_options(bench_caustics PRIVATE ${SNELL_WARNINGS})
+add_test(NAME bench_caustics_runs COMMAND bench_caustics 64 2 32 32)
+set_tests_properties(bench_caustics_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "made/off median ratio")
