@@ -1033,8 +1033,8 @@ int snell_object_counter(const snell_object_stats *st, const char *name);
 typedef struct snell_frame_stats {
     int passes;                     /* GL draw passes issued in all */
     double cpu_ms;                  /* CPU time spent issuing the frame */
-    char stages[SNELL_REASON_SIZE]; /* the frame's stages that ran, in frame order, by name ("opaque glass
-                                     * layers water back_faces gbuffer kernels background ssaa msaa");
+    char stages[SNELL_REASON_SIZE]; /* the frame's stages that ran, in frame order, by name ("opaque caustics
+                                     * glass layers water back_faces gbuffer kernels background ssaa msaa");
                                      * one a frame does not need is left out (the fields below say why) */
     int glass_count;                /* entries of glass[] filled, = the frame's glass_count */
     snell_object_stats glass[SNELL_MAX_GLASS]; /* in the order of the frame's glass list */

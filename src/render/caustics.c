@@ -12,6 +12,7 @@
 #include "render/caustics.h"
 #include "core/ctx.h"
 #include "core/gl.h"
+#include "core/glstate.h"
 #include "core/program.h"
 #include "mesh/mesh.h"
 
@@ -513,9 +514,9 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
                  snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float"))
             c->map_format = GL_RGBA16F;
         else
-            c->map_format = GL_NONE + 1; /* probed: none */
+            c->map_format = SNELL__CAUSTICS_NO_FLOAT;
     }
-    if (c->map_format == GL_NONE + 1) {
+    if (c->map_format == SNELL__CAUSTICS_NO_FLOAT) {
         snell__why(s->caustics_reason, sizeof s->caustics_reason,
                    "skipped: the light map needs a float target (GL_EXT_color_buffer_half_float or _float)");
         return SNELL_OK;
@@ -566,11 +567,13 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
 snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size)
 {
     GLint fbo = 0;
+    snell__pixel_store pack;
     if (!c->valid || !c->map_fbo) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no light map made yet");
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, c->map_fbo);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    snell__pixel_pack_begin(&pack, 1);
     glReadPixels(0, 0, c->map_size, c->map_size, GL_RGBA, GL_FLOAT, rgba);
+    snell__pixel_pack_end(&pack);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
     *size = c->map_size;
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "caustics: reading the light map failed");

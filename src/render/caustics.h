@@ -8,6 +8,7 @@
 #include "render/scene.h"
 
 #define SNELL__CAUSTICS_KEY 4096 /* floats of the reuse key */
+#define SNELL__CAUSTICS_NO_FLOAT 1u /* map_format: probed, no float target (the stage is skipped) */
 
 typedef struct snell__caustics {
     unsigned map_prog, photon_prog, direct_prog, receiver_prog, vao;
@@ -17,7 +18,8 @@ typedef struct snell__caustics {
     int shadow_size;
     unsigned map_fbo, map_tex;                     /* the receiver's light map (float rgba) */
     int map_size;
-    unsigned map_format;                           /* GL_RGBA32F or GL_RGBA16F, 0 = none made */
+    unsigned map_format;                           /* GL_RGBA32F or GL_RGBA16F, SNELL__CAUSTICS_NO_FLOAT,
+                                                    * 0 = not probed yet (tests set it to take a path) */
     int valid;                                     /* the map holds the frame keyed by key[] */
     int key_len;
     float key[SNELL__CAUSTICS_KEY];
