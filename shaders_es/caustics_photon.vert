@@ -4,7 +4,7 @@
 // (Schlick Fresnel, Snell), marches the farthest-surface depth map to its
 // exit (an image-space search, as the methods' exit searches), leaves
 // (Schlick, Snell; TIR drops it), and lands on the receiver plane y = h. It
-// is drawn as a 2 x 2 texel point whose texels share its flux bilinearly
+// is drawn as a 4 x 4 texel point whose texels share its flux by a tent
 // (caustics_splat.frag): every photon's flux lands in full (flux-correct, as
 // the 2D lightmap's lines, src/lm2d). World space throughout.
 precision highp float;
@@ -82,7 +82,7 @@ float past_back(vec3 p)
 void main()
 {
     int i = gl_VertexID % u_size, j = gl_VertexID / u_size;
-    gl_PointSize = 2.0;
+    gl_PointSize = 4.0;
     gl_Position = vec4(4.0, 4.0, 4.0, 1.0); // dropped photons: outside the clip volume
     v_flux = vec4(0.0);
     vec4 fn = texelFetch(u_front_n, ivec2(i, j), 0);

@@ -404,10 +404,10 @@ int main(void)
                 printf("RGBA16F light map: flux through glass %.3f%% of RGBA32F's, %.1f dB against it shown\n",
                        100.0 * e16 / e32, db);
                 /* half floats stop adding a photon's share once a texel holds
-                 * 2^12 of it: at this focus (375 times the light) 15% of the
+                 * 2^12 of it: at this focus (212 times the light) 26% of the
                  * light through the glass is lost, the shown image (the focus
                  * saturates) barely changes */
-                CHECK(e16 / e32 > 0.8 && e16 / e32 <= 1.001 && db > 40.0, "16F flux ratio %.4f, %.1f dB", e16 / e32, db);
+                CHECK(e16 / e32 > 0.7 && e16 / e32 <= 1.001 && db > 40.0, "16F flux ratio %.4f, %.1f dB", e16 / e32, db);
             }
             r0->caustics.map_format = SNELL__CAUSTICS_NO_FLOAT;
             CHECK_OK_CTX(ctx, snell_render(r0, &fd, &fs));

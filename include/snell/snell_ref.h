@@ -256,8 +256,8 @@ snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects
  * the sphere) that meets it first, refracted in (Schlick, Snell) and out at its next surface
  * (Schlick; TIR drops it), tint and Beer-Lambert over the chord, carrying
  * the light's flux through its cell, then, unless an object stops it, its
- * flux shared bilinearly by the 2 x 2 texel centres about where it meets the
- * plane (the stage's splat). caustic (optional, 3 floats a texel) receives
+ * flux shared by the texel centres within 2 texels of where it meets the
+ * plane with tent weights (1 - |dx|/2)(1 - |dz|/2)/4 (the stage's splat). caustic (optional, 3 floats a texel) receives
  * that part alone. photons 1..4096, samples 1..16. */
 snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *light, const snell_receiver *receiver,
                                        int photons, int samples, float *rgb, float *caustic);

@@ -2,7 +2,7 @@
  * receiver plane's irradiance traced from the light in double precision:
  * shadow rays for the direct light, and photons refracted through each glass
  * object (the stage's optics: Schlick and Snell in and out, tint,
- * Beer-Lambert) splatted bilinearly onto the plane's texels, flux-correct. */
+ * Beer-Lambert) splatted onto the plane's texels with the stage's tent, flux-correct. */
 #include "ref/ref_scene.h"
 #include "core/ctx.h"
 #include "core/optics.h"
@@ -16,19 +16,21 @@ typedef struct plane_map {
     double *acc; /* 3 per texel */
 } plane_map;
 
-/* Adds flux (irradiance per texel area) bilinearly about plane point (x, z). */
+/* Adds flux (irradiance per texel area) about plane point (x, z) as the
+ * stage splats it: a tent of half-width 2 texels along each axis, weights
+ * (1 - |dx| / 2) / 2 at the texel centres within 2 texels (they sum to 1). */
 static void splat(plane_map *m, double x, double z, const double e[3])
 {
     double tx = (x - (m->cx - m->ext)) / m->texel - 0.5, tz = (z - (m->cz - m->ext)) / m->texel - 0.5;
-    double fx = floor(tx), fz = floor(tz);
-    int k, c;
-    if (!(tx > -1.0 && tz > -1.0 && tx < m->size && tz < m->size)) return;
-    for (k = 0; k < 4; k++) {
-        int ix = (int)fx + (k & 1), iz = (int)fz + (k >> 1);
-        double w = ((k & 1) ? tx - fx : 1.0 - (tx - fx)) * ((k >> 1) ? tz - fz : 1.0 - (tz - fz));
-        if (ix < 0 || iz < 0 || ix >= m->size || iz >= m->size) continue;
-        for (c = 0; c < 3; c++) m->acc[3 * ((size_t)iz * (size_t)m->size + (size_t)ix) + c] += w * e[c];
-    }
+    int ix, iz, c;
+    if (!(tx > -2.0 && tz > -2.0 && tx < m->size + 1.0 && tz < m->size + 1.0)) return;
+    for (iz = (int)floor(tz) - 1; iz <= (int)floor(tz) + 2; iz++)
+        for (ix = (int)floor(tx) - 1; ix <= (int)floor(tx) + 2; ix++) {
+            double wx = 1.0 - fabs(tx - ix) / 2.0, wz = 1.0 - fabs(tz - iz) / 2.0, w;
+            if (wx <= 0.0 || wz <= 0.0 || ix < 0 || iz < 0 || ix >= m->size || iz >= m->size) continue;
+            w = wx * wz / 4.0;
+            for (c = 0; c < 3; c++) m->acc[3 * ((size_t)iz * (size_t)m->size + (size_t)ix) + c] += w * e[c];
+        }
 }
 
 static void basis(const double d[3], double u[3], double v[3])
