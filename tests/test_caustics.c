@@ -423,6 +423,20 @@ int main(void)
         snell_renderer_destroy(r0);
     }
 
+    /* 5c. exit-direction output has no receiver: the stage is left out, said why */
+    {
+        snell_renderer *rx = NULL;
+        snell_renderer_desc xd = rd;
+        xd.output = SNELL_OUTPUT_EXIT_DIRECTION;
+        CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &xd, &rx));
+        if (rx) {
+            CHECK_OK_CTX(ctx, snell_render(rx, &fd, &fs));
+            CHECK(!strstr(fs.stages, "caustics") && strstr(fs.caustics_reason, "exit-direction"), "exit dirs: '%s' (%s)",
+                  fs.stages, fs.caustics_reason);
+        }
+        snell_renderer_destroy(rx);
+    }
+
     /* 6. bad input: a clear status, the frame not drawn */
     {
         snell_frame_desc bad = fd;
