@@ -12,6 +12,9 @@
 # FRAMES (9), WARMUP (2), AA (2: colour errors area-averaged, 2x2 rays a
 # pixel), THREADS (reference tracer threads, default 1 so a shared machine
 # keeps a core), CACHE (reference cache, default BUILD_DIR/bench-cache),
+# BUDGET_SCENES (AUTO by frame budget, snell-bench --budget: default "bunny
+# tests/data/scenes/three_glass_two_opaque.gltf"), BUDGET (4x: times single's
+# frame), BUDGET_SIZE (256), BUDGET_FRAMES (300),
 # REV (the source the build is of, stated in the page; default: git's HEAD,
 # "+ uncommitted changes" when the tree differs from it).
 # The history (every earlier measurement with its command) is
@@ -58,6 +61,18 @@ for s in $scenes; do
         failed="$failed $name"
     fi
     rm -f "current/$name.csv" # the JSON holds the same and more
+done
+budget_scenes=${BUDGET_SCENES:-bunny $root/tests/data/scenes/three_glass_two_opaque.gltf}
+budget=${BUDGET:-4x}
+budget_size=${BUDGET_SIZE:-256}
+budget_frames=${BUDGET_FRAMES:-300}
+for s in $budget_scenes; do
+    name=$(basename "$s" | sed 's/\.[^.]*$//')
+    echo "regen.sh: budget $budget on $s ($budget_size, $budget_frames frames) ..." >&2
+    if ! "$bench" --budget "$budget" --scene "$s" --size "$budget_size" --frames "$budget_frames" \
+            --threads "$threads" --cache "$cache" > "$tmp/budget_$name.out" 2>&1; then
+        failed="$failed budget:$name"
+    fi
 done
 up_after=$(uptime)
 t1=$(date +%s)
@@ -109,6 +124,31 @@ EOF
                 "$name" "$(tail -n 5 "$tmp/$name.out")" ;;
         esac
     done
+    first=$(basename "${budget_scenes%% *}" | sed 's/\.[^.]*$//')
+    cat <<EOF
+## AUTO by frame budget
+
+\`snell_frame_desc.budget_ms\` (README "AUTO by frame budget"): AUTO with the budget beside every
+fixed configuration of its rung table, on a camera turning 1.2° a frame; AUTO draws every frame,
+the fixed configurations every 5th, taking turns; glass PSNR against FULL at pixel centres on 4
+frames spread over the run. The budget is $budget single's median frame; "within the budget":
+the 95th percentile. Command: \`snell-bench --budget $budget --scene SCENE --size $budget_size
+--frames $budget_frames --threads $threads\`.
+
+EOF
+    for s in $budget_scenes; do
+        name=$(basename "$s" | sed 's/\.[^.]*$//')
+        echo "### $name, ${budget_size}x$budget_size"
+        echo
+        sed -n '/^scene /,$p' "$tmp/budget_$name.out"
+        echo
+    done
+    echo "The rung table these runs chose from (\`snell_budget_rung_at\`):"
+    echo
+    echo '```'
+    sed -n '/^the rung table/,/^scene /p' "$tmp/budget_$first.out" | sed '$d'
+    echo '```'
+    echo
     echo "## The history (notes/history.md)"
     echo
     # its top sections (the deeper headings carry old figures: not on this

@@ -21,7 +21,7 @@ if(TARGET snell-kiosk)
            -DCODE=1 "-DERR=cannot use a DRM device: /nonexistent/card0: No such file" -P ${expect})
   set_tests_properties(kiosk_no_device kiosk_no_kms_card kiosk_device_missing PROPERTIES LABELS "cli")
   foreach(bad "--mode|1920x" "--mode|1920x1080@" "--frames|0" "--spin|nan" "-b|cubemap|-b|single"
-              "--connector|x" "--nosuch")
+              "--connector|x" "--nosuch" "--budget|0" "--budget|nan")
     string(MAKE_C_IDENTIFIER "kiosk_bad_${bad}" name)
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=${bad}" -DCODE=2 "-DERR=snell-kiosk: "
              -P ${expect})

@@ -11,6 +11,9 @@ target_link_libraries(test_ref_analytic PRIVATE m)
 # bunny base): a smooth-shaded cube's grazing rays and every path's sides.
 snell_add_test(test_ref_shading_normals SOURCES test_ref_shading_normals.c LABELS "unit")
 target_link_libraries(test_ref_shading_normals PRIVATE m)
+# snell_ref_params.progress: called, never decreasing, rate-limited, ends at 1.0 (issue 28 item 7).
+snell_add_test(test_ref_progress SOURCES test_ref_progress.c LABELS "unit")
+target_link_libraries(test_ref_progress PRIVATE m)
 snell_add_test(test_ref_render SOURCES test_ref_render.c LABELS "render")
 target_link_libraries(test_ref_render PRIVATE m)
 snell_add_test(test_ref_gpu_single SOURCES test_ref_gpu_single.c LABELS "render;gl" SHADINGS forward screen)

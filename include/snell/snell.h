@@ -966,6 +966,26 @@ typedef struct snell_frame_desc {
      * the part of a ray inside the water that the glass's kernel traces (a
      * glass object half under water) is traced as in air. */
     snell_water *water;
+    /* AUTO by frame budget: > 0 = the frame time to hold, in ms (snell_render's
+     * start to the GPU's completion, measured by a fence after each frame and
+     * read at the next: snell_renderer_finish, a read-back or the next
+     * snell_render). Each AUTO glass object is then drawn by one rung of its
+     * ladder: the configurations of the rung table (method + parameter, with
+     * their measured cost and glass PSNR per mesh class) that its mesh does
+     * not fail, cut to their Pareto front; the plan of the highest predicted
+     * PSNR (area-weighted over the objects) whose predicted time fits 95% of
+     * the budget, at the ms per unit learned from the frames measured. A frame
+     * measured over 105% of the budget steps down at once and bars plans as
+     * dear for a back-off that doubles with each failure; steps up wait 6
+     * frames after any change (no oscillation). snell_frame_stats.budget_*
+     * and each object's reason say what was chosen and why. 0 = none: AUTO
+     * takes the cheapest adequate method, as without a budget. Finite, at
+     * most 1e6. */
+    float budget_ms;
+    /* With budget_ms: no object below the rung whose predicted glass PSNR
+     * reaches this many dB (its best rung if none does), whatever the
+     * budget; 0 = none. 0..100. */
+    float quality_floor_db;
     /* Caustics and shadows of glass (the caustics stage): with a light and a
      * receiver, light from `light` refracted through every glass object
      * (Schlick Fresnel at entry and exit, tint, Beer-Lambert) is splatted
@@ -1057,6 +1077,15 @@ typedef struct snell_frame_stats {
                                      * an offscreen single-sample colour renderer); 0: only the container */
     int water_layers;               /* 1: the water's rays marched the scene layers (glass in the frame) */
     int background_paraboloid;      /* 1: the background looked the environment up in dual-paraboloid maps */
+    /* AUTO by budget (snell_frame_desc.budget_ms; all 0 without one): */
+    float budget_ms;                /* the budget this frame was planned for */
+    double budget_measured_ms;      /* the last frame measured (start to GPU completion), -1 none yet */
+    double budget_predicted_ms;     /* this frame's plan at the learned ms per unit, -1 before a measurement */
+    int budget_changed;             /* 1: the plan changed this frame */
+    int budget_first_use;           /* 1: the plan draws a configuration for the first time on this renderer:
+                                     * the frame may build its programs and per-mesh resources (a bake), so
+                                     * its time is neither learned from nor judged over the budget */
+    char budget_reason[SNELL_REASON_SIZE]; /* what the controller did and why */
     int caustics_photons;           /* photons splatted onto the receiver this frame (0: none or reused) */
     int caustics_reused;            /* 1: the last frame's light map (light, glass and receiver still) */
     char caustics_reason[SNELL_REASON_SIZE]; /* why the caustics stage ran or did not */
@@ -1079,7 +1108,10 @@ typedef struct snell_frame_stats {
  * one INFO log line; a file that requires a KHR_materials_* extension other
  * than those four is SNELL_E_UNSUPPORTED, beyond that the rules and trust
  * model of snell_mesh_load_gltf_ex apply (flags likewise). More than
- * SNELL_MAX_GLASS glass or SNELL_MAX_OPAQUE opaque objects is SNELL_E_LIMIT. */
+ * SNELL_MAX_GLASS glass objects is SNELL_E_LIMIT (the message names both
+ * counts); more than SNELL_MAX_OPAQUE opaque ones are merged, one object per
+ * base colour with the node transforms baked into its mesh (SNELL_E_LIMIT if
+ * there are more colours than that). */
 typedef struct snell_scene_file snell_scene_file;
 snell_status snell_scene_load_gltf(snell_ctx *ctx, const char *path, unsigned flags, snell_scene_file **out);
 snell_status snell_scene_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_scene_file **out);
@@ -1089,6 +1121,37 @@ const snell_glass *snell_scene_file_glass(const snell_scene_file *scene, int *co
 const snell_opaque *snell_scene_file_opaque(const snell_scene_file *scene, int *count);
 /* 1 and *camera set if the file has a camera, else 0. */
 int snell_scene_file_camera(const snell_scene_file *scene, snell_camera *camera);
+/* For a file without a camera (snell_scene_file_camera 0): frames the scene.
+ * *camera's azimuth, elevation and fov_y (0 = 45 degrees) are kept; its target
+ * becomes the centre of every glass and opaque object's world bounds, its
+ * distance the one at which their bounding sphere fits the vertical and the
+ * horizontal field of view (aspect = width / height) with 5% to spare, z_near
+ * and z_far 0 (derived). SNELL_E_INVALID_ARG for NULL, aspect not > 0 or
+ * fov_y outside [0, pi). */
+snell_status snell_scene_file_frame(const snell_scene_file *scene, float aspect, snell_camera *camera);
+/* Object i's glTF node name ("node N" if it has none; a merged opaque object:
+ * "K nodes of 'material'"), NULL if i is out of range. Valid with the scene. */
+const char *snell_scene_file_glass_name(const snell_scene_file *scene, int i);
+const char *snell_scene_file_opaque_name(const snell_scene_file *scene, int i);
+
+/* AUTO by budget's rung table (snell_frame_desc.budget_ms): the
+ * configurations it chooses among, each with its frame time relative to
+ * single's and its glass PSNR against FULL per mesh class, as measured on
+ * the project's reference device (bench/BENCHMARKS.md "AUTO by budget").
+ * An object's ladder is the rungs its mesh does not fail, cut to their
+ * Pareto front; the controller replaces the costs by what it measures. */
+typedef struct snell_budget_rung {
+    snell_method method;
+    const char *param;              /* a parameter of the method set to value, or NULL (its defaults) */
+    int value;
+    float cost[4];                  /* frame time over single's, same scene and size, per mesh class:
+                                     * convex; closed concave whose centre the cubemap serves (AUTO's
+                                     * cubemap: the bunny); closed concave it does not (the torus); open
+                                     * or non-manifold */
+    float db[4];                    /* glass PSNR vs FULL per class; 0 = not on that class's ladder */
+} snell_budget_rung;
+int snell_budget_rung_count(void);
+const snell_budget_rung *snell_budget_rung_at(int i); /* NULL outside 0..count-1 */
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);
 void snell_renderer_destroy(snell_renderer *r);

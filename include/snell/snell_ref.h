@@ -160,6 +160,14 @@ typedef enum snell_ref_absorption {
 /* An environment given as a function (radiance, linear, 0..1 scale); dir is unit. */
 typedef void (*snell_ref_env_fn)(const double dir[3], double rgb[3], void *user);
 
+/* Progress of a long render: done is the fraction of the image's rows
+ * finished, 0..1, never decreasing; called at most about 10 times a second
+ * while rows are done and exactly once with 1.0 when the image is complete
+ * (not on an early error). Calls never overlap, but they may come from any of
+ * the render's threads: keep it short (the rows wait for it). The library
+ * prints nothing; the caller shows what it likes. */
+typedef void (*snell_ref_progress_fn)(double done, void *user);
+
 typedef struct snell_ref_params {
     snell_ref_mode mode;
     int max_interfaces;                  /* 1..SNELL_REF_MAX_INTERFACES; 0 = 10 */
@@ -182,6 +190,8 @@ typedef struct snell_ref_params {
      * The path outputs (exit_dir, interfaces, hit, object) are always those
      * of the centre ray. 0..SNELL_REF_MAX_SAMPLES. */
     int samples;
+    snell_ref_progress_fn progress;      /* NULL = none (snell_ref_render, snell_ref_water_render) */
+    void *progress_user;
 } snell_ref_params;
 
 /* Caller-owned output buffers, width*height pixels each, top row first. */

@@ -255,5 +255,7 @@ int snell_bench2d_main(int argc, char **argv);
 int snell_bench_env_main(int argc, char **argv);
 /* snell-bench --water (bench_water.c): the water scene's simulation and rendering timed apart. */
 int snell_bench_water_main(int argc, char **argv);
+/* snell-bench --budget: AUTO by frame budget against its rung table's fixed configurations (bench_budget.c). */
+int snell_bench_budget_main(int argc, char **argv);
 
 #endif

@@ -9,6 +9,7 @@
 #include "snell/snell_2d.h"
 #include "cli_time.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -161,9 +162,9 @@ static const char *raster_name(snell_raster2d r)
     return r == SNELL_RASTER2D_GL ? "GL lines" : r == SNELL_RASTER2D_CPU ? "CPU exact" : "auto";
 }
 
-static void usage(void)
+static void usage(FILE *out)
 {
-    fprintf(stderr,
+    fprintf(out,
             "usage: snell-bench --2d [--rays N] [--repeat R] [--threads T] [--no-gpu] [--quick] [--frame]\n"
             "                        [--json FILE] [--csv FILE]\n"
             "  rays/s per core (1 thread, 2263 edges, 0 bounces), leaf sweep, GL paths/ms,\n"
@@ -173,7 +174,7 @@ static void usage(void)
 
 int snell_bench2d_main(int argc, char **argv)
 {
-    int rays = 200000, repeat = 9, threads = 0, gpu = 1, frame_only = 0, i, li, c, nf = 0, edges = 2263;
+    int rays = 200000, repeat = 9, threads = 0, gpu = 1, frame_only = 0, i, li, c, nf = 0, edges = 2263, write_failed = 0;
     const char *json = "bench2d.json", *csv = "bench2d.csv";
     static const int leaves[] = {1, 2, 3, 4, 6, 8, 12, 16};
     double leaf_rps[8] = {0}, leaf_cpu[8] = {0};
@@ -186,8 +187,20 @@ int snell_bench2d_main(int argc, char **argv)
     int lp;
     FILE *f;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    for (i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+            usage(stdout);
+            return 0;
+        }
     for (i = 1; i < argc; i++) {
+        static const char *const valued[] = {"--rays", "--repeat", "--threads", "--json", "--csv"};
+        size_t k;
         if (strcmp(argv[i], "--2d") == 0) continue;
+        for (k = 0; k < sizeof valued / sizeof *valued && strcmp(argv[i], valued[k]); k++) {}
+        if (k < sizeof valued / sizeof *valued && i + 1 >= argc) {
+            fprintf(stderr, "snell-bench --2d: %s needs a value\n", argv[i]);
+            return 2;
+        }
         if (strcmp(argv[i], "--rays") == 0 && i + 1 < argc) rays = atoi(argv[++i]);
         else if (strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) repeat = atoi(argv[++i]);
         else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) threads = atoi(argv[++i]);
@@ -199,12 +212,13 @@ int snell_bench2d_main(int argc, char **argv)
             rays = 50000;
             repeat = 3;
         } else {
-            usage();
+            fprintf(stderr, "snell-bench --2d: unknown option '%s'; see --2d --help\n", argv[i]);
             return 2;
         }
     }
     if (rays < 1000 || repeat < 1 || repeat > MAX_REPEAT || threads < 0) {
-        usage();
+        fprintf(stderr, "snell-bench --2d: want --rays >= 1000, --repeat 1..%d and --threads >= 0, got %d, %d, %d\n",
+                MAX_REPEAT, rays, repeat, threads);
         return 2;
     }
     if (threads == 0) threads = ncpu > 0 ? (int)ncpu : 1;
@@ -307,6 +321,7 @@ int snell_bench2d_main(int argc, char **argv)
     printf("  rasteriser of the first row: %s\n", rf[0].reason);
 
     f = fopen(json, "w");
+    if (!f) fprintf(stderr, "snell-bench --2d: cannot write '%s': %s\n", json, strerror(errno)), write_failed = 1;
     if (f) {
         fprintf(f, "{\n  \"renderer\": \"%s\",\n", ctx ? snell_ctx_gl_renderer(ctx) : "none");
         if (lp >= 0) fprintf(f, "  \"llvmpipe_threads\": %d,\n", lp);
@@ -337,6 +352,7 @@ int snell_bench2d_main(int argc, char **argv)
         fclose(f);
     }
     f = fopen(csv, "w");
+    if (!f) fprintf(stderr, "snell-bench --2d: cannot write '%s': %s\n", csv, strerror(errno)), write_failed = 1;
     if (f) {
         fprintf(f, "measure,value\n");
         fprintf(f, "renderer,\"%s\"\n", ctx ? snell_ctx_gl_renderer(ctx) : "none");
@@ -357,10 +373,10 @@ int snell_bench2d_main(int argc, char **argv)
                     fd[c].threads, rf[c].ms);
         fclose(f);
     }
-    printf("wrote %s and %s\n", json, csv);
+    if (!write_failed) printf("wrote %s and %s\n", json, csv);
     snell_scene2d_destroy(s);
     snell_ctx_destroy(ctx);
-    return 0;
+    return write_failed;
 fail:
     fprintf(stderr, "snell-bench --2d: %s: %s\n", snell_status_str(st), snell_last_error(ctx));
     snell_scene2d_destroy(s);

@@ -211,21 +211,45 @@ int snell_bench_env_main(int argc, char **argv)
     snell_shape_desc dd = {SNELL_SHAPE_SPHERE, 256, 128};
     static double t[N_CASES][N_LOOKUPS][256], ratio[N_CASES][256];
     float *dirs = (float *)malloc(sizeof(float) * 3 * N_DIRS);
+    for (i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+            printf("usage: snell-bench --env-lookup [--frames N] [--size S] [--face N]\n"
+                   "The cube against the dual-paraboloid environment look-up: frame times side by side.\n"
+                   "  --frames N   timed frames, 3..256 (default 21)\n"
+                   "  --size S     image size S x S, 16..4096 (default 512)\n"
+                   "  --face N     environment face size, 16..4096 (default 512)\n"
+                   "  -h, --help   this text\n");
+            free(dirs);
+            return 0;
+        }
     for (i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--env-lookup")) continue;
-        if (i + 1 < argc && !strcmp(argv[i], "--frames")) frames = atoi(argv[++i]);
-        else if (i + 1 < argc && !strcmp(argv[i], "--size")) size = atoi(argv[++i]);
-        else if (i + 1 < argc && !strcmp(argv[i], "--face")) face = atoi(argv[++i]);
-        else {
-            fprintf(stderr, "snell-bench --env-lookup: unknown option '%s' (--frames N, --size S, --face N)\n", argv[i]);
+        const char *a = argv[i];
+        int *dst = !strcmp(a, "--frames") ? &frames : !strcmp(a, "--size") ? &size : !strcmp(a, "--face") ? &face : NULL;
+        char *end;
+        long v;
+        if (!strcmp(a, "--env-lookup")) continue;
+        if (!dst) {
+            fprintf(stderr, "snell-bench --env-lookup: unknown option '%s' (--frames N, --size S, --face N)\n", a);
             free(dirs);
             return 2;
         }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "snell-bench --env-lookup: %s needs a value\n", a);
+            free(dirs);
+            return 2;
+        }
+        v = strtol(argv[++i], &end, 10);
+        if (end == argv[i] || *end || v < (dst == &frames ? 3 : 16) || v > (dst == &frames ? 256 : 4096)) {
+            fprintf(stderr, "snell-bench --env-lookup: %s wants %s, got '%s'\n", a,
+                    dst == &frames ? "3..256" : "16..4096", argv[i]);
+            free(dirs);
+            return 2;
+        }
+        *dst = (int)v;
     }
-    if (frames < 3 || frames > 256 || size < 16 || size > 4096 || face < 16 || face > 4096 || !dirs) {
-        fprintf(stderr, "snell-bench --env-lookup: --frames 3..256, --size 16..4096, --face 16..4096\n");
-        free(dirs);
-        return 2;
+    if (!dirs) {
+        fprintf(stderr, "snell-bench --env-lookup: out of memory\n");
+        return 1;
     }
     memset(&ed, 0, sizeof ed);
     ed.face_size = face;

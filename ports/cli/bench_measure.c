@@ -21,6 +21,7 @@
  * several), and the isolated FULL reference (each object alone, exactly). */
 #include "bench.h"
 #include "bench_ref.h"
+#include "cli_progress.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -217,6 +218,7 @@ static int reference(const snell_frame_desc *fd, const snell_glass *ref_glass, c
 {
     snell_ref_params p;
     snell_ref_desc scene;
+    cli_progress bar;
     memset(&scene, 0, sizeof scene);
     scene.glass = ref_glass;
     scene.glass_count = fd->glass_count;
@@ -236,6 +238,11 @@ static int reference(const snell_frame_desc *fd, const snell_glass *ref_glass, c
     if (!o->quiet)
         fprintf(stderr, "    reference %s (%d interfaces, %s)...\n", mode ? "FULL" : "MATCHED", p.max_interfaces,
                 isolate ? "glass objects isolated" : "the whole scene");
+    if (cli_progress_wanted(o->quiet)) { /* a trace (not a cache hit) shows its progress on a terminal */
+        cli_progress_start(&bar, mode ? "reference FULL" : "reference MATCHED");
+        p.progress = cli_progress_report;
+        p.progress_user = &bar;
+    }
     if (bench_ref_get(&scene, &p, env_name, o->cache_dir, ref, cached) != SNELL_OK) {
         bench_fail(c, mode ? (isolate ? "isolated FULL reference" : "whole-scene FULL reference") : "MATCHED reference",
                    NULL);

@@ -132,12 +132,24 @@ static int value_option(const char *a, const char *v, bench_options *o)
     else if (!strcmp(a, "--images")) o->images_dir = v;
     else if (!strcmp(a, "--plot-y")) {
         if (strcmp(v, "full-mean") && strcmp(v, "full-p99") && strcmp(v, "full-rmse") && strcmp(v, "matched-mean")) {
-            fprintf(stderr, "snell-bench: --plot-y wants full-mean|full-p99|full-rmse|matched-mean\n");
+            fprintf(stderr, "snell-bench: --plot-y wants full-mean|full-p99|full-rmse|matched-mean, got '%s'\n", v);
             return 0;
         }
         o->plot_y = v;
     } else return -1;
     return 1;
+}
+
+/* Is a an option that takes a value (value_option's)? */
+static int takes_value(const char *a)
+{
+    static const char *const names[] = {"-b", "--benchmark", "--scenes", "--scene", "--baseline-scene", "--sizes",
+                                        "--frames", "--warmup", "--full-interfaces", "--threads", "--aa", "--env",
+                                        "-o", "--markdown", "--cache", "--images", "--plot-y"};
+    size_t k;
+    for (k = 0; k < sizeof names / sizeof *names; k++)
+        if (!strcmp(a, names[k])) return 1;
+    return 0;
 }
 
 int bench_parse_options(int argc, char **argv, bench_options *o)
@@ -153,19 +165,24 @@ int bench_parse_options(int argc, char **argv, bench_options *o)
     o->full_interfaces = 10;
     o->aa = 1;
     o->plot_y = "full-mean";
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help") || !strcmp(a, "--list")) {
+    for (i = 1; i < argc; i++) /* --help wherever it is */
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help") || !strcmp(argv[i], "--list")) {
             usage(stdout);
             return -1;
-        } else if (!strcmp(a, "--no-cache")) {
+        }
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--no-cache")) {
             o->cache_dir = NULL;
         } else if (!strcmp(a, "-q")) {
             o->quiet = 1;
         } else if (a[0] != '-') {
             if (!add_spec(o, a)) return 0;
+        } else if (!takes_value(a)) {
+            fprintf(stderr, "snell-bench: unknown option '%s'; see --help\n", a);
+            return 0;
         } else if (!v) {
-            fprintf(stderr, "snell-bench: %s needs a value (or is unknown); see --help\n", a);
+            fprintf(stderr, "snell-bench: %s needs a value; see --help\n", a);
             return 0;
         } else if ((r = value_option(a, v, o)) < 0) {
             fprintf(stderr, "snell-bench: unknown option '%s'; see --help\n", a);

@@ -22,12 +22,27 @@ static double resolved_ior(const bench_config *c)
     return snell_glass_defaults(&c->glass, &r) == SNELL_OK ? r.material.ior : NAN;
 }
 
-/* Registry index of the configuration's method (the plot's marker). */
-static int method_index(const bench_config *c)
+
+/* The methods of the configurations that were measured, in order of first
+ * appearance (at most MAX_MARKERS): the plot's markers and legend, so a
+ * legend lists only what was run. Returns the count. */
+static int plot_methods(const bench_config *cs, int n, const snell_method_info *out[MAX_MARKERS])
 {
-    int i;
-    for (i = 0; i < snell_method_count(); i++)
-        if (snell_method_info_at(i) == c->method) return i;
+    int i, k, count = 0;
+    for (i = 0; i < n; i++) {
+        if (!cs[i].ok) continue;
+        for (k = 0; k < count && out[k] != cs[i].method; k++) {}
+        if (k == count && count < MAX_MARKERS) out[count++] = cs[i].method;
+    }
+    return count;
+}
+
+/* The plot's marker of c: its method's place in plot_methods (0 if past it). */
+static int plot_marker(const bench_config *c, const snell_method_info *const methods[MAX_MARKERS], int count)
+{
+    int k;
+    for (k = 0; k < count; k++)
+        if (methods[k] == c->method) return k;
     return 0;
 }
 
@@ -241,7 +256,13 @@ int bench_write_json(const char *path, const bench_config *cs, int n, const benc
         json_result(f, &cs[i]);
         fprintf(f, "%s\n", i + 1 < n ? "," : "");
     }
-    fprintf(f, "  ]\n}\n");
+    {
+        const snell_method_info *methods[MAX_MARKERS];
+        int k, count = plot_methods(cs, n, methods);
+        fprintf(f, "  ],\n  \"plot_methods\": [");
+        for (k = 0; k < count; k++) fprintf(f, "%s\"%s\"", k ? ", " : "", methods[k]->name);
+        fprintf(f, "]\n}\n");
+    }
     return fclose(f) == 0;
 }
 
@@ -411,6 +432,7 @@ int bench_write_plot(const char *path, const bench_config *cs, int n, const benc
     char (*labels)[64] = (char (*)[64])calloc((size_t)(n > 0 ? n : 1), 64);
     char groups[BENCH_MAX_SCENES * 8][300];
     const char *scene_names[BENCH_MAX_SCENES], *method_names[MAX_MARKERS];
+    const snell_method_info *methods[MAX_MARKERS];
     char subtitle[512];
     int i, k, ngroups = 0, nscenes = 0, nmethods, count = 0, ok, several_sizes = 0;
     bench_plot_desc d;
@@ -419,8 +441,8 @@ int bench_write_plot(const char *path, const bench_config *cs, int n, const benc
         free(labels);
         return 0;
     }
-    nmethods = snell_method_count() < MAX_MARKERS ? snell_method_count() : MAX_MARKERS;
-    for (k = 0; k < nmethods; k++) method_names[k] = snell_method_info_at(k)->name;
+    nmethods = plot_methods(cs, n, methods); /* the legend: only the methods run */
+    for (k = 0; k < nmethods; k++) method_names[k] = methods[k]->name;
     for (i = 1; i < n; i++)
         if (cs[i].width != cs[0].width || cs[i].height != cs[0].height) several_sizes = 1;
     for (i = 0; i < n; i++) {
@@ -436,7 +458,7 @@ int bench_write_plot(const char *path, const bench_config *cs, int n, const benc
             if (!strcmp(groups[k], g)) break;
         if (k == ngroups && ngroups < (int)(sizeof groups / sizeof *groups)) strcpy(groups[ngroups++], g);
         pts[count].group = k;
-        pts[count].marker = method_index(c) % MAX_MARKERS;
+        pts[count].marker = plot_marker(c, methods, nmethods);
         pts[count].x = c->t_median;
         pts[count].y = plot_value(c, o->plot_y);
         point_label(c, several_sizes, labels[count], sizeof labels[count]);
@@ -444,7 +466,7 @@ int bench_write_plot(const char *path, const bench_config *cs, int n, const benc
         count++;
     }
     snprintf(subtitle, sizeof subtitle, "%s; median of %d frames after %d warm-up, glFinish%s; %s; load %s",
-             run->renderer, o->frames, o->warmup, run->timer ? " (GL timer query in JSON)" : " (no GL timer query)",
+             run->renderer, o->frames, o->warmup, run->timer ? " (GL timer query in JSON)" : "",
              run->date, run->load_before);
     memset(&d, 0, sizeof d);
     d.title = "snell-bench: frame time vs error";

@@ -9,6 +9,7 @@
 #include <GLES3/gl3.h>
 #include <GLES2/gl2ext.h>
 #include <stddef.h>
+#include <string.h>
 
 static PFNGLGENQUERIESEXTPROC p_gen;
 static PFNGLBEGINQUERYEXTPROC p_begin;
@@ -18,10 +19,21 @@ static PFNGLGETQUERYOBJECTUI64VEXTPROC p_get_u64;
 static GLuint g_query;
 static int g_ok;
 
+/* A software rasteriser's timer query times the calls, not the pixels. */
+static int software_rasteriser(const char *renderer)
+{
+    static const char *const names[] = {"llvmpipe", "softpipe", "SwiftShader", "swrast"};
+    size_t k;
+    for (k = 0; renderer && k < sizeof names / sizeof *names; k++)
+        if (strstr(renderer, names[k])) return 1;
+    return 0;
+}
+
 int bench_timer_init(snell_ctx *ctx)
 {
     g_ok = 0;
     if (!snell_ctx_has_gl_extension(ctx, "GL_EXT_disjoint_timer_query")) return 0;
+    if (software_rasteriser(snell_ctx_gl_renderer(ctx))) return -1;
     p_gen = (PFNGLGENQUERIESEXTPROC)eglGetProcAddress("glGenQueriesEXT");
     p_begin = (PFNGLBEGINQUERYEXTPROC)eglGetProcAddress("glBeginQueryEXT");
     p_end = (PFNGLENDQUERYEXTPROC)eglGetProcAddress("glEndQueryEXT");

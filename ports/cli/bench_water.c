@@ -5,6 +5,7 @@
  * snell_ref_water_render for the still and the rippled surface. The CPU and
  * GPU batches and the frames take turns round by round; times are medians
  * over the rounds. One line per figure, and the load average. */
+#include "cli_progress.h"
 #include "cli_time.h"
 #include "snell/snell_metrics.h"
 #include "snell/snell_ref.h"
@@ -20,32 +21,63 @@ typedef struct water_bench {
     int grid, size, rounds, steps;
 } water_bench;
 
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: snell-bench --water [--grid N] [--size S] [--rounds R] [--steps K]\n"
+               "The water scene's costs apart: a simulation step on the CPU and the GPU, a frame, and its\n"
+               "error against the reference tracer.\n"
+               "  --grid N     height-field nodes per side (default 256)\n"
+               "  --size S     image size S x S, 16..4096 (default 512)\n"
+               "  --rounds R   rounds, 1..%d (default 15); times are medians over them\n"
+               "  --steps K    simulation steps per timed batch (default 10)\n"
+               "  -h, --help   this text\n", MAX_ROUNDS);
+}
+
+/* A positive integer option value; else one message naming it. */
+static int parse_count(const char *a, const char *v, int *out)
+{
+    char *end;
+    long x = strtol(v, &end, 10);
+    if (end == v || *end || x < 1 || x > 1000000) {
+        fprintf(stderr, "snell-bench --water: %s wants a positive integer, got '%s'\n", a, v);
+        return 0;
+    }
+    *out = (int)x;
+    return 1;
+}
+
+/* 1: run; 0: bad usage (message printed); -1: --help printed. */
 static int parse(int argc, char **argv, water_bench *b)
 {
     int i;
+    for (i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+            usage(stdout);
+            return -1;
+        }
     b->grid = 256;
     b->size = 512;
     b->rounds = 15;
     b->steps = 10;
     for (i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int *dst = !strcmp(a, "--grid") ? &b->grid : !strcmp(a, "--size") ? &b->size
+                 : !strcmp(a, "--rounds") ? &b->rounds : !strcmp(a, "--steps") ? &b->steps : NULL;
         if (!strcmp(a, "--water")) continue;
+        if (!dst) {
+            fprintf(stderr, "snell-bench --water: unknown option '%s' (--grid N --size S --rounds R --steps K)\n", a);
+            return 0;
+        }
         if (!v) {
-            fprintf(stderr, "snell-bench --water: %s needs a value (--grid N --size S --rounds R --steps K)\n", a);
+            fprintf(stderr, "snell-bench --water: %s needs a value\n", a);
             return 0;
         }
-        if (!strcmp(a, "--grid")) b->grid = atoi(v);
-        else if (!strcmp(a, "--size")) b->size = atoi(v);
-        else if (!strcmp(a, "--rounds")) b->rounds = atoi(v);
-        else if (!strcmp(a, "--steps")) b->steps = atoi(v);
-        else {
-            fprintf(stderr, "snell-bench --water: unknown option %s\n", a);
-            return 0;
-        }
+        if (!parse_count(a, v, dst)) return 0;
         i++;
     }
     if (b->rounds < 1 || b->rounds > MAX_ROUNDS || b->steps < 1 || b->size < 16 || b->size > 4096) {
-        fprintf(stderr, "snell-bench --water: --rounds 1..%d, --steps >= 1, --size 16..4096\n", MAX_ROUNDS);
+        fprintf(stderr, "snell-bench --water: want --rounds 1..%d and --size 16..4096, got %d and %d\n", MAX_ROUNDS,
+                b->rounds, b->size);
         return 0;
     }
     return 1;
@@ -67,6 +99,7 @@ static int error_line(snell_ctx *ctx, snell_water *w, const snell_frame_desc *fd
     snell_ref_output out;
     snell_image_error ie;
     snell_dir_error de;
+    cli_progress bar;
     int ok = rgb && rdir && gdir && hit && gpu && ref;
     double t0;
     memset(&p, 0, sizeof p);
@@ -86,6 +119,11 @@ static int error_line(snell_ctx *ctx, snell_water *w, const snell_frame_desc *fd
         ok = snell_ref_create(ctx, &(snell_ref_desc){.glass = fd->glass, .glass_count = fd->glass_count,
                                                       .opaque = fd->opaque, .opaque_count = fd->opaque_count},
                               &objects) == SNELL_OK;
+    if (cli_progress_wanted(0)) { /* on a terminal: the trace's progress */
+        cli_progress_start(&bar, "water reference");
+        p.progress = cli_progress_report;
+        p.progress_user = &bar;
+    }
     t0 = cli_now_ms();
     ok = ok && snell_ref_water_render(w, objects, &p, &out) == SNELL_OK;
     if (ok) {
@@ -149,7 +187,7 @@ int snell_bench_water_main(int argc, char **argv)
     static const float g1[16] = {0.2f, 0, 0, 0, 0, 0.2f, 0, 0, 0, 0, 0.2f, 0, 0.5f, -0.5f, -0.35f, 1};
     char load[64], threads_why[96];
     int k, rc = 1, threads;
-    if (!parse(argc, argv, &b)) return 2;
+    if ((k = parse(argc, argv, &b)) <= 0) return k < 0 ? 0 : 2;
     if (snell_ctx_create(NULL, &ctx) != SNELL_OK) {
         fprintf(stderr, "snell-bench --water: no GL context: %s\n", snell_last_error(NULL));
         return 1;

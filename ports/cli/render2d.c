@@ -42,9 +42,21 @@ static int arg_float(const char *opt, const char *v, float lo, float hi, float *
     return 1;
 }
 
-static void usage(void)
+/* Is a an option with a value? */
+static int takes_value(const char *a)
 {
-    fprintf(stderr,
+    static const char *const names[] = {"-o",       "--albedo",  "--contour", "--epsilon", "--threshold",
+                                        "--size",   "--exposure", "--gamma",  "--bounces", "--passes",
+                                        "--threads", "--seed",    "--blend",  "--raster",  "--format"};
+    size_t k;
+    for (k = 0; k < sizeof names / sizeof *names; k++)
+        if (!strcmp(a, names[k])) return 1;
+    return 0;
+}
+
+static void usage(FILE *out)
+{
+    fprintf(out,
             "usage: snell-render --2d SCENE.txt -o OUT.png [options]\n"
             "       snell-render --2d --contour IMAGE.png -o OUT.csv [--epsilon PX] [--threshold A]\n"
             "options:\n"
@@ -103,6 +115,11 @@ int snell_render2d_main(int argc, char **argv)
     uint8_t *albedo = NULL, *rgba = NULL;
     float *rgb = NULL, *lum = NULL;
     memset(&d, 0, sizeof d);
+    for (i = 1; i < argc; i++) /* --help wherever it is */
+        if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
+            usage(stdout);
+            return 0;
+        }
     for (i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--2d") == 0) continue;
@@ -116,7 +133,7 @@ int snell_render2d_main(int argc, char **argv)
         }
         else if (strcmp(a, "--size") == 0 && v) {
             if (sscanf(argv[++i], "%dx%d", &w, &h) != 2 || w < 1 || h < 1) {
-                usage();
+                fprintf(stderr, "snell-render --2d: --size wants WxH, got '%s'\n", argv[i]);
                 return 2;
             }
         } else if (strcmp(a, "--exposure") == 0 && v) {
@@ -148,9 +165,6 @@ int snell_render2d_main(int argc, char **argv)
                 return 2;
             }
             d.blend = strcmp(b, "screen") == 0 ? SNELL_BLEND2D_SCREEN : SNELL_BLEND2D_ADD;
-        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            usage();
-            return 0;
         }
         else if (strcmp(a, "--cpu") == 0) d.cpu_only = 1;
         else if (strcmp(a, "--raster") == 0 && v) {
@@ -175,21 +189,23 @@ int snell_render2d_main(int argc, char **argv)
                 return 2;
             }
         } else if (a[0] != '-' && !scene_path) scene_path = a;
-        else {
-            fprintf(stderr, "snell-render --2d: unknown or incomplete option %s\n", a);
-            usage();
+        else if (!v && takes_value(a)) {
+            fprintf(stderr, "snell-render --2d: %s needs a value\n", a);
+            return 2;
+        } else {
+            fprintf(stderr, "snell-render --2d: unknown option '%s'; see --2d --help\n", a);
             return 2;
         }
     }
     if (contour) {
         if (!out) {
-            usage();
+            fprintf(stderr, "snell-render --2d: --contour %s needs -o FILE\n", contour);
             return 2;
         }
         return contour_main(contour, out, eps, thr);
     }
-    if (!scene_path || !out || passes < 1 || !(gamma > 0.0f) || exposure < 0.0f) {
-        usage();
+    if (!scene_path || !out) {
+        fprintf(stderr, "snell-render --2d: needs a SCENE file and -o OUT.png; see --2d --help\n");
         return 2;
     }
     if ((st = snell_scene2d_load(NULL, scene_path, &s, view, size)) != SNELL_OK) {

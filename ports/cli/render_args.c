@@ -357,6 +357,25 @@ static void set_defaults(render_options *o)
     o->normalize = 1;
 }
 
+/* Is a an option that takes a value? (A message then says it needs one;
+ * anything else starting with '-' is unknown.) */
+static int takes_value(const char *a)
+{
+    static const char *const names[] = {"--scene", "--mesh", "--opaque", "--place", "--color", "--env", "--size",
+                                        "--camera", "--fov", "--backend", "--shading", "--env-lookup", "--ssaa",
+                                        "--msaa", "--scene-layers", "--frames", "--trace-pixel", "-o", "--ior",
+                                        "--absorption", "--attenuation", "--tint", "--thickness", "--dispersion",
+                                        "--abbe", "--dispersion-model", "--method", "--param"};
+    size_t k;
+    int at = 0;
+    for (k = 0; k < sizeof names / sizeof *names; k++)
+        if (!strcmp(a, names[k])) return 1;
+    if (strncmp(a, "--", 2)) return 0;
+    for (k = 0; k < sizeof g_param_alias / sizeof *g_param_alias; k++)
+        if (!strcmp(a + 2, g_param_alias[k][0])) return 1;
+    return cli_param_owner(a + 2, &at) != 0; /* a method's parameter, --NAME V */
+}
+
 int render_parse_args(int argc, char **argv, render_options *o)
 {
     /* cur: the last --mesh or --opaque (--place); glass: the last --mesh, or
@@ -365,12 +384,14 @@ int render_parse_args(int argc, char **argv, render_options *o)
     int i, r;
     set_defaults(o);
     glass = &o->base;
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+    for (i = 1; i < argc; i++) /* --help wherever it is */
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
             render_usage(stdout);
             return -1;
-        } else if (!strcmp(a, "--no-normalize")) {
+        }
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--no-normalize")) {
             o->normalize = 0;
             continue;
         } else if (!strcmp(a, "--stats")) {
@@ -379,8 +400,11 @@ int render_parse_args(int argc, char **argv, render_options *o)
         } else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) {
             o->verbose = 1;
             continue;
+        } else if (!takes_value(a)) {
+            fprintf(stderr, PROG ": unknown option '%s'; see --help\n", a);
+            return 0;
         } else if (!v) {
-            fprintf(stderr, PROG ": %s needs a value (or is unknown); see --help\n", a);
+            fprintf(stderr, PROG ": %s needs a value; see --help\n", a);
             return 0;
         }
         i++;

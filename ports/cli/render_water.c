@@ -70,6 +70,18 @@ static void usage(FILE *f)
             "  --stats                per-frame simulation statistics on stdout\n");
 }
 
+/* Is a one of parse()'s options with a value? */
+static int takes_value(const char *a)
+{
+    static const char *const names[] = {"--grid",       "--sim",       "--drop",   "--object",       "--glass",
+                                        "--frames",     "--steps",     "--dt",     "--save-every",   "--damping",
+                                        "--wave-speed", "--size",      "--ssaa",   "--camera",       "--env", "-o"};
+    size_t k;
+    for (k = 0; k < sizeof names / sizeof *names; k++)
+        if (!strcmp(a, names[k])) return 1;
+    return 0;
+}
+
 static int parse(int argc, char **argv, water_options *o)
 {
     int i;
@@ -82,17 +94,22 @@ static int parse(int argc, char **argv, water_options *o)
     o->el_deg = 35.0f;
     o->dist = 3.6f;
     o->out = "water.png";
+    for (i = 1; i < argc; i++) /* --help wherever it is */
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
+            usage(stdout);
+            return -1;
+        }
     for (i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int used = 1;
         if (!strcmp(a, "--water")) {
             used = 0;
-        } else if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            usage(stdout);
-            return -1;
         } else if (!strcmp(a, "--stats")) {
             o->stats = 1;
             used = 0;
+        } else if (!takes_value(a)) {
+            fprintf(stderr, "snell-render --water: unknown option '%s'; see --water --help\n", a);
+            return 0;
         } else if (!v) {
             fprintf(stderr, "snell-render --water: %s needs a value\n", a);
             return 0;

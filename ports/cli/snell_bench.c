@@ -19,6 +19,7 @@
 #include "cli_scene.h"
 #include "cli_time.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,12 +54,22 @@ static int measure_all(snell_ctx *ctx, const snell_env *env, const bench_options
             failed++;
             fprintf(stderr, "[%d/%d] %s FAILED: %s\n", i + 1, n, c->spec, c->error);
         } else if (!o->quiet) {
+            /* The table's figures, labelled as there: colour over the glass
+             * pixels (the whole frame beside it, named), exit-direction
+             * angles only where they mean something (bench_print_table). */
+            char timer[64] = "", angles[160];
+            if (c->gpu_median >= 0) snprintf(timer, sizeof timer, " (GL timer query %.2f ms)", c->gpu_median);
+            if (c->angles_meaningful)
+                snprintf(angles, sizeof angles, "exit direction vs MATCHED(%d) mean %.3g deg, vs FULL mean %.3g deg, "
+                         ">1deg %.1f%%, >5deg %.1f%%", c->ref_interfaces, c->dir[0].mean_deg, c->dir[1].mean_deg,
+                         100.0 * c->dir[1].frac_above_1deg, 100.0 * c->dir[1].frac_above_5deg);
+            else
+                snprintf(angles, sizeof angles, "exit direction - (per-pixel angles are chaotic on this mesh)");
             fprintf(stderr,
-                    "[%d/%d] %.2f ms/frame (GL timer %.2f); vs MATCHED(%d) mean %.3g deg; vs FULL mean %.3g deg, "
-                    ">1deg %.1f%%, >5deg %.1f%%, PSNR %.1f dB; NaN/Inf %ld; %.0f s elapsed\n",
-                    i + 1, n, c->t_median, c->gpu_median, c->ref_interfaces, c->dir[0].mean_deg, c->dir[1].mean_deg,
-                    100.0 * c->dir[1].frac_above_1deg, 100.0 * c->dir[1].frac_above_5deg, c->img[1].psnr_db,
-                    c->nan_inf, (cli_now_ms() - t_start) / 1000.0);
+                    "[%d/%d] %.2f ms/frame%s; %s; glass PSNR vs FULL %.2f dB (whole frame %.2f dB); NaN/Inf %ld; "
+                    "%.0f s elapsed\n",
+                    i + 1, n, c->t_median, timer, angles, c->img_glass[1].psnr_db, c->img[1].psnr_db, c->nan_inf,
+                    (cli_now_ms() - t_start) / 1000.0);
         }
     }
     return failed;
@@ -78,6 +89,13 @@ static void command_line(int argc, char **argv, char *out, size_t n)
     }
 }
 
+/* One message for an output that was not written, with the system's reason. 0. */
+static int write_failed(const char *path)
+{
+    fprintf(stderr, "snell-bench: cannot write '%s': %s\n", path, errno ? strerror(errno) : "write failed");
+    return 0;
+}
+
 /* PREFIX.json, .csv, .png (and --markdown). 1 if all were written. */
 static int write_outputs(const bench_config *cs, int n, const bench_options *o, const bench_run_info *run,
                          const char *command)
@@ -85,13 +103,16 @@ static int write_outputs(const bench_config *cs, int n, const bench_options *o, 
     char path[1200];
     int ok = 1;
     snprintf(path, sizeof path, "%s.json", o->out_prefix);
-    if (!bench_write_json(path, cs, n, o, run)) fprintf(stderr, "snell-bench: cannot write %s\n", path), ok = 0;
+    errno = 0;
+    if (!bench_write_json(path, cs, n, o, run)) ok = write_failed(path);
     snprintf(path, sizeof path, "%s.csv", o->out_prefix);
-    if (!bench_write_csv(path, cs, n)) fprintf(stderr, "snell-bench: cannot write %s\n", path), ok = 0;
+    errno = 0;
+    if (!bench_write_csv(path, cs, n)) ok = write_failed(path);
     snprintf(path, sizeof path, "%s.png", o->out_prefix);
-    if (!bench_write_plot(path, cs, n, o, run)) fprintf(stderr, "snell-bench: cannot write %s\n", path), ok = 0;
-    if (o->markdown && !bench_write_markdown(o->markdown, cs, n, o, run, command))
-        fprintf(stderr, "snell-bench: cannot write %s\n", o->markdown), ok = 0;
+    errno = 0;
+    if (!bench_write_plot(path, cs, n, o, run)) ok = write_failed(path);
+    errno = 0;
+    if (o->markdown && !bench_write_markdown(o->markdown, cs, n, o, run, command)) ok = write_failed(o->markdown);
     return ok;
 }
 
@@ -103,7 +124,7 @@ int main(int argc, char **argv)
     snell_env *env = NULL;
     bench_config *cs = NULL;
     bench_run_info run;
-    int i, n = 0, rc = 0;
+    int i, n = 0, rc = 0, timer;
     char load_before[64], load_after[64], date[64];
     static char command[8192];
     double t_start = cli_now_ms();
@@ -113,6 +134,7 @@ int main(int argc, char **argv)
         if (!strcmp(argv[i], "--2d")) return snell_bench2d_main(argc, argv);
         else if (!strcmp(argv[i], "--env-lookup")) return snell_bench_env_main(argc, argv);
         else if (!strcmp(argv[i], "--water")) return snell_bench_water_main(argc, argv);
+        else if (!strcmp(argv[i], "--budget")) return snell_bench_budget_main(argc, argv);
     if ((i = bench_parse_options(argc, argv, &o)) <= 0) return i < 0 ? 0 : 2;
     cs = (bench_config *)calloc(BENCH_MAX_CONFIGS, sizeof *cs);
     if (!cs) return fprintf(stderr, "snell-bench: out of memory\n"), 1;
@@ -139,7 +161,8 @@ int main(int argc, char **argv)
     }
     memset(&run, 0, sizeof run);
     run.renderer = snell_ctx_gl_renderer(ctx);
-    run.timer = bench_timer_init(ctx);
+    timer = bench_timer_init(ctx);
+    run.timer = timer > 0;
     cli_loadavg(load_before, sizeof load_before);
     strftime(date, sizeof date, "%Y-%m-%d %H:%M", localtime(&now));
     run.date = date;
@@ -148,17 +171,20 @@ int main(int argc, char **argv)
     if (!o.quiet) {
         fprintf(stderr, "snell-bench: %d configuration(s) on %s; load %s\n", n, run.renderer, load_before);
         fprintf(stderr, "snell-bench: GL_EXT_disjoint_timer_query %s\n",
-                run.timer ? "present: GPU times reported too"
-                          : "not available: times are CPU wall clock of render + glFinish only");
+                timer > 0   ? "present: GPU times reported too"
+                : timer < 0 ? "present, but not used on a software rasteriser, where it is no GPU time (the "
+                              "rasteriser is CPU threads): times are CPU wall clock of render + glFinish"
+                            : "not available: times are CPU wall clock of render + glFinish only");
     }
     bench_time_all(ctx, env, &o, cs, n);
     if (measure_all(ctx, env, &o, cs, n, t_start) > 0) rc = 1;
     cli_loadavg(load_after, sizeof load_after);
     bench_mark_pareto(cs, n, &o);
     command_line(argc, argv, command, sizeof command);
-    if (!write_outputs(cs, n, &o, &run, command)) rc = 1;
+    i = write_outputs(cs, n, &o, &run, command);
+    if (!i) rc = 1;
     bench_print_table(cs, n);
-    printf("wrote %s.json, %s.csv, %s.png (%.1f s)\n", o.out_prefix, o.out_prefix, o.out_prefix,
+    if (i) printf("wrote %s.json, %s.csv, %s.png (%.1f s)\n", o.out_prefix, o.out_prefix, o.out_prefix,
            (cli_now_ms() - t_start) / 1000.0);
 done:
     bench_scene_release_all();

@@ -29,6 +29,7 @@ typedef struct render_scene {
     int opaque_count;
     int orbit_first, orbit;         /* opaque[orbit_first ..] are the --opaque N cubes */
     snell_scene_file *file;         /* --scene: owns the meshes and matrices the lists point to */
+    char camera_note[200];          /* --scene: where the camera came from (--stats) */
 } render_scene;
 
 static int g_verbose;
@@ -36,7 +37,9 @@ static int g_verbose;
 static void log_cb(snell_log_level level, const char *msg, void *user)
 {
     (void)user;
-    if (level >= SNELL_LOG_WARN || (g_verbose && level >= SNELL_LOG_INFO)) fprintf(stderr, "snell: %s\n", msg);
+    /* Errors come back as a status whose message (snell_last_error) main
+     * prints once where the call failed; -v shows the library's whole log. */
+    if (level == SNELL_LOG_WARN || (g_verbose && level >= SNELL_LOG_INFO)) fprintf(stderr, "snell: %s\n", msg);
 }
 
 /* The mesh called name (a shape or a file), loaded on first use. */
@@ -80,7 +83,7 @@ static snell_status build_scene(snell_ctx *ctx, const render_options *o, render_
         p = snell_scene_file_opaque(s->file, &s->opaque_count);
         for (i = 0; i < s->glass_count; i++) {
             s->glass[i] = g[i];
-            s->glass_names[i] = "scene glass";
+            s->glass_names[i] = snell_scene_file_glass_name(s->file, i);
         }
         for (i = 0; i < s->opaque_count; i++) s->opaque[i] = p[i];
         s->orbit_first = s->opaque_count;
@@ -161,6 +164,7 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
             fs->fragment_mediump ? "mediump" : "highp", fs->scene_layer_passes, fs->scene_layers,
             fs->scene_layers_reason);
     fprintf(f, "stats: stages run: %s\n", fs->stages);
+    if (s->file) fprintf(f, "stats: camera: %s\n", s->camera_note);
     if (fs->caustics_reason[0]) fprintf(f, "stats: caustics: %s (%d photons)\n", fs->caustics_reason, fs->caustics_photons);
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
@@ -291,8 +295,22 @@ int main(int argc, char **argv)
     fd.camera.elevation = (float)(o.el_deg * PI / 180.0);
     fd.camera.distance = o.dist;
     fd.camera.fov_y = (float)(o.fov_deg * PI / 180.0);
-    if (scene.file && !o.camera_given && snell_scene_file_camera(scene.file, &fd.camera) && o.fov_given)
-        fd.camera.fov_y = (float)(o.fov_deg * PI / 180.0);
+    /* A scene file's camera; without one, the scene framed from the
+     * --camera direction and --fov (its target and distance replaced). */
+    if (scene.file && o.camera_given) {
+        snprintf(scene.camera_note, sizeof scene.camera_note, "--camera");
+    } else if (scene.file && snell_scene_file_camera(scene.file, &fd.camera)) {
+        if (o.fov_given) fd.camera.fov_y = (float)(o.fov_deg * PI / 180.0);
+        snprintf(scene.camera_note, sizeof scene.camera_note, "the file's");
+    } else if (scene.file) {
+        if (snell_scene_file_frame(scene.file, (float)o.width / (float)o.height, &fd.camera) != SNELL_OK) {
+            fprintf(stderr, "snell-render: scene: %s\n", snell_last_error(NULL));
+            goto done;
+        }
+        snprintf(scene.camera_note, sizeof scene.camera_note,
+                 "framed the scene's bounds (the file has none): target (%g, %g, %g), distance %g",
+                 fd.camera.target[0], fd.camera.target[1], fd.camera.target[2], fd.camera.distance);
+    }
 
     if (!render_frames(ctx, r, &o, &scene, &fd, &fs)) goto done;
     if (o.stats) print_stats(stdout, &fs, &scene);

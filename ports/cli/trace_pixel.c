@@ -8,6 +8,7 @@
 #include "render.h"
 #include "snell/snell_ref.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -193,7 +194,7 @@ int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int
 
     snprintf(path, sizeof path, "%s_trace.json", base);
     if (!(json = fopen(path, "w"))) {
-        fprintf(stderr, "snell-render: cannot write %s\n", path);
+        fprintf(stderr, "snell-render: cannot write '%s': %s\n", path, strerror(errno));
         goto done;
     }
     fprintf(json, "{\n  \"image\": [%d, %d],\n  \"camera\": {\"eye\": [%.9g, %.9g, %.9g]},\n", width, height, eye1[0],
@@ -245,7 +246,7 @@ int snell_render_trace_pixels(snell_ctx *ctx, const snell_frame_desc *frame, int
     }
     if (fclose(json) != 0) {
         json = NULL;
-        fprintf(stderr, "snell-render: cannot write %s\n", path);
+        fprintf(stderr, "snell-render: cannot write '%s': %s\n", path, strerror(errno));
         goto done;
     }
     json = NULL;

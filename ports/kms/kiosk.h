@@ -21,6 +21,7 @@ typedef struct kiosk_options {
     int spec_count;
     kms_display_request display;
     float spin_deg;            /* camera azimuth step per frame */
+    float budget_ms;           /* show mode: snell_frame_desc.budget_ms (0 = none) */
     long frames;               /* 0: until SIGINT/SIGTERM (show mode) */
     int hold;                  /* keep the last frame on screen until a signal */
     double report_s;           /* FPS report period, 0 = at the end only */

@@ -25,6 +25,8 @@ static void usage(FILE *f)
             "  --atomic            show frames by atomic commits (default: legacy page flips; the kiosk\n"
             "                      reports whether the driver has atomic modesetting)\n"
             "  --spin DEG          camera azimuth step per frame, degrees (default 0.5; 0 with --bench)\n"
+            "  --budget MS         show mode: AUTO by frame budget (snell_frame_desc.budget_ms): each AUTO object\n"
+            "                      drawn by the best configuration that holds MS a frame; the reports say which\n"
             "  --frames N          stop after N frames (default: run until SIGINT/SIGTERM; --bench: 60)\n"
             "  --hold              after the last frame keep it on screen until SIGINT/SIGTERM\n"
             "  --report S          print frames per second every S seconds (default 5; 0: at the end only)\n"
@@ -87,6 +89,9 @@ static int value_option(const char *a, const char *v, kiosk_options *o)
     } else if (!strcmp(a, "--spin")) {
         if (!parse_double(a, v, -360.0, 360.0, &x)) return 0;
         o->spin_deg = (float)x;
+    } else if (!strcmp(a, "--budget")) {
+        if (!parse_double(a, v, 0.1, 1e6, &x)) return 0;
+        o->budget_ms = (float)x;
     } else if (!strcmp(a, "--frames")) {
         if (!parse_long(a, v, 1, 1000000000L, &o->frames)) return 0;
     } else if (!strcmp(a, "--report")) {
@@ -102,6 +107,17 @@ static int value_option(const char *a, const char *v, kiosk_options *o)
     return 1;
 }
 
+/* Is a an option that takes a value (value_option's)? */
+static int takes_value(const char *a)
+{
+    static const char *const names[] = {"-b",     "--device", "--dri-dir", "--connector", "--mode",
+                                        "--spin", "--frames", "--report",  "--warmup",    "--json"};
+    size_t k;
+    for (k = 0; k < sizeof names / sizeof *names; k++)
+        if (!strcmp(a, names[k])) return 1;
+    return 0;
+}
+
 int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
 {
     int i, r, spin_set = 0;
@@ -110,19 +126,24 @@ int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
     o->report_s = 5.0;
     o->warmup = 5;
     o->json = "snell-kiosk.json";
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+    for (i = 1; i < argc; i++) /* --help wherever it is */
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
             usage(stdout);
             return -1;
-        } else if (!strcmp(a, "--hold")) {
+        }
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--hold")) {
             o->hold = 1;
         } else if (!strcmp(a, "--bench")) {
             o->bench = 1;
         } else if (!strcmp(a, "--atomic")) {
             o->display.atomic = 1;
+        } else if (!takes_value(a)) {
+            fprintf(stderr, "snell-kiosk: unknown option '%s'; see --help\n", a);
+            return 0;
         } else if (!v) {
-            fprintf(stderr, "snell-kiosk: %s needs a value (or is unknown); see --help\n", a);
+            fprintf(stderr, "snell-kiosk: %s needs a value; see --help\n", a);
             return 0;
         } else if ((r = value_option(a, v, o)) < 0) {
             fprintf(stderr, "snell-kiosk: unknown option '%s'; see --help\n", a);

@@ -53,7 +53,9 @@ typedef struct kiosk {
 static void log_cb(snell_log_level level, const char *msg, void *user)
 {
     (void)user;
-    if (level >= SNELL_LOG_WARN) fprintf(stderr, "snell-kiosk: snell: %s\n", msg);
+    /* Errors come back as a status whose message (snell_last_error) the kiosk
+     * prints where it fails: printing them here too said each one twice. */
+    if (level == SNELL_LOG_WARN) fprintf(stderr, "snell-kiosk: snell: %s\n", msg);
 }
 
 /* A frame reached the screen at t_ms (CLOCK_MONOTONIC, as cli_now_ms). */
@@ -185,6 +187,7 @@ static int show(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_conf
     long i, frames_at_report = 0;
     int ok = open_config(k, ctx, env, c, &r, glass, &fd);
     k->record = 1;
+    fd.budget_ms = o->budget_ms;
     printf("snell-kiosk: showing %s at %dx%d\n", c->spec, k->gpu.width, k->gpu.height);
     for (i = 0; ok && !g_stop && (!o->frames || i < o->frames); i++) {
         fd.camera.azimuth = (float)((c->cam[0] + (double)i * o->spin_deg) * PI / 180.0);
@@ -193,6 +196,9 @@ static int show(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_conf
             double now = cli_now_ms();
             printf("snell-kiosk: %ld frames, %.1f FPS over the last %.1f s\n", k->flip.frames,
                    (double)(k->flip.frames - frames_at_report) * 1000.0 / (now - t_report), (now - t_report) / 1000.0);
+            if (o->budget_ms > 0.0f && stats.glass_count > 0)
+                printf("snell-kiosk: budget %.1f ms: last frame %.2f ms; glass 0 %s\n", (double)o->budget_ms,
+                       stats.budget_measured_ms, stats.glass[0].reason);
             fflush(stdout);
             t_report = now;
             frames_at_report = k->flip.frames;
@@ -323,8 +329,9 @@ static int bench(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_config *c
     for (i = 0; i < n; i++)
         if (!cs[i].ok && !cs[i].error[0]) snprintf(cs[i].error, sizeof cs[i].error, "not run (interrupted)");
     if (done) printf("snell-kiosk Score: %.0f\n", fps_sum / done);
+    errno = 0;
     if (!bench_write_json(o->json, cs, n, bo, &run)) {
-        fprintf(stderr, "snell-kiosk: cannot write %s\n", o->json);
+        fprintf(stderr, "snell-kiosk: cannot write '%s': %s\n", o->json, errno ? strerror(errno) : "write failed");
         ok = 0;
     } else {
         printf("wrote %s\n", o->json);

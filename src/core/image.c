@@ -43,6 +43,7 @@ static void *image_realloc(void *p, size_t n) { return n > IMAGE_MAX_ALLOC ? NUL
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -50,8 +51,11 @@ snell_status snell_write_png(const char *path, int width, int height, const uint
 {
     if (!path || !rgba || width <= 0 || height <= 0 || width > 16384 || height > 16384)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_write_png: bad arguments (%dx%d)", width, height);
-    if (!stbi_write_png(path, width, height, 4, rgba, width * 4))
-        return snell__fail(NULL, SNELL_E_IO, "cannot write PNG \"%s\"", path);
+    errno = 0;
+    if (!stbi_write_png(path, width, height, 4, rgba, width * 4)) {
+        int e = errno; /* stb's fopen or fwrite */
+        return snell__fail(NULL, SNELL_E_IO, "cannot write PNG \"%s\": %s", path, e ? strerror(e) : "encoding failed");
+    }
     return SNELL_OK;
 }
 
@@ -260,7 +264,7 @@ snell_status snell__image_read_budget(const char *path, size_t budget, int *widt
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_image_read: NULL argument");
     *rgba = NULL;
     f = fopen(path, "rb");
-    if (!f) return snell__fail(NULL, SNELL_E_IO, "cannot open image \"%s\"", path);
+    if (!f) return snell__fail(NULL, SNELL_E_IO, "cannot open image \"%s\": %s", path, strerror(errno));
     /* fopen opens a directory as well, and ftell then says LONG_MAX */
     if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode)) {
         int dir = S_ISDIR(sb.st_mode);

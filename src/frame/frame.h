@@ -81,6 +81,7 @@ typedef struct snell__object {
     int back_coarse;                /* the back-face pass draws the mesh's coarse copy (render/gbuffer.h) */
     int crosses_edge;               /* its projected bounding sphere reaches past the target's edge */
     int back_guard;                 /* pixels of guard band it asks of the back-face pass (0: none) */
+    const char *budget_note;        /* AUTO by budget: the rung it was given and why (render/budget.c), else NULL */
     unsigned stage_bits;            /* what the frame's stages add to its kernel's program variant
                                      * (frame/stage.h; e.g. SNELL__GLASS_BEYOND: its exit rays march
                                      * the scene layers, view.layers, not straight to the environment) */

@@ -12,6 +12,7 @@ extern "C" {
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <map>
 #include <cmath>
 #include <cstdlib>
@@ -21,6 +22,7 @@ extern "C" {
 #include <vector>
 
 /* A loaded scene file: the frame lists and what they point to. */
+#define SNELL__SCENE_NAME 64
 struct snell_scene_file {
     snell_alloc alloc;
     int glass_count, opaque_count, mesh_count, has_camera;
@@ -28,8 +30,11 @@ struct snell_scene_file {
     snell_opaque opaque[SNELL_MAX_OPAQUE];
     float glass_model[SNELL_MAX_GLASS][16];
     float opaque_model[SNELL_MAX_OPAQUE][16];
-    snell_mesh *meshes[SNELL_MAX_GLASS + SNELL_MAX_OPAQUE]; /* owned: one per distinct primitive */
+    snell_mesh *meshes[SNELL_MAX_GLASS + SNELL_MAX_OPAQUE]; /* owned: the ones the lists use */
     snell_camera camera;
+    char glass_name[SNELL_MAX_GLASS][SNELL__SCENE_NAME];   /* glTF node names (snell_scene_file_glass_name) */
+    char opaque_name[SNELL_MAX_OPAQUE][SNELL__SCENE_NAME];
+    float centre[3], radius; /* bounding sphere of every object's world vertices (snell_scene_file_frame) */
 };
 
 namespace {
@@ -172,8 +177,9 @@ bool fs_read(std::vector<unsigned char> *out, std::string *err, const std::strin
     int fd = open(real.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
     struct stat sb;
     if (fd < 0 || fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        int e = fd < 0 ? errno : 0;
         if (fd >= 0) close(fd);
-        if (err) *err += "cannot open '" + shown_uri(path) + "'\n";
+        if (err) *err += "cannot open '" + shown_uri(path) + "': " + (e ? std::strerror(e) : "not a regular file") + "\n";
         return false;
     }
     size_t size = static_cast<size_t>(sb.st_size);
@@ -851,20 +857,57 @@ double number_or(const tinygltf::Value &obj, const char *key, double def)
     return d;
 }
 
+/* An opaque node instance of a primitive, kept until the lists are filled:
+ * beyond SNELL_MAX_OPAQUE they are merged per colour (finish()). */
+struct OpaqueInstance {
+    snell_mesh *mesh;
+    const tinygltf::Primitive *prim;
+    int mesh_idx, node, material;
+    float color[3];
+    Mat4 world;
+};
+
+/* A glTF node's name as shown in stats: at most SNELL__SCENE_NAME - 1 bytes
+ * (cut before a UTF-8 continuation byte), control characters as '?';
+ * "node N" when it has none. */
+void copy_name(const std::string &n, char *out)
+{
+    size_t len = std::min(n.size(), static_cast<size_t>(SNELL__SCENE_NAME - 1));
+    while (len > 0 && len < n.size() && (static_cast<unsigned char>(n[len]) & 0xC0) == 0x80) len--;
+    for (size_t i = 0; i < len; i++) out[i] = static_cast<unsigned char>(n[i]) < 0x20 || n[i] == 0x7f ? '?' : n[i];
+    out[len] = '\0';
+}
+
+void node_name(const tinygltf::Model &model, int node, char *out)
+{
+    const std::string &n = model.nodes[static_cast<size_t>(node)].name;
+    copy_name(n.empty() ? "node " + std::to_string(node) : n, out);
+}
+
 struct SceneBuilder {
     const tinygltf::Model &model;
     snell_ctx *ctx;
     snell_scene_file *out;
     std::map<std::pair<int, int>, snell_mesh *> meshes; /* (mesh, primitive) -> its mesh, shared by instances */
+    std::vector<snell_mesh *> owned;                    /* every mesh made, until finish() hands them over */
+    std::vector<OpaqueInstance> opaque;
+    int glass_total = 0;                                /* glass instances, counted past the limit */
     std::string ignored;                                /* extensions ignored, for one log line */
     size_t instances = 0;
     int camera_node = -1;
     Mat4 camera_world;
     SceneBuilder(const tinygltf::Model &m, snell_ctx *c, snell_scene_file *o) : model(m), ctx(c), out(o) {}
+    ~SceneBuilder()
+    {
+        for (snell_mesh *m : owned) snell_mesh_destroy(m);
+    }
     void visit(int node, const Mat4 &parent, int depth);
     void add(const tinygltf::Primitive &p, int mesh_idx, int prim_idx, const Mat4 &world, int node);
     snell_mesh *mesh_of(const tinygltf::Primitive &p, int mesh_idx, int prim_idx);
     void note_ignored(const tinygltf::ExtensionMap &ext);
+    void finish();
+    void merge_opaque();
+    void hand_over();
 };
 
 void SceneBuilder::note_ignored(const tinygltf::ExtensionMap &ext)
@@ -883,13 +926,10 @@ snell_mesh *SceneBuilder::mesh_of(const tinygltf::Primitive &p, int mesh_idx, in
     b.add_primitive(p, identity(), mesh_idx);
     snell_mesh *m = nullptr;
     if (!b.idx.empty()) {
+        owned.reserve(owned.size() + 1);
         snell_status st = adopt(ctx, b, &m);
         if (st != SNELL_OK) fail(st, snell_last_error(ctx));
-        if (out->mesh_count >= SNELL_MAX_GLASS + SNELL_MAX_OPAQUE) {
-            snell_mesh_destroy(m);
-            fail(SNELL_E_LIMIT, "more distinct primitives than the scene's object limits");
-        }
-        out->meshes[out->mesh_count++] = m;
+        owned.push_back(m);
     }
     meshes[key] = m;
     return m;
@@ -905,6 +945,11 @@ void SceneBuilder::add(const tinygltf::Primitive &p, int mesh_idx, int prim_idx,
     }
     snell_mesh *m = mesh_of(p, mesh_idx, prim_idx);
     if (!m) return; /* no triangles */
+    for (int k = 0; k < 16; k++)
+        if (!std::isfinite(world.m[k]) || std::fabs(world.m[k]) > 3.0e38) {
+            std::snprintf(buf, sizeof buf, "node %d: its world transform is not finite", node);
+            fail(SNELL_E_PARSE, buf);
+        }
     /* glTF's default material: opaque, base colour 1 */
     double base[4] = {1.0, 1.0, 1.0, 1.0};
     const tinygltf::Material *mat = p.material >= 0 ? &model.materials[static_cast<size_t>(p.material)] : nullptr;
@@ -921,17 +966,20 @@ void SceneBuilder::add(const tinygltf::Primitive &p, int mesh_idx, int prim_idx,
         return e == mat->extensions.end() ? nullptr : &e->second;
     };
     if (const tinygltf::Value *t = ext("KHR_materials_transmission")) transmission = number_or(*t, "transmissionFactor", 0.0);
-    float *model_m;
     if (transmission > 0.0) {
-        if (out->glass_count >= SNELL_MAX_GLASS) {
-            std::snprintf(buf, sizeof buf, "more than %d glass objects (node %d)", SNELL_MAX_GLASS, node);
-            fail(SNELL_E_LIMIT, buf);
-        }
-        snell_glass *g = &out->glass[out->glass_count];
-        model_m = out->glass_model[out->glass_count];
-        out->glass_count++;
+        /* Glass is not merged (each object is a refraction of its own): past
+         * the limit the rest are still read and counted for the message. */
+        snell_glass scratch;
+        float scratch_model[16];
+        bool kept = out->glass_count < SNELL_MAX_GLASS;
+        snell_glass *g = kept ? &out->glass[out->glass_count] : &scratch;
+        float *model_m = kept ? out->glass_model[out->glass_count] : scratch_model;
+        std::memset(&scratch, 0, sizeof scratch);
+        if (kept) node_name(model, node, out->glass_name[out->glass_count++]);
+        glass_total++;
         g->mesh = m;
         g->model = model_m;
+        for (int k = 0; k < 16; k++) model_m[k] = static_cast<float>(world.m[k]);
         double ior = 1.5;
         if (const tinygltf::Value *e = ext("KHR_materials_ior")) ior = number_or(*e, "ior", 1.5);
         if (!(ior >= 0.05 && ior <= 100.0)) {
@@ -973,25 +1021,141 @@ void SceneBuilder::add(const tinygltf::Primitive &p, int mesh_idx, int prim_idx,
             g->material.thickness = kThinWall;
         }
     } else {
-        if (out->opaque_count >= SNELL_MAX_OPAQUE) {
-            std::snprintf(buf, sizeof buf, "more than %d opaque objects (node %d)", SNELL_MAX_OPAQUE, node);
-            fail(SNELL_E_LIMIT, buf);
+        OpaqueInstance o;
+        o.mesh = m;
+        o.prim = &p;
+        o.mesh_idx = mesh_idx;
+        o.node = node;
+        o.material = p.material;
+        o.world = world;
+        for (int k = 0; k < 3; k++) o.color[k] = static_cast<float>(std::min(std::max(base[k], 0.0), 1.0));
+        if (o.color[0] == 0.0f && o.color[1] == 0.0f && o.color[2] == 0.0f) o.color[0] = 1e-6f; /* black */
+        if (opaque.size() % 4096 == 0) { /* the list itself, as node instances can be many (kMaxInstances) */
+            snell_status st = snell__budget_check(ctx, (opaque.size() + 4096) * sizeof(OpaqueInstance),
+                                                  "the scene's opaque instances");
+            if (st != SNELL_OK) fail(st, snell_last_error(ctx));
         }
-        snell_opaque *o = &out->opaque[out->opaque_count];
-        model_m = out->opaque_model[out->opaque_count];
-        out->opaque_count++;
-        o->mesh = m;
+        opaque.push_back(o);
+    }
+}
+
+/* More opaque instances than SNELL_MAX_OPAQUE: one object per colour (all the
+ * renderer draws of an opaque object), its instances' geometry in world space
+ * (the node transforms baked in, model matrix identity); a colour with one
+ * instance keeps its mesh and matrix. More colours than the limit is
+ * SNELL_E_LIMIT. */
+void SceneBuilder::merge_opaque()
+{
+    char buf[200];
+    std::vector<std::vector<size_t>> groups;
+    for (size_t i = 0; i < opaque.size(); i++) {
+        size_t g = 0;
+        while (g < groups.size() && std::memcmp(opaque[groups[g][0]].color, opaque[i].color, sizeof opaque[i].color) != 0) g++;
+        if (g == groups.size()) {
+            if (groups.size() == SNELL_MAX_OPAQUE) {
+                std::snprintf(buf, sizeof buf,
+                              "%zu opaque objects in more than %d colours: more than the limit of %d "
+                              "(SNELL_MAX_OPAQUE) even merged per colour",
+                              opaque.size(), SNELL_MAX_OPAQUE, SNELL_MAX_OPAQUE);
+                fail(SNELL_E_LIMIT, buf);
+            }
+            groups.emplace_back();
+        }
+        groups[g].push_back(i);
+    }
+    for (const std::vector<size_t> &grp : groups) {
+        const OpaqueInstance &first = opaque[grp[0]];
+        int k = out->opaque_count;
+        snell_opaque *o = &out->opaque[k];
+        float *model_m = out->opaque_model[k];
+        if (grp.size() == 1) {
+            o->mesh = first.mesh;
+            for (int j = 0; j < 16; j++) model_m[j] = static_cast<float>(first.world.m[j]);
+            node_name(model, first.node, out->opaque_name[k]);
+        } else {
+            Builder b(model, ctx);
+            for (size_t i : grp) b.add_primitive(*opaque[i].prim, opaque[i].world, opaque[i].mesh_idx);
+            if (b.idx.empty()) continue; /* every instance scaled to nothing */
+            snell_mesh *merged = nullptr;
+            owned.reserve(owned.size() + 1);
+            snell_status st = adopt(ctx, b, &merged);
+            if (st != SNELL_OK) fail(st, snell_last_error(ctx));
+            owned.push_back(merged);
+            o->mesh = merged;
+            for (int j = 0; j < 16; j++) model_m[j] = j % 5 == 0 ? 1.0f : 0.0f;
+            std::string mn = first.material >= 0 ? model.materials[static_cast<size_t>(first.material)].name : "";
+            mn = mn.empty() ? "material " + std::to_string(first.material) : "'" + mn + "'";
+            copy_name(std::to_string(grp.size()) + " nodes of " + mn, out->opaque_name[k]);
+        }
         o->model = model_m;
-        for (int k = 0; k < 3; k++) o->color[k] = static_cast<float>(std::min(std::max(base[k], 0.0), 1.0));
-        if (o->color[0] == 0.0f && o->color[1] == 0.0f && o->color[2] == 0.0f) o->color[0] = 1e-6f; /* black */
+        std::memcpy(o->color, first.color, sizeof o->color);
+        out->opaque_count++;
     }
-    for (int k = 0; k < 16; k++) {
-        if (!std::isfinite(world.m[k]) || std::fabs(world.m[k]) > 3.0e38) {
-            std::snprintf(buf, sizeof buf, "node %d: its world transform is not finite", node);
-            fail(SNELL_E_PARSE, buf);
+    snell__log(ctx, SNELL_LOG_INFO, "glTF scene: %zu opaque objects (more than SNELL_MAX_OPAQUE %d) merged "
+               "into %d, one per colour", opaque.size(), SNELL_MAX_OPAQUE, out->opaque_count);
+}
+
+/* The meshes the lists use go to the scene file, the rest (primitives only
+ * drawn merged) are destroyed with the builder. */
+void SceneBuilder::hand_over()
+{
+    for (snell_mesh *&m : owned) {
+        bool used = false;
+        for (int i = 0; i < out->glass_count && !used; i++) used = out->glass[i].mesh == m;
+        for (int i = 0; i < out->opaque_count && !used; i++) used = out->opaque[i].mesh == m;
+        if (used && out->mesh_count < SNELL_MAX_GLASS + SNELL_MAX_OPAQUE) { /* at most one per object */
+            out->meshes[out->mesh_count++] = m;
+            m = nullptr;
         }
-        model_m[k] = static_cast<float>(world.m[k]);
     }
+}
+
+void SceneBuilder::finish()
+{
+    char buf[200];
+    if (glass_total > SNELL_MAX_GLASS) {
+        std::snprintf(buf, sizeof buf, "%d glass objects: more than the limit of %d (SNELL_MAX_GLASS; glass "
+                      "objects are not merged)", glass_total, SNELL_MAX_GLASS);
+        fail(SNELL_E_LIMIT, buf);
+    }
+    if (opaque.size() <= SNELL_MAX_OPAQUE) {
+        for (const OpaqueInstance &i : opaque) {
+            int k = out->opaque_count++;
+            out->opaque[k].mesh = i.mesh;
+            out->opaque[k].model = out->opaque_model[k];
+            for (int j = 0; j < 16; j++) out->opaque_model[k][j] = static_cast<float>(i.world.m[j]);
+            std::memcpy(out->opaque[k].color, i.color, sizeof i.color);
+            node_name(model, i.node, out->opaque_name[k]);
+        }
+    } else {
+        merge_opaque();
+    }
+    hand_over();
+    /* the bounding sphere of every object's world vertices: centred on their box */
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, r2 = 0.0;
+    for (int pass = 0; pass < 2; pass++)
+        for (int i = 0; i < out->glass_count + out->opaque_count; i++) {
+            const snell_mesh *m = i < out->glass_count ? out->glass[i].mesh : out->opaque[i - out->glass_count].mesh;
+            const float *M = i < out->glass_count ? out->glass[i].model : out->opaque[i - out->glass_count].model;
+            for (uint32_t v = 0; v < m->vertex_count; v++) {
+                const float *p = &m->positions[3 * v];
+                double w[3], d2 = 0.0;
+                for (int r = 0; r < 3; r++) {
+                    w[r] = static_cast<double>(M[r]) * p[0] + static_cast<double>(M[4 + r]) * p[1] +
+                           static_cast<double>(M[8 + r]) * p[2] + M[12 + r];
+                    if (pass == 0) {
+                        lo[r] = std::min(lo[r], w[r]);
+                        hi[r] = std::max(hi[r], w[r]);
+                    } else {
+                        double d = w[r] - 0.5 * (lo[r] + hi[r]);
+                        d2 += d * d;
+                    }
+                }
+                r2 = std::max(r2, d2);
+            }
+        }
+    for (int r = 0; r < 3; r++) out->centre[r] = static_cast<float>(0.5 * (lo[r] + hi[r]));
+    out->radius = static_cast<float>(std::sqrt(r2));
 }
 
 void SceneBuilder::visit(int node, const Mat4 &parent, int depth)
@@ -1079,13 +1243,18 @@ snell_status load_scene(snell_ctx *ctx, const unsigned char *data, size_t size, 
         SceneBuilder b(model, ctx, s);
         Mat4 id = identity();
         for (int r : scene_roots(model)) b.visit(r, id, 0);
-        if (s->glass_count + s->opaque_count == 0) fail(SNELL_E_PARSE, "no triangle primitives in the scene");
+        if (b.glass_total == 0 && b.opaque.empty()) fail(SNELL_E_PARSE, "no triangle primitives in the scene");
+        b.finish();
         if (!b.ignored.empty())
             snell__log(ctx, SNELL_LOG_INFO, "glTF scene: ignored extensions %s", b.ignored.c_str());
         if (b.camera_node >= 0) {
             convert_camera(model.cameras[static_cast<size_t>(model.nodes[static_cast<size_t>(b.camera_node)].camera)],
                            b.camera_world, s, &s->camera);
             s->has_camera = 1;
+        } else {
+            snell__log(ctx, SNELL_LOG_INFO, "glTF scene: no camera in the file; its objects' bounding sphere: centre "
+                       "(%g, %g, %g), radius %g (snell_scene_file_frame frames it)", s->centre[0], s->centre[1],
+                       s->centre[2], s->radius);
         }
         *out = s;
         return SNELL_OK;
@@ -1110,7 +1279,7 @@ snell_status read_model_file(snell_ctx *ctx, const char *path, std::vector<unsig
 {
     int fd = open(path, O_RDONLY | O_CLOEXEC);
     struct stat sb;
-    if (fd < 0) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s'", path);
+    if (fd < 0) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, std::strerror(errno));
     if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
         bool dir = S_ISDIR(sb.st_mode);
         close(fd);
@@ -1237,4 +1406,42 @@ extern "C" int snell_scene_file_camera(const snell_scene_file *s, snell_camera *
     if (!s || !s->has_camera) return 0;
     if (camera) *camera = s->camera;
     return 1;
+}
+
+extern "C" snell_status snell_scene_file_frame(const snell_scene_file *s, float aspect, snell_camera *camera)
+{
+    if (!s || !camera) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_scene_file_frame: %s is NULL",
+                                          !s ? "scene" : "camera");
+    if (!(aspect > 0.0f) || !std::isfinite(aspect))
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_scene_file_frame: aspect %g is not a finite width / height > 0",
+                           static_cast<double>(aspect));
+    double fov = camera->fov_y > 0.0f ? camera->fov_y : 45.0 * 3.14159265358979323846 / 180.0;
+    if (!(camera->fov_y >= 0.0f) || !(fov < 3.14159265358979323846))
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_scene_file_frame: camera.fov_y %g outside [0, pi)",
+                           static_cast<double>(camera->fov_y));
+    /* the sphere fits the narrower of the two half-angles, with 5% to spare */
+    double half_v = 0.5 * fov, half_h = std::atan(aspect * std::tan(half_v));
+    double r = s->radius > 0.0f ? s->radius : 1e-3, dist = 1.05 * r / std::sin(std::min(half_v, half_h));
+    if (!std::isfinite(dist) || dist > 1e30)
+        return snell__fail(NULL, SNELL_E_LIMIT, "snell_scene_file_frame: the scene's bounding sphere (radius %g) is "
+                           "too large to frame", static_cast<double>(s->radius));
+    for (int k = 0; k < 3; k++) camera->target[k] = s->centre[k];
+    camera->distance = static_cast<float>(dist);
+    camera->z_near = camera->z_far = 0.0f; /* derived from the distance: 0.01 d .. 100 d holds the sphere */
+    return SNELL_OK;
+}
+
+static const char *scene_name(const snell_scene_file *s, int i, int count, const char (*names)[SNELL__SCENE_NAME])
+{
+    return s && i >= 0 && i < count ? names[i] : NULL;
+}
+
+extern "C" const char *snell_scene_file_glass_name(const snell_scene_file *s, int i)
+{
+    return scene_name(s, i, s ? s->glass_count : 0, s ? s->glass_name : NULL);
+}
+
+extern "C" const char *snell_scene_file_opaque_name(const snell_scene_file *s, int i)
+{
+    return scene_name(s, i, s ? s->opaque_count : 0, s ? s->opaque_name : NULL);
 }

@@ -86,4 +86,23 @@ int snell_scene_file_camera(const snell_scene_file *s, snell_camera *camera)
     (void)camera;
     return 0;
 }
+snell_status snell_scene_file_frame(const snell_scene_file *s, float aspect, snell_camera *camera)
+{
+    (void)s;
+    (void)aspect;
+    (void)camera;
+    return snell__fail(NULL, SNELL_E_UNSUPPORTED, "snell was built without glTF support (SNELL_WITH_GLTF=OFF)");
+}
+const char *snell_scene_file_glass_name(const snell_scene_file *s, int i)
+{
+    (void)s;
+    (void)i;
+    return NULL;
+}
+const char *snell_scene_file_opaque_name(const snell_scene_file *s, int i)
+{
+    (void)s;
+    (void)i;
+    return NULL;
+}
 #endif

@@ -6,6 +6,7 @@
 
 #include <sys/stat.h>
 
+#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -570,7 +571,7 @@ snell_status snell_mesh_load_obj(snell_ctx *ctx, const char *path, snell_mesh **
     *out = NULL;
     if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_obj: path is NULL");
     f = fopen(path, "rb");
-    if (!f) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s'", path);
+    if (!f) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, strerror(errno));
     {
         /* fopen opens a directory too; its reads then fail with EISDIR */
         struct stat sb;

@@ -5,7 +5,9 @@
  * (layered_bake.frag), read back once and stored as RGBA16F (normal,
  * distance), filtered (half floats filter in GLES 3.0 but need an extension
  * to be rendered to), in one 2D array texture, slice face * layers + layer
- * (GLES 3.0 has no cube map arrays); per frame one
+ * (GLES 3.0 has no cube map arrays), then per face one slice for each four
+ * layers' distances (the march's count in one look-up: bunny 512^2 548 ->
+ * 273 ms a frame, the image byte-identical); per frame one
  * pass of layered.frag over the front faces, which
  * marches the refracted ray through the layers, refracting or reflecting at
  * each surface crossed, re-entries included. Rigid meshes pay no per-frame
@@ -38,8 +40,12 @@
 
 /* One mesh version's layers (the prepared resource). */
 typedef struct layered_prepared {
-    unsigned layers_tex;        /* GL_TEXTURE_2D_ARRAY, RGBA16F (normal, distance / radius), face_size^2 x 6 * layers */
+    unsigned layers_tex;        /* GL_TEXTURE_2D_ARRAY, RGBA16F, face_size^2 x 6 * (layers + groups): slice
+                                 * face * layers + l: layer l's (normal, distance / radius); slice 6 * layers +
+                                 * face * groups + g: layers 4g..4g+3's distances (4: none), one look-up for
+                                 * the march's count of four layers */
     int face_size, layers;      /* as allocated */
+    int groups;                 /* (layers + 3) / 4 */
     int used;                   /* layers holding a surface somewhere (the shader reads these) */
     int capped;                 /* 1: the last layer is not empty: surfaces beyond it are not held */
     float centre[3], radius;    /* object space */
@@ -47,7 +53,7 @@ typedef struct layered_prepared {
 
 typedef struct layered_prog {
     snell__program_slot slot;   /* key: layers, linear, binary, absorb, reentry, screen, dispersion */
-    int layers, stride, inv_model, model, centre, radius, max_interfaces;
+    int layers, stride, groups, dist_base, inv_model, model, centre, radius, max_interfaces;
 } layered_prog;
 
 typedef struct layered_state {
@@ -178,7 +184,8 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
     int face, l, size = p->face_size;
     size_t i, texels = (size_t)size * (size_t)size;
     uint8_t *normal_px = (uint8_t *)snell__malloc(&ctx->alloc, 8 * texels), *dist_px = normal_px + 4 * texels;
-    uint16_t *half = (uint16_t *)snell__malloc(&ctx->alloc, 8 * texels); /* one slice at a time */
+    uint16_t *half = (uint16_t *)snell__malloc(&ctx->alloc, 16 * texels); /* one slice at a time */
+    uint16_t *group = half ? half + 4 * texels : NULL; /* the distances of a group of four layers */
     GLenum fst;
     if (!normal_px || !half) {
         snell__free(&ctx->alloc, normal_px);
@@ -218,6 +225,8 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
         for (l = 0; l < p->layers && st == SNELL_OK; l++) {
             uint16_t *out = half;
             GLuint any = 0;
+            if ((l & 3) == 0)
+                for (i = 0; i < 4 * texels; i++) group[i] = half_of(4.0f);
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, next[l & 1], 0);
             if (face == 0 && l == 0 && (fst = glCheckFramebufferStatus(GL_FRAMEBUFFER)) != GL_FRAMEBUFFER_COMPLETE) {
                 st = snell__fail(ctx, SNELL_E_GL, "layered bake framebuffer incomplete (0x%x)", (unsigned)fst);
@@ -250,11 +259,15 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
                 out[4 * i + 2] = half_of(n[2]);
                 out[4 * i + 3] =
                     half_of(b[3] ? (float)((uint32_t)b[0] << 16 | (uint32_t)b[1] << 8 | b[2]) / 16777215.0f : 4.0f);
+                group[4 * i + (l & 3)] = out[4 * i + 3];
             }
             glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
             glBindTexture(GL_TEXTURE_2D_ARRAY, p->layers_tex);
             glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, face * p->layers + l, size, size, 1, GL_RGBA, GL_HALF_FLOAT,
                             half);
+            if ((l & 3) == 3 || l == p->layers - 1)
+                glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, 6 * p->layers + face * p->groups + (l >> 2), size, size,
+                                1, GL_RGBA, GL_HALF_FLOAT, group);
         }
     }
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
@@ -354,14 +367,16 @@ static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__ob
     p->radius = sqrtf(r2) * 1.0001f;
     if (!(p->radius > 0.0f)) p->radius = 1.0f;
     if (!p->layers_tex || p->face_size != lp->face_size || p->layers != lp->layers) {
-        size_t bytes = (size_t)lp->face_size * (size_t)lp->face_size * 48u * (size_t)lp->layers;
+        int groups = (lp->layers + 3) / 4;
+        size_t bytes = (size_t)lp->face_size * (size_t)lp->face_size * 48u * (size_t)(lp->layers + groups);
         snell_status st = snell__budget_check(ctx, bytes, "the layered method's distance cube maps");
         if (st != SNELL_OK) return st;
         layered_release(p);
         glActiveTexture(GL_TEXTURE1);
-        p->layers_tex = make_texture(GL_RGBA16F, lp->face_size, 6 * lp->layers, GL_LINEAR);
+        p->layers_tex = make_texture(GL_RGBA16F, lp->face_size, 6 * (lp->layers + groups), GL_LINEAR);
         p->face_size = lp->face_size;
         p->layers = lp->layers;
+        p->groups = groups;
         if (glGetError() != GL_NO_ERROR) {
             layered_release(p);
             return snell__fail(ctx, SNELL_E_GL, "cannot make %d layers of %d^2 cube faces", lp->layers, lp->face_size);
@@ -382,6 +397,8 @@ static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[8
     if (st != SNELL_OK) return st;
     p->layers = glGetUniformLocation(p->slot.g.prog, "u_layers");
     p->stride = glGetUniformLocation(p->slot.g.prog, "u_stride");
+    p->groups = glGetUniformLocation(p->slot.g.prog, "u_groups");
+    p->dist_base = glGetUniformLocation(p->slot.g.prog, "u_dist_base");
     p->inv_model = glGetUniformLocation(p->slot.g.prog, "u_inv_model");
     p->model = glGetUniformLocation(p->slot.g.prog, "u_model");
     p->centre = glGetUniformLocation(p->slot.g.prog, "u_centre");
@@ -423,12 +440,15 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     glUniform3fv(p->centre, 1, lpr->centre);
     glUniform1f(p->radius, lpr->radius);
     glUniform1i(p->stride, lpr->layers);
+    glUniform1i(p->groups, lpr->groups);
+    glUniform1i(p->dist_base, 6 * lpr->layers);
     glUniform1i(p->max_interfaces, lp->max_interfaces);
     snell__draw_surface(o, stats);
     stats->passes++;
     stats->counters[0] = lpr->used;
     stats->counters[1] = lpr->capped;
-    stats->counters[2] = (int)((size_t)lpr->face_size * (size_t)lpr->face_size * 48u * (size_t)lpr->layers / 1024u);
+    stats->counters[2] =
+        (int)((size_t)lpr->face_size * (size_t)lpr->face_size * 48u * (size_t)(lpr->layers + lpr->groups) / 1024u);
     return SNELL_OK;
 }
 
@@ -439,7 +459,8 @@ static const snell_param_info g_params[] = {
      SNELL_LAYERED_MAX_LAYERS, DEFAULT_LAYERS, NULL},
     {"face", "cube face size of every layer, texels", 16, 1024, DEFAULT_FACE, NULL},
     {"linear", "linear march steps from a point to the bounding sphere's far side", 1, 64, DEFAULT_LINEAR, NULL},
-    {"iterations", "binary steps at each crossing found", 1, 16, DEFAULT_BINARY, NULL},
+    {"iterations", "binary steps at each crossing found (regula falsi steps on a convex mesh that one layer holds)",
+     1, 16, DEFAULT_BINARY, NULL},
     {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
      SNELL_LAYERED_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
     {"inner", "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more march): auto "

@@ -727,6 +727,7 @@ typedef struct job {
     const snell_ref_output *out;
     pthread_mutex_t lock;
     int next_row;
+    snell__ref_progress progress;
 } job;
 
 /* Pixel (x, y)'s colour: the mean over its S x S sub-pixel grid (a box
@@ -788,15 +789,41 @@ static void render_row(job *jb, int y)
 static void *worker(void *arg)
 {
     job *jb = (job *)arg;
+    int y = -1;
     for (;;) {
-        int y;
         pthread_mutex_lock(&jb->lock);
+        if (y >= 0) snell__ref_progress_row(&jb->progress); /* row y is done */
         y = jb->next_row++;
         pthread_mutex_unlock(&jb->lock);
         if (y >= jb->cr->h) break;
         render_row(jb, y);
     }
     return NULL;
+}
+
+void snell__ref_progress_init(snell__ref_progress *p, const snell_ref_params *params, int rows)
+{
+    p->fn = params->progress;
+    p->user = params->progress_user;
+    p->rows = rows > 0 ? rows : 1;
+    p->done = 0;
+    p->last_ms = p->fn ? snell__now_ms() : 0.0;
+}
+
+void snell__ref_progress_row(snell__ref_progress *p)
+{
+    double now;
+    p->done++;
+    if (!p->fn || p->done >= p->rows) return; /* the last row: _end() reports 1.0 */
+    now = snell__now_ms();
+    if (now - p->last_ms < 100.0) return;
+    p->last_ms = now;
+    p->fn((double)p->done / p->rows, p->user);
+}
+
+void snell__ref_progress_end(snell__ref_progress *p)
+{
+    if (p->fn) p->fn(1.0, p->user);
 }
 
 snell_status snell_ref_render(const snell_ref *ref, const snell_ref_params *params, const snell_ref_output *out)
@@ -827,6 +854,7 @@ snell_status snell_ref_render(const snell_ref *ref, const snell_ref_params *para
     jb.cr = &cr;
     jb.out = out;
     jb.next_row = 0;
+    snell__ref_progress_init(&jb.progress, params, cr.h);
     if (pthread_mutex_init(&jb.lock, NULL) != 0)
         return snell__fail(ref->ctx, SNELL_E_NOMEM, "snell_ref_render: cannot create a mutex");
     /* The calling thread is worker 0; if a thread cannot be started the others
@@ -838,6 +866,7 @@ snell_status snell_ref_render(const snell_ref *ref, const snell_ref_params *para
     worker(&jb);
     for (i = 0; i < started; i++) pthread_join(tids[i], NULL);
     pthread_mutex_destroy(&jb.lock);
+    snell__ref_progress_end(&jb.progress);
     return SNELL_OK;
 }
 

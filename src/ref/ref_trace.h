@@ -29,6 +29,20 @@ snell_status snell__ref_camera_setup(snell_ctx *ctx, const snell_ref_params *p, 
 /* Unit ray through the point (fx, fy) of pixel (x, y) (0.5, 0.5: its centre), y = 0 the top row. */
 void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double dir[3]);
 
+/* snell_ref_params.progress for an image loop of `rows` rows handed out under
+ * one lock: snell__ref_progress_row() is called under that lock after each
+ * finished row (it reports at most every 100 ms), snell__ref_progress_end()
+ * once by the calling thread after the workers are joined (reports 1.0). */
+typedef struct snell__ref_progress {
+    snell_ref_progress_fn fn;
+    void *user;
+    int rows, done;
+    double last_ms;
+} snell__ref_progress;
+void snell__ref_progress_init(snell__ref_progress *p, const snell_ref_params *params, int rows);
+void snell__ref_progress_row(snell__ref_progress *p);
+void snell__ref_progress_end(snell__ref_progress *p);
+
 /* What surrounds the objects when it is not the air and the environment
  * alone (the water scene, ref_water.c). The rays between objects travel in
  * a medium: its index, its Beer-Lambert absorption sigma, and meet(), asked

@@ -36,6 +36,7 @@ typedef struct water_scene {
     int samples;
     pthread_mutex_t lock;
     int next_row;
+    snell__ref_progress progress;
 } water_scene;
 
 static void env(const water_scene *s, const double d[3], double rgb[3])
@@ -381,9 +382,10 @@ static void row(water_scene *s, int y)
 static void *worker(void *arg)
 {
     water_scene *s = (water_scene *)arg;
+    int y = -1;
     for (;;) {
-        int y;
         pthread_mutex_lock(&s->lock);
+        if (y >= 0) snell__ref_progress_row(&s->progress); /* row y is done */
         y = s->next_row++;
         pthread_mutex_unlock(&s->lock);
         if (y >= s->cr->h) break;
@@ -451,6 +453,7 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, co
         nthreads = c > 0 ? (int)(c < SNELL_REF_MAX_THREADS ? c : SNELL_REF_MAX_THREADS) : 1;
     }
     if (nthreads > SNELL_REF_MAX_THREADS) nthreads = SNELL_REF_MAX_THREADS;
+    snell__ref_progress_init(&s.progress, params, cr.h);
     if (pthread_mutex_init(&s.lock, NULL) != 0) {
         snell__free(&w->alloc, h);
         return snell__fail(w->ctx, SNELL_E_NOMEM, "snell_ref_water_render: cannot create a mutex");
@@ -463,5 +466,6 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, co
     for (k = 0; k < started; k++) pthread_join(tids[k], NULL);
     pthread_mutex_destroy(&s.lock);
     snell__free(&w->alloc, h);
+    snell__ref_progress_end(&s.progress);
     return SNELL_OK;
 }

@@ -132,6 +132,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     r = (snell_renderer *)snell__calloc(&ctx->alloc, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     r->ctx = ctx;
+    snell__budget_reset(&r->budget);
     r->layers.last.count = -1; /* no layers peeled yet */
     r->ssaa.factor = d.ssaa > 1 ? d.ssaa : 1;
     r->out_width = d.width;
@@ -177,6 +178,7 @@ void snell_renderer_destroy(snell_renderer *r)
      * if need be; after snell_ctx_destroy they are gone with it and the GL
      * calls below reach no context (snell__gl_scope_enter). */
     snell__gl_scope_enter(r->ctx, &sc);
+    snell__budget_destroy(r);
     snell__prepared_destroy(r->ctx, &r->prepared);
     snell__water_programs_destroy(&r->water);
     for (m = 0; m < SNELL_METHOD_COUNT_; m++)
@@ -227,6 +229,11 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
     if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d",
                            fd->scene_layers, SNELL_MAX_SCENE_LAYERS);
+    if (!isfinite(fd->budget_ms) || fd->budget_ms < 0.0f || fd->budget_ms > 1e6f)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "budget_ms %g: 0 (none) or a finite time up to 1e6 ms",
+                           (double)fd->budget_ms);
+    if (!isfinite(fd->quality_floor_db) || fd->quality_floor_db < 0.0f || fd->quality_floor_db > 100.0f)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "quality_floor_db %g outside 0..100", (double)fd->quality_floor_db);
     if ((st = snell__caustics_validate(r->ctx, fd)) != SNELL_OK) return st;
     return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
 }
@@ -287,6 +294,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     glBindVertexArray(0);
     if (external) snell__glstate_restore(&saved);
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(r->ctx, SNELL_E_GL, "GL error during the frame");
+    if (st == SNELL_OK) snell__budget_frame_end(r, fd, t0);
     for (i = 0; i < r->scene.count; i++) s->passes += s->glass[i].passes;
     s->passes += s->background_drawn;
     s->fragment_mediump = snell__ctx_fragment_mediump(r->ctx);
@@ -307,6 +315,7 @@ static snell_status read_target(snell_renderer *r, GLenum type, void *pixels)
     snell__pixel_pack_begin(&pack, 1);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, r->ssaa.factor > 1 ? r->ssaa.resolve_fbo : r->msaa ? r->msaa_fbo : r->fbo);
     glReadPixels(0, 0, r->out_width, r->out_height, GL_RGBA, type, pixels);
+    snell__budget_gpu_done(r);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev_fbo);
     snell__pixel_pack_end(&pack);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "glReadPixels failed");
@@ -365,6 +374,6 @@ const char *snell_renderer_exit_dir_encoding(const snell_renderer *r)
 
 void snell_renderer_finish(snell_renderer *r)
 {
-    (void)r;
     glFinish();
+    if (r) snell__budget_gpu_done(r);
 }

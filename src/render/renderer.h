@@ -4,6 +4,7 @@
 #ifndef SNELL_RENDERER_H
 #define SNELL_RENDERER_H
 
+#include "render/budget.h"
 #include "render/caustics.h"
 #include "render/composite.h"
 #include "render/env_dynamic.h"
@@ -46,6 +47,11 @@ struct snell_renderer {
     snell__water_programs water;                      /* the water kernel's programs, made on first use */
     snell__layers layers;                             /* the scene layers, made on first use */
     snell__object *layer_list[SNELL_MAX_GLASS];       /* the glass objects peeled into them */
+    snell__budget budget;                             /* AUTO by budget's controller (budget.h) */
+    snell__budget_object budget_obj[SNELL_MAX_GLASS]; /* this frame's ladders */
+    char budget_note[SNELL_MAX_GLASS][128];            /* each object's rung and why (snell__object.budget_note) */
+    void *budget_fence;                               /* GLsync after the last budget frame, NULL none */
+    double budget_start_ms, budget_done_ms;           /* that frame's start; its completion seen (-1 not yet) */
     snell__caustics caustics;                         /* the caustics stage's light map, made on first use */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */

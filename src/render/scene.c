@@ -162,7 +162,9 @@ snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method
         if ((s = get_state(user, m, state)) != SNELL_OK) return s;
         *method = m;
         st->method_used = m->info->method;
-        if (g->thickness > 0.0f)
+        if (o->budget_note)
+            snell__why(st->reason, sizeof st->reason, "auto by budget: %s", o->budget_note);
+        else if (g->thickness > 0.0f)
             snell__why(st->reason, sizeof st->reason, "%s%s: %s", g->method == SNELL_METHOD_AUTO ? "auto" : "thin wall",
                        g->method == SNELL_METHOD_AUTO ? "" : " (any method)", why);
         else if (fit == SNELL__FIT_FAILS) {

@@ -1,5 +1,5 @@
 /* stages.c — the frame as a table of stages in frame order (frame/stage.h):
- * opaque objects -> glass set-up (method, mesh, prepared resources, dynamic
+ * AUTO by budget's plan -> opaque objects -> glass set-up (method, mesh, prepared resources, dynamic
  * environment, shading) -> scene layers -> water -> back faces -> G-buffer
  * -> kernels -> background -> resolves. snell_render (renderer.c) runs the
  * entries a frame wants. A stage that changes what kernels compute adds its
@@ -17,7 +17,7 @@
 /* Methods are created on first use; one that fails (a device that cannot
  * compile its shaders, say) fails alone and is not retried, except after
  * running out of memory. */
-static snell_status method_state(void *user, const snell__method *m, void **state)
+snell_status snell__renderer_method_state(void *user, const snell__method *m, void **state)
 {
     snell_renderer *r = (snell_renderer *)user;
     int id = (int)m->info->method;
@@ -84,7 +84,7 @@ static snell_status set_up_glass(const snell__frame *f, snell__object *o, snell_
         if (snell__stages[i].kernel_variant) o->stage_bits |= snell__stages[i].kernel_variant(f, o);
     o->env_paraboloid = snell__renderer_env_paraboloid(r, dynamic);
     st->env_paraboloid = o->env_paraboloid;
-    s = snell__scene_choose(r->ctx, o, method_state, r, &r->object_method[o->index], &state, st);
+    s = snell__scene_choose(r->ctx, o, snell__renderer_method_state, r, &r->object_method[o->index], &state, st);
     if (s != SNELL_OK) return s;
     r->object_state[o->index] = state;
     if (st->warning) warn_once(r, o, st);
@@ -417,6 +417,7 @@ static snell_status run_msaa(snell__frame *f)
 /* --- the table ------------------------------------------------------------ */
 
 const snell__stage snell__stages[] = {
+    {"budget", snell__budget_wanted, snell__budget_run, NULL, NULL},
     {"opaque", NULL, run_opaque, NULL, NULL},
     {"caustics", want_caustics, run_caustics, NULL, NULL},
     {"glass", NULL, run_glass, NULL, NULL},

@@ -16,4 +16,19 @@ struct snell__frame {
     int band;                       /* the back-face pass's guard band, pixels */
 };
 
+/* A method's GL state, created on first use (stages.c); a method that failed
+ * to build is not retried (its status again). */
+snell_status snell__renderer_method_state(void *user, const snell__method *m, void **state);
+
+/* The budget stage (budget_stage.c): AUTO by frame budget plans every AUTO
+ * object's rung before the glass is set up; the frame's fence after it. */
+int snell__budget_wanted(const snell__frame *f);
+snell_status snell__budget_run(snell__frame *f);
+/* After the frame: a fence to measure it by (budget frames only), or the
+ * controller reset when the frame has no budget. */
+void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, double start_ms);
+/* The GPU is known to be done (after glFinish or a read-back): the frame's end time if still open. */
+void snell__budget_gpu_done(snell_renderer *r);
+void snell__budget_destroy(snell_renderer *r);
+
 #endif

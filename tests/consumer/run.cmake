@@ -3,7 +3,10 @@
 # and runs consumers against it as users would:
 #   consumer_shared, consumer_static   find_package(snell), a C-only project;
 #                                      the static one loads a .glb (C++ inside)
-#   consumer_pc, consumer_pc_static    cc with `pkg-config [--static] snell`
+#   consumer_pc                        cc with `pkg-config --cflags --libs snell`
+#   consumer_pc_static[_flag]          the shell line `cc main.c $(pkg-config [--static]
+#                                      --cflags --libs snell-static)`, and readelf -d
+#                                      shows it does not need libsnell.so
 # Each consumer renders a frame and loads GLB (tests/data/nodes.glb).
 # Args: -DBUILD_DIR= -DSOURCE_DIR= -DWORK_DIR= -DCC= -DGLB=
 file(REMOVE_RECURSE ${WORK_DIR})
@@ -56,7 +59,6 @@ function(pkg_config out)
 endfunction()
 pkg_config(cflags --cflags)
 pkg_config(libs --libs)
-pkg_config(static_libs --static --libs)
 pkg_config(libdir --variable=libdir)
 file(REAL_PATH ${prefix} real_prefix)
 file(REAL_PATH ${libdir} real_libdir)
@@ -75,18 +77,40 @@ endif()
 if(NOT real_libdir MATCHES "^${real_prefix}/")
   message(FATAL_ERROR "snell.pc's libdir ${libdir} is not under the installed prefix ${prefix}")
 endif()
-message(STATUS "pkg-config snell: ${cflags} ${libs}; --static: ${static_libs}")
+message(STATUS "pkg-config snell: ${cflags} ${libs}")
 execute_process(COMMAND ${CC} ${SOURCE_DIR}/tests/consumer/main.c ${cflags} ${libs} -Wl,-rpath,${libdir}
                         -o ${WORK_DIR}/consumer_pc RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "cc with `pkg-config --cflags --libs snell` failed: ${rc}")
 endif()
 run_consumer(${WORK_DIR}/consumer_pc)
-# Static: libsnell.a, then what Libs.private and Requires.private add.
-list(TRANSFORM static_libs REPLACE "^-lsnell$" "-Wl,-Bstatic;-lsnell;-Wl,-Bdynamic")
-execute_process(COMMAND ${CC} ${SOURCE_DIR}/tests/consumer/main.c ${cflags} ${static_libs}
-                        -o ${WORK_DIR}/consumer_pc_static RESULT_VARIABLE rc)
-if(rc)
-  message(FATAL_ERROR "cc with `pkg-config --static --cflags --libs snell` failed: ${rc}")
+# The shared libraries a program needs (readelf -d).
+function(needed exe out)
+  execute_process(COMMAND readelf -d ${exe} OUTPUT_VARIABLE d RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "readelf -d ${exe} failed (${rc})")
+  endif()
+  string(REGEX MATCHALL "\\(NEEDED\\)[^\n]*" n "${d}")
+  set(${out} "${n}" PARENT_SCOPE)
+endfunction()
+needed(${WORK_DIR}/consumer_pc shared_needed)
+if(NOT shared_needed MATCHES "libsnell\\.so")
+  message(FATAL_ERROR "consumer_pc does not need libsnell.so (${shared_needed}): the static checks below would prove nothing")
 endif()
-run_consumer(${WORK_DIR}/consumer_pc_static)
+# Static: snell-static.pc names libsnell.a and what it needs; typed as a user
+# types it, in a shell, with and without --static.
+foreach(flag "" "--static")
+  string(REPLACE "-" "_" suffix "${flag}")
+  set(exe ${WORK_DIR}/consumer_pc_static${suffix})
+  set(line "${CC} ${SOURCE_DIR}/tests/consumer/main.c $(pkg-config ${flag} --cflags --libs snell-static) -o ${exe}")
+  execute_process(COMMAND sh -c "${line}" RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "`${line}` failed: ${rc}")
+  endif()
+  run_consumer(${exe})
+  needed(${exe} static_needed)
+  if(static_needed MATCHES "libsnell")
+    message(FATAL_ERROR "`${line}` links libsnell.so: ${static_needed}")
+  endif()
+  message(STATUS "${line}: runs, needs no libsnell.so")
+endforeach()

@@ -36,6 +36,17 @@ overlap_N.gltf (N = 1, 2, 4, 8)  N glass spheres (geometry set 2, solid, ior 1.5
   receding in depth, each overlapping the next on screen: sphere k (0-based) at T(-1.0+0.45k, 0, 1.0-1.1k);
   the same camera for every N (yfov 0.7) at (1.6,0.9,5.0) looking at (0.3,0,-2.0), so the N spheres
   are the first N of overlap_8 and frame times compare.
+framed_large.gltf, framed_small.gltf  no camera (issue 28 item 3: snell_scene_file_frame frames the bounds):
+  large: node "far_sphere", sphere, opaque orange (0.9,0.6,0.3), T(250,-120,-400) S(60)
+  small: node "tiny_glass", sphere, glass ior 1.5 solid, tint (0.3,1,0.3), T(-3,7,-12) S(0.01)
+many_opaque.gltf  100 opaque cubes and a glass sphere (issue 28 item 4: more than SNELL_MAX_OPAQUE):
+  meshes 0..99  the cube, each its own mesh entry (100 distinct primitives), material 1 + i % 3
+  materials     0 glass ior 1.5 solid; 1 "red" (0.9,0.1,0.1); 2 "green" (0.1,0.9,0.1); 3 "blue" (0.1,0.1,0.9)
+  node i < 100  "cube_RC" (R = i // 10, C = i % 10), mesh i, T(-2.25+0.5C, -2.25+0.5R, 0) S(0.15)
+  node 100      "lens", sphere, glass, T(3.5,0,0) S(0.5)
+  node 101      camera (yfov 0.8) at (0.8,0,9) looking at (0.8,0,0)
+glass_33.gltf  33 glass spheres (one more than SNELL_MAX_GLASS: must be refused), nodes "g00".."g32"
+  at T(-8+0.5k, 0, 0) S(0.2), no camera
 Run: python3 make_scenes.py  (in tests/data/scenes)
 """
 import base64
@@ -260,3 +271,22 @@ for count in (1, 2, 4, 8):
     nodes.append(camera_node((2.2, 0.9, 5.5), (-0.3, -0.1, -2.0)))
     write("overlap_%d.gltf" % count, [solid], [mesh(sph2, 0)], nodes, list(range(count + 1)), perspective(0.7),
           EXT, geo=GEO2)
+
+# issue 28: camera-less scenes far off the origin, many opaque objects, too many glass objects
+write("framed_large.gltf", [{"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.3, 1.0]}}], [mesh(sph, 0)],
+      [{"name": "far_sphere", "mesh": 0, "translation": [250, -120, -400], "scale": [60, 60, 60]}], [0], None, EXT)
+write("framed_small.gltf", [glass(1.5, {"thicknessFactor": 1.0}, (0.3, 1.0, 0.3))], [mesh(sph, 0)],
+      [{"name": "tiny_glass", "mesh": 0, "translation": [-3, 7, -12], "scale": [0.01, 0.01, 0.01]}], [0], None, EXT)
+many_materials = [glass(1.5, {"thicknessFactor": 1.0})] + [
+    {"name": n, "pbrMetallicRoughness": {"baseColorFactor": c + [1.0]}}
+    for n, c in (("red", [0.9, 0.1, 0.1]), ("green", [0.1, 0.9, 0.1]), ("blue", [0.1, 0.1, 0.9]))]
+many_nodes = [{"name": "cube_%d%d" % (i // 10, i % 10), "mesh": i,
+               "translation": [-2.25 + 0.5 * (i % 10), -2.25 + 0.5 * (i // 10), 0], "scale": [0.15, 0.15, 0.15]}
+              for i in range(100)]
+many_nodes.append({"name": "lens", "mesh": 100, "translation": [3.5, 0, 0], "scale": [0.5, 0.5, 0.5]})
+many_nodes.append(camera_node((0.8, 0, 9), (0.8, 0, 0)))
+write("many_opaque.gltf", many_materials, [mesh(cub, 1 + i % 3) for i in range(100)] + [mesh(sph, 0)], many_nodes,
+      list(range(102)), perspective(0.8), EXT)
+write("glass_33.gltf", [glass(1.5, {"thicknessFactor": 1.0})], [mesh(sph, 0)],
+      [{"name": "g%02d" % k, "mesh": 0, "translation": [-8 + 0.5 * k, 0, 0], "scale": [0.2, 0.2, 0.2]}
+       for k in range(33)], list(range(33)), None, EXT)

@@ -1,0 +1,416 @@
+/* bench_budget.c — snell-bench --budget: AUTO by frame budget against every
+ * fixed configuration of its rung table (issue 25 item 3), on a moving
+ * camera. Per scene: AUTO with the budget and each rung (every glass object
+ * on it) get a renderer each and take turns frame by frame over the same
+ * camera path (the camera turns --spin degrees a frame), so load drift hits
+ * all alike; each frame is snell_render + snell_renderer_finish on the CPU
+ * clock. At --samples frames spread over the run every configuration's
+ * image is kept and measured against the FULL reference of that camera
+ * (glass pixels, pixel centres). The table: median, 95th percentile and
+ * worst frame, frames over 110% of the budget, mean glass PSNR; and the
+ * best fixed configuration whose 95th percentile meets the budget, beside
+ * AUTO. The rung table itself is printed first: the frontier AUTO chooses
+ * from. */
+#include "bench.h"
+#include "bench_ref.h"
+#include "cli_progress.h"
+#include "cli_time.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_CONFIGS 16
+#define MAX_SAMPLES 8
+
+typedef struct budget_opts {
+    const char *scene;
+    int size, frames, samples, threads, warmup, every;
+    float spin, budget_ms, budget_x; /* budget_x > 0: the budget is that many times single's median */
+    const char *cache;
+} budget_opts;
+
+typedef struct budget_config {
+    char name[64];
+    int rung;                       /* -1: AUTO with the budget */
+    snell_renderer *r;
+    snell_glass glass[SNELL_MAX_GLASS];
+    snell_frame_desc fd;
+    double *ms;
+    uint8_t *img[MAX_SAMPLES];
+    double psnr[MAX_SAMPLES];
+    char drawn[MAX_SAMPLES][160];   /* AUTO: what drew each object at the sample */
+    int changes, over, over_steady, first_use, n_ms; /* n_ms: frames drawn (fixed: every K-th) */
+    unsigned char *first; /* AUTO: frames that drew a configuration for the first time */
+} budget_config;
+
+static int parse(int argc, char **argv, budget_opts *o)
+{
+    int i;
+    memset(o, 0, sizeof *o);
+    o->scene = "bunny";
+    o->size = 256;
+    o->frames = 300;
+    o->samples = 4;
+    o->spin = 1.2f;
+    o->warmup = 3;
+    o->every = 5;
+    o->cache = "snell-bench-cache";
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { /* wherever it is (issue 28 item 5) */
+            printf("usage: snell-bench --budget MS|Nx [--scene S] [--size N] [--frames F] [--spin DEG] [--samples K]\n"
+                   "                   [--fixed-every K] [--threads T] [--cache DIR]\n"
+                   "AUTO by frame budget (snell_frame_desc.budget_ms) against every fixed configuration of its rung\n"
+                   "table, frame by frame on a moving camera. MS: the budget in ms; Nx: N times single's median frame\n"
+                   "(measured first). AUTO draws every frame, the fixed configurations every K-th (and at the\n"
+                   "samples). Defaults: --scene bunny --size 256 --frames 300 --spin 1.2 --samples 4 --fixed-every 5.\n");
+            return -1;
+        }
+    }
+    for (i = 1; i < argc; i++) {
+        static const char *const valued[] = {"--budget", "--scene",   "--size",    "--frames", "--samples",
+                                             "--fixed-every", "--threads", "--spin", "--cache"};
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        char *end = NULL;
+        size_t k;
+        for (k = 0; k < sizeof valued / sizeof *valued && strcmp(a, valued[k]); k++) {}
+        if (k == sizeof valued / sizeof *valued) {
+            fprintf(stderr, "snell-bench --budget: unknown option '%s'; see --budget --help\n", a);
+            return 0;
+        }
+        if (!v) {
+            fprintf(stderr, "snell-bench --budget: %s needs a value\n", a);
+            return 0;
+        }
+        if (!strcmp(a, "--budget")) {
+            double x = strtod(v, &end);
+            if (end && (*end == 'x' || *end == 'X') && end[1] == 0) o->budget_x = (float)x;
+            else if (end && *end == 0) o->budget_ms = (float)x;
+            if (!(x > 0.0) || !isfinite(x)) o->budget_ms = o->budget_x = 0.0f;
+        } else if (!strcmp(a, "--scene")) o->scene = v;
+        else if (!strcmp(a, "--size")) o->size = atoi(v);
+        else if (!strcmp(a, "--frames")) o->frames = atoi(v);
+        else if (!strcmp(a, "--samples")) o->samples = atoi(v);
+        else if (!strcmp(a, "--fixed-every")) o->every = atoi(v);
+        else if (!strcmp(a, "--threads")) o->threads = atoi(v);
+        else if (!strcmp(a, "--spin")) o->spin = (float)atof(v);
+        else if (!strcmp(a, "--cache")) o->cache = v;
+        else {
+            fprintf(stderr, "snell-bench --budget: unknown option %s\n", a);
+            return 0;
+        }
+        i++;
+    }
+    if (!(o->budget_ms > 0.0f) && !(o->budget_x > 0.0f)) {
+        fprintf(stderr, "snell-bench --budget: needs a budget in ms (e.g. 40) or times single's frame (e.g. 4x)\n");
+        return 0;
+    }
+    if (o->size < 16 || o->size > 2048 || o->frames < 10 || o->frames > 100000 || o->samples < 1 ||
+        o->samples > MAX_SAMPLES || o->every < 1 || o->every > o->frames) {
+        fprintf(stderr, "snell-bench --budget: --size 16..2048, --frames 10..100000, --samples 1..%d, "
+                        "--fixed-every 1..frames\n", MAX_SAMPLES);
+        return 0;
+    }
+    return 1;
+}
+
+static void print_table(void)
+{
+    int i, c;
+    printf("the rung table (snell_budget_rung_at): frame time x single / glass PSNR vs FULL per mesh class\n");
+    printf("  %-22s %18s %18s %18s %18s\n", "configuration", "convex", "cubemap-served", "deep concave",
+           "open");
+    for (i = 0; i < snell_budget_rung_count(); i++) {
+        const snell_budget_rung *g = snell_budget_rung_at(i);
+        char name[64];
+        if (g->param) snprintf(name, sizeof name, "%s %s=%d", snell_method_str(g->method), g->param, g->value);
+        else snprintf(name, sizeof name, "%s", snell_method_str(g->method));
+        printf("  %-22s", name);
+        for (c = 0; c < 4; c++) {
+            if (g->db[c] > 0.0f) printf("     %5.2fx %5.2f dB", (double)g->cost[c], (double)g->db[c]);
+            else printf("     %18s", "-");
+        }
+        printf("\n");
+    }
+}
+
+/* Configuration k's frame: the scene's objects with its material. */
+static void frame_of(const bench_scene *s, const snell_env *env, budget_config *k, const float cam[3])
+{
+    int i;
+    memset(&k->fd, 0, sizeof k->fd);
+    for (i = 0; i < s->glass_count; i++) {
+        k->glass[i] = s->glass[i];
+        if (!s->file) {
+            memset(&k->glass[i].material, 0, sizeof k->glass[i].material);
+            k->glass[i].material.ior = 1.5f;
+        }
+        if (k->rung >= 0) {
+            const snell_budget_rung *g = snell_budget_rung_at(k->rung);
+            k->glass[i].material.method = g->method;
+            if (g->param) {
+                char v[16];
+                snprintf(v, sizeof v, "%d", g->value);
+                snell_glass_set_param(&k->glass[i].material, g->method, g->param, v);
+            }
+        } else
+            k->glass[i].material.method = SNELL_METHOD_AUTO;
+    }
+    k->fd.env = env;
+    k->fd.glass = k->glass;
+    k->fd.glass_count = s->glass_count;
+    k->fd.opaque = s->opaque;
+    k->fd.opaque_count = s->opaque_count;
+    k->fd.camera = s->has_camera ? s->camera : (snell_camera){0};
+    if (!s->has_camera) {
+        k->fd.camera.azimuth = cam[0] * 3.14159265f / 180.0f;
+        k->fd.camera.elevation = cam[1] * 3.14159265f / 180.0f;
+        k->fd.camera.distance = cam[2];
+    }
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double percentile(const double *v, int n, double p)
+{
+    double *t = (double *)malloc(sizeof(double) * (size_t)n), r;
+    int i;
+    if (!t) return -1.0;
+    memcpy(t, v, sizeof(double) * (size_t)n);
+    qsort(t, (size_t)n, sizeof(double), cmp_double);
+    i = (int)ceil(p * n) - 1;
+    r = t[i < 0 ? 0 : i >= n ? n - 1 : i];
+    free(t);
+    return r;
+}
+
+/* One frame of k at frame index f (camera turned f * spin from the start); its ms. */
+static double frame(snell_ctx *ctx, budget_config *k, const budget_opts *o, float az0, int f, snell_frame_stats *st,
+                    int *ok)
+{
+    double t0;
+    k->fd.camera.azimuth = az0 + (float)f * o->spin * 3.14159265f / 180.0f;
+    t0 = cli_now_ms();
+    if (snell_render(k->r, &k->fd, st) != SNELL_OK) {
+        fprintf(stderr, "snell-bench --budget: %s: %s\n", k->name, snell_last_error(ctx));
+        *ok = 0;
+    }
+    snell_renderer_finish(k->r);
+    return cli_now_ms() - t0;
+}
+
+/* The glass PSNR of img against the FULL reference of k's frame at frame f. */
+static int measure(const budget_opts *o, const bench_scene *s, budget_config *ks, int n, int f, int j, float az0)
+{
+    snell_ref_desc scene;
+    snell_ref_params p;
+    bench_ref_image ref;
+    bench_class_error cls[BENCH_CLASS_COUNT];
+    uint8_t *mask = (uint8_t *)malloc((size_t)o->size * o->size);
+    snell_glass ref_glass[SNELL_MAX_GLASS];
+    int cached = 0, k, i;
+    cli_progress bar;
+    if (!mask) return 0;
+    /* the reference's materials: the scene's optics (AUTO's configuration carries no method parameters) */
+    memcpy(ref_glass, ks[0].glass, sizeof ref_glass);
+    for (i = 0; i < s->glass_count; i++) ref_glass[i].material.method = SNELL_METHOD_AUTO;
+    memset(&scene, 0, sizeof scene);
+    scene.glass = ref_glass;
+    scene.glass_count = s->glass_count;
+    scene.opaque = s->opaque;
+    scene.opaque_count = s->opaque_count;
+    memset(&p, 0, sizeof p);
+    p.mode = SNELL_REF_FULL;
+    p.max_interfaces = 10;
+    p.absorption_model = SNELL_REF_ABSORB_PATH;
+    p.env = ks[0].fd.env;
+    p.camera = ks[0].fd.camera;
+    p.camera.azimuth = az0 + (float)f * o->spin * 3.14159265f / 180.0f;
+    p.width = p.height = o->size;
+    p.threads = o->threads;
+    p.samples = 1;
+    if (cli_progress_wanted(0)) { /* a trace (not a cache hit) shows its progress on a terminal */
+        cli_progress_start(&bar, "reference FULL");
+        p.progress = cli_progress_report;
+        p.progress_user = &bar;
+    }
+    if (bench_ref_get(&scene, &p, "procedural", o->cache, &ref, &cached) != SNELL_OK) {
+        fprintf(stderr, "snell-bench --budget: FULL reference: %s\n", snell_last_error(NULL));
+        free(mask);
+        return 0;
+    }
+    for (k = 0; k < n; k++) {
+        ks[k].psnr[j] = -1.0;
+        if (bench_class_errors(ks[k].img[j], ref.rgba, ref.object, NULL, o->size, o->size, mask, cls) == SNELL_OK)
+            ks[k].psnr[j] = cls[BENCH_CLASS_GLASS].img.psnr_db;
+    }
+    bench_ref_free(&ref);
+    free(mask);
+    return 1;
+}
+
+int snell_bench_budget_main(int argc, char **argv)
+{
+    budget_opts o;
+    snell_ctx *ctx = NULL;
+    snell_env *env = NULL;
+    const bench_scene *s = NULL;
+    budget_config ks[MAX_CONFIGS];
+    int n = 0, i, f, k, ok = 1, rc = 0, sample_at[MAX_SAMPLES], best = -1;
+    float cam[3], az0;
+    char load0[64], load1[64];
+    size_t px;
+    int r = parse(argc, argv, &o);
+    if (r <= 0) return r < 0 ? 0 : 2;
+    memset(ks, 0, sizeof ks);
+    px = (size_t)o.size * o.size * 4;
+    if (snell_ctx_create(NULL, &ctx) != SNELL_OK) {
+        fprintf(stderr, "snell-bench --budget: cannot create a GL context: %s\n", snell_last_error(NULL));
+        return 1;
+    }
+    if (snell_env_create(ctx, &(snell_env_desc){0}, &env) != SNELL_OK || bench_scene_get(ctx, o.scene, &s) != SNELL_OK) {
+        fprintf(stderr, "snell-bench --budget: %s\n", snell_last_error(ctx));
+        rc = 1;
+        goto done;
+    }
+    print_table();
+    bench_scene_camera(o.scene, cam);
+    /* AUTO, then every rung the build has */
+    for (i = -1; i < snell_budget_rung_count() && n < MAX_CONFIGS; i++) {
+        budget_config *c = &ks[n];
+        c->rung = i;
+        if (i >= 0) {
+            const snell_budget_rung *g = snell_budget_rung_at(i);
+            if (g->param) snprintf(c->name, sizeof c->name, "%s %s=%d", snell_method_str(g->method), g->param, g->value);
+            else snprintf(c->name, sizeof c->name, "%s", snell_method_str(g->method));
+        } else
+            snprintf(c->name, sizeof c->name, "auto, budget");
+        frame_of(s, env, c, cam);
+        c->ms = (double *)calloc((size_t)o.frames, sizeof(double));
+        c->first = (unsigned char *)calloc((size_t)o.frames, 1);
+        for (k = 0; k < o.samples; k++) c->img[k] = (uint8_t *)malloc(px);
+        if (!c->ms || !c->first || snell_renderer_create(ctx, &(snell_renderer_desc){.width = o.size, .height = o.size}, &c->r) !=
+                          SNELL_OK) {
+            fprintf(stderr, "snell-bench --budget: %s\n", snell_last_error(ctx));
+            rc = 1;
+            n++;
+            goto done;
+        }
+        n++;
+    }
+    az0 = ks[0].fd.camera.azimuth;
+    /* warm-up (bakes, programs), and single's median for a budget given as Nx */
+    {
+        double single_ms[9];
+        int single = -1;
+        for (k = 1; k < n; k++)
+            if (snell_budget_rung_at(ks[k].rung)->method == SNELL_METHOD_SINGLE) single = k;
+        for (k = 1; k < n && ok; k++)
+            for (f = 0; f < o.warmup; f++) frame(ctx, &ks[k], &o, az0, 0, NULL, &ok);
+        for (f = 0; f < 9 && ok && single >= 0; f++) single_ms[f] = frame(ctx, &ks[single], &o, az0, 0, NULL, &ok);
+        if (o.budget_x > 0.0f) {
+            if (single < 0) {
+                fprintf(stderr, "snell-bench --budget: Nx needs the single method\n");
+                rc = 2;
+                goto done;
+            }
+            o.budget_ms = (float)(o.budget_x * cli_median(single_ms, 9));
+        }
+    }
+    ks[0].fd.budget_ms = o.budget_ms;
+    for (k = 0; k < o.samples; k++) sample_at[k] = (int)((long)o.frames * (k + 1) / (o.samples + 1));
+    cli_loadavg(load0, sizeof load0);
+    printf("scene %s, %dx%d, %d frames turning %.2f deg each, budget %.2f ms%s; load %s\n", o.scene, o.size, o.size,
+           o.frames, (double)o.spin, (double)o.budget_ms, o.budget_x > 0.0f ? " (Nx single's median)" : "", load0);
+    fflush(stdout);
+    for (f = 0; f < o.frames && ok; f++) {
+        int sample = 0, j;
+        for (j = 0; j < o.samples; j++) sample |= sample_at[j] == f;
+        for (i = 0; i < n && ok; i++) {
+            budget_config *c = &ks[(i + f) % n]; /* the order turns with the frames */
+            snell_frame_stats st;
+            if (c->rung >= 0 && f % o.every && !sample) continue;
+            c->ms[c->n_ms++] = frame(ctx, c, &o, az0, f, &st, &ok);
+            if (c->rung < 0) {
+                c->changes += st.budget_changed;
+                c->first[c->n_ms - 1] = (unsigned char)st.budget_first_use;
+                c->first_use += st.budget_first_use;
+            }
+            for (j = 0; j < o.samples; j++)
+                if (sample_at[j] == f) {
+                    snell_renderer_read_rgba(c->r, c->img[j]);
+                    if (c->rung < 0) {
+                        size_t used = 0;
+                        int g;
+                        c->drawn[j][0] = 0;
+                        for (g = 0; g < st.glass_count && used < sizeof c->drawn[j]; g++)
+                            used += (size_t)snprintf(c->drawn[j] + used, sizeof c->drawn[j] - used, "%s%s",
+                                                     g ? "; " : "", st.glass[g].reason + (strncmp(st.glass[g].reason,
+                                                     "auto by budget: ", 16) ? 0 : 16));
+                    }
+                }
+        }
+    }
+    cli_loadavg(load1, sizeof load1);
+    if (!ok) {
+        rc = 1;
+        goto done;
+    }
+    for (k = 0; k < o.samples; k++)
+        if (!measure(&o, s, ks, n, sample_at[k], k, az0)) {
+            rc = 1;
+            goto done;
+        }
+    printf("\n| configuration | median ms | p95 ms | worst ms | frames > 110%% budget | of them not first uses "
+           "| glass PSNR vs FULL [dB] |\n");
+    printf("|---|---:|---:|---:|---:|---:|---:|\n");
+    for (k = 0; k < n; k++) {
+        int m = ks[k].n_ms;
+        double q = 0.0, med = percentile(ks[k].ms, m, 0.5), p95 = percentile(ks[k].ms, m, 0.95);
+        double worst = percentile(ks[k].ms, m, 1.0);
+        for (f = 0; f < m; f++) {
+            ks[k].over += ks[k].ms[f] > 1.1 * o.budget_ms;
+            ks[k].over_steady += ks[k].ms[f] > 1.1 * o.budget_ms && !ks[k].first[f];
+        }
+        for (i = 0; i < o.samples; i++) q += ks[k].psnr[i] / o.samples;
+        printf("| %s | %.2f | %.2f | %.2f | %d of %d | %d | %.2f |\n", ks[k].name, med, p95, worst, ks[k].over, m,
+               ks[k].over_steady, q);
+        if (k > 0 && p95 <= o.budget_ms) {
+            double bq = 0.0;
+            if (best >= 0)
+                for (i = 0; i < o.samples; i++) bq += ks[best].psnr[i] / o.samples;
+            if (best < 0 || q > bq) best = k;
+        }
+    }
+    printf("\nAUTO: %d plan changes in %d frames, %d of them drawing a configuration for the first time (its programs "
+           "and bakes built in that frame); at the samples it drew:\n", ks[0].changes, o.frames, ks[0].first_use);
+    for (i = 0; i < o.samples; i++) printf("  frame %d: %s\n", sample_at[i], ks[0].drawn[i]);
+    {
+        double aq = 0.0, bq = 0.0;
+        for (i = 0; i < o.samples; i++) aq += ks[0].psnr[i] / o.samples;
+        if (best >= 0) {
+            for (i = 0; i < o.samples; i++) bq += ks[best].psnr[i] / o.samples;
+            printf("best fixed configuration within the budget (p95): %s, %.2f dB; AUTO %.2f dB (%+.2f dB)\n",
+                   ks[best].name, bq, aq, aq - bq);
+        } else
+            printf("no fixed configuration holds the budget at the 95th percentile; AUTO %.2f dB\n", aq);
+    }
+    printf("load %s before, %s after\n", load0, load1);
+done:
+    for (k = 0; k < n; k++) {
+        if (ks[k].r) snell_renderer_destroy(ks[k].r);
+        free(ks[k].ms);
+        free(ks[k].first);
+        for (i = 0; i < o.samples; i++) free(ks[k].img[i]);
+    }
+    bench_scene_release_all();
+    snell_env_destroy(env);
+    snell_ctx_destroy(ctx);
+    return rc;
+}

@@ -1,0 +1,396 @@
+/* budget.c — AUTO by frame budget: the rung table, each object's ladder,
+ * and the controller (see budget.h). */
+#include "render/budget.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* The rung table: what AUTO by budget chooses from. cost: frame time over
+ * single's; db: glass PSNR against FULL (area-averaged 2x2), per class: a
+ * convex mesh (the sphere), a closed concave one whose analysed centre the
+ * cubemap serves (AUTO's cubemap: the bunny), one it does not (the torus),
+ * and an open or non-manifold one (glmark2's horse), IOR 1.5, 256x256. A
+ * class is a proxy for the mesh: the bunny and the torus order oliveira and
+ * the cubemap the other way round, so they are two classes. Measured side by
+ * side in one run on llvmpipe, 2 CPUs, at load 7.8 -> 11.1 (three other
+ * builds beside it), 2026-12-03:
+ *   snell-bench -b single -b cubemap -b wyman -b oliveira -b layered -b peel:layers=2,4 \
+ *     -b exact:interfaces=2,8 --scenes sphere,torus,bunny,tests/data/real/horse.obj \
+ *     --sizes 256x256 --aa 2 --frames 7 --warmup 2 --threads 2
+ * On another device the costs move: the controller learns each rung's cost
+ * from the frames it draws; the table gives the order and the first guess. */
+static const snell__rung g_rungs[] = {
+    /* method, param, value, cost: convex bunny-like torus-like open, db: the same classes */
+    {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}},
+    {SNELL_METHOD_CUBEMAP, NULL, 0, {1.19f, 0.93f, 1.15f, 1.00f}, {34.95f, 17.09f, 15.50f, 15.98f}},
+    {SNELL_METHOD_WYMAN, NULL, 0, {1.48f, 1.19f, 1.20f, 2.08f}, {18.59f, 15.27f, 17.01f, 17.26f}},
+    {SNELL_METHOD_OLIVEIRA, NULL, 0, {2.17f, 1.34f, 1.46f, 1.70f}, {27.98f, 16.34f, 20.29f, 17.52f}},
+    {SNELL_METHOD_LAYERED, NULL, 0, {6.42f, 6.85f, 9.96f, 5.72f}, {40.68f, 17.99f, 23.66f, 16.49f}},
+    {SNELL_METHOD_PEEL, "layers", 2, {9.87f, 15.01f, 11.63f, 5.19f}, {40.32f, 21.88f, 22.70f, 20.71f}},
+    {SNELL_METHOD_PEEL, NULL, 0, {10.53f, 26.17f, 13.39f, 5.21f}, {40.32f, 22.48f, 26.42f, 21.66f}},
+    {SNELL_METHOD_EXACT, "interfaces", 2, {8.82f, 8.58f, 13.21f, 4.73f}, {32.30f, 18.17f, 20.65f, 18.80f}},
+    {SNELL_METHOD_EXACT, NULL, 0, {8.24f, 15.83f, 17.47f, 8.56f}, {32.31f, 24.95f, 24.48f, 22.71f}},
+};
+#define RUNG_COUNT ((int)(sizeof g_rungs / sizeof *g_rungs))
+
+/* The cost of a frame without glass, in units (single's frame drawing the
+ * target full of glass is 1 + BASE_UNITS): background, opaque objects. */
+#define BASE_UNITS 0.25
+#define HEADROOM 0.95    /* plans aim at this share of the budget */
+#define OVER 1.05        /* a measured frame above this share of it is over */
+#define HOLD_FRAMES 6    /* after a change, no step up for this many frames */
+#define BACKOFF_MIN 30u  /* frames a plan found over budget is barred, at first */
+#define BACKOFF_MAX 480u
+#define LEARN_RUNG 0.6   /* ... and in a rung's own, times its share of the frame */
+
+int snell_budget_rung_count(void) { return RUNG_COUNT; }
+
+const snell_budget_rung *snell_budget_rung_at(int i) { return i >= 0 && i < RUNG_COUNT ? &g_rungs[i] : NULL; }
+
+void snell__rung_name(const snell__rung *g, char *buf, size_t n)
+{
+    if (g->param)
+        snprintf(buf, n, "%s %s=%d", snell_method_str(g->method), g->param, g->value);
+    else
+        snprintf(buf, n, "%s", snell_method_str(g->method));
+}
+
+int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolved *glass)
+{
+    const snell__method *cube = snell__method_get(SNELL_METHOD_CUBEMAP);
+    char why[SNELL_REASON_SIZE];
+    if (!an || !an->closed) return 3;
+    if (an->convex) return 0;
+    return cube && cube->fit && cube->fit(an, glass, why, sizeof why) == SNELL__FIT_ADEQUATE ? 1 : 2;
+}
+
+void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resolved *glass, float quality_floor_db,
+                          int (*usable)(void *user, snell_method m), void *user, snell__budget_object *out)
+{
+    int i, j;
+    out->n = 0;
+    out->cls = snell__budget_class(an, glass);
+    out->floor = 0;
+    out->fixed_cost = 1.0f;
+    for (i = 0; i < RUNG_COUNT; i++) {
+        const snell__rung *g = &g_rungs[i];
+        const snell__method *m = snell__method_get(g->method);
+        char why[SNELL_REASON_SIZE];
+        if (!m || g->db[out->cls] <= 0.0f || !usable(user, g->method)) continue;
+        if (m->fit && m->fit(an, glass, why, sizeof why) == SNELL__FIT_FAILS) continue;
+        /* Pareto: drop every rung this one beats (cheaper or as cheap, and better or as good). */
+        for (j = 0; j < out->n;) {
+            const snell__rung *h = &g_rungs[out->ladder[j]];
+            if (g->cost[out->cls] <= h->cost[out->cls] && g->db[out->cls] >= h->db[out->cls]) {
+                memmove(&out->ladder[j], &out->ladder[j + 1], sizeof(int) * (size_t)(out->n - j - 1));
+                out->n--;
+            } else
+                j++;
+        }
+        for (j = 0; j < out->n; j++) {
+            const snell__rung *h = &g_rungs[out->ladder[j]];
+            if (h->cost[out->cls] <= g->cost[out->cls] && h->db[out->cls] >= g->db[out->cls]) break; /* beaten */
+        }
+        if (j < out->n) continue;
+        /* insert in cost order (the Pareto front is then in PSNR order too) */
+        for (j = out->n; j > 0 && g_rungs[out->ladder[j - 1]].cost[out->cls] > g->cost[out->cls]; j--) out->ladder[j] = out->ladder[j - 1];
+        out->ladder[j] = i;
+        out->n++;
+    }
+    if (quality_floor_db > 0.0f) {
+        out->floor = out->n > 0 ? out->n - 1 : 0; /* none reaches it: the best there is */
+        for (j = 0; j < out->n; j++)
+            if (g_rungs[out->ladder[j]].db[out->cls] >= quality_floor_db) {
+                out->floor = j;
+                break;
+            }
+    }
+}
+
+void snell__budget_reset(snell__budget *b)
+{
+    int i;
+    memset(b, 0, sizeof *b);
+    b->last_ms = -1.0;
+    b->backoff = BACKOFF_MIN;
+    for (i = 0; i < SNELL_MAX_GLASS; i++) b->plan[i] = b->last_plan_rung[i] = -1;
+}
+
+static double rung_cost(const snell__budget_object *o, int k)
+{
+    return o->n == 0 ? o->fixed_cost : g_rungs[o->ladder[k]].cost[o->cls];
+}
+
+static double rung_db(const snell__budget_object *o, int k) { return g_rungs[o->ladder[k]].db[o->cls]; }
+
+/* A plan in the table's units (what bars compare; device independent). */
+static double plan_units(const snell__budget_object *obj, int n, const int plan[])
+{
+    double u = BASE_UNITS;
+    int i;
+    for (i = 0; i < n; i++) u += obj[i].area * rung_cost(&obj[i], obj[i].n ? plan[i] : 0);
+    return u;
+}
+
+/* ms per unit of rung r of the table: learned on this device, else the learned rungs' mean, a little
+ * optimistic (OPTIMISM) so that a rung the table prices near the aim is tried once and then known,
+ * rather than never tried: one probe frame may run over, then it is measured. */
+#define OPTIMISM 0.9
+static double rung_k(const snell__budget *b, int r)
+{
+    return b->rung_ms[r] > 0.0 ? b->rung_ms[r] : OPTIMISM * b->ms_per_unit;
+}
+
+static double object_ms(const snell__budget *b, const snell__budget_object *o, int k)
+{
+    if (!o->n) return o->area * o->fixed_cost * b->ms_per_unit;
+    return o->area * g_rungs[o->ladder[k]].cost[o->cls] * rung_k(b, o->ladder[k]);
+}
+
+/* A plan's predicted ms on this device. */
+static double plan_ms(const snell__budget *b, const snell__budget_object *obj, int n, const int plan[])
+{
+    double ms = b->base_ms;
+    int i;
+    for (i = 0; i < n; i++) ms += object_ms(b, &obj[i], plan[i]);
+    return ms;
+}
+
+static double plan_quality(const snell__budget_object *obj, int n, const int plan[])
+{
+    double q = 0.0, a = 0.0;
+    int i;
+    for (i = 0; i < n; i++)
+        if (obj[i].n) {
+            q += obj[i].area * rung_db(&obj[i], plan[i]);
+            a += obj[i].area;
+        }
+    return a > 0.0 ? q / a : 0.0;
+}
+
+/* The prediction of a measured plan (rungs and units per object) with today's estimates. */
+static double measured_plan_ms(const snell__budget *b, const int rung[], const float units[], double fixed,
+                               double part[])
+{
+    double ms = b->base_ms + fixed * b->ms_per_unit;
+    int i, r;
+    for (i = 0; i < SNELL_MAX_GLASS; i++)
+        if ((r = rung[i]) >= 0) {
+            if (part) part[r] += units[i] * rung_k(b, r);
+            ms += units[i] * rung_k(b, r);
+        }
+    return ms;
+}
+
+static double clampd(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
+
+void snell__budget_observe(snell__budget *b, double ms)
+{
+    double pred, part[SNELL__BUDGET_MAX_RUNGS] = {0};
+    int i, r, changed = 0, learned = 0;
+    if (!(ms > 0.0) || !(b->last_units > 0.0)) return;
+    b->last_ms = ms;
+    if (b->first_use) {
+        b->prev_valid = 0; /* a first draw's builds (programs, bakes) say nothing of its cost */
+        return;
+    }
+    b->fresh = 1;
+    if (b->ms_per_unit <= 0.0) {
+        /* The first frame: no split is known; the table's base share, every rung drawn at the mean. */
+        b->ms_per_unit = ms / b->last_units;
+        b->base_ms = BASE_UNITS * b->ms_per_unit;
+        for (i = 0; i < SNELL_MAX_GLASS; i++)
+            if (b->last_plan_rung[i] >= 0) b->rung_ms[b->last_plan_rung[i]] = b->ms_per_unit;
+    } else {
+        pred = measured_plan_ms(b, b->last_plan_rung, b->last_area, b->last_fixed, part);
+        for (i = 0; i < SNELL_MAX_GLASS && b->prev_valid; i++) changed |= b->prev_rung[i] != b->last_plan_rung[i];
+        if (changed) {
+            /* A new plan beside the last one measured: the difference of the two frames is what the
+             * rungs new to this plan cost more than the prediction said (the base cancels). */
+            double prev_pred = measured_plan_ms(b, b->prev_rung, b->prev_area, b->prev_fixed, NULL);
+            double d = (ms - b->prev_ms) - (pred - prev_pred), fresh_part = 0.0;
+            unsigned char fresh[SNELL__BUDGET_MAX_RUNGS] = {0};
+            for (i = 0; i < SNELL_MAX_GLASS; i++)
+                if ((r = b->last_plan_rung[i]) >= 0 && r != b->prev_rung[i] && !fresh[r]) {
+                    fresh[r] = 1;
+                    fresh_part += part[r];
+                }
+            for (r = 0; r < RUNG_COUNT && fresh_part > 0.0; r++)
+                if (fresh[r]) {
+                    b->rung_ms[r] = rung_k(b, r) * clampd((fresh_part + d) / fresh_part, 0.25, 4.0);
+                    learned = 1;
+                }
+        }
+        if (!learned) {
+            /* The same plan again: the error goes to the base and each rung by its share of the prediction. */
+            double rho = ms / pred;
+            b->base_ms *= pow(rho, LEARN_RUNG * b->base_ms / pred);
+            for (r = 0; r < RUNG_COUNT; r++)
+                if (part[r] > 0.0) b->rung_ms[r] = rung_k(b, r) * pow(rho, LEARN_RUNG * part[r] / pred);
+        }
+        /* the mean that stands in for rungs not drawn yet */
+        {
+            double sum = 0.0;
+            int m = 0;
+            for (r = 0; r < RUNG_COUNT; r++)
+                if (b->rung_ms[r] > 0.0) sum += b->rung_ms[r], m++;
+            if (m) b->ms_per_unit = sum / m;
+        }
+    }
+    b->prev_valid = 1;
+    b->prev_ms = ms;
+    b->prev_fixed = b->last_fixed;
+    memcpy(b->prev_rung, b->last_plan_rung, sizeof b->prev_rung);
+    memcpy(b->prev_area, b->last_area, sizeof b->prev_area);
+}
+
+/* Greedy: from every object on its floor rung, the step up that buys the
+ * most area-weighted PSNR per ms, while the plan fits limit_ms and stays
+ * below the bar (in table units). */
+static void best_plan(const snell__budget *b, const snell__budget_object *obj, int n, double limit_ms, int plan[])
+{
+    int i;
+    double ms, units;
+    for (i = 0; i < n; i++) plan[i] = obj[i].n ? obj[i].floor : -1;
+    ms = plan_ms(b, obj, n, plan);
+    units = plan_units(obj, n, plan);
+    for (;;) {
+        int pick = -1;
+        double best = 0.0, dms_pick = 0.0, du_pick = 0.0;
+        for (i = 0; i < n; i++) {
+            double dms, du, dq, gain;
+            if (!obj[i].n || plan[i] + 1 >= obj[i].n) continue;
+            dms = object_ms(b, &obj[i], plan[i] + 1) - object_ms(b, &obj[i], plan[i]);
+            du = obj[i].area * (rung_cost(&obj[i], plan[i] + 1) - rung_cost(&obj[i], plan[i]));
+            dq = obj[i].area * (rung_db(&obj[i], plan[i] + 1) - rung_db(&obj[i], plan[i]));
+            if (ms + dms > limit_ms) continue;
+            if (b->blocked_until > b->frame && units + du >= b->blocked_units) continue;
+            gain = dq / (dms > 1e-9 ? dms : 1e-9);
+            if (gain > best) {
+                best = gain;
+                pick = i;
+                dms_pick = dms;
+                du_pick = du;
+            }
+        }
+        if (pick < 0) break;
+        plan[pick]++;
+        ms += dms_pick;
+        units += du_pick;
+    }
+}
+
+/* Every plan when there are few (the product of the ladders' lengths up to
+ * EXHAUSTIVE): the best quality that fits limit_ms and the bar, the cheaper
+ * of equals. Returns 0 (plan untouched) when there are too many. */
+#define EXHAUSTIVE 4096
+static int exhaustive_plan(const snell__budget *b, const snell__budget_object *obj, int n, double limit_ms, int plan[])
+{
+    int i, k[SNELL_MAX_GLASS], found = 0;
+    double combos = 1.0, best_q = -1.0, best_ms = 0.0;
+    for (i = 0; i < n; i++) {
+        k[i] = obj[i].n ? obj[i].floor : -1;
+        if (obj[i].n) combos *= (double)(obj[i].n - obj[i].floor);
+    }
+    if (combos > EXHAUSTIVE) return 0;
+    for (;;) {
+        double ms = plan_ms(b, obj, n, k), q = plan_quality(obj, n, k);
+        int fits = ms <= limit_ms && !(b->blocked_until > b->frame && plan_units(obj, n, k) >= b->blocked_units);
+        /* the first (floor) plan stands when nothing fits */
+        if (!found || (fits && (q > best_q + 1e-9 || (q > best_q - 1e-9 && ms < best_ms)))) {
+            memcpy(plan, k, sizeof(int) * (size_t)n);
+            best_q = fits ? q : -1.0;
+            best_ms = ms;
+            found = 1;
+        }
+        for (i = 0; i < n; i++) { /* the next plan, odometer order */
+            if (!obj[i].n) continue;
+            if (++k[i] < obj[i].n) break;
+            k[i] = obj[i].floor;
+        }
+        if (i == n) break;
+    }
+    return 1;
+}
+
+int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n, float budget_ms, int plan[],
+                       double *predicted_ms, char *why, size_t why_size)
+{
+    int i, changed = 0, same_objects = 1;
+    int cur[SNELL_MAX_GLASS];
+    int over = b->fresh && b->last_ms > OVER * budget_ms;
+    b->fresh = 0;
+    snell__why(why, why_size, "unchanged");
+    /* The current plan carried over (clamped to each ladder). */
+    for (i = 0; i < n; i++) {
+        cur[i] = obj[i].n ? b->plan[i] : -1;
+        if (obj[i].n && (cur[i] < obj[i].floor || cur[i] >= obj[i].n)) {
+            cur[i] = obj[i].floor;
+            same_objects = 0;
+        }
+    }
+    if (b->ms_per_unit <= 0.0) {
+        /* Nothing measured yet: start on the floor and measure it. */
+        for (i = 0; i < n; i++) plan[i] = obj[i].n ? obj[i].floor : -1;
+        snell__why(why, why_size, "nothing measured yet: every object on its lowest allowed rung, to measure it");
+        changed = b->frame == 0;
+        for (i = 0; i < n && !changed; i++) changed = plan[i] != cur[i];
+    } else {
+        double cur_ms = plan_ms(b, obj, n, cur), new_ms;
+        if (over) {
+            /* Measured over budget: bar plans as dear as this one, longer each time. */
+            b->blocked_units = b->last_units;
+            b->blocked_until = b->frame + b->backoff;
+            b->backoff = b->backoff * 2 > BACKOFF_MAX ? BACKOFF_MAX : b->backoff * 2;
+            b->within_since = b->frame + 1;
+        } else if (b->frame - b->within_since >= 2 * BACKOFF_MIN && b->backoff > BACKOFF_MIN) {
+            b->backoff /= 2; /* a long stretch within budget forgives */
+            b->within_since = b->frame;
+        }
+        if (!exhaustive_plan(b, obj, n, HEADROOM * budget_ms, plan)) best_plan(b, obj, n, HEADROOM * budget_ms, plan);
+        new_ms = plan_ms(b, obj, n, plan);
+        if (!over && same_objects && new_ms > cur_ms && b->frame < b->hold_until && cur_ms <= budget_ms) {
+            memcpy(plan, cur, sizeof(int) * (size_t)n); /* hold: the last change is still being measured */
+            snell__why(why, why_size, "holding for %u frames after a change", b->hold_until - b->frame);
+        } else if (!over && same_objects && new_ms > cur_ms &&
+                   plan_quality(obj, n, plan) <= plan_quality(obj, n, cur)) {
+            memcpy(plan, cur, sizeof(int) * (size_t)n); /* dearer and no better */
+        } else if (!over && same_objects && new_ms < cur_ms && cur_ms <= budget_ms) {
+            /* predicted within the budget though above the aim: kept (the band 95-100% is the hysteresis) */
+            memcpy(plan, cur, sizeof(int) * (size_t)n);
+            snell__why(why, why_size, "kept: %.2f ms predicted, within the budget's %.2f", cur_ms, (double)budget_ms);
+        }
+        for (i = 0; i < n && !changed; i++) changed = plan[i] != cur[i];
+        new_ms = plan_ms(b, obj, n, plan);
+        if (changed || over)
+            snell__why(why, why_size, "%s: last frame %.2f ms, this plan %.2f ms predicted%s",
+                       !changed ? "over budget, nothing cheaper allowed" : over ? "over budget, stepped down"
+                       : new_ms > cur_ms ? "stepped up" : "stepped down",
+                       b->last_ms, new_ms, b->blocked_until > b->frame ? " (plans as dear as one found over are barred)" : "");
+        else if (!strcmp(why, "unchanged"))
+            snell__why(why, why_size, "unchanged: last frame %.2f ms, this plan %.2f ms predicted", b->last_ms, new_ms);
+    }
+    if (changed) {
+        b->hold_until = b->frame + HOLD_FRAMES;
+        b->changes++;
+    }
+    for (i = 0; i < SNELL_MAX_GLASS; i++) {
+        b->plan[i] = i < n ? plan[i] : -1;
+        b->last_plan_rung[i] = i < n && obj[i].n ? obj[i].ladder[plan[i]] : -1;
+        b->last_area[i] = i < n && obj[i].n ? (float)(obj[i].area * rung_cost(&obj[i], plan[i])) : 0.0f;
+    }
+    b->first_use = 0;
+    for (i = 0; i < n; i++)
+        if (obj[i].n && !b->drawn[obj[i].ladder[plan[i]]]) {
+            b->first_use = 1;
+            b->drawn[obj[i].ladder[plan[i]]] = 1;
+        }
+    b->last_fixed = 0.0;
+    for (i = 0; i < n; i++)
+        if (!obj[i].n) b->last_fixed += obj[i].area * obj[i].fixed_cost;
+    b->last_units = plan_units(obj, n, plan);
+    *predicted_ms = b->ms_per_unit > 0.0 ? plan_ms(b, obj, n, plan) : -1.0;
+    b->frame++;
+    return changed;
+}

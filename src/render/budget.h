@@ -1,0 +1,94 @@
+/* budget.h — AUTO by frame budget (snell_frame_desc.budget_ms).
+ *
+ * Each AUTO glass object gets a ladder: the configurations of the rung
+ * table (budget.c: method + one parameter, with their cost relative to
+ * single and their glass PSNR against FULL per mesh class, measured by
+ * snell-bench on this project's reference device) that its mesh does not
+ * fail, cut to their Pareto front (dearer only where better). A plan puts
+ * every object on one rung of its ladder. Its cost in units is
+ * base + sum(area_i * cost_i), area_i the share of the target the object's
+ * projected bounding sphere covers; the controller learns the device's ms
+ * per unit from the frames it measures (a fence after each frame: the CPU
+ * clock from snell_render's start to the GPU's completion) and picks the
+ * plan of the highest area-weighted predicted PSNR that fits 95% of the
+ * budget. Against oscillation: a step up waits a few frames after any
+ * change; a plan found over budget is stepped down from at once and plans
+ * as dear are barred for a back-off that doubles with each failure.
+ *
+ * The controller (plan/observe) is plain C without GL so that it can be
+ * tested with synthetic frame times (tests/test_budget.c); the renderer
+ * adds the fence and applies the plan to the frame's resolved materials. */
+#ifndef SNELL_BUDGET_H
+#define SNELL_BUDGET_H
+
+#include "frame/method.h"
+
+#define SNELL__BUDGET_CLASSES 4 /* 0 convex, 1 closed concave the cubemap serves, 2 closed concave it does
+                                 * not, 3 open, non-manifold or unanalysed */
+#define SNELL__BUDGET_MAX_RUNGS 16
+
+/* One configuration of the table (public: snell_budget_rung). */
+typedef snell_budget_rung snell__rung;
+
+#define snell__rung_count snell_budget_rung_count
+#define snell__rung_at snell_budget_rung_at
+/* "peel layers=2" */
+void snell__rung_name(const snell__rung *g, char *buf, size_t n);
+/* The class of a mesh for the table (analysis may be NULL). */
+int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolved *glass);
+
+/* One object as the controller sees it. */
+typedef struct snell__budget_object {
+    int ladder[SNELL__BUDGET_MAX_RUNGS]; /* rung indices, cost and PSNR ascending */
+    int n;                          /* 0: not budgeted (explicit method, thin wall): fixed_cost counts */
+    int cls;
+    float area;                     /* 0..1 */
+    float fixed_cost;               /* for n == 0: its cost relative to single */
+    int floor;                      /* lowest ladder index the quality floor allows */
+} snell__budget_object;
+
+typedef struct snell__budget {
+    double ms_per_unit;             /* the mean of the learned rungs' ms per unit; 0 until the first frame */
+    double base_ms;                 /* learned: the frame's part that no rung changes (opaque objects,
+                                     * scene layers, background) */
+    double rung_ms[SNELL__BUDGET_MAX_RUNGS]; /* learned ms per unit of each rung of the table, 0 = not yet
+                                     * drawn (ms_per_unit stands in): the device's own cost table */
+    int last_plan_rung[SNELL_MAX_GLASS]; /* the measured plan's rung (table index) per object, -1 none */
+    float last_area[SNELL_MAX_GLASS];   /* its units: area times the rung's cost */
+    double last_fixed;              /* its units of fixed-cost objects (explicit methods, thin walls) */
+    int prev_valid;                 /* the measured frame before: its plan's rungs and units, its ms */
+    int prev_rung[SNELL_MAX_GLASS];
+    float prev_area[SNELL_MAX_GLASS];
+    double prev_ms, prev_fixed;
+    double last_ms;                 /* the last measured frame, -1 none */
+    double last_units;              /* the plan it drew, in units */
+    double blocked_units;           /* plans of at least this many units are barred ... */
+    unsigned blocked_until;         /* ... until this frame */
+    unsigned backoff;               /* frames the next bar lasts */
+    unsigned frame;                 /* frames planned */
+    unsigned hold_until;            /* no step up before this frame */
+    unsigned within_since;          /* frame since which the measured frames are within budget */
+    int fresh;                      /* 1: last_ms was measured since the last plan */
+    unsigned char drawn[SNELL__BUDGET_MAX_RUNGS]; /* rungs drawn before on this renderer */
+    int first_use;                  /* the last plan draws a rung for the first time: its frame builds
+                                     * programs and per-mesh resources, so it is neither learned from
+                                     * nor judged over budget */
+    int plan[SNELL_MAX_GLASS];      /* ladder index per object of the last plan, -1 none */
+    int changes;                    /* plan changes so far */
+} snell__budget;
+
+void snell__budget_reset(snell__budget *b);
+/* The frame last planned took ms (> 0) on the device. */
+void snell__budget_observe(snell__budget *b, double ms);
+/* Plans objects[0..n) for budget_ms; writes each object's ladder index into
+ * plan[] (-1 for n == 0 objects), the predicted ms (-1 when nothing was
+ * measured yet) and why, and returns 1 if the plan changed. */
+int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n, float budget_ms, int plan[],
+                       double *predicted_ms, char *why, size_t why_size);
+
+/* Renderer side (budget.c): the ladder of one object (fit per method of the
+ * table, methods that failed to build excluded by usable(id)). */
+void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resolved *glass, float quality_floor_db,
+                          int (*usable)(void *user, snell_method m), void *user, snell__budget_object *out);
+
+#endif

@@ -1,0 +1,132 @@
+/* budget_stage.c — the budget stage: measures the last frame (a fence),
+ * gives every AUTO glass object its ladder and the controller's rung
+ * (budget.c), and writes the rung into the object's resolved material so
+ * that the glass stage draws it as an explicit method. */
+#include "render/stages.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "mesh/mesh.h"
+#include "render/gbuffer.h"
+
+#include <string.h>
+
+static const char *const g_class_names[SNELL__BUDGET_CLASSES] = {
+    "convex", "closed concave (cubemap-served)", "closed concave (deep)", "open or non-manifold"};
+
+int snell__budget_wanted(const snell__frame *f) { return f->fd->budget_ms > 0.0f; }
+
+/* A method may be on a ladder if its GL state can be made here. */
+static int usable(void *user, snell_method id)
+{
+    void *state = NULL;
+    return snell__renderer_method_state(user, snell__method_get(id), &state) == SNELL_OK;
+}
+
+/* The last budget frame's time, once the GPU finished it (waits for it if
+ * it has not: a frame still running at the next one's start is over). */
+static void collect(snell_renderer *r)
+{
+    GLsync fence = (GLsync)r->budget_fence;
+    if (!fence) return;
+    if (r->budget_done_ms < 0.0) {
+        GLenum w = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull);
+        if (w == GL_ALREADY_SIGNALED || w == GL_CONDITION_SATISFIED) r->budget_done_ms = snell__now_ms();
+    }
+    if (r->budget_done_ms >= 0.0) snell__budget_observe(&r->budget, r->budget_done_ms - r->budget_start_ms);
+    glDeleteSync(fence);
+    r->budget_fence = NULL;
+}
+
+void snell__budget_gpu_done(snell_renderer *r)
+{
+    if (r->budget_fence && r->budget_done_ms < 0.0 &&
+        glClientWaitSync((GLsync)r->budget_fence, 0, 0) != GL_TIMEOUT_EXPIRED)
+        r->budget_done_ms = snell__now_ms();
+}
+
+void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, double start_ms)
+{
+    if (!(fd->budget_ms > 0.0f)) {
+        if (r->budget.frame) snell__budget_destroy(r); /* budget off: start afresh when it returns */
+        return;
+    }
+    if (r->budget_fence) glDeleteSync((GLsync)r->budget_fence);
+    r->budget_fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    r->budget_start_ms = start_ms;
+    r->budget_done_ms = -1.0;
+}
+
+void snell__budget_destroy(snell_renderer *r)
+{
+    if (r->budget_fence) glDeleteSync((GLsync)r->budget_fence);
+    r->budget_fence = NULL;
+    snell__budget_reset(&r->budget);
+}
+
+snell_status snell__budget_run(snell__frame *f)
+{
+    snell_renderer *r = f->r;
+    snell__scene *sc = f->sc;
+    snell_frame_stats *s = f->s;
+    int plan[SNELL_MAX_GLASS];
+    int i, drawn[SNELL_MAX_GLASS] = {0};
+    double predicted;
+    if (r->budget.frame == 0 && !r->budget_fence) snell__budget_reset(&r->budget);
+    collect(r);
+    for (i = 0; i < sc->drawn; i++) drawn[sc->order[i]] = 1;
+    for (i = 0; i < sc->count; i++) {
+        snell__object *o = &sc->obj[i];
+        snell__budget_object *b = &r->budget_obj[i];
+        const snell_glass_material *g = &o->glass->material;
+        memset(b, 0, sizeof *b);
+        if (!drawn[i]) continue; /* culled or passes through: costs nothing */
+        snell__object_project(&sc->view, o);
+        b->area = 0.785398f * (float)o->scissor[2] * (float)o->scissor[3] / ((float)r->width * (float)r->height);
+        if (b->area > 1.0f) b->area = 1.0f;
+        if (g->method == SNELL_METHOD_AUTO && g->thickness <= 0.0f) {
+            const snell_mesh_analysis *an = NULL;
+            if (snell__mesh_analysis(o->mesh, &an) != SNELL_OK) an = NULL;
+            snell__budget_ladder(an, o->glass, f->fd->quality_floor_db, usable, r, b);
+        }
+        if (b->n == 0) {
+            /* drawn as asked (or single for a thin wall): its table cost, else single's */
+            snell_method m = g->thickness > 0.0f || g->method == SNELL_METHOD_AUTO ? SNELL_METHOD_SINGLE : g->method;
+            const snell_mesh_analysis *an = NULL;
+            int k, cls;
+            if (snell__mesh_analysis(o->mesh, &an) != SNELL_OK) an = NULL;
+            cls = snell__budget_class(an, o->glass);
+            b->fixed_cost = 1.0f;
+            for (k = 0; k < snell__rung_count(); k++)
+                if (snell__rung_at(k)->method == m && !snell__rung_at(k)->param)
+                    b->fixed_cost = snell__rung_at(k)->cost[cls];
+        }
+    }
+    s->budget_changed = snell__budget_plan(&r->budget, r->budget_obj, sc->count, f->fd->budget_ms, plan, &predicted,
+                                           s->budget_reason, sizeof s->budget_reason);
+    s->budget_ms = f->fd->budget_ms;
+    s->budget_first_use = r->budget.first_use;
+    s->budget_measured_ms = r->budget.last_ms;
+    s->budget_predicted_ms = predicted;
+    for (i = 0; i < sc->count; i++) {
+        const snell__budget_object *b = &r->budget_obj[i];
+        snell__object *o = &sc->obj[i];
+        const snell__rung *g;
+        char name[40];
+        if (!b->n || plan[i] < 0) continue;
+        g = snell__rung_at(b->ladder[plan[i]]);
+        /* The frame's resolved copy of the material (scene.c): the rung draws it as an explicit method. */
+        {
+            snell_glass_material *m = &sc->glass[i].material;
+            char value[16];
+            snprintf(value, sizeof value, "%d", g->value);
+            m->method = g->method;
+            if (g->param && snell_glass_set_param(m, g->method, g->param, value) != SNELL_OK)
+                return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "budget: rung %s=%d refused", g->param, g->value);
+        }
+        snell__rung_name(g, name, sizeof name);
+        snprintf(r->budget_note[i], sizeof r->budget_note[i], "%s (rung %d of %d, %.1f dB predicted for a %s mesh)",
+                 name, plan[i] + 1, b->n, (double)g->db[b->cls], g_class_names[b->cls]);
+        o->budget_note = r->budget_note[i];
+    }
+    return SNELL_OK;
+}

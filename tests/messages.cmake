@@ -1,0 +1,90 @@
+# What a user reads (issue 28 items 5-8): one message per error with the offending value and
+# the reason, --help wherever it is given; snell-bench's progress lines agreeing with its table
+# and JSON; the reference's progress only on a terminal; the README's counts and package list.
+set(one_error ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_one_error.cmake)
+if(TARGET snell-render)
+  set(cli $<TARGET_FILE:snell-render>)
+  set(o ${CMAKE_CURRENT_BINARY_DIR}/msg.png)
+  # NAME CODE ERR ARGS (ARGS separated by |); without a GL context: label cli only
+  set(msg_cases
+    "msg_render_unknown|2|^snell-render: unknown option '--bogus'. see --help$|--bogus|1"
+    "msg_render_no_value|2|^snell-render: --size needs a value. see --help$|--mesh|sphere|--size"
+    "msg_render_param_no_value|2|^snell-render: --iterations needs a value. see --help$|--iterations"
+    "msg_render_bad_value|2|^snell-render: --size wants WxH within 1..16384, got '0x5'$|--size|0x5")
+  set(msg_gl_cases
+    "msg_render_missing_mesh|1|^snell-render: mesh: cannot open '/nonexistent/u28.obj': No such file or directory$|--mesh|/nonexistent/u28.obj|--size|8x8|-o|${o}"
+    "msg_render_missing_env|1|^snell-render: environment: cannot open image \"/nonexistent/u28.png\": No such file or directory$|--env|/nonexistent/u28.png|--size|8x8|-o|${o}"
+    "msg_render_missing_scene|1|^snell-render: scene: cannot open '/nonexistent/u28.gltf': No such file or directory$|--scene|/nonexistent/u28.gltf|--size|8x8|-o|${o}"
+    "msg_render_unwritable_png|1|^snell-render: cannot write PNG \"/nonexistent/u28/x.png\": No such file or directory$|--size|8x8|-o|/nonexistent/u28/x.png")
+  foreach(gl 0 1)
+    if(gl)
+      set(cases ${msg_gl_cases})
+      set(labels "cli;gl")
+    else()
+      set(cases ${msg_cases})
+      set(labels "cli")
+    endif()
+    foreach(case IN LISTS cases)
+      string(REPLACE "|" ";" f "${case}")
+      list(POP_FRONT f name code err)
+      string(REPLACE ";" "|" args "${f}")
+      add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=${args}" -DCODE=${code} "-DERR=${err}"
+               -P ${one_error})
+      set_tests_properties(${name} PROPERTIES LABELS "${labels}")
+    endforeach()
+  endforeach()
+  add_test(NAME msg_render_help_anywhere COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--size|--help" -DCODE=0
+           -DERR= "-DOUT=^usage: snell-render" -P ${one_error})
+  add_test(NAME msg_render_water_help COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--water|--frames|--help" -DCODE=0
+           -DERR= "-DOUT=^usage: snell-render --water" -P ${one_error})
+  set_tests_properties(msg_render_help_anywhere msg_render_water_help PROPERTIES LABELS "cli")
+endif()
+if(TARGET snell-bench)
+  set(bench $<TARGET_FILE:snell-bench>)
+  add_test(NAME msg_bench_unknown COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--bogus|3" -DCODE=2
+           "-DERR=^snell-bench: unknown option '--bogus'. see --help$" -P ${one_error})
+  add_test(NAME msg_bench_no_value COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=-b|single|--frames" -DCODE=2
+           "-DERR=^snell-bench: --frames needs a value. see --help$" -P ${one_error})
+  add_test(NAME msg_bench_bad_value COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--plot-y|nope" -DCODE=2
+           "-DERR=^snell-bench: --plot-y wants full-mean\\|full-p99\\|full-rmse\\|matched-mean, got 'nope'$" -P ${one_error})
+  add_test(NAME msg_bench_water_help COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--water|--help" -DCODE=0 -DERR=
+           "-DOUT=^usage: snell-bench --water" -P ${one_error})
+  add_test(NAME msg_bench_help_after_value COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--frames|3|--help" -DCODE=0
+           -DERR= "-DOUT=^usage: snell-bench" -P ${one_error})
+  add_test(NAME msg_bench_env_help COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--env-lookup|--size|--help" -DCODE=0
+           -DERR= "-DOUT=^usage: snell-bench --env-lookup" -P ${one_error})
+  add_test(NAME msg_bench_2d_help COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--2d|--rays|--help" -DCODE=0
+           -DERR= "-DOUT=^usage: snell-bench --2d" -P ${one_error})
+  add_test(NAME msg_bench_budget_help COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--budget|--help" -DCODE=0
+           -DERR= "-DOUT=^usage: snell-bench --budget" -P ${one_error})
+  add_test(NAME msg_bench_budget_unknown COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--budget|4x|--bogus" -DCODE=2
+           "-DERR=^snell-bench --budget: unknown option '--bogus'. see --budget --help$" -P ${one_error})
+  add_test(NAME msg_bench_water_unknown COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--water|--grid|x" -DCODE=2
+           "-DERR=^snell-bench --water: --grid wants a positive integer, got 'x'$" -P ${one_error})
+  set_tests_properties(msg_bench_unknown msg_bench_no_value msg_bench_bad_value msg_bench_water_help
+                       msg_bench_help_after_value msg_bench_env_help msg_bench_2d_help msg_bench_water_unknown
+                       msg_bench_budget_help msg_bench_budget_unknown
+                       PROPERTIES LABELS "cli")
+  # Progress lines, table and JSON of one small run say the same (item 6).
+  add_test(NAME bench_consistency COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}"
+           "-DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/bench_consistency" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_bench_consistency.cmake)
+  set_tests_properties(bench_consistency PROPERTIES LABELS "cli;gl" TIMEOUT 300)
+endif()
+if(TARGET snell-kiosk)
+  set(kiosk $<TARGET_FILE:snell-kiosk>)
+  add_test(NAME msg_kiosk_unknown COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=--bogus" -DCODE=2
+           "-DERR=^snell-kiosk: unknown option '--bogus'. see --help$" -P ${one_error})
+  add_test(NAME msg_kiosk_no_value COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=--bench|--frames" -DCODE=2
+           "-DERR=^snell-kiosk: --frames needs a value. see --help$" -P ${one_error})
+  add_test(NAME msg_kiosk_help_anywhere COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=--json|--help" -DCODE=0
+           -DERR= "-DOUT=^usage: snell-kiosk" -P ${one_error})
+  set_tests_properties(msg_kiosk_unknown msg_kiosk_no_value msg_kiosk_help_anywhere PROPERTIES LABELS "cli")
+endif()
+# The README's test counts and package list (item 8): only where its counts are this build's,
+# a native build with every component.
+if(NOT SNELL_COMPONENTS_OFF AND NOT CMAKE_CROSSCOMPILING)
+  add_test(NAME readme_true COMMAND ${CMAKE_COMMAND} "-DREADME=${PROJECT_SOURCE_DIR}/README.md"
+           "-DQUICKSTART=${PROJECT_SOURCE_DIR}/scripts/quickstart.sh" "-DCTEST=${CMAKE_CTEST_COMMAND}"
+           "-DBUILD_DIR=${PROJECT_BINARY_DIR}" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_readme.cmake)
+  set_tests_properties(readme_true PROPERTIES LABELS "docs")
+endif()

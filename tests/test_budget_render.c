@@ -1,0 +1,160 @@
+/* test_budget_render.c — AUTO by frame budget in real frames (issue 25
+ * item 3; render/budget_stage.c): the stage runs only with a budget and
+ * says what it did; with a budget no frame can miss it climbs its ladder to
+ * the top rung, with one no frame can meet it stays on the lowest (or on the
+ * quality floor's rung); the rung drawn is exactly the explicit method (the
+ * same pixels); bad budgets are refused. Times are not asserted here (a
+ * shared machine): snell-bench --budget measures them (bench/BENCHMARKS.md). */
+#include "test_util.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define W 96
+#define H 96
+
+static snell_mesh *torus(snell_ctx *ctx)
+{
+    snell_shape_desc sd;
+    snell_mesh *mesh = NULL;
+    memset(&sd, 0, sizeof sd);
+    sd.shape = SNELL_SHAPE_TORUS;
+    CHECK_OK(snell_mesh_create_shape(ctx, &sd, &mesh));
+    if (mesh) CHECK_OK(snell_mesh_normalize(mesh, 1.0f));
+    return mesh;
+}
+
+static snell_frame_desc frame_of(const snell_env *env, const snell_glass *g)
+{
+    snell_frame_desc f;
+    memset(&f, 0, sizeof f);
+    f.env = env;
+    f.glass = g;
+    f.glass_count = 1;
+    f.camera.distance = 3.5f;
+    f.camera.azimuth = 0.5f;
+    f.camera.elevation = 0.35f;
+    return f;
+}
+
+/* Frames with the budget until the plan has held for 10 frames; the last frame's stats and image. */
+static void settle(snell_renderer *r, snell_frame_desc *f, snell_frame_stats *st, uint8_t *px)
+{
+    int k, still = 0;
+    for (k = 0; k < 60 && still < 10; k++) {
+        CHECK_OK(snell_render(r, f, st));
+        snell_renderer_finish(r);
+        still = st->budget_changed ? 0 : still + 1;
+    }
+    CHECK(still >= 10, "the plan did not settle in 60 frames (last: %s)", st->budget_reason);
+    CHECK_OK(snell_renderer_read_rgba(r, px));
+}
+
+int main(void)
+{
+    snell_ctx *ctx = NULL;
+    snell_env *env = NULL;
+    snell_renderer *r = NULL, *plain = NULL;
+    snell_mesh *mesh;
+    snell_glass g;
+    snell_frame_desc f;
+    snell_frame_stats st;
+    uint8_t *a = (uint8_t *)malloc(W * H * 4), *b = (uint8_t *)malloc(W * H * 4);
+    snell_renderer_desc rd;
+    snell_status s;
+
+    if (snell_ctx_create(NULL, &ctx) != SNELL_OK) SKIP("no EGL/GLES 3.0 context: %s", snell_last_error(NULL));
+    CHECK_OK(snell_env_create(ctx, &(snell_env_desc){0}, &env));
+    memset(&rd, 0, sizeof rd);
+    rd.width = W;
+    rd.height = H;
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    CHECK_OK(snell_renderer_create(ctx, &rd, &plain));
+    mesh = torus(ctx);
+    if (!r || !plain || !mesh || !a || !b) return test_finish();
+    memset(&g, 0, sizeof g);
+    g.mesh = mesh;
+    g.material.ior = 1.5f;
+    f = frame_of(env, &g);
+
+    /* No budget: no stage, no budget stats. */
+    CHECK_OK(snell_render(r, &f, &st));
+    CHECK(!strstr(st.stages, "budget") && st.budget_ms == 0.0f && !st.budget_reason[0], "no budget: stages \"%s\"",
+          st.stages);
+
+    /* A budget no frame misses: the top of the torus's ladder (a closed concave mesh the cubemap does not
+     * serve: peel). */
+    f.budget_ms = 1e5f;
+    settle(r, &f, &st, a);
+    CHECK(!strncmp(st.stages, "budget ", 7), "stages \"%s\"", st.stages);
+    CHECK(st.budget_ms == 1e5f && st.budget_measured_ms > 0.0 && st.budget_predicted_ms > 0.0,
+          "budget stats: %g / %g / %g", (double)st.budget_ms, st.budget_measured_ms, st.budget_predicted_ms);
+    CHECK(st.glass[0].method_used == SNELL_METHOD_PEEL, "top rung drawn by %s (%s)",
+          snell_method_str(st.glass[0].method_used), st.glass[0].reason);
+    CHECK(!strncmp(st.glass[0].reason, "auto by budget: peel (rung ", 27), "reason \"%s\"", st.glass[0].reason);
+    printf("huge budget: %s; %s\n", st.glass[0].reason, st.budget_reason);
+    /* ... drawn exactly as the explicit method draws it */
+    {
+        snell_glass e = g;
+        snell_frame_desc fe = frame_of(env, &e);
+        e.material.method = SNELL_METHOD_PEEL;
+        CHECK_OK(snell_render(plain, &fe, NULL));
+        CHECK_OK(snell_renderer_read_rgba(plain, b));
+        CHECK(!memcmp(a, b, W * H * 4), "the budget's peel differs from explicit peel");
+    }
+
+    /* A budget no frame meets: the lowest rung, single, drawn as single draws. */
+    f.budget_ms = 1e-3f;
+    settle(r, &f, &st, a);
+    CHECK(st.glass[0].method_used == SNELL_METHOD_SINGLE, "tiny budget drawn by %s (%s)",
+          snell_method_str(st.glass[0].method_used), st.glass[0].reason);
+    CHECK(st.budget_measured_ms > 1e-3, "measured %g ms", st.budget_measured_ms);
+    printf("tiny budget: %s; %s\n", st.glass[0].reason, st.budget_reason);
+    {
+        snell_glass e = g;
+        snell_frame_desc fe = frame_of(env, &e);
+        e.material.method = SNELL_METHOD_SINGLE;
+        CHECK_OK(snell_render(plain, &fe, NULL));
+        CHECK_OK(snell_renderer_read_rgba(plain, b));
+        CHECK(!memcmp(a, b, W * H * 4), "the budget's single differs from explicit single");
+    }
+
+    /* The quality floor wins over the budget: the first rung of the torus's ladder predicted at 24 dB or
+     * more, peel. */
+    f.quality_floor_db = 24.0f;
+    settle(r, &f, &st, a);
+    CHECK(st.glass[0].method_used == SNELL_METHOD_PEEL && strstr(st.glass[0].reason, "peel (rung"),
+          "floor 24 dB drawn by %s (%s)", snell_method_str(st.glass[0].method_used), st.glass[0].reason);
+    f.quality_floor_db = 0.0f;
+
+    /* Off again: plain AUTO (cubemap for the torus), the same pixels as a renderer that never had a budget. */
+    f.budget_ms = 0.0f;
+    CHECK_OK(snell_render(r, &f, &st));
+    CHECK_OK(snell_renderer_read_rgba(r, a));
+    CHECK_OK(snell_render(plain, &f, NULL));
+    CHECK_OK(snell_renderer_read_rgba(plain, b));
+    CHECK(!memcmp(a, b, W * H * 4) && !strstr(st.stages, "budget"), "budget off: not plain AUTO's frame");
+
+    /* Refusals. */
+    f.budget_ms = NAN;
+    s = snell_render(r, &f, NULL);
+    CHECK(s == SNELL_E_INVALID_ARG && strstr(snell_last_error(ctx), "budget_ms"), "NaN budget: %s",
+          snell_last_error(ctx));
+    f.budget_ms = -5.0f;
+    CHECK(snell_render(r, &f, NULL) == SNELL_E_INVALID_ARG, "negative budget accepted");
+    f.budget_ms = 30.0f;
+    f.quality_floor_db = 150.0f;
+    s = snell_render(r, &f, NULL);
+    CHECK(s == SNELL_E_INVALID_ARG && strstr(snell_last_error(ctx), "quality_floor_db"), "floor 150: %s",
+          snell_last_error(ctx));
+
+    snell_renderer_destroy(r);
+    snell_renderer_destroy(plain);
+    snell_mesh_destroy(mesh);
+    snell_env_destroy(env);
+    snell_ctx_destroy(ctx);
+    free(a);
+    free(b);
+    return test_finish();
+}
