@@ -365,7 +365,8 @@ static int takes_value(const char *a)
                                         "--camera", "--fov", "--backend", "--shading", "--env-lookup", "--ssaa",
                                         "--msaa", "--scene-layers", "--frames", "--trace-pixel", "-o", "--ior",
                                         "--absorption", "--attenuation", "--tint", "--thickness", "--dispersion",
-                                        "--abbe", "--dispersion-model", "--method", "--param"};
+                                        "--abbe", "--dispersion-model", "--method", "--param", "--light",
+                                        "--photons", "--floor", "--floor-map"};
     size_t k;
     int at = 0;
     for (k = 0; k < sizeof names / sizeof *names; k++)
