@@ -844,6 +844,11 @@ static void scene_frame(host_scene *s, const snell_env *env, snell_frame_desc *f
     fd->camera.elevation = 0.3f;
     fd->camera.distance = 3.2f;
     fd->dynamic_env_size = 16;
+    /* caustics: its shadow map, glass maps, photons and light map under the host's state */
+    fd->light.type = SNELL_LIGHT_DIRECTIONAL;
+    fd->light.direction[0] = 0.3f, fd->light.direction[1] = -1.0f, fd->light.direction[2] = 0.2f;
+    fd->light.photons = 32;
+    fd->receiver.height = -0.9f, fd->receiver.extent = 2.5f, fd->receiver.map_size = 64;
 }
 
 /* A frame with a new renderer (so bakes, dynamic environments, G-buffers and
@@ -874,6 +879,8 @@ static int host_render(snell_ctx *ctx, host_scene *s, snell_env *env, snell_shad
         scene_frame(s, env, &fd);
         st = snell_render(r, &fd, &fs);
         CHECK(st != SNELL_OK || (fs.water_drawn && fs.water_layers), "the host scene's water drawn, marching the layers");
+        CHECK(st != SNELL_OK || fs.caustics_photons == 2 * 32 * 32, "the host scene's caustics made: %s",
+              fs.caustics_reason);
     }
     if (st == SNELL_OK) st = snell_renderer_read_rgba(r, px);
     if (st != SNELL_OK) printf("  %s %s\n", snell_status_str(st), snell_last_error(ctx));

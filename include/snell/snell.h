@@ -879,6 +879,38 @@ typedef struct snell_opaque {
     float color[3];                 /* diffuse albedo 0..1; all zero = 0.8 grey */
 } snell_opaque;
 
+/* A light for the caustics stage (snell_frame_desc.light): zero = none. */
+typedef enum snell_light_type {
+    SNELL_LIGHT_NONE = 0,
+    SNELL_LIGHT_DIRECTIONAL,        /* parallel light travelling along direction (a sun) */
+    SNELL_LIGHT_SPOT                /* a point light at position shining along direction within spot_angle */
+} snell_light_type;
+
+typedef struct snell_light {
+    snell_light_type type;
+    float direction[3];             /* world direction the light travels (need not be unit; not zero) */
+    float position[3];              /* SPOT: world position */
+    /* Linear rgb. DIRECTIONAL: the irradiance on a surface facing the light;
+     * SPOT: the intensity (irradiance at distance 1 facing it). All zero = 1. */
+    float color[3];
+    float spot_angle;               /* SPOT: half angle of its cone, radians (0..1.5); 0 = 0.5 */
+    int photons;                    /* photons per glass object: a photons x photons grid over its bounding
+                                     * sphere seen from the light; 0 = 256, 16..1024 */
+} snell_light;
+
+/* A receiver plane y = height for the caustics stage (snell_frame_desc.receiver):
+ * the square |x - center[0]|, |z - center[1]| <= extent, lit from above by
+ * the light (direct light where nothing casts a shadow, plus the light that
+ * passed through the glass: caustics and coloured shadows), diffuse:
+ * colour = albedo * irradiance (in units of the light's colour). extent 0 = none. */
+typedef struct snell_receiver {
+    float height;                   /* y of the plane, world */
+    float center[2];                /* x, z of the square's centre */
+    float extent;                   /* half its side, world units; 0 = no receiver */
+    float albedo[3];                /* 0..1; all zero = 0.8 grey */
+    int map_size;                   /* texels per side of its light map; 0 = 256, 16..2048 */
+} snell_receiver;
+
 #define SNELL_MAX_GLASS 32
 #define SNELL_MAX_OPAQUE 64
 
@@ -954,6 +986,17 @@ typedef struct snell_frame_desc {
      * reaches this many dB (its best rung if none does), whatever the
      * budget; 0 = none. 0..100. */
     float quality_floor_db;
+    /* Caustics and shadows of glass (the caustics stage): with a light and a
+     * receiver, light from `light` refracted through every glass object
+     * (Schlick Fresnel at entry and exit, tint, Beer-Lambert) is splatted
+     * onto the receiver plane, which is drawn lit by it and by the direct
+     * light where no object (glass or opaque) shadows it. Zero = none: the
+     * frame is drawn as without them. Limits: one refraction in and one out
+     * per object (a convex solid; TIR inside drops the photon), light
+     * through two glass objects is not followed, glass does not see the
+     * receiver. */
+    snell_light light;
+    snell_receiver receiver;
 } snell_frame_desc;
 
 #define SNELL_MAX_SCENE_LAYERS 8
@@ -1010,8 +1053,8 @@ int snell_object_counter(const snell_object_stats *st, const char *name);
 typedef struct snell_frame_stats {
     int passes;                     /* GL draw passes issued in all */
     double cpu_ms;                  /* CPU time spent issuing the frame */
-    char stages[SNELL_REASON_SIZE]; /* the frame's stages that ran, in frame order, by name ("opaque glass
-                                     * layers water back_faces gbuffer kernels background ssaa msaa");
+    char stages[SNELL_REASON_SIZE]; /* the frame's stages that ran, in frame order, by name ("opaque caustics
+                                     * glass layers water back_faces gbuffer kernels background ssaa msaa");
                                      * one a frame does not need is left out (the fields below say why) */
     int glass_count;                /* entries of glass[] filled, = the frame's glass_count */
     snell_object_stats glass[SNELL_MAX_GLASS]; /* in the order of the frame's glass list */
@@ -1043,6 +1086,9 @@ typedef struct snell_frame_stats {
                                      * the frame may build its programs and per-mesh resources (a bake), so
                                      * its time is neither learned from nor judged over the budget */
     char budget_reason[SNELL_REASON_SIZE]; /* what the controller did and why */
+    int caustics_photons;           /* photons splatted onto the receiver this frame (0: none or reused) */
+    int caustics_reused;            /* 1: the last frame's light map (light, glass and receiver still) */
+    char caustics_reason[SNELL_REASON_SIZE]; /* why the caustics stage ran or did not */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

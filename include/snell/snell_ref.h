@@ -249,6 +249,29 @@ void snell_ref_rgb_to_rgba8(const float *rgb, int width, int height, uint8_t *rg
 snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects, const snell_ref_params *params,
                                     const snell_ref_output *out);
 
+/* ------------------------------------------- light on a receiver (issue 27) */
+/* The receiver plane's irradiance as the caustics stage
+ * (snell_frame_desc.light / .receiver) defines it, traced in double
+ * precision from the light: size x size texels (receiver->map_size, 0 =
+ * 256), row 0 at z = center[1] - extent, x growing along a row, 3 floats
+ * each, in units of the light's colour. Direct light: the mean over
+ * samples x samples points of the texel of the light's irradiance there
+ * (directional: colour * max(0, -dir.y); spot: colour * cosine / distance^2
+ * inside its cone) where a ray towards the light (up to it) meets no
+ * object (glass or opaque). Through glass: per glass object a photons x
+ * photons grid of rays (cell centres) over its bounding sphere (directional:
+ * parallel rays, each the flux through its cell; spot: a square of
+ * directions from the light on the plane at distance 1, each the flux of its
+ * solid angle cell^2 cos^3, none outside the cone nor from a light inside
+ * the sphere) that meets it first, refracted in (Schlick, Snell) and out at its next surface
+ * (Schlick; TIR drops it), tint and Beer-Lambert over the chord, carrying
+ * the light's flux through its cell, then, unless an object stops it, its
+ * flux shared by the texel centres within 2 texels of where it meets the
+ * plane with tent weights (1 - |dx|/2)(1 - |dz|/2)/4 (the stage's splat). caustic (optional, 3 floats a texel) receives
+ * that part alone. photons 1..4096, samples 1..16. */
+snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *light, const snell_receiver *receiver,
+                                       int photons, int samples, float *rgb, float *caustic);
+
 /* ---------------------------------------------------- light path (Unger 4.2.2) */
 typedef enum snell_ref_event {
     SNELL_REF_EVENT_EYE = 0,   /* points[0]: the ray origin (camera) */

@@ -74,6 +74,13 @@ void render_usage(FILE *f)
             "  --scene-layers L       glass through glass and opaque objects through glass: auto (default: on\n"
             "                         with 2+ glass or glass + opaque objects), off (each glass sees only the\n"
             "                         environment, or its dynamic one), or 2..%d, the most layers peeled\n"
+            "  --light dir:X,Y,Z[,I]  a directional light travelling along X,Y,Z of irradiance I (default 1):\n"
+            "                         with --floor, caustics and shadows of the glass on the floor\n"
+            "  --light spot:PX,PY,PZ,X,Y,Z,A[,I]  a spot light at P shining along X,Y,Z within A radians of\n"
+            "                         it, intensity I (irradiance at distance 1; default 1)\n"
+            "  --floor Y[,EXTENT]     a receiver plane y = Y, the square |x|,|z| <= EXTENT (default 4)\n"
+            "  --photons N            photons per glass object: N x N (16..1024, default 256)\n"
+            "  --floor-map N          the floor's light map, N x N texels (16..2048, default 256)\n"
             "  --stats                print the last frame's statistics: per glass object the method used\n"
             "                         and why, warnings, passes, what was skipped\n"
             "  -v, --verbose          the statistics on stderr, and the library's info messages\n"
@@ -301,6 +308,32 @@ static int view_option(const char *a, const char *v, render_options *o)
             return usage_error("%s wants X,Y (integers, at most 16 pixels), got '%s'", a, v);
         o->trace_xy[2 * o->trace_count] = (int)xy[0];
         o->trace_xy[2 * o->trace_count++ + 1] = (int)xy[1];
+    } else if (!strcmp(a, "--light")) {
+        float l[8] = {0, 0, 0, 1, 0, 0, 0, 1};
+        int spot = !strncmp(v, "spot:", 5);
+        if (spot ? (!parse_floats(v + 5, l, 8) && !parse_floats(v + 5, l, 7)) || !(l[6] > 0.0f && l[6] <= 1.5f) ||
+                       l[3] * l[3] + l[4] * l[4] + l[5] * l[5] == 0.0f || !(l[7] >= 0.0f)
+                 : strncmp(v, "dir:", 4) || (!parse_floats(v + 4, l, 4) && !parse_floats(v + 4, l, 3)) ||
+                       l[0] * l[0] + l[1] * l[1] + l[2] * l[2] == 0.0f || !(l[3] >= 0.0f))
+            return usage_error("%s wants dir:X,Y,Z[,I] or spot:PX,PY,PZ,X,Y,Z,ANGLE[,I] (direction not zero, "
+                               "ANGLE 0..1.5 radians, I >= 0), got '%s'", a, v);
+        o->light.type = spot ? SNELL_LIGHT_SPOT : SNELL_LIGHT_DIRECTIONAL;
+        if (spot) memcpy(o->light.position, l, sizeof o->light.position);
+        memcpy(o->light.direction, spot ? l + 3 : l, sizeof o->light.direction);
+        o->light.spot_angle = spot ? l[6] : 0.0f;
+        o->light.color[0] = o->light.color[1] = o->light.color[2] = spot ? l[7] : l[3];
+    } else if (!strcmp(a, "--photons")) {
+        if (!parse_int(v, &o->light.photons) || o->light.photons < 16 || o->light.photons > 1024)
+            return usage_error("%s wants 16..1024, got '%s'", a, v);
+    } else if (!strcmp(a, "--floor")) {
+        float f[2] = {0, 4};
+        if ((!parse_floats(v, f, 2) && !parse_floats(v, f, 1)) || !(f[1] > 0.0f))
+            return usage_error("%s wants Y[,EXTENT] (EXTENT > 0), got '%s'", a, v);
+        o->receiver.height = f[0];
+        o->receiver.extent = f[1];
+    } else if (!strcmp(a, "--floor-map")) {
+        if (!parse_int(v, &o->receiver.map_size) || o->receiver.map_size < 16 || o->receiver.map_size > 2048)
+            return usage_error("%s wants 16..2048, got '%s'", a, v);
     } else if (!strcmp(a, "-o")) {
         o->out = v;
     } else {
@@ -332,7 +365,8 @@ static int takes_value(const char *a)
                                         "--camera", "--fov", "--backend", "--shading", "--env-lookup", "--ssaa",
                                         "--msaa", "--scene-layers", "--frames", "--trace-pixel", "-o", "--ior",
                                         "--absorption", "--attenuation", "--tint", "--thickness", "--dispersion",
-                                        "--abbe", "--dispersion-model", "--method", "--param"};
+                                        "--abbe", "--dispersion-model", "--method", "--param", "--light",
+                                        "--photons", "--floor", "--floor-map"};
     size_t k;
     int at = 0;
     for (k = 0; k < sizeof names / sizeof *names; k++)

@@ -165,6 +165,7 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
             fs->scene_layers_reason);
     fprintf(f, "stats: stages run: %s\n", fs->stages);
     if (s->file) fprintf(f, "stats: camera: %s\n", s->camera_note);
+    if (fs->caustics_reason[0]) fprintf(f, "stats: caustics: %s (%d photons)\n", fs->caustics_reason, fs->caustics_photons);
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
         snell_glass_resolved m;
@@ -288,6 +289,8 @@ int main(int argc, char **argv)
     fd.opaque = scene.opaque_count ? scene.opaque : NULL;
     fd.opaque_count = scene.opaque_count;
     fd.scene_layers = o.scene_layers;
+    fd.light = o.light;
+    fd.receiver = o.receiver;
     fd.camera.azimuth = (float)(o.az_deg * PI / 180.0);
     fd.camera.elevation = (float)(o.el_deg * PI / 180.0);
     fd.camera.distance = o.dist;

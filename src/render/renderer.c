@@ -189,6 +189,7 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__gbuffer_destroy(&r->gbuffer);
     snell__gbuffer_destroy(&r->backfaces);
     snell__layers_destroy(&r->layers);
+    snell__caustics_destroy(&r->caustics);
     snell__ssaa_destroy(&r->ssaa);
     if (r->msaa_fbo) glDeleteFramebuffers(1, &r->msaa_fbo);
     if (r->msaa_rb) glDeleteRenderbuffers(1, &r->msaa_rb);
@@ -233,6 +234,7 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
                            (double)fd->budget_ms);
     if (!isfinite(fd->quality_floor_db) || fd->quality_floor_db < 0.0f || fd->quality_floor_db > 100.0f)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "quality_floor_db %g outside 0..100", (double)fd->quality_floor_db);
+    if ((st = snell__caustics_validate(r->ctx, fd)) != SNELL_OK) return st;
     return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
 }
 

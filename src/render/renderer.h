@@ -5,6 +5,7 @@
 #define SNELL_RENDERER_H
 
 #include "render/budget.h"
+#include "render/caustics.h"
 #include "render/composite.h"
 #include "render/env_dynamic.h"
 #include "render/env_paraboloid.h"
@@ -51,6 +52,7 @@ struct snell_renderer {
     char budget_note[SNELL_MAX_GLASS][128];            /* each object's rung and why (snell__object.budget_note) */
     void *budget_fence;                               /* GLsync after the last budget frame, NULL none */
     double budget_start_ms, budget_done_ms;           /* that frame's start; its completion seen (-1 not yet) */
+    snell__caustics caustics;                         /* the caustics stage's light map, made on first use */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */
     uint8_t *readback8;

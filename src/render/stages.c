@@ -173,6 +173,24 @@ static snell_status run_opaque(snell__frame *f)
     return st;
 }
 
+/* The caustics: the receiver plane lit by the light, directly where no
+ * object shadows it and through the glass (render/caustics.c), drawn like
+ * an opaque object before the glass. Only in colour output. */
+static int want_caustics(const snell__frame *f)
+{
+    if (!snell__caustics_wanted(f->fd, f->s->caustics_reason, sizeof f->s->caustics_reason)) return 0;
+    if (f->r->out != SNELL__OUT_COLOR) {
+        snell__why(f->s->caustics_reason, sizeof f->s->caustics_reason, "not in exit-direction output");
+        return 0;
+    }
+    return 1;
+}
+
+static snell_status run_caustics(snell__frame *f)
+{
+    return snell__caustics_run(f->r->ctx, &f->r->caustics, f->fd, f->sc, f->s);
+}
+
 /* Glass: the objects shaded in screen space share one G-buffer pass,
  * which leaves each pixel the nearest of their surfaces, then run their
  * kernels (in any order: they cover disjoint pixels); then the forward
@@ -401,6 +419,7 @@ static snell_status run_msaa(snell__frame *f)
 const snell__stage snell__stages[] = {
     {"budget", snell__budget_wanted, snell__budget_run, NULL, NULL},
     {"opaque", NULL, run_opaque, NULL, NULL},
+    {"caustics", want_caustics, run_caustics, NULL, NULL},
     {"glass", NULL, run_glass, NULL, NULL},
     {"layers", want_layers, run_layers, layers_variant, &g_layers_hook},
     {"water", want_water, run_water, water_variant, &g_water_hook},

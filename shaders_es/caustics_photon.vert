@@ -1,0 +1,143 @@
+// caustics_photon.vert - one photon per texel of the light's view of a glass
+// object (Wyman & Davis 2006, caustic maps; Unger 3.5 names caustics as the
+// step beyond its methods): enters where the nearest-surface map says
+// (Schlick Fresnel, Snell), marches the farthest-surface depth map to its
+// exit (an image-space search, as the methods' exit searches), leaves
+// (Schlick, Snell; TIR drops it), and lands on the receiver plane y = h. It
+// is drawn as a 4 x 4 texel point whose texels share its flux by a tent
+// (caustics_splat.frag): every photon's flux lands in full (flux-correct, as
+// the 2D lightmap's lines, src/lm2d). World space throughout.
+precision highp float;
+precision highp sampler2D;
+
+#include "common/optics.glsl"
+
+uniform sampler2D u_front_n, u_front_z, u_back_n, u_back_z;
+uniform mat4 u_light_vp;      // world -> the light's clip space (orthographic)
+uniform mat4 u_light_inv;     // its inverse
+uniform int u_size;           // the maps' texels per side = photons per side
+uniform vec3 u_dir;           // unit direction the light travels (directional)
+uniform int u_spot;           // 1: a spot light at u_pos, its photons leaving it
+uniform vec3 u_pos;           // the spot's position
+uniform vec3 u_axis;          // the spot's unit axis
+uniform float u_cos_cone;     // cosine of its half angle
+uniform float u_tan;          // tangent of the half angle of the light's view of the object
+uniform float u_ior;
+uniform vec3 u_sigma;         // Beer-Lambert absorption per world unit
+uniform vec3 u_flux;          // light colour * photon area / texel area (irradiance one photon adds);
+                              // spot: the area on the view's image plane at distance 1
+uniform vec4 u_plane;         // y, centre x, centre z, extent (half side)
+uniform float u_reach;        // the longest chord: the bounding sphere's diameter
+
+out vec4 v_flux;
+
+// The exit: a few linear steps bracket the first point past the far
+// surface (one crossing for a convex object), bisection refines it.
+const int LINEAR_STEPS = 8;
+const int BISECT_STEPS = 14;
+
+// Covered-texel bilinear look-up of a map at light uv: rgb of the normals,
+// or r of the depth; w = summed weight of covered texels (0: none).
+vec4 fetch4(sampler2D cov, sampler2D tex, vec2 uv, out float w)
+{
+    vec2 t = uv * float(u_size) - 0.5;
+    ivec2 b = ivec2(floor(t));
+    vec2 f = t - floor(t);
+    vec4 acc = vec4(0.0);
+    w = 0.0;
+    for (int k = 0; k < 4; k++) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 q = clamp(b + o, ivec2(0), ivec2(u_size - 1));
+        float wk = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        if (texelFetch(cov, q, 0).a > 0.5) {
+            acc += wk * texelFetch(tex, q, 0);
+            w += wk;
+        }
+    }
+    return w > 0.0 ? acc / w : acc;
+}
+
+// Light-space depth of the ray point minus the far surface's there (> 0:
+// past it), the far depths read bilinearly over covered texels (the far map
+// is cleared to depth 0, which no surface has).
+float past_back(vec3 p)
+{
+    vec4 c = u_light_vp * vec4(p, 1.0);
+    vec3 s = c.xyz / c.w * 0.5 + 0.5;
+    vec2 t = s.xy * float(u_size) - 0.5;
+    ivec2 b = ivec2(floor(t));
+    vec2 f = t - floor(t);
+    float z = 0.0, w = 0.0;
+    for (int k = 0; k < 4; k++) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        float zk = texelFetch(u_back_z, clamp(b + o, ivec2(0), ivec2(u_size - 1)), 0).r;
+        float wk = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) * (zk > 0.0 ? 1.0 : 0.0);
+        z += wk * zk;
+        w += wk;
+    }
+    if (w <= 0.0) return 1.0; // off the object: out
+    return s.z - z / w;
+}
+
+void main()
+{
+    int i = gl_VertexID % u_size, j = gl_VertexID / u_size;
+    gl_PointSize = 4.0;
+    gl_Position = vec4(4.0, 4.0, 4.0, 1.0); // dropped photons: outside the clip volume
+    v_flux = vec4(0.0);
+    vec4 fn = texelFetch(u_front_n, ivec2(i, j), 0);
+    if (fn.a < 0.5) return; // missed the object: direct light
+    float z = texelFetch(u_front_z, ivec2(i, j), 0).r;
+    vec2 uv = (vec2(i, j) + 0.5) / float(u_size);
+    vec4 w = u_light_inv * vec4(vec3(uv, z) * 2.0 - 1.0, 1.0);
+    vec3 p = w.xyz / w.w;
+    vec3 n = normalize(fn.xyz * 2.0 - 1.0);
+    vec3 dir = u_dir;
+    float share = 1.0;
+    if (u_spot == 1) {
+        // its solid angle: the image-plane cell at distance 1 seen at angle
+        // theta off the view's axis (cos^3 theta); none outside the cone
+        vec2 x = (uv * 2.0 - 1.0) * u_tan;
+        float c = inversesqrt(1.0 + dot(x, x));
+        dir = normalize(p - u_pos);
+        share = c * c * c * (dot(dir, u_axis) >= u_cos_cone ? 1.0 : 0.0);
+        if (share <= 0.0) return;
+    }
+    if (dot(n, dir) > 0.0) n = -n;
+    float f1 = snell_fresnel_schlick(dot(n, -dir), 1.0, u_ior);
+    vec3 t;
+    if (!snell_refract(dir, n, 1.0 / u_ior, t)) return;
+    // linear search for the first point past the far surface, then bisection
+    float lo = 0.0, hi = -1.0;
+    for (int k = 1; k <= LINEAR_STEPS; k++) {
+        float l = u_reach * float(k) / float(LINEAR_STEPS);
+        if (hi < 0.0) {
+            if (past_back(p + t * l) > 0.0) hi = l;
+            else lo = l;
+        }
+    }
+    if (hi < 0.0) return; // never left (an open or concave mesh): dropped
+    for (int k = 0; k < BISECT_STEPS; k++) {
+        float m = 0.5 * (lo + hi);
+        if (past_back(p + t * m) > 0.0) hi = m;
+        else lo = m;
+    }
+    float len = 0.5 * (lo + hi);
+    vec3 q = p + t * len;
+    vec4 c = u_light_vp * vec4(q, 1.0);
+    float cw;
+    vec3 nb = fetch4(u_back_n, u_back_n, c.xy / c.w * 0.5 + 0.5, cw).xyz * 2.0 - 1.0;
+    if (cw <= 0.0 || dot(nb, nb) < 1e-8) return;
+    nb = normalize(nb);
+    if (dot(nb, t) < 0.0) nb = -nb; // outward, along the ray
+    float f2 = snell_fresnel_schlick(dot(nb, t), u_ior, 1.0);
+    vec3 t2;
+    if (!snell_refract(t, -nb, u_ior, t2)) return; // TIR: dropped
+    if (t2.y >= 0.0) return; // never reaches the plane's lit side
+    float s = (u_plane.x - q.y) / t2.y;
+    if (s < 0.0) return; // the object reaches below the plane
+    vec3 h = q + t2 * s;
+    vec3 flux = u_flux * share * (1.0 - f1) * (1.0 - f2) * exp(-u_sigma * len);
+    v_flux = vec4(flux, (flux.r + flux.g + flux.b) / 3.0);
+    gl_Position = vec4((h.x - u_plane.y) / u_plane.w, (h.z - u_plane.z) / u_plane.w, 0.0, 1.0);
+}

@@ -1,0 +1,600 @@
+/* caustics.c — the caustics stage (issue 27; Wyman & Davis 2006, caustic
+ * maps; Unger 3.5 names light refracted onto surfaces as beyond its scope):
+ * the receiver plane's light map holds its irradiance, in units of the
+ * light's colour: the direct light where a shadow map of every glass and
+ * opaque object leaves it lit (caustics_direct.frag), plus, per glass object,
+ * a grid of photons from the light refracted in and out of it (an
+ * image-space exit search in its farthest-surface map, caustics_photon.vert)
+ * and splatted onto the plane, each carrying the light's flux through its
+ * cell of the beam (flux-correct: energy is conserved, as the 2D lightmap's
+ * lines are, src/lm2d). The receiver is then drawn in the view with it. The
+ * map is reused while light, glass, opaque objects and receiver are still. */
+#include "render/caustics.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "core/glstate.h"
+#include "core/program.h"
+#include "mesh/mesh.h"
+
+#include <math.h>
+#include <string.h>
+
+#define DEFAULT_PHOTONS 256
+#define DEFAULT_MAP 256
+
+static int finite3(const float v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+
+snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd)
+{
+    const snell_light *l = &fd->light;
+    const snell_receiver *rc = &fd->receiver;
+    int k;
+    if ((int)l->type < SNELL_LIGHT_NONE || (int)l->type > SNELL_LIGHT_SPOT)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.type %d is not a snell_light_type", (int)l->type);
+    if (l->type != SNELL_LIGHT_NONE) {
+        if (!finite3(l->direction) || l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                                              l->direction[2] * l->direction[2] < 1e-12f)
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.direction must be finite and not zero");
+        for (k = 0; k < 3; k++)
+            if (!isfinite(l->color[k]) || l->color[k] < 0.0f)
+                return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.color[%d] %g: finite and >= 0", k, l->color[k]);
+        if (l->photons != 0 && (l->photons < 16 || l->photons > 1024))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.photons %d outside 16..1024 (0 = %d)", l->photons,
+                               DEFAULT_PHOTONS);
+        if (l->type == SNELL_LIGHT_SPOT && !finite3(l->position))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.position must be finite");
+        if (l->type == SNELL_LIGHT_SPOT && (!isfinite(l->spot_angle) || l->spot_angle < 0.0f || l->spot_angle > 1.5f))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.spot_angle %g outside 0..1.5 radians (0 = 0.5)",
+                               l->spot_angle);
+    }
+    if (!isfinite(rc->extent) || rc->extent < 0.0f)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.extent %g: finite and >= 0 (0 = none)", rc->extent);
+    if (rc->extent > 0.0f) {
+        if (!isfinite(rc->height) || !isfinite(rc->center[0]) || !isfinite(rc->center[1]))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.height and center must be finite");
+        for (k = 0; k < 3; k++)
+            if (!(rc->albedo[k] >= 0.0f && rc->albedo[k] <= 1.0f))
+                return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.albedo[%d] %g outside 0..1", k, rc->albedo[k]);
+        if (rc->map_size != 0 && (rc->map_size < 16 || rc->map_size > 2048))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.map_size %d outside 16..2048 (0 = %d)",
+                               rc->map_size, DEFAULT_MAP);
+    }
+    return SNELL_OK;
+}
+
+int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n)
+{
+    if (fd->light.type == SNELL_LIGHT_NONE) {
+        snell__why(why, n, "no light");
+        return 0;
+    }
+    if (fd->receiver.extent <= 0.0f) {
+        snell__why(why, n, "no receiver");
+        return 0;
+    }
+    return 1;
+}
+
+/* A glass object that changes light: not IOR 1 without absorption or tint
+ * (scene.c skips those), and solid (a thin wall is passed by the photons). */
+static int casts(const snell__object *o)
+{
+    const snell_glass_material *m = &o->glass->material;
+    int tinted = m->tint[0] != 1.0f || m->tint[1] != 1.0f || m->tint[2] != 1.0f;
+    return m->thickness <= 0.0f && (m->ior != 1.0f || o->glass->absorbs || tinted);
+}
+
+/* --- the reuse key: everything the light map depends on ------------------ */
+static void put(float *k, int *n, const void *v, size_t bytes)
+{
+    if ((size_t)*n * sizeof(float) + bytes > SNELL__CAUSTICS_KEY * sizeof(float)) return;
+    memcpy(k + *n, v, bytes);
+    *n += (int)((bytes + sizeof(float) - 1) / sizeof(float));
+}
+
+static int make_key(float *k, const snell_frame_desc *fd, const snell__scene *sc)
+{
+    int n = 0, i;
+    memset(k, 0, SNELL__CAUSTICS_KEY * sizeof(float));
+    put(k, &n, &fd->light, sizeof fd->light);
+    put(k, &n, &fd->receiver, sizeof fd->receiver);
+    put(k, &n, &sc->count, sizeof sc->count);
+    for (i = 0; i < sc->count; i++) {
+        const snell__object *o = &sc->obj[i];
+        put(k, &n, &o->mesh, sizeof o->mesh);
+        put(k, &n, &o->mesh->version, sizeof o->mesh->version);
+        put(k, &n, o->model, sizeof o->model);
+        put(k, &n, &o->glass->material.ior, sizeof(float));
+        put(k, &n, &o->glass->material.thickness, sizeof(float));
+        put(k, &n, o->glass->material.tint, 3 * sizeof(float));
+        put(k, &n, o->glass->absorption, 3 * sizeof(float));
+    }
+    put(k, &n, &fd->opaque_count, sizeof fd->opaque_count);
+    for (i = 0; i < fd->opaque_count; i++) {
+        const snell_opaque *o = &fd->opaque[i];
+        static const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+        put(k, &n, &o->mesh, sizeof o->mesh);
+        put(k, &n, &o->mesh->version, sizeof o->mesh->version);
+        put(k, &n, o->model ? o->model : id, 16 * sizeof(float));
+    }
+    return n;
+}
+
+/* --- GL resources ---------------------------------------------------------- */
+static snell_status programs(snell_ctx *ctx, snell__caustics *c)
+{
+    snell_status st = SNELL_OK;
+    if (!c->map_prog) st = snell__program_build(ctx, "object.vert", "caustics_map.frag", NULL, &c->map_prog);
+    if (st == SNELL_OK && !c->photon_prog)
+        st = snell__program_build(ctx, "caustics_photon.vert", "caustics_splat.frag", NULL, &c->photon_prog);
+    if (st == SNELL_OK && !c->direct_prog)
+        st = snell__program_build(ctx, "caustics_quad.vert", "caustics_direct.frag", NULL, &c->direct_prog);
+    if (st == SNELL_OK && !c->receiver_prog)
+        st = snell__program_build(ctx, "caustics_quad.vert", "caustics_receiver.frag",
+                                  "#define SNELL_RECEIVER_VIEW 1\n", &c->receiver_prog);
+    if (!c->vao) glGenVertexArrays(1, &c->vao);
+    return st;
+}
+
+static void tex_params(GLenum filter)
+{
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, (GLint)filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, (GLint)filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+static snell_status complete(snell_ctx *ctx, const char *what)
+{
+    GLenum s = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (s != GL_FRAMEBUFFER_COMPLETE)
+        return snell__fail(ctx, SNELL_E_GL, "caustics: %s framebuffer incomplete (0x%x)", what, (unsigned)s);
+    return SNELL_OK;
+}
+
+/* The light's views of one glass object: RGB10_A2 normals + 32F depth, size^2. */
+static snell_status glass_targets(snell_ctx *ctx, snell__caustics *c, int size)
+{
+    int i;
+    snell_status st = SNELL_OK;
+    if (c->glass_size == size) return SNELL_OK;
+    for (i = 0; i < 2 && st == SNELL_OK; i++) {
+        if (!c->glass_fbo[i]) {
+            glGenFramebuffers(1, &c->glass_fbo[i]);
+            glGenTextures(1, &c->glass_n[i]);
+            glGenTextures(1, &c->glass_z[i]);
+        }
+        glBindTexture(GL_TEXTURE_2D, c->glass_n[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB10_A2, size, size, 0, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV, NULL);
+        tex_params(GL_NEAREST);
+        glBindTexture(GL_TEXTURE_2D, c->glass_z[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size, size, 0, GL_DEPTH_COMPONENT, GL_FLOAT, NULL);
+        tex_params(GL_NEAREST);
+        glBindFramebuffer(GL_FRAMEBUFFER, c->glass_fbo[i]);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c->glass_n[i], 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, c->glass_z[i], 0);
+        st = complete(ctx, "glass map");
+    }
+    c->glass_size = st == SNELL_OK ? size : 0;
+    return st;
+}
+
+static snell_status shadow_target(snell_ctx *ctx, snell__caustics *c, int size)
+{
+    GLenum none = GL_NONE;
+    if (c->shadow_size == size) return SNELL_OK;
+    if (!c->shadow_fbo) {
+        glGenFramebuffers(1, &c->shadow_fbo);
+        glGenTextures(1, &c->shadow_z);
+    }
+    glBindTexture(GL_TEXTURE_2D, c->shadow_z);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size, size, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, NULL);
+    tex_params(GL_LINEAR); /* with the compare mode: 2 x 2 percentage-closer filtering */
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glBindFramebuffer(GL_FRAMEBUFFER, c->shadow_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, c->shadow_z, 0);
+    glDrawBuffers(1, &none);
+    glReadBuffer(GL_NONE);
+    if (complete(ctx, "shadow map") != SNELL_OK) return SNELL_E_GL;
+    c->shadow_size = size;
+    return SNELL_OK;
+}
+
+static snell_status map_target(snell_ctx *ctx, snell__caustics *c, int size)
+{
+    if (c->map_size == size) return SNELL_OK;
+    if (!c->map_fbo) {
+        glGenFramebuffers(1, &c->map_fbo);
+        glGenTextures(1, &c->map_tex);
+    }
+    glBindTexture(GL_TEXTURE_2D, c->map_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)c->map_format, size, size, 0, GL_RGBA,
+                 c->map_format == GL_RGBA32F ? GL_FLOAT : GL_HALF_FLOAT, NULL);
+    tex_params(GL_NEAREST); /* read bilinearly by caustics_receiver.frag (32F need not filter) */
+    glBindFramebuffer(GL_FRAMEBUFFER, c->map_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c->map_tex, 0);
+    if (complete(ctx, "light map") != SNELL_OK) return SNELL_E_GL;
+    c->map_size = size;
+    return SNELL_OK;
+}
+
+/* --- the light's frame ------------------------------------------------------ */
+/* The frame's light, resolved: unit direction (directional) or position,
+ * unit axis and cone (spot), and its colour (all zero = 1). */
+typedef struct light_res {
+    int spot;
+    float d[3], pos[3], cos_cone, col[3];
+} light_res;
+
+static void resolve_light(const snell_light *l, light_res *o)
+{
+    float len = sqrtf(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                      l->direction[2] * l->direction[2]);
+    int k, white = l->color[0] == 0.0f && l->color[1] == 0.0f && l->color[2] == 0.0f;
+    o->spot = l->type == SNELL_LIGHT_SPOT;
+    for (k = 0; k < 3; k++) {
+        o->d[k] = l->direction[k] / len;
+        o->pos[k] = l->position[k];
+        o->col[k] = white ? 1.0f : l->color[k];
+    }
+    o->cos_cone = cosf(l->spot_angle > 0.0f ? l->spot_angle : 0.5f);
+}
+
+/* A perspective view from eye towards target (spot lights), frustum
+ * x/-z in [lo[0], hi[0]], y/-z in [lo[1], hi[1]]. */
+static void spot_view(const float eye[3], const float target[3], const float lo[2], const float hi[2], float near_,
+                      float far_, mat4 vp)
+{
+    vec3 up = {0.0f, 1.0f, 0.0f}, dir;
+    mat4 view, proj;
+    glm_vec3_sub((float *)target, (float *)eye, dir);
+    glm_vec3_normalize(dir);
+    if (fabsf(dir[1]) > 0.99f) up[0] = 0.0f, up[1] = 0.0f, up[2] = 1.0f;
+    glm_lookat((float *)eye, (float *)target, up, view);
+    glm_frustum(lo[0] * near_, hi[0] * near_, lo[1] * near_, hi[1] * near_, near_, far_, proj);
+    glm_mat4_mul(proj, view, vp);
+}
+
+/* An orthographic view along unit d centred on `centre`: x, y in [-half,
+ * half] and depths [near, far] from an eye at centre - d * back. */
+static void light_view(const float d[3], const float centre[3], float back, float lo[2], float hi[2], float near_,
+                       float far_, mat4 vp)
+{
+    vec3 eye, up = {0.0f, 1.0f, 0.0f};
+    mat4 view, proj;
+    if (fabsf(d[1]) > 0.99f) up[0] = 1.0f, up[1] = 0.0f;
+    eye[0] = centre[0] - d[0] * back, eye[1] = centre[1] - d[1] * back, eye[2] = centre[2] - d[2] * back;
+    glm_lookat(eye, (float *)centre, up, view);
+    glm_ortho(lo[0], hi[0], lo[1], hi[1], near_, far_, proj);
+    glm_mat4_mul(proj, view, vp);
+}
+
+static void draw_mesh(GLuint prog, const snell_mesh *m, const float *model, const float vp[16])
+{
+    mat4 mm, inv;
+    mat3 nm;
+    if (model) memcpy(mm, model, sizeof mm);
+    else glm_mat4_identity(mm);
+    glm_mat4_inv(mm, inv);
+    glm_mat4_transpose(inv);
+    glm_mat4_pick3(inv, nm);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_model"), 1, GL_FALSE, (const GLfloat *)mm);
+    glUniformMatrix3fv(glGetUniformLocation(prog, "u_normal_matrix"), 1, GL_FALSE, (const GLfloat *)nm);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, vp);
+    snell__mesh_draw(m);
+}
+
+static void plane_uniform(GLuint prog, const snell_receiver *rc)
+{
+    glUniform4f(glGetUniformLocation(prog, "u_plane"), rc->height, rc->center[0], rc->center[1], rc->extent);
+}
+
+/* The shadow map over the receiver: every casting glass and opaque object
+ * (directional: orthographic along the light; spot: a perspective view from
+ * it looking straight down, the receiver's corners inside). */
+static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
+                                 const snell__scene *sc, const light_res *L, mat4 vp)
+{
+    const snell_receiver *rc = &fd->receiver;
+    float centre[3] = {rc->center[0], rc->height, rc->center[1]};
+    float back = 1.0f, lo[2] = {1e30f, 1e30f}, hi[2] = {-1e30f, -1e30f}, far_ = 0.0f;
+    int size = rc->map_size ? rc->map_size : DEFAULT_MAP, i, k;
+    mat4 view;
+    snell_status st;
+    const float *d = L->d;
+    size = size * 2 > 2048 ? 2048 : size * 2;
+    if (L->spot) {
+        float below[3] = {L->pos[0], L->pos[1] - 1.0f, L->pos[2]}, up[3] = {0.0f, 0.0f, 1.0f};
+        glm_lookat((float *)L->pos, below, up, view);
+    } else {
+        /* behind every caster: the eye's distance from the plane's centre along -d */
+        for (i = 0; i < sc->count + fd->opaque_count; i++) {
+            float b[4], t;
+            if (i < sc->count) memcpy(b, sc->obj[i].bsphere, sizeof b);
+            else {
+                mat4 m;
+                const snell_opaque *o = &fd->opaque[i - sc->count];
+                if (o->model) memcpy(m, o->model, sizeof m);
+                else glm_mat4_identity(m);
+                snell__bounding_sphere(o->mesh, m, b);
+            }
+            t = -((b[0] - centre[0]) * d[0] + (b[1] - centre[1]) * d[1] + (b[2] - centre[2]) * d[2]) + b[3];
+            if (t + 1.0f > back) back = t + 1.0f;
+        }
+        {
+            vec3 eye, up = {0.0f, 1.0f, 0.0f};
+            if (fabsf(d[1]) > 0.99f) up[0] = 1.0f, up[1] = 0.0f;
+            for (k = 0; k < 3; k++) eye[k] = centre[k] - d[k] * back;
+            glm_lookat(eye, centre, up, view);
+        }
+    }
+    /* the square's corners in the light's view fix the window and the far plane */
+    for (k = 0; k < 4; k++) {
+        vec4 p = {rc->center[0] + ((k & 1) ? rc->extent : -rc->extent), rc->height,
+                  rc->center[1] + ((k & 2) ? rc->extent : -rc->extent), 1.0f}, q;
+        glm_mat4_mulv(view, p, q);
+        if (L->spot) { /* directions x/-z, y/-z; the plane is below the light (else nothing is lit) */
+            float z = -q[2] > 1e-3f ? -q[2] : 1e-3f;
+            q[0] /= z, q[1] /= z;
+        }
+        for (i = 0; i < 2; i++) {
+            if (q[i] < lo[i]) lo[i] = q[i];
+            if (q[i] > hi[i]) hi[i] = q[i];
+        }
+        if (-q[2] > far_) far_ = -q[2];
+    }
+    if (L->spot) {
+        float h = L->pos[1] - rc->height, t = 12.0f; /* at most ~170 degrees across */
+        for (i = 0; i < 2; i++) {
+            if (lo[i] < -t) lo[i] = -t;
+            if (hi[i] > t) hi[i] = t;
+        }
+        if (h <= 1e-3f) h = 1e-3f;
+        spot_view(L->pos, (float[3]){L->pos[0], L->pos[1] - 1.0f, L->pos[2]}, lo, hi, h * 0.01f, h * 1.01f + 1e-3f, vp);
+    } else {
+        light_view(d, centre, back, lo, hi, 0.01f, far_ + 1.0f, vp);
+    }
+    if ((st = shadow_target(ctx, c, size)) != SNELL_OK) return st;
+    glBindFramebuffer(GL_FRAMEBUFFER, c->shadow_fbo);
+    glViewport(0, 0, size, size);
+    glDepthMask(GL_TRUE);
+    glClearDepthf(1.0f);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(c->map_prog);
+    for (i = 0; i < sc->count; i++)
+        if (casts(&sc->obj[i])) draw_mesh(c->map_prog, sc->obj[i].mesh, (const float *)sc->obj[i].model, (const float *)vp);
+    for (i = 0; i < fd->opaque_count; i++) draw_mesh(c->map_prog, fd->opaque[i].mesh, fd->opaque[i].model, (const float *)vp);
+    return SNELL_OK;
+}
+
+static void light_uniforms(GLuint prog, const light_res *L)
+{
+    glUniform1i(glGetUniformLocation(prog, "u_spot"), L->spot);
+    glUniform3fv(glGetUniformLocation(prog, "u_dir"), 1, L->d);
+    glUniform3fv(glGetUniformLocation(prog, "u_pos"), 1, L->pos);
+    glUniform3fv(glGetUniformLocation(prog, "u_axis"), 1, L->d);
+    glUniform1f(glGetUniformLocation(prog, "u_cos_cone"), L->cos_cone);
+}
+
+/* The direct light into the light map (replacing what it held). */
+static void draw_direct(snell__caustics *c, const snell_frame_desc *fd, const light_res *L, mat4 shadow_vp)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, c->map_fbo);
+    glViewport(0, 0, c->map_size, c->map_size);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_BLEND);
+    glUseProgram(c->direct_prog);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, c->shadow_z);
+    glUniform1i(glGetUniformLocation(c->direct_prog, "u_shadow"), 0);
+    glUniformMatrix4fv(glGetUniformLocation(c->direct_prog, "u_shadow_vp"), 1, GL_FALSE, (const GLfloat *)shadow_vp);
+    plane_uniform(c->direct_prog, &fd->receiver);
+    glUniform3fv(glGetUniformLocation(c->direct_prog, "u_color"), 1, L->col);
+    light_uniforms(c->direct_prog, L);
+    glUniform1f(glGetUniformLocation(c->direct_prog, "u_texel"), 2.0f / (float)c->map_size);
+    glUniform1f(glGetUniformLocation(c->direct_prog, "u_bias"), 2e-4f);
+    glBindVertexArray(c->vao);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+}
+
+/* One glass object's photons, added into the light map. Returns how many
+ * were shot (0: a spot light inside its bounding sphere). */
+static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const snell__object *o, const light_res *L)
+{
+    const snell_receiver *rc = &fd->receiver;
+    int n = fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS, i, k;
+    float r = o->bsphere[3], lo[2] = {-r, -r}, hi[2] = {r, r}, flux[3], texel = 2.0f * rc->extent / (float)c->map_size;
+    float cell = 2.0f * r / (float)n, tan_half = 0.0f;
+    mat4 vp, inv;
+    if (L->spot) {
+        /* a perspective view from the light just holding the bounding sphere;
+         * a photon's cell is cell^2 on the image plane at distance 1 */
+        float dist = sqrtf((o->bsphere[0] - L->pos[0]) * (o->bsphere[0] - L->pos[0]) +
+                           (o->bsphere[1] - L->pos[1]) * (o->bsphere[1] - L->pos[1]) +
+                           (o->bsphere[2] - L->pos[2]) * (o->bsphere[2] - L->pos[2]));
+        if (dist <= r * 1.001f) return 0;
+        tan_half = r / sqrtf(dist * dist - r * r);
+        lo[0] = lo[1] = -tan_half, hi[0] = hi[1] = tan_half;
+        spot_view(L->pos, o->bsphere, lo, hi, (dist - r) * 0.5f, dist + r + 1.0f, vp);
+        cell = 2.0f * tan_half / (float)n;
+    } else {
+        light_view(L->d, o->bsphere, r + 1.0f, lo, hi, 0.5f, 2.0f * r + 1.5f, vp);
+    }
+    glm_mat4_inv(vp, inv);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glViewport(0, 0, n, n);
+    glUseProgram(c->map_prog);
+    for (i = 0; i < 2; i++) {
+        glBindFramebuffer(GL_FRAMEBUFFER, c->glass_fbo[i]);
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        glClearDepthf(i ? 0.0f : 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glDepthFunc(i ? GL_GREATER : GL_LESS); /* nearest surfaces, then farthest */
+        draw_mesh(c->map_prog, o->mesh, (const float *)o->model, (const float *)vp);
+    }
+    glClearDepthf(1.0f);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glBindFramebuffer(GL_FRAMEBUFFER, c->map_fbo);
+    glViewport(0, 0, c->map_size, c->map_size);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(c->photon_prog);
+    for (i = 0; i < 4; i++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        glBindTexture(GL_TEXTURE_2D, (i & 1) ? c->glass_z[i >> 1] : c->glass_n[i >> 1]);
+    }
+    glUniform1i(glGetUniformLocation(c->photon_prog, "u_front_n"), 0);
+    glUniform1i(glGetUniformLocation(c->photon_prog, "u_front_z"), 1);
+    glUniform1i(glGetUniformLocation(c->photon_prog, "u_back_n"), 2);
+    glUniform1i(glGetUniformLocation(c->photon_prog, "u_back_z"), 3);
+    glUniformMatrix4fv(glGetUniformLocation(c->photon_prog, "u_light_vp"), 1, GL_FALSE, (const GLfloat *)vp);
+    glUniformMatrix4fv(glGetUniformLocation(c->photon_prog, "u_light_inv"), 1, GL_FALSE, (const GLfloat *)inv);
+    glUniform1i(glGetUniformLocation(c->photon_prog, "u_size"), n);
+    light_uniforms(c->photon_prog, L);
+    glUniform1f(glGetUniformLocation(c->photon_prog, "u_tan"), tan_half);
+    glUniform1f(glGetUniformLocation(c->photon_prog, "u_ior"), o->glass->material.ior);
+    glUniform3fv(glGetUniformLocation(c->photon_prog, "u_sigma"), 1, o->glass->absorption);
+    /* each photon carries the light's flux through its cell of the beam
+     * (cell^2 facing the light; spot: its solid angle, the shader's share);
+     * per texel area that is the irradiance it adds */
+    for (k = 0; k < 3; k++) flux[k] = L->col[k] * o->glass->material.tint[k] * cell * cell / (texel * texel);
+    glUniform3fv(glGetUniformLocation(c->photon_prog, "u_flux"), 1, flux);
+    plane_uniform(c->photon_prog, rc);
+    glUniform1f(glGetUniformLocation(c->photon_prog, "u_reach"), 2.0f * r);
+    glBindVertexArray(c->vao);
+    glDrawArrays(GL_POINTS, 0, n * n);
+    glDisable(GL_BLEND);
+    return n * n;
+}
+
+static snell_status draw_receiver(snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc)
+{
+    const snell_receiver *rc = &fd->receiver;
+    float albedo[3] = {0.8f, 0.8f, 0.8f};
+    if (rc->albedo[0] != 0.0f || rc->albedo[1] != 0.0f || rc->albedo[2] != 0.0f) memcpy(albedo, rc->albedo, sizeof albedo);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(c->receiver_prog);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, c->map_tex);
+    glUniform1i(glGetUniformLocation(c->receiver_prog, "u_light_map"), 0);
+    glUniform3fv(glGetUniformLocation(c->receiver_prog, "u_albedo"), 1, albedo);
+    glUniform3fv(glGetUniformLocation(c->receiver_prog, "u_eye"), 1, sc->view.eye);
+    glUniformMatrix4fv(glGetUniformLocation(c->receiver_prog, "u_view_proj"), 1, GL_FALSE,
+                       (const GLfloat *)sc->view.view_proj);
+    plane_uniform(c->receiver_prog, rc);
+    glBindVertexArray(c->vao);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    return SNELL_OK;
+}
+
+snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
+                                 const snell__scene *sc, snell_frame_stats *s)
+{
+    GLint fbo = 0, viewport[4];
+    int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, shot = 0, key_len;
+    snell_status st;
+    light_res L;
+    mat4 shadow_vp;
+    if (!c->map_format) {
+        /* float32 blending is an extension of its own in ES (EXT_float_blend) */
+        if (snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") &&
+            snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend"))
+            c->map_format = GL_RGBA32F;
+        else if (snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_half_float") ||
+                 snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float"))
+            c->map_format = GL_RGBA16F;
+        else
+            c->map_format = SNELL__CAUSTICS_NO_FLOAT;
+    }
+    if (c->map_format == SNELL__CAUSTICS_NO_FLOAT) {
+        snell__why(s->caustics_reason, sizeof s->caustics_reason,
+                   "skipped: the light map needs a float target (GL_EXT_color_buffer_half_float or _float)");
+        return SNELL_OK;
+    }
+    key_len = make_key(c->scratch, fd, sc);
+    if (c->valid && key_len == c->key_len && memcmp(c->scratch, c->key, (size_t)key_len * sizeof(float)) == 0) {
+        s->caustics_reused = 1;
+        snell__why(s->caustics_reason, sizeof s->caustics_reason, "reused: nothing moved (light, glass, receiver)");
+        return draw_receiver(c, fd, sc);
+    }
+    c->valid = 0;
+    resolve_light(&fd->light, &L);
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fbo);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    for (i = 0; i < fd->opaque_count; i++)
+        if ((st = snell__mesh_upload((snell_mesh *)fd->opaque[i].mesh)) != SNELL_OK) return st;
+    for (i = 0; i < sc->count; i++)
+        if ((st = snell__mesh_upload(sc->obj[i].mesh)) != SNELL_OK) return st;
+    st = programs(ctx, c);
+    if (st == SNELL_OK) st = map_target(ctx, c, size);
+    if (st == SNELL_OK) st = glass_targets(ctx, c, fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS);
+    if (st == SNELL_OK) st = draw_shadows(ctx, c, fd, sc, &L, shadow_vp);
+    if (st == SNELL_OK) {
+        draw_direct(c, fd, &L, shadow_vp);
+        for (i = 0; i < sc->count; i++)
+            if (casts(&sc->obj[i])) {
+                int n = draw_photons(c, fd, &sc->obj[i], &L);
+                s->caustics_photons += n;
+                shot += n > 0;
+                casters++;
+            }
+        s->passes += 2 + 3 * shot;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    glDepthMask(GL_TRUE);
+    if (st != SNELL_OK) return st;
+    memcpy(c->key, c->scratch, (size_t)key_len * sizeof(float));
+    c->key_len = key_len;
+    c->valid = 1;
+    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass object%s casting%s, %d opaque; %dx%d %s "
+               "light map", casters, casters == 1 ? "" : "s",
+               shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count, size,
+               size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
+    return draw_receiver(c, fd, sc);
+}
+
+snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size)
+{
+    GLint fbo = 0;
+    snell__pixel_store pack;
+    if (!c->valid || !c->map_fbo) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no light map made yet");
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, c->map_fbo);
+    snell__pixel_pack_begin(&pack, 1);
+    glReadPixels(0, 0, c->map_size, c->map_size, GL_RGBA, GL_FLOAT, rgba);
+    snell__pixel_pack_end(&pack);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
+    *size = c->map_size;
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "caustics: reading the light map failed");
+}
+
+void snell__caustics_destroy(snell__caustics *c)
+{
+    int i;
+    if (c->map_prog) glDeleteProgram(c->map_prog);
+    if (c->photon_prog) glDeleteProgram(c->photon_prog);
+    if (c->direct_prog) glDeleteProgram(c->direct_prog);
+    if (c->receiver_prog) glDeleteProgram(c->receiver_prog);
+    if (c->vao) glDeleteVertexArrays(1, &c->vao);
+    for (i = 0; i < 2; i++) {
+        if (c->glass_fbo[i]) glDeleteFramebuffers(1, &c->glass_fbo[i]);
+        if (c->glass_n[i]) glDeleteTextures(1, &c->glass_n[i]);
+        if (c->glass_z[i]) glDeleteTextures(1, &c->glass_z[i]);
+    }
+    if (c->shadow_fbo) glDeleteFramebuffers(1, &c->shadow_fbo);
+    if (c->shadow_z) glDeleteTextures(1, &c->shadow_z);
+    if (c->map_fbo) glDeleteFramebuffers(1, &c->map_fbo);
+    if (c->map_tex) glDeleteTextures(1, &c->map_tex);
+    memset(c, 0, sizeof *c);
+}

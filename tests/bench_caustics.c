@@ -1,0 +1,100 @@
+/* bench_caustics.c — the caustics stage's frame cost (issue 27): a glass
+ * sphere over a receiver under a directional light, three frames taking
+ * turns each round: without light ("off"), with it and nothing moved (the
+ * light map reused), and with the light nudged every frame (the light map
+ * made again). Prints the median frame times and the medians of the
+ * per-round ratios against "off". A tool, not a test (glFinish per frame). */
+#include "core/gl.h"
+#include "core/core.h"
+#include "snell/snell.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int main(int argc, char **argv)
+{
+    int size = argc > 1 ? atoi(argv[1]) : 512, rounds = argc > 2 ? atoi(argv[2]) : 15;
+    int photons = argc > 3 ? atoi(argv[3]) : 256, map = argc > 4 ? atoi(argv[4]) : 256, i, k;
+    snell_ctx_desc cd;
+    snell_ctx *ctx = NULL;
+    snell_mesh *sphere = NULL;
+    snell_env *env = NULL;
+    snell_renderer *r[3] = {NULL, NULL, NULL}; /* one each: a renderer keeps one light map */
+    snell_renderer_desc rd;
+    snell_env_desc ed;
+    snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 0, 0};
+    snell_frame_desc fd;
+    snell_glass g;
+    double *t[3], *ratio[2];
+    static const char *names[3] = {"off", "reused", "made"};
+    if (rounds < 1 || rounds > 1000 || size < 16 || photons < 16 || map < 16) {
+        fprintf(stderr, "usage: bench_caustics [SIZE [ROUNDS [PHOTONS [MAP]]]]\n");
+        return 2;
+    }
+    memset(&cd, 0, sizeof cd);
+    memset(&rd, 0, sizeof rd);
+    memset(&ed, 0, sizeof ed);
+    rd.width = rd.height = size;
+    if (snell_ctx_create(&cd, &ctx) != SNELL_OK || snell_mesh_create_shape(ctx, &sd, &sphere) != SNELL_OK ||
+        snell_env_create(ctx, &ed, &env) != SNELL_OK || snell_renderer_create(ctx, &rd, &r[0]) != SNELL_OK ||
+        snell_renderer_create(ctx, &rd, &r[1]) != SNELL_OK || snell_renderer_create(ctx, &rd, &r[2]) != SNELL_OK) {
+        fprintf(stderr, "bench_caustics: %s\n", snell_last_error(ctx));
+        return 1;
+    }
+    memset(&g, 0, sizeof g);
+    g.mesh = sphere;
+    memset(&fd, 0, sizeof fd);
+    fd.env = env;
+    fd.glass = &g;
+    fd.glass_count = 1;
+    fd.camera.azimuth = 0.5f, fd.camera.elevation = 0.6f, fd.camera.distance = 6.0f, fd.camera.fov_y = 0.8f;
+    for (k = 0; k < 3; k++) t[k] = (double *)calloc((size_t)rounds, sizeof(double));
+    for (k = 0; k < 2; k++) ratio[k] = (double *)calloc((size_t)rounds, sizeof(double));
+    for (i = -1; i < rounds; i++) /* round -1 warms every program and target up */
+        for (k = 0; k < 3; k++) {
+            snell_frame_desc f = fd;
+            double t0;
+            snell_frame_stats st;
+            if (k > 0) {
+                f.light.type = SNELL_LIGHT_DIRECTIONAL;
+                f.light.direction[0] = 0.4f, f.light.direction[1] = -1.0f;
+                f.light.direction[2] = k == 2 ? 0.001f * (float)(i + 2) : 0.0f; /* made: moved every frame */
+                f.light.photons = photons;
+                f.receiver.height = -1.0f, f.receiver.extent = 3.0f, f.receiver.map_size = map;
+            }
+            t0 = snell__now_ms();
+            if (snell_render(r[k], &f, &st) != SNELL_OK) {
+                fprintf(stderr, "bench_caustics: %s\n", snell_last_error(ctx));
+                return 1;
+            }
+            glFinish();
+            if (i >= 0) t[k][i] = snell__now_ms() - t0;
+            if (i >= 0 && k > 0 && st.caustics_reused != (k == 1)) {
+                fprintf(stderr, "bench_caustics: frame %s: %s\n", names[k], st.caustics_reason);
+                return 1;
+            }
+        }
+    for (i = 0; i < rounds; i++) ratio[0][i] = t[1][i] / t[0][i], ratio[1][i] = t[2][i] / t[0][i];
+    printf("bench_caustics: %dx%d, %d rounds, %d^2 photons, %d^2 light map\n", size, size, rounds, photons, map);
+    for (k = 0; k < 3; k++) printf("  %-7s median %.2f ms\n", names[k], median(t[k], rounds));
+    printf("  reused/off median ratio %.3f, made/off median ratio %.3f\n", median(ratio[0], rounds),
+           median(ratio[1], rounds));
+    for (k = 0; k < 3; k++) snell_renderer_destroy(r[k]);
+    snell_env_destroy(env);
+    snell_mesh_destroy(sphere);
+    snell_ctx_destroy(ctx);
+    return 0;
+}

@@ -1,0 +1,24 @@
+# Caustics and shadows of glass on a receiver plane (render/caustics.c,
+# ref/ref_caustics.c; issue 27).
+# test_caustics: a glass sphere over a plane under a directional light: the caustic's peak at the ball lens's
+# paraxial focus, flux and PSNR against the reference's light tracing, reuse, skips, bad input.
+snell_add_test(test_caustics SOURCES test_caustics.c LABELS "render;gl")
+target_link_libraries(test_caustics PRIVATE m)
+if(TARGET snell-render)
+  # snell-render --light/--floor: the stage runs (its stats line), and a bad --light is refused (exit 2)
+  add_test(NAME cli_caustics COMMAND $<TARGET_FILE:snell-render> --light dir:0.5,-1,0.2 --floor -1,3 --size 64x64
+           --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_caustics.png)
+  set_tests_properties(cli_caustics PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
+    "stages run: opaque caustics glass.*caustics: made: 1 glass object casting.*65536 photons")
+  add_test(NAME cli_caustics_bad_light COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>"
+           "-DARGS=--light|dir:0,0,0|--floor|0" -DCODE=2 "-DERR=wants dir:X,Y,Z" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+  set_tests_properties(cli_caustics_bad_light PROPERTIES LABELS "cli;gl")
+endif()
+# bench_caustics: the frame cost off / light map reused / made every frame, rounds taking turns
+# (a tool, not a test: uses internals; numbers in the issue's note).
+add_executable(bench_caustics bench_caustics.c)
+target_link_libraries(bench_caustics PRIVATE snell_static)
+target_include_directories(bench_caustics PRIVATE ${PROJECT_SOURCE_DIR}/src ${CGLM_INCLUDE_DIR})
+target_compile_options(bench_caustics PRIVATE ${SNELL_WARNINGS})
+add_test(NAME bench_caustics_runs COMMAND bench_caustics 64 2 32 32)
+set_tests_properties(bench_caustics_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "made/off median ratio")
