@@ -38,6 +38,19 @@ static snell_frame_desc frame_of(const snell_env *env, const snell_glass *g)
     return f;
 }
 
+/* The budget's frame (pixels a) is the one the explicit method draws (into b, on renderer plain). */
+static void same_as_explicit(snell_renderer *plain, const snell_env *env, const snell_glass *g, snell_method m,
+                             const uint8_t *a, uint8_t *b)
+{
+    snell_glass e = *g;
+    snell_frame_desc fe = frame_of(env, &e);
+    e.material.method = m;
+    CHECK_OK(snell_render(plain, &fe, NULL));
+    CHECK_OK(snell_renderer_read_rgba(plain, b));
+    CHECK(!memcmp(a, b, W * H * 4), "the budget's %s differs from explicit %s", snell_method_str(m),
+          snell_method_str(m));
+}
+
 /* Frames with the budget until the plan has held for 10 frames; the last frame's stats and image. */
 static void settle(snell_renderer *r, snell_frame_desc *f, snell_frame_stats *st, uint8_t *px)
 {
@@ -95,14 +108,7 @@ int main(void)
     CHECK(!strncmp(st.glass[0].reason, "auto by budget: peel (rung ", 27), "reason \"%s\"", st.glass[0].reason);
     printf("huge budget: %s; %s\n", st.glass[0].reason, st.budget_reason);
     /* ... drawn exactly as the explicit method draws it */
-    {
-        snell_glass e = g;
-        snell_frame_desc fe = frame_of(env, &e);
-        e.material.method = SNELL_METHOD_PEEL;
-        CHECK_OK(snell_render(plain, &fe, NULL));
-        CHECK_OK(snell_renderer_read_rgba(plain, b));
-        CHECK(!memcmp(a, b, W * H * 4), "the budget's peel differs from explicit peel");
-    }
+    same_as_explicit(plain, env, &g, SNELL_METHOD_PEEL, a, b);
 
     /* A budget no frame meets: the lowest rung, single, drawn as single draws. */
     f.budget_ms = 1e-3f;
@@ -111,14 +117,7 @@ int main(void)
           snell_method_str(st.glass[0].method_used), st.glass[0].reason);
     CHECK(st.budget_measured_ms > 1e-3, "measured %g ms", st.budget_measured_ms);
     printf("tiny budget: %s; %s\n", st.glass[0].reason, st.budget_reason);
-    {
-        snell_glass e = g;
-        snell_frame_desc fe = frame_of(env, &e);
-        e.material.method = SNELL_METHOD_SINGLE;
-        CHECK_OK(snell_render(plain, &fe, NULL));
-        CHECK_OK(snell_renderer_read_rgba(plain, b));
-        CHECK(!memcmp(a, b, W * H * 4), "the budget's single differs from explicit single");
-    }
+    same_as_explicit(plain, env, &g, SNELL_METHOD_SINGLE, a, b);
 
     /* The quality floor wins over the budget: the first rung of the torus's ladder predicted at 24 dB or
      * more, peel. */
