@@ -138,6 +138,51 @@ static void check_gltf(void)
     snell_mesh_destroy(m);
 }
 
+/* The caustics stage: a frame with a light on a receiver draws it, or is refused naming the option. */
+static void check_caustics(snell_ctx *ctx)
+{
+    snell_env *env = NULL;
+    snell_renderer *r = NULL;
+    snell_mesh *m = NULL;
+    snell_shape_desc sd;
+    snell_glass g;
+    snell_frame_desc f;
+    snell_frame_stats st;
+    snell_status s;
+    memset(&sd, 0, sizeof sd);
+    sd.shape = SNELL_SHAPE_SPHERE;
+    CHECK_OK_CTX(ctx, snell_env_create(ctx, &(snell_env_desc){0}, &env));
+    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &(snell_renderer_desc){.width = 32, .height = 32}, &r));
+    CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &m));
+    if (env && r && m) {
+        memset(&g, 0, sizeof g);
+        g.mesh = m;
+        memset(&f, 0, sizeof f);
+        f.env = env;
+        f.glass = &g;
+        f.glass_count = 1;
+        f.camera.distance = 4.0f;
+        f.light.type = SNELL_LIGHT_DIRECTIONAL;
+        f.light.direction[1] = -1.0f;
+        f.receiver.height = -1.5f;
+        f.receiver.extent = 3.0f;
+        s = snell_render(r, &f, &st);
+        if (snell_build_has("caustics")) {
+            CHECK(s == SNELL_OK && strstr(st.stages, "caustics"), "caustics: %s, stages \"%s\"", snell_last_error(ctx),
+                  st.stages);
+        } else {
+            check_unsupported("a frame with a light and a receiver", s, ctx, "SNELL_WITH_CAUSTICS");
+            CHECK(snell__shader_source("caustics_receiver.frag") == NULL, "the caustics' shaders left out");
+            memset(&f.light, 0, sizeof f.light);
+            memset(&f.receiver, 0, sizeof f.receiver);
+            CHECK_OK_CTX(ctx, snell_render(r, &f, NULL)); /* without them the frame is as in any build */
+        }
+    }
+    snell_mesh_destroy(m);
+    snell_renderer_destroy(r);
+    snell_env_destroy(env);
+}
+
 int main(void)
 {
     snell_ctx *ctx = NULL;
@@ -154,6 +199,7 @@ int main(void)
     check_ref(ctx);
     check_lm2d(ctx);
     check_water(ctx);
+    check_caustics(ctx);
     snell_ctx_destroy(ctx);
     return test_finish();
 }
