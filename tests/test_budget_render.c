@@ -25,25 +25,24 @@ static snell_mesh *torus(snell_ctx *ctx)
     return mesh;
 }
 
-static snell_frame_desc frame_of(const snell_env *env, const snell_glass *g)
+/* The frame of one glass object of mesh with material m (test_frame_one), seen from the test's camera. */
+static void frame_of(snell_frame_desc *f, snell_glass *g, const snell_mesh *mesh, const snell_glass_material *m,
+                     const snell_env *env)
 {
-    snell_frame_desc f;
-    memset(&f, 0, sizeof f);
-    f.env = env;
-    f.glass = g;
-    f.glass_count = 1;
-    f.camera.distance = 3.5f;
-    f.camera.azimuth = 0.5f;
-    f.camera.elevation = 0.35f;
-    return f;
+    test_frame_one(f, g, mesh, env);
+    g->material = *m;
+    f->camera.distance = 3.5f;
+    f->camera.azimuth = 0.5f;
+    f->camera.elevation = 0.35f;
 }
 
 /* The budget's frame (pixels a) is the one the explicit method draws (into b, on renderer plain). */
 static void same_as_explicit(snell_renderer *plain, const snell_env *env, const snell_glass *g, snell_method m,
                              const uint8_t *a, uint8_t *b)
 {
-    snell_glass e = *g;
-    snell_frame_desc fe = frame_of(env, &e);
+    snell_glass e;
+    snell_frame_desc fe;
+    frame_of(&fe, &e, g->mesh, &g->material, env);
     e.material.method = m;
     CHECK_OK(snell_render(plain, &fe, NULL));
     CHECK_OK(snell_renderer_read_rgba(plain, b));
@@ -86,10 +85,7 @@ int main(void)
     CHECK_OK(snell_renderer_create(ctx, &rd, &plain));
     mesh = torus(ctx);
     if (!r || !plain || !mesh || !a || !b) return test_finish();
-    memset(&g, 0, sizeof g);
-    g.mesh = mesh;
-    g.material.ior = 1.5f;
-    f = frame_of(env, &g);
+    frame_of(&f, &g, mesh, &(snell_glass_material){.ior = 1.5f}, env);
 
     /* No budget: no stage, no budget stats. */
     CHECK_OK(snell_render(r, &f, &st));

@@ -155,12 +155,7 @@ static void check_caustics(snell_ctx *ctx)
     CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &(snell_renderer_desc){.width = 32, .height = 32}, &r));
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &m));
     if (env && r && m) {
-        memset(&g, 0, sizeof g);
-        g.mesh = m;
-        memset(&f, 0, sizeof f);
-        f.env = env;
-        f.glass = &g;
-        f.glass_count = 1;
+        test_frame_one(&f, &g, m, env);
         f.camera.distance = 4.0f;
         f.light.type = SNELL_LIGHT_DIRECTIONAL;
         f.light.direction[1] = -1.0f;

@@ -208,12 +208,15 @@ static double percentile(const double *v, int n, double p)
     return r;
 }
 
+/* The camera's azimuth at frame index f of the path (turning --spin degrees a frame from az0). */
+static float azimuth_at(const budget_opts *o, float az0, int f) { return az0 + (float)f * o->spin * 3.14159265f / 180.0f; }
+
 /* One frame of k at frame index f (camera turned f * spin from the start); its ms. */
 static double frame(snell_ctx *ctx, budget_config *k, const budget_opts *o, float az0, int f, snell_frame_stats *st,
                     int *ok)
 {
     double t0;
-    k->fd.camera.azimuth = az0 + (float)f * o->spin * 3.14159265f / 180.0f;
+    k->fd.camera.azimuth = azimuth_at(o, az0, f);
     t0 = cli_now_ms();
     if (snell_render(k->r, &k->fd, st) != SNELL_OK) {
         fprintf(stderr, "snell-bench --budget: %s: %s\n", k->name, snell_last_error(ctx));
@@ -249,7 +252,7 @@ static int measure(const budget_opts *o, const bench_scene *s, budget_config *ks
     p.absorption_model = SNELL_REF_ABSORB_PATH;
     p.env = ks[0].fd.env;
     p.camera = ks[0].fd.camera;
-    p.camera.azimuth = az0 + (float)f * o->spin * 3.14159265f / 180.0f;
+    p.camera.azimuth = azimuth_at(o, az0, f);
     p.width = p.height = o->size;
     p.threads = o->threads;
     p.samples = 1;

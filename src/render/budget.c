@@ -43,7 +43,7 @@ static const snell__rung g_rungs[] = {
 #define BACKOFF_MIN 30u  /* frames a plan found over budget is barred, at first */
 #define BACKOFF_MAX 480u
 #define PROBE_REACH 2.0  /* a probe considers steps predicted within this many times the aim */
-#define LEARN_RUNG 0.6   /* ... and in a rung's own, times its share of the frame */
+#define LEARN_RUNG 0.6   /* weight of the newest frame in a learned cost, times its share of the frame */
 
 int snell_budget_rung_count(void) { return RUNG_COUNT; }
 
@@ -316,10 +316,16 @@ static int exhaustive_plan(const snell__budget *b, const snell__budget_object *o
     return 1;
 }
 
+/* The best plan within limit_ms: every plan when they are few, else greedy. */
+static void choose_plan(const snell__budget *b, const snell__budget_object *obj, int n, double limit_ms, int plan[])
+{
+    if (!exhaustive_plan(b, obj, n, limit_ms, plan)) best_plan(b, obj, n, limit_ms, plan);
+}
+
 int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n, float budget_ms, int plan[],
                        double *predicted_ms, char *why, size_t why_size)
 {
-    int i, changed = 0, same_objects = 1;
+    int i, changed = 0, probed = 0, same_objects = 1;
     int cur[SNELL_MAX_GLASS];
     int over = b->fresh && b->last_ms > OVER * budget_ms;
     b->fresh = 0;
@@ -350,7 +356,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
             b->backoff /= 2; /* a long stretch within budget forgives */
             b->within_since = b->frame;
         }
-        if (!exhaustive_plan(b, obj, n, HEADROOM * budget_ms, plan)) best_plan(b, obj, n, HEADROOM * budget_ms, plan);
+        choose_plan(b, obj, n, HEADROOM * budget_ms, plan);
         new_ms = plan_ms(b, obj, n, plan);
         if (!over && same_objects && new_ms > cur_ms && b->frame < b->hold_until && cur_ms <= budget_ms) {
             memcpy(plan, cur, sizeof(int) * (size_t)n); /* hold: the last change is still being measured */
@@ -379,8 +385,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
              * until a change of plan measures the split; a step is how it is measured. */
             int wide[SNELL_MAX_GLASS], pick = -1;
             double best = 0.0;
-            if (!exhaustive_plan(b, obj, n, PROBE_REACH * HEADROOM * budget_ms, wide))
-                best_plan(b, obj, n, PROBE_REACH * HEADROOM * budget_ms, wide);
+            choose_plan(b, obj, n, PROBE_REACH * HEADROOM * budget_ms, wide);
             for (i = 0; i < n; i++)
                 if (obj[i].n && wide[i] > cur[i]) {
                     double dq = obj[i].area * (rung_db(&obj[i], cur[i] + 1) - rung_db(&obj[i], cur[i]));
@@ -388,14 +393,13 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
                 }
             if (pick >= 0) {
                 plan[pick] = cur[pick] + 1;
-                changed = 1;
+                changed = probed = 1;
                 b->probing = 1;
-                b->last_change = b->frame;
                 snell__why(why, why_size, "probing one step up after %u frames held", b->probe_every);
             }
         }
         new_ms = plan_ms(b, obj, n, plan);
-        if (b->probing && changed)
+        if (probed)
             ; /* said above */
         else if (changed || over)
             snell__why(why, why_size, "%s: last frame %.2f ms, this plan %.2f ms predicted%s",
@@ -408,7 +412,6 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
     if (changed) {
         b->hold_until = b->frame + HOLD_FRAMES;
         b->last_change = b->frame;
-        b->changes++;
     }
     for (i = 0; i < SNELL_MAX_GLASS; i++) {
         b->plan[i] = i < n ? plan[i] : -1;

@@ -79,7 +79,6 @@ typedef struct snell__budget {
                                      * programs and per-mesh resources, so it is neither learned from
                                      * nor judged over budget */
     int plan[SNELL_MAX_GLASS];      /* ladder index per object of the last plan, -1 none */
-    int changes;                    /* plan changes so far */
 } snell__budget;
 
 void snell__budget_reset(snell__budget *b);

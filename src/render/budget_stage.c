@@ -71,30 +71,25 @@ snell_status snell__budget_run(snell__frame *f)
     int plan[SNELL_MAX_GLASS];
     int i, drawn[SNELL_MAX_GLASS] = {0};
     double predicted;
-    if (r->budget.frame == 0 && !r->budget_fence) snell__budget_reset(&r->budget);
     collect(r);
     for (i = 0; i < sc->drawn; i++) drawn[sc->order[i]] = 1;
     for (i = 0; i < sc->count; i++) {
         snell__object *o = &sc->obj[i];
         snell__budget_object *b = &r->budget_obj[i];
         const snell_glass_material *g = &o->glass->material;
+        const snell_mesh_analysis *an = NULL;
         memset(b, 0, sizeof *b);
         if (!drawn[i]) continue; /* culled or passes through: costs nothing */
         snell__object_project(&sc->view, o);
         b->area = 0.785398f * (float)o->scissor[2] * (float)o->scissor[3] / ((float)r->width * (float)r->height);
         if (b->area > 1.0f) b->area = 1.0f;
-        if (g->method == SNELL_METHOD_AUTO && g->thickness <= 0.0f) {
-            const snell_mesh_analysis *an = NULL;
-            if (snell__mesh_analysis(o->mesh, &an) != SNELL_OK) an = NULL;
+        if (snell__mesh_analysis(o->mesh, &an) != SNELL_OK) an = NULL; /* cached on the mesh */
+        if (g->method == SNELL_METHOD_AUTO && g->thickness <= 0.0f)
             snell__budget_ladder(an, o->glass, f->fd->quality_floor_db, usable, r, b);
-        }
         if (b->n == 0) {
             /* drawn as asked (or single for a thin wall): its table cost, else single's */
             snell_method m = g->thickness > 0.0f || g->method == SNELL_METHOD_AUTO ? SNELL_METHOD_SINGLE : g->method;
-            const snell_mesh_analysis *an = NULL;
-            int k, cls;
-            if (snell__mesh_analysis(o->mesh, &an) != SNELL_OK) an = NULL;
-            cls = snell__budget_class(an, o->glass);
+            int k, cls = snell__budget_class(an, o->glass);
             b->fixed_cost = 1.0f;
             for (k = 0; k < snell__rung_count(); k++)
                 if (snell__rung_at(k)->method == m && !snell__rung_at(k)->param)
