@@ -131,6 +131,44 @@ int main(void)
     CHECK_OK(snell_renderer_read_rgba(plain, b));
     CHECK(!memcmp(a, b, W * H * 4) && !strstr(st.stages, "budget"), "budget off: not plain AUTO's frame");
 
+    /* snell_renderer_warm: with a budget it times every rung of the ladder (the frame without glass, the
+     * lowest rung, then each rung above once built: 1 + 3 + 2 + 3 x (rungs - 1) frames), and the frames
+     * after it are planned from those costs: the first one already on the top rung, none a first use. */
+    {
+        snell_renderer *w = NULL;
+        snell_warm_stats ws;
+        int k, first_uses = 0;
+        CHECK_OK(snell_renderer_create(ctx, &rd, &w));
+        f.budget_ms = 1e5f;
+        CHECK_OK(snell_renderer_warm(w, &f, &ws));
+        printf("warm: %d frames, %.1f ms, %d rungs timed, base %.2f ms\n", ws.frames, ws.ms, ws.rungs, ws.base_ms);
+        CHECK(ws.rungs >= 3 && ws.frames == 6 + 3 * (ws.rungs - 1) && ws.base_ms > 0.0 && ws.ms > 0.0,
+              "warm: %d frames, %d rungs, base %g ms", ws.frames, ws.rungs, ws.base_ms);
+        for (k = 0; k < 12; k++) {
+            CHECK_OK(snell_render(w, &f, &st));
+            snell_renderer_finish(w);
+            first_uses += st.budget_first_use;
+            if (k == 0)
+                CHECK(st.glass[0].method_used == SNELL_METHOD_PEEL && st.budget_predicted_ms > 0.0,
+                      "first frame after warm drawn by %s (%s; %s)", snell_method_str(st.glass[0].method_used),
+                      st.glass[0].reason, st.budget_reason);
+        }
+        CHECK(first_uses == 0, "%d frames after warm drew a configuration for the first time", first_uses);
+        CHECK_OK(snell_renderer_read_rgba(w, a));
+        same_as_explicit(plain, env, &g, SNELL_METHOD_PEEL, a, b);
+        /* without a budget: the frame once */
+        f.budget_ms = 0.0f;
+        CHECK_OK(snell_renderer_warm(w, &f, &ws));
+        CHECK(ws.frames == 1 && ws.rungs == 0, "warm without a budget: %d frames, %d rungs", ws.frames, ws.rungs);
+        /* a frame snell_render refuses is refused, and so are NULLs */
+        f.budget_ms = NAN;
+        CHECK(snell_renderer_warm(w, &f, &ws) == SNELL_E_INVALID_ARG && ws.rungs == 0, "warm took a NaN budget");
+        CHECK(snell_renderer_warm(NULL, &f, NULL) == SNELL_E_INVALID_ARG, "warm took a NULL renderer");
+        CHECK(snell_renderer_warm(w, NULL, NULL) == SNELL_E_INVALID_ARG, "warm took a NULL frame");
+        f.budget_ms = 0.0f;
+        snell_renderer_destroy(w);
+    }
+
     /* Refusals. */
     f.budget_ms = NAN;
     s = snell_render(r, &f, NULL);

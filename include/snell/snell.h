@@ -1174,6 +1174,25 @@ snell_status snell_renderer_env_probe(snell_renderer *r, const snell_env *env, s
                                       const float *dirs, int n, float *rgb);
 /* Blocks until the GPU finished the frame (glFinish); for timing. */
 void snell_renderer_finish(snell_renderer *r);
+/* What snell_renderer_warm did. */
+typedef struct snell_warm_stats {
+    int frames;                     /* frames drawn */
+    double ms;                      /* wall time it took */
+    int rungs;                      /* with a budget: configurations of the rung table timed on this device */
+    double base_ms;                 /* with a budget: the frame without its glass objects, as measured */
+} snell_warm_stats;
+/* Draws the frame ahead of time so that the frames after it build nothing:
+ * programs and per-mesh resources (bakes, BVHs) are made now. With a budget
+ * (budget_ms > 0) it draws every rung of each AUTO object's ladder and times
+ * them on this device (glFinish before and after; the mean of two draws):
+ * the frame without its glass, every object on its lowest rung, then one
+ * object at a time on each rung above. AUTO by budget then plans its first
+ * frame from this device's own costs rather than the table's, draws no
+ * configuration for the first time later, and tries a step up only where it
+ * is predicted within the budget. Without a budget: the frame drawn once.
+ * Takes about 3 x (2 + the ladders' rungs above the lowest) frames, each
+ * drawn into the target (which holds the last one). stats may be NULL. */
+snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *frame, snell_warm_stats *stats);
 
 /* ------------------------------------------------------------------ image */
 /* Writes RGBA8 (top row first) as PNG. */

@@ -30,6 +30,7 @@ typedef struct budget_opts {
     float spin, budget_ms, budget_x; /* budget_x > 0: the budget is that many times single's median */
     float ior;                      /* of every glass object of a mesh scene (0: 1.5) */
     int exact_auto;                 /* AUTO's objects let exact on their ladders (material.exact.auto_pick) */
+    int no_warm;                    /* --warm off: AUTO starts cold (the table's costs, first uses in the run) */
     const char *cache;
 } budget_opts;
 
@@ -64,17 +65,20 @@ static int parse(int argc, char **argv, budget_opts *o)
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) { /* wherever it is (issue 28 item 5) */
             printf("usage: snell-bench --budget MS|Nx [--scene S] [--size N] [--frames F] [--spin DEG] [--samples K]\n"
                    "                   [--fixed-every K] [--ior N] [--exact-auto allow|never] [--threads T]\n"
-                   "                   [--cache DIR]\n"
+                   "                   [--warm on|off] [--cache DIR]\n"
                    "AUTO by frame budget (snell_frame_desc.budget_ms) against every fixed configuration of its rung\n"
                    "table, frame by frame on a moving camera. MS: the budget in ms; Nx: N times single's median frame\n"
                    "(measured first). AUTO draws every frame, the fixed configurations every K-th (and at the\n"
-                   "samples). Defaults: --scene bunny --size 256 --frames 300 --spin 1.2 --samples 4 --fixed-every 5.\n");
+                   "samples). AUTO's renderer is first warmed (snell_renderer_warm: every rung of its ladders built\n"
+                   "and timed on this device) unless --warm off. Defaults: --scene bunny --size 256 --frames 300\n"
+                   "--spin 1.2 --samples 4 --fixed-every 5 --warm on.\n");
             return -1;
         }
     }
     for (i = 1; i < argc; i++) {
         static const char *const valued[] = {"--budget", "--scene",   "--size",    "--frames", "--samples",
-                                             "--fixed-every", "--threads", "--spin", "--cache", "--ior", "--exact-auto"};
+                                             "--fixed-every", "--threads", "--spin", "--cache", "--ior", "--exact-auto",
+                                             "--warm"};
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         char *end = NULL;
         size_t k;
@@ -107,6 +111,12 @@ static int parse(int argc, char **argv, budget_opts *o)
                 return 0;
             }
             o->exact_auto = !strcmp(v, "allow");
+        } else if (!strcmp(a, "--warm")) {
+            if (strcmp(v, "on") && strcmp(v, "off")) {
+                fprintf(stderr, "snell-bench --budget: --warm %s: on or off\n", v);
+                return 0;
+            }
+            o->no_warm = !strcmp(v, "off");
         }
         else {
             fprintf(stderr, "snell-bench --budget: unknown option %s\n", a);
@@ -346,6 +356,17 @@ int snell_bench_budget_main(int argc, char **argv)
         }
     }
     ks[0].fd.budget_ms = o.budget_ms;
+    if (!o.no_warm) {
+        snell_warm_stats ws;
+        if (snell_renderer_warm(ks[0].r, &ks[0].fd, &ws) != SNELL_OK) {
+            fprintf(stderr, "snell-bench --budget: warming AUTO: %s\n", snell_last_error(ctx));
+            rc = 1;
+            goto done;
+        }
+        printf("AUTO warmed (snell_renderer_warm): %d frames in %.0f ms, %d rungs timed on this device, the frame "
+               "without glass %.2f ms\n", ws.frames, ws.ms, ws.rungs, ws.base_ms);
+    } else
+        printf("AUTO not warmed (--warm off): it starts from the rung table's costs\n");
     for (k = 0; k < o.samples; k++) sample_at[k] = (int)((long)o.frames * (k + 1) / (o.samples + 1));
     cli_loadavg(load0, sizeof load0);
     printf("scene %s, %dx%d, %d frames turning %.2f deg each, budget %.2f ms%s; load %s\n", o.scene, o.size, o.size,

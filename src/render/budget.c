@@ -42,7 +42,8 @@ static const snell__rung g_rungs[] = {
 #define HOLD_FRAMES 6    /* after a change, no step up for this many frames */
 #define BACKOFF_MIN 30u  /* frames a plan found over budget is barred, at first */
 #define BACKOFF_MAX 480u
-#define PROBE_REACH 2.0  /* a probe considers steps predicted within this many times the aim */
+#define PROBE_REACH 2.0  /* a probe considers steps predicted within this many times the aim ... */
+#define PROBE_REACH_CALIBRATED (1.0 / HEADROOM) /* ... or within the budget once the costs were measured */
 #define LEARN_RUNG 0.6   /* weight of the newest frame in a learned cost, times its share of the frame */
 
 int snell_budget_rung_count(void) { return RUNG_COUNT; }
@@ -381,15 +382,19 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         if (!changed && !over && same_objects && b->frame - b->last_change >= b->probe_every &&
             b->blocked_until <= b->frame) {
             /* Held long enough: try the best single step up among those predicted within PROBE_REACH
-             * times the aim. The prediction splits the frame into base and rungs by the table's units
+             * times the aim (within the budget once calibrated). The prediction splits the frame into base and rungs by the table's units
              * until a change of plan measures the split; a step is how it is measured. */
-            int wide[SNELL_MAX_GLASS], pick = -1;
-            double best = 0.0;
-            choose_plan(b, obj, n, PROBE_REACH * HEADROOM * budget_ms, wide);
+            int step[SNELL_MAX_GLASS], pick = -1;
+            double best = 0.0, reach = (b->calibrated ? PROBE_REACH_CALIBRATED : PROBE_REACH) * HEADROOM * budget_ms;
+            memcpy(step, cur, sizeof(int) * (size_t)n);
             for (i = 0; i < n; i++)
-                if (obj[i].n && wide[i] > cur[i]) {
+                if (obj[i].n && cur[i] + 1 < obj[i].n) {
                     double dq = obj[i].area * (rung_db(&obj[i], cur[i] + 1) - rung_db(&obj[i], cur[i]));
-                    if (dq > best) best = dq, pick = i;
+                    step[i] = cur[i] + 1;
+                    if (dq > best && plan_ms(b, obj, n, step) <= reach &&
+                        !(b->blocked_until > b->frame && plan_units(obj, n, step) >= b->blocked_units))
+                        best = dq, pick = i;
+                    step[i] = cur[i];
                 }
             if (pick >= 0) {
                 plan[pick] = cur[pick] + 1;
@@ -431,4 +436,59 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
     *predicted_ms = b->ms_per_unit > 0.0 ? plan_ms(b, obj, n, plan) : -1.0;
     b->frame++;
     return changed;
+}
+
+int snell__budget_calibrate(snell__budget *b, const snell__budget_object *obj, int n,
+                            double (*measure)(void *user, const int *plan), void *user)
+{
+    double base, m0, ms, floor_units = 0.0, k_floor, num[RUNG_COUNT] = {0}, den[RUNG_COUNT] = {0};
+    int plan[SNELL_MAX_GLASS], i, k, r, frames = 2;
+    unsigned char built[SNELL__BUDGET_MAX_RUNGS];
+    memcpy(built, b->drawn, sizeof built); /* what was drawn before stays built */
+    snell__budget_reset(b);
+    memcpy(b->drawn, built, sizeof built);
+    if (!((base = measure(user, NULL)) > 0.0)) return -1;
+    for (i = 0; i < n; i++) {
+        plan[i] = obj[i].n ? obj[i].floor : -1;
+        floor_units += obj[i].area * rung_cost(&obj[i], obj[i].n ? plan[i] : 0);
+    }
+    if (!((m0 = measure(user, plan)) > 0.0)) return -1;
+    /* The glass's share of the floor frame; at least a twentieth of it, as a frame's noise can
+     * measure the base above a frame of small objects. */
+    k_floor = floor_units > 1e-6 ? (m0 - base > 0.05 * m0 ? m0 - base : 0.05 * m0) / floor_units : m0;
+    for (i = 0; i < n; i++)
+        if (obj[i].n) {
+            r = obj[i].ladder[obj[i].floor];
+            num[r] += obj[i].area * rung_cost(&obj[i], obj[i].floor) * k_floor;
+            den[r] += obj[i].area * rung_cost(&obj[i], obj[i].floor);
+        }
+    /* One object a step up at a time: what it costs above the floor frame is its rung's. */
+    for (i = 0; i < n; i++)
+        for (k = obj[i].floor + 1; k < obj[i].n; k++) {
+            double u_floor = obj[i].area * rung_cost(&obj[i], obj[i].floor), u = obj[i].area * rung_cost(&obj[i], k);
+            plan[i] = k;
+            ms = measure(user, plan);
+            plan[i] = obj[i].floor;
+            if (!(ms > 0.0)) return -1;
+            frames++;
+            r = obj[i].ladder[k];
+            num[r] += ms - m0 + u_floor * k_floor;
+            den[r] += u;
+        }
+    for (r = 0; r < RUNG_COUNT; r++)
+        if (den[r] > 1e-9) {
+            /* the table's order of costs is kept within a factor 4 of the floor's ms per unit */
+            b->rung_ms[r] = clampd(num[r] / den[r], 0.25 * k_floor, 4.0 * k_floor);
+            b->drawn[r] = 1;
+        }
+    {
+        double sum = 0.0;
+        int m = 0;
+        for (r = 0; r < RUNG_COUNT; r++)
+            if (b->rung_ms[r] > 0.0) sum += b->rung_ms[r], m++;
+        b->ms_per_unit = m ? sum / m : k_floor;
+    }
+    b->base_ms = base;
+    b->calibrated = 1;
+    return frames;
 }

@@ -79,6 +79,8 @@ typedef struct snell__budget {
                                      * programs and per-mesh resources, so it is neither learned from
                                      * nor judged over budget */
     int plan[SNELL_MAX_GLASS];      /* ladder index per object of the last plan, -1 none */
+    int calibrated;                 /* 1: base and rung costs were measured by snell__budget_calibrate, so
+                                     * probes stay within the budget (no step is predicted from the table) */
 } snell__budget;
 
 void snell__budget_reset(snell__budget *b);
@@ -89,6 +91,17 @@ void snell__budget_observe(snell__budget *b, double ms);
  * measured yet) and why, and returns 1 if the plan changed. */
 int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n, float budget_ms, int plan[],
                        double *predicted_ms, char *why, size_t why_size);
+
+/* Measures this device before the first planned frame (snell_renderer_warm):
+ * measure(user, plan) draws the frame with object i on ladder index plan[i]
+ * (plan NULL: the frame without its glass objects) and returns its ms, <= 0
+ * when it failed. Draws the frame without glass (the base), every object on
+ * its floor, then one object at a time on each rung above it, and seeds the
+ * controller with the base and each rung's ms per unit (the units-weighted
+ * mean over the objects that drew it), every measured rung counted as drawn.
+ * Resets b first, but for its drawn[] (measure may read and set it). Returns the frames measured, or -1 if a measure failed. */
+int snell__budget_calibrate(snell__budget *b, const snell__budget_object *obj, int n,
+                            double (*measure)(void *user, const int *plan), void *user);
 
 /* Renderer side (budget.c): the ladder of one object (fit per method of the
  * table, methods that failed to build excluded by usable(id)). */

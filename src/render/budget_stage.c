@@ -46,6 +46,7 @@ void snell__budget_gpu_done(snell_renderer *r)
 
 void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, double start_ms)
 {
+    if (r->budget_force) return; /* warming: measured by snell_renderer_warm */
     if (!(fd->budget_ms > 0.0f)) {
         if (r->budget.frame) snell__budget_destroy(r); /* budget off: start afresh when it returns */
         return;
@@ -70,8 +71,8 @@ snell_status snell__budget_run(snell__frame *f)
     snell_frame_stats *s = f->s;
     int plan[SNELL_MAX_GLASS];
     int i, drawn[SNELL_MAX_GLASS] = {0};
-    double predicted;
-    collect(r);
+    double predicted = -1.0;
+    if (!r->budget_force) collect(r);
     for (i = 0; i < sc->drawn; i++) drawn[sc->order[i]] = 1;
     for (i = 0; i < sc->count; i++) {
         snell__object *o = &sc->obj[i];
@@ -96,8 +97,17 @@ snell_status snell__budget_run(snell__frame *f)
                     b->fixed_cost = snell__rung_at(k)->cost[cls];
         }
     }
-    s->budget_changed = snell__budget_plan(&r->budget, r->budget_obj, sc->count, f->fd->budget_ms, plan, &predicted,
-                                           s->budget_reason, sizeof s->budget_reason);
+    if (r->budget_force) {
+        /* snell_renderer_warm draws the plan it measures */
+        for (i = 0; i < sc->count; i++) {
+            const snell__budget_object *b = &r->budget_obj[i];
+            plan[i] = !b->n ? -1 : r->budget_force[i] < b->floor ? b->floor : r->budget_force[i] >= b->n ? b->n - 1
+                                                                                                    : r->budget_force[i];
+        }
+        snell__why(s->budget_reason, sizeof s->budget_reason, "warming: measuring the rungs on this device");
+    } else
+        s->budget_changed = snell__budget_plan(&r->budget, r->budget_obj, sc->count, f->fd->budget_ms, plan,
+                                               &predicted, s->budget_reason, sizeof s->budget_reason);
     s->budget_ms = f->fd->budget_ms;
     s->budget_first_use = r->budget.first_use;
     s->budget_measured_ms = r->budget.last_ms;
@@ -124,4 +134,91 @@ snell_status snell__budget_run(snell__frame *f)
         o->budget_note = r->budget_note[i];
     }
     return SNELL_OK;
+}
+
+/* snell_renderer_warm's measurements: the frame drawn with a forced plan. */
+typedef struct warm_state {
+    snell_renderer *r;
+    const snell_frame_desc *fd;
+    snell_frame_desc bare;          /* the frame without its glass objects */
+    int frames;
+    int bare_drawn;
+    snell_status st;
+} warm_state;
+
+static snell_status warm_draw(warm_state *w, const snell_frame_desc *fd)
+{
+    snell_status st = snell_render(w->r, fd, NULL);
+    w->frames++;
+    if (st != SNELL_OK && w->st == SNELL_OK) w->st = st;
+    return st;
+}
+
+/* Draws the plan once to build what it needs when a rung is new to this
+ * renderer, then twice timed (glFinish on both sides): the mean. */
+static double warm_measure(void *user, const int *plan)
+{
+    warm_state *w = user;
+    snell_renderer *r = w->r;
+    const snell_frame_desc *fd = plan ? w->fd : &w->bare;
+    double t0, sum = 0.0;
+    int i, fresh = !plan ? !w->bare_drawn : 0;
+    if (plan) {
+        r->budget_force = plan;
+        for (i = 0; i < r->scene.count; i++)
+            if (r->budget_obj[i].n && plan[i] >= 0 && !r->budget.drawn[r->budget_obj[i].ladder[plan[i]]]) {
+                r->budget.drawn[r->budget_obj[i].ladder[plan[i]]] = 1; /* built below */
+                fresh = 1;
+            }
+    }
+    w->bare_drawn = 1;
+    if (fresh && warm_draw(w, fd) != SNELL_OK) return -1.0;
+    for (i = 0; i < 2; i++) {
+        glFinish();
+        t0 = snell__now_ms();
+        if (warm_draw(w, fd) != SNELL_OK) return -1.0;
+        glFinish();
+        sum += snell__now_ms() - t0;
+    }
+    return sum / 2.0;
+}
+
+snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *fd, snell_warm_stats *stats)
+{
+    warm_state w;
+    snell_warm_stats out;
+    int floor_plan[SNELL_MAX_GLASS], i, n;
+    double t0 = snell__now_ms();
+    memset(&out, 0, sizeof out);
+    if (stats) *stats = out;
+    if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_renderer_warm: renderer and frame required");
+    memset(&w, 0, sizeof w);
+    w.r = r, w.fd = fd, w.bare = *fd, w.st = SNELL_OK;
+    w.bare.glass = NULL, w.bare.glass_count = 0;
+    if (fd->budget_ms > 0.0f) {
+        /* The floor plan first: it builds the ladders (r->budget_obj) the calibration walks. */
+        for (i = 0; i < SNELL_MAX_GLASS; i++) floor_plan[i] = -1;
+        snell__budget_reset(&r->budget);
+        r->budget_force = floor_plan;
+        if (warm_draw(&w, fd) == SNELL_OK) {
+            snell__budget_object obj[SNELL_MAX_GLASS];
+            n = r->scene.count;
+            memcpy(obj, r->budget_obj, sizeof(snell__budget_object) * (size_t)n);
+            for (i = 0; i < n; i++)
+                if (obj[i].n) r->budget.drawn[obj[i].ladder[obj[i].floor]] = 1; /* built by that frame */
+            if (snell__budget_calibrate(&r->budget, obj, n, warm_measure, &w) > 0) {
+                for (i = 0; i < SNELL__BUDGET_MAX_RUNGS; i++) out.rungs += r->budget.rung_ms[i] > 0.0;
+                out.base_ms = r->budget.base_ms;
+            }
+        }
+        r->budget_force = NULL;
+        if (w.st != SNELL_OK) snell__budget_reset(&r->budget);
+    } else {
+        warm_draw(&w, fd);
+    }
+    if (w.st == SNELL_OK) glFinish();
+    out.frames = w.frames;
+    out.ms = snell__now_ms() - t0;
+    if (stats) *stats = out;
+    return w.st;
 }

@@ -52,6 +52,8 @@ struct snell_renderer {
     char budget_note[SNELL_MAX_GLASS][128];            /* each object's rung and why (snell__object.budget_note) */
     void *budget_fence;                               /* GLsync after the last budget frame, NULL none */
     double budget_start_ms, budget_done_ms;           /* that frame's start; its completion seen (-1 not yet) */
+    const int *budget_force;                          /* snell_renderer_warm: the plan to draw (ladder index per
+                                                       * object), NULL: the controller's */
     snell__caustics caustics;                         /* the caustics stage's light map, made on first use */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */
