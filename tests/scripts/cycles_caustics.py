@@ -64,8 +64,8 @@
 #   sharp Glass BSDF: smooth dielectric with Cycles' exact Fresnel (snell's
 #     reference takes Schlick's; the test states the difference).
 #   no adaptive sampling, no denoising, no clamping (sample_clamp 0),
-#     blur_glossy (filter glossy) 0, caustics_refractive/reflective on (they
-#     gate path-traced caustics, not MNEE, but leave nothing filtered),
+#     blur_glossy (filter glossy) 0, caustics_refractive/reflective on
+#     (off, Cycles drops paths that meet glass after a diffuse bounce),
 #     view transform Raw (linear values in the EXR).
 import array
 import json
