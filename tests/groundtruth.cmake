@@ -16,8 +16,8 @@ target_link_libraries(test_groundtruth PRIVATE m)
 # over a white plane under a directional light, 64x64 texels, 16 samples per
 # pixel, three Cycles renders (caustic with seeds 1 and 2, direct light
 # alone): 25 s measured alone on 2 cores at load 5-7 (each render about 5 s
-# with Blender's start, the reference 2 s), 51 s inside the whole suite
-# (ctest -j2, load 8). Skipped where Blender is missing. The
+# with Blender's start, the reference 2 s), 51-56 s inside the whole suite
+# (ctest -j2, load 8-10). Skipped where Blender is missing. The
 # full size (figures in README "Caustics and shadows of glass", 50 s):
 # test_caustics_cycles BLENDER SCRIPT 256 64.
 snell_add_test(test_caustics_cycles SOURCES test_caustics_cycles.c LABELS "groundtruth" TIMEOUT 900
