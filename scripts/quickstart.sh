@@ -4,7 +4,7 @@
 #   test:     install what is missing, build, run the whole ctest suite, then
 #             say which tests skipped themselves and why (ctest counts a skip
 #             as passed: without blender, qemu and the Android headers
-#             test_groundtruth, kms_vm and android_syntax skip)
+#             test_groundtruth, test_caustics_cycles, kms_vm and android_syntax skip)
 #   test-all: also install what those three need (as root), then as test
 # Works as root on a fresh Debian 12 (uses apt-get), or as a user when the
 # packages are already there. BUILD_DIR (default build) and extra CMake flags
@@ -35,7 +35,7 @@ install_missing() {
 }
 
 # What the tests that skip without it need (test-all): Blender for
-# test_groundtruth, qemu and a kernel with the bochs DRM module for kms_vm (the
+# test_groundtruth and test_caustics_cycles, qemu and a kernel with the bochs DRM module for kms_vm (the
 # same lists as .ci/run's); ports/android/syntax_check.sh installs its own
 # packages as root (it compiles nothing else of the build).
 EXTRA_PACKAGES=(blender qemu-system-x86 busybox-static kmod linux-image-amd64)
