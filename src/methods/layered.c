@@ -107,8 +107,12 @@ static snell__fit layered_fit(const snell_mesh_analysis *an, const snell_glass_r
         snell__why(why, n, "needs the mesh analysis (its centre), which failed");
         return SNELL__FIT_FAILS;
     }
-    snell__why(why, n, "%s, depth complexity %d: runs, not yet AUTO's pick (peel measured more accurate)",
-               an->closed ? "closed" : "open", an->depth_complexity);
+    if (an->convex)
+        snell__why(why, n, "convex (one layer, tangent-plane steps): runs, not AUTO's pick (the cubemap measured "
+                           "cheaper there)");
+    else
+        snell__why(why, n, "%s, depth complexity %d: runs, not yet AUTO's pick (peel measured more accurate)",
+                   an->closed ? "closed" : "open", an->depth_complexity);
     return SNELL__FIT_RUNS;
 }
 
@@ -419,7 +423,8 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     int convex = o->analysis && o->analysis->convex;
     /* Compile-time constants of the march: the layers read (those that hold
      * something: a sphere needs 1), steps, absorption, whether a ray that
-     * left can meet the mesh again (not on a convex one), the variant, and
+     * left can meet the mesh again (not on a convex one; with one layer that
+     * selects the convex program, layered.frag's STAR), the variant, and
      * the exit's Fresnel (auto: on convex meshes, as the cubemap's: there the
      * march is nearly exact and the missing internal reflection is the
      * largest error left). */
@@ -459,8 +464,8 @@ static const snell_param_info g_params[] = {
      SNELL_LAYERED_MAX_LAYERS, DEFAULT_LAYERS, NULL},
     {"face", "cube face size of every layer, texels", 16, 1024, DEFAULT_FACE, NULL},
     {"linear", "linear march steps from a point to the bounding sphere's far side", 1, 64, DEFAULT_LINEAR, NULL},
-    {"iterations", "binary steps at each crossing found (regula falsi steps on a convex mesh that one layer holds)",
-     1, 16, DEFAULT_BINARY, NULL},
+    {"iterations", "binary steps at each crossing found (on a convex mesh that one layer holds: tangent-plane "
+     "steps to each exit, half as many for the inner Fresnel's reflection)", 1, 16, DEFAULT_BINARY, NULL},
     {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
      SNELL_LAYERED_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
     {"inner", "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more march): auto "
