@@ -11,7 +11,9 @@
 // total internal reflection) and the march goes on, outside too: a concave
 // mesh's re-entries are followed (FULL's dominant branch: Schlick at the
 // entry, transmission on, TIR bounces), up to u_max_interfaces surfaces. The
-// final ray leaves through snell_exit (common/beyond.glsl).
+// final ray leaves through snell_exit (common/beyond.glsl). A convex mesh
+// that one layer holds has a program of its own (STAR): no march, Newton
+// steps on the layer's tangent planes to each exit.
 //
 // Spaces: layers and search in object space about u_centre, the ray's
 // parameter a world length (d = M^-1 * unit world direction, as cubemap.frag),
@@ -28,7 +30,6 @@ precision highp float;
 #define MAX_INTERFACES 10    // SNELL_LAYERED_MAX_INTERFACES
 // A convex mesh whose layers hold one surface in every direction: no march (next_crossing).
 #define STAR (SNELL_LAYERS == 1 && SNELL_REENTRY == 0)
-#define STAR_LINEAR 3
 // SNELL_LAYERS (1..8), SNELL_LINEAR (1..64), SNELL_BINARY (1..16),
 // SNELL_ABSORB (0/1), SNELL_REENTRY (0/1: the mesh is not convex, so a ray
 // that left may meet it again) and SNELL_INNER_FRESNEL (0/1: Fresnel at the
@@ -137,14 +138,172 @@ highp float sphere_exit(highp vec3 p, highp vec3 d)
 }
 
 #if STAR
-// Layer 0's distance (/ u_radius) in q's direction.
-highp float dist0(highp vec3 q)
+// A convex mesh that one layer holds, the centre inside it (SNELL_REENTRY 0:
+// the analysis says convex): every direction from the centre has one
+// surface, so the exit of a ray from inside is its one crossing, and a texel
+// holds both what the search needs and the normal there. Its own trace below,
+// no march: the general one's code is not compiled in (llvmpipe runs a
+// branch's code under an empty mask; measured: sphere 512^2 3.91 -> 3.41x
+// single with the march compiled out, nothing else changed).
+
+// Layer 0 in q's direction: the object-space normal (not normalised) and
+// the distance / u_radius, filtered.
+highp vec4 texel0(highp vec3 q)
 {
     highp vec3 c = layer_coord(q);
-    return textureLod(u_layers, vec3(c.xy, float(u_dist_base) + c.z * float(u_groups)), 0.0).x;
+    return textureLod(u_layers, vec3(c.xy, c.z * float(u_stride)), 0.0);
+}
+
+// The exit of p + t d (p inside, about the centre; d object space per world
+// length) and the normal there (object space, not normalised): Newton steps
+// on the baked surface's tangent planes. From the bounding sphere's far side,
+// each step looks up the layer in the direction of the current point, so the
+// surface point x = |q|^-1 q * distance and its normal n, and goes to where
+// the ray meets the plane through x normal to n. A convex body lies behind
+// each of its tangent planes, so a step never lands inside it; a planar face
+// is met exactly once its texel is looked up, a smooth surface converges
+// quadratically (a sphere in one step, to within the bake's precision). A
+// plane the ray runs along (|n.d| tiny) gives the sphere of the texel's
+// distance instead. `steps` steps (a compile-time constant), one look-up
+// each; the normal is the last one's.
+highp float convex_exit(highp vec3 p, highp vec3 d, out highp vec3 n, const int steps)
+{
+    highp float t_max = sphere_exit(p, d), t = t_max;
+    n = d;
+    for (int i = 0; i < steps; i++) {
+        highp vec3 q = p + t * d;
+        highp vec4 s = texel0(q);
+        highp float r = s.w * u_radius;
+        highp vec3 x = q * (r / max(length(q), 1e-30 * u_radius));
+        highp float dn = dot(s.xyz, d);
+        n = s.xyz;
+        t = dn > 1e-3 * length(d) ? dot(s.xyz, x - p) / dn : sphere_far(p, d, r);
+        t = clamp(t, 0.0, t_max);
+    }
+    return t;
+}
+
+#if SNELL_INNER_FRESNEL
+// Its light is F of the pixel's: half the steps (at least one) find its exit.
+// Measured (snell-bench, sphere 512^2, aa 4, vs FULL, beside single, load 5):
+// iterations 2 with 2 steps here 40.96 dB at 2.71x single, with 1 41.07 dB
+// at 2.53x.
+#define INNER_STEPS ((SNELL_BINARY + 1) / 2)
+// The branch reflected inside at the exit (weight F there): one more search
+// from the exit point q along rdir, refracted out at the next surface with
+// (1 - F'), its own reflection F' leaving in the mirror direction (the rest
+// of the tree lumped, so that no energy is lost), as cubemap.frag's
+// inner_branch. Radiance, before the tint.
+vec3 inner_branch(highp vec3 q, vec3 rdir, float path)
+{
+    highp vec3 d = mat3(u_inv_model) * rdir, n;
+    highp float t = convex_exit(q, d, n, INNER_STEPS);
+    vec3 n3 = normalize(u_normal_matrix * n);
+    if (dot(n3, rdir) > 0.0) n3 = -n3;
+    vec3 out_dir;
+    vec3 mirror = snell_reflect(rdir, n3);
+    bool exited = snell_refract(rdir, n3, snell_ior, out_dir);
+    float f = exited ? snell_fresnel(-dot(rdir, n3), snell_ior, 1.0) : 1.0;
+    vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(mirror);
+#if SNELL_ABSORB
+    l *= snell_beer_lambert(u_sigma, path + t);
+#endif
+    return l;
 }
 #endif
 
+#if SNELL_DISPERSION == 2
+// One-path dispersion: the red or blue ray from q along d over the green
+// ray's length t, and the layer's normal where it got to, facing its ray
+// (as cubemap.frag's disp_exit). Updates q.
+vec3 disp_normal(inout highp vec3 q, highp vec3 d, highp float t, vec3 dir)
+{
+    q += t * d;
+    vec3 n = normalize(u_normal_matrix * texel0(q).xyz);
+    return dot(n, dir) > 0.0 ? -n : n;
+}
+#endif
+
+// The colour for one IOR, snell_ior (common/dispersion.glsl calls it): the
+// entry, the exit (or, on total internal reflection, the next one, up to
+// u_max_interfaces surfaces), and with SNELL_INNER_FRESNEL the exit's
+// internal reflection.
+vec3 snell_glass_trace(out highp vec3 exit_dir)
+{
+    highp vec3 world_pos, world_normal;
+    snell_surface(world_pos, world_normal);
+    highp vec3 v = normalize(world_pos - u_eye);
+    vec3 n = normalize(world_normal);
+    if (dot(n, v) > 0.0) n = -n;
+    vec3 r = snell_reflect(v, n);
+    highp vec3 dir;
+    snell_refract(v, n, 1.0 / snell_ior, dir);
+    dir = normalize(dir);
+    snell_disp_enter(v, n);
+    float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
+
+    mat3 inv3 = mat3(u_inv_model);
+    highp vec3 p = (u_inv_model * vec4(world_pos, 1.0)).xyz - u_centre;
+    highp float path = 0.0;
+#if SNELL_DISPERSION == 2
+    highp vec3 p_red = p, p_blue = p;
+#endif
+#if SNELL_INNER_FRESNEL
+    float exit_fresnel = 0.0; // F at the exit into air (0: none)
+    vec3 exit_in = dir;       // the direction that reached it from inside
+    vec3 exit_n = n;
+    float exit_path = 0.0;
+#endif
+    // interface 1 was the entry; pass k looks for interface k; past
+    // u_max_interfaces (inside: capped) the length to the next surface only
+    for (int k = 2; k <= MAX_INTERFACES + 1; k++) {
+        if (k > u_max_interfaces && SNELL_ABSORB == 0) break;
+        highp vec3 d = inv3 * dir, on;
+        highp float t = convex_exit(p, d, on, SNELL_BINARY);
+        p += t * d;
+        path += t;
+        if (k > u_max_interfaces) break;
+        vec3 n2 = normalize(u_normal_matrix * on);
+        if (dot(n2, dir) > 0.0) n2 = -n2; // face the ray (it comes from inside)
+        highp vec3 out_dir;
+        bool through = snell_refract(dir, n2, snell_ior, out_dir);
+#if SNELL_DISPERSION == 2
+        vec3 n_red = disp_normal(p_red, inv3 * snell_disp_dirs[0], t, snell_disp_dirs[0]);
+        vec3 n_blue = disp_normal(p_blue, inv3 * snell_disp_dirs[2], t, snell_disp_dirs[2]);
+        snell_disp_cross3(mat3(n_red, n2, n_blue), through, true);
+#else
+        snell_disp_cross(n2, through, true);
+#endif
+#if SNELL_INNER_FRESNEL
+        if (through) {
+            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
+            exit_in = dir;
+            exit_n = n2;
+            exit_path = path;
+        }
+#endif
+        dir = normalize(out_dir);
+        if (through || (k == u_max_interfaces && SNELL_ABSORB == 0)) break;
+    }
+    highp vec3 exit_p = (u_model * vec4(p + u_centre, 1.0)).xyz;
+#if SNELL_ABSORB
+    vec3 transmitted = snell_disp_exit(exit_p, dir) * u_tint * snell_beer_lambert(u_sigma, path);
+#else
+    vec3 transmitted = snell_disp_exit(exit_p, dir) * u_tint;
+#endif
+#if SNELL_INNER_FRESNEL
+    // called for every pixel and selected, not branched on (GLSL ES 3.0 8.9:
+    // its environment look-ups take implicit derivatives)
+    vec3 inner = inner_branch(p, snell_reflect(exit_in, exit_n), exit_path);
+    transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner
+                                     : transmitted;
+#endif
+    vec3 reflected = snell_reflection(world_pos, r);
+    exit_dir = dir;
+    return mix(transmitted, reflected, fresnel);
+}
+
+#else // !STAR: the march through the layers
 // The first crossing along p + t d, 0 < t <= t_max, of a surface, starting
 // with c0 surfaces below: the bracket [lo, hi] around it (lo on the start's
 // side, with c0 surfaces below there on return, hi beyond, with c_hi
@@ -155,56 +314,6 @@ highp float dist0(highp vec3 q)
 bool next_crossing(highp vec3 p, highp vec3 d, inout int c0, highp float t_max, out highp float lo,
                    out highp float hi, out int c_hi)
 {
-#if STAR
-    // A convex mesh that one layer holds (the centre inside it): from inside
-    // (c0 0) its one surface ahead, where f = |q| / radius - the layer's
-    // distance at q turns positive: STAR_LINEAR steps bracket it, then
-    // SNELL_BINARY steps of regula falsi (Illinois) on f, which converge in
-    // one or two on a sphere (a cube's faces need the 6 of the default:
-    // test_stress' grazing cube, 1.6 degrees mean with 3). The start counts
-    // as inside. Measured (snell-bench, sphere 512^2, aa 4, vs FULL, beside
-    // single): 1 step 40.69 dB at 3.12x single, 6: 40.95 dB, 4.10x; the
-    // 24-step march and 6 bisections before: 40.96 dB at 18.3x. (Layer 0
-    // also as a cube map, for the sampler's own face selection: seamless
-    // filtering bends the normals across a cube's edges, 1.34 degrees mean
-    // on that grazing cube against 0.88.)
-    if (c0 == 0) {
-        highp float a = 0.0, fa = -1e-3, b = t_max, fb = 1.0;
-        for (int j = 1; j <= STAR_LINEAR; j++) {
-            highp float t = t_max * float(j) / float(STAR_LINEAR);
-            highp vec3 q = p + t * d;
-            highp float f = length(q) / u_radius - dist0(q);
-            if (f >= 0.0) {
-                b = t;
-                fb = f;
-                break;
-            }
-            a = t;
-            fa = f;
-        }
-        int side = 0;
-        for (int i = 0; i < SNELL_BINARY; i++) {
-            highp float t = clamp(a - fa * (b - a) / (fb - fa), a, b);
-            highp vec3 q = p + t * d;
-            highp float f = length(q) / u_radius - dist0(q);
-            if (f < 0.0) {
-                a = t;
-                fa = f;
-                if (side == -1) fb *= 0.5;
-                side = -1;
-            } else {
-                b = t;
-                fb = f;
-                if (side == 1) fa *= 0.5;
-                side = 1;
-            }
-        }
-        lo = a;
-        hi = b;
-        c_hi = 1;
-        return true;
-    }
-#endif
     highp float step = t_max / float(SNELL_LINEAR);
     lo = 0.0;
     hi = t_max;
@@ -306,11 +415,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     // 2.75; the count inferred from the layer nearest the entry and the
     // ray's heading gave 14.1, 10.1, 2.7; the offset capped at half the first
     // march step (for walls thinner than it) 11.7, 7.0, 3.4.
-#if STAR
-    int c = 0; // inside the one layer
-#else
     int c = below(p + 0.02 * u_radius / length(d) * d);
-#endif
     bool inside = true;
     highp float path = 0.0;
     vec3 tint = u_tint;
@@ -409,3 +514,4 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     exit_dir = dir;
     return mix(transmitted, reflected, fresnel);
 }
+#endif // STAR

@@ -639,7 +639,9 @@ typedef struct snell_layered_params {
     int face_size;             /* texels a cube face side, 16..1024 (default 128) */
     int linear_steps;          /* linear march steps from a point to the bounding sphere's far side,
                                 * 1..64 (default 24) */
-    int binary_steps;          /* binary refinement steps after a crossing, 1..16 (default 6) */
+    int binary_steps;          /* binary refinement steps after a crossing, 1..16 (default 6); on a convex
+                                * mesh that one layer holds, the tangent-plane steps to each exit (half as
+                                * many, at least one, for the inner Fresnel's internal reflection) */
     int max_interfaces;        /* surfaces processed per path, 1..10 (default 8: exits, re-entries, TIR) */
     /* Fresnel at the last exit too (1 - F out; the internal reflection F
      * followed one march more): AUTO on convex meshes (as the cubemap's). */

@@ -5,7 +5,8 @@
  * (layered_bake.frag), read back once and stored as RGBA16F (normal,
  * distance), filtered (half floats filter in GLES 3.0 but need an extension
  * to be rendered to), in one 2D array texture, slice face * layers + layer
- * (GLES 3.0 has no cube map arrays), then per face one slice for each four
+ * (GLES 3.0 has no cube map arrays), the gaps at fold rims closed (pinch),
+ * then per face one slice for each four
  * layers' distances (the march's count in one look-up: bunny 512^2 548 ->
  * 273 ms a frame, the image byte-identical); per frame one
  * pass of layered.frag over the front faces, which
@@ -107,8 +108,12 @@ static snell__fit layered_fit(const snell_mesh_analysis *an, const snell_glass_r
         snell__why(why, n, "needs the mesh analysis (its centre), which failed");
         return SNELL__FIT_FAILS;
     }
-    snell__why(why, n, "%s, depth complexity %d: runs, not yet AUTO's pick (peel measured more accurate)",
-               an->closed ? "closed" : "open", an->depth_complexity);
+    if (an->convex)
+        snell__why(why, n, "convex (one layer, tangent-plane steps): runs, not AUTO's pick (the cubemap measured "
+                           "cheaper there)");
+    else
+        snell__why(why, n, "%s, depth complexity %d: runs, not yet AUTO's pick (peel measured more accurate)",
+                   an->closed ? "closed" : "open", an->depth_complexity);
     return SNELL__FIT_RUNS;
 }
 
@@ -166,6 +171,47 @@ static unsigned make_texture(GLenum format, int size, int depth, GLint filter)
     return tex;
 }
 
+/* Closes the gaps at the rims of folds: where a texel holds fewer layers
+ * than a neighbour (of the 8 in its face), the layers it lacks, taken in
+ * pairs from its own count up (a fold's two surfaces end together at its
+ * rim, seen from the centre), get the mean of the neighbour's pair's
+ * distances (averaged over such neighbours) and the neighbour's normals,
+ * instead of "none" (4). Filtered, the fold's two surfaces then meet at the
+ * rim, so a ray passing outside it crosses both at once (an even change of
+ * the count, no surface), where filtering towards 4 made each a wall of its
+ * own. dist and out: layers x size^2 floats; half: the layers' RGBA halves
+ * (the normals of filled texels are set). */
+static void pinch(int size, int layers, const float *dist, float *out, uint16_t *half)
+{
+    size_t texels = (size_t)size * (size_t)size, x;
+    int l;
+    memcpy(out, dist, sizeof *out * (size_t)layers * texels);
+    for (x = 0; x < texels; x++) {
+        int xi = (int)(x % (size_t)size), yi = (int)(x / (size_t)size), nx = 0, dx, dy;
+        while (nx < layers && dist[(size_t)nx * texels + x] < 2.0f) nx++;
+        if (nx == layers) continue;
+        for (l = nx; l < layers; l++) {
+            int partner = nx + ((l - nx) ^ 1), top = l > partner ? l : partner, k = 0;
+            float sum = 0.0f;
+            size_t src = 0;
+            if (partner >= layers) continue;
+            for (dy = -1; dy <= 1; dy++)
+                for (dx = -1; dx <= 1; dx++) {
+                    size_t y;
+                    if ((!dx && !dy) || xi + dx < 0 || xi + dx >= size || yi + dy < 0 || yi + dy >= size) continue;
+                    y = (size_t)(yi + dy) * (size_t)size + (size_t)(xi + dx);
+                    if (!(dist[(size_t)top * texels + y] < 2.0f)) continue;
+                    sum += 0.5f * (dist[(size_t)l * texels + y] + dist[(size_t)partner * texels + y]);
+                    if (!k) src = y;
+                    k++;
+                }
+            if (!k) continue;
+            out[(size_t)l * texels + x] = sum / (float)k;
+            memcpy(half + 4 * ((size_t)l * texels + x), half + 4 * ((size_t)l * texels + src), 3 * sizeof *half);
+        }
+    }
+}
+
 /* Peels layer after layer of each face, nearest first (every face drawn,
  * culling off): a pass keeps, per texel, the nearest surface behind the
  * previous layer's (ping-pong textures of its 24-bit distance). Each pass's
@@ -183,9 +229,12 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
     snell_status st = SNELL_OK;
     int face, l, size = p->face_size;
     size_t i, texels = (size_t)size * (size_t)size;
+    size_t nl = (size_t)p->layers;
     uint8_t *normal_px = (uint8_t *)snell__malloc(&ctx->alloc, 8 * texels), *dist_px = normal_px + 4 * texels;
-    uint16_t *half = (uint16_t *)snell__malloc(&ctx->alloc, 16 * texels); /* one slice at a time */
-    uint16_t *group = half ? half + 4 * texels : NULL; /* the distances of a group of four layers */
+    /* a face's layers: half RGBA (normal, distance), then their distances as floats twice (read, pinched) */
+    uint16_t *half = (uint16_t *)snell__malloc(&ctx->alloc, (8 + 8 * nl + 8 * nl) * texels);
+    uint16_t *group = half ? half + 4 * nl * texels : NULL; /* the distances of a group of four layers */
+    float *dist = half ? (float *)(group + 4 * texels) : NULL, *pinched = dist ? dist + nl * texels : NULL;
     GLenum fst;
     if (!normal_px || !half) {
         snell__free(&ctx->alloc, normal_px);
@@ -223,10 +272,8 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
         snell__cube_face_view_proj(face, p->centre, p->radius * 1e-4f, p->radius * 1.01f, vp);
         glUniformMatrix4fv(s->u_view_proj, 1, GL_FALSE, (const GLfloat *)vp);
         for (l = 0; l < p->layers && st == SNELL_OK; l++) {
-            uint16_t *out = half;
+            uint16_t *out = half + 4 * (size_t)l * texels;
             GLuint any = 0;
-            if ((l & 3) == 0)
-                for (i = 0; i < 4 * texels; i++) group[i] = half_of(4.0f);
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, next[l & 1], 0);
             if (face == 0 && l == 0 && (fst = glCheckFramebufferStatus(GL_FRAMEBUFFER)) != GL_FRAMEBUFFER_COMPLETE) {
                 st = snell__fail(ctx, SNELL_E_GL, "layered bake framebuffer incomplete (0x%x)", (unsigned)fst);
@@ -257,14 +304,24 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
                 out[4 * i + 0] = half_of(n[0]);
                 out[4 * i + 1] = half_of(n[1]);
                 out[4 * i + 2] = half_of(n[2]);
-                out[4 * i + 3] =
-                    half_of(b[3] ? (float)((uint32_t)b[0] << 16 | (uint32_t)b[1] << 8 | b[2]) / 16777215.0f : 4.0f);
+                dist[(size_t)l * texels + i] =
+                    b[3] ? (float)((uint32_t)b[0] << 16 | (uint32_t)b[1] << 8 | b[2]) / 16777215.0f : 4.0f;
+            }
+        }
+        if (st != SNELL_OK) break;
+        pinch(size, p->layers, dist, pinched, half);
+        glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, p->layers_tex);
+        for (l = 0; l < p->layers; l++) {
+            uint16_t *out = half + 4 * (size_t)l * texels;
+            if ((l & 3) == 0)
+                for (i = 0; i < 4 * texels; i++) group[i] = half_of(4.0f);
+            for (i = 0; i < texels; i++) {
+                out[4 * i + 3] = half_of(pinched[(size_t)l * texels + i]);
                 group[4 * i + (l & 3)] = out[4 * i + 3];
             }
-            glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
-            glBindTexture(GL_TEXTURE_2D_ARRAY, p->layers_tex);
             glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, face * p->layers + l, size, size, 1, GL_RGBA, GL_HALF_FLOAT,
-                            half);
+                            out);
             if ((l & 3) == 3 || l == p->layers - 1)
                 glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, 6 * p->layers + face * p->groups + (l >> 2), size, size,
                                 1, GL_RGBA, GL_HALF_FLOAT, group);
@@ -419,7 +476,8 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     int convex = o->analysis && o->analysis->convex;
     /* Compile-time constants of the march: the layers read (those that hold
      * something: a sphere needs 1), steps, absorption, whether a ray that
-     * left can meet the mesh again (not on a convex one), the variant, and
+     * left can meet the mesh again (not on a convex one; with one layer that
+     * selects the convex program, layered.frag's STAR), the variant, and
      * the exit's Fresnel (auto: on convex meshes, as the cubemap's: there the
      * march is nearly exact and the missing internal reflection is the
      * largest error left). */
@@ -459,8 +517,8 @@ static const snell_param_info g_params[] = {
      SNELL_LAYERED_MAX_LAYERS, DEFAULT_LAYERS, NULL},
     {"face", "cube face size of every layer, texels", 16, 1024, DEFAULT_FACE, NULL},
     {"linear", "linear march steps from a point to the bounding sphere's far side", 1, 64, DEFAULT_LINEAR, NULL},
-    {"iterations", "binary steps at each crossing found (regula falsi steps on a convex mesh that one layer holds)",
-     1, 16, DEFAULT_BINARY, NULL},
+    {"iterations", "binary steps at each crossing found (on a convex mesh that one layer holds: tangent-plane "
+     "steps to each exit, half as many for the inner Fresnel's reflection)", 1, 16, DEFAULT_BINARY, NULL},
     {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
      SNELL_LAYERED_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
     {"inner", "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more march): auto "
