@@ -62,20 +62,20 @@ static void peel_destroy(snell_ctx *ctx, void *state);
 
 /* What selects a kernel: its compile-time constants. */
 typedef struct prog_key {
-    int screen, absorb, linear, binary, fixes, fresnel_exact, inner, dispersion;
+    int screen, absorb, linear, binary, fixes, fresnel_exact, inner, dispersion, layers;
 } prog_key;
 
 static snell_status build_prog(snell_ctx *ctx, peel_state *s, const prog_key *k, peel_prog *p)
 {
-    char def[320];
+    char def[360];
     snell_status st;
     snprintf(def, sizeof def,
              "#define SNELL_PEEL_LINEAR %d\n#define SNELL_PEEL_BINARY %d\n#define SNELL_PEEL_FIX_DISCONTINUITY %d\n"
              "#define SNELL_PEEL_FIX_MERGE %d\n#define SNELL_ABSORB %d\n#define SNELL_FRESNEL_EXACT %d\n"
-             "#define SNELL_INNER_FRESNEL %d\n#define SNELL_DISPERSION %d\n",
+             "#define SNELL_INNER_FRESNEL %d\n#define SNELL_DISPERSION %d\n#define SNELL_PEEL_LAYERS %d\n",
              k->linear, k->binary, k->fixes == SNELL_PEEL_FIXES_DISCONTINUITY || k->fixes == SNELL_PEEL_FIXES_BOTH,
              k->fixes == SNELL_PEEL_FIXES_MERGE || k->fixes == SNELL_PEEL_FIXES_BOTH, k->absorb, k->fresnel_exact,
-             k->inner, k->dispersion);
+             k->inner, k->dispersion, k->layers);
     st = snell__glass_program_build(ctx, "peel.frag", s->out, def, k->screen, &p->slot.g);
     if (st != SNELL_OK) return st;
     p->layers = glGetUniformLocation(p->slot.g.prog, "u_layers");
@@ -91,10 +91,10 @@ static snell_status build_prog(snell_ctx *ctx, peel_state *s, const prog_key *k,
 /* The kernel of these settings: cached, else built into the least recently used slot. */
 static snell_status get_prog(snell_ctx *ctx, peel_state *s, const prog_key *k, const peel_prog **out)
 {
-    const int key[8] = {k->screen, k->absorb, k->linear, k->binary, k->fixes, k->fresnel_exact, k->inner,
-                        k->dispersion};
+    const int key[9] = {k->screen, k->absorb, k->linear, k->binary, k->fixes, k->fresnel_exact, k->inner,
+                        k->dispersion, k->layers};
     int hit;
-    peel_prog *p = (peel_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 8, &s->clock, &hit);
+    peel_prog *p = (peel_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 9, &s->clock, &hit);
     snell_status st = hit ? SNELL_OK : build_prog(ctx, s, k, p);
     if (st == SNELL_OK) *out = p;
     return st;
@@ -104,7 +104,7 @@ static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, void **s
 {
     peel_state *s = (peel_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
     const peel_prog *p;
-    const prog_key d = {0, 0, DEFAULT_LINEAR, DEFAULT_BINARY, SNELL_PEEL_FIXES_BOTH, DEFAULT_FRESNEL, 0, 0};
+    const prog_key d = {0, 0, DEFAULT_LINEAR, DEFAULT_BINARY, SNELL_PEEL_FIXES_BOTH, DEFAULT_FRESNEL, 0, 0, DEFAULT_LAYERS};
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
@@ -247,12 +247,13 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     /* One interface is the single-surface model: no exit to weight. */
     k.inner = pp->max_interfaces > 1 && inner_wanted(o);
     k.dispersion = snell__dispersion_variant(o->glass);
+    k.layers = layers_wanted(o);
     st = get_prog(ctx, s, &k, &p);
     if (st == SNELL_OK) {
         int remade;
         st = snell__peel_targets_ensure(ctx, &s->t, v->width, v->height, pp->layers, LAYER_UNIT, "peel layers", &remade);
     }
-    if (st == SNELL_OK) st = peel_layers(ctx, s, v, o, layers_wanted(o), &peeled, &used);
+    if (st == SNELL_OK) st = peel_layers(ctx, s, v, o, k.layers, &peeled, &used);
     if (st != SNELL_OK) return st;
     stats->passes += peeled;
     stats->counters[0] = peeled;
