@@ -159,12 +159,21 @@ static void depth_frame(const snell__view *v, const snell__object *o, float fwd[
 static snell_status peel_layers(snell_ctx *ctx, peel_state *s, const snell__view *v, const snell__object *o,
                                 int want, int *peeled, int *used)
 {
-    float fwd[3], near_, inv_range;
+    float fwd[3], near_, inv_range, d2 = 0.0f;
     snell__pass pass;
     snell_status st;
-    int k;
+    int k, winding = 0, flip = 0;
     *peeled = *used = 0;
     depth_frame(v, o, fwd, &near_, &inv_range);
+    for (k = 0; k < 3; k++) d2 += (v->eye[k] - o->bsphere[k]) * (v->eye[k] - o->bsphere[k]);
+    /* A closed solid of known winding seen from outside its bounding sphere:
+     * along every view ray the surfaces alternate entry (front face) and exit
+     * (back face), so layer k is a front face for even k and a back face for
+     * odd k, and each peel draws only those (half the fragments; the
+     * kernel's gap parity assumes the same). Else every face. */
+    if (o->glass->material.thickness <= 0.0f && d2 > o->bsphere[3] * o->bsphere[3])
+        winding = snell__mesh_winding(o->mesh);
+    flip = (winding < 0) != (o->mirrored != 0);
     snell__pass_begin(&pass, s->t.fbo, v->width, v->height, 0, GL_LESS, 1.0f);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->t.depth_rb);
     glUseProgram(s->layer_prog);
@@ -189,7 +198,12 @@ static snell_status peel_layers(snell_ctx *ctx, peel_state *s, const snell__view
         }
         glUniform1i(s->u_first, k == 0);
         if (k > 0) glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, s->t.query);
-        snell__draw_object(o);
+        if (winding != 0) {
+            glEnable(GL_CULL_FACE);
+            glCullFace(((k & 1) != 0) != flip ? GL_FRONT : GL_BACK); /* even k: cull the back faces */
+            glFrontFace(GL_CCW);
+        }
+        snell__draw_object(o); /* disables culling */
         (*peeled)++;
         if (k > 0) {
             glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
