@@ -76,14 +76,19 @@ highp float depth_of(highp vec3 p)
     return (dot(p - u_eye, u_fwd) - u_near) * u_inv_range;
 }
 
-// The pixel p projects to; (-1, -1) outside the target or behind the eye.
-ivec2 pixel_of(highp vec3 p)
+// The pixel of clip-space position c; (-1, -1) outside the target or behind the eye.
+ivec2 pixel_at(highp vec4 c)
 {
-    highp vec4 c = u_view_proj * vec4(p, 1.0);
     if (c.w <= 0.0) return ivec2(-1);
     highp vec2 w = (c.xy / c.w * 0.5 + 0.5) * u_size;
     if (any(lessThan(w, vec2(0.0))) || any(greaterThanEqual(w, u_size))) return ivec2(-1);
     return ivec2(w);
+}
+
+// The pixel p projects to.
+ivec2 pixel_of(highp vec3 p)
+{
+    return pixel_at(u_view_proj * vec4(p, 1.0));
 }
 
 highp float layer_depth(ivec2 px, int k)
@@ -193,13 +198,15 @@ int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m,
     // (llvmpipe masks, it does not jump), so a bisection inside the scan
     // was paid at every step. A DISCONTINUITY restart scans on from the
     // next step (the outer loop), as the single loop did.
+    // clip position and depth are linear along the ray: one projection per search
+    highp vec4 c0 = u_view_proj * vec4(p, 1.0), cd = u_view_proj * vec4(dir, 0.0);
+    highp float z0 = depth_of(p), dz = dot(dir, u_fwd) * u_inv_range;
     int i = 1;
     for (int restart = 0; restart <= SNELL_PEEL_LINEAR; restart++) {
         highp float t = 0.0;
         for (; i <= SNELL_PEEL_LINEAR + 1; i++) {
             t = min(float(i) * step, t_max);
-            highp vec3 q = p + t * dir;
-            kind = classify(pixel_of(q), j, depth_of(q), m);
+            kind = classify(pixel_at(c0 + t * cd), j, z0 + t * dz, m);
             if (kind != 0) break;
             ta = t;
             if (t >= t_max) break;
@@ -209,9 +216,8 @@ int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m,
         tb = t;
         for (int s = 0; s < SNELL_PEEL_BINARY; s++) {
             highp float tm = 0.5 * (ta + tb);
-            highp vec3 qm = p + tm * dir;
             int mm;
-            int km = classify(pixel_of(qm), j, depth_of(qm), mm);
+            int km = classify(pixel_at(c0 + tm * cd), j, z0 + tm * dz, mm);
             if (km == 0) ta = tm;
             else {
                 tb = tm;
