@@ -48,10 +48,12 @@ precision highp float;
 #include "common/beyond.glsl"
 #include "common/dispersion.glsl"
 
-#define MAX_LAYERS 8          // SNELL_PEEL_MAX_LAYERS
+// SNELL_PEEL_LAYERS: the layers peeled for this object (2..SNELL_PEEL_MAX_LAYERS), a
+// compile-time bound of the loops over them (u_layer_count of them hold something)
+#define MAX_LAYERS SNELL_PEEL_LAYERS
 #define MAX_INTERFACES 10     // SNELL_PEEL_MAX_INTERFACES
 #define EMPTY 2.0             // depth of an empty texel: behind every stored depth (0..1)
-// SNELL_PEEL_LINEAR, SNELL_PEEL_BINARY, SNELL_PEEL_FIX_DISCONTINUITY,
+// SNELL_PEEL_LAYERS, SNELL_PEEL_LINEAR, SNELL_PEEL_BINARY, SNELL_PEEL_FIX_DISCONTINUITY,
 // SNELL_PEEL_FIX_MERGE, SNELL_ABSORB, SNELL_FRESNEL_EXACT, SNELL_INNER_FRESNEL:
 // the program's variant (methods/peel.c).
 
@@ -74,14 +76,19 @@ highp float depth_of(highp vec3 p)
     return (dot(p - u_eye, u_fwd) - u_near) * u_inv_range;
 }
 
-// The pixel p projects to; (-1, -1) outside the target or behind the eye.
-ivec2 pixel_of(highp vec3 p)
+// The pixel of clip-space position c; (-1, -1) outside the target or behind the eye.
+ivec2 pixel_at(highp vec4 c)
 {
-    highp vec4 c = u_view_proj * vec4(p, 1.0);
     if (c.w <= 0.0) return ivec2(-1);
     highp vec2 w = (c.xy / c.w * 0.5 + 0.5) * u_size;
     if (any(lessThan(w, vec2(0.0))) || any(greaterThanEqual(w, u_size))) return ivec2(-1);
     return ivec2(w);
+}
+
+// The pixel p projects to.
+ivec2 pixel_of(highp vec3 p)
+{
+    return pixel_at(u_view_proj * vec4(p, 1.0));
 }
 
 highp float layer_depth(ivec2 px, int k)
@@ -143,7 +150,7 @@ bool gap_bounds(ivec2 px, int j, out int m, out highp float lo, out highp float 
 {
     m = j;
     lo = layer_depth(px, j - 1);
-#if SNELL_PEEL_FIX_MERGE
+#if SNELL_PEEL_FIX_MERGE && MAX_LAYERS > 2
     for (int i = 0; i < MAX_LAYERS / 2; i++) {
         if ((m & 1) == 0 || m < 3 || lo != EMPTY) break;
         m -= 2;
@@ -185,46 +192,57 @@ int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m,
     tb = -1.0;
     m = j;
     int kind = 0;
-    for (int i = 1; i <= SNELL_PEEL_LINEAR + 1; i++) {
-        highp float t = min(float(i) * step, t_max);
-        highp vec3 q = p + t * dir;
-        ivec2 px = pixel_of(q);
-        kind = classify(px, j, depth_of(q), m);
-        if (kind != 0) {
-            // bisect [ta, t]: ta in the gap, tb out of it
-            tb = t;
-            for (int s = 0; s < SNELL_PEEL_BINARY; s++) {
-                highp float tm = 0.5 * (ta + tb);
-                highp vec3 qm = p + tm * dir;
-                int mm;
-                int km = classify(pixel_of(qm), j, depth_of(qm), mm);
-                if (km == 0) ta = tm;
-                else {
-                    tb = tm;
-                    kind = km;
-                    m = mm;
-                }
-            }
-#if SNELL_PEEL_FIX_DISCONTINUITY
-            highp vec3 qa = p + ta * dir, qb = p + tb * dir;
-            ivec2 pa = pixel_of(qa), pb = pixel_of(qb);
-            int crossed = kind == 1 ? m - 1 : m;
-            if (kind != 3 && abs(layer_depth(pa, crossed) - layer_depth(pb, crossed)) > 1.0 / float(SNELL_PEEL_LINEAR)) {
-                int g = gap_at(pb, depth_of(qb));
-                if ((g & 1) == (j & 1)) {
-                    // case 2: a layer boundary, not a surface; go on in the gap found there
-                    j = g;
-                    ta = tb;
-                    tb = -1.0;
-                    kind = 0;
-                    continue;
-                }
-            }
-#endif
-            break;
+    // The linear scan stops at the first step out of the gap; the bisection
+    // follows it, outside the scan's loop: a software rasteriser runs a
+    // branch's body for the whole block whenever any pixel of it takes it
+    // (llvmpipe masks, it does not jump), so a bisection inside the scan
+    // was paid at every step. A DISCONTINUITY restart scans on from the
+    // next step (the outer loop), as the single loop did.
+    // clip position and depth are linear along the ray: one projection per search
+    highp vec4 c0 = u_view_proj * vec4(p, 1.0), cd = u_view_proj * vec4(dir, 0.0);
+    highp float z0 = depth_of(p), dz = dot(dir, u_fwd) * u_inv_range;
+    int i = 1;
+    for (int restart = 0; restart <= SNELL_PEEL_LINEAR; restart++) {
+        highp float t = 0.0;
+        for (; i <= SNELL_PEEL_LINEAR + 1; i++) {
+            t = min(float(i) * step, t_max);
+            kind = classify(pixel_at(c0 + t * cd), j, z0 + t * dz, m);
+            if (kind != 0) break;
+            ta = t;
+            if (t >= t_max) break;
         }
-        ta = t;
-        if (t >= t_max) break;
+        if (kind == 0) break;
+        // bisect [ta, t]: ta in the gap, tb out of it
+        tb = t;
+        for (int s = 0; s < SNELL_PEEL_BINARY; s++) {
+            highp float tm = 0.5 * (ta + tb);
+            int mm;
+            int km = classify(pixel_at(c0 + tm * cd), j, z0 + tm * dz, mm);
+            if (km == 0) ta = tm;
+            else {
+                tb = tm;
+                kind = km;
+                m = mm;
+            }
+        }
+#if SNELL_PEEL_FIX_DISCONTINUITY
+        highp vec3 qa = p + ta * dir, qb = p + tb * dir;
+        ivec2 pa = pixel_of(qa), pb = pixel_of(qb);
+        int crossed = kind == 1 ? m - 1 : m;
+        if (kind != 3 && abs(layer_depth(pa, crossed) - layer_depth(pb, crossed)) > 1.0 / float(SNELL_PEEL_LINEAR)) {
+            int g = gap_at(pb, depth_of(qb));
+            if ((g & 1) == (j & 1)) {
+                // case 2: a layer boundary, not a surface; go on in the gap found there
+                j = g;
+                ta = tb;
+                tb = -1.0;
+                kind = 0;
+                i++;
+                continue;
+            }
+        }
+#endif
+        break;
     }
     return kind;
 }
