@@ -28,3 +28,8 @@ target_include_directories(bench_caustics PRIVATE ${PROJECT_SOURCE_DIR}/src ${CG
 target_compile_options(bench_caustics PRIVATE ${SNELL_WARNINGS})
 add_test(NAME bench_caustics_runs COMMAND bench_caustics 64 2 32 32)
 set_tests_properties(bench_caustics_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "made/off median ratio")
+# test_caustics_opaque: opaque objects as receivers: a glass sphere over an opaque box (its top at the ball
+# lens's focus), a small cube and the floor; the lit view against the reference's (snell_ref_set_light) over the
+# opaque pixels, the caustic maps' flux and peak, photons stopped by the box, its shadow edge; a spot light.
+snell_add_test(test_caustics_opaque SOURCES test_caustics_opaque.c LABELS "render;gl")
+target_link_libraries(test_caustics_opaque PRIVATE m)
