@@ -56,7 +56,11 @@ void main()
     }
     float cosl = max(0.0, -dot(n, l));
     vec3 e = vec3(0.0);
-    if (cosl > 0.0) {
+    // a spot light's frame looks straight down: a point at or above its near
+    // plane is outside it (no shadow map there): the direct light unshadowed, no caustic
+    bool framed = u_recv_lin.z < 0.5 || u_pos.y - p.y > u_recv_lin.x;
+    if (!framed) e = u_light * (fall * cone * cosl);
+    if (cosl > 0.0 && framed) {
         vec3 s = light_frame(p);
         float lp = recv_lin(s.z), tw = u_recv_lin.w * (u_recv_lin.z > 0.5 ? lp : 1.0);
         // direct: the shadow map at the point moved half a texel along its normal (against self-shadowing;

@@ -469,10 +469,11 @@ void snell__ref_lit_irradiance(const snell_ref *r, const ref_surf *s, double e[3
         cone = snell__ref_dot3(l, L->d) >= L->cos_cone ? 1.0 : 0.0;
     }
     cosl = -snell__ref_dot3(s->n, l);
-    if (!(cosl > 0.0) || !frame_xy(L, s->p, &fx, &fy, &fz)) return;
+    if (!(cosl > 0.0)) return;
     for (k = 0; k < 3; k++) back[k] = -l[k];
     if (cone > 0.0 && !(snell__ref_hit(r, s->p, back, s->prim, &air, &h) && h.t < far_))
         for (k = 0; k < 3; k++) e[k] = L->col[k] * fall * cosl;
+    if (!frame_xy(L, s->p, &fx, &fy, &fz)) return; /* above a spot light: outside its frame, no caustic */
     tw = L->texel * (L->spot ? fz : 1.0);
     tx = (fx - L->lo[0]) / (L->hi[0] - L->lo[0]) * L->size - 0.5;
     ty = (fy - L->lo[1]) / (L->hi[1] - L->lo[1]) * L->size - 0.5;
