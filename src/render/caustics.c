@@ -7,8 +7,13 @@
  * image-space exit search in its farthest-surface map, caustics_photon.vert)
  * and splatted onto the plane, each carrying the light's flux through its
  * cell of the beam (flux-correct: energy is conserved, as the 2D lightmap's
- * lines are, src/lm2d). The receiver is then drawn in the view with it. The
- * map is reused while light, glass, opaque objects and receiver are still. */
+ * lines are, src/lm2d). The opaque objects are receivers too: a photon
+ * stops at the first one (marched through their depth map in the light
+ * frame, the shadow map's view), and one that lands where the light sees
+ * the surface is splatted into their caustic map in that frame; they are
+ * then drawn lit over the opaque stage's colours (caustics_opaque.frag).
+ * The receiver plane is drawn in the view with its map. The maps are
+ * reused while light, glass, opaque objects and receiver are still. */
 #include "render/caustics.h"
 #include "core/ctx.h"
 #include "core/gl.h"
