@@ -7,6 +7,15 @@
 // is drawn as a 4 x 4 texel point whose texels share its flux by a tent
 // (caustics_splat.frag): every photon's flux lands in full (flux-correct, as
 // the 2D lightmap's lines, src/lm2d). World space throughout.
+// With opaque receivers (u_recv = 1) the photon's way on from the exit is
+// marched through their depth map seen from the light (u_recv_z: the nearest
+// opaque surface per texel of the light frame, the shadow map's view): it stops
+// at the first one. u_target 0 draws the photons that reach the plane (none
+// that an opaque object stopped); u_target 1 those that land on an opaque
+// surface the light sees, into the light-space caustic map at their
+// light-frame texel, their flux per texel area facing the light (directional:
+// world area; spot: solid angle, the texel's cos^3 off the frame's axis), so
+// that shading multiplies by the cosine at the surface (caustics_opaque.frag).
 precision highp float;
 precision highp sampler2D;
 
@@ -28,6 +37,14 @@ uniform vec3 u_flux;          // light colour * photon area / texel area (irradi
                               // spot: the area on the view's image plane at distance 1
 uniform vec4 u_plane;         // y, centre x, centre z, extent (half side)
 uniform float u_reach;        // the longest chord: the bounding sphere's diameter
+uniform int u_target;         // 0: the receiver plane's light map; 1: the opaque receivers' caustic map
+uniform int u_has_plane;      // 1: the receiver plane u_plane ends the photons' way
+uniform int u_recv;           // 1: opaque receivers in u_recv_z stop the photons
+uniform sampler2D u_recv_z;   // their nearest depth per texel of the light frame (1: none)
+uniform mat4 u_recv_vp;       // world -> the light frame's clip space
+uniform vec4 u_recv_lin;      // near, far, 1 = perspective (spot), texel side (world; spot: at distance 1)
+uniform float u_recv_reach;   // the longest way marched when no plane ends it
+uniform vec3 u_flux_recv;     // u_flux's share per light-frame texel (u_target 1)
 
 out vec4 v_flux;
 
@@ -77,6 +94,57 @@ float past_back(vec3 p)
     }
     if (w <= 0.0) return 1.0; // off the object: out
     return s.z - z / w;
+}
+
+// The light frame's linear depth (world units along its axis) of a depth-buffer value.
+float recv_lin(float z01)
+{
+    float n = u_recv_lin.x, f = u_recv_lin.y;
+    return u_recv_lin.z > 0.5 ? n * f / (f - z01 * (f - n)) : n + z01 * (f - n);
+}
+
+// x: the linear depth of p past the nearest opaque receiver at its texel (> 0:
+// behind it; -1: no receiver there), y: that receiver's linear depth.
+vec2 recv_gap(vec3 p)
+{
+    vec4 c = u_recv_vp * vec4(p, 1.0);
+    if (c.w <= 0.0) return vec2(-1.0, 0.0);
+    vec3 s = c.xyz / c.w * 0.5 + 0.5;
+    if (s.x < 0.0 || s.y < 0.0 || s.x >= 1.0 || s.y >= 1.0) return vec2(-1.0, 0.0);
+    ivec2 n = textureSize(u_recv_z, 0);
+    float z = texelFetch(u_recv_z, ivec2(s.xy * vec2(n)), 0).r;
+    if (z >= 1.0) return vec2(-1.0, 0.0);
+    float b = recv_lin(z);
+    return vec2(recv_lin(s.z) - b, b);
+}
+
+// The first point of q + d l, 0 <= l <= lmax, behind the opaque receivers
+// (linear steps, then bisection): l, or -1 if none. on: whether it is their
+// surface (the depths meet there within 3 texels), not a step behind an
+// edge into a face the light does not see (where the photon stops unseen).
+const int RECV_STEPS = 32;
+const int RECV_BISECT = 12;
+float recv_march(vec3 q, vec3 d, float lmax, out bool on)
+{
+    float lo = 0.0, hi = -1.0;
+    on = false;
+    for (int k = 0; k <= RECV_STEPS; k++) {
+        float l = lmax * float(k) / float(RECV_STEPS);
+        if (hi < 0.0) {
+            if (recv_gap(q + d * l).x > 0.0) hi = l;
+            else lo = l;
+        }
+    }
+    if (hi < 0.0) return -1.0;
+    if (hi == 0.0) return 0.0; // leaves the glass behind a receiver: stopped
+    for (int k = 0; k < RECV_BISECT; k++) {
+        float m = 0.5 * (lo + hi);
+        if (recv_gap(q + d * m).x > 0.0) hi = m;
+        else lo = m;
+    }
+    vec2 g = recv_gap(q + d * hi);
+    on = g.x < 3.0 * u_recv_lin.w * (u_recv_lin.z > 0.5 ? g.y : 1.0);
+    return hi;
 }
 
 void main()
@@ -133,11 +201,29 @@ void main()
     float f2 = snell_fresnel_schlick(dot(nb, t), u_ior, 1.0);
     vec3 t2;
     if (!snell_refract(t, -nb, u_ior, t2)) return; // TIR: dropped
-    if (t2.y >= 0.0) return; // never reaches the plane's lit side
-    float s = (u_plane.x - q.y) / t2.y;
-    if (s < 0.0) return; // the object reaches below the plane
+    // where the plane (if any) meets it; its way there, or the reach
+    float sp = -1.0, lmax = u_recv_reach;
+    if (u_has_plane == 1 && t2.y < 0.0) sp = (u_plane.x - q.y) / t2.y;
+    if (sp >= 0.0) lmax = sp;
+    if (u_target == 0 && sp < 0.0) return; // never reaches the plane's lit side (or the object reaches below it)
+    bool on = false;
+    float so = u_recv == 1 ? recv_march(q, t2, lmax, on) : -1.0;
+    if (u_target == 0 && so >= 0.0) return; // an opaque object stops it first
+    if (u_target == 1 && !(so >= 0.0 && on)) return;
+    vec3 flux = (u_target == 0 ? u_flux : u_flux_recv) * share * (1.0 - f1) * (1.0 - f2) * exp(-u_sigma * len);
+    if (u_target == 1) {
+        vec3 h = q + t2 * so;
+        vec4 c = u_recv_vp * vec4(h, 1.0);
+        if (u_spot == 1) { // the texel's solid angle: cos^3 off the frame's axis (straight down)
+            float cl = (u_pos.y - h.y) / length(h - u_pos);
+            flux /= cl * cl * cl;
+        }
+        v_flux = vec4(flux, (flux.r + flux.g + flux.b) / 3.0);
+        gl_Position = vec4(c.xy / c.w, 0.0, 1.0);
+        return;
+    }
+    float s = sp;
     vec3 h = q + t2 * s;
-    vec3 flux = u_flux * share * (1.0 - f1) * (1.0 - f2) * exp(-u_sigma * len);
     v_flux = vec4(flux, (flux.r + flux.g + flux.b) / 3.0);
     gl_Position = vec4((h.x - u_plane.y) / u_plane.w, (h.z - u_plane.z) / u_plane.w, 0.0, 1.0);
 }

@@ -3,7 +3,10 @@
  * turns each round: without light ("off"), with it and nothing moved (the
  * light map reused), and with the light nudged every frame (the light map
  * made again). Prints the median frame times and the medians of the
- * per-round ratios against "off". A tool, not a test (glFinish per frame). */
+ * per-round ratios against "off". With OPAQUE 1, an opaque box stands on
+ * the receiver beside the sphere in all three (lit with the light: the
+ * caustic map in the light's frame, photons stopped by it, its shadows).
+ * A tool, not a test (glFinish per frame). */
 #include "core/gl.h"
 #include "core/core.h"
 #include "snell/snell.h"
@@ -28,6 +31,11 @@ int main(int argc, char **argv)
 {
     int size = argc > 1 ? atoi(argv[1]) : 512, rounds = argc > 2 ? atoi(argv[2]) : 15;
     int photons = argc > 3 ? atoi(argv[3]) : 256, map = argc > 4 ? atoi(argv[4]) : 256, i, k;
+    int opaque = argc > 5 ? atoi(argv[5]) : 0;
+    float box[16] = {0.6f, 0, 0, 0, 0, 0.3f, 0, 0, 0, 0, 0.6f, 0, 1.5f, -0.7f, 0, 1};
+    snell_shape_desc bd = {SNELL_SHAPE_CUBE, 0, 0};
+    snell_mesh *cube = NULL;
+    snell_opaque op;
     snell_ctx_desc cd;
     snell_ctx *ctx = NULL;
     snell_mesh *sphere = NULL;
@@ -40,8 +48,8 @@ int main(int argc, char **argv)
     snell_glass g;
     double *t[3], *ratio[2];
     static const char *names[3] = {"off", "reused", "made"};
-    if (rounds < 1 || rounds > 1000 || size < 16 || photons < 16 || map < 16) {
-        fprintf(stderr, "usage: bench_caustics [SIZE [ROUNDS [PHOTONS [MAP]]]]\n");
+    if (rounds < 1 || rounds > 1000 || size < 16 || photons < 16 || map < 16 || opaque < 0 || opaque > 1) {
+        fprintf(stderr, "usage: bench_caustics [SIZE [ROUNDS [PHOTONS [MAP [OPAQUE 0|1]]]]]\n");
         return 2;
     }
     memset(&cd, 0, sizeof cd);
@@ -50,7 +58,8 @@ int main(int argc, char **argv)
     rd.width = rd.height = size;
     if (snell_ctx_create(&cd, &ctx) != SNELL_OK || snell_mesh_create_shape(ctx, &sd, &sphere) != SNELL_OK ||
         snell_env_create(ctx, &ed, &env) != SNELL_OK || snell_renderer_create(ctx, &rd, &r[0]) != SNELL_OK ||
-        snell_renderer_create(ctx, &rd, &r[1]) != SNELL_OK || snell_renderer_create(ctx, &rd, &r[2]) != SNELL_OK) {
+        snell_renderer_create(ctx, &rd, &r[1]) != SNELL_OK || snell_renderer_create(ctx, &rd, &r[2]) != SNELL_OK ||
+        snell_mesh_create_shape(ctx, &bd, &cube) != SNELL_OK) {
         fprintf(stderr, "bench_caustics: %s\n", snell_last_error(ctx));
         return 1;
     }
@@ -60,6 +69,9 @@ int main(int argc, char **argv)
     fd.env = env;
     fd.glass = &g;
     fd.glass_count = 1;
+    memset(&op, 0, sizeof op);
+    op.mesh = cube, op.model = box;
+    fd.opaque = &op, fd.opaque_count = opaque;
     fd.camera.azimuth = 0.5f, fd.camera.elevation = 0.6f, fd.camera.distance = 6.0f, fd.camera.fov_y = 0.8f;
     for (k = 0; k < 3; k++) t[k] = (double *)calloc((size_t)rounds, sizeof(double));
     for (k = 0; k < 2; k++) ratio[k] = (double *)calloc((size_t)rounds, sizeof(double));
@@ -88,13 +100,15 @@ int main(int argc, char **argv)
             }
         }
     for (i = 0; i < rounds; i++) ratio[0][i] = t[1][i] / t[0][i], ratio[1][i] = t[2][i] / t[0][i];
-    printf("bench_caustics: %dx%d, %d rounds, %d^2 photons, %d^2 light map\n", size, size, rounds, photons, map);
+    printf("bench_caustics: %dx%d, %d rounds, %d^2 photons, %d^2 light map%s\n", size, size, rounds, photons, map,
+           opaque ? ", an opaque box (lit: caustic map in the light's frame)" : "");
     for (k = 0; k < 3; k++) printf("  %-7s median %.2f ms\n", names[k], median(t[k], rounds));
     printf("  reused/off median ratio %.3f, made/off median ratio %.3f\n", median(ratio[0], rounds),
            median(ratio[1], rounds));
     for (k = 0; k < 3; k++) snell_renderer_destroy(r[k]);
     snell_env_destroy(env);
     snell_mesh_destroy(sphere);
+    snell_mesh_destroy(cube);
     snell_ctx_destroy(ctx);
     return 0;
 }

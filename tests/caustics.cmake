@@ -15,7 +15,7 @@ if(TARGET snell-render)
   add_test(NAME cli_caustics COMMAND $<TARGET_FILE:snell-render> --light dir:0.5,-1,0.2 --floor -1,3 --size 64x64
            --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_caustics.png)
   set_tests_properties(cli_caustics PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
-    "stages run: opaque caustics glass.*caustics: made: 1 glass object casting.*65536 photons")
+    "stages run: opaque caustics glass.*caustics: made: 1 glass casting.*65536 photons")
   add_test(NAME cli_caustics_bad_light COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>"
            "-DARGS=--light|dir:0,0,0|--floor|0" -DCODE=2 "-DERR=wants dir:X,Y,Z" -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(cli_caustics_bad_light PROPERTIES LABELS "cli;gl")
@@ -28,3 +28,18 @@ target_include_directories(bench_caustics PRIVATE ${PROJECT_SOURCE_DIR}/src ${CG
 target_compile_options(bench_caustics PRIVATE ${SNELL_WARNINGS})
 add_test(NAME bench_caustics_runs COMMAND bench_caustics 64 2 32 32)
 set_tests_properties(bench_caustics_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "made/off median ratio")
+# test_caustics_opaque: opaque objects as receivers: a glass sphere over an opaque box (its top at the ball
+# lens's focus), a small cube and the floor; the lit view against the reference's (snell_ref_set_light) over the
+# opaque pixels, the caustic maps' flux and peak, photons stopped by the box, its shadow edge; a spot light.
+snell_add_test(test_caustics_opaque SOURCES test_caustics_opaque.c LABELS "render;gl")
+target_link_libraries(test_caustics_opaque PRIVATE m)
+add_test(NAME bench_caustics_opaque_runs COMMAND bench_caustics 64 2 32 32 1)
+set_tests_properties(bench_caustics_opaque_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "opaque box.*made/off median ratio")
+if(TARGET snell-render AND SNELL_WITH_GLTF)
+  # snell-render --scene with opaque objects and a light: they are lit (the stage's stats line)
+  add_test(NAME cli_caustics_opaque COMMAND $<TARGET_FILE:snell-render> --scene
+           ${PROJECT_SOURCE_DIR}/tests/data/scenes/three_glass_two_opaque.gltf --light dir:-0.4,-1,-0.3 --floor -1,4
+           --size 64x64 --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_caustics_opaque.png)
+  set_tests_properties(cli_caustics_opaque PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
+    "caustics: made: 3 glass casting, 2 opaque lit")
+endif()

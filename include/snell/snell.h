@@ -873,7 +873,10 @@ typedef struct snell_glass {
 
 /* An opaque object of the scene (diffuse, lit from above: colour *
  * (0.25 + 0.75 * (0.5 + 0.5 * dot(n, normalize(0.3, 1, 0.2))))), drawn in the
- * view and, seen from each glass object, into its dynamic environment. */
+ * view and, seen from each glass object, into its dynamic environment. In a
+ * frame with a light (snell_frame_desc.light) the view draws it lit by that
+ * light instead: colour * irradiance, as the receiver plane (the glass still
+ * sees it lit from above). */
 typedef struct snell_opaque {
     const snell_mesh *mesh;         /* required; GPU buffers made on first draw */
     const float *model;             /* float[16] object-to-world; NULL = identity; finite and
@@ -992,7 +995,11 @@ typedef struct snell_frame_desc {
      * receiver, light from `light` refracted through every glass object
      * (Schlick Fresnel at entry and exit, tint, Beer-Lambert) is splatted
      * onto the receiver plane, which is drawn lit by it and by the direct
-     * light where no object (glass or opaque) shadows it. Zero = none: the
+     * light where no object (glass or opaque) shadows it. The opaque objects
+     * are receivers too: drawn lit by the direct light where no object
+     * shadows them and by the photons that land on them (photons stop at the
+     * first opaque object); with a light and opaque objects the stage runs
+     * without a plane as well. Zero = none: the
      * frame is drawn as without them. Limits: one refraction in and one out
      * per object (a convex solid; TIR inside drops the photon), light
      * through two glass objects is not followed, glass does not see the

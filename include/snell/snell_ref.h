@@ -272,6 +272,28 @@ snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects
 snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *light, const snell_receiver *receiver,
                                        int photons, int samples, float *rgb, float *caustic);
 
+/* Lights the opaque objects (in snell_ref_render and snell_ref_water_render)
+ * as the caustics stage lights them in a frame with `light` (and the
+ * receiver plane `receiver`, extent 0 = none): colour = albedo *
+ * irradiance, in units of the light's colour, instead of opaque.frag's sky
+ * light. Irradiance = the direct light (directional: colour * cosine; spot:
+ * colour * cosine / distance^2 inside its cone) where a ray towards the
+ * light (up to it) meets no object, plus the light through glass: photons
+ * traced as snell_ref_receiver_render traces them (photons x photons per
+ * solid glass object) that first meet an opaque object (before the plane)
+ * on a surface the light sees there, splatted with the stage's tent into
+ * the stage's light frame (the view from the light whose window holds the
+ * receiver square's corners and the opaque objects' bounding spheres: an
+ * orthographic one along a directional light, a perspective one looking
+ * straight down from a spot light; 2 * map_size texels a side, at most
+ * 2048), flux per texel area facing the light (a spot's: solid angle); at
+ * a surface point read bilinearly over the texels whose nearest opaque
+ * surface seen from the light is within 3 texels of the point's depth,
+ * times the cosine (spot: / distance^2). light NULL or SNELL_LIGHT_NONE:
+ * back to the sky light. photons 1..4096; not while a render runs. */
+snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const snell_receiver *receiver,
+                                 int photons);
+
 /* ---------------------------------------------------- light path (Unger 4.2.2) */
 typedef enum snell_ref_event {
     SNELL_REF_EVENT_EYE = 0,   /* points[0]: the ray origin (camera) */

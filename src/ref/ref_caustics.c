@@ -42,39 +42,52 @@ static void basis(const double d[3], double u[3], double v[3])
     v[0] = d[1] * u[2] - d[2] * u[1], v[1] = d[2] * u[0] - d[0] * u[2], v[2] = d[0] * u[1] - d[1] * u[0];
 }
 
-/* One photon along d from o through glass object g; adds it to m if it lands. */
-static void photon(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
-                   plane_map *m)
+/* One photon along d from o through glass object g (the stage's optics):
+ * 1 if it leaves, at x along t2 (its exit's triangle prim), carrying e. */
+static int through(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
+                   double x[3], double t2[3], uint32_t *prim, double e[3])
 {
     const ref_glass *gl = &ref->glass[g];
     ref_view air = {-1, REF_SEE_ALL, -1}, in = {g, REF_SEE_ALL, -1};
-    ref_surf s1, s2, s3;
-    double n[3], t[3], t2[3], ci, f1, f2, len, e[3], p[3];
+    ref_surf s1, s2;
+    double n[3], t[3], ci, f1, f2, len;
     int k;
-    if (!snell__ref_hit(ref, o, d, SNELL__BVH_NONE, &air, &s1) || s1.object != g) return;
+    if (!snell__ref_hit(ref, o, d, SNELL__BVH_NONE, &air, &s1) || s1.object != g) return 0;
     memcpy(n, s1.n, sizeof n);
     if (snell__ref_dot3(n, d) > 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
     ci = -snell__ref_dot3(n, d);
     f1 = snell_optd_fresnel_schlick(ci, 1.0, gl->ior);
-    if (!snell_optd_refract(d, n, 1.0 / gl->ior, t)) return;
+    if (!snell_optd_refract(d, n, 1.0 / gl->ior, t)) return 0;
     snell__ref_normalize3(t);
-    if (!snell__ref_hit(ref, s1.p, t, s1.prim, &in, &s2) || s2.object != g) return;
+    if (!snell__ref_hit(ref, s1.p, t, s1.prim, &in, &s2) || s2.object != g) return 0;
     memcpy(n, s2.n, sizeof n);
     if (snell__ref_dot3(n, t) < 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2]; /* outward, along the ray */
     f2 = snell_optd_fresnel_schlick(snell__ref_dot3(n, t), gl->ior, 1.0);
     n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
-    if (!snell_optd_refract(t, n, gl->ior, t2)) return; /* TIR: dropped, as the stage drops it */
+    if (!snell_optd_refract(t, n, gl->ior, t2)) return 0; /* TIR: dropped, as the stage drops it */
     snell__ref_normalize3(t2);
-    if (!(t2[1] < 0.0)) return;
     len = s2.t;
-    {
-        double sp = (m->h - s2.p[1]) / t2[1];
-        if (sp < 0.0) return;
-        /* anything between the exit and the plane stops it */
-        if (snell__ref_hit(ref, s2.p, t2, s2.prim, &air, &s3) && s3.t < sp) return;
-        for (k = 0; k < 3; k++) p[k] = s2.p[k] + t2[k] * sp;
-    }
     for (k = 0; k < 3; k++) e[k] = flux[k] * gl->tint[k] * (1.0 - f1) * (1.0 - f2) * exp(-gl->sigma[k] * len);
+    memcpy(x, s2.p, 3 * sizeof(double));
+    *prim = s2.prim;
+    return 1;
+}
+
+/* One photon along d from o through glass object g; adds it to m if it lands. */
+static void photon(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
+                   plane_map *m)
+{
+    ref_view air = {-1, REF_SEE_ALL, -1};
+    ref_surf s3;
+    double x[3], t2[3], e[3], p[3], sp;
+    uint32_t prim;
+    int k;
+    if (!through(ref, g, o, d, flux, x, t2, &prim, e) || !(t2[1] < 0.0)) return;
+    sp = (m->h - x[1]) / t2[1];
+    if (sp < 0.0) return;
+    /* anything between the exit and the plane stops it */
+    if (snell__ref_hit(ref, x, t2, prim, &air, &s3) && s3.t < sp) return;
+    for (k = 0; k < 3; k++) p[k] = x[k] + t2[k] * sp;
     splat(m, p[0], p[2], e);
 }
 
@@ -178,4 +191,311 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
         }
     snell__free(&ref->alloc, m.acc);
     return SNELL_OK;
+}
+
+/* ------------------------------------------------ the opaque objects lit */
+/* The caustics stage's light frame (render/caustics.c make_frame), in
+ * double: directional, an orthographic view along d (x = s.(p - c), y =
+ * u.(p - c), depth = d.(p - c)); spot, a perspective view from the light
+ * looking straight down (x/depth, y/depth, depth = light y - p.y); its
+ * window holds the receiver square's corners and the opaque objects'
+ * bounding spheres; size x size texels, twice the receiver's map_size (at
+ * most 2048). acc: the light through glass on the opaque objects the light
+ * sees first, flux per texel area facing the light; depth: that surface's
+ * depth per texel centre (HUGE_VAL: none). */
+struct ref_lit {
+    int spot, size;
+    double d[3], pos[3], col[3], cos_cone;
+    double c[3], s[3], u[3], f[3];  /* the frame's origin and axes */
+    double lo[2], hi[2], texel, area;
+    int plane;
+    double plane_h;
+    double *acc, *depth;
+};
+
+static void cross3(const double a[3], const double b[3], double o[3])
+{
+    o[0] = a[1] * b[2] - a[2] * b[1], o[1] = a[2] * b[0] - a[0] * b[2], o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* p in the frame: x, y (spot: over depth) and depth; 0 if behind a spot light. */
+static int frame_xy(const struct ref_lit *L, const double p[3], double *x, double *y, double *z)
+{
+    double q[3] = {p[0] - L->c[0], p[1] - L->c[1], p[2] - L->c[2]};
+    *x = snell__ref_dot3(L->s, q), *y = snell__ref_dot3(L->u, q), *z = snell__ref_dot3(L->f, q);
+    if (!L->spot) return 1;
+    if (!(*z > 1e-9)) return 0;
+    *x /= *z, *y /= *z;
+    return 1;
+}
+
+static void grow2(double lo[2], double hi[2], double x, double y)
+{
+    lo[0] = fmin(lo[0], x), hi[0] = fmax(hi[0], x), lo[1] = fmin(lo[1], y), hi[1] = fmax(hi[1], y);
+}
+
+static void lit_frame(const snell_ref *ref, const snell_receiver *rc, struct ref_lit *L)
+{
+    double up[3] = {0.0, 0.0, 1.0};
+    int i, k, plane = rc->extent > 0.0f;
+    L->lo[0] = L->lo[1] = 1e300, L->hi[0] = L->hi[1] = -1e300;
+    if (L->spot) {
+        memcpy(L->c, L->pos, sizeof L->c);
+        L->f[0] = 0.0, L->f[1] = -1.0, L->f[2] = 0.0;
+    } else {
+        if (plane) L->c[0] = rc->center[0], L->c[1] = rc->height, L->c[2] = rc->center[1];
+        else
+            for (k = 0; k < 3; k++) {
+                L->c[k] = 0.0;
+                for (i = 0; i < ref->opaque_count; i++) L->c[k] += ref->opaque_bs[i][k] / ref->opaque_count;
+            }
+        memcpy(L->f, L->d, sizeof L->f);
+        up[0] = 0.0, up[1] = 1.0, up[2] = 0.0;
+        if (fabs(L->d[1]) > 0.99) up[0] = 1.0, up[1] = 0.0;
+    }
+    cross3(L->f, up, L->s);
+    snell__ref_normalize3(L->s);
+    cross3(L->s, L->f, L->u);
+    for (k = 0; k < 4 && plane; k++) {
+        double p[3] = {rc->center[0] + ((k & 1) ? rc->extent : -rc->extent), rc->height,
+                       rc->center[1] + ((k & 2) ? rc->extent : -rc->extent)}, x, y, z;
+        double q[3] = {p[0] - L->c[0], p[1] - L->c[1], p[2] - L->c[2]};
+        x = snell__ref_dot3(L->s, q), y = snell__ref_dot3(L->u, q), z = snell__ref_dot3(L->f, q);
+        if (L->spot) z = z > 1e-3 ? z : 1e-3, x /= z, y /= z;
+        grow2(L->lo, L->hi, x, y);
+    }
+    for (i = 0; i < ref->opaque_count; i++) {
+        const double *b = ref->opaque_bs[i];
+        double q[3] = {b[0] - L->c[0], b[1] - L->c[1], b[2] - L->c[2]}, x, y, z;
+        x = snell__ref_dot3(L->s, q), y = snell__ref_dot3(L->u, q), z = snell__ref_dot3(L->f, q);
+        if (!L->spot) {
+            grow2(L->lo, L->hi, x - b[3], y - b[3]);
+            grow2(L->lo, L->hi, x + b[3], y + b[3]);
+        } else {
+            for (k = 0; k < 8; k++) {
+                double xk = x + ((k & 1) ? b[3] : -b[3]), yk = y + ((k & 2) ? b[3] : -b[3]);
+                double zk = z + ((k & 4) ? b[3] : -b[3]);
+                if (zk > 1e-3) grow2(L->lo, L->hi, xk / zk, yk / zk);
+                else grow2(L->lo, L->hi, xk < 0.0 ? -1e3 : 1e3, yk < 0.0 ? -1e3 : 1e3);
+            }
+        }
+    }
+    if (L->spot)
+        for (i = 0; i < 2; i++) L->lo[i] = fmax(L->lo[i], -12.0), L->hi[i] = fmin(L->hi[i], 12.0);
+    L->size = rc->map_size ? rc->map_size : 256;
+    L->size = L->size * 2 > 2048 ? 2048 : L->size * 2;
+    L->texel = fmax(L->hi[0] - L->lo[0], L->hi[1] - L->lo[1]) / L->size;
+    L->area = (L->hi[0] - L->lo[0]) * (L->hi[1] - L->lo[1]) / ((double)L->size * L->size);
+    L->plane = plane, L->plane_h = rc->height;
+}
+
+/* The tent splat of the stage (caustics_splat.frag) at frame texel
+ * coordinates (tx, ty) (texel centres at integers). */
+static void splat_frame(struct ref_lit *L, double tx, double ty, const double e[3])
+{
+    int ix, iy, c, n = L->size;
+    if (!(tx > -2.0 && ty > -2.0 && tx < n + 1.0 && ty < n + 1.0)) return;
+    for (iy = (int)floor(ty) - 1; iy <= (int)floor(ty) + 2; iy++)
+        for (ix = (int)floor(tx) - 1; ix <= (int)floor(tx) + 2; ix++) {
+            double wx = 1.0 - fabs(tx - ix) / 2.0, wy = 1.0 - fabs(ty - iy) / 2.0, w;
+            if (wx <= 0.0 || wy <= 0.0 || ix < 0 || iy < 0 || ix >= n || iy >= n) continue;
+            w = wx * wy / 4.0;
+            for (c = 0; c < 3; c++) L->acc[3 * ((size_t)iy * (size_t)n + (size_t)ix) + c] += w * e[c];
+        }
+}
+
+/* The ray from the light through frame point (x, y): origin and unit direction. */
+static void frame_ray(const struct ref_lit *L, double x, double y, double o[3], double dir[3])
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        if (L->spot) o[k] = L->pos[k], dir[k] = L->f[k] + L->s[k] * x + L->u[k] * y;
+        else o[k] = L->c[k] + L->s[k] * x + L->u[k] * y - L->f[k] * 1e4, dir[k] = L->f[k];
+    }
+    snell__ref_normalize3(dir);
+}
+
+/* The nearest opaque surface the light sees at p's frame point: its depth (HUGE_VAL: none). */
+static double first_opaque(const snell_ref *ref, const struct ref_lit *L, double x, double y)
+{
+    ref_view opq = {-1, REF_SEE_NONE, -1};
+    ref_surf s;
+    double o[3], dir[3], px, py, z;
+    frame_ray(L, x, y, o, dir);
+    if (!snell__ref_hit(ref, o, dir, SNELL__BVH_NONE, &opq, &s)) return HUGE_VAL;
+    frame_xy(L, s.p, &px, &py, &z);
+    return z;
+}
+
+/* A photon that left the glass at x along t2 carrying e: where it first
+ * meets an opaque object (before the plane), if the light sees that
+ * surface there, its flux per texel area facing the light is splatted. */
+static void land_opaque(const snell_ref *ref, struct ref_lit *L, const double x[3], const double t2[3], uint32_t prim,
+                        const double e[3])
+{
+    ref_view air = {-1, REF_SEE_ALL, -1};
+    ref_surf s;
+    double fx, fy, fz, w[3], zs;
+    int k;
+    if (!snell__ref_hit(ref, x, t2, prim, &air, &s) || s.object >= 0) return; /* nothing, or glass: not followed */
+    if (L->plane && t2[1] < 0.0 && (L->plane_h - x[1]) / t2[1] >= 0.0 && (L->plane_h - x[1]) / t2[1] < s.t) return;
+    if (!frame_xy(L, s.p, &fx, &fy, &fz)) return;
+    zs = first_opaque(ref, L, fx, fy);
+    if (!(fabs(zs - fz) <= 1e-6 * (1.0 + fabs(fz)) + 1e2 * ref->eps)) return; /* a face the light does not see */
+    for (k = 0; k < 3; k++) w[k] = e[k];
+    if (L->spot) { /* the texel's solid angle: cos^3 off the frame's axis */
+        double v[3] = {s.p[0] - L->pos[0], s.p[1] - L->pos[1], s.p[2] - L->pos[2]}, cl;
+        cl = (L->pos[1] - s.p[1]) / sqrt(snell__ref_dot3(v, v));
+        for (k = 0; k < 3; k++) w[k] /= cl * cl * cl;
+    }
+    splat_frame(L, (fx - L->lo[0]) / (L->hi[0] - L->lo[0]) * L->size - 0.5,
+                (fy - L->lo[1]) / (L->hi[1] - L->lo[1]) * L->size - 0.5, w);
+}
+
+void snell__ref_lit_free(snell_ref *r)
+{
+    if (!r->lit) return;
+    snell__free(&r->alloc, r->lit->acc);
+    snell__free(&r->alloc, r->lit->depth);
+    snell__free(&r->alloc, r->lit);
+    r->lit = NULL;
+}
+
+snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const snell_receiver *rc, int photons)
+{
+    struct ref_lit *L;
+    double len;
+    int g, i, j, k;
+    size_t n;
+    if (!ref) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_ref_set_light: NULL reference");
+    if (!light || light->type == SNELL_LIGHT_NONE) {
+        snell__ref_lit_free(ref);
+        return SNELL_OK;
+    }
+    if (light->type != SNELL_LIGHT_DIRECTIONAL && light->type != SNELL_LIGHT_SPOT)
+        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_set_light: light.type %d", (int)light->type);
+    if (!rc || !isfinite(rc->extent) || rc->extent < 0.0f || rc->map_size < 0 || rc->map_size > 2048 ||
+        photons < 1 || photons > 4096)
+        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_set_light: receiver extent >= 0, map_size "
+                           "0..2048, photons %d 1..4096", photons);
+    if (rc->extent == 0.0f && ref->opaque_count == 0)
+        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_set_light: neither a receiver nor opaque objects");
+    len = sqrt((double)light->direction[0] * light->direction[0] + (double)light->direction[1] * light->direction[1] +
+               (double)light->direction[2] * light->direction[2]);
+    if (!(len > 0.0) || !isfinite(len))
+        return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_set_light: light.direction zero or not finite");
+    snell__ref_lit_free(ref);
+    L = (struct ref_lit *)snell__calloc(&ref->alloc, 1, sizeof *L);
+    if (!L) return snell__fail(ref->ctx, SNELL_E_NOMEM, "snell_ref_set_light: out of memory");
+    ref->lit = L;
+    L->spot = light->type == SNELL_LIGHT_SPOT;
+    for (k = 0; k < 3; k++) {
+        L->d[k] = light->direction[k] / len, L->pos[k] = light->position[k];
+        L->col[k] = light->color[0] == 0.0f && light->color[1] == 0.0f && light->color[2] == 0.0f ? 1.0 : light->color[k];
+    }
+    L->cos_cone = cos(light->spot_angle > 0.0f ? (double)light->spot_angle : 0.5);
+    lit_frame(ref, rc, L);
+    n = (size_t)L->size * (size_t)L->size;
+    L->acc = (double *)snell__calloc(&ref->alloc, 3 * n, sizeof(double));
+    L->depth = (double *)snell__calloc(&ref->alloc, n, sizeof(double));
+    if (!L->acc || !L->depth) {
+        snell__ref_lit_free(ref);
+        return snell__fail(ref->ctx, SNELL_E_NOMEM, "snell_ref_set_light: out of memory");
+    }
+    for (j = 0; j < L->size; j++)
+        for (i = 0; i < L->size; i++)
+            L->depth[(size_t)j * L->size + i] = first_opaque(ref, L, L->lo[0] + (i + 0.5) * (L->hi[0] - L->lo[0]) / L->size,
+                                                             L->lo[1] + (j + 0.5) * (L->hi[1] - L->lo[1]) / L->size);
+    /* photons: the grid of snell_ref_receiver_render */
+    for (g = 0; g < ref->glass_count; g++) {
+        const ref_glass *gl = &ref->glass[g];
+        double r = gl->bs_r, cell = 2.0 * r / photons, flux[3], w[3], u[3], v[3], tan_half = 0.0, dist;
+        if (gl->thin) continue;
+        if (L->spot) {
+            for (k = 0; k < 3; k++) w[k] = gl->bs_c[k] - L->pos[k];
+            dist = sqrt(snell__ref_dot3(w, w));
+            if (dist <= r * 1.001) continue;
+            for (k = 0; k < 3; k++) w[k] /= dist;
+            tan_half = r / sqrt(dist * dist - r * r);
+            cell = 2.0 * tan_half / photons;
+            basis(w, u, v);
+        } else {
+            basis(L->d, u, v);
+        }
+        for (k = 0; k < 3; k++) flux[k] = L->col[k] * cell * cell / L->area;
+        for (j = 0; j < photons; j++)
+            for (i = 0; i < photons; i++) {
+                double o[3], dir[3], f[3], x[3], t2[3], e[3];
+                uint32_t prim;
+                if (L->spot) {
+                    double px = -tan_half + (i + 0.5) * cell, py = -tan_half + (j + 0.5) * cell, c;
+                    for (k = 0; k < 3; k++) dir[k] = w[k] + u[k] * px + v[k] * py;
+                    snell__ref_normalize3(dir);
+                    c = 1.0 / sqrt(1.0 + px * px + py * py);
+                    if (snell__ref_dot3(dir, L->d) < L->cos_cone) continue;
+                    for (k = 0; k < 3; k++) o[k] = L->pos[k], f[k] = flux[k] * c * c * c;
+                } else {
+                    double px = -r + (i + 0.5) * cell, py = -r + (j + 0.5) * cell;
+                    if (px * px + py * py > r * r) continue;
+                    for (k = 0; k < 3; k++) o[k] = gl->bs_c[k] + u[k] * px + v[k] * py - L->d[k] * (r + 1.0);
+                    memcpy(dir, L->d, sizeof dir);
+                    memcpy(f, flux, sizeof f);
+                }
+                if (through(ref, g, o, dir, f, x, t2, &prim, e)) land_opaque(ref, L, x, t2, prim, e);
+            }
+    }
+    return SNELL_OK;
+}
+
+/* caustics_opaque.frag in double: the direct light where a ray towards the
+ * light meets nothing, plus the caustic map read bilinearly over the texels
+ * whose nearest surface is this one (depth within 3 texels), both times the
+ * cosine (spot: over distance^2; the direct light inside its cone). */
+void snell__ref_lit_irradiance(const snell_ref *r, const ref_surf *s, double e[3])
+{
+    const struct ref_lit *L = r->lit;
+    ref_view air = {-1, REF_SEE_ALL, -1};
+    ref_surf h;
+    double l[3], fall = 1.0, cone = 1.0, far_ = HUGE_VAL, cosl, fx, fy, fz, tw, tx, ty, acc[3] = {0, 0, 0}, wsum = 0.0;
+    double back[3];
+    int k, q;
+    e[0] = e[1] = e[2] = 0.0;
+    memcpy(l, L->d, sizeof l);
+    if (L->spot) {
+        for (k = 0; k < 3; k++) l[k] = s->p[k] - L->pos[k];
+        fall = 1.0 / snell__ref_dot3(l, l);
+        far_ = sqrt(1.0 / fall);
+        snell__ref_normalize3(l);
+        cone = snell__ref_dot3(l, L->d) >= L->cos_cone ? 1.0 : 0.0;
+    }
+    cosl = -snell__ref_dot3(s->n, l);
+    if (!(cosl > 0.0)) return;
+    for (k = 0; k < 3; k++) back[k] = -l[k];
+    if (cone > 0.0 && !(snell__ref_hit(r, s->p, back, s->prim, &air, &h) && h.t < far_))
+        for (k = 0; k < 3; k++) e[k] = L->col[k] * fall * cosl;
+    if (!frame_xy(L, s->p, &fx, &fy, &fz)) return; /* above a spot light: outside its frame, no caustic */
+    tw = L->texel * (L->spot ? fz : 1.0);
+    tx = (fx - L->lo[0]) / (L->hi[0] - L->lo[0]) * L->size - 0.5;
+    ty = (fy - L->lo[1]) / (L->hi[1] - L->lo[1]) * L->size - 0.5;
+    for (q = 0; q < 4; q++) {
+        int ix = (int)floor(tx) + (q & 1), iy = (int)floor(ty) + (q >> 1);
+        double wk = (q & 1 ? tx - floor(tx) : 1.0 - (tx - floor(tx))) * (q >> 1 ? ty - floor(ty) : 1.0 - (ty - floor(ty)));
+        size_t t;
+        ix = ix < 0 ? 0 : ix >= L->size ? L->size - 1 : ix;
+        iy = iy < 0 ? 0 : iy >= L->size ? L->size - 1 : iy;
+        t = (size_t)iy * (size_t)L->size + (size_t)ix;
+        if (!(fabs(L->depth[t] - fz) < 3.0 * tw)) continue;
+        for (k = 0; k < 3; k++) acc[k] += wk * L->acc[3 * t + k];
+        wsum += wk;
+    }
+    if (wsum > 0.0)
+        for (k = 0; k < 3; k++) e[k] += acc[k] / wsum * fall * cosl;
+}
+
+const double *snell__ref_lit_map(const snell_ref *r, int *size, double *area)
+{
+    if (!r->lit) return NULL;
+    *size = r->lit->size;
+    *area = r->lit->area;
+    return r->lit->acc;
 }

@@ -140,6 +140,11 @@ void snell__ref_shade_opaque(const snell_ref *r, int j, const ref_surf *s, doubl
     const double ll = sqrt(0.3 * 0.3 + 1.0 + 0.2 * 0.2), L[3] = {0.3 / ll, 1.0 / ll, 0.2 / ll};
     double l = 0.5 + 0.5 * snell__ref_dot3(s->n, L);
     int k;
+    if (r->lit) {
+        snell__ref_lit_irradiance(r, s, rgb);
+        for (k = 0; k < 3; k++) rgb[k] *= r->opaque_color[j][k];
+        return;
+    }
     for (k = 0; k < 3; k++) rgb[k] = r->opaque_color[j][k] * (0.25 + 0.75 * l);
 }
 
@@ -344,7 +349,12 @@ snell_status snell_ref_create(snell_ctx *ctx, const snell_ref_desc *desc, snell_
         } else {
             const float *c = desc->opaque[j].color;
             int grey = c[0] == 0.0f && c[1] == 0.0f && c[2] == 0.0f;
+            double bc[3];
             for (k = 0; k < 3; k++) r->opaque_color[j][k] = grey ? (double)0.8f : (double)c[k];
+            for (k = 0; k < 3; k++) bc[k] = 0.5 * ((double)m->bmin[k] + (double)m->bmax[k]);
+            for (k = 0; k < 3; k++)
+                r->opaque_bs[j][k] = M[k] * bc[0] + M[4 + k] * bc[1] + M[8 + k] * bc[2] + M[12 + k];
+            r->opaque_bs[j][3] = (double)m->bradius * s;
         }
     }
     if ((st = snell__bvh_build_parts(ctx, parts, (uint32_t)np, &r->bvh)) != SNELL_OK) {
@@ -418,6 +428,7 @@ void snell_ref_destroy(snell_ref *ref)
     snell_alloc al;
     if (!ref) return;
     al = ref->alloc;
+    snell__ref_lit_free(ref);
     snell__bvh_destroy(ref->bvh);
     snell__free(&al, ref->normals);
     snell__free(&al, ref->indices);

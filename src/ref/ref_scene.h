@@ -36,6 +36,9 @@ struct snell_ref {
     int glass_count, opaque_count;
     ref_glass glass[SNELL_MAX_GLASS];
     double opaque_color[SNELL_MAX_OPAQUE][3]; /* resolved albedo */
+    double opaque_bs[SNELL_MAX_OPAQUE][4];    /* bounding sphere as the renderer's (snell__bounding_sphere) */
+    struct ref_lit *lit;      /* snell_ref_set_light's light on the opaque objects (ref_caustics.c);
+                               * NULL: opaque.frag's sky light */
     snell__bvh *bvh;          /* all triangles; NULL for analytic spheres */
     double *normals;          /* 3 per vertex of every object in part order: inverse-transpose(model)
                                * * n, not renormalised (object.vert) */
@@ -73,8 +76,16 @@ int snell__ref_hit(const snell_ref *r, const double o[3], const double d[3], uin
                    ref_surf *s);
 
 /* Radiance of opaque object j at s, lit as shaders_es/opaque.frag lights it:
- * colour * (0.25 + 0.75 * (0.5 + 0.5 * dot(n, normalize(0.3, 1, 0.2)))). */
+ * colour * (0.25 + 0.75 * (0.5 + 0.5 * dot(n, normalize(0.3, 1, 0.2)))); with
+ * snell_ref_set_light's light, as caustics_opaque.frag: colour * irradiance
+ * (snell__ref_lit_irradiance). */
 void snell__ref_shade_opaque(const snell_ref *r, int j, const ref_surf *s, double rgb[3]);
+/* ref_caustics.c: the irradiance of r->lit at an opaque surface; its release. */
+void snell__ref_lit_irradiance(const snell_ref *r, const ref_surf *s, double e[3]);
+void snell__ref_lit_free(snell_ref *r);
+/* The light frame's caustic map of snell_ref_set_light (3 doubles a texel,
+ * flux per texel area facing the light), its size and texel area; NULL if none. */
+const double *snell__ref_lit_map(const snell_ref *r, int *size, double *area);
 
 /* Vector helpers of the tracer (double precision). */
 static inline double snell__ref_dot3(const double a[3], const double b[3])

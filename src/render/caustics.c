@@ -7,8 +7,13 @@
  * image-space exit search in its farthest-surface map, caustics_photon.vert)
  * and splatted onto the plane, each carrying the light's flux through its
  * cell of the beam (flux-correct: energy is conserved, as the 2D lightmap's
- * lines are, src/lm2d). The receiver is then drawn in the view with it. The
- * map is reused while light, glass, opaque objects and receiver are still. */
+ * lines are, src/lm2d). The opaque objects are receivers too: a photon
+ * stops at the first one (marched through their depth map in the light
+ * frame, the shadow map's view), and one that lands where the light sees
+ * the surface is splatted into their caustic map in that frame; they are
+ * then drawn lit over the opaque stage's colours (caustics_opaque.frag).
+ * The receiver plane is drawn in the view with its map. The maps are
+ * reused while light, glass, opaque objects and receiver are still. */
 #include "render/caustics.h"
 #include "core/ctx.h"
 #include "core/gl.h"
@@ -17,6 +22,7 @@
 #include "mesh/mesh.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #define DEFAULT_PHOTONS 256
@@ -55,10 +61,11 @@ snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd
         for (k = 0; k < 3; k++)
             if (!(rc->albedo[k] >= 0.0f && rc->albedo[k] <= 1.0f))
                 return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.albedo[%d] %g outside 0..1", k, rc->albedo[k]);
-        if (rc->map_size != 0 && (rc->map_size < 16 || rc->map_size > 2048))
-            return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.map_size %d outside 16..2048 (0 = %d)",
-                               rc->map_size, DEFAULT_MAP);
     }
+    if ((rc->extent > 0.0f || (l->type != SNELL_LIGHT_NONE && fd->opaque_count > 0)) && rc->map_size != 0 &&
+        (rc->map_size < 16 || rc->map_size > 2048))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.map_size %d outside 16..2048 (0 = %d)", rc->map_size,
+                           DEFAULT_MAP);
     return SNELL_OK;
 }
 
@@ -68,7 +75,7 @@ int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n)
         snell__why(why, n, "no light");
         return 0;
     }
-    if (fd->receiver.extent <= 0.0f) {
+    if (fd->receiver.extent <= 0.0f && fd->opaque_count == 0) {
         snell__why(why, n, "no receiver");
         return 0;
     }
@@ -132,6 +139,8 @@ static snell_status programs(snell_ctx *ctx, snell__caustics *c)
     if (st == SNELL_OK && !c->receiver_prog)
         st = snell__program_build(ctx, "caustics_quad.vert", "caustics_receiver.frag",
                                   "#define SNELL_RECEIVER_VIEW 1\n", &c->receiver_prog);
+    if (st == SNELL_OK && !c->opaque_prog)
+        st = snell__program_build(ctx, "object.vert", "caustics_opaque.frag", NULL, &c->opaque_prog);
     if (!c->vao) glGenVertexArrays(1, &c->vao);
     return st;
 }
@@ -290,35 +299,62 @@ static void plane_uniform(GLuint prog, const snell_receiver *rc)
     glUniform4f(glGetUniformLocation(prog, "u_plane"), rc->height, rc->center[0], rc->center[1], rc->extent);
 }
 
-/* The shadow map over the receiver: every casting glass and opaque object
- * (directional: orthographic along the light; spot: a perspective view from
- * it looking straight down, the receiver's corners inside). */
-static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
-                                 const snell__scene *sc, const light_res *L, mat4 vp)
+/* The light frame: the one view from the light that the shadow map, the
+ * opaque receivers' depth map and their caustic map share (directional:
+ * orthographic along the light; spot: a perspective view from it looking
+ * straight down), its window holding the receiver plane's corners and the
+ * opaque receivers' bounding spheres. */
+typedef struct light_frame {
+    mat4 vp;
+    float near_, far_;
+    float texel;  /* the larger side of a texel (directional: world; spot: on the plane at distance 1) */
+    float area;   /* a texel's area, in the same units */
+    float reach;  /* the longest way a photon is marched when no plane ends it */
+    int size;
+} light_frame;
+
+static void opaque_sphere(const snell_opaque *o, float b[4])
+{
+    mat4 m;
+    if (o->model) memcpy(m, o->model, sizeof m);
+    else glm_mat4_identity(m);
+    snell__bounding_sphere(o->mesh, m, b);
+}
+
+static void grow(float lo[2], float hi[2], float x, float y)
+{
+    if (x < lo[0]) lo[0] = x;
+    if (x > hi[0]) hi[0] = x;
+    if (y < lo[1]) lo[1] = y;
+    if (y > hi[1]) hi[1] = y;
+}
+
+static void make_frame(const snell_frame_desc *fd, const snell__scene *sc, const light_res *L, light_frame *F)
 {
     const snell_receiver *rc = &fd->receiver;
+    int plane = rc->extent > 0.0f, i, k;
     float centre[3] = {rc->center[0], rc->height, rc->center[1]};
-    float back = 1.0f, lo[2] = {1e30f, 1e30f}, hi[2] = {-1e30f, -1e30f}, far_ = 0.0f;
-    int size = rc->map_size ? rc->map_size : DEFAULT_MAP, i, k;
+    float back = 1.0f, lo[2] = {1e30f, 1e30f}, hi[2] = {-1e30f, -1e30f}, far_ = 0.0f, b[4];
     mat4 view;
-    snell_status st;
     const float *d = L->d;
-    size = size * 2 > 2048 ? 2048 : size * 2;
+    F->size = rc->map_size ? rc->map_size : DEFAULT_MAP;
+    F->size = F->size * 2 > 2048 ? 2048 : F->size * 2;
+    if (!plane) { /* the opaque receivers' mean centre */
+        centre[0] = centre[1] = centre[2] = 0.0f;
+        for (i = 0; i < fd->opaque_count; i++) {
+            opaque_sphere(&fd->opaque[i], b);
+            for (k = 0; k < 3; k++) centre[k] += b[k] / (float)fd->opaque_count;
+        }
+    }
     if (L->spot) {
         float below[3] = {L->pos[0], L->pos[1] - 1.0f, L->pos[2]}, up[3] = {0.0f, 0.0f, 1.0f};
         glm_lookat((float *)L->pos, below, up, view);
     } else {
-        /* behind every caster: the eye's distance from the plane's centre along -d */
+        /* behind every caster: the eye's distance from the centre along -d */
         for (i = 0; i < sc->count + fd->opaque_count; i++) {
-            float b[4], t;
+            float t;
             if (i < sc->count) memcpy(b, sc->obj[i].bsphere, sizeof b);
-            else {
-                mat4 m;
-                const snell_opaque *o = &fd->opaque[i - sc->count];
-                if (o->model) memcpy(m, o->model, sizeof m);
-                else glm_mat4_identity(m);
-                snell__bounding_sphere(o->mesh, m, b);
-            }
+            else opaque_sphere(&fd->opaque[i - sc->count], b);
             t = -((b[0] - centre[0]) * d[0] + (b[1] - centre[1]) * d[1] + (b[2] - centre[2]) * d[2]) + b[3];
             if (t + 1.0f > back) back = t + 1.0f;
         }
@@ -330,7 +366,7 @@ static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell
         }
     }
     /* the square's corners in the light's view fix the window and the far plane */
-    for (k = 0; k < 4; k++) {
+    for (k = 0; k < 4 && plane; k++) {
         vec4 p = {rc->center[0] + ((k & 1) ? rc->extent : -rc->extent), rc->height,
                   rc->center[1] + ((k & 2) ? rc->extent : -rc->extent), 1.0f}, q;
         glm_mat4_mulv(view, p, q);
@@ -338,26 +374,61 @@ static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell
             float z = -q[2] > 1e-3f ? -q[2] : 1e-3f;
             q[0] /= z, q[1] /= z;
         }
-        for (i = 0; i < 2; i++) {
-            if (q[i] < lo[i]) lo[i] = q[i];
-            if (q[i] > hi[i]) hi[i] = q[i];
-        }
+        grow(lo, hi, q[0], q[1]);
         if (-q[2] > far_) far_ = -q[2];
     }
+    /* and the opaque receivers' bounding spheres (spot: their boxes' corners; one
+     * above the light widens the window to its limit) */
+    for (i = 0; i < fd->opaque_count; i++) {
+        vec4 c, q;
+        opaque_sphere(&fd->opaque[i], b);
+        c[0] = b[0], c[1] = b[1], c[2] = b[2], c[3] = 1.0f;
+        glm_mat4_mulv(view, c, q);
+        if (-q[2] + b[3] > far_) far_ = -q[2] + b[3];
+        if (!L->spot) {
+            grow(lo, hi, q[0] - b[3], q[1] - b[3]);
+            grow(lo, hi, q[0] + b[3], q[1] + b[3]);
+        } else {
+            for (k = 0; k < 8; k++) {
+                float x = q[0] + ((k & 1) ? b[3] : -b[3]), y = q[1] + ((k & 2) ? b[3] : -b[3]);
+                float z = -q[2] + ((k & 4) ? b[3] : -b[3]);
+                if (z > 1e-3f) grow(lo, hi, x / z, y / z);
+                else grow(lo, hi, x < 0.0f ? -1e3f : 1e3f, y < 0.0f ? -1e3f : 1e3f);
+            }
+        }
+    }
     if (L->spot) {
-        float h = L->pos[1] - rc->height, t = 12.0f; /* at most ~170 degrees across */
+        float h = plane ? L->pos[1] - rc->height : 0.0f, t = 12.0f; /* at most ~170 degrees across */
+        float wx, wy;
         for (i = 0; i < 2; i++) {
             if (lo[i] < -t) lo[i] = -t;
             if (hi[i] > t) hi[i] = t;
         }
+        if (fd->opaque_count > 0 && far_ > h) h = far_;
         if (h <= 1e-3f) h = 1e-3f;
-        spot_view(L->pos, (float[3]){L->pos[0], L->pos[1] - 1.0f, L->pos[2]}, lo, hi, h * 0.01f, h * 1.01f + 1e-3f, vp);
+        F->near_ = h * 0.01f, F->far_ = h * 1.01f + 1e-3f;
+        spot_view(L->pos, (float[3]){L->pos[0], L->pos[1] - 1.0f, L->pos[2]}, lo, hi, F->near_, F->far_, F->vp);
+        wx = fmaxf(-lo[0], hi[0]), wy = fmaxf(-lo[1], hi[1]);
+        F->reach = F->far_ * sqrtf(1.0f + wx * wx + wy * wy);
     } else {
-        light_view(d, centre, back, lo, hi, 0.01f, far_ + 1.0f, vp);
+        F->near_ = 0.01f, F->far_ = far_ + 1.0f;
+        light_view(d, centre, back, lo, hi, F->near_, F->far_, F->vp);
+        F->reach = sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                         (F->far_ - F->near_) * (F->far_ - F->near_));
     }
-    if ((st = shadow_target(ctx, c, size)) != SNELL_OK) return st;
+    F->texel = fmaxf(hi[0] - lo[0], hi[1] - lo[1]) / (float)F->size;
+    F->area = (hi[0] - lo[0]) * (hi[1] - lo[1]) / ((float)F->size * (float)F->size);
+}
+
+/* The shadow map in the light frame: every casting glass and opaque object. */
+static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
+                                 const snell__scene *sc, const light_frame *F)
+{
+    snell_status st;
+    int i;
+    if ((st = shadow_target(ctx, c, F->size)) != SNELL_OK) return st;
     glBindFramebuffer(GL_FRAMEBUFFER, c->shadow_fbo);
-    glViewport(0, 0, size, size);
+    glViewport(0, 0, F->size, F->size);
     glDepthMask(GL_TRUE);
     glClearDepthf(1.0f);
     glClear(GL_DEPTH_BUFFER_BIT);
@@ -365,8 +436,58 @@ static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell
     glDepthFunc(GL_LESS);
     glUseProgram(c->map_prog);
     for (i = 0; i < sc->count; i++)
-        if (casts(&sc->obj[i])) draw_mesh(c->map_prog, sc->obj[i].mesh, (const float *)sc->obj[i].model, (const float *)vp);
-    for (i = 0; i < fd->opaque_count; i++) draw_mesh(c->map_prog, fd->opaque[i].mesh, fd->opaque[i].model, (const float *)vp);
+        if (casts(&sc->obj[i])) draw_mesh(c->map_prog, sc->obj[i].mesh, (const float *)sc->obj[i].model, (const float *)F->vp);
+    for (i = 0; i < fd->opaque_count; i++) draw_mesh(c->map_prog, fd->opaque[i].mesh, fd->opaque[i].model, (const float *)F->vp);
+    return SNELL_OK;
+}
+
+/* The opaque receivers in the light frame: their nearest depth (where
+ * photons stop, and which surface a caustic texel belongs to), and their
+ * caustic map cleared for the photons. */
+static snell_status draw_receivers(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
+                                   const light_frame *F)
+{
+    int i;
+    if (c->recv_size != F->size) {
+        snell_status st;
+        if (!c->recv_fbo) {
+            glGenFramebuffers(1, &c->recv_fbo);
+            glGenTextures(1, &c->recv_z);
+            glGenFramebuffers(1, &c->cm_fbo);
+            glGenTextures(1, &c->cm_tex);
+        }
+        glBindTexture(GL_TEXTURE_2D, c->recv_z);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, F->size, F->size, 0, GL_DEPTH_COMPONENT, GL_FLOAT, NULL);
+        tex_params(GL_NEAREST);
+        glBindTexture(GL_TEXTURE_2D, c->cm_tex);
+        glTexImage2D(GL_TEXTURE_2D, 0, (GLint)c->map_format, F->size, F->size, 0, GL_RGBA,
+                     c->map_format == GL_RGBA32F ? GL_FLOAT : GL_HALF_FLOAT, NULL);
+        tex_params(GL_NEAREST);
+        glBindFramebuffer(GL_FRAMEBUFFER, c->cm_fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c->cm_tex, 0);
+        if ((st = complete(ctx, "caustic map")) != SNELL_OK) return st;
+        glBindFramebuffer(GL_FRAMEBUFFER, c->recv_fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, c->recv_z, 0);
+        {
+            GLenum none = GL_NONE;
+            glDrawBuffers(1, &none);
+            glReadBuffer(GL_NONE);
+        }
+        if ((st = complete(ctx, "receiver depth")) != SNELL_OK) return st;
+        c->recv_size = F->size;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, c->recv_fbo);
+    glViewport(0, 0, F->size, F->size);
+    glDepthMask(GL_TRUE);
+    glClearDepthf(1.0f);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glUseProgram(c->map_prog);
+    for (i = 0; i < fd->opaque_count; i++) draw_mesh(c->map_prog, fd->opaque[i].mesh, fd->opaque[i].model, (const float *)F->vp);
+    glBindFramebuffer(GL_FRAMEBUFFER, c->cm_fbo);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
     return SNELL_OK;
 }
 
@@ -380,7 +501,7 @@ static void light_uniforms(GLuint prog, const light_res *L)
 }
 
 /* The direct light into the light map (replacing what it held). */
-static void draw_direct(snell__caustics *c, const snell_frame_desc *fd, const light_res *L, mat4 shadow_vp)
+static void draw_direct(snell__caustics *c, const snell_frame_desc *fd, const light_res *L, const light_frame *F)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, c->map_fbo);
     glViewport(0, 0, c->map_size, c->map_size);
@@ -391,7 +512,7 @@ static void draw_direct(snell__caustics *c, const snell_frame_desc *fd, const li
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, c->shadow_z);
     glUniform1i(glGetUniformLocation(c->direct_prog, "u_shadow"), 0);
-    glUniformMatrix4fv(glGetUniformLocation(c->direct_prog, "u_shadow_vp"), 1, GL_FALSE, (const GLfloat *)shadow_vp);
+    glUniformMatrix4fv(glGetUniformLocation(c->direct_prog, "u_shadow_vp"), 1, GL_FALSE, (const GLfloat *)F->vp);
     plane_uniform(c->direct_prog, &fd->receiver);
     glUniform3fv(glGetUniformLocation(c->direct_prog, "u_color"), 1, L->col);
     light_uniforms(c->direct_prog, L);
@@ -401,13 +522,24 @@ static void draw_direct(snell__caustics *c, const snell_frame_desc *fd, const li
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
-/* One glass object's photons, added into the light map. Returns how many
- * were shot (0: a spot light inside its bounding sphere). */
-static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const snell__object *o, const light_res *L)
+/* The light frame's uniforms (photons and lit opaque shading). */
+static void frame_uniforms(GLuint prog, const snell__caustics *c)
+{
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_recv_vp"), 1, GL_FALSE, c->frame_vp);
+    glUniform4fv(glGetUniformLocation(prog, "u_recv_lin"), 1, c->frame_lin);
+}
+
+/* One glass object's photons: its nearest and farthest surfaces seen from
+ * the light, then the photons added into the plane's light map (plane) and
+ * into the opaque receivers' caustic map (F). Returns how many were shot
+ * (0: a spot light inside its bounding sphere). */
+static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const snell__object *o, const light_res *L,
+                        const light_frame *F)
 {
     const snell_receiver *rc = &fd->receiver;
-    int n = fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS, i, k;
-    float r = o->bsphere[3], lo[2] = {-r, -r}, hi[2] = {r, r}, flux[3], texel = 2.0f * rc->extent / (float)c->map_size;
+    int n = fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS, i, k, plane = rc->extent > 0.0f, target;
+    float r = o->bsphere[3], lo[2] = {-r, -r}, hi[2] = {r, r}, flux[3], flux_recv[3];
+    float texel = plane ? 2.0f * rc->extent / (float)c->map_size : 1.0f;
     float cell = 2.0f * r / (float)n, tan_half = 0.0f;
     mat4 vp, inv;
     if (L->spot) {
@@ -441,20 +573,19 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
     glDepthFunc(GL_LESS);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
-    glBindFramebuffer(GL_FRAMEBUFFER, c->map_fbo);
-    glViewport(0, 0, c->map_size, c->map_size);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(c->photon_prog);
-    for (i = 0; i < 4; i++) {
+    for (i = 0; i < 5; i++) {
         glActiveTexture(GL_TEXTURE0 + (GLenum)i);
-        glBindTexture(GL_TEXTURE_2D, (i & 1) ? c->glass_z[i >> 1] : c->glass_n[i >> 1]);
+        glBindTexture(GL_TEXTURE_2D, i == 4 ? c->recv_z : (i & 1) ? c->glass_z[i >> 1] : c->glass_n[i >> 1]);
     }
     glUniform1i(glGetUniformLocation(c->photon_prog, "u_front_n"), 0);
     glUniform1i(glGetUniformLocation(c->photon_prog, "u_front_z"), 1);
     glUniform1i(glGetUniformLocation(c->photon_prog, "u_back_n"), 2);
     glUniform1i(glGetUniformLocation(c->photon_prog, "u_back_z"), 3);
+    glUniform1i(glGetUniformLocation(c->photon_prog, "u_recv_z"), 4);
     glUniformMatrix4fv(glGetUniformLocation(c->photon_prog, "u_light_vp"), 1, GL_FALSE, (const GLfloat *)vp);
     glUniformMatrix4fv(glGetUniformLocation(c->photon_prog, "u_light_inv"), 1, GL_FALSE, (const GLfloat *)inv);
     glUniform1i(glGetUniformLocation(c->photon_prog, "u_size"), n);
@@ -464,15 +595,66 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
     glUniform3fv(glGetUniformLocation(c->photon_prog, "u_sigma"), 1, o->glass->absorption);
     /* each photon carries the light's flux through its cell of the beam
      * (cell^2 facing the light; spot: its solid angle, the shader's share);
-     * per texel area that is the irradiance it adds */
-    for (k = 0; k < 3; k++) flux[k] = L->col[k] * o->glass->material.tint[k] * cell * cell / (texel * texel);
+     * per texel area that is the irradiance it adds (the plane), or the flux
+     * per area facing the light (a light-frame texel: the opaque receivers) */
+    for (k = 0; k < 3; k++) {
+        flux[k] = L->col[k] * o->glass->material.tint[k] * cell * cell / (texel * texel);
+        flux_recv[k] = L->col[k] * o->glass->material.tint[k] * cell * cell / F->area;
+    }
     glUniform3fv(glGetUniformLocation(c->photon_prog, "u_flux"), 1, flux);
+    glUniform3fv(glGetUniformLocation(c->photon_prog, "u_flux_recv"), 1, flux_recv);
     plane_uniform(c->photon_prog, rc);
     glUniform1f(glGetUniformLocation(c->photon_prog, "u_reach"), 2.0f * r);
+    glUniform1i(glGetUniformLocation(c->photon_prog, "u_has_plane"), plane);
+    glUniform1i(glGetUniformLocation(c->photon_prog, "u_recv"), fd->opaque_count > 0);
+    glUniform1f(glGetUniformLocation(c->photon_prog, "u_recv_reach"), F->reach);
+    frame_uniforms(c->photon_prog, c);
     glBindVertexArray(c->vao);
-    glDrawArrays(GL_POINTS, 0, n * n);
+    for (target = plane ? 0 : 1; target <= (fd->opaque_count > 0); target++) {
+        glBindFramebuffer(GL_FRAMEBUFFER, target ? c->cm_fbo : c->map_fbo);
+        glViewport(0, 0, target ? F->size : c->map_size, target ? F->size : c->map_size);
+        glUniform1i(glGetUniformLocation(c->photon_prog, "u_target"), target);
+        glDrawArrays(GL_POINTS, 0, n * n);
+    }
     glDisable(GL_BLEND);
     return n * n;
+}
+
+/* The opaque objects lit (caustics_opaque.frag), over what the opaque stage
+ * drew: the same vertices (object.vert), depth LEQUAL. */
+static void draw_lit_opaque(snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc)
+{
+    GLuint p = c->opaque_prog;
+    light_res L;
+    int i;
+    resolve_light(&fd->light, &L);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glUseProgram(p);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, c->shadow_z);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, c->recv_z);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, c->cm_tex);
+    glUniform1i(glGetUniformLocation(p, "u_shadow"), 0);
+    glUniform1i(glGetUniformLocation(p, "u_recv_z"), 1);
+    glUniform1i(glGetUniformLocation(p, "u_caustic"), 2);
+    frame_uniforms(p, c);
+    light_uniforms(p, &L);
+    glUniform3fv(glGetUniformLocation(p, "u_light"), 1, L.col);
+    glUniform1f(glGetUniformLocation(p, "u_bias"), 2e-4f);
+    glUniform3fv(glGetUniformLocation(p, "u_eye"), 1, sc->view.eye);
+    for (i = 0; i < fd->opaque_count; i++) {
+        float albedo[3] = {0.8f, 0.8f, 0.8f};
+        const float *col = fd->opaque[i].color;
+        if (col[0] != 0.0f || col[1] != 0.0f || col[2] != 0.0f) memcpy(albedo, col, sizeof albedo);
+        glUniform3fv(glGetUniformLocation(p, "u_color"), 1, albedo);
+        draw_mesh(p, fd->opaque[i].mesh, fd->opaque[i].model, (const float *)sc->view.view_proj);
+    }
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
 }
 
 static snell_status draw_receiver(snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc)
@@ -497,14 +679,23 @@ static snell_status draw_receiver(snell__caustics *c, const snell_frame_desc *fd
     return SNELL_OK;
 }
 
+/* The receivers in the view with the light maps: the plane, the opaque objects lit. */
+static snell_status draw_view(snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc)
+{
+    if (c->made_opaque) draw_lit_opaque(c, fd, sc);
+    return c->made_plane ? draw_receiver(c, fd, sc) : SNELL_OK;
+}
+
 snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
                                  const snell__scene *sc, snell_frame_stats *s)
 {
     GLint fbo = 0, viewport[4];
     int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, shot = 0, key_len;
+    int plane = fd->receiver.extent > 0.0f, opaque = fd->opaque_count > 0;
+    char map[48];
     snell_status st;
     light_res L;
-    mat4 shadow_vp;
+    light_frame F;
     if (!c->map_format) {
         /* float32 blending is an extension of its own in ES (EXT_float_blend) */
         if (snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") &&
@@ -524,10 +715,10 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
     key_len = make_key(c->scratch, fd, sc);
     if (c->valid && key_len == c->key_len && memcmp(c->scratch, c->key, (size_t)key_len * sizeof(float)) == 0) {
         s->caustics_reused = 1;
-        snell__why(s->caustics_reason, sizeof s->caustics_reason, "reused: nothing moved (light, glass, receiver)");
-        return draw_receiver(c, fd, sc);
+        snell__why(s->caustics_reason, sizeof s->caustics_reason, "reused: nothing moved (light, glass, receivers)");
+        return draw_view(c, fd, sc);
     }
-    c->valid = 0;
+    c->valid = c->made_plane = c->made_opaque = 0;
     resolve_light(&fd->light, &L);
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fbo);
     glGetIntegerv(GL_VIEWPORT, viewport);
@@ -535,20 +726,24 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
         if ((st = snell__mesh_upload((snell_mesh *)fd->opaque[i].mesh)) != SNELL_OK) return st;
     for (i = 0; i < sc->count; i++)
         if ((st = snell__mesh_upload(sc->obj[i].mesh)) != SNELL_OK) return st;
+    make_frame(fd, sc, &L, &F);
+    memcpy(c->frame_vp, F.vp, sizeof c->frame_vp);
+    c->frame_lin[0] = F.near_, c->frame_lin[1] = F.far_, c->frame_lin[2] = (float)L.spot, c->frame_lin[3] = F.texel;
     st = programs(ctx, c);
-    if (st == SNELL_OK) st = map_target(ctx, c, size);
+    if (st == SNELL_OK && plane) st = map_target(ctx, c, size);
     if (st == SNELL_OK) st = glass_targets(ctx, c, fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS);
-    if (st == SNELL_OK) st = draw_shadows(ctx, c, fd, sc, &L, shadow_vp);
+    if (st == SNELL_OK) st = draw_shadows(ctx, c, fd, sc, &F);
+    if (st == SNELL_OK && opaque) st = draw_receivers(ctx, c, fd, &F);
     if (st == SNELL_OK) {
-        draw_direct(c, fd, &L, shadow_vp);
+        if (plane) draw_direct(c, fd, &L, &F);
         for (i = 0; i < sc->count; i++)
             if (casts(&sc->obj[i])) {
-                int n = draw_photons(c, fd, &sc->obj[i], &L);
+                int n = draw_photons(c, fd, &sc->obj[i], &L, &F);
                 s->caustics_photons += n;
                 shot += n > 0;
                 casters++;
             }
-        s->passes += 2 + 3 * shot;
+        s->passes += 1 + plane + 2 * opaque + (2 + plane + opaque) * shot;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
@@ -556,19 +751,36 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
     if (st != SNELL_OK) return st;
     memcpy(c->key, c->scratch, (size_t)key_len * sizeof(float));
     c->key_len = key_len;
-    c->valid = 1;
-    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass object%s casting%s, %d opaque; %dx%d %s "
-               "light map", casters, casters == 1 ? "" : "s",
-               shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count, size,
-               size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
-    return draw_receiver(c, fd, sc);
+    c->valid = 1, c->made_plane = plane, c->made_opaque = opaque;
+    if (plane) snprintf(map, sizeof map, "%dx%d %s light map", size, size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
+    else snprintf(map, sizeof map, "no plane");
+    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s, %d opaque lit%s; %s",
+               casters, sc->count > casters ? " (thin or clear ones pass)" : "",
+               shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count,
+               opaque ? " (light-frame caustic map)" : "", map);
+    return draw_view(c, fd, sc);
+}
+
+snell_status snell__caustics_read_opaque(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size)
+{
+    GLint fbo = 0;
+    snell__pixel_store pack;
+    if (!c->valid || !c->made_opaque) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no caustic map made yet");
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, c->cm_fbo);
+    snell__pixel_pack_begin(&pack, 1);
+    glReadPixels(0, 0, c->recv_size, c->recv_size, GL_RGBA, GL_FLOAT, rgba);
+    snell__pixel_pack_end(&pack);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
+    *size = c->recv_size;
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "caustics: reading the caustic map failed");
 }
 
 snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size)
 {
     GLint fbo = 0;
     snell__pixel_store pack;
-    if (!c->valid || !c->map_fbo) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no light map made yet");
+    if (!c->valid || !c->made_plane) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no light map made yet");
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, c->map_fbo);
     snell__pixel_pack_begin(&pack, 1);
@@ -583,6 +795,11 @@ void snell__caustics_destroy(snell__caustics *c)
 {
     int i;
     if (c->map_prog) glDeleteProgram(c->map_prog);
+    if (c->opaque_prog) glDeleteProgram(c->opaque_prog);
+    if (c->recv_fbo) glDeleteFramebuffers(1, &c->recv_fbo);
+    if (c->recv_z) glDeleteTextures(1, &c->recv_z);
+    if (c->cm_fbo) glDeleteFramebuffers(1, &c->cm_fbo);
+    if (c->cm_tex) glDeleteTextures(1, &c->cm_tex);
     if (c->photon_prog) glDeleteProgram(c->photon_prog);
     if (c->direct_prog) glDeleteProgram(c->direct_prog);
     if (c->receiver_prog) glDeleteProgram(c->receiver_prog);
