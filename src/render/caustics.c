@@ -15,6 +15,7 @@
 #include "core/glstate.h"
 #include "core/program.h"
 #include "mesh/mesh.h"
+#include "water/water_draw.h"
 
 #include <math.h>
 #include <string.h>
@@ -68,7 +69,7 @@ int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n)
         snell__why(why, n, "no light");
         return 0;
     }
-    if (fd->receiver.extent <= 0.0f) {
+    if (fd->receiver.extent <= 0.0f && !fd->water) {
         snell__why(why, n, "no receiver");
         return 0;
     }
@@ -497,7 +498,7 @@ static snell_status draw_receiver(snell__caustics *c, const snell_frame_desc *fd
     return SNELL_OK;
 }
 
-snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
+static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
                                  const snell__scene *sc, snell_frame_stats *s)
 {
     GLint fbo = 0, viewport[4];
@@ -562,6 +563,18 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
                shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count, size,
                size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
     return draw_receiver(c, fd, sc);
+}
+
+/* The receiver plane, then the water's floor (water/water_caustics.c),
+ * which adds its part to the reason. */
+snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
+                                 const snell__scene *sc, snell_frame_stats *s)
+{
+    snell_status st = fd->receiver.extent > 0.0f ? receiver_run(ctx, c, fd, sc, s) : SNELL_OK;
+#if SNELL_WITH_WATER
+    if (st == SNELL_OK && fd->water) st = snell__water_caustics(ctx, fd->water, &fd->light, s);
+#endif
+    return st;
 }
 
 snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size)

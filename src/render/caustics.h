@@ -29,7 +29,7 @@ typedef struct snell__caustics {
 /* Validates a frame's light and receiver (zero = none); SNELL_E_INVALID_ARG naming the field. */
 snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd);
 
-/* Whether the frame has both a light and a receiver; else why not in why. */
+/* Whether the frame has a light and a receiver or water; else why not in why. */
 int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n);
 
 /* Makes (or reuses) the light map and draws the receiver into the bound
