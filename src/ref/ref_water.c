@@ -503,7 +503,7 @@ static void floor_photon(const floor_trace *ft, double *acc, const double o[3], 
     const water_scene *s = &ft->s;
     double tw, tc, nrm[3], p[3], t[3], f, tf, e[3];
     int k;
-    if (!surface_hit(s, o, dir, &tw, nrm)) return;
+    if (!(dir[1] < 0.0) || !surface_hit(s, o, dir, &tw, nrm)) return; /* light from below: none (as the stage) */
     if (container_hit(s, o, dir, &tc) >= 0 && tc < tw) return; /* a wall (the rim) hides the surface there */
     for (k = 0; k < 3; k++) p[k] = o[k] + tw * dir[k];
     snell__ref_normalize3(nrm);

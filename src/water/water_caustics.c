@@ -123,10 +123,6 @@ snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_l
                    "(GL_EXT_color_buffer_half_float or _float)", sep);
         return SNELL_OK;
     }
-    if (light->direction[1] >= 0.0f && light->type == SNELL_LIGHT_DIRECTIONAL) {
-        snell__why(why + used, room - used, "%swater floor skipped: the light does not travel down", sep);
-        return SNELL_OK;
-    }
     w->lit_pending = 1;
     if (w->light_valid && w->light_version == w->version && w->light_size == size &&
         memcmp(&w->light_key, light, sizeof *light) == 0) {
