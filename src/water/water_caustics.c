@@ -157,6 +157,11 @@ snell_status snell__water_caustics_read(snell_ctx *ctx, snell_water *w, float *r
     GLint fbo = 0;
     snell__pixel_store pack;
     if (!w->light_valid) return snell__fail(ctx, SNELL_E_INVALID_ARG, "water caustics: no light map made yet");
+    /* Mesa 22.3's llvmpipe waits, before a read, only for the current framebuffer and for what
+     * queued scenes sample, not for a queued scene's own render target: a read of the map after the
+     * frame moved on to other targets came back stale or half drawn (2 of 7 runs of
+     * test_water_caustics under load). Finish first: this is a tool's read, not a frame's. */
+    glFinish();
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, w->light_fbo);
     snell__pixel_pack_begin(&pack, 1);
