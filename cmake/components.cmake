@@ -111,6 +111,8 @@ if(NOT SNELL_WITH_CAUSTICS)
   # a stage of the renderer: its file and shaders out, render/caustics_off.c says why
   list(FILTER SNELL_SOURCES EXCLUDE REGEX "/src/render/caustics\\.c$")
   list(APPEND SNELL_SOURCES ${PROJECT_SOURCE_DIR}/src/render/caustics_off.c)
+  # the water's floor light map is the stage's too (src/water/water_caustics.c, water_caustics.*)
+  list(FILTER SNELL_SOURCES EXCLUDE REGEX "/src/water/water_caustics\\.c$")
 endif()
 if(NOT SNELL_WITH_REF)
   snell_off_stubs(${PROJECT_BINARY_DIR}/generated/ref_api_off.c "SNELL_WITH_REF"
@@ -141,6 +143,7 @@ if(SNELL_WITH_LM2D)
 endif()
 if(NOT SNELL_WITH_CAUSTICS)
   list(FILTER SNELL_SHADER_SOURCES EXCLUDE REGEX "/shaders_es/caustics_[^/]*$")
+  list(FILTER SNELL_SHADER_SOURCES EXCLUDE REGEX "/shaders_es/water_caustics\\.[^/]*$")
 endif()
 if(NOT SNELL_WITH_WATER)
   # common/water*.glsl stay: every kernel includes them, inside #ifdef SNELL_WATER.

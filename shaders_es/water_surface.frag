@@ -124,7 +124,7 @@ void main()
 #else
     int face;
     highp float d = water_box_exit(p, t, face);
-    vec3 seen = water_tile(face, p + d * t);
+    vec3 seen = water_lit_tile(face, p + d * t);
 #ifdef SNELL_WATER_OBJECTS
     vec3 col;
     float e = find_object(p, t, d, col);

@@ -1003,7 +1003,9 @@ typedef struct snell_frame_desc {
      * frame is drawn as without them. Limits: one refraction in and one out
      * per object (a convex solid; TIR inside drops the photon), light
      * through two glass objects is not followed, glass does not see the
-     * receiver. */
+     * receiver. With water and a light (no receiver needed), the light
+     * refracted through the moving surface lights the container's floor:
+     * its caustics (snell_water.h). */
     snell_light light;
     snell_receiver receiver;
 } snell_frame_desc;

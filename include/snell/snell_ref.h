@@ -249,6 +249,24 @@ void snell_ref_rgb_to_rgba8(const float *rgb, int width, int height, uint8_t *rg
 snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects, const snell_ref_params *params,
                                     const snell_ref_output *out);
 
+/* The water container's floor irradiance under a light (the caustics
+ * stage's floor light map, snell_water.h), traced in double precision from
+ * the light: size x size texels over the floor (0 = the water's light_map),
+ * row 0 at z = -width/2, x growing along a row, 3 floats each, in units of
+ * the light's colour. A photons x photons grid of rays (cell centres):
+ * directional, parallel rays over a square across the light holding the
+ * container's top, each the flux through its cell; spot, directions on the
+ * plane at distance 1 along its axis within tan(spot_angle), each the flux
+ * of its solid angle cell^2 cos^3, none outside the cone. A ray that meets a
+ * wall first (the rim's shadow) is dropped; at the height field (its
+ * triangles, met exactly) it is refracted at the blended node normal
+ * (Schlick transmission), and where it meets the floor before a wall its
+ * flux times Beer-Lambert over the path in the water is shared by the texel
+ * centres within 2 texels with the caustics stage's tent weights
+ * (1 - |dx|/2)(1 - |dz|/2)/4. photons 1..16384, threads 0 = online CPUs. */
+snell_status snell_ref_water_floor_render(snell_water *water, const snell_light *light, int size, int photons,
+                                          int threads, float *rgb);
+
 /* ------------------------------------------- light on a receiver (issue 27) */
 /* The receiver plane's irradiance as the caustics stage
  * (snell_frame_desc.light / .receiver) defines it, traced in double

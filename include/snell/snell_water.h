@@ -17,6 +17,21 @@
  * snell.h says how). The reference tracer renders the same scene
  * (snell_ref_water_render in snell_ref.h).
  *
+ * With a light in the frame (snell_frame_desc.light, directional or spot;
+ * issue 27) the floor is lit by the light refracted through the moving
+ * surface: its caustics (after Evan Wallace's webgl-water). The caustics
+ * stage remakes the floor's light map in one draw whenever the surface or
+ * the light moved: the surface's grid, each node moved to where its
+ * refracted light ray meets the floor, each triangle adding the light's
+ * irradiance times its area across the beam over its area on the floor
+ * (flux-correct), Schlick transmission, Beer-Lambert along the path, none
+ * where the walls above the water hide the surface from the light. The
+ * floor's tiles are then multiplied by that irradiance (in units of the
+ * light's colour) wherever the water's surface and the glass kernels see
+ * the floor through the water; the walls are not lit, and objects in the
+ * water cast no shadow on the floor. Without a light the frame is as
+ * before. snell_ref_water_floor_render traces the same light.
+ *
  * World space: the container's inner box is |x| <= width/2, |z| <= width/2,
  * -depth <= y <= rim; the water rests at y = 0, node (i, j) sits at
  * x = -width/2 + i dx, z = -width/2 + j dx, dx = width / (grid - 1), and its
@@ -68,6 +83,10 @@ typedef struct snell_water_desc {
      * 0 = 1e-5 * width. A settled surface with no new drop skips its steps. */
     float settle_threshold;
     snell_water_sim sim;
+    /* Texels per side of the floor's light map (a frame with a light,
+     * snell_frame_desc.light: the caustics stage refracts the light through
+     * the surface onto the floor); 0 = 256, 16..2048. */
+    int light_map;
 } snell_water_desc;
 
 /* ctx may be NULL (CPU simulation only, not drawable: for the reference

@@ -42,6 +42,7 @@ typedef struct water_options {
     float az_deg, el_deg, dist;
     const char *out, *env;
     int stats;
+    snell_light light;             /* --light: the floor's caustics (zero = none) */
 } water_options;
 
 static void usage(FILE *f)
@@ -66,6 +67,10 @@ static void usage(FILE *f)
             "  --ssaa S               supersample S x S per pixel (2..8; default off)\n"
             "  --camera AZ,EL,DIST    degrees, degrees, distance (default 30,35,3.6)\n"
             "  --env procedural|FILE  environment (default procedural)\n"
+            "  --light dir:X,Y,Z[,I]  a directional light travelling along X,Y,Z of irradiance I (default 1): the\n"
+            "                         floor lit by it through the moving surface (its caustics; tiles times irradiance)\n"
+            "  --light spot:PX,PY,PZ,X,Y,Z,A[,I]  a spot light at P shining along X,Y,Z within A radians, intensity I\n"
+            "  --light-map N          the floor's light map, N x N texels (16..2048, default 256)\n"
             "  -o FILE                output PNG (default water.png)\n"
             "  --stats                per-frame simulation statistics on stdout\n");
 }
@@ -75,11 +80,40 @@ static int takes_value(const char *a)
 {
     static const char *const names[] = {"--grid",       "--sim",       "--drop",   "--object",       "--glass",
                                         "--frames",     "--steps",     "--dt",     "--save-every",   "--damping",
-                                        "--wave-speed", "--size",      "--ssaa",   "--camera",       "--env", "-o"};
+                                        "--wave-speed", "--size",      "--ssaa",   "--camera",       "--env", "-o",
+                                        "--light",      "--light-map"};
     size_t k;
     for (k = 0; k < sizeof names / sizeof *names; k++)
         if (!strcmp(a, names[k])) return 1;
     return 0;
+}
+
+/* --light dir:X,Y,Z[,I] or spot:PX,PY,PZ,X,Y,Z,ANGLE[,I], as snell-render's. */
+static int parse_light(const char *v, snell_light *l)
+{
+    float f[8] = {0, 0, 0, 1, 0, 0, 0, 1};
+    char extra;
+    int spot = !strncmp(v, "spot:", 5), n;
+    memset(l, 0, sizeof *l);
+    if (spot) {
+        n = sscanf(v + 5, "%f,%f,%f,%f,%f,%f,%f,%f%c", &f[0], &f[1], &f[2], &f[3], &f[4], &f[5], &f[6], &f[7], &extra);
+        if ((n != 7 && n != 8) || !(f[6] > 0.0f && f[6] <= 1.5f) || f[3] * f[3] + f[4] * f[4] + f[5] * f[5] == 0.0f ||
+            !(f[7] >= 0.0f))
+            return 0;
+        l->type = SNELL_LIGHT_SPOT;
+        memcpy(l->position, f, sizeof l->position);
+        memcpy(l->direction, f + 3, sizeof l->direction);
+        l->spot_angle = f[6];
+        l->color[0] = l->color[1] = l->color[2] = f[7];
+        return 1;
+    }
+    if (strncmp(v, "dir:", 4)) return 0;
+    n = sscanf(v + 4, "%f,%f,%f,%f%c", &f[0], &f[1], &f[2], &f[3], &extra);
+    if ((n != 3 && n != 4) || f[0] * f[0] + f[1] * f[1] + f[2] * f[2] == 0.0f || !(f[3] >= 0.0f)) return 0;
+    l->type = SNELL_LIGHT_DIRECTIONAL;
+    memcpy(l->direction, f, sizeof l->direction);
+    l->color[0] = l->color[1] = l->color[2] = f[3];
+    return 1;
 }
 
 static int parse(int argc, char **argv, water_options *o)
@@ -177,6 +211,14 @@ static int parse(int argc, char **argv, water_options *o)
             }
         } else if (!strcmp(a, "--env")) {
             o->env = v;
+        } else if (!strcmp(a, "--light")) {
+            if (!parse_light(v, &o->light)) {
+                fprintf(stderr, "snell-render --water: --light %s: dir:X,Y,Z[,I] or spot:PX,PY,PZ,X,Y,Z,ANGLE[,I] "
+                        "(direction not zero, ANGLE 0..1.5 radians, I >= 0)\n", v);
+                return 0;
+            }
+        } else if (!strcmp(a, "--light-map")) {
+            o->desc.light_map = atoi(v);
         } else if (!strcmp(a, "-o")) {
             o->out = v;
         } else {
@@ -271,6 +313,7 @@ static int run(snell_ctx *ctx, const water_options *o)
     fd.camera.elevation = (float)(o->el_deg * PI / 180.0);
     fd.camera.distance = o->dist;
     fd.camera.target[1] = -0.2f;
+    fd.light = o->light;
     for (f = 0; f < o->frames; f++) {
         snell_water_stats ws;
         snell_frame_stats fs;
@@ -286,13 +329,14 @@ static int run(snell_ctx *ctx, const water_options *o)
             goto done;
         }
         if (o->stats)
-            printf("frame %d: %s, %d steps of %.5f s%s, max |h - mean| %.3g, %s, heights %s%s\n", f,
+            printf("frame %d: %s, %d steps of %.5f s%s, max |h - mean| %.3g, %s, heights %s%s; caustics: %s\n", f,
                    ws.skipped_settled ? "simulation skipped (settled, undisturbed)" : "simulated", ws.steps_run,
                    (double)ws.dt, ws.dt_clamped ? " (clamped to the stability limit)" : "", (double)ws.max_deviation,
                    ws.settled ? "settled" : "moving", fs.water_uploaded ? "uploaded" : "not uploaded",
                    fs.water_objects ? (fs.water_layers ? ", objects seen under the surface through the scene layers"
                                                        : ", objects searched under the surface")
-                                    : "");
+                                    : "",
+                   fs.caustics_reason);
         if (o->save_every > 0 && (f % o->save_every == 0 || f == o->frames - 1)) {
             char path[1024];
             frame_path(o->out, f, path, sizeof path);

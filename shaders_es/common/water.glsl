@@ -7,7 +7,9 @@
 // - water_under(p, t): a ray inside the water from p; the seed's five
 //   ray-wall distances choose the floor or a wall (a rising ray goes to the
 //   walls too: the surface seen from below is not modelled), whose tile is
-//   attenuated by Beer-Lambert over the distance.
+//   attenuated by Beer-Lambert over the distance. In a frame with a light
+//   (u_water_lit) the floor's tile is lit by its light map: the light
+//   refracted through the surface (water_caustics.vert), water_lit_tile.
 // - water_walls_above(p, r): a ray from the surface upwards: the walls'
 //   inner side below the rim, else the environment.
 // - water_air_hit(o, d, dist, n): what a ray in the air meets first: the
@@ -43,6 +45,34 @@ highp float water_height(ivec2 q)
 }
 #endif
 
+// The floor's light map (the caustics stage, src/water/water_caustics.c):
+// its irradiance in units of the light's colour over |x|, |z| <= half, row 0
+// at z = -half; read bilinearly by hand (a 32-bit float map need not be
+// filterable). u_water_lit 0: a frame without a light, the tiles as they are.
+uniform highp sampler2D u_water_light;
+uniform int u_water_lit;
+
+vec3 water_floor_light(highp vec2 xz)
+{
+    ivec2 n = textureSize(u_water_light, 0);
+    highp vec2 t = (xz / (2.0 * u_water_half) + 0.5) * vec2(n) - 0.5;
+    ivec2 b = ivec2(floor(t)), hi = n - 1;
+    highp vec2 f = t - floor(t);
+    return mix(mix(texelFetch(u_water_light, clamp(b, ivec2(0), hi), 0).rgb,
+                   texelFetch(u_water_light, clamp(b + ivec2(1, 0), ivec2(0), hi), 0).rgb, f.x),
+               mix(texelFetch(u_water_light, clamp(b + ivec2(0, 1), ivec2(0), hi), 0).rgb,
+                   texelFetch(u_water_light, clamp(b + ivec2(1, 1), ivec2(0), hi), 0).rgb, f.x), f.y);
+}
+
+// A face's tile seen from inside the water: the floor lit by the light map
+// in a frame with a light (the walls are not: their light is not traced).
+vec3 water_lit_tile(int face, highp vec3 q)
+{
+    vec3 c = water_tile(face, q);
+    if (u_water_lit == 1 && face == 0) c *= water_floor_light(q.xz);
+    return c;
+}
+
 // Distance from p along t (unit) to the container's floor or a wall seen
 // from inside, and which face (0 floor, 1/2 x = -+half, 3/4 z = -+half).
 highp float water_box_exit(highp vec3 p, highp vec3 t, out int face)
@@ -71,7 +101,7 @@ vec3 water_under(highp vec3 p, highp vec3 t)
 {
     int face;
     highp float d = water_box_exit(p, t, face);
-    return water_tile(face, p + d * t) * snell_beer_lambert(u_water_sigma, d);
+    return water_lit_tile(face, p + d * t) * snell_beer_lambert(u_water_sigma, d);
 }
 
 vec3 water_walls_above(highp vec3 p, highp vec3 r)

@@ -3,7 +3,7 @@
 #ifndef SNELL_GLSTATE_H
 #define SNELL_GLSTATE_H
 
-#define SNELL_GLSTATE_UNITS 10 /* texture units saved and restored: frame/units.h's table must fit (it checks) */
+#define SNELL_GLSTATE_UNITS 11 /* texture units saved and restored: frame/units.h's table must fit (it checks) */
 
 /* Pixel pack or unpack state (GLES 3.0 tables 6.29, 6.30) and the pixel
  * buffer bound for it. */

@@ -469,3 +469,201 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, co
     snell__ref_progress_end(&s.progress);
     return SNELL_OK;
 }
+
+/* --- the floor's light (snell_ref_water_floor_render) --------------------- */
+
+typedef struct floor_trace {
+    water_scene s;
+    int spot, photons, size, next_row;
+    double d[3], u[3], v[3], pos[3], col[3], centre[3], extent, back, cos_cone, cell, texel;
+    double *acc[SNELL_REF_MAX_THREADS];
+    int nacc;
+    pthread_mutex_t lock;
+} floor_trace;
+
+/* Adds e about floor point (x, z) as the caustics stage splats (caustics_splat.frag): a tent of
+ * half-width 2 texels along each axis, (1 - |dx| / 2)(1 - |dz| / 2) / 4 at the texel centres. */
+static void floor_splat(const floor_trace *ft, double *acc, double x, double z, const double e[3])
+{
+    double tx = (x + ft->s.half) / ft->texel - 0.5, tz = (z + ft->s.half) / ft->texel - 0.5;
+    int ix, iz, c, m = ft->size;
+    if (!(tx > -2.0 && tz > -2.0 && tx < m + 1.0 && tz < m + 1.0)) return;
+    for (iz = (int)floor(tz) - 1; iz <= (int)floor(tz) + 2; iz++)
+        for (ix = (int)floor(tx) - 1; ix <= (int)floor(tx) + 2; ix++) {
+            double wx = 1.0 - fabs(tx - ix) / 2.0, wz = 1.0 - fabs(tz - iz) / 2.0, w;
+            if (wx <= 0.0 || wz <= 0.0 || ix < 0 || iz < 0 || ix >= m || iz >= m) continue;
+            w = wx * wz / 4.0;
+            for (c = 0; c < 3; c++) acc[3 * ((size_t)iz * (size_t)m + (size_t)ix) + c] += w * e[c];
+        }
+}
+
+/* One photon from o along unit dir carrying flux (per texel area): through the surface onto the floor. */
+static void floor_photon(const floor_trace *ft, double *acc, const double o[3], const double dir[3], const double flux[3])
+{
+    const water_scene *s = &ft->s;
+    double tw, tc, nrm[3], p[3], t[3], f, tf, e[3];
+    int k;
+    if (!(dir[1] < 0.0) || !surface_hit(s, o, dir, &tw, nrm)) return; /* light from below: none (as the stage) */
+    if (container_hit(s, o, dir, &tc) >= 0 && tc < tw) return; /* a wall (the rim) hides the surface there */
+    for (k = 0; k < 3; k++) p[k] = o[k] + tw * dir[k];
+    snell__ref_normalize3(nrm);
+    if (snell__ref_dot3(nrm, dir) > 0.0)
+        for (k = 0; k < 3; k++) nrm[k] = -nrm[k];
+    f = snell_optd_fresnel_schlick(-snell__ref_dot3(dir, nrm), 1.0, s->water.ior);
+    if (!snell_optd_refract(dir, nrm, 1.0 / s->water.ior, t)) return;
+    snell__ref_normalize3(t);
+    if (!(t[1] < 0.0)) return;
+    tf = (-s->w->d.depth - p[1]) / t[1];
+    for (k = 0; k < 3; k += 2) /* a wall before the floor takes it */
+        if (t[k] != 0.0 && ((t[k] > 0.0 ? s->half : -s->half) - p[k]) / t[k] < tf) return;
+    for (k = 0; k < 3; k++) e[k] = flux[k] * (1.0 - f) * exp(-s->water.sigma[k] * tf);
+    floor_splat(ft, acc, p[0] + tf * t[0], p[2] + tf * t[2], e);
+}
+
+static void floor_row(const floor_trace *ft, double *acc, int j)
+{
+    int i, k, n = ft->photons;
+    for (i = 0; i < n; i++) {
+        double x = -ft->extent + (i + 0.5) * ft->cell, y = -ft->extent + (j + 0.5) * ft->cell, o[3], dir[3], flux[3];
+        double base = ft->cell * ft->cell / (ft->texel * ft->texel);
+        if (ft->spot) {
+            double c = 1.0 / sqrt(1.0 + x * x + y * y); /* its solid angle: cell^2 cos^3 */
+            if (c < ft->cos_cone) continue;
+            for (k = 0; k < 3; k++) dir[k] = ft->d[k] + ft->u[k] * x + ft->v[k] * y, o[k] = ft->pos[k];
+            snell__ref_normalize3(dir);
+            base *= c * c * c;
+        } else {
+            for (k = 0; k < 3; k++) {
+                o[k] = ft->centre[k] + ft->u[k] * x + ft->v[k] * y - ft->d[k] * ft->back;
+                dir[k] = ft->d[k];
+            }
+        }
+        for (k = 0; k < 3; k++) flux[k] = ft->col[k] * base;
+        floor_photon(ft, acc, o, dir, flux);
+    }
+}
+
+static void *floor_worker(void *arg)
+{
+    floor_trace *ft = (floor_trace *)arg;
+    double *acc;
+    int j;
+    pthread_mutex_lock(&ft->lock);
+    acc = ft->acc[ft->nacc++];
+    pthread_mutex_unlock(&ft->lock);
+    for (;;) {
+        pthread_mutex_lock(&ft->lock);
+        j = ft->next_row++;
+        pthread_mutex_unlock(&ft->lock);
+        if (j >= ft->photons) break;
+        floor_row(ft, acc, j);
+    }
+    return NULL;
+}
+
+snell_status snell_ref_water_floor_render(snell_water *w, const snell_light *light, int size, int photons,
+                                          int threads, float *rgb)
+{
+    floor_trace *ft;
+    pthread_t tids[SNELL_REF_MAX_THREADS];
+    float *h;
+    size_t nodes, texels, i;
+    double len, r;
+    int k, t, started = 0;
+    snell_status st = SNELL_OK;
+    if (!w || !light || !rgb)
+        return snell__fail(w ? w->ctx : NULL, SNELL_E_INVALID_ARG, "snell_ref_water_floor_render: NULL argument");
+    if (light->type != SNELL_LIGHT_DIRECTIONAL && light->type != SNELL_LIGHT_SPOT)
+        return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_floor_render: no light");
+    len = sqrt((double)light->direction[0] * light->direction[0] + (double)light->direction[1] * light->direction[1] +
+               (double)light->direction[2] * light->direction[2]);
+    if (!(len > 0.0) || !isfinite(len) || (light->type == SNELL_LIGHT_SPOT && !(light->spot_angle >= 0.0f &&
+                                                                              light->spot_angle <= 1.5f)))
+        return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_floor_render: light.direction zero or not "
+                           "finite, or spot_angle outside 0..1.5");
+    if (size == 0) size = w->d.light_map ? w->d.light_map : 256;
+    if (size < 1 || size > 4096 || photons < 1 || photons > 16384 || threads < 0)
+        return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_floor_render: size %d (0..4096), photons %d "
+                           "(1..16384), threads %d (>= 0)", size, photons, threads);
+    if (threads == 0) {
+        long c = sysconf(_SC_NPROCESSORS_ONLN);
+        threads = c > 0 ? (int)c : 1;
+    }
+    if (threads > 16) threads = 16; /* each keeps a map of its own */
+    nodes = (size_t)w->n * (size_t)w->n;
+    texels = (size_t)size * (size_t)size;
+    ft = (floor_trace *)snell__calloc(&w->alloc, 1, sizeof *ft);
+    h = (float *)snell__calloc(&w->alloc, nodes, sizeof(float));
+    for (t = 0; ft && t < threads; t++)
+        if (!(ft->acc[t] = (double *)snell__calloc(&w->alloc, texels, 3 * sizeof(double)))) st = SNELL_E_NOMEM;
+    if (!ft || !h || st != SNELL_OK) {
+        st = snell__fail(w->ctx, SNELL_E_NOMEM, "snell_ref_water_floor_render: out of memory");
+        goto done;
+    }
+    if ((st = snell_water_read_heights(w, h)) != SNELL_OK) goto done;
+    ft->s.w = w;
+    ft->s.h = h;
+    ft->s.n = w->n;
+    ft->s.half = 0.5 * (double)w->d.width;
+    ft->s.dx = w->dx;
+    ft->s.water.ior = w->d.ior;
+    for (k = 0; k < 3; k++) ft->s.water.sigma[k] = w->sigma[k];
+    ft->s.hmin = ft->s.hmax = h[0];
+    for (i = 1; i < nodes; i++) {
+        if (h[i] < ft->s.hmin) ft->s.hmin = h[i];
+        if (h[i] > ft->s.hmax) ft->s.hmax = h[i];
+    }
+    ft->spot = light->type == SNELL_LIGHT_SPOT;
+    ft->photons = photons;
+    ft->size = size;
+    ft->texel = (double)w->d.width / size;
+    for (k = 0; k < 3; k++) {
+        ft->d[k] = light->direction[k] / len;
+        ft->pos[k] = light->position[k];
+        ft->col[k] = light->color[0] == 0.0f && light->color[1] == 0.0f && light->color[2] == 0.0f ? 1.0 : light->color[k];
+    }
+    {
+        double a[3] = {0.0, 1.0, 0.0};
+        if (fabs(ft->d[1]) > 0.99) a[0] = 1.0, a[1] = 0.0;
+        ft->u[0] = a[1] * ft->d[2] - a[2] * ft->d[1];
+        ft->u[1] = a[2] * ft->d[0] - a[0] * ft->d[2];
+        ft->u[2] = a[0] * ft->d[1] - a[1] * ft->d[0];
+        snell__ref_normalize3(ft->u);
+        ft->v[0] = ft->d[1] * ft->u[2] - ft->d[2] * ft->u[1];
+        ft->v[1] = ft->d[2] * ft->u[0] - ft->d[0] * ft->u[2];
+        ft->v[2] = ft->d[0] * ft->u[1] - ft->d[1] * ft->u[0];
+    }
+    if (ft->spot) {
+        ft->cos_cone = cos(light->spot_angle > 0.0f ? (double)light->spot_angle : 0.5);
+        ft->extent = tan(acos(ft->cos_cone));
+    } else {
+        /* a sphere about the water's top holds every point a ray can meet it at */
+        ft->centre[1] = 0.5 * (ft->s.hmin + ft->s.hmax);
+        r = sqrt(2.0 * ft->s.half * ft->s.half + 0.25 * (ft->s.hmax - ft->s.hmin) * (ft->s.hmax - ft->s.hmin));
+        ft->extent = r * 1.001;
+        ft->back = r + w->d.rim + w->d.depth + 1.0; /* starts outside the container */
+    }
+    ft->cell = 2.0 * ft->extent / photons;
+    if (pthread_mutex_init(&ft->lock, NULL) != 0) {
+        st = snell__fail(w->ctx, SNELL_E_NOMEM, "snell_ref_water_floor_render: cannot create a mutex");
+        goto done;
+    }
+    for (t = 1; t < threads; t++) {
+        if (pthread_create(&tids[started], NULL, floor_worker, ft) != 0) break;
+        started++;
+    }
+    floor_worker(ft);
+    for (t = 0; t < started; t++) pthread_join(tids[t], NULL);
+    pthread_mutex_destroy(&ft->lock);
+    for (i = 0; i < 3 * texels; i++) {
+        double e = 0.0;
+        for (t = 0; t < threads; t++) e += ft->acc[t][i];
+        rgb[i] = (float)e;
+    }
+done:
+    if (ft)
+        for (t = 0; t < threads; t++) snell__free(&w->alloc, ft->acc[t]);
+    snell__free(&w->alloc, ft);
+    snell__free(&w->alloc, h);
+    return st;
+}

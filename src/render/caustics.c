@@ -20,6 +20,7 @@
 #include "core/glstate.h"
 #include "core/program.h"
 #include "mesh/mesh.h"
+#include "water/water_draw.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -75,7 +76,7 @@ int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n)
         snell__why(why, n, "no light");
         return 0;
     }
-    if (fd->receiver.extent <= 0.0f && fd->opaque_count == 0) {
+    if (fd->receiver.extent <= 0.0f && fd->opaque_count == 0 && !fd->water) {
         snell__why(why, n, "no receiver");
         return 0;
     }
@@ -686,7 +687,8 @@ static snell_status draw_view(snell__caustics *c, const snell_frame_desc *fd, co
     return c->made_plane ? draw_receiver(c, fd, sc) : SNELL_OK;
 }
 
-snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
+/* The plane and the opaque objects: their light maps made or reused, then drawn. */
+static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
                                  const snell__scene *sc, snell_frame_stats *s)
 {
     GLint fbo = 0, viewport[4];
@@ -774,6 +776,18 @@ snell_status snell__caustics_read_opaque(snell_ctx *ctx, snell__caustics *c, flo
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
     *size = c->recv_size;
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "caustics: reading the caustic map failed");
+}
+
+/* The receiver plane and the opaque objects, then the water's floor
+ * (water/water_caustics.c), which adds its part to the reason. */
+snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
+                                 const snell__scene *sc, snell_frame_stats *s)
+{
+    snell_status st = fd->receiver.extent > 0.0f || fd->opaque_count > 0 ? receiver_run(ctx, c, fd, sc, s) : SNELL_OK;
+#if SNELL_WITH_WATER
+    if (st == SNELL_OK && fd->water) st = snell__water_caustics(ctx, fd->water, &fd->light, s);
+#endif
+    return st;
 }
 
 snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size)

@@ -36,7 +36,7 @@ typedef struct snell__caustics {
 /* Validates a frame's light and receiver (zero = none); SNELL_E_INVALID_ARG naming the field. */
 snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd);
 
-/* Whether the frame has a light and a receiver (the plane or opaque objects); else why not in why. */
+/* Whether the frame has a light and a receiver (the plane, opaque objects) or water; else why not in why. */
 int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n);
 
 /* Makes (or reuses) the light maps and draws the receiver plane (depth-tested,

@@ -35,7 +35,17 @@ struct snell_water {
     unsigned grid_ibo, grid_vao, height_tex, wall_vbo, wall_vao;
     unsigned uploaded_version;     /* version the CPU heights texture holds */
     int uploaded;                  /* height_tex was filled at least once */
+    /* the floor's light map (water_caustics.c, made by the caustics stage) */
+    unsigned light_prog, light_fbo, light_tex;
+    unsigned light_format;         /* GL_RGBA32F / GL_RGBA16F, SNELL__WATER_NO_FLOAT, 0 = not probed yet */
+    int light_size, light_valid;   /* light_valid: the map holds the surface of light_version under light_key */
+    unsigned light_version;
+    snell_light light_key;
+    int lit_pending;               /* the caustics stage made or kept the map for this frame ... */
+    int lit;                       /* ... which the water's draw takes into lit: this frame's floor reads the map */
 };
+
+#define SNELL__WATER_NO_FLOAT 1u
 
 /* One CPU step of dt (<= the stability limit, unchecked: tests step past it
  * on purpose) with the velocity factor damp; k = (c dt / dx)^2 / dt. */

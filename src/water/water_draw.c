@@ -55,7 +55,12 @@ void snell__water_draw_release(snell_water *w)
     if (w->wall_vbo) glDeleteBuffers(1, &w->wall_vbo);
     if (w->wall_vao) glDeleteVertexArrays(1, &w->wall_vao);
     if (w->height_tex) glDeleteTextures(1, &w->height_tex);
+    if (w->light_prog) glDeleteProgram(w->light_prog);
+    if (w->light_fbo) glDeleteFramebuffers(1, &w->light_fbo);
+    if (w->light_tex) glDeleteTextures(1, &w->light_tex);
     w->grid_ibo = w->grid_vao = w->wall_vbo = w->wall_vao = w->height_tex = 0;
+    w->light_prog = w->light_fbo = w->light_tex = 0;
+    w->light_size = w->light_valid = 0;
 }
 
 /* One quad of the container: corners a, b, c, d in order, face number f. */
@@ -164,6 +169,11 @@ void snell__water_uniforms(unsigned prog, const snell_water *w)
     glUniform1i(glGetUniformLocation(prog, "u_water_heights"), SNELL__WATER_HEIGHTS_UNIT);
     glActiveTexture(GL_TEXTURE0 + SNELL__WATER_HEIGHTS_UNIT);
     glBindTexture(GL_TEXTURE_2D, w->d.sim == SNELL_WATER_SIM_GPU ? w->state_tex[w->cur] : w->height_tex);
+    /* the floor's light map: read only where lit (a sampler is still given its own unit) */
+    glUniform1i(glGetUniformLocation(prog, "u_water_light"), SNELL__WATER_LIGHT_UNIT);
+    glUniform1i(glGetUniformLocation(prog, "u_water_lit"), w->lit);
+    glActiveTexture(GL_TEXTURE0 + SNELL__WATER_LIGHT_UNIT);
+    glBindTexture(GL_TEXTURE_2D, w->lit ? w->light_tex : 0);
     glActiveTexture(GL_TEXTURE0);
 }
 
@@ -217,13 +227,9 @@ static int object_spheres(const snell_opaque *objects, int count, float out[MAX_
     }
 }
 
-snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
-                               const snell__view *v, unsigned env_texture, int env_paraboloid,
-                               const snell_opaque *objects, int object_count, int layers, snell_frame_stats *stats)
+snell_status snell__water_upload(snell_water *w, snell_frame_stats *stats)
 {
     snell_status st;
-    GLuint prog;
-    if (!p->made && (st = make_programs(ctx, p, out, env_paraboloid)) != SNELL_OK) return st;
     if (!w->grid_vao && (st = make_geometry(w)) != SNELL_OK) return st;
     if (w->d.sim == SNELL_WATER_SIM_CPU && (!w->uploaded || w->uploaded_version != w->version)) {
         snell__pixel_store unpack;
@@ -235,6 +241,20 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
         w->uploaded_version = w->version;
         stats->water_uploaded = 1;
     }
+    return SNELL_OK;
+}
+
+snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
+                               const snell__view *v, unsigned env_texture, int env_paraboloid,
+                               const snell_opaque *objects, int object_count, int layers, snell_frame_stats *stats)
+{
+    snell_status st;
+    GLuint prog;
+    if (!p->made && (st = make_programs(ctx, p, out, env_paraboloid)) != SNELL_OK) return st;
+    if ((st = snell__water_upload(w, stats)) != SNELL_OK) return st;
+    /* the floor is lit in this frame only if the caustics stage made or kept its map for it */
+    w->lit = w->lit_pending;
+    w->lit_pending = 0;
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, env_texture);
     glEnable(GL_DEPTH_TEST);

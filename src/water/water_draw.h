@@ -49,8 +49,25 @@ snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, u
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
                                const snell__view *v, unsigned env_texture, int env_paraboloid,
                                const snell_opaque *objects, int object_count, int layers, snell_frame_stats *stats);
+/* Makes the water's grid and container on first use and uploads a CPU
+ * simulation's heights when they changed (stats->water_uploaded); the
+ * draw and the floor's light map call it. */
+snell_status snell__water_upload(snell_water *w, snell_frame_stats *stats);
+
+/* The container floor's light map (water_caustics.c; the caustics stage
+ * calls it in a frame with water and a light): remade when the surface or
+ * the light moved, kept otherwise; the water's draw and the glass kernels
+ * of this frame then see the floor lit by it. Appends what it did to
+ * stats->caustics_reason. */
+snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_light *light, snell_frame_stats *stats);
+/* The floor's light map as last made: size x size rgba floats (rgb the
+ * irradiance in units of the light's colour), row 0 at z = -width/2, x
+ * growing along a row. SNELL_E_INVALID_ARG if none was made. */
+snell_status snell__water_caustics_read(snell_ctx *ctx, snell_water *w, float *rgba, int *size);
+
 /* Sets common/water.glsl's uniforms of program prog (in use) and binds the
- * heights on SNELL__WATER_HEIGHTS_UNIT (the active unit is 0 after). */
+ * heights on SNELL__WATER_HEIGHTS_UNIT, the floor's light map on
+ * SNELL__WATER_LIGHT_UNIT (the active unit is 0 after). */
 void snell__water_uniforms(unsigned prog, const snell_water *w);
 void snell__water_programs_destroy(snell__water_programs *p);
 

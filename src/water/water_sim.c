@@ -73,6 +73,8 @@ static snell_status resolve(const snell_ctx *ctx, const snell_water_desc *in, sn
         if (!finite_nonneg(d->attenuation_color[k]) || d->attenuation_color[k] > 1.0f)
             return snell__fail(ctx, SNELL_E_INVALID_ARG, "water: attenuation_color[%d] %g outside 0..1", k,
                                (double)d->attenuation_color[k]);
+    if (d->light_map != 0 && (d->light_map < 16 || d->light_map > 2048))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "water: light_map %d outside 16..2048 (0 = 256)", d->light_map);
     if ((unsigned)d->sim > SNELL_WATER_SIM_GPU)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "water: sim %d unknown", (int)d->sim);
     if (d->width == 0.0f) d->width = 2.0f;

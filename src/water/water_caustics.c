@@ -1,0 +1,174 @@
+/* water_caustics.c — the container floor's light map (issue 27 item 4;
+ * after Evan Wallace's webgl-water): the light refracted at the water
+ * surface onto the floor, remade in one draw whenever the surface or the
+ * light moved. The surface's own grid (its index buffer) is drawn with every
+ * node moved to where its refracted light ray meets the floor
+ * (water_caustics.vert); each triangle adds the light's irradiance times the
+ * ratio of its area across the beam to its area on the floor
+ * (water_caustics.frag), Schlick transmission and Beer-Lambert along the
+ * path: the flux through each cell of the surface lands in full on the
+ * floor (flux-correct). The caustics stage calls it (render/caustics.c);
+ * the water's draw and the glass kernels read the map (common/water.glsl:
+ * the floor's tiles times its irradiance) in the same frame. */
+#include "water/water_draw.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "core/glstate.h"
+#include "core/program.h"
+
+#include <math.h>
+#include <string.h>
+
+#define DEFAULT_LIGHT_MAP 256
+
+static snell_status resources(snell_ctx *ctx, snell_water *w, int size)
+{
+    snell_status st = SNELL_OK;
+    GLenum status;
+    if (!w->light_prog)
+        st = snell__program_build(ctx, "water_caustics.vert", "water_caustics.frag",
+                                  w->d.sim == SNELL_WATER_SIM_GPU ? "#define SNELL_WATER_STATE_UINT 1\n" : NULL,
+                                  &w->light_prog);
+    if (st != SNELL_OK || w->light_size == size) return st;
+    if (!w->light_fbo) {
+        glGenFramebuffers(1, &w->light_fbo);
+        glGenTextures(1, &w->light_tex);
+    }
+    glBindTexture(GL_TEXTURE_2D, w->light_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)w->light_format, size, size, 0, GL_RGBA,
+                 w->light_format == GL_RGBA32F ? GL_FLOAT : GL_HALF_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST); /* read bilinearly by hand (water.glsl) */
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindFramebuffer(GL_FRAMEBUFFER, w->light_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, w->light_tex, 0);
+    status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        return snell__fail(ctx, SNELL_E_GL, "water caustics: light map framebuffer incomplete (0x%x)", (unsigned)status);
+    w->light_size = size;
+    return SNELL_OK;
+}
+
+/* Two unit vectors across unit d (the beam's coordinates). */
+static void across(const float d[3], float u[3], float v[3])
+{
+    float a[3] = {0.0f, 1.0f, 0.0f}, len;
+    if (fabsf(d[1]) > 0.99f) a[0] = 1.0f, a[1] = 0.0f;
+    u[0] = a[1] * d[2] - a[2] * d[1], u[1] = a[2] * d[0] - a[0] * d[2], u[2] = a[0] * d[1] - a[1] * d[0];
+    len = sqrtf(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    u[0] /= len, u[1] /= len, u[2] /= len;
+    v[0] = d[1] * u[2] - d[2] * u[1], v[1] = d[2] * u[0] - d[0] * u[2], v[2] = d[0] * u[1] - d[1] * u[0];
+}
+
+static void draw_map(snell_water *w, const snell_light *l)
+{
+    GLuint prog = w->light_prog;
+    float d[3], u[3], v[3], col[3], len, texel = w->d.width / (float)w->light_size;
+    int k, white = l->color[0] == 0.0f && l->color[1] == 0.0f && l->color[2] == 0.0f;
+    len = sqrtf(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
+                l->direction[2] * l->direction[2]);
+    for (k = 0; k < 3; k++) d[k] = l->direction[k] / len, col[k] = white ? 1.0f : l->color[k];
+    across(d, u, v);
+    glBindFramebuffer(GL_FRAMEBUFFER, w->light_fbo);
+    glViewport(0, 0, w->light_size, w->light_size);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(prog);
+    snell__water_uniforms(prog, w);
+    glActiveTexture(GL_TEXTURE0 + SNELL__WATER_LIGHT_UNIT); /* the map being made: bound nowhere */
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(glGetUniformLocation(prog, "u_spot"), l->type == SNELL_LIGHT_SPOT);
+    glUniform3fv(glGetUniformLocation(prog, "u_dir"), 1, d);
+    glUniform3fv(glGetUniformLocation(prog, "u_pos"), 1, l->position);
+    glUniform3fv(glGetUniformLocation(prog, "u_beam_u"), 1, u);
+    glUniform3fv(glGetUniformLocation(prog, "u_beam_v"), 1, v);
+    glUniform3fv(glGetUniformLocation(prog, "u_color"), 1, col);
+    glUniform1f(glGetUniformLocation(prog, "u_cos_cone"), cosf(l->spot_angle > 0.0f ? l->spot_angle : 0.5f));
+    glUniform1f(glGetUniformLocation(prog, "u_texel_area"), texel * texel);
+    glBindVertexArray(w->grid_vao);
+    glDrawElements(GL_TRIANGLES, (GLsizei)((w->n - 1) * (w->n - 1) * 6), GL_UNSIGNED_INT, (const void *)0);
+    glBindVertexArray(0);
+    glDisable(GL_BLEND);
+}
+
+snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_light *light, snell_frame_stats *s)
+{
+    char *why = s->caustics_reason;
+    size_t room = sizeof s->caustics_reason, used = strlen(why);
+    const char *sep = used ? "; " : "";
+    int size = w->d.light_map ? w->d.light_map : DEFAULT_LIGHT_MAP;
+    GLint fbo = 0, viewport[4];
+    snell_status st;
+    if (!w->light_format) {
+        /* float32 blending is an extension of its own in ES (EXT_float_blend) */
+        if (snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") &&
+            snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend"))
+            w->light_format = GL_RGBA32F;
+        else if (snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_half_float") ||
+                 snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float"))
+            w->light_format = GL_RGBA16F;
+        else
+            w->light_format = SNELL__WATER_NO_FLOAT;
+    }
+    if (w->light_format == SNELL__WATER_NO_FLOAT) {
+        snell__why(why + used, room - used, "%swater floor skipped: its light map needs a float target "
+                   "(GL_EXT_color_buffer_half_float or _float)", sep);
+        return SNELL_OK;
+    }
+    w->lit_pending = 1;
+    if (w->light_valid && w->light_version == w->version && w->light_size == size &&
+        memcmp(&w->light_key, light, sizeof *light) == 0) {
+        snell__why(why + used, room - used, "%swater floor: reused (surface and light still)", sep);
+        return snell__water_upload(w, s);
+    }
+    w->light_valid = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fbo);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    st = snell__water_upload(w, s);
+    if (st == SNELL_OK) st = resources(ctx, w, size);
+    if (st == SNELL_OK) draw_map(w, light);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    glDepthMask(GL_TRUE);
+    if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(ctx, SNELL_E_GL, "water caustics: GL error");
+    if (st != SNELL_OK) {
+        w->lit_pending = 0;
+        return st;
+    }
+    w->light_valid = 1;
+    w->light_version = w->version;
+    memcpy(&w->light_key, light, sizeof *light);
+    s->passes++;
+    snell__why(why + used, room - used, "%swater floor: made (surface or light moved), %dx%d %s light map from %dx%d "
+               "nodes", sep, size, size, w->light_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F", w->n, w->n);
+    return SNELL_OK;
+}
+
+snell_status snell__water_caustics_read(snell_ctx *ctx, snell_water *w, float *rgba, int *size)
+{
+    GLint fbo = 0;
+    snell__pixel_store pack;
+    if (!w->light_valid) return snell__fail(ctx, SNELL_E_INVALID_ARG, "water caustics: no light map made yet");
+    /* Mesa 22.3's llvmpipe waits, before a read, only for the current framebuffer and for what
+     * queued scenes sample, not for a queued scene's own render target: a read of the map after the
+     * frame moved on to other targets came back stale or half drawn (2 of 7 runs of
+     * test_water_caustics under load). Finish first: this is a tool's read, not a frame's. */
+    glFinish();
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, w->light_fbo);
+    snell__pixel_pack_begin(&pack, 1);
+    glReadPixels(0, 0, w->light_size, w->light_size, GL_RGBA, GL_FLOAT, rgba);
+    snell__pixel_pack_end(&pack);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
+    *size = w->light_size;
+    return glGetError() == GL_NO_ERROR ? SNELL_OK
+                                       : snell__fail(ctx, SNELL_E_GL, "water caustics: reading the light map failed");
+}
