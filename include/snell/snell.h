@@ -1200,7 +1200,7 @@ typedef struct snell_warm_stats {
  * object at a time on each rung above. AUTO by budget then plans its first
  * frame from this device's own costs rather than the table's, draws no
  * configuration for the first time later, and tries a step up only where it
- * is predicted within the budget. Without a budget: the frame drawn once.
+ * is predicted within 105% of the budget. Without a budget: the frame drawn once.
  * Takes about 3 x (2 + the ladders' rungs above the lowest) frames, each
  * drawn into the target (which holds the last one). stats may be NULL. */
 snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *frame, snell_warm_stats *stats);
