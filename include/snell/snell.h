@@ -1195,13 +1195,13 @@ typedef struct snell_warm_stats {
 /* Draws the frame ahead of time so that the frames after it build nothing:
  * programs and per-mesh resources (bakes, BVHs) are made now. With a budget
  * (budget_ms > 0) it draws every rung of each AUTO object's ladder and times
- * them on this device (glFinish before and after; the mean of two draws):
+ * them on this device (glFinish before and after; the median of three draws):
  * the frame without its glass, every object on its lowest rung, then one
  * object at a time on each rung above. AUTO by budget then plans its first
  * frame from this device's own costs rather than the table's, draws no
  * configuration for the first time later, and tries a step up only where it
  * is predicted within 105% of the budget. Without a budget: the frame drawn once.
- * Takes about 3 x (2 + the ladders' rungs above the lowest) frames, each
+ * Takes about 4 x (2 + the ladders' rungs above the lowest) frames, each
  * drawn into the target (which holds the last one). stats may be NULL. */
 snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *frame, snell_warm_stats *stats);
 

@@ -46,6 +46,8 @@ typedef struct budget_config {
     char drawn[MAX_SAMPLES][160];   /* AUTO: what drew each object at the sample */
     int changes, over, over_steady, first_use, n_ms; /* n_ms: frames drawn (fixed: every K-th) */
     unsigned char *first; /* AUTO: frames that drew a configuration for the first time */
+    int n_slow;                     /* AUTO: frames over 110% of the budget noted in slow[] */
+    char slow[8][200];
 } budget_config;
 
 static int parse(int argc, char **argv, budget_opts *o)
@@ -384,6 +386,9 @@ int snell_bench_budget_main(int argc, char **argv)
                 c->changes += st.budget_changed;
                 c->first[c->n_ms - 1] = (unsigned char)st.budget_first_use;
                 c->first_use += st.budget_first_use;
+                if (c->ms[c->n_ms - 1] > 1.1 * o.budget_ms && c->n_slow < 8 && st.glass_count > 0)
+                    snprintf(c->slow[c->n_slow++], sizeof c->slow[0], "frame %d: %.2f ms, %s drew glass 0; the plan: %.80s",
+                             f, c->ms[c->n_ms - 1], snell_method_str(st.glass[0].method_used), st.budget_reason);
             }
             for (j = 0; j < o.samples; j++)
                 if (sample_at[j] == f) {
@@ -434,6 +439,8 @@ int snell_bench_budget_main(int argc, char **argv)
     printf("\nAUTO: %d plan changes in %d frames, %d of them drawing a configuration for the first time (its programs "
            "and bakes built in that frame); at the samples it drew:\n", ks[0].changes, o.frames, ks[0].first_use);
     for (i = 0; i < o.samples; i++) printf("  frame %d: %s\n", sample_at[i], ks[0].drawn[i]);
+    if (ks[0].n_slow) printf("AUTO's frames over 110%% of the budget (the first 8):\n");
+    for (i = 0; i < ks[0].n_slow; i++) printf("  %s\n", ks[0].slow[i]);
     {
         double aq = 0.0, bq = 0.0;
         for (i = 0; i < o.samples; i++) aq += ks[0].psnr[i] / o.samples;
