@@ -188,6 +188,16 @@ static double measured_plan_ms(const snell__budget *b, const int rung[], const f
     return ms;
 }
 
+/* The mean ms per unit of the rungs learned so far, 0 if none. */
+static double learned_mean(const snell__budget *b)
+{
+    double sum = 0.0;
+    int r, m = 0;
+    for (r = 0; r < RUNG_COUNT; r++)
+        if (b->rung_ms[r] > 0.0) sum += b->rung_ms[r], m++;
+    return m ? sum / m : 0.0;
+}
+
 static double clampd(double x, double lo, double hi) { return x < lo ? lo : x > hi ? hi : x; }
 
 void snell__budget_observe(snell__budget *b, double ms)
@@ -235,13 +245,7 @@ void snell__budget_observe(snell__budget *b, double ms)
                 if (part[r] > 0.0) b->rung_ms[r] = rung_k(b, r) * pow(rho, LEARN_RUNG * part[r] / pred);
         }
         /* the mean that stands in for rungs not drawn yet */
-        {
-            double sum = 0.0;
-            int m = 0;
-            for (r = 0; r < RUNG_COUNT; r++)
-                if (b->rung_ms[r] > 0.0) sum += b->rung_ms[r], m++;
-            if (m) b->ms_per_unit = sum / m;
-        }
+        if (learned_mean(b) > 0.0) b->ms_per_unit = learned_mean(b);
     }
     b->prev_valid = 1;
     b->prev_ms = ms;
@@ -483,13 +487,7 @@ int snell__budget_calibrate(snell__budget *b, const snell__budget_object *obj, i
             b->rung_ms[r] = clampd(num[r] / den[r], 0.25 * k_floor, 4.0 * k_floor);
             b->drawn[r] = 1;
         }
-    {
-        double sum = 0.0;
-        int m = 0;
-        for (r = 0; r < RUNG_COUNT; r++)
-            if (b->rung_ms[r] > 0.0) sum += b->rung_ms[r], m++;
-        b->ms_per_unit = m ? sum / m : k_floor;
-    }
+    b->ms_per_unit = learned_mean(b) > 0.0 ? learned_mean(b) : k_floor;
     b->base_ms = base;
     b->calibrated = 1;
     return frames;
