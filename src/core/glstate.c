@@ -5,6 +5,7 @@
  * pixel pack/unpack scope of read-backs and uploads. */
 #include "core/glstate.h"
 #include "core/gl.h"
+#include "core/core.h"
 
 static unsigned char enabled(GLenum cap) { return glIsEnabled(cap) ? 1 : 0; }
 static void set_enabled(GLenum cap, unsigned char on) { if (on) glEnable(cap); else glDisable(cap); }
@@ -58,6 +59,20 @@ void snell__pixel_unpack_begin(snell__pixel_store *saved, int alignment)
 }
 
 void snell__pixel_unpack_end(const snell__pixel_store *saved) { pixel_set(saved, 0); }
+
+snell_status snell__read_rgba_float(snell_ctx *ctx, unsigned fbo, int size, float *rgba, const char *what)
+{
+    GLint prev = 0;
+    snell__pixel_store pack;
+    glFinish();
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    snell__pixel_pack_begin(&pack, 1);
+    glReadPixels(0, 0, size, size, GL_RGBA, GL_FLOAT, rgba);
+    snell__pixel_pack_end(&pack);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev);
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "reading %s failed", what);
+}
 
 void snell__glstate_frame_defaults(void)
 {

@@ -3,6 +3,8 @@
 #ifndef SNELL_GLSTATE_H
 #define SNELL_GLSTATE_H
 
+#include "snell/snell.h"
+
 #define SNELL_GLSTATE_UNITS 11 /* texture units saved and restored: frame/units.h's table must fit (it checks) */
 
 /* Pixel pack or unpack state (GLES 3.0 tables 6.29, 6.30) and the pixel
@@ -46,5 +48,14 @@ void snell__pixel_pack_begin(snell__pixel_store *saved, int alignment);
 void snell__pixel_pack_end(const snell__pixel_store *saved);
 void snell__pixel_unpack_begin(snell__pixel_store *saved, int alignment);
 void snell__pixel_unpack_end(const snell__pixel_store *saved);
+
+/* Reads the colour of framebuffer fbo, size x size RGBA floats, into rgba
+ * (tightly packed; the host's read framebuffer and pack state kept). A tool's
+ * read, not a frame's: it finishes first, as Mesa 22.3's llvmpipe waits before
+ * a read only for the current framebuffer and for what queued scenes sample,
+ * not for a queued scene's own render target (the water's light map read after
+ * the frame moved on came back stale or half drawn in 2 of 7 loaded runs).
+ * what names the map in the error. */
+snell_status snell__read_rgba_float(snell_ctx *ctx, unsigned fbo, int size, float *rgba, const char *what);
 
 #endif

@@ -765,17 +765,9 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, const snell
 
 snell_status snell__caustics_read_opaque(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size)
 {
-    GLint fbo = 0;
-    snell__pixel_store pack;
     if (!c->valid || !c->made_opaque) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no caustic map made yet");
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, c->cm_fbo);
-    snell__pixel_pack_begin(&pack, 1);
-    glReadPixels(0, 0, c->recv_size, c->recv_size, GL_RGBA, GL_FLOAT, rgba);
-    snell__pixel_pack_end(&pack);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
     *size = c->recv_size;
-    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "caustics: reading the caustic map failed");
+    return snell__read_rgba_float(ctx, c->cm_fbo, c->recv_size, rgba, "the caustic map");
 }
 
 /* The receiver plane and the opaque objects, then the water's floor
@@ -792,17 +784,9 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell
 
 snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size)
 {
-    GLint fbo = 0;
-    snell__pixel_store pack;
     if (!c->valid || !c->made_plane) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no light map made yet");
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, c->map_fbo);
-    snell__pixel_pack_begin(&pack, 1);
-    glReadPixels(0, 0, c->map_size, c->map_size, GL_RGBA, GL_FLOAT, rgba);
-    snell__pixel_pack_end(&pack);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
     *size = c->map_size;
-    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "caustics: reading the light map failed");
+    return snell__read_rgba_float(ctx, c->map_fbo, c->map_size, rgba, "the caustics light map");
 }
 
 void snell__caustics_destroy(snell__caustics *c)

@@ -154,21 +154,7 @@ snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_l
 
 snell_status snell__water_caustics_read(snell_ctx *ctx, snell_water *w, float *rgba, int *size)
 {
-    GLint fbo = 0;
-    snell__pixel_store pack;
     if (!w->light_valid) return snell__fail(ctx, SNELL_E_INVALID_ARG, "water caustics: no light map made yet");
-    /* Mesa 22.3's llvmpipe waits, before a read, only for the current framebuffer and for what
-     * queued scenes sample, not for a queued scene's own render target: a read of the map after the
-     * frame moved on to other targets came back stale or half drawn (2 of 7 runs of
-     * test_water_caustics under load). Finish first: this is a tool's read, not a frame's. */
-    glFinish();
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &fbo);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, w->light_fbo);
-    snell__pixel_pack_begin(&pack, 1);
-    glReadPixels(0, 0, w->light_size, w->light_size, GL_RGBA, GL_FLOAT, rgba);
-    snell__pixel_pack_end(&pack);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
     *size = w->light_size;
-    return glGetError() == GL_NO_ERROR ? SNELL_OK
-                                       : snell__fail(ctx, SNELL_E_GL, "water caustics: reading the light map failed");
+    return snell__read_rgba_float(ctx, w->light_fbo, w->light_size, rgba, "the water floor's light map");
 }
