@@ -35,9 +35,9 @@ endif()
 # bench_floor: issue 10's frame floor (G-buffer pass + kernel at full blocks +
 # background, each timed alone) against the screen-space frame. A tool, not a
 # test (bench/BENCHMARKS.md); built with the tests because it uses internals.
-add_executable(bench_floor bench_floor.c)
+add_executable(bench_floor bench_floor.c ${PROJECT_SOURCE_DIR}/ports/cli/cli_time.c)
 target_link_libraries(bench_floor PRIVATE snell_static)
-target_include_directories(bench_floor PRIVATE ${PROJECT_SOURCE_DIR}/src ${CGLM_INCLUDE_DIR})
+target_include_directories(bench_floor PRIVATE ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR}/ports/cli ${CGLM_INCLUDE_DIR})
 target_compile_options(bench_floor PRIVATE ${SNELL_WARNINGS})
 # that it runs (two rounds on a sphere), not how fast
 add_test(NAME bench_floor_runs COMMAND bench_floor sphere cubemap 64 3)

@@ -10,22 +10,11 @@
 #include "core/gl.h"
 #include "core/core.h"
 #include "snell/snell.h"
+#include "cli_time.h" /* ports/cli: the median the ports use */
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 int main(int argc, char **argv)
 {
@@ -102,9 +91,9 @@ int main(int argc, char **argv)
     for (i = 0; i < rounds; i++) ratio[0][i] = t[1][i] / t[0][i], ratio[1][i] = t[2][i] / t[0][i];
     printf("bench_caustics: %dx%d, %d rounds, %d^2 photons, %d^2 light map%s\n", size, size, rounds, photons, map,
            opaque ? ", an opaque box (lit: caustic map in the light's frame)" : "");
-    for (k = 0; k < 3; k++) printf("  %-7s median %.2f ms\n", names[k], median(t[k], rounds));
-    printf("  reused/off median ratio %.3f, made/off median ratio %.3f\n", median(ratio[0], rounds),
-           median(ratio[1], rounds));
+    for (k = 0; k < 3; k++) printf("  %-7s median %.2f ms\n", names[k], cli_median(t[k], rounds));
+    printf("  reused/off median ratio %.3f, made/off median ratio %.3f\n", cli_median(ratio[0], rounds),
+           cli_median(ratio[1], rounds));
     for (k = 0; k < 3; k++) snell_renderer_destroy(r[k]);
     snell_env_destroy(env);
     snell_mesh_destroy(sphere);

@@ -13,22 +13,11 @@
 #include "core/gl.h"
 #include "frame/env.h"
 #include "render/renderer.h"
+#include "cli_time.h" /* ports/cli: the median the ports use */
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 int main(int argc, char **argv)
 {
@@ -122,7 +111,7 @@ int main(int argc, char **argv)
     }
     {
         double m[4], floor_ms;
-        for (k = 0; k < 4; k++) m[k] = median(t[k], rounds);
+        for (k = 0; k < 4; k++) m[k] = cli_median(t[k], rounds);
         floor_ms = m[1] + m[2] + m[3];
         printf("%s, %s, %dx%d, %d rounds, %s\n", argv[1], argv[2], size, size, rounds, snell_ctx_gl_renderer(ctx));
         for (k = 0; k < 4; k++) printf("  %-32s %8.3f ms\n", names[k], m[k]);

@@ -10,22 +10,11 @@
 #include "core/core.h"
 #include "snell/snell.h"
 #include "snell/snell_water.h"
+#include "cli_time.h" /* ports/cli: the median the ports use */
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 int main(int argc, char **argv)
 {
@@ -103,8 +92,8 @@ int main(int argc, char **argv)
     for (i = 0; i < rounds; i++) ratio[i] = t[1][i] / t[0][i];
     printf("bench_water_caustics: %dx%d, %d rounds, %dx%d water grid (CPU simulation, moving every frame), %dx%d "
            "floor light map remade every lit frame\n", size, size, rounds, grid, grid, map, map);
-    for (k = 0; k < 2; k++) printf("  %-5s median %.2f ms\n", names[k], median(t[k], rounds));
-    printf("  lit/dark median ratio %.3f\n", median(ratio, rounds));
+    for (k = 0; k < 2; k++) printf("  %-5s median %.2f ms\n", names[k], cli_median(t[k], rounds));
+    printf("  lit/dark median ratio %.3f\n", cli_median(ratio, rounds));
     for (k = 0; k < 2; k++) {
         snell_renderer_destroy(r[k]);
         snell_water_destroy(w[k]);

@@ -22,9 +22,9 @@ if(TARGET snell-render)
 endif()
 # bench_caustics: the frame cost off / light map reused / made every frame, rounds taking turns
 # (a tool, not a test: uses internals; numbers in the issue's note).
-add_executable(bench_caustics bench_caustics.c)
+add_executable(bench_caustics bench_caustics.c ${PROJECT_SOURCE_DIR}/ports/cli/cli_time.c)
 target_link_libraries(bench_caustics PRIVATE snell_static)
-target_include_directories(bench_caustics PRIVATE ${PROJECT_SOURCE_DIR}/src ${CGLM_INCLUDE_DIR})
+target_include_directories(bench_caustics PRIVATE ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR}/ports/cli ${CGLM_INCLUDE_DIR})
 target_compile_options(bench_caustics PRIVATE ${SNELL_WARNINGS})
 add_test(NAME bench_caustics_runs COMMAND bench_caustics 64 2 32 32)
 set_tests_properties(bench_caustics_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "made/off median ratio")

@@ -55,9 +55,9 @@ target_link_libraries(test_water_caustics PRIVATE m)
 # bench_water_caustics: the frame cost with the floor's caustics against without, the water moving,
 # rounds taking turns (a tool, not a test: uses internals; numbers in README's caustics section).
 if(SNELL_WITH_CAUSTICS AND SNELL_WITH_WATER)
-  add_executable(bench_water_caustics bench_water_caustics.c)
+  add_executable(bench_water_caustics bench_water_caustics.c ${PROJECT_SOURCE_DIR}/ports/cli/cli_time.c)
   target_link_libraries(bench_water_caustics PRIVATE snell_static)
-  target_include_directories(bench_water_caustics PRIVATE ${PROJECT_SOURCE_DIR}/src ${CGLM_INCLUDE_DIR})
+  target_include_directories(bench_water_caustics PRIVATE ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR}/ports/cli ${CGLM_INCLUDE_DIR})
   target_compile_options(bench_water_caustics PRIVATE ${SNELL_WARNINGS})
   add_test(NAME bench_water_caustics_runs COMMAND bench_water_caustics 64 2 64 32)
   set_tests_properties(bench_water_caustics_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "lit/dark median ratio")
