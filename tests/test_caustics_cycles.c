@@ -101,32 +101,6 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* The mesh (moved by t) in Blender's frame (x, y, z) -> (x, -z, y), as
- * cycles_caustics.py reads it; winding flipped where snell's is clockwise. */
-static int write_mesh(const snell_mesh *m, const double t[3], const char *path, int flip)
-{
-    uint32_t nv = snell_mesh_vertex_count(m), nt = snell_mesh_triangle_count(m), i;
-    const float *p = snell_mesh_positions(m), *n = snell_mesh_normals(m);
-    FILE *f = fopen(path, "wb");
-    int ok;
-    if (!f) return 0;
-    ok = fwrite(&nv, 4, 1, f) == 1 && fwrite(&nt, 4, 1, f) == 1;
-    for (i = 0; i < nv && ok; i++) {
-        float b[3] = {(float)(p[3 * i] + t[0]), (float)(-(p[3 * i + 2] + t[2])), (float)(p[3 * i + 1] + t[1])};
-        ok = fwrite(b, 4, 3, f) == 3;
-    }
-    for (i = 0; i < nv && ok; i++) {
-        float b[3] = {n[3 * i], -n[3 * i + 2], n[3 * i + 1]};
-        ok = fwrite(b, 4, 3, f) == 3;
-    }
-    for (i = 0; i < nt && ok; i++) {
-        const uint32_t *tr = snell_mesh_indices(m) + 3 * i;
-        uint32_t tri[3] = {tr[0], flip ? tr[2] : tr[1], flip ? tr[1] : tr[2]};
-        ok = fwrite(tri, 4, 3, f) == 3;
-    }
-    return (fclose(f) == 0) && ok;
-}
-
 static float *read_map(const char *path, int size)
 {
     FILE *f = fopen(path, "rb");
@@ -283,7 +257,7 @@ int main(int argc, char **argv)
     {
         snell_mesh_analysis an;
         CHECK_OK(snell_mesh_analyze(sphere, &an));
-        CHECK(write_mesh(sphere, centre, mesh_path, an.winding < 0), "write %s", mesh_path);
+        CHECK(test_write_blender_mesh(sphere, centre, mesh_path, an.winding < 0), "write %s", mesh_path);
     }
 
     /* Cycles: the caustic (seeds 1, 2) and the direct light alone */

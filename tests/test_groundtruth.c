@@ -145,34 +145,6 @@ static int bake_env(equirect *e, const char *path)
     return ok;
 }
 
-/* The mesh in Blender's frame, as cycles_render.py reads it. flip: reverse
- * the triangles' winding (Cycles tells entering from leaving by the
- * geometric normal, counter-clockwise outward; the reference by the medium
- * it tracks). */
-static int write_mesh(const snell_mesh *m, const char *path, int flip)
-{
-    uint32_t nv = snell_mesh_vertex_count(m), nt = snell_mesh_triangle_count(m), i;
-    const float *p = snell_mesh_positions(m), *n = snell_mesh_normals(m);
-    FILE *f = fopen(path, "wb");
-    int ok;
-    if (!f) return 0;
-    ok = fwrite(&nv, 4, 1, f) == 1 && fwrite(&nt, 4, 1, f) == 1;
-    for (i = 0; i < nv && ok; i++) {
-        float b[3] = {p[3 * i], -p[3 * i + 2], p[3 * i + 1]};
-        ok = fwrite(b, 4, 3, f) == 3;
-    }
-    for (i = 0; i < nv && ok; i++) {
-        float b[3] = {n[3 * i], -n[3 * i + 2], n[3 * i + 1]};
-        ok = fwrite(b, 4, 3, f) == 3;
-    }
-    for (i = 0; i < nt && ok; i++) {
-        const uint32_t *t = snell_mesh_indices(m) + 3 * i;
-        uint32_t tri[3] = {t[0], flip ? t[2] : t[1], flip ? t[1] : t[2]};
-        ok = fwrite(tri, 4, 3, f) == 3;
-    }
-    return (fclose(f) == 0) && ok;
-}
-
 /* Camera-to-world in Blender's frame, row-major: C * inverse(view), with
  * view rigid (inverse = [R^T | -R^T t]) and C the frame change. */
 static void camera_to_world(const snell_camera *cam, float aspect, double out[16])
@@ -310,7 +282,7 @@ static void run_case(const gt_case *gc, const char *blender, const char *script,
         snell_mesh_analysis an;
         CHECK_OK(snell_mesh_analyze(mesh, &an));
         CHECK(an.closed, "%s: the mesh must be closed for Cycles to tell inside from outside", gc->name);
-        CHECK(write_mesh(mesh, mesh_path, an.winding < 0), "write %s", mesh_path);
+        CHECK(test_write_blender_mesh(mesh, NULL, mesh_path, an.winding < 0), "write %s", mesh_path);
     }
     /* Two renders, seeds 1 and 2: the first for the bound, the pair for the
      * bias estimate. */

@@ -167,3 +167,29 @@ snell_mesh *test_smooth_cube(int quads)
     if (snell_mesh_create(NULL, &md, &m) != SNELL_OK) return NULL;
     return m;
 }
+
+int test_write_blender_mesh(const snell_mesh *m, const double t[3], const char *path, int flip)
+{
+    static const double zero[3] = {0.0, 0.0, 0.0};
+    uint32_t nv = snell_mesh_vertex_count(m), nt = snell_mesh_triangle_count(m), i;
+    const float *p = snell_mesh_positions(m), *n = snell_mesh_normals(m);
+    FILE *f = fopen(path, "wb");
+    int ok;
+    if (!f) return 0;
+    if (!t) t = zero;
+    ok = fwrite(&nv, 4, 1, f) == 1 && fwrite(&nt, 4, 1, f) == 1;
+    for (i = 0; i < nv && ok; i++) {
+        float b[3] = {(float)(p[3 * i] + t[0]), (float)(-(p[3 * i + 2] + t[2])), (float)(p[3 * i + 1] + t[1])};
+        ok = fwrite(b, 4, 3, f) == 3;
+    }
+    for (i = 0; i < nv && ok; i++) {
+        float b[3] = {n[3 * i], -n[3 * i + 2], n[3 * i + 1]};
+        ok = fwrite(b, 4, 3, f) == 3;
+    }
+    for (i = 0; i < nt && ok; i++) {
+        const uint32_t *tr = snell_mesh_indices(m) + 3 * i;
+        uint32_t tri[3] = {tr[0], flip ? tr[2] : tr[1], flip ? tr[1] : tr[2]};
+        ok = fwrite(tri, 4, 3, f) == 3;
+    }
+    return (fclose(f) == 0) && ok;
+}

@@ -78,5 +78,12 @@ double test_time_scale(void);
 int test_host_context(EGLDisplay *dpy, EGLContext *ctx);
 /* A headless context (default backend) or NULL, message printed. */
 snell_ctx *test_ctx(void);
+/* The mesh, moved by t (NULL: not moved), in Blender's frame (x, y, z) ->
+ * (x, -z, y) as tests/scripts/cycles_*.py read it: vertex and triangle
+ * counts, positions, normals, triangles (uint32, float32, little endian as
+ * written). flip reverses the winding: Cycles tells entering from leaving by
+ * the geometric normal, counter-clockwise outward; the reference by the
+ * medium it tracks. 1 on success. */
+int test_write_blender_mesh(const snell_mesh *m, const double t[3], const char *path, int flip);
 
 #endif
