@@ -26,45 +26,14 @@
 # (min bounces = max bounces), 64 bounces, Raw view transform.
 import array
 import json
+import os
 import sys
 
 import bpy
 from mathutils import Matrix
 
-
-def load_mesh(path):
-    with open(path, "rb") as f:
-        head = array.array("I")
-        head.fromfile(f, 2)
-        nv, nt = head[0], head[1]
-        pos = array.array("f")
-        pos.fromfile(f, 3 * nv)
-        nrm = array.array("f")
-        nrm.fromfile(f, 3 * nv)
-        idx = array.array("I")
-        idx.fromfile(f, 3 * nt)
-    me = bpy.data.meshes.new("glass")
-    me.vertices.add(nv)
-    me.vertices.foreach_set("co", pos)
-    me.loops.add(3 * nt)
-    me.loops.foreach_set("vertex_index", idx)
-    me.polygons.add(nt)
-    me.polygons.foreach_set("loop_start", array.array("i", range(0, 3 * nt, 3)))
-    me.polygons.foreach_set("loop_total", array.array("i", [3]) * nt)
-    me.polygons.foreach_set("use_smooth", array.array("b", [1]) * nt)
-    me.update(calc_edges=True)
-    return me
-
-
-def write_normals(me, path):
-    """The vertex normals Cycles shades with (smooth faces, no custom normals:
-    Blender's own, float32), for the reference to use the very same ones.
-    Custom split normals were tried first: their 16-bit encoding moved the
-    refracted checker edges by ~1e-4 rad, 2.5/255 of bias on the sphere."""
-    n = array.array("f", [0.0]) * (3 * len(me.vertices))
-    me.vertices.foreach_get("normal", n)
-    with open(path, "wb") as f:
-        n.tofile(f)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_common import load_mesh, raw_view, render_exr, write_normals  # noqa: E402
 
 
 def main():
@@ -151,25 +120,11 @@ def main():
     c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
     c.blur_glossy = 0.0
     c.caustics_reflective = c.caustics_refractive = True
-    scene.view_settings.view_transform = "Raw"
-    scene.view_settings.look = "None"
-    scene.view_settings.exposure = 0.0
-    scene.view_settings.gamma = 1.0
+    raw_view(scene)
     scene.display_settings.display_device = "sRGB"
-    scene.sequencer_colorspace_settings.name = "Non-Color"
 
     # Linear float EXR, read back as data and written raw (top row first).
-    exr = sc["out"] + ".exr"
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_depth = "32"
-    r.image_settings.exr_codec = "NONE"
-    r.filepath = exr
-    bpy.ops.render.render(write_still=True)
-    img = bpy.data.images.load(exr)
-    img.colorspace_settings.name = "Non-Color"
-    w, h = img.size
-    px = array.array("f", [0.0]) * (4 * w * h)
-    img.pixels.foreach_get(px)
+    w, h, px = render_exr(scene, sc["out"])
     rgb = array.array("f", [0.0]) * (3 * w * h)
     for y in range(h):
         src = 4 * w * (h - 1 - y)  # Blender's row 0 is the bottom
