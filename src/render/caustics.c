@@ -422,20 +422,26 @@ static void make_frame(const snell_frame_desc *fd, const snell__scene *sc, const
 }
 
 /* The shadow map in the light frame: every casting glass and opaque object. */
-static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
-                                 const snell__scene *sc, const light_frame *F)
+/* A depth-only pass from the light into fbo (size x size), cleared, with the depth program. */
+static void begin_depth_pass(const snell__caustics *c, GLuint fbo, int size)
 {
-    snell_status st;
-    int i;
-    if ((st = shadow_target(ctx, c, F->size)) != SNELL_OK) return st;
-    glBindFramebuffer(GL_FRAMEBUFFER, c->shadow_fbo);
-    glViewport(0, 0, F->size, F->size);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, size, size);
     glDepthMask(GL_TRUE);
     glClearDepthf(1.0f);
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glUseProgram(c->map_prog);
+}
+
+static snell_status draw_shadows(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
+                                 const snell__scene *sc, const light_frame *F)
+{
+    snell_status st;
+    int i;
+    if ((st = shadow_target(ctx, c, F->size)) != SNELL_OK) return st;
+    begin_depth_pass(c, c->shadow_fbo, F->size);
     for (i = 0; i < sc->count; i++)
         if (casts(&sc->obj[i])) draw_mesh(c->map_prog, sc->obj[i].mesh, (const float *)sc->obj[i].model, (const float *)F->vp);
     for (i = 0; i < fd->opaque_count; i++) draw_mesh(c->map_prog, fd->opaque[i].mesh, fd->opaque[i].model, (const float *)F->vp);
@@ -477,14 +483,7 @@ static snell_status draw_receivers(snell_ctx *ctx, snell__caustics *c, const sne
         if ((st = complete(ctx, "receiver depth")) != SNELL_OK) return st;
         c->recv_size = F->size;
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, c->recv_fbo);
-    glViewport(0, 0, F->size, F->size);
-    glDepthMask(GL_TRUE);
-    glClearDepthf(1.0f);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glUseProgram(c->map_prog);
+    begin_depth_pass(c, c->recv_fbo, F->size);
     for (i = 0; i < fd->opaque_count; i++) draw_mesh(c->map_prog, fd->opaque[i].mesh, fd->opaque[i].model, (const float *)F->vp);
     glBindFramebuffer(GL_FRAMEBUFFER, c->cm_fbo);
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
