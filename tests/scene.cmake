@@ -48,3 +48,8 @@ if(TARGET snell-render)
            -DCODE=1 "-DERR=33 glass objects: more than the limit of 32" -P ${expect})
   set_tests_properties(cli_scene_gltf_33_glass PROPERTIES LABELS "cli")
 endif()
+
+# A mirroring model matrix is the same object as its vertices mirrored and
+# re-wound, for every method in the registry, on both shading paths.
+snell_add_test(test_mirror SOURCES test_mirror.c LABELS "render;gl" SHADINGS forward screen)
+target_link_libraries(test_mirror PRIVATE m)

@@ -81,9 +81,10 @@
  *    (forward). Culling by the wrong winding for the inside-out mesh empties
  *    and swaps its layers (checked by breaking it once: then 8922 of 8923
  *    pixels differ, and 3 layers come out where 4 do).
- *    (A mirroring model matrix, x -> -x, maps this torus onto itself but
- *    changes 35% of single-surface's exit directions and 92% of peel's, with
- *    or without the culling: not what this tests; left to an issue.) */
+ *    (A mirroring model matrix is tested by test_mirror, against the
+ *    mirrored vertices: mirroring this torus by x -> -x alone maps its
+ *    vertices but not its quads' diagonals onto each other, so it is
+ *    another mesh.) */
 #include "test_util.h"
 
 #include <math.h>
