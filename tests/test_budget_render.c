@@ -3,13 +3,20 @@
  * says what it did; with a budget no frame can miss it climbs its ladder to
  * the top rung, with one no frame can meet it stays on the lowest (or on the
  * quality floor's rung); the rung drawn is exactly the explicit method (the
- * same pixels); bad budgets are refused. Times are not asserted here (a
- * shared machine): snell-bench --budget measures them (bench/BENCHMARKS.md). */
+ * same pixels); bad budgets are refused; the frames are measured by the
+ * GPU's timer query where the context has one, never by a reading longer
+ * than the wall clock around them, and not while a host's own timer query
+ * runs. Times are not asserted here (a shared machine): snell-bench
+ * --budget measures them (bench/BENCHMARKS.md). */
+#define _POSIX_C_SOURCE 199309L
 #include "test_util.h"
 
+#include <GLES3/gl3.h>
+#include <GLES2/gl2ext.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define W 96
 #define H 96
@@ -61,6 +68,69 @@ static void settle(snell_renderer *r, snell_frame_desc *f, snell_frame_stats *st
     }
     CHECK(still >= 10, "the plan did not settle in 60 frames (last: %s)", st->budget_reason);
     CHECK_OK(snell_renderer_read_rgba(r, px));
+}
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+/* The budget's clock (issue 25 item 3): with EXT_disjoint_timer_query the
+ * frames are measured by the GPU's timer (budget_clock 2), and no
+ * measurement is longer than the wall clock from the measured frame's start
+ * to the end of the frame that reports it (llvmpipe's first timer query in
+ * a context reads hours: it must fall back to the fence's clock). While the
+ * host's own TIME_ELAPSED query runs (queries of a target cannot nest) the
+ * budget leaves it running and measures by the fence (1). */
+static void test_clock(snell_ctx *ctx, const snell_renderer_desc *rd, snell_frame_desc *f)
+{
+    const int timer = snell_ctx_has_gl_extension(ctx, "GL_EXT_disjoint_timer_query");
+    snell_renderer *r = NULL;
+    snell_frame_stats st;
+    double t0 = 0.0, prev = 0.0, t1;
+    int k, by_gpu = 0, by_fence = 0, longer = 0;
+    CHECK_OK(snell_renderer_create(ctx, rd, &r));
+    if (!r) return;
+    f->budget_ms = 1e5f;
+    for (k = 0; k < 12; k++) {
+        prev = t0;
+        t0 = now_ms();
+        CHECK_OK(snell_render(r, f, &st));
+        t1 = now_ms();
+        snell_renderer_finish(r);
+        if (k == 0) continue;
+        by_gpu += st.budget_clock == 2;
+        by_fence += st.budget_clock == 1;
+        longer += st.budget_measured_ms > t1 - prev + 1.0;
+    }
+    printf("clock: %d of 11 frames measured by the GPU timer, %d by the fence (timer query %s)\n", by_gpu, by_fence,
+           timer ? "present" : "absent");
+    CHECK(by_gpu + by_fence == 11 && longer == 0, "%d + %d frames measured, %d longer than the wall clock", by_gpu,
+          by_fence, longer);
+    CHECK(timer ? by_gpu >= 9 : by_gpu == 0, "%d frames by the GPU timer", by_gpu);
+    if (timer) {
+        GLuint q = 0, ns = 0;
+        GLint current = 0;
+        glGenQueries(1, &q);
+        glBeginQuery(GL_TIME_ELAPSED_EXT, q);
+        by_gpu = 0;
+        for (k = 0; k < 6; k++) {
+            CHECK_OK(snell_render(r, f, &st));
+            snell_renderer_finish(r);
+            by_gpu += k > 0 && st.budget_clock == 2; /* frame 0 reports the frame before the host's query */
+        }
+        glGetQueryiv(GL_TIME_ELAPSED_EXT, GL_CURRENT_QUERY_EXT, &current);
+        CHECK(by_gpu == 0 && current == (GLint)q, "host's query: %d frames by the GPU timer, current query %d of %u",
+              by_gpu, current, q);
+        glEndQuery(GL_TIME_ELAPSED_EXT);
+        glGetQueryObjectuiv(q, GL_QUERY_RESULT, &ns);
+        CHECK(glGetError() == GL_NO_ERROR && ns > 0, "host's query: GL error or %u ns", ns);
+        glDeleteQueries(1, &q);
+    }
+    f->budget_ms = 0.0f;
+    snell_renderer_destroy(r);
 }
 
 int main(void)
@@ -168,6 +238,8 @@ int main(void)
         f.budget_ms = 0.0f;
         snell_renderer_destroy(w);
     }
+
+    test_clock(ctx, &rd, &f);
 
     /* Refusals. */
     f.budget_ms = NAN;

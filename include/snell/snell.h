@@ -1090,7 +1090,10 @@ typedef struct snell_frame_stats {
     int background_paraboloid;      /* 1: the background looked the environment up in dual-paraboloid maps */
     /* AUTO by budget (snell_frame_desc.budget_ms; all 0 without one): */
     float budget_ms;                /* the budget this frame was planned for */
-    double budget_measured_ms;      /* the last frame measured (start to GPU completion), -1 none yet */
+    double budget_measured_ms;      /* the last frame measured, -1 none yet: by budget_clock */
+    int budget_clock;               /* that measurement's clock: 2 the GPU's timer query (EXT_disjoint_timer_query;
+                                     * snell_render's CPU time where longer), 1 the CPU's from snell_render's start
+                                     * to the frame's fence seen passed, 0 none this frame */
     double budget_predicted_ms;     /* this frame's plan at the learned ms per unit, -1 before a measurement */
     int budget_changed;             /* 1: the plan changed this frame */
     int budget_first_use;           /* 1: the plan draws a configuration for the first time on this renderer:

@@ -1,4 +1,5 @@
-/* budget_stage.c — the budget stage: measures the last frame (a fence),
+/* budget_stage.c — the budget stage: measures the last frame (the GPU's
+ * timer query where there is one, else a fence),
  * gives every AUTO glass object its ladder and the controller's rung
  * (budget.c), and writes the rung into the object's resolved material so
  * that the glass stage draws it as an explicit method. */
@@ -22,9 +23,55 @@ static int usable(void *user, snell_method id)
     return snell__renderer_method_state(user, snell__method_get(id), &state) == SNELL_OK;
 }
 
+/* The GPU's own clock (EXT_disjoint_timer_query, issue 25 item 3): a
+ * TIME_ELAPSED query around the frame's commands, read at the next frame
+ * once its fence has passed, so it never stalls. It counts the GPU's time
+ * only, not a host's work between frames that the fence is seen late by.
+ * Not while a host's own TIME_ELAPSED query runs (they cannot nest), nor
+ * across a disjoint event (a clock change: the result is meaningless). */
+static void timer_begin(snell_renderer *r)
+{
+    GLint running = 0, disjoint;
+    if (!r->budget_timer) r->budget_timer = snell_ctx_has_gl_extension(r->ctx, "GL_EXT_disjoint_timer_query") ? 1 : -1;
+    if (r->budget_timer < 0) return;
+    glGetQueryiv(GL_TIME_ELAPSED_EXT, GL_CURRENT_QUERY_EXT, &running);
+    if (running) return;
+    if (!r->budget_query) glGenQueries(1, &r->budget_query);
+    glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint); /* reading clears it */
+    glBeginQuery(GL_TIME_ELAPSED_EXT, r->budget_query);
+    r->budget_query_state = 1;
+}
+
+/* The ended query's ms, or -1: none, not yet available, disjoint, or 4.3 s
+ * and more (the 32-bit read's limit; the fence's clock measures those). */
+static double timer_read(snell_renderer *r)
+{
+    GLuint ready = 0, ns = 0;
+    GLint disjoint = 1;
+    if (r->budget_query_state != 2) return -1.0;
+    r->budget_query_state = 0;
+    glGetQueryObjectuiv(r->budget_query, GL_QUERY_RESULT_AVAILABLE, &ready);
+    if (!ready) return -1.0;
+    glGetQueryObjectuiv(r->budget_query, GL_QUERY_RESULT, &ns);
+    glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
+    return disjoint || ns == 0xFFFFFFFFu ? -1.0 : ns * 1e-6;
+}
+
+/* A frame's ms as the budget counts it: the GPU timer's, or snell_render's
+ * own CPU time where that was longer (a frame cannot come faster than it
+ * is issued); the fence's clock (wall: start to completion seen) without
+ * the timer, or where the timer reads more than that clock (a driver's
+ * bogus first query: llvmpipe's reads hours). clock: 2 GPU timer, 1 wall. */
+static double frame_ms(snell_renderer *r, double wall, double cpu, int *clock)
+{
+    double gpu = timer_read(r);
+    *clock = gpu >= 0.0 && gpu <= wall + 1.0 ? 2 : 1;
+    return *clock == 1 ? wall : gpu > cpu ? gpu : cpu;
+}
+
 /* The last budget frame's time, once the GPU finished it (waits for it if
  * it has not: a frame still running at the next one's start is over). */
-static void collect(snell_renderer *r)
+static void collect(snell_renderer *r, snell_frame_stats *s)
 {
     GLsync fence = (GLsync)r->budget_fence;
     if (!fence) return;
@@ -32,7 +79,10 @@ static void collect(snell_renderer *r)
         GLenum w = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull);
         if (w == GL_ALREADY_SIGNALED || w == GL_CONDITION_SATISFIED) r->budget_done_ms = snell__now_ms();
     }
-    if (r->budget_done_ms >= 0.0) snell__budget_observe(&r->budget, r->budget_done_ms - r->budget_start_ms);
+    if (r->budget_done_ms >= 0.0)
+        snell__budget_observe(&r->budget, frame_ms(r, r->budget_done_ms - r->budget_start_ms, r->budget_cpu_ms,
+                                                   &s->budget_clock));
+    r->budget_query_state = 0;
     glDeleteSync(fence);
     r->budget_fence = NULL;
 }
@@ -44,9 +94,13 @@ void snell__budget_gpu_done(snell_renderer *r)
         r->budget_done_ms = snell__now_ms();
 }
 
-void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, double start_ms)
+void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, double start_ms, int drawn)
 {
-    if (r->budget_force) return; /* warming: measured by snell_renderer_warm */
+    if (r->budget_query_state == 1) {
+        glEndQuery(GL_TIME_ELAPSED_EXT);
+        r->budget_query_state = drawn ? 2 : 0;
+    }
+    if (!drawn || r->budget_force) return; /* warming: measured by snell_renderer_warm */
     if (!(fd->budget_ms > 0.0f)) {
         if (r->budget.frame) snell__budget_destroy(r); /* budget off: start afresh when it returns */
         return;
@@ -54,13 +108,17 @@ void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, doub
     if (r->budget_fence) glDeleteSync((GLsync)r->budget_fence);
     r->budget_fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     r->budget_start_ms = start_ms;
+    r->budget_cpu_ms = snell__now_ms() - start_ms;
     r->budget_done_ms = -1.0;
 }
 
 void snell__budget_destroy(snell_renderer *r)
 {
     if (r->budget_fence) glDeleteSync((GLsync)r->budget_fence);
+    if (r->budget_query) glDeleteQueries(1, &r->budget_query);
     r->budget_fence = NULL;
+    r->budget_query = 0;
+    r->budget_query_state = 0;
     snell__budget_reset(&r->budget);
 }
 
@@ -72,7 +130,8 @@ snell_status snell__budget_run(snell__frame *f)
     int plan[SNELL_MAX_GLASS];
     int i, drawn[SNELL_MAX_GLASS] = {0};
     double predicted = -1.0;
-    if (!r->budget_force) collect(r);
+    if (!r->budget_force) collect(r, s);
+    timer_begin(r);
     for (i = 0; i < sc->drawn; i++) drawn[sc->order[i]] = 1;
     for (i = 0; i < sc->count; i++) {
         snell__object *o = &sc->obj[i];
@@ -155,7 +214,8 @@ static snell_status warm_draw(warm_state *w, const snell_frame_desc *fd)
 }
 
 /* Draws the plan once to build what it needs when a rung is new to this
- * renderer, then three times timed (glFinish on both sides): the median,
+ * renderer, then three times timed (glFinish on both sides; the GPU timer
+ * where there is one, as the frames it plans for): the median,
  * as one frame of a shared machine can take several times another and a
  * rung priced too dear here is never tried later. */
 static double warm_measure(void *user, const int *plan)
@@ -164,7 +224,7 @@ static double warm_measure(void *user, const int *plan)
     snell_renderer *r = w->r;
     const snell_frame_desc *fd = plan ? w->fd : &w->bare;
     double t0, ms[3], t;
-    int i, fresh = !plan ? !w->bare_drawn : 0;
+    int i, clock, fresh = !plan ? !w->bare_drawn : 0;
     if (plan) {
         r->budget_force = plan;
         for (i = 0; i < r->scene.count; i++)
@@ -180,7 +240,7 @@ static double warm_measure(void *user, const int *plan)
         t0 = snell__now_ms();
         if (warm_draw(w, fd) != SNELL_OK) return -1.0;
         glFinish();
-        ms[i] = snell__now_ms() - t0;
+        ms[i] = frame_ms(r, snell__now_ms() - t0, r->stats.cpu_ms, &clock); /* the clock frames are measured by */
     }
     if (ms[0] > ms[1]) t = ms[0], ms[0] = ms[1], ms[1] = t;
     if (ms[1] > ms[2]) t = ms[1], ms[1] = ms[2], ms[2] = t;

@@ -294,7 +294,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     glBindVertexArray(0);
     if (external) snell__glstate_restore(&saved);
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(r->ctx, SNELL_E_GL, "GL error during the frame");
-    if (st == SNELL_OK) snell__budget_frame_end(r, fd, t0);
+    snell__budget_frame_end(r, fd, t0, st == SNELL_OK);
     for (i = 0; i < r->scene.count; i++) s->passes += s->glass[i].passes;
     s->passes += s->background_drawn;
     s->fragment_mediump = snell__ctx_fragment_mediump(r->ctx);

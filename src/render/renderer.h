@@ -52,6 +52,10 @@ struct snell_renderer {
     char budget_note[SNELL_MAX_GLASS][128];            /* each object's rung and why (snell__object.budget_note) */
     void *budget_fence;                               /* GLsync after the last budget frame, NULL none */
     double budget_start_ms, budget_done_ms;           /* that frame's start; its completion seen (-1 not yet) */
+    double budget_cpu_ms;                             /* that frame's time inside snell_render */
+    unsigned budget_query;                            /* its GL_TIME_ELAPSED_EXT query (0: none made yet) */
+    int budget_timer;                                 /* EXT_disjoint_timer_query: 0 not probed, 1 yes, -1 no */
+    int budget_query_state;                           /* 1 running in this frame, 2 ended (read next frame), 0 */
     const int *budget_force;                          /* snell_renderer_warm: the plan to draw (ladder index per
                                                        * object), NULL: the controller's */
     snell__caustics caustics;                         /* the caustics stage's light map, made on first use */

@@ -24,9 +24,10 @@ snell_status snell__renderer_method_state(void *user, const snell__method *m, vo
  * object's rung before the glass is set up; the frame's fence after it. */
 int snell__budget_wanted(const snell__frame *f);
 snell_status snell__budget_run(snell__frame *f);
-/* After the frame: a fence to measure it by (budget frames only), or the
- * controller reset when the frame has no budget. */
-void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, double start_ms);
+/* After the frame (drawn = its status was SNELL_OK): the GPU timer query
+ * ended, a fence to measure it by (budget frames only), or the controller
+ * reset when the frame has no budget. */
+void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, double start_ms, int drawn);
 /* The GPU is known to be done (after glFinish or a read-back): the frame's end time if still open. */
 void snell__budget_gpu_done(snell_renderer *r);
 void snell__budget_destroy(snell_renderer *r);
