@@ -43,3 +43,6 @@ if(TARGET snell-render AND SNELL_WITH_GLTF)
   set_tests_properties(cli_caustics_opaque PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
     "caustics: made: 3 glass casting, 2 opaque lit")
 endif()
+# The glass sees the lit receiver plane along its exit and reflected rays
+# (common/receiver.glsl): every method, both shading paths.
+snell_add_test(test_caustics_seen SOURCES test_caustics_seen.c LABELS "render;gl" SHADINGS forward screen)

@@ -60,6 +60,14 @@
 // the same. A kernel's ray that leaves its object under the water was
 // refracted out for air; it is bent again for the water's index (the exit
 // normal from the layers).
+//
+// SNELL_RECEIVER (the frame's caustics stage lit a receiver plane,
+// common/receiver.glsl): past the objects, before the environment, the
+// ray meets the plane from above and sees it lit by its light map, as the
+// view sees it.
+#ifdef SNELL_RECEIVER
+#include "common/receiver.glsl"
+#endif
 #ifdef SNELL_WATER
 #include "common/water.glsl"
 bool beyond_start_in_water = false;
@@ -73,6 +81,10 @@ vec3 beyond_miss(highp vec3 o, highp vec3 dir)
     if (beyond_in_water) return water_under(o, dir);
     vec3 col;
     if (water_air(o, dir, col)) return col;
+#endif
+#ifdef SNELL_RECEIVER
+    vec3 lit;
+    if (receiver_seen(o, dir, lit)) return lit;
 #endif
     return snell_env(dir);
 }

@@ -53,6 +53,10 @@ typedef struct snell__view {
     snell__back_maps back;          /* this frame's back-face maps (band 0 and the target's size if none) */
     snell__scene_layers layers;     /* this frame's scene layers (count 0 if none) */
     const struct snell_water *water; /* the frame's water surface, NULL none (common/water.glsl) */
+    /* The receiver plane lit by this frame's caustics stage (common/receiver.glsl): its
+     * light map texture (0: none), y, centre x, z and extent, albedo. */
+    unsigned receiver_map;
+    float receiver_plane[4], receiver_albedo[3];
 } snell__view;
 
 /* One glass object of a frame, resolved by the scene stage (render/scene.c). */

@@ -31,7 +31,8 @@ typedef struct snell__glass_program {
 #define SNELL__GLASS_ENV_PARABOLOID 8
 #define SNELL__GLASS_WATER 16       /* the frame has water, heights in R32F (common/water.glsl) */
 #define SNELL__GLASS_WATER_UINT 32  /* ... in the GPU simulation's RG32UI state */
-#define SNELL__GLASS_VARIANTS 64
+#define SNELL__GLASS_RECEIVER 64    /* the frame's receiver plane is lit (common/receiver.glsl) */
+#define SNELL__GLASS_VARIANTS 128
 int snell__glass_variant(const snell__object *o);
 
 /* One slot of a kernel's small cache of programs, keyed by their

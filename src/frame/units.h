@@ -22,7 +22,8 @@
 #define SNELL__LAYERS_TABLE_UNIT 8    /* ... and their object table */
 #define SNELL__WATER_HEIGHTS_UNIT 9   /* the water's heights (water/water_draw.h) */
 #define SNELL__WATER_LIGHT_UNIT 10    /* ... and its floor's light map (water/water_caustics.c) */
-#define SNELL__UNIT_COUNT 11
+#define SNELL__RECEIVER_UNIT 11       /* the receiver plane's light map (render/caustics.c) */
+#define SNELL__UNIT_COUNT 12
 
 #include "core/glstate.h"
 /* The EXTERNAL backend's snapshot must cover every unit of the table. */

@@ -660,16 +660,16 @@ static void draw_lit_opaque(snell__caustics *c, const snell_frame_desc *fd, cons
 static snell_status draw_receiver(snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc)
 {
     const snell_receiver *rc = &fd->receiver;
-    float albedo[3] = {0.8f, 0.8f, 0.8f};
-    if (rc->albedo[0] != 0.0f || rc->albedo[1] != 0.0f || rc->albedo[2] != 0.0f) memcpy(albedo, rc->albedo, sizeof albedo);
+    float albedo[3];
+    snell__receiver_albedo(rc, albedo);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glUseProgram(c->receiver_prog);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, c->map_tex);
-    glUniform1i(glGetUniformLocation(c->receiver_prog, "u_light_map"), 0);
-    glUniform3fv(glGetUniformLocation(c->receiver_prog, "u_albedo"), 1, albedo);
+    glUniform1i(glGetUniformLocation(c->receiver_prog, "u_plane_map"), 0);
+    glUniform3fv(glGetUniformLocation(c->receiver_prog, "u_plane_albedo"), 1, albedo);
     glUniform3fv(glGetUniformLocation(c->receiver_prog, "u_eye"), 1, sc->view.eye);
     glUniformMatrix4fv(glGetUniformLocation(c->receiver_prog, "u_view_proj"), 1, GL_FALSE,
                        (const GLfloat *)sc->view.view_proj);
