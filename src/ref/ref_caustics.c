@@ -3,7 +3,7 @@
  * shadow rays for the direct light, and photons refracted through each glass
  * object (the stage's optics: Schlick and Snell in and out, tint,
  * Beer-Lambert) splatted onto the plane's texels with the stage's tent, flux-correct. */
-#include "ref/ref_scene.h"
+#include "ref/ref_trace.h"
 #include "core/ctx.h"
 #include "core/optics.h"
 
@@ -42,34 +42,62 @@ static void basis(const double d[3], double u[3], double v[3])
     v[0] = d[1] * u[2] - d[2] * u[1], v[1] = d[2] * u[0] - d[0] * u[2], v[2] = d[0] * u[1] - d[1] * u[0];
 }
 
-/* One photon along d from o through glass object g (the stage's optics):
- * 1 if it leaves, at x along t2 (its exit's triangle prim), carrying e. */
+/* The surfaces a photon's path through glass object g may meet: the exact
+ * method's interface cap (its material.exact.max_interfaces: the MATCHED
+ * model's), or that parameter's default in a build without the method. */
+static int interfaces_of(const ref_glass *gl)
+{
+    return gl->res.material.exact.max_interfaces > 0 ? gl->res.material.exact.max_interfaces : 8;
+}
+
+/* One photon along d from o through glass object g (the stage's optics): in
+ * where the light first meets g (Schlick, Snell, the tint), inside
+ * (snell__ref_inside: the next surface ahead, total internal reflection
+ * followed, Beer-Lambert over the way) and out (Schlick, Snell), and in
+ * again wherever its way out meets g once more (a torus's hole, a goblet's
+ * bowl), the entry counted as an interface too, up to g's cap
+ * (interfaces_of): there it leaves through the next surface in its
+ * direction, as the MATCHED model's rays do, and sees g no more. 1 if it
+ * leaves, at x along t2 (prim: the triangle it leaves from), carrying e. */
 static int through(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
                    double x[3], double t2[3], uint32_t *prim, double e[3])
 {
     const ref_glass *gl = &ref->glass[g];
-    ref_view air = {-1, REF_SEE_ALL, -1}, in = {g, REF_SEE_ALL, -1};
-    ref_surf s1, s2;
-    double n[3], t[3], ci, f1, f2, len;
-    int k;
-    if (!snell__ref_hit(ref, o, d, SNELL__BVH_NONE, &air, &s1) || s1.object != g) return 0;
-    memcpy(n, s1.n, sizeof n);
-    if (snell__ref_dot3(n, d) > 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
-    ci = -snell__ref_dot3(n, d);
-    f1 = snell_optd_fresnel_schlick(ci, 1.0, gl->ior);
-    if (!snell_optd_refract(d, n, 1.0 / gl->ior, t)) return 0;
-    snell__ref_normalize3(t);
-    if (!snell__ref_hit(ref, s1.p, t, s1.prim, &in, &s2) || s2.object != g) return 0;
-    memcpy(n, s2.n, sizeof n);
-    if (snell__ref_dot3(n, t) < 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2]; /* outward, along the ray */
-    f2 = snell_optd_fresnel_schlick(snell__ref_dot3(n, t), gl->ior, 1.0);
-    n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
-    if (!snell_optd_refract(t, n, gl->ior, t2)) return 0; /* TIR: dropped, as the stage drops it */
-    snell__ref_normalize3(t2);
-    len = s2.t;
-    for (k = 0; k < 3; k++) e[k] = flux[k] * gl->tint[k] * (1.0 - f1) * (1.0 - f2) * exp(-gl->sigma[k] * len);
-    memcpy(x, s2.p, 3 * sizeof(double));
-    *prim = s2.prim;
+    const int max_if = interfaces_of(gl);
+    ref_surf s;
+    double pos[3], dir[3], n[3], t[3], len, cos_out;
+    int k, depth = 0, end;
+    *prim = SNELL__BVH_NONE;
+    memcpy(pos, o, sizeof pos);
+    memcpy(dir, d, sizeof dir);
+    for (k = 0; k < 3; k++) e[k] = flux[k];
+    for (;;) {
+        ref_view air = {-1, depth < max_if ? REF_SEE_ALL : REF_SEE_NONE, -1};
+        double ci;
+        if (!snell__ref_hit(ref, pos, dir, *prim, &air, &s) || s.object != g) {
+            if (depth == 0) return 0; /* the light meets something else first */
+            break;                    /* out for good: the caller looks at what it meets */
+        }
+        memcpy(n, s.n, sizeof n);
+        if (snell__ref_dot3(n, dir) > 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
+        ci = -snell__ref_dot3(n, dir);
+        if (!snell_optd_refract(dir, n, 1.0 / gl->ior, t)) return 0;
+        snell__ref_normalize3(t);
+        for (k = 0; k < 3; k++) e[k] *= gl->tint[k] * (1.0 - snell_optd_fresnel_schlick(ci, 1.0, gl->ior));
+        depth++;
+        memcpy(pos, s.p, sizeof pos);
+        memcpy(dir, t, sizeof dir);
+        *prim = s.prim;
+        len = 0.0;
+        end = snell__ref_inside(ref, g, gl->ior, NULL, max_if, pos, dir, prim, &depth, &len, &s, &cos_out, NULL);
+        if (end == SNELL__REF_OPAQUE) return 0; /* an opaque object in the glass stops it */
+        for (k = 0; k < 3; k++) {
+            e[k] *= exp(-gl->sigma[k] * len);
+            if (end == SNELL__REF_OUT) e[k] *= 1.0 - snell_optd_fresnel_schlick(cos_out, gl->ior, 1.0);
+        }
+    }
+    memcpy(x, pos, 3 * sizeof(double));
+    memcpy(t2, dir, 3 * sizeof(double));
     return 1;
 }
 

@@ -32,6 +32,11 @@ void snell__prepared_frame(snell__prepared_cache *c);
  * or reused (SNELL_SKIP_PREPARE). Sets o->prepared. */
 snell_status snell__prepared_get(snell_ctx *ctx, snell__prepared_cache *c, const snell__method *m, void *state,
                                  snell__object *o, snell_object_stats *stats);
+/* The same for any method m and object o, into *out (o->prepared is left
+ * alone): a stage borrowing a method's resources for the object's mesh (the
+ * caustics' photons walk exact's BVH), shared with that method's objects. */
+snell_status snell__prepared_lookup(snell_ctx *ctx, snell__prepared_cache *c, const snell__method *m, void *state,
+                                    const snell__object *o, snell_object_stats *stats, void **out);
 void snell__prepared_destroy(snell_ctx *ctx, snell__prepared_cache *c);
 
 #endif

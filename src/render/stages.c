@@ -188,7 +188,7 @@ static int want_caustics(const snell__frame *f)
 
 static snell_status run_caustics(snell__frame *f)
 {
-    return snell__caustics_run(f->r->ctx, &f->r->caustics, f->fd, f->sc, f->s);
+    return snell__caustics_run(f->r->ctx, &f->r->caustics, &f->r->prepared, f->fd, f->sc, f->s);
 }
 
 /* Glass: the objects shaded in screen space share one G-buffer pass,
