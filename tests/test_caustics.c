@@ -136,6 +136,9 @@ int main(void)
     CHECK(fs.caustics_photons == 256 * 256 && !fs.caustics_reused, "photons %d reused %d (%s)", fs.caustics_photons,
           fs.caustics_reused, fs.caustics_reason);
     printf("frame 1: %s\n", fs.caustics_reason);
+    /* convex: the depth maps' one crossing is its whole path (the BVH's is test_caustics_concave's) */
+    CHECK(strstr(fs.caustics_reason, "paths: 0 BVH, 1 depth maps") != NULL, "the sphere's photons: %s",
+          fs.caustics_reason);
     CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, img0));
     CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
     CHECK(size == MAP, "map size %d", size);

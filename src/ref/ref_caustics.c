@@ -101,11 +101,12 @@ static int through(const snell_ref *ref, int g, const double o[3], const double 
     return 1;
 }
 
-/* One photon along d from o through glass object g; adds it to m if it lands. */
+/* One photon along d from o through glass object g; adds it to m if it
+ * lands (an opaque or another glass object on its way stops it). */
 static void photon(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
                    plane_map *m)
 {
-    ref_view air = {-1, REF_SEE_ALL, -1};
+    ref_view air = {-1, REF_SEE_ALL, g}; /* g is done with it (through) */
     ref_surf s3;
     double x[3], t2[3], e[3], p[3], sp;
     uint32_t prim;
@@ -355,13 +356,14 @@ static double first_opaque(const snell_ref *ref, const struct ref_lit *L, double
     return z;
 }
 
-/* A photon that left the glass at x along t2 carrying e: where it first
- * meets an opaque object (before the plane), if the light sees that
- * surface there, its flux per texel area facing the light is splatted. */
-static void land_opaque(const snell_ref *ref, struct ref_lit *L, const double x[3], const double t2[3], uint32_t prim,
-                        const double e[3])
+/* A photon that left glass g at x along t2 carrying e: where it first
+ * meets an opaque object (before the plane; another glass object stops it,
+ * g is done with it), if the light sees that surface there, its flux per
+ * texel area facing the light is splatted. */
+static void land_opaque(const snell_ref *ref, struct ref_lit *L, int g, const double x[3], const double t2[3],
+                        uint32_t prim, const double e[3])
 {
-    ref_view air = {-1, REF_SEE_ALL, -1};
+    ref_view air = {-1, REF_SEE_ALL, g}; /* g is done with it (through) */
     ref_surf s;
     double fx, fy, fz, w[3], zs;
     int k;
@@ -469,7 +471,7 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
                     memcpy(dir, L->d, sizeof dir);
                     memcpy(f, flux, sizeof f);
                 }
-                if (through(ref, g, o, dir, f, x, t2, &prim, e)) land_opaque(ref, L, x, t2, prim, e);
+                if (through(ref, g, o, dir, f, x, t2, &prim, e)) land_opaque(ref, L, g, x, t2, prim, e);
             }
     }
     return SNELL_OK;

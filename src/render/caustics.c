@@ -102,10 +102,11 @@ static void put(float *k, int *n, const void *v, size_t bytes)
     *n += (int)((bytes + sizeof(float) - 1) / sizeof(float));
 }
 
-static int make_key(float *k, const snell_frame_desc *fd, const snell__scene *sc)
+static int make_key(float *k, const snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc)
 {
     int n = 0, i;
     memset(k, 0, SNELL__CAUSTICS_KEY * sizeof(float));
+    put(k, &n, &c->maps_only, sizeof c->maps_only);
     put(k, &n, &fd->light, sizeof fd->light);
     put(k, &n, &fd->receiver, sizeof fd->receiver);
     put(k, &n, &sc->count, sizeof sc->count);
@@ -554,7 +555,8 @@ static snell_status photon_path(snell_ctx *ctx, snell__caustics *c, snell__prepa
     char def[96];
     GLuint *p;
     *prog = 0;
-    if (o->glass->material.method != SNELL_METHOD_EXACT && snell__mesh_analysis(o->mesh, &an) == SNELL_OK && an->convex)
+    if (c->maps_only ||
+        (o->glass->material.method != SNELL_METHOD_EXACT && snell__mesh_analysis(o->mesh, &an) == SNELL_OK && an->convex))
         return SNELL_OK;
     memset(&scratch, 0, sizeof scratch);
     st = snell__prepared_lookup(ctx, prep, snell__method_get(SNELL_METHOD_EXACT), NULL, o, &scratch, &data);
@@ -780,7 +782,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
                    "skipped: the light map needs a float target (GL_EXT_color_buffer_half_float or _float)");
         return SNELL_OK;
     }
-    key_len = make_key(c->scratch, fd, sc);
+    key_len = make_key(c->scratch, c, fd, sc);
     if (c->valid && key_len == c->key_len && memcmp(c->scratch, c->key, (size_t)key_len * sizeof(float)) == 0) {
         s->caustics_reused = 1;
         snell__why(s->caustics_reason, sizeof s->caustics_reason, "reused: nothing moved (light, glass, receivers)");
@@ -827,11 +829,11 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     c->valid = 1, c->made_plane = plane, c->made_opaque = opaque;
     if (plane) snprintf(map, sizeof map, "%dx%d %s light map", size, size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
     else snprintf(map, sizeof map, "no plane");
-    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s%s, %d opaque lit%s; %s",
+    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s, %d opaque lit%s; paths: "
+               "%d BVH, %d depth maps; %s",
                casters, sc->count > casters ? " (thin or clear ones pass)" : "",
-               by_bvh ? (by_bvh == shot ? " (photons by the BVH)" : " (some photons by the BVH)") : "",
                shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count,
-               opaque ? " (light-frame caustic map)" : "", map);
+               opaque ? " (light-frame caustic map)" : "", by_bvh, shot - by_bvh, map);
     return draw_view(c, fd, sc);
 }
 

@@ -26,6 +26,8 @@ typedef struct snell__caustics {
     float frame_lin[4];                            /* its near, far, 1 = perspective, texel side */
     unsigned map_fbo, map_tex;                     /* the receiver's light map (float rgba) */
     int map_size;
+    int maps_only;                                 /* tests, bench_caustics: every photon takes the depth
+                                                    * maps' one crossing (the only path before the BVH's) */
     unsigned map_format;                           /* GL_RGBA32F or GL_RGBA16F, SNELL__CAUSTICS_NO_FLOAT,
                                                     * 0 = not probed yet (tests set it to take a path) */
     int valid;                                     /* the maps hold the frame keyed by key[] */
