@@ -1,12 +1,27 @@
 // caustics_photon.vert - one photon per texel of the light's view of a glass
 // object (Wyman & Davis 2006, caustic maps; Unger 3.5 names caustics as the
 // step beyond its methods): enters where the nearest-surface map says
-// (Schlick Fresnel, Snell), marches the farthest-surface depth map to its
-// exit (an image-space search, as the methods' exit searches), leaves
-// (Schlick, Snell; TIR drops it), and lands on the receiver plane y = h. It
-// is drawn as a 4 x 4 texel point whose texels share its flux by a tent
-// (caustics_splat.frag): every photon's flux lands in full (flux-correct, as
-// the 2D lightmap's lines, src/lm2d). World space throughout.
+// (Schlick Fresnel, Snell) and finds its way out by one of two paths:
+// - the depth maps (SNELL_PHOTON_BVH 0; convex meshes, where one crossing is
+//   the whole path): marches the farthest-surface depth map to its exit (an
+//   image-space search, as the methods' exit searches), leaves (Schlick,
+//   Snell; TIR drops it);
+// - the mesh's BVH (SNELL_PHOTON_BVH 1; meshes that are not convex, or
+//   glass of the exact method): exact's traversal (common/bvh.glsl, the
+//   exact method's prepared BVH texture) from surface to surface: in, TIR
+//   followed inside, out (Schlick, Snell), and in again where its way out
+//   meets the mesh once more (a torus's hole, a goblet's bowl), up to the
+//   material's exact.max_interfaces surfaces (the entry counted; at the cap
+//   it leaves through the next surface in its direction, as the MATCHED
+//   model's rays); (1 - Schlick) at each refraction, the tint at each entry,
+//   Beer-Lambert inside. Past the material's exact.budget node visits the
+//   photon takes the depth maps' path. Its reference is ref_caustics.c's
+//   through().
+// It then lands on the receiver plane y = h, drawn as a 4 x 4 texel point
+// whose texels share its flux by a tent (caustics_splat.frag): every
+// photon's flux lands in full (flux-correct, as the 2D lightmap's lines,
+// src/lm2d). World space throughout, but for the BVH's walk (object space,
+// as exact.frag's).
 // With opaque receivers (u_recv = 1) the photon's way on from the exit is
 // marched through their depth map seen from the light (u_recv_z: the nearest
 // opaque surface per texel of the light frame, the shadow map's view): it stops

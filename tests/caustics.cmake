@@ -47,3 +47,6 @@ endif()
 # re-entries; the lit receiver against the reference and against its one-crossing model, flux, energy.
 snell_add_test(test_caustics_concave SOURCES test_caustics_concave.c LABELS "render;gl")
 target_link_libraries(test_caustics_concave PRIVATE m)
+# bench_caustics on a torus (not convex): its photons by the BVH ("made") against the depth maps alone ("maps").
+add_test(NAME bench_caustics_torus_runs COMMAND bench_caustics 64 2 32 32 0 torus)
+set_tests_properties(bench_caustics_torus_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "torus.*made/maps median ratio")

@@ -25,20 +25,6 @@
 #define EXT 2.5f
 #define W 160
 
-/* PSNR (dB) of two maps shown as albedo * irradiance clamped to 0..1 (a: stride_a floats a texel, b: 3). */
-static double psnr_shown(const float *a, int stride_a, const float *b, int n, float albedo)
-{
-    double se = 0;
-    int i, c;
-    for (i = 0; i < n; i++)
-        for (c = 0; c < 3; c++) {
-            double x = fmin(1.0, albedo * a[i * stride_a + c]), y = fmin(1.0, albedo * b[i * 3 + c]);
-            se += (x - y) * (x - y);
-        }
-    se /= 3.0 * n;
-    return se > 0 ? 10.0 * log10(1.0 / se) : 999.0;
-}
-
 /* The flux of a map's green channel over the plane (stride floats a texel). */
 static double flux(const float *v, int stride, double texel)
 {
@@ -46,21 +32,6 @@ static double flux(const float *v, int stride, double texel)
     int i;
     for (i = 0; i < MAP * MAP; i++) e += v[i * stride + 1] * texel * texel;
     return e;
-}
-
-static void write_map(const char *name, const float *v, int stride, float albedo)
-{
-    uint8_t *px = (uint8_t *)malloc((size_t)MAP * MAP * 4);
-    int i, j, c;
-    if (!px) return;
-    for (j = 0; j < MAP; j++) /* row 0 of the image: the far edge (z largest) */
-        for (i = 0; i < MAP; i++)
-            for (c = 0; c < 4; c++) {
-                double x = c == 3 ? 1.0 : fmin(1.0, albedo * v[((MAP - 1 - j) * MAP + i) * stride + c]);
-                px[4 * (j * MAP + i) + c] = (uint8_t)lround(x * 255.0);
-            }
-    snell_write_png(test_out(name), MAP, MAP, px);
-    free(px);
 }
 
 int main(void)
@@ -134,9 +105,9 @@ int main(void)
     one.exact.max_interfaces = 2; /* in and out once, as the depth maps' photons */
     CHECK_OK(snell_ref_set_material(ref, 0, &one));
     CHECK_OK(snell_ref_receiver_render(ref, &fd.light, &fd.receiver, 1024, 4, one_rgb, one_c));
-    write_map("caustics_torus_gpu.png", gpu, 4, 0.8f);
-    write_map("caustics_torus_ref.png", ref_rgb, 3, 0.8f);
-    write_map("caustics_torus_ref_one.png", one_rgb, 3, 0.8f);
+    test_write_light_map("caustics_torus_gpu.png", gpu, 4, MAP, 0.8f);
+    test_write_light_map("caustics_torus_ref.png", ref_rgb, 3, MAP, 0.8f);
+    test_write_light_map("caustics_torus_ref_one.png", one_rgb, 3, MAP, 0.8f);
 
     {
         /* the light through glass: the GPU's map less its direct part (the reference's direct light) */
@@ -145,9 +116,9 @@ int main(void)
         for (i = 0; i < MAP * MAP; i++)
             for (k = 0; k < 3; k++) gpu_c[3 * i + k] = gpu[4 * i + k] - (ref_rgb[3 * i + k] - ref_c[3 * i + k]);
         e_gpu = flux(gpu_c, 3, texel);
-        db = psnr_shown(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
-        db_one = psnr_shown(gpu, 4, one_rgb, MAP * MAP, 0.8f);
-        db_ref_one = psnr_shown(ref_rgb, 3, one_rgb, MAP * MAP, 0.8f);
+        db = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
+        db_one = test_light_map_psnr(gpu, 4, one_rgb, MAP * MAP, 0.8f);
+        db_ref_one = test_light_map_psnr(ref_rgb, 3, one_rgb, MAP * MAP, 0.8f);
         printf("light through glass on the plane: GPU %.4f, reference %.4f (%+.2f%%), reference with one crossing "
                "%.4f (%+.2f%%)\n", e_gpu, e_ref, 100.0 * (e_gpu / e_ref - 1.0), e_one, 100.0 * (e_one / e_ref - 1.0));
         printf("all light on the plane: GPU %.4f, without the torus %.4f\n", e_all, e_free);
@@ -185,7 +156,7 @@ int main(void)
         CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
         for (i = 0; i < MAP * MAP; i++)
             for (k = 0; k < 3; k++) gpu_c[3 * i + k] = gpu[4 * i + k] - (ref_rgb[3 * i + k] - ref_c[3 * i + k]);
-        db_maps = psnr_shown(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
+        db_maps = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
         e_maps = flux(gpu_c, 3, texel);
         printf("depth maps' one crossing: %.2f dB from the reference, light through glass %+.2f%%\n", db_maps,
                100.0 * (e_maps / flux(ref_c, 3, texel) - 1.0));

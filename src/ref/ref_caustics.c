@@ -1,8 +1,15 @@
 /* ref_caustics.c — the reference of the caustics stage (issue 27): the
  * receiver plane's irradiance traced from the light in double precision:
  * shadow rays for the direct light, and photons refracted through each glass
- * object (the stage's optics: Schlick and Snell in and out, tint,
- * Beer-Lambert) splatted onto the plane's texels with the stage's tent, flux-correct. */
+ * object (the stage's optics: Schlick and Snell at every refraction, the
+ * tint at every entry, Beer-Lambert inside) along their whole path through
+ * the mesh by the tracer's BVH ray casts: in, inside from surface to
+ * surface with total internal reflection followed (ref_trace.c's inside
+ * walk, snell__ref_inside), out, and in again where the way out meets the
+ * object once more, up to its exact.max_interfaces surfaces (through());
+ * splatted onto the plane's texels with the stage's tent, flux-correct. The
+ * GPU follows the same path by exact's BVH where the mesh is not convex, and
+ * one crossing of depth maps where it is (caustics_photon.vert). */
 #include "ref/ref_trace.h"
 #include "core/ctx.h"
 #include "core/optics.h"

@@ -3,11 +3,14 @@
  * the receiver plane's light map holds its irradiance, in units of the
  * light's colour: the direct light where a shadow map of every glass and
  * opaque object leaves it lit (caustics_direct.frag), plus, per glass object,
- * a grid of photons from the light refracted in and out of it (an
- * image-space exit search in its farthest-surface map, caustics_photon.vert)
- * and splatted onto the plane, each carrying the light's flux through its
- * cell of the beam (flux-correct: energy is conserved, as the 2D lightmap's
- * lines are, src/lm2d). The opaque objects are receivers too: a photon
+ * a grid of photons from the light refracted in and out of it
+ * (caustics_photon.vert: a convex mesh by an image-space exit search in its
+ * farthest-surface map; any other by the exact method's BVH of the mesh,
+ * borrowed from the prepared cache, through every interface: TIR, exits and
+ * re-entries up to the material's exact.max_interfaces) and splatted onto
+ * the plane, each carrying the light's flux through its cell of the beam
+ * (flux-correct: energy is conserved, as the 2D lightmap's lines are,
+ * src/lm2d). The opaque objects are receivers too: a photon
  * stops at the first one (marched through their depth map in the light
  * frame, the shadow map's view), and one that lands where the light sees
  * the surface is splatted into their caustic map in that frame; they are

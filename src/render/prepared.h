@@ -1,7 +1,8 @@
 /* prepared.h — the "prepare" stage's cache: per (mesh version, method,
  * settings key) the resources a method builds for a mesh (baked cubemaps,
  * per-vertex data), owned by the renderer. It holds twice as many entries as
- * a frame can have glass objects, and only evicts (least recently used)
+ * a frame can have glass objects (each object's method's, and the exact
+ * method's BVH that the caustics' photons borrow), and only evicts (least recently used)
  * entries that the current frame has not used, so a scene never re-prepares
  * within or across frames while it and its settings stay the same. */
 #ifndef SNELL_PREPARED_H
