@@ -43,8 +43,9 @@ if(TARGET snell-render AND SNELL_WITH_GLTF)
   set_tests_properties(cli_caustics_opaque PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
     "caustics: made: 3 glass casting, 2 opaque lit")
 endif()
-# test_caustics_concave: a torus lying flat (concave): photons by the BVH through entries, TIR, exits and
-# re-entries; the lit receiver against the reference and against its one-crossing model, flux, energy.
+# test_caustics_concave: a standing torus (concave): photons by the BVH through entries, TIR, exits and
+# re-entries; the lit receiver against the reference and against its one-crossing model, flux, energy; TIR in a
+# cube of the exact method.
 snell_add_test(test_caustics_concave SOURCES test_caustics_concave.c LABELS "render;gl")
 target_link_libraries(test_caustics_concave PRIVATE m)
 # bench_caustics on a torus (not convex): its photons by the BVH ("made") against the depth maps alone ("maps").
