@@ -149,6 +149,10 @@ if(NOT SNELL_WITH_WATER)
   # common/water*.glsl stay: every kernel includes them, inside #ifdef SNELL_WATER.
   list(FILTER SNELL_SHADER_SOURCES EXCLUDE REGEX "/shaders_es/water_[^/]*$")
 endif()
+if(NOT SNELL_WITH_EXACT AND NOT SNELL_WITH_CAUSTICS)
+  # the BVH traversal: exact's kernel and the caustics' photons include it
+  list(FILTER SNELL_SHADER_SOURCES EXCLUDE REGEX "/shaders_es/common/bvh\\.glsl$")
+endif()
 foreach(m IN LISTS SNELL_METHODS)
   if(NOT m IN_LIST SNELL_METHODS_ON)
     list(FILTER SNELL_SHADER_SOURCES EXCLUDE REGEX "/shaders_es/${m}(_[^/]*)?\\.(frag|vert|glsl)$")

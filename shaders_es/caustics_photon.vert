@@ -1,12 +1,27 @@
 // caustics_photon.vert - one photon per texel of the light's view of a glass
 // object (Wyman & Davis 2006, caustic maps; Unger 3.5 names caustics as the
 // step beyond its methods): enters where the nearest-surface map says
-// (Schlick Fresnel, Snell), marches the farthest-surface depth map to its
-// exit (an image-space search, as the methods' exit searches), leaves
-// (Schlick, Snell; TIR drops it), and lands on the receiver plane y = h. It
-// is drawn as a 4 x 4 texel point whose texels share its flux by a tent
-// (caustics_splat.frag): every photon's flux lands in full (flux-correct, as
-// the 2D lightmap's lines, src/lm2d). World space throughout.
+// (Schlick Fresnel, Snell) and finds its way out by one of two paths:
+// - the depth maps (SNELL_PHOTON_BVH 0; convex meshes, where one crossing is
+//   the whole path): marches the farthest-surface depth map to its exit (an
+//   image-space search, as the methods' exit searches), leaves (Schlick,
+//   Snell; TIR drops it);
+// - the mesh's BVH (SNELL_PHOTON_BVH 1; meshes that are not convex, or
+//   glass of the exact method): exact's traversal (common/bvh.glsl, the
+//   exact method's prepared BVH texture) from surface to surface: in, TIR
+//   followed inside, out (Schlick, Snell), and in again where its way out
+//   meets the mesh once more (a torus's hole, a goblet's bowl), up to the
+//   material's exact.max_interfaces surfaces (the entry counted; at the cap
+//   it leaves through the next surface in its direction, as the MATCHED
+//   model's rays); (1 - Schlick) at each refraction, the tint at each entry,
+//   Beer-Lambert inside. Past the material's exact.budget node visits the
+//   photon takes the depth maps' path. Its reference is ref_caustics.c's
+//   through().
+// It then lands on the receiver plane y = h, drawn as a 4 x 4 texel point
+// whose texels share its flux by a tent (caustics_splat.frag): every
+// photon's flux lands in full (flux-correct, as the 2D lightmap's lines,
+// src/lm2d). World space throughout, but for the BVH's walk (object space,
+// as exact.frag's).
 // With opaque receivers (u_recv = 1) the photon's way on from the exit is
 // marched through their depth map seen from the light (u_recv_z: the nearest
 // opaque surface per texel of the light frame, the shadow map's view): it stops
@@ -45,6 +60,17 @@ uniform mat4 u_recv_vp;       // world -> the light frame's clip space
 uniform vec4 u_recv_lin;      // near, far, 1 = perspective (spot), texel side (world; spot: at distance 1)
 uniform float u_recv_reach;   // the longest way marched when no plane ends it
 uniform vec3 u_flux_recv;     // u_flux's share per light-frame texel (u_target 1)
+#if SNELL_PHOTON_BVH
+// the exact method's BVH of the mesh (common/bvh.glsl, one texture per mesh
+// version from the prepared cache) and the path's parameters
+#define SNELL_NODE_BUDGET u_node_budget
+uniform int u_node_budget;    // node visits of all a photon's rays (material.exact.budget)
+uniform mat4 u_model, u_inv_model;
+uniform int u_max_interfaces; // 1..MAX_INTERFACES (material.exact.interfaces)
+uniform float u_eps;          // minimum distance of a secondary hit, world units
+uniform vec3 u_tint;
+#include "common/bvh.glsl"
+#endif
 
 out vec4 v_flux;
 
@@ -147,6 +173,108 @@ float recv_march(vec3 q, vec3 d, float lmax, out bool on)
     return hi;
 }
 
+// The depth maps' one crossing: in at p (normal n facing the light's ray
+// dir: Schlick f1, Snell), out where the march finds the far surface (f2,
+// its normal from the far map; TIR drops the photon), len the way inside; q
+// and t2 the exit and the direction out. false: dropped.
+bool depth_path(vec3 p, vec3 n, vec3 dir, out float f1, out float f2, out float len, out vec3 q, out vec3 t2)
+{
+    f2 = 0.0;
+    len = 0.0;
+    q = p;
+    t2 = dir;
+    f1 = snell_fresnel_schlick(dot(n, -dir), 1.0, u_ior);
+    vec3 t;
+    if (!snell_refract(dir, n, 1.0 / u_ior, t)) return false;
+    // linear search for the first point past the far surface, then bisection
+    float lo = 0.0, hi = -1.0;
+    for (int k = 1; k <= LINEAR_STEPS; k++) {
+        float l = u_reach * float(k) / float(LINEAR_STEPS);
+        if (hi < 0.0) {
+            if (past_back(p + t * l) > 0.0) hi = l;
+            else lo = l;
+        }
+    }
+    if (hi < 0.0) return false; // never left (an open or concave mesh): dropped
+    for (int k = 0; k < BISECT_STEPS; k++) {
+        float m = 0.5 * (lo + hi);
+        if (past_back(p + t * m) > 0.0) hi = m;
+        else lo = m;
+    }
+    len = 0.5 * (lo + hi);
+    q = p + t * len;
+    vec4 c = u_light_vp * vec4(q, 1.0);
+    float cw;
+    vec3 nb = fetch4(u_back_n, u_back_n, c.xy / c.w * 0.5 + 0.5, cw).xyz * 2.0 - 1.0;
+    if (cw <= 0.0 || dot(nb, nb) < 1e-8) return false;
+    nb = normalize(nb);
+    if (dot(nb, t) < 0.0) nb = -nb; // outward, along the ray
+    f2 = snell_fresnel_schlick(dot(nb, t), u_ior, 1.0);
+    return snell_refract(t, -nb, u_ior, t2); // TIR: dropped
+}
+
+#if SNELL_PHOTON_BVH
+// The photon's path by the mesh's BVH (exact.frag's rays and model, ref_caustics.c
+// through): from o along the light's ray dir, in where it meets the mesh
+// (p_map, n_map: the nearest-surface map's point and normal where the ray
+// misses it, at the silhouette), inside from surface to surface, TIR
+// followed, refracted out, and in again where its way out meets the mesh
+// once more, the entry counted, up to u_max_interfaces surfaces; at the cap
+// it leaves through the next surface in its direction. e: the
+// transmittance, (1 - Schlick) at every refraction, the tint at every entry
+// after the first (u_flux holds the first), Beer-Lambert inside; q and t2
+// the last exit (world) and the direction out. false: dropped.
+bool bvh_path(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 t2, out vec3 e)
+{
+    mat3 inv3 = mat3(u_inv_model);
+    vec3 b, p, n, d = dir;
+    float t = 3.0e38;
+    int at = closest(make_ray((u_inv_model * vec4(o, 1.0)).xyz, inv3 * d), 0.0, t, -1, b);
+    if (at >= 0) surface_at(at, b, d, p, n);
+    else {
+        p = (u_inv_model * vec4(p_map, 1.0)).xyz;
+        n = n_map;
+    }
+    int depth = 0;
+    e = vec3(1.0);
+    q = p_map;
+    t2 = dir;
+    for (int k = 0; k < MAX_INTERFACES; k++) {
+        vec3 tr;
+        if (!snell_refract(d, n, 1.0 / u_ior, tr)) return false;
+        e *= (k > 0 ? u_tint : vec3(1.0)) * (1.0 - snell_fresnel_schlick(dot(n, -d), 1.0, u_ior));
+        d = normalize(tr);
+        depth++;
+        float len = 0.0;
+        for (int j = 0; j < MAX_INTERFACES; j++) {
+            float th = 3.0e38;
+            int h = closest(make_ray(p, inv3 * d), u_eps, th, at, b);
+            if (h < 0) break;                           // open mesh: leaves in its direction
+            len += th;
+            at = h;
+            vec3 n2;
+            surface_at(h, b, d, p, n2);
+            if (depth >= u_max_interfaces) break;      // the cap
+            depth++;
+            vec3 o2;
+            bool left = snell_refract(d, n2, u_ior, o2); // refracted out, or totally reflected
+            if (left) e *= 1.0 - snell_fresnel_schlick(dot(n2, -d), u_ior, 1.0);
+            d = normalize(o2);
+            if (left) break;
+        }
+        e *= exp(-u_sigma * len);
+        if (depth >= u_max_interfaces) break;
+        float tn = 3.0e38;
+        at = closest(make_ray(p, inv3 * d), u_eps, tn, at, b);
+        if (at < 0) break;                              // out for good
+        surface_at(at, b, d, p, n);
+    }
+    q = (u_model * vec4(p, 1.0)).xyz;
+    t2 = d;
+    return true;
+}
+#endif
+
 void main()
 {
     int i = gl_VertexID % u_size, j = gl_VertexID / u_size;
@@ -172,35 +300,18 @@ void main()
         if (share <= 0.0) return;
     }
     if (dot(n, dir) > 0.0) n = -n;
-    float f1 = snell_fresnel_schlick(dot(n, -dir), 1.0, u_ior);
-    vec3 t;
-    if (!snell_refract(dir, n, 1.0 / u_ior, t)) return;
-    // linear search for the first point past the far surface, then bisection
-    float lo = 0.0, hi = -1.0;
-    for (int k = 1; k <= LINEAR_STEPS; k++) {
-        float l = u_reach * float(k) / float(LINEAR_STEPS);
-        if (hi < 0.0) {
-            if (past_back(p + t * l) > 0.0) hi = l;
-            else lo = l;
-        }
+    vec3 q, t2, e = vec3(1.0);
+    float f1 = 0.0, f2 = 0.0, len = 0.0;
+#if SNELL_PHOTON_BVH
+    bool through = bvh_path(p - dir * u_reach, dir, p, n, q, t2, e);
+    if (g_over) { // past the node budget: the one crossing of the depth maps
+        e = vec3(1.0);
+        through = depth_path(p, n, dir, f1, f2, len, q, t2);
     }
-    if (hi < 0.0) return; // never left (an open or concave mesh): dropped
-    for (int k = 0; k < BISECT_STEPS; k++) {
-        float m = 0.5 * (lo + hi);
-        if (past_back(p + t * m) > 0.0) hi = m;
-        else lo = m;
-    }
-    float len = 0.5 * (lo + hi);
-    vec3 q = p + t * len;
-    vec4 c = u_light_vp * vec4(q, 1.0);
-    float cw;
-    vec3 nb = fetch4(u_back_n, u_back_n, c.xy / c.w * 0.5 + 0.5, cw).xyz * 2.0 - 1.0;
-    if (cw <= 0.0 || dot(nb, nb) < 1e-8) return;
-    nb = normalize(nb);
-    if (dot(nb, t) < 0.0) nb = -nb; // outward, along the ray
-    float f2 = snell_fresnel_schlick(dot(nb, t), u_ior, 1.0);
-    vec3 t2;
-    if (!snell_refract(t, -nb, u_ior, t2)) return; // TIR: dropped
+#else
+    bool through = depth_path(p, n, dir, f1, f2, len, q, t2);
+#endif
+    if (!through) return;
     // where the plane (if any) meets it; its way there, or the reach
     float sp = -1.0, lmax = u_recv_reach;
     if (u_has_plane == 1 && t2.y < 0.0) sp = (u_plane.x - q.y) / t2.y;
@@ -210,7 +321,7 @@ void main()
     float so = u_recv == 1 ? recv_march(q, t2, lmax, on) : -1.0;
     if (u_target == 0 && so >= 0.0) return; // an opaque object stops it first
     if (u_target == 1 && !(so >= 0.0 && on)) return;
-    vec3 flux = (u_target == 0 ? u_flux : u_flux_recv) * share * (1.0 - f1) * (1.0 - f2) * exp(-u_sigma * len);
+    vec3 flux = (u_target == 0 ? u_flux : u_flux_recv) * share * (1.0 - f1) * (1.0 - f2) * exp(-u_sigma * len) * e;
     if (u_target == 1) {
         vec3 h = q + t2 * so;
         vec4 c = u_recv_vp * vec4(h, 1.0);

@@ -46,3 +46,11 @@ endif()
 # The glass sees the lit receiver plane along its exit and reflected rays
 # (common/receiver.glsl): every method, both shading paths.
 snell_add_test(test_caustics_seen SOURCES test_caustics_seen.c LABELS "render;gl" SHADINGS forward screen)
+# test_caustics_concave: a standing torus (concave): photons by the BVH through entries, TIR, exits and
+# re-entries; the lit receiver against the reference and against its one-crossing model, flux, energy; TIR in a
+# cube of the exact method.
+snell_add_test(test_caustics_concave SOURCES test_caustics_concave.c LABELS "render;gl")
+target_link_libraries(test_caustics_concave PRIVATE m)
+# bench_caustics on a torus (not convex): its photons by the BVH ("made") against the depth maps alone ("maps").
+add_test(NAME bench_caustics_torus_runs COMMAND bench_caustics 64 2 32 32 0 torus)
+set_tests_properties(bench_caustics_torus_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "torus.*made/maps median ratio")

@@ -47,35 +47,6 @@ static void peak(const float *v, const snell_receiver *rc, double out[2])
     out[0] = sx / sw, out[1] = sz / sw;
 }
 
-/* PSNR (dB) of two maps shown as albedo * irradiance clamped to 0..1. */
-static double psnr_shown(const float *a, int stride_a, const float *b, int n, float albedo)
-{
-    double se = 0;
-    int i, c;
-    for (i = 0; i < n; i++)
-        for (c = 0; c < 3; c++) {
-            double x = fmin(1.0, albedo * a[i * stride_a + c]), y = fmin(1.0, albedo * b[i * 3 + c]);
-            se += (x - y) * (x - y);
-        }
-    se /= 3.0 * n;
-    return se > 0 ? 10.0 * log10(1.0 / se) : 999.0;
-}
-
-static void write_map(const char *name, const float *v, int stride, int n, float albedo)
-{
-    uint8_t *px = (uint8_t *)malloc((size_t)n * n * 4);
-    int i, j, c;
-    if (!px) return;
-    for (j = 0; j < n; j++) /* row 0 of the image: the far edge (z largest) */
-        for (i = 0; i < n; i++)
-            for (c = 0; c < 4; c++) {
-                double x = c == 3 ? 1.0 : fmin(1.0, albedo * v[((n - 1 - j) * n + i) * stride + c]);
-                px[4 * (j * n + i) + c] = (uint8_t)lround(x * 255.0);
-            }
-    snell_write_png(test_out(name), n, n, px);
-    free(px);
-}
-
 int main(void)
 {
     snell_ctx *ctx = test_ctx();
@@ -136,6 +107,9 @@ int main(void)
     CHECK(fs.caustics_photons == 256 * 256 && !fs.caustics_reused, "photons %d reused %d (%s)", fs.caustics_photons,
           fs.caustics_reused, fs.caustics_reason);
     printf("frame 1: %s\n", fs.caustics_reason);
+    /* convex: the depth maps' one crossing is its whole path (the BVH's is test_caustics_concave's) */
+    CHECK(strstr(fs.caustics_reason, "paths: 0 BVH, 1 depth maps") != NULL, "the sphere's photons: %s",
+          fs.caustics_reason);
     CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, img0));
     CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
     CHECK(size == MAP, "map size %d", size);
@@ -186,7 +160,7 @@ int main(void)
 
     /* 3. the lit receiver (albedo 0.8) against the reference */
     {
-        double db = psnr_shown(gpu, 4, ref_rgb, MAP * MAP, 0.8f), se = 0, mx = 0;
+        double db = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f), se = 0, mx = 0;
         for (i = 0; i < MAP * MAP * 3; i++) mx = fmax(mx, ref_caustic[i]);
         for (i = 0; i < MAP * MAP; i++)
             for (k = 0; k < 3; k++) se += pow((gpu[4 * i + k] - ref_rgb[3 * i + k]) / mx, 2);
@@ -194,8 +168,8 @@ int main(void)
                "peak %.1f\n", db, 10.0 * log10(3.0 * MAP * MAP / se), mx);
         CHECK(db >= 30.0, "PSNR %.2f dB", db);
     }
-    write_map("caustics_map_gpu.png", gpu, 4, MAP, 0.8f);
-    write_map("caustics_map_ref.png", ref_rgb, 3, MAP, 0.8f);
+    test_write_light_map("caustics_map_gpu.png", gpu, 4, MAP, 0.8f);
+    test_write_light_map("caustics_map_ref.png", ref_rgb, 3, MAP, 0.8f);
 
     /* 2b. flux-correct: glass of IOR 1.0001 bends nothing, so the photons
      * must fill its shadow with the light it takes, less Schlick's loss at
@@ -318,14 +292,14 @@ int main(void)
             er += (ref_caustic[3 * i] + ref_caustic[3 * i + 1] + ref_caustic[3 * i + 2]) / 3.0;
         }
         {
-            double db = psnr_shown(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
+            double db = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
             printf("spot: flux through glass GPU %.4f reference %.4f (%.2f%%), receiver %.2f dB\n", eg * 0.0234375 * 0.0234375,
                    er * 0.0234375 * 0.0234375, 100.0 * (eg / er - 1.0), db);
             CHECK(fabs(eg / er - 1.0) <= 0.05, "spot flux GPU %.4f reference %.4f", eg, er);
             CHECK(db >= 30.0, "spot PSNR %.2f dB", db);
         }
-        write_map("caustics_spot_gpu.png", gpu, 4, MAP, 0.8f);
-        write_map("caustics_spot_ref.png", ref_rgb, 3, MAP, 0.8f);
+        test_write_light_map("caustics_spot_gpu.png", gpu, 4, MAP, 0.8f);
+        test_write_light_map("caustics_spot_ref.png", ref_rgb, 3, MAP, 0.8f);
         sp.receiver.extent = 0.3f, sp.receiver.map_size = 128;
         for (step = 0; step <= 16; step++) {
             double z = 1.60 + 0.025 * step, v = 0, v_ref = 0, tx = 0.6 / 128;

@@ -2,6 +2,7 @@
 
 #include <EGL/eglext.h>
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -192,4 +193,32 @@ int test_write_blender_mesh(const snell_mesh *m, const double t[3], const char *
         ok = fwrite(tri, 4, 3, f) == 3;
     }
     return (fclose(f) == 0) && ok;
+}
+
+double test_light_map_psnr(const float *a, int stride_a, const float *b, int n, float albedo)
+{
+    double se = 0;
+    int i, c;
+    for (i = 0; i < n; i++)
+        for (c = 0; c < 3; c++) {
+            double x = fmin(1.0, albedo * a[i * stride_a + c]), y = fmin(1.0, albedo * b[i * 3 + c]);
+            se += (x - y) * (x - y);
+        }
+    se /= 3.0 * n;
+    return se > 0 ? 10.0 * log10(1.0 / se) : 999.0;
+}
+
+void test_write_light_map(const char *name, const float *v, int stride, int n, float albedo)
+{
+    uint8_t *px = (uint8_t *)malloc((size_t)n * n * 4);
+    int i, j, c;
+    if (!px) return;
+    for (j = 0; j < n; j++) /* row 0 of the image: the far edge (z largest) */
+        for (i = 0; i < n; i++)
+            for (c = 0; c < 4; c++) {
+                double x = c == 3 ? 1.0 : fmin(1.0, albedo * v[((n - 1 - j) * n + i) * stride + c]);
+                px[4 * (j * n + i) + c] = (uint8_t)lround(x * 255.0);
+            }
+    snell_write_png(test_out(name), n, n, px);
+    free(px);
 }

@@ -86,4 +86,11 @@ snell_ctx *test_ctx(void);
  * medium it tracks. 1 on success. */
 int test_write_blender_mesh(const snell_mesh *m, const double t[3], const char *path, int flip);
 
+/* Receivers' light maps (the caustics tests): n texels of rgb irradiance, a
+ * with stride_a floats a texel, b with 3. The PSNR (dB) of the two shown as
+ * albedo * irradiance clamped to 0..1; and an n x n map written as that PNG
+ * (test_out(name)), row 0 of the image the far edge (z largest). */
+double test_light_map_psnr(const float *a, int stride_a, const float *b, int n, float albedo);
+void test_write_light_map(const char *name, const float *v, int stride, int n, float albedo);
+
 #endif

@@ -69,20 +69,6 @@ static double flux(const float *a, int stride, int texels, double texel)
     return s / 3.0 * texel * texel;
 }
 
-static void write_map(const char *name, const float *v, int n, double scale)
-{
-    uint8_t *px = (uint8_t *)malloc((size_t)n * n * 4);
-    int i, j, c;
-    if (!px) return;
-    for (j = 0; j < n; j++) /* row 0 of the image: the far edge (z largest) */
-        for (i = 0; i < n; i++)
-            for (c = 0; c < 4; c++)
-                px[4 * (j * n + i) + c] =
-                    c == 3 ? 255 : (uint8_t)lround(255.0 * fmin(1.0, scale * v[3 * ((n - 1 - j) * n + i) + c]));
-    snell_write_png(test_out(name), n, n, px);
-    free(px);
-}
-
 typedef struct compare {
     double db, gpu_flux, ref_flux;
 } compare;
@@ -108,9 +94,9 @@ static compare measure(snell_ctx *ctx, snell_renderer *r, snell_frame_desc *fd, 
     printf("%s: PSNR %.2f dB; flux on the floor GPU %.5f, reference %.5f (%+.2f%%)\n", tag, m.db, m.gpu_flux, m.ref_flux,
            100.0 * (m.gpu_flux / m.ref_flux - 1.0));
     snprintf(name, sizeof name, "water_caustics_%s_gpu.png", tag);
-    write_map(name, gpu, MAP, 0.5);
+    test_write_light_map(name, gpu, 3, MAP, 0.5f);
     snprintf(name, sizeof name, "water_caustics_%s_ref.png", tag);
-    write_map(name, ref, MAP, 0.5);
+    test_write_light_map(name, ref, 3, MAP, 0.5f);
     return m;
 }
 

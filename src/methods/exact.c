@@ -11,6 +11,7 @@
  * the fallback_pixels counter (snell_object_stats.counters) on RGBA32F exit-direction
  * renderers). A deformed mesh (snell_mesh_set_vertices: a new version) is
  * refitted, not rebuilt: see exact_prepare. */
+#include "methods/exact.h"
 #include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
@@ -429,6 +430,18 @@ static snell_status exact_prepare(snell_ctx *ctx, void *state, const snell__obje
     if (glGetError() != GL_NO_ERROR)
         return snell__fail(ctx, SNELL_E_GL, "exact: uploading a %dx%d BVH texture failed", TEX_WIDTH, p->rows);
     return SNELL_OK;
+}
+
+void snell__exact_bvh_of(const void *prepared, const snell_glass_material *m, snell__exact_bvh *out)
+{
+    const exact_prepared *p = (const exact_prepared *)prepared;
+    out->texture = p->texture;
+    out->q16 = p->format == NODES_Q16;
+    out->node_count = p->node_count;
+    out->tri_base = p->tri_base;
+    out->qlo = p->qlo;
+    out->qstep = p->qstep;
+    out->stack = m->exact.walk == WALK_STACK;
 }
 
 static void exact_release(void *prepared)

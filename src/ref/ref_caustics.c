@@ -1,9 +1,16 @@
 /* ref_caustics.c — the reference of the caustics stage (issue 27): the
  * receiver plane's irradiance traced from the light in double precision:
  * shadow rays for the direct light, and photons refracted through each glass
- * object (the stage's optics: Schlick and Snell in and out, tint,
- * Beer-Lambert) splatted onto the plane's texels with the stage's tent, flux-correct. */
-#include "ref/ref_scene.h"
+ * object (the stage's optics: Schlick and Snell at every refraction, the
+ * tint at every entry, Beer-Lambert inside) along their whole path through
+ * the mesh by the tracer's BVH ray casts: in, inside from surface to
+ * surface with total internal reflection followed (ref_trace.c's inside
+ * walk, snell__ref_inside), out, and in again where the way out meets the
+ * object once more, up to its exact.max_interfaces surfaces (through());
+ * splatted onto the plane's texels with the stage's tent, flux-correct. The
+ * GPU follows the same path by exact's BVH where the mesh is not convex, and
+ * one crossing of depth maps where it is (caustics_photon.vert). */
+#include "ref/ref_trace.h"
 #include "core/ctx.h"
 #include "core/optics.h"
 
@@ -42,42 +49,71 @@ static void basis(const double d[3], double u[3], double v[3])
     v[0] = d[1] * u[2] - d[2] * u[1], v[1] = d[2] * u[0] - d[0] * u[2], v[2] = d[0] * u[1] - d[1] * u[0];
 }
 
-/* One photon along d from o through glass object g (the stage's optics):
- * 1 if it leaves, at x along t2 (its exit's triangle prim), carrying e. */
+/* The surfaces a photon's path through glass object g may meet: the exact
+ * method's interface cap (its material.exact.max_interfaces: the MATCHED
+ * model's), or that parameter's default in a build without the method. */
+static int interfaces_of(const ref_glass *gl)
+{
+    return gl->res.material.exact.max_interfaces > 0 ? gl->res.material.exact.max_interfaces : 8;
+}
+
+/* One photon along d from o through glass object g (the stage's optics): in
+ * where the light first meets g (Schlick, Snell, the tint), inside
+ * (snell__ref_inside: the next surface ahead, total internal reflection
+ * followed, Beer-Lambert over the way) and out (Schlick, Snell), and in
+ * again wherever its way out meets g once more (a torus's hole, a goblet's
+ * bowl), the entry counted as an interface too, up to g's cap
+ * (interfaces_of): there it leaves through the next surface in its
+ * direction, as the MATCHED model's rays do, and sees g no more. 1 if it
+ * leaves, at x along t2 (prim: the triangle it leaves from), carrying e. */
 static int through(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
                    double x[3], double t2[3], uint32_t *prim, double e[3])
 {
     const ref_glass *gl = &ref->glass[g];
-    ref_view air = {-1, REF_SEE_ALL, -1}, in = {g, REF_SEE_ALL, -1};
-    ref_surf s1, s2;
-    double n[3], t[3], ci, f1, f2, len;
-    int k;
-    if (!snell__ref_hit(ref, o, d, SNELL__BVH_NONE, &air, &s1) || s1.object != g) return 0;
-    memcpy(n, s1.n, sizeof n);
-    if (snell__ref_dot3(n, d) > 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
-    ci = -snell__ref_dot3(n, d);
-    f1 = snell_optd_fresnel_schlick(ci, 1.0, gl->ior);
-    if (!snell_optd_refract(d, n, 1.0 / gl->ior, t)) return 0;
-    snell__ref_normalize3(t);
-    if (!snell__ref_hit(ref, s1.p, t, s1.prim, &in, &s2) || s2.object != g) return 0;
-    memcpy(n, s2.n, sizeof n);
-    if (snell__ref_dot3(n, t) < 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2]; /* outward, along the ray */
-    f2 = snell_optd_fresnel_schlick(snell__ref_dot3(n, t), gl->ior, 1.0);
-    n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
-    if (!snell_optd_refract(t, n, gl->ior, t2)) return 0; /* TIR: dropped, as the stage drops it */
-    snell__ref_normalize3(t2);
-    len = s2.t;
-    for (k = 0; k < 3; k++) e[k] = flux[k] * gl->tint[k] * (1.0 - f1) * (1.0 - f2) * exp(-gl->sigma[k] * len);
-    memcpy(x, s2.p, 3 * sizeof(double));
-    *prim = s2.prim;
+    const int max_if = interfaces_of(gl);
+    ref_surf s;
+    double pos[3], dir[3], n[3], t[3], len, cos_out;
+    int k, depth = 0, end;
+    *prim = SNELL__BVH_NONE;
+    memcpy(pos, o, sizeof pos);
+    memcpy(dir, d, sizeof dir);
+    for (k = 0; k < 3; k++) e[k] = flux[k];
+    for (;;) {
+        ref_view air = {-1, depth < max_if ? REF_SEE_ALL : REF_SEE_NONE, -1};
+        double ci;
+        if (!snell__ref_hit(ref, pos, dir, *prim, &air, &s) || s.object != g) {
+            if (depth == 0) return 0; /* the light meets something else first */
+            break;                    /* out for good: the caller looks at what it meets */
+        }
+        memcpy(n, s.n, sizeof n);
+        if (snell__ref_dot3(n, dir) > 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
+        ci = -snell__ref_dot3(n, dir);
+        if (!snell_optd_refract(dir, n, 1.0 / gl->ior, t)) return 0;
+        snell__ref_normalize3(t);
+        for (k = 0; k < 3; k++) e[k] *= gl->tint[k] * (1.0 - snell_optd_fresnel_schlick(ci, 1.0, gl->ior));
+        depth++;
+        memcpy(pos, s.p, sizeof pos);
+        memcpy(dir, t, sizeof dir);
+        *prim = s.prim;
+        len = 0.0;
+        end = snell__ref_inside(ref, g, gl->ior, NULL, max_if, pos, dir, prim, &depth, &len, &s, &cos_out, NULL);
+        if (end == SNELL__REF_OPAQUE) return 0; /* an opaque object in the glass stops it */
+        for (k = 0; k < 3; k++) {
+            e[k] *= exp(-gl->sigma[k] * len);
+            if (end == SNELL__REF_OUT) e[k] *= 1.0 - snell_optd_fresnel_schlick(cos_out, gl->ior, 1.0);
+        }
+    }
+    memcpy(x, pos, 3 * sizeof(double));
+    memcpy(t2, dir, 3 * sizeof(double));
     return 1;
 }
 
-/* One photon along d from o through glass object g; adds it to m if it lands. */
+/* One photon along d from o through glass object g; adds it to m if it
+ * lands (an opaque or another glass object on its way stops it). */
 static void photon(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
                    plane_map *m)
 {
-    ref_view air = {-1, REF_SEE_ALL, -1};
+    ref_view air = {-1, REF_SEE_ALL, g}; /* g is done with it (through) */
     ref_surf s3;
     double x[3], t2[3], e[3], p[3], sp;
     uint32_t prim;
@@ -327,13 +363,14 @@ static double first_opaque(const snell_ref *ref, const struct ref_lit *L, double
     return z;
 }
 
-/* A photon that left the glass at x along t2 carrying e: where it first
- * meets an opaque object (before the plane), if the light sees that
- * surface there, its flux per texel area facing the light is splatted. */
-static void land_opaque(const snell_ref *ref, struct ref_lit *L, const double x[3], const double t2[3], uint32_t prim,
-                        const double e[3])
+/* A photon that left glass g at x along t2 carrying e: where it first
+ * meets an opaque object (before the plane; another glass object stops it,
+ * g is done with it), if the light sees that surface there, its flux per
+ * texel area facing the light is splatted. */
+static void land_opaque(const snell_ref *ref, struct ref_lit *L, int g, const double x[3], const double t2[3],
+                        uint32_t prim, const double e[3])
 {
-    ref_view air = {-1, REF_SEE_ALL, -1};
+    ref_view air = {-1, REF_SEE_ALL, g}; /* g is done with it (through) */
     ref_surf s;
     double fx, fy, fz, w[3], zs;
     int k;
@@ -441,7 +478,7 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
                     memcpy(dir, L->d, sizeof dir);
                     memcpy(f, flux, sizeof f);
                 }
-                if (through(ref, g, o, dir, f, x, t2, &prim, e)) land_opaque(ref, L, x, t2, prim, e);
+                if (through(ref, g, o, dir, f, x, t2, &prim, e)) land_opaque(ref, L, g, x, t2, prim, e);
             }
     }
     return SNELL_OK;

@@ -318,59 +318,57 @@ static void m_surface(const snell_ref *r, const optics *op, const snell__ref_med
     }
 }
 
-/* The refracted chain inside solid glass object j from p along t1: reflected
- * where totally internally reflected (no Fresnel split inside), else refracted
- * out, and L is what the outgoing ray sees (m_air, j unseen). At the cap, or
- * with no surface ahead (open mesh), the ray leaves unrefracted through the
- * next surface. *len: the path length inside. An opaque object inside the
- * glass ends the chain with its colour. */
+int snell__ref_inside(const snell_ref *r, int j, double ior, const snell__ref_surroundings *sur, int max_if,
+                      double pos[3], double dir[3], uint32_t *prim, int *depth, double *len, ref_surf *s,
+                      double *cos_out, snell_ref_path *path)
+{
+    ref_view v = inside_view(j);
+    for (;;) {
+        double n[3], out[3];
+        if (!snell__ref_hit(r, pos, dir, *prim, &v, s)) return SNELL__REF_OPEN;
+        *len += s->t;
+        if (path) path->inside_length += s->t;
+        if (s->object < 0) return SNELL__REF_OPAQUE;
+        memcpy(pos, s->p, 3 * sizeof(double));
+        *prim = s->prim;
+        if (*depth >= max_if) return SNELL__REF_CAP;
+        *cos_out = facing(s, dir, n);
+        ++*depth;
+        if (!snell_optd_refract(dir, n, ior / (sur ? sur->at(sur->user, s->p)->ior : 1.0), out)) {
+            snell_optd_reflect(dir, n, out);
+            snell__ref_normalize3(out);
+            if (path) path_point(path, s->p, SNELL_REF_EVENT_TIR, j);
+            memcpy(dir, out, 3 * sizeof(double));
+            continue;
+        }
+        snell__ref_normalize3(out);
+        if (path) path_point(path, s->p, SNELL_REF_EVENT_REFRACT, j);
+        memcpy(dir, out, 3 * sizeof(double));
+        return SNELL__REF_OUT;
+    }
+}
+
+/* The refracted chain inside solid glass object j from p along t1
+ * (snell__ref_inside), and L what the outgoing ray sees (m_air, j unseen).
+ * At the cap, or with no surface ahead (open mesh), the ray leaves
+ * unrefracted through the next surface. *len: the path length inside. An
+ * opaque object inside the glass ends the chain with its colour. */
 static void m_inside(const snell_ref *r, const optics *op, int j, const double p[3], const double t1[3], uint32_t prim,
                      int depth, const double w[3], snell_ref_path *path, double *len, double L[3])
 {
     const ref_glass *g = &r->glass[j];
-    ref_view v = inside_view(j);
-    double pos[3], dir[3], wo[3];
-    int k;
+    double pos[3], dir[3], wo[3], cos_out;
+    ref_surf s;
+    int k, end;
     memcpy(pos, p, sizeof pos);
     memcpy(dir, t1, sizeof dir);
     *len = 0.0;
-    for (;;) {
-        ref_surf s;
-        double n[3], out[3];
-        if (!snell__ref_hit(r, pos, dir, prim, &v, &s)) { /* open mesh: leaves in its direction */
-            if (path) path->ended_inside = 1;
-            break;
-        }
-        *len += s.t;
-        if (path) path->inside_length += s.t;
-        if (s.object < 0) { /* an opaque object in the glass */
-            if (path) {
-                path->ended_inside = 1;
-                memcpy(path->exit_dir, dir, 3 * sizeof(double));
-            }
-            snell__ref_shade_opaque(r, -2 - s.object, &s, L);
-            return;
-        }
-        memcpy(pos, s.p, sizeof pos);
-        prim = s.prim;
-        if (depth >= op->max_if) { /* cap: leaves through this surface in its direction */
-            if (path) path->ended_inside = 1;
-            break;
-        }
-        facing(&s, dir, n);
-        if (!snell_optd_refract(dir, n, ior_of(op, g) / (op->sur ? op->sur->at(op->sur->user, s.p)->ior : 1.0), out)) {
-            snell_optd_reflect(dir, n, out);
-            snell__ref_normalize3(out);
-            if (path) path_point(path, s.p, SNELL_REF_EVENT_TIR, j);
-            memcpy(dir, out, sizeof dir);
-            depth++;
-            continue;
-        }
-        snell__ref_normalize3(out);
-        if (path) path_point(path, s.p, SNELL_REF_EVENT_REFRACT, j);
-        memcpy(dir, out, sizeof dir);
-        depth++;
-        break;
+    end = snell__ref_inside(r, j, ior_of(op, g), op->sur, op->max_if, pos, dir, &prim, &depth, len, &s, &cos_out, path);
+    if (path && end != SNELL__REF_OUT) path->ended_inside = 1;
+    if (end == SNELL__REF_OPAQUE) { /* an opaque object in the glass */
+        if (path) memcpy(path->exit_dir, dir, 3 * sizeof(double));
+        snell__ref_shade_opaque(r, -2 - s.object, &s, L);
+        return;
     }
     for (k = 0; k < 3; k++) wo[k] = w[k] * (g->has_sigma ? exp(-g->sigma[k] * *len) : 1.0);
     m_air(r, op, pos, dir, prim, j, depth, wo, path, L);

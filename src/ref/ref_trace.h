@@ -6,6 +6,7 @@
 #define SNELL_REF_TRACE_H
 
 #include "core/core.h"
+#include "ref/ref_scene.h"
 #include "snell/snell_ref.h"
 
 /* A reference whose glass objects are the exact spheres |p - centres[i]| =
@@ -69,5 +70,22 @@ typedef struct snell__ref_surroundings {
  * max_interfaces; no path recorded. params are valid (not checked again). */
 void snell__ref_trace_matched(const snell_ref *ref, const snell_ref_params *params, const snell__ref_surroundings *sur,
                               const snell__ref_medium *first, const double o[3], const double d[3], double rgb[3]);
+
+/* The walk inside solid glass object j (the MATCHED chain's, m_inside; the
+ * caustics' photons take it too, ref_caustics.c): from pos along unit dir
+ * (prim: the triangle it starts on; *depth: interfaces already processed),
+ * the closest surface ahead, totally internally reflected there (no Fresnel
+ * split inside) while it must be, until the ray is refracted out
+ * (SNELL__REF_OUT: dir the refracted direction, *cos_out the incidence
+ * cosine there), reaches the cap max_if at a surface (SNELL__REF_CAP: dir
+ * unchanged), finds no surface ahead (SNELL__REF_OPEN: an open mesh), or
+ * meets an opaque object (SNELL__REF_OPAQUE: *s it). pos, prim and *depth
+ * follow the ray, *len adds its length inside. ior: j's index (its channel's);
+ * outside, sur's medium at the surface (NULL: air). path: the points of its
+ * events are recorded (NULL: none). */
+enum { SNELL__REF_OPEN, SNELL__REF_OUT, SNELL__REF_CAP, SNELL__REF_OPAQUE };
+int snell__ref_inside(const snell_ref *r, int j, double ior, const snell__ref_surroundings *sur, int max_if,
+                      double pos[3], double dir[3], uint32_t *prim, int *depth, double *len, ref_surf *s,
+                      double *cos_out, snell_ref_path *path);
 
 #endif

@@ -3,11 +3,14 @@
  * the receiver plane's light map holds its irradiance, in units of the
  * light's colour: the direct light where a shadow map of every glass and
  * opaque object leaves it lit (caustics_direct.frag), plus, per glass object,
- * a grid of photons from the light refracted in and out of it (an
- * image-space exit search in its farthest-surface map, caustics_photon.vert)
- * and splatted onto the plane, each carrying the light's flux through its
- * cell of the beam (flux-correct: energy is conserved, as the 2D lightmap's
- * lines are, src/lm2d). The opaque objects are receivers too: a photon
+ * a grid of photons from the light refracted in and out of it
+ * (caustics_photon.vert: a convex mesh by an image-space exit search in its
+ * farthest-surface map; any other by the exact method's BVH of the mesh,
+ * borrowed from the prepared cache, through every interface: TIR, exits and
+ * re-entries up to the material's exact.max_interfaces) and splatted onto
+ * the plane, each carrying the light's flux through its cell of the beam
+ * (flux-correct: energy is conserved, as the 2D lightmap's lines are,
+ * src/lm2d). The opaque objects are receivers too: a photon
  * stops at the first one (marched through their depth map in the light
  * frame, the shadow map's view), and one that lands where the light sees
  * the surface is splatted into their caustic map in that frame; they are
@@ -19,7 +22,9 @@
 #include "core/gl.h"
 #include "core/glstate.h"
 #include "core/program.h"
+#include "frame/method.h"
 #include "mesh/mesh.h"
+#include "methods/exact.h"
 #include "water/water_draw.h"
 
 #include <math.h>
@@ -100,10 +105,11 @@ static void put(float *k, int *n, const void *v, size_t bytes)
     *n += (int)((bytes + sizeof(float) - 1) / sizeof(float));
 }
 
-static int make_key(float *k, const snell_frame_desc *fd, const snell__scene *sc)
+static int make_key(float *k, const snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc)
 {
     int n = 0, i;
     memset(k, 0, SNELL__CAUSTICS_KEY * sizeof(float));
+    put(k, &n, &c->maps_only, sizeof c->maps_only);
     put(k, &n, &fd->light, sizeof fd->light);
     put(k, &n, &fd->receiver, sizeof fd->receiver);
     put(k, &n, &sc->count, sizeof sc->count);
@@ -116,6 +122,8 @@ static int make_key(float *k, const snell_frame_desc *fd, const snell__scene *sc
         put(k, &n, &o->glass->material.thickness, sizeof(float));
         put(k, &n, o->glass->material.tint, 3 * sizeof(float));
         put(k, &n, o->glass->absorption, 3 * sizeof(float));
+        put(k, &n, &o->glass->material.method, sizeof o->glass->material.method); /* the photons' path */
+        put(k, &n, &o->glass->material.exact, sizeof o->glass->material.exact);
     }
     put(k, &n, &fd->opaque_count, sizeof fd->opaque_count);
     for (i = 0; i < fd->opaque_count; i++) {
@@ -134,7 +142,8 @@ static snell_status programs(snell_ctx *ctx, snell__caustics *c)
     snell_status st = SNELL_OK;
     if (!c->map_prog) st = snell__program_build(ctx, "object.vert", "caustics_map.frag", NULL, &c->map_prog);
     if (st == SNELL_OK && !c->photon_prog)
-        st = snell__program_build(ctx, "caustics_photon.vert", "caustics_splat.frag", NULL, &c->photon_prog);
+        st = snell__program_build(ctx, "caustics_photon.vert", "caustics_splat.frag", "#define SNELL_PHOTON_BVH 0\n",
+                                  &c->photon_prog);
     if (st == SNELL_OK && !c->direct_prog)
         st = snell__program_build(ctx, "caustics_quad.vert", "caustics_direct.frag", NULL, &c->direct_prog);
     if (st == SNELL_OK && !c->receiver_prog)
@@ -529,12 +538,74 @@ static void frame_uniforms(GLuint prog, const snell__caustics *c)
     glUniform4fv(glGetUniformLocation(prog, "u_recv_lin"), 1, c->frame_lin);
 }
 
+/* How a glass object's photons find their way through it: the depth maps'
+ * one crossing (prog 0), or, where the mesh is not convex (or has no
+ * analysis) or its material is the exact method's (whose interfaces ask for
+ * TIR bounces), the exact method's BVH of the mesh (bvh, prog: the photon
+ * program of its node format and walk). The BVH is the prepared cache's
+ * entry exact uses (built once per mesh version, refitted when deformed,
+ * shared with an exact object of the same mesh); exact's prepare reads no
+ * method state. A convex mesh keeps the maps: one crossing is its whole
+ * path there, at a fraction of the cost. */
+static snell_status photon_path(snell_ctx *ctx, snell__caustics *c, snell__prepared_cache *prep, const snell__object *o,
+                                snell__exact_bvh *bvh, GLuint *prog)
+{
+#if SNELL__BUILT_exact
+    const snell_mesh_analysis *an = NULL;
+    snell_object_stats scratch; /* the object's own stats count its method's preparing */
+    void *data = NULL;
+    snell_status st;
+    char def[96];
+    GLuint *p;
+    *prog = 0;
+    if (c->maps_only ||
+        (o->glass->material.method != SNELL_METHOD_EXACT && snell__mesh_analysis(o->mesh, &an) == SNELL_OK && an->convex))
+        return SNELL_OK;
+    memset(&scratch, 0, sizeof scratch);
+    st = snell__prepared_lookup(ctx, prep, snell__method_get(SNELL_METHOD_EXACT), NULL, o, &scratch, &data);
+    if (st != SNELL_OK) return st;
+    snell__exact_bvh_of(data, &o->glass->material, bvh);
+    p = &c->photon_bvh_prog[bvh->q16][bvh->stack];
+    snprintf(def, sizeof def, "#define SNELL_PHOTON_BVH 1\n#define SNELL_NODES_Q16 %d\n#define SNELL_STACK_WALK %d\n",
+             bvh->q16, bvh->stack);
+    if (!*p && (st = snell__program_build(ctx, "caustics_photon.vert", "caustics_splat.frag", def, p)) != SNELL_OK)
+        return st;
+    *prog = *p;
+#else
+    (void)ctx, (void)c, (void)prep, (void)o, (void)bvh;
+    *prog = 0; /* a build without the exact method: the maps' one crossing */
+#endif
+    return SNELL_OK;
+}
+
+/* The photon program's uniforms of the BVH path (bvh.glsl, the path's cap
+ * and budget: the material's exact parameters), its texture on unit 5. */
+static void bvh_uniforms(GLuint p, const snell__object *o, const snell__exact_bvh *bvh)
+{
+    const snell_exact_params *e = &o->glass->material.exact;
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_2D, bvh->texture);
+    glUniform1i(glGetUniformLocation(p, "u_bvh"), 5);
+    glUniform1i(glGetUniformLocation(p, "u_node_count"), bvh->node_count);
+    glUniform1i(glGetUniformLocation(p, "u_tri_base"), bvh->tri_base);
+    glUniform3fv(glGetUniformLocation(p, "u_qlo"), 1, bvh->qlo);
+    glUniform3fv(glGetUniformLocation(p, "u_qstep"), 1, bvh->qstep);
+    glUniform1i(glGetUniformLocation(p, "u_node_budget"), e->node_budget);
+    glUniform1i(glGetUniformLocation(p, "u_max_interfaces"), e->max_interfaces);
+    /* secondary rays' minimum distance: exact's (exact.c exact_draw) */
+    glUniform1f(glGetUniformLocation(p, "u_eps"), 1e-5f * o->bsphere[3]);
+    glUniform3fv(glGetUniformLocation(p, "u_tint"), 1, o->glass->material.tint);
+    glUniformMatrix4fv(glGetUniformLocation(p, "u_model"), 1, GL_FALSE, (const GLfloat *)o->model);
+    glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_model"), 1, GL_FALSE, (const GLfloat *)o->inv_model);
+    glUniformMatrix3fv(glGetUniformLocation(p, "u_normal_matrix"), 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
+}
+
 /* One glass object's photons: its nearest and farthest surfaces seen from
  * the light, then the photons added into the plane's light map (plane) and
  * into the opaque receivers' caustic map (F). Returns how many were shot
  * (0: a spot light inside its bounding sphere). */
 static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const snell__object *o, const light_res *L,
-                        const light_frame *F)
+                        const light_frame *F, GLuint prog, const snell__exact_bvh *bvh)
 {
     const snell_receiver *rc = &fd->receiver;
     int n = fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS, i, k, plane = rc->extent > 0.0f, target;
@@ -576,23 +647,24 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
-    glUseProgram(c->photon_prog);
+    glUseProgram(prog);
+    if (bvh) bvh_uniforms(prog, o, bvh);
     for (i = 0; i < 5; i++) {
         glActiveTexture(GL_TEXTURE0 + (GLenum)i);
         glBindTexture(GL_TEXTURE_2D, i == 4 ? c->recv_z : (i & 1) ? c->glass_z[i >> 1] : c->glass_n[i >> 1]);
     }
-    glUniform1i(glGetUniformLocation(c->photon_prog, "u_front_n"), 0);
-    glUniform1i(glGetUniformLocation(c->photon_prog, "u_front_z"), 1);
-    glUniform1i(glGetUniformLocation(c->photon_prog, "u_back_n"), 2);
-    glUniform1i(glGetUniformLocation(c->photon_prog, "u_back_z"), 3);
-    glUniform1i(glGetUniformLocation(c->photon_prog, "u_recv_z"), 4);
-    glUniformMatrix4fv(glGetUniformLocation(c->photon_prog, "u_light_vp"), 1, GL_FALSE, (const GLfloat *)vp);
-    glUniformMatrix4fv(glGetUniformLocation(c->photon_prog, "u_light_inv"), 1, GL_FALSE, (const GLfloat *)inv);
-    glUniform1i(glGetUniformLocation(c->photon_prog, "u_size"), n);
-    light_uniforms(c->photon_prog, L);
-    glUniform1f(glGetUniformLocation(c->photon_prog, "u_tan"), tan_half);
-    glUniform1f(glGetUniformLocation(c->photon_prog, "u_ior"), o->glass->material.ior);
-    glUniform3fv(glGetUniformLocation(c->photon_prog, "u_sigma"), 1, o->glass->absorption);
+    glUniform1i(glGetUniformLocation(prog, "u_front_n"), 0);
+    glUniform1i(glGetUniformLocation(prog, "u_front_z"), 1);
+    glUniform1i(glGetUniformLocation(prog, "u_back_n"), 2);
+    glUniform1i(glGetUniformLocation(prog, "u_back_z"), 3);
+    glUniform1i(glGetUniformLocation(prog, "u_recv_z"), 4);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_light_vp"), 1, GL_FALSE, (const GLfloat *)vp);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_light_inv"), 1, GL_FALSE, (const GLfloat *)inv);
+    glUniform1i(glGetUniformLocation(prog, "u_size"), n);
+    light_uniforms(prog, L);
+    glUniform1f(glGetUniformLocation(prog, "u_tan"), tan_half);
+    glUniform1f(glGetUniformLocation(prog, "u_ior"), o->glass->material.ior);
+    glUniform3fv(glGetUniformLocation(prog, "u_sigma"), 1, o->glass->absorption);
     /* each photon carries the light's flux through its cell of the beam
      * (cell^2 facing the light; spot: its solid angle, the shader's share);
      * per texel area that is the irradiance it adds (the plane), or the flux
@@ -601,19 +673,19 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
         flux[k] = L->col[k] * o->glass->material.tint[k] * cell * cell / (texel * texel);
         flux_recv[k] = L->col[k] * o->glass->material.tint[k] * cell * cell / F->area;
     }
-    glUniform3fv(glGetUniformLocation(c->photon_prog, "u_flux"), 1, flux);
-    glUniform3fv(glGetUniformLocation(c->photon_prog, "u_flux_recv"), 1, flux_recv);
-    plane_uniform(c->photon_prog, rc);
-    glUniform1f(glGetUniformLocation(c->photon_prog, "u_reach"), 2.0f * r);
-    glUniform1i(glGetUniformLocation(c->photon_prog, "u_has_plane"), plane);
-    glUniform1i(glGetUniformLocation(c->photon_prog, "u_recv"), fd->opaque_count > 0);
-    glUniform1f(glGetUniformLocation(c->photon_prog, "u_recv_reach"), F->reach);
-    frame_uniforms(c->photon_prog, c);
+    glUniform3fv(glGetUniformLocation(prog, "u_flux"), 1, flux);
+    glUniform3fv(glGetUniformLocation(prog, "u_flux_recv"), 1, flux_recv);
+    plane_uniform(prog, rc);
+    glUniform1f(glGetUniformLocation(prog, "u_reach"), 2.0f * r);
+    glUniform1i(glGetUniformLocation(prog, "u_has_plane"), plane);
+    glUniform1i(glGetUniformLocation(prog, "u_recv"), fd->opaque_count > 0);
+    glUniform1f(glGetUniformLocation(prog, "u_recv_reach"), F->reach);
+    frame_uniforms(prog, c);
     glBindVertexArray(c->vao);
     for (target = plane ? 0 : 1; target <= (fd->opaque_count > 0); target++) {
         glBindFramebuffer(GL_FRAMEBUFFER, target ? c->cm_fbo : c->map_fbo);
         glViewport(0, 0, target ? F->size : c->map_size, target ? F->size : c->map_size);
-        glUniform1i(glGetUniformLocation(c->photon_prog, "u_target"), target);
+        glUniform1i(glGetUniformLocation(prog, "u_target"), target);
         glDrawArrays(GL_POINTS, 0, n * n);
     }
     glDisable(GL_BLEND);
@@ -687,11 +759,11 @@ static snell_status draw_view(snell__caustics *c, const snell_frame_desc *fd, co
 }
 
 /* The plane and the opaque objects: their light maps made or reused, then drawn. */
-static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
-                                 const snell__scene *sc, snell_frame_stats *s)
+static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prepared_cache *prep,
+                                 const snell_frame_desc *fd, const snell__scene *sc, snell_frame_stats *s)
 {
     GLint fbo = 0, viewport[4];
-    int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, shot = 0, key_len;
+    int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, shot = 0, key_len, by_bvh = 0;
     int plane = fd->receiver.extent > 0.0f, opaque = fd->opaque_count > 0;
     char map[48];
     snell_status st;
@@ -713,7 +785,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, const snell
                    "skipped: the light map needs a float target (GL_EXT_color_buffer_half_float or _float)");
         return SNELL_OK;
     }
-    key_len = make_key(c->scratch, fd, sc);
+    key_len = make_key(c->scratch, c, fd, sc);
     if (c->valid && key_len == c->key_len && memcmp(c->scratch, c->key, (size_t)key_len * sizeof(float)) == 0) {
         s->caustics_reused = 1;
         snell__why(s->caustics_reason, sizeof s->caustics_reason, "reused: nothing moved (light, glass, receivers)");
@@ -737,11 +809,16 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, const snell
     if (st == SNELL_OK && opaque) st = draw_receivers(ctx, c, fd, &F);
     if (st == SNELL_OK) {
         if (plane) draw_direct(c, fd, &L, &F);
-        for (i = 0; i < sc->count; i++)
+        for (i = 0; i < sc->count && st == SNELL_OK; i++)
             if (casts(&sc->obj[i])) {
-                int n = draw_photons(c, fd, &sc->obj[i], &L, &F);
+                snell__exact_bvh bvh;
+                GLuint prog = 0;
+                int n;
+                if ((st = photon_path(ctx, c, prep, &sc->obj[i], &bvh, &prog)) != SNELL_OK) break;
+                n = draw_photons(c, fd, &sc->obj[i], &L, &F, prog ? prog : c->photon_prog, prog ? &bvh : NULL);
                 s->caustics_photons += n;
                 shot += n > 0;
+                by_bvh += prog && n > 0;
                 casters++;
             }
         s->passes += 1 + plane + 2 * opaque + (2 + plane + opaque) * shot;
@@ -755,10 +832,11 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, const snell
     c->valid = 1, c->made_plane = plane, c->made_opaque = opaque;
     if (plane) snprintf(map, sizeof map, "%dx%d %s light map", size, size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
     else snprintf(map, sizeof map, "no plane");
-    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s, %d opaque lit%s; %s",
+    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s, %d opaque lit%s; paths: "
+               "%d BVH, %d depth maps; %s",
                casters, sc->count > casters ? " (thin or clear ones pass)" : "",
                shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count,
-               opaque ? " (light-frame caustic map)" : "", map);
+               opaque ? " (light-frame caustic map)" : "", by_bvh, shot - by_bvh, map);
     return draw_view(c, fd, sc);
 }
 
@@ -771,10 +849,11 @@ snell_status snell__caustics_read_opaque(snell_ctx *ctx, snell__caustics *c, flo
 
 /* The receiver plane and the opaque objects, then the water's floor
  * (water/water_caustics.c), which adds its part to the reason. */
-snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
-                                 const snell__scene *sc, snell_frame_stats *s)
+snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, snell__prepared_cache *prep,
+                                 const snell_frame_desc *fd, const snell__scene *sc, snell_frame_stats *s)
 {
-    snell_status st = fd->receiver.extent > 0.0f || fd->opaque_count > 0 ? receiver_run(ctx, c, fd, sc, s) : SNELL_OK;
+    snell_status st =
+        fd->receiver.extent > 0.0f || fd->opaque_count > 0 ? receiver_run(ctx, c, prep, fd, sc, s) : SNELL_OK;
 #if SNELL_WITH_WATER
     if (st == SNELL_OK && fd->water) st = snell__water_caustics(ctx, fd->water, &fd->light, s);
 #endif
@@ -798,6 +877,8 @@ void snell__caustics_destroy(snell__caustics *c)
     if (c->cm_fbo) glDeleteFramebuffers(1, &c->cm_fbo);
     if (c->cm_tex) glDeleteTextures(1, &c->cm_tex);
     if (c->photon_prog) glDeleteProgram(c->photon_prog);
+    for (i = 0; i < 4; i++)
+        if (c->photon_bvh_prog[i >> 1][i & 1]) glDeleteProgram(c->photon_bvh_prog[i >> 1][i & 1]);
     if (c->direct_prog) glDeleteProgram(c->direct_prog);
     if (c->receiver_prog) glDeleteProgram(c->receiver_prog);
     if (c->vao) glDeleteVertexArrays(1, &c->vao);

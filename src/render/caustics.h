@@ -6,6 +6,7 @@
 #ifndef SNELL_CAUSTICS_H
 #define SNELL_CAUSTICS_H
 
+#include "render/prepared.h"
 #include "render/scene.h"
 
 #define SNELL__CAUSTICS_KEY 4096 /* floats of the reuse key */
@@ -13,6 +14,7 @@
 
 typedef struct snell__caustics {
     unsigned map_prog, photon_prog, direct_prog, receiver_prog, opaque_prog, vao;
+    unsigned photon_bvh_prog[2][2];                /* photons by exact's BVH: [q16 nodes][stack walk] */
     unsigned glass_fbo[2], glass_n[2], glass_z[2]; /* nearest and farthest surfaces from the light */
     int glass_size;
     unsigned shadow_fbo, shadow_z;
@@ -24,6 +26,8 @@ typedef struct snell__caustics {
     float frame_lin[4];                            /* its near, far, 1 = perspective, texel side */
     unsigned map_fbo, map_tex;                     /* the receiver's light map (float rgba) */
     int map_size;
+    int maps_only;                                 /* tests, bench_caustics: every photon takes the depth
+                                                    * maps' one crossing (the only path before the BVH's) */
     unsigned map_format;                           /* GL_RGBA32F or GL_RGBA16F, SNELL__CAUSTICS_NO_FLOAT,
                                                     * 0 = not probed yet (tests set it to take a path) */
     int valid;                                     /* the maps hold the frame keyed by key[] */
@@ -41,9 +45,11 @@ int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n);
 
 /* Makes (or reuses) the light maps and draws the receiver plane (depth-tested,
  * depth written) and the opaque objects lit (over what the opaque stage drew,
- * depth LEQUAL) into the bound framebuffer with the view's view_proj. */
-snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd,
-                                 const snell__scene *sc, snell_frame_stats *s);
+ * depth LEQUAL) into the bound framebuffer with the view's view_proj. prep:
+ * the renderer's prepared cache, where concave glass's photons find the
+ * exact method's BVH of their mesh. */
+snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, snell__prepared_cache *prep,
+                                 const snell_frame_desc *fd, const snell__scene *sc, snell_frame_stats *s);
 
 /* The light map as last made: size x size texels of rgba floats (rgb the
  * receiver's irradiance, a the mean of the light through glass), row 0 at

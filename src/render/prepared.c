@@ -49,13 +49,13 @@ static snell__prepared_entry *find_slot(snell__prepared_cache *c, const snell__m
     return same_mesh ? same_mesh : empty ? empty : lru;
 }
 
-snell_status snell__prepared_get(snell_ctx *ctx, snell__prepared_cache *c, const snell__method *m, void *state,
-                                 snell__object *o, snell_object_stats *stats)
+snell_status snell__prepared_lookup(snell_ctx *ctx, snell__prepared_cache *c, const snell__method *m, void *state,
+                                    const snell__object *o, snell_object_stats *stats, void **out)
 {
     snell__prepared_entry *e;
     int key[4] = {0, 0, 0, 0}, hit;
     snell_status st;
-    o->prepared = NULL;
+    *out = NULL;
     if (!m->prepare) return SNELL_OK;
     m->key(o, key);
     e = find_slot(c, m, o, key, &hit);
@@ -64,7 +64,7 @@ snell_status snell__prepared_get(snell_ctx *ctx, snell__prepared_cache *c, const
     e->frame = c->frame;
     if (hit) {
         stats->skipped |= SNELL_SKIP_PREPARE;
-        o->prepared = e->data;
+        *out = e->data;
         return SNELL_OK;
     }
     if (e->method && e->method != m) release(ctx, e);
@@ -87,8 +87,14 @@ snell_status snell__prepared_get(snell_ctx *ctx, snell__prepared_cache *c, const
     }
     e->ready = 1;
     stats->prepared = 1;
-    o->prepared = e->data;
+    *out = e->data;
     return SNELL_OK;
+}
+
+snell_status snell__prepared_get(snell_ctx *ctx, snell__prepared_cache *c, const snell__method *m, void *state,
+                                 snell__object *o, snell_object_stats *stats)
+{
+    return snell__prepared_lookup(ctx, c, m, state, o, stats, &o->prepared);
 }
 
 void snell__prepared_destroy(snell_ctx *ctx, snell__prepared_cache *c)

@@ -190,7 +190,7 @@ static snell_status run_caustics(snell__frame *f)
 {
     snell__view *v = &f->sc->view;
     const snell_receiver *rc = &f->fd->receiver;
-    snell_status st = snell__caustics_run(f->r->ctx, &f->r->caustics, f->fd, f->sc, f->s);
+    snell_status st = snell__caustics_run(f->r->ctx, &f->r->caustics, &f->r->prepared, f->fd, f->sc, f->s);
     if (st != SNELL_OK || !f->r->caustics.made_plane) return st;
     /* the glass kernels drawn after see the plane lit (common/receiver.glsl) */
     v->receiver_map = f->r->caustics.map_tex;
