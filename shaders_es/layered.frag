@@ -170,15 +170,23 @@ highp vec4 texel0(highp vec3 q)
 // sphere through p about the centre: on a round mesh that is next to the
 // exit, where the bounding sphere's far side is a step away. Measured
 // (snell-bench, sphere 512^2, aa 4, vs FULL): iterations 1 38.98 -> 40.43
-// dB, 2 41.07 -> 40.88 (its second step lands a little nearer from the far
-// side). That point may lie inside the mesh (a cube's entry mid-face); if
+// dB, 2 41.07 -> 40.89 (its second step lands a little nearer from the far
+// side); chord() in closed form, not as sphere_far (two square roots less:
+// 2.04 -> 1.98x single, iterations 1, load 1.5). That point may lie inside the mesh (a cube's entry mid-face); if
 // the plane it looks up is one the ray moves away from, the first step goes
 // to the bounding sphere's far side instead, as before: any later plane is
 // met outside the mesh or on it (the texel-distance sphere there trapped
 // the cube's rays on a wrong face: mean 0.06 -> 3.55 degrees).
+// Where p + t d meets the sphere through p about the centre again (inside
+// the bounding sphere: p lies on the mesh).
+highp float chord(highp vec3 p, highp vec3 d)
+{
+    return max(-2.0 * dot(p, d) / dot(d, d), 0.0);
+}
+
 highp float convex_exit(highp vec3 p, highp vec3 d, out highp vec3 n, const int steps)
 {
-    highp float t_max = sphere_exit(p, d), t = min(sphere_far(p, d, length(p)), t_max);
+    highp float t_max = sphere_exit(p, d), t = chord(p, d);
     n = d;
     for (int i = 0; i < steps; i++) {
         highp vec3 q = p + t * d;
@@ -197,7 +205,9 @@ highp float convex_exit(highp vec3 p, highp vec3 d, out highp vec3 n, const int 
 // Its light is F of the pixel's: half the steps (at least one) find its exit.
 // Measured (snell-bench, sphere 512^2, aa 4, vs FULL, beside single, load 5):
 // iterations 2 with 2 steps here 40.96 dB at 2.71x single, with 1 41.07 dB
-// at 2.53x.
+// at 2.53x. With iterations 1 no plane step: where it meets the sphere
+// through the exit point (chord), with that texel's normal (the sphere's
+// colour the same 40.43 dB, 2.07-2.09x -> 2.04x single, load 1.5).
 #define INNER_STEPS ((SNELL_BINARY + 1) / 2)
 // The branch reflected inside at the exit (weight F there): one more search
 // from the exit point q along rdir, refracted out at the next surface with
@@ -210,7 +220,12 @@ highp float convex_exit(highp vec3 p, highp vec3 d, out highp vec3 n, const int 
 vec3 inner_branch(highp vec3 q, vec3 rdir, float path)
 {
     highp vec3 d = mat3(u_inv_model) * rdir, n;
+#if SNELL_BINARY == 1
+    highp float t = chord(q, d);
+    n = texel0(q + t * d).xyz;
+#else
     highp float t = convex_exit(q, d, n, INNER_STEPS);
+#endif
     vec3 n3 = normalize(u_normal_matrix * n);
     if (dot(n3, rdir) > 0.0) n3 = -n3;
     vec3 out_dir;
