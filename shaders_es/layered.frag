@@ -165,10 +165,28 @@ highp vec4 texel0(highp vec3 q)
 // quadratically (a sphere in one step, to within the bake's precision). A
 // plane the ray runs along (|n.d| tiny) gives the sphere of the texel's
 // distance instead. `steps` steps (a compile-time constant), one look-up
-// each; the normal is the last one's.
+// each; the normal is the last one's. p lies on the surface (the entry, or
+// an exit or bounce point), so the first look-up is where the ray meets the
+// sphere through p about the centre: on a round mesh that is next to the
+// exit, where the bounding sphere's far side is a step away. Measured
+// (snell-bench, sphere 512^2, aa 4, vs FULL): iterations 1 38.98 -> 40.43
+// dB, 2 41.07 -> 40.89 (its second step lands a little nearer from the far
+// side); chord() in closed form, not as sphere_far (two square roots less:
+// 2.04 -> 1.98x single, iterations 1, load 1.5). That point may lie inside the mesh (a cube's entry mid-face); if
+// the plane it looks up is one the ray moves away from, the first step goes
+// to the bounding sphere's far side instead, as before: any later plane is
+// met outside the mesh or on it (the texel-distance sphere there trapped
+// the cube's rays on a wrong face: mean 0.06 -> 3.55 degrees).
+// Where p + t d meets the sphere through p about the centre again (inside
+// the bounding sphere: p lies on the mesh).
+highp float chord(highp vec3 p, highp vec3 d)
+{
+    return max(-2.0 * dot(p, d) / dot(d, d), 0.0);
+}
+
 highp float convex_exit(highp vec3 p, highp vec3 d, out highp vec3 n, const int steps)
 {
-    highp float t_max = sphere_exit(p, d), t = t_max;
+    highp float t_max = sphere_exit(p, d), t = chord(p, d);
     n = d;
     for (int i = 0; i < steps; i++) {
         highp vec3 q = p + t * d;
@@ -177,7 +195,7 @@ highp float convex_exit(highp vec3 p, highp vec3 d, out highp vec3 n, const int 
         highp vec3 x = q * (r / max(length(q), 1e-30 * u_radius));
         highp float dn = dot(s.xyz, d);
         n = s.xyz;
-        t = dn > 1e-3 * length(d) ? dot(s.xyz, x - p) / dn : sphere_far(p, d, r);
+        t = dn > 1e-3 * length(d) ? dot(s.xyz, x - p) / dn : i == 0 ? t_max : sphere_far(p, d, r);
         t = clamp(t, 0.0, t_max);
     }
     return t;
@@ -187,24 +205,34 @@ highp float convex_exit(highp vec3 p, highp vec3 d, out highp vec3 n, const int 
 // Its light is F of the pixel's: half the steps (at least one) find its exit.
 // Measured (snell-bench, sphere 512^2, aa 4, vs FULL, beside single, load 5):
 // iterations 2 with 2 steps here 40.96 dB at 2.71x single, with 1 41.07 dB
-// at 2.53x.
+// at 2.53x. With iterations 1 no plane step: where it meets the sphere
+// through the exit point (chord), with that texel's normal (the sphere's
+// colour the same 40.43 dB, 2.07-2.09x -> 2.04x single, load 1.5).
 #define INNER_STEPS ((SNELL_BINARY + 1) / 2)
 // The branch reflected inside at the exit (weight F there): one more search
 // from the exit point q along rdir, refracted out at the next surface with
 // (1 - F'), its own reflection F' leaving in the mirror direction (the rest
 // of the tree lumped, so that no energy is lost), as cubemap.frag's
-// inner_branch. Radiance, before the tint.
+// inner_branch. Radiance, before the tint. Its environment look-ups take
+// the nearest texel (snell_env_nearest): filtered, they were about 0.2x
+// single's frame of the sphere's (snell-bench 512^2, iterations 1, 2.48 ->
+// 2.20x single) for 0.013 dB (40.44 -> 40.43 against FULL).
 vec3 inner_branch(highp vec3 q, vec3 rdir, float path)
 {
     highp vec3 d = mat3(u_inv_model) * rdir, n;
+#if SNELL_BINARY == 1
+    highp float t = chord(q, d);
+    n = texel0(q + t * d).xyz;
+#else
     highp float t = convex_exit(q, d, n, INNER_STEPS);
+#endif
     vec3 n3 = normalize(u_normal_matrix * n);
     if (dot(n3, rdir) > 0.0) n3 = -n3;
     vec3 out_dir;
     vec3 mirror = snell_reflect(rdir, n3);
     bool exited = snell_refract(rdir, n3, snell_ior, out_dir);
     float f = exited ? snell_fresnel(-dot(rdir, n3), snell_ior, 1.0) : 1.0;
-    vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(mirror);
+    vec3 l = (1.0 - f) * snell_env_nearest(normalize(out_dir)) + f * snell_env_nearest(mirror);
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, path + t);
 #endif
@@ -365,7 +393,8 @@ vec3 disp_normal(inout highp vec3 q, highp vec3 d, highp float t, vec3 dir)
 // march from the last point inside, q (c surfaces below it), along rdir,
 // refracted out at the next surface with (1 - F'), its own reflection F'
 // leaving in the mirror direction (the rest of the tree lumped, so that no
-// energy is lost), as cubemap.frag's inner_branch. Radiance, before the tint.
+// energy is lost), as cubemap.frag's inner_branch, its environment nearest
+// as the convex program's. Radiance, before the tint.
 vec3 inner_branch(highp vec3 q, vec3 rdir, int c, float path)
 {
     highp vec3 d = mat3(u_inv_model) * rdir;
@@ -382,7 +411,7 @@ vec3 inner_branch(highp vec3 q, vec3 rdir, int c, float path)
     vec3 mirror = snell_reflect(rdir, n3);
     bool exited = snell_refract(rdir, n3, snell_ior, out_dir);
     float f = exited ? snell_fresnel(-dot(rdir, n3), snell_ior, 1.0) : 1.0;
-    vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(mirror);
+    vec3 l = (1.0 - f) * snell_env_nearest(normalize(out_dir)) + f * snell_env_nearest(mirror);
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, path + t);
 #endif

@@ -336,11 +336,13 @@ int main(void)
     for (i = 0; i < NG; i++) CHECK(order_seen[i] == 1, "draw order %d used %d times", i, order_seen[i]);
     /* Shading: forced, or AUTO's rule on the estimated pixels per front triangle. */
     for (i = 0; i < NG; i++) {
+        snell_mesh_analysis an;
+        int convex = snell_mesh_analyze(glass[i].mesh, &an) == SNELL_OK && an.convex;
         int want = test_shading() == SNELL_SHADING_SCREEN ||
                    (test_shading() == SNELL_SHADING_AUTO &&
                     st.glass[i].pixels_per_triangle <
                         snell__screen_threshold(snell__device_class_of(snell_ctx_gl_renderer(ctx)),
-                                                snell__method_get(st.glass[i].method_used)));
+                                                snell__method_get(st.glass[i].method_used), convex));
         CHECK(st.glass[i].screen_space == want && st.glass[i].pixels_per_triangle > 0.0f,
               "object %d: screen_space %d at %.1f px/triangle", i, st.glass[i].screen_space,
               st.glass[i].pixels_per_triangle);

@@ -40,18 +40,41 @@ highp vec3 snell_dp_dir(highp vec2 uv, highp float layer, highp float size)
     return vec3(2.0 * st / (1.0 + r2), layer > 0.5 ? -z : z);
 }
 
+// SNELL_ENV_NEAREST (a kernel's define): snell_env_nearest looks the same
+// environment up through a nearest-texel sampler object on its own unit
+// (frame/units.h SNELL__UNIT_ENV_NEAREST, bound by the kernel), for light of
+// small weight whose filtering costs more than it shows (layered.c: the
+// exit's internal reflection).
 #ifdef SNELL_ENV_DUAL_PARABOLOID
 uniform highp sampler2DArray u_env;
+#ifdef SNELL_ENV_NEAREST
+uniform highp sampler2DArray u_env_nearest;
+#endif
 
-vec3 snell_env(vec3 dir)
+vec3 snell_env_from(highp sampler2DArray s, vec3 dir)
 {
-    return texture(u_env, snell_dp_coords(dir, float(textureSize(u_env, 0).x))).rgb;
+    return texture(s, snell_dp_coords(dir, float(textureSize(s, 0).x))).rgb;
 }
 #else
 uniform samplerCube u_env;
+#ifdef SNELL_ENV_NEAREST
+uniform samplerCube u_env_nearest;
+#endif
+
+vec3 snell_env_from(samplerCube s, vec3 dir)
+{
+    return texture(s, dir).rgb;
+}
+#endif
 
 vec3 snell_env(vec3 dir)
 {
-    return texture(u_env, dir).rgb;
+    return snell_env_from(u_env, dir);
+}
+
+#ifdef SNELL_ENV_NEAREST
+vec3 snell_env_nearest(vec3 dir)
+{
+    return snell_env_from(u_env_nearest, dir);
 }
 #endif

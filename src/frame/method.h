@@ -46,6 +46,10 @@ typedef struct snell__method {
      * G-buffer pass pays off sooner the more a kernel costs per pixel
      * (bench/BENCHMARKS.md "Screen-space stage"). */
     float software_screen_ppt;
+    /* The same for a convex mesh where the method runs a cheaper program of
+     * its own there (0: software_screen_ppt): the cheaper a pixel, the larger
+     * the triangles forward shading pays on. */
+    float software_screen_ppt_convex;
     /* Per-frame inputs beyond the front surface: nonzero = the frame's shared
      * back-face pass (the glass's farthest back faces' normal, depth and id,
      * render/gbuffer.h SNELL__BACK_UNIT_*) is drawn before this method's

@@ -23,7 +23,9 @@
 #define SNELL__WATER_HEIGHTS_UNIT 9   /* the water's heights (water/water_draw.h) */
 #define SNELL__WATER_LIGHT_UNIT 10    /* ... and its floor's light map (water/water_caustics.c) */
 #define SNELL__RECEIVER_UNIT 11       /* the receiver plane's light map (render/caustics.c) */
-#define SNELL__UNIT_COUNT 12
+#define SNELL__UNIT_ENV_NEAREST 12   /* unit 0's environment again, through a nearest sampler (common/env.glsl
+                                       * snell_env_nearest; methods/layered.c) */
+#define SNELL__UNIT_COUNT 13
 
 #include "core/glstate.h"
 /* The EXTERNAL backend's snapshot must cover every unit of the table. */

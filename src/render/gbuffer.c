@@ -250,11 +250,13 @@ snell__device_class snell__device_class_of(const char *gl_renderer)
     return SNELL__DEVICE_IMMEDIATE;
 }
 
-float snell__screen_threshold(snell__device_class device, const snell__method *method)
+float snell__screen_threshold(snell__device_class device, const snell__method *method, int convex)
 {
     switch (device) {
     /* Software rasterisers shade 4x4 blocks: the crossover measured per method. */
-    case SNELL__DEVICE_SOFTWARE: return method->software_screen_ppt;
+    case SNELL__DEVICE_SOFTWARE:
+        return convex && method->software_screen_ppt_convex > 0.0f ? method->software_screen_ppt_convex
+                                                                   : method->software_screen_ppt;
     /* Not measured yet (no GPU here), from how they work: tile-based GPUs pay
      * the extra pass in memory bandwidth, so only for sub-pixel triangles;
      * immediate-mode GPUs shade 2x2 quads, so most lanes idle below a few pixels. */

@@ -65,10 +65,10 @@ typedef enum snell__device_class {
 } snell__device_class;
 
 snell__device_class snell__device_class_of(const char *gl_renderer);
-/* The AUTO shading rule's threshold for a device and a method: objects whose
- * front triangles cover fewer (estimated) pixels each than this are shaded
- * in screen space. */
-float snell__screen_threshold(snell__device_class device, const snell__method *method);
+/* The AUTO shading rule's threshold for a device and a method, on a convex
+ * mesh or not: objects whose front triangles cover fewer (estimated) pixels
+ * each than this are shaded in screen space. */
+float snell__screen_threshold(snell__device_class device, const snell__method *method, int convex);
 /* Projects o's bounding sphere once per frame into o->pixels_per_triangle
  * (per front triangle) and o->scissor (window pixels x, y, w, h; the whole
  * target if the sphere reaches the eye's plane). */

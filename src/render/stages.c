@@ -52,7 +52,7 @@ static void choose_shading(snell_renderer *r, snell__object *o, snell_object_sta
 {
     snell__object_project(&r->scene.view, o);
     st->pixels_per_triangle = o->pixels_per_triangle;
-    float threshold = snell__screen_threshold(r->device, r->object_method[o->index]);
+    float threshold = snell__screen_threshold(r->device, r->object_method[o->index], o->analysis && o->analysis->convex);
     /* With MSAA, AUTO draws glass forward: the screen-space stage shades
      * whole pixels from a single-sample G-buffer, so its silhouettes would
      * stay aliased. */
