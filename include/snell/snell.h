@@ -1049,7 +1049,7 @@ typedef struct snell_object_stats {
                                      * area / front triangles (half the mesh's) */
     /* The counters of the method that drew it, in the order its
      * snell_method_info.counters names them (e.g. PEEL: layers_peeled,
-     * layers_used; EXACT: fallback_pixels); -1 where not counted this frame.
+     * layers_found; EXACT: fallback_pixels); -1 where not counted this frame.
      * snell_object_counter() reads one by name. */
     int counters[SNELL_MAX_METHOD_COUNTERS];
     int env_paraboloid;             /* 1: it looked its environment up in dual-paraboloid maps, 0: the cube */
