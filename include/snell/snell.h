@@ -553,7 +553,8 @@ typedef enum snell_peel_fixes {
  * built on first use). */
 typedef struct snell_peel_params {
     int layers;                /* depth layers peeled, 2..8 (default 4, as the seed argues; fewer are
-                                * peeled where the mesh's depth_complexity or an empty layer allows) */
+                                * peeled where the mesh's depth_complexity or the object's last
+                                * peels (one past the layers they found non-empty) allow) */
     int linear_steps;          /* linear search steps over the bounding diameter, 1..128 (default 16; the
                                 * seed's 50 cost 1.4x for 2-10% less error, bench/BENCHMARKS.md) */
     int binary_steps;          /* binary refinement steps after a linear crossing, 1..16 (default 6) */
