@@ -118,20 +118,29 @@ static snell_mesh *shape(snell_ctx *ctx, snell_shape s)
     return mesh;
 }
 
-/* Renders exit directions (or colour, when rgba is given) of the frame with method m. */
-static void render(snell_ctx *ctx, snell_frame_desc *fd, snell_glass *g, snell_method m, float *dirs, uint8_t *rgba,
-                   snell_frame_stats *stats)
+static snell_renderer *renderer(snell_ctx *ctx, snell_output out)
 {
     snell_renderer *r = NULL;
     snell_renderer_desc rd;
     memset(&rd, 0, sizeof rd);
     rd.width = W;
     rd.height = H;
-    rd.output = rgba ? SNELL_OUTPUT_COLOR : SNELL_OUTPUT_EXIT_DIRECTION;
+    rd.output = out;
     rd.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    return r;
+}
+
+/* Renders exit directions (or colour, when rgba is given) of the frame with
+ * method m: the second of two, whose peels follow the first's occlusion
+ * results (so the stats count the layers found). */
+static void render(snell_ctx *ctx, snell_frame_desc *fd, snell_glass *g, snell_method m, float *dirs, uint8_t *rgba,
+                   snell_frame_stats *stats)
+{
+    snell_renderer *r = renderer(ctx, rgba ? SNELL_OUTPUT_COLOR : SNELL_OUTPUT_EXIT_DIRECTION);
     if (!r) return;
     g->material.method = m;
+    CHECK_OK_CTX(ctx, snell_render(r, fd, stats));
     CHECK_OK_CTX(ctx, snell_render(r, fd, stats));
     if (rgba) CHECK_OK(snell_renderer_read_rgba(r, rgba));
     else CHECK_OK(snell_renderer_read_exit_dirs(r, dirs));
@@ -175,18 +184,18 @@ static void test_depth_complexity(snell_ctx *ctx, snell_env *env)
         if (i == 0) {
             g.material.peel.layers = 8;
             render(ctx, &fd, &g, SNELL_METHOD_PEEL, dirs, NULL, &st);
-            CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 2 && snell_object_counter(&st.glass[0], "layers_used") == 2, "sphere: %d peeled, %d used",
-                  snell_object_counter(&st.glass[0], "layers_peeled"), snell_object_counter(&st.glass[0], "layers_used"));
+            CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 2 && snell_object_counter(&st.glass[0], "layers_found") == 2, "sphere: %d peeled, %d found",
+                  snell_object_counter(&st.glass[0], "layers_peeled"), snell_object_counter(&st.glass[0], "layers_found"));
         }
         if (i == 2) {
             fd.camera.elevation = 1.5707f; /* from straight above: one tube per view ray */
             render(ctx, &fd, &g, SNELL_METHOD_PEEL, dirs, NULL, &st);
-            CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 3 && snell_object_counter(&st.glass[0], "layers_used") == 2,
-                  "torus from above: %d peeled, %d used", snell_object_counter(&st.glass[0], "layers_peeled"), snell_object_counter(&st.glass[0], "layers_used"));
+            CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 3 && snell_object_counter(&st.glass[0], "layers_found") == 2,
+                  "torus from above: %d peeled, %d found", snell_object_counter(&st.glass[0], "layers_peeled"), snell_object_counter(&st.glass[0], "layers_found"));
             fd.camera.elevation = 0.1f; /* nearly edge-on: both tubes */
             render(ctx, &fd, &g, SNELL_METHOD_PEEL, dirs, NULL, &st);
-            CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 4 && snell_object_counter(&st.glass[0], "layers_used") == 4, "torus edge-on: %d peeled, %d used",
-                  snell_object_counter(&st.glass[0], "layers_peeled"), snell_object_counter(&st.glass[0], "layers_used"));
+            CHECK(snell_object_counter(&st.glass[0], "layers_peeled") == 4 && snell_object_counter(&st.glass[0], "layers_found") == 4, "torus edge-on: %d peeled, %d found",
+                  snell_object_counter(&st.glass[0], "layers_peeled"), snell_object_counter(&st.glass[0], "layers_found"));
         }
         snell_mesh_destroy(mesh);
     }
@@ -489,9 +498,9 @@ static void test_two_objects(snell_ctx *ctx, snell_env *env)
     fd.scene_layers = -1; /* the kernel's own layer textures are the point, not what the torus sees of the goblet */
     render(ctx, &fd, &g[0], SNELL_METHOD_PEEL, both, NULL, &st);
     CHECK(st.glass[0].method_used == SNELL_METHOD_PEEL && st.glass[1].method_used == SNELL_METHOD_PEEL &&
-              snell_object_counter(&st.glass[0], "layers_used") >= 2 && snell_object_counter(&st.glass[1], "layers_used") >= 2,
-          "methods %d %d, layers used %d %d", (int)st.glass[0].method_used, (int)st.glass[1].method_used,
-          snell_object_counter(&st.glass[0], "layers_used"), snell_object_counter(&st.glass[1], "layers_used"));
+              snell_object_counter(&st.glass[0], "layers_found") >= 2 && snell_object_counter(&st.glass[1], "layers_found") >= 2,
+          "methods %d %d, layers found %d %d", (int)st.glass[0].method_used, (int)st.glass[1].method_used,
+          snell_object_counter(&st.glass[0], "layers_found"), snell_object_counter(&st.glass[1], "layers_found"));
     fd.glass_count = 1;
     render(ctx, &fd, &g[0], SNELL_METHOD_PEEL, alone, NULL, &st);
     fd.glass_count = 0; /* the background's directions: where the torus is not */
@@ -569,8 +578,8 @@ static void test_winding(snell_ctx *ctx, snell_env *env)
         fd.camera.azimuth = 0.3f;
         fd.camera.elevation = 0.1f; /* nearly edge-on: rays through both tubes, 4 layers */
         render(ctx, &fd, &g, SNELL_METHOD_PEEL, dirs[c], NULL, &st);
-        CHECK(snell_object_counter(&st.glass[0], "layers_used") == 4, "torus %d: %d layers used", c,
-              snell_object_counter(&st.glass[0], "layers_used"));
+        CHECK(snell_object_counter(&st.glass[0], "layers_found") == 4, "torus %d: %d layers found", c,
+              snell_object_counter(&st.glass[0], "layers_found"));
     }
     fd.glass_count = 0;
     render(ctx, &fd, &g, SNELL_METHOD_PEEL, none, NULL, &st);
@@ -585,6 +594,70 @@ static void test_winding(snell_ctx *ctx, snell_env *env)
 out:
     snell_mesh_destroy(mesh[0]);
     snell_mesh_destroy(mesh[1]);
+}
+
+/* One frame of r (exit directions) into dirs; its stats' peel counters. */
+static void history_frame(snell_ctx *ctx, snell_renderer *r, const snell_frame_desc *fd, float *dirs, int *peeled,
+                          int *found)
+{
+    snell_frame_stats st;
+    *peeled = *found = -2;
+    if (!r) return;
+    CHECK_OK_CTX(ctx, snell_render(r, fd, &st));
+    CHECK_OK(snell_renderer_read_exit_dirs(r, dirs));
+    *peeled = snell_object_counter(&st.glass[0], "layers_peeled");
+    *found = snell_object_counter(&st.glass[0], "layers_found");
+}
+
+static int dirs_differ(const float *a, const float *b)
+{
+    int i, n = 0;
+    for (i = 0; i < W * H; i++) n += memcmp(a + 3 * i, b + 3 * i, 3 * sizeof(float)) != 0;
+    return n;
+}
+
+static void test_history(snell_ctx *ctx, snell_env *env)
+{
+    static float all[W * H * 3], dirs[W * H * 3];
+    snell_mesh *mesh = shape(ctx, SNELL_SHAPE_TORUS);
+    snell_renderer *r = renderer(ctx, SNELL_OUTPUT_EXIT_DIRECTION), *fresh = NULL;
+    snell_frame_desc fd;
+    snell_glass g;
+    int f, peeled, found, n;
+    if (!mesh || !r) goto out;
+    test_frame_one(&fd, &g, mesh, env);
+    g.material.method = SNELL_METHOD_PEEL;
+    fd.camera.elevation = 1.5707f; /* from straight above: one tube per view ray, 2 layers */
+    history_frame(ctx, r, &fd, all, &peeled, &found);
+    CHECK(peeled == 4 && found == -1, "first frame: %d peeled (want all 4), %d found (want -1: no result)", peeled, found);
+    for (f = 2; f <= 4; f++) {
+        history_frame(ctx, r, &fd, dirs, &peeled, &found);
+        n = dirs_differ(dirs, all);
+        CHECK(peeled == 3 && found == 2, "still frame %d: %d peeled, %d found (want 3, 2)", f, peeled, found);
+        CHECK(n == 0, "still frame %d: %d pixels differ from the first frame's, which peeled every layer", f, n);
+    }
+    /* edge-on: both tubes, 4 layers; what every layer gives, from a renderer without history */
+    fd.camera.elevation = 0.1f;
+    fresh = renderer(ctx, SNELL_OUTPUT_EXIT_DIRECTION);
+    history_frame(ctx, fresh, &fd, all, &peeled, &found);
+    CHECK(peeled == 4, "edge-on without history: %d peeled", peeled);
+    history_frame(ctx, r, &fd, dirs, &peeled, &found);
+    n = dirs_differ(dirs, all);
+    printf("history: the first edge-on frame peels %d layers (found %d): %d pixels differ from every layer's\n",
+           peeled, found, n);
+    CHECK(peeled == 3 && found == 2, "first edge-on frame: %d peeled, %d found (want 3: the spare, 2)", peeled, found);
+    CHECK(n > 0, "the first edge-on frame lacks layer 4 but no pixel differs (the view does not test growth)");
+    history_frame(ctx, r, &fd, dirs, &peeled, &found);
+    n = dirs_differ(dirs, all);
+    CHECK(peeled == 4 && found == 3, "second edge-on frame: %d peeled, %d found (want 4, 3: the spare was full)",
+          peeled, found);
+    CHECK(n == 0, "second edge-on frame: %d pixels differ from every layer's", n);
+    history_frame(ctx, r, &fd, dirs, &peeled, &found);
+    CHECK(peeled == 4 && found == 4, "third edge-on frame: %d peeled, %d found (want 4, 4)", peeled, found);
+out:
+    snell_renderer_destroy(fresh);
+    snell_renderer_destroy(r);
+    snell_mesh_destroy(mesh);
 }
 
 int main(void)
@@ -607,6 +680,7 @@ int main(void)
     test_two_objects(ctx, env);
     test_absorption(ctx, env);
     test_winding(ctx, env);
+    test_history(ctx, env);
     snell_env_destroy(env);
     snell_ctx_destroy(ctx);
     return test_finish();

@@ -553,7 +553,8 @@ typedef enum snell_peel_fixes {
  * built on first use). */
 typedef struct snell_peel_params {
     int layers;                /* depth layers peeled, 2..8 (default 4, as the seed argues; fewer are
-                                * peeled where the mesh's depth_complexity or an empty layer allows) */
+                                * peeled where the mesh's depth_complexity or the object's last
+                                * peels (one past the layers they found non-empty) allow) */
     int linear_steps;          /* linear search steps over the bounding diameter, 1..128 (default 16; the
                                 * seed's 50 cost 1.4x for 2-10% less error, bench/BENCHMARKS.md) */
     int binary_steps;          /* binary refinement steps after a linear crossing, 1..16 (default 6) */
@@ -1049,7 +1050,7 @@ typedef struct snell_object_stats {
                                      * area / front triangles (half the mesh's) */
     /* The counters of the method that drew it, in the order its
      * snell_method_info.counters names them (e.g. PEEL: layers_peeled,
-     * layers_used; EXACT: fallback_pixels); -1 where not counted this frame.
+     * layers_found; EXACT: fallback_pixels); -1 where not counted this frame.
      * snell_object_counter() reads one by name. */
     int counters[SNELL_MAX_METHOD_COUNTERS];
     int env_paraboloid;             /* 1: it looked its environment up in dual-paraboloid maps, 0: the cube */

@@ -123,7 +123,7 @@ typedef struct bench_config {
     int ok;
     char error[256];
     int frames;
-    double t_median, t_min, t_max; /* ms per frame, CPU wall clock, each frame ended by glFinish */
+    double t_median, t_p95, t_min, t_max; /* ms per frame, CPU wall clock, each frame ended by glFinish */
     double gpu_median;             /* ms, GL_EXT_disjoint_timer_query; < 0 if not measured */
     double vs_single;              /* median over rounds of time / time of the single-surface
                                     * configuration of the same scene and size; < 0 if none */

@@ -201,21 +201,13 @@ static void frame_of(const bench_scene *s, const snell_env *env, budget_config *
     }
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
+/* cli_percentile of a copy: v keeps its frame order. */
 static double percentile(const double *v, int n, double p)
 {
     double *t = (double *)malloc(sizeof(double) * (size_t)n), r;
-    int i;
     if (!t) return -1.0;
     memcpy(t, v, sizeof(double) * (size_t)n);
-    qsort(t, (size_t)n, sizeof(double), cmp_double);
-    i = (int)ceil(p * n) - 1;
-    r = t[i < 0 ? 0 : i >= n ? n - 1 : i];
+    r = cli_percentile(t, n, p);
     free(t);
     return r;
 }

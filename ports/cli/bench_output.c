@@ -213,6 +213,8 @@ static void json_result(FILE *f, const bench_config *c)
     }
     fprintf(f, ", \"time_ms\": {\"median\": ");
     json_num(f, c->t_median);
+    fprintf(f, ", \"p95\": ");
+    json_num(f, c->t_p95);
     fprintf(f, ", \"min\": ");
     json_num(f, c->t_min);
     fprintf(f, ", \"max\": ");
@@ -326,7 +328,7 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
     char why[64];
     int i, m, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
     if (!f) return 0;
-    fprintf(f, "spec,method,scene,width,height,ior,ok,time_median_ms,time_min_ms,time_max_ms,gpu_median_ms,"
+    fprintf(f, "spec,method,scene,width,height,ior,ok,time_median_ms,time_p95_ms,time_min_ms,time_max_ms,gpu_median_ms,"
                "vs_single,pareto,exit_dir_encoding,nan_inf,glass_objects,opaque_objects,warnings");
     for (m = 0; m < 2; m++) {
         const char *p = m ? "full" : "matched";
@@ -350,6 +352,7 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
                 resolved_ior(c), c->ok);
         if (c->ok) {
             csv_num(f, c->t_median);
+            csv_num(f, c->t_p95);
             csv_num(f, c->t_min);
             csv_num(f, c->t_max);
             csv_num(f, c->gpu_median >= 0 ? c->gpu_median : NAN);
@@ -360,8 +363,8 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
             csv_scene(f, c);
             fprintf(f, ",");
         } else {
-            /* 11 empty fields from time_median_ms to warnings, the error fields, then the error */
-            for (m = 0; m < 11 + 2 * CSV_MODE_FIELDS + CSV_SCENE_FIELDS + 1; m++) fputc(',', f);
+            /* 12 empty fields from time_median_ms to warnings, the error fields, then the error */
+            for (m = 0; m < 12 + 2 * CSV_MODE_FIELDS + CSV_SCENE_FIELDS + 1; m++) fputc(',', f);
             fprintf(f, "\"%s\"", c->error);
         }
         if (lp >= 0) fprintf(f, ",%d\n", lp);

@@ -116,7 +116,8 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
 static void close_slot(const bench_options *o, timing_slot *t)
 {
     if (t->c->ok) {
-        t->c->t_median = cli_median(t->times, o->frames); /* sorts */
+        t->c->t_p95 = cli_percentile(t->times, o->frames, 0.95); /* sorts */
+        t->c->t_median = cli_median(t->times, o->frames);
         t->c->t_min = t->times[0];
         t->c->t_max = t->times[o->frames - 1];
         t->c->gpu_median = t->gpu_n == o->frames ? cli_median(t->gpu, t->gpu_n) : -1.0;

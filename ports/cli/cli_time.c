@@ -2,6 +2,7 @@
 /* cli_time.c — monotonic wall clock, medians and the load average shared by the ports. */
 #include "cli_time.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +35,13 @@ double cli_median(double *v, int n)
 {
     qsort(v, (size_t)n, sizeof *v, cmp_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double cli_percentile(double *v, int n, double p)
+{
+    int i = (int)ceil(p * n) - 1;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return v[i < 0 ? 0 : i >= n ? n - 1 : i];
 }
 
 int cli_llvmpipe_threads(const char *gl_renderer, char *why, size_t size)

@@ -1,5 +1,5 @@
 /* cli_time.h — the ports' one clock: monotonic wall time in milliseconds,
- * the median of a sample (snell-render --frames, snell-bench 3D and --2d,
+ * the median and percentiles of a sample (snell-render --frames, snell-bench 3D and --2d,
  * snell-kiosk), the load average and how many threads a software renderer
  * times with. */
 #ifndef SNELL_CLI_TIME_H
@@ -14,6 +14,9 @@ void cli_loadavg(char *buf, size_t n);
 double cli_now_ms(void);
 /* Median of v[0..n), n >= 1; sorts v in place (so v[0], v[n-1] are min, max). */
 double cli_median(double *v, int n);
+/* The p-quantile of v[0..n) (0 < p <= 1, n >= 1): the smallest value with at
+ * least p * n values at or below it (p = 1: the maximum); sorts v in place. */
+double cli_percentile(double *v, int n, double p);
 /* llvmpipe's rasteriser threads: Mesa reads LP_NUM_THREADS when the context is
  * created; unset, it uses one per CPU (capped by Mesa); 0 rasterises on the
  * calling thread. -1 (and "not llvmpipe") for other renderers (gl_renderer:

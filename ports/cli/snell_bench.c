@@ -66,9 +66,9 @@ static int measure_all(snell_ctx *ctx, const snell_env *env, const bench_options
             else
                 snprintf(angles, sizeof angles, "exit direction - (per-pixel angles are chaotic on this mesh)");
             fprintf(stderr,
-                    "[%d/%d] %.2f ms/frame%s; %s; glass PSNR vs FULL %.2f dB (whole frame %.2f dB); NaN/Inf %ld; "
+                    "[%d/%d] %.2f ms/frame (p95 %.2f, worst %.2f)%s; %s; glass PSNR vs FULL %.2f dB (whole frame %.2f dB); NaN/Inf %ld; "
                     "%.0f s elapsed\n",
-                    i + 1, n, c->t_median, timer, angles, c->img_glass[1].psnr_db, c->img[1].psnr_db, c->nan_inf,
+                    i + 1, n, c->t_median, c->t_p95, c->t_max, timer, angles, c->img_glass[1].psnr_db, c->img[1].psnr_db, c->nan_inf,
                     (cli_now_ms() - t_start) / 1000.0);
         }
     }

@@ -16,11 +16,17 @@
  *
  * Peels are skipped where they cannot hold anything: no more than the
  * mesh's depth complexity (snell_mesh_analysis.depth_complexity, surfaces
- * crossed along sampled lines, rounded up to a front/back pair), and none
- * after one that came out empty (an ANY_SAMPLES_PASSED query on each peel
- * after the first, read before the next is drawn). The layer textures are
- * the method's (per renderer), sized to the target and the most layers
- * asked for; objects peel one after the other into them. */
+ * crossed along sampled lines, rounded up to a front/back pair), and no more
+ * than one past the layers the object's last peels found non-empty (an
+ * ANY_SAMPLES_PASSED query on each peel after the first, read a frame or
+ * more later, once GL_QUERY_RESULT_AVAILABLE says so: never waited for
+ * within a frame; peel_history). A layer drawn empty changes nothing (the
+ * kernel reads it as no surface), so a still camera's image is the one of
+ * every wanted layer; a view that needs two or more layers more than the
+ * last one found misses them for one frame (the spare layer's query sees the
+ * growth), then every wanted layer is peeled. The layer textures are the
+ * method's (per renderer), sized to the target and the most layers asked
+ * for; objects peel one after the other into them. */
 #include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
@@ -53,6 +59,16 @@ typedef struct peel_prog {
     int layers, layer_count, fwd, near_, inv_range, size, max_interfaces;
 } peel_prog;
 
+/* One glass object's (by its index in the frame) last peels: their
+ * occlusion queries and what the last ones read found. */
+typedef struct peel_history {
+    unsigned version;                      /* of the mesh it is about; 0: none */
+    unsigned query[SNELL_PEEL_MAX_LAYERS]; /* layer k's ANY_SAMPLES_PASSED (k >= 1; [0] marks them made) */
+    int pending;                           /* layers of the peels whose queries are not read yet; 0: none */
+    int found;                             /* non-empty layers the last read peels found; -1: none read */
+    int full;                              /* 1: every layer they drew was non-empty (it may need more) */
+} peel_history;
+
 typedef struct peel_state {
     snell__output_kind out;
     peel_prog prog[PROG_CACHE];
@@ -61,6 +77,7 @@ typedef struct peel_state {
     unsigned layer_prog;
     int u_model, u_normal_matrix, u_view_proj, u_eye, u_fwd, u_near, u_inv_range, u_first, u_prev;
     snell__peel_targets t;
+    peel_history hist[SNELL_MAX_GLASS];
 } peel_state;
 
 static void peel_destroy(snell_ctx *ctx, void *state);
@@ -141,6 +158,8 @@ static void peel_destroy(snell_ctx *ctx, void *state)
     int i;
     if (!s) return;
     for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
+    for (i = 0; i < SNELL_MAX_GLASS; i++)
+        if (s->hist[i].query[0]) glDeleteQueries(SNELL_PEEL_MAX_LAYERS, s->hist[i].query);
     if (s->layer_prog) glDeleteProgram(s->layer_prog);
     snell__peel_targets_release(&s->t);
     snell__free(&ctx->alloc, s);
@@ -159,16 +178,45 @@ static void depth_frame(const snell__view *v, const snell__object *o, float fwd[
     *inv_range = 0.5f / o->bsphere[3];
 }
 
-/* Draws up to `want` peels of the object; returns how many were drawn in
- * *peeled and how many hold something in *used. */
+/* Reads h's pending queries if the GPU has every result (else leaves them
+ * pending): the layers found are the first one and those after it up to
+ * the first empty one. */
+static void history_read(peel_history *h)
+{
+    GLuint any = 1;
+    int k;
+    for (k = 1; k < h->pending; k++) {
+        glGetQueryObjectuiv(h->query[k], GL_QUERY_RESULT_AVAILABLE, &any);
+        if (!any) return;
+    }
+    for (k = 1; k < h->pending; k++) {
+        glGetQueryObjectuiv(h->query[k], GL_QUERY_RESULT, &any);
+        if (!any) break;
+    }
+    h->found = k;
+    h->full = k == h->pending;
+    h->pending = 0;
+}
+
+/* The peels of this frame: every wanted one without a result yet or after
+ * peels that all came out full (the object may need more than they had),
+ * else one more than the last found (the spare: its query sees growth). */
+static int history_peels(const peel_history *h, int want)
+{
+    return h->found < 0 || h->full || h->found + 1 > want ? want : h->found + 1;
+}
+
+/* Draws `n` peels of the object, each after the first with an occlusion
+ * query of h's unless h's last ones are still pending (then none: those are
+ * read first). */
 static snell_status peel_layers(snell_ctx *ctx, peel_state *s, const snell__view *v, const snell__object *o,
-                                int want, int *peeled, int *used)
+                                peel_history *h, int n)
 {
     float fwd[3], near_, inv_range, d2 = 0.0f;
     snell__pass pass;
     snell_status st;
-    int k, winding = 0, flip = 0;
-    *peeled = *used = 0;
+    int k, winding = 0, flip = 0, query = h->pending == 0;
+    if (query && !h->query[0]) glGenQueries(SNELL_PEEL_MAX_LAYERS, h->query);
     depth_frame(v, o, fwd, &near_, &inv_range);
     for (k = 0; k < 3; k++) d2 += (v->eye[k] - o->bsphere[k]) * (v->eye[k] - o->bsphere[k]);
     /* A closed solid of known winding seen from outside its bounding sphere:
@@ -194,29 +242,23 @@ static snell_status peel_layers(snell_ctx *ctx, peel_state *s, const snell__view
     glEnable(GL_SCISSOR_TEST);
     glScissor(o->scissor[0], o->scissor[1], o->scissor[2], o->scissor[3]);
     glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
-    for (k = 0; k < want; k++) {
-        GLuint any = 1;
+    for (k = 0; k < n; k++) {
         if ((st = snell__peel_layer_begin(ctx, &s->t, k)) != SNELL_OK) {
             glDisable(GL_SCISSOR_TEST);
             snell__pass_end(&pass);
             return st;
         }
         glUniform1i(s->u_first, k == 0);
-        if (k > 0) glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, s->t.query);
+        if (query && k > 0) glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, h->query[k]);
         if (winding != 0) {
             glEnable(GL_CULL_FACE);
             glCullFace(((k & 1) != 0) != flip ? GL_FRONT : GL_BACK); /* even k: cull the back faces */
             glFrontFace(GL_CCW);
         }
         snell__draw_object(o); /* disables culling */
-        (*peeled)++;
-        if (k > 0) {
-            glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
-            glGetQueryObjectuiv(s->t.query, GL_QUERY_RESULT, &any);
-        }
-        if (!any) break; /* nothing behind the last layer: no further peel can hold anything */
-        (*used)++;
+        if (query && k > 0) glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
     }
+    if (query) h->pending = n;
     glDisable(GL_SCISSOR_TEST);
     snell__pass_end(&pass);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error peeling layers");
@@ -255,7 +297,8 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     const snell_peel_params *pp = &o->glass->material.peel;
     float fwd[3], near_, inv_range;
     const peel_prog *p;
-    int peeled, used;
+    peel_history *h = &s->hist[o->index];
+    int peeled;
     prog_key k;
     snell_status st;
     k.screen = snell__glass_variant(o);
@@ -273,18 +316,25 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
         int remade;
         st = snell__peel_targets_ensure(ctx, &s->t, v->width, v->height, pp->layers, LAYER_UNIT, "peel layers", &remade);
     }
-    if (st == SNELL_OK) st = peel_layers(ctx, s, v, o, k.layers, &peeled, &used);
+    if (h->version != o->mesh->version) { /* another object at this index: its history is not this one's */
+        h->version = o->mesh->version;
+        h->pending = 0;
+        h->found = -1;
+    }
+    if (h->pending) history_read(h);
+    peeled = history_peels(h, k.layers);
+    if (st == SNELL_OK) st = peel_layers(ctx, s, v, o, h, peeled);
     if (st != SNELL_OK) return st;
     stats->passes += peeled;
     stats->counters[0] = peeled;
-    stats->counters[1] = used;
+    stats->counters[1] = h->found;
     depth_frame(v, o, fwd, &near_, &inv_range);
     snell__glass_program_use(&p->slot.g, v, o);
     glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
     glBindTexture(GL_TEXTURE_2D_ARRAY, s->t.array_tex);
     glActiveTexture(GL_TEXTURE0);
     glUniform1i(p->layers, LAYER_UNIT);
-    glUniform1i(p->layer_count, used);
+    glUniform1i(p->layer_count, peeled); /* those drawn empty read as no surface */
     glUniform3fv(p->fwd, 1, fwd);
     glUniform1f(p->near_, near_);
     glUniform1f(p->inv_range, inv_range);
@@ -353,8 +403,9 @@ static const size_t g_offsets[] = {
 
 static const snell_counter_info g_counters[] = {
     {"layers_peeled", "depth layers drawn this frame (at most peel.layers, fewer where the mesh's depth complexity "
-                      "bounds them or a layer came out empty: the peels after it are not drawn)"},
-    {"layers_used", "of those, the non-empty ones the search reads"},
+                      "bounds them, or one more than layers_found where those peels were not all full)"},
+    {"layers_found", "non-empty layers found by the object's last peels whose occlusion queries were read "
+                     "(a frame or more ago: never waited for); -1 before the first"},
 };
 
 /* Its cap goes on through re-entries as FULL's dominant branch does, where

@@ -1,5 +1,6 @@
 # Runs snell-bench (EXE) on a tiny sweep in OUT_DIR and checks what it wrote:
-# exit 0; every configuration ok with a median time; the single-surface row
+# exit 0; every configuration ok with a median time and a 95th percentile
+# between it and the worst frame; the single-surface row
 # is its own baseline (vs_single 1) and every row of its scene has a positive
 # ratio; the fastest configuration of the scene is on the Pareto front (no
 # other one can be faster); the CSV carries the same columns.
@@ -23,6 +24,11 @@ foreach(i RANGE ${last})
   string(JSON spec GET "${json}" results ${i} spec)
   string(JSON ok GET "${json}" results ${i} ok)
   string(JSON t GET "${json}" results ${i} time_ms median)
+  string(JSON p95 GET "${json}" results ${i} time_ms p95)
+  string(JSON tmax GET "${json}" results ${i} time_ms max)
+  if(p95 LESS t OR p95 GREATER tmax)
+    message(FATAL_ERROR "${spec}: p95 ${p95} ms outside median ${t} .. max ${tmax}")
+  endif()
   string(JSON ratio GET "${json}" results ${i} vs_single)
   string(JSON pareto GET "${json}" results ${i} pareto)
   if(NOT ok STREQUAL "ON" AND NOT ok STREQUAL "true")
@@ -45,7 +51,7 @@ if(NOT fastest_pareto STREQUAL "ON" AND NOT fastest_pareto STREQUAL "true")
 endif()
 file(STRINGS "${OUT_DIR}/bench.csv" csv)
 list(GET csv 0 header)
-if(NOT header MATCHES "time_median_ms,time_min_ms,time_max_ms,gpu_median_ms,vs_single,pareto,")
+if(NOT header MATCHES "time_median_ms,time_p95_ms,time_min_ms,time_max_ms,gpu_median_ms,vs_single,pareto,")
   message(FATAL_ERROR "CSV header: ${header}")
 endif()
 list(LENGTH csv lines)
