@@ -10,6 +10,7 @@
 #include "render/env_dynamic.h"
 #include "render/env_paraboloid.h"
 #include "render/gbuffer.h"
+#include "render/glass_scale.h"
 #include "render/layers.h"
 #include "render/prepared.h"
 #include "render/scene.h"
@@ -54,6 +55,7 @@ struct snell_renderer {
     double budget_start_ms, budget_done_ms;           /* that frame's start; its completion seen (-1 not yet) */
     const int *budget_force;                          /* snell_renderer_warm: the plan to draw (ladder index per
                                                        * object), NULL: the controller's */
+    snell__glass_scale glass_scale;                   /* objects at a resolution scale, made on first use */
     snell__caustics caustics;                         /* the caustics stage's light map, made on first use */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */

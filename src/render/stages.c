@@ -61,6 +61,9 @@ static void choose_shading(snell_renderer *r, snell__object *o, snell_object_sta
     /* An offscreen target's depth buffer is the renderer's own, so the
      * G-buffer pass can write it; a host's framebuffer, or a multisampled
      * one, gets gl_FragDepth. */
+    /* An object at a resolution scale is drawn forward (render/glass_scale.c):
+     * the G-buffer holds the full grid's surfaces, its kernel draws at a smaller one. */
+    if (o->scale > 1.0f) screen = 0;
     o->screen_space = !screen ? 0 : r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? SNELL__SCREEN_SHARED_DEPTH
                                                                                       : SNELL__SCREEN_WRITES_DEPTH;
     o->gid = o->index + 1;
@@ -105,18 +108,29 @@ static snell_status set_up_glass(const snell__frame *f, snell__object *o, snell_
     } else if (o->env_paraboloid) {
         if ((s = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &o->env_texture)) != SNELL_OK) return s;
     }
+    o->scale = snell__glass_scale_of(r->object_method[o->index], r->out, o);
+    st->scale = o->scale;
     choose_shading(r, o, st);
     return SNELL_OK;
 }
 
-static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *st)
+/* The object's method into the bound target, at the view's grid. */
+static snell_status draw_method(void *user, const snell__view *v, const snell__object *o, snell_object_stats *st)
 {
+    snell_renderer *r = (snell_renderer *)user;
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, o->env_texture);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    return r->object_method[o->index]->draw(r->ctx, r->object_state[o->index], &r->scene.view, o, st);
+    return r->object_method[o->index]->draw(r->ctx, r->object_state[o->index], v, o, st);
+}
+
+static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *st)
+{
+    if (o->scale > 1.0f)
+        return snell__glass_scale_draw(r->ctx, &r->glass_scale, &r->scene.view, o, st, draw_method, r);
+    return draw_method(r, &r->scene.view, o, st);
 }
 
 /* Whether the frame needs the scene layers (snell_frame_desc.scene_layers):
