@@ -1,16 +1,16 @@
 /* glass_scale.c — see glass_scale.h. The object's method draws as it would
- * at full resolution, into a view whose grid is the frame's divided by the
- * scale: every pass it makes (peels, the kernel) costs 1/scale^2 of its
- * fragments. Its own depth there marks what it covered; the full-resolution
- * pass rasterises the object again, so which pixels are glass, and the
- * depth test against what is already drawn, are exactly as unscaled. */
+ * at full resolution in screen space, into a view whose grid is the frame's
+ * divided by the scale: every pass it makes (peels, the kernel) costs
+ * 1/scale^2 of its fragments, and on a G-buffer each pixel is shaded once
+ * (drawn forward, a concave mesh's overlapping front faces would each run
+ * the kernel). Its depth there marks what it covered. The full-resolution
+ * pass shades each of the object's pixels once more with a few texture
+ * reads: which pixels are glass, and the depth test against what is already
+ * drawn, are exactly as unscaled. */
 #include "render/glass_scale.h"
 #include "core/ctx.h"
 #include "core/gl.h"
-#include "core/program.h"
-#include "frame/glass_program.h"
 #include "frame/pass.h"
-#include "render/gbuffer.h"
 
 #include <math.h>
 #include <string.h>
@@ -19,58 +19,55 @@
  * up to two beyond the texel under a covered pixel. */
 #define READ_MARGIN 2
 
-void snell__glass_scale_destroy(snell__glass_scale *gs)
+static void release_target(snell__glass_scale *gs)
 {
     if (gs->fbo) glDeleteFramebuffers(1, &gs->fbo);
     if (gs->color_tex) glDeleteTextures(1, &gs->color_tex);
     if (gs->depth_tex) glDeleteTextures(1, &gs->depth_tex);
-    if (gs->prog) glDeleteProgram(gs->prog);
+    gs->fbo = gs->color_tex = gs->depth_tex = 0;
+    gs->width = gs->height = 0;
+}
+
+void snell__glass_scale_destroy(snell__glass_scale *gs)
+{
+    int i;
+    release_target(gs);
+    snell__gbuffer_destroy(&gs->gbuffer);
+    for (i = 0; i <= SNELL__GLASS_SHADING_MASK; i++) snell__glass_program_destroy(&gs->prog[i]);
     memset(gs, 0, sizeof *gs);
 }
 
 float snell__glass_scale_of(const snell__method *m, snell__output_kind out, const snell__object *o)
 {
-    if (m->needs_back_faces || m->screen_space_only || out != SNELL__OUT_COLOR) return 1.0f;
+    if (m->needs_back_faces || out != SNELL__OUT_COLOR) return 1.0f;
     return o->glass->material.scale;
 }
 
-static void nearest_texture(void)
+static unsigned make_texture(GLenum format, int w, int h)
 {
+    unsigned t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexStorage2D(GL_TEXTURE_2D, 1, format, w, h);
+    return t;
 }
 
-/* The program on first use; the target for a w x h grid, kept while it fits. */
-static snell_status ensure(snell_ctx *ctx, snell__glass_scale *gs, int w, int h)
+/* The target (and the G-buffer) for a w x h grid, kept while they fit: a
+ * frame's objects at scales 2 and 4 share what the first made for 2. */
+static snell_status ensure_target(snell_ctx *ctx, snell__glass_scale *gs, int w, int h)
 {
     GLenum fst;
     GLint bound;
-    if (!gs->prog) {
-        snell_status st = snell__program_build(ctx, "object.vert", "glass_scale.frag", NULL, &gs->prog);
-        if (st != SNELL_OK) return st;
-        gs->u_model = glGetUniformLocation(gs->prog, "u_model");
-        gs->u_normal_matrix = glGetUniformLocation(gs->prog, "u_normal_matrix");
-        gs->u_view_proj = glGetUniformLocation(gs->prog, "u_view_proj");
-        gs->u_color = glGetUniformLocation(gs->prog, "u_color");
-        gs->u_depth = glGetUniformLocation(gs->prog, "u_depth");
-        gs->u_ratio = glGetUniformLocation(gs->prog, "u_ratio");
-        gs->u_max = glGetUniformLocation(gs->prog, "u_max");
-        gs->u_inv_proj_z = glGetUniformLocation(gs->prog, "u_inv_proj_z");
-    }
     if (gs->fbo && gs->width >= w && gs->height >= h) return SNELL_OK;
-    if (gs->fbo) glDeleteFramebuffers(1, &gs->fbo);
-    if (gs->color_tex) glDeleteTextures(1, &gs->color_tex);
-    if (gs->depth_tex) glDeleteTextures(1, &gs->depth_tex);
-    glGenTextures(1, &gs->color_tex);
-    glBindTexture(GL_TEXTURE_2D, gs->color_tex);
-    nearest_texture();
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-    glGenTextures(1, &gs->depth_tex);
-    glBindTexture(GL_TEXTURE_2D, gs->depth_tex);
-    nearest_texture();
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT24, w, h);
+    release_target(gs);
+    snell__gbuffer_destroy(&gs->gbuffer); /* made again at this size by its first draw */
+    glActiveTexture(GL_TEXTURE0);
+    gs->color_tex = make_texture(GL_RGBA8, w, h);
+    gs->depth_tex = make_texture(GL_DEPTH_COMPONENT24, w, h);
     glBindTexture(GL_TEXTURE_2D, 0);
     glGenFramebuffers(1, &gs->fbo);
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
@@ -82,23 +79,43 @@ static snell_status ensure(snell_ctx *ctx, snell__glass_scale *gs, int w, int h)
     gs->width = w;
     gs->height = h;
     if (fst != GL_FRAMEBUFFER_COMPLETE || glGetError() != GL_NO_ERROR) {
-        snell__glass_scale_destroy(gs);
+        release_target(gs);
         return snell__fail(ctx, SNELL_E_GL, "resolution-scale target %dx%d incomplete (0x%x)", w, h, (unsigned)fst);
     }
     return SNELL_OK;
 }
 
+static snell_status ensure_program(snell_ctx *ctx, snell__glass_scale *gs, int shading)
+{
+    snell__glass_program *g = &gs->prog[shading];
+    snell_status st;
+    if (g->prog) return SNELL_OK;
+    if ((st = snell__glass_program_build(ctx, "glass_scale.frag", SNELL__OUT_COLOR, NULL, shading, g)) != SNELL_OK)
+        return st;
+    gs->u_color[shading] = glGetUniformLocation(g->prog, "u_small_color");
+    gs->u_depth[shading] = glGetUniformLocation(g->prog, "u_small_depth");
+    gs->u_ratio[shading] = glGetUniformLocation(g->prog, "u_ratio");
+    gs->u_max[shading] = glGetUniformLocation(g->prog, "u_max");
+    return SNELL_OK;
+}
+
 /* The object's method at the small grid: the view's size divided (the same
- * projection, so a point lands on the same place of the image), the
- * object's rectangle projected onto it. */
-static snell_status draw_small(snell__glass_scale *gs, const snell__view *small, const snell__object *o,
-                               snell_object_stats *st, snell__glass_draw_fn draw, void *user)
+ * projection, so a point lands on the same place of the image), the object
+ * in screen space on the small G-buffer, its rectangle projected onto it;
+ * the kernel writes the G-buffer's depth into the small target's. */
+static snell_status draw_small(snell_ctx *ctx, snell__glass_scale *gs, const snell__view *small,
+                               const snell__object *o, snell_object_stats *stats, snell__glass_draw_fn draw,
+                               void *user)
 {
     snell__object so = *o;
+    snell__object *list[1];
     snell__pass pass;
     snell_status s;
     int x0, y0, x1, y1;
     snell__object_project(small, &so);
+    so.screen_space = SNELL__SCREEN_WRITES_DEPTH;
+    list[0] = &so;
+    if ((s = snell__gbuffer_draw(ctx, &gs->gbuffer, small, list, 1, 0, stats)) != SNELL_OK) return s;
     x0 = so.scissor[0] - READ_MARGIN > 0 ? so.scissor[0] - READ_MARGIN : 0;
     y0 = so.scissor[1] - READ_MARGIN > 0 ? so.scissor[1] - READ_MARGIN : 0;
     x1 = so.scissor[0] + so.scissor[2] + READ_MARGIN;
@@ -108,32 +125,31 @@ static snell_status draw_small(snell__glass_scale *gs, const snell__view *small,
     glScissor(x0, y0, x1 - x0, y1 - y0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT); /* depth 1: not covered */
     glDisable(GL_SCISSOR_TEST);
-    s = draw(user, small, &so, st);
+    s = draw(user, small, &so, &stats[o->index]);
     snell__pass_end(&pass);
     return s;
 }
 
-snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs, const snell__view *v,
-                                     const snell__object *o, snell_object_stats *st, snell__glass_draw_fn draw,
-                                     void *user)
+snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs, const snell__gbuffer *frame_gbuffer,
+                                     const snell__view *v, const snell__object *o, snell_object_stats *stats,
+                                     snell__glass_draw_fn draw, void *user)
 {
     snell__view small = *v;
+    const snell__glass_program *g;
+    int sh = o->screen_space;
     snell_status s;
-    mat4 inv_proj;
     small.width = (int)ceilf((float)v->width / o->scale);
     small.height = (int)ceilf((float)v->height / o->scale);
-    if ((s = ensure(ctx, gs, small.width, small.height)) != SNELL_OK) return s;
-    if ((s = draw_small(gs, &small, o, st, draw, user)) != SNELL_OK) return s;
-    glm_mat4_inv((vec4 *)v->proj, inv_proj);
-    glUseProgram(gs->prog);
-    glUniformMatrix4fv(gs->u_model, 1, GL_FALSE, (const GLfloat *)o->model);
-    glUniformMatrix3fv(gs->u_normal_matrix, 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
-    glUniformMatrix4fv(gs->u_view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
-    glUniform1i(gs->u_color, SNELL__UNIT_ENV);
-    glUniform1i(gs->u_depth, SNELL__UNIT_KERNEL);
-    glUniform2f(gs->u_ratio, (float)small.width / (float)v->width, (float)small.height / (float)v->height);
-    glUniform2i(gs->u_max, small.width - 1, small.height - 1);
-    glUniform4f(gs->u_inv_proj_z, inv_proj[2][2], inv_proj[3][2], inv_proj[2][3], inv_proj[3][3]);
+    if ((s = ensure_target(ctx, gs, small.width, small.height)) != SNELL_OK) return s;
+    if ((s = ensure_program(ctx, gs, sh)) != SNELL_OK) return s;
+    if ((s = draw_small(ctx, gs, &small, o, stats, draw, user)) != SNELL_OK) return s;
+    if (sh) snell__gbuffer_bind(frame_gbuffer);
+    g = &gs->prog[sh];
+    snell__glass_program_use(g, v, o);
+    glUniform1i(gs->u_color[sh], SNELL__UNIT_ENV);
+    glUniform1i(gs->u_depth[sh], SNELL__UNIT_KERNEL);
+    glUniform2f(gs->u_ratio[sh], (float)small.width / (float)v->width, (float)small.height / (float)v->height);
+    glUniform2i(gs->u_max[sh], small.width - 1, small.height - 1);
     glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
     glBindTexture(GL_TEXTURE_2D, gs->depth_tex);
     glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_ENV);
@@ -141,9 +157,9 @@ snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs, con
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    snell__draw_surface(o, st); /* forward: its faces, back faces culled where the kernel culls them */
+    snell__draw_surface(o, &stats[o->index]);
     glBindTexture(GL_TEXTURE_2D, 0);
-    st->passes++;
-    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error drawing at scale %g",
-                                                                (double)o->scale);
+    stats[o->index].passes++;
+    return glGetError() == GL_NO_ERROR ? SNELL_OK
+                                       : snell__fail(ctx, SNELL_E_GL, "GL error drawing at scale %g", (double)o->scale);
 }

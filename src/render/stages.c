@@ -61,9 +61,6 @@ static void choose_shading(snell_renderer *r, snell__object *o, snell_object_sta
     /* An offscreen target's depth buffer is the renderer's own, so the
      * G-buffer pass can write it; a host's framebuffer, or a multisampled
      * one, gets gl_FragDepth. */
-    /* An object at a resolution scale is drawn forward (render/glass_scale.c):
-     * the G-buffer holds the full grid's surfaces, its kernel draws at a smaller one. */
-    if (o->scale > 1.0f) screen = 0;
     o->screen_space = !screen ? 0 : r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? SNELL__SCREEN_SHARED_DEPTH
                                                                                       : SNELL__SCREEN_WRITES_DEPTH;
     o->gid = o->index + 1;
@@ -126,11 +123,11 @@ static snell_status draw_method(void *user, const snell__view *v, const snell__o
     return r->object_method[o->index]->draw(r->ctx, r->object_state[o->index], v, o, st);
 }
 
-static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *st)
+static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *stats)
 {
     if (o->scale > 1.0f)
-        return snell__glass_scale_draw(r->ctx, &r->glass_scale, &r->scene.view, o, st, draw_method, r);
-    return draw_method(r, &r->scene.view, o, st);
+        return snell__glass_scale_draw(r->ctx, &r->glass_scale, &r->gbuffer, &r->scene.view, o, stats, draw_method, r);
+    return draw_method(r, &r->scene.view, o, &stats[o->index]);
 }
 
 /* Whether the frame needs the scene layers (snell_frame_desc.scene_layers):
@@ -371,10 +368,10 @@ static snell_status run_kernels(snell__frame *f)
     snell_status st = SNELL_OK;
     int i;
     for (i = 0; i < f->n_screen && st == SNELL_OK; i++)
-        st = draw_glass(r, r->screen_list[i], &f->s->glass[r->screen_list[i]->index]);
+        st = draw_glass(r, r->screen_list[i], f->s->glass);
     for (i = 0; i < sc->drawn && st == SNELL_OK; i++) {
         int k = sc->order[i];
-        if (!sc->obj[k].screen_space) st = draw_glass(r, &sc->obj[k], &f->s->glass[k]);
+        if (!sc->obj[k].screen_space) st = draw_glass(r, &sc->obj[k], f->s->glass);
     }
     return st;
 }
