@@ -1068,7 +1068,7 @@ typedef struct snell_object_stats {
                                      * environment (common/water.glsl), and those leaving under the water
                                      * are bent for its index (the scene layers hold the exit normal) */
     float scale;                    /* the resolution scale it was shaded at (snell_glass_material.scale):
-                                     * 1 full resolution, s: 1/s of the frame's samples per axis */
+                                     * 1 full resolution, s: 1/s of the frame's samples per axis; 0 not drawn */
 } snell_object_stats;
 
 /* The counter name of the method that drew the object (snell_object_stats.counters), -1 if it has none. */

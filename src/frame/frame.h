@@ -84,7 +84,7 @@ typedef struct snell__object {
     int crosses_edge;               /* its projected bounding sphere reaches past the target's edge */
     int back_guard;                 /* pixels of guard band it asks of the back-face pass (0: none) */
     float scale;                    /* the resolution scale it is drawn at (render/glass_scale.h): 1 full;
-                                     * s > 1: its method draws at 1/s of the grid per axis, forward */
+                                     * s > 1: its method draws at 1/s of the grid per axis, in screen space */
     const char *budget_note;        /* AUTO by budget: the rung it was given and why (render/budget.c), else NULL */
     unsigned stage_bits;            /* what the frame's stages add to its kernel's program variant
                                      * (frame/stage.h; e.g. SNELL__GLASS_BEYOND: its exit rays march

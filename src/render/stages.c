@@ -1,7 +1,8 @@
 /* stages.c — the frame as a table of stages in frame order (frame/stage.h):
  * AUTO by budget's plan -> opaque objects -> glass set-up (method, mesh, prepared resources, dynamic
  * environment, shading) -> scene layers -> water -> back faces -> G-buffer
- * -> kernels -> background -> resolves. snell_render (renderer.c) runs the
+ * -> kernels (an object at a resolution scale through render/glass_scale.c)
+ * -> background -> resolves. snell_render (renderer.c) runs the
  * entries a frame wants. A stage that changes what kernels compute adds its
  * kernel hook here too (layers: SNELL_BEYOND; water: SNELL_WATER): a new
  * stage is one entry of g_stages, its own file and shader chunk. */
