@@ -114,6 +114,13 @@ if(NOT SNELL_WITH_CAUSTICS)
   # the water's floor light map is the stage's too (src/water/water_caustics.c, water_caustics.*)
   list(FILTER SNELL_SOURCES EXCLUDE REGEX "/src/water/water_caustics\\.c$")
 endif()
+# The resolution scale (render/glass_scale.c) pays where a kernel's work per
+# sample is most of the frame: built with the methods that search per sample
+# (peel, exact); without them objects draw at scale 1 (glass_scale_off.c).
+if(NOT "peel" IN_LIST SNELL_METHODS_ON AND NOT "exact" IN_LIST SNELL_METHODS_ON)
+  list(FILTER SNELL_SOURCES EXCLUDE REGEX "/src/render/glass_scale\\.c$")
+  list(APPEND SNELL_SOURCES ${PROJECT_SOURCE_DIR}/src/render/glass_scale_off.c)
+endif()
 if(NOT SNELL_WITH_REF)
   snell_off_stubs(${PROJECT_BINARY_DIR}/generated/ref_api_off.c "SNELL_WITH_REF"
                   ${PROJECT_SOURCE_DIR}/include/snell/snell_ref.h ${PROJECT_SOURCE_DIR}/include/snell/snell_metrics.h)
@@ -144,6 +151,9 @@ endif()
 if(NOT SNELL_WITH_CAUSTICS)
   list(FILTER SNELL_SHADER_SOURCES EXCLUDE REGEX "/shaders_es/caustics_[^/]*$")
   list(FILTER SNELL_SHADER_SOURCES EXCLUDE REGEX "/shaders_es/water_caustics\\.[^/]*$")
+endif()
+if(NOT "peel" IN_LIST SNELL_METHODS_ON AND NOT "exact" IN_LIST SNELL_METHODS_ON)
+  list(FILTER SNELL_SHADER_SOURCES EXCLUDE REGEX "/shaders_es/glass_scale\\.frag$")
 endif()
 if(NOT SNELL_WITH_WATER)
   # common/water*.glsl stay: every kernel includes them, inside #ifdef SNELL_WATER.

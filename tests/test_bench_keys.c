@@ -55,6 +55,7 @@ static const common_case g_cases[] = {
     {"tint", "0.5/0.6/0.7", {F(glass.tint), NONE, NONE}, {NONE}},
     {"dispersion", "0.31", {F(glass.dispersion), NONE, NONE}, {NONE}},
     {"dispersion_model", "per-channel", {F(glass.dispersion_model), NONE, NONE}, {NONE}},
+    {"scale", "2", {F(glass.scale), NONE, NONE}, {NONE}},
     {"camera", "10/40/5", {F(cam), F(cam_set), NONE}, {NONE}},
     {"shading", "forward", {F(shading), NONE, NONE}, {NONE}},
     {"ssaa", "2", {F(ssaa), NONE, NONE}, {NONE}},

@@ -685,7 +685,18 @@ typedef struct snell_glass_material {
     snell_peel_params peel;        /* used when the method (or AUTO's choice) is PEEL */
     snell_exact_params exact;      /* used when it is EXACT (which AUTO picks only if exact.auto_pick allows) */
     snell_layered_params layered;  /* used when it is LAYERED */
+    /* Resolution scale: the glass is shaded at 1/scale of the frame's sample
+     * grid per axis (the method's own passes and kernel in a smaller target),
+     * then its front faces are drawn at full resolution taking their colour
+     * from that result, so its silhouette stays the full raster's. 0 = 1 (as
+     * drawn without it); 1..SNELL_MAX_GLASS_SCALE. Drawn at 1 where the
+     * method reads the frame's full-resolution back faces (WYMAN, OLIVEIRA),
+     * in exit-direction output, and in a build without PEEL and EXACT
+     * (snell_object_stats.scale says what was drawn). */
+    float scale;
 } snell_glass_material;
+
+#define SNELL_MAX_GLASS_SCALE 8
 
 /* A material with every default applied, and the per-unit absorption derived
  * from it (Beer-Lambert: sigma = -ln(attenuation_color) / attenuation_distance;
@@ -1057,6 +1068,8 @@ typedef struct snell_object_stats {
     int sees_water;                 /* 1: its exit rays meet the frame's water and container before the
                                      * environment (common/water.glsl), and those leaving under the water
                                      * are bent for its index (the scene layers hold the exit normal) */
+    float scale;                    /* the resolution scale it was shaded at (snell_glass_material.scale):
+                                     * 1 full resolution, s: 1/s of the frame's samples per axis; 0 not drawn */
 } snell_object_stats;
 
 /* The counter name of the method that drew the object (snell_object_stats.counters), -1 if it has none. */

@@ -294,8 +294,9 @@ void bench_scene_frame(const bench_config *c, const bench_scene *s, const snell_
             glass[i].material = c->glass;
             continue;
         }
-        /* the file's material; the configuration's method and its parameters */
+        /* the file's material; the configuration's method, its parameters and resolution scale */
         glass[i].material.method = c->glass.method;
+        glass[i].material.scale = c->glass.scale;
         snell_glass_copy_method_params(&glass[i].material, &c->glass);
     }
     for (i = 0; i < s->glass_count && i < c->object_method_count; i++) glass[i].material.method = c->object_methods[i];

@@ -109,6 +109,11 @@ static int k_dispersion_model(bench_config *c, const char *v)
     return 1;
 }
 
+static int k_scale(bench_config *c, const char *v)
+{
+    return parse_vec("scale", v, &c->glass.scale, 1, 1.0f, (float)SNELL_MAX_GLASS_SCALE);
+}
+
 static int k_tint(bench_config *c, const char *v) { return parse_vec("tint", v, c->glass.tint, 3, 0.0f, 1.0f); }
 
 static int k_camera(bench_config *c, const char *v)
@@ -206,6 +211,8 @@ static const common_key g_common[] = {
     {"dispersion", "KHR_materials_dispersion's 20/Abbe number, 0..20 (default 0: none; BK7 0.31, diamond 0.36)",
      k_dispersion},
     {"dispersion_model", "auto (default: one-path), per-channel (three traces) or one-path", k_dispersion_model},
+    {"scale", "resolution scale of every glass object: shaded at 1/S of the frame's samples per axis, 1..8 "
+              "(default 1; snell_glass_material.scale)", k_scale},
     {"camera", "orbit camera az/el/dist, degrees (default: the scene's, 30/20/3.5 for one mesh)", k_camera},
     {"shading", "auto (default), forward or screen (the renderer's screen-space stage)", k_shading},
     {"ssaa", "supersampling S (the renderer's ssaa: S x S, box-resolved), timed and measured", k_ssaa},

@@ -46,8 +46,11 @@ void render_usage(FILE *f)
             "  --abbe V               the same as an Abbe number V > 1 (dispersion 20/V)\n"
             "  --dispersion-model M   auto (default: one-path), per-channel (the whole trace per channel) or\n"
             "                         one-path (one trace, red and blue re-refracted along it)\n"
+            "  --scale S              resolution scale: the glass shaded at 1/S of the frame's samples per axis,\n"
+            "                         its edges drawn at full resolution, 1..%d (default 1; also --param scale=S)\n"
             "  --method NAME          auto (default: the cheapest adequate method per object)",
-            cli_shape_names, d.material.ior, d.material.tint[0], d.material.tint[1], d.material.tint[2]);
+            cli_shape_names, d.material.ior, d.material.tint[0], d.material.tint[1], d.material.tint[2],
+            SNELL_MAX_GLASS_SCALE);
     {
         int i;
         for (i = 0; i < snell_method_count(); i++) fprintf(f, ", %s", snell_method_info_at(i)->name);
@@ -153,6 +156,13 @@ static int method_param(const char *name, const char *v, snell_glass_material *m
     return cli_param_set(PROG, m, name, v);
 }
 
+static int scale_option(const char *v, snell_glass_material *m)
+{
+    if (!parse_floats(v, &m->scale, 1) || !(m->scale >= 1.0f && m->scale <= (float)SNELL_MAX_GLASS_SCALE))
+        return usage_error("%s wants a number in 1..8, got '%s'", "--scale", v);
+    return 1;
+}
+
 static int param_option(const char *v, snell_glass_material *m)
 {
     char name[96];
@@ -163,6 +173,7 @@ static int param_option(const char *v, snell_glass_material *m)
     memcpy(name, v, (size_t)(eq - v));
     name[eq - v] = '\0';
     dot = strchr(name, '.');
+    if (!strcmp(name, "scale")) return scale_option(eq + 1, m); /* every method's: the material's own field */
     if (!dot) {
         int r = method_param(name, eq + 1, m);
         return r >= 0 ? r : usage_error("%s: no method has a parameter '%s' (see --help)", "--param", name);
@@ -209,6 +220,8 @@ static int glass_option(const char *a, const char *v, render_object *g)
         else if (!strcmp(v, "per-channel")) m->dispersion_model = SNELL_DISPERSION_PER_CHANNEL;
         else if (!strcmp(v, "one-path")) m->dispersion_model = SNELL_DISPERSION_ONE_PATH;
         else return usage_error("%s wants auto, per-channel or one-path, got '%s'", a, v);
+    } else if (!strcmp(a, "--scale")) {
+        return scale_option(v, m);
     } else if (!strcmp(a, "--method")) {
         if (!cli_method_parse(PROG, v, &m->method)) return 0;
     } else if (!strcmp(a, "--param")) {
@@ -365,7 +378,7 @@ static int takes_value(const char *a)
                                         "--camera", "--fov", "--backend", "--shading", "--env-lookup", "--ssaa",
                                         "--msaa", "--scene-layers", "--frames", "--trace-pixel", "-o", "--ior",
                                         "--absorption", "--attenuation", "--tint", "--thickness", "--dispersion",
-                                        "--abbe", "--dispersion-model", "--method", "--param", "--light",
+                                        "--abbe", "--dispersion-model", "--scale", "--method", "--param", "--light",
                                         "--photons", "--floor", "--floor-map"};
     size_t k;
     int at = 0;

@@ -186,10 +186,10 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
         fprintf(f,
                 "stats: glass %d (%s, ior %g): method %s, warning %d, passes %d, prepared %d, env_updated %d, "
                 "skipped %s, draw_order %d, view_depth %.3f, hidden_fraction %.4f, shading %s (%.1f px/triangle)%s, "
-                "env %s, reason: %s\n",
+                "scale %g, env %s, reason: %s\n",
                 i, s->glass_names[i], m.material.ior, snell_method_str(g->method_used), g->warning, g->passes,
                 g->prepared, g->env_updated, skipped, g->draw_order, g->view_depth, g->hidden_fraction,
-                g->screen_space ? "screen" : "forward", g->pixels_per_triangle, layers,
+                g->screen_space ? "screen" : "forward", g->pixels_per_triangle, layers, g->scale,
                 g->env_paraboloid ? "dual-paraboloid" : "cube", g->reason);
     }
 }

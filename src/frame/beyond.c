@@ -34,5 +34,5 @@ void snell__beyond_uniforms(const snell__beyond_locs *l, const snell__view *v, i
     glUniform3fv(l->fwd, 1, sl->fwd);
     glUniform1f(l->near_, sl->near_);
     glUniform1f(l->inv_range, sl->inv_range);
-    glUniform2f(l->size, (float)v->width, (float)v->height);
+    glUniform2f(l->size, (float)sl->width, (float)sl->height);
 }

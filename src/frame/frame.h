@@ -42,6 +42,8 @@ typedef struct snell__scene_layers {
     int glass_ids, opaque_count;     /* ids 1..glass_ids and the opaque ids of opaque_count objects may be in it */
     float fwd[3];                   /* unit view axis */
     float near_, inv_range;         /* depth value 0 at view depth near_, 1 at near_ + 1 / inv_range */
+    int width, height;              /* the grid they were peeled at: the frame's (an object shaded at a
+                                     * resolution scale, render/glass_scale.h, draws at a smaller one) */
 } snell__scene_layers;
 
 /* The frame's camera and target, shared by every object (world space). */
@@ -85,6 +87,8 @@ typedef struct snell__object {
     int back_coarse;                /* the back-face pass draws the mesh's coarse copy (render/gbuffer.h) */
     int crosses_edge;               /* its projected bounding sphere reaches past the target's edge */
     int back_guard;                 /* pixels of guard band it asks of the back-face pass (0: none) */
+    float scale;                    /* the resolution scale it is drawn at (render/glass_scale.h): 1 full;
+                                     * s > 1: its method draws at 1/s of the grid per axis, in screen space */
     const char *budget_note;        /* AUTO by budget: the rung it was given and why (render/budget.c), else NULL */
     unsigned stage_bits;            /* what the frame's stages add to its kernel's program variant
                                      * (frame/stage.h; e.g. SNELL__GLASS_BEYOND: its exit rays march

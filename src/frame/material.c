@@ -41,6 +41,10 @@ snell_status snell__glass_resolve(const snell_glass_material *in, int object, sn
     if ((int)m.dispersion_model < 0 || (int)m.dispersion_model > (int)SNELL_DISPERSION_ONE_PATH)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: unknown dispersion_model %d", object,
                            (int)m.dispersion_model);
+    /* A scale below 1 would supersample the glass alone: the frame's ssaa does that. */
+    if (!isfinite(m.scale) || (m.scale != 0.0f && (m.scale < 1.0f || m.scale > SNELL_MAX_GLASS_SCALE)))
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: scale %g outside 1..%d (0: 1)", object, m.scale,
+                           SNELL_MAX_GLASS_SCALE);
     if (m.method != SNELL_METHOD_AUTO && !snell__method_get(m.method)) {
         char who[32];
         snprintf(who, sizeof who, "glass %d: ", object);
@@ -51,6 +55,7 @@ snell_status snell__glass_resolve(const snell_glass_material *in, int object, sn
         if (st != SNELL_OK) return st;
     }
     if (m.ior == 0.0f) m.ior = DEFAULT_IOR;
+    if (m.scale == 0.0f) m.scale = 1.0f;
     if (m.tint[0] == 0.0f && m.tint[1] == 0.0f && m.tint[2] == 0.0f) m.tint[0] = m.tint[1] = m.tint[2] = 1.0f;
     if (m.attenuation_color[0] == 0.0f && m.attenuation_color[1] == 0.0f && m.attenuation_color[2] == 0.0f)
         m.attenuation_color[0] = m.attenuation_color[1] = m.attenuation_color[2] = 1.0f;

@@ -27,7 +27,7 @@ snell_status snell__peel_targets_ensure(snell_ctx *ctx, snell__peel_targets *t, 
 {
     int i;
     *remade = 0;
-    if (t->fbo && t->width == w && t->height == h && t->capacity >= layers) return SNELL_OK;
+    if (t->fbo && t->width >= w && t->height >= h && t->capacity >= layers) return SNELL_OK;
     snell__peel_targets_release(t);
     *remade = 1;
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit);

@@ -17,7 +17,9 @@ typedef struct snell__peel_targets {
 
 void snell__peel_targets_release(snell__peel_targets *t);
 /* Made (or remade) for a w x h target and at least `layers` layers, the
- * array left bound on texture unit `unit`; kept as long as they fit.
+ * array left bound on texture unit `unit`; kept as long as they fit (a
+ * larger target serves a smaller grid drawn at its corner: an object at a
+ * resolution scale, render/glass_scale.h, beside one at full resolution).
  * *remade: 1 if they were (their contents are gone). what names them in
  * the error message. */
 snell_status snell__peel_targets_ensure(snell_ctx *ctx, snell__peel_targets *t, int w, int h, int layers, int unit,

@@ -103,6 +103,19 @@ static snell_status create_aux(snell_ctx *ctx, snell__gbuffer *g)
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error creating the G-buffer's aux target");
 }
 
+static void bind(const snell__gbuffer *g, int back, int aux)
+{
+    glActiveTexture(GL_TEXTURE0 + (back ? SNELL__BACK_UNIT_NORMAL : SNELL__GBUFFER_UNIT_NORMAL));
+    glBindTexture(GL_TEXTURE_2D, g->normal_tex);
+    glActiveTexture(GL_TEXTURE0 + (back ? SNELL__BACK_UNIT_DEPTH_ID : SNELL__GBUFFER_UNIT_DEPTH_ID));
+    glBindTexture(GL_TEXTURE_2D, g->depth_id_tex);
+    if (aux) {
+        glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_AUX);
+        glBindTexture(GL_TEXTURE_2D, g->aux_tex);
+    }
+    glActiveTexture(GL_TEXTURE0);
+}
+
 /* The front (G-buffer) or the farthest surface (back-face pass) of the objects. */
 static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v,
                                   snell__object *const *objects, int count, unsigned target_depth, int back,
@@ -211,17 +224,11 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
         st->passes++;
     }
     snell__pass_end(&pass);
-    glActiveTexture(GL_TEXTURE0 + (back ? SNELL__BACK_UNIT_NORMAL : SNELL__GBUFFER_UNIT_NORMAL));
-    glBindTexture(GL_TEXTURE_2D, g->normal_tex);
-    glActiveTexture(GL_TEXTURE0 + (back ? SNELL__BACK_UNIT_DEPTH_ID : SNELL__GBUFFER_UNIT_DEPTH_ID));
-    glBindTexture(GL_TEXTURE_2D, g->depth_id_tex);
-    if (aux) {
-        glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_AUX);
-        glBindTexture(GL_TEXTURE_2D, g->aux_tex);
-    }
-    glActiveTexture(GL_TEXTURE0);
+    bind(g, back, aux);
     return SNELL_OK;
 }
+
+void snell__gbuffer_bind(const snell__gbuffer *g) { bind(g, 0, g->aux_tex != 0); }
 
 snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v, snell__object *const *objects,
                                  int count, unsigned target_depth, snell_object_stats *stats)

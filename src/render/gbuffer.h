@@ -43,6 +43,9 @@ void snell__gbuffer_destroy(snell__gbuffer *g);
  * the G-buffer's own. */
 snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v, snell__object *const *objects,
                                  int count, unsigned target_depth, snell_object_stats *stats);
+/* Binds the front G-buffer's textures on their units again (after another
+ * G-buffer's: an object at a resolution scale draws one of its own, render/glass_scale.c). */
+void snell__gbuffer_bind(const snell__gbuffer *g);
 /* The back-face pass (DESIGN.md "extra passes the method needs"): the
  * farthest surface of objects[0..count-1] (depth GREATER into a depth buffer
  * of its own, cleared to 0, front faces culled where the winding is known;

@@ -208,6 +208,8 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
     }
     sl->near_ = lo;
     sl->inv_range = hi > lo ? 1.0f / (hi - lo) : 1.0f;
+    sl->width = v->width;
+    sl->height = v->height;
 
     /* the table: a radius of 0 marks an id without an object this frame */
     memset(l->table, 0, sizeof l->table);

@@ -190,6 +190,7 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__gbuffer_destroy(&r->backfaces);
     snell__layers_destroy(&r->layers);
     snell__caustics_destroy(&r->caustics);
+    snell__glass_scale_destroy(&r->glass_scale);
     snell__ssaa_destroy(&r->ssaa);
     if (r->msaa_fbo) glDeleteFramebuffers(1, &r->msaa_fbo);
     if (r->msaa_rb) glDeleteRenderbuffers(1, &r->msaa_rb);

@@ -10,6 +10,7 @@
 #include "render/env_dynamic.h"
 #include "render/env_paraboloid.h"
 #include "render/gbuffer.h"
+#include "render/glass_scale.h"
 #include "render/layers.h"
 #include "render/prepared.h"
 #include "render/scene.h"
@@ -58,6 +59,7 @@ struct snell_renderer {
     int budget_query_state;                           /* 1 running in this frame, 2 ended (read next frame), 0 */
     const int *budget_force;                          /* snell_renderer_warm: the plan to draw (ladder index per
                                                        * object), NULL: the controller's */
+    snell__glass_scale glass_scale;                   /* objects at a resolution scale, made on first use */
     snell__caustics caustics;                         /* the caustics stage's light map, made on first use */
     snell_frame_stats stats;                          /* filled, then copied to the caller */
     float *readback;                                  /* RGBA32F scratch for exit directions */

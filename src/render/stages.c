@@ -1,7 +1,8 @@
 /* stages.c — the frame as a table of stages in frame order (frame/stage.h):
  * AUTO by budget's plan -> opaque objects -> glass set-up (method, mesh, prepared resources, dynamic
  * environment, shading) -> scene layers -> water -> back faces -> G-buffer
- * -> kernels -> background -> resolves. snell_render (renderer.c) runs the
+ * -> kernels (an object at a resolution scale through render/glass_scale.c)
+ * -> background -> resolves. snell_render (renderer.c) runs the
  * entries a frame wants. A stage that changes what kernels compute adds its
  * kernel hook here too (layers: SNELL_BEYOND; water: SNELL_WATER): a new
  * stage is one entry of g_stages, its own file and shader chunk. */
@@ -105,18 +106,29 @@ static snell_status set_up_glass(const snell__frame *f, snell__object *o, snell_
     } else if (o->env_paraboloid) {
         if ((s = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &o->env_texture)) != SNELL_OK) return s;
     }
+    o->scale = snell__glass_scale_of(r->object_method[o->index], r->out, o);
+    st->scale = o->scale;
     choose_shading(r, o, st);
     return SNELL_OK;
 }
 
-static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *st)
+/* The object's method into the bound target, at the view's grid. */
+static snell_status draw_method(void *user, const snell__view *v, const snell__object *o, snell_object_stats *st)
 {
+    snell_renderer *r = (snell_renderer *)user;
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, o->env_texture);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    return r->object_method[o->index]->draw(r->ctx, r->object_state[o->index], &r->scene.view, o, st);
+    return r->object_method[o->index]->draw(r->ctx, r->object_state[o->index], v, o, st);
+}
+
+static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *stats)
+{
+    if (o->scale > 1.0f)
+        return snell__glass_scale_draw(r->ctx, &r->glass_scale, &r->gbuffer, &r->scene.view, o, stats, draw_method, r);
+    return draw_method(r, &r->scene.view, o, &stats[o->index]);
 }
 
 /* Whether the frame needs the scene layers (snell_frame_desc.scene_layers):
@@ -400,10 +412,10 @@ static snell_status run_kernels(snell__frame *f)
     snell_status st = SNELL_OK;
     int i;
     for (i = 0; i < f->n_screen && st == SNELL_OK; i++)
-        st = draw_glass(r, r->screen_list[i], &f->s->glass[r->screen_list[i]->index]);
+        st = draw_glass(r, r->screen_list[i], f->s->glass);
     for (i = 0; i < sc->drawn && st == SNELL_OK; i++) {
         int k = sc->order[i];
-        if (!sc->obj[k].screen_space) st = draw_glass(r, &sc->obj[k], &f->s->glass[k]);
+        if (!sc->obj[k].screen_space) st = draw_glass(r, &sc->obj[k], f->s->glass);
     }
     return st;
 }
