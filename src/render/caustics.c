@@ -22,7 +22,9 @@
 #include "core/gl.h"
 #include "core/glstate.h"
 #include "core/program.h"
+#include "frame/glass_program.h"
 #include "frame/method.h"
+#include "frame/units.h"
 #include "mesh/mesh.h"
 #include "methods/exact.h"
 #include "water/water_draw.h"
@@ -893,3 +895,39 @@ void snell__caustics_destroy(snell__caustics *c)
     if (c->map_tex) glDeleteTextures(1, &c->map_tex);
     memset(c, 0, sizeof *c);
 }
+
+/* --- the glass kernels' hook SNELL_RECEIVER ------------------------------ */
+void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc)
+{
+    if (!c->made_plane) return;
+    v->receiver_map = c->map_tex;
+    v->receiver_plane[0] = rc->height, v->receiver_plane[1] = rc->center[0];
+    v->receiver_plane[2] = rc->center[1], v->receiver_plane[3] = rc->extent;
+    snell__receiver_albedo(rc, v->receiver_albedo);
+}
+
+static const char *receiver_defines(unsigned bits)
+{
+    (void)bits;
+    return "#define SNELL_RECEIVER 1\n";
+}
+
+static void receiver_locate(unsigned prog, int *locs)
+{
+    locs[0] = glGetUniformLocation(prog, "u_plane_map");
+    locs[1] = glGetUniformLocation(prog, "u_plane");
+    locs[2] = glGetUniformLocation(prog, "u_plane_albedo");
+}
+
+static void receiver_uniforms(unsigned prog, const int *locs, const snell__view *v, const snell__object *o)
+{
+    (void)prog, (void)o;
+    glActiveTexture(GL_TEXTURE0 + SNELL__RECEIVER_UNIT);
+    glBindTexture(GL_TEXTURE_2D, v->receiver_map);
+    glUniform1i(locs[0], SNELL__RECEIVER_UNIT);
+    glUniform4fv(locs[1], 1, v->receiver_plane);
+    glUniform3fv(locs[2], 1, v->receiver_albedo);
+}
+
+const snell__kernel_hook snell__receiver_hook = {SNELL__GLASS_RECEIVER, receiver_defines, SNELL__RECEIVER_LOCS_OFFSET, 3,
+                                                 receiver_locate, receiver_uniforms};

@@ -8,6 +8,8 @@
 
 #include "render/prepared.h"
 #include "render/scene.h"
+#include "frame/beyond.h"
+#include "frame/stage.h"
 
 #define SNELL__CAUSTICS_KEY 4096 /* floats of the reuse key */
 #define SNELL__CAUSTICS_NO_FLOAT 1u /* map_format: probed, no float target (the stage is skipped) */
@@ -67,6 +69,15 @@ static inline void snell__receiver_albedo(const snell_receiver *rc, float albedo
     int zero = rc->albedo[0] == 0.0f && rc->albedo[1] == 0.0f && rc->albedo[2] == 0.0f, k;
     for (k = 0; k < 3; k++) albedo[k] = zero ? 0.8f : rc->albedo[k];
 }
+
+/* The glass kernels' hook SNELL_RECEIVER (common/receiver.glsl): their exit
+ * and reflected rays meet the plane lit by the stage. snell__receiver_view
+ * puts the plane's light map and square into the view after the stage
+ * made it (nothing without a plane, or in a build without the stage: the
+ * hook's mask is then 0). Its uniform locations follow the layers'. */
+#define SNELL__RECEIVER_LOCS_OFFSET ((int)(sizeof(snell__beyond_locs) / sizeof(int)))
+extern const snell__kernel_hook snell__receiver_hook;
+void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc);
 
 void snell__caustics_destroy(snell__caustics *c);
 

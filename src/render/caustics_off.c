@@ -33,4 +33,11 @@ snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgb
     return snell__fail(ctx, SNELL_E_UNSUPPORTED, "caustics: built without SNELL_WITH_CAUSTICS");
 }
 
+void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc)
+{
+    (void)v, (void)c, (void)rc;
+}
+
+const snell__kernel_hook snell__receiver_hook = {0, NULL, 0, 0, NULL, NULL}; /* no plane: never in a variant */
+
 void snell__caustics_destroy(snell__caustics *c) { (void)c; }

@@ -200,15 +200,8 @@ static int want_caustics(const snell__frame *f)
 
 static snell_status run_caustics(snell__frame *f)
 {
-    snell__view *v = &f->sc->view;
-    const snell_receiver *rc = &f->fd->receiver;
     snell_status st = snell__caustics_run(f->r->ctx, &f->r->caustics, &f->r->prepared, f->fd, f->sc, f->s);
-    if (st != SNELL_OK || !f->r->caustics.made_plane) return st;
-    /* the glass kernels drawn after see the plane lit (common/receiver.glsl) */
-    v->receiver_map = f->r->caustics.map_tex;
-    v->receiver_plane[0] = rc->height, v->receiver_plane[1] = rc->center[0];
-    v->receiver_plane[2] = rc->center[1], v->receiver_plane[3] = rc->extent;
-    snell__receiver_albedo(rc, v->receiver_albedo);
+    if (st == SNELL_OK) snell__receiver_view(&f->sc->view, &f->r->caustics, &f->fd->receiver);
     return st;
 }
 
@@ -218,33 +211,6 @@ static unsigned receiver_variant(const snell__frame *f, const snell__object *o)
     (void)o;
     return f->sc->view.receiver_map ? SNELL__GLASS_RECEIVER : 0;
 }
-
-static const char *receiver_defines(unsigned bits)
-{
-    (void)bits;
-    return "#define SNELL_RECEIVER 1\n";
-}
-
-static void receiver_locate(unsigned prog, int *locs)
-{
-    locs[0] = glGetUniformLocation(prog, "u_plane_map");
-    locs[1] = glGetUniformLocation(prog, "u_plane");
-    locs[2] = glGetUniformLocation(prog, "u_plane_albedo");
-}
-
-static void receiver_uniforms(unsigned prog, const int *locs, const snell__view *v, const snell__object *o)
-{
-    (void)prog, (void)o;
-    glActiveTexture(GL_TEXTURE0 + SNELL__RECEIVER_UNIT);
-    glBindTexture(GL_TEXTURE_2D, v->receiver_map);
-    glUniform1i(locs[0], SNELL__RECEIVER_UNIT);
-    glUniform4fv(locs[1], 1, v->receiver_plane);
-    glUniform3fv(locs[2], 1, v->receiver_albedo);
-}
-
-#define RECEIVER_LOCS_OFFSET ((int)(sizeof(snell__beyond_locs) / sizeof(int))) /* after the layers' */
-static const snell__kernel_hook g_receiver_hook = {SNELL__GLASS_RECEIVER, receiver_defines, RECEIVER_LOCS_OFFSET, 3,
-                                                   receiver_locate, receiver_uniforms};
 
 /* Glass: the objects shaded in screen space share one G-buffer pass,
  * which leaves each pixel the nearest of their surfaces, then run their
@@ -474,7 +440,7 @@ static snell_status run_msaa(snell__frame *f)
 const snell__stage snell__stages[] = {
     {"budget", snell__budget_wanted, snell__budget_run, NULL, NULL},
     {"opaque", NULL, run_opaque, NULL, NULL},
-    {"caustics", want_caustics, run_caustics, receiver_variant, &g_receiver_hook},
+    {"caustics", want_caustics, run_caustics, receiver_variant, &snell__receiver_hook},
     {"glass", NULL, run_glass, NULL, NULL},
     {"layers", want_layers, run_layers, layers_variant, &g_layers_hook},
     {"water", want_water, run_water, water_variant, &g_water_hook},
@@ -488,4 +454,4 @@ const snell__stage snell__stages[] = {
 const int snell__stage_count = (int)(sizeof snell__stages / sizeof *snell__stages);
 
 /* The hooks' locations fit a program's share; their bits are the stage bits of the variant table. */
-typedef char snell__hook_locs_fit[RECEIVER_LOCS_OFFSET + 3 <= SNELL__HOOK_LOCS ? 1 : -1];
+typedef char snell__hook_locs_fit[SNELL__RECEIVER_LOCS_OFFSET + 3 <= SNELL__HOOK_LOCS ? 1 : -1];
