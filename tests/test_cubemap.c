@@ -29,16 +29,6 @@
 #define W 160
 #define H 160
 
-/* Angle between two directions; atan2 of |a x b| and a.b stays accurate for
- * tiny angles, where acos of a float dot product bottoms out near 3e-4 rad. */
-static double angle(const float a[3], const float b[3])
-{
-    double c0 = (double)a[1] * b[2] - (double)a[2] * b[1], c1 = (double)a[2] * b[0] - (double)a[0] * b[2],
-           c2 = (double)a[0] * b[1] - (double)a[1] * b[0];
-    double d = (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
-    return atan2(sqrt(c0 * c0 + c1 * c1 + c2 * c2), d);
-}
-
 /* 1. Worst normal quantisation angle of an encoding over a fine sphere grid
  * (plus the axes, where PLAIN's 127.5 rounds away from 0). */
 static double max_quant(snell_ndcube_encoding enc)
@@ -57,7 +47,7 @@ static double max_quant(snell_ndcube_encoding enc)
                 snell_pack_ndist_oct(n, 0.5f, px);
                 snell_unpack_ndist_oct(px, m, &d);
             }
-            if (angle(n, m) > worst) worst = angle(n, m);
+            if (test_dir_angle(n, m) > worst) worst = test_dir_angle(n, m);
         }
     return worst;
 }
@@ -115,8 +105,8 @@ static void check_bake(snell_ctx *ctx, snell_mesh *mesh, snell_ndcube_encoding e
                 else snell_unpack_ndist_oct(face_px + 4 * ((size_t)j * N + i), gn, &gd);
                 total++;
                 if (fabs(gd - ed) > worst_d) worst_d = fabs(gd - ed);
-                if (angle(gn, n) > worst_n) worst_n = angle(gn, n);
-                bad += fabs(gd - ed) > tol_d || angle(gn, n) > tol_n;
+                if (test_dir_angle(gn, n) > worst_n) worst_n = test_dir_angle(gn, n);
+                bad += fabs(gd - ed) > tol_d || test_dir_angle(gn, n) > tol_n;
             }
     }
     printf("bake %s N=%d: %d texels, worst distance error %.3g (tol %.3g), worst normal %.4f rad (tol %.4f), %d outside\n",
@@ -215,7 +205,7 @@ static void check_sphere(snell_ctx *ctx, snell_mesh *sphere, snell_env *env, sne
     g.material.method = SNELL_METHOD_SINGLE;
     CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
     CHECK_OK(snell_renderer_read_exit_dirs(r, rgb));
-    for (i = 0; i < W * H; i++) worst1 = fmax(worst1, angle(single + 3 * i, rgb + 3 * i));
+    for (i = 0; i < W * H; i++) worst1 = fmax(worst1, test_dir_angle(single + 3 * i, rgb + 3 * i));
     printf("max_interfaces 1 vs single: worst %.2g rad\n", worst1);
     /* single.frag is mediump (fp16 on some drivers: 2^-11 relative per
      * component, ~5e-4 rad per direction, up to twice that after Snell's law
@@ -237,7 +227,7 @@ static void check_sphere(snell_ctx *ctx, snell_mesh *sphere, snell_env *env, sne
                 (len * sqrt(path.points[1][0] * path.points[1][0] + path.points[1][1] * path.points[1][1] +
                             path.points[1][2] * path.points[1][2]));
         if (cos_e < 0.5) continue;
-        e = angle(gpu + 3 * i, ref_dir + 3 * i);
+        e = test_dir_angle(gpu + 3 * i, ref_dir + 3 * i);
         n++;
         worst = fmax(worst, e);
         over += e > lim;

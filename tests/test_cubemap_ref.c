@@ -30,13 +30,6 @@
 #define W 160
 #define H 160
 
-static double angle(const float a[3], const float b[3])
-{
-    double c0 = (double)a[1] * b[2] - (double)a[2] * b[1], c1 = (double)a[2] * b[0] - (double)a[0] * b[2],
-           c2 = (double)a[0] * b[1] - (double)a[1] * b[0];
-    return atan2(sqrt(c0 * c0 + c1 * c1 + c2 * c2), (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]);
-}
-
 static double max_quant(snell_ndcube_encoding enc)
 {
     double worst = 0.0;
@@ -53,7 +46,7 @@ static double max_quant(snell_ndcube_encoding enc)
                 snell_pack_ndist_oct(n, 0.5f, px);
                 snell_unpack_ndist_oct(px, m, &d);
             }
-            worst = fmax(worst, angle(n, m));
+            worst = fmax(worst, test_dir_angle(n, m));
         }
     /* axis normals (the cube's) exactly */
     {
@@ -66,7 +59,7 @@ static double max_quant(snell_ndcube_encoding enc)
             snell_pack_ndist_oct(n, 0.5f, px);
             snell_unpack_ndist_oct(px, m, &d);
         }
-        worst = fmax(worst, angle(n, m));
+        worst = fmax(worst, test_dir_angle(n, m));
     }
     return worst;
 }
@@ -135,9 +128,9 @@ static void run(snell_ctx *ctx, snell_mesh *cube, snell_env *env, float ior, int
         int k, excluded = 0, had_tir = 0;
         if (!hit[i]) continue;
         glass++;
-        e = angle(gpu + 3 * i, ref_dir + 3 * i);
+        e = test_dir_angle(gpu + 3 * i, ref_dir + 3 * i);
         sum_c += e;
-        sum_s += angle(single + 3 * i, ref_dir + 3 * i);
+        sum_s += test_dir_angle(single + 3 * i, ref_dir + 3 * i);
         CHECK_OK(snell_ref_trace_pixel(ref, &p, i % W, i / W, &path));
         for (k = 2; k <= path.interfaces && !excluded; k++) {
             const double *a = path.points[k - 1], *b = path.points[k];

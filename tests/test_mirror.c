@@ -118,13 +118,6 @@ static void render(snell_ctx *ctx, const snell_env *env, const snell_mesh *mesh,
     snell_renderer_destroy(r);
 }
 
-static double angle(const float a[3], const float b[3])
-{
-    double c0 = (double)a[1] * b[2] - (double)a[2] * b[1], c1 = (double)a[2] * b[0] - (double)a[0] * b[2],
-           c2 = (double)a[0] * b[1] - (double)a[1] * b[0];
-    return atan2(sqrt(c0 * c0 + c1 * c1 + c2 * c2), (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]);
-}
-
 /* Pixels of B's glass (those that differ from the empty frame) where A under
  * model ma and B differ by more than 0.05 rad, out of *glass. */
 static int differing(snell_ctx *ctx, const snell_env *env, const snell_mesh *a, const float *ma, const snell_mesh *b,
@@ -139,7 +132,7 @@ static int differing(snell_ctx *ctx, const snell_env *env, const snell_mesh *a, 
     for (i = 0; i < W * H; i++) {
         if (!memcmp(db + 3 * i, none + 3 * i, 3 * sizeof(float))) continue;
         ++*glass;
-        off += angle(da + 3 * i, db + 3 * i) > 0.05;
+        off += test_dir_angle(da + 3 * i, db + 3 * i) > 0.05;
     }
     return off;
 }

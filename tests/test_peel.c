@@ -94,13 +94,6 @@
 #define W 160
 #define H 160
 
-static double anglef(const float a[3], const float b[3])
-{
-    double c0 = (double)a[1] * b[2] - (double)a[2] * b[1], c1 = (double)a[2] * b[0] - (double)a[0] * b[2],
-           c2 = (double)a[0] * b[1] - (double)a[1] * b[0];
-    return atan2(sqrt(c0 * c0 + c1 * c1 + c2 * c2), (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]);
-}
-
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -224,7 +217,7 @@ static void test_two_layers(snell_ctx *ctx, snell_env *env)
         double e;
         if (!hit[i]) continue;
         glass++;
-        e = anglef(gpu + 3 * i, ref + 3 * i);
+        e = test_dir_angle(gpu + 3 * i, ref + 3 * i);
         sum += e;
         close += e < 0.005;
     }
@@ -250,8 +243,8 @@ static void test_two_layers(snell_ctx *ctx, snell_env *env)
             double e;
             if (!hit[i]) continue;
             glass++;
-            tir += anglef(ref8 + 3 * i, ref + 3 * i) > 0.01;
-            e = anglef(gpu + 3 * i, ref8 + 3 * i);
+            tir += test_dir_angle(ref8 + 3 * i, ref + 3 * i) > 0.01;
+            e = test_dir_angle(gpu + 3 * i, ref8 + 3 * i);
             sum += e;
             close += e < 0.005;
         }
@@ -310,7 +303,7 @@ static void test_sphere_vs_cubemap(snell_ctx *ctx, snell_env *env)
     for (i = 0; i < W * H; i++) {
         double e;
         if (sphere_cos(&fd.camera, i) < 0.5) continue; /* incidence above 60 degrees, or a miss */
-        e = anglef(peel + 3 * i, cube + 3 * i);
+        e = test_dir_angle(peel + 3 * i, cube + 3 * i);
         n++;
         sum += e;
         within += e <= bound;
@@ -353,7 +346,7 @@ static void test_concave(snell_ctx *ctx, snell_env *env, snell_shape s, const ch
     for (i = 0; i < W * H; i++) {
         if (!hit[i]) continue;
         for (m = 0; m < 5; m++) {
-            err[m][n] = anglef(dirs[m] + 3 * i, ref + 3 * i);
+            err[m][n] = test_dir_angle(dirs[m] + 3 * i, ref + 3 * i);
             mean[m] += err[m][n];
         }
         n++;
@@ -586,7 +579,7 @@ static void test_winding(snell_ctx *ctx, snell_env *env)
     for (i = 0; i < W * H; i++) {
         if (!memcmp(dirs[0] + 3 * i, none + 3 * i, 3 * sizeof(float))) continue;
         glass++;
-        off += anglef(dirs[0] + 3 * i, dirs[1] + 3 * i) > 1e-3;
+        off += test_dir_angle(dirs[0] + 3 * i, dirs[1] + 3 * i) > 1e-3;
     }
     printf("winding: %d of %d glass pixels of the inside-out torus differ by more than 1e-3 rad\n", off, glass);
     CHECK(glass > W * H / 20, "the torus covers %d px", glass);

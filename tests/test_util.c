@@ -222,3 +222,10 @@ void test_write_light_map(const char *name, const float *v, int stride, int n, f
     snell_write_png(test_out(name), n, n, px);
     free(px);
 }
+
+double test_dir_angle(const float a[3], const float b[3])
+{
+    double c0 = (double)a[1] * b[2] - (double)a[2] * b[1], c1 = (double)a[2] * b[0] - (double)a[0] * b[2],
+           c2 = (double)a[0] * b[1] - (double)a[1] * b[0];
+    return atan2(sqrt(c0 * c0 + c1 * c1 + c2 * c2), (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]);
+}

@@ -86,6 +86,10 @@ snell_ctx *test_ctx(void);
  * medium it tracks. 1 on success. */
 int test_write_blender_mesh(const snell_mesh *m, const double t[3], const char *path, int flip);
 
+/* The angle in radians between directions a and b (any lengths): atan2 of
+ * |a x b| and a.b stays accurate for tiny angles, where acos of a float dot
+ * product bottoms out near 3e-4 rad. */
+double test_dir_angle(const float a[3], const float b[3]);
 /* Receivers' light maps (the caustics tests): n texels of rgb irradiance, a
  * with stride_a floats a texel, b with 3. The PSNR (dB) of the two shown as
  * albedo * irradiance clamped to 0..1; and an n x n map written as that PNG
