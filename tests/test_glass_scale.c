@@ -23,7 +23,15 @@
  *    drawn at 1 whatever its material asks, and its image is the unscaled one.
  * 6. After the first frame with objects at scales 2 and 4 beside one at 1,
  *    frames create no GL object (gl_count.h): the same objects alive, and
- *    no name handed out (a target made and deleted every frame fails this). */
+ *    no name handed out (a target made and deleted every frame fails this).
+ * 7. A feature the small grid misses altogether: a needle (a sphere squashed
+ *    to radius NEEDLE_R across, about 1.5 pixels wide, along the image's
+ *    middle row) at scale 8, without supersampling, so the 12x12 grid's texel
+ *    centres (4 pixels off the middle row) miss it. No needle pixel is black
+ *    (what the upsample gave without a covered texel within two), and at
+ *    least NEEDLE_SINGLE of them are the single-surface frame's pixel within
+ *    3 of 255 (the fallback is single.frag's model at the pixel's own
+ *    surface point; the rest take the nearest covered texel, near the tips). */
 #include "test_util.h"
 #include "gl_count.h"
 
@@ -36,6 +44,8 @@
 #define MIN_PSNR_2 24.0
 #define MAX_EDGE_BIAS 8.0
 #define MAX_EDGE_ERR 20.0
+#define NEEDLE_R 0.03f
+#define NEEDLE_SINGLE 0.8
 
 static uint8_t g_img[4][W * H * 4];
 
@@ -108,10 +118,44 @@ static void edge_error(const uint8_t *a, const uint8_t *b, const uint8_t *mask, 
     *err = *n ? e / (3.0 * *n) : 0.0;
 }
 
+/* Test 7: r draws without supersampling; g[0] is a peel object whose model
+ * is set here. */
+static void needle(snell_renderer *r, snell_frame_desc *fd, snell_glass *g)
+{
+    static const float model[16] = {0.9f, 0, 0, 0, 0, NEEDLE_R, 0, 0, 0, 0, NEEDLE_R, 0, 0, 0, 0, 1};
+    static uint8_t mask[W * H];
+    snell_frame_stats st;
+    int n, i, black = 0, same = 0;
+    g->model = model;
+    fd->glass_count = 0;
+    CHECK_OK(render(r, fd, g_img[3], NULL));
+    fd->glass_count = 1;
+    g->material.method = SNELL_METHOD_SINGLE;
+    g->material.scale = 1.0f;
+    CHECK_OK(render(r, fd, g_img[1], NULL));
+    g->material.method = SNELL_METHOD_PEEL;
+    g->material.scale = 8.0f;
+    CHECK_OK(render(r, fd, g_img[2], &st));
+    CHECK(st.glass[0].scale == 8.0f, "needle: stats say scale %g", st.glass[0].scale);
+    glass_mask(g_img[1], g_img[3], mask, &n);
+    for (i = 0; i < W * H; i++) {
+        const uint8_t *a = &g_img[1][4 * i], *b = &g_img[2][4 * i];
+        if (!mask[i]) continue;
+        black += b[0] == 0 && b[1] == 0 && b[2] == 0;
+        same += abs(a[0] - b[0]) <= 3 && abs(a[1] - b[1]) <= 3 && abs(a[2] - b[2]) <= 3;
+    }
+    printf("needle at scale 8: %d glass pixels, %d black, %d the single-surface frame's\n", n, black, same);
+    snell_write_png(test_out("glass_scale_needle.png"), W, H, g_img[2]);
+    CHECK(n > W / 2, "the needle covers only %d pixels", n);
+    CHECK(black == 0, "needle at scale 8: %d of %d pixels black (no covered texel near)", black, n);
+    CHECK(same >= NEEDLE_SINGLE * n, "needle at scale 8: %d of %d pixels are the single-surface answer, want >= %g",
+          same, n, NEEDLE_SINGLE);
+}
+
 int main(void)
 {
     snell_ctx *ctx = test_ctx();
-    snell_mesh *torus = NULL;
+    snell_mesh *torus = NULL, *sphere = NULL;
     snell_env *env = NULL;
     snell_renderer *r = NULL;
     snell_renderer_desc rd;
@@ -216,6 +260,16 @@ int main(void)
               after.framebuffers, before.programs, after.programs);
     }
     snell_renderer_destroy(r);
+
+    rd.ssaa = 1;
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    CHECK_OK(snell_mesh_create_shape(ctx, &(snell_shape_desc){SNELL_SHAPE_SPHERE, 48, 24}, &sphere));
+    test_frame_one(&fd, &g[0], sphere, env);
+    fd.camera.elevation = 0.0f;
+    fd.camera.distance = 3.2f;
+    needle(r, &fd, &g[0]);
+    snell_renderer_destroy(r);
+    snell_mesh_destroy(sphere);
     snell_env_destroy(env);
     snell_mesh_destroy(torus);
     snell_ctx_destroy(ctx);

@@ -100,7 +100,6 @@ static snell_status ensure_program(snell_ctx *ctx, snell__glass_scale *gs, int s
     if ((st = snell__glass_program_build(ctx, "glass_scale.frag", SNELL__OUT_COLOR, NULL, shading, g)) != SNELL_OK)
         return st;
     gs->u_color[shading] = glGetUniformLocation(g->prog, "u_small_color");
-    gs->u_depth[shading] = glGetUniformLocation(g->prog, "u_small_depth");
     gs->u_ratio[shading] = glGetUniformLocation(g->prog, "u_ratio");
     gs->u_max[shading] = glGetUniformLocation(g->prog, "u_max");
     return SNELL_OK;
@@ -130,7 +129,7 @@ static snell_status draw_small(snell_ctx *ctx, snell__glass_scale *gs, const sne
     snell__pass_begin(&pass, gs->fbo, small->width, small->height, 0, GL_LESS, 1.0f);
     glEnable(GL_SCISSOR_TEST);
     glScissor(x0, y0, x1 - x0, y1 - y0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT); /* depth 1: not covered */
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT); /* alpha 0: not covered */
     glDisable(GL_SCISSOR_TEST);
     s = draw(user, small, &so, &stats[o->index]);
     snell__pass_end(&pass);
@@ -153,19 +152,17 @@ snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs, con
     if (sh) snell__gbuffer_bind(frame_gbuffer);
     g = &gs->prog[sh];
     snell__glass_program_use(g, v, o);
-    glUniform1i(gs->u_color[sh], SNELL__UNIT_ENV);
-    glUniform1i(gs->u_depth[sh], SNELL__UNIT_KERNEL);
+    glUniform1i(gs->u_color[sh], SNELL__UNIT_KERNEL); /* unit 0 keeps the environment (its fallback's) */
     glUniform2f(gs->u_ratio[sh], (float)small.width / (float)v->width, (float)small.height / (float)v->height);
     glUniform2i(gs->u_max[sh], small.width - 1, small.height - 1);
     glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
-    glBindTexture(GL_TEXTURE_2D, gs->depth_tex);
-    glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_ENV);
     glBindTexture(GL_TEXTURE_2D, gs->color_tex);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     snell__draw_surface(o, &stats[o->index]);
     glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE0);
     stats[o->index].passes++;
     return glGetError() == GL_NO_ERROR ? SNELL_OK
                                        : snell__fail(ctx, SNELL_E_GL, "GL error drawing at scale %g", (double)o->scale);

@@ -15,7 +15,7 @@ typedef struct snell__glass_scale {
     int width, height;
     snell__gbuffer gbuffer;              /* the object's front surface at the small grid */
     snell__glass_program prog[SNELL__GLASS_SHADING_MASK + 1]; /* per shading, made on first use */
-    int u_color[SNELL__GLASS_SHADING_MASK + 1], u_depth[SNELL__GLASS_SHADING_MASK + 1];
+    int u_color[SNELL__GLASS_SHADING_MASK + 1];
     int u_ratio[SNELL__GLASS_SHADING_MASK + 1], u_max[SNELL__GLASS_SHADING_MASK + 1];
 } snell__glass_scale;
 
