@@ -12,7 +12,8 @@
  * light through glass against the reference's, which stops them); the
  * box's shadow edge on the floor where the light grazes its top edge; the
  * same for a spot light, a dim light (the caustic under the 8-bit clamp) and
- * a grazing one (self-shadowing); reuse; a frame without a light
+ * a grazing one (self-shadowing); the view and the flux again with the
+ * sphere drawn by exact, whose photons take the BVH path; reuse; a frame without a light
  * byte-identical to one without the fields. */
 #include "test_util.h"
 #include "core/gl.h"
@@ -189,6 +190,32 @@ int main(void)
                   "peaks %.4f (GPU), %.4f (reference) from the focus", hypot(at[0][0] - want[0], at[0][1] - want[1]),
                   hypot(at[1][0] - want[0], at[1][1] - want[1]));
         }
+    }
+
+    /* 2b. the same photons by the exact method's BVH (the sphere drawn by
+     * exact: caustics_photon.vert's bvh_path, marched to the opaque receivers
+     * as the depth maps' are): the view and the flux against the same reference */
+    {
+        int rs = 0;
+        double ra = 0.0, eg = 0.0, er = 0.0, db;
+        const double *rm;
+        g.material.method = SNELL_METHOD_EXACT;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+        CHECK(strstr(fs.caustics_reason, "paths: 1 BVH, 0 depth maps") != NULL, "exact's photons: %s", fs.caustics_reason);
+        db = compare_view(ctx, r, &fd, ref, "caustics_opaque_bvh", img1, &count);
+        rm = snell__ref_lit_map(ref, &rs, &ra);
+        CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, &r->caustics, map, &n));
+        if (rm && n == rs)
+            for (i = 0; i < n * n; i++) {
+                eg += map[4 * i + 3] * ra;
+                er += (rm[3 * i] + rm[3 * i + 1] + rm[3 * i + 2]) / 3.0 * ra;
+            }
+        printf("BVH photons: opaque pixels %d, PSNR %.2f dB; flux through glass on the opaque objects GPU %.4f, "
+               "reference %.4f (%+.2f%%)\n", count, db, eg, er, 100.0 * (eg / er - 1.0));
+        CHECK(count > 5000 && db >= 31.0, "BVH photons: PSNR %.2f dB over %d opaque pixels", db, count);
+        CHECK(er > 0.5 * PI_D && fabs(eg / er - 1.0) <= 0.03, "BVH photons: GPU %.4f reference %.4f", eg, er);
+        g.material.method = SNELL_METHOD_AUTO;
+        CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs)); /* the maps of the depth maps' photons again, for 3 */
     }
 
     /* 3. photons stopped by the box: the floor's light through glass */
