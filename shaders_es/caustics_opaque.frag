@@ -1,99 +1,22 @@
 // caustics_opaque.frag - an opaque object lit by the frame's light (the
 // caustics stage, render/caustics.c; used instead of opaque.frag only in a
-// frame with a light): colour = albedo * irradiance, as the receiver plane
-// (caustics_receiver.frag). Irradiance = the direct light (directional:
-// colour * cosine; spot: intensity * cosine / distance^2 inside its cone)
-// where the shadow map (every glass and opaque object seen from the light)
-// leaves the point lit, plus the light through the glass: the light-space
-// caustic map (Wyman & Davis 2006), read bilinearly over the texels whose
-// nearest opaque receiver is this surface (their depth within 3 texels of
-// the point's), times the cosine (spot: / distance^2): its texels hold flux
-// per area facing the light (caustics_photon.vert, u_target 1).
+// frame with a light): colour = albedo * irradiance (common/opaque_lit.glsl),
+// as the receiver plane (caustics_receiver.frag).
 precision highp float;
 precision highp sampler2D;
 precision highp sampler2DShadow;
 
 #include "common/output.glsl"
+#include "common/opaque_lit.glsl"
 
 in highp vec3 v_world_pos;
 in vec3 v_world_normal;
 
 uniform highp vec3 u_eye;
 uniform vec3 u_color;        // albedo
-uniform vec3 u_light;        // the light's colour (directional: irradiance; spot: intensity)
-uniform vec3 u_dir;          // directional: the unit direction it travels
-uniform int u_spot;          // 1: a spot light at u_pos, axis u_axis, cone cosine u_cos_cone
-uniform vec3 u_pos, u_axis;
-uniform float u_cos_cone;
-uniform sampler2DShadow u_shadow;
-uniform sampler2D u_recv_z;  // the opaque receivers' nearest depth per texel of the light frame
-uniform sampler2D u_caustic; // the light through glass on them (caustics_photon.vert, u_target 1)
-uniform mat4 u_recv_vp;      // world -> the light frame's clip space (the shadow map's)
-uniform vec4 u_recv_lin;     // near, far, 1 = perspective, texel side (world; spot: at distance 1)
-uniform float u_bias;        // depth bias, shadow map units
-
-float recv_lin(float z01)
-{
-    float n = u_recv_lin.x, f = u_recv_lin.y;
-    return u_recv_lin.z > 0.5 ? n * f / (f - z01 * (f - n)) : n + z01 * (f - n);
-}
-
-vec3 light_frame(vec3 p)
-{
-    vec4 c = u_recv_vp * vec4(p, 1.0);
-    return c.xyz / c.w * 0.5 + 0.5;
-}
 
 void main()
 {
-    vec3 n = normalize(v_world_normal), p = v_world_pos, l = u_dir;
-    float fall = 1.0, cone = 1.0;
-    if (u_spot == 1) {
-        l = p - u_pos;
-        fall = 1.0 / dot(l, l);
-        l = normalize(l);
-        cone = dot(l, u_axis) >= u_cos_cone ? 1.0 : 0.0;
-    }
-    float cosl = max(0.0, -dot(n, l));
-    vec3 e = vec3(0.0);
-    // a spot light's frame looks straight down: a point at or above its near
-    // plane is outside it (no shadow map there): the direct light unshadowed, no caustic
-    bool framed = u_recv_lin.z < 0.5 || u_pos.y - p.y > u_recv_lin.x;
-    if (!framed) e = u_light * (fall * cone * cosl);
-    if (cosl > 0.0 && framed) {
-        vec3 s = light_frame(p);
-        float lp = recv_lin(s.z), tw = u_recv_lin.w * (u_recv_lin.z > 0.5 ? lp : 1.0);
-        // direct: the shadow map at the point moved half a texel along its
-        // normal, its depth compared less a slope-scaled bias (the surface's
-        // depth changes by tw tan(theta) over a texel, 1.5 of them for the 2 x 2
-        // filter; tan at most 8) against self-shadowing. test_caustics_opaque,
-        // directional / spot / grazing: this 33.3 / 35.9 / 39.6 dB; the normal
-        // move alone of 1.5 texels 31.5 / 33.7 / -, 1: 32.6 / 34.9 / -, 0.5:
-        // 33.3 / 35.9 / 33.3 (and acne on three_glass_two_opaque's wall at cos
-        // 0.42), 0.25: 30.8 / 36.3 / -; a move of tw tan / cos (at most 4
-        // texels) instead of the bias 33.1 / 35.9 / 30.1 (the shadow's edges move)
-        vec3 so = light_frame(p + n * 0.5 * tw);
-        float n_ = u_recv_lin.x, f_ = u_recv_lin.y;
-        float slope = 1.5 * tw * min(8.0, sqrt(max(0.0, 1.0 - cosl * cosl)) / cosl);
-        slope *= u_recv_lin.z > 0.5 ? n_ * f_ / (lp * lp * (f_ - n_)) : 1.0 / (f_ - n_);
-        e = u_light * (fall * cone * cosl) * texture(u_shadow, vec3(so.xy, so.z - u_bias - slope));
-        // through glass: the caustic map's texels about the point on its own surface
-        ivec2 size = textureSize(u_caustic, 0);
-        vec2 t = s.xy * vec2(size) - 0.5;
-        ivec2 b = ivec2(floor(t));
-        vec2 f = t - floor(t);
-        vec3 acc = vec3(0.0);
-        float w = 0.0;
-        for (int k = 0; k < 4; k++) {
-            ivec2 o = ivec2(k & 1, k >> 1), q = clamp(b + o, ivec2(0), size - 1);
-            float z = texelFetch(u_recv_z, q, 0).r;
-            float wk = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-            if (z < 1.0 && abs(recv_lin(z) - lp) < 3.0 * tw) {
-                acc += wk * texelFetch(u_caustic, q, 0).rgb;
-                w += wk;
-            }
-        }
-        if (w > 0.0) e += acc / w * (fall * cosl);
-    }
-    snell_write(u_color * e, p - u_eye);
+    highp vec3 p = v_world_pos;
+    snell_write(u_color * snell_lit_irradiance(p, normalize(v_world_normal)), p - u_eye);
 }

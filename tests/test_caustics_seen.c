@@ -16,7 +16,15 @@
  * show the environment too, and fail
  * (checked by leaving the hook's variant bit unset: every method then
  * differs on all 2516 pixels compared). For every method in the registry,
- * forward and screen-space shading (SHADINGS). */
+ * forward and screen-space shading (SHADINGS).
+ * Then the same for an opaque object seen through the glass (the scene
+ * layers, on by default with opaque objects; common/opaque_lit.glsl): a cube
+ * behind the sphere, lit by a light whose sphere shadow and caustic fall
+ * beside it, no plane. Inside 80% of the sphere's radius, where the view
+ * ray meets the cube (1 pixel in from its outline), the pixels must be the
+ * frame's without the sphere, lit by the light as the view draws the cube;
+ * with the cube shaded as opaque.frag shades it without a light (the hook
+ * off) they differ. */
 #include "test_util.h"
 
 #include <math.h>
@@ -84,6 +92,74 @@ static int differs(const uint8_t *a, const uint8_t *b, int tol)
     return 0;
 }
 
+/* The lit cube behind the IOR 1.001 sphere (above); the sphere mask from
+ * its exit directions at IOR 1.5 as for the plane. */
+static void opaque_seen(snell_ctx *ctx, snell_env *env, snell_mesh *sphere, snell_mesh *cube)
+{
+    static float dirs[W * H * 3], none[W * H * 3];
+    static uint8_t with[W * H * 4], without[W * H * 4], empty[W * H * 4], mask[W * H], cube_px[W * H];
+    static const float place[16] = {1.2f, 0, 0, 0, 0, 1.2f, 0, 0, 0, 0, 1.2f, 0, 0, 0, -3.0f, 1};
+    snell_frame_desc fd, bare;
+    snell_glass g;
+    snell_opaque op;
+    int i, k;
+    test_frame_one(&fd, &g, sphere, env);
+    memset(&op, 0, sizeof op);
+    op.mesh = cube, op.model = place, op.color[0] = 0.9f, op.color[1] = 0.6f, op.color[2] = 0.3f;
+    fd.opaque = &op, fd.opaque_count = 1;
+    fd.camera.azimuth = 0.0f, fd.camera.elevation = 0.15f, fd.camera.distance = 5.0f;
+    /* along (-0.9, -0.2, -0.4): onto the cube's face towards the camera (z =
+     * -1.8) at cosine 0.4; the sphere's shadow reaches that plane at x = -4.05
+     * (its radius 1), beside the cube (|x| <= 1.2) */
+    fd.light.type = SNELL_LIGHT_DIRECTIONAL;
+    fd.light.direction[0] = -0.9f, fd.light.direction[1] = -0.2f, fd.light.direction[2] = -0.4f;
+    fd.light.color[0] = fd.light.color[1] = fd.light.color[2] = 2.5f;
+    for (i = 0; i < snell_method_count(); i++) {
+        const snell_method_info *mi = snell_method_info_at(i);
+        int glass = 0, seen = 0, off = 0, unlit = 0;
+        g.material.ior = 1.5f;
+        render(ctx, &fd, mi->method, NULL, dirs);
+        bare = fd;
+        bare.glass_count = 0;
+        render(ctx, &bare, mi->method, NULL, none);
+        g.material.ior = 1.001f;
+        render(ctx, &fd, mi->method, with, NULL);
+        render(ctx, &bare, mi->method, without, NULL);
+        bare.opaque_count = 0;
+        render(ctx, &bare, mi->method, empty, NULL);
+        for (k = 0; k < W * H; k++) {
+            glass += mask[k] = memcmp(dirs + 3 * k, none + 3 * k, 3 * sizeof(float)) != 0;
+            cube_px[k] = differs(without + 4 * k, empty + 4 * k, 0);
+        }
+        for (k = 0; k < W * H; k++) {
+            if (!mask[k] || !inside(mask, k, (int)ceil(0.2 * sqrt(glass / 3.14159))) || !inside(cube_px, k, 1)) continue;
+            seen++;
+            off += differs(with + 4 * k, without + 4 * k, 3);
+        }
+        /* what the sphere showed before: the cube shaded without the light */
+        {
+            snell_frame_desc dark = fd;
+            uint8_t *px = (uint8_t *)malloc((size_t)W * H * 4);
+            if (!px) continue;
+            dark.light.type = SNELL_LIGHT_NONE;
+            render(ctx, &dark, mi->method, px, NULL);
+            for (k = 0; k < W * H; k++)
+                if (mask[k] && inside(mask, k, (int)ceil(0.2 * sqrt(glass / 3.14159))) && inside(cube_px, k, 1))
+                    unlit += differs(px + 4 * k, without + 4 * k, 8);
+            free(px);
+        }
+        if (mi->method == SNELL_METHOD_PEEL) {
+            snell_write_png(test_out("caustics_seen_opaque_with.png"), W, H, with);
+            snell_write_png(test_out("caustics_seen_opaque_without.png"), W, H, without);
+        }
+        printf("%s, opaque: of %d sphere pixels %d show the cube (%d of them unlike the unlit cube), %d of them differ "
+               "from the frame without the sphere\n", mi->name, glass, seen, unlit, off);
+        CHECK(seen > 300 && unlit * 10 > seen * 8, "%s: %d pixels show the cube, %d unlike the unlit one", mi->name,
+              seen, unlit);
+        CHECK(off * 50 <= seen, "%s: %d of %d pixels on the cube differ", mi->name, off, seen);
+    }
+}
+
 int main(void)
 {
     static float dirs[W * H * 3], none[W * H * 3];
@@ -145,6 +221,13 @@ int main(void)
         CHECK(glass > W * H / 10 && plane * 3 > glass && distinct * 10 > plane * 8,
               "%s: %d sphere pixels, %d on the plane, %d unlike the environment", mi->name, glass, plane, distinct);
         CHECK(off * 50 <= plane, "%s: %d of %d pixels on the plane differ", mi->name, off, plane);
+    }
+    {
+        snell_mesh *cube = NULL;
+        sd.shape = SNELL_SHAPE_CUBE;
+        CHECK_OK(snell_mesh_create_shape(ctx, &sd, &cube));
+        if (cube) opaque_seen(ctx, env, mesh, cube);
+        snell_mesh_destroy(cube);
     }
     snell_mesh_destroy(mesh);
     snell_env_destroy(env);

@@ -437,7 +437,7 @@ static void check_camera(void)
 /* -------------------------------------------------- 4 + 5: EXTERNAL state */
 
 
-#define UNITS 13 /* texture units the library uses: SNELL_GLSTATE_UNITS (core/glstate.h) */
+#define UNITS 16 /* texture units the library uses: SNELL_GLSTATE_UNITS (core/glstate.h) */
 
 typedef struct host_objects {
     GLuint sampler, pack_pbo, unpack_pbo, fbo_draw, fbo_read, rb, tex[UNITS];

@@ -25,8 +25,8 @@
 //   reflected part looks the environment up, as every kernel's first entry
 //   does; inner surfaces have none, the MATCHED model), the object's tint at
 //   entry and Beer-Lambert over each length inside; up to
-//   BEYOND_MAX_INTERFACES surfaces. Opaque: shaded as opaque.frag shades it
-//   (the path ends). Past the last object: the environment.
+//   BEYOND_MAX_INTERFACES surfaces. Opaque: shaded as opaque.frag shades it,
+//   or lit as caustics_opaque.frag in a frame with a light (the path ends). Past the last object: the environment.
 // - Thin walls (material.thickness > 0) are never a medium: a change in the
 //   parity of the thin-wall surfaces in front of the point is a wall
 //   crossed, which transmits by the slab model (snell_thin_slab, as the
@@ -61,12 +61,16 @@
 // refracted out for air; it is bent again for the water's index (the exit
 // normal from the layers).
 //
-// SNELL_RECEIVER (the frame's caustics stage lit a receiver plane,
-// common/receiver.glsl): past the objects, before the environment, the
-// ray meets the plane from above and sees it lit by its light map, as the
-// view sees it.
+// SNELL_RECEIVER (the frame's caustics stage lit a receiver plane or the
+// opaque objects, common/receiver.glsl, common/opaque_lit.glsl): past the
+// objects, before the environment, the ray meets the plane from above and
+// sees it lit by its light map, and an opaque object it meets through the
+// layers is lit by the light (shadow and caustic maps), both as the view
+// sees them (u_lit_opaque 0: the opaque objects are not lit this frame).
 #ifdef SNELL_RECEIVER
 #include "common/receiver.glsl"
+#include "common/opaque_lit.glsl"
+uniform int u_lit_opaque;
 #endif
 #ifdef SNELL_WATER
 #include "common/water.glsl"
@@ -439,6 +443,11 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
         }
         vec3 n = beyond_normal(qa, qb, entered > 0 ? entered : inside, dir);
         if (entered >= BEYOND_OPAQUE_ID0) {
+#ifdef SNELL_RECEIVER
+            // at qa, the air side of the crossing (qb lies inside: its shadow
+            // look-up would find the object itself)
+            if (u_lit_opaque == 1) return radiance + thr * beyond_table(entered, 3).rgb * snell_lit_irradiance(qa, n);
+#endif
             // opaque.frag's light: half-Lambert from the sky, the mesh's own normal
             float l = 0.5 + 0.5 * dot(n, normalize(vec3(0.3, 1.0, 0.2)));
             radiance += thr * beyond_table(entered, 3).rgb * (0.25 + 0.75 * l);

@@ -5,7 +5,7 @@
 // map's irradiance, one function for both so that the plane seen through
 // glass of index 1 is the plane seen directly.
 uniform highp sampler2D u_plane_map; // the light map: rgb irradiance (float rgba, render/caustics.c)
-uniform highp vec4 u_plane;          // y, centre x, centre z, extent (half side)
+uniform highp vec4 u_plane;          // y, centre x, centre z, extent (half side; 0: no plane this frame)
 uniform vec3 u_plane_albedo;
 
 // The map at uv (0..1 over the square), bilinear by hand: a 32-bit float
@@ -28,7 +28,7 @@ vec3 receiver_irradiance(highp vec2 uv)
 bool receiver_seen(highp vec3 o, highp vec3 dir, out vec3 col)
 {
     col = vec3(0.0);
-    if (dir.y >= 0.0 || o.y <= u_plane.x) return false;
+    if (u_plane.w <= 0.0 || dir.y >= 0.0 || o.y <= u_plane.x) return false;
     highp vec2 xz = o.xz + dir.xz * ((u_plane.x - o.y) / dir.y);
     highp vec2 uv = (xz - u_plane.yz) / u_plane.w;
     if (any(greaterThan(abs(uv), vec2(1.0)))) return false;

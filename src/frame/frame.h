@@ -59,6 +59,10 @@ typedef struct snell__view {
      * light map texture (0: none), y, centre x, z and extent, albedo. */
     unsigned receiver_map;
     float receiver_plane[4], receiver_albedo[3];
+    /* The caustics stage's state where it lit the opaque objects this frame
+     * (the kernels see them lit through the scene layers: common/opaque_lit.glsl),
+     * NULL none. Read only by its hook (render/caustics.c). */
+    const struct snell__caustics *lit_opaque;
 } snell__view;
 
 /* One glass object of a frame, resolved by the scene stage (render/scene.c). */

@@ -25,7 +25,13 @@
 #define SNELL__RECEIVER_UNIT 11       /* the receiver plane's light map (render/caustics.c) */
 #define SNELL__UNIT_ENV_NEAREST 12   /* unit 0's environment again, through a nearest sampler (common/env.glsl
                                        * snell_env_nearest; methods/layered.c) */
-#define SNELL__UNIT_COUNT 13
+/* The caustics stage's light frame, for kernels that see opaque objects lit
+ * through the scene layers (common/opaque_lit.glsl; render/caustics.c's
+ * hook): the shadow map, the opaque receivers' depth, their caustic map. */
+#define SNELL__LIT_SHADOW_UNIT 13
+#define SNELL__LIT_RECV_Z_UNIT 14
+#define SNELL__LIT_CAUSTIC_UNIT 15
+#define SNELL__UNIT_COUNT 16 /* GLES 3.0 guarantees 16 fragment texture units */
 
 #include "core/glstate.h"
 /* The EXTERNAL backend's snapshot must cover every unit of the table. */

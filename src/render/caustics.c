@@ -34,6 +34,7 @@
 #include <string.h>
 
 #define DEFAULT_PHOTONS 256
+#define SHADOW_BIAS 2e-4f /* depth bias of the shadow look-ups (plane, opaque objects), shadow map units */
 #define DEFAULT_MAP 256
 
 static int finite3(const float v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
@@ -528,7 +529,7 @@ static void draw_direct(snell__caustics *c, const snell_frame_desc *fd, const li
     glUniform3fv(glGetUniformLocation(c->direct_prog, "u_color"), 1, L->col);
     light_uniforms(c->direct_prog, L);
     glUniform1f(glGetUniformLocation(c->direct_prog, "u_texel"), 2.0f / (float)c->map_size);
-    glUniform1f(glGetUniformLocation(c->direct_prog, "u_bias"), 2e-4f);
+    glUniform1f(glGetUniformLocation(c->direct_prog, "u_bias"), SHADOW_BIAS);
     glBindVertexArray(c->vao);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
@@ -718,7 +719,7 @@ static void draw_lit_opaque(snell__caustics *c, const snell_frame_desc *fd, cons
     frame_uniforms(p, c);
     light_uniforms(p, &L);
     glUniform3fv(glGetUniformLocation(p, "u_light"), 1, L.col);
-    glUniform1f(glGetUniformLocation(p, "u_bias"), 2e-4f);
+    glUniform1f(glGetUniformLocation(p, "u_bias"), SHADOW_BIAS);
     glUniform3fv(glGetUniformLocation(p, "u_eye"), 1, sc->view.eye);
     for (i = 0; i < fd->opaque_count; i++) {
         float albedo[3] = {0.8f, 0.8f, 0.8f};
@@ -832,6 +833,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     memcpy(c->key, c->scratch, (size_t)key_len * sizeof(float));
     c->key_len = key_len;
     c->valid = 1, c->made_plane = plane, c->made_opaque = opaque;
+    c->light = fd->light;
     if (plane) snprintf(map, sizeof map, "%dx%d %s light map", size, size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
     else snprintf(map, sizeof map, "no plane");
     snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s, %d opaque lit%s; paths: "
@@ -899,6 +901,7 @@ void snell__caustics_destroy(snell__caustics *c)
 /* --- the glass kernels' hook SNELL_RECEIVER ------------------------------ */
 void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc)
 {
+    if (c->made_opaque) v->lit_opaque = c;
     if (!c->made_plane) return;
     v->receiver_map = c->map_tex;
     v->receiver_plane[0] = rc->height, v->receiver_plane[1] = rc->center[0];
@@ -919,14 +922,36 @@ static void receiver_locate(unsigned prog, int *locs)
     locs[2] = glGetUniformLocation(prog, "u_plane_albedo");
 }
 
+/* The opaque objects lit as draw_lit_opaque lights them (a kernel without
+ * the scene layers has none of these uniforms: -1, ignored). */
+static void lit_opaque_uniforms(unsigned prog, const snell__caustics *c)
+{
+    static const char *const samplers[3] = {"u_shadow", "u_recv_z", "u_caustic"};
+    const unsigned tex[3] = {c->shadow_z, c->recv_z, c->cm_tex};
+    light_res L;
+    int i;
+    resolve_light(&c->light, &L);
+    for (i = 0; i < 3; i++) {
+        glActiveTexture(GL_TEXTURE0 + SNELL__LIT_SHADOW_UNIT + (GLenum)i);
+        glBindTexture(GL_TEXTURE_2D, tex[i]);
+        glUniform1i(glGetUniformLocation(prog, samplers[i]), SNELL__LIT_SHADOW_UNIT + i);
+    }
+    frame_uniforms(prog, c);
+    light_uniforms(prog, &L);
+    glUniform3fv(glGetUniformLocation(prog, "u_light"), 1, L.col);
+    glUniform1f(glGetUniformLocation(prog, "u_bias"), SHADOW_BIAS);
+}
+
 static void receiver_uniforms(unsigned prog, const int *locs, const snell__view *v, const snell__object *o)
 {
-    (void)prog, (void)o;
+    (void)o;
     glActiveTexture(GL_TEXTURE0 + SNELL__RECEIVER_UNIT);
     glBindTexture(GL_TEXTURE_2D, v->receiver_map);
     glUniform1i(locs[0], SNELL__RECEIVER_UNIT);
-    glUniform4fv(locs[1], 1, v->receiver_plane);
+    glUniform4fv(locs[1], 1, v->receiver_plane); /* extent 0 without a plane: none seen */
     glUniform3fv(locs[2], 1, v->receiver_albedo);
+    glUniform1i(glGetUniformLocation(prog, "u_lit_opaque"), v->lit_opaque != NULL);
+    if (v->lit_opaque) lit_opaque_uniforms(prog, v->lit_opaque);
 }
 
 const snell__kernel_hook snell__receiver_hook = {SNELL__GLASS_RECEIVER, receiver_defines, SNELL__RECEIVER_LOCS_OFFSET, 3,

@@ -34,6 +34,7 @@ typedef struct snell__caustics {
                                                     * 0 = not probed yet (tests set it to take a path) */
     int valid;                                     /* the maps hold the frame keyed by key[] */
     int made_plane, made_opaque;                   /* which of them it made (the plane's, the opaque ones') */
+    snell_light light;                             /* the light they were made with */
     int key_len;
     float key[SNELL__CAUSTICS_KEY];
     float scratch[SNELL__CAUSTICS_KEY];
@@ -70,11 +71,14 @@ static inline void snell__receiver_albedo(const snell_receiver *rc, float albedo
     for (k = 0; k < 3; k++) albedo[k] = zero ? 0.8f : rc->albedo[k];
 }
 
-/* The glass kernels' hook SNELL_RECEIVER (common/receiver.glsl): their exit
- * and reflected rays meet the plane lit by the stage. snell__receiver_view
- * puts the plane's light map and square into the view after the stage
- * made it (nothing without a plane, or in a build without the stage: the
- * hook's mask is then 0). Its uniform locations follow the layers'. */
+/* The glass kernels' hook SNELL_RECEIVER (common/receiver.glsl,
+ * common/opaque_lit.glsl): their exit and reflected rays meet the plane lit
+ * by the stage, and the opaque objects they meet through the scene layers
+ * are lit as the view sees them. snell__receiver_view puts the plane's
+ * light map and square, and the stage itself where it lit the opaque
+ * objects, into the view after the stage ran (nothing without them, or in
+ * a build without the stage: the hook's mask is then 0). Its uniform
+ * locations follow the layers'. */
 #define SNELL__RECEIVER_LOCS_OFFSET ((int)(sizeof(snell__beyond_locs) / sizeof(int)))
 extern const snell__kernel_hook snell__receiver_hook;
 void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc);

@@ -205,11 +205,12 @@ static snell_status run_caustics(snell__frame *f)
     return st;
 }
 
-/* Every kernel's exit and reflected rays meet the lit plane before the environment. */
+/* Every kernel's exit and reflected rays meet the lit plane before the
+ * environment, and see the opaque objects lit. */
 static unsigned receiver_variant(const snell__frame *f, const snell__object *o)
 {
     (void)o;
-    return f->sc->view.receiver_map ? SNELL__GLASS_RECEIVER : 0;
+    return f->sc->view.receiver_map || f->sc->view.lit_opaque ? SNELL__GLASS_RECEIVER : 0;
 }
 
 /* Glass: the objects shaded in screen space share one G-buffer pass,
