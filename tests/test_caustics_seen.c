@@ -92,12 +92,32 @@ static int differs(const uint8_t *a, const uint8_t *b, int tol)
     return 0;
 }
 
+/* The frames both parts compare: fd with the sphere at IOR 1.001 (with) and
+ * without it (without), and the sphere's pixels (mask: where its exit
+ * directions at IOR 1.5 differ from the empty frame's, none). Returns their count. */
+static int sphere_frames(snell_ctx *ctx, const snell_frame_desc *fd, snell_glass *g, snell_method m, uint8_t *with,
+                         uint8_t *without, uint8_t *mask, float *none)
+{
+    static float dirs[W * H * 3];
+    snell_frame_desc bare = *fd;
+    int k, glass = 0;
+    bare.glass_count = 0;
+    g->material.ior = 1.5f;
+    render(ctx, fd, m, NULL, dirs);
+    render(ctx, &bare, m, NULL, none);
+    g->material.ior = 1.001f;
+    render(ctx, fd, m, with, NULL);
+    render(ctx, &bare, m, without, NULL);
+    for (k = 0; k < W * H; k++) glass += mask[k] = memcmp(dirs + 3 * k, none + 3 * k, 3 * sizeof(float)) != 0;
+    return glass;
+}
+
 /* The lit cube behind the IOR 1.001 sphere (above); the sphere mask from
  * its exit directions at IOR 1.5 as for the plane. */
 static void opaque_seen(snell_ctx *ctx, snell_env *env, snell_mesh *sphere, snell_mesh *cube)
 {
-    static float dirs[W * H * 3], none[W * H * 3];
-    static uint8_t with[W * H * 4], without[W * H * 4], empty[W * H * 4], mask[W * H], cube_px[W * H];
+    static uint8_t with[W * H * 4], without[W * H * 4], empty[W * H * 4], dark[W * H * 4], mask[W * H], cube_px[W * H];
+    static float none[W * H * 3];
     static const float place[16] = {1.2f, 0, 0, 0, 0, 1.2f, 0, 0, 0, 0, 1.2f, 0, 0, 0, -3.0f, 1};
     snell_frame_desc fd, bare;
     snell_glass g;
@@ -116,37 +136,22 @@ static void opaque_seen(snell_ctx *ctx, snell_env *env, snell_mesh *sphere, snel
     fd.light.color[0] = fd.light.color[1] = fd.light.color[2] = 2.5f;
     for (i = 0; i < snell_method_count(); i++) {
         const snell_method_info *mi = snell_method_info_at(i);
-        int glass = 0, seen = 0, off = 0, unlit = 0;
-        g.material.ior = 1.5f;
-        render(ctx, &fd, mi->method, NULL, dirs);
+        int glass, inner, seen = 0, off = 0, unlit = 0;
+        glass = sphere_frames(ctx, &fd, &g, mi->method, with, without, mask, none);
+        inner = (int)ceil(0.2 * sqrt(glass / 3.14159));
         bare = fd;
-        bare.glass_count = 0;
-        render(ctx, &bare, mi->method, NULL, none);
-        g.material.ior = 1.001f;
-        render(ctx, &fd, mi->method, with, NULL);
-        render(ctx, &bare, mi->method, without, NULL);
-        bare.opaque_count = 0;
+        bare.glass_count = bare.opaque_count = 0;
         render(ctx, &bare, mi->method, empty, NULL);
+        /* what the sphere showed before: the cube shaded without the light */
+        bare = fd;
+        bare.light.type = SNELL_LIGHT_NONE;
+        render(ctx, &bare, mi->method, dark, NULL);
+        for (k = 0; k < W * H; k++) cube_px[k] = differs(without + 4 * k, empty + 4 * k, 0);
         for (k = 0; k < W * H; k++) {
-            glass += mask[k] = memcmp(dirs + 3 * k, none + 3 * k, 3 * sizeof(float)) != 0;
-            cube_px[k] = differs(without + 4 * k, empty + 4 * k, 0);
-        }
-        for (k = 0; k < W * H; k++) {
-            if (!mask[k] || !inside(mask, k, (int)ceil(0.2 * sqrt(glass / 3.14159))) || !inside(cube_px, k, 1)) continue;
+            if (!mask[k] || !inside(mask, k, inner) || !inside(cube_px, k, 1)) continue;
             seen++;
             off += differs(with + 4 * k, without + 4 * k, 3);
-        }
-        /* what the sphere showed before: the cube shaded without the light */
-        {
-            snell_frame_desc dark = fd;
-            uint8_t *px = (uint8_t *)malloc((size_t)W * H * 4);
-            if (!px) continue;
-            dark.light.type = SNELL_LIGHT_NONE;
-            render(ctx, &dark, mi->method, px, NULL);
-            for (k = 0; k < W * H; k++)
-                if (mask[k] && inside(mask, k, (int)ceil(0.2 * sqrt(glass / 3.14159))) && inside(cube_px, k, 1))
-                    unlit += differs(px + 4 * k, without + 4 * k, 8);
-            free(px);
+            unlit += differs(dark + 4 * k, without + 4 * k, 8);
         }
         if (mi->method == SNELL_METHOD_PEEL) {
             snell_write_png(test_out("caustics_seen_opaque_with.png"), W, H, with);
@@ -162,7 +167,7 @@ static void opaque_seen(snell_ctx *ctx, snell_env *env, snell_mesh *sphere, snel
 
 int main(void)
 {
-    static float dirs[W * H * 3], none[W * H * 3];
+    static float none[W * H * 3];
     static uint8_t with[W * H * 4], without[W * H * 4], env_only[W * H * 4], mask[W * H];
     snell_ctx *ctx = test_ctx();
     snell_env *env = NULL;
@@ -193,21 +198,12 @@ int main(void)
     fd.receiver.map_size = 128;
     for (i = 0; i < snell_method_count(); i++) {
         const snell_method_info *mi = snell_method_info_at(i);
-        int glass = 0, off = 0, plane = 0, distinct = 0;
-        /* the sphere's pixels: where its exit directions (IOR 1.5) differ from the empty frame's */
-        g.material.ior = 1.5f;
-        render(ctx, &fd, mi->method, NULL, dirs);
-        bare = fd;
-        bare.glass_count = 0;
-        render(ctx, &bare, mi->method, NULL, none);
-        g.material.ior = 1.001f;
-        render(ctx, &fd, mi->method, with, NULL);
-        render(ctx, &bare, mi->method, without, NULL);
+        int glass, off = 0, plane = 0, distinct = 0;
+        glass = sphere_frames(ctx, &fd, &g, mi->method, with, without, mask, none);
         bare = fd;
         bare.light.type = SNELL_LIGHT_NONE;
         memset(&bare.receiver, 0, sizeof bare.receiver);
         render(ctx, &bare, mi->method, env_only, NULL);
-        for (k = 0; k < W * H; k++) glass += mask[k] = memcmp(dirs + 3 * k, none + 3 * k, 3 * sizeof(float)) != 0;
         for (k = 0; k < W * H; k++) {
             /* the inner 80% of its radius: nearer the rim even Fresnel at IOR 1.001 reflects percents */
             if (!mask[k] || !inside(mask, k, (int)ceil(0.2 * sqrt(glass / 3.14159)))) continue;
