@@ -27,7 +27,8 @@
                                        * snell_env_nearest; methods/layered.c) */
 /* The caustics stage's light frame, for kernels that see opaque objects lit
  * through the scene layers (common/opaque_lit.glsl; render/caustics.c's
- * hook): the shadow map, the opaque receivers' depth, their caustic map. */
+ * hook): the shadow map, the opaque receivers' depth, their caustic map,
+ * consecutive (the hook binds them from the first on). */
 #define SNELL__LIT_SHADOW_UNIT 13
 #define SNELL__LIT_RECV_Z_UNIT 14
 #define SNELL__LIT_CAUSTIC_UNIT 15

@@ -697,29 +697,17 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
 
 /* The opaque objects lit (caustics_opaque.frag), over what the opaque stage
  * drew: the same vertices (object.vert), depth LEQUAL. */
+static void lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit);
+
 static void draw_lit_opaque(snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc)
 {
     GLuint p = c->opaque_prog;
-    light_res L;
     int i;
-    resolve_light(&fd->light, &L);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
     glUseProgram(p);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, c->shadow_z);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, c->recv_z);
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, c->cm_tex);
-    glUniform1i(glGetUniformLocation(p, "u_shadow"), 0);
-    glUniform1i(glGetUniformLocation(p, "u_recv_z"), 1);
-    glUniform1i(glGetUniformLocation(p, "u_caustic"), 2);
-    frame_uniforms(p, c);
-    light_uniforms(p, &L);
-    glUniform3fv(glGetUniformLocation(p, "u_light"), 1, L.col);
-    glUniform1f(glGetUniformLocation(p, "u_bias"), SHADOW_BIAS);
+    lit_opaque_uniforms(p, c, 0);
     glUniform3fv(glGetUniformLocation(p, "u_eye"), 1, sc->view.eye);
     for (i = 0; i < fd->opaque_count; i++) {
         float albedo[3] = {0.8f, 0.8f, 0.8f};
@@ -922,9 +910,11 @@ static void receiver_locate(unsigned prog, int *locs)
     locs[2] = glGetUniformLocation(prog, "u_plane_albedo");
 }
 
-/* The opaque objects lit as draw_lit_opaque lights them (a kernel without
- * the scene layers has none of these uniforms: -1, ignored). */
-static void lit_opaque_uniforms(unsigned prog, const snell__caustics *c)
+/* common/opaque_lit.glsl's uniforms of the program in use, its three maps on
+ * units unit..unit + 2: the opaque objects lit by the light the maps were
+ * made with (caustics_opaque.frag; a kernel without the scene layers has
+ * none of these uniforms: -1, ignored). */
+static void lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit)
 {
     static const char *const samplers[3] = {"u_shadow", "u_recv_z", "u_caustic"};
     const unsigned tex[3] = {c->shadow_z, c->recv_z, c->cm_tex};
@@ -932,9 +922,9 @@ static void lit_opaque_uniforms(unsigned prog, const snell__caustics *c)
     int i;
     resolve_light(&c->light, &L);
     for (i = 0; i < 3; i++) {
-        glActiveTexture(GL_TEXTURE0 + SNELL__LIT_SHADOW_UNIT + (GLenum)i);
+        glActiveTexture(GL_TEXTURE0 + (GLenum)(unit + i));
         glBindTexture(GL_TEXTURE_2D, tex[i]);
-        glUniform1i(glGetUniformLocation(prog, samplers[i]), SNELL__LIT_SHADOW_UNIT + i);
+        glUniform1i(glGetUniformLocation(prog, samplers[i]), unit + i);
     }
     frame_uniforms(prog, c);
     light_uniforms(prog, &L);
@@ -951,7 +941,7 @@ static void receiver_uniforms(unsigned prog, const int *locs, const snell__view 
     glUniform4fv(locs[1], 1, v->receiver_plane); /* extent 0 without a plane: none seen */
     glUniform3fv(locs[2], 1, v->receiver_albedo);
     glUniform1i(glGetUniformLocation(prog, "u_lit_opaque"), v->lit_opaque != NULL);
-    if (v->lit_opaque) lit_opaque_uniforms(prog, v->lit_opaque);
+    if (v->lit_opaque) lit_opaque_uniforms(prog, v->lit_opaque, SNELL__LIT_SHADOW_UNIT);
 }
 
 const snell__kernel_hook snell__receiver_hook = {SNELL__GLASS_RECEIVER, receiver_defines, SNELL__RECEIVER_LOCS_OFFSET, 3,
