@@ -357,29 +357,17 @@ void main()
         if (share <= 0.0) return;
     }
     if (dot(n, dir) > 0.0) n = -n;
-    vec3 q, t2, e = vec3(1.0);
+    vec3 q, t2 = dir, e = vec3(1.0);
     float f1 = 0.0, f2 = 0.0, len = 0.0;
+    bool through = true, by_maps = true;
 #if SNELL_PHOTON_BVH
-    bool through = true;
-    if (u_thickness > 0.0) {
-        t2 = dir;
-        thin_bvh(p - dir * u_reach, dir, p, n, q, e);
-        if (g_over) thin_maps(p, n, dir, ivec2(i, j), z, q, e);
-    } else {
-        through = bvh_path(p - dir * u_reach, dir, p, n, q, t2, e);
-        if (g_over) { // past the node budget: the one crossing of the depth maps
-            e = vec3(1.0);
-            through = depth_path(p, n, dir, f1, f2, len, q, t2);
-        }
-    }
-#else
-    bool through = true;
-    if (u_thickness > 0.0) {
-        t2 = dir;
-        thin_maps(p, n, dir, ivec2(i, j), z, q, e);
-    } else
-        through = depth_path(p, n, dir, f1, f2, len, q, t2);
+    if (u_thickness > 0.0) thin_bvh(p - dir * u_reach, dir, p, n, q, e);
+    else through = bvh_path(p - dir * u_reach, dir, p, n, q, t2, e);
+    by_maps = g_over; // past the node budget: the depth maps' path
+    if (by_maps) e = vec3(1.0);
 #endif
+    if (by_maps && u_thickness > 0.0) thin_maps(p, n, dir, ivec2(i, j), z, q, e);
+    else if (by_maps) through = depth_path(p, n, dir, f1, f2, len, q, t2);
     if (!through) return;
     // where the plane (if any) meets it; its way there, or the reach
     float sp = -1.0, lmax = u_recv_reach;
