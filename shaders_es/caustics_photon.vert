@@ -17,6 +17,12 @@
 //   Beer-Lambert inside. Past the material's exact.budget node visits the
 //   photon takes the depth maps' path. Its reference is ref_caustics.c's
 //   through().
+// A thin wall (material thickness > 0, u_thickness) bends nothing: the
+// photon goes on in its direction through every wall it meets, each one a
+// slab (snell_thin_slab, Schlick at both faces, Beer-Lambert over
+// thickness / cos_t: the single kernel's and beyond.glsl's thin wall), the
+// tint at each; by the depth maps the nearest and the farthest surface (a
+// closed convex wall), by the BVH every wall on its line.
 // It then lands on the receiver plane y = h, drawn as a 4 x 4 texel point
 // whose texels share its flux by a tent (caustics_splat.frag): every
 // photon's flux lands in full (flux-correct, as the 2D lightmap's lines,
@@ -48,6 +54,8 @@ uniform float u_cos_cone;     // cosine of its half angle
 uniform float u_tan;          // tangent of the half angle of the light's view of the object
 uniform float u_ior;
 uniform vec3 u_sigma;         // Beer-Lambert absorption per world unit
+uniform float u_thickness;    // > 0: a thin wall of this thickness (world units); 0: solid
+uniform vec3 u_tint;
 uniform vec3 u_flux;          // light colour * photon area / texel area (irradiance one photon adds);
                               // spot: the area on the view's image plane at distance 1
 uniform vec4 u_plane;         // y, centre x, centre z, extent (half side)
@@ -68,7 +76,6 @@ uniform int u_node_budget;    // node visits of all a photon's rays (material.ex
 uniform mat4 u_model, u_inv_model;
 uniform int u_max_interfaces; // 1..MAX_INTERFACES (material.exact.interfaces)
 uniform float u_eps;          // minimum distance of a secondary hit, world units
-uniform vec3 u_tint;
 #include "common/bvh.glsl"
 #endif
 
@@ -213,7 +220,57 @@ bool depth_path(vec3 p, vec3 n, vec3 dir, out float f1, out float f2, out float 
     return snell_refract(t, -nb, u_ior, t2); // TIR: dropped
 }
 
+// A thin wall crossed at normal n by the photon's ray dir: the slab's transmittance.
+vec3 wall(vec3 n, vec3 dir)
+{
+    vec3 rs, ts;
+    snell_thin_slab(dot(n, dir), u_ior, u_sigma, u_thickness, rs, ts);
+    return ts;
+}
+
+// A thin wall's photon by the depth maps, straight on: in through the
+// nearest surface (p, normal n), out through the farthest at the same texel
+// ij of the light's view (the photon's ray is that texel's) where it is
+// another surface (a closed mesh; an open one's single wall is in both maps
+// at the same depth zf). e: the walls' transmittance, the tint at the second
+// (u_flux holds the first); q the last wall.
+void thin_maps(vec3 p, vec3 n, vec3 dir, ivec2 ij, float zf, out vec3 q, out vec3 e)
+{
+    float zb = texelFetch(u_back_z, ij, 0).r;
+    vec3 nb = texelFetch(u_back_n, ij, 0).xyz * 2.0 - 1.0;
+    e = wall(n, dir);
+    q = p;
+    if (zb > zf) {
+        vec4 w = u_light_inv * vec4(vec3((vec2(ij) + 0.5) / float(u_size), zb) * 2.0 - 1.0, 1.0);
+        q = w.xyz / w.w;
+        e *= u_tint * wall(normalize(nb), dir);
+    }
+}
+
 #if SNELL_PHOTON_BVH
+// A thin wall's photon by the BVH, straight on from o along dir through
+// every wall of the mesh on its line, up to u_max_interfaces (p_map, n_map:
+// the nearest-surface map's where the ray misses the mesh, at the
+// silhouette). e: the walls' transmittance, the tint at each after the
+// first (u_flux holds the first); q the last wall.
+void thin_bvh(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 e)
+{
+    mat3 inv3 = mat3(u_inv_model);
+    vec3 b, n, p = (u_inv_model * vec4(o, 1.0)).xyz;
+    int at = -1;
+    e = wall(n_map, dir);
+    q = p_map;
+    for (int k = 0; k < MAX_INTERFACES; k++) {
+        float t = 3.0e38;
+        int h = closest(make_ray(p, inv3 * dir), k == 0 ? 0.0 : u_eps, t, at, b);
+        if (h < 0 || k >= u_max_interfaces) break;
+        at = h;
+        surface_at(h, b, dir, p, n);
+        e = (k == 0 ? vec3(1.0) : e * u_tint) * wall(n, dir);
+        q = (u_model * vec4(p, 1.0)).xyz;
+    }
+}
+
 // The photon's path by the mesh's BVH (exact.frag's rays and model, ref_caustics.c
 // through): from o along the light's ray dir, in where it meets the mesh
 // (p_map, n_map: the nearest-surface map's point and normal where the ray
@@ -300,17 +357,17 @@ void main()
         if (share <= 0.0) return;
     }
     if (dot(n, dir) > 0.0) n = -n;
-    vec3 q, t2, e = vec3(1.0);
+    vec3 q, t2 = dir, e = vec3(1.0);
     float f1 = 0.0, f2 = 0.0, len = 0.0;
+    bool through = true, by_maps = true;
 #if SNELL_PHOTON_BVH
-    bool through = bvh_path(p - dir * u_reach, dir, p, n, q, t2, e);
-    if (g_over) { // past the node budget: the one crossing of the depth maps
-        e = vec3(1.0);
-        through = depth_path(p, n, dir, f1, f2, len, q, t2);
-    }
-#else
-    bool through = depth_path(p, n, dir, f1, f2, len, q, t2);
+    if (u_thickness > 0.0) thin_bvh(p - dir * u_reach, dir, p, n, q, e);
+    else through = bvh_path(p - dir * u_reach, dir, p, n, q, t2, e);
+    by_maps = g_over; // past the node budget: the depth maps' path
+    if (by_maps) e = vec3(1.0);
 #endif
+    if (by_maps && u_thickness > 0.0) thin_maps(p, n, dir, ivec2(i, j), z, q, e);
+    else if (by_maps) through = depth_path(p, n, dir, f1, f2, len, q, t2);
     if (!through) return;
     // where the plane (if any) meets it; its way there, or the reach
     float sp = -1.0, lmax = u_recv_reach;

@@ -54,3 +54,9 @@ target_link_libraries(test_caustics_concave PRIVATE m)
 # bench_caustics on a torus (not convex): its photons by the BVH ("made") against the depth maps alone ("maps").
 add_test(NAME bench_caustics_torus_runs COMMAND bench_caustics 64 2 32 32 0 torus)
 set_tests_properties(bench_caustics_torus_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "torus.*made/maps median ratio")
+# test_caustics_thin: a thin-walled sphere (thickness 0.02, tinted, absorbing): photons straight on through both
+# walls, a slab each; the shadow's colour against the slab model in closed form, the receiver against the
+# reference, the BVH's path, a spot light, a thin torus (four walls on a line), an opaque box under it, a clear
+# thin wall passes.
+snell_add_test(test_caustics_thin SOURCES test_caustics_thin.c LABELS "render;gl")
+target_link_libraries(test_caustics_thin PRIVATE m)

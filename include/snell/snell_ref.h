@@ -282,7 +282,9 @@ snell_status snell_ref_water_floor_render(snell_water *water, const snell_light 
  * directions from the light on the plane at distance 1, each the flux of its
  * solid angle cell^2 cos^3, none outside the cone nor from a light inside
  * the sphere) that meets it first, refracted in (Schlick, Snell) and out at its next surface
- * (Schlick; TIR drops it), tint and Beer-Lambert over the chord, carrying
+ * (Schlick; TIR drops it), tint and Beer-Lambert over the chord (a thin
+ * wall, material thickness > 0: straight on through each of its walls, each
+ * a slab of the kernels' thin-wall model times the tint), carrying
  * the light's flux through its cell, then, unless an object stops it, its
  * flux shared by the texel centres within 2 texels of where it meets the
  * plane with tent weights (1 - |dx|/2)(1 - |dz|/2)/4 (the stage's splat). caustic (optional, 3 floats a texel) receives

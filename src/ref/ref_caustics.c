@@ -7,9 +7,10 @@
  * surface with total internal reflection followed (ref_trace.c's inside
  * walk, snell__ref_inside), out, and in again where the way out meets the
  * object once more, up to its exact.max_interfaces surfaces (through());
- * splatted onto the plane's texels with the stage's tent, flux-correct. The
- * GPU follows the same path by exact's BVH where the mesh is not convex, and
- * one crossing of depth maps where it is (caustics_photon.vert). */
+ * splatted onto the plane's texels with the stage's tent, flux-correct; a
+ * thin wall's photon straight on through each of its walls, a slab each.
+ * The GPU follows the same path by exact's BVH where the mesh is not
+ * convex, and one crossing of depth maps where it is (caustics_photon.vert). */
 #include "ref/ref_trace.h"
 #include "core/ctx.h"
 #include "core/optics.h"
@@ -64,8 +65,10 @@ static int interfaces_of(const ref_glass *gl)
  * again wherever its way out meets g once more (a torus's hole, a goblet's
  * bowl), the entry counted as an interface too, up to g's cap
  * (interfaces_of): there it leaves through the next surface in its
- * direction, as the MATCHED model's rays do, and sees g no more. 1 if it
- * leaves, at x along t2 (prim: the triangle it leaves from), carrying e. */
+ * direction, as the MATCHED model's rays do, and sees g no more. A thin
+ * wall bends nothing: every surface of g on the photon's line, up to the
+ * cap, is a slab it crosses straight on. 1 if it leaves, at x along t2
+ * (prim: the triangle it leaves from), carrying e. */
 static int through(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
                    double x[3], double t2[3], uint32_t *prim, double e[3])
 {
@@ -88,6 +91,15 @@ static int through(const snell_ref *ref, int g, const double o[3], const double 
         memcpy(n, s.n, sizeof n);
         if (snell__ref_dot3(n, dir) > 0.0) n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
         ci = -snell__ref_dot3(n, dir);
+        if (gl->thin) { /* a wall: the slab (the kernels' thin wall), straight on, the tint at each */
+            double rs[3], ts[3];
+            snell_optd_thin_slab(ci, gl->ior, gl->sigma, gl->thickness, rs, ts);
+            for (k = 0; k < 3; k++) e[k] *= gl->tint[k] * ts[k];
+            depth++;
+            memcpy(pos, s.p, sizeof pos);
+            *prim = s.prim;
+            continue;
+        }
         if (!snell_optd_refract(dir, n, 1.0 / gl->ior, t)) return 0;
         snell__ref_normalize3(t);
         for (k = 0; k < 3; k++) e[k] *= gl->tint[k] * (1.0 - snell_optd_fresnel_schlick(ci, 1.0, gl->ior));
@@ -162,7 +174,6 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
     for (g = 0; g < ref->glass_count; g++) {
         const ref_glass *gl = &ref->glass[g];
         double r = gl->bs_r, cell = 2.0 * r / photons, flux[3], w[3], tan_half = 0.0, dist = 0.0;
-        if (gl->thin) continue; /* the stage passes thin walls */
         if (spot) {
             /* a square of directions from the light just holding the bounding
              * sphere; a photon's cell is cell^2 on the plane at distance 1 */
@@ -447,7 +458,6 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
     for (g = 0; g < ref->glass_count; g++) {
         const ref_glass *gl = &ref->glass[g];
         double r = gl->bs_r, cell = 2.0 * r / photons, flux[3], w[3], u[3], v[3], tan_half = 0.0, dist;
-        if (gl->thin) continue;
         if (L->spot) {
             for (k = 0; k < 3; k++) w[k] = gl->bs_c[k] - L->pos[k];
             dist = sqrt(snell__ref_dot3(w, w));

@@ -7,7 +7,8 @@
  * (caustics_photon.vert: a convex mesh by an image-space exit search in its
  * farthest-surface map; any other by the exact method's BVH of the mesh,
  * borrowed from the prepared cache, through every interface: TIR, exits and
- * re-entries up to the material's exact.max_interfaces) and splatted onto
+ * re-entries up to the material's exact.max_interfaces; a thin wall's
+ * straight on through each of its walls, a slab each) and splatted onto
  * the plane, each carrying the light's flux through its cell of the beam
  * (flux-correct: energy is conserved, as the 2D lightmap's lines are,
  * src/lm2d). The opaque objects are receivers too: a photon
@@ -92,12 +93,13 @@ int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n)
 }
 
 /* A glass object that changes light: not IOR 1 without absorption or tint
- * (scene.c skips those), and solid (a thin wall is passed by the photons). */
+ * (scene.c skips those). A thin wall casts too: its photons go straight on
+ * through each wall as a slab (caustics_photon.vert). */
 static int casts(const snell__object *o)
 {
     const snell_glass_material *m = &o->glass->material;
     int tinted = m->tint[0] != 1.0f || m->tint[1] != 1.0f || m->tint[2] != 1.0f;
-    return m->thickness <= 0.0f && (m->ior != 1.0f || o->glass->absorbs || tinted);
+    return m->ior != 1.0f || o->glass->absorbs || tinted;
 }
 
 /* --- the reuse key: everything the light map depends on ------------------ */
@@ -597,7 +599,6 @@ static void bvh_uniforms(GLuint p, const snell__object *o, const snell__exact_bv
     glUniform1i(glGetUniformLocation(p, "u_max_interfaces"), e->max_interfaces);
     /* secondary rays' minimum distance: exact's (exact.c exact_draw) */
     glUniform1f(glGetUniformLocation(p, "u_eps"), 1e-5f * o->bsphere[3]);
-    glUniform3fv(glGetUniformLocation(p, "u_tint"), 1, o->glass->material.tint);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_model"), 1, GL_FALSE, (const GLfloat *)o->model);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_model"), 1, GL_FALSE, (const GLfloat *)o->inv_model);
     glUniformMatrix3fv(glGetUniformLocation(p, "u_normal_matrix"), 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
@@ -668,6 +669,8 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
     glUniform1f(glGetUniformLocation(prog, "u_tan"), tan_half);
     glUniform1f(glGetUniformLocation(prog, "u_ior"), o->glass->material.ior);
     glUniform3fv(glGetUniformLocation(prog, "u_sigma"), 1, o->glass->absorption);
+    glUniform3fv(glGetUniformLocation(prog, "u_tint"), 1, o->glass->material.tint);
+    glUniform1f(glGetUniformLocation(prog, "u_thickness"), o->glass->material.thickness);
     /* each photon carries the light's flux through its cell of the beam
      * (cell^2 facing the light; spot: its solid angle, the shader's share);
      * per texel area that is the irradiance it adds (the plane), or the flux
@@ -826,7 +829,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     else snprintf(map, sizeof map, "no plane");
     snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s, %d opaque lit%s; paths: "
                "%d BVH, %d depth maps; %s",
-               casters, sc->count > casters ? " (thin or clear ones pass)" : "",
+               casters, sc->count > casters ? " (clear ones pass)" : "",
                shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count,
                opaque ? " (light-frame caustic map)" : "", by_bvh, shot - by_bvh, map);
     return draw_view(c, fd, sc);
