@@ -23,7 +23,8 @@
  * 3. The rule (render/stages.c, snell__object.front_whole): the route is
  *    taken alone on screen; not with layer0 = peel, shaded forward, with
  *    the eye within the bounding sphere (every face peeled), at a resolution
- *    scale, in a frame with an
+ *    scale, on large triangles (a torus of 256: the conversion costs more
+ *    there than peeling the mesh; methods/peel.c), in a frame with an
  *    opaque object, nor for two glass objects whose rectangles overlap (the
  *    G-buffer holds only the nearer one's surface there); it is for two
  *    apart. With an opaque cube in front of the torus the image is bitwise
@@ -211,6 +212,22 @@ static void test_rule(snell_ctx *ctx, snell_env *env)
     render(ctx, &fd, &g[0], SNELL_PEEL_LAYER0_GBUFFER, SNELL_SHADING_SCREEN, ca, NULL, NULL, route);
     CHECK(route[0] == 0, "layer0_gbuffer %d at a resolution scale", route[0]);
     g[0].material.scale = 0.0f;
+    {
+        /* large triangles: peeling the mesh costs less than the conversion */
+        snell_shape_desc sd;
+        snell_mesh *coarse = NULL;
+        memset(&sd, 0, sizeof sd);
+        sd.shape = SNELL_SHAPE_TORUS;
+        sd.segments = 16;
+        sd.rings = 8;
+        CHECK_OK(snell_mesh_create_shape(ctx, &sd, &coarse));
+        if (coarse) CHECK_OK(snell_mesh_normalize(coarse, 1.0f));
+        g[0].mesh = coarse;
+        render(ctx, &fd, &g[0], SNELL_PEEL_LAYER0_GBUFFER, SNELL_SHADING_SCREEN, NULL, NULL, NULL, route);
+        CHECK(route[0] == 0, "layer0_gbuffer %d on large triangles (256 of them)", route[0]);
+        g[0].mesh = torus;
+        snell_mesh_destroy(coarse);
+    }
 
     /* an opaque cube in front of part of the torus */
     memset(&op, 0, sizeof op);

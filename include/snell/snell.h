@@ -551,9 +551,10 @@ typedef enum snell_peel_fixes {
 /* Where SNELL_METHOD_PEEL's first layer (the front surface) comes from. */
 typedef enum snell_peel_layer0 {
     SNELL_PEEL_LAYER0_GBUFFER = 0, /* default: converted from the screen-space stage's G-buffer, which already
-                                    * holds it, where it holds all of it (shaded in screen space at full
-                                    * resolution, a closed mesh of known winding seen from outside, nothing
-                                    * else drawn into the G-buffer's depth over its rectangle); else peeled */
+                                    * holds it, where it holds all of it and that pays (shaded in screen
+                                    * space at full resolution, a closed mesh of known winding seen from
+                                    * outside, nothing else drawn into the G-buffer's depth over its
+                                    * rectangle, front triangles below 16 px each); else peeled */
     SNELL_PEEL_LAYER0_PEEL         /* always peeled (one more pass of the mesh) */
 } snell_peel_layer0;
 

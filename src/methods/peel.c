@@ -29,8 +29,8 @@
  * for; objects peel one after the other into them.
  *
  * Shaded in screen space, the G-buffer already holds the front surface:
- * where it holds all of it (o->front_whole) and the peels are culled, layer
- * 0 is converted from it (peel_layer0.frag: one full-screen pass over the
+ * where it holds all of it (o->front_whole), the peels are culled and the
+ * triangles are small (LAYER0_GBUFFER_PPT), layer 0 is converted from it (peel_layer0.frag: one full-screen pass over the
  * scissor, no mesh drawn) instead of peeled (material.peel.layer0). Its
  * depth then comes from the 24-bit window depth, not the interpolated
  * position: a few quanta of the layers' 24 bits off; layer 1 draws back
@@ -62,6 +62,15 @@
  * kernel's per-pixel search is costlier than the cubemap's, whose measured
  * rule is "always screen space" (its full 4x4 blocks win at every density). */
 #define PEEL_SOFTWARE_SCREEN_PPT 1e9f
+/* Layer 0 comes from the G-buffer only for objects whose front triangles
+ * are estimated below this many pixels each: there a peel of the mesh is
+ * bound by triangle set-up and the conversion, one full-screen pass over
+ * the scissor, costs less; on large triangles it costs more. llvmpipe,
+ * 512x512, peel:interfaces=1:layers=2, load < 2, ms per frame peeled ->
+ * converted: bunny (5.1 px) 45.4 -> 21.3, torus@256 (5.4 px) 29.8 -> 21.4,
+ * torus@128 (21.5 px) 14.3 -> 14.4, torus (86 px) 16.9 -> 17.9 (4 layers),
+ * sphere (89 px) 14.4 -> 14.7. */
+#define LAYER0_GBUFFER_PPT 16.0f
 
 typedef struct peel_prog {
     snell__program_slot slot; /* key: prog_key's fields in order */
@@ -275,6 +284,7 @@ static snell_status peel_layers(snell_ctx *ctx, peel_state *s, const snell__view
     /* only where layer 1 draws back faces alone: otherwise its test against
      * a depth a few quanta off could keep layer 0's surface again */
     *gbuffer = winding != 0 && o->screen_space && o->front_whole && o->scale <= 1.0f &&
+               o->pixels_per_triangle < LAYER0_GBUFFER_PPT &&
                o->glass->material.peel.layer0 != SNELL_PEEL_LAYER0_PEEL;
     snell__pass_begin(&pass, s->t.fbo, v->width, v->height, 0, GL_LESS, 1.0f);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->t.depth_rb);
@@ -449,7 +459,8 @@ static const snell_param_info g_params[] = {
     {"inner", "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more search): "
      "auto (on), off, on", 0, 2, SNELL_INNER_FRESNEL_AUTO, g_inner_names},
     {"layer0", "the front layer: gbuffer (converted from the screen-space G-buffer where it holds the whole "
-     "front surface and the peels are culled; else peeled) or peel (always peeled)", 0, 1,
+     "front surface, the peels are culled and the triangles are below 16 px; else peeled) or peel (always "
+     "peeled)", 0, 1,
      SNELL_PEEL_LAYER0_GBUFFER, g_layer0_names},
 };
 
