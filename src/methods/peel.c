@@ -30,11 +30,13 @@
  *
  * Shaded in screen space, the G-buffer already holds the front surface:
  * where it holds all of it (o->front_whole), the peels are culled and the
- * triangles are small (LAYER0_GBUFFER_PPT), layer 0 is converted from it (peel_layer0.frag: one full-screen pass over the
- * scissor, no mesh drawn) instead of peeled (material.peel.layer0). Its
- * depth then comes from the 24-bit window depth, not the interpolated
- * position: a few quanta of the layers' 24 bits off; layer 1 draws back
- * faces only, so it cannot keep layer 0 again. */
+ * triangles are small (LAYER0_GBUFFER_PPT), layer 0 is converted from it
+ * (peel_layer0.frag: one full-screen pass over the scissor, no mesh drawn)
+ * instead of peeled (material.peel.layer0). Its depth then comes from the
+ * 24-bit window depth, not the interpolated position: up to some hundred
+ * quanta of the layers' 24 bits off (test_peel_layer0: mean 97, worst 664
+ * on a torus); layer 1 draws back faces only, so it cannot keep layer 0
+ * again. */
 #include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
