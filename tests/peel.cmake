@@ -22,3 +22,7 @@ if(TARGET snell-render)
     set_tests_properties(${name} PROPERTIES LABELS "cli")
   endforeach()
 endif()
+# Layer 0 from the G-buffer (issue 25 item 2): the layer against the peeled
+# one, the images, and when the route is taken (screen space only).
+snell_add_test(test_peel_layer0 SOURCES test_peel_layer0.c LABELS "render;gl")
+target_link_libraries(test_peel_layer0 PRIVATE m)

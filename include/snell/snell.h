@@ -548,6 +548,16 @@ typedef enum snell_peel_fixes {
     SNELL_PEEL_FIXES_BOTH
 } snell_peel_fixes;
 
+/* Where SNELL_METHOD_PEEL's first layer (the front surface) comes from. */
+typedef enum snell_peel_layer0 {
+    SNELL_PEEL_LAYER0_GBUFFER = 0, /* default: converted from the screen-space stage's G-buffer, which already
+                                    * holds it, where it holds all of it and that pays (shaded in screen
+                                    * space at full resolution, a closed mesh of known winding seen from
+                                    * outside, nothing else drawn into the G-buffer's depth over its
+                                    * rectangle, front triangles below 16 px each); else peeled */
+    SNELL_PEEL_LAYER0_PEEL         /* always peeled (one more pass of the mesh) */
+} snell_peel_layer0;
+
 /* SNELL_METHOD_PEEL's parameters (material.peel); zero = the default. Step
  * counts are compile-time constants of the search program (one per setting,
  * built on first use). */
@@ -570,6 +580,7 @@ typedef struct snell_peel_params {
      * search is close enough for it to pay, concave ones too (measured in
      * bench/BENCHMARKS.md, "Inner-surface Fresnel in peel"). */
     snell_inner_fresnel inner_fresnel;
+    snell_peel_layer0 layer0;
 } snell_peel_params;
 
 #define SNELL_PEEL_MAX_LAYERS 8

@@ -84,6 +84,8 @@ typedef struct snell__object {
     int gid;                        /* its id in the G-buffer (index + 1) */
     float pixels_per_triangle;      /* its projected bounding sphere per front triangle */
     int scissor[4];                 /* that projection in window pixels: x, y, w, h */
+    int front_whole;                /* screen space: the G-buffer holds its whole front surface (nothing
+                                     * else in the G-buffer's depth over its scissor; render/stages.c) */
     void *prepared;                 /* the method's resources for (mesh version, settings) */
     unsigned vao;                   /* 0: draw the mesh's own VAO; else the method's (vertex_array()):
                                      * the mesh's attributes plus attribute 2, a per-vertex scalar that

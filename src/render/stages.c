@@ -365,11 +365,26 @@ static snell_status run_back_faces(snell__frame *f)
 
 static int want_gbuffer(const snell__frame *f) { return f->n_screen > 0; }
 
+/* Where the G-buffer keeps an object's whole front surface (o->front_whole:
+ * peel takes its first layer from there): no other object of the pass
+ * overlaps its scissor rectangle, and the G-buffer's depth holds nothing
+ * drawn before (its own buffer, or a target's with no opaque object, water
+ * or receiver plane, whose screen bounds are not at hand here). */
 static snell_status run_gbuffer(snell__frame *f)
 {
     snell_renderer *r = f->r;
-    return snell__gbuffer_draw(r->ctx, &r->gbuffer, &f->sc->view, r->screen_list, f->n_screen,
-                               r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? r->depth_rb : 0, f->s->glass);
+    unsigned depth = r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? r->depth_rb : 0;
+    int clear = !depth || (f->fd->opaque_count == 0 && !f->fd->water && !f->sc->view.receiver_map), i, j;
+    for (i = 0; i < f->n_screen; i++) {
+        const int *a = r->screen_list[i]->scissor;
+        r->screen_list[i]->front_whole = clear;
+        for (j = 0; j < f->n_screen; j++) {
+            const int *b = r->screen_list[j]->scissor;
+            if (j != i && a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3])
+                r->screen_list[i]->front_whole = 0;
+        }
+    }
+    return snell__gbuffer_draw(r->ctx, &r->gbuffer, &f->sc->view, r->screen_list, f->n_screen, depth, f->s->glass);
 }
 
 static snell_status run_kernels(snell__frame *f)
