@@ -27,10 +27,12 @@
  *     --sizes 256x256 --aa 2 --frames 41 --warmup 3 --threads 2
  * (the same command just before, at load 5.3 -> 6.6, put the same five scale
  * rungs on fronts, peel layers=2 scale=4 on three classes' instead of the
- * bunny's alone; costs moved up to 30% between the two runs). On another device the costs move: snell_renderer_warm
- * measures each rung on it (snell__budget_calibrate), and the controller
- * learns from the frames it draws; the table gives the order and the first
- * guess. */
+ * bunny's alone; costs moved up to 30% between the two runs). The scaled
+ * rungs come last: test_budget.c's synthetic devices skew each rung's cost by
+ * its index, and those of the others stay as they were. On another device
+ * the costs move: snell_renderer_warm measures each rung on it
+ * (snell__budget_calibrate), and the controller learns from the frames it
+ * draws; the table gives the order and the first guess. */
 static const snell__rung g_rungs[] = {
     /* method, param, value, cost: convex bunny-like torus-like open, db: the same classes, scale */
     {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}, 1},
