@@ -5,9 +5,12 @@
  * camera that moves the objects' screen areas. What must hold (issue 25
  * item 3): frames within 10% of the budget once settled, no oscillation,
  * and a predicted quality within 1 dB of the best fixed plan that meets the
- * same budget on the true costs. */
+ * same budget on the true costs. Rungs of a resolution scale: on the ladders
+ * where the table's fronts put them and the build draws at a scale, and
+ * chosen when the budget allows no more. */
 #include "test_util.h"
 #include "render/budget.h"
+#include "render/glass_scale.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -56,6 +59,34 @@ static void check_ladder(const snell__budget_object *b, const char *what)
         CHECK(hi->cost[b->cls] > lo->cost[b->cls] && hi->db[b->cls] > lo->db[b->cls], "%s: rung %d not dearer and better than %d",
               what, j, j - 1);
     }
+}
+
+/* The scale the renderer draws rung g's method at when the material asks for g's
+ * (render/glass_scale.h: 1 for a method that reads full-resolution back faces, and
+ * everywhere in a build without the scale, glass_scale_off.c). */
+static int drawn_scale(const snell__rung *g)
+{
+    snell_glass_resolved gr = glass_of();
+    snell__object o;
+    memset(&o, 0, sizeof o);
+    gr.material.scale = (float)g->scale;
+    o.glass = &gr;
+    return (int)snell__glass_scale_of(snell__method_get(g->method), SNELL__OUT_COLOR, &o);
+}
+
+/* Rungs of a resolution scale on the ladder: the scale rungs it holds, each one the renderer really
+ * draws at its scale (so none in a build without the scale). */
+static int scale_rungs(const snell__budget_object *b, const char *what)
+{
+    int j, n = 0;
+    for (j = 0; j < b->n; j++) {
+        const snell__rung *g = snell__rung_at(b->ladder[j]);
+        if (g->scale <= 1) continue;
+        n++;
+        CHECK(drawn_scale(g) == g->scale, "%s: rung %d at scale %d, which this build draws at %d", what, j, g->scale,
+              drawn_scale(g));
+    }
+    return n;
 }
 
 /* The synthetic device: ms of a plan on it. */
@@ -185,6 +216,44 @@ static void run(const char *what, device *d, snell__budget_object *obj, int n, d
     for (i = 0; i < n; i++) obj[i].area = (float)base_area[i];
 }
 
+/* A budget that only a scale rung meets: one object filling the target, on a
+ * device as the table prices it, with a budget whose aim (95%) holds the
+ * highest scale rung of its ladder with room for the 4% noise and not the
+ * rung above (unscaled, dearer by 30% or more): AUTO settles on the scale
+ * rung. */
+static void scale_pick(const snell__budget_object *ladder, const char *what)
+{
+    snell__budget_object o = *ladder;
+    snell__budget b;
+    device d;
+    calib c;
+    char why[SNELL_REASON_SIZE];
+    double pred, budget, lo, hi;
+    int k, f, r, plan[1] = {-1};
+    for (k = o.n - 1; k >= 0 && snell__rung_at(o.ladder[k])->scale <= 1; k--) continue;
+    CHECK(k >= 0 && k + 1 < o.n, "%s: no scale rung below the top of its ladder", what);
+    if (k < 0 || k + 1 >= o.n) return;
+    lo = snell__rung_at(o.ladder[k])->cost[o.cls];
+    hi = snell__rung_at(o.ladder[k + 1])->cost[o.cls];
+    CHECK(hi > 1.3 * lo, "%s: the rung above the scale rung costs %.2f, not 30%% more than its %.2f", what, hi, lo);
+    memset(&d, 0, sizeof d);
+    d.ms_per_unit = 9.0;
+    d.base = 0.25;
+    d.seed = 11u;
+    for (r = 0; r < snell__rung_count(); r++) d.skew[r] = 1.0;
+    o.area = 1.0f;
+    budget = d.ms_per_unit * (d.base + 1.08 * lo) / 0.95;
+    snell__budget_reset(&b);
+    c.d = &d, c.obj = &o, c.n = 1, c.frames = 0;
+    CHECK(snell__budget_calibrate(&b, &o, 1, calib_measure, &c) > 0, "%s: calibration failed", what);
+    for (f = 0; f < 120; f++) {
+        snell__budget_plan(&b, &o, 1, (float)budget, plan, &pred, why, sizeof why);
+        snell__budget_observe(&b, d.ms_per_unit * true_units(&d, &o, 1, plan) * noise(&d));
+    }
+    CHECK(plan[0] == k, "%s: budget %.1f ms settled on rung %d (scale %d), not the scale rung %d (%s)", what, budget,
+          plan[0], snell__rung_at(o.ladder[plan[0]])->scale, k, why);
+}
+
 int main(void)
 {
     /* the classes: convex; closed concave that the cubemap serves (a bunny: 25% hidden from its centre);
@@ -211,9 +280,22 @@ int main(void)
         snell__budget_ladder(&bunny, &g, 0.0f, all_usable, NULL, &bo);
         CHECK(bo.cls == 1, "cubemap-served class %d", bo.cls);
         check_ladder(&bo, "cubemap-served");
+        scale_rungs(&bo, "cubemap-served");
         /* on it the cubemap beats oliveira (the table's bunny), where on the torus oliveira beats the cubemap */
         for (r = 0; r < bo.n; r++)
             CHECK(snell__rung_at(bo.ladder[r])->method != SNELL_METHOD_OLIVEIRA, "oliveira on the bunny's ladder");
+    }
+    /* Rungs of a resolution scale are on the fronts where they are measured to be (the torus's, the open
+     * horse's) where this build draws at a scale (single at 2 as a probe), each drawn at its scale (so on
+     * no ladder of a build without it); AUTO picks one where the budget allows no more. */
+    {
+        const snell__rung probe = {SNELL_METHOD_SINGLE, NULL, 0, {1, 1, 1, 1}, {1, 1, 1, 1}, 2};
+        int scaled = drawn_scale(&probe) == 2, convex_n = scale_rungs(&obj[0], "convex");
+        int deep_n = scale_rungs(&obj[1], "deep concave"), open_n = scale_rungs(&obj[2], "open");
+        printf("scale rungs on the ladders: convex %d, deep concave %d, open %d (this build %s the scale)\n", convex_n,
+               deep_n, open_n, scaled ? "draws" : "lacks");
+        CHECK(!scaled || (deep_n >= 1 && open_n >= 1), "no scale rung on the deep concave or the open ladder");
+        if (scaled) scale_pick(&obj[1], "deep concave");
     }
     /* A method the mesh fails is not on it: exact unless the material lets AUTO pick it. */
     for (r = 0; r < obj[1].n; r++)

@@ -703,7 +703,8 @@ typedef struct snell_glass_material {
      * drawn without it); 1..SNELL_MAX_GLASS_SCALE. Drawn at 1 where the
      * method reads the frame's full-resolution back faces (WYMAN, OLIVEIRA),
      * in exit-direction output, and in a build without PEEL and EXACT
-     * (snell_object_stats.scale says what was drawn). */
+     * (snell_object_stats.scale says what was drawn). An AUTO object under a
+     * frame budget is drawn at its rung's scale (snell_budget_rung.scale). */
     float scale;
 } snell_glass_material;
 
@@ -998,9 +999,10 @@ typedef struct snell_frame_desc {
      * start to the GPU's completion, measured by a fence after each frame and
      * read at the next: snell_renderer_finish, a read-back or the next
      * snell_render). Each AUTO glass object is then drawn by one rung of its
-     * ladder: the configurations of the rung table (method + parameter, with
-     * their measured cost and glass PSNR per mesh class) that its mesh does
-     * not fail, cut to their Pareto front; the plan of the highest predicted
+     * ladder: the configurations of the rung table (method + parameter +
+     * resolution scale, with their measured cost and glass PSNR per mesh
+     * class) that its mesh does not fail, cut to their Pareto front (the
+     * rung's scale replaces the material's); the plan of the highest predicted
      * PSNR (area-weighted over the objects) whose predicted time fits 95% of
      * the budget, at the ms per unit learned from the frames measured. A frame
      * measured over 105% of the budget steps down at once and bars plans as
@@ -1188,6 +1190,10 @@ typedef struct snell_budget_rung {
                                      * cubemap: the bunny); closed concave it does not (the torus); open
                                      * or non-manifold */
     float db[4];                    /* glass PSNR vs FULL per class; 0 = not on that class's ladder */
+    int scale;                      /* the resolution scale it draws at (snell_glass_material.scale); 0 = 1,
+                                     * full resolution. Such rungs are on no ladder where the scale does not
+                                     * apply (a method reading full-resolution back faces; a build without
+                                     * the scale) */
 } snell_budget_rung;
 int snell_budget_rung_count(void);
 const snell_budget_rung *snell_budget_rung_at(int i); /* NULL outside 0..count-1 */

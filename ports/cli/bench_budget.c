@@ -143,6 +143,15 @@ static int parse(int argc, char **argv, budget_opts *o)
     return 1;
 }
 
+/* "peel layers=2 scale=2", as the library's reasons name a rung. */
+static void rung_name(const snell_budget_rung *g, char *buf, size_t n)
+{
+    char param[40] = "", scale[24] = "";
+    if (g->param) snprintf(param, sizeof param, " %s=%d", g->param, g->value);
+    if (g->scale > 1) snprintf(scale, sizeof scale, " scale=%d", g->scale);
+    snprintf(buf, n, "%s%s%s", snell_method_str(g->method), param, scale);
+}
+
 static void print_table(void)
 {
     int i, c;
@@ -152,8 +161,7 @@ static void print_table(void)
     for (i = 0; i < snell_budget_rung_count(); i++) {
         const snell_budget_rung *g = snell_budget_rung_at(i);
         char name[64];
-        if (g->param) snprintf(name, sizeof name, "%s %s=%d", snell_method_str(g->method), g->param, g->value);
-        else snprintf(name, sizeof name, "%s", snell_method_str(g->method));
+        rung_name(g, name, sizeof name);
         printf("  %-22s", name);
         for (c = 0; c < 4; c++) {
             if (g->db[c] > 0.0f) printf("     %5.2fx %5.2f dB", (double)g->cost[c], (double)g->db[c]);
@@ -178,6 +186,7 @@ static void frame_of(const bench_scene *s, const snell_env *env, budget_config *
         if (k->rung >= 0) {
             const snell_budget_rung *g = snell_budget_rung_at(k->rung);
             k->glass[i].material.method = g->method;
+            k->glass[i].material.scale = (float)g->scale;
             if (g->param) {
                 char v[16];
                 snprintf(v, sizeof v, "%d", g->value);
@@ -311,9 +320,7 @@ int snell_bench_budget_main(int argc, char **argv)
         budget_config *c = &ks[n];
         c->rung = i;
         if (i >= 0) {
-            const snell_budget_rung *g = snell_budget_rung_at(i);
-            if (g->param) snprintf(c->name, sizeof c->name, "%s %s=%d", snell_method_str(g->method), g->param, g->value);
-            else snprintf(c->name, sizeof c->name, "%s", snell_method_str(g->method));
+            rung_name(snell_budget_rung_at(i), c->name, sizeof c->name);
         } else
             snprintf(c->name, sizeof c->name, "auto, budget");
         frame_of(s, env, c, cam, &o);

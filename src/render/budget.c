@@ -1,6 +1,7 @@
 /* budget.c — AUTO by frame budget: the rung table, each object's ladder,
  * and the controller (see budget.h). */
 #include "render/budget.h"
+#include "render/glass_scale.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -12,27 +13,42 @@
  * cubemap serves (AUTO's cubemap: the bunny), one it does not (the torus),
  * and an open or non-manifold one (glmark2's horse), IOR 1.5, 256x256. A
  * class is a proxy for the mesh: the bunny and the torus order oliveira and
- * the cubemap the other way round, so they are two classes. Measured side by
- * side in one run on llvmpipe (LLVM 15), 2 CPUs, load 0.96 -> 1.40, 2026-12-03
- * 19:10 UTC, a Release build of this tree (peel's search bisecting once and its culled peels,
- * layered's convex program and closed rims):
+ * the cubemap the other way round, so they are two classes. scale: the
+ * resolution scale (snell_glass_material.scale); such a rung is kept where it
+ * is on some class's Pareto front (peel at 2 and 4, layered at 2; exact at 2
+ * was on none). --aa 2 measures the error on the frame at ssaa 2 and times the
+ * plain frame: at scale 2 the error is of one kernel sample a pixel, the time
+ * of one per 4 pixels. Measured side by side in one run on llvmpipe (LLVM 15),
+ * 2 CPUs shared, load 5.87 -> 4.62, 2026-12-03 23:51 UTC, a Release build of
+ * main f9271e0 (this table's rendering code):
  *   snell-bench -b single -b cubemap -b wyman -b oliveira -b layered -b peel:layers=2,4 \
- *     -b exact:interfaces=2,8 --scenes sphere,torus,bunny,tests/data/real/horse.obj \
+ *     -b exact:interfaces=2,8 -b layered:scale=2 -b peel:layers=2,4:scale=2,4 \
+ *     -b exact:interfaces=2,8:scale=2 --scenes sphere,torus,bunny,tests/data/real/horse.obj \
  *     --sizes 256x256 --aa 2 --frames 41 --warmup 3 --threads 2
- * On another device the costs move: snell_renderer_warm measures each rung on
- * it (snell__budget_calibrate), and the controller learns from the frames it
+ * (the same command just before, at load 5.3 -> 6.6, put the same five scale
+ * rungs on fronts, peel layers=2 scale=4 on three classes' instead of the
+ * bunny's alone; costs moved up to 30% between the two runs). The scaled
+ * rungs come last: test_budget.c's synthetic devices skew each rung's cost by
+ * its index, and those of the others stay as they were. On another device
+ * the costs move: snell_renderer_warm measures each rung on it
+ * (snell__budget_calibrate), and the controller learns from the frames it
  * draws; the table gives the order and the first guess. */
 static const snell__rung g_rungs[] = {
-    /* method, param, value, cost: convex bunny-like torus-like open, db: the same classes */
-    {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}},
-    {SNELL_METHOD_CUBEMAP, NULL, 0, {1.98f, 1.23f, 1.36f, 1.05f}, {34.95f, 17.09f, 15.50f, 15.98f}},
-    {SNELL_METHOD_WYMAN, NULL, 0, {2.01f, 1.43f, 1.78f, 1.90f}, {18.59f, 15.27f, 17.01f, 17.26f}},
-    {SNELL_METHOD_OLIVEIRA, NULL, 0, {3.48f, 1.61f, 1.75f, 1.57f}, {27.98f, 16.34f, 20.29f, 17.52f}},
-    {SNELL_METHOD_LAYERED, NULL, 0, {2.39f, 5.08f, 9.57f, 4.16f}, {40.70f, 19.63f, 25.68f, 18.38f}},
-    {SNELL_METHOD_PEEL, "layers", 2, {7.24f, 4.29f, 5.40f, 3.70f}, {40.32f, 21.88f, 22.70f, 20.71f}},
-    {SNELL_METHOD_PEEL, NULL, 0, {7.32f, 7.57f, 8.13f, 6.00f}, {40.32f, 22.48f, 26.42f, 21.65f}},
-    {SNELL_METHOD_EXACT, "interfaces", 2, {11.91f, 5.90f, 10.10f, 4.65f}, {32.30f, 18.17f, 20.65f, 18.80f}},
-    {SNELL_METHOD_EXACT, NULL, 0, {12.01f, 10.53f, 13.54f, 6.91f}, {32.31f, 24.95f, 24.48f, 22.71f}},
+    /* method, param, value, cost: convex bunny-like torus-like open, db: the same classes, scale */
+    {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}, 1},
+    {SNELL_METHOD_CUBEMAP, NULL, 0, {2.05f, 1.10f, 1.31f, 0.94f}, {34.95f, 17.09f, 15.50f, 15.98f}, 1},
+    {SNELL_METHOD_WYMAN, NULL, 0, {1.85f, 1.41f, 1.64f, 1.73f}, {18.59f, 15.27f, 17.01f, 17.26f}, 1},
+    {SNELL_METHOD_OLIVEIRA, NULL, 0, {3.46f, 1.43f, 1.60f, 1.27f}, {27.98f, 16.34f, 20.29f, 17.52f}, 1},
+    {SNELL_METHOD_LAYERED, NULL, 0, {2.14f, 6.66f, 13.27f, 4.83f}, {40.69f, 19.63f, 25.68f, 18.38f}, 1},
+    {SNELL_METHOD_PEEL, "layers", 2, {8.02f, 5.20f, 7.85f, 3.46f}, {40.32f, 21.88f, 22.70f, 20.71f}, 1},
+    {SNELL_METHOD_PEEL, NULL, 0, {8.16f, 7.40f, 11.91f, 5.29f}, {40.32f, 22.48f, 26.42f, 21.65f}, 1},
+    {SNELL_METHOD_EXACT, "interfaces", 2, {16.87f, 7.83f, 18.49f, 5.47f}, {32.30f, 18.17f, 20.65f, 18.80f}, 1},
+    {SNELL_METHOD_EXACT, NULL, 0, {16.29f, 14.98f, 23.20f, 8.70f}, {32.31f, 24.95f, 24.48f, 22.71f}, 1},
+    {SNELL_METHOD_LAYERED, NULL, 0, {2.36f, 3.50f, 5.88f, 2.87f}, {34.44f, 17.92f, 23.85f, 17.34f}, 2},
+    {SNELL_METHOD_PEEL, "layers", 2, {3.68f, 3.83f, 4.96f, 2.97f}, {34.25f, 19.10f, 22.02f, 18.56f}, 2},
+    {SNELL_METHOD_PEEL, NULL, 0, {3.80f, 5.15f, 5.00f, 3.79f}, {34.25f, 19.30f, 24.16f, 18.86f}, 2},
+    {SNELL_METHOD_PEEL, "layers", 2, {2.01f, 2.87f, 2.40f, 1.74f}, {27.22f, 17.10f, 20.65f, 16.77f}, 4},
+    {SNELL_METHOD_PEEL, NULL, 0, {1.99f, 3.92f, 2.38f, 2.22f}, {27.22f, 17.25f, 21.58f, 16.80f}, 4},
 };
 #define RUNG_COUNT ((int)(sizeof g_rungs / sizeof *g_rungs))
 
@@ -54,10 +70,12 @@ const snell_budget_rung *snell_budget_rung_at(int i) { return i >= 0 && i < RUNG
 
 void snell__rung_name(const snell__rung *g, char *buf, size_t n)
 {
+    char scale[24] = "";
+    if (g->scale > 1) snprintf(scale, sizeof scale, " scale=%d", g->scale);
     if (g->param)
-        snprintf(buf, n, "%s %s=%d", snell_method_str(g->method), g->param, g->value);
+        snprintf(buf, n, "%s %s=%d%s", snell_method_str(g->method), g->param, g->value, scale);
     else
-        snprintf(buf, n, "%s", snell_method_str(g->method));
+        snprintf(buf, n, "%s%s", snell_method_str(g->method), scale);
 }
 
 int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolved *glass)
@@ -81,7 +99,7 @@ void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resol
         const snell__rung *g = &g_rungs[i];
         const snell__method *m = snell__method_get(g->method);
         char why[SNELL_REASON_SIZE];
-        if (!m || g->db[out->cls] <= 0.0f || !usable(user, g->method)) continue;
+        if (!m || g->db[out->cls] <= 0.0f || !usable(user, g->method) || g->scale > snell__glass_scale_max(m)) continue;
         if (m->fit && m->fit(an, glass, why, sizeof why) == SNELL__FIT_FAILS) continue;
         /* Pareto: drop every rung this one beats (cheaper or as cheap, and better or as good). */
         for (j = 0; j < out->n;) {
@@ -381,7 +399,9 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
             /* the last probe's plan held within the budget: probes come back to their first pace */
             b->probing = 0;
             b->probe_every = BACKOFF_MIN;
-        } else if (b->probing && over) {
+        } else if (b->probing && (over || new_ms < cur_ms)) {
+            /* over, or measured above the budget and stepped back from: the step does not fit, and
+             * trying it again at the same pace is an oscillation */
             b->probing = 0;
             b->probe_every = b->probe_every * 2 > BACKOFF_MAX ? BACKOFF_MAX : b->probe_every * 2;
         }

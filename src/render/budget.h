@@ -1,10 +1,11 @@
 /* budget.h — AUTO by frame budget (snell_frame_desc.budget_ms).
  *
  * Each AUTO glass object gets a ladder: the configurations of the rung
- * table (budget.c: method + one parameter, with their cost relative to
- * single and their glass PSNR against FULL per mesh class, measured by
- * snell-bench on this project's reference device) that its mesh does not
- * fail, cut to their Pareto front (dearer only where better). A plan puts
+ * table (budget.c: method + one parameter + a resolution scale, with their
+ * cost relative to single and their glass PSNR against FULL per mesh class,
+ * measured by snell-bench on this project's reference device) that its mesh
+ * does not fail (nor, for a scale, the build: render/glass_scale.h), cut to
+ * their Pareto front (dearer only where better). A plan puts
  * every object on one rung of its ladder. Its cost in units is
  * base + sum(area_i * cost_i), area_i the share of the target the object's
  * projected bounding sphere covers; the controller learns the device's ms
@@ -32,7 +33,7 @@ typedef snell_budget_rung snell__rung;
 
 #define snell__rung_count snell_budget_rung_count
 #define snell__rung_at snell_budget_rung_at
-/* "peel layers=2" */
+/* "peel layers=2", "peel layers=2 scale=2" */
 void snell__rung_name(const snell__rung *g, char *buf, size_t n);
 /* The class of a mesh for the table (analysis may be NULL). */
 int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolved *glass);

@@ -152,7 +152,7 @@ snell_status snell__budget_run(snell__frame *f)
             int k, cls = snell__budget_class(an, o->glass);
             b->fixed_cost = 1.0f;
             for (k = 0; k < snell__rung_count(); k++)
-                if (snell__rung_at(k)->method == m && !snell__rung_at(k)->param)
+                if (snell__rung_at(k)->method == m && !snell__rung_at(k)->param && snell__rung_at(k)->scale <= 1)
                     b->fixed_cost = snell__rung_at(k)->cost[cls];
         }
     }
@@ -178,12 +178,14 @@ snell_status snell__budget_run(snell__frame *f)
         char name[40];
         if (!b->n || plan[i] < 0) continue;
         g = snell__rung_at(b->ladder[plan[i]]);
-        /* The frame's resolved copy of the material (scene.c): the rung draws it as an explicit method. */
+        /* The frame's resolved copy of the material (scene.c): the rung draws it as an explicit method,
+         * at the rung's scale (the material's own is the rung's to choose, as its method is). */
         {
             snell_glass_material *m = &sc->glass[i].material;
             char value[16];
             snprintf(value, sizeof value, "%d", g->value);
             m->method = g->method;
+            m->scale = g->scale > 1 ? (float)g->scale : 1.0f;
             if (g->param && snell_glass_set_param(m, g->method, g->param, value) != SNELL_OK)
                 return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "budget: rung %s=%d refused", g->param, g->value);
         }

@@ -44,9 +44,11 @@ void snell__glass_scale_destroy(snell__glass_scale *gs)
     memset(gs, 0, sizeof *gs);
 }
 
+int snell__glass_scale_max(const snell__method *m) { return m->needs_back_faces ? 1 : SNELL_MAX_GLASS_SCALE; }
+
 float snell__glass_scale_of(const snell__method *m, snell__output_kind out, const snell__object *o)
 {
-    if (m->needs_back_faces || out != SNELL__OUT_COLOR) return 1.0f;
+    if (snell__glass_scale_max(m) == 1 || out != SNELL__OUT_COLOR) return 1.0f;
     return o->glass->material.scale;
 }
 

@@ -19,6 +19,12 @@ typedef struct snell__glass_scale {
     int u_ratio[SNELL__GLASS_SHADING_MASK + 1], u_max[SNELL__GLASS_SHADING_MASK + 1];
 } snell__glass_scale;
 
+/* The largest scale method m draws at: 1 where it reads the frame's
+ * full-resolution back faces, and in a build without the scale
+ * (glass_scale_off.c); AUTO by budget keeps the rungs above it off every
+ * ladder (budget.c). */
+int snell__glass_scale_max(const snell__method *m);
+
 /* The scale the object is drawn at by method m in output `out`: its
  * material's, or 1 where the method reads the frame's full-resolution back
  * faces, or the output is exit directions (an interpolated direction is no

@@ -1,7 +1,14 @@
 /* glass_scale_off.c — the resolution scale in a build without the methods
  * it serves (peel, exact; cmake/components.cmake, the device preset): every
- * object is drawn at scale 1, as snell_object_stats.scale says. */
+ * object is drawn at scale 1, as snell_object_stats.scale says, and AUTO by
+ * budget puts no rung of a larger scale on a ladder. */
 #include "render/glass_scale.h"
+
+int snell__glass_scale_max(const snell__method *m)
+{
+    (void)m;
+    return 1;
+}
 
 float snell__glass_scale_of(const snell__method *m, snell__output_kind out, const snell__object *o)
 {
