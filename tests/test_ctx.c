@@ -94,12 +94,7 @@ static void check_external(void)
     memset(&sd, 0, sizeof sd);
     memset(&rd, 0, sizeof rd);
     rd.width = rd.height = 64;
-    {
-        snell_env_desc ed;
-        memset(&ed, 0, sizeof ed);
-        ed.face_size = 32;
-        CHECK_OK(snell_env_create(ctx, &ed, &env));
-    }
+    env = test_sky(ctx, 32);
     CHECK_OK(snell_mesh_create_shape(ctx, &sd, &mesh));
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     test_frame_one(&fd, &g, mesh, env);

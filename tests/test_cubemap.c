@@ -361,7 +361,6 @@ int main(void)
     snell_mesh *sphere = NULL;
     snell_env *env = NULL;
     snell_shape_desc sd;
-    snell_env_desc ed;
     double qp, qo;
     if (!ctx) SKIP("no GL context");
     qp = max_quant(SNELL_NDCUBE_PLAIN);
@@ -379,9 +378,7 @@ int main(void)
     memset(&sd, 0, sizeof sd);
     sd.shape = SNELL_SHAPE_SPHERE;
     CHECK_OK(snell_mesh_create_shape(ctx, &sd, &sphere));
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 128;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 128);
     if (!sphere || !env) return test_finish();
 
     check_bake(ctx, sphere, SNELL_NDCUBE_OCT, 64);

@@ -30,7 +30,6 @@ int main(void)
     snell_renderer *r = NULL;
     snell_renderer_desc rd;
     snell_shape_desc sd;
-    snell_env_desc ed;
     snell_frame_desc fd;
     snell_frame_stats fs;
     snell_glass g;
@@ -44,9 +43,7 @@ int main(void)
     CHECK_OK(snell_mesh_create_shape(ctx, &sd, &sphere));
     sd.shape = SNELL_SHAPE_CUBE;
     CHECK_OK(snell_mesh_create_shape(ctx, &sd, &cube));
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 128;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 128);
     memset(&rd, 0, sizeof rd);
     rd.width = W;
     rd.height = H;

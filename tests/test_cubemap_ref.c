@@ -186,14 +186,11 @@ int main(void)
     snell_mesh *cube = NULL;
     snell_env *env = NULL;
     snell_shape_desc sd;
-    snell_env_desc ed;
     if (!ctx) SKIP("no GL context");
     memset(&sd, 0, sizeof sd);
     sd.shape = SNELL_SHAPE_CUBE;
     CHECK_OK(snell_mesh_create_shape(ctx, &sd, &cube));
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 128;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 128);
     if (!cube || !env) return test_finish();
     run(ctx, cube, env, 1.5f, 3, SNELL_NDCUBE_OCT, 256, 8);
     run(ctx, cube, env, 1.5f, 3, SNELL_NDCUBE_PLAIN, 256, 8);

@@ -430,12 +430,9 @@ int main(void)
     const snell_shape shapes[3] = {SNELL_SHAPE_SPHERE, SNELL_SHAPE_TORUS, SNELL_SHAPE_GOBLET};
     const char *names[3] = {"sphere", "torus", "goblet"};
     snell_env *env = NULL;
-    snell_env_desc ed;
     int i;
     if (!ctx) SKIP("no GL context");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 128;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 128);
     for (i = 0; i < 3; i++) {
         snell_shape_desc sd;
         memset(&sd, 0, sizeof sd);

@@ -179,11 +179,8 @@ int main(void)
 {
     snell_ctx *ctx = test_ctx();
     snell_env *env = NULL;
-    snell_env_desc ed;
     if (!ctx) SKIP("no GL context");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 128;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 128);
     if (env) {
         test_shape(ctx, env, SNELL_SHAPE_SPHERE, "sphere", 0);
         test_shape(ctx, env, SNELL_SHAPE_TORUS, "torus", 1);

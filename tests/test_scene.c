@@ -247,7 +247,6 @@ int main(void)
     snell_env *env = NULL;
     snell_renderer *r = NULL;
     snell_renderer_desc rd = {W, H, SNELL_TARGET_OFFSCREEN, SNELL_OUTPUT_COLOR, SNELL_SHADING_AUTO, 0, 0, SNELL_ENV_LOOKUP_AUTO};
-    snell_env_desc ed;
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 32, 16};
     snell_glass glass[NG + 1];
     snell_opaque opaque[NO];
@@ -268,9 +267,7 @@ int main(void)
     CHECK_OK(snell_mesh_create_shape(ctx, &sd, &torus));
     open = open_shape(ctx, SNELL_SHAPE_SPHERE, 6);
     CHECK(open != NULL, "open sphere");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 128;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 128);
     rd.shading = test_shading();
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     if (!sphere || !cube || !torus || !open || !env || !r) return test_finish();

@@ -113,13 +113,10 @@ int main(void)
     static const float large_c[3] = {250.0f, -120.0f, -400.0f}, small_c[3] = {-3.0f, 7.0f, -12.0f};
     snell_ctx *ctx = test_ctx();
     snell_env *env = NULL;
-    snell_env_desc ed;
     snell_camera cam;
     snell_scene_file *s = NULL;
     if (!ctx) SKIP("no GL context");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 64;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 64);
     if (env) {
         check_file(ctx, env, "framed_large.gltf", large_c, 60.0f);
         check_file(ctx, env, "framed_small.gltf", small_c, 0.01f);

@@ -229,11 +229,8 @@ int main(void)
 {
     snell_ctx *ctx = test_ctx();
     snell_env *env = NULL;
-    snell_env_desc ed;
     if (!ctx) SKIP("no GL context");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 64;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 64);
     if (env) test_many_opaque(ctx, env);
     test_refusals(ctx);
     test_names(ctx);

@@ -485,11 +485,8 @@ int main(void)
 {
     snell_ctx *ctx = test_ctx();
     snell_env *env = NULL;
-    snell_env_desc ed;
     if (!ctx) SKIP("no GL context");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 128;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 128);
     if (!env) return test_finish();
     test_three_glass_two_opaque(ctx, env);
     test_stage_rule(ctx, env);

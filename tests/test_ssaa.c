@@ -135,7 +135,6 @@ int main(void)
 {
     snell_ctx *ctx = test_ctx();
     snell_env *env = NULL;
-    snell_env_desc ed;
     snell_mesh *torus = NULL;
     snell_shape_desc sd;
     snell_frame_desc fd;
@@ -143,9 +142,7 @@ int main(void)
     snell_renderer_desc rd;
     int S;
     if (!ctx) SKIP("no GL context");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 64;
-    CHECK_OK_CTX(ctx, snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 64);
     memset(&sd, 0, sizeof sd);
     sd.shape = SNELL_SHAPE_TORUS;
     sd.segments = 48;

@@ -73,6 +73,16 @@ snell_ctx *test_ctx(void)
     return ctx;
 }
 
+snell_env *test_sky(snell_ctx *ctx, int face_size)
+{
+    snell_env *env = NULL;
+    snell_env_desc d;
+    memset(&d, 0, sizeof d);
+    d.face_size = face_size;
+    CHECK_OK_CTX(ctx, snell_env_create(ctx, &d, &env));
+    return env;
+}
+
 void test_ref_params(const snell_frame_desc *fd, int w, int h, int max_interfaces, snell_ref_params *p)
 {
     memset(p, 0, sizeof *p);

@@ -78,6 +78,9 @@ double test_time_scale(void);
 int test_host_context(EGLDisplay *dpy, EGLContext *ctx);
 /* A headless context (default backend) or NULL, message printed. */
 snell_ctx *test_ctx(void);
+/* The procedural sky environment (snell_env_desc zero but face_size) on ctx,
+ * or NULL with the failure counted (CHECK_OK). */
+snell_env *test_sky(snell_ctx *ctx, int face_size);
 /* The mesh, moved by t (NULL: not moved), in Blender's frame (x, y, z) ->
  * (x, -z, y) as tests/scripts/cycles_*.py read it: vertex and triangle
  * counts, positions, normals, triangles (uint32, float32, little endian as
