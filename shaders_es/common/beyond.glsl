@@ -31,8 +31,8 @@
 //   parity of the thin-wall surfaces in front of the point is a wall
 //   crossed, which transmits by the slab model (snell_thin_slab, as the
 //   single kernel's thin walls do: no bend, its reflection added); the
-//   object is one slab, as there and in the reference: its far wall is not
-//   crossed again.
+//   object is one slab, as there and in the MATCHED reference: its far wall
+//   is not crossed again (FULL and the caustics' light cross every wall).
 // - Where the march leaves what the layers know (the target's edge, behind
 //   the eye, behind the last of a capped peel) the ray leaves in its
 //   direction to the environment.
