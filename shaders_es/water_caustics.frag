@@ -6,15 +6,43 @@
 // area on the floor (both positions are affine over the triangle, so their
 // screen derivatives are exact: Wallace's dFdx/dFdy), times what the water
 // lets through (v_carry). Added: folded triangles sum, as the light does.
+// With opaque objects (u_columns), none where the light's way to this
+// point of the floor, from the light down to the surface and on to the
+// floor, passes through one of their columns (water_caustics.c
+// draw_columns): COLUMN_STEPS samples along each of the two stretches, so
+// an object thinner than a step of them can slip through.
 precision highp float;
 
 in highp vec2 v_beam;
 in vec3 v_carry;
+in highp vec3 v_surface, v_floor, v_light;
 
 uniform vec3 u_color;        // the light's colour
 uniform highp int u_spot;
 uniform float u_cos_cone;    // spot: cosine of its half angle
 uniform float u_texel_area;  // one texel of the map on the floor, world units^2
+uniform bool u_columns;      // opaque objects shadow the floor
+uniform highp sampler2D u_column_high, u_column_low; // their highest and lowest surfaces' depth over the floor
+uniform highp float u_column_top, u_column_range;    // depth 0 at y = top, 1 at y = top - range
+uniform highp float u_water_half;
+
+#define COLUMN_STEPS 32
+
+// Whether a point of the segment a..b lies inside a column.
+bool shadowed(highp vec3 a, highp vec3 b)
+{
+    ivec2 size = textureSize(u_column_high, 0);
+    for (int k = 0; k < COLUMN_STEPS; k++) {
+        highp vec3 q = mix(a, b, (float(k) + 0.5) / float(COLUMN_STEPS));
+        highp vec2 uv = q.xz / (2.0 * u_water_half) + 0.5;
+        if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) continue;
+        ivec2 t = ivec2(uv * vec2(size));
+        highp float high = u_column_top - texelFetch(u_column_high, t, 0).r * u_column_range;
+        highp float low = u_column_top - texelFetch(u_column_low, t, 0).r * u_column_range;
+        if (q.y <= high && q.y >= low) return true;
+    }
+    return false;
+}
 
 layout(location = 0) out vec4 o_color;
 
@@ -23,6 +51,11 @@ void main()
     highp vec2 bx = dFdx(v_beam), by = dFdy(v_beam);
     float ratio = abs(bx.x * by.y - bx.y * by.x) / u_texel_area;
     vec3 e = u_color * v_carry * ratio;
+    if (u_columns) {
+        // back to the light up to the columns' top (v_light.y > 0 where lit)
+        highp vec3 up = v_surface + v_light * max((u_column_top - v_surface.y) / max(v_light.y, 1e-6), 0.0);
+        if (shadowed(v_floor, v_surface) || shadowed(v_surface, up)) e = vec3(0.0);
+    }
     if (u_spot == 1) {
         float c = inversesqrt(1.0 + dot(v_beam, v_beam)); // cosine off the axis
         e *= c >= u_cos_cone ? c * c * c : 0.0;

@@ -11,7 +11,9 @@
 // area before and after, flux-correct). v_carry: what a unit of that
 // beam brings onto the floor: Schlick transmission into the water, Beer-
 // Lambert along the path to the floor, 0 where the rim's walls hide the
-// node from the light or the light comes from below.
+// node from the light or the light comes from below. v_surface, v_floor,
+// v_light: the node, where its ray lands and the way back to the light, for
+// the fragment's test against the opaque objects' columns.
 precision highp float;
 precision highp int;
 
@@ -41,6 +43,7 @@ uniform highp vec3 u_beam_u, u_beam_v; // unit, across u_dir
 
 out highp vec2 v_beam;
 out vec3 v_carry;
+out highp vec3 v_surface, v_floor, v_light;
 
 // Distance along r (unit) from p, inside the box, to its walls (x or z); the
 // caller compares it with the distance to the rim's plane.
@@ -82,5 +85,8 @@ void main()
     vec3 f = p + s * t;
     if (lit && t.y < 0.0)
         v_carry = (1.0 - snell_fresnel_schlick(-dot(d, n), 1.0, u_water_ior)) * snell_beer_lambert(u_water_sigma, s);
+    v_surface = p;
+    v_floor = f;
+    v_light = -d;
     gl_Position = vec4(f.x / u_water_half, f.z / u_water_half, 0.0, 1.0);
 }

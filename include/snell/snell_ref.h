@@ -263,9 +263,12 @@ snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects
  * (Schlick transmission), and where it meets the floor before a wall its
  * flux times Beer-Lambert over the path in the water is shared by the texel
  * centres within 2 texels with the caustics stage's tent weights
- * (1 - |dx|/2)(1 - |dz|/2)/4. photons 1..16384, threads 0 = online CPUs. */
-snell_status snell_ref_water_floor_render(snell_water *water, const snell_light *light, int size, int photons,
-                                          int threads, float *rgb);
+ * (1 - |dx|/2)(1 - |dz|/2)/4. objects (NULL: none): its opaque objects
+ * stop a ray anywhere on its way, before the surface or in the water (its
+ * glass objects are not met: the light through them is not traced).
+ * photons 1..16384, threads 0 = online CPUs. */
+snell_status snell_ref_water_floor_render(snell_water *water, const snell_ref *objects, const snell_light *light,
+                                          int size, int photons, int threads, float *rgb);
 
 /* ------------------------------------------- light on a receiver (issue 27) */
 /* The receiver plane's irradiance as the caustics stage

@@ -28,8 +28,10 @@
  * where the walls above the water hide the surface from the light. The
  * floor's tiles are then multiplied by that irradiance (in units of the
  * light's colour) wherever the water's surface and the glass kernels see
- * the floor through the water; the walls are not lit, and objects in the
- * water cast no shadow on the floor. Without a light the frame is as
+ * the floor through the water; the opaque objects of the frame shadow the
+ * floor (the light's way through the surface to each point of it sampled
+ * against their columns seen from above); the walls are not lit, and glass
+ * objects in the water do not change the floor's light. Without a light the frame is as
  * before. snell_ref_water_floor_render traces the same light.
  *
  * World space: the container's inner box is |x| <= width/2, |z| <= width/2,

@@ -497,7 +497,16 @@ static void floor_splat(const floor_trace *ft, double *acc, double x, double z, 
         }
 }
 
-/* One photon from o along unit dir carrying flux (per texel area): through the surface onto the floor. */
+/* Whether an opaque object of s->objects lies on o + t d, 0 < t < far. */
+static int opaque_on(const water_scene *s, const double o[3], const double d[3], double far_)
+{
+    ref_view opaque_only = {-1, REF_SEE_NONE, -1};
+    ref_surf os;
+    return s->objects && snell__ref_hit(s->objects, o, d, SNELL__BVH_NONE, &opaque_only, &os) && os.t < far_;
+}
+
+/* One photon from o along unit dir carrying flux (per texel area): through
+ * the surface onto the floor, unless a wall or an opaque object is in the way. */
 static void floor_photon(const floor_trace *ft, double *acc, const double o[3], const double dir[3], const double flux[3])
 {
     const water_scene *s = &ft->s;
@@ -505,6 +514,7 @@ static void floor_photon(const floor_trace *ft, double *acc, const double o[3], 
     int k;
     if (!(dir[1] < 0.0) || !surface_hit(s, o, dir, &tw, nrm)) return; /* light from below: none (as the stage) */
     if (container_hit(s, o, dir, &tc) >= 0 && tc < tw) return; /* a wall (the rim) hides the surface there */
+    if (opaque_on(s, o, dir, tw)) return;
     for (k = 0; k < 3; k++) p[k] = o[k] + tw * dir[k];
     snell__ref_normalize3(nrm);
     if (snell__ref_dot3(nrm, dir) > 0.0)
@@ -516,6 +526,7 @@ static void floor_photon(const floor_trace *ft, double *acc, const double o[3], 
     tf = (-s->w->d.depth - p[1]) / t[1];
     for (k = 0; k < 3; k += 2) /* a wall before the floor takes it */
         if (t[k] != 0.0 && ((t[k] > 0.0 ? s->half : -s->half) - p[k]) / t[k] < tf) return;
+    if (opaque_on(s, p, t, tf)) return;
     for (k = 0; k < 3; k++) e[k] = flux[k] * (1.0 - f) * exp(-s->water.sigma[k] * tf);
     floor_splat(ft, acc, p[0] + tf * t[0], p[2] + tf * t[2], e);
 }
@@ -561,8 +572,8 @@ static void *floor_worker(void *arg)
     return NULL;
 }
 
-snell_status snell_ref_water_floor_render(snell_water *w, const snell_light *light, int size, int photons,
-                                          int threads, float *rgb)
+snell_status snell_ref_water_floor_render(snell_water *w, const snell_ref *objects, const snell_light *light, int size,
+                                          int photons, int threads, float *rgb)
 {
     floor_trace *ft;
     pthread_t tids[SNELL_REF_MAX_THREADS];
@@ -602,6 +613,7 @@ snell_status snell_ref_water_floor_render(snell_water *w, const snell_light *lig
     }
     if ((st = snell_water_read_heights(w, h)) != SNELL_OK) goto done;
     ft->s.w = w;
+    ft->s.objects = objects;
     ft->s.h = h;
     ft->s.n = w->n;
     ft->s.half = 0.5 * (double)w->d.width;

@@ -850,7 +850,8 @@ snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     snell_status st =
         fd->receiver.extent > 0.0f || fd->opaque_count > 0 ? receiver_run(ctx, c, prep, fd, sc, s) : SNELL_OK;
 #if SNELL_WITH_WATER
-    if (st == SNELL_OK && fd->water) st = snell__water_caustics(ctx, fd->water, &fd->light, s);
+    if (st == SNELL_OK && fd->water)
+        st = snell__water_caustics(ctx, fd->water, &fd->light, fd->opaque, fd->opaque_count, s);
 #endif
     return st;
 }

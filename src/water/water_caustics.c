@@ -7,7 +7,11 @@
  * ratio of its area across the beam to its area on the floor
  * (water_caustics.frag), Schlick transmission and Beer-Lambert along the
  * path: the flux through each cell of the surface lands in full on the
- * floor (flux-correct). The caustics stage calls it (render/caustics.c);
+ * floor (flux-correct). The opaque objects shadow it: drawn from above
+ * into two depth maps over the floor's square (their highest and lowest
+ * surface over each texel, `columns`), each light-map fragment's way from
+ * the light through the surface to the floor is sampled against them
+ * (water_caustics.frag). The caustics stage calls it (render/caustics.c);
  * the water's draw and the glass kernels read the map (common/water.glsl:
  * the floor's tiles times its irradiance) in the same frame. */
 #include "water/water_draw.h"
@@ -15,6 +19,7 @@
 #include "core/gl.h"
 #include "core/glstate.h"
 #include "core/program.h"
+#include "mesh/mesh.h"
 
 #include <math.h>
 #include <string.h>
@@ -29,6 +34,8 @@ static snell_status resources(snell_ctx *ctx, snell_water *w, int size)
         st = snell__program_build(ctx, "water_caustics.vert", "water_caustics.frag",
                                   w->d.sim == SNELL_WATER_SIM_GPU ? "#define SNELL_WATER_STATE_UINT 1\n" : NULL,
                                   &w->light_prog);
+    if (st == SNELL_OK && !w->column_prog)
+        st = snell__program_build(ctx, "object.vert", "water_columns.frag", NULL, &w->column_prog);
     if (st != SNELL_OK || w->light_size == size) return st;
     if (!w->light_fbo) {
         glGenFramebuffers(1, &w->light_fbo);
@@ -59,6 +66,101 @@ static void across(const float d[3], float u[3], float v[3])
     len = sqrtf(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     u[0] /= len, u[1] /= len, u[2] /= len;
     v[0] = d[1] * u[2] - d[2] * u[1], v[1] = d[2] * u[0] - d[0] * u[2], v[2] = d[0] * u[1] - d[1] * u[0];
+}
+
+/* The objects' key: FNV-1a over their meshes, mesh versions and models. */
+static uint64_t column_key(const snell_opaque *list, int count)
+{
+    static const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    uint64_t h = 1469598103934665603u;
+    int i;
+    size_t k;
+    for (i = 0; i < count; i++) {
+        const unsigned char *part[3] = {(const unsigned char *)&list[i].mesh,
+                                        (const unsigned char *)&list[i].mesh->version,
+                                        (const unsigned char *)(list[i].model ? list[i].model : id)};
+        const size_t bytes[3] = {sizeof list[i].mesh, sizeof list[i].mesh->version, 16 * sizeof(float)};
+        int j;
+        for (j = 0; j < 3; j++)
+            for (k = 0; k < bytes[j]; k++) h = (h ^ part[j][k]) * 1099511628211u;
+    }
+    return h ^ (uint64_t)count;
+}
+
+/* The opaque objects seen from straight above over the floor's square,
+ * size x size like the light map: the depth of their highest surface over
+ * each texel (column_tex[0], the nearest) and of their lowest ([1], the
+ * farthest), orthographic between the highest and lowest point of their
+ * bounding spheres (nothing of them clipped). water_caustics.frag takes a
+ * column as solid between the two: exact for one convex object over a
+ * texel; a concave object's overhangs, and two objects one over the other,
+ * are filled in between. Objects outside the square are not seen. */
+static snell_status draw_columns(snell_ctx *ctx, snell_water *w, const snell_opaque *list, int count, int size)
+{
+    float top = w->d.rim, bottom = -w->d.depth, half = 0.5f * w->d.width, vp[16] = {0}, model[16];
+    static const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    GLenum none = GL_NONE;
+    int i, k;
+    for (i = 0; i < count; i++) {
+        float s[4];
+        snell__water_object_sphere(&list[i], s);
+        if (s[1] + s[3] > top) top = s[1] + s[3];
+        if (s[1] - s[3] < bottom) bottom = s[1] - s[3];
+    }
+    for (i = 0; i < count; i++) {
+        snell_status st = snell__mesh_upload((snell_mesh *)list[i].mesh);
+        if (st != SNELL_OK) return st;
+    }
+    if (w->column_size != size) {
+        if (!w->column_fbo[0]) {
+            glGenFramebuffers(2, w->column_fbo);
+            glGenTextures(2, w->column_tex);
+        }
+        for (k = 0; k < 2; k++) {
+            glBindTexture(GL_TEXTURE_2D, w->column_tex[k]);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size, size, 0, GL_DEPTH_COMPONENT, GL_FLOAT, NULL);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+            glBindFramebuffer(GL_FRAMEBUFFER, w->column_fbo[k]);
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, w->column_tex[k], 0);
+            glDrawBuffers(1, &none);
+            glReadBuffer(GL_NONE);
+            if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+                return snell__fail(ctx, SNELL_E_GL, "water caustics: the objects' column map is incomplete");
+        }
+        w->column_size = size;
+    }
+    /* x, z over the square to clip x, y (the light map's layout); depth 0 at top, 1 at bottom */
+    vp[0] = 1.0f / half;
+    vp[9] = 1.0f / half;
+    vp[6] = -2.0f / (top - bottom);
+    vp[14] = 2.0f * top / (top - bottom) - 1.0f;
+    vp[15] = 1.0f;
+    glUseProgram(w->column_prog);
+    glUniformMatrix4fv(glGetUniformLocation(w->column_prog, "u_view_proj"), 1, GL_FALSE, vp);
+    glViewport(0, 0, size, size);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    for (k = 0; k < 2; k++) { /* the nearest surface from above, then the farthest */
+        glBindFramebuffer(GL_FRAMEBUFFER, w->column_fbo[k]);
+        glClearDepthf(k ? 0.0f : 1.0f);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glDepthFunc(k ? GL_GREATER : GL_LESS);
+        for (i = 0; i < count; i++) {
+            memcpy(model, list[i].model ? list[i].model : id, sizeof model);
+            glUniformMatrix4fv(glGetUniformLocation(w->column_prog, "u_model"), 1, GL_FALSE, model);
+            snell__mesh_draw(list[i].mesh);
+        }
+    }
+    glClearDepthf(1.0f);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+    w->column_top = top;
+    w->column_range = top - bottom;
+    return SNELL_OK;
 }
 
 static void draw_map(snell_water *w, const snell_light *l)
@@ -93,14 +195,26 @@ static void draw_map(snell_water *w, const snell_light *l)
     glUniform3fv(glGetUniformLocation(prog, "u_color"), 1, col);
     glUniform1f(glGetUniformLocation(prog, "u_cos_cone"), cosf(l->spot_angle > 0.0f ? l->spot_angle : 0.5f));
     glUniform1f(glGetUniformLocation(prog, "u_texel_area"), texel * texel);
+    glUniform1i(glGetUniformLocation(prog, "u_columns"), w->column_count > 0);
+    glUniform1f(glGetUniformLocation(prog, "u_column_top"), w->column_top);
+    glUniform1f(glGetUniformLocation(prog, "u_column_range"), w->column_range);
+    glUniform1i(glGetUniformLocation(prog, "u_column_high"), 0);
+    glUniform1i(glGetUniformLocation(prog, "u_column_low"), 1);
+    for (k = 0; k < 2; k++) { /* units 0 and 1: the light map's program reads nothing else there */
+        glActiveTexture(GL_TEXTURE0 + (GLenum)k);
+        glBindTexture(GL_TEXTURE_2D, w->column_count > 0 ? w->column_tex[k] : 0);
+    }
+    glActiveTexture(GL_TEXTURE0);
     glBindVertexArray(w->grid_vao);
     glDrawElements(GL_TRIANGLES, (GLsizei)((w->n - 1) * (w->n - 1) * 6), GL_UNSIGNED_INT, (const void *)0);
     glBindVertexArray(0);
     glDisable(GL_BLEND);
 }
 
-snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_light *light, snell_frame_stats *s)
+snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_light *light,
+                                   const snell_opaque *objects, int count, snell_frame_stats *s)
 {
+    uint64_t key;
     char *why = s->caustics_reason;
     size_t room = sizeof s->caustics_reason, used = strlen(why);
     const char *sep = used ? "; " : "";
@@ -124,9 +238,10 @@ snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_l
         return SNELL_OK;
     }
     w->lit_pending = 1;
+    key = column_key(objects, count);
     if (w->light_valid && w->light_version == w->version && w->light_size == size &&
-        memcmp(&w->light_key, light, sizeof *light) == 0) {
-        snell__why(why + used, room - used, "%swater floor: reused (surface and light still)", sep);
+        memcmp(&w->light_key, light, sizeof *light) == 0 && w->column_key == key) {
+        snell__why(why + used, room - used, "%swater floor: reused (nothing moved)", sep);
         return snell__water_upload(w, s);
     }
     w->light_valid = 0;
@@ -134,6 +249,9 @@ snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_l
     glGetIntegerv(GL_VIEWPORT, viewport);
     st = snell__water_upload(w, s);
     if (st == SNELL_OK) st = resources(ctx, w, size);
+    w->column_count = 0;
+    if (st == SNELL_OK && count > 0 && (st = draw_columns(ctx, w, objects, count, size)) == SNELL_OK)
+        w->column_count = count;
     if (st == SNELL_OK) draw_map(w, light);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
@@ -146,9 +264,10 @@ snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_l
     w->light_valid = 1;
     w->light_version = w->version;
     memcpy(&w->light_key, light, sizeof *light);
-    s->passes++;
-    snell__why(why + used, room - used, "%swater floor: made (surface or light moved), %dx%d %s light map from %dx%d "
-               "nodes", sep, size, size, w->light_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F", w->n, w->n);
+    w->column_key = key;
+    s->passes += 1 + 2 * (count > 0);
+    snell__why(why + used, room - used, "%swater floor: made (something moved), %dx%d %s map of %dx%d nodes, %d opaque "
+               "shadowing", sep, size, size, w->light_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F", w->n, w->n, count);
     return SNELL_OK;
 }
 

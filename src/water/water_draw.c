@@ -58,6 +58,13 @@ void snell__water_draw_release(snell_water *w)
     if (w->light_prog) glDeleteProgram(w->light_prog);
     if (w->light_fbo) glDeleteFramebuffers(1, &w->light_fbo);
     if (w->light_tex) glDeleteTextures(1, &w->light_tex);
+    if (w->column_prog) glDeleteProgram(w->column_prog);
+    if (w->column_fbo[0]) glDeleteFramebuffers(2, w->column_fbo);
+    if (w->column_tex[0]) glDeleteTextures(2, w->column_tex);
+    memset(w->column_fbo, 0, sizeof w->column_fbo);
+    memset(w->column_tex, 0, sizeof w->column_tex);
+    w->column_prog = 0;
+    w->column_size = 0;
     w->grid_ibo = w->grid_vao = w->wall_vbo = w->wall_vao = w->height_tex = 0;
     w->light_prog = w->light_fbo = w->light_tex = 0;
     w->light_size = w->light_valid = 0;
@@ -179,9 +186,7 @@ void snell__water_uniforms(unsigned prog, const snell_water *w)
 
 #define MAX_SPHERES 16 /* water_surface.frag's SNELL_WATER_MAX_SPHERES */
 
-/* World bounding sphere of an opaque object: the mesh's box centre through
- * the model, its radius times the model's largest axis scale. */
-static void object_sphere(const snell_opaque *o, float s[4])
+void snell__water_object_sphere(const snell_opaque *o, float s[4])
 {
     const snell_mesh *m = o->mesh;
     float c[3], scale = 1.0f;
@@ -206,13 +211,13 @@ static int object_spheres(const snell_opaque *objects, int count, float out[MAX_
 {
     int i, k;
     if (count <= MAX_SPHERES) {
-        for (i = 0; i < count; i++) object_sphere(&objects[i], out[i]);
+        for (i = 0; i < count; i++) snell__water_object_sphere(&objects[i], out[i]);
         return count;
     }
     {
         float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF}, hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}, r = 0.0f, s[4];
         for (i = 0; i < count; i++) {
-            object_sphere(&objects[i], s);
+            snell__water_object_sphere(&objects[i], s);
             for (k = 0; k < 3; k++) {
                 lo[k] = fminf(lo[k], s[k] - s[3]);
                 hi[k] = fmaxf(hi[k], s[k] + s[3]);

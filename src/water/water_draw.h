@@ -54,12 +54,18 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
  * draw and the floor's light map call it. */
 snell_status snell__water_upload(snell_water *w, snell_frame_stats *stats);
 
+/* World bounding sphere of an opaque object: the mesh's box centre through
+ * the model, its radius times the model's largest axis scale (and 0.1%). */
+void snell__water_object_sphere(const snell_opaque *o, float s[4]);
+
 /* The container floor's light map (water_caustics.c; the caustics stage
- * calls it in a frame with water and a light): remade when the surface or
- * the light moved, kept otherwise; the water's draw and the glass kernels
- * of this frame then see the floor lit by it. Appends what it did to
+ * calls it in a frame with water and a light): remade when the surface, the
+ * light or the opaque objects (which shadow the floor: `objects`, count)
+ * moved, kept otherwise; the water's draw and the glass kernels of this
+ * frame then see the floor lit by it. Appends what it did to
  * stats->caustics_reason. */
-snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_light *light, snell_frame_stats *stats);
+snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_light *light,
+                                   const snell_opaque *objects, int count, snell_frame_stats *stats);
 /* The floor's light map as last made: size x size rgba floats (rgb the
  * irradiance in units of the light's colour), row 0 at z = -width/2, x
  * growing along a row. SNELL_E_INVALID_ARG if none was made. */
