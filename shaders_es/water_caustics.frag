@@ -26,7 +26,28 @@ uniform highp sampler2D u_column_high, u_column_low; // their highest and lowest
 uniform highp float u_column_top, u_column_range;    // depth 0 at y = top, 1 at y = top - range
 uniform highp float u_water_half;
 
+uniform highp float u_water_rim;
+uniform highp vec3 u_pos;        // a spot light's position
+
 #define COLUMN_STEPS 32
+
+// Distance along r (unit) from p, inside the box, to its walls (x or z); the
+// caller compares it with the distance to the rim's plane.
+float to_walls(vec3 p, vec3 r)
+{
+    float s = 3.0e38;
+    if (r.x != 0.0) s = min(s, ((r.x > 0.0 ? u_water_half : -u_water_half) - p.x) / r.x);
+    if (r.z != 0.0) s = min(s, ((r.z > 0.0 ? u_water_half : -u_water_half) - p.z) / r.z);
+    return s;
+}
+
+// Lit where the way back to the light leaves the box over the rim (or the
+// light is in it): per fragment, so the rim's shadow is as sharp as the map.
+bool over_rim(highp vec3 p, highp vec3 back)
+{
+    highp float reach = u_spot == 1 ? length(u_pos - p) : 3.0e38;
+    return min((u_water_rim - p.y) / max(back.y, 1e-30), reach) <= to_walls(p, back);
+}
 
 // Whether a point of the segment a..b lies inside a column.
 bool shadowed(highp vec3 a, highp vec3 b)
@@ -50,7 +71,7 @@ void main()
 {
     highp vec2 bx = dFdx(v_beam), by = dFdy(v_beam);
     float ratio = abs(bx.x * by.y - bx.y * by.x) / u_texel_area;
-    vec3 e = u_color * v_carry * ratio;
+    vec3 e = over_rim(v_surface, normalize(v_light)) ? u_color * v_carry * ratio : vec3(0.0);
     if (u_columns) {
         // back to the light up to the columns' top (v_light.y > 0 where lit)
         highp vec3 up = v_surface + v_light * max((u_column_top - v_surface.y) / max(v_light.y, 1e-6), 0.0);

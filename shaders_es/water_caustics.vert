@@ -10,8 +10,8 @@
 // The fragment shader divides the beam's area by the floor's (the cell's
 // area before and after, flux-correct). v_carry: what a unit of that
 // beam brings onto the floor: Schlick transmission into the water, Beer-
-// Lambert along the path to the floor, 0 where the rim's walls hide the
-// node from the light or the light comes from below. v_surface, v_floor,
+// Lambert along the path to the floor, 0 where the light comes from below
+// (or the node lies behind a spot light). v_surface, v_floor,
 // v_light: the node, where its ray lands and the way back to the light, for
 // the fragment's test against the opaque objects' columns.
 precision highp float;
@@ -45,16 +45,6 @@ out highp vec2 v_beam;
 out vec3 v_carry;
 out highp vec3 v_surface, v_floor, v_light;
 
-// Distance along r (unit) from p, inside the box, to its walls (x or z); the
-// caller compares it with the distance to the rim's plane.
-float to_walls(vec3 p, vec3 r)
-{
-    float s = 3.0e38;
-    if (r.x != 0.0) s = min(s, ((r.x > 0.0 ? u_water_half : -u_water_half) - p.x) / r.x);
-    if (r.z != 0.0) s = min(s, ((r.z > 0.0 ? u_water_half : -u_water_half) - p.z) / r.z);
-    return s;
-}
-
 void main()
 {
     int i = gl_VertexID % u_water_n, j = gl_VertexID / u_water_n;
@@ -75,8 +65,8 @@ void main()
     }
     v_carry = vec3(0.0);
     gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
-    // lit where the ray back to the light leaves the box over the rim (or the light is in it)
-    bool lit = d.y < 0.0 && reach > 0.0 && min((u_water_rim - p.y) / -d.y, reach) <= to_walls(p, -d);
+    // the rim's shadow: per fragment (water_caustics.frag)
+    bool lit = d.y < 0.0 && reach > 0.0;
     if (dot(n, d) > 0.0) n = -n;
     vec3 t;
     snell_refract(d, n, 1.0 / u_water_ior, t);
