@@ -328,9 +328,10 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
  * snell_ref_receiver_render(ref, light, receiver, photons, 2, ...) traces
  * once here (its direct light at the stage's 2 x 2 points a texel;
  * photons 1..4096 a side). It casts no shadow and stops no photon of the
- * reference's own light tracing; it is not an object (snell_ref_output.object -1, hit 0; the
- * path ends there, exit_dir the ray's direction). The opaque objects keep
- * their light (snell_ref_set_light lights them). light NULL or
+ * reference's own light tracing; it is not an object
+ * (snell_ref_output.object -1, hit 0; the path ends there, exit_dir the
+ * ray's direction). The opaque objects keep their light
+ * (snell_ref_set_light lights them). light NULL or
  * SNELL_LIGHT_NONE, receiver NULL or extent 0: no plane, the images as
  * without the call. SNELL_E_INVALID_ARG for a receiver whose height or
  * centre is not finite, albedo outside 0..1, map_size outside 0..4096, or

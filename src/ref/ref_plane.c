@@ -8,8 +8,6 @@
 #include "ref/ref_scene.h"
 #include "core/ctx.h"
 
-#include <string.h>
-
 struct ref_plane {
     double h, cx, cz, ext, albedo[3];
     int size;

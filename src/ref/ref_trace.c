@@ -206,10 +206,11 @@ static void first_hit(snell_ref_path *path, int depth, int found, const ref_surf
 
 /* The GPU model, generalised to a scene: a ray in air (m_air) takes the
  * radiance of what it meets first: the environment, an opaque object, the
- * receiver plane (snell_ref_set_receiver's; not in the water's surroundings,
- * whose own faces end the rays there), or a glass object j, where C = F env'(R) + (1-F) tint T L (solid; L from the
- * refracted chain inside, m_inside) or rs env'(R) + ts tint L (thin wall; L
- * straight on through). env' is again m_air from that surface, which never
+ * receiver plane (snell_ref_set_receiver's; not in the water's
+ * surroundings, whose own faces end the rays there), or a glass object j,
+ * where C = F env'(R) + (1-F) tint T L (solid; L from the refracted chain
+ * inside, m_inside) or rs env'(R) + ts tint L (thin wall; L straight on
+ * through). env' is again m_air from that surface, which never
  * sees j itself (the GPU draws one surface of j per pixel and looks up an
  * environment j is not in). w: throughput, for pruning side branches; path:
  * the chain being recorded (the refracted/transmitted branch), or NULL. */
