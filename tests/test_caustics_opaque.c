@@ -28,21 +28,6 @@
 #define MAP 256
 #define PI_D 3.14159265358979323846
 
-/* PSNR (dB) of two RGBA8 images over the pixels where mask is set; count out. */
-static double psnr_mask(const uint8_t *a, const uint8_t *b, const uint8_t *mask, int n, int *count)
-{
-    double se = 0.0;
-    int i, c, m = 0;
-    for (i = 0; i < n; i++) {
-        if (!mask[i]) continue;
-        m++;
-        for (c = 0; c < 3; c++) se += pow((a[4 * i + c] - b[4 * i + c]) / 255.0, 2.0);
-    }
-    *count = m;
-    se /= 3.0 * (m ? m : 1);
-    return se > 0.0 ? 10.0 * log10(1.0 / se) : 999.0;
-}
-
 /* The GPU's frame and the reference's view of fd (lit by fd's light), their
  * PSNR over the opaque pixels; images written as name_gpu/_ref.png. */
 static double compare_view(snell_ctx *ctx, snell_renderer *r, const snell_frame_desc *fd, snell_ref *ref,
@@ -69,7 +54,7 @@ static double compare_view(snell_ctx *ctx, snell_renderer *r, const snell_frame_
     CHECK_OK(snell_ref_render(ref, &rp, &out));
     snell_ref_rgb_to_rgba8(rgb, W, W, img);
     for (i = 0; i < W * W; i++) mask[i] = obj[i] <= -2;
-    db = psnr_mask(gpu, img, mask, W * W, count);
+    db = test_psnr_mask(gpu, img, mask, W * W, count);
     snprintf(path, sizeof path, "%s_gpu.png", name);
     snell_write_png(test_out(path), W, W, gpu);
     snprintf(path, sizeof path, "%s_ref.png", name);

@@ -239,3 +239,17 @@ double test_dir_angle(const float a[3], const float b[3])
            c2 = (double)a[0] * b[1] - (double)a[1] * b[0];
     return atan2(sqrt(c0 * c0 + c1 * c1 + c2 * c2), (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]);
 }
+
+double test_psnr_mask(const uint8_t *a, const uint8_t *b, const uint8_t *mask, int n, int *count)
+{
+    double se = 0.0;
+    int i, c, m = 0;
+    for (i = 0; i < n; i++) {
+        if (!mask[i]) continue;
+        m++;
+        for (c = 0; c < 3; c++) se += pow((a[4 * i + c] - b[4 * i + c]) / 255.0, 2.0);
+    }
+    *count = m;
+    se /= 3.0 * (m ? m : 1);
+    return se > 0.0 ? 10.0 * log10(1.0 / se) : 999.0;
+}

@@ -99,5 +99,8 @@ double test_dir_angle(const float a[3], const float b[3]);
  * (test_out(name)), row 0 of the image the far edge (z largest). */
 double test_light_map_psnr(const float *a, int stride_a, const float *b, int n, float albedo);
 void test_write_light_map(const char *name, const float *v, int stride, int n, float albedo);
+/* The PSNR (dB) of two RGBA8 images of n pixels over the pixels where mask
+ * is set (their rgb); their count in *count. 999 where they agree. */
+double test_psnr_mask(const uint8_t *a, const uint8_t *b, const uint8_t *mask, int n, int *count);
 
 #endif

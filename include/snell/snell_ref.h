@@ -12,7 +12,10 @@
  *  - nothing: the environment in its direction;
  *  - an opaque object: the path ends there with the colour opaque.frag gives
  *    it, colour * (0.25 + 0.75 * (0.5 + 0.5 * dot(n, normalize(0.3, 1, 0.2))))
- *    with n the normalised interpolated world normal, not flipped;
+ *    with n the normalised interpolated world normal, not flipped (lit by a
+ *    light instead after snell_ref_set_light);
+ *  - the receiver plane, after snell_ref_set_receiver, met from above by a
+ *    ray in air: the path ends there with the plane's lit colour;
  *  - a glass object: an interface, as the mode below says. A solid object
  *    (thickness 0) bounds a volume of glass; a thin-walled one (thickness > 0)
  *    is a slab at each of its surfaces: reflectance rs and transmittance ts of
@@ -316,6 +319,29 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
  * back to the sky light. photons 1..4096; not while a render runs. */
 snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const snell_receiver *receiver,
                                  int photons);
+
+/* Shows the receiver plane to the view rays of snell_ref_render and
+ * snell_ref_trace_pixel / _ray (not snell_ref_water_render's) as the GPU
+ * shows it in a frame with `light` and `receiver`, drawn and seen by the
+ * glass (common/receiver.glsl): a ray in air (a view ray, or one that has
+ * left glass, reflected or refracted; MATCHED and FULL) that meets the
+ * square from above before any object ends there with albedo (all zero =
+ * 0.8 grey) * irradiance, in units of the light's colour, read bilinearly
+ * between texel centres (the edge texels held beyond them) from the map
+ * snell_ref_receiver_render(ref, light, receiver, photons, 2, ...) traces
+ * once here (its direct light at the stage's 2 x 2 points a texel;
+ * photons 1..4096 a side). It casts no shadow and stops no photon of the
+ * reference's own light tracing; it is not an object
+ * (snell_ref_output.object -1, hit 0; the path ends there, exit_dir the
+ * ray's direction). The opaque objects keep their light
+ * (snell_ref_set_light lights them). light NULL or
+ * SNELL_LIGHT_NONE, receiver NULL or extent 0: no plane, the images as
+ * without the call. SNELL_E_INVALID_ARG for a receiver whose height or
+ * centre is not finite, albedo outside 0..1, map_size outside 0..4096, or
+ * what snell_ref_receiver_render refuses (then no plane). Not while a
+ * render runs. */
+snell_status snell_ref_set_receiver(snell_ref *ref, const snell_light *light, const snell_receiver *receiver,
+                                    int photons);
 
 /* ---------------------------------------------------- light path (Unger 4.2.2) */
 typedef enum snell_ref_event {

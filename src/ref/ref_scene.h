@@ -39,6 +39,7 @@ struct snell_ref {
     double opaque_bs[SNELL_MAX_OPAQUE][4];    /* bounding sphere as the renderer's (snell__bounding_sphere) */
     struct ref_lit *lit;      /* snell_ref_set_light's light on the opaque objects (ref_caustics.c);
                                * NULL: opaque.frag's sky light */
+    struct ref_plane *plane;  /* snell_ref_set_receiver's plane in the view (ref_plane.c); NULL: none */
     snell__bvh *bvh;          /* all triangles; NULL for analytic spheres */
     double *normals;          /* 3 per vertex of every object in part order: inverse-transpose(model)
                                * * n, not renormalised (object.vert) */
@@ -86,6 +87,11 @@ void snell__ref_lit_free(snell_ref *r);
 /* The light frame's caustic map of snell_ref_set_light (3 doubles a texel,
  * flux per texel area facing the light), its size and texel area; NULL if none. */
 const double *snell__ref_lit_map(const snell_ref *r, int *size, double *area);
+/* ref_plane.c: snell_ref_set_receiver's plane; its release. A ray in air
+ * o + t d (unit d) meets it before tmax (from above, inside the square): 1,
+ * and rgb (NULL: not wanted) the colour it shows there; 0 without a plane. */
+void snell__ref_plane_free(snell_ref *r);
+int snell__ref_plane_hit(const snell_ref *r, const double o[3], const double d[3], double tmax, double rgb[3]);
 
 /* Vector helpers of the tracer (double precision). */
 static inline double snell__ref_dot3(const double a[3], const double b[3])

@@ -205,10 +205,12 @@ static void first_hit(snell_ref_path *path, int depth, int found, const ref_surf
 /* ------------------------------------------------------------ MATCHED */
 
 /* The GPU model, generalised to a scene: a ray in air (m_air) takes the
- * radiance of what it meets first: the environment, an opaque object, or a
- * glass object j, where C = F env'(R) + (1-F) tint T L (solid; L from the
- * refracted chain inside, m_inside) or rs env'(R) + ts tint L (thin wall; L
- * straight on through). env' is again m_air from that surface, which never
+ * radiance of what it meets first: the environment, an opaque object, the
+ * receiver plane (snell_ref_set_receiver's; not in the water's
+ * surroundings, whose own faces end the rays there), or a glass object j,
+ * where C = F env'(R) + (1-F) tint T L (solid; L from the refracted chain
+ * inside, m_inside) or rs env'(R) + ts tint L (thin wall; L straight on
+ * through). env' is again m_air from that surface, which never
  * sees j itself (the GPU draws one surface of j per pixel and looks up an
  * environment j is not in). w: throughput, for pruning side branches; path:
  * the chain being recorded (the refracted/transmitted branch), or NULL. */
@@ -231,6 +233,11 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
         return;
     }
     found = snell__ref_hit(r, o, d, prim, &v, &s);
+    if (!op->sur && snell__ref_plane_hit(r, o, d, found ? s.t : HUGE_VAL, rgb)) { /* the receiver plane first */
+        first_hit(path, depth, 0, &s);
+        if (path) memcpy(path->exit_dir, d, 3 * sizeof(double));
+        return;
+    }
     first_hit(path, depth, found, &s);
     if (med) {
         if (med->meet(op->sur->user, o, d, found ? s.t : HUGE_VAL, rgb)) {
@@ -402,8 +409,12 @@ static void whitted(const snell_ref *r, const optics *op, const double o[3], con
     ref_view v = medium >= 0 ? inside_view(medium) : air_view(op, depth, -1, home);
     const ref_glass *g;
     ref_surf s;
-    int k;
-    if (max3(w) < MIN_WEIGHT || !snell__ref_hit(r, o, d, prim, &v, &s)) {
+    int k, found = max3(w) >= MIN_WEIGHT && snell__ref_hit(r, o, d, prim, &v, &s);
+    if (medium < 0 && max3(w) >= MIN_WEIGHT && snell__ref_plane_hit(r, o, d, found ? s.t : HUGE_VAL, col)) {
+        leaf(w, prob, col, acc, acc2); /* the receiver plane first */
+        return;
+    }
+    if (!found) {
         env_rgb(op, d, col);
         leaf(w, prob, col, acc, acc2);
         return;
@@ -472,6 +483,7 @@ static void full_walk(const snell_ref *r, const optics *op, const double o[3], c
         snell_ref_event ev;
         ref_surf s;
         int found = snell__ref_hit(r, pos, dir, prim, &v, &s);
+        if (medium < 0 && snell__ref_plane_hit(r, pos, dir, found ? s.t : HUGE_VAL, NULL)) found = 0; /* ends there */
         first_hit(path, depth, found, &s);
         if (!found) break;
         if (medium >= 0) path->inside_length += s.t;
