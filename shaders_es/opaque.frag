@@ -4,24 +4,17 @@
 precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 
 #include "common/output.glsl"
+#include "common/paraboloid_view.glsl"
 
 in highp vec3 v_world_pos;
 in vec3 v_world_normal;
 
 uniform highp vec3 u_eye;
 uniform vec3 u_color;
-#ifdef SNELL_PARABOLOID_VIEW
-in highp float v_hemisphere; // opaque_paraboloid.vert
-#endif
 
 void main()
 {
-#ifdef SNELL_PARABOLOID_VIEW
-    // Farther behind the map's hemisphere than any texel the look-up reads
-    // (the rim's margin ring, z > -0.13 for maps of 32 texels and more): the
-    // projection held finite there is not the direction's.
-    if (v_hemisphere < -0.2) discard;
-#endif
+    snell_paraboloid_clip();
     vec3 n = normalize(v_world_normal);
     float l = 0.5 + 0.5 * dot(n, normalize(vec3(0.3, 1.0, 0.2)));
     snell_write(u_color * (0.25 + 0.75 * l), v_world_pos - u_eye);

@@ -700,8 +700,6 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
 
 /* The opaque objects lit (caustics_opaque.frag), over what the opaque stage
  * drew: the same vertices (object.vert), depth LEQUAL. */
-static void lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit);
-
 static void draw_lit_opaque(snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc)
 {
     GLuint p = c->opaque_prog;
@@ -710,7 +708,7 @@ static void draw_lit_opaque(snell__caustics *c, const snell_frame_desc *fd, cons
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
     glUseProgram(p);
-    lit_opaque_uniforms(p, c, 0);
+    snell__lit_opaque_uniforms(p, c, 0);
     glUniform3fv(glGetUniformLocation(p, "u_eye"), 1, sc->view.eye);
     for (i = 0; i < fd->opaque_count; i++) {
         float albedo[3] = {0.8f, 0.8f, 0.8f};
@@ -786,6 +784,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
         return draw_view(c, fd, sc);
     }
     c->valid = c->made_plane = c->made_opaque = 0;
+    c->made++; /* what lit the opaque objects changes: a dynamic environment showing them is redrawn */
     resolve_light(&fd->light, &L);
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &fbo);
     glGetIntegerv(GL_VIEWPORT, viewport);
@@ -918,7 +917,7 @@ static void receiver_locate(unsigned prog, int *locs)
  * units unit..unit + 2: the opaque objects lit by the light the maps were
  * made with (caustics_opaque.frag; a kernel without the scene layers has
  * none of these uniforms: -1, ignored). */
-static void lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit)
+void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit)
 {
     static const char *const samplers[3] = {"u_shadow", "u_recv_z", "u_caustic"};
     const unsigned tex[3] = {c->shadow_z, c->recv_z, c->cm_tex};
@@ -945,7 +944,7 @@ static void receiver_uniforms(unsigned prog, const int *locs, const snell__view 
     glUniform4fv(locs[1], 1, v->receiver_plane); /* extent 0 without a plane: none seen */
     glUniform3fv(locs[2], 1, v->receiver_albedo);
     glUniform1i(glGetUniformLocation(prog, "u_lit_opaque"), v->lit_opaque != NULL);
-    if (v->lit_opaque) lit_opaque_uniforms(prog, v->lit_opaque, SNELL__LIT_SHADOW_UNIT);
+    if (v->lit_opaque) snell__lit_opaque_uniforms(prog, v->lit_opaque, SNELL__LIT_SHADOW_UNIT);
 }
 
 const snell__kernel_hook snell__receiver_hook = {SNELL__GLASS_RECEIVER, receiver_defines, SNELL__RECEIVER_LOCS_OFFSET, 3,

@@ -35,6 +35,8 @@ typedef struct snell__caustics {
     int valid;                                     /* the maps hold the frame keyed by key[] */
     int made_plane, made_opaque;                   /* which of them it made (the plane's, the opaque ones') */
     snell_light light;                             /* the light they were made with */
+    unsigned made;                                 /* maps made so far: which lighting a dynamic environment
+                                                    * drawn lit by them shows (render/env_dynamic.c) */
     int key_len;
     float key[SNELL__CAUSTICS_KEY];
     float scratch[SNELL__CAUSTICS_KEY];
@@ -82,6 +84,12 @@ static inline void snell__receiver_albedo(const snell_receiver *rc, float albedo
 #define SNELL__RECEIVER_LOCS_OFFSET ((int)(sizeof(snell__beyond_locs) / sizeof(int)))
 extern const snell__kernel_hook snell__receiver_hook;
 void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc);
+
+/* common/opaque_lit.glsl's uniforms (the light, c's shadow and caustic maps
+ * on units unit..unit + 2) into prog, in use: the opaque objects lit as
+ * this frame's caustics stage lit them (caustics_opaque.frag; a dynamic
+ * environment's faces, render/composite.c; the kernels' hook). */
+void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit);
 
 void snell__caustics_destroy(snell__caustics *c);
 

@@ -4,24 +4,27 @@
 #include "core/gl.h"
 #include "core/program.h"
 #include "frame/camera.h"
+#include "frame/units.h"
+#include "render/caustics.h"
 
 #include <math.h>
 #include <string.h>
 
-static snell_status opaque_prog(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
-                                const snell__opaque_prog **out)
+/* Builds p once (vs with fs) and finds its uniforms; a location it lacks is -1. */
+static snell_status build(snell_ctx *ctx, snell__opaque_prog *p, const char *vs, const char *fs, const char *defines)
 {
-    snell__opaque_prog *p = &c->opaque[kind];
-    if (!p->prog) {
-        snell_status st = snell__program_build(ctx, "object.vert", "opaque.frag", snell__output_defines(kind), &p->prog);
-        if (st != SNELL_OK) return st;
-        p->model = glGetUniformLocation(p->prog, "u_model");
-        p->normal_matrix = glGetUniformLocation(p->prog, "u_normal_matrix");
-        p->view_proj = glGetUniformLocation(p->prog, "u_view_proj");
-        p->eye = glGetUniformLocation(p->prog, "u_eye");
-        p->color = glGetUniformLocation(p->prog, "u_color");
-    }
-    *out = p;
+    snell_status st;
+    if (p->prog) return SNELL_OK;
+    if ((st = snell__program_build(ctx, vs, fs, defines, &p->prog)) != SNELL_OK) return st;
+    p->model = glGetUniformLocation(p->prog, "u_model");
+    p->normal_matrix = glGetUniformLocation(p->prog, "u_normal_matrix");
+    p->view_proj = glGetUniformLocation(p->prog, "u_view_proj");
+    p->eye = glGetUniformLocation(p->prog, "u_eye");
+    p->color = glGetUniformLocation(p->prog, "u_color");
+    p->centre = glGetUniformLocation(p->prog, "u_centre");
+    p->layer = glGetUniformLocation(p->prog, "u_layer");
+    p->size = glGetUniformLocation(p->prog, "u_size");
+    p->depth_range = glGetUniformLocation(p->prog, "u_depth_range");
     return SNELL_OK;
 }
 
@@ -29,6 +32,8 @@ void snell__composite_destroy(snell__composite *c)
 {
     int k;
     if (c->opaque_dp.prog) glDeleteProgram(c->opaque_dp.prog);
+    for (k = 0; k < 2; k++)
+        if (c->opaque_lit[k].prog) glDeleteProgram(c->opaque_lit[k].prog);
     for (k = 0; k < SNELL__OUT_KINDS; k++) {
         if (c->opaque[k].prog) glDeleteProgram(c->opaque[k].prog);
         if (c->sky[k][0]) glDeleteProgram(c->sky[k][0]);
@@ -87,21 +92,36 @@ static void draw_opaque_list(const snell__opaque_prog *p, const snell_opaque *li
     }
 }
 
-snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
-                                     const snell_opaque *list, int count, const float view_proj[16],
-                                     const float eye[3])
+/* The meshes uploaded, p built and in use under depth test LESS with depth
+ * write, lit's maps and light on their units (caustics_opaque.frag). */
+static snell_status begin(snell_ctx *ctx, snell__opaque_prog *p, const char *vs, const char *defines,
+                          const snell_opaque *list, int count, const struct snell__caustics *lit)
 {
-    const snell__opaque_prog *p;
     snell_status st;
     int i;
-    if (count == 0) return SNELL_OK;
     for (i = 0; i < count; i++)
         if ((st = snell__mesh_upload((snell_mesh *)list[i].mesh)) != SNELL_OK) return st;
-    if ((st = opaque_prog(ctx, c, kind, &p)) != SNELL_OK) return st;
+    if ((st = build(ctx, p, vs, lit ? "caustics_opaque.frag" : "opaque.frag", defines)) != SNELL_OK) return st;
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glUseProgram(p->prog);
+    if (lit) {
+        /* the units the kernels read them on: unit 0 keeps the environment */
+        snell__lit_opaque_uniforms(p->prog, lit, SNELL__LIT_SHADOW_UNIT);
+        glActiveTexture(GL_TEXTURE0);
+    }
+    return SNELL_OK;
+}
+
+snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
+                                     const snell_opaque *list, int count, const float view_proj[16],
+                                     const float eye[3], const struct snell__caustics *lit)
+{
+    snell__opaque_prog *p = lit ? &c->opaque_lit[0] : &c->opaque[kind];
+    snell_status st;
+    if (count == 0) return SNELL_OK;
+    if ((st = begin(ctx, p, "object.vert", snell__output_defines(kind), list, count, lit)) != SNELL_OK) return st;
     glUniformMatrix4fv(p->view_proj, 1, GL_FALSE, view_proj);
     glUniform3fv(p->eye, 1, eye);
     draw_opaque_list(p, list, count);
@@ -110,36 +130,18 @@ snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell_
 
 snell_status snell__composite_opaque_paraboloid(snell_ctx *ctx, snell__composite *c, const snell_opaque *list,
                                                int count, const float centre[3], int layer, int size, float z_near,
-                                               float z_far)
+                                               float z_far, const struct snell__caustics *lit)
 {
-    snell__opaque_prog *p = &c->opaque_dp;
+    snell__opaque_prog *p = lit ? &c->opaque_lit[1] : &c->opaque_dp;
     snell_status st;
-    int i;
     if (count == 0) return SNELL_OK;
-    for (i = 0; i < count; i++)
-        if ((st = snell__mesh_upload((snell_mesh *)list[i].mesh)) != SNELL_OK) return st;
-    if (!p->prog) {
-        st = snell__program_build(ctx, "opaque_paraboloid.vert", "opaque.frag", "#define SNELL_PARABOLOID_VIEW 1\n",
-                                  &p->prog);
-        if (st != SNELL_OK) return st;
-        p->model = glGetUniformLocation(p->prog, "u_model");
-        p->normal_matrix = glGetUniformLocation(p->prog, "u_normal_matrix");
-        p->eye = glGetUniformLocation(p->prog, "u_eye");
-        p->color = glGetUniformLocation(p->prog, "u_color");
-        c->dp_centre = glGetUniformLocation(p->prog, "u_centre");
-        c->dp_layer = glGetUniformLocation(p->prog, "u_layer");
-        c->dp_size = glGetUniformLocation(p->prog, "u_size");
-        c->dp_depth_range = glGetUniformLocation(p->prog, "u_depth_range");
-    }
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glUseProgram(p->prog);
+    st = begin(ctx, p, "opaque_paraboloid.vert", "#define SNELL_PARABOLOID_VIEW 1\n", list, count, lit);
+    if (st != SNELL_OK) return st;
     glUniform3fv(p->eye, 1, centre);
-    glUniform3fv(c->dp_centre, 1, centre);
-    glUniform1f(c->dp_layer, (float)layer);
-    glUniform1f(c->dp_size, (float)size);
-    glUniform2f(c->dp_depth_range, z_near, z_far);
+    glUniform3fv(p->centre, 1, centre);
+    glUniform1f(p->layer, (float)layer);
+    glUniform1f(p->size, (float)size);
+    glUniform2f(p->depth_range, z_near, z_far);
     draw_opaque_list(p, list, count);
     return SNELL_OK;
 }

@@ -1,21 +1,24 @@
 /* composite.h — what is drawn around the glass: the opaque objects (diffuse,
- * lit from above) and the background (the environment through each pixel),
- * in the view or into a cube face; one program per output kind, built on
- * first use. */
+ * lit from above, or in a dynamic environment lit by the caustics stage's
+ * light) and the background (the environment through each pixel), in the
+ * view or into a cube face; one program per output kind, built on first use. */
 #ifndef SNELL_COMPOSITE_H
 #define SNELL_COMPOSITE_H
 
 #include "frame/method.h"
 
+struct snell__caustics;
+
 typedef struct snell__opaque_prog {
     unsigned prog;
     int model, normal_matrix, view_proj, eye, color;
+    int centre, layer, size, depth_range; /* opaque_paraboloid.vert's; -1 in the others */
 } snell__opaque_prog;
 
 typedef struct snell__composite {
     snell__opaque_prog opaque[SNELL__OUT_KINDS];
     snell__opaque_prog opaque_dp;   /* into a dual-paraboloid map (opaque_paraboloid.vert), colour only */
-    int dp_centre, dp_layer, dp_size, dp_depth_range;
+    snell__opaque_prog opaque_lit[2]; /* lit (caustics_opaque.frag) into a cube face, a dual-paraboloid map */
     unsigned sky[SNELL__OUT_KINDS][2];  /* [kind][look-up: cube, dual paraboloid] */
     int sky_inv[SNELL__OUT_KINDS][2], sky_env[SNELL__OUT_KINDS][2];
     unsigned empty_vao;             /* the background draws without attributes */
@@ -28,16 +31,19 @@ snell_status snell__composite_prepare(snell_ctx *ctx, snell__composite *c, snell
 /* Checks a frame's opaque list (count, meshes, finite models/colours). */
 snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, int count);
 /* Uploads the meshes (first use) and draws them with depth test LESS and
- * depth write. */
+ * depth write. lit (colour output; NULL: lit from above): the caustics
+ * stage that lit the opaque objects this frame (snell__view.lit_opaque),
+ * whose light, shadow and caustic maps light them as the view draws them
+ * (its maps on units SNELL__LIT_SHADOW_UNIT.., unit 0 left active). */
 snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                      const snell_opaque *list, int count, const float view_proj[16],
-                                     const float eye[3]);
+                                     const float eye[3], const struct snell__caustics *lit);
 /* The same straight into map `layer` (0: +Z, 1: -Z) of size^2 dual-paraboloid
  * maps about centre (render/env_paraboloid.h), depth the distance from it
  * between z_near and z_far; colour output. */
 snell_status snell__composite_opaque_paraboloid(snell_ctx *ctx, snell__composite *c, const snell_opaque *list,
                                                int count, const float centre[3], int layer, int size, float z_near,
-                                               float z_far);
+                                               float z_far, const struct snell__caustics *lit);
 /* The environment cubemap bound on unit 0 drawn at the far plane under
  * LEQUAL without depth write (only where nothing was drawn); rot_view_proj
  * is proj * view without the translation. */

@@ -5,13 +5,17 @@
  * model or colour, the glass centre or the static environment changed.
  * With the dual-paraboloid look-up (render/env_paraboloid.h) the glass
  * reads two maps instead: made from that cube, or rendered straight (2 views,
- * no cube; SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT). */
+ * no cube; SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT). In a frame whose
+ * caustics stage lit the opaque objects they are drawn lit here too, so the
+ * glass shows them as the view does, and re-rendered also when the stage
+ * remade its maps (the light, the glass or a receiver changed). */
 #include "render/env_dynamic.h"
 #include "frame/env.h"
 #include "frame/pass.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "frame/ndcube.h"
+#include "render/caustics.h"
 
 #include <math.h>
 #include <string.h>
@@ -33,12 +37,17 @@ void snell__env_dynamic_destroy(snell_ctx *ctx, snell__env_dynamic *d)
     memset(d, 0, sizeof *d);
 }
 
+/* Which lighting the opaque objects are drawn with: 0 from above, else the
+ * caustics stage's maps as last made. */
+static unsigned lighting(const snell__caustics *lit) { return lit ? lit->made : 0u; }
+
 /* Did anything the cubemap shows change since it was rendered? */
 static int changed(const snell__env_view *v, const snell_env *env, const snell_opaque *list, int count,
-                   const float centre[3], int size)
+                   const float centre[3], int size, const snell__caustics *lit)
 {
     int i;
-    if (!v->valid || v->size != size || v->env != env || v->count != count || memcmp(v->centre, centre, sizeof v->centre))
+    if (!v->valid || v->size != size || v->env != env || v->count != count || v->lit != lighting(lit) ||
+        memcmp(v->centre, centre, sizeof v->centre))
         return 1;
     for (i = 0; i < count; i++) {
         const snell_opaque *o = &list[i];
@@ -51,11 +60,12 @@ static int changed(const snell__env_view *v, const snell_env *env, const snell_o
 }
 
 static void remember(snell__env_view *v, const snell_env *env, const snell_opaque *list, int count,
-                     const float centre[3])
+                     const float centre[3], const snell__caustics *lit)
 {
     int i;
     v->valid = 1;
     v->env = env;
+    v->lit = lighting(lit);
     memcpy(v->centre, centre, sizeof v->centre);
     v->count = count;
     for (i = 0; i < count; i++) {
@@ -91,7 +101,8 @@ static snell_status paraboloid_of(snell_ctx *ctx, snell__env_view *v, snell__par
 static snell_status render_paraboloid_views(snell_ctx *ctx, snell__env_dynamic *d, snell__composite *comp,
                                             snell__paraboloid_gen *dp, snell__env_view *v, const snell_env *env,
                                             const snell_opaque *list, int count, const float centre[3],
-                                            float z_near, float z_far, int size, snell_object_stats *stats)
+                                            float z_near, float z_far, int size, const snell__caustics *lit,
+                                            snell_object_stats *stats)
 {
     snell__pass pass;
     snell_status st = SNELL_OK;
@@ -114,7 +125,7 @@ static snell_status render_paraboloid_views(snell_ctx *ctx, snell__env_dynamic *
         }
         glDepthMask(GL_TRUE);
         glClear(GL_DEPTH_BUFFER_BIT);
-        st = snell__composite_opaque_paraboloid(ctx, comp, list, count, centre, layer, n, z_near, z_far);
+        st = snell__composite_opaque_paraboloid(ctx, comp, list, count, centre, layer, n, z_near, z_far, lit);
         glDepthFunc(GL_LEQUAL);
         glDepthMask(GL_FALSE);
         if (st == SNELL_OK) st = snell__paraboloid_draw_layer(ctx, dp, env->texture, layer, n);
@@ -153,7 +164,8 @@ static snell_status make_targets(snell_ctx *ctx, snell__env_dynamic *d, snell__e
 snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, snell__composite *comp, int slot,
                                        const snell_env *env, const snell_opaque *list, int count,
                                        const float centre[3], float radius, int size, snell__paraboloid_gen *dp,
-                                       int direct, unsigned *texture, snell_object_stats *stats)
+                                       int direct, const snell__caustics *lit, unsigned *texture,
+                                       snell_object_stats *stats)
 {
     snell__env_view *v;
     snell__pass pass;
@@ -174,7 +186,7 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, sn
     /* A renderer's look-up is fixed at its creation, so a slot's view is
      * always made the same way: valid means its textures show what is
      * remembered, a cube (and maps made from it) or directly rendered maps. */
-    if (!changed(v, env, list, count, centre, size)) {
+    if (!changed(v, env, list, count, centre, size, lit)) {
         stats->skipped |= SNELL_SKIP_ENV_UPDATE;
         return paraboloid_of(ctx, v, dp, texture, stats);
     }
@@ -183,9 +195,9 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, sn
     z_near = radius > 0.0f ? 0.01f * radius : 0.01f;
     z_far = 1e4f * z_near + 1000.0f;
     if (dp && direct) {
-        st = render_paraboloid_views(ctx, d, comp, dp, v, env, list, count, centre, z_near, z_far, size, stats);
+        st = render_paraboloid_views(ctx, d, comp, dp, v, env, list, count, centre, z_near, z_far, size, lit, stats);
         if (st != SNELL_OK) return st;
-        remember(v, env, list, count, centre);
+        remember(v, env, list, count, centre, lit);
         v->size = size;
         stats->env_updated = 1;
         *texture = v->paraboloid;
@@ -208,7 +220,7 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, sn
         glDepthMask(GL_TRUE);
         glClear(GL_DEPTH_BUFFER_BIT);
         snell__cube_face_view_proj(face, centre, z_near, z_far, vp);
-        st = snell__composite_opaque(ctx, comp, SNELL__OUT_COLOR, list, count, (const float *)vp, centre);
+        st = snell__composite_opaque(ctx, comp, SNELL__OUT_COLOR, list, count, (const float *)vp, centre, lit);
         snell__cube_face_view_proj(face, origin, z_near, z_far, rot_vp);
         if (st == SNELL_OK) st = snell__composite_background(ctx, comp, SNELL__OUT_COLOR, (const float *)rot_vp);
         stats->passes += 1 + (count > 0);
@@ -217,7 +229,7 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, sn
     snell__pass_end(&pass);
     if (st != SNELL_OK) return st;
     if (glGetError() != GL_NO_ERROR) return snell__fail(ctx, SNELL_E_GL, "GL error rendering a dynamic environment");
-    remember(v, env, list, count, centre);
+    remember(v, env, list, count, centre, lit);
     v->paraboloid_valid = 0;
     stats->env_updated = 1;
     return paraboloid_of(ctx, v, dp, texture, stats);

@@ -22,6 +22,7 @@ typedef struct snell__env_view {
     unsigned version[SNELL_MAX_OPAQUE];
     float model[SNELL_MAX_OPAQUE][16];
     float color[SNELL_MAX_OPAQUE][3];
+    unsigned lit;                     /* their lighting: 0 from above, else the caustics stage's maps' `made` */
 } snell__env_view;
 
 typedef struct snell__env_dynamic {
@@ -37,6 +38,8 @@ void snell__env_dynamic_destroy(snell_ctx *ctx, snell__env_dynamic *d);
 /* The cubemap glass object `slot` sees from centre: re-rendered when
  * anything changed (stats->env_updated, passes) or reused
  * (SNELL_SKIP_ENV_UPDATE). size: face size, 0 = half of env's, 16..256.
+ * lit: the caustics stage that lit the opaque objects this frame (NULL:
+ * none), whose lighting they are drawn with (snell__composite_opaque).
  * With dp (not NULL) *texture is instead its dual-paraboloid maps
  * (snell__paraboloid_size(size)): made from the cube after each re-render,
  * or with direct rendered straight (2 views, no cube: opaque objects projected
@@ -44,6 +47,7 @@ void snell__env_dynamic_destroy(snell_ctx *ctx, snell__env_dynamic *d);
 snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, snell__composite *comp, int slot,
                                        const snell_env *env, const snell_opaque *list, int count,
                                        const float centre[3], float radius, int size, snell__paraboloid_gen *dp,
-                                       int direct, unsigned *texture, snell_object_stats *stats);
+                                       int direct, const struct snell__caustics *lit, unsigned *texture,
+                                       snell_object_stats *stats);
 
 #endif

@@ -1,5 +1,7 @@
 /* stages.c — the frame as a table of stages in frame order (frame/stage.h):
- * AUTO by budget's plan -> opaque objects -> glass set-up (method, mesh, prepared resources, dynamic
+ * AUTO by budget's plan -> opaque objects -> caustics (the light's maps, which
+ * the glass set-up's dynamic environments light the opaque objects with) ->
+ * glass set-up (method, mesh, prepared resources, dynamic
  * environment, shading) -> scene layers -> water -> back faces -> G-buffer
  * -> kernels (an object at a resolution scale through render/glass_scale.c)
  * -> background -> resolves. snell_render (renderer.c) runs the
@@ -97,11 +99,13 @@ static snell_status set_up_glass(const snell__frame *f, snell__object *o, snell_
     if (fd->opaque_count > 0 && beyond)
         st->skipped |= SNELL_SKIP_DYNAMIC_ENV; /* its exit rays meet them in the scene layers */
     if (dynamic) {
-        /* The glass sees the opaque objects through its dynamic environment. */
+        /* The glass sees the opaque objects through its dynamic environment,
+         * lit as the caustics stage (run before this one) lit them. */
         s = snell__env_dynamic_update(r->ctx, &r->dyn, &r->comp, o->index, fd->env, fd->opaque, fd->opaque_count,
                                       o->bsphere, o->bsphere[3], fd->dynamic_env_size,
                                       o->env_paraboloid ? &r->dp : NULL,
-                                      r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT, &o->env_texture, st);
+                                      r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT,
+                                      f->sc->view.lit_opaque, &o->env_texture, st);
         if (s != SNELL_OK) return s;
     } else if (o->env_paraboloid) {
         if ((s = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &o->env_texture)) != SNELL_OK) return s;
@@ -177,7 +181,7 @@ static snell_status run_opaque(snell__frame *f)
 {
     snell_renderer *r = f->r;
     snell_status st = snell__composite_opaque(r->ctx, &r->comp, r->out, f->fd->opaque, f->fd->opaque_count,
-                                              (const float *)f->sc->view.view_proj, f->sc->view.eye);
+                                              (const float *)f->sc->view.view_proj, f->sc->view.eye, NULL);
     if (f->fd->opaque_count > 0) {
         f->s->opaque_drawn = f->fd->opaque_count;
         f->s->passes++;
