@@ -898,9 +898,9 @@ typedef struct snell_glass {
 /* An opaque object of the scene (diffuse, lit from above: colour *
  * (0.25 + 0.75 * (0.5 + 0.5 * dot(n, normalize(0.3, 1, 0.2))))), drawn in the
  * view and, seen from each glass object, into its dynamic environment. In a
- * frame with a light (snell_frame_desc.light) the view draws it lit by that
- * light instead: colour * irradiance, as the receiver plane (the glass still
- * sees it lit from above). */
+ * frame with a light (snell_frame_desc.light) it is drawn lit by that light
+ * instead: colour * irradiance, as the receiver plane, in the view and as the
+ * glass sees it (through the scene layers or its dynamic environment). */
 typedef struct snell_opaque {
     const snell_mesh *mesh;         /* required; GPU buffers made on first draw */
     const float *model;             /* float[16] object-to-world; NULL = identity; finite and
@@ -949,8 +949,9 @@ typedef struct snell_receiver {
  * nothing was drawn. A glass object sees the environment and, when there are
  * opaque objects, a dynamic environment rendered from its bounding-sphere
  * centre with them in it (Unger 4.1), re-rendered only in frames where
- * something it shows moved; with the scene layers (scene_layers below) it
- * sees the other glass and opaque objects through them instead. */
+ * something it shows moved or the light on them changed; with the scene
+ * layers (scene_layers below) it sees the other glass and opaque objects
+ * through them instead. */
 typedef struct snell_frame_desc {
     const snell_env *env;           /* required */
     snell_camera camera;
@@ -1043,7 +1044,8 @@ typedef enum snell_skip {
     SNELL_SKIP_PASSTHROUGH = 1 << 0,  /* IOR 1, no absorption, no tint: the glass changes nothing */
     SNELL_SKIP_OUTSIDE_VIEW = 1 << 1, /* its bounding sphere is outside the view frustum */
     SNELL_SKIP_PREPARE = 1 << 2,      /* prepared resources (e.g. the baked cubemap) reused */
-    SNELL_SKIP_ENV_UPDATE = 1 << 3,   /* its dynamic environment reused: nothing in it moved */
+    SNELL_SKIP_ENV_UPDATE = 1 << 3,   /* its dynamic environment reused: nothing in it moved, and the light
+                                       * on its opaque objects is unchanged (the caustics stage's maps reused) */
     SNELL_SKIP_BACK_FACES = 1 << 4,   /* back faces culled (closed mesh of known winding) */
     SNELL_SKIP_ANALYSIS = 1 << 5,     /* no mesh analysis: an explicit method that needs none */
     SNELL_SKIP_SEARCH = 1 << 6,       /* CUBEMAP with one interface and no absorption: no exit search */
