@@ -231,8 +231,7 @@ int main(void)
     static float rays[W * H * 3];
     static uint8_t mask[W * H];
     snell_ctx *ctx = test_ctx();
-    snell_env *env = NULL;
-    snell_env_desc ed;
+    snell_env *env;
     snell_shape_desc sd;
     snell_mesh *sphere = NULL, *cube = NULL;
     snell_frame_desc fd, bare;
@@ -240,9 +239,7 @@ int main(void)
     snell_opaque op;
     int n;
     if (!ctx) SKIP("no GL context");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 128;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 128);
     memset(&sd, 0, sizeof sd);
     sd.shape = SNELL_SHAPE_SPHERE;
     CHECK_OK(snell_mesh_create_shape(ctx, &sd, &sphere));
