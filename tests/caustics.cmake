@@ -46,15 +46,15 @@ endif()
 # The glass sees the lit receiver plane along its exit and reflected rays
 # (common/receiver.glsl): every method, both shading paths.
 snell_add_test(test_caustics_seen SOURCES test_caustics_seen.c LABELS "render;gl" SHADINGS forward screen)
-# ... and the opaque objects lit through its dynamic environment (scene layers off): every method, the cube
-# map, dual-paraboloid maps made from it or rendered straight; the environment re-rendered when the light
-# moves or its maps are remade, reused while it is still.
-snell_add_test(test_caustics_env SOURCES test_caustics_env.c LABELS "render;gl" SHADINGS forward screen)
 # test_caustics_seen_ref: the same against the reference, which sees the plane after snell_ref_set_receiver
 # (ref_plane.c): a sphere and a standing torus over the lit plane, its caustic and shadow seen through them; the
 # GPU frame by each method against the reference over the glass pixels that see the plane and the plane's own.
 snell_add_test(test_caustics_seen_ref SOURCES test_caustics_seen_ref.c LABELS "render;gl")
 target_link_libraries(test_caustics_seen_ref PRIVATE m)
+# test_caustics_env: the glass sees the opaque objects lit through its dynamic environment (scene layers off):
+# every method, the cube map, dual-paraboloid maps made from it or rendered straight; the environment
+# re-rendered when the light moves or its maps are remade, reused while it is still.
+snell_add_test(test_caustics_env SOURCES test_caustics_env.c LABELS "render;gl" SHADINGS forward screen)
 # test_caustics_concave: a standing torus (concave): photons by the BVH through entries, TIR, exits and
 # re-entries; the lit receiver against the reference and against its one-crossing model, flux, energy; TIR in a
 # cube of the exact method.
