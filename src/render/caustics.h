@@ -12,11 +12,21 @@
 #include "frame/stage.h"
 
 #define SNELL__CAUSTICS_KEY 4096 /* floats of the reuse key */
+/* Light through glass in sequence (ref_caustics.c chain, the stage's chain
+ * path): at most this many glass objects a photon crosses, and the most
+ * casters whose beams overlap that the chain path takes together. */
+#define SNELL__CAUSTICS_CHAIN 4
 #define SNELL__CAUSTICS_NO_FLOAT 1u /* map_format: probed, no float target (the stage is skipped) */
 
 typedef struct snell__caustics {
     unsigned map_prog, photon_prog, direct_prog, receiver_prog, opaque_prog, vao;
     unsigned photon_bvh_prog[2][2];                /* photons by exact's BVH: [q16 nodes][stack walk] */
+    unsigned photon_chain_prog;                    /* photons through the overlapping casters in sequence */
+    void *chain_bvh;                               /* their world-space BVH (exact's, snell__exact_bvh_make) */
+    float *chain_geo;                              /* its merged mesh: positions then normals (world) */
+    uint32_t *chain_idx;                           /* and triangles */
+    size_t chain_geo_cap, chain_idx_cap;           /* floats, indices allocated */
+    snell_alloc chain_alloc;                       /* they were allocated with */
     unsigned glass_fbo[2], glass_n[2], glass_z[2]; /* nearest and farthest surfaces from the light */
     int glass_size;
     unsigned shadow_fbo, shadow_z;
