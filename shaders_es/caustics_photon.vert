@@ -1,7 +1,7 @@
 // caustics_photon.vert - one photon per texel of the light's view of a glass
 // object (Wyman & Davis 2006, caustic maps; Unger 3.5 names caustics as the
 // step beyond its methods): enters where the nearest-surface map says
-// (Schlick Fresnel, Snell) and finds its way out by one of two paths:
+// (Schlick Fresnel, Snell) and finds its way out by one of three paths:
 // - the depth maps (SNELL_PHOTON_BVH 0; convex meshes, where one crossing is
 //   the whole path): marches the farthest-surface depth map to its exit (an
 //   image-space search, as the methods' exit searches), leaves (Schlick,
@@ -17,6 +17,10 @@
 //   Beer-Lambert inside. Past the material's exact.budget node visits the
 //   photon takes the depth maps' path. Its reference is ref_caustics.c's
 //   through().
+// - the chain (SNELL_PHOTON_CHAIN; casters whose beams overlap seen from
+//   the light): one world-space BVH of their meshes, the photon counted only
+//   if the light meets its caster first, then through every caster it meets
+//   in turn by that one's material (chain_path; ref_caustics.c chain).
 // A thin wall (material thickness > 0, u_thickness) bends nothing: the
 // photon goes on in its direction through every wall it meets, each one a
 // slab (snell_thin_slab, Schlick at both faces, Beer-Lambert over

@@ -9,6 +9,10 @@
  * object once more, up to its exact.max_interfaces surfaces (through());
  * splatted onto the plane's texels with the stage's tent, flux-correct; a
  * thin wall's photon straight on through each of its walls, a slab each.
+ * A photon counts only where the light meets its object first, and goes on
+ * through each glass object it meets next, by that one's optics, up to
+ * SNELL__CAUSTICS_CHAIN objects (chain()), onto the plane and the opaque
+ * receivers alike; the GPU does so where beams overlap (its chain path).
  * The GPU follows the same path by exact's BVH where the mesh is not
  * convex, and one crossing of depth maps where it is (caustics_photon.vert). */
 #include "ref/ref_trace.h"

@@ -11,7 +11,11 @@
  * straight on through each of its walls, a slab each) and splatted onto
  * the plane, each carrying the light's flux through its cell of the beam
  * (flux-correct: energy is conserved, as the 2D lightmap's lines are,
- * src/lm2d). The opaque objects are receivers too: a photon
+ * src/lm2d). Casters whose beams overlap seen from the light (up to
+ * SNELL__CAUSTICS_CHAIN) take the chain path together: one world-space BVH
+ * of their meshes, each photon counted only where the light meets its
+ * caster first and going on through the next one it meets (ref_caustics.c
+ * chain); the others keep their own path. The opaque objects are receivers too: a photon
  * stops at the first one (marched through their depth map in the light
  * frame, the shadow map's view), and one that lands where the light sees
  * the surface is splatted into their caustic map in that frame; they are
