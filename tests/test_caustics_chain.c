@@ -192,6 +192,7 @@ int main(void)
         for (k = 0; k < 3; k++) fd.light.direction[k] = (float)(dir[k] / len);
         fd.light.color[0] = fd.light.color[1] = fd.light.color[2] = 0.0f;
         g[0].material.ior = 1.0005f;
+        top[13] = 3.6f; /* higher: 2 above the lower sphere's top, where its own grid's start (R + 1) is below it */
         alone.glass = &g[1], alone.glass_count = 1, alone.light = fd.light;
         CHECK_OK(test_ref_create(NULL, &alone, &ref));
         if (ref && ref_alone) CHECK_OK(snell_ref_receiver_render(ref, &alone.light, &alone.receiver, 1024, 4, ref_alone, NULL));
@@ -212,7 +213,7 @@ int main(void)
             printf("a near-clear top sphere: the plane's light against the lower sphere's alone: reference %.2f dB "
                    "(%+.3f%%), GPU %.2f dB (%+.3f%%)\n", db_ref, 100.0 * (e_ref / e_alone - 1.0), db_gpu,
                    100.0 * (e_gpu / e_alone - 1.0));
-            /* measured 33.2 dB and -0.19% for both: the top sphere's rim
+            /* measured 32.3 (GPU 32.1) dB and -0.19% for both: the top sphere's rim
              * (Schlick's grazing reflection, at any IOR) is its one trace */
             CHECK(db_ref >= 31.0 && fabs(e_ref / e_alone - 1.0) <= 0.005, "near-clear top, reference: %.2f dB, %.4f "
                   "against %.4f", db_ref, e_ref, e_alone);
@@ -230,6 +231,7 @@ int main(void)
                   "%.4f", db_gpu, e_gpu, e_alone);
         }
         g[0].material.ior = 1.5f;
+        top[13] = 2.9f;
         free(ref_alone);
     }
     {
