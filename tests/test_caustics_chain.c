@@ -30,15 +30,6 @@
 #define EXT 2.5f
 #define W 96
 
-/* The flux of a map's green channel over the plane (stride floats a texel). */
-static double flux(const float *v, int stride, double texel)
-{
-    double e = 0;
-    int i;
-    for (i = 0; i < MAP * MAP; i++) e += v[i * stride + 1] * texel * texel;
-    return e;
-}
-
 /* The GPU's light through glass: its map less the reference's direct light (ref_rgb - ref_c). */
 static double through_glass(const float *gpu, const float *ref_rgb, const float *ref_c, double texel)
 {
@@ -78,8 +69,8 @@ static void run(snell_ctx *ctx, snell_renderer *r, const snell_frame_desc *fd, c
     test_write_light_map(file, ref_rgb, 3, MAP, 0.8f);
     out->db = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
     out->e_gpu = through_glass(gpu, ref_rgb, ref_c, texel);
-    out->e_ref = flux(ref_c, 3, texel);
-    out->e_all = flux(gpu, 4, texel);
+    out->e_ref = test_light_map_flux(ref_c, 3, MAP * MAP, texel);
+    out->e_all = test_light_map_flux(gpu, 4, MAP * MAP, texel);
     r->caustics.maps_only = 1;
     CHECK_OK_CTX(ctx, snell_render(r, fd, &fs));
     CHECK(strstr(fs.caustics_reason, "chained") == NULL, "%s alone: %s", name, fs.caustics_reason);
@@ -209,7 +200,7 @@ int main(void)
             test_write_light_map("caustics_chain_clear_gpu.png", gpu, 4, MAP, 0.8f);
             db_ref = test_light_map_psnr(ref_alone, 3, ref_rgb, MAP * MAP, 0.8f);
             db_gpu = test_light_map_psnr(gpu, 4, ref_alone, MAP * MAP, 0.8f);
-            e_alone = flux(ref_alone, 3, texel), e_ref = flux(ref_rgb, 3, texel), e_gpu = flux(gpu, 4, texel);
+            e_alone = test_light_map_flux(ref_alone, 3, MAP * MAP, texel), e_ref = test_light_map_flux(ref_rgb, 3, MAP * MAP, texel), e_gpu = test_light_map_flux(gpu, 4, MAP * MAP, texel);
             printf("a near-clear top sphere: the plane's light against the lower sphere's alone: reference %.2f dB "
                    "(%+.3f%%), GPU %.2f dB (%+.3f%%)\n", db_ref, 100.0 * (e_ref / e_alone - 1.0), db_gpu,
                    100.0 * (e_gpu / e_alone - 1.0));
@@ -225,7 +216,7 @@ int main(void)
             CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
             r->caustics.maps_only = 0;
             db_gpu = test_light_map_psnr(gpu, 4, ref_alone, MAP * MAP, 0.8f);
-            e_gpu = flux(gpu, 4, texel);
+            e_gpu = test_light_map_flux(gpu, 4, MAP * MAP, texel);
             printf("  each caster alone: %.2f dB (%+.3f%%)\n", db_gpu, 100.0 * (e_gpu / e_alone - 1.0));
             CHECK(db_gpu <= 27.0 && e_gpu / e_alone - 1.0 >= 0.005, "near-clear top, each alone: %.2f dB, %.4f against "
                   "%.4f", db_gpu, e_gpu, e_alone);
