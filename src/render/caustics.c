@@ -933,7 +933,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
 {
     GLint fbo = 0, viewport[4];
     int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, shot = 0, key_len, by_bvh = 0;
-    int group[SNELL_MAX_GLASS], gsize[SNELL_MAX_GLASS], chained = 0, groups = 0, alone_over = 0;
+    int group[SNELL_MAX_GLASS], gsize[SNELL_MAX_GLASS], chained = 0, chain_shot = 0, groups = 0, alone_over = 0;
     int plane = fd->receiver.extent > 0.0f, opaque = fd->opaque_count > 0;
     char map[48], chains[64] = "";
     snell_status st;
@@ -990,7 +990,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
                 int n, together = group[i] >= 0 ? gsize[group[i]] : 1;
 #if SNELL__BUILT_exact
                 if (together >= 2 && together <= SNELL__CAUSTICS_CHAIN) {
-                    if (group[i] == i) st = chain_draw(ctx, c, fd, sc, &L, &F, group, i, s, &shot);
+                    if (group[i] == i) st = chain_draw(ctx, c, fd, sc, &L, &F, group, i, s, &chain_shot);
                     chained++, groups += group[i] == i, casters++;
                     continue;
                 }
@@ -1003,6 +1003,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
                 by_bvh += prog && n > 0;
                 casters++;
             }
+        shot += chain_shot;
         s->passes += 1 + plane + 2 * opaque + (2 + plane + opaque) * shot;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
@@ -1024,7 +1025,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
                "%d BVH, %d depth maps%s; %s",
                casters, sc->count > casters ? " (clear ones pass)" : "",
                shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count,
-               opaque ? " (light-frame caustic map)" : "", by_bvh, shot - by_bvh - chained, chains, map);
+               opaque ? " (light-frame caustic map)" : "", by_bvh, shot - by_bvh - chain_shot, chains, map);
     return draw_view(c, fd, sc);
 }
 

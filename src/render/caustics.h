@@ -39,7 +39,8 @@ typedef struct snell__caustics {
     unsigned map_fbo, map_tex;                     /* the receiver's light map (float rgba) */
     int map_size;
     int maps_only;                                 /* tests, bench_caustics: every photon takes the depth
-                                                    * maps' one crossing (the only path before the BVH's) */
+                                                    * maps' one crossing (the only path before the BVH's),
+                                                    * each caster alone (no chain) */
     unsigned map_format;                           /* GL_RGBA32F or GL_RGBA16F, SNELL__CAUSTICS_NO_FLOAT,
                                                     * 0 = not probed yet (tests set it to take a path) */
     int valid;                                     /* the maps hold the frame keyed by key[] */
