@@ -92,7 +92,6 @@ int main(void)
     snell_env *env = NULL;
     snell_renderer *r = NULL;
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 128, 64};
-    snell_env_desc ed;
     snell_renderer_desc rd;
     snell_frame_desc fd;
     snell_glass g[2];
@@ -104,9 +103,7 @@ int main(void)
     int k;
     if (!ctx) SKIP("no headless GL context");
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &ball));
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 32;
-    CHECK_OK_CTX(ctx, snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 32);
     memset(&rd, 0, sizeof rd);
     rd.width = rd.height = W;
     CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));
