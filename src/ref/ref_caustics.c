@@ -18,7 +18,7 @@
 #include "ref/ref_trace.h"
 #include "core/ctx.h"
 #include "core/optics.h"
-#include "render/caustics.h"
+#include "frame/frame.h"
 
 #include <math.h>
 #include <string.h>

@@ -12,10 +12,6 @@
 #include "frame/stage.h"
 
 #define SNELL__CAUSTICS_KEY 4096 /* floats of the reuse key */
-/* Light through glass in sequence (ref_caustics.c chain, the stage's chain
- * path): at most this many glass objects a photon crosses, and the most
- * casters whose beams overlap that the chain path takes together. */
-#define SNELL__CAUSTICS_CHAIN 4
 #define SNELL__CAUSTICS_NO_FLOAT 1u /* map_format: probed, no float target (the stage is skipped) */
 
 typedef struct snell__caustics {
