@@ -1,7 +1,7 @@
 // caustics_photon.vert - one photon per texel of the light's view of a glass
 // object (Wyman & Davis 2006, caustic maps; Unger 3.5 names caustics as the
 // step beyond its methods): enters where the nearest-surface map says
-// (Schlick Fresnel, Snell) and finds its way out by one of two paths:
+// (Schlick Fresnel, Snell) and finds its way out by one of three paths:
 // - the depth maps (SNELL_PHOTON_BVH 0; convex meshes, where one crossing is
 //   the whole path): marches the farthest-surface depth map to its exit (an
 //   image-space search, as the methods' exit searches), leaves (Schlick,
@@ -17,6 +17,10 @@
 //   Beer-Lambert inside. Past the material's exact.budget node visits the
 //   photon takes the depth maps' path. Its reference is ref_caustics.c's
 //   through().
+// - the chain (SNELL_PHOTON_CHAIN; casters whose beams overlap seen from
+//   the light): one world-space BVH of their meshes, the photon counted only
+//   if the light meets its caster first, then through every caster it meets
+//   in turn by that one's material (chain_path; ref_caustics.c chain).
 // A thin wall (material thickness > 0, u_thickness) bends nothing: the
 // photon goes on in its direction through every wall it meets, each one a
 // slab (snell_thin_slab, Schlick at both faces, Beer-Lambert over
@@ -77,6 +81,18 @@ uniform mat4 u_model, u_inv_model;
 uniform int u_max_interfaces; // 1..MAX_INTERFACES (material.exact.interfaces)
 uniform float u_eps;          // minimum distance of a secondary hit, world units
 #include "common/bvh.glsl"
+#endif
+#ifdef SNELL_PHOTON_CHAIN
+// the casters whose beams overlap, in sequence (render/caustics.c chain):
+// their world-space BVH (identity matrices), a triangle entry's mesh
+// triangle in its v0's w, object k's triangles u_chain_first[k] ..
+// u_chain_first[k + 1] - 1; their materials
+uniform int u_chain_self;                      // this photon's caster among them
+uniform int u_chain_first[SNELL_PHOTON_CHAIN + 1];
+uniform float u_chain_ior[SNELL_PHOTON_CHAIN], u_chain_thick[SNELL_PHOTON_CHAIN], u_chain_eps[SNELL_PHOTON_CHAIN];
+uniform vec3 u_chain_sigma[SNELL_PHOTON_CHAIN], u_chain_tint[SNELL_PHOTON_CHAIN];
+uniform int u_chain_maxif[SNELL_PHOTON_CHAIN]; // their exact.max_interfaces
+uniform vec4 u_chain_sphere;                   // holding them all: directional photons start before it
 #endif
 
 out vec4 v_flux;
@@ -332,6 +348,109 @@ bool bvh_path(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 t2,
 }
 #endif
 
+#ifdef SNELL_PHOTON_CHAIN
+// The object entry e belongs to.
+int object_of(int e)
+{
+    int t = int(fetch_f(u_tri_base + 6 * e).w), k = 0;
+    for (int j = 1; j < SNELL_PHOTON_CHAIN; j++) k += t >= u_chain_first[j] ? 1 : 0;
+    return k;
+}
+
+// The closest hit from p along d (at: the entry p lies on) on any object
+// but skip (done with the photon), stepping over skip's surfaces: its entry
+// (b its weights) or -1.
+int hit_other(vec3 p, vec3 d, int at, int skip, float eps, out vec3 b)
+{
+    vec3 n;
+    for (int k = 0; k < MAX_INTERFACES; k++) {
+        float t = 3.0e38;
+        int h = closest(make_ray(p, d), eps, t, at, b);
+        if (h < 0 || object_of(h) != skip) return h;
+        surface_at(h, b, d, p, n);
+        at = h;
+    }
+    return -1;
+}
+
+// The photon through the casters in sequence (ref_caustics.c chain): from o
+// along the light's ray dir it counts only if the light meets this caster
+// first (else it is another's photon; a miss: light past it); through each
+// object it meets as bvh_path and thin_bvh go through one, by that one's
+// material (the tint at every entry but the photon's first, which u_flux
+// holds), leaving it for the next object it meets (the one it left not
+// seen), up to SNELL_PHOTON_CHAIN objects; one more stops it (as the
+// reference's landing). q and t2 the last exit and the direction out, e the
+// transmittance. false: dropped.
+bool chain_path(vec3 o, vec3 dir, out vec3 q, out vec3 t2, out vec3 e)
+{
+    vec3 b, p = o, n, d = dir;
+    float t = 3.0e38;
+    e = vec3(1.0);
+    q = o;
+    t2 = dir;
+    int at = closest(make_ray(o, d), 0.0, t, -1, b);
+    if (at < 0 || object_of(at) != u_chain_self) return false;
+    int k = u_chain_self;
+    for (int v = 0; v < SNELL_PHOTON_CHAIN; v++) {
+        float ior = u_chain_ior[k], eps = u_chain_eps[k];
+        int depth = 0, next = -1;
+        bool cap = false;
+        surface_at(at, b, d, p, n);
+        for (int m = 0; m < MAX_INTERFACES; m++) {
+            vec3 tint = v == 0 && m == 0 ? vec3(1.0) : u_chain_tint[k];
+            if (u_chain_thick[k] > 0.0) { // a thin wall: the slab, straight on
+                vec3 rs, ts;
+                snell_thin_slab(dot(n, d), ior, u_chain_sigma[k], u_chain_thick[k], rs, ts);
+                e *= tint * ts;
+                depth++;
+            } else {
+                vec3 tr;
+                if (!snell_refract(d, n, 1.0 / ior, tr)) return false;
+                e *= tint * (1.0 - snell_fresnel_schlick(dot(n, -d), 1.0, ior));
+                d = normalize(tr);
+                depth++;
+                float len = 0.0;
+                for (int j = 0; j < MAX_INTERFACES; j++) {
+                    float th = 3.0e38;
+                    int h = closest(make_ray(p, d), eps, th, at, b);
+                    if (h < 0) break; // open mesh: leaves in its direction
+                    len += th;
+                    at = h;
+                    vec3 n2;
+                    surface_at(h, b, d, p, n2);
+                    if (depth >= u_chain_maxif[k]) break; // the cap
+                    depth++;
+                    vec3 o2;
+                    bool left = snell_refract(d, n2, ior, o2);
+                    if (left) e *= 1.0 - snell_fresnel_schlick(dot(n2, -d), ior, 1.0);
+                    d = normalize(o2);
+                    if (left) break;
+                }
+                e *= exp(-u_chain_sigma[k] * len);
+            }
+            if (depth >= u_chain_maxif[k]) {
+                cap = true;
+                break;
+            }
+            float tn = 3.0e38;
+            next = closest(make_ray(p, d), eps, tn, at, b);
+            if (next < 0 || object_of(next) != k) break; // out of k: next is what it meets
+            at = next;
+            surface_at(at, b, d, p, n);
+        }
+        if (cap) next = hit_other(p, d, at, k, eps, b); // at the cap it sees k no more
+        if (next < 0) break;                             // out for good: it lands
+        if (v == SNELL_PHOTON_CHAIN - 1) return false;   // one more object past the cap: stopped
+        at = next;
+        k = object_of(next);
+    }
+    q = p;
+    t2 = d;
+    return true;
+}
+#endif
+
 void main()
 {
     int i = gl_VertexID % u_size, j = gl_VertexID / u_size;
@@ -360,7 +479,11 @@ void main()
     vec3 q, t2 = dir, e = vec3(1.0);
     float f1 = 0.0, f2 = 0.0, len = 0.0;
     bool through = true, by_maps = true;
-#if SNELL_PHOTON_BVH
+#ifdef SNELL_PHOTON_CHAIN
+    vec3 o = u_spot == 1 ? u_pos : p - dir * (dot(p - u_chain_sphere.xyz, dir) + u_chain_sphere.w + 1.0);
+    through = chain_path(o, dir, q, t2, e) && !g_over; // past the node budget: dropped
+    by_maps = false;
+#elif SNELL_PHOTON_BVH
     if (u_thickness > 0.0) thin_bvh(p - dir * u_reach, dir, p, n, q, e);
     else through = bvh_path(p - dir * u_reach, dir, p, n, q, t2, e);
     by_maps = g_over; // past the node budget: the depth maps' path

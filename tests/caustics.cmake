@@ -69,3 +69,8 @@ set_tests_properties(bench_caustics_torus_runs PROPERTIES LABELS "cli;gl" PASS_R
 # thin wall passes.
 snell_add_test(test_caustics_thin SOURCES test_caustics_thin.c LABELS "render;gl")
 target_link_libraries(test_caustics_thin PRIVATE m)
+# test_caustics_chain: a glass sphere above a tinted one, their beams overlapping: photons through both in
+# sequence (the chain path) against the reference's chain, directional and spot; each caster alone (the path
+# before) clearly off; side by side under a light from above: no chain.
+snell_add_test(test_caustics_chain SOURCES test_caustics_chain.c LABELS "render;gl")
+target_link_libraries(test_caustics_chain PRIVATE m)

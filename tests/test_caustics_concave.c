@@ -32,15 +32,6 @@
 #define EXT 2.5f
 #define W 160
 
-/* The flux of a map's green channel over the plane (stride floats a texel). */
-static double flux(const float *v, int stride, double texel)
-{
-    double e = 0;
-    int i;
-    for (i = 0; i < MAP * MAP; i++) e += v[i * stride + 1] * texel * texel;
-    return e;
-}
-
 /* The GPU's light through glass (gpu, 4 floats a texel, less the
  * reference's direct light: ref_rgb - ref_c) into out (3 a texel); its flux. */
 static double through_glass(const float *gpu, const float *ref_rgb, const float *ref_c, float *out, double texel)
@@ -48,7 +39,7 @@ static double through_glass(const float *gpu, const float *ref_rgb, const float 
     int i, k;
     for (i = 0; i < MAP * MAP; i++)
         for (k = 0; k < 3; k++) out[3 * i + k] = gpu[4 * i + k] - (ref_rgb[3 * i + k] - ref_c[3 * i + k]);
-    return flux(out, 3, texel);
+    return test_light_map_flux(out, 3, MAP * MAP, texel);
 }
 
 int main(void)
@@ -128,7 +119,7 @@ int main(void)
 
     {
         /* the light through glass: the GPU's map less its direct part (the reference's direct light) */
-        double e_gpu, e_ref = flux(ref_c, 3, texel), e_one = flux(one_c, 3, texel), e_all = flux(gpu, 4, texel);
+        double e_gpu, e_ref = test_light_map_flux(ref_c, 3, MAP * MAP, texel), e_one = test_light_map_flux(one_c, 3, MAP * MAP, texel), e_all = test_light_map_flux(gpu, 4, MAP * MAP, texel);
         double e_free = -dir[1] * (2.0 * EXT) * (2.0 * EXT), db, db_one, db_ref_one;
         e_gpu = through_glass(gpu, ref_rgb, ref_c, gpu_c, texel);
         db = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
@@ -155,8 +146,8 @@ int main(void)
         /* (c) measured +0.05%; glass adds no light: all of it on the plane at
          * most what the plane has without the torus (22.8 against 24.0) */
         CHECK(fabs(e_gpu / e_ref - 1.0) <= 0.03, "light through glass: GPU %.4f, reference %.4f", e_gpu, e_ref);
-        CHECK(e_all <= e_free && flux(ref_rgb, 3, texel) <= e_free, "all light %.4f (reference %.4f), %.4f without",
-              e_all, flux(ref_rgb, 3, texel), e_free);
+        CHECK(e_all <= e_free && test_light_map_flux(ref_rgb, 3, MAP * MAP, texel) <= e_free, "all light %.4f (reference %.4f), %.4f without",
+              e_all, test_light_map_flux(ref_rgb, 3, MAP * MAP, texel), e_free);
         /* and the light through glass is no more than the light the torus takes */
         CHECK(e_gpu <= e_free - (e_all - e_gpu), "through glass %.4f, the torus's shadow takes %.4f", e_gpu,
               e_free - (e_all - e_gpu));
@@ -172,8 +163,8 @@ int main(void)
         db_maps = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
         e_maps = through_glass(gpu, ref_rgb, ref_c, gpu_c, texel);
         printf("depth maps' one crossing: %.2f dB from the reference, light through glass %+.2f%%\n", db_maps,
-               100.0 * (e_maps / flux(ref_c, 3, texel) - 1.0));
-        CHECK(db_maps <= 28.0 && fabs(e_maps / flux(ref_c, 3, texel) - 1.0) >= 0.08, "depth maps: %.2f dB", db_maps);
+               100.0 * (e_maps / test_light_map_flux(ref_c, 3, MAP * MAP, texel) - 1.0));
+        CHECK(db_maps <= 28.0 && fabs(e_maps / test_light_map_flux(ref_c, 3, MAP * MAP, texel) - 1.0) >= 0.08, "depth maps: %.2f dB", db_maps);
         r->caustics.maps_only = 0;
     }
     {
@@ -220,7 +211,7 @@ int main(void)
             test_write_light_map("caustics_torus_spot_ref.png", ref_rgb, 3, MAP, 0.8f);
             db_s = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
             e_s = through_glass(gpu, ref_rgb, ref_c, gpu_c, texel);
-            e_sref = flux(ref_c, 3, texel);
+            e_sref = test_light_map_flux(ref_c, 3, MAP * MAP, texel);
             printf("spot light through the torus: the BVH %.2f dB from the reference, light through glass %.4f "
                    "against %.4f (%+.2f%%)\n", db_s, e_s, e_sref, 100.0 * (e_s / e_sref - 1.0));
             /* measured 38.6 dB, +0.13% (512^2 photons); a photon's solid angle
@@ -254,7 +245,7 @@ int main(void)
         CHECK_OK(test_ref_create(NULL, &fc, &ref_cube));
         if (cube && ref_cube) {
             CHECK_OK(snell_ref_receiver_render(ref_cube, &fc.light, &fc.receiver, 1024, 4, ref_rgb, ref_c));
-            e_ref = flux(ref_c, 3, texel);
+            e_ref = test_light_map_flux(ref_c, 3, MAP * MAP, texel);
             CHECK_OK_CTX(ctx, snell_render(r, &fc, &fs));
             CHECK(strstr(fs.caustics_reason, "paths: 1 BVH, 0 depth maps") != NULL, "the cube's: %s", fs.caustics_reason);
             CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));

@@ -205,6 +205,14 @@ int test_write_blender_mesh(const snell_mesh *m, const double t[3], const char *
     return (fclose(f) == 0) && ok;
 }
 
+double test_light_map_flux(const float *v, int stride, int n, double texel)
+{
+    double e = 0;
+    int i;
+    for (i = 0; i < n; i++) e += v[i * stride + 1] * texel * texel;
+    return e;
+}
+
 double test_light_map_psnr(const float *a, int stride_a, const float *b, int n, float albedo)
 {
     double se = 0;

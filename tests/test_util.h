@@ -98,6 +98,8 @@ double test_dir_angle(const float a[3], const float b[3]);
  * albedo * irradiance clamped to 0..1; and an n x n map written as that PNG
  * (test_out(name)), row 0 of the image the far edge (z largest). */
 double test_light_map_psnr(const float *a, int stride_a, const float *b, int n, float albedo);
+/* The flux of a light map's green channel: n texels of stride floats, each texel x texel (world area). */
+double test_light_map_flux(const float *v, int stride, int n, double texel);
 void test_write_light_map(const char *name, const float *v, int stride, int n, float albedo);
 /* The PSNR (dB) of two RGBA8 images of n pixels over the pixels where mask
  * is set (their rgb); their count in *count. 999 where they agree. */

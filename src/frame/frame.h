@@ -27,6 +27,12 @@ typedef enum snell__output_kind {
 #define SNELL__SCREEN_SHARED_DEPTH 1  /* the G-buffer pass wrote the target's own depth buffer */
 #define SNELL__SCREEN_WRITES_DEPTH 2  /* the G-buffer had its own; the kernel writes gl_FragDepth */
 
+/* Light through glass in sequence (the caustics' chain, render/caustics.c,
+ * and its reference, ref_caustics.c chain): at most this many glass objects
+ * a photon crosses, and the most casters with overlapping beams the stage
+ * takes together. */
+#define SNELL__CAUSTICS_CHAIN 4
+
 /* The frame's back-face maps (render/gbuffer.h): texel = window pixel +
  * band, valid for window pixels -band .. size + band - 1. */
 typedef struct snell__back_maps {

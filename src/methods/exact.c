@@ -259,7 +259,8 @@ static uint32_t quant(double x, double lo, double step, int up)
 /* Writes the texture's texels: nodes (f32: 2 texels, lo + escape or first,
  * hi + count; q16: 1 texel, bounds as 6 x 16 bits + a word: interior the
  * escape, leaf 0x80000000 | first << 2 | count - 1), then per triangle entry
- * 6 texels: v0, v1, v2, n0, n1, n2 (object space; q16: the floats' bits). */
+ * 6 texels: v0, v1, v2, n0, n1, n2 (object space; q16: the floats' bits), v0's w the
+ * mesh's triangle index (a float: exact below 2^24). */
 static void pack_texels(exact_prepared *p, const snell_mesh *mesh)
 {
     float *tf = (float *)p->texels;
@@ -306,6 +307,7 @@ static void pack_texels(exact_prepared *p, const snell_mesh *mesh)
         float v[24];
         int j;
         memset(v, 0, sizeof v);
+        v[3] = (float)p->tri_ids[i]; /* the mesh's triangle, unread by exact (the caustics' chain: its object) */
         for (j = 0; j < 3; j++)
             for (k = 0; k < 3; k++) {
                 v[4 * j + k] = mesh->positions[3 * (size_t)tri[j] + k];
@@ -389,24 +391,19 @@ out:
  * triangles, bench/BENCHMARKS.md "Exact"); the splits stay those of the
  * first shape, which a large deformation makes worse to traverse, never
  * wrong. A new node format or triangle count builds again. */
-static snell_status exact_prepare(snell_ctx *ctx, void *state, const snell__object *o, void *prepared,
-                                  snell_object_stats *stats)
+static snell_status prepare_mesh(snell_ctx *ctx, exact_prepared *p, const snell_mesh *mesh, int format)
 {
-    exact_prepared *p = (exact_prepared *)prepared;
-    const int format = o->glass->material.exact.node_format;
-    const int refit = p->texture && p->nodes && p->format == format && p->triangle_count == o->mesh->triangle_count;
+    const int refit = p->texture && p->nodes && p->format == format && p->triangle_count == mesh->triangle_count;
     snell__pixel_store unpack;
     snell_status st;
-    (void)state;
-    (void)stats;
     p->alloc = ctx->alloc;
     if (refit) {
-        refit_boxes(p, o->mesh);
+        refit_boxes(p, mesh);
         p->refits++;
-    } else if ((st = build(ctx, o->mesh, format, p)) != SNELL_OK) {
+    } else if ((st = build(ctx, mesh, format, p)) != SNELL_OK) {
         return st;
     }
-    pack_texels(p, o->mesh);
+    pack_texels(p, mesh);
     snell__pixel_unpack_begin(&unpack, 4);
     glActiveTexture(GL_TEXTURE0 + BVH_UNIT);
     if (!refit) {
@@ -432,6 +429,14 @@ static snell_status exact_prepare(snell_ctx *ctx, void *state, const snell__obje
     return SNELL_OK;
 }
 
+static snell_status exact_prepare(snell_ctx *ctx, void *state, const snell__object *o, void *prepared,
+                                  snell_object_stats *stats)
+{
+    (void)state;
+    (void)stats;
+    return prepare_mesh(ctx, (exact_prepared *)prepared, o->mesh, o->glass->material.exact.node_format);
+}
+
 void snell__exact_bvh_of(const void *prepared, const snell_glass_material *m, snell__exact_bvh *out)
 {
     const exact_prepared *p = (const exact_prepared *)prepared;
@@ -452,6 +457,29 @@ static void exact_release(void *prepared)
     free_arrays(p);
     p->builds = p->refits = 0;
 }
+
+#if SNELL_WITH_CAUSTICS
+snell_status snell__exact_bvh_make(snell_ctx *ctx, const snell_mesh *mesh, void **prepared, snell__exact_bvh *out)
+{
+    snell_glass_material stack;
+    snell_status st;
+    if (!*prepared && !(*prepared = snell__calloc(&ctx->alloc, 1, sizeof(exact_prepared))))
+        return snell__fail(ctx, SNELL_E_NOMEM, "exact: out of memory");
+    if ((st = prepare_mesh(ctx, (exact_prepared *)*prepared, mesh, NODES_F32)) != SNELL_OK) return st;
+    memset(&stack, 0, sizeof stack);
+    stack.exact.walk = WALK_STACK;
+    snell__exact_bvh_of(*prepared, &stack, out);
+    return SNELL_OK;
+}
+
+void snell__exact_bvh_free(void *prepared)
+{
+    exact_prepared *p = (exact_prepared *)prepared;
+    if (!p) return;
+    exact_release(p);
+    snell__free(&p->alloc, p);
+}
+#endif
 
 /* Pixels of this object that took the fallback: the kernel marks them with
  * alpha -(index + 1) in the RGBA32F exit-direction target (other kernels and

@@ -17,4 +17,12 @@ typedef struct snell__exact_bvh {
 /* The BVH of exact's prepared resource `prepared` for material m. */
 void snell__exact_bvh_of(const void *prepared, const snell_glass_material *m, snell__exact_bvh *out);
 
+/* exact's BVH (f32 nodes, the stack walk) of a mesh outside the prepared
+ * cache (render/caustics.c: the casters of a chain merged in world space),
+ * in *prepared (made on the first call, NULL before; built again, or refitted
+ * for the same triangle count, on each); its triangle entries carry their
+ * mesh triangle's index in v0's w. SNELL_WITH_CAUSTICS builds only. */
+snell_status snell__exact_bvh_make(snell_ctx *ctx, const snell_mesh *mesh, void **prepared, snell__exact_bvh *out);
+void snell__exact_bvh_free(void *prepared);
+
 #endif

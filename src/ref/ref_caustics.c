@@ -9,11 +9,16 @@
  * object once more, up to its exact.max_interfaces surfaces (through());
  * splatted onto the plane's texels with the stage's tent, flux-correct; a
  * thin wall's photon straight on through each of its walls, a slab each.
+ * A photon counts only where the light meets its object first, and goes on
+ * through each glass object it meets next, by that one's optics, up to
+ * SNELL__CAUSTICS_CHAIN objects (chain()), onto the plane and the opaque
+ * receivers alike; the GPU does so where beams overlap (its chain path).
  * The GPU follows the same path by exact's BVH where the mesh is not
  * convex, and one crossing of depth maps where it is (caustics_photon.vert). */
 #include "ref/ref_trace.h"
 #include "core/ctx.h"
 #include "core/optics.h"
+#include "frame/frame.h"
 
 #include <math.h>
 #include <string.h>
@@ -67,9 +72,10 @@ static int interfaces_of(const ref_glass *gl)
  * (interfaces_of): there it leaves through the next surface in its
  * direction, as the MATCHED model's rays do, and sees g no more. A thin
  * wall bends nothing: every surface of g on the photon's line, up to the
- * cap, is a slab it crosses straight on. 1 if it leaves, at x along t2
- * (prim: the triangle it leaves from), carrying e. */
-static int through(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
+ * cap, is a slab it crosses straight on. *prim: the triangle o lies on (or
+ * SNELL__BVH_NONE), from: its object, neither seen by the way in. 1 if it
+ * leaves, at x along t2 (prim: the triangle it leaves from), carrying e. */
+static int through(const snell_ref *ref, int g, int from, const double o[3], const double d[3], const double flux[3],
                    double x[3], double t2[3], uint32_t *prim, double e[3])
 {
     const ref_glass *gl = &ref->glass[g];
@@ -77,12 +83,11 @@ static int through(const snell_ref *ref, int g, const double o[3], const double 
     ref_surf s;
     double pos[3], dir[3], n[3], t[3], len, cos_out;
     int k, depth = 0, end;
-    *prim = SNELL__BVH_NONE;
     memcpy(pos, o, sizeof pos);
     memcpy(dir, d, sizeof dir);
     for (k = 0; k < 3; k++) e[k] = flux[k];
     for (;;) {
-        ref_view air = {-1, depth < max_if ? REF_SEE_ALL : REF_SEE_NONE, -1};
+        ref_view air = {-1, depth < max_if ? REF_SEE_ALL : REF_SEE_NONE, depth == 0 ? from : -1};
         double ci;
         if (!snell__ref_hit(ref, pos, dir, *prim, &air, &s) || s.object != g) {
             if (depth == 0) return 0; /* the light meets something else first */
@@ -120,21 +125,67 @@ static int through(const snell_ref *ref, int g, const double o[3], const double 
     return 1;
 }
 
-/* One photon along d from o through glass object g; adds it to m if it
- * lands (an opaque or another glass object on its way stops it). */
+/* Light through glass objects in sequence: a photon of g's grid counts only
+ * if the light meets g first (through; else that light is another object's
+ * grid's), and leaving g it goes on through the next glass object it meets,
+ * by that object's optics (through from the surface it left), and so on up
+ * to SNELL__CAUSTICS_CHAIN objects: each ray of light counted once,
+ * refracted by every glass it crosses (the stage's chain path,
+ * render/caustics.c). A photon that would meet one more is the caller's to
+ * stop (the landing's cast meets it). 1 if it leaves the last, *last, at x
+ * along t2 (prim: the triangle it leaves from), carrying e. */
+static int chain(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
+                 double x[3], double t2[3], uint32_t *prim, double e[3], int *last)
+{
+    double p[3], dir[3], f[3];
+    int n;
+    *prim = SNELL__BVH_NONE;
+    *last = g;
+    if (!through(ref, g, -1, o, d, flux, x, t2, prim, e)) return 0;
+    for (n = 1; n < SNELL__CAUSTICS_CHAIN; n++) {
+        ref_view air = {-1, REF_SEE_ALL, *last}; /* the last is done with it (through) */
+        ref_surf s;
+        if (!snell__ref_hit(ref, x, t2, *prim, &air, &s) || s.object < 0) break; /* nothing, or opaque: it lands */
+        memcpy(p, x, sizeof p), memcpy(dir, t2, sizeof dir), memcpy(f, e, sizeof f);
+        if (!through(ref, s.object, *last, p, dir, f, x, t2, prim, e)) return 0;
+        *last = s.object;
+    }
+    return 1;
+}
+
+/* How far back from g's bounding sphere's centre along the directional
+ * light d its photons start: before every glass object (so that the light
+ * meeting another one first is seen), 1 past g's sphere alone. */
+static double start_back(const snell_ref *ref, int g, const double d[3])
+{
+    double back = ref->glass[g].bs_r;
+    int h, k;
+    for (h = 0; h < ref->glass_count; h++) {
+        double w = ref->glass[h].bs_r;
+        for (k = 0; k < 3; k++) w -= (ref->glass[h].bs_c[k] - ref->glass[g].bs_c[k]) * d[k];
+        back = fmax(back, w);
+    }
+    return back + 1.0;
+}
+
+/* One photon along d from o of glass object g's grid; adds it to m if it
+ * lands (an opaque object on its way stops it, as one more glass object
+ * past the chain's cap does). */
 static void photon(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
                    plane_map *m)
 {
-    ref_view air = {-1, REF_SEE_ALL, g}; /* g is done with it (through) */
     ref_surf s3;
     double x[3], t2[3], e[3], p[3], sp;
     uint32_t prim;
-    int k;
-    if (!through(ref, g, o, d, flux, x, t2, &prim, e) || !(t2[1] < 0.0)) return;
+    int k, last;
+    if (!chain(ref, g, o, d, flux, x, t2, &prim, e, &last) || !(t2[1] < 0.0)) return;
     sp = (m->h - x[1]) / t2[1];
     if (sp < 0.0) return;
-    /* anything between the exit and the plane stops it */
-    if (snell__ref_hit(ref, x, t2, prim, &air, &s3) && s3.t < sp) return;
+    {
+        /* anything between the exit and the plane stops it */
+        ref_view air = {-1, REF_SEE_ALL, last};
+        if (snell__ref_hit(ref, x, t2, prim, &air, &s3) && s3.t < sp) return;
+    }
     for (k = 0; k < 3; k++) p[k] = x[k] + t2[k] * sp;
     splat(m, p[0], p[2], e);
 }
@@ -174,6 +225,7 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
     for (g = 0; g < ref->glass_count; g++) {
         const ref_glass *gl = &ref->glass[g];
         double r = gl->bs_r, cell = 2.0 * r / photons, flux[3], w[3], tan_half = 0.0, dist = 0.0;
+        double back = start_back(ref, g, d);
         if (spot) {
             /* a square of directions from the light just holding the bounding
              * sphere; a photon's cell is cell^2 on the plane at distance 1 */
@@ -201,7 +253,7 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
                 } else {
                     double x = -r + (i + 0.5) * cell, y = -r + (j + 0.5) * cell;
                     if (x * x + y * y > r * r) continue;
-                    for (k = 0; k < 3; k++) o[k] = gl->bs_c[k] + u[k] * x + v[k] * y - d[k] * (r + 1.0);
+                    for (k = 0; k < 3; k++) o[k] = gl->bs_c[k] + u[k] * x + v[k] * y - d[k] * back;
                     memcpy(dir, d, sizeof dir);
                     memcpy(f, flux, sizeof f);
                 }
@@ -374,10 +426,11 @@ static double first_opaque(const snell_ref *ref, const struct ref_lit *L, double
     return z;
 }
 
-/* A photon that left glass g at x along t2 carrying e: where it first
- * meets an opaque object (before the plane; another glass object stops it,
- * g is done with it), if the light sees that surface there, its flux per
- * texel area facing the light is splatted. */
+/* A photon that left glass g, the last of its chain, at x along t2
+ * carrying e: where it first meets an opaque object (before the plane; one
+ * more glass object, past the chain's cap, stops it; g is done with it), if
+ * the light sees that surface there, its flux per texel area facing the
+ * light is splatted. */
 static void land_opaque(const snell_ref *ref, struct ref_lit *L, int g, const double x[3], const double t2[3],
                         uint32_t prim, const double e[3])
 {
@@ -385,7 +438,7 @@ static void land_opaque(const snell_ref *ref, struct ref_lit *L, int g, const do
     ref_surf s;
     double fx, fy, fz, w[3], zs;
     int k;
-    if (!snell__ref_hit(ref, x, t2, prim, &air, &s) || s.object >= 0) return; /* nothing, or glass: not followed */
+    if (!snell__ref_hit(ref, x, t2, prim, &air, &s) || s.object >= 0) return; /* nothing, or glass past the cap */
     if (L->plane && t2[1] < 0.0 && (L->plane_h - x[1]) / t2[1] >= 0.0 && (L->plane_h - x[1]) / t2[1] < s.t) return;
     if (!frame_xy(L, s.p, &fx, &fy, &fz)) return;
     zs = first_opaque(ref, L, fx, fy);
@@ -458,6 +511,7 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
     for (g = 0; g < ref->glass_count; g++) {
         const ref_glass *gl = &ref->glass[g];
         double r = gl->bs_r, cell = 2.0 * r / photons, flux[3], w[3], u[3], v[3], tan_half = 0.0, dist;
+        double back = start_back(ref, g, L->d);
         if (L->spot) {
             for (k = 0; k < 3; k++) w[k] = gl->bs_c[k] - L->pos[k];
             dist = sqrt(snell__ref_dot3(w, w));
@@ -474,6 +528,7 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
             for (i = 0; i < photons; i++) {
                 double o[3], dir[3], f[3], x[3], t2[3], e[3];
                 uint32_t prim;
+                int last;
                 if (L->spot) {
                     double px = -tan_half + (i + 0.5) * cell, py = -tan_half + (j + 0.5) * cell, c;
                     for (k = 0; k < 3; k++) dir[k] = w[k] + u[k] * px + v[k] * py;
@@ -484,11 +539,11 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
                 } else {
                     double px = -r + (i + 0.5) * cell, py = -r + (j + 0.5) * cell;
                     if (px * px + py * py > r * r) continue;
-                    for (k = 0; k < 3; k++) o[k] = gl->bs_c[k] + u[k] * px + v[k] * py - L->d[k] * (r + 1.0);
+                    for (k = 0; k < 3; k++) o[k] = gl->bs_c[k] + u[k] * px + v[k] * py - L->d[k] * back;
                     memcpy(dir, L->d, sizeof dir);
                     memcpy(f, flux, sizeof f);
                 }
-                if (through(ref, g, o, dir, f, x, t2, &prim, e)) land_opaque(ref, L, g, x, t2, prim, e);
+                if (chain(ref, g, o, dir, f, x, t2, &prim, e, &last)) land_opaque(ref, L, last, x, t2, prim, e);
             }
     }
     return SNELL_OK;

@@ -11,7 +11,11 @@
  * straight on through each of its walls, a slab each) and splatted onto
  * the plane, each carrying the light's flux through its cell of the beam
  * (flux-correct: energy is conserved, as the 2D lightmap's lines are,
- * src/lm2d). The opaque objects are receivers too: a photon
+ * src/lm2d). Casters whose beams overlap seen from the light (up to
+ * SNELL__CAUSTICS_CHAIN) take the chain path together: one world-space BVH
+ * of their meshes, each photon counted only where the light meets its
+ * caster first and going on through the next one it meets (ref_caustics.c
+ * chain); the others keep their own path. The opaque objects are receivers too: a photon
  * stops at the first one (marched through their depth map in the light
  * frame, the shadow map's view), and one that lands where the light sees
  * the surface is splatted into their caustic map in that frame; they are
@@ -585,9 +589,8 @@ static snell_status photon_path(snell_ctx *ctx, snell__caustics *c, snell__prepa
 
 /* The photon program's uniforms of the BVH path (bvh.glsl, the path's cap
  * and budget: the material's exact parameters), its texture on unit 5. */
-static void bvh_uniforms(GLuint p, const snell__object *o, const snell__exact_bvh *bvh)
+static void bvh_texture_uniforms(GLuint p, const snell__exact_bvh *bvh)
 {
-    const snell_exact_params *e = &o->glass->material.exact;
     glActiveTexture(GL_TEXTURE5);
     glBindTexture(GL_TEXTURE_2D, bvh->texture);
     glUniform1i(glGetUniformLocation(p, "u_bvh"), 5);
@@ -595,6 +598,12 @@ static void bvh_uniforms(GLuint p, const snell__object *o, const snell__exact_bv
     glUniform1i(glGetUniformLocation(p, "u_tri_base"), bvh->tri_base);
     glUniform3fv(glGetUniformLocation(p, "u_qlo"), 1, bvh->qlo);
     glUniform3fv(glGetUniformLocation(p, "u_qstep"), 1, bvh->qstep);
+}
+
+static void bvh_uniforms(GLuint p, const snell__object *o, const snell__exact_bvh *bvh)
+{
+    const snell_exact_params *e = &o->glass->material.exact;
+    bvh_texture_uniforms(p, bvh);
     glUniform1i(glGetUniformLocation(p, "u_node_budget"), e->node_budget);
     glUniform1i(glGetUniformLocation(p, "u_max_interfaces"), e->max_interfaces);
     /* secondary rays' minimum distance: exact's (exact.c exact_draw) */
@@ -604,12 +613,153 @@ static void bvh_uniforms(GLuint p, const snell__object *o, const snell__exact_bv
     glUniformMatrix3fv(glGetUniformLocation(p, "u_normal_matrix"), 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
 }
 
+/* --- light through the casters in sequence ---------------------------------- */
+/* Casters whose beams overlap in the light's view (one above another, or
+ * side by side under a low light): light may meet one before or after the
+ * other. Each one's photons alone would count the light the other meets
+ * first twice and pass it unbent through the other; together (the chain
+ * path) each photon of caster g counts only if the light meets g first,
+ * and goes on through whatever caster of the group it meets next, by that
+ * one's optics (ref_caustics.c chain), by a world-space BVH of the group's
+ * meshes (exact's format, common/bvh.glsl) whose triangles say their object. */
+typedef struct chain {
+    snell__exact_bvh bvh;
+    int count, first[SNELL__CAUSTICS_CHAIN + 1]; /* its casters; their triangles' ranges in the merged mesh */
+    const snell__object *obj[SNELL__CAUSTICS_CHAIN];
+    float sphere[4];                             /* a sphere holding them: the directional photons start before it */
+    int budget;                                  /* node visits a photon may take: all their exact.node_budget */
+} chain;
+
+#if SNELL__BUILT_exact
+/* Whether the bounding spheres a and b overlap seen from light L (along a
+ * directional light, or in angle from a spot; a spot inside one: yes). */
+static int beams_overlap(const light_res *L, const float a[4], const float b[4])
+{
+    float w[3], t = 0.0f, la = 0.0f, lb = 0.0f, dot = 0.0f;
+    int k;
+    if (!L->spot) {
+        for (k = 0; k < 3; k++) t += (b[k] - a[k]) * L->d[k];
+        for (k = 0; k < 3; k++) w[k] = b[k] - a[k] - L->d[k] * t, dot += w[k] * w[k];
+        return dot < (a[3] + b[3]) * (a[3] + b[3]);
+    }
+    for (k = 0; k < 3; k++) {
+        la += (a[k] - L->pos[k]) * (a[k] - L->pos[k]);
+        lb += (b[k] - L->pos[k]) * (b[k] - L->pos[k]);
+        dot += (a[k] - L->pos[k]) * (b[k] - L->pos[k]);
+    }
+    la = sqrtf(la), lb = sqrtf(lb);
+    if (la <= a[3] || lb <= b[3]) return 1;
+    return acosf(fminf(fmaxf(dot / (la * lb), -1.0f), 1.0f)) < asinf(a[3] / la) + asinf(b[3] / lb);
+}
+
+/* The casters' groups: group[i] the lowest index of caster i's group of
+ * casters linked by overlapping beams (-1: not a caster), size[] each
+ * group's count at its lowest index. */
+static void chain_groups(const snell__scene *sc, const light_res *L, int *group, int *size)
+{
+    int i, j, k, merged = 1;
+    for (i = 0; i < sc->count; i++) group[i] = casts(&sc->obj[i]) ? i : -1, size[i] = 0;
+    while (merged) /* to the fixed point: a link lowers a group to its lower end */
+        for (merged = 0, i = 0; i < sc->count; i++)
+            for (j = i + 1; j < sc->count; j++)
+                if (group[i] >= 0 && group[j] >= 0 && group[i] != group[j] &&
+                    beams_overlap(L, sc->obj[i].bsphere, sc->obj[j].bsphere)) {
+                    int lo = group[i] < group[j] ? group[i] : group[j], hi = group[i] + group[j] - lo;
+                    for (k = 0; k < sc->count; k++)
+                        if (group[k] == hi) group[k] = lo;
+                    merged = 1;
+                }
+    for (i = 0; i < sc->count; i++)
+        if (group[i] >= 0) size[group[i]]++;
+}
+
+/* Group `leader`'s casters merged into one world-space mesh (positions by
+ * their model matrices, normals by their normal matrices) and its BVH. */
+static snell_status chain_make(snell_ctx *ctx, snell__caustics *c, const snell__scene *sc, const int *group,
+                               int leader, chain *ch)
+{
+    size_t nv = 0, nt = 0, v0 = 0, t0 = 0;
+    snell_mesh m;
+    int i, k, j;
+    ch->count = 0, ch->budget = 0;
+    for (i = 0; i < sc->count; i++)
+        if (group[i] == leader) {
+            nv += sc->obj[i].mesh->vertex_count, nt += sc->obj[i].mesh->triangle_count;
+            ch->obj[ch->count++] = &sc->obj[i];
+        }
+    if (nt >= (1u << 24)) return snell__fail(ctx, SNELL_E_LIMIT, "caustics: %zu triangles in a chain (2^24 at most)", nt);
+    if (6 * nv > c->chain_geo_cap || 3 * nt > c->chain_idx_cap) {
+        c->chain_alloc = ctx->alloc;
+        snell__free(&ctx->alloc, c->chain_geo), snell__free(&ctx->alloc, c->chain_idx);
+        c->chain_geo = (float *)snell__calloc(&ctx->alloc, 6 * nv, sizeof(float));
+        c->chain_idx = (uint32_t *)snell__calloc(&ctx->alloc, 3 * nt, sizeof(uint32_t));
+        c->chain_geo_cap = c->chain_idx ? 6 * nv : 0, c->chain_idx_cap = c->chain_geo ? 3 * nt : 0;
+        if (!c->chain_geo || !c->chain_idx) return snell__fail(ctx, SNELL_E_NOMEM, "caustics: out of memory for a chain");
+    }
+    memcpy(ch->sphere, ch->obj[0]->bsphere, sizeof ch->sphere);
+    for (k = 0; k < ch->count; k++) {
+        const snell__object *o = ch->obj[k];
+        const snell_mesh *me = o->mesh;
+        vec3 d;
+        for (i = 0; i < (int)me->vertex_count; i++) {
+            glm_mat4_mulv3((vec4 *)o->model, me->positions + 3 * (size_t)i, 1.0f, c->chain_geo + 3 * (v0 + (size_t)i));
+            glm_mat3_mulv((vec3 *)o->normal_matrix, me->normals + 3 * (size_t)i, c->chain_geo + 3 * (nv + v0 + (size_t)i));
+        }
+        for (i = 0; i < 3 * (int)me->triangle_count; i++) c->chain_idx[3 * t0 + (size_t)i] = me->indices[i] + (uint32_t)v0;
+        ch->first[k] = (int)t0;
+        v0 += me->vertex_count, t0 += me->triangle_count;
+        ch->budget += o->glass->material.exact.node_budget;
+        glm_vec3_sub((float *)o->bsphere, ch->sphere, d);
+        ch->sphere[3] = fmaxf(ch->sphere[3], glm_vec3_norm(d) + o->bsphere[3]);
+    }
+    for (j = ch->count; j <= SNELL__CAUSTICS_CHAIN; j++) ch->first[j] = (int)nt;
+    memset(&m, 0, sizeof m);
+    m.positions = c->chain_geo, m.normals = c->chain_geo + 3 * nv, m.indices = c->chain_idx;
+    m.vertex_count = (uint32_t)nv, m.triangle_count = (uint32_t)nt;
+    return snell__exact_bvh_make(ctx, &m, &c->chain_bvh, &ch->bvh);
+}
+#endif
+
+/* The chain program's uniforms for caster o's photons: the group's BVH
+ * (world space: identity matrices), its casters' materials and ranges. */
+static void chain_uniforms(GLuint p, const chain *ch, const snell__object *o)
+{
+    static const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, id3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    float ior[SNELL__CAUSTICS_CHAIN], thick[SNELL__CAUSTICS_CHAIN], eps[SNELL__CAUSTICS_CHAIN];
+    float sigma[3 * SNELL__CAUSTICS_CHAIN], tint[3 * SNELL__CAUSTICS_CHAIN];
+    int maxif[SNELL__CAUSTICS_CHAIN], k, self = 0;
+    memset(sigma, 0, sizeof sigma), memset(tint, 0, sizeof tint);
+    for (k = 0; k < SNELL__CAUSTICS_CHAIN; k++) {
+        const snell__object *h = ch->obj[k < ch->count ? k : 0];
+        if (h == o && k < ch->count) self = k;
+        ior[k] = h->glass->material.ior, thick[k] = h->glass->material.thickness;
+        eps[k] = 1e-5f * h->bsphere[3]; /* exact's (bvh_uniforms) */
+        maxif[k] = h->glass->material.exact.max_interfaces;
+        memcpy(sigma + 3 * k, h->glass->absorption, 3 * sizeof(float));
+        memcpy(tint + 3 * k, h->glass->material.tint, 3 * sizeof(float));
+    }
+    bvh_texture_uniforms(p, &ch->bvh);
+    glUniform1i(glGetUniformLocation(p, "u_node_budget"), ch->budget);
+    glUniformMatrix4fv(glGetUniformLocation(p, "u_model"), 1, GL_FALSE, id);
+    glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_model"), 1, GL_FALSE, id);
+    glUniformMatrix3fv(glGetUniformLocation(p, "u_normal_matrix"), 1, GL_FALSE, id3);
+    glUniform1i(glGetUniformLocation(p, "u_chain_self"), self);
+    glUniform1iv(glGetUniformLocation(p, "u_chain_first"), SNELL__CAUSTICS_CHAIN + 1, ch->first);
+    glUniform1fv(glGetUniformLocation(p, "u_chain_ior"), SNELL__CAUSTICS_CHAIN, ior);
+    glUniform1fv(glGetUniformLocation(p, "u_chain_thick"), SNELL__CAUSTICS_CHAIN, thick);
+    glUniform1fv(glGetUniformLocation(p, "u_chain_eps"), SNELL__CAUSTICS_CHAIN, eps);
+    glUniform1iv(glGetUniformLocation(p, "u_chain_maxif"), SNELL__CAUSTICS_CHAIN, maxif);
+    glUniform3fv(glGetUniformLocation(p, "u_chain_sigma"), SNELL__CAUSTICS_CHAIN, sigma);
+    glUniform3fv(glGetUniformLocation(p, "u_chain_tint"), SNELL__CAUSTICS_CHAIN, tint);
+    glUniform4fv(glGetUniformLocation(p, "u_chain_sphere"), 1, ch->sphere);
+}
+
 /* One glass object's photons: its nearest and farthest surfaces seen from
  * the light, then the photons added into the plane's light map (plane) and
  * into the opaque receivers' caustic map (F). Returns how many were shot
  * (0: a spot light inside its bounding sphere). */
 static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const snell__object *o, const light_res *L,
-                        const light_frame *F, GLuint prog, const snell__exact_bvh *bvh)
+                        const light_frame *F, GLuint prog, const snell__exact_bvh *bvh, const chain *ch)
 {
     const snell_receiver *rc = &fd->receiver;
     int n = fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS, i, k, plane = rc->extent > 0.0f, target;
@@ -652,7 +802,8 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(prog);
-    if (bvh) bvh_uniforms(prog, o, bvh);
+    if (ch) chain_uniforms(prog, ch, o);
+    else if (bvh) bvh_uniforms(prog, o, bvh);
     for (i = 0; i < 5; i++) {
         glActiveTexture(GL_TEXTURE0 + (GLenum)i);
         glBindTexture(GL_TEXTURE_2D, i == 4 ? c->recv_z : (i & 1) ? c->glass_z[i >> 1] : c->glass_n[i >> 1]);
@@ -697,6 +848,30 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
     glDisable(GL_BLEND);
     return n * n;
 }
+
+#if SNELL__BUILT_exact
+/* Group leader's casters' photons by the chain path (their merged BVH made
+ * once for the group); *shot counts the casters that shot any. */
+static snell_status chain_draw(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc,
+                               const light_res *L, const light_frame *F, const int *group, int leader,
+                               snell_frame_stats *s, int *shot)
+{
+    chain ch;
+    char def[128];
+    int k, n;
+    snell_status st = chain_make(ctx, c, sc, group, leader, &ch);
+    snprintf(def, sizeof def, "#define SNELL_PHOTON_BVH 1\n#define SNELL_PHOTON_CHAIN %d\n#define SNELL_NODES_Q16 0\n"
+             "#define SNELL_STACK_WALK 1\n", SNELL__CAUSTICS_CHAIN);
+    if (st == SNELL_OK && !c->photon_chain_prog)
+        st = snell__program_build(ctx, "caustics_photon.vert", "caustics_splat.frag", def, &c->photon_chain_prog);
+    for (k = 0; k < ch.count && st == SNELL_OK; k++) {
+        n = draw_photons(c, fd, ch.obj[k], L, F, c->photon_chain_prog, NULL, &ch);
+        s->caustics_photons += n;
+        *shot += n > 0;
+    }
+    return st;
+}
+#endif
 
 /* The opaque objects lit (caustics_opaque.frag), over what the opaque stage
  * drew: the same vertices (object.vert), depth LEQUAL. */
@@ -756,8 +931,9 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
 {
     GLint fbo = 0, viewport[4];
     int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, shot = 0, key_len, by_bvh = 0;
+    int group[SNELL_MAX_GLASS], gsize[SNELL_MAX_GLASS], chained = 0, chain_shot = 0, groups = 0, alone_over = 0;
     int plane = fd->receiver.extent > 0.0f, opaque = fd->opaque_count > 0;
-    char map[48];
+    char map[48], chains[64] = "";
     snell_status st;
     light_res L;
     light_frame F;
@@ -802,18 +978,31 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     if (st == SNELL_OK && opaque) st = draw_receivers(ctx, c, fd, &F);
     if (st == SNELL_OK) {
         if (plane) draw_direct(c, fd, &L, &F);
+        for (i = 0; i < sc->count; i++) group[i] = -1;
+#if SNELL__BUILT_exact
+        if (!c->maps_only) chain_groups(sc, &L, group, gsize);
+#endif
         for (i = 0; i < sc->count && st == SNELL_OK; i++)
             if (casts(&sc->obj[i])) {
                 snell__exact_bvh bvh;
                 GLuint prog = 0;
-                int n;
+                int n, together = group[i] >= 0 ? gsize[group[i]] : 1;
+#if SNELL__BUILT_exact
+                if (together >= 2 && together <= SNELL__CAUSTICS_CHAIN) {
+                    if (group[i] == i) st = chain_draw(ctx, c, fd, sc, &L, &F, group, i, s, &chain_shot);
+                    chained++, groups += group[i] == i, casters++;
+                    continue;
+                }
+#endif
+                alone_over += together > SNELL__CAUSTICS_CHAIN;
                 if ((st = photon_path(ctx, c, prep, &sc->obj[i], &bvh, &prog)) != SNELL_OK) break;
-                n = draw_photons(c, fd, &sc->obj[i], &L, &F, prog ? prog : c->photon_prog, prog ? &bvh : NULL);
+                n = draw_photons(c, fd, &sc->obj[i], &L, &F, prog ? prog : c->photon_prog, prog ? &bvh : NULL, NULL);
                 s->caustics_photons += n;
                 shot += n > 0;
                 by_bvh += prog && n > 0;
                 casters++;
             }
+        shot += chain_shot;
         s->passes += 1 + plane + 2 * opaque + (2 + plane + opaque) * shot;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
@@ -826,11 +1015,16 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     c->light = fd->light;
     if (plane) snprintf(map, sizeof map, "%dx%d %s light map", size, size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
     else snprintf(map, sizeof map, "no plane");
+    /* the chain path only where beams overlap (single casters: their own path, as before) */
+    if (chained) snprintf(chains, sizeof chains, ", %d chained (beams overlap: %d group%s)", chained, groups,
+                          groups > 1 ? "s" : "");
+    if (alone_over) snprintf(chains + strlen(chains), sizeof chains - strlen(chains),
+                             ", %d alone: over %d overlap", alone_over, SNELL__CAUSTICS_CHAIN);
     snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s, %d opaque lit%s; paths: "
-               "%d BVH, %d depth maps; %s",
+               "%d BVH, %d depth maps%s; %s",
                casters, sc->count > casters ? " (clear ones pass)" : "",
                shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count,
-               opaque ? " (light-frame caustic map)" : "", by_bvh, shot - by_bvh, map);
+               opaque ? " (light-frame caustic map)" : "", by_bvh, shot - by_bvh - chain_shot, chains, map);
     return draw_view(c, fd, sc);
 }
 
@@ -872,6 +1066,12 @@ void snell__caustics_destroy(snell__caustics *c)
     if (c->cm_fbo) glDeleteFramebuffers(1, &c->cm_fbo);
     if (c->cm_tex) glDeleteTextures(1, &c->cm_tex);
     if (c->photon_prog) glDeleteProgram(c->photon_prog);
+    if (c->photon_chain_prog) glDeleteProgram(c->photon_chain_prog);
+#if SNELL__BUILT_exact
+    snell__exact_bvh_free(c->chain_bvh);
+#endif
+    snell__free(&c->chain_alloc, c->chain_geo);
+    snell__free(&c->chain_alloc, c->chain_idx);
     for (i = 0; i < 4; i++)
         if (c->photon_bvh_prog[i >> 1][i & 1]) glDeleteProgram(c->photon_bvh_prog[i >> 1][i & 1]);
     if (c->direct_prog) glDeleteProgram(c->direct_prog);
@@ -914,21 +1114,27 @@ static void receiver_locate(unsigned prog, int *locs)
 }
 
 /* common/opaque_lit.glsl's uniforms of the program in use, its three maps on
- * units unit..unit + 2: the opaque objects lit by the light the maps were
+ * units unit..unit + 2 (c NULL: the samplers' units alone): the opaque objects lit by the light the maps were
  * made with (caustics_opaque.frag; a kernel without the scene layers has
  * none of these uniforms: -1, ignored). */
 void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit)
 {
     static const char *const samplers[3] = {"u_shadow", "u_recv_z", "u_caustic"};
-    const unsigned tex[3] = {c->shadow_z, c->recv_z, c->cm_tex};
+    const unsigned tex[3] = {c ? c->shadow_z : 0, c ? c->recv_z : 0, c ? c->cm_tex : 0};
     light_res L;
     int i;
-    resolve_light(&c->light, &L);
     for (i = 0; i < 3; i++) {
+        glUniform1i(glGetUniformLocation(prog, samplers[i]), unit + i);
+        if (!c) continue;
         glActiveTexture(GL_TEXTURE0 + (GLenum)(unit + i));
         glBindTexture(GL_TEXTURE_2D, tex[i]);
-        glUniform1i(glGetUniformLocation(prog, samplers[i]), unit + i);
     }
+    /* c NULL: no opaque objects lit (u_lit_opaque 0), the maps unread; but a
+     * sampler left on unit 0 clashes with a kernel's of another type there
+     * (GL_INVALID_OPERATION at its draw: two glass objects through the
+     * scene layers over the receiver plane) */
+    if (!c) return;
+    resolve_light(&c->light, &L);
     frame_uniforms(prog, c);
     light_uniforms(prog, &L);
     glUniform3fv(glGetUniformLocation(prog, "u_light"), 1, L.col);
@@ -944,7 +1150,7 @@ static void receiver_uniforms(unsigned prog, const int *locs, const snell__view 
     glUniform4fv(locs[1], 1, v->receiver_plane); /* extent 0 without a plane: none seen */
     glUniform3fv(locs[2], 1, v->receiver_albedo);
     glUniform1i(glGetUniformLocation(prog, "u_lit_opaque"), v->lit_opaque != NULL);
-    if (v->lit_opaque) snell__lit_opaque_uniforms(prog, v->lit_opaque, SNELL__LIT_SHADOW_UNIT);
+    snell__lit_opaque_uniforms(prog, v->lit_opaque, SNELL__LIT_SHADOW_UNIT);
 }
 
 const snell__kernel_hook snell__receiver_hook = {SNELL__GLASS_RECEIVER, receiver_defines, SNELL__RECEIVER_LOCS_OFFSET, 3,

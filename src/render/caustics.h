@@ -17,6 +17,12 @@
 typedef struct snell__caustics {
     unsigned map_prog, photon_prog, direct_prog, receiver_prog, opaque_prog, vao;
     unsigned photon_bvh_prog[2][2];                /* photons by exact's BVH: [q16 nodes][stack walk] */
+    unsigned photon_chain_prog;                    /* photons through the overlapping casters in sequence */
+    void *chain_bvh;                               /* their world-space BVH (exact's, snell__exact_bvh_make) */
+    float *chain_geo;                              /* its merged mesh: positions then normals (world) */
+    uint32_t *chain_idx;                           /* and triangles */
+    size_t chain_geo_cap, chain_idx_cap;           /* floats, indices allocated */
+    snell_alloc chain_alloc;                       /* they were allocated with */
     unsigned glass_fbo[2], glass_n[2], glass_z[2]; /* nearest and farthest surfaces from the light */
     int glass_size;
     unsigned shadow_fbo, shadow_z;
@@ -29,7 +35,8 @@ typedef struct snell__caustics {
     unsigned map_fbo, map_tex;                     /* the receiver's light map (float rgba) */
     int map_size;
     int maps_only;                                 /* tests, bench_caustics: every photon takes the depth
-                                                    * maps' one crossing (the only path before the BVH's) */
+                                                    * maps' one crossing (the only path before the BVH's),
+                                                    * each caster alone (no chain) */
     unsigned map_format;                           /* GL_RGBA32F or GL_RGBA16F, SNELL__CAUSTICS_NO_FLOAT,
                                                     * 0 = not probed yet (tests set it to take a path) */
     int valid;                                     /* the maps hold the frame keyed by key[] */
