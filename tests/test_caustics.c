@@ -55,7 +55,6 @@ int main(void)
     snell_renderer *r = NULL;
     snell_ref *ref = NULL, *ref_exact = NULL;
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 256, 128};
-    snell_env_desc ed;
     snell_renderer_desc rd;
     snell_frame_desc fd, plain;
     snell_frame_stats fs;
@@ -68,9 +67,7 @@ int main(void)
     int size = 0, i, k;
     if (!ctx) SKIP("no headless GL context");
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &sphere));
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 64;
-    CHECK_OK_CTX(ctx, snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 64);
     memset(&rd, 0, sizeof rd);
     rd.width = rd.height = W;
     CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));

@@ -92,7 +92,6 @@ int main(void)
     snell_env *env = NULL;
     snell_renderer *r = NULL;
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 128, 64};
-    snell_renderer_desc rd;
     snell_frame_desc fd;
     snell_glass g[2];
     float top[16] = {0.45f, 0, 0, 0, 0, 0.45f, 0, 0, 0, 0, 0.45f, 0, 0.15f, 2.9f, 0.1f, 1};
@@ -104,9 +103,7 @@ int main(void)
     if (!ctx) SKIP("no headless GL context");
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &ball));
     env = test_sky(ctx, 32);
-    memset(&rd, 0, sizeof rd);
-    rd.width = rd.height = W;
-    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));
+    r = test_renderer(ctx, W, W);
     gpu = (float *)calloc((size_t)MAP * MAP * 4, sizeof(float));
     ref_rgb = (float *)calloc((size_t)MAP * MAP * 3, sizeof(float));
     ref_c = (float *)calloc((size_t)MAP * MAP * 3, sizeof(float));

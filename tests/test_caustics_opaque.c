@@ -76,8 +76,6 @@ int main(void)
     snell_renderer *r = NULL;
     snell_ref *ref = NULL;
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 256, 128}, cd = {SNELL_SHAPE_CUBE, 0, 0};
-    snell_env_desc ed;
-    snell_renderer_desc rd;
     snell_frame_desc fd, plain;
     snell_frame_stats fs;
     snell_glass g;
@@ -94,12 +92,8 @@ int main(void)
     if (!ctx) SKIP("no headless GL context");
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &sphere));
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &cd, &cube));
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 64;
-    CHECK_OK_CTX(ctx, snell_env_create(ctx, &ed, &env));
-    memset(&rd, 0, sizeof rd);
-    rd.width = rd.height = W;
-    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));
+    env = test_sky(ctx, 64);
+    r = test_renderer(ctx, W, W);
     if (!sphere || !cube || !env || !r || !img0 || !img1 || !map || !floor_ref || !floor_c) return test_finish();
     memset(&g, 0, sizeof g);
     g.mesh = sphere, g.model = model, g.material.ior = 1.5f;

@@ -171,16 +171,13 @@ int main(void)
     static uint8_t with[W * H * 4], without[W * H * 4], env_only[W * H * 4], mask[W * H];
     snell_ctx *ctx = test_ctx();
     snell_env *env = NULL;
-    snell_env_desc ed;
     snell_shape_desc sd;
     snell_mesh *mesh = NULL;
     snell_frame_desc fd, bare;
     snell_glass g;
     int i, k;
     if (!ctx) SKIP("no GL context");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 128;
-    CHECK_OK(snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 128);
     memset(&sd, 0, sizeof sd);
     sd.shape = SNELL_SHAPE_SPHERE;
     CHECK_OK(snell_mesh_create_shape(ctx, &sd, &mesh));

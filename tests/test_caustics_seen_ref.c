@@ -234,13 +234,10 @@ int main(void)
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 128, 64}, td = {SNELL_SHAPE_TORUS, 96, 48};
     snell_mesh *sphere = NULL, *torus = NULL;
     snell_env *env = NULL;
-    snell_env_desc ed;
     snell_renderer *rend = NULL;
     snell_renderer_desc rd;
     if (!ctx) SKIP("no headless GL context");
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 64;
-    CHECK_OK_CTX(ctx, snell_env_create(ctx, &ed, &env));
+    env = test_sky(ctx, 64);
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &sphere));
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &td, &torus));
     memset(&rd, 0, sizeof rd);

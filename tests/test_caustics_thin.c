@@ -88,8 +88,6 @@ int main(void)
     snell_renderer *r = NULL;
     snell_ref *ref = NULL;
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 256, 128}, td = {SNELL_SHAPE_TORUS, 96, 48};
-    snell_env_desc ed;
-    snell_renderer_desc rd;
     snell_frame_desc fd;
     snell_frame_stats fs;
     snell_glass g;
@@ -100,12 +98,8 @@ int main(void)
     if (!ctx) SKIP("no headless GL context");
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &sphere));
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &td, &torus));
-    memset(&ed, 0, sizeof ed);
-    ed.face_size = 32;
-    CHECK_OK_CTX(ctx, snell_env_create(ctx, &ed, &env));
-    memset(&rd, 0, sizeof rd);
-    rd.width = rd.height = W;
-    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));
+    env = test_sky(ctx, 32);
+    r = test_renderer(ctx, W, W);
     gpu = (float *)calloc((size_t)MAP * MAP * 4, sizeof(float));
     gpu2 = (float *)calloc((size_t)MAP * MAP * 4, sizeof(float));
     ref_rgb = (float *)calloc((size_t)MAP * MAP * 3, sizeof(float));

@@ -354,15 +354,12 @@ static void test_bake(snell_ctx *ctx, snell_env *env)
     static float dirs[W * H * 3];
     snell_mesh *sphere = shape(ctx, SNELL_SHAPE_SPHERE), *torus = shape(ctx, SNELL_SHAPE_TORUS);
     snell_renderer *r = NULL;
-    snell_renderer_desc rd;
     snell_frame_desc fd;
     snell_glass g;
     snell_frame_stats st;
     int pass1, pass2;
     if (!sphere || !torus) return;
-    memset(&rd, 0, sizeof rd);
-    rd.width = rd.height = 32;
-    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    r = test_renderer(ctx, 32, 32);
     if (!r) return;
     test_frame_one(&fd, &g, sphere, env);
     g.material.method = SNELL_METHOD_LAYERED;

@@ -313,7 +313,6 @@ static void cycle_context(int i)
     snell_env *env;
     snell_mesh *mesh;
     snell_renderer *r = NULL;
-    snell_renderer_desc rd;
     snell_frame_desc fd;
     snell_glass g;
     memset(&cd, 0, sizeof cd);
@@ -324,9 +323,7 @@ static void cycle_context(int i)
     if (!ctx) return;
     env = env_of(ctx, 8);
     mesh = shape(ctx, SNELL_SHAPE_SPHERE, 8);
-    memset(&rd, 0, sizeof rd);
-    rd.width = rd.height = 8;
-    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));
+    r = test_renderer(ctx, 8, 8);
     test_frame_one(&fd, &g, mesh, env);
     g.material.method = SNELL_METHOD_SINGLE;
     if (r && i % 5 == 0) CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));

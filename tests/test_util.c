@@ -83,6 +83,17 @@ snell_env *test_sky(snell_ctx *ctx, int face_size)
     return env;
 }
 
+snell_renderer *test_renderer(snell_ctx *ctx, int width, int height)
+{
+    snell_renderer *r = NULL;
+    snell_renderer_desc d;
+    memset(&d, 0, sizeof d);
+    d.width = width;
+    d.height = height;
+    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &d, &r));
+    return r;
+}
+
 void test_ref_params(const snell_frame_desc *fd, int w, int h, int max_interfaces, snell_ref_params *p)
 {
     memset(p, 0, sizeof *p);

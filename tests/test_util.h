@@ -81,6 +81,9 @@ snell_ctx *test_ctx(void);
 /* The procedural sky environment (snell_env_desc zero but face_size) on ctx,
  * or NULL with the failure counted (CHECK_OK). */
 snell_env *test_sky(snell_ctx *ctx, int face_size);
+/* A renderer of width x height, the rest of its description zero, or NULL
+ * with the failure counted. */
+snell_renderer *test_renderer(snell_ctx *ctx, int width, int height);
 /* The mesh, moved by t (NULL: not moved), in Blender's frame (x, y, z) ->
  * (x, -z, y) as tests/scripts/cycles_*.py read it: vertex and triangle
  * counts, positions, normals, triangles (uint32, float32, little endian as
