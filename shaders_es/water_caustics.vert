@@ -13,7 +13,7 @@
 // Lambert along the path to the floor, 0 where the light comes from below
 // (or the node lies behind a spot light). v_surface, v_floor,
 // v_light: the node, where its ray lands and the way back to the light, for
-// the fragment's test against the opaque objects' columns.
+// the fragment's tests: the rim's shadow and the opaque objects' columns.
 precision highp float;
 precision highp int;
 

@@ -46,7 +46,7 @@ struct snell_water {
     /* the opaque objects as columns seen from above (water_caustics.c): their highest and lowest
      * surfaces' depths, [0] and [1]; depth 0 at y = column_top, 1 at column_top - column_range */
     unsigned column_prog, column_fbo[2], column_tex[2];
-    int column_size, column_count; /* column_count: objects in the columns of the map made (0: none drawn) */
+    int column_size;
     float column_top, column_range;
     uint64_t column_key;           /* the objects the map was made with (meshes, versions, models) */
 };

@@ -68,17 +68,18 @@ static void across(const float d[3], float u[3], float v[3])
     v[0] = d[1] * u[2] - d[2] * u[1], v[1] = d[2] * u[0] - d[0] * u[2], v[2] = d[0] * u[1] - d[1] * u[0];
 }
 
+static const float g_identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; /* a NULL model */
+
 /* The objects' key: FNV-1a over their meshes, mesh versions and models. */
 static uint64_t column_key(const snell_opaque *list, int count)
 {
-    static const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     uint64_t h = 1469598103934665603u;
     int i;
     size_t k;
     for (i = 0; i < count; i++) {
         const unsigned char *part[3] = {(const unsigned char *)&list[i].mesh,
                                         (const unsigned char *)&list[i].mesh->version,
-                                        (const unsigned char *)(list[i].model ? list[i].model : id)};
+                                        (const unsigned char *)(list[i].model ? list[i].model : g_identity)};
         const size_t bytes[3] = {sizeof list[i].mesh, sizeof list[i].mesh->version, 16 * sizeof(float)};
         int j;
         for (j = 0; j < 3; j++)
@@ -97,19 +98,16 @@ static uint64_t column_key(const snell_opaque *list, int count)
  * are filled in between. Objects outside the square are not seen. */
 static snell_status draw_columns(snell_ctx *ctx, snell_water *w, const snell_opaque *list, int count, int size)
 {
-    float top = w->d.rim, bottom = -w->d.depth, half = 0.5f * w->d.width, vp[16] = {0}, model[16];
-    static const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    float top = w->d.rim, bottom = -w->d.depth, half = 0.5f * w->d.width, vp[16] = {0};
     GLenum none = GL_NONE;
     int i, k;
     for (i = 0; i < count; i++) {
         float s[4];
+        snell_status st = snell__mesh_upload((snell_mesh *)list[i].mesh);
+        if (st != SNELL_OK) return st;
         snell__water_object_sphere(&list[i], s);
         if (s[1] + s[3] > top) top = s[1] + s[3];
         if (s[1] - s[3] < bottom) bottom = s[1] - s[3];
-    }
-    for (i = 0; i < count; i++) {
-        snell_status st = snell__mesh_upload((snell_mesh *)list[i].mesh);
-        if (st != SNELL_OK) return st;
     }
     if (w->column_size != size) {
         if (!w->column_fbo[0]) {
@@ -150,8 +148,8 @@ static snell_status draw_columns(snell_ctx *ctx, snell_water *w, const snell_opa
         glClear(GL_DEPTH_BUFFER_BIT);
         glDepthFunc(k ? GL_GREATER : GL_LESS);
         for (i = 0; i < count; i++) {
-            memcpy(model, list[i].model ? list[i].model : id, sizeof model);
-            glUniformMatrix4fv(glGetUniformLocation(w->column_prog, "u_model"), 1, GL_FALSE, model);
+            glUniformMatrix4fv(glGetUniformLocation(w->column_prog, "u_model"), 1, GL_FALSE,
+                               list[i].model ? list[i].model : g_identity);
             snell__mesh_draw(list[i].mesh);
         }
     }
@@ -163,7 +161,8 @@ static snell_status draw_columns(snell_ctx *ctx, snell_water *w, const snell_opa
     return SNELL_OK;
 }
 
-static void draw_map(snell_water *w, const snell_light *l)
+/* columns: the objects' column maps were drawn for this map (draw_columns). */
+static void draw_map(snell_water *w, const snell_light *l, int columns)
 {
     GLuint prog = w->light_prog;
     float d[3], u[3], v[3], col[3], len, texel = w->d.width / (float)w->light_size;
@@ -195,14 +194,14 @@ static void draw_map(snell_water *w, const snell_light *l)
     glUniform3fv(glGetUniformLocation(prog, "u_color"), 1, col);
     glUniform1f(glGetUniformLocation(prog, "u_cos_cone"), cosf(l->spot_angle > 0.0f ? l->spot_angle : 0.5f));
     glUniform1f(glGetUniformLocation(prog, "u_texel_area"), texel * texel);
-    glUniform1i(glGetUniformLocation(prog, "u_columns"), w->column_count > 0);
+    glUniform1i(glGetUniformLocation(prog, "u_columns"), columns);
     glUniform1f(glGetUniformLocation(prog, "u_column_top"), w->column_top);
     glUniform1f(glGetUniformLocation(prog, "u_column_range"), w->column_range);
     glUniform1i(glGetUniformLocation(prog, "u_column_high"), 0);
     glUniform1i(glGetUniformLocation(prog, "u_column_low"), 1);
     for (k = 0; k < 2; k++) { /* units 0 and 1: the light map's program reads nothing else there */
         glActiveTexture(GL_TEXTURE0 + (GLenum)k);
-        glBindTexture(GL_TEXTURE_2D, w->column_count > 0 ? w->column_tex[k] : 0);
+        glBindTexture(GL_TEXTURE_2D, columns ? w->column_tex[k] : 0);
     }
     glActiveTexture(GL_TEXTURE0);
     glBindVertexArray(w->grid_vao);
@@ -249,10 +248,8 @@ snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_l
     glGetIntegerv(GL_VIEWPORT, viewport);
     st = snell__water_upload(w, s);
     if (st == SNELL_OK) st = resources(ctx, w, size);
-    w->column_count = 0;
-    if (st == SNELL_OK && count > 0 && (st = draw_columns(ctx, w, objects, count, size)) == SNELL_OK)
-        w->column_count = count;
-    if (st == SNELL_OK) draw_map(w, light);
+    if (st == SNELL_OK && count > 0) st = draw_columns(ctx, w, objects, count, size);
+    if (st == SNELL_OK) draw_map(w, light, count > 0);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     glDepthMask(GL_TRUE);
