@@ -1120,20 +1120,21 @@ static void receiver_locate(unsigned prog, int *locs)
 void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit)
 {
     static const char *const samplers[3] = {"u_shadow", "u_recv_z", "u_caustic"};
-    const unsigned tex[3] = {c ? c->shadow_z : 0, c ? c->recv_z : 0, c ? c->cm_tex : 0};
     light_res L;
     int i;
-    for (i = 0; i < 3; i++) {
-        glUniform1i(glGetUniformLocation(prog, samplers[i]), unit + i);
-        if (!c) continue;
-        glActiveTexture(GL_TEXTURE0 + (GLenum)(unit + i));
-        glBindTexture(GL_TEXTURE_2D, tex[i]);
-    }
+    for (i = 0; i < 3; i++) glUniform1i(glGetUniformLocation(prog, samplers[i]), unit + i);
     /* c NULL: no opaque objects lit (u_lit_opaque 0), the maps unread; but a
      * sampler left on unit 0 clashes with a kernel's of another type there
      * (GL_INVALID_OPERATION at its draw: two glass objects through the
      * scene layers over the receiver plane) */
     if (!c) return;
+    {
+        const unsigned tex[3] = {c->shadow_z, c->recv_z, c->cm_tex};
+        for (i = 0; i < 3; i++) {
+            glActiveTexture(GL_TEXTURE0 + (GLenum)(unit + i));
+            glBindTexture(GL_TEXTURE_2D, tex[i]);
+        }
+    }
     resolve_light(&c->light, &L);
     frame_uniforms(prog, c);
     light_uniforms(prog, &L);
