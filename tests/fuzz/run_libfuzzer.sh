@@ -44,13 +44,18 @@ export F OUT
 echo "run_libfuzzer: building into $OUT"
 cmake -DSHADER_DIR="$PWD/shaders_es" -DOUTPUT="$OUT/shaders_embedded.c" -P cmake/embed_shaders.cmake
 # Every component built in (cmake/components.cmake's header for the full build;
-# the *_off.c stubs of components left out are not compiled).
+# the *_off.c stubs of components left out are not compiled). The components
+# are read from its option(SNELL_WITH_<X> ... ${snell_default}) lines and the
+# methods from the registry, so a new one cannot be missing here (a hand-kept
+# list once left out CAUSTICS and the targets did not link).
 {
     echo "#ifndef SNELL_COMPONENTS_H"; echo "#define SNELL_COMPONENTS_H"
-    for c in GLTF REF LM2D WATER PNG; do echo "#define SNELL_WITH_$c 1"; done
+    comps=$(sed -n 's/^option(SNELL_WITH_\([A-Z0-9_]*\) .*${snell_default})$/\1/p' cmake/components.cmake)
+    [ -n "$comps" ] || { echo "run_libfuzzer: no component options in cmake/components.cmake" >&2; exit 1; }
+    for c in $comps; do echo "#define SNELL_WITH_$c 1"; done
     methods=$(sed -n 's/^ *M(\([a-z0-9_]*\), [A-Z0-9_]*).*/\1/p' src/methods/registry.c)
     for m in $methods; do echo "#define SNELL__BUILT_$m 1"; done
-    echo "#define SNELL__COMPONENTS \"gltf ref lm2d water png $(echo $methods)\""; echo "#endif"
+    echo "#define SNELL__COMPONENTS \"$(echo $comps | tr 'A-Z' 'a-z') $(echo $methods)\""; echo "#endif"
 } > "$OUT/snell_components.h"
 F="$F -I$OUT"
 # One object per library source (warnings are the gcc build's business: -w).
