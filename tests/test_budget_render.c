@@ -11,7 +11,6 @@
  * --budget measures them (bench/BENCHMARKS.md). */
 #define _POSIX_C_SOURCE 199309L
 #include "test_util.h"
-#include "snell/snell_metrics.h"
 
 #include <GLES3/gl3.h>
 #include <GLES2/gl2ext.h>
@@ -143,22 +142,6 @@ static void test_clock(snell_ctx *ctx, const snell_renderer_desc *rd, snell_fram
     snell_renderer_destroy(r);
 }
 
-/* The exit directions' error against the reference's over the pixels both cover. */
-static snell_dir_error dir_error(const float *test, const float *ref, const uint8_t *hit)
-{
-    snell_dir_error_desc d;
-    snell_dir_error e;
-    memset(&d, 0, sizeof d);
-    memset(&e, 0, sizeof e);
-    d.test = test;
-    d.ref = ref;
-    d.ref_mask = hit;
-    d.width = W;
-    d.height = H;
-    CHECK_OK(snell_metrics_dir_error(&d, &e));
-    return e;
-}
-
 /* An open, non-manifold real mesh (glmark2's horse, IOR 1.33; issue 25's
  * "AUTO by budget at most half the cubemap's FULL mean angle"): with a
  * budget no frame misses and exact allowed on its ladder
@@ -208,7 +191,7 @@ static void test_open_mesh(snell_ctx *ctx, const snell_env *env)
     g.material.method = SNELL_METHOD_CUBEMAP;
     CHECK_OK_CTX(ctx, snell_render(r, &f, NULL));
     CHECK_OK(snell_renderer_read_exit_dirs(r, cube));
-    ec = dir_error(cube, ref, hit);
+    ec = test_dir_error(cube, ref, hit, W, H);
     g.material.method = SNELL_METHOD_AUTO;
     f.budget_ms = 1e5f;
     for (allow = 0; allow < 2; allow++) {
@@ -219,7 +202,7 @@ static void test_open_mesh(snell_ctx *ctx, const snell_env *env)
             still = st.budget_changed ? 0 : still + 1;
         }
         CHECK_OK(snell_renderer_read_exit_dirs(r, dirs));
-        ea[allow] = dir_error(dirs, ref, hit);
+        ea[allow] = test_dir_error(dirs, ref, hit, W, H);
         CHECK(st.glass[0].method_used == (allow ? SNELL_METHOD_EXACT : SNELL_METHOD_PEEL),
               "horse, exact %s: the top rung drawn by %s (%s)", allow ? "allowed" : "not allowed",
               snell_method_str(st.glass[0].method_used), st.glass[0].reason);

@@ -138,18 +138,7 @@ static void reference(snell_ctx *ctx, const snell_frame_desc *fd, snell_ref_mode
 
 static snell_dir_error compare(const float *test, const float *ref, const uint8_t *hit)
 {
-    snell_dir_error_desc d;
-    snell_dir_error e;
-    memset(&d, 0, sizeof d);
-    memset(&e, 0, sizeof e);
-    d.test = test;
-    d.ref = ref;
-    d.ref_mask = hit;
-    d.width = W;
-    d.height = H;
-    CHECK_OK(snell_metrics_dir_error(&d, &e));
-    CHECK(e.nan_inf == 0, "%ld non-finite exit directions", e.nan_inf);
-    return e;
+    return test_dir_error(test, ref, hit, W, H);
 }
 
 /* One mesh: layered and single against the reference of mode/interfaces;

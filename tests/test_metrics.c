@@ -42,7 +42,7 @@ static void test_angle(void)
 }
 
 /* 4x2 image: pixel i has a known error, mask and finiteness. */
-static void test_dir_error(void)
+static void test_metrics_dir_error(void)
 {
     enum { W = 4, H = 2, N = W * H };
     float test[N * 3], ref[N * 3], err[N];
@@ -225,7 +225,7 @@ int main(void)
 {
     test_ssim();
     test_angle();
-    test_dir_error();
+    test_metrics_dir_error();
     test_coverage();
     test_image_error();
     test_nonfinite();

@@ -272,3 +272,19 @@ double test_psnr_mask(const uint8_t *a, const uint8_t *b, const uint8_t *mask, i
     se /= 3.0 * (m ? m : 1);
     return se > 0.0 ? 10.0 * log10(1.0 / se) : 999.0;
 }
+
+snell_dir_error test_dir_error(const float *test, const float *ref, const uint8_t *mask, int w, int h)
+{
+    snell_dir_error_desc d;
+    snell_dir_error e;
+    memset(&d, 0, sizeof d);
+    memset(&e, 0, sizeof e);
+    d.test = test;
+    d.ref = ref;
+    d.ref_mask = mask;
+    d.width = w;
+    d.height = h;
+    CHECK_OK(snell_metrics_dir_error(&d, &e));
+    CHECK(e.nan_inf == 0, "%ld non-finite exit directions", e.nan_inf);
+    return e;
+}

@@ -6,6 +6,7 @@
 
 #include "snell/snell.h"
 #include "snell/snell_ref.h"
+#include "snell/snell_metrics.h"
 #include <EGL/egl.h>
 #include <stdio.h>
 
@@ -84,6 +85,10 @@ snell_env *test_sky(snell_ctx *ctx, int face_size);
 /* A renderer of width x height, the rest of its description zero, or NULL
  * with the failure counted. */
 snell_renderer *test_renderer(snell_ctx *ctx, int width, int height);
+/* Exit directions test against ref over the pixels mask covers (w x h,
+ * snell_metrics_dir_error), the call's failure and any non-finite direction
+ * counted as failures. */
+snell_dir_error test_dir_error(const float *test, const float *ref, const uint8_t *mask, int w, int h);
 /* The mesh, moved by t (NULL: not moved), in Blender's frame (x, y, z) ->
  * (x, -z, y) as tests/scripts/cycles_*.py read it: vertex and triangle
  * counts, positions, normals, triangles (uint32, float32, little endian as
