@@ -11,11 +11,11 @@ if(TARGET snell-render)
            --place 1,0,0,0.5 --ior 2 --mesh shape:cube --place 0,1,0,0.4 --method single --opaque torus
            --place 0,-1,0,0.5 --color 0.2,0.6,0.9 --stats --size 32x32 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_scene.png)
   set_tests_properties(cli_scene_objects PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
-    "glass 3, opaque drawn 1.*glass 0 \\(sphere, ior 1.2\\): method cubemap, warning 0.*reason: auto.*glass 1 \\(goblet, ior 2\\): method peel, warning 0.*reason: auto: closed, depth complexity.*glass 2 \\(cube, ior 1.2\\): method single.*reason: requested.*wrote .*cli_scene.png")
+    "glass 3, opaque drawn 1.*glass 0 \\(sphere, ior 1.2\\): method layered, warning 0.*reason: auto.*glass 1 \\(goblet, ior 2\\): method peel, warning 0.*reason: auto: closed, depth complexity.*glass 2 \\(cube, ior 1.2\\): method single.*reason: requested.*wrote .*cli_scene.png")
   # -v: the same statistics on stderr
   add_test(NAME cli_scene_verbose COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}"
            "-DARGS=--mesh|sphere|--place|-1,0,0,0.5|--mesh|cube|--place|1,0,0,0.5|-v|--size|16x16|-o|${CMAKE_CURRENT_BINARY_DIR}/cli_verbose.png"
-           -DCODE=0 "-DERR=stats: glass 1 \\(cube, ior 1.5\\): method cubemap" -P ${expect})
+           -DCODE=0 "-DERR=stats: glass 1 \\(cube, ior 1.5\\): method layered" -P ${expect})
   set_tests_properties(cli_scene_verbose PROPERTIES LABELS "cli;gl")
   # An open mesh: AUTO never picks cubemap; an explicit cubemap renders but warns.
   add_test(NAME cli_open_auto COMMAND ${cli} --mesh ${d}/quad_ngon.obj --method auto --stats --size 32x32
@@ -28,7 +28,7 @@ if(TARGET snell-render)
     "quad_ngon.obj, ior 1.5\\): method cubemap, warning 1.*reason: requested, but")
   # Registry names: a clear message listing the methods; parameters by name.
   add_test(NAME cli_unknown_method COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--mesh|sphere|--method|nosuch" -DCODE=2
-           "-DERR=snell-render: unknown method 'nosuch'; methods: auto, single, cubemap, wyman, oliveira, layered, peel" -P ${expect})
+           "-DERR=snell-render: unknown method 'nosuch'; methods: auto, single, layered, cubemap, wyman, oliveira, peel" -P ${expect})
   set_tests_properties(cli_unknown_method PROPERTIES LABELS "cli")
   add_test(NAME cli_param COMMAND ${cli} --mesh sphere --method cubemap --param cubemap.iterations=3 --param encoding=oct
            --linear 2 --stats --size 16x16 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_param.png)
@@ -40,7 +40,7 @@ if(TARGET snell-render)
   add_test(NAME cli_env_lookup COMMAND ${cli} --mesh sphere --opaque cube --place 0,0,-2,0.5 --env-lookup paraboloid-direct
            --stats --size 32x32 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_env_lookup.png)
   set_tests_properties(cli_env_lookup PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
-    "glass 0 \\(sphere, ior 1.5\\): method cubemap.*env dual-paraboloid.*wrote .*cli_env_lookup.png")
+    "glass 0 \\(sphere, ior 1.5\\): method layered.*env dual-paraboloid.*wrote .*cli_env_lookup.png")
   add_test(NAME cli_env_lookup_bad COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--env-lookup|sphere" -DCODE=2
            "-DERR=snell-render: --env-lookup: unknown look-up 'sphere' \\(auto, cube, paraboloid, paraboloid-direct\\)"
            -P ${expect})
@@ -82,7 +82,7 @@ if(TARGET snell-bench)
   set_tests_properties(bench_list_registry PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
     "pair .*many .*method cubemap: .*iterations +1\\.\\.32 \\(default 6\\)")
   add_test(NAME bench_unknown_method COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=-b|nosuch:scene=pair" -DCODE=2
-           "-DERR=snell-bench: unknown method 'nosuch' in 'nosuch:scene=pair'; methods: single, cubemap, wyman, oliveira, layered, peel"
+           "-DERR=snell-bench: unknown method 'nosuch' in 'nosuch:scene=pair'; methods: single, layered, cubemap, wyman, oliveira, peel"
            -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(bench_unknown_method PROPERTIES LABELS "cli")
 endif()

@@ -22,7 +22,7 @@ if(TARGET snell-render)
   set_tests_properties(cli_auto_goblet PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\(goblet[^)]*\\): method peel")
   add_test(NAME cli_auto_sphere COMMAND ${cli} --mesh shape:sphere --method auto --size 32x32 --stats
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto.png)
-  set_tests_properties(cli_auto_sphere PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\(sphere[^)]*\\): method cubemap")
+  set_tests_properties(cli_auto_sphere PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\(sphere[^)]*\\): method layered")
   foreach(bad "--iterations;0" "--iterations;33" "--iterations;x" "--interfaces;9" "--interfaces;0"
               "--face-size;8" "--face-size;4096" "--encoding;rgb" "--linear-steps;-1" "--method;cube")
     string(MAKE_C_IDENTIFIER "cli_bad_cubemap_${bad}" name)

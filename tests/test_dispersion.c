@@ -252,12 +252,15 @@ typedef struct kernel_case {
     int tells_apart;
 } kernel_case;
 
-/* layered (measured the same way): prism 24.2 / 27.0 / 26.4, sphere 25.1 /
- * 32.4 / 29.2 (its one-path red and blue take the layers' normal where their
- * own rays are after green's length; with green's normal the sphere's was
- * 24.5, worse than no dispersion). */
+/* layered (measured the same way): prism 26.1 / 32.5 / 27.1 since a convex
+ * mesh is baked into one layer and stepped twice by default (24.2 / 27.0 /
+ * 26.4 with 4 layers and 6 steps before), sphere 25.1 / 32.4 / 29.2 (its
+ * one-path red and blue take the layers' normal where their own rays are
+ * after green's length; with green's normal the sphere's was 24.5, worse than
+ * no dispersion). The prism's one-path bound lies 0.5 dB under what it
+ * measures and 0.5 dB over no dispersion. */
 static const kernel_case g_cases[] = {
-    {"layered", 0, 26.0, 25.5, 1},  {"layered", 1, 31.0, 28.0, 1},
+    {"layered", 0, 31.5, 26.6, 1},  {"layered", 1, 31.0, 28.0, 1},
     {"single", 0, 50.0, 50.0, 1},   {"cubemap", 0, 24.5, 24.5, 1},  {"wyman", 0, 26.0, 26.0, 1},
     {"oliveira", 0, 27.5, 27.5, 1}, {"peel", 0, 31.5, 31.0, 1},     {"single", 1, 50.0, 50.0, 1},
     {"cubemap", 1, 30.5, 30.5, 1},  {"wyman", 1, 16.5, 16.5, 0},    {"oliveira", 1, 18.7, 18.7, 0},

@@ -642,18 +642,21 @@ typedef struct snell_exact_params {
 
 /* SNELL_METHOD_LAYERED's parameters (material.layered); zero = the default.
  * The layers are baked once per (mesh version, face size, layers) and kept
- * in the renderer's prepared cache: face_size^2 * 6 * layers * 8 bytes of
- * RGBA16F (128, 4: 3 MiB; snell_object_stats.counters reports the layers
- * used, whether they were capped, and the KiB). */
+ * in the renderer's prepared cache: face_size^2 * 6 * (layers + one slice
+ * per four) * 8 bytes of RGBA16F (128, 4: 3.75 MiB; a convex mesh, one
+ * layer: 1.5 MiB; snell_object_stats.counters reports the layers used,
+ * whether they were capped, and the KiB). */
 typedef struct snell_layered_params {
     int layers;                /* distance-map layers, 1..8 (default 4): the first `layers` surfaces along each
-                                * direction from the centre; the bake stops at the first empty layer */
+                                * direction from the centre; the bake stops at the first empty layer. A
+                                * convex mesh is baked into one (it holds every surface) */
     int face_size;             /* texels a cube face side, 16..1024 (default 128) */
     int linear_steps;          /* linear march steps from a point to the bounding sphere's far side,
                                 * 1..64 (default 24) */
     int binary_steps;          /* binary refinement steps after a crossing, 1..16 (default 6); on a convex
                                 * mesh that one layer holds, the tangent-plane steps to each exit (half as
-                                * many, at least one, for the inner Fresnel's internal reflection) */
+                                * many, at least one, for the inner Fresnel's internal reflection; default
+                                * 2 there) */
     int max_interfaces;        /* surfaces processed per path, 1..10 (default 8: exits, re-entries, TIR) */
     /* Fresnel at the last exit too (1 - F out; the internal reflection F
      * followed one march more): AUTO on convex meshes (as the cubemap's). */

@@ -272,7 +272,7 @@ static const size_t g_offsets[] = {
 static const snell_method_info g_info = {
     SNELL_METHOD_CUBEMAP, "cubemap",
     "two-sided: exit found in a normal+distance cubemap, TIR bounces (Li et al., Unger 4.1)",
-    "a closed mesh with its analysed centre inside; exact when star-shaped about it", 2,
+    "a closed mesh with its analysed centre inside; exact when star-shaped about it", 3,
     (int)(sizeof g_params / sizeof *g_params), g_params, 0, NULL, 0, 0, "iterations=4,6,12"};
 
 const snell__method snell__method_cubemap = {

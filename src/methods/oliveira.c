@@ -163,7 +163,7 @@ static const snell_method_info g_info = {
     SNELL_METHOD_OLIVEIRA, "oliveira",
     "two-sided in image space: exit by a conservative linear + binary search against the back faces, TIR bounces "
     "(Oliveira and Brauwers 2007)",
-    "a closed mesh (no centre, no star shape, nothing prepared); per frame a back-face pass; screen space", 4,
+    "a closed mesh (no centre, no star shape, nothing prepared); per frame a back-face pass; screen space", 5,
     (int)(sizeof g_params / sizeof *g_params), g_params, 0, NULL, 0, 0, "linear=1,8,16"}; /* 0 reads as the default 8: 1 is the fewest */
 
 const snell__method snell__method_oliveira = {

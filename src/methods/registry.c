@@ -9,17 +9,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The registry: one line M(name, NAME) per method, in cost order (AUTO
- * takes the first adequate one). cmake/components.cmake reads these lines:
+/* The registry: one line M(name, NAME) per method, in cost order where it
+ * is adequate (AUTO takes the first adequate one): layered is adequate only
+ * on convex meshes, where it costs less than the cubemap (layered.c
+ * DEFAULT_CONVEX_STEPS), so it comes before it; on concave meshes AUTO
+ * passes it by. cmake/components.cmake reads these lines:
  * each method but single and cubemap becomes an option SNELL_WITH_<NAME>,
  * and the entry of one built without is left out here (SNELL__BUILT_<name>,
  * snell_components.h). */
 #define SNELL__REGISTRY(M) \
     M(single, SINGLE)      \
+    M(layered, LAYERED)    \
     M(cubemap, CUBEMAP)    \
     M(wyman, WYMAN)        \
     M(oliveira, OLIVEIRA)  \
-    M(layered, LAYERED)    \
     M(peel, PEEL)          \
     M(exact, EXACT)
 

@@ -259,7 +259,7 @@ static const snell_method_info g_info = {
     SNELL_METHOD_WYMAN, "wyman",
     "two-sided in image space: exit interpolated between view-ray and normal thickness, back-face normal "
     "(Wyman 2005)",
-    "a closed mesh (no centre, no star shape); per frame a back-face pass", 3,
+    "a closed mesh (no centre, no star shape); per frame a back-face pass", 4,
     (int)(sizeof g_params / sizeof *g_params), g_params, 0, NULL,
     2, 0, ""}; /* its model stops after two interfaces (TIR reflects and leaves) */
 

@@ -148,6 +148,7 @@ snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method
     const snell__method *best = NULL, *fallback = NULL;
     void *best_state = NULL, *fallback_state = NULL;
     char why[SNELL_REASON_SIZE], rejected[SNELL_REASON_SIZE] = "", fallback_why[SNELL_REASON_SIZE] = "";
+    char runs[SNELL_REASON_SIZE] = "";
     snell_status s;
     int i;
 
@@ -193,8 +194,16 @@ snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method
             fallback = m;
             fallback_state = ms;
             snell__why(fallback_why, sizeof fallback_why, "%s", why);
+        } else if (fit == SNELL__FIT_RUNS) {
+            size_t r = strlen(runs);
+            snell__why(runs + r, sizeof runs - r, "%s%s %s", r ? "; " : "", m->info->name, why);
         } else
             snell__why(rejected + n, sizeof rejected - n, "%s%s %s", n ? "; " : "", m->info->name, why);
+    }
+    /* what fails the mesh first (it says what the mesh lacks), then what runs but is not picked */
+    if (runs[0]) {
+        size_t n = strlen(rejected);
+        snell__why(rejected + n, sizeof rejected - n, "%s%s", n ? "; " : "", runs);
     }
     if (best) {
         *method = best;
