@@ -333,6 +333,14 @@ int main(void)
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
     CHECK(fs.caustics_reused == 0 && fs.caustics_photons > 0, "moved light: reused %d", fs.caustics_reused);
     fd.light.direction[2] = 0.0f;
+    /* a map too coarse for the caster says so: 256 texels over a 200-unit square are 0.78 units each,
+     * over a quarter of the sphere's radius (the map of the test's square, 0.02 units, does not) */
+    CHECK(!strstr(fs.caustics_reason, "blurred"), "the test's map called coarse: %s", fs.caustics_reason);
+    fd.receiver.extent = 100.0f;
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
+    CHECK(strstr(fs.caustics_reason, "texels over a quarter of a caster's radius: blurred") != NULL,
+          "a 200-unit square in 256 texels: %s", fs.caustics_reason);
+    fd.receiver.extent = EXT;
 
     /* 5. no light, or no receiver: the frame of a descriptor without them */
     CHECK_OK_CTX(ctx, snell_render(r, &plain, &fs));

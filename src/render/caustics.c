@@ -933,7 +933,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, shot = 0, key_len, by_bvh = 0;
     int group[SNELL_MAX_GLASS], gsize[SNELL_MAX_GLASS], chained = 0, chain_shot = 0, groups = 0, alone_over = 0;
     int plane = fd->receiver.extent > 0.0f, opaque = fd->opaque_count > 0;
-    char map[48], chains[64] = "";
+    char map[112], chains[64] = "";
     snell_status st;
     light_res L;
     light_frame F;
@@ -1013,8 +1013,16 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     c->key_len = key_len;
     c->valid = 1, c->made_plane = plane, c->made_opaque = opaque;
     c->light = fd->light;
-    if (plane) snprintf(map, sizeof map, "%dx%d %s light map", size, size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F");
-    else snprintf(map, sizeof map, "no plane");
+    if (plane) {
+        /* a texel wider than a quarter of the smallest caster's radius blurs its shadow and caustic away:
+         * said, since the frame looks merely unshadowed (a 2000-unit square in 256 texels, a unit sphere) */
+        float texel = 2.0f * fd->receiver.extent / (float)size, smallest = 0.0f;
+        for (i = 0; i < sc->count; i++)
+            if (smallest == 0.0f || sc->obj[i].bsphere[3] < smallest) smallest = sc->obj[i].bsphere[3];
+        snprintf(map, sizeof map, "%dx%d %s light map%s", size, size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F",
+                 casters > 0 && texel > 0.25f * smallest ? " (texels over a quarter of a caster's radius: blurred)" : "");
+    } else
+        snprintf(map, sizeof map, "no plane");
     /* the chain path only where beams overlap (single casters: their own path, as before) */
     if (chained) snprintf(chains, sizeof chains, ", %d chained (beams overlap: %d group%s)", chained, groups,
                           groups > 1 ? "s" : "");
