@@ -66,8 +66,8 @@ static void same_as_explicit(snell_renderer *plain, const snell_env *env, const 
           (double)scale, snell_method_str(m));
 }
 
-/* Frames with the budget until the plan has held for 10 frames; the last frame's stats and image. */
-static void settle(snell_renderer *r, snell_frame_desc *f, snell_frame_stats *st, uint8_t *px)
+/* Frames with the budget until the plan has held for 10 frames; the last frame's stats. */
+static void settle_plan(snell_renderer *r, snell_frame_desc *f, snell_frame_stats *st)
 {
     int k, still = 0;
     for (k = 0; k < 60 && still < 10; k++) {
@@ -76,6 +76,12 @@ static void settle(snell_renderer *r, snell_frame_desc *f, snell_frame_stats *st
         still = st->budget_changed ? 0 : still + 1;
     }
     CHECK(still >= 10, "the plan did not settle in 60 frames (last: %s)", st->budget_reason);
+}
+
+/* settle_plan, and the last frame's image. */
+static void settle(snell_renderer *r, snell_frame_desc *f, snell_frame_stats *st, uint8_t *px)
+{
+    settle_plan(r, f, st);
     CHECK_OK(snell_renderer_read_rgba(r, px));
 }
 
@@ -154,7 +160,7 @@ static void test_clock(snell_ctx *ctx, const snell_renderer_desc *rd, snell_fram
  * layered 21.8-22.0 in test_layered), not asserted. */
 static void test_open_mesh(snell_ctx *ctx, const snell_env *env)
 {
-    static float ref[W * H * 3], rgb[W * H * 3], cube[W * H * 3], dirs[W * H * 3];
+    static float ref[W * H * 3], cube[W * H * 3], dirs[W * H * 3];
     static uint8_t hit[W * H];
     snell_mesh *horse = NULL;
     snell_renderer *r = NULL;
@@ -162,10 +168,8 @@ static void test_open_mesh(snell_ctx *ctx, const snell_env *env)
     snell_frame_desc f;
     snell_frame_stats st;
     snell_glass g;
-    snell_ref *sref = NULL;
-    snell_ref_params p;
     snell_dir_error ec, ea[2];
-    int allow;
+    int allow, traced;
     if (!snell_build_has("ref") || !snell_build_has("exact")) {
         printf("open mesh: skipped (built without the reference or exact)\n");
         return;
@@ -174,20 +178,13 @@ static void test_open_mesh(snell_ctx *ctx, const snell_env *env)
     if (!horse) return;
     CHECK_OK(snell_mesh_normalize(horse, 1.0f));
     frame_of(&f, &g, horse, &(snell_glass_material){.ior = 1.33f}, env);
-    CHECK_OK(test_ref_create(ctx, &f, &sref));
-    if (sref) {
-        test_ref_params(&f, W, H, 10, &p);
-        p.mode = SNELL_REF_FULL;
-        p.isolate_glass = 1;
-        CHECK_OK(test_ref_render(sref, &p, rgb, ref, hit));
-        snell_ref_destroy(sref);
-    }
+    traced = test_ref_dirs(ctx, &f, W, H, SNELL_REF_FULL, 10, ref, hit);
     memset(&rd, 0, sizeof rd);
     rd.width = W;
     rd.height = H;
     rd.output = SNELL_OUTPUT_EXIT_DIRECTION;
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
-    if (!r || !sref) goto done;
+    if (!r || !traced) goto done;
     g.material.method = SNELL_METHOD_CUBEMAP;
     CHECK_OK_CTX(ctx, snell_render(r, &f, NULL));
     CHECK_OK(snell_renderer_read_exit_dirs(r, cube));
@@ -195,12 +192,8 @@ static void test_open_mesh(snell_ctx *ctx, const snell_env *env)
     g.material.method = SNELL_METHOD_AUTO;
     f.budget_ms = 1e5f;
     for (allow = 0; allow < 2; allow++) {
-        int k, still = 0;
         g.material.exact.auto_pick = allow ? SNELL_EXACT_AUTO_ALLOW : SNELL_EXACT_AUTO_NEVER;
-        for (k = 0; k < 60 && still < 10; k++) {
-            CHECK_OK_CTX(ctx, snell_render(r, &f, &st));
-            still = st.budget_changed ? 0 : still + 1;
-        }
+        settle_plan(r, &f, &st);
         CHECK_OK(snell_renderer_read_exit_dirs(r, dirs));
         ea[allow] = test_dir_error(dirs, ref, hit, W, H);
         CHECK(st.glass[0].method_used == (allow ? SNELL_METHOD_EXACT : SNELL_METHOD_PEEL),

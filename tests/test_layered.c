@@ -124,16 +124,7 @@ static void render(snell_ctx *ctx, snell_frame_desc *fd, snell_glass *g, snell_m
 static void reference(snell_ctx *ctx, const snell_frame_desc *fd, snell_ref_mode mode, int interfaces, float *dirs,
                       uint8_t *hit)
 {
-    static float rgb[W * H * 3];
-    snell_ref *ref = NULL;
-    snell_ref_params p;
-    CHECK_OK(test_ref_create(ctx, fd, &ref));
-    if (!ref) return;
-    test_ref_params(fd, W, H, interfaces, &p);
-    p.mode = mode;
-    p.isolate_glass = 1;
-    CHECK_OK(test_ref_render(ref, &p, rgb, dirs, hit));
-    snell_ref_destroy(ref);
+    test_ref_dirs(ctx, fd, W, H, mode, interfaces, dirs, hit);
 }
 
 static snell_dir_error compare(const float *test, const float *ref, const uint8_t *hit)

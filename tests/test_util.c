@@ -288,3 +288,25 @@ snell_dir_error test_dir_error(const float *test, const float *ref, const uint8_
     CHECK(e.nan_inf == 0, "%ld non-finite exit directions", e.nan_inf);
     return e;
 }
+
+int test_ref_dirs(snell_ctx *ctx, const snell_frame_desc *fd, int w, int h, snell_ref_mode mode, int interfaces,
+                  float *dirs, uint8_t *hit)
+{
+    float *rgb = (float *)malloc(sizeof(float) * 3 * (size_t)w * (size_t)h);
+    snell_ref *ref = NULL;
+    snell_ref_params p;
+    int traced = 0;
+    CHECK(rgb != NULL, "out of memory for a %dx%d reference", w, h);
+    if (rgb) CHECK_OK(test_ref_create(ctx, fd, &ref));
+    if (ref) {
+        test_ref_params(fd, w, h, interfaces, &p);
+        p.mode = mode;
+        p.isolate_glass = 1;
+        snell_status st = test_ref_render(ref, &p, rgb, dirs, hit);
+        CHECK_OK(st);
+        traced = st == SNELL_OK;
+        snell_ref_destroy(ref);
+    }
+    free(rgb);
+    return traced;
+}

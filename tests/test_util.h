@@ -85,6 +85,11 @@ snell_env *test_sky(snell_ctx *ctx, int face_size);
 /* A renderer of width x height, the rest of its description zero, or NULL
  * with the failure counted. */
 snell_renderer *test_renderer(snell_ctx *ctx, int width, int height);
+/* The reference of frame fd at w x h in mode with the interface cap, each
+ * glass object alone (isolate_glass): its exit directions and hit mask. 1 if
+ * traced; failures counted (CHECK_OK). */
+int test_ref_dirs(snell_ctx *ctx, const snell_frame_desc *fd, int w, int h, snell_ref_mode mode, int interfaces,
+                  float *dirs, uint8_t *hit);
 /* Exit directions test against ref over the pixels mask covers (w x h,
  * snell_metrics_dir_error), the call's failure and any non-finite direction
  * counted as failures. */

@@ -533,7 +533,7 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
      * this minimum distance (world units, 1e-5 of the bounding radius; the
      * reference's is 1e-9 of its extent, in double) keeps them off the
      * neighbours of an edge they start on, within float rounding. */
-    glUniform1f(p->eps, 1e-5f * o->bsphere[3]);
+    glUniform1f(p->eps, SNELL__EXACT_EPS(o->bsphere[3]));
     glUniform3fv(p->qlo, 1, ep->qlo);
     glUniform3fv(p->qstep, 1, ep->qstep);
     glUniform1f(p->mark, -(float)(o->index + 1));

@@ -14,6 +14,11 @@ typedef struct snell__exact_bvh {
     int stack;              /* SNELL_STACK_WALK: the material's exact.walk is the short stack */
 } snell__exact_bvh;
 
+/* The least distance a secondary ray travels before it may hit again, for an
+ * object of bounding radius r: exact's kernel's and the caustics' photons'
+ * (through one object or a chain of them) alike. */
+#define SNELL__EXACT_EPS(r) (1e-5f * (r))
+
 /* The BVH of exact's prepared resource `prepared` for material m. */
 void snell__exact_bvh_of(const void *prepared, const snell_glass_material *m, snell__exact_bvh *out);
 

@@ -439,7 +439,7 @@ static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__ob
     const snell_layered_params *lp = &o->glass->material.layered;
     uint32_t v;
     float r2 = 0.0f;
-    int layers;
+    int layers, convex;
     snell_status st;
     choose_centre(o->mesh, an, p->centre);
     for (v = 0; v < o->mesh->vertex_count; v++) {
@@ -451,7 +451,8 @@ static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__ob
     p->radius = sqrtf(r2) * 1.0001f;
     if (!(p->radius > 0.0f)) p->radius = 1.0f;
     /* a convex mesh holds one surface along every direction from a centre inside it: one layer */
-    layers = an && an->convex ? 1 : lp->layers;
+    convex = an && an->convex;
+    layers = convex ? 1 : lp->layers;
     if (!p->layers_tex || p->face_size != lp->face_size || p->layers != layers) {
         int groups = (layers + 3) / 4;
         size_t bytes = (size_t)lp->face_size * (size_t)lp->face_size * 48u * (size_t)(layers + groups);
@@ -469,7 +470,7 @@ static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__ob
         }
     }
     st = bake(ctx, s, o->mesh, p, stats);
-    if (layers == 1 && an && an->convex) p->capped = 0; /* its one layer holds every surface */
+    if (convex) p->capped = 0; /* its one layer holds every surface */
     return st;
 }
 

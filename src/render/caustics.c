@@ -606,8 +606,7 @@ static void bvh_uniforms(GLuint p, const snell__object *o, const snell__exact_bv
     bvh_texture_uniforms(p, bvh);
     glUniform1i(glGetUniformLocation(p, "u_node_budget"), e->node_budget);
     glUniform1i(glGetUniformLocation(p, "u_max_interfaces"), e->max_interfaces);
-    /* secondary rays' minimum distance: exact's (exact.c exact_draw) */
-    glUniform1f(glGetUniformLocation(p, "u_eps"), 1e-5f * o->bsphere[3]);
+    glUniform1f(glGetUniformLocation(p, "u_eps"), SNELL__EXACT_EPS(o->bsphere[3]));
     glUniformMatrix4fv(glGetUniformLocation(p, "u_model"), 1, GL_FALSE, (const GLfloat *)o->model);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_model"), 1, GL_FALSE, (const GLfloat *)o->inv_model);
     glUniformMatrix3fv(glGetUniformLocation(p, "u_normal_matrix"), 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
@@ -689,12 +688,14 @@ static snell_status chain_make(snell_ctx *ctx, snell__caustics *c, const snell__
         }
     if (nt >= (1u << 24)) return snell__fail(ctx, SNELL_E_LIMIT, "caustics: %zu triangles in a chain (2^24 at most)", nt);
     if (6 * nv > c->chain_geo_cap || 3 * nt > c->chain_idx_cap) {
+        int ok;
         c->chain_alloc = ctx->alloc;
         snell__free(&ctx->alloc, c->chain_geo), snell__free(&ctx->alloc, c->chain_idx);
         c->chain_geo = (float *)snell__calloc(&ctx->alloc, 6 * nv, sizeof(float));
         c->chain_idx = (uint32_t *)snell__calloc(&ctx->alloc, 3 * nt, sizeof(uint32_t));
-        c->chain_geo_cap = c->chain_idx ? 6 * nv : 0, c->chain_idx_cap = c->chain_geo ? 3 * nt : 0;
-        if (!c->chain_geo || !c->chain_idx) return snell__fail(ctx, SNELL_E_NOMEM, "caustics: out of memory for a chain");
+        ok = c->chain_geo && c->chain_idx; /* either failing: both grown again next time */
+        c->chain_geo_cap = ok ? 6 * nv : 0, c->chain_idx_cap = ok ? 3 * nt : 0;
+        if (!ok) return snell__fail(ctx, SNELL_E_NOMEM, "caustics: out of memory for a chain");
     }
     memcpy(ch->sphere, ch->obj[0]->bsphere, sizeof ch->sphere);
     for (k = 0; k < ch->count; k++) {
@@ -733,7 +734,7 @@ static void chain_uniforms(GLuint p, const chain *ch, const snell__object *o)
         const snell__object *h = ch->obj[k < ch->count ? k : 0];
         if (h == o && k < ch->count) self = k;
         ior[k] = h->glass->material.ior, thick[k] = h->glass->material.thickness;
-        eps[k] = 1e-5f * h->bsphere[3]; /* exact's (bvh_uniforms) */
+        eps[k] = SNELL__EXACT_EPS(h->bsphere[3]);
         maxif[k] = h->glass->material.exact.max_interfaces;
         memcpy(sigma + 3 * k, h->glass->absorption, 3 * sizeof(float));
         memcpy(tint + 3 * k, h->glass->material.tint, 3 * sizeof(float));
