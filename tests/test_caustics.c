@@ -338,9 +338,25 @@ int main(void)
     CHECK(!strstr(fs.caustics_reason, "blurred"), "the test's map called coarse: %s", fs.caustics_reason);
     fd.receiver.extent = 100.0f;
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
-    CHECK(strstr(fs.caustics_reason, "texels over a quarter of a caster's radius: blurred") != NULL,
+    CHECK(strstr(fs.caustics_reason, "(texels > caster radius/4: blurred)") != NULL,
           "a 200-unit square in 256 texels: %s", fs.caustics_reason);
     fd.receiver.extent = EXT;
+    /* a clear glass object casts nothing: its size does not make the map coarse (a bead of radius 0.01
+     * beside the sphere, IOR 1: 0.02-unit texels are over a quarter of its radius) */
+    {
+        snell_glass pair[2];
+        snell_frame_desc two = fd;
+        float bead[16] = {0.01f, 0, 0, 0, 0, 0.01f, 0, 0, 0, 0, 0.01f, 0, 2.0f, 1.5f, 0, 1};
+        pair[0] = g, pair[1] = g;
+        pair[1].model = bead;
+        pair[1].material.ior = 1.0f;
+        two.glass = pair;
+        two.glass_count = 2;
+        CHECK_OK_CTX(ctx, snell_render(r, &two, &fs));
+        /* the whole reason fits (SNELL_REASON_SIZE): the map's words end it */
+        CHECK(strstr(fs.caustics_reason, "light map") && !strstr(fs.caustics_reason, "(texels >"),
+              "a clear bead called the map coarse: %s", fs.caustics_reason);
+    }
 
     /* 5. no light, or no receiver: the frame of a descriptor without them */
     CHECK_OK_CTX(ctx, snell_render(r, &plain, &fs));

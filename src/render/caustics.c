@@ -1019,9 +1019,10 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
          * said, since the frame looks merely unshadowed (a 2000-unit square in 256 texels, a unit sphere) */
         float texel = 2.0f * fd->receiver.extent / (float)size, smallest = 0.0f;
         for (i = 0; i < sc->count; i++)
-            if (smallest == 0.0f || sc->obj[i].bsphere[3] < smallest) smallest = sc->obj[i].bsphere[3];
+            if (casts(&sc->obj[i]) && (smallest == 0.0f || sc->obj[i].bsphere[3] < smallest))
+                smallest = sc->obj[i].bsphere[3];
         snprintf(map, sizeof map, "%dx%d %s light map%s", size, size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F",
-                 casters > 0 && texel > 0.25f * smallest ? " (texels over a quarter of a caster's radius: blurred)" : "");
+                 casters > 0 && texel > 0.25f * smallest ? " (texels > caster radius/4: blurred)" : "");
     } else
         snprintf(map, sizeof map, "no plane");
     /* the chain path only where beams overlap (single casters: their own path, as before) */
