@@ -81,7 +81,7 @@ up_after=$(uptime)
 t1=$(date +%s)
 
 if [ "$aa" -gt 1 ]; then
-    aa_words="area-averaged with \`--aa $aa\` ($aa×$aa rays a pixel in the reference, ssaa $aa in the GPU frame)"
+    aa_words="area-averaged with \`--aa $aa\` ($aa×$aa rays a pixel in the reference, ssaa $aa in the GPU frame whose error is measured; the timed frames are drawn without ssaa, as every time on this page)"
 else
     aa_words="at pixel centres (\`--aa 1\`)"
 fi

@@ -612,7 +612,7 @@ int bench_write_markdown(const char *path, const bench_config *cs, int n, const 
                    "ended by glFinish (CPU clock%s); colour %s",
                 run->renderer, run->date, run->load_before, run->load_after, o->frames, o->warmup,
                 run->timer ? ", GL timer query in the JSON" : "", o->aa > 1 ? "area-averaged, " : "at pixel centres");
-        if (o->aa > 1) fprintf(f, "%dx%d rays a pixel", o->aa, o->aa);
+        if (o->aa > 1) fprintf(f, "%dx%d rays a pixel (the timed frames without ssaa)", o->aa, o->aa);
         if (lp >= 0) fprintf(f, "; llvmpipe threads %d", lp);
         fprintf(f, ".\n\n| configuration | drawn by | ms/frame | × single | glass PSNR vs FULL [dB] | "
                    "glass SSIM vs FULL | Pareto |\n|---|---|---:|---:|---:|---:|:---:|\n");
