@@ -16,42 +16,42 @@
  * the cubemap the other way round, so they are two classes. scale: the
  * resolution scale (snell_glass_material.scale); such a rung is kept where it
  * is on some class's Pareto front (peel at 2 and 4, layered at 2; exact at 2
- * was on none). --aa 2 measures the error on the frame at ssaa 2 and times the
+ * only on the open class's, by 1% of the cost and 0.1 dB against peel at 2:
+ * left out). --aa 2 measures the error on the frame at ssaa 2 and times the
  * plain frame: at scale 2 the error is of one kernel sample a pixel, the time
  * of one per 4 pixels. Measured side by side in one run on llvmpipe (LLVM 15),
- * 2 CPUs shared, load 5.87 -> 4.62, 2026-12-03 23:51 UTC, a Release build of
- * main f9271e0 (this table's rendering code):
+ * 2 CPUs shared, load 0.79 -> 1.43, 2026-12-04 13:55 UTC, a Release build of
+ * main ea59bcd (this table's rendering code; the convex layered rung at its
+ * 2 tangent-plane steps):
  *   snell-bench -b single -b cubemap -b wyman -b oliveira -b layered -b peel:layers=2,4 \
  *     -b exact:interfaces=2,8 -b layered:scale=2 -b peel:layers=2,4:scale=2,4 \
  *     -b exact:interfaces=2,8:scale=2 --scenes sphere,torus,bunny,tests/data/real/horse.obj \
  *     --sizes 256x256 --aa 2 --frames 41 --warmup 3 --threads 2
- * (the same command just before, at load 5.3 -> 6.6, put the same five scale
- * rungs on fronts, peel layers=2 scale=4 on three classes' instead of the
- * bunny's alone; costs moved up to 30% between the two runs). The scaled
- * rungs come last: test_budget.c's synthetic devices skew each rung's cost by
- * its index, and those of the others stay as they were. On another device
- * the costs move: snell_renderer_warm measures each rung on it
+ * (the same command on 2026-12-03 at load 5.3 -> 6.6, the two CPUs
+ * oversubscribed, gave the same errors and costs up to 45% lower for the
+ * scaled rungs, up to 30% lower for exact: how much a rung costs against
+ * single depends on the load as well as on the device). The scaled rungs
+ * come last: test_budget.c's synthetic devices skew each rung's cost by its
+ * index, and those of the others stay as they were. On another device the
+ * costs move: snell_renderer_warm measures each rung on it
  * (snell__budget_calibrate), and the controller learns from the frames it
- * draws; the table gives the order and the first guess. (The convex class's
- * layered rung was measured at 6 tangent-plane steps, its default then; since
- * 2026-12-04 the default on a convex mesh is 2: 2.19x single against 3.39x
- * at 512^2 for 0.06 dB less, so the table's cost is high there.) */
+ * draws; the table gives the order and the first guess. */
 static const snell__rung g_rungs[] = {
     /* method, param, value, cost: convex bunny-like torus-like open, db: the same classes, scale */
     {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}, 1},
-    {SNELL_METHOD_CUBEMAP, NULL, 0, {2.05f, 1.10f, 1.31f, 0.94f}, {34.95f, 17.09f, 15.50f, 15.98f}, 1},
-    {SNELL_METHOD_WYMAN, NULL, 0, {1.85f, 1.41f, 1.64f, 1.73f}, {18.59f, 15.27f, 17.01f, 17.26f}, 1},
-    {SNELL_METHOD_OLIVEIRA, NULL, 0, {3.46f, 1.43f, 1.60f, 1.27f}, {27.98f, 16.34f, 20.29f, 17.52f}, 1},
-    {SNELL_METHOD_LAYERED, NULL, 0, {2.14f, 6.66f, 13.27f, 4.83f}, {40.69f, 19.63f, 25.68f, 18.38f}, 1},
-    {SNELL_METHOD_PEEL, "layers", 2, {8.02f, 5.20f, 7.85f, 3.46f}, {40.32f, 21.88f, 22.70f, 20.71f}, 1},
-    {SNELL_METHOD_PEEL, NULL, 0, {8.16f, 7.40f, 11.91f, 5.29f}, {40.32f, 22.48f, 26.42f, 21.65f}, 1},
-    {SNELL_METHOD_EXACT, "interfaces", 2, {16.87f, 7.83f, 18.49f, 5.47f}, {32.30f, 18.17f, 20.65f, 18.80f}, 1},
-    {SNELL_METHOD_EXACT, NULL, 0, {16.29f, 14.98f, 23.20f, 8.70f}, {32.31f, 24.95f, 24.48f, 22.71f}, 1},
-    {SNELL_METHOD_LAYERED, NULL, 0, {2.36f, 3.50f, 5.88f, 2.87f}, {34.44f, 17.92f, 23.85f, 17.34f}, 2},
-    {SNELL_METHOD_PEEL, "layers", 2, {3.68f, 3.83f, 4.96f, 2.97f}, {34.25f, 19.10f, 22.02f, 18.56f}, 2},
-    {SNELL_METHOD_PEEL, NULL, 0, {3.80f, 5.15f, 5.00f, 3.79f}, {34.25f, 19.30f, 24.16f, 18.86f}, 2},
-    {SNELL_METHOD_PEEL, "layers", 2, {2.01f, 2.87f, 2.40f, 1.74f}, {27.22f, 17.10f, 20.65f, 16.77f}, 4},
-    {SNELL_METHOD_PEEL, NULL, 0, {1.99f, 3.92f, 2.38f, 2.22f}, {27.22f, 17.25f, 21.58f, 16.80f}, 4},
+    {SNELL_METHOD_CUBEMAP, NULL, 0, {2.14f, 1.08f, 1.44f, 1.02f}, {34.95f, 17.09f, 15.50f, 15.98f}, 1},
+    {SNELL_METHOD_WYMAN, NULL, 0, {2.22f, 1.33f, 1.92f, 1.86f}, {18.59f, 15.27f, 17.01f, 17.26f}, 1},
+    {SNELL_METHOD_OLIVEIRA, NULL, 0, {3.84f, 1.31f, 1.86f, 1.41f}, {27.98f, 16.34f, 20.29f, 17.52f}, 1},
+    {SNELL_METHOD_LAYERED, NULL, 0, {2.07f, 5.58f, 12.41f, 5.17f}, {40.61f, 19.63f, 25.68f, 18.38f}, 1},
+    {SNELL_METHOD_PEEL, "layers", 2, {7.94f, 3.58f, 5.89f, 3.62f}, {40.32f, 21.88f, 22.70f, 20.71f}, 1},
+    {SNELL_METHOD_PEEL, NULL, 0, {8.03f, 5.89f, 8.43f, 5.56f}, {40.32f, 22.47f, 26.42f, 21.65f}, 1},
+    {SNELL_METHOD_EXACT, "interfaces", 2, {14.50f, 5.68f, 11.78f, 5.30f}, {32.30f, 18.17f, 20.65f, 18.80f}, 1},
+    {SNELL_METHOD_EXACT, NULL, 0, {14.74f, 10.16f, 16.00f, 8.19f}, {32.31f, 24.95f, 24.48f, 22.71f}, 1},
+    {SNELL_METHOD_LAYERED, NULL, 0, {2.76f, 3.45f, 5.64f, 3.28f}, {34.42f, 17.92f, 23.85f, 17.34f}, 2},
+    {SNELL_METHOD_PEEL, "layers", 2, {4.73f, 4.06f, 4.22f, 3.42f}, {34.25f, 19.10f, 22.02f, 18.56f}, 2},
+    {SNELL_METHOD_PEEL, NULL, 0, {4.63f, 5.43f, 5.21f, 4.38f}, {34.25f, 19.30f, 24.16f, 18.86f}, 2},
+    {SNELL_METHOD_PEEL, "layers", 2, {3.53f, 3.44f, 3.12f, 2.66f}, {27.22f, 17.10f, 20.65f, 16.77f}, 4},
+    {SNELL_METHOD_PEEL, NULL, 0, {3.42f, 4.96f, 3.86f, 3.50f}, {27.22f, 17.25f, 21.58f, 16.80f}, 4},
 };
 #define RUNG_COUNT ((int)(sizeof g_rungs / sizeof *g_rungs))
 
