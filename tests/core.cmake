@@ -1,4 +1,5 @@
 # Foundation tests: context, shaders, optics twin, single-surface render, CLI, install.
+snell_add_test(test_why SOURCES test_why.c LABELS "unit")
 snell_add_test(test_ctx SOURCES test_ctx.c LABELS "unit;gl")
 target_link_libraries(test_ctx PRIVATE PkgConfig::EGL PkgConfig::GLES)
 snell_add_test(test_shader SOURCES test_shader.c LABELS "unit;gl")

@@ -1059,6 +1059,8 @@ typedef enum snell_skip {
                                        * exit rays meet them in the scene layers (snell_frame_desc.scene_layers) */
 } snell_skip;
 
+/* The size of every reason text in the stats, its terminating NUL included;
+ * a reason longer than that is cut at a character and ends in "...". */
 #define SNELL_REASON_SIZE 160
 
 typedef struct snell_object_stats {

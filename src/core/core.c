@@ -91,10 +91,19 @@ size_t snell__mul_size(size_t a, size_t b, int *ok)
 void snell__why(char *why, size_t n, const char *fmt, ...)
 {
     va_list ap;
+    int len;
     if (!why || !n) return;
     va_start(ap, fmt);
-    vsnprintf(why, n, fmt, ap);
+    len = vsnprintf(why, n, fmt, ap);
     va_end(ap);
+    /* A cut reason ends in "...", so that it reads as cut (and a word sought
+     * in it cannot match a cut word's first letters); the cut goes back to the
+     * start of a UTF-8 character, not through one. */
+    if (len >= 0 && (size_t)len >= n && n >= 4) {
+        size_t k = n - 4;
+        while (k > 0 && ((unsigned char)why[k] & 0xC0) == 0x80) k--;
+        memcpy(why + k, "...", 4);
+    }
 }
 
 static const char g_components[] = SNELL__COMPONENTS;

@@ -58,7 +58,8 @@ snell_status snell__image_decode_budget(const void *data, size_t size, size_t bu
 /* size_t multiplication that reports overflow (returns 0 and sets *ok = 0). */
 size_t snell__mul_size(size_t a, size_t b, int *ok);
 
-/* snprintf that tolerates truncation (reasons are for people). */
+/* snprintf for the reasons people read: a text longer than n - 1 bytes is
+ * cut at a character boundary and ends in "..." (with n >= 4). */
 void snell__why(char *why, size_t n, const char *fmt, ...) SNELL_PRINTF(3, 4);
 
 #endif
