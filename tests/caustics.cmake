@@ -41,7 +41,7 @@ if(TARGET snell-render AND SNELL_WITH_GLTF)
            ${PROJECT_SOURCE_DIR}/tests/data/scenes/three_glass_two_opaque.gltf --light dir:-0.4,-1,-0.3 --floor -1,4
            --size 64x64 --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_caustics_opaque.png)
   set_tests_properties(cli_caustics_opaque PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION
-    "caustics: made: 3 glass casting, 2 opaque lit")
+    "caustics: made: 3 glass casting; [0-9]+x[0-9]+ RGBA(32|16)F light map; 2 opaque lit")
 endif()
 # The glass sees the lit receiver plane along its exit and reflected rays
 # (common/receiver.glsl): every method, both shading paths.

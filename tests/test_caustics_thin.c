@@ -129,7 +129,7 @@ int main(void)
     /* the stage casts the thin sphere: its photons by the depth maps */
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
     printf("straight down: %s\n", fs.caustics_reason);
-    CHECK(fs.caustics_photons == 256 * 256 && strstr(fs.caustics_reason, "made: 1 glass casting,") &&
+    CHECK(fs.caustics_photons == 256 * 256 && strstr(fs.caustics_reason, "made: 1 glass casting;") &&
               strstr(fs.caustics_reason, "0 BVH, 1 depth maps"),
           "photons %d: %s", fs.caustics_photons, fs.caustics_reason);
     CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));

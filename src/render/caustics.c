@@ -1030,11 +1030,13 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
                           groups > 1 ? "s" : "");
     if (alone_over) snprintf(chains + strlen(chains), sizeof chains - strlen(chains),
                              ", %d alone: over %d overlap", alone_over, SNELL__CAUSTICS_CHAIN);
-    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s, %d opaque lit%s; paths: "
-               "%d BVH, %d depth maps%s; %s",
-               casters, sc->count > casters ? " (clear ones pass)" : "",
-               shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "", fd->opaque_count,
-               opaque ? " (light-frame caustic map)" : "", by_bvh, shot - by_bvh - chain_shot, chains, map);
+    /* what changes the picture first (no photons, a blurred map), the counts of paths last: a long
+     * reason is cut at its end (SNELL_REASON_SIZE, "...") and the water floor appends after it */
+    snell__why(s->caustics_reason, sizeof s->caustics_reason, "made: %d glass casting%s%s; %s; %d opaque lit%s; paths: "
+               "%d BVH, %d depth maps%s",
+               casters, shot < casters ? " (the spot light inside a bounding sphere: no photons)" : "",
+               sc->count > casters ? " (clear ones pass)" : "", map, fd->opaque_count,
+               opaque ? " (light-frame caustic map)" : "", by_bvh, shot - by_bvh - chain_shot, chains);
     return draw_view(c, fd, sc);
 }
 
