@@ -280,6 +280,13 @@ static void test_malformed_json(void)
         snell_mesh *m = NULL;
         CHECK(snell_mesh_load_gltf_mem(NULL, base, 0, &m) == SNELL_E_INVALID_ARG, "empty input");
         CHECK(snell_mesh_load_gltf(NULL, test_data("missing.gltf"), &m) == SNELL_E_IO, "missing file");
+        CHECK(snell_mesh_load_gltf(NULL, NULL, &m) == SNELL_E_INVALID_ARG && !m &&
+                  strstr(snell_last_error(NULL), "snell_mesh_load_gltf: path is NULL"),
+              "NULL path: %s", snell_last_error(NULL));
+        CHECK(snell_mesh_load_gltf_ex(NULL, test_data("missing.gltf"), 0x80u, &m) == SNELL_E_INVALID_ARG && !m &&
+                  strstr(snell_last_error(NULL), "snell_mesh_load_gltf: unknown flags 0x80"),
+              "unknown flags: %s", snell_last_error(NULL));
+        CHECK(snell_mesh_load_gltf(NULL, test_data("missing.gltf"), NULL) == SNELL_E_INVALID_ARG, "NULL out");
     }
     free(base);
     free(badidx);

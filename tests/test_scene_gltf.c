@@ -144,7 +144,15 @@ static void test_loading(snell_ctx *ctx)
         CHECK(snell_scene_load_gltf_mem(ctx, named, sizeof named - 1, &s) != SNELL_OK && !s,
               "memory input naming a file was accepted");
     }
-    CHECK(snell_scene_load_gltf(ctx, NULL, 0, &s) == SNELL_E_INVALID_ARG, "NULL path");
+    CHECK(snell_scene_load_gltf(ctx, NULL, 0, &s) == SNELL_E_INVALID_ARG &&
+              strstr(snell_last_error(ctx), "snell_scene_load_gltf: path is NULL"),
+          "NULL path: %s", snell_last_error(ctx));
+    CHECK(snell_scene_load_gltf(ctx, scene_path("glass_row.gltf"), 0x80u, &s) == SNELL_E_INVALID_ARG && !s &&
+              strstr(snell_last_error(ctx), "snell_scene_load_gltf: unknown flags 0x80"),
+          "unknown flags: %s", snell_last_error(ctx));
+    CHECK(snell_scene_load_gltf(ctx, scene_path("glass_row.gltf"), 0, NULL) == SNELL_E_INVALID_ARG &&
+              strstr(snell_last_error(ctx), "out is NULL"),
+          "NULL out: %s", snell_last_error(ctx));
     snell_scene_file_destroy(NULL);
 }
 

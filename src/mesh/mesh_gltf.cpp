@@ -1323,6 +1323,29 @@ snell_status read_model_file_and_dir(snell_ctx *ctx, const char *path, std::vect
     return SNELL_OK;
 }
 
+/* A path loader's checks and its file read, then loader (load or load_scene)
+ * on the bytes, with the file's folder for external buffers; fn names the
+ * API call in the messages. */
+template <typename T>
+snell_status load_path(snell_ctx *ctx, const char *fn, const char *path, unsigned flags, T **out,
+                       snell_status (*loader)(snell_ctx *, const unsigned char *, size_t, const std::string &, bool,
+                                              unsigned, T **))
+{
+    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: out is NULL", fn);
+    *out = NULL;
+    if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: path is NULL", fn);
+    if (flags & ~static_cast<unsigned>(SNELL_LOAD_ALLOW_OUTSIDE_FOLDER))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: unknown flags 0x%x", fn, flags);
+    try {
+        std::vector<unsigned char> bytes;
+        std::string dir;
+        snell_status st = read_model_file_and_dir(ctx, path, &bytes, &dir);
+        return st != SNELL_OK ? st : loader(ctx, bytes.data(), bytes.size(), dir, true, flags, out);
+    } catch (...) {
+        return snell__fail(ctx, SNELL_E_NOMEM, "glTF: out of memory reading '%s'", path);
+    }
+}
+
 } // namespace
 
 extern "C" snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *data, size_t size, snell_mesh **out)
@@ -1335,19 +1358,7 @@ extern "C" snell_status snell_mesh_load_gltf_mem(snell_ctx *ctx, const void *dat
 
 extern "C" snell_status snell_mesh_load_gltf_ex(snell_ctx *ctx, const char *path, unsigned flags, snell_mesh **out)
 {
-    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_gltf: out is NULL");
-    *out = NULL;
-    if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_gltf: path is NULL");
-    if (flags & ~static_cast<unsigned>(SNELL_LOAD_ALLOW_OUTSIDE_FOLDER))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_gltf_ex: unknown flags 0x%x", flags);
-    try {
-        std::vector<unsigned char> bytes;
-        std::string dir;
-        snell_status st = read_model_file_and_dir(ctx, path, &bytes, &dir);
-        return st != SNELL_OK ? st : load(ctx, bytes.data(), bytes.size(), dir, true, flags, out);
-    } catch (...) {
-        return snell__fail(ctx, SNELL_E_NOMEM, "glTF: out of memory reading '%s'", path);
-    }
+    return load_path(ctx, "snell_mesh_load_gltf", path, flags, out, load);
 }
 
 extern "C" snell_status snell_mesh_load_gltf(snell_ctx *ctx, const char *path, snell_mesh **out)
@@ -1374,19 +1385,7 @@ extern "C" snell_status snell_scene_load_gltf_mem(snell_ctx *ctx, const void *da
 
 extern "C" snell_status snell_scene_load_gltf(snell_ctx *ctx, const char *path, unsigned flags, snell_scene_file **out)
 {
-    if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_scene_load_gltf: out is NULL");
-    *out = NULL;
-    if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_scene_load_gltf: path is NULL");
-    if (flags & ~static_cast<unsigned>(SNELL_LOAD_ALLOW_OUTSIDE_FOLDER))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_scene_load_gltf: unknown flags 0x%x", flags);
-    try {
-        std::vector<unsigned char> bytes;
-        std::string dir;
-        snell_status st = read_model_file_and_dir(ctx, path, &bytes, &dir);
-        return st != SNELL_OK ? st : load_scene(ctx, bytes.data(), bytes.size(), dir, true, flags, out);
-    } catch (...) {
-        return snell__fail(ctx, SNELL_E_NOMEM, "glTF: out of memory reading '%s'", path);
-    }
+    return load_path(ctx, "snell_scene_load_gltf", path, flags, out, load_scene);
 }
 
 extern "C" const snell_glass *snell_scene_file_glass(const snell_scene_file *s, int *count)
