@@ -31,7 +31,9 @@
  *    (what the upsample gave without a covered texel within two), and at
  *    least NEEDLE_SINGLE of them are the single-surface frame's pixel within
  *    3 of 255 (the fallback is single.frag's model at the pixel's own
- *    surface point; the rest take the nearest covered texel, near the tips). */
+ *    surface point; the rest take the nearest covered texel, near the tips):
+ *    clear and absorbing needles drawn by peel, a thin-walled one (a slab,
+ *    straight through) by single. */
 #include "test_util.h"
 #include "gl_count.h"
 
@@ -118,12 +120,14 @@ static void edge_error(const uint8_t *a, const uint8_t *b, const uint8_t *mask, 
     *err = *n ? e / (3.0 * *n) : 0.0;
 }
 
-/* Test 7: r draws without supersampling; g[0] is a peel object whose model
- * is set here. */
-static void needle(snell_renderer *r, snell_frame_desc *fd, snell_glass *g)
+/* Test 7: r draws without supersampling; g[0] is the object whose model is
+ * set here, drawn by method at scale 8 (what the fallback stands in for:
+ * peel for a solid, single for a thin wall, which it draws as a slab). */
+static void needle(snell_renderer *r, snell_frame_desc *fd, snell_glass *g, snell_method method, const char *what)
 {
     static const float model[16] = {0.9f, 0, 0, 0, 0, NEEDLE_R, 0, 0, 0, 0, NEEDLE_R, 0, 0, 0, 0, 1};
     static uint8_t mask[W * H];
+    char name[64];
     snell_frame_stats st;
     int n, i, black = 0, same = 0;
     g->model = model;
@@ -133,10 +137,10 @@ static void needle(snell_renderer *r, snell_frame_desc *fd, snell_glass *g)
     g->material.method = SNELL_METHOD_SINGLE;
     g->material.scale = 1.0f;
     CHECK_OK(render(r, fd, g_img[1], NULL));
-    g->material.method = SNELL_METHOD_PEEL;
+    g->material.method = method;
     g->material.scale = 8.0f;
     CHECK_OK(render(r, fd, g_img[2], &st));
-    CHECK(st.glass[0].scale == 8.0f, "needle: stats say scale %g", st.glass[0].scale);
+    CHECK(st.glass[0].scale == 8.0f, "needle (%s): stats say scale %g", what, st.glass[0].scale);
     glass_mask(g_img[1], g_img[3], mask, &n);
     for (i = 0; i < W * H; i++) {
         const uint8_t *a = &g_img[1][4 * i], *b = &g_img[2][4 * i];
@@ -144,12 +148,14 @@ static void needle(snell_renderer *r, snell_frame_desc *fd, snell_glass *g)
         black += b[0] == 0 && b[1] == 0 && b[2] == 0;
         same += abs(a[0] - b[0]) <= 3 && abs(a[1] - b[1]) <= 3 && abs(a[2] - b[2]) <= 3;
     }
-    printf("needle at scale 8: %d glass pixels, %d black, %d the single-surface frame's\n", n, black, same);
-    snell_write_png(test_out("glass_scale_needle.png"), W, H, g_img[2]);
-    CHECK(n > W / 2, "the needle covers only %d pixels", n);
-    CHECK(black == 0, "needle at scale 8: %d of %d pixels black (no covered texel near)", black, n);
-    CHECK(same >= NEEDLE_SINGLE * n, "needle at scale 8: %d of %d pixels are the single-surface answer, want >= %g",
-          same, n, NEEDLE_SINGLE);
+    printf("needle (%s) at scale 8: %d glass pixels, %d black, %d the single-surface frame's\n", what, n, black, same);
+    snprintf(name, sizeof name, "glass_scale_needle_%s.png", what);
+    snell_write_png(test_out(name), W, H, g_img[2]);
+    CHECK(n > W / 2, "the needle (%s) covers only %d pixels", what, n);
+    CHECK(black == 0, "needle (%s) at scale 8: %d of %d pixels black (no covered texel near)", what, black, n);
+    CHECK(same >= NEEDLE_SINGLE * n,
+          "needle (%s) at scale 8: %d of %d pixels are the single-surface answer, want >= %g", what, same, n,
+          NEEDLE_SINGLE);
 }
 
 int main(void)
@@ -267,7 +273,16 @@ int main(void)
     test_frame_one(&fd, &g[0], sphere, env);
     fd.camera.elevation = 0.0f;
     fd.camera.distance = 3.2f;
-    needle(r, &fd, &g[0]);
+    needle(r, &fd, &g[0], SNELL_METHOD_PEEL, "clear");
+    /* absorbing (dark red after 0.02 units: the needle's own width) and a thin wall: the fallback
+     * follows single's model for both (Beer-Lambert over the bounding sphere's chord; the slab) */
+    g[0].material.attenuation_color[0] = 0.8f, g[0].material.attenuation_color[1] = 0.2f;
+    g[0].material.attenuation_color[2] = 0.1f;
+    g[0].material.attenuation_distance = 0.02f;
+    needle(r, &fd, &g[0], SNELL_METHOD_PEEL, "absorbing");
+    g[0].material.attenuation_distance = 0.0f;
+    g[0].material.thickness = 0.01f;
+    needle(r, &fd, &g[0], SNELL_METHOD_SINGLE, "thin");
     snell_renderer_destroy(r);
     snell_mesh_destroy(sphere);
     snell_env_destroy(env);

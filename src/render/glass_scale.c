@@ -104,6 +104,7 @@ static snell_status ensure_program(snell_ctx *ctx, snell__glass_scale *gs, int s
     gs->u_color[shading] = glGetUniformLocation(g->prog, "u_small_color");
     gs->u_ratio[shading] = glGetUniformLocation(g->prog, "u_ratio");
     gs->u_max[shading] = glGetUniformLocation(g->prog, "u_max");
+    gs->u_thickness[shading] = glGetUniformLocation(g->prog, "u_thickness");
     return SNELL_OK;
 }
 
@@ -157,6 +158,7 @@ snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs, con
     glUniform1i(gs->u_color[sh], SNELL__UNIT_KERNEL); /* unit 0 keeps the environment (its fallback's) */
     glUniform2f(gs->u_ratio[sh], (float)small.width / (float)v->width, (float)small.height / (float)v->height);
     glUniform2i(gs->u_max[sh], small.width - 1, small.height - 1);
+    glUniform1f(gs->u_thickness[sh], o->glass->material.thickness > 0.0f ? o->glass->material.thickness : 0.0f);
     glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
     glBindTexture(GL_TEXTURE_2D, gs->color_tex);
     glEnable(GL_DEPTH_TEST);

@@ -17,6 +17,7 @@ typedef struct snell__glass_scale {
     snell__glass_program prog[SNELL__GLASS_SHADING_MASK + 1]; /* per shading, made on first use */
     int u_color[SNELL__GLASS_SHADING_MASK + 1];
     int u_ratio[SNELL__GLASS_SHADING_MASK + 1], u_max[SNELL__GLASS_SHADING_MASK + 1];
+    int u_thickness[SNELL__GLASS_SHADING_MASK + 1]; /* the fallback's thin wall (glass_scale.frag) */
 } snell__glass_scale;
 
 /* The largest scale method m draws at: 1 where it reads the frame's
