@@ -254,6 +254,51 @@ static void scale_pick(const snell__budget_object *ladder, const char *what)
           plan[0], snell__rung_at(o.ladder[plan[0]])->scale, k, why);
 }
 
+/* A better rung added to a ladder (exact allowed by the material) that the
+ * controller predicts cheaper than the plan it holds, because it learned that
+ * plan's rung dear (under load: test_budget_render's horse in the ASan CI leg
+ * of 2026-12-04, budget 100 s, stayed on peel with exact allowed, "kept:
+ * within the budget"): the better plan is taken, not kept from. The device
+ * prices the ladder's top rung without exact 10x the table, every other rung
+ * as the table. */
+static void better_and_cheaper(const snell_mesh_analysis *an, const snell_glass_resolved *g)
+{
+    snell_glass_resolved ga = *g;
+    snell__budget_object lo, hi;
+    snell__budget b;
+    device d;
+    char why[SNELL_REASON_SIZE];
+    double pred, budget = 1e5;
+    int plan[1] = {-1}, f, r, top_lo, exact_drawn = 0;
+    snell__budget_ladder(an, &ga, 0.0f, all_usable, NULL, &lo);
+    ga.material.exact.auto_pick = SNELL_EXACT_AUTO_ALLOW;
+    snell__budget_ladder(an, &ga, 0.0f, all_usable, NULL, &hi);
+    lo.area = hi.area = 1.0f;
+    top_lo = lo.ladder[lo.n - 1];
+    CHECK(snell__rung_at(hi.ladder[hi.n - 1])->method == SNELL_METHOD_EXACT, "exact not the top of the open ladder");
+    memset(&d, 0, sizeof d);
+    d.ms_per_unit = 1.0;
+    d.base = 0.25;
+    d.seed = 5u;
+    for (r = 0; r < snell__rung_count(); r++) d.skew[r] = r == top_lo ? 10.0 : 1.0;
+    snell__budget_reset(&b);
+    /* on the top rung for 8 frames (learned dear), well before a held plan probes a step up (30) */
+    for (f = 0, r = 0; f < 60 && r < 8; f++) {
+        snell__budget_plan(&b, &lo, 1, (float)budget, plan, &pred, why, sizeof why);
+        r = lo.ladder[plan[0]] == top_lo ? r + 1 : 0;
+        snell__budget_observe(&b, d.ms_per_unit * true_units(&d, &lo, 1, plan) * noise(&d));
+    }
+    CHECK(r == 8, "without exact the plan is rung %d, not the top %d (%s)", lo.ladder[plan[0]], top_lo, why);
+    for (f = 0; f < 10 && !exact_drawn; f++) {
+        snell__budget_plan(&b, &hi, 1, (float)budget, plan, &pred, why, sizeof why);
+        exact_drawn = snell__rung_at(hi.ladder[plan[0]])->method == SNELL_METHOD_EXACT;
+        snell__budget_observe(&b, d.ms_per_unit * true_units(&d, &hi, 1, plan) * noise(&d));
+    }
+    printf("exact allowed after a dear top rung: %s after %d frames (%s)\n", exact_drawn ? "exact" : "not exact", f, why);
+    CHECK(exact_drawn, "exact allowed, a budget of %.0f ms: the plan stays on rung %d (%s)", budget, hi.ladder[plan[0]],
+          why);
+}
+
 int main(void)
 {
     /* the classes: convex; closed concave that the cubemap serves (a bunny: 25% hidden from its centre);
@@ -309,6 +354,7 @@ int main(void)
         for (r = 0; r < ex.n; r++) has |= snell__rung_at(ex.ladder[r])->method == SNELL_METHOD_EXACT;
         CHECK(has, "exact allowed but not on the ladder");
     }
+    better_and_cheaper(&open, &g);
     {
         snell__budget_object fl;
         snell__budget_ladder(&torus, &g, 20.0f, all_usable, NULL, &fl);

@@ -392,8 +392,11 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         } else if (!over && same_objects && new_ms > cur_ms &&
                    plan_quality(obj, n, plan) <= plan_quality(obj, n, cur)) {
             memcpy(plan, cur, sizeof(int) * (size_t)n); /* dearer and no better */
-        } else if (!over && same_objects && new_ms < cur_ms && cur_ms <= budget_ms) {
-            /* predicted within the budget though above the aim: kept (the band 95-100% is the hysteresis) */
+        } else if (!over && same_objects && new_ms < cur_ms && cur_ms <= budget_ms &&
+                   plan_quality(obj, n, plan) < plan_quality(obj, n, cur)) {
+            /* predicted within the budget though above the aim: kept (the band 95-100% is the
+             * hysteresis). Only against a worse plan: one both cheaper and better is taken (a rung
+             * learned dear under load can predict a better rung not drawn yet as the cheaper) */
             memcpy(plan, cur, sizeof(int) * (size_t)n);
             snell__why(why, why_size, "kept: %.2f ms predicted, within the budget's %.2f", cur_ms, (double)budget_ms);
         }
@@ -438,7 +441,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         else if (changed || over)
             snell__why(why, why_size, "%s: last frame %.2f ms, this plan %.2f ms predicted%s",
                        !changed ? "over budget, nothing cheaper allowed" : over ? "over budget, stepped down"
-                       : new_ms > cur_ms ? "stepped up" : "stepped down",
+                       : plan_quality(obj, n, plan) > plan_quality(obj, n, cur) ? "stepped up" : "stepped down",
                        b->last_ms, new_ms, b->blocked_until > b->frame ? " (plans as dear as one found over are barred)" : "");
         else if (!strcmp(why, "unchanged"))
             snell__why(why, why_size, "unchanged: last frame %.2f ms, this plan %.2f ms predicted", b->last_ms, new_ms);
