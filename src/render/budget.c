@@ -27,10 +27,10 @@
  *     -b exact:interfaces=2,8 -b layered:scale=2 -b peel:layers=2,4:scale=2,4 \
  *     -b exact:interfaces=2,8:scale=2 --scenes sphere,torus,bunny,tests/data/real/horse.obj \
  *     --sizes 256x256 --aa 2 --frames 41 --warmup 3 --threads 2
- * (the same command on 2026-12-03 at load 5.3 -> 6.6, the two CPUs
- * oversubscribed, gave the same errors and costs up to 45% lower for the
- * scaled rungs, up to 30% lower for exact: how much a rung costs against
- * single depends on the load as well as on the device). The scaled rungs
+ * (the table before, the same command on 2026-12-03 at load 5.87 -> 4.62,
+ * the two CPUs oversubscribed, had the same errors, the scaled rungs up to
+ * 43% cheaper against single and exact up to 57% dearer: how much a rung
+ * costs against single depends on the load as well as on the device). The scaled rungs
  * come last: test_budget.c's synthetic devices skew each rung's cost by its
  * index, and those of the others stay as they were. On another device the
  * costs move: snell_renderer_warm measures each rung on it
