@@ -9,6 +9,23 @@ if(TARGET snell-bench)
              -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_bench_lod.cmake)
     set_tests_properties(bench_lod PROPERTIES LABELS "cli;gl" TIMEOUT 300)
   endif()
+  # bench/band_check.sh (issue 25's two speed-against-error criteria) runs on this build and gives
+  # both verdicts; at 48x48 without antialiasing (about 6 s) the verdicts themselves mean nothing
+  set(band_methods oliveira layered peel exact)
+  set(band_ok ${SNELL_WITH_REF})
+  foreach(m ${band_methods})
+    if(NOT "${m}" IN_LIST SNELL_METHODS_ON)
+      set(band_ok FALSE)
+    endif()
+  endforeach()
+  if(band_ok)
+    add_test(NAME bench_band_check COMMAND ${CMAKE_COMMAND} -E env SIZE=48x48 AA=1 FRAMES=2 WARMUP=1
+             OUT=${CMAKE_CURRENT_BINARY_DIR}/band_check CACHE=${CMAKE_CURRENT_BINARY_DIR}/band_check/cache
+             sh ${PROJECT_SOURCE_DIR}/bench/band_check.sh ${PROJECT_BINARY_DIR})
+    # the rows read the CSV's columns (a layered sphere above 10 dB), then both verdicts
+    set_tests_properties(bench_band_check PROPERTIES LABELS "cli;gl" TIMEOUT 300 PASS_REGULAR_EXPRESSION
+      "(PASS|FAIL) bunny >= 26 dB at <= 3x single: .*  layered:scene=sphere:size=48x48 +[0-9.]+x +[1-9][0-9][.][0-9]+ dB.*(PASS|FAIL) sphere >= 40 dB at <= 2x single: ")
+  endif()
   # --env-lookup: both look-ups timed and probed (64x64, 3 rounds: ~3 s); that it runs and prints both tables
   add_test(NAME bench_env_lookup COMMAND ${bench} --env-lookup --frames 3 --size 64)
   set_tests_properties(bench_env_lookup PROPERTIES LABELS "cli;gl" TIMEOUT 120
