@@ -102,9 +102,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         r = snell_reflect(v, n);
         snell_refract(v, n, 1.0 / snell_ior, dir);
         fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, snell_ior);
-        highp vec3 oc = world_pos - u_bsphere.xyz;
-        highp float ob = dot(oc, dir), oc2 = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
-        path = max(-ob + sqrt(max(ob * ob - oc2, 0.0)), 0.0);
+        path = snell_sphere_exit(world_pos, dir, u_bsphere);
     }
     highp vec3 exit_p = g_over ? world_pos : (u_model * vec4(p, 1.0)).xyz;
     // The look-ups after the branches: their implicit derivatives are

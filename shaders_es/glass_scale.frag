@@ -51,9 +51,7 @@ vec3 single_surface(highp vec3 pos, highp vec3 normal)
     vec3 t;
     snell_refract(v, n, 1.0 / u_ior, t);
     highp vec3 through = t;
-    highp vec3 oc = pos - u_bsphere.xyz;
-    highp float b = dot(oc, t), c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
-    highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
+    highp float path = snell_sphere_exit(pos, t, u_bsphere);
     float f = snell_fresnel_schlick(-dot(v, n), 1.0, u_ior);
     return mix(snell_exit(pos, through) * u_tint * snell_beer_lambert(u_sigma, path), snell_reflection(pos, r), f);
 }

@@ -94,20 +94,12 @@ bool inside(highp vec3 w, bool away)
     return away ? w.z < z : w.z > z;
 }
 
-// Distance along unit d from p (inside the sphere) to where it leaves the sphere.
-highp float sphere_exit(highp vec3 p, highp vec3 d)
-{
-    highp vec3 oc = p - u_bsphere.xyz;
-    highp float b = dot(oc, d), c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
-    return max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
-}
-
 // The conservative search from p along unit d: returns the distance to the
 // last point known to be inside, px_out its pixel, away_out which map it was
 // tested against.
 highp float search(highp vec3 p, highp vec3 d, out ivec2 px_out, out bool away_out)
 {
-    highp float t_end = sphere_exit(p, d) * 1.001 + 1e-6 * u_bsphere.w;
+    highp float t_end = snell_sphere_exit(p, d, u_bsphere) * 1.001 + 1e-6 * u_bsphere.w;
     // clip coordinates are affine in the world position: c(t) = c0 + t dc
     highp vec4 c0 = u_view_proj * vec4(p, 1.0), dc = u_view_proj * vec4(d, 0.0);
     highp vec3 w0 = window(c0), w_end = window(c0 + t_end * dc);

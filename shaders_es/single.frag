@@ -54,10 +54,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 #ifdef SNELL_ABSORB
     // Only in the variant with absorption: exp per lane was 16% of the
     // mediump cost on llvmpipe even with sigma = 0.
-    highp vec3 oc = world_pos - u_bsphere.xyz;
-    highp float b = dot(oc, t);
-    highp float c = dot(oc, oc) - u_bsphere.w * u_bsphere.w;
-    highp float path = max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
+    highp float path = snell_sphere_exit(world_pos, t, u_bsphere);
 
     vec3 transmitted = snell_h(snell_disp_exit(world_pos, t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));
 #else

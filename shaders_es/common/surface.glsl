@@ -42,3 +42,15 @@ void snell_surface(out highp vec3 pos, out highp vec3 normal)
     normal = v_world_normal;
 }
 #endif
+
+// Distance along unit d from p, inside sphere (world centre, radius: the
+// object's u_bsphere), to where it leaves the sphere; 0 from outside it. The
+// path length inside the glass where the kernel does not trace the exit
+// (Beer-Lambert's estimate: single.frag, glass_scale.frag's fallback, exact's
+// fallback pixels) and oliveira's search range.
+highp float snell_sphere_exit(highp vec3 p, highp vec3 d, highp vec4 sphere)
+{
+    highp vec3 oc = p - sphere.xyz;
+    highp float b = dot(oc, d), c = dot(oc, oc) - sphere.w * sphere.w;
+    return max(-b + sqrt(max(b * b - c, 0.0)), 0.0);
+}
