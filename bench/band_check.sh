@@ -61,7 +61,7 @@ verdict() {
             x = $xs + 0; d = $db + 0
             printf "  %-52s %7.2fx %7.2f dB\n", spec, x, d
             if (x <= times && d >= want_db && (pass == "" || x < pass_x)) { pass = spec; pass_x = x; pass_db = d }
-            if (x <= times && d > best_db) { best = spec; best_db = d; best_x = x }
+            if (x <= times && d > best_db) { best = spec; best_db = d }
         }
         END {
             if (pass != "") printf "PASS %s: %s, %.2f dB at %.2fx single\n", what, pass, pass_db, pass_x

@@ -373,7 +373,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         changed = b->frame == 0;
         for (i = 0; i < n && !changed; i++) changed = plan[i] != cur[i];
     } else {
-        double cur_ms = plan_ms(b, obj, n, cur), new_ms;
+        double cur_ms = plan_ms(b, obj, n, cur), new_ms, new_q, cur_q = plan_quality(obj, n, cur);
         if (over) {
             /* Measured over budget: bar plans as dear as this one, longer each time. */
             b->blocked_units = b->last_units;
@@ -386,14 +386,13 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         }
         choose_plan(b, obj, n, HEADROOM * budget_ms, plan);
         new_ms = plan_ms(b, obj, n, plan);
+        new_q = plan_quality(obj, n, plan);
         if (!over && same_objects && new_ms > cur_ms && b->frame < b->hold_until && cur_ms <= budget_ms) {
             memcpy(plan, cur, sizeof(int) * (size_t)n); /* hold: the last change is still being measured */
             snell__why(why, why_size, "holding for %u frames after a change", b->hold_until - b->frame);
-        } else if (!over && same_objects && new_ms > cur_ms &&
-                   plan_quality(obj, n, plan) <= plan_quality(obj, n, cur)) {
+        } else if (!over && same_objects && new_ms > cur_ms && new_q <= cur_q) {
             memcpy(plan, cur, sizeof(int) * (size_t)n); /* dearer and no better */
-        } else if (!over && same_objects && new_ms < cur_ms && cur_ms <= budget_ms &&
-                   plan_quality(obj, n, plan) < plan_quality(obj, n, cur)) {
+        } else if (!over && same_objects && new_ms < cur_ms && cur_ms <= budget_ms && new_q < cur_q) {
             /* predicted within the budget though above the aim: kept (the band 95-100% is the
              * hysteresis). Only against a worse plan: one both cheaper and better is taken (a rung
              * learned dear under load can predict a better rung not drawn yet as the cheaper) */
@@ -441,7 +440,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         else if (changed || over)
             snell__why(why, why_size, "%s: last frame %.2f ms, this plan %.2f ms predicted%s",
                        !changed ? "over budget, nothing cheaper allowed" : over ? "over budget, stepped down"
-                       : plan_quality(obj, n, plan) > plan_quality(obj, n, cur) ? "stepped up" : "stepped down",
+                       : new_q > cur_q ? "stepped up" : "stepped down",
                        b->last_ms, new_ms, b->blocked_until > b->frame ? " (plans as dear as one found over are barred)" : "");
         else if (!strcmp(why, "unchanged"))
             snell__why(why, why_size, "unchanged: last frame %.2f ms, this plan %.2f ms predicted", b->last_ms, new_ms);
