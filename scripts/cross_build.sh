@@ -11,6 +11,7 @@
 # Installs crossbuild-essential-ARCH and qemu-user-static when run as root.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/apt.sh
 
 arch=${1:-}
 case "$arch" in
@@ -33,9 +34,7 @@ if [ ${#missing[@]} -gt 0 ]; then
         echo "cross_build: missing packages: ${missing[*]} (run as root to install them)" >&2
         exit 1
     fi
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq
-    apt-get install -y -qq --no-install-recommends "${missing[@]}"
+    snell_apt_install "${missing[@]}"
 fi
 
 bash scripts/make_sysroot.sh "$arch"

@@ -67,7 +67,17 @@ CONF
 export APT_CONFIG=$apt_dir/apt.conf
 
 echo "make_sysroot: apt-get update ($arch, private lists in $apt_dir)"
-apt-get update -qq
+. "$(dirname "$0")/apt.sh"
+if ! snell_apt_update; then
+    # Only the main suite is needed to resolve and fetch the closure; the
+    # updates and security suites, when their index failed, just leave older
+    # versions in the sysroot.
+    compgen -G "$apt_dir/lists/*_dists_bookworm_main_binary-${arch}_Packages*" >/dev/null || {
+        echo "make_sysroot: no bookworm main index for $arch; cannot resolve packages" >&2
+        exit 1
+    }
+    echo "make_sysroot: building from the indexes that arrived" >&2
+fi
 
 # The closure of real packages (apt-cache prints virtual ones as <name>, and
 # alternatives' first choice is taken by --recurse as it lists them).
@@ -77,14 +87,19 @@ mapfile -t closure < <(apt-cache depends --recurse --no-recommends --no-suggests
 # not already in the archive folder, and only these are unpacked (older
 # versions left there by an earlier run are not).
 mapfile -t debs < <(apt-get download --print-uris "${closure[@]}" | awk '{print $2}')
-fetch=()
-for deb in "${debs[@]}"; do
-    [ -f "$apt_dir/archives/$deb" ] || fetch+=("${deb%%_*}")
+# A download that fails (a mirror mid-sync, a dropped connection) is retried
+# for the files still missing.
+for try in 1 2 3; do
+    fetch=()
+    for deb in "${debs[@]}"; do
+        [ -f "$apt_dir/archives/$deb" ] || fetch+=("${deb%%_*}")
+    done
+    echo "make_sysroot: ${#closure[@]} packages, ${#fetch[@]} to download"
+    [ ${#fetch[@]} -gt 0 ] || break
+    [ "$try" = 1 ] || sleep $((${SNELL_APT_DELAY:-15} * (try - 1)))
+    (cd "$apt_dir/archives" && apt-get download -qq -o Acquire::Retries=3 "${fetch[@]}" 2>&1 |
+        grep -v "^W: Download is performed unsandboxed" || true)
 done
-echo "make_sysroot: ${#closure[@]} packages, ${#fetch[@]} to download"
-if [ ${#fetch[@]} -gt 0 ]; then
-    (cd "$apt_dir/archives" && apt-get download -qq "${fetch[@]}" 2>&1 | grep -v "^W: Download is performed unsandboxed" || true)
-fi
 rm -rf "$root"
 mkdir -p "$root"
 for deb in "${debs[@]}"; do

@@ -11,6 +11,7 @@
 # in CMAKE_ARGS may be set by the caller (.ci/run uses both).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/apt.sh
 
 PACKAGES=(build-essential g++ cmake pkg-config
           libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
@@ -29,9 +30,7 @@ install_missing() {
         exit 1
     fi
     echo "quickstart: installing ${missing[*]}"
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq
-    apt-get install -y -qq --no-install-recommends "${missing[@]}"
+    snell_apt_install "${missing[@]}"
 }
 
 # What the tests that skip without it need (test-all): Blender for
@@ -51,9 +50,7 @@ install_extra() {
     done
     if [ ${#missing[@]} -gt 0 ]; then
         echo "quickstart: installing ${missing[*]}"
-        export DEBIAN_FRONTEND=noninteractive
-        apt-get update -qq
-        apt-get install -y -qq --no-install-recommends "${missing[@]}"
+        snell_apt_install "${missing[@]}"
     fi
     bash ports/android/syntax_check.sh
 }

@@ -26,9 +26,8 @@ if [ ${#missing[@]} -gt 0 ]; then
         echo "SKIP: Android syntax check needs ${missing[*]} (apt-get install them as root)"
         exit 77
     fi
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq
-    apt-get install -y -qq --no-install-recommends "${missing[@]}"
+    . "$root/scripts/apt.sh"
+    snell_apt_install "${missing[@]}"
 fi
 
 sources=("$here"/snell_activity.c "$here"/glass_scene.c "$here"/lifecycle.c)
