@@ -112,3 +112,8 @@ if(CMAKE_NM)
            -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_exports.cmake)
   set_tests_properties(library_exports PROPERTIES LABELS "unit")
 endif()
+# Texture units and uniforms bound per program (frame/textures.h): every
+# method in both shadings with every kernel hook on, against GLES 3.0's
+# minimum limits read back from the programs; too many samplers refused.
+snell_add_test(test_units SOURCES test_units.c LABELS "unit;gl")
+target_link_libraries(test_units PRIVATE PkgConfig::GLES)

@@ -42,7 +42,7 @@ highp vec3 snell_dp_dir(highp vec2 uv, highp float layer, highp float size)
 
 // SNELL_ENV_NEAREST (a kernel's define): snell_env_nearest looks the same
 // environment up through a nearest-texel sampler object on its own unit
-// (frame/units.h SNELL__UNIT_ENV_NEAREST, bound by the kernel), for light of
+// (u_env_nearest, bound by the kernel: methods/layered.c), for light of
 // small weight whose filtering costs more than it shows (layered.c: the
 // exit's internal reflection).
 #ifdef SNELL_ENV_DUAL_PARABOLOID

@@ -27,6 +27,14 @@ struct snell_ctx {
     int refs;
     int destroyed;                  /* snell_ctx_destroy was called: GL calls must not reach it */
     EGLContext gl_context;          /* the EGL context it draws in (owned or the host's) */
+    /* The most any program given units here asked for (frame/textures.c):
+     * samplers, and uniform vectors counted without packing (a mat4 is 4,
+     * a float 1), each with the program that asked. test_units checks them
+     * against GLES 3.0's minimums. */
+    struct {
+        int programs, samplers, vectors;
+        char samplers_of[48], vectors_of[48];
+    } census;
 };
 
 /* An object takes (retain) and gives back (release) a reference; ctx may be

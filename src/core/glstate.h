@@ -5,7 +5,7 @@
 
 #include "snell/snell.h"
 
-#define SNELL_GLSTATE_UNITS 16 /* texture units saved and restored: frame/units.h's table must fit (it checks) */
+#define SNELL_GLSTATE_UNITS 16 /* texture units saved and restored: every unit a program may take (frame/textures.c checks) */
 
 /* Pixel pack or unpack state (GLES 3.0 tables 6.29, 6.30) and the pixel
  * buffer bound for it. */

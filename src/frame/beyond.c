@@ -2,28 +2,20 @@
 #include "frame/beyond.h"
 #include "core/gl.h"
 
+const char *const snell__beyond_uniform_names[SNELL__BEYOND_UNIFORMS] = {
+    "u_scene_layer_count", "u_scene_capped", "u_scene_glass_ids", "u_scene_opaque_count",
+    "u_scene_self",        "u_scene_view_proj", "u_scene_eye",    "u_scene_fwd",
+    "u_scene_near",        "u_scene_inv_range", "u_scene_size"};
+
 void snell__beyond_locate(unsigned prog, snell__beyond_locs *l)
 {
-    l->layers = glGetUniformLocation(prog, "u_scene_layers");
-    l->table = glGetUniformLocation(prog, "u_scene_table");
-    l->layer_count = glGetUniformLocation(prog, "u_scene_layer_count");
-    l->capped = glGetUniformLocation(prog, "u_scene_capped");
-    l->glass_ids = glGetUniformLocation(prog, "u_scene_glass_ids");
-    l->opaque_count = glGetUniformLocation(prog, "u_scene_opaque_count");
-    l->self = glGetUniformLocation(prog, "u_scene_self");
-    l->view_proj = glGetUniformLocation(prog, "u_scene_view_proj");
-    l->eye = glGetUniformLocation(prog, "u_scene_eye");
-    l->fwd = glGetUniformLocation(prog, "u_scene_fwd");
-    l->near_ = glGetUniformLocation(prog, "u_scene_near");
-    l->inv_range = glGetUniformLocation(prog, "u_scene_inv_range");
-    l->size = glGetUniformLocation(prog, "u_scene_size");
+    int *locs = (int *)(void *)l, i;
+    for (i = 0; i < SNELL__BEYOND_UNIFORMS; i++) locs[i] = glGetUniformLocation(prog, snell__beyond_uniform_names[i]);
 }
 
 void snell__beyond_uniforms(const snell__beyond_locs *l, const snell__view *v, int self)
 {
     const snell__scene_layers *sl = &v->layers;
-    glUniform1i(l->layers, SNELL__LAYERS_UNIT);
-    glUniform1i(l->table, SNELL__LAYERS_TABLE_UNIT);
     glUniform1i(l->layer_count, sl->count);
     glUniform1i(l->capped, sl->capped);
     glUniform1i(l->glass_ids, sl->glass_ids);

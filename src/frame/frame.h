@@ -7,6 +7,7 @@
 #define SNELL_FRAME_H
 
 #include "core/core.h"
+#include "frame/textures.h"
 #include "mesh/mesh.h"
 
 #include <cglm/cglm.h>
@@ -69,6 +70,11 @@ typedef struct snell__view {
      * (the kernels see them lit through the scene layers: common/opaque_lit.glsl),
      * NULL none. Read only by its hook (render/caustics.c). */
     const struct snell__caustics *lit_opaque;
+    /* What the stages made for the programs after them, by sampler name
+     * (frame/textures.h): the G-buffer's and back faces' maps, the scene
+     * layers, the water's heights, the receiver's and the lit opaque
+     * objects' maps. Emptied with the view each frame. */
+    snell__textures textures;
 } snell__view;
 
 /* One glass object of a frame, resolved by the scene stage (render/scene.c). */

@@ -3,7 +3,6 @@
 #include "core/gl.h"
 #include "core/program.h"
 #include "frame/stage.h"
-#include "frame/units.h"
 
 #include <string.h>
 
@@ -44,14 +43,24 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     memset(g, 0, sizeof *g);
     st = snell__program_build(ctx, screen_space ? "screen.vert" : "object.vert", fs_path, defines, &g->prog);
     if (st != SNELL_OK) return st;
+    if ((st = snell__samplers_assign(ctx, g->prog, fs_path, &g->samplers)) != SNELL_OK) {
+        snell__glass_program_destroy(g);
+        return st;
+    }
     g->screen_space = screen_space;
     g->variant = (unsigned)variant;
-    for (i = 0; i < snell__stage_count; i++) {
-        const snell__kernel_hook *h = snell__stages[i].kernel;
-        if (h && (g->variant & h->variant_mask) && h->locate) h->locate(g->prog, g->hook_locs + h->locs_offset);
+    {
+        int offset = 0, k;
+        for (i = 0; i < snell__stage_count; i++) {
+            const snell__kernel_hook *h = snell__stages[i].kernel;
+            if (!h) continue;
+            for (k = 0; k < h->uniform_count && offset + k < SNELL__HOOK_LOCS; k++)
+                g->hook_locs[offset + k] = (g->variant & h->variant_mask)
+                                               ? glGetUniformLocation(g->prog, h->uniform_names[k])
+                                               : -1;
+            offset += h->uniform_count;
+        }
     }
-    g->gnormal = glGetUniformLocation(g->prog, "u_gnormal");
-    g->gdepth_id = glGetUniformLocation(g->prog, "u_gdepth_id");
     g->inv_view_proj = glGetUniformLocation(g->prog, "u_inv_view_proj");
     g->inv_size = glGetUniformLocation(g->prog, "u_inv_size");
     g->gid = glGetUniformLocation(g->prog, "u_gid");
@@ -59,7 +68,6 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     g->normal_matrix = glGetUniformLocation(g->prog, "u_normal_matrix");
     g->view_proj = glGetUniformLocation(g->prog, "u_view_proj");
     g->eye = glGetUniformLocation(g->prog, "u_eye");
-    g->env = glGetUniformLocation(g->prog, "u_env");
     g->ior = glGetUniformLocation(g->prog, "u_ior");
     g->ior_rgb = glGetUniformLocation(g->prog, "u_ior_rgb");
     g->sigma = glGetUniformLocation(g->prog, "u_sigma");
@@ -103,15 +111,23 @@ void snell__glass_program_destroy(snell__glass_program *g)
     g->prog = 0;
 }
 
+void snell__glass_program_bind(const snell__glass_program *g, const char *name, unsigned target, unsigned texture,
+                               unsigned sampler)
+{
+    snell__samplers_bind(&g->samplers, name, target, texture, sampler);
+}
+
 void snell__glass_program_use(const snell__glass_program *g, const snell__view *v, const snell__object *o)
 {
-    int i;
+    int i, offset = 0;
     glUseProgram(g->prog);
+    snell__samplers_bind_published(&g->samplers, &v->textures);
+    snell__samplers_bind(&g->samplers, "u_env", o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP,
+                         o->env_texture, 0);
     glUniformMatrix4fv(g->model, 1, GL_FALSE, (const GLfloat *)o->model);
     glUniformMatrix3fv(g->normal_matrix, 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
     glUniformMatrix4fv(g->view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
     glUniform3fv(g->eye, 1, v->eye);
-    glUniform1i(g->env, 0);
     glUniform1f(g->ior, o->glass->material.ior);
     glUniform3fv(g->ior_rgb, 1, o->glass->ior_rgb);
     glUniform3fv(g->sigma, 1, o->glass->absorption);
@@ -119,11 +135,11 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniform4fv(g->bsphere, 1, o->bsphere);
     for (i = 0; i < snell__stage_count; i++) {
         const snell__kernel_hook *h = snell__stages[i].kernel;
-        if (h && (g->variant & h->variant_mask)) h->uniforms(g->prog, g->hook_locs + h->locs_offset, v, o);
+        if (!h) continue;
+        if (g->variant & h->variant_mask) h->uniforms(g, g->hook_locs + offset, v, o);
+        offset += h->uniform_count;
     }
     if (g->screen_space) {
-        glUniform1i(g->gnormal, SNELL__GBUFFER_UNIT_NORMAL);
-        glUniform1i(g->gdepth_id, SNELL__GBUFFER_UNIT_DEPTH_ID);
         glUniformMatrix4fv(g->inv_view_proj, 1, GL_FALSE, (const GLfloat *)v->inv_view_proj);
         glUniform2f(g->inv_size, 1.0f / (float)v->width, 1.0f / (float)v->height);
         glUniform1i(g->gid, o->gid);

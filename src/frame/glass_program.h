@@ -5,15 +5,23 @@
 
 #include "frame/method.h"
 #include "frame/stage.h"
+#include "frame/textures.h"
 
-typedef struct snell__glass_program {
+struct snell__glass_program {
     unsigned prog;
     int screen_space;               /* 0 forward, else SNELL__SCREEN_* (frame/frame.h): screen.vert */
     unsigned variant;               /* what it was built for (snell__glass_variant) */
-    int model, normal_matrix, view_proj, eye, env, ior, ior_rgb, sigma, tint, bsphere;
-    int gnormal, gdepth_id, inv_view_proj, inv_size, gid;
+    int model, normal_matrix, view_proj, eye, ior, ior_rgb, sigma, tint, bsphere;
+    int inv_view_proj, inv_size, gid;
     int hook_locs[SNELL__HOOK_LOCS]; /* the frame stages' uniforms (frame/stage.h) */
-} snell__glass_program;
+    snell__samplers samplers;       /* its texture units, by sampler name (frame/textures.h) */
+};
+
+/* Binds texture on the unit of the program's sampler called name (a
+ * kernel's own texture: its cube map, BVH, layers); nothing if the variant
+ * has no such sampler. */
+void snell__glass_program_bind(const snell__glass_program *g, const char *name, unsigned target, unsigned texture,
+                               unsigned sampler);
 
 /* A kernel program's variant for an object (what snell__glass_program_build
  * takes): the one table of its bits. Its shading (0 forward or
@@ -68,7 +76,8 @@ int snell__dispersion_variant(const snell_glass_resolved *g);
  * max_hidden hidden from its centre (more surfaces along a ray than the
  * farthest back face stands for). 1 if so; else 0 with why written. */
 int snell__fit_solid_few_surfaces(const snell_mesh_analysis *an, float max_hidden, char *why, size_t n);
-/* glUseProgram + the shared uniforms (the object's environment on texture unit 0). */
+/* glUseProgram, the shared uniforms, the object's environment (u_env) and
+ * every texture the frame published that the program samples. */
 void snell__glass_program_use(const snell__glass_program *g, const snell__view *v, const snell__object *o);
 /* Only surfaces facing the eye start a path (every kernel refracts at the
  * front surface first): for a closed mesh of known winding, cull the others

@@ -13,17 +13,25 @@
 /* The renderer's per-frame state (render/stages.h); the floor only passes it on. */
 typedef struct snell__frame snell__frame;
 
-/* Uniform locations the hooks of one kernel program may keep, in all. */
-#define SNELL__HOOK_LOCS 16
+/* Uniform locations the hooks of one kernel program may keep, in all
+ * (render/stages.c checks that the hooks' names fit). */
+#define SNELL__HOOK_LOCS 48
 
+typedef struct snell__glass_program snell__glass_program; /* frame/glass_program.h */
+
+/* What a stage adds to every kernel program. Its textures it publishes in
+ * the frame's view by sampler name (frame/textures.h) when it runs: each
+ * program binds those it samples, on units of its own. */
 typedef struct snell__kernel_hook {
     unsigned variant_mask;          /* its bits of a kernel program's variant (snell__glass_variant) */
     /* The #defines for the bits of variant_mask a program is built with. */
     const char *(*defines)(unsigned bits);
-    int locs_offset, locs_count;    /* its share of a program's SNELL__HOOK_LOCS locations */
-    void (*locate)(unsigned prog, int *locs);
+    /* The uniforms it sets, by name: found once per program, handed to
+     * uniforms() in this order (-1 where the variant has none). */
+    const char *const *uniform_names;
+    int uniform_count;
     /* Sets its uniforms of the program in use for object o of the frame. */
-    void (*uniforms)(unsigned prog, const int *locs, const snell__view *v, const snell__object *o);
+    void (*uniforms)(const snell__glass_program *g, const int *locs, const snell__view *v, const snell__object *o);
 } snell__kernel_hook;
 
 typedef struct snell__stage {

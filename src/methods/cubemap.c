@@ -49,7 +49,7 @@ typedef struct cube_prepared {
 
 typedef struct cube_prog {
     snell__program_slot slot;  /* key: prog_key's fields in order */
-    int ndcube, inv_model, centre, radius, inner_radius, max_interfaces, texel_angle;
+    int inv_model, centre, radius, inner_radius, max_interfaces, texel_angle;
 } cube_prog;
 
 typedef struct cubemap_state {
@@ -79,7 +79,6 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
              k->fresnel_exact, k->inner, k->dispersion);
     st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->slot.g);
     if (st != SNELL_OK) return st;
-    p->ndcube = glGetUniformLocation(p->slot.g.prog, "u_ndcube");
     p->inv_model = glGetUniformLocation(p->slot.g.prog, "u_inv_model");
     p->centre = glGetUniformLocation(p->slot.g.prog, "u_centre");
     p->radius = glGetUniformLocation(p->slot.g.prog, "u_radius");
@@ -223,10 +222,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     if (st != SNELL_OK) return st;
     if (k.no_search) stats->skipped |= SNELL_SKIP_SEARCH;
     snell__glass_program_use(&p->slot.g, v, o);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, cp->cube.texture);
-    glActiveTexture(GL_TEXTURE0);
-    glUniform1i(p->ndcube, 1);
+    snell__glass_program_bind(&p->slot.g, "u_ndcube", GL_TEXTURE_CUBE_MAP, cp->cube.texture, 0);
     glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
     glUniform3fv(p->centre, 1, cp->cube.centre);
     glUniform1f(p->radius, cp->cube.radius);

@@ -26,7 +26,6 @@
 #define DEFAULT_INTERFACES 8
 #define DEFAULT_BUDGET 4096
 #define PROG_CACHE 8
-#define BVH_UNIT 1
 /* Texels per row of the BVH texture (exact.frag's TEX_SHIFT): GLES 3.0's
  * smallest GL_MAX_TEXTURE_SIZE, so every device takes the width. */
 #define TEX_WIDTH 2048
@@ -81,7 +80,7 @@ typedef struct exact_prepared {
 
 typedef struct exact_prog {
     snell__program_slot slot; /* key: budget, q16, absorb, variant (snell__glass_variant), stack walk */
-    int bvh, inv_model, node_count, tri_base, max_interfaces, eps, qlo, qstep, mark, cam_basis, cam_proj, pixel_to_ndc;
+    int inv_model, node_count, tri_base, max_interfaces, eps, qlo, qstep, mark, cam_basis, cam_proj, pixel_to_ndc;
 } exact_prog;
 
 typedef struct exact_state {
@@ -112,7 +111,6 @@ static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16
              budget, q16, absorb, stack, dispersion);
     st = snell__glass_program_build(ctx, "exact.frag", s->out, def, variant, &p->slot.g);
     if (st != SNELL_OK) return st;
-    p->bvh = glGetUniformLocation(p->slot.g.prog, "u_bvh");
     p->inv_model = glGetUniformLocation(p->slot.g.prog, "u_inv_model");
     p->node_count = glGetUniformLocation(p->slot.g.prog, "u_node_count");
     p->tri_base = glGetUniformLocation(p->slot.g.prog, "u_tri_base");
@@ -405,7 +403,6 @@ static snell_status prepare_mesh(snell_ctx *ctx, exact_prepared *p, const snell_
     }
     pack_texels(p, mesh);
     snell__pixel_unpack_begin(&unpack, 4);
-    glActiveTexture(GL_TEXTURE0 + BVH_UNIT);
     if (!refit) {
         if (p->texture) glDeleteTextures(1, &p->texture);
         glGenTextures(1, &p->texture);
@@ -422,7 +419,6 @@ static snell_status prepare_mesh(snell_ctx *ctx, exact_prepared *p, const snell_
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, TEX_WIDTH, p->rows, p->format == NODES_F32 ? GL_RGBA : GL_RGBA_INTEGER,
                         p->format == NODES_F32 ? GL_FLOAT : GL_UNSIGNED_INT, p->texels);
     }
-    glActiveTexture(GL_TEXTURE0);
     snell__pixel_unpack_end(&unpack);
     if (glGetError() != GL_NO_ERROR)
         return snell__fail(ctx, SNELL_E_GL, "exact: uploading a %dx%d BVH texture failed", TEX_WIDTH, p->rows);
@@ -521,10 +517,7 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
                                 snell__glass_variant(o), e->walk == WALK_STACK, o->glass->disperses ? 1 : 0, &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);
-    glActiveTexture(GL_TEXTURE0 + BVH_UNIT);
-    glBindTexture(GL_TEXTURE_2D, ep->texture);
-    glActiveTexture(GL_TEXTURE0);
-    glUniform1i(p->bvh, BVH_UNIT);
+    snell__glass_program_bind(&p->slot.g, "u_bvh", GL_TEXTURE_2D, ep->texture, 0);
     glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
     glUniform1i(p->node_count, ep->node_count);
     glUniform1i(p->tri_base, ep->tri_base);

@@ -19,7 +19,6 @@
 #include "core/program.h"
 #include "frame/ndcube.h"
 #include "frame/pass.h"
-#include "frame/units.h"
 #include "core/glstate.h"
 #include "core/pack.h"
 
@@ -69,7 +68,7 @@ typedef struct layered_prepared {
 
 typedef struct layered_prog {
     snell__program_slot slot;   /* key: layers, linear, binary, absorb, reentry, screen, dispersion */
-    int layers, stride, groups, dist_base, inv_model, model, centre, radius, max_interfaces, env_nearest;
+    int stride, groups, dist_base, inv_model, model, centre, radius, max_interfaces;
 } layered_prog;
 
 typedef struct layered_state {
@@ -335,7 +334,7 @@ static snell_status bake(snell_ctx *ctx, layered_state *s, snell_mesh *mesh, lay
         }
         if (st != SNELL_OK) break;
         pinch(size, p->layers, dist, pinched, half);
-        glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
+        glActiveTexture(GL_TEXTURE1);
         glBindTexture(GL_TEXTURE_2D_ARRAY, p->layers_tex);
         for (l = 0; l < p->layers; l++) {
             uint16_t *out = half + 4 * (size_t)l * texels;
@@ -485,7 +484,6 @@ static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[8
              key[0], key[1], key[2], key[3], key[4], key[6], key[7]);
     st = snell__glass_program_build(ctx, "layered.frag", s->out, def, key[5], &p->slot.g);
     if (st != SNELL_OK) return st;
-    p->layers = glGetUniformLocation(p->slot.g.prog, "u_layers");
     p->stride = glGetUniformLocation(p->slot.g.prog, "u_stride");
     p->groups = glGetUniformLocation(p->slot.g.prog, "u_groups");
     p->dist_base = glGetUniformLocation(p->slot.g.prog, "u_dist_base");
@@ -494,7 +492,6 @@ static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[8
     p->centre = glGetUniformLocation(p->slot.g.prog, "u_centre");
     p->radius = glGetUniformLocation(p->slot.g.prog, "u_radius");
     p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
-    p->env_nearest = glGetUniformLocation(p->slot.g.prog, "u_env_nearest");
     return SNELL_OK;
 }
 
@@ -506,7 +503,7 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     const layered_prepared *lpr = (const layered_prepared *)o->prepared;
     layered_prog *p;
     snell_status st = SNELL_OK;
-    int hit;
+    int hit, nearest_unit;
     int convex = o->analysis && o->analysis->convex;
     /* Compile-time constants of the march: the layers read (those that hold
      * something: a sphere needs 1), steps, absorption, whether a ray that
@@ -525,16 +522,12 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     if (!hit) st = build_prog(ctx, s, key, p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);
-    glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, lpr->layers_tex);
+    snell__glass_program_bind(&p->slot.g, "u_layers", GL_TEXTURE_2D_ARRAY, lpr->layers_tex, 0);
     /* the environment again, nearest (the inner Fresnel's look-ups); the
      * sampler is unbound after the draw, as a frame starts (core/glstate.c) */
-    glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_ENV_NEAREST);
-    glBindTexture(o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, o->env_texture);
-    glBindSampler(SNELL__UNIT_ENV_NEAREST, s->nearest);
-    glActiveTexture(GL_TEXTURE0);
-    glUniform1i(p->layers, SNELL__UNIT_KERNEL);
-    glUniform1i(p->env_nearest, SNELL__UNIT_ENV_NEAREST);
+    nearest_unit = snell__samplers_unit(&p->slot.g.samplers, "u_env_nearest");
+    snell__glass_program_bind(&p->slot.g, "u_env_nearest", o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP,
+                              o->env_texture, s->nearest);
     glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
     glUniformMatrix4fv(p->model, 1, GL_FALSE, (const GLfloat *)o->model);
     glUniform3fv(p->centre, 1, lpr->centre);
@@ -544,7 +537,7 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     glUniform1i(p->dist_base, 6 * lpr->layers);
     glUniform1i(p->max_interfaces, lp->max_interfaces);
     snell__draw_surface(o, stats);
-    glBindSampler(SNELL__UNIT_ENV_NEAREST, 0);
+    if (nearest_unit >= 0) glBindSampler((unsigned)nearest_unit, 0);
     stats->passes++;
     stats->counters[0] = lpr->used;
     stats->counters[1] = lpr->capped;

@@ -10,7 +10,6 @@
 #include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
-#include "frame/units.h"
 
 #include <stddef.h>
 #include <stdio.h>
@@ -26,7 +25,7 @@
 
 typedef struct oli_prog {
     snell__program_slot slot;  /* key: get_prog's arguments in order */
-    int bnormal, bdepth_id, max_interfaces, back_band;
+    int max_interfaces, back_band;
 } oli_prog;
 
 typedef struct oliveira_state {
@@ -57,8 +56,6 @@ static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int 
              linear, iterations, absorb, fresnel_exact, inner, dispersion);
     st = snell__glass_program_build(ctx, "oliveira.frag", s->out, def, screen, &p->slot.g);
     if (st != SNELL_OK) return st;
-    p->bnormal = glGetUniformLocation(p->slot.g.prog, "u_bnormal");
-    p->bdepth_id = glGetUniformLocation(p->slot.g.prog, "u_bdepth_id");
     p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
     p->back_band = glGetUniformLocation(p->slot.g.prog, "u_back_band");
     *out = p;
@@ -121,8 +118,6 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
                   c->fresnel == SNELL_FRESNEL_EXACT, inner, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);
-    glUniform1i(p->bnormal, SNELL__BACK_UNIT_NORMAL);
-    glUniform1i(p->bdepth_id, SNELL__BACK_UNIT_DEPTH_ID);
     glUniform1i(p->max_interfaces, c->max_interfaces);
     glUniform1i(p->back_band, v->back.band);
     snell__draw_surface(o, stats);

@@ -43,7 +43,6 @@
 #include "core/program.h"
 #include "frame/pass.h"
 #include "frame/peel_targets.h"
-#include "frame/units.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -76,7 +75,7 @@
 
 typedef struct peel_prog {
     snell__program_slot slot; /* key: prog_key's fields in order */
-    int layers, layer_count, fwd, near_, inv_range, size, max_interfaces;
+    int layer_count, fwd, near_, inv_range, size, max_interfaces;
 } peel_prog;
 
 /* One glass object's (by its index in the frame) last peels: their
@@ -98,6 +97,7 @@ typedef struct peel_state {
     int u_model, u_normal_matrix, u_view_proj, u_eye, u_fwd, u_near, u_inv_range, u_first, u_prev;
     /* layer 0 from the G-buffer */
     unsigned zero_prog;
+    snell__samplers z_samplers;     /* its G-buffer maps, published by the gbuffer stage */
     int z_inv_view_proj, z_inv_size, z_gid, z_eye, z_fwd, z_near, z_inv_range;
     snell__peel_targets t;
     peel_history hist[SNELL_MAX_GLASS];
@@ -123,7 +123,6 @@ static snell_status build_prog(snell_ctx *ctx, peel_state *s, const prog_key *k,
              k->inner, k->dispersion, k->layers);
     st = snell__glass_program_build(ctx, "peel.frag", s->out, def, k->screen, &p->slot.g);
     if (st != SNELL_OK) return st;
-    p->layers = glGetUniformLocation(p->slot.g.prog, "u_layers");
     p->layer_count = glGetUniformLocation(p->slot.g.prog, "u_layer_count");
     p->fwd = glGetUniformLocation(p->slot.g.prog, "u_fwd");
     p->near_ = glGetUniformLocation(p->slot.g.prog, "u_near");
@@ -178,10 +177,11 @@ static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, void **s
     s->z_fwd = glGetUniformLocation(s->zero_prog, "u_fwd");
     s->z_near = glGetUniformLocation(s->zero_prog, "u_near");
     s->z_inv_range = glGetUniformLocation(s->zero_prog, "u_inv_range");
-    glUseProgram(s->zero_prog);
-    glUniform1i(glGetUniformLocation(s->zero_prog, "u_gnormal"), SNELL__GBUFFER_UNIT_NORMAL);
-    glUniform1i(glGetUniformLocation(s->zero_prog, "u_gdepth_id"), SNELL__GBUFFER_UNIT_DEPTH_ID);
-    glUseProgram(0);
+    st = snell__samplers_assign(ctx, s->zero_prog, "peel_layer0.frag", &s->z_samplers);
+    if (st != SNELL_OK) {
+        peel_destroy(ctx, s);
+        return st;
+    }
     *state = s;
     return SNELL_OK;
 }
@@ -247,6 +247,7 @@ static void convert_layer0(peel_state *s, const snell__view *v, const snell__obj
                            float near_, float inv_range)
 {
     glUseProgram(s->zero_prog);
+    snell__samplers_bind_published(&s->z_samplers, &v->textures);
     glUniformMatrix4fv(s->z_inv_view_proj, 1, GL_FALSE, (const GLfloat *)v->inv_view_proj);
     glUniform2f(s->z_inv_size, 1.0f / (float)v->width, 1.0f / (float)v->height);
     glUniform1i(s->z_gid, o->gid);
@@ -259,6 +260,7 @@ static void convert_layer0(peel_state *s, const snell__view *v, const snell__obj
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEnable(GL_DEPTH_TEST);
     glUseProgram(s->layer_prog);
+    glActiveTexture(GL_TEXTURE0 + LAYER_UNIT); /* where peel_layers binds the previous layer */
 }
 
 /* Draws `n` peels of the object, each after the first with an occlusion
@@ -396,10 +398,7 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     stats->counters[2] = gbuffer;
     depth_frame(v, o, fwd, &near_, &inv_range);
     snell__glass_program_use(&p->slot.g, v, o);
-    glActiveTexture(GL_TEXTURE0 + LAYER_UNIT);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, s->t.array_tex);
-    glActiveTexture(GL_TEXTURE0);
-    glUniform1i(p->layers, LAYER_UNIT);
+    snell__glass_program_bind(&p->slot.g, "u_layers", GL_TEXTURE_2D_ARRAY, s->t.array_tex, 0);
     glUniform1i(p->layer_count, peeled); /* those drawn empty read as no surface */
     glUniform3fv(p->fwd, 1, fwd);
     glUniform1f(p->near_, near_);

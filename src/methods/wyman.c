@@ -10,7 +10,6 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "mesh/bvh.h"
-#include "frame/units.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -37,7 +36,7 @@ typedef struct wyman_prepared {
 
 typedef struct wyman_prog {
     snell__glass_program g;
-    int bnormal, bdepth_id, gaux, dn_scale, back_band;
+    int dn_scale, back_band;
 } wyman_prog;
 
 /* [snell__glass_variant: shading, scene layers][absorption][dispersion variant,
@@ -60,9 +59,6 @@ static snell_status get_prog(snell_ctx *ctx, wyman_state *s, int screen, int abs
                  absorb, dispersion);
         st = snell__glass_program_build(ctx, "wyman.frag", s->out, defines, screen, &p->g);
         if (st != SNELL_OK) return st;
-        p->bnormal = glGetUniformLocation(p->g.prog, "u_bnormal");
-        p->bdepth_id = glGetUniformLocation(p->g.prog, "u_bdepth_id");
-        p->gaux = glGetUniformLocation(p->g.prog, "u_gaux");
         p->dn_scale = glGetUniformLocation(p->g.prog, "u_dn_scale");
         p->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
     }
@@ -234,9 +230,6 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
         glUniform2f(p->g.inv_size, 1.0f / (float)v->width, 1.0f / (float)v->height);
         glUniform1i(p->g.gid, o->gid);
     }
-    glUniform1i(p->bnormal, SNELL__BACK_UNIT_NORMAL);
-    glUniform1i(p->bdepth_id, SNELL__BACK_UNIT_DEPTH_ID);
-    glUniform1i(p->gaux, SNELL__GBUFFER_UNIT_AUX);
     glUniform1f(p->dn_scale, wp ? wp->dn_scale : 0.0f);
     glUniform1i(p->back_band, v->back.band);
     snell__draw_surface(o, stats);

@@ -29,7 +29,6 @@
 #include "core/program.h"
 #include "frame/glass_program.h"
 #include "frame/method.h"
-#include "frame/units.h"
 #include "mesh/mesh.h"
 #include "methods/exact.h"
 #include "water/water_draw.h"
@@ -1104,9 +1103,15 @@ void snell__caustics_destroy(snell__caustics *c)
 /* --- the glass kernels' hook SNELL_RECEIVER ------------------------------ */
 void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc)
 {
-    if (c->made_opaque) v->lit_opaque = c;
+    if (c->made_opaque) {
+        v->lit_opaque = c;
+        snell__textures_publish(&v->textures, "u_shadow", GL_TEXTURE_2D, c->shadow_z, 0);
+        snell__textures_publish(&v->textures, "u_recv_z", GL_TEXTURE_2D, c->recv_z, 0);
+        snell__textures_publish(&v->textures, "u_caustic", GL_TEXTURE_2D, c->cm_tex, 0);
+    }
     if (!c->made_plane) return;
     v->receiver_map = c->map_tex;
+    snell__textures_publish(&v->textures, "u_plane_map", GL_TEXTURE_2D, c->map_tex, 0);
     v->receiver_plane[0] = rc->height, v->receiver_plane[1] = rc->center[0];
     v->receiver_plane[2] = rc->center[1], v->receiver_plane[3] = rc->extent;
     snell__receiver_albedo(rc, v->receiver_albedo);
@@ -1118,12 +1123,8 @@ static const char *receiver_defines(unsigned bits)
     return "#define SNELL_RECEIVER 1\n";
 }
 
-static void receiver_locate(unsigned prog, int *locs)
-{
-    locs[0] = glGetUniformLocation(prog, "u_plane_map");
-    locs[1] = glGetUniformLocation(prog, "u_plane");
-    locs[2] = glGetUniformLocation(prog, "u_plane_albedo");
-}
+static const char *const receiver_uniform_names[SNELL__RECEIVER_UNIFORMS] = {"u_plane", "u_plane_albedo",
+                                                                              "u_lit_opaque"};
 
 /* common/opaque_lit.glsl's uniforms of the program in use, its three maps on
  * units unit..unit + 2 (c NULL: the samplers' units alone): the opaque objects lit by the light the maps were
@@ -1134,13 +1135,9 @@ void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int uni
     static const char *const samplers[3] = {"u_shadow", "u_recv_z", "u_caustic"};
     light_res L;
     int i;
-    for (i = 0; i < 3; i++) glUniform1i(glGetUniformLocation(prog, samplers[i]), unit + i);
-    /* c NULL: no opaque objects lit (u_lit_opaque 0), the maps unread; but a
-     * sampler left on unit 0 clashes with a kernel's of another type there
-     * (GL_INVALID_OPERATION at its draw: two glass objects through the
-     * scene layers over the receiver plane) */
+    for (i = 0; i < 3 && unit >= 0; i++) glUniform1i(glGetUniformLocation(prog, samplers[i]), unit + i);
     if (!c) return;
-    {
+    if (unit >= 0) {
         const unsigned tex[3] = {c->shadow_z, c->recv_z, c->cm_tex};
         for (i = 0; i < 3; i++) {
             glActiveTexture(GL_TEXTURE0 + (GLenum)(unit + i));
@@ -1154,17 +1151,20 @@ void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int uni
     glUniform1f(glGetUniformLocation(prog, "u_bias"), SHADOW_BIAS);
 }
 
-static void receiver_uniforms(unsigned prog, const int *locs, const snell__view *v, const snell__object *o)
+static void receiver_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v,
+                              const snell__object *o)
 {
     (void)o;
-    glActiveTexture(GL_TEXTURE0 + SNELL__RECEIVER_UNIT);
-    glBindTexture(GL_TEXTURE_2D, v->receiver_map);
-    glUniform1i(locs[0], SNELL__RECEIVER_UNIT);
-    glUniform4fv(locs[1], 1, v->receiver_plane); /* extent 0 without a plane: none seen */
-    glUniform3fv(locs[2], 1, v->receiver_albedo);
-    glUniform1i(glGetUniformLocation(prog, "u_lit_opaque"), v->lit_opaque != NULL);
-    snell__lit_opaque_uniforms(prog, v->lit_opaque, SNELL__LIT_SHADOW_UNIT);
+    glUniform4fv(locs[0], 1, v->receiver_plane); /* extent 0 without a plane: none seen */
+    glUniform3fv(locs[1], 1, v->receiver_albedo);
+    glUniform1i(locs[2], v->lit_opaque != NULL);
+    snell__lit_opaque_uniforms(g->prog, v->lit_opaque, -1);
 }
 
-const snell__kernel_hook snell__receiver_hook = {SNELL__GLASS_RECEIVER, receiver_defines, SNELL__RECEIVER_LOCS_OFFSET, 3,
-                                                 receiver_locate, receiver_uniforms};
+const snell__kernel_hook snell__receiver_hook = {
+    .variant_mask = SNELL__GLASS_RECEIVER,
+    .defines = receiver_defines,
+    .uniform_names = receiver_uniform_names,
+    .uniform_count = SNELL__RECEIVER_UNIFORMS,
+    .uniforms = receiver_uniforms,
+};

@@ -86,16 +86,17 @@ static inline void snell__receiver_albedo(const snell_receiver *rc, float albedo
  * are lit as the view sees them. snell__receiver_view puts the plane's
  * light map and square, and the stage itself where it lit the opaque
  * objects, into the view after the stage ran (nothing without them, or in
- * a build without the stage: the hook's mask is then 0). Its uniform
- * locations follow the layers'. */
-#define SNELL__RECEIVER_LOCS_OFFSET ((int)(sizeof(snell__beyond_locs) / sizeof(int)))
+ * a build without the stage: the hook's mask is then 0), and publishes
+ * their maps (u_plane_map; u_shadow, u_recv_z, u_caustic) in v->textures. */
+#define SNELL__RECEIVER_UNIFORMS 3
 extern const snell__kernel_hook snell__receiver_hook;
 void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc);
 
 /* common/opaque_lit.glsl's uniforms (the light, c's shadow and caustic maps
- * on units unit..unit + 2) into prog, in use: the opaque objects lit as
- * this frame's caustics stage lit them (caustics_opaque.frag; a dynamic
- * environment's faces, render/composite.c; the kernels' hook). */
+ * on units unit..unit + 2; unit < 0: the program binds the maps itself, as
+ * the kernels do from the view's textures) into prog, in use: the opaque
+ * objects lit as this frame's caustics stage lit them (caustics_opaque.frag;
+ * a dynamic environment's faces, render/composite.c; the kernels' hook). */
 void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit);
 
 void snell__caustics_destroy(snell__caustics *c);

@@ -38,7 +38,7 @@ void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_
     (void)v, (void)c, (void)rc;
 }
 
-const snell__kernel_hook snell__receiver_hook = {0, NULL, 0, 0, NULL, NULL}; /* no plane: never in a variant */
+const snell__kernel_hook snell__receiver_hook = {0, NULL, NULL, 0, NULL}; /* no plane: never in a variant */
 
 /* Never called: without the stage nothing lights the opaque objects (snell__view.lit_opaque stays NULL). */
 void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit) { (void)prog, (void)c, (void)unit; }

@@ -4,7 +4,6 @@
 #include "core/gl.h"
 #include "core/program.h"
 #include "frame/camera.h"
-#include "frame/units.h"
 #include "render/caustics.h"
 
 #include <math.h>
@@ -107,8 +106,8 @@ static snell_status begin(snell_ctx *ctx, snell__opaque_prog *p, const char *vs,
     glDepthMask(GL_TRUE);
     glUseProgram(p->prog);
     if (lit) {
-        /* the units the kernels read them on: unit 0 keeps the environment */
-        snell__lit_opaque_uniforms(p->prog, lit, SNELL__LIT_SHADOW_UNIT);
+        /* unit 0 keeps the environment */
+        snell__lit_opaque_uniforms(p->prog, lit, 1);
         glActiveTexture(GL_TEXTURE0);
     }
     return SNELL_OK;

@@ -34,7 +34,7 @@ snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, in
  * depth write. lit (colour output; NULL: lit from above): the caustics
  * stage that lit the opaque objects this frame (snell__view.lit_opaque),
  * whose light, shadow and caustic maps light them as the view draws them
- * (its maps on units SNELL__LIT_SHADOW_UNIT.., unit 0 left active). */
+ * (its maps on units 1..3, unit 0 left active). */
 snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                      const snell_opaque *list, int count, const float view_proj[16],
                                      const float eye[3], const struct snell__caustics *lit);

@@ -43,11 +43,8 @@ static snell_status create(snell_ctx *ctx, snell__gbuffer *g, int w, int h)
     g->u_normal_matrix = glGetUniformLocation(g->prog, "u_normal_matrix");
     g->u_view_proj = glGetUniformLocation(g->prog, "u_view_proj");
     g->u_gid = glGetUniformLocation(g->prog, "u_gid");
-    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_NORMAL);
     g->normal_tex = make_texture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, w, h);
-    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_DEPTH_ID);
     g->depth_id_tex = make_texture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, w, h);
-    glActiveTexture(GL_TEXTURE0);
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev_fbo);
     glGenFramebuffers(1, &g->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
@@ -96,24 +93,16 @@ static snell_status create_aux(snell_ctx *ctx, snell__gbuffer *g)
     g->ua_normal_matrix = glGetUniformLocation(g->prog_aux, "u_normal_matrix");
     g->ua_view_proj = glGetUniformLocation(g->prog_aux, "u_view_proj");
     g->ua_gid = glGetUniformLocation(g->prog_aux, "u_gid");
-    glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_AUX);
     g->aux_tex = make_texture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, g->width, g->height);
-    glActiveTexture(GL_TEXTURE0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, g->aux_tex, 0);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error creating the G-buffer's aux target");
 }
 
-static void bind(const snell__gbuffer *g, int back, int aux)
+void snell__gbuffer_publish(const snell__gbuffer *g, snell__textures *ts, int back)
 {
-    glActiveTexture(GL_TEXTURE0 + (back ? SNELL__BACK_UNIT_NORMAL : SNELL__GBUFFER_UNIT_NORMAL));
-    glBindTexture(GL_TEXTURE_2D, g->normal_tex);
-    glActiveTexture(GL_TEXTURE0 + (back ? SNELL__BACK_UNIT_DEPTH_ID : SNELL__GBUFFER_UNIT_DEPTH_ID));
-    glBindTexture(GL_TEXTURE_2D, g->depth_id_tex);
-    if (aux) {
-        glActiveTexture(GL_TEXTURE0 + SNELL__GBUFFER_UNIT_AUX);
-        glBindTexture(GL_TEXTURE_2D, g->aux_tex);
-    }
-    glActiveTexture(GL_TEXTURE0);
+    snell__textures_publish(ts, back ? "u_bnormal" : "u_gnormal", GL_TEXTURE_2D, g->normal_tex, 0);
+    snell__textures_publish(ts, back ? "u_bdepth_id" : "u_gdepth_id", GL_TEXTURE_2D, g->depth_id_tex, 0);
+    if (!back && g->aux_tex) snell__textures_publish(ts, "u_gaux", GL_TEXTURE_2D, g->aux_tex, 0);
 }
 
 /* The front (G-buffer) or the farthest surface (back-face pass) of the objects. */
@@ -224,11 +213,8 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
         st->passes++;
     }
     snell__pass_end(&pass);
-    bind(g, back, aux);
     return SNELL_OK;
 }
-
-void snell__gbuffer_bind(const snell__gbuffer *g) { bind(g, 0, g->aux_tex != 0); }
 
 snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v, snell__object *const *objects,
                                  int count, unsigned target_depth, snell_object_stats *stats)

@@ -10,7 +10,6 @@
 
 #include "frame/method.h"
 
-#include "frame/units.h" /* its textures' units: SNELL__GBUFFER_UNIT_*, SNELL__BACK_UNIT_* */
 
 /* The back-face pass may draw a mesh's coarse copy (a quarter of its
  * triangles, within 1% of its extent: snell__mesh_coarse) when its front
@@ -37,21 +36,22 @@ typedef struct snell__gbuffer {
 
 void snell__gbuffer_destroy(snell__gbuffer *g);
 /* Draws the front surfaces of objects[0..count-1] (uploaded) into the
- * G-buffer, with ids o->gid, and binds its textures on the units above.
+ * G-buffer, with ids o->gid (snell__gbuffer_publish hands its maps on).
  * target_depth: the target's depth renderbuffer, which already holds the
  * opaque objects (tested and written, not cleared), or 0: a depth buffer of
  * the G-buffer's own. */
 snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell__view *v, snell__object *const *objects,
                                  int count, unsigned target_depth, snell_object_stats *stats);
-/* Binds the front G-buffer's textures on their units again (after another
- * G-buffer's: an object at a resolution scale draws one of its own, render/glass_scale.c). */
-void snell__gbuffer_bind(const snell__gbuffer *g);
+/* Publishes the maps (frame/textures.h) for the programs that read them:
+ * the front G-buffer's as u_gnormal, u_gdepth_id and u_gaux (where drawn),
+ * the back-face pass's (back) as u_bnormal and u_bdepth_id. */
+void snell__gbuffer_publish(const snell__gbuffer *g, snell__textures *ts, int back);
 /* The back-face pass (DESIGN.md "extra passes the method needs"): the
  * farthest surface of objects[0..count-1] (depth GREATER into a depth buffer
  * of its own, cleared to 0, front faces culled where the winding is known;
  * opaque objects are not tested: a back face behind one is still where the
  * light leaves) as the G-buffer stores the front: normal, window depth + id
- * o->gid; binds them on SNELL__BACK_UNIT_*. Overlapping objects: the farther
+ * o->gid. Overlapping objects: the farther
  * one's back faces win the texel (the nearer sees another id there). g is a
  * G-buffer of its own (made on first use). band > 0: a guard band of that
  * many pixels on every side is drawn too (the projection widened), for

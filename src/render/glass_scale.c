@@ -101,7 +101,6 @@ static snell_status ensure_program(snell_ctx *ctx, snell__glass_scale *gs, int s
     if (g->prog) return SNELL_OK;
     if ((st = snell__glass_program_build(ctx, "glass_scale.frag", SNELL__OUT_COLOR, NULL, shading, g)) != SNELL_OK)
         return st;
-    gs->u_color[shading] = glGetUniformLocation(g->prog, "u_small_color");
     gs->u_ratio[shading] = glGetUniformLocation(g->prog, "u_ratio");
     gs->u_max[shading] = glGetUniformLocation(g->prog, "u_max");
     gs->u_thickness[shading] = glGetUniformLocation(g->prog, "u_thickness");
@@ -117,6 +116,7 @@ static snell_status draw_small(snell_ctx *ctx, snell__glass_scale *gs, const sne
                                void *user)
 {
     snell__object so = *o;
+    snell__view sv = *small; /* its textures: this G-buffer's maps in place of the frame's */
     snell__object *list[1];
     snell__pass pass;
     snell_status s;
@@ -125,6 +125,7 @@ static snell_status draw_small(snell_ctx *ctx, snell__glass_scale *gs, const sne
     so.screen_space = SNELL__SCREEN_WRITES_DEPTH;
     list[0] = &so;
     if ((s = snell__gbuffer_draw(ctx, &gs->gbuffer, small, list, 1, 0, stats)) != SNELL_OK) return s;
+    snell__gbuffer_publish(&gs->gbuffer, &sv.textures, 0);
     x0 = so.scissor[0] - READ_MARGIN > 0 ? so.scissor[0] - READ_MARGIN : 0;
     y0 = so.scissor[1] - READ_MARGIN > 0 ? so.scissor[1] - READ_MARGIN : 0;
     x1 = so.scissor[0] + so.scissor[2] + READ_MARGIN;
@@ -134,12 +135,12 @@ static snell_status draw_small(snell_ctx *ctx, snell__glass_scale *gs, const sne
     glScissor(x0, y0, x1 - x0, y1 - y0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT); /* alpha 0: not covered */
     glDisable(GL_SCISSOR_TEST);
-    s = draw(user, small, &so, &stats[o->index]);
+    s = draw(user, &sv, &so, &stats[o->index]);
     snell__pass_end(&pass);
     return s;
 }
 
-snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs, const snell__gbuffer *frame_gbuffer,
+snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs,
                                      const snell__view *v, const snell__object *o, snell_object_stats *stats,
                                      snell__glass_draw_fn draw, void *user)
 {
@@ -152,21 +153,17 @@ snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs, con
     if ((s = ensure_target(ctx, gs, small.width, small.height)) != SNELL_OK) return s;
     if ((s = ensure_program(ctx, gs, sh)) != SNELL_OK) return s;
     if ((s = draw_small(ctx, gs, &small, o, stats, draw, user)) != SNELL_OK) return s;
-    if (sh) snell__gbuffer_bind(frame_gbuffer);
     g = &gs->prog[sh];
     snell__glass_program_use(g, v, o);
-    glUniform1i(gs->u_color[sh], SNELL__UNIT_KERNEL); /* unit 0 keeps the environment (its fallback's) */
+    snell__glass_program_bind(g, "u_small_color", GL_TEXTURE_2D, gs->color_tex, 0);
     glUniform2f(gs->u_ratio[sh], (float)small.width / (float)v->width, (float)small.height / (float)v->height);
     glUniform2i(gs->u_max[sh], small.width - 1, small.height - 1);
     glUniform1f(gs->u_thickness[sh], o->glass->material.thickness > 0.0f ? o->glass->material.thickness : 0.0f);
-    glActiveTexture(GL_TEXTURE0 + SNELL__UNIT_KERNEL);
-    glBindTexture(GL_TEXTURE_2D, gs->color_tex);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     snell__draw_surface(o, &stats[o->index]);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    glActiveTexture(GL_TEXTURE0);
+    snell__glass_program_bind(g, "u_small_color", GL_TEXTURE_2D, 0, 0); /* the small target is drawn into next */
     stats[o->index].passes++;
     return glGetError() == GL_NO_ERROR ? SNELL_OK
                                        : snell__fail(ctx, SNELL_E_GL, "GL error drawing at scale %g", (double)o->scale);

@@ -15,7 +15,6 @@ typedef struct snell__glass_scale {
     int width, height;
     snell__gbuffer gbuffer;              /* the object's front surface at the small grid */
     snell__glass_program prog[SNELL__GLASS_SHADING_MASK + 1]; /* per shading, made on first use */
-    int u_color[SNELL__GLASS_SHADING_MASK + 1];
     int u_ratio[SNELL__GLASS_SHADING_MASK + 1], u_max[SNELL__GLASS_SHADING_MASK + 1];
     int u_thickness[SNELL__GLASS_SHADING_MASK + 1]; /* the fallback's thin wall (glass_scale.frag) */
 } snell__glass_scale;
@@ -39,9 +38,9 @@ typedef snell_status (*snell__glass_draw_fn)(void *user, const snell__view *v, c
 /* Draws object o (o->scale > 1) at its scale: its front surface into the
  * small G-buffer and draw() on it into the small target, over the object's
  * rectangle; then o as it is shaded (o->screen_space: on the frame's
- * G-buffer, frame_gbuffer, bound again here) into the bound target coloured
- * from the small one. stats: the frame's, per object index. */
-snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs, const snell__gbuffer *frame_gbuffer,
+ * G-buffer, as v publishes it) into the bound target coloured from the
+ * small one. stats: the frame's, per object index. */
+snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs,
                                      const snell__view *v, const snell__object *o, snell_object_stats *stats,
                                      snell__glass_draw_fn draw, void *user);
 void snell__glass_scale_destroy(snell__glass_scale *gs);

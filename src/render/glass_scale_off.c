@@ -16,11 +16,11 @@ float snell__glass_scale_of(const snell__method *m, snell__output_kind out, cons
     return 1.0f;
 }
 
-snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs, const snell__gbuffer *frame_gbuffer,
+snell_status snell__glass_scale_draw(snell_ctx *ctx, snell__glass_scale *gs,
                                      const snell__view *v, const snell__object *o, snell_object_stats *stats,
                                      snell__glass_draw_fn draw, void *user)
 {
-    (void)gs, (void)frame_gbuffer, (void)v, (void)o, (void)stats, (void)draw, (void)user;
+    (void)gs, (void)v, (void)o, (void)stats, (void)draw, (void)user;
     return snell__fail(ctx, SNELL_E_UNSUPPORTED, "resolution scale: built without peel and exact");
 }
 

@@ -11,6 +11,8 @@
 #include <math.h>
 #include <string.h>
 
+#define PEEL_UNIT 1 /* the peel program's previous layer (depth_peel.frag u_prev) */
+
 void snell__layers_destroy(snell__layers *l)
 {
     snell__peel_targets_release(&l->t);
@@ -42,10 +44,9 @@ static snell_status create_program(snell_ctx *ctx, snell__layers *l)
 static snell_status ensure_targets(snell_ctx *ctx, snell__layers *l, int w, int h, int layers)
 {
     int remade;
-    snell_status st = snell__peel_targets_ensure(ctx, &l->t, w, h, layers, SNELL__LAYERS_UNIT, "scene layers", &remade);
+    snell_status st = snell__peel_targets_ensure(ctx, &l->t, w, h, layers, PEEL_UNIT, "scene layers", &remade);
     if (remade) l->last.count = -1; /* the layers are gone with them */
     if (st != SNELL_OK || l->table_tex) return st;
-    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_TABLE_UNIT);
     glGenTextures(1, &l->table_tex);
     glBindTexture(GL_TEXTURE_2D, l->table_tex);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -112,21 +113,19 @@ static void table_column(snell__layers *l, const layer_item *it, const snell_opa
 }
 
 /* Uploads the frame's object table (materials change without a new peel)
- * and binds it and the layers on their units. */
-static void bind(snell__layers *l)
+ * and publishes it and the layers for the programs that march them. */
+static void publish(snell__layers *l, snell__view *v)
 {
     snell__pixel_store unpack;
     int k;
-    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_TABLE_UNIT);
     glBindTexture(GL_TEXTURE_2D, l->table_tex);
     /* from client memory, tightly packed, whatever pixel buffer or unpack state the host has set */
     snell__pixel_unpack_begin(&unpack, 4);
     for (k = 0; k < SNELL__LAYERS_TABLE_ROWS; k++)
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, k, SNELL__LAYERS_IDS, 1, GL_RGBA, GL_FLOAT, l->table[k]);
     snell__pixel_unpack_end(&unpack);
-    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, l->t.array_tex);
-    glActiveTexture(GL_TEXTURE0);
+    snell__textures_publish(&v->textures, "u_scene_layers", GL_TEXTURE_2D_ARRAY, l->t.array_tex, 0);
+    snell__textures_publish(&v->textures, "u_scene_table", GL_TEXTURE_2D, l->table_tex, 0);
 }
 
 /* Draws up to `layers` peels of the items into the layer textures (which
@@ -146,8 +145,8 @@ static snell_status peel(snell_ctx *ctx, snell__layers *l, const snell__view *v,
     glUniform3fv(l->u_fwd, 1, sl->fwd);
     glUniform1f(l->u_near, sl->near_);
     glUniform1f(l->u_inv_range, sl->inv_range);
-    glUniform1i(l->u_prev, SNELL__LAYERS_UNIT);
-    glActiveTexture(GL_TEXTURE0 + SNELL__LAYERS_UNIT);
+    glUniform1i(l->u_prev, PEEL_UNIT);
+    glActiveTexture(GL_TEXTURE0 + PEEL_UNIT);
     for (k = 0; k < layers; k++) {
         GLuint any = 1;
         snell_status st = snell__peel_layer_begin(ctx, &l->t, k);
@@ -232,7 +231,7 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
     if (l->last.count == n && !memcmp(&l->key, &l->last, sizeof l->key)) {
         *sl = l->last_layers;
         *reused = 1;
-        bind(l);
+        publish(l, v);
         return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error binding scene layers");
     }
 
@@ -258,7 +257,7 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
     sl->opaque_count = opaque_count;
     l->last = l->key;
     l->last_layers = *sl;
-    bind(l);
+    publish(l, v);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error peeling scene layers");
 }
 

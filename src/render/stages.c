@@ -131,7 +131,7 @@ static snell_status draw_method(void *user, const snell__view *v, const snell__o
 static snell_status draw_glass(snell_renderer *r, snell__object *o, snell_object_stats *stats)
 {
     if (o->scale > 1.0f)
-        return snell__glass_scale_draw(r->ctx, &r->glass_scale, &r->gbuffer, &r->scene.view, o, stats, draw_method, r);
+        return snell__glass_scale_draw(r->ctx, &r->glass_scale, &r->scene.view, o, stats, draw_method, r);
     return draw_method(r, &r->scene.view, o, &stats[o->index]);
 }
 
@@ -280,18 +280,21 @@ static const char *layers_defines(unsigned bits)
     return "#define SNELL_BEYOND 1\n";
 }
 
-static void layers_locate(unsigned prog, int *locs) { snell__beyond_locate(prog, (snell__beyond_locs *)(void *)locs); }
-
-static void layers_uniforms(unsigned prog, const int *locs, const snell__view *v, const snell__object *o)
+static void layers_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v,
+                            const snell__object *o)
 {
-    (void)prog;
+    (void)g;
     snell__beyond_uniforms((const snell__beyond_locs *)(const void *)locs, v,
                            o->index + 1 + (o->glass->material.thickness > 0.0f ? SNELL__LAYERS_THIN_ID : 0));
 }
 
-static const snell__kernel_hook g_layers_hook = {SNELL__GLASS_BEYOND, layers_defines, 0,
-                                                 (int)(sizeof(snell__beyond_locs) / sizeof(int)), layers_locate,
-                                                 layers_uniforms};
+static const snell__kernel_hook g_layers_hook = {
+    .variant_mask = SNELL__GLASS_BEYOND,
+    .defines = layers_defines,
+    .uniform_names = snell__beyond_uniform_names,
+    .uniform_count = SNELL__BEYOND_UNIFORMS,
+    .uniforms = layers_uniforms,
+};
 
 /* The water and its container are opaque to what follows: glass behind
  * them is depth-tested away, glass in front is drawn over them; the
@@ -325,6 +328,7 @@ static snell_status run_water(snell__frame *f)
     if (st == SNELL_OK)
         st = snell__water_draw(r->ctx, &r->water, r->out, fd->water, &f->sc->view, env_tex, paraboloid, fd->opaque,
                                objects ? fd->opaque_count : 0, layers, f->s);
+    if (st == SNELL_OK) snell__water_publish(fd->water, &f->sc->view.textures);
     f->s->water_objects = objects || layers; /* layers: at least one glass object drawn */
     f->s->water_layers = layers;
     for (i = 0; i < f->sc->drawn; i++) f->s->glass[f->sc->order[i]].sees_water = 1;
@@ -345,14 +349,20 @@ static const char *water_defines(unsigned bits)
                                           : "#define SNELL_WATER 1\n";
 }
 
-static void water_uniforms(unsigned prog, const int *locs, const snell__view *v, const snell__object *o)
+static void water_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v,
+                           const snell__object *o)
 {
-    (void)locs, (void)o;
-    snell__water_uniforms(prog, v->water);
+    (void)g, (void)o;
+    snell__water_set_uniforms(locs, v->water);
 }
 
-static const snell__kernel_hook g_water_hook = {SNELL__GLASS_WATER | SNELL__GLASS_WATER_UINT, water_defines, 0, 0,
-                                                NULL, water_uniforms};
+static const snell__kernel_hook g_water_hook = {
+    .variant_mask = SNELL__GLASS_WATER | SNELL__GLASS_WATER_UINT,
+    .defines = water_defines,
+    .uniform_names = snell__water_uniform_names,
+    .uniform_count = SNELL__WATER_UNIFORMS,
+    .uniforms = water_uniforms,
+};
 
 /* One back-face pass for every object whose method reads back faces. */
 static int want_back_faces(const snell__frame *f) { return f->n_back > 0; }
@@ -362,6 +372,7 @@ static snell_status run_back_faces(snell__frame *f)
     snell_renderer *r = f->r;
     snell_status st = snell__gbuffer_draw_back(r->ctx, &r->backfaces, &f->sc->view, r->back_list, f->n_back, f->band,
                                                &f->sc->view.back, f->s->glass);
+    snell__gbuffer_publish(&r->backfaces, &f->sc->view.textures, 1);
     f->s->back_face_pass = 1;
     f->s->back_face_guard = f->band;
     return st;
@@ -379,6 +390,7 @@ static snell_status run_gbuffer(snell__frame *f)
     snell_renderer *r = f->r;
     unsigned depth = r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? r->depth_rb : 0;
     int clear = !depth || (f->fd->opaque_count == 0 && !f->fd->water && !f->sc->view.receiver_map), i, j;
+    snell_status st;
     for (i = 0; i < f->n_screen; i++) {
         const int *a = r->screen_list[i]->scissor;
         r->screen_list[i]->front_whole = clear;
@@ -388,7 +400,9 @@ static snell_status run_gbuffer(snell__frame *f)
                 r->screen_list[i]->front_whole = 0;
         }
     }
-    return snell__gbuffer_draw(r->ctx, &r->gbuffer, &f->sc->view, r->screen_list, f->n_screen, depth, f->s->glass);
+    st = snell__gbuffer_draw(r->ctx, &r->gbuffer, &f->sc->view, r->screen_list, f->n_screen, depth, f->s->glass);
+    snell__gbuffer_publish(&r->gbuffer, &f->sc->view.textures, 0);
+    return st;
 }
 
 static snell_status run_kernels(snell__frame *f)
@@ -473,5 +487,6 @@ const snell__stage snell__stages[] = {
 };
 const int snell__stage_count = (int)(sizeof snell__stages / sizeof *snell__stages);
 
-/* The hooks' locations fit a program's share; their bits are the stage bits of the variant table. */
-typedef char snell__hook_locs_fit[SNELL__RECEIVER_LOCS_OFFSET + 3 <= SNELL__HOOK_LOCS ? 1 : -1];
+/* The hooks' uniforms fit a program's share of locations. */
+typedef char snell__hook_locs_fit[SNELL__BEYOND_UNIFORMS + SNELL__WATER_UNIFORMS + SNELL__RECEIVER_UNIFORMS <=
+                                          SNELL__HOOK_LOCS ? 1 : -1];

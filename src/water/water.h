@@ -6,6 +6,7 @@
 #define SNELL_WATER_INTERNAL_H
 
 #include "core/core.h"
+#include "frame/textures.h"
 #include "snell/snell_water.h"
 
 #define SNELL__WATER_INV_SQRT2 0.70710678118654752440f
@@ -37,6 +38,7 @@ struct snell_water {
     int uploaded;                  /* height_tex was filled at least once */
     /* the floor's light map (water_caustics.c, made by the caustics stage) */
     unsigned light_prog, light_fbo, light_tex;
+    snell__samplers light_samplers; /* light_prog's units */
     unsigned light_format;         /* GL_RGBA32F / GL_RGBA16F, SNELL__WATER_NO_FLOAT, 0 = not probed yet */
     int light_size, light_valid;   /* light_valid: the map holds the surface of light_version under light_key */
     unsigned light_version;

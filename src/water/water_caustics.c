@@ -30,10 +30,12 @@ static snell_status resources(snell_ctx *ctx, snell_water *w, int size)
 {
     snell_status st = SNELL_OK;
     GLenum status;
-    if (!w->light_prog)
+    if (!w->light_prog) {
         st = snell__program_build(ctx, "water_caustics.vert", "water_caustics.frag",
                                   w->d.sim == SNELL_WATER_SIM_GPU ? "#define SNELL_WATER_STATE_UINT 1\n" : NULL,
                                   &w->light_prog);
+        if (st == SNELL_OK) st = snell__samplers_assign(ctx, w->light_prog, "water_caustics.vert", &w->light_samplers);
+    }
     if (st == SNELL_OK && !w->column_prog)
         st = snell__program_build(ctx, "object.vert", "water_columns.frag", NULL, &w->column_prog);
     if (st != SNELL_OK || w->light_size == size) return st;
@@ -182,10 +184,8 @@ static void draw_map(snell_water *w, const snell_light *l, int columns)
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(prog);
-    snell__water_uniforms(prog, w);
-    glActiveTexture(GL_TEXTURE0 + SNELL__WATER_LIGHT_UNIT); /* the map being made: bound nowhere */
-    glBindTexture(GL_TEXTURE_2D, 0);
-    glActiveTexture(GL_TEXTURE0);
+    snell__water_uniforms(prog, &w->light_samplers, w);
+    snell__samplers_bind(&w->light_samplers, "u_water_light", GL_TEXTURE_2D, 0, 0); /* the map being made */
     glUniform1i(glGetUniformLocation(prog, "u_spot"), l->type == SNELL_LIGHT_SPOT);
     glUniform3fv(glGetUniformLocation(prog, "u_dir"), 1, d);
     glUniform3fv(glGetUniformLocation(prog, "u_pos"), 1, l->position);
@@ -197,13 +197,8 @@ static void draw_map(snell_water *w, const snell_light *l, int columns)
     glUniform1i(glGetUniformLocation(prog, "u_columns"), columns);
     glUniform1f(glGetUniformLocation(prog, "u_column_top"), w->column_top);
     glUniform1f(glGetUniformLocation(prog, "u_column_range"), w->column_range);
-    glUniform1i(glGetUniformLocation(prog, "u_column_high"), 0);
-    glUniform1i(glGetUniformLocation(prog, "u_column_low"), 1);
-    for (k = 0; k < 2; k++) { /* units 0 and 1: the light map's program reads nothing else there */
-        glActiveTexture(GL_TEXTURE0 + (GLenum)k);
-        glBindTexture(GL_TEXTURE_2D, columns ? w->column_tex[k] : 0);
-    }
-    glActiveTexture(GL_TEXTURE0);
+    snell__samplers_bind(&w->light_samplers, "u_column_high", GL_TEXTURE_2D, columns ? w->column_tex[0] : 0, 0);
+    snell__samplers_bind(&w->light_samplers, "u_column_low", GL_TEXTURE_2D, columns ? w->column_tex[1] : 0, 0);
     glBindVertexArray(w->grid_vao);
     glDrawElements(GL_TRIANGLES, (GLsizei)((w->n - 1) * (w->n - 1) * 6), GL_UNSIGNED_INT, (const void *)0);
     glBindVertexArray(0);

@@ -27,10 +27,14 @@ static snell_status make_programs(snell_ctx *ctx, snell__water_programs *p, snel
                      gpu ? "#define SNELL_WATER_STATE_UINT 1\n" : "", mode_defines[mode],
                      env_paraboloid ? SNELL__ENV_PARABOLOID_DEFINE : "");
             st = snell__program_build(ctx, "water_surface.vert", "water_surface.frag", defines, &p->surface[gpu][mode]);
+            if (st == SNELL_OK)
+                st = snell__samplers_assign(ctx, p->surface[gpu][mode], "water_surface.frag",
+                                            &p->surface_samplers[gpu][mode]);
             if (st == SNELL_OK && mode == 2) snell__beyond_locate(p->surface[gpu][mode], &p->layers[gpu]);
         }
     if (st == SNELL_OK)
         st = snell__program_build(ctx, "water_wall.vert", "water_wall.frag", snell__output_defines(out), &p->wall);
+    if (st == SNELL_OK) st = snell__samplers_assign(ctx, p->wall, "water_wall.frag", &p->wall_samplers);
     p->made = st == SNELL_OK;
     return st;
 }
@@ -67,6 +71,7 @@ void snell__water_draw_release(snell_water *w)
     w->column_size = 0;
     w->grid_ibo = w->grid_vao = w->wall_vbo = w->wall_vao = w->height_tex = 0;
     w->light_prog = w->light_fbo = w->light_tex = 0;
+    memset(&w->light_samplers, 0, sizeof w->light_samplers);
     w->light_size = w->light_valid = 0;
 }
 
@@ -163,25 +168,39 @@ snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, u
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "water: copying the opaque objects failed");
 }
 
-void snell__water_uniforms(unsigned prog, const snell_water *w)
+const char *const snell__water_uniform_names[SNELL__WATER_UNIFORMS] = {
+    "u_water_half", "u_water_depth", "u_water_tile_size", "u_water_rim", "u_water_ior",
+    "u_water_sigma", "u_water_n",    "u_water_dx",        "u_water_lit"};
+
+void snell__water_set_uniforms(const int *locs, const snell_water *w)
 {
-    glUniform1f(glGetUniformLocation(prog, "u_water_half"), 0.5f * w->d.width);
-    glUniform1f(glGetUniformLocation(prog, "u_water_depth"), w->d.depth);
-    glUniform1f(glGetUniformLocation(prog, "u_water_tile_size"), w->d.tile_size);
-    glUniform1f(glGetUniformLocation(prog, "u_water_rim"), w->d.rim);
-    glUniform1f(glGetUniformLocation(prog, "u_water_ior"), w->d.ior);
-    glUniform3fv(glGetUniformLocation(prog, "u_water_sigma"), 1, w->sigma);
-    glUniform1i(glGetUniformLocation(prog, "u_water_n"), w->n);
-    glUniform1f(glGetUniformLocation(prog, "u_water_dx"), w->dx);
-    glUniform1i(glGetUniformLocation(prog, "u_water_heights"), SNELL__WATER_HEIGHTS_UNIT);
-    glActiveTexture(GL_TEXTURE0 + SNELL__WATER_HEIGHTS_UNIT);
-    glBindTexture(GL_TEXTURE_2D, w->d.sim == SNELL_WATER_SIM_GPU ? w->state_tex[w->cur] : w->height_tex);
-    /* the floor's light map: read only where lit (a sampler is still given its own unit) */
-    glUniform1i(glGetUniformLocation(prog, "u_water_light"), SNELL__WATER_LIGHT_UNIT);
-    glUniform1i(glGetUniformLocation(prog, "u_water_lit"), w->lit);
-    glActiveTexture(GL_TEXTURE0 + SNELL__WATER_LIGHT_UNIT);
-    glBindTexture(GL_TEXTURE_2D, w->lit ? w->light_tex : 0);
-    glActiveTexture(GL_TEXTURE0);
+    glUniform1f(locs[0], 0.5f * w->d.width);
+    glUniform1f(locs[1], w->d.depth);
+    glUniform1f(locs[2], w->d.tile_size);
+    glUniform1f(locs[3], w->d.rim);
+    glUniform1f(locs[4], w->d.ior);
+    glUniform3fv(locs[5], 1, w->sigma);
+    glUniform1i(locs[6], w->n);
+    glUniform1f(locs[7], w->dx);
+    glUniform1i(locs[8], w->lit);
+}
+
+void snell__water_publish(const snell_water *w, snell__textures *ts)
+{
+    snell__textures_publish(ts, "u_water_heights", GL_TEXTURE_2D,
+                            w->d.sim == SNELL_WATER_SIM_GPU ? w->state_tex[w->cur] : w->height_tex, 0);
+    /* the floor's light map: read only where lit */
+    snell__textures_publish(ts, "u_water_light", GL_TEXTURE_2D, w->lit ? w->light_tex : 0, 0);
+}
+
+void snell__water_uniforms(unsigned prog, const snell__samplers *samplers, const snell_water *w)
+{
+    snell__textures ts = {0};
+    int locs[SNELL__WATER_UNIFORMS], i;
+    for (i = 0; i < SNELL__WATER_UNIFORMS; i++) locs[i] = glGetUniformLocation(prog, snell__water_uniform_names[i]);
+    snell__water_set_uniforms(locs, w);
+    snell__water_publish(w, &ts);
+    snell__samplers_bind_published(samplers, &ts);
 }
 
 #define MAX_SPHERES 16 /* water_surface.frag's SNELL_WATER_MAX_SPHERES */
@@ -260,22 +279,26 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     /* the floor is lit in this frame only if the caustics stage made or kept its map for it */
     w->lit = w->lit_pending;
     w->lit_pending = 0;
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, env_texture);
+    const unsigned env_target = env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP;
+    const snell__samplers *ss;
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
 
     glUseProgram(p->wall);
+    snell__samplers_bind(&p->wall_samplers, "u_env", env_target, env_texture, 0);
     glUniformMatrix4fv(glGetUniformLocation(p->wall, "u_view_proj"), 1, GL_FALSE, (const float *)v->view_proj);
     glUniform3fv(glGetUniformLocation(p->wall, "u_eye"), 1, v->eye);
-    snell__water_uniforms(p->wall, w);
+    snell__water_uniforms(p->wall, &p->wall_samplers, w);
     glBindVertexArray(w->wall_vao);
     glDrawArrays(GL_TRIANGLES, 0, 30);
 
     prog = p->surface[w->d.sim == SNELL_WATER_SIM_GPU][layers ? 2 : object_count > 0 ? 1 : 0];
+    ss = &p->surface_samplers[w->d.sim == SNELL_WATER_SIM_GPU][layers ? 2 : object_count > 0 ? 1 : 0];
     glUseProgram(prog);
+    snell__samplers_bind_published(ss, &v->textures); /* the scene layers */
+    snell__samplers_bind(ss, "u_env", env_target, env_texture, 0);
     if (layers) {
         snell__beyond_uniforms(&p->layers[w->d.sim == SNELL_WATER_SIM_GPU], v, 0);
     } else if (object_count > 0) {
@@ -283,19 +306,13 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
         int n_spheres = object_spheres(objects, object_count, spheres);
         glUniform4fv(glGetUniformLocation(prog, "u_spheres"), n_spheres, &spheres[0][0]);
         glUniform1i(glGetUniformLocation(prog, "u_sphere_count"), n_spheres);
-        glActiveTexture(GL_TEXTURE2);
-        glBindTexture(GL_TEXTURE_2D, p->scene_color);
-        glActiveTexture(GL_TEXTURE3);
-        glBindTexture(GL_TEXTURE_2D, p->scene_depth);
-        glActiveTexture(GL_TEXTURE0);
-        glUniform1i(glGetUniformLocation(prog, "u_scene_color"), 2);
-        glUniform1i(glGetUniformLocation(prog, "u_scene_depth"), 3);
+        snell__samplers_bind(ss, "u_scene_color", GL_TEXTURE_2D, p->scene_color, 0);
+        snell__samplers_bind(ss, "u_scene_depth", GL_TEXTURE_2D, p->scene_depth, 0);
         glUniform2f(glGetUniformLocation(prog, "u_depth_ab"), v->proj[2][2], v->proj[3][2]);
     }
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, (const float *)v->view_proj);
     glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, v->eye);
-    glUniform1i(glGetUniformLocation(prog, "u_env"), 0);
-    snell__water_uniforms(prog, w);
+    snell__water_uniforms(prog, ss, w);
     glBindVertexArray(w->grid_vao);
     glDrawElements(GL_TRIANGLES, (GLsizei)((w->n - 1) * (w->n - 1) * 6), GL_UNSIGNED_INT, (const void *)0);
     glBindVertexArray(0);

@@ -18,10 +18,10 @@
  * (SNELL_WATER_OBJECTS), or every object through the scene layers
  * (SNELL_BEYOND). */
 #define SNELL__WATER_MODES 3
-#include "frame/units.h" /* SNELL__WATER_HEIGHTS_UNIT */
 
 typedef struct snell__water_programs {
     unsigned surface[2][SNELL__WATER_MODES]; /* [heights from R32F (CPU simulation) or the RG32UI state (GPU)][mode] */
+    snell__samplers surface_samplers[2][SNELL__WATER_MODES], wall_samplers;
     snell__beyond_locs layers[2];  /* the SNELL_BEYOND mode's layer uniforms, per heights format */
     unsigned wall;
     int made;
@@ -39,11 +39,10 @@ snell_status snell__water_copy_scene(snell_ctx *ctx, snell__water_programs *p, u
 /* Draws the water and its container into the bound target (depth test LESS,
  * depth write); env_texture on unit 0 for snell_env (a cube, or with
  * env_paraboloid dual-paraboloid maps: the renderer's one choice, the programs
- * are built for it on first use), the heights on SNELL__WATER_HEIGHTS_UNIT.
- * layers: the frame's scene layers are bound (snell__layers_draw) and the
+ * are built for it on first use).
+ * layers: the frame's scene layers are published in v (snell__layers_draw) and the
  * surface's rays march them; else with objects (object_count > 0, after
- * snell__water_copy_scene) their colour and depth on units 2 and 3 and their
- * bounding spheres. Uploads a CPU simulation's heights when they changed
+ * snell__water_copy_scene) their colour and depth and their bounding spheres. Uploads a CPU simulation's heights when they changed
  * since the last draw (stats->water_uploaded): kernels drawn after it may
  * read them (snell__water_uniforms). */
 snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__output_kind out, snell_water *w,
@@ -71,10 +70,20 @@ snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_l
  * growing along a row. SNELL_E_INVALID_ARG if none was made. */
 snell_status snell__water_caustics_read(snell_ctx *ctx, snell_water *w, float *rgba, int *size);
 
-/* Sets common/water.glsl's uniforms of program prog (in use) and binds the
- * heights on SNELL__WATER_HEIGHTS_UNIT, the floor's light map on
- * SNELL__WATER_LIGHT_UNIT (the active unit is 0 after). */
-void snell__water_uniforms(unsigned prog, const snell_water *w);
+/* common/water.glsl's uniforms other than its samplers, by name, and
+ * their setter for the program in use (locs in the names' order; the
+ * glass kernels' hook finds them once per program, render/stages.c). */
+#define SNELL__WATER_UNIFORMS 9
+extern const char *const snell__water_uniform_names[SNELL__WATER_UNIFORMS];
+void snell__water_set_uniforms(const int *locs, const snell_water *w);
+/* Publishes the heights (u_water_heights: the GPU simulation's current
+ * state or the CPU one's R32F upload) and the floor's light map
+ * (u_water_light, 0 where unlit) for the programs drawn after the water. */
+void snell__water_publish(const snell_water *w, snell__textures *ts);
+/* The water's own programs (its surface, container and floor light map):
+ * common/water.glsl's uniforms of prog (in use), found by name, and its
+ * heights and light map bound on the units samplers gives them. */
+void snell__water_uniforms(unsigned prog, const snell__samplers *samplers, const snell_water *w);
 void snell__water_programs_destroy(snell__water_programs *p);
 
 #endif

@@ -18,6 +18,12 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     return snell__fail(ctx, SNELL_E_UNSUPPORTED, "water: built without SNELL_WITH_WATER");
 }
 
-void snell__water_uniforms(unsigned prog, const snell_water *w) { (void)prog, (void)w; }
+const char *const snell__water_uniform_names[SNELL__WATER_UNIFORMS] = {"", "", "", "", "", "", "", "", ""};
+void snell__water_set_uniforms(const int *locs, const snell_water *w) { (void)locs, (void)w; }
+void snell__water_publish(const snell_water *w, snell__textures *ts) { (void)w, (void)ts; }
+void snell__water_uniforms(unsigned prog, const snell__samplers *samplers, const snell_water *w)
+{
+    (void)prog, (void)samplers, (void)w;
+}
 
 void snell__water_programs_destroy(snell__water_programs *p) { (void)p; }
