@@ -28,3 +28,8 @@ if(TARGET snell-render)
   set_tests_properties(cli_env_format_expand PROPERTIES LABELS "cli"
                        PASS_REGULAR_EXPRESSION "cannot open image \"/nonexistent/px_%_px.png\"")
 endif()
+
+# Glass in a host's world: its off-axis camera as matrices, its depth kept and
+# tested, its depth given back (NO_WRITE); orbit and matrices byte-identical.
+snell_add_test(test_host_world SOURCES test_host_world.c LABELS "render;gl")
+target_link_libraries(test_host_world PRIVATE PkgConfig::EGL PkgConfig::GLES m)

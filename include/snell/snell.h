@@ -796,6 +796,13 @@ void snell_glass_copy_method_params(snell_glass_material *dst, const snell_glass
 snell_status snell_glass_set_param(snell_glass_material *m, snell_method method, const char *name,
                                    const char *value);
 
+/* How a camera is given: an orbit around a target (the fields azimuth ..
+ * z_far), or the host's own view and projection matrices. */
+typedef enum snell_camera_kind {
+    SNELL_CAMERA_ORBIT = 0,
+    SNELL_CAMERA_MATRICES
+} snell_camera_kind;
+
 typedef struct snell_camera {
     float azimuth;             /* radians, around +Y, 0 = camera on +Z */
     float elevation;           /* radians above the XZ plane */
@@ -803,13 +810,24 @@ typedef struct snell_camera {
     float fov_y;               /* vertical field of view, radians; 0 = 45 degrees */
     float target[3];           /* orbit centre, world space */
     float z_near, z_far;       /* 0 = derived from distance and the mesh bounds */
+    snell_camera_kind kind;
+    /* SNELL_CAMERA_MATRICES: world to eye and eye to clip, column-major, GL
+     * conventions (the eye looks down -Z, clip depth -w..w), as an app passes
+     * them to its own shaders. Any invertible perspective projection,
+     * off-axis (a VR eye, a shifted lens) included. The target's aspect is
+     * the projection's business: snell uses it as given. */
+    float view[16], projection[16];
 } snell_camera;
 /* snell_render and the reference tracer refuse, with SNELL_E_INVALID_ARG
  * naming the field: a value that is not finite, distance, z_near or z_far < 0,
  * fov_y outside [0, pi), a near plane (given or derived) not before the far
- * plane, and a distance so large that the derived far plane overflows. */
+ * plane, and a distance so large that the derived far plane overflows; for
+ * SNELL_CAMERA_MATRICES, a matrix that is not finite or not invertible, and
+ * (SNELL_E_UNSUPPORTED) a projection that is not perspective (orthographic
+ * projections are not drawn yet). */
 
-/* Eye position and view/projection matrices (column-major) of an orbit camera. */
+/* Eye position and view/projection matrices (column-major) of a camera:
+ * the orbit's, or the matrices given (then aspect is unused). */
 void snell_camera_matrices(const snell_camera *cam, float aspect, float eye[3],
                            float view[16], float proj[16]);
 
@@ -955,6 +973,18 @@ typedef struct snell_receiver {
  * something it shows moved or the light on them changed; with the scene
  * layers (scene_layers below) it sees the other glass and opaque objects
  * through them instead. */
+/* The target's depth at the start of a frame. snell draws its opaque
+ * objects and its glass with the depth test on; the glass writes its front
+ * surface's depth, so what a host draws after sorts against it. */
+typedef enum snell_depth_mode {
+    SNELL_DEPTH_DEFAULT = 0,        /* CLEAR for SNELL_TARGET_OFFSCREEN, TEST for a bound framebuffer */
+    SNELL_DEPTH_CLEAR,              /* cleared to 1 first */
+    SNELL_DEPTH_TEST,               /* kept: what the host drew hides the glass and opaque objects behind it */
+    SNELL_DEPTH_TEST_NO_WRITE       /* kept and tested as TEST, and the same values again after the frame:
+                                     * snell copies the depth first and back after (a single-sample target
+                                     * whose depth buffer can be blitted) */
+} snell_depth_mode;
+
 typedef struct snell_frame_desc {
     const snell_env *env;           /* required */
     snell_camera camera;
@@ -1037,6 +1067,8 @@ typedef struct snell_frame_desc {
      * its caustics (snell_water.h). */
     snell_light light;
     snell_receiver receiver;
+    /* What the frame does with the target's depth buffer (snell_depth_mode). */
+    snell_depth_mode depth;
 } snell_frame_desc;
 
 #define SNELL_MAX_SCENE_LAYERS 8

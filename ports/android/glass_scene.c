@@ -128,6 +128,7 @@ snell_status glass_scene_draw(glass_scene *s, double seconds)
     fd.glass_count = 1;
     fd.camera = s->camera;
     fd.camera.azimuth += (float)(seconds * 0.5); /* half a radian a second */
+    fd.depth = SNELL_DEPTH_CLEAR;                /* the surface shows snell's frame alone */
     if ((st = snell_render(s->renderer, &fd, NULL)) != SNELL_OK) return fail(s, st, "frame");
     return SNELL_OK;
 }

@@ -156,6 +156,7 @@ static int open_config(kiosk *k, snell_ctx *ctx, const snell_env *env, const ben
     if (bench_scene_get(ctx, c->scene, &s) != SNELL_OK)
         return snprintf(k->msg, sizeof k->msg, "scene %s: %s", c->scene, snell_last_error(ctx)), 0;
     bench_scene_frame(c, s, env, glass, fd);
+    fd->depth = SNELL_DEPTH_CLEAR; /* the kiosk's frame is all snell's: nothing drawn before it to keep */
     if (bench_scene_lod(ctx, c, glass, s->glass_count) != SNELL_OK)
         return snprintf(k->msg, sizeof k->msg, "lod: %s", snell_last_error(ctx)), 0;
     if (snell_renderer_create(ctx, &rd, r) != SNELL_OK)

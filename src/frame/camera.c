@@ -1,5 +1,6 @@
-/* camera.c — the orbit camera shared by the renderer, the references and the
- * CLI: eye on a sphere around the target, +Y up, GL clip conventions. */
+/* camera.c — the camera shared by the renderer, the references and the
+ * CLI: an orbit (eye on a sphere around the target, +Y up) or the host's
+ * matrices, GL clip conventions. */
 #include "frame/camera.h"
 
 #include <cglm/cglm.h>
@@ -15,6 +16,16 @@ void snell_camera_matrices(const snell_camera *cam, float aspect, float eye_out[
     float ce, dist, fov, zn, zf;
     memset(&c, 0, sizeof c);
     if (cam) c = *cam;
+    if (c.kind == SNELL_CAMERA_MATRICES) {
+        /* The eye is where the view matrix puts the origin of eye space. */
+        mat4 inv;
+        memcpy(view, c.view, sizeof view);
+        glm_mat4_inv(view, inv);
+        if (eye_out) memcpy(eye_out, inv[3], sizeof(vec3));
+        if (view_out) memcpy(view_out, c.view, sizeof(mat4));
+        if (proj_out) memcpy(proj_out, c.projection, sizeof(mat4));
+        return;
+    }
     dist = c.distance > 0.0f ? c.distance : 3.5f;
     fov = c.fov_y > 0.0f ? c.fov_y : (float)(45.0 * SNELL_PI / 180.0);
     if (!(aspect > 0.0f)) aspect = 1.0f;
@@ -47,11 +58,41 @@ static int all_finite(const float *v, int n)
     return 1;
 }
 
+/* The host's matrices: finite, invertible, and a perspective projection
+ * (its bottom row 0 0 -1 0, GL's, scaled: every kernel's view rays start at
+ * the eye). */
+static snell_status validate_matrices(const snell_ctx *ctx, const snell_camera *cam, const char *who)
+{
+    const float *p = cam->projection;
+    mat4 vp, a, b;
+    if (!all_finite(cam->view, 16))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.view is not finite", who);
+    if (!all_finite(p, 16))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection is not finite", who);
+    if (!snell__matrix_invertible(cam->view))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.view is not invertible", who);
+    if (!snell__matrix_invertible(p))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection is not invertible", who);
+    if (p[3] != 0.0f || p[7] != 0.0f || !(p[11] < 0.0f) || p[15] != 0.0f)
+        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s: camera.projection's bottom row (%g %g %g %g) is not a "
+                           "perspective one (0 0 -w 0): orthographic and other projections are not drawn yet",
+                           who, p[3], p[7], p[11], p[15]);
+    memcpy(a, cam->projection, sizeof a);
+    memcpy(b, cam->view, sizeof b);
+    glm_mat4_mul(a, b, vp);
+    if (!snell__matrix_invertible((const float *)vp))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection x camera.view is not invertible", who);
+    return SNELL_OK;
+}
+
 snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *cam, float aspect, const char *who)
 {
     float dist, zn, zf, eye[3], view[16], proj[16];
     int k;
     if (!cam) return SNELL_OK;
+    if (cam->kind == SNELL_CAMERA_MATRICES) return validate_matrices(ctx, cam, who);
+    if (cam->kind != SNELL_CAMERA_ORBIT)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.kind %d is not a snell_camera_kind", who, (int)cam->kind);
     if (!isfinite(cam->azimuth))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.azimuth %g is not finite", who, cam->azimuth);
     if (!isfinite(cam->elevation))

@@ -192,6 +192,7 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__caustics_destroy(&r->caustics);
     snell__glass_scale_destroy(&r->glass_scale);
     snell__ssaa_destroy(&r->ssaa);
+    snell__host_depth_destroy(&r->host_depth);
     if (r->msaa_fbo) glDeleteFramebuffers(1, &r->msaa_fbo);
     if (r->msaa_rb) glDeleteRenderbuffers(1, &r->msaa_rb);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
@@ -235,11 +236,18 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
                            (double)fd->budget_ms);
     if (!isfinite(fd->quality_floor_db) || fd->quality_floor_db < 0.0f || fd->quality_floor_db > 100.0f)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "quality_floor_db %g outside 0..100", (double)fd->quality_floor_db);
+    if ((unsigned)fd->depth > SNELL_DEPTH_TEST_NO_WRITE)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "depth %d is not a snell_depth_mode", (int)fd->depth);
+    if (fd->depth == SNELL_DEPTH_TEST_NO_WRITE && r->target == SNELL_TARGET_OFFSCREEN)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "SNELL_DEPTH_TEST_NO_WRITE is for a bound framebuffer: "
+                           "the offscreen target's depth is the renderer's own");
     if ((st = snell__caustics_validate(r->ctx, fd)) != SNELL_OK) return st;
     return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
 }
 
-static void begin_frame_state(snell_renderer *r)
+/* The frame's fixed state; the target's depth as the frame's mode asks
+ * (render/host_depth.h: never cleared for a bound framebuffer unless asked). */
+static snell_status begin_frame_state(snell_renderer *r, const snell_frame_desc *fd)
 {
     if (r->target == SNELL_TARGET_OFFSCREEN) glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
     glViewport(0, 0, r->width, r->height);
@@ -254,8 +262,8 @@ static void begin_frame_state(snell_renderer *r)
     snell__glstate_frame_defaults();
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
-    glClearDepthf(1.0f);
-    glClear(GL_DEPTH_BUFFER_BIT);
+    return snell__host_depth_begin(r->ctx, &r->host_depth, snell__depth_mode_of(fd->depth, r->target), r->width,
+                                   r->height);
 }
 
 snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_frame_stats *stats)
@@ -278,7 +286,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     f.r = r, f.fd = fd, f.s = s, f.sc = &r->scene, f.n_layers = -1;
     external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
     if (external) snell__glstate_save(&saved);
-    begin_frame_state(r);
+    st = begin_frame_state(r, fd);
     snell__prepared_frame(&r->prepared);
     /* The stage table in frame order (stages.c); each says whether this frame wants it. */
     for (i = 0; i < snell__stage_count && st == SNELL_OK; i++) {
@@ -293,6 +301,10 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
      * restores its name would then name a freed program. */
     glUseProgram(0);
     glBindVertexArray(0);
+    if (r->target != SNELL_TARGET_OFFSCREEN) {
+        snell_status back = snell__host_depth_end(r->ctx, &r->host_depth);
+        if (st == SNELL_OK) st = back;
+    }
     if (external) snell__glstate_restore(&saved);
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(r->ctx, SNELL_E_GL, "GL error during the frame");
     snell__budget_frame_end(r, fd, t0, st == SNELL_OK);

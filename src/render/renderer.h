@@ -11,6 +11,7 @@
 #include "render/env_paraboloid.h"
 #include "render/gbuffer.h"
 #include "render/glass_scale.h"
+#include "render/host_depth.h"
 #include "render/layers.h"
 #include "render/prepared.h"
 #include "render/scene.h"
@@ -27,6 +28,7 @@ struct snell_renderer {
     snell_target target;
     snell__output_kind out;
     unsigned fbo, color_rb, depth_rb;
+    snell__host_depth host_depth;                     /* the target's depth as the frame's mode asks */
     void *method_state[SNELL_METHOD_COUNT_];
     snell_status method_status[SNELL_METHOD_COUNT_];  /* creation failed: not retried */
     char method_error[SNELL_METHOD_COUNT_][160];
