@@ -44,6 +44,8 @@ typedef struct render_options {
     const char *scene_file;        /* --scene: a glTF scene instead of --mesh/--opaque */
     int camera_given;              /* --camera was given (it overrides a scene file's camera) */
     int fov_given;                 /* --fov was given (it overrides a scene file camera's) */
+    float view[16], projection[16]; /* --view, --projection: the camera as matrices (both or neither) */
+    int view_given, projection_given;
     snell_light light;             /* --light, --photons (snell_frame_desc.light) */
     snell_receiver receiver;       /* --floor, --floor-map (snell_frame_desc.receiver) */
 } render_options;

@@ -67,6 +67,8 @@ void render_usage(FILE *f)
             "  --size WxH             image size (default 512x512)\n"
             "  --camera AZ,EL,DIST    orbit camera about the origin: degrees, degrees, distance (default 30,20,3.5)\n"
             "  --fov DEG              vertical field of view (default 45)\n"
+            "  --view M --projection M  the camera as a host gives it: 16 comma-separated numbers each,\n"
+            "                         column-major, GL conventions (any perspective, off-axis included)\n"
             "  --backend NAME         surfaceless (default), pbuffer\n"
             "  --frames N             render N frames and print the median time per frame\n"
             "  --shading MODE         auto (default: screen space for dense meshes), forward, screen\n"
@@ -282,6 +284,11 @@ static int view_option(const char *a, const char *v, render_options *o)
         o->el_deg = c[1];
         o->dist = c[2];
         o->camera_given = 1;
+    } else if (!strcmp(a, "--view") || !strcmp(a, "--projection")) {
+        int view = !strcmp(a, "--view");
+        if (!parse_floats(v, view ? o->view : o->projection, 16))
+            return usage_error("%s wants 16 comma-separated numbers (column-major), got '%s'", a, v);
+        *(view ? &o->view_given : &o->projection_given) = 1;
     } else if (!strcmp(a, "--fov")) {
         if (!parse_floats(v, &o->fov_deg, 1) || !(o->fov_deg > 1.0f && o->fov_deg < 179.0f))
             return usage_error("%s wants degrees in 1..179, got '%s'", a, v);
@@ -375,7 +382,7 @@ static void set_defaults(render_options *o)
 static int takes_value(const char *a)
 {
     static const char *const names[] = {"--scene", "--mesh", "--opaque", "--place", "--color", "--env", "--size",
-                                        "--camera", "--fov", "--backend", "--shading", "--env-lookup", "--ssaa",
+                                        "--camera", "--fov", "--view", "--projection", "--backend", "--shading", "--env-lookup", "--ssaa",
                                         "--msaa", "--scene-layers", "--frames", "--trace-pixel", "-o", "--ior",
                                         "--absorption", "--attenuation", "--tint", "--thickness", "--dispersion",
                                         "--abbe", "--dispersion-model", "--scale", "--method", "--param", "--light",
@@ -453,6 +460,11 @@ int render_parse_args(int argc, char **argv, render_options *o)
     }
     if (o->scene_file && (o->glass_count > 0 || o->opaque_count > 0 || o->orbit > 0))
         return usage_error("--scene %s gives the objects; it does not combine with --mesh or --opaque%s", o->scene_file, "");
+    if (o->view_given != o->projection_given)
+        return usage_error("--view and --projection go together%s%s", "", "");
+    if (o->view_given && (o->camera_given || o->fov_given))
+        return usage_error("--view and --projection give the whole camera; --camera and --fov do not combine "
+                           "with them%s%s", "", "");
     if (o->glass_count > 0 && o->base.placed) {
         fprintf(stderr, PROG ": --place before the first --mesh places nothing when --mesh is given; put it after "
                         "the --mesh it moves\n");

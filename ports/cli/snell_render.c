@@ -312,6 +312,12 @@ int main(int argc, char **argv)
                  fd.camera.target[0], fd.camera.target[1], fd.camera.target[2], fd.camera.distance);
     }
 
+    if (o.view_given) { /* the host's matrices replace every orbit value above */
+        fd.camera.kind = SNELL_CAMERA_MATRICES;
+        memcpy(fd.camera.view, o.view, sizeof fd.camera.view);
+        memcpy(fd.camera.projection, o.projection, sizeof fd.camera.projection);
+        if (scene.file) snprintf(scene.camera_note, sizeof scene.camera_note, "--view and --projection");
+    }
     if (!render_frames(ctx, r, &o, &scene, &fd, &fs)) goto done;
     if (o.stats) print_stats(stdout, &fs, &scene);
     if (o.verbose) print_stats(stderr, &fs, &scene);
