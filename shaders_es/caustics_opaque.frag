@@ -15,12 +15,12 @@ precision highp sampler2DShadow;
 in highp vec3 v_world_pos;
 in vec3 v_world_normal;
 
-uniform highp vec3 u_eye;
+#include "common/view.glsl"
 uniform vec3 u_color;        // albedo
 
 void main()
 {
     snell_paraboloid_clip();
     highp vec3 p = v_world_pos;
-    snell_write(u_color * snell_lit_irradiance(p, normalize(v_world_normal)), p - u_eye);
+    snell_write(u_color * snell_lit_irradiance(p, normalize(v_world_normal)), snell_view_vec(p));
 }

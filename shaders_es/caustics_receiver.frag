@@ -7,11 +7,11 @@ precision highp sampler2D;
 #include "common/output.glsl"
 #include "common/receiver.glsl"
 
-uniform highp vec3 u_eye;
+#include "common/view.glsl"
 in vec2 v_ndc;
 in highp vec3 v_world_pos;
 
 void main()
 {
-    snell_write(u_plane_albedo * receiver_irradiance(v_ndc * 0.5 + 0.5), v_world_pos - u_eye);
+    snell_write(u_plane_albedo * receiver_irradiance(v_ndc * 0.5 + 0.5), snell_view_vec(v_world_pos));
 }

@@ -28,7 +28,7 @@ precision highp float;
 // program's variant (methods/cubemap.c).
 
 
-uniform highp vec3 u_eye;
+#include "common/view.glsl"
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform mat3 u_normal_matrix;    // object -> world normals
@@ -181,7 +181,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 world_pos, world_normal;
     snell_surface(world_pos, world_normal);
-    highp vec3 v = normalize(world_pos - u_eye);
+    highp vec3 v = snell_view_ray(world_pos);
     vec3 n = normalize(world_normal);
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);

@@ -33,7 +33,7 @@ precision highp int;
 // program's variant (methods/exact.c).
 #include "common/bvh.glsl"
 
-uniform highp vec3 u_eye;
+#include "common/view.glsl"
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform highp vec4 u_bsphere;    // world bounding sphere: the fallback's absorption chord
@@ -43,7 +43,7 @@ uniform int u_max_interfaces;    // 1..MAX_INTERFACES
 uniform float u_eps;             // minimum distance of a secondary hit, world units
 uniform float u_fallback_mark;   // alpha of a fallback pixel in the RGBA32F exit-direction target
 uniform mat3 u_cam_basis;        // view -> world rotation (the view matrix's 3x3, transposed)
-uniform vec4 u_cam_proj;         // the projection's P00, P11, P20, P21
+uniform vec4 u_cam_proj;         // the projection's P00, P11, P20, P21 (orthographic: P00, P11, -P30, -P31)
 uniform vec2 u_pixel_to_ndc;     // 2 / target size in pixels
 
 // The colour for one IOR, snell_ior (common/dispersion.glsl); g_over
@@ -58,7 +58,13 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     // the G-buffer's depth through a float inverse of view_proj (off by up
     // to 5e-4 rad here) is on it to float precision.
     vec2 ndc = gl_FragCoord.xy * u_pixel_to_ndc - 1.0;
-    highp vec3 v = normalize(u_cam_basis * vec3((ndc + u_cam_proj.zw) / u_cam_proj.xy, -1.0));
+    highp vec3 lens = vec3((ndc + u_cam_proj.zw) / u_cam_proj.xy, -1.0), v, eye = u_eye;
+    if (u_view_axis.w > 0.5) { // orthographic: parallel rays from the lens plane's point
+        v = u_view_axis.xyz;
+        eye += u_cam_basis * vec3(lens.xy, 0.0);
+    } else {
+        v = normalize(u_cam_basis * lens);
+    }
     vec3 n = normalize(world_normal);
     if (dot(n, v) > 0.0) n = -n;
     mat3 inv3 = mat3(u_inv_model);
@@ -67,7 +73,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 p = (u_inv_model * vec4(world_pos, 1.0)).xyz;
     float t_in = 3.0e38;
     vec3 b;
-    int at = closest(make_ray((u_inv_model * vec4(u_eye, 1.0)).xyz, inv3 * v), 0.0, t_in, -1, b);
+    int at = closest(make_ray((u_inv_model * vec4(eye, 1.0)).xyz, inv3 * v), 0.0, t_in, -1, b);
     if (at >= 0) surface_at(at, b, v, p, n);
 
     vec3 r = snell_reflect(v, n);

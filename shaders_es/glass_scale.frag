@@ -26,7 +26,7 @@ precision highp float;
 uniform highp sampler2D u_small_color; // the small target's colour (RGBA8), alpha 1 where covered
 uniform highp vec2 u_ratio;            // its texels per full-resolution pixel
 uniform highp ivec2 u_max;             // its last texel used (the grid's size - 1)
-uniform highp vec3 u_eye;
+#include "common/view.glsl"
 uniform float u_ior;
 uniform vec3 u_tint;
 uniform vec3 u_sigma;             // Beer-Lambert coefficient per world unit
@@ -38,7 +38,7 @@ uniform float u_thickness;        // > 0: a thin wall of this thickness (single.
 // (frame/env.c), so their implicit derivatives select nothing.
 vec3 single_surface(highp vec3 pos, highp vec3 normal)
 {
-    highp vec3 v = normalize(pos - u_eye);
+    highp vec3 v = snell_view_ray(pos);
     vec3 n = normalize(normal);
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);

@@ -9,7 +9,7 @@ precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 in highp vec3 v_world_pos;
 in vec3 v_world_normal;
 
-uniform highp vec3 u_eye;
+#include "common/view.glsl"
 uniform vec3 u_color;
 
 void main()
@@ -17,5 +17,5 @@ void main()
     snell_paraboloid_clip();
     vec3 n = normalize(v_world_normal);
     float l = 0.5 + 0.5 * dot(n, normalize(vec3(0.3, 1.0, 0.2)));
-    snell_write(u_color * (0.25 + 0.75 * l), v_world_pos - u_eye);
+    snell_write(u_color * (0.25 + 0.75 * l), snell_view_vec(v_world_pos));
 }

@@ -57,7 +57,7 @@ precision highp float;
 // SNELL_PEEL_FIX_MERGE, SNELL_ABSORB, SNELL_FRESNEL_EXACT, SNELL_INNER_FRESNEL:
 // the program's variant (methods/peel.c).
 
-uniform highp vec3 u_eye;
+#include "common/view.glsl"
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform highp mat4 u_view_proj;
@@ -316,7 +316,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 p1, n1;
     snell_surface(p1, n1);
-    highp vec3 v = normalize(p1 - u_eye);
+    highp vec3 v = snell_view_ray(p1);
     vec3 n = normalize(n1);
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);

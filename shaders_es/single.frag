@@ -17,7 +17,7 @@ precision SNELL_MEDIUMP float; // the context's policy (core/program.c)
 #include "common/dispersion.glsl"
 
 
-uniform highp vec3 u_eye;
+#include "common/view.glsl"
 uniform vec3 u_sigma;            // Beer-Lambert coefficient per world unit
 uniform vec3 u_tint;
 uniform highp vec4 u_bsphere;    // bounding sphere: world centre, radius
@@ -32,7 +32,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     // snell_h(): fp16 rounding of what is mediump on real hardware (the
     // arguments of the mediump optics functions included) under
     // SNELL_FP16_EMULATION; the identity otherwise (common/fp16.glsl).
-    highp vec3 v = normalize(world_pos - u_eye);
+    highp vec3 v = snell_view_ray(world_pos);
     vec3 n = snell_h(normalize(world_normal)); // normalised at highp, then mediump
     // Interpolated normals can face away from the eye at the silhouette.
     if (dot(n, v) > 0.0) n = -n;

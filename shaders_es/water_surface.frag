@@ -36,7 +36,7 @@ precision highp float;
 in vec3 v_world_pos;
 in vec3 v_world_normal;
 
-uniform vec3 u_eye;
+#include "common/view.glsl"
 
 #ifdef SNELL_WATER_OBJECTS
 uniform highp sampler2D u_scene_depth; // the opaque objects' window depth (1: none)
@@ -110,7 +110,7 @@ float find_object(vec3 p, vec3 t, float dmax, out vec3 col)
 void main()
 {
     highp vec3 p = v_world_pos;
-    highp vec3 v = normalize(p - u_eye);
+    highp vec3 v = snell_view_ray(p);
     highp vec3 n = normalize(v_world_normal);
     if (dot(n, v) > 0.0) n = -n;
     highp vec3 r = snell_reflect(v, n), t;

@@ -8,9 +8,9 @@ precision highp float;
 in vec3 v_world_pos;
 flat in int v_face;
 
-uniform vec3 u_eye;
+#include "common/view.glsl"
 
 void main()
 {
-    snell_write(water_tile(v_face, v_world_pos), v_world_pos - u_eye);
+    snell_write(water_tile(v_face, v_world_pos), snell_view_vec(v_world_pos));
 }

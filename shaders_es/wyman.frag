@@ -24,7 +24,7 @@ precision highp float;
 #include "common/beyond.glsl"
 #include "common/dispersion.glsl"
 
-uniform highp vec3 u_eye;
+#include "common/view.glsl"
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform mat4 u_model;                // object -> world
@@ -91,7 +91,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 p1, n1;
     snell_surface(p1, n1);
-    highp vec3 v = normalize(p1 - u_eye);
+    highp vec3 v = snell_view_ray(p1);
     vec3 n = normalize(n1);
     if (dot(n, v) > 0.0) n = -n;
     vec3 r = snell_reflect(v, n);

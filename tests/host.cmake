@@ -34,21 +34,24 @@ endif()
 snell_add_test(test_host_world SOURCES test_host_world.c LABELS "render;gl")
 target_link_libraries(test_host_world PRIVATE PkgConfig::EGL PkgConfig::GLES m)
 
-# snell-render --view/--projection: a host's off-axis camera renders; an
-# orthographic projection is refused (exit 1, naming the field); --view alone
-# or with --camera is a usage error (exit 2).
+# snell-render --view/--projection: a host's off-axis camera and an
+# orthographic one render; a projection neither perspective nor orthographic
+# is refused (exit 1, naming the field); --view alone or with --camera is a
+# usage error (exit 2).
 if(TARGET snell-render)
   set(view "0.866,-0.117,0.486,0,0,0.972,0.234,0,-0.5,-0.203,0.842,0,0,0,-3.5,1")
   add_test(NAME cli_camera_matrices COMMAND snell-render --view ${view}
            --projection 2.414,0,0,0,0,2.414,0,0,0.3,0.2,-1.002,-1,0,0,-0.07,0 --size 32x24
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_camera_matrices.png)
-  set_tests_properties(cli_camera_matrices PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "wrote .*32x24")
-  add_test(NAME cli_camera_ortho COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>"
-           "-DARGS=--view|${view}|--projection|1,0,0,0,0,1,0,0,0,0,-0.2,0,0,0,-1,1|--size|8x8" -DCODE=1
+  add_test(NAME cli_camera_ortho COMMAND snell-render --view ${view} --projection 0.7,0,0,0,0,0.7,0,0,0,0,-0.2,0,0,0,-1.01,1
+           --mesh torus --size 32x32 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_camera_ortho.png)
+  set_tests_properties(cli_camera_matrices cli_camera_ortho PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "wrote .*32x")
+  add_test(NAME cli_camera_projective COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>"
+           "-DARGS=--view|${view}|--projection|2.4,0,0,0.2,0,2.4,0,0,0,0,-1,-1,0,0,-0.07,0|--size|8x8" -DCODE=1
            "-DERR=snell-render: render: snell_render: camera.projection's bottom row" -P
            ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   add_test(NAME cli_camera_view_alone COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>"
            "-DARGS=--view|${view}|--size|8x8" -DCODE=2 "-DERR=snell-render: --view and --projection go together" -P
            ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
-  set_tests_properties(cli_camera_ortho cli_camera_view_alone PROPERTIES LABELS "cli")
+  set_tests_properties(cli_camera_projective cli_camera_view_alone PROPERTIES LABELS "cli")
 endif()

@@ -282,14 +282,16 @@ static void orbit_as_matrices(snell_ctx *ctx)
         CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, b));
         CHECK(!memcmp(a, b, sizeof a), "%s: the orbit camera and its matrices differ", snell_method_info_at(i)->name);
     }
-    /* refused: an orthographic projection, a singular view, a kind out of range */
+    /* refused: a projection neither perspective nor orthographic, a singular
+     * view, a kind out of range */
     {
         snell_frame_desc m = fd;
         m.camera.kind = SNELL_CAMERA_MATRICES;
         glm_lookat((vec3){0, 0, 3}, (vec3){0, 0, 0}, (vec3){0, 1, 0}, (vec4 *)m.camera.view);
-        glm_ortho(-1, 1, -1, 1, 0.1f, 10, (vec4 *)m.camera.projection);
+        glm_perspective(0.8f, 1.0f, 0.1f, 10.0f, (vec4 *)m.camera.projection);
+        m.camera.projection[3] = 0.2f; /* a bottom row 0.2 0 -1 0: a tilted image plane */
         CHECK(snell_render(r, &m, NULL) == SNELL_E_UNSUPPORTED && strstr(snell_last_error(ctx), "camera.projection"),
-              "orthographic: %s", snell_last_error(ctx));
+              "projective: %s", snell_last_error(ctx));
         glm_perspective(0.8f, 1.0f, 0.1f, 10.0f, (vec4 *)m.camera.projection);
         memset(m.camera.view, 0, sizeof m.camera.view);
         CHECK(snell_render(r, &m, NULL) == SNELL_E_INVALID_ARG && strstr(snell_last_error(ctx), "camera.view"),
@@ -362,22 +364,30 @@ done:
 }
 
 /* An off-axis frustum (the lens shifted, as a VR eye's) of the orbit
- * camera's focal length and pixel size: the glass within 1 dB of on axis, or better. */
-static void off_axis_accuracy(snell_ctx *ctx)
+ * camera's focal length and pixel size, and an orthographic projection of the
+ * same pixel size at the sphere: for every method, the glass within 1 dB of
+ * the on-axis camera's PSNR against FULL, or better. */
+static void projections_accuracy(snell_ctx *ctx)
 {
     const snell_camera orbit = {.azimuth = 0.3f, .elevation = 0.25f, .distance = 4.0f, .fov_y = 0.7f};
-    snell_camera off = orbit;
-    float eye[3], t = 0.04f * tanf(0.35f);
-    int m;
+    snell_camera off = orbit, ortho;
+    float eye[3], t = 0.04f * tanf(0.35f), half = 4.0f * tanf(0.35f);
+    int i;
     off.kind = SNELL_CAMERA_MATRICES;
     snell_camera_matrices(&orbit, 1.0f, eye, off.view, off.projection);
     glm_frustum(-0.6f * t, 1.4f * t, -1.3f * t, 0.7f * t, 0.04f, 400.0f, (vec4 *)off.projection);
-    for (m = 0; m < 2; m++) {
-        snell_method method = m ? SNELL_METHOD_EXACT : SNELL_METHOD_AUTO;
+    ortho = off;
+    glm_ortho(-half, half, -half, half, 0.04f, 400.0f, (vec4 *)ortho.projection);
+    for (i = -1; i < snell_method_count(); i++) {
+        snell_method method = i < 0 ? SNELL_METHOD_AUTO : snell_method_info_at(i)->method;
         double on_axis = sphere_psnr(ctx, &orbit, method), shifted = sphere_psnr(ctx, &off, method);
-        printf("%s: glass PSNR vs FULL %.2f dB on axis, %.2f dB off axis\n", snell_method_str(method), on_axis, shifted);
+        double parallel = sphere_psnr(ctx, &ortho, method);
+        printf("%s: glass PSNR vs FULL %.2f dB on axis, %.2f off axis, %.2f orthographic\n", snell_method_str(method),
+               on_axis, shifted, parallel);
         CHECK(shifted >= on_axis - 1.0, "%s: off axis %.2f dB against %.2f on axis", snell_method_str(method),
               shifted, on_axis);
+        CHECK(parallel >= on_axis - 1.0, "%s: orthographic %.2f dB against %.2f on axis", snell_method_str(method),
+              parallel, on_axis);
     }
 }
 
@@ -386,7 +396,7 @@ int main(void)
     snell_ctx *ctx = test_ctx();
     if (!ctx) SKIP("no GL context");
     orbit_as_matrices(ctx);
-    off_axis_accuracy(ctx);
+    projections_accuracy(ctx);
     snell_ctx_destroy(ctx);
     host_world();
     return test_finish();

@@ -814,8 +814,9 @@ typedef struct snell_camera {
     /* SNELL_CAMERA_MATRICES: world to eye and eye to clip, column-major, GL
      * conventions (the eye looks down -Z, clip depth -w..w), as an app passes
      * them to its own shaders. Any invertible perspective projection,
-     * off-axis (a VR eye, a shifted lens) included. The target's aspect is
-     * the projection's business: snell uses it as given. */
+     * off-axis (a VR eye, a shifted lens) included, or an orthographic one
+     * (a UI or CAD view: parallel view rays). The target's aspect is the
+     * projection's business: snell uses it as given. */
     float view[16], projection[16];
 } snell_camera;
 /* snell_render and the reference tracer refuse, with SNELL_E_INVALID_ARG
@@ -823,8 +824,7 @@ typedef struct snell_camera {
  * fov_y outside [0, pi), a near plane (given or derived) not before the far
  * plane, and a distance so large that the derived far plane overflows; for
  * SNELL_CAMERA_MATRICES, a matrix that is not finite or not invertible, and
- * (SNELL_E_UNSUPPORTED) a projection that is not perspective (orthographic
- * projections are not drawn yet). */
+ * (SNELL_E_UNSUPPORTED) a projection neither perspective nor orthographic. */
 
 /* Eye position and view/projection matrices (column-major) of a camera:
  * the orbit's, or the matrices given (then aspect is unused). */

@@ -58,9 +58,14 @@ static int all_finite(const float *v, int n)
     return 1;
 }
 
+int snell__projection_orthographic(const float p[16])
+{
+    return p[3] == 0.0f && p[7] == 0.0f && p[11] == 0.0f && p[15] != 0.0f;
+}
+
 /* The host's matrices: finite, invertible, and a perspective projection
- * (its bottom row 0 0 -1 0, GL's, scaled: every kernel's view rays start at
- * the eye). */
+ * (bottom row 0 0 -w 0: the view rays start at the eye) or an orthographic
+ * one (0 0 0 w: they run along the axis, common/view.glsl). */
 static snell_status validate_matrices(const snell_ctx *ctx, const snell_camera *cam, const char *who)
 {
     const float *p = cam->projection;
@@ -73,9 +78,9 @@ static snell_status validate_matrices(const snell_ctx *ctx, const snell_camera *
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.view is not invertible", who);
     if (!snell__matrix_invertible(p))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection is not invertible", who);
-    if (p[3] != 0.0f || p[7] != 0.0f || !(p[11] < 0.0f) || p[15] != 0.0f)
-        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s: camera.projection's bottom row (%g %g %g %g) is not a "
-                           "perspective one (0 0 -w 0): orthographic and other projections are not drawn yet",
+    if (!snell__projection_orthographic(p) && (p[3] != 0.0f || p[7] != 0.0f || !(p[11] < 0.0f) || p[15] != 0.0f))
+        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s: camera.projection's bottom row (%g %g %g %g) is neither a "
+                           "perspective one (0 0 -w 0) nor an orthographic one (0 0 0 w)",
                            who, p[3], p[7], p[11], p[15]);
     memcpy(a, cam->projection, sizeof a);
     memcpy(b, cam->view, sizeof b);

@@ -56,7 +56,8 @@ typedef struct snell__scene_layers {
 /* The frame's camera and target, shared by every object (world space). */
 typedef struct snell__view {
     mat4 view, proj, view_proj, inv_view_proj;
-    float eye[3];
+    float eye[3];                   /* the camera's position (orthographic: a point on its axis) */
+    float view_axis[4];             /* the direction it looks along; w 1: orthographic (common/view.glsl) */
     int width, height;
     snell__output_kind out;
     snell__back_maps back;          /* this frame's back-face maps (band 0 and the target's size if none) */

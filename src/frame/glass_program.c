@@ -68,6 +68,7 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     g->normal_matrix = glGetUniformLocation(g->prog, "u_normal_matrix");
     g->view_proj = glGetUniformLocation(g->prog, "u_view_proj");
     g->eye = glGetUniformLocation(g->prog, "u_eye");
+    g->view_axis = glGetUniformLocation(g->prog, "u_view_axis");
     g->ior = glGetUniformLocation(g->prog, "u_ior");
     g->ior_rgb = glGetUniformLocation(g->prog, "u_ior_rgb");
     g->sigma = glGetUniformLocation(g->prog, "u_sigma");
@@ -128,6 +129,7 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniformMatrix3fv(g->normal_matrix, 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
     glUniformMatrix4fv(g->view_proj, 1, GL_FALSE, (const GLfloat *)v->view_proj);
     glUniform3fv(g->eye, 1, v->eye);
+    glUniform4fv(g->view_axis, 1, v->view_axis);
     glUniform1f(g->ior, o->glass->material.ior);
     glUniform3fv(g->ior_rgb, 1, o->glass->ior_rgb);
     glUniform3fv(g->sigma, 1, o->glass->absorption);

@@ -11,7 +11,7 @@ struct snell__glass_program {
     unsigned prog;
     int screen_space;               /* 0 forward, else SNELL__SCREEN_* (frame/frame.h): screen.vert */
     unsigned variant;               /* what it was built for (snell__glass_variant) */
-    int model, normal_matrix, view_proj, eye, ior, ior_rgb, sigma, tint, bsphere;
+    int model, normal_matrix, view_proj, eye, view_axis, ior, ior_rgb, sigma, tint, bsphere;
     int inv_view_proj, inv_size, gid;
     int hook_locs[SNELL__HOOK_LOCS]; /* the frame stages' uniforms (frame/stage.h) */
     snell__samplers samplers;       /* its texture units, by sampler name (frame/textures.h) */

@@ -537,7 +537,10 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
         for (i = 0; i < 3; i++)
             for (j = 0; j < 3; j++) basis[3 * i + j] = v->view[j][i];
         glUniformMatrix3fv(p->cam_basis, 1, GL_FALSE, basis);
-        glUniform4f(p->cam_proj, v->proj[0][0], v->proj[1][1], v->proj[2][0], v->proj[2][1]);
+        if (v->view_axis[3] > 0.5f)
+            glUniform4f(p->cam_proj, v->proj[0][0], v->proj[1][1], -v->proj[3][0], -v->proj[3][1]);
+        else
+            glUniform4f(p->cam_proj, v->proj[0][0], v->proj[1][1], v->proj[2][0], v->proj[2][1]);
         glUniform2f(p->pixel_to_ndc, 2.0f / (float)v->width, 2.0f / (float)v->height);
     }
     snell__draw_surface(o, stats);

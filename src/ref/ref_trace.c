@@ -699,6 +699,7 @@ snell_status snell__ref_camera_setup(snell_ctx *ctx, const snell_ref_params *p, 
             vp[4 * j + i] = s;
         }
     for (k = 0; k < 3; k++) cr->eye[k] = eye[k];
+    cr->ortho = snell__projection_orthographic(proj);
     if (!invert4(vp, cr->inv) || !isfinite(cr->eye[0]) || !isfinite(cr->eye[1]) || !isfinite(cr->eye[2]))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: camera matrices are singular or not finite");
     return SNELL_OK;
@@ -715,7 +716,7 @@ static void unproject(const double inv[16], double x, double y, double z, double
 /* Ray through the point (fx, fy) of pixel (x, y) (0.5, 0.5: its centre), y =
  * 0 the top row (GL's window row h - 1 - y): direction from the near-plane
  * point to the far-plane point. */
-void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double dir[3])
+void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double org[3], double dir[3])
 {
     double nx = 2.0 * ((double)x + fx) / (double)cr->w - 1.0;
     double ny = 1.0 - 2.0 * ((double)y + fy) / (double)cr->h;
@@ -726,6 +727,7 @@ void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, doubl
     dir[1] = pf[1] - pn[1];
     dir[2] = pf[2] - pn[2];
     snell__ref_normalize3(dir);
+    memcpy(org, cr->ortho ? pn : cr->eye, 3 * sizeof *org);
 }
 
 /* ------------------------------------------------------------ image loop */
@@ -748,13 +750,13 @@ static void pixel_colour(job *jb, int x, int y, size_t i)
     const camera_rays *cr = jb->cr;
     const snell_ref_output *out = jb->out;
     int S = jb->op->samples, a, b, k;
-    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, m2[3];
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, m2[3], org[3];
     snell_ref_path path;
     for (b = 0; b < S; b++)
         for (a = 0; a < S; a++) {
             double dir[3];
-            snell__ref_camera_ray(cr, x, y, (a + 0.5) / S, (b + 0.5) / S, dir);
-            trace(jb->ref, jb->op, cr->eye, dir, 0, &path, out->sample_var ? m2 : NULL);
+            snell__ref_camera_ray(cr, x, y, (a + 0.5) / S, (b + 0.5) / S, org, dir);
+            trace(jb->ref, jb->op, org, dir, 0, &path, out->sample_var ? m2 : NULL);
             for (k = 0; k < 3; k++) {
                 sum[k] += path.rgb[k];
                 /* MATCHED is deterministic per ray: its second moment is rgb^2. */
@@ -778,11 +780,11 @@ static void render_row(job *jb, int y)
     int x, k;
     for (x = 0; x < cr->w; x++) {
         size_t i = (size_t)y * (size_t)cr->w + (size_t)x;
-        double dir[3];
+        double dir[3], org[3];
         if (!centre_colour) pixel_colour(jb, x, y, i);
         if (!centre_colour && !want_path) continue;
-        snell__ref_camera_ray(cr, x, y, 0.5, 0.5, dir);
-        trace(jb->ref, jb->op, cr->eye, dir, want_path, &path, NULL);
+        snell__ref_camera_ray(cr, x, y, 0.5, 0.5, org, dir);
+        trace(jb->ref, jb->op, org, dir, want_path, &path, NULL);
         if (centre_colour)
             for (k = 0; k < 3; k++) out->rgb[3 * i + k] = (float)path.rgb[k];
         if (out->exit_dir)
@@ -924,7 +926,7 @@ snell_status snell_ref_trace_pixel(const snell_ref *ref, const snell_ref_params 
 {
     optics op;
     camera_rays cr;
-    double d[3];
+    double d[3], org[3];
     snell_status st;
     if (!ref || !params || !path)
         return snell__fail(ref ? ref->ctx : NULL, SNELL_E_INVALID_ARG,
@@ -934,7 +936,7 @@ snell_status snell_ref_trace_pixel(const snell_ref *ref, const snell_ref_params 
     if (x < 0 || y < 0 || x >= cr.w || y >= cr.h)
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_trace_pixel: pixel (%d, %d) outside %dx%d", x,
                            y, cr.w, cr.h);
-    snell__ref_camera_ray(&cr, x, y, 0.5, 0.5, d);
-    trace(ref, &op, cr.eye, d, 1, path, NULL);
+    snell__ref_camera_ray(&cr, x, y, 0.5, 0.5, org, d);
+    trace(ref, &op, org, d, 1, path, NULL);
     return SNELL_OK;
 }

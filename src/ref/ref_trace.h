@@ -24,11 +24,13 @@ snell_status snell__ref_create_sphere(snell_ctx *ctx, const double centre[3], do
 typedef struct camera_rays {
     double eye[3], inv[16]; /* inverse of proj * view, column-major */
     int w, h;
+    int ortho;              /* orthographic: each ray starts on the near plane, all parallel */
 } camera_rays;
 /* Validates params' camera and size (width/height 0 = 512) and fills cr. */
 snell_status snell__ref_camera_setup(snell_ctx *ctx, const snell_ref_params *p, camera_rays *cr);
-/* Unit ray through the point (fx, fy) of pixel (x, y) (0.5, 0.5: its centre), y = 0 the top row. */
-void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double dir[3]);
+/* The ray through the point (fx, fy) of pixel (x, y) (0.5, 0.5: its centre), y = 0 the top row:
+ * its origin (the eye; orthographic: the near plane's point) and unit direction. */
+void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, double fy, double org[3], double dir[3]);
 
 /* snell_ref_params.progress for an image loop of `rows` rows handed out under
  * one lock: snell__ref_progress_row() is called under that lock after each

@@ -362,17 +362,17 @@ static void row(water_scene *s, int y)
     int x, a, b, k, S = s->samples;
     for (x = 0; x < cr->w; x++) {
         size_t i = (size_t)y * (size_t)cr->w + (size_t)x;
-        double dir[3], rgb[3], ex[3], sum[3] = {0, 0, 0};
+        double dir[3], org[3], rgb[3], ex[3], sum[3] = {0, 0, 0};
         int hit;
         for (b = 0; b < S; b++)
             for (a = 0; a < S; a++) {
-                snell__ref_camera_ray(cr, x, y, (a + 0.5) / S, (b + 0.5) / S, dir);
-                trace_in(s, 0, &s->air, cr->eye, dir, rgb);
+                snell__ref_camera_ray(cr, x, y, (a + 0.5) / S, (b + 0.5) / S, org, dir);
+                trace_in(s, 0, &s->air, org, dir, rgb);
                 for (k = 0; k < 3; k++) sum[k] += rgb[k];
             }
         for (k = 0; k < 3; k++) out->rgb[3 * i + k] = (float)(sum[k] / (S * S));
-        snell__ref_camera_ray(cr, x, y, 0.5, 0.5, dir);
-        hit = view_hit(s, cr->eye, dir, ex);
+        snell__ref_camera_ray(cr, x, y, 0.5, 0.5, org, dir);
+        hit = view_hit(s, org, dir, ex);
         if (out->exit_dir)
             for (k = 0; k < 3; k++) out->exit_dir[3 * i + k] = (float)ex[k];
         if (out->hit) out->hit[i] = (uint8_t)hit;

@@ -885,6 +885,7 @@ static void draw_lit_opaque(snell__caustics *c, const snell_frame_desc *fd, cons
     glUseProgram(p);
     snell__lit_opaque_uniforms(p, c, 0);
     glUniform3fv(glGetUniformLocation(p, "u_eye"), 1, sc->view.eye);
+    glUniform4fv(glGetUniformLocation(p, "u_view_axis"), 1, sc->view.view_axis);
     for (i = 0; i < fd->opaque_count; i++) {
         float albedo[3] = {0.8f, 0.8f, 0.8f};
         const float *col = fd->opaque[i].color;
@@ -910,6 +911,7 @@ static snell_status draw_receiver(snell__caustics *c, const snell_frame_desc *fd
     glUniform1i(glGetUniformLocation(c->receiver_prog, "u_plane_map"), 0);
     glUniform3fv(glGetUniformLocation(c->receiver_prog, "u_plane_albedo"), 1, albedo);
     glUniform3fv(glGetUniformLocation(c->receiver_prog, "u_eye"), 1, sc->view.eye);
+    glUniform4fv(glGetUniformLocation(c->receiver_prog, "u_view_axis"), 1, sc->view.view_axis);
     glUniformMatrix4fv(glGetUniformLocation(c->receiver_prog, "u_view_proj"), 1, GL_FALSE,
                        (const GLfloat *)sc->view.view_proj);
     plane_uniform(c->receiver_prog, rc);

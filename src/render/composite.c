@@ -19,6 +19,7 @@ static snell_status build(snell_ctx *ctx, snell__opaque_prog *p, const char *vs,
     p->normal_matrix = glGetUniformLocation(p->prog, "u_normal_matrix");
     p->view_proj = glGetUniformLocation(p->prog, "u_view_proj");
     p->eye = glGetUniformLocation(p->prog, "u_eye");
+    p->view_axis = glGetUniformLocation(p->prog, "u_view_axis");
     p->color = glGetUniformLocation(p->prog, "u_color");
     p->centre = glGetUniformLocation(p->prog, "u_centre");
     p->layer = glGetUniformLocation(p->prog, "u_layer");
@@ -115,14 +116,16 @@ static snell_status begin(snell_ctx *ctx, snell__opaque_prog *p, const char *vs,
 
 snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                      const snell_opaque *list, int count, const float view_proj[16],
-                                     const float eye[3], const struct snell__caustics *lit)
+                                     const float eye[3], const float view_axis[4], const struct snell__caustics *lit)
 {
+    static const float perspective[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     snell__opaque_prog *p = lit ? &c->opaque_lit[0] : &c->opaque[kind];
     snell_status st;
     if (count == 0) return SNELL_OK;
     if ((st = begin(ctx, p, "object.vert", snell__output_defines(kind), list, count, lit)) != SNELL_OK) return st;
     glUniformMatrix4fv(p->view_proj, 1, GL_FALSE, view_proj);
     glUniform3fv(p->eye, 1, eye);
+    glUniform4fv(p->view_axis, 1, view_axis ? view_axis : perspective);
     draw_opaque_list(p, list, count);
     return SNELL_OK;
 }
@@ -169,23 +172,23 @@ snell_status snell__composite_prepare(snell_ctx *ctx, snell__composite *c, snell
 snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                          const float rot_view_proj[16])
 {
-    return snell__composite_background_lookup(ctx, c, kind, 0, rot_view_proj);
+    mat4 inv;
+    glm_mat4_inv((vec4 *)rot_view_proj, inv);
+    return snell__composite_background_lookup(ctx, c, kind, 0, (const float *)inv);
 }
 
 snell_status snell__composite_background_lookup(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
-                                                int paraboloid, const float rot_view_proj[16])
+                                                int paraboloid, const float inv_rot_view_proj[16])
 {
-    mat4 inv;
     snell_status st = sky_prog(ctx, c, kind, paraboloid);
     if (st != SNELL_OK) return st;
-    glm_mat4_inv((vec4 *)rot_view_proj, inv);
     /* The triangle lies at the far plane (z = w): LEQUAL passes only where
      * nothing nearer was drawn. */
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
     glUseProgram(c->sky[kind][paraboloid]);
-    glUniformMatrix4fv(c->sky_inv[kind][paraboloid], 1, GL_FALSE, (const GLfloat *)inv);
+    glUniformMatrix4fv(c->sky_inv[kind][paraboloid], 1, GL_FALSE, inv_rot_view_proj);
     glUniform1i(c->sky_env[kind][paraboloid], 0);
     glBindVertexArray(c->empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);

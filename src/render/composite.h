@@ -11,7 +11,7 @@ struct snell__caustics;
 
 typedef struct snell__opaque_prog {
     unsigned prog;
-    int model, normal_matrix, view_proj, eye, color;
+    int model, normal_matrix, view_proj, eye, view_axis, color;
     int centre, layer, size, depth_range; /* opaque_paraboloid.vert's; -1 in the others */
 } snell__opaque_prog;
 
@@ -37,7 +37,7 @@ snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, in
  * (its maps on units 1..3, unit 0 left active). */
 snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                      const snell_opaque *list, int count, const float view_proj[16],
-                                     const float eye[3], const struct snell__caustics *lit);
+                                     const float eye[3], const float view_axis[4], const struct snell__caustics *lit);
 /* The same straight into map `layer` (0: +Z, 1: -Z) of size^2 dual-paraboloid
  * maps about centre (render/env_paraboloid.h), depth the distance from it
  * between z_near and z_far; colour output. */
@@ -50,8 +50,10 @@ snell_status snell__composite_opaque_paraboloid(snell_ctx *ctx, snell__composite
 snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
                                          const float rot_view_proj[16]);
 /* The same with the environment on unit 0 as dual-paraboloid maps (a 2D
- * array, render/env_paraboloid.h) if paraboloid, else the cube. */
+ * array, render/env_paraboloid.h) if paraboloid, else the cube; it takes
+ * the inverse: a pixel's far-plane point (ndc x, y, 1, 1) through it is the
+ * direction it sees. */
 snell_status snell__composite_background_lookup(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,
-                                                int paraboloid, const float rot_view_proj[16]);
+                                                int paraboloid, const float inv_rot_view_proj[16]);
 
 #endif

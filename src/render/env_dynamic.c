@@ -220,7 +220,7 @@ snell_status snell__env_dynamic_update(snell_ctx *ctx, snell__env_dynamic *d, sn
         glDepthMask(GL_TRUE);
         glClear(GL_DEPTH_BUFFER_BIT);
         snell__cube_face_view_proj(face, centre, z_near, z_far, vp);
-        st = snell__composite_opaque(ctx, comp, SNELL__OUT_COLOR, list, count, (const float *)vp, centre, lit);
+        st = snell__composite_opaque(ctx, comp, SNELL__OUT_COLOR, list, count, (const float *)vp, centre, NULL, lit);
         snell__cube_face_view_proj(face, origin, z_near, z_far, rot_vp);
         if (st == SNELL_OK) st = snell__composite_background(ctx, comp, SNELL__OUT_COLOR, (const float *)rot_vp);
         stats->passes += 1 + (count > 0);

@@ -114,6 +114,13 @@ snell_status snell__scene_build(snell_ctx *ctx, const snell_frame_desc *fd, int 
     snell_camera_matrices(&fd->camera, (float)width / (float)height, v->eye, (float *)v->view, (float *)v->proj);
     glm_mat4_mul(v->proj, v->view, v->view_proj);
     glm_mat4_inv(v->view_proj, v->inv_view_proj);
+    if (snell__projection_orthographic((const float *)v->proj)) {
+        /* every view ray is the eye's -Z in the world (common/view.glsl) */
+        vec3 axis = {-v->view[0][2], -v->view[1][2], -v->view[2][2]};
+        glm_vec3_normalize(axis);
+        memcpy(v->view_axis, axis, sizeof axis);
+        v->view_axis[3] = 1.0f;
+    }
     v->width = width;
     v->height = height;
     v->out = out;

@@ -181,7 +181,8 @@ static snell_status run_opaque(snell__frame *f)
 {
     snell_renderer *r = f->r;
     snell_status st = snell__composite_opaque(r->ctx, &r->comp, r->out, f->fd->opaque, f->fd->opaque_count,
-                                              (const float *)f->sc->view.view_proj, f->sc->view.eye, NULL);
+                                              (const float *)f->sc->view.view_proj, f->sc->view.eye, f->sc->view.view_axis,
+                                              NULL);
     if (f->fd->opaque_count > 0) {
         f->s->opaque_drawn = f->fd->opaque_count;
         f->s->passes++;
@@ -432,12 +433,20 @@ static snell_status run_background(snell__frame *f)
 {
     snell_renderer *r = f->r;
     snell_status st = SNELL_OK;
-    mat4 rot, vp;
+    mat4 rot, vp; /* vp: then its inverse, what the background's shader takes */
     int paraboloid = snell__renderer_env_paraboloid(r, 0);
     unsigned tex = f->fd->env->texture;
     glm_mat4_copy(f->sc->view.view, rot);
     rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
     glm_mat4_mul(f->sc->view.proj, rot, vp);
+    glm_mat4_inv(vp, vp);
+    if (f->sc->view.view_axis[3] > 0.5f) {
+        /* orthographic: every view ray, so every background pixel, looks
+         * along the axis (as the reference's rays do) */
+        glm_mat4_zero(vp);
+        memcpy(vp[3], f->sc->view.view_axis, 3 * sizeof(float));
+        vp[3][3] = 1.0f;
+    }
     if (paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, f->fd->env, &tex);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, tex);

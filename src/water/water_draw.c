@@ -290,6 +290,7 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     snell__samplers_bind(&p->wall_samplers, "u_env", env_target, env_texture, 0);
     glUniformMatrix4fv(glGetUniformLocation(p->wall, "u_view_proj"), 1, GL_FALSE, (const float *)v->view_proj);
     glUniform3fv(glGetUniformLocation(p->wall, "u_eye"), 1, v->eye);
+    glUniform4fv(glGetUniformLocation(p->wall, "u_view_axis"), 1, v->view_axis);
     snell__water_uniforms(p->wall, &p->wall_samplers, w);
     glBindVertexArray(w->wall_vao);
     glDrawArrays(GL_TRIANGLES, 0, 30);
@@ -312,6 +313,7 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
     }
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, (const float *)v->view_proj);
     glUniform3fv(glGetUniformLocation(prog, "u_eye"), 1, v->eye);
+    glUniform4fv(glGetUniformLocation(prog, "u_view_axis"), 1, v->view_axis);
     snell__water_uniforms(prog, ss, w);
     glBindVertexArray(w->grid_vao);
     glDrawElements(GL_TRIANGLES, (GLsizei)((w->n - 1) * (w->n - 1) * 6), GL_UNSIGNED_INT, (const void *)0);
