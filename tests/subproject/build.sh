@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# build.sh WORK_DIR [arm64] — builds tests/subproject (snell by add_subdirectory
+# build.sh WORK_DIR [arm64 [PROJECT]] — builds tests/subproject (or PROJECT,
+# e.g. ports/android/app/src/main/cpp: configured and built, not run) (snell by add_subdirectory
 # in a project that asks for CMake 3.22) as an NDK app's build would meet it:
 # no pkg-config on the PATH (and find_package(PkgConfig) disabled, since CMake
 # also looks in /usr/bin), and stb, cglm and tinygltf given as folders copied
@@ -11,6 +12,7 @@ set -euo pipefail
 src=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(realpath -m "${1:?usage: build.sh WORK_DIR [arm64]}")
 arch=${2:-host}
+project=$(realpath "${3:-$src/tests/subproject}")
 rm -rf "$work"
 mkdir -p "$work/bin" "$work/vendor/stb" "$work/vendor/cglm" "$work/vendor/tinygltf"
 
@@ -49,10 +51,14 @@ if [ "$arch" = arm64 ]; then
         run=(true)
     fi
 fi
-PATH=$work/bin cmake --no-warn-unused-cli -S "$src/tests/subproject" -B "$work/build" "${args[@]}" >"$work/configure.log" ||
+PATH=$work/bin cmake --no-warn-unused-cli -S "$project" -B "$work/build" "${args[@]}" >"$work/configure.log" ||
     { cat "$work/configure.log"; exit 1; }
 grep -q "snell: EGL and GLES by library search" "$work/configure.log" ||
     { echo "build.sh: snell did not find EGL/GLES by its library search" >&2; exit 1; }
 PATH=$work/bin cmake --build "$work/build" -j"${JOBS:-2}" >"$work/build.log" || { tail -40 "$work/build.log"; exit 1; }
+if [ "$project" != "$src/tests/subproject" ]; then
+    echo "build.sh: $project configured and built in $work/build"
+    exit 0
+fi
 file "$work/build/subproject_app"
 "${run[@]}" "$work/build/subproject_app" "$src/tests/data/nodes.glb"
