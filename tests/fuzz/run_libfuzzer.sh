@@ -100,4 +100,4 @@ run fuzz_gltf 8192 tests/data/*.gltf tests/data/*.glb tests/data/hostile/*.gltf
 run fuzz_3ds 4096 tests/data/*.3ds tests/data/*.jobj
 run fuzz_image 4096 tests/data/images/*
 run fuzz_scene2d 4096 tests/data/lm2d/*
-echo "run_libfuzzer: 4 targets, $SECS s each: no findings"
+echo "run_libfuzzer: 5 targets, $SECS s each: no findings"
