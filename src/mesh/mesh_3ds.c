@@ -10,7 +10,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-/* A model file above 256 MiB is not one of these (glmark2's largest: 672 KB). */
+/* A model file above 256 MiB is not one of these: refused before it is read. */
 #define MODEL_MAX_FILE_BYTES ((size_t)1 << 28)
 
 /* ----------------------------------------------------------------- 3DS */
