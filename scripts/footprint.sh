@@ -29,6 +29,28 @@ echo "footprint: device preset $device bytes ($((device / 1024)) KiB, budget $((
 status=0
 [ "$full" -le "$FULL_BUDGET" ] || { echo "footprint: the full build is over its budget" >&2; status=1; }
 [ "$device" -le "$DEVICE_BUDGET" ] || { echo "footprint: the device preset is over its budget" >&2; status=1; }
+# The device preset is C only (issue 42): installed, neither the library nor a
+# program needs the C++ runtime or meshoptimizer, snell-static.pc links neither,
+# and only the programs that work without PNG and the reference are there.
+inst=build-footprint-device/install-check
+rm -rf "$inst"
+cmake --install build-footprint-device --prefix "$inst" >/dev/null
+for f in "$inst"/lib*/libsnell.so "$inst"/bin/*; do
+    if readelf -d "$f" | grep -E 'NEEDED.*(libstdc\+\+|meshoptimizer)'; then
+        echo "footprint: the device preset's $f needs C++ or meshoptimizer" >&2
+        status=1
+    fi
+done
+if grep -E 'stdc\+\+|meshoptimizer' "$inst"/lib*/pkgconfig/snell-static.pc; then
+    echo "footprint: the device preset's snell-static.pc links C++ or meshoptimizer" >&2
+    status=1
+fi
+programs=$(cd "$inst/bin" 2>/dev/null && echo *)
+echo "footprint: device preset installs: ${programs:-no programs}"
+case " $programs " in *" snell-render "* | *" snell-bench "*)
+    echo "footprint: the device preset installs a program that needs PNG or the reference: $programs" >&2
+    status=1 ;;
+esac
 if [ "$BUILD_TESTS" = ON ]; then
     ctest --test-dir build-footprint-device --output-on-failure -j"$(nproc)" -LE longrun
 fi

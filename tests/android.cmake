@@ -10,7 +10,7 @@ target_include_directories(test_android_lifecycle PRIVATE ${SNELL_ANDROID_DIR})
 snell_add_test(test_android_scene SOURCES test_android_scene.c ${SNELL_ANDROID_DIR}/glass_scene.c
                LABELS "render;gl;android")
 target_include_directories(test_android_scene PRIVATE ${SNELL_ANDROID_DIR})
-target_link_libraries(test_android_scene PRIVATE PkgConfig::EGL PkgConfig::GLES)
+target_link_libraries(test_android_scene PRIVATE snell_dep::egl snell_dep::gles)
 target_compile_definitions(test_android_scene PRIVATE $<$<BOOL:${SNELL_WITH_GLTF}>:SNELL_WITH_GLTF=1>)
 # ctest does not install packages: without them the check reports itself skipped
 # (.ci/run runs the script directly, which installs them as root).

@@ -6,6 +6,12 @@ if(TARGET snell-render)
   set(cli $<TARGET_FILE:snell-render>)
   set(d ${CMAKE_CURRENT_SOURCE_DIR}/data)
   set(expect ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+  # Every model of glmark2-data (Debian's package; in the quick start's list): .3ds, .obj, .jobj.
+  if(EXISTS /usr/share/glmark2/models)
+    add_test(NAME cli_glmark2_models COMMAND ${CMAKE_COMMAND} -DEXE=${cli} -DMODELS=/usr/share/glmark2/models
+             -DOUT_DIR=${CMAKE_CURRENT_BINARY_DIR}/glmark2_models -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/render_glmark2.cmake)
+    set_tests_properties(cli_glmark2_models PROPERTIES LABELS "cli;gl" TIMEOUT 300)
+  endif()
   # Glass options before the first --mesh are every object's defaults; after a --mesh, its own.
   add_test(NAME cli_scene_objects COMMAND ${cli} --ior 1.2 --mesh sphere --place -1,0,0,0.5 --mesh goblet
            --place 1,0,0,0.5 --ior 2 --mesh shape:cube --place 0,1,0,0.4 --method single --opaque torus

@@ -1,11 +1,11 @@
 # Foundation tests: context, shaders, optics twin, single-surface render, CLI, install.
 snell_add_test(test_why SOURCES test_why.c LABELS "unit")
 snell_add_test(test_ctx SOURCES test_ctx.c LABELS "unit;gl")
-target_link_libraries(test_ctx PRIVATE PkgConfig::EGL PkgConfig::GLES)
+target_link_libraries(test_ctx PRIVATE snell_dep::egl snell_dep::gles)
 snell_add_test(test_shader SOURCES test_shader.c LABELS "unit;gl")
-target_link_libraries(test_shader PRIVATE PkgConfig::GLES)
+target_link_libraries(test_shader PRIVATE snell_dep::gles)
 snell_add_test(test_optics_twin SOURCES test_optics_twin.c LABELS "unit;gl")
-target_link_libraries(test_optics_twin PRIVATE PkgConfig::GLES m)
+target_link_libraries(test_optics_twin PRIVATE snell_dep::gles m)
 snell_add_test(test_render_single SOURCES test_render_single.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_render_single PRIVATE m)
 
@@ -24,6 +24,16 @@ add_test(NAME install_consumer
           -DGLB=${consumer_glb} -P ${CMAKE_CURRENT_SOURCE_DIR}/consumer/run.cmake)
 set(SNELL_TEST_RAW_OK FALSE)
 set_tests_properties(install_consumer PROPERTIES LABELS "install" TIMEOUT 300)
+# snell built from source by add_subdirectory in a project that asks for CMake
+# 3.22, with no pkg-config and the header-only dependencies given as folders
+# (tests/subproject/build.sh; .ci/run does the same with the arm64 toolchain).
+if(SNELL_WITH_GLTF AND NOT CMAKE_CROSSCOMPILING)
+  set(SNELL_TEST_RAW_OK TRUE)
+  add_test(NAME subproject_consumer
+    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/subproject/build.sh ${CMAKE_CURRENT_BINARY_DIR}/subproject)
+  set(SNELL_TEST_RAW_OK FALSE)
+  set_tests_properties(subproject_consumer PROPERTIES LABELS "install" TIMEOUT 600)
+endif()
 
 # The CLI: default run, flags, and clear failures with a non-zero exit.
 if(TARGET snell-render)
@@ -53,7 +63,7 @@ snell_add_test(test_env SOURCES test_env.c LABELS "unit")
 target_link_libraries(test_env PRIVATE m)
 snell_add_test(test_alloc SOURCES test_alloc.c LABELS "unit;gl")
 snell_add_test(test_exit_dir SOURCES test_exit_dir.c LABELS "render;gl" SHADINGS forward screen)
-target_link_libraries(test_exit_dir PRIVATE PkgConfig::GLES m)
+target_link_libraries(test_exit_dir PRIVATE snell_dep::gles m)
 # Again as on a driver without GL_EXT_color_buffer_float (a Pi's v3d must be
 # probed for it): Mesa hides it, and EXIT_DIRECTION must fall back to RGBA8.
 add_test(NAME test_exit_dir_no_float COMMAND test_exit_dir WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})

@@ -4,10 +4,10 @@
 # RSS and GL object counts over 2,000 varied frames and 500 create/destroy
 # cycles), labelled "longrun" only so that the sanitizer legs skip it.
 snell_add_test(test_host SOURCES test_host.c LABELS "unit;gl")
-target_link_libraries(test_host PRIVATE PkgConfig::EGL PkgConfig::GLES m)
+target_link_libraries(test_host PRIVATE snell_dep::egl snell_dep::gles m)
 
 snell_add_test(test_longrun SOURCES test_longrun.c LABELS "longrun" TIMEOUT 600)
-target_link_libraries(test_longrun PRIVATE PkgConfig::GLES m)
+target_link_libraries(test_longrun PRIVATE snell_dep::gles m)
 
 if(TARGET snell-render)
   # --env is a file name, never a printf format: %s is the face, %% a percent

@@ -28,6 +28,40 @@ if(TARGET snell-kiosk)
     set_tests_properties(${name} PROPERTIES LABELS "cli")
   endforeach()
 
+  # --config: the same checks as the command line. Each bad command line above,
+  # written as a configuration file, is refused with exit 2 and its line.
+  foreach(bad "--mode|1920x" "--frames|0" "--spin|nan" "-b|cubemap|-b|single" "--connector|x" "--nosuch" "--budget|0"
+              "--hold|yes" "--config|other.conf")
+    string(MAKE_C_IDENTIFIER "kiosk_config_bad_${bad}" name)
+    string(REPLACE "|" " " line "${bad}")
+    string(REPLACE "-b cubemap -b" "-b cubemap\n-b" line "${line}")
+    file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/kiosk_conf/${name}.conf "# a comment\n\n${line}\n")
+    add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+             "-DARGS=--config|${CMAKE_CURRENT_BINARY_DIR}/kiosk_conf/${name}.conf|--preview|unused.png" -DCODE=2
+             "-DERR=snell-kiosk: .*(in .*${name}.conf line [34]|one -b shows one configuration)" -P ${expect})
+    set_tests_properties(${name} PROPERTIES LABELS "cli")
+  endforeach()
+  add_test(NAME kiosk_config_missing COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+           "-DARGS=--config|${CMAKE_CURRENT_BINARY_DIR}/kiosk_conf/none.conf" -DCODE=2
+           "-DERR=snell-kiosk: --config .*none.conf: No such file" -P ${expect})
+  # --preview: the scene off the device, with the checks a run on it makes (a
+  # -b that does not parse is bad usage there too), and not with --bench.
+  add_test(NAME kiosk_preview_bad_spec COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+           "-DARGS=-b|nosuch:scene=bunny|--preview|${CMAKE_CURRENT_BINARY_DIR}/kiosk_bad.png" -DCODE=2
+           "-DERR=unknown method 'nosuch'" -P ${expect})
+  add_test(NAME kiosk_preview_bench COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=--bench|--preview|x.png" -DCODE=2
+           "-DERR=snell-kiosk: --preview draws the one configuration shown; not with --bench" -P ${expect})
+  add_test(NAME kiosk_preview_budget COMMAND ${kiosk} -b cubemap:scene=sphere --budget 50 --mode 64x48
+           --preview ${CMAKE_CURRENT_BINARY_DIR}/kiosk_budget.png)
+  set_tests_properties(kiosk_preview_budget PROPERTIES PASS_REGULAR_EXPRESSION "warmed for the budget.*preview of cubemap:scene=sphere")
+  set_tests_properties(kiosk_config_missing kiosk_preview_bad_spec kiosk_preview_bench kiosk_preview_budget
+                       PROPERTIES LABELS "cli")
+  # The unit and the example configuration install with the kiosk, and the
+  # installed kiosk previews that configuration.
+  add_test(NAME kiosk_install COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DPREFIX=${CMAKE_INSTALL_PREFIX}
+           -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/kiosk_install -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_kiosk_install.cmake)
+  set_tests_properties(kiosk_install PROPERTIES LABELS "install" TIMEOUT 300)
+
   # The real KMS test: Debian's kernel in qemu (TCG) with a bochs display,
   # snell-kiosk on it, the screen against an offscreen render (tests/kms/).
   # 95-145 s here; skipped (77) when qemu, busybox-static, kmod or

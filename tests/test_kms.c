@@ -8,6 +8,7 @@
 #include "kms_select.h"
 #include "test_util.h"
 
+#include <errno.h>
 #include <string.h>
 
 #define XR24 0x34325258u /* DRM_FORMAT_XRGB8888 'XR24' */
@@ -58,6 +59,14 @@ static void test_connectors(void)
     CHECK(kms_pick_connector(&r, 99) == -1, "asked for, not there");
     CHECK(kms_connector_usable(&c[1]) && !kms_connector_usable(&c[2]) && !kms_connector_usable(&c[0]),
           "usable: connected or unknown, with modes");
+    /* display loss after a failed frame: the card gone, the connector unplugged,
+     * unreadable or without modes; a timeout or EBUSY on a display still there is not */
+    CHECK(kms_display_gone(-ENODEV, &c[3]), "gone: the card (ENODEV)");
+    CHECK(kms_display_gone(-EINVAL, &c[0]), "gone: unplugged");
+    CHECK(kms_display_gone(0, NULL), "gone: connector unreadable");
+    CHECK(kms_display_gone(-EINVAL, &c[2]), "gone: no modes left");
+    CHECK(!kms_display_gone(0, &c[3]) && !kms_display_gone(-EBUSY, &c[3]) && !kms_display_gone(-EACCES, &c[1]),
+          "not gone: the display is still there");
 }
 
 static void test_modes(void)

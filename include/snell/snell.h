@@ -163,10 +163,17 @@ typedef struct snell_mesh_desc {
 snell_status snell_mesh_create(snell_ctx *ctx, const snell_mesh_desc *desc, snell_mesh **out);
 void snell_mesh_destroy(snell_mesh *mesh);
 
-/* Loaders. snell_mesh_load picks OBJ or glTF (.gltf/.glb) by file extension. */
+/* Loaders. snell_mesh_load picks OBJ, glTF (.gltf/.glb), .3ds or .jobj by file extension. */
 snell_status snell_mesh_load(snell_ctx *ctx, const char *path, snell_mesh **out);
 snell_status snell_mesh_load_obj(snell_ctx *ctx, const char *path, snell_mesh **out);
 snell_status snell_mesh_load_obj_mem(snell_ctx *ctx, const char *data, size_t size, snell_mesh **out);
+/* glmark2's model formats. Autodesk .3ds: the triangle meshes only (every
+ * object's vertex and face lists as stored: Z up, the local frame not applied;
+ * materials, lights, cameras and keyframes skipped). glmark2's .jobj text: its
+ * v, vn and i lines (vt and vc ignored). Malformed input: SNELL_E_PARSE with
+ * the byte offset (3DS) or line (jobj). */
+snell_status snell_mesh_load_3ds_mem(snell_ctx *ctx, const void *data, size_t size, snell_mesh **out);
+snell_status snell_mesh_load_jobj_mem(snell_ctx *ctx, const char *data, size_t size, snell_mesh **out);
 /* glTF 2.0 (.gltf with external/embedded buffers, or .glb): every triangle primitive
  * of the default scene, node transforms applied. SNELL_E_UNSUPPORTED if built without,
  * for glTF 1.0 and for files that require an extension the loader does not handle

@@ -24,7 +24,7 @@ void render_usage(FILE *f)
             "usage: snell-render [options] [--mesh M [glass options]]... [--opaque M [--place P] [--color C]]...\n"
             "Renders refractive glass to a PNG (default: one glass sphere -> snell.png).\n\n"
             "scene (no --mesh: one glass sphere at the origin):\n"
-            "  --mesh M               a glass object: OBJ or glTF (.gltf/.glb) file, or %s\n"
+            "  --mesh M               a glass object: OBJ, glTF (.gltf/.glb), .3ds or .jobj file, or %s\n"
             "                         (also shape:NAME); glass options after it apply to it, glass options\n"
             "                         before the first --mesh are the defaults of every glass object\n"
             "  --opaque M             an opaque diffuse object (mesh names as for --mesh)\n"

@@ -7,7 +7,8 @@
  *   kms_flip.c       the page-flip state machine: plain functions (kms_flip.h)
  * The scene is a snell-bench configuration (method:scene=..:camera=..:key=value),
  * built with snell-bench's own code; --bench writes snell-bench's JSON.
- * Exit status 0, 1 on failure, 2 on bad usage, 77 when there is no display. */
+ * Exit status 0, 1 on failure, 2 on bad usage, 3 when the display went away
+ * while showing, 77 when there is no display (a supervisor restarts on 3 and 77). */
 #ifndef SNELL_KIOSK_H
 #define SNELL_KIOSK_H
 
@@ -15,6 +16,7 @@
 
 #define KIOSK_MAX_SPECS 64
 #define KIOSK_EXIT_NO_DISPLAY 77 /* ctest's SKIP_RETURN_CODE in this project */
+#define KIOSK_EXIT_DISPLAY_LOST 3
 
 typedef struct kiosk_options {
     const char *specs[KIOSK_MAX_SPECS];
@@ -28,6 +30,8 @@ typedef struct kiosk_options {
     int bench;
     int warmup;
     const char *json;
+    const char *preview;       /* --preview FILE: draw offscreen to this PNG, no display */
+    int config_specs;          /* the -b in spec_count came from --config (a -b after it replaces them) */
 } kiosk_options;
 
 /* 1: run; 0: bad usage (message printed, exit 2); -1: --help printed (exit 0). */

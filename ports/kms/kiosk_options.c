@@ -35,9 +35,14 @@ static void usage(FILE *f)
             "                      --warmup then --frames frames; glmark2-style lines, snell-bench's JSON\n"
             "  --warmup N          benchmark warm-up frames (default 5)\n"
             "  --json FILE         benchmark JSON (default snell-kiosk.json)\n"
+            "  --config FILE       options from FILE, one a line as written here ('--spin 0.25', '-b SPEC');\n"
+            "                      '#' starts a comment; options after --config override it\n"
+            "  --preview FILE      no display: draw the configured scene's first frame offscreen at the\n"
+            "                      --mode size (default 1920x1080) into the PNG FILE, after the same checks\n"
             "  -h, --help          this text\n"
-            "Exit status: 0, 1 on failure, 2 on bad usage, %d when there is no DRM/KMS display.\n",
-            KIOSK_EXIT_NO_DISPLAY);
+            "Exit status: 0, 1 on failure, 2 on bad usage, %d when the display went away while showing,\n"
+            "%d when there is no DRM/KMS display (a service restarts on both: README \"As a kiosk\").\n",
+            KIOSK_EXIT_DISPLAY_LOST, KIOSK_EXIT_NO_DISPLAY);
 }
 
 static int parse_long(const char *opt, const char *v, long lo, long hi, long *out)
@@ -102,6 +107,8 @@ static int value_option(const char *a, const char *v, kiosk_options *o)
         o->warmup = (int)l;
     } else if (!strcmp(a, "--json")) {
         o->json = v;
+    } else if (!strcmp(a, "--preview")) {
+        o->preview = v;
     } else {
         return -1;
     }
@@ -111,17 +118,105 @@ static int value_option(const char *a, const char *v, kiosk_options *o)
 /* Is a an option that takes a value (value_option's)? */
 static int takes_value(const char *a)
 {
-    static const char *const names[] = {"-b",     "--device", "--dri-dir", "--connector", "--mode",
-                                        "--spin", "--frames", "--report",  "--warmup",    "--json"};
+    static const char *const names[] = {"-b",       "--device", "--dri-dir", "--connector", "--mode",
+                                        "--spin",   "--frames", "--report",  "--warmup",    "--json",
+                                        "--budget", "--preview"};
     size_t k;
     for (k = 0; k < sizeof names / sizeof *names; k++)
         if (!strcmp(a, names[k])) return 1;
     return 0;
 }
 
+/* One option, from the command line or a --config file (from_config): 1
+ * taken (*used_value: its value was v), 0 bad (message printed). */
+static int one_option(const char *a, const char *v, int from_config, kiosk_options *o, int *spin_set, int *used_value)
+{
+    int r;
+    *used_value = 0;
+    if (!strcmp(a, "--hold")) {
+        o->hold = 1;
+    } else if (!strcmp(a, "--bench")) {
+        o->bench = 1;
+    } else if (!strcmp(a, "--atomic")) {
+        o->display.atomic = 1;
+    } else if (!strcmp(a, "--config") && from_config) {
+        fprintf(stderr, "snell-kiosk: --config inside a --config file\n");
+        return 0;
+    } else if (!takes_value(a)) {
+        fprintf(stderr, "snell-kiosk: unknown option '%s'; see --help\n", a);
+        return 0;
+    } else if (!v) {
+        fprintf(stderr, "snell-kiosk: %s needs a value; see --help\n", a);
+        return 0;
+    } else {
+        if (!strcmp(a, "-b") && !from_config && o->config_specs) /* the command line's scene replaces the file's */
+            o->spec_count = o->config_specs = 0;
+        if ((r = value_option(a, v, o)) < 0) {
+            fprintf(stderr, "snell-kiosk: unknown option '%s'; see --help\n", a);
+            return 0;
+        }
+        if (!r) return 0;
+        if (!strcmp(a, "-b") && from_config) o->config_specs++;
+        *spin_set |= !strcmp(a, "--spin");
+        *used_value = 1;
+    }
+    return 1;
+}
+
+/* --config FILE: each line "OPTION [VALUE]", as on the command line; blank
+ * lines and '#' comments skipped. The text is kept for the process's life:
+ * -b and the other string options point into it. */
+static int read_config(const char *path, kiosk_options *o, int *spin_set)
+{
+    FILE *f = fopen(path, "r");
+    char *text, *line, *next;
+    long size;
+    int n = 0, used;
+    if (!f || fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fprintf(stderr, "snell-kiosk: --config %s: %s\n", path, strerror(errno));
+        if (f) fclose(f);
+        return 0;
+    }
+    if (size > 65536) {
+        fprintf(stderr, "snell-kiosk: --config %s: larger than 64 KiB: not a kiosk configuration\n", path);
+        fclose(f);
+        return 0;
+    }
+    text = (char *)calloc((size_t)size + 1, 1);
+    if (!text || fread(text, 1, (size_t)size, f) != (size_t)size) {
+        fprintf(stderr, "snell-kiosk: --config %s: cannot read it\n", path);
+        fclose(f);
+        free(text);
+        return 0;
+    }
+    fclose(f);
+    for (line = text; line; line = next) {
+        char *a, *v, *end;
+        n++;
+        next = strchr(line, '\n');
+        if (next) *next++ = 0;
+        if ((end = strchr(line, '#'))) *end = 0;
+        a = line + strspn(line, " \t\r");
+        end = a + strlen(a);
+        while (end > a && strchr(" \t\r", end[-1])) *--end = 0;
+        if (!*a) continue;
+        v = a + strcspn(a, " \t");
+        if (*v) {
+            *v++ = 0;
+            v += strspn(v, " \t");
+        }
+        if (!one_option(a, *v ? v : NULL, 1, o, spin_set, &used) || (*v && !used)) {
+            if (*v && !used) fprintf(stderr, "snell-kiosk: %s takes no value\n", a);
+            fprintf(stderr, "snell-kiosk: in %s line %d\n", path, n);
+            return 0; /* text stays allocated: o may point into it; the kiosk exits */
+        }
+    }
+    return 1;
+}
+
 int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
 {
-    int i, r, spin_set = 0;
+    int i, spin_set = 0, used;
     memset(o, 0, sizeof *o);
     o->spin_deg = 0.5f;
     o->report_s = 5.0;
@@ -134,32 +229,24 @@ int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
         }
     for (i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--hold")) {
-            o->hold = 1;
-        } else if (!strcmp(a, "--bench")) {
-            o->bench = 1;
-        } else if (!strcmp(a, "--atomic")) {
-            o->display.atomic = 1;
-        } else if (!takes_value(a)) {
-            fprintf(stderr, "snell-kiosk: unknown option '%s'; see --help\n", a);
-            return 0;
-        } else if (!v) {
-            fprintf(stderr, "snell-kiosk: %s needs a value; see --help\n", a);
-            return 0;
-        } else if ((r = value_option(a, v, o)) < 0) {
-            fprintf(stderr, "snell-kiosk: unknown option '%s'; see --help\n", a);
-            return 0;
-        } else if (!r) {
+        if (!strcmp(a, "--config")) {
+            if (!v) return fprintf(stderr, "snell-kiosk: --config needs a value; see --help\n"), 0;
+            if (!read_config(v, o, &spin_set)) return 0;
+            i++;
+        } else if (!one_option(a, v, 0, o, &spin_set, &used)) {
             return 0;
         } else {
-            spin_set |= !strcmp(a, "--spin");
-            i++;
+            i += used;
         }
     }
     if (o->bench && !spin_set) o->spin_deg = 0.0f; /* timed frames of one view, as snell-bench times them */
     if (o->bench && !o->frames) o->frames = 60;
     if (!o->bench && o->spec_count > 1) {
         fprintf(stderr, "snell-kiosk: one -b shows one configuration; several need --bench\n");
+        return 0;
+    }
+    if (o->bench && o->preview) {
+        fprintf(stderr, "snell-kiosk: --preview draws the one configuration shown; not with --bench\n");
         return 0;
     }
     return 1;

@@ -470,6 +470,16 @@ int kms_display_restore(kms_display *d, char *msg, size_t n)
     return ok;
 }
 
+int kms_display_recheck(const kms_display *d, int *connection, int *mode_count)
+{
+    drmModeConnector *c = d->fd >= 0 ? drmModeGetConnector(d->fd, d->connector_id) : NULL;
+    if (!c) return 0;
+    *connection = (int)c->connection;
+    *mode_count = c->count_modes;
+    drmModeFreeConnector(c);
+    return 1;
+}
+
 void kms_display_close(kms_display *d)
 {
     if (d->mode_blob) drmModeDestroyPropertyBlob(d->fd, d->mode_blob);

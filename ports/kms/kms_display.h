@@ -85,6 +85,9 @@ int kms_display_wait(kms_display *d, int timeout_ms, void (*on_flip)(void *user,
 /* Puts the saved CRTC back (framebuffer, position, mode) and checks it took:
  * 1 if the CRTC reads back with the saved framebuffer; msg says what happened. */
 int kms_display_restore(kms_display *d, char *msg, size_t n);
+/* Reads the driven connector again (after a failure): 1 with *connection and
+ * *mode_count, 0 if it cannot be read (the card or the connector is gone). */
+int kms_display_recheck(const kms_display *d, int *connection, int *mode_count);
 void kms_display_close(kms_display *d);
 
 #endif

@@ -18,6 +18,11 @@ int kms_connector_usable(const kms_connector_info *c)
     return (c->connection == KMS_CONNECTED || c->connection == KMS_UNKNOWN) && c->mode_count > 0;
 }
 
+int kms_display_gone(int err, const kms_connector_info *now)
+{
+    return err == -ENODEV || !now || !kms_connector_usable(now);
+}
+
 int kms_pick_connector(const kms_resources_info *r, uint32_t want_id)
 {
     int i, pass;

@@ -61,6 +61,12 @@ int kms_pick_card(const kms_card_probe *cards, int n);
  * raylib accept unknown ones too), with at least one mode. */
 int kms_connector_usable(const kms_connector_info *c);
 
+/* After showing a frame failed (a modeset, flip or event wait): 1 if the
+ * display went away — the card is gone (err -ENODEV) or the connector, read
+ * again, is missing (now NULL), not connected or without modes — else 0 (a
+ * failure of the kiosk's own). err is the failing call's -errno, 0 if none. */
+int kms_display_gone(int err, const kms_connector_info *now);
+
 /* Index of the connector to use: want_id's (if it is usable), else the first
  * connected one with modes, else the first unknown one with modes; -1 if none. */
 int kms_pick_connector(const kms_resources_info *r, uint32_t want_id);

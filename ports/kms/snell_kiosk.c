@@ -47,6 +47,8 @@ typedef struct kiosk {
     int record; /* intervals are being recorded */
     double intervals[MAX_INTERVALS]; /* ms between frames reaching the screen (ring) */
     long interval_count; /* recorded, in all */
+    int display_failed; /* showing a frame failed on the display's side (then err: that call's -errno) */
+    int err;
     char msg[1024];
 } kiosk;
 
@@ -83,8 +85,10 @@ static int wait_for_flip(kiosk *k)
 {
     while (kms_flip_pending(&k->flip)) {
         int r = kms_display_wait(&k->disp, FLIP_TIMEOUT_MS, on_flip, k);
+        k->display_failed = r == 0 || r == -1;
+        k->err = r == -1 ? -errno : 0;
         if (r == 0) return snprintf(k->msg, sizeof k->msg, "no page-flip event within %d ms", FLIP_TIMEOUT_MS), 0;
-        if (r == -1) return snprintf(k->msg, sizeof k->msg, "reading DRM events failed: %s", strerror(errno)), 0;
+        if (r == -1) return snprintf(k->msg, sizeof k->msg, "reading DRM events failed: %s", strerror(-k->err)), 0;
     }
     return 1;
 }
@@ -96,13 +100,17 @@ static int present(kiosk *k)
     struct gbm_bo *bo;
     uint32_t fb;
     int r;
-    if (!eglSwapBuffers(k->gpu.dpy, k->gpu.surf))
+    if (!eglSwapBuffers(k->gpu.dpy, k->gpu.surf)) {
+        k->display_failed = 1;
         return snprintf(k->msg, sizeof k->msg, "eglSwapBuffers failed (EGL error 0x%x)", eglGetError()), 0;
+    }
     if (!wait_for_flip(k)) return 0;
     if (!(bo = kms_gpu_lock_front(&k->gpu, &k->disp, &fb, k->msg, sizeof k->msg))) return 0;
     if (kms_flip_next(&k->flip) == KMS_STEP_MODESET) {
         if ((r = kms_display_modeset(&k->disp, fb)) != 0) {
             kms_gpu_release(&k->gpu, bo);
+            k->display_failed = 1;
+            k->err = r;
             snprintf(k->msg, sizeof k->msg, "modeset of %dx%d on CRTC %u failed: %s%s", k->gpu.width, k->gpu.height,
                      k->disp.crtc_id, strerror(-r),
                      r == -EACCES || r == -EPERM ? " (another program, e.g. a desktop, is DRM master of this card)"
@@ -115,6 +123,8 @@ static int present(kiosk *k)
     }
     if ((r = kms_display_page_flip(&k->disp, fb)) != 0) {
         kms_gpu_release(&k->gpu, bo);
+        k->display_failed = 1;
+        k->err = r;
         return snprintf(k->msg, sizeof k->msg, "page flip failed: %s", strerror(-r)), 0;
     }
     if (!kms_flip_queued(&k->flip, bo)) /* GBM handed back the buffer on screen: cannot happen */
@@ -142,26 +152,35 @@ static double interval_median(kiosk *k, double *min, double *max)
     return med;
 }
 
-/* The configuration's renderer (full screen, the bound framebuffer) and frame. */
-static int open_config(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_config *c, snell_renderer **r,
-                       snell_glass *glass, snell_frame_desc *fd)
+/* The configuration's renderer (width x height into target: the display's
+ * bound framebuffer, or offscreen for --preview) and frame. */
+static int scene_open(snell_ctx *ctx, const snell_env *env, const bench_config *c, int width, int height,
+                      snell_target target, snell_renderer **r, snell_glass *glass, snell_frame_desc *fd, char *msg,
+                      size_t n)
 {
     snell_renderer_desc rd;
     const bench_scene *s;
     memset(&rd, 0, sizeof rd);
-    rd.width = k->gpu.width;
-    rd.height = k->gpu.height;
-    rd.target = SNELL_TARGET_BOUND_FRAMEBUFFER;
+    rd.width = width;
+    rd.height = height;
+    rd.target = target;
     rd.shading = c->shading;
     if (bench_scene_get(ctx, c->scene, &s) != SNELL_OK)
-        return snprintf(k->msg, sizeof k->msg, "scene %s: %s", c->scene, snell_last_error(ctx)), 0;
+        return snprintf(msg, n, "scene %s: %s", c->scene, snell_last_error(ctx)), 0;
     bench_scene_frame(c, s, env, glass, fd);
     fd->depth = SNELL_DEPTH_CLEAR; /* the kiosk's frame is all snell's: nothing drawn before it to keep */
     if (bench_scene_lod(ctx, c, glass, s->glass_count) != SNELL_OK)
-        return snprintf(k->msg, sizeof k->msg, "lod: %s", snell_last_error(ctx)), 0;
+        return snprintf(msg, n, "lod: %s", snell_last_error(ctx)), 0;
     if (snell_renderer_create(ctx, &rd, r) != SNELL_OK)
-        return snprintf(k->msg, sizeof k->msg, "renderer: %s", snell_last_error(ctx)), 0;
+        return snprintf(msg, n, "renderer: %s", snell_last_error(ctx)), 0;
     return 1;
+}
+
+static int open_config(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_config *c, snell_renderer **r,
+                       snell_glass *glass, snell_frame_desc *fd)
+{
+    return scene_open(ctx, env, c, k->gpu.width, k->gpu.height, SNELL_TARGET_BOUND_FRAMEBUFFER, r, glass, fd, k->msg,
+                      sizeof k->msg);
 }
 
 /* Blocks until SIGINT or SIGTERM (sigsuspend: no signal is lost between the
@@ -177,6 +196,20 @@ static void wait_for_signal(void)
     sigprocmask(SIG_SETMASK, &old, NULL);
 }
 
+/* AUTO by budget: every configuration it may pick built and timed before the
+ * first frame that counts (show mode and --preview). */
+static int warm_for_budget(snell_ctx *ctx, snell_renderer *r, snell_frame_desc *fd)
+{
+    snell_warm_stats ws;
+    if (snell_renderer_warm(r, fd, &ws) != SNELL_OK) {
+        fprintf(stderr, "snell-kiosk: warming for the budget: %s\n", snell_last_error(ctx));
+        return 0;
+    }
+    printf("snell-kiosk: warmed for the budget: %d frames in %.0f ms, %d configurations timed\n", ws.frames, ws.ms,
+           ws.rungs);
+    return 1;
+}
+
 /* Show mode: frames of configuration c, the camera turning spin_deg a frame. */
 static int show(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_config *c, const kiosk_options *o)
 {
@@ -190,15 +223,8 @@ static int show(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_conf
     k->record = 1;
     fd.budget_ms = o->budget_ms;
     if (ok && o->budget_ms > 0.0f) {
-        /* every configuration the budget may pick built and timed here, not in a shown frame */
-        snell_warm_stats ws;
         fd.camera.azimuth = (float)(c->cam[0] * PI / 180.0);
-        ok = snell_renderer_warm(r, &fd, &ws) == SNELL_OK;
-        if (ok)
-            printf("snell-kiosk: warmed for the budget: %d frames in %.0f ms, %d configurations timed\n", ws.frames,
-                   ws.ms, ws.rungs);
-        else
-            fprintf(stderr, "snell-kiosk: warming for the budget: %s\n", snell_last_error(ctx));
+        ok = warm_for_budget(ctx, r, &fd);
     }
     printf("snell-kiosk: showing %s at %dx%d\n", c->spec, k->gpu.width, k->gpu.height);
     for (i = 0; ok && !g_stop && (!o->frames || i < o->frames); i++) {
@@ -364,21 +390,96 @@ static void no_errors(bench_config *cs, int n)
         }
 }
 
+/* After a failure on the display's side: 1 if the display went away
+ * (unplugged, its card gone), which the kiosk reports with its own exit
+ * status for a supervisor to restart it on (README "As a kiosk"). */
+static int display_lost(kiosk *k)
+{
+    kms_connector_info now;
+    if (!k->display_failed) return 0;
+    memset(&now, 0, sizeof now);
+    now.id = k->disp.connector_id;
+    if (!kms_display_recheck(&k->disp, &now.connection, &now.mode_count)) return kms_display_gone(k->err, NULL);
+    return kms_display_gone(k->err, &now);
+}
+
 /* Teardown in reverse: the queued flip lands, the CRTC gets its old
  * framebuffer back (checked), then the buffers and the display go. */
-static int close_display(kiosk *k, int display_shown)
+static int close_display(kiosk *k, int display_shown, int lost)
 {
     int ok = 1;
-    if (display_shown) {
+    if (display_shown && !lost) { /* a display that went away has nothing to wait for or restore */
         if (!wait_for_flip(k)) fprintf(stderr, "snell-kiosk: %s\n", k->msg), ok = 0;
         ok = kms_display_restore(&k->disp, k->msg, sizeof k->msg) && ok;
         fprintf(ok ? stdout : stderr, "snell-kiosk: %s\n", k->msg);
+    }
+    if (display_shown) {
         kms_gpu_release(&k->gpu, (struct gbm_bo *)k->flip.shown);
         kms_gpu_release(&k->gpu, (struct gbm_bo *)k->flip.queued);
     }
     kms_gpu_close(&k->gpu);
     kms_display_close(&k->disp);
     return ok;
+}
+
+/* --preview: no display, no DRM. The options and the scene go through the
+ * checks a run on the device makes, then the first frame it would show is
+ * drawn offscreen at the --mode size and written as PNG. Exit status as the
+ * kiosk's: 2 for bad usage (a -b that does not parse included), 1 on failure. */
+static int preview(const kiosk_options *o)
+{
+    static bench_options bo;
+    snell_ctx *ctx = NULL;
+    snell_env *env = NULL;
+    snell_renderer *r = NULL;
+    snell_glass glass[SNELL_MAX_GLASS];
+    snell_frame_desc fd;
+    bench_config *cs = (bench_config *)calloc(BENCH_MAX_CONFIGS, sizeof *cs);
+    uint8_t *rgba = NULL;
+    int w = o->display.mode.width ? o->display.mode.width : 1920;
+    int h = o->display.mode.height ? o->display.mode.height : 1080;
+    int n = 0, status = 1;
+    char msg[1024];
+    if (!cs) return fprintf(stderr, "snell-kiosk: out of memory\n"), 1;
+    if (snell_ctx_create(NULL, &ctx) != SNELL_OK) {
+        fprintf(stderr, "snell-kiosk: --preview: %s\n", snell_last_error(NULL));
+        goto done;
+    }
+    if (cli_env_open(ctx, NULL, &env) != SNELL_OK) {
+        fprintf(stderr, "snell-kiosk: environment: %s\n", snell_last_error(ctx));
+        goto done;
+    }
+    if (!expand_configs(o, ctx, env, &bo, cs, &n, w, h)) {
+        status = 2;
+        goto done;
+    }
+    if (!scene_open(ctx, env, &cs[0], w, h, SNELL_TARGET_OFFSCREEN, &r, glass, &fd, msg, sizeof msg)) {
+        fprintf(stderr, "snell-kiosk: %s\n", msg);
+        goto done;
+    }
+    fd.camera.azimuth = (float)(cs[0].cam[0] * PI / 180.0);
+    fd.budget_ms = o->budget_ms;
+    if (o->budget_ms > 0.0f && !warm_for_budget(ctx, r, &fd)) goto done;
+    if (!(rgba = (uint8_t *)malloc((size_t)w * (size_t)h * 4))) {
+        fprintf(stderr, "snell-kiosk: out of memory for a %dx%d preview\n", w, h);
+        goto done;
+    }
+    if (snell_render(r, &fd, NULL) != SNELL_OK || snell_renderer_read_rgba(r, rgba) != SNELL_OK ||
+        snell_write_png(o->preview, w, h, rgba) != SNELL_OK) {
+        fprintf(stderr, "snell-kiosk: --preview %s: %s\n", o->preview, snell_last_error(ctx));
+        goto done;
+    }
+    printf("snell-kiosk: preview of %s at %dx%d (%s) written to %s\n", cs[0].spec, w, h, snell_ctx_gl_renderer(ctx),
+           o->preview);
+    status = 0;
+done:
+    free(rgba);
+    snell_renderer_destroy(r);
+    bench_scene_release_all();
+    snell_env_destroy(env);
+    snell_ctx_destroy(ctx);
+    free(cs);
+    return status;
 }
 
 int main(int argc, char **argv)
@@ -391,9 +492,10 @@ int main(int argc, char **argv)
     snell_ctx *ctx = NULL;
     snell_env *env = NULL;
     struct sigaction sa;
-    int n = 0, ok = 0, usage_ok = 1, r;
+    int n = 0, ok = 0, usage_ok = 1, lost = 0, r;
 
     if ((r = kiosk_parse_options(argc, argv, &o)) <= 0) return r < 0 ? 0 : 2;
+    if (o.preview) return preview(&o);
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal; /* no SA_RESTART: a blocked poll returns at once */
     sigaction(SIGINT, &sa, NULL);
@@ -437,11 +539,14 @@ int main(int argc, char **argv)
     fflush(stdout);
     ok = o.bench ? bench(&k, ctx, env, cs, n, &bo, &o) : show(&k, ctx, env, cs, &o);
     if (!ok && k.msg[0] && !o.bench) fprintf(stderr, "snell-kiosk: %s\n", k.msg);
+    if (!ok && (lost = display_lost(&k)))
+        fprintf(stderr, "snell-kiosk: the display went away (connector %u on %s); exit %d for a restart\n",
+                k.disp.connector_id, k.disp.path, KIOSK_EXIT_DISPLAY_LOST);
 done:
     bench_scene_release_all();
     snell_env_destroy(env);
     snell_ctx_destroy(ctx);
     free(cs);
-    ok = close_display(&k, k.flip.shown != NULL) && ok;
-    return !usage_ok ? 2 : ok ? 0 : 1;
+    ok = close_display(&k, k.flip.shown != NULL, lost) && ok;
+    return !usage_ok ? 2 : lost ? KIOSK_EXIT_DISPLAY_LOST : ok ? 0 : 1;
 }

@@ -52,6 +52,10 @@ snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *
                                float *normals, uint32_t *indices, uint32_t vertex_count,
                                uint32_t triangle_count, snell_mesh **out);
 
+/* glmark2's .3ds and .jobj files by path (mesh_3ds.c; snell_mesh_load's). */
+snell_status snell__mesh_load_3ds(snell_ctx *ctx, const char *path, snell_mesh **out);
+snell_status snell__mesh_load_jobj(snell_ctx *ctx, const char *path, snell_mesh **out);
+
 /* Area-weighted smooth normals; degenerate vertices get (0,1,0). */
 void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t nv, uint32_t nt,
                                  float *normals);

@@ -24,8 +24,10 @@ snell_status snell_mesh_load(snell_ctx *ctx, const char *path, snell_mesh **out)
     if (!path || !out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load: path and out are required");
     if (has_ext(path, ".obj")) return snell_mesh_load_obj(ctx, path, out);
     if (has_ext(path, ".gltf") || has_ext(path, ".glb")) return snell_mesh_load_gltf(ctx, path, out);
+    if (has_ext(path, ".3ds")) return snell__mesh_load_3ds(ctx, path, out);
+    if (has_ext(path, ".jobj")) return snell__mesh_load_jobj(ctx, path, out);
     return snell__fail(ctx, SNELL_E_UNSUPPORTED,
-                       "'%s': unknown mesh file extension (supported: .obj, .gltf, .glb)", path);
+                       "'%s': unknown mesh file extension (supported: .obj, .gltf, .glb, .3ds, .jobj)", path);
 }
 
 #if !SNELL_WITH_GLTF

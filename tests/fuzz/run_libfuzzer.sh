@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# run_libfuzzer.sh [SECONDS] — builds the fuzz targets (fuzz_obj, fuzz_gltf,
+# run_libfuzzer.sh [SECONDS] — builds the fuzz targets (fuzz_obj, fuzz_gltf, fuzz_3ds,
 # fuzz_image, fuzz_scene2d) with clang's libFuzzer, ASan and UBSan, and runs
 # each for SECONDS (default 5) on a corpus seeded from the test assets. A
 # crash, sanitizer report, broken invariant (fuzz_common.h) or an input slower
@@ -97,6 +97,7 @@ run() {
 # the analysis's work bound, ~3 s a run when instrumented; ctest replays it.)
 run fuzz_obj 4096 tests/data/*.obj tests/data/hostile/*.obj
 run fuzz_gltf 8192 tests/data/*.gltf tests/data/*.glb tests/data/hostile/*.gltf
+run fuzz_3ds 4096 tests/data/*.3ds tests/data/*.jobj
 run fuzz_image 4096 tests/data/images/*
 run fuzz_scene2d 4096 tests/data/lm2d/*
-echo "run_libfuzzer: 4 targets, $SECS s each: no findings"
+echo "run_libfuzzer: 5 targets, $SECS s each: no findings"
