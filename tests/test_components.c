@@ -138,6 +138,20 @@ static void check_gltf(void)
     snell_mesh_destroy(m);
 }
 
+/* glmark2's formats (mesh_3ds.c): a .3ds file loads, or is refused naming the option. */
+static void check_3ds(void)
+{
+    snell_mesh *m = NULL;
+    snell_status st = snell_mesh_load(NULL, test_data("tetra.3ds"), &m);
+    if (snell_build_has("3ds")) {
+        CHECK(st == SNELL_OK, ".3ds loads: %s", snell_last_error(NULL));
+    } else {
+        CHECK(st == SNELL_E_UNSUPPORTED && strstr(snell_last_error(NULL), "SNELL_WITH_3DS"), ".3ds left out: %s %s",
+              snell_status_str(st), snell_last_error(NULL));
+    }
+    snell_mesh_destroy(m);
+}
+
 /* The caustics stage: a frame with a light on a receiver draws it, or is refused naming the option. */
 static void check_caustics(snell_ctx *ctx)
 {
@@ -186,6 +200,7 @@ int main(void)
     check_methods();
     check_png();
     check_gltf();
+    check_3ds();
     ctx = test_ctx();
     if (!ctx) {
         printf("no GL context: the reference, 2D and water checks are not run\n");
