@@ -653,8 +653,10 @@ void check_json_depth(const unsigned char *s, size_t n)
     }
 }
 
-/* GLB container header check before tinygltf sees it (12-byte header, then
- * a JSON chunk that must fit). */
+/* GLB container check before tinygltf sees it: the 12-byte header, a JSON
+ * chunk first, and every chunk's 8-byte header and data inside both the
+ * header's length and the buffer (tinygltf 2.7 checks the BIN chunk's data
+ * without its header and so copies up to 8 bytes past the buffer). */
 void check_glb(const unsigned char *d, size_t size)
 {
     char buf[160];
@@ -675,6 +677,19 @@ void check_glb(const unsigned char *d, size_t size)
     if (ctype != 0x4E4F534Au /* "JSON" */ || clen > length - 20) {
         std::snprintf(buf, sizeof buf, "GLB: bad JSON chunk (type 0x%08x, %u bytes)", ctype, clen);
         fail(SNELL_E_PARSE, buf);
+    }
+    for (size_t off = 12; off < length;) {
+        if (length - off < 8) {
+            std::snprintf(buf, sizeof buf, "GLB: chunk header at byte %zu runs past the end (%u bytes)", off, length);
+            fail(SNELL_E_PARSE, buf);
+        }
+        std::memcpy(&clen, d + off, 4);
+        if (clen > length - off - 8) {
+            std::snprintf(buf, sizeof buf, "GLB: chunk at byte %zu says %u bytes, only %zu follow its header", off,
+                          clen, length - off - 8);
+            fail(SNELL_E_PARSE, buf);
+        }
+        off += 8 + static_cast<size_t>(clen);
     }
 }
 
