@@ -259,18 +259,14 @@ snell_status snell__image_read_budget(const char *path, size_t budget, int *widt
     long len;
     uint8_t *buf;
     snell_status st;
-    struct stat sb;
+    const char *why;
+    int opened;
     if (!path || !width || !height || !rgba)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_image_read: NULL argument");
     *rgba = NULL;
-    f = fopen(path, "rb");
-    if (!f) return snell__fail(NULL, SNELL_E_IO, "cannot open image \"%s\": %s", path, strerror(errno));
-    /* fopen opens a directory as well, and ftell then says LONG_MAX */
-    if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        int dir = S_ISDIR(sb.st_mode);
-        fclose(f);
-        return snell__fail(NULL, SNELL_E_IO, "image \"%s\" is %s", path, dir ? "a directory" : "not a regular file");
-    }
+    f = snell__fopen_regular(path, &opened, &why);
+    if (!f && !opened) return snell__fail(NULL, SNELL_E_IO, "cannot open image \"%s\": %s", path, why);
+    if (!f) return snell__fail(NULL, SNELL_E_IO, "image \"%s\" is %s", path, why);
     if (fseek(f, 0, SEEK_END) != 0 || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);
         return snell__fail(NULL, SNELL_E_IO, "cannot read image \"%s\"", path);

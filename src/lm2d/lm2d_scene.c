@@ -363,10 +363,13 @@ snell_status lm2d_read_file(const snell_ctx *ctx, const snell_alloc *al, const c
     FILE *f;
     long len;
     char *buf;
+    const char *why;
+    int opened;
     *text = NULL;
     *size = 0;
-    f = fopen(path, "rb");
-    if (!f) return snell__fail(ctx, SNELL_E_IO, "cannot open \"%s\": %s", path, strerror(errno));
+    f = snell__fopen_regular(path, &opened, &why);
+    if (!f && !opened) return snell__fail(ctx, SNELL_E_IO, "cannot open \"%s\": %s", path, why);
+    if (!f) return snell__fail(ctx, SNELL_E_IO, "\"%s\" is %s", path, why);
     if (fseek(f, 0, SEEK_END) != 0 || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);
         return snell__fail(ctx, SNELL_E_IO, "cannot read \"%s\" (not a regular file?)", path);

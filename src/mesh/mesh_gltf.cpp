@@ -174,7 +174,7 @@ bool fs_read(std::vector<unsigned char> *out, std::string *err, const std::strin
         if (err) *err += "refused\n";
         return false;
     }
-    int fd = open(real.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    int fd = open(real.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC); /* a FIFO must not block */
     struct stat sb;
     if (fd < 0 || fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
         int e = fd < 0 ? errno : 0;
@@ -1292,13 +1292,15 @@ snell_status load_scene(snell_ctx *ctx, const unsigned char *data, size_t size, 
  * at most 1 GiB and within the memory budget. */
 snell_status read_model_file(snell_ctx *ctx, const char *path, std::vector<unsigned char> *bytes)
 {
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    int opened;
+    const char *why;
+    int fd = snell__open_regular(path, &opened, &why);
     struct stat sb;
-    if (fd < 0) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, std::strerror(errno));
-    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        bool dir = S_ISDIR(sb.st_mode);
+    if (fd < 0 && !opened) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, why);
+    if (fd < 0) return snell__fail(ctx, SNELL_E_IO, "glTF: '%s' is %s", path, why);
+    if (fstat(fd, &sb) != 0) {
         close(fd);
-        return snell__fail(ctx, SNELL_E_IO, "glTF: '%s' is %s", path, dir ? "a directory" : "not a regular file");
+        return snell__fail(ctx, SNELL_E_IO, "glTF: cannot stat '%s'", path);
     }
     if (static_cast<unsigned long long>(sb.st_size) > kMaxInputBytes) {
         close(fd);

@@ -1,0 +1,177 @@
+/* test_hostile_inputs4.c — issue 40, hostile input, fourth round: one
+ * function per item of the issue, each failing on the code before its fix.
+ * Without arguments: the CPU-only cases (ctx NULL). With "ctx": the cases that
+ * need a context with a small snell_ctx_desc.memory_budget (label gl). Inputs
+ * are made here at run time; the fuzz corpora hold the small ones too. */
+#define _POSIX_C_SOURCE 200809L /* mkfifo, alarm, mmap */
+#define _DEFAULT_SOURCE         /* MAP_ANONYMOUS */
+#include "test_util.h"
+#include "snell/snell_2d.h"
+
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* A loader that blocks or loops must fail the test, not hang ctest. */
+static void on_alarm(int sig)
+{
+    static const char msg[] = "FAIL: a call did not return within the alarm (blocked in open()?)\n";
+    (void)sig;
+    if (write(2, msg, sizeof msg - 1) < 0) _exit(1);
+    _exit(1);
+}
+
+static int write_file(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    int ok = f && fwrite(data, 1, n, f) == n;
+    if (f && fclose(f) != 0) ok = 0;
+    return ok;
+}
+
+static const char *path_in(const char *dir, const char *name)
+{
+    static char buf[4][1024];
+    static int k;
+    k = (k + 1) % 4;
+    if (snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name) >= (int)sizeof buf[k]) buf[k][0] = '\0';
+    return buf[k];
+}
+
+/* The whole file in a fresh buffer (NULL on failure). */
+static uint8_t *read_all(const char *path, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    uint8_t *b = NULL;
+    long len;
+    *n = 0;
+    if (!f) return NULL;
+    if (fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0 &&
+        (b = (uint8_t *)malloc((size_t)len)) && fread(b, 1, (size_t)len, f) == (size_t)len)
+        *n = (size_t)len;
+    else {
+        free(b);
+        b = NULL;
+    }
+    fclose(f);
+    return b;
+}
+
+/* A copy of data that ends where an inaccessible page begins: a read past
+ * its end faults in every build. Unmapped by unmap_end(). */
+static uint8_t *at_end_of_mapping(const void *data, size_t n, size_t *map_len)
+{
+    size_t page = (size_t)sysconf(_SC_PAGESIZE), len = (n + page - 1) / page * page + page;
+    uint8_t *map = (uint8_t *)mmap(NULL, len, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (map == (uint8_t *)MAP_FAILED) return NULL;
+    if (mprotect(map + len - page, page, PROT_NONE) != 0) {
+        munmap(map, len);
+        return NULL;
+    }
+    memcpy(map + len - page - n, data, n);
+    *map_len = len;
+    return map + len - page - n;
+}
+
+static void unmap_end(uint8_t *p, size_t n, size_t map_len)
+{
+    size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    if (p) munmap(p + n + page - map_len, map_len);
+}
+
+static int has(const char *msg, const char *needle) { return strstr(msg, needle) != NULL; }
+
+/* ------------------------------------------- item 1: GLB chunks past the buffer */
+static void test_glb_chunks(void)
+{
+    size_t n, map_len;
+    uint8_t *file = read_all(test_data("../fuzz/regressions/glb_bin_chunk_past_end.glb"), &n);
+    uint8_t *buf;
+    snell_mesh *m = NULL;
+    snell_scene_file *sc = NULL;
+    snell_status st;
+    CHECK(file != NULL, "glb_bin_chunk_past_end.glb missing");
+    if (!file) return;
+    buf = at_end_of_mapping(file, n, &map_len);
+    CHECK(buf != NULL, "mmap");
+    if (buf) {
+        st = snell_mesh_load_gltf_mem(NULL, buf, n, &m);
+        CHECK(st == SNELL_E_PARSE && !m && has(snell_last_error(NULL), "chunk"), "BIN chunk past the end (mesh): %s: %s",
+              snell_status_str(st), snell_last_error(NULL));
+        snell_mesh_destroy(m);
+        st = snell_scene_load_gltf_mem(NULL, buf, n, &sc);
+        CHECK(st == SNELL_E_PARSE && !sc && has(snell_last_error(NULL), "chunk"), "BIN chunk past the end (scene): %s: %s",
+              snell_status_str(st), snell_last_error(NULL));
+        snell_scene_file_destroy(sc);
+        unmap_end(buf, n, map_len);
+    }
+    free(file);
+    file = read_all(test_data("nodes.glb"), &n);
+    if (file && n > 1676) {
+        uint32_t len = 1676; /* the JSON chunk (12 + 8 + 1652) and 4 bytes of the BIN chunk's header */
+        memcpy(file + 8, &len, 4);
+        buf = at_end_of_mapping(file, len, &map_len);
+        m = NULL;
+        st = buf ? snell_mesh_load_gltf_mem(NULL, buf, len, &m) : SNELL_E_NOMEM;
+        CHECK(st == SNELL_E_PARSE && !m && has(snell_last_error(NULL), "chunk"), "cut chunk header: %s: %s",
+              snell_status_str(st), snell_last_error(NULL));
+        snell_mesh_destroy(m);
+        unmap_end(buf, len, map_len);
+    }
+    free(file);
+}
+
+/* ------------------------------------------------- item 3: FIFOs as inputs */
+static void test_fifos(void)
+{
+    char dir[800];
+    snell_mesh *m = NULL;
+    snell_scene_file *sc = NULL;
+    snell_scene2d *s2 = NULL;
+    uint8_t *px = NULL;
+    int w, h;
+    snell_status st;
+    static const char *names[] = {"f.obj", "f.gltf", "f.glb", "f.png", "f.txt", "f.csv"};
+    size_t i;
+    snprintf(dir, sizeof dir, "%.790s", test_out("hostile4_fifo"));
+    mkdir(dir, 0755);
+    for (i = 0; i < sizeof names / sizeof names[0]; i++) {
+        unlink(path_in(dir, names[i]));
+        CHECK(mkfifo(path_in(dir, names[i]), 0644) == 0, "mkfifo %s", names[i]);
+    }
+    CHECK(write_file(path_in(dir, "csv_fifo.txt"), "view 0 0 10 10\nobject f.csv t 1\nlight point pos 1 1\n", 52),
+          "csv_fifo.txt");
+    alarm(20);
+    st = snell_mesh_load_obj(NULL, path_in(dir, "f.obj"), &m);
+    CHECK(st == SNELL_E_IO && !m && has(snell_last_error(NULL), "not a regular file"), "OBJ FIFO: %s: %s",
+          snell_status_str(st), snell_last_error(NULL));
+    st = snell_mesh_load_gltf(NULL, path_in(dir, "f.gltf"), &m);
+    CHECK(st == SNELL_E_IO && !m && has(snell_last_error(NULL), "not a regular file"), "glTF FIFO: %s: %s",
+          snell_status_str(st), snell_last_error(NULL));
+    st = snell_scene_load_gltf(NULL, path_in(dir, "f.glb"), 0, &sc);
+    CHECK(st == SNELL_E_IO && !sc && has(snell_last_error(NULL), "not a regular file"), "scene FIFO: %s: %s",
+          snell_status_str(st), snell_last_error(NULL));
+    st = snell_image_read(path_in(dir, "f.png"), &w, &h, &px);
+    CHECK(st == SNELL_E_IO && !px && has(snell_last_error(NULL), "not a regular file"), "image FIFO: %s: %s",
+          snell_status_str(st), snell_last_error(NULL));
+    st = snell_scene2d_load(NULL, path_in(dir, "f.txt"), &s2, NULL, NULL);
+    CHECK(st == SNELL_E_IO && !s2 && has(snell_last_error(NULL), "not a regular file"), "2D scene FIFO: %s: %s",
+          snell_status_str(st), snell_last_error(NULL));
+    st = snell_scene2d_load(NULL, path_in(dir, "csv_fifo.txt"), &s2, NULL, NULL);
+    CHECK(st == SNELL_E_IO && !s2 && has(snell_last_error(NULL), "not a regular file"), "CSV FIFO in a 2D scene: %s: %s",
+          snell_status_str(st), snell_last_error(NULL));
+    snell_scene2d_destroy(s2);
+    alarm(0);
+}
+
+int main(int argc, char **argv)
+{
+    signal(SIGALRM, on_alarm);
+    if (argc > 1 && strcmp(argv[1], "ctx") == 0) return test_finish();
+    test_glb_chunks();
+    test_fifos();
+    return test_finish();
+}
