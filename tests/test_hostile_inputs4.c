@@ -167,11 +167,35 @@ static void test_fifos(void)
     alarm(0);
 }
 
+/* ------------------------------------------- item 6: PNG decompression bomb */
+static void test_png_bomb(void)
+{
+    uint8_t *px = NULL, *rgba;
+    int w = 0, h = 0, y;
+    snell_status st;
+    /* 1x1 RGBA whose IDAT inflates to 32 MiB (make_hostile.py) */
+    st = snell_image_read(test_data("hostile/png_bomb.png"), &w, &h, &px);
+    CHECK(st == SNELL_E_PARSE && !px && has(snell_last_error(NULL), "decompression bomb"), "PNG bomb: %s: %s",
+          snell_status_str(st), snell_last_error(NULL));
+    snell_image_free(px);
+    px = NULL;
+    /* a real image of some size still decodes, its every row different */
+    rgba = (uint8_t *)calloc((size_t)1024 * 512, 4);
+    for (y = 0; y < 512; y++) memset(rgba + (size_t)y * 1024 * 4, y & 255, 1024 * 4);
+    CHECK_OK(snell_write_png(test_out("hostile4_1024x512.png"), 1024, 512, rgba));
+    st = snell_image_read(test_out("hostile4_1024x512.png"), &w, &h, &px);
+    CHECK(st == SNELL_OK && w == 1024 && h == 512 && px && px[4 * 1024 * 300] == 300 - 256, "1024x512 PNG: %s",
+          snell_last_error(NULL));
+    snell_image_free(px);
+    free(rgba);
+}
+
 int main(int argc, char **argv)
 {
     signal(SIGALRM, on_alarm);
     if (argc > 1 && strcmp(argv[1], "ctx") == 0) return test_finish();
     test_glb_chunks();
     test_fifos();
+    test_png_bomb();
     return test_finish();
 }
