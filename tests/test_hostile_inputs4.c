@@ -190,10 +190,87 @@ static void test_png_bomb(void)
     free(rgba);
 }
 
+/* ------------------------------------ item 2: the 2D lightmap's memory budget */
+/* A lightmap of w x h (cpu_only as given) on a scene of `lights` point lights
+ * of `rays` rays each, in a glass box; returns the status of its first frame
+ * (or of its creation) and leaves the message in the context. */
+static snell_status lm2d_case(snell_ctx *ctx, int w, int h, int cpu_only, int lights, int rays)
+{
+    char text[4096];
+    const char *path = test_out("hostile4_lights.txt");
+    snell_scene2d *scene = NULL;
+    snell_lightmap2d *lm = NULL;
+    snell_lightmap2d_desc d;
+    snell_status st;
+    int n, i;
+    n = snprintf(text, sizeof text, "view 0 0 100 100\npolygon 10 10 90 10 90 90 10 90 ; t 1 ior 1.5\n");
+    for (i = 0; i < lights && n < (int)sizeof text - 80; i++)
+        n += snprintf(text + n, sizeof text - (size_t)n, "light point pos %d 50 rays %d\n", 20 + i, rays);
+    CHECK(write_file(path, text, (size_t)n), "writing %s", path);
+    st = snell_scene2d_load(ctx, path, &scene, NULL, NULL);
+    CHECK(st == SNELL_OK, "scene of %d lights: %s", lights, snell_last_error(ctx));
+    if (st != SNELL_OK) return st;
+    memset(&d, 0, sizeof d);
+    d.width = w;
+    d.height = h;
+    d.threads = 2;
+    d.cpu_only = cpu_only;
+    st = snell_lightmap2d_create(ctx, &d, &lm);
+    if (st == SNELL_OK) st = snell_lightmap2d_frame(lm, scene, NULL);
+    snell_lightmap2d_destroy(lm);
+    snell_scene2d_destroy(scene);
+    return st;
+}
+
+static void test_lm2d_budget(snell_ctx *ctx)
+{
+    snell_status st;
+    const char *msg;
+    /* 4 MiB budget: a 1024x1024 lightmap holds 16 MiB of floats on the CPU alone */
+    st = lm2d_case(ctx, 1024, 1024, 1, 1, 100);
+    msg = snell_last_error(ctx);
+    CHECK(st == SNELL_E_LIMIT && has(msg, "1024x1024 lightmap") && has(msg, "memory budget of 4.0 MiB"),
+          "1024^2 lightmap over 4 MiB: %s: %s", snell_status_str(st), msg);
+    /* with GL the texture and its readback count too: 512x256 is 2 MiB on the CPU, 6 MiB with GL */
+    st = lm2d_case(ctx, 512, 256, 0, 1, 100);
+    msg = snell_last_error(ctx);
+    CHECK(st == SNELL_E_LIMIT && has(msg, "512x256 lightmap"), "512x256 GL lightmap over 4 MiB: %s: %s",
+          snell_status_str(st), msg);
+    /* twelve lights of 2,000 rays: each light's 720 KB path buffer fits, their sum (and the bins) does not */
+    st = lm2d_case(ctx, 64, 64, 1, 12, 2000);
+    msg = snell_last_error(ctx);
+    CHECK(st == SNELL_E_LIMIT && has(msg, "12 lights") && has(msg, "memory budget of 4.0 MiB"),
+          "12 lights over 4 MiB: %s: %s", snell_status_str(st), msg);
+    /* what fits still renders: one light of 1,000 rays on 64x64 */
+    st = lm2d_case(ctx, 64, 64, 1, 1, 1000);
+    CHECK(st == SNELL_OK, "small 2D scene in 4 MiB: %s", snell_last_error(ctx));
+    st = lm2d_case(ctx, 64, 64, 0, 1, 1000);
+    CHECK(st == SNELL_OK, "small 2D scene with GL in 4 MiB: %s", snell_last_error(ctx));
+}
+
+static void test_ctx_cases(void)
+{
+    snell_ctx_desc cd;
+    snell_ctx *ctx = NULL;
+    snell_status st;
+    memset(&cd, 0, sizeof cd);
+    cd.memory_budget = (size_t)4 << 20;
+    st = snell_ctx_create(&cd, &ctx);
+    if (st != SNELL_OK) {
+        printf("SKIP budget cases: no context (%s)\n", snell_last_error(NULL));
+        return;
+    }
+    test_lm2d_budget(ctx);
+    snell_ctx_destroy(ctx);
+}
+
 int main(int argc, char **argv)
 {
     signal(SIGALRM, on_alarm);
-    if (argc > 1 && strcmp(argv[1], "ctx") == 0) return test_finish();
+    if (argc > 1 && strcmp(argv[1], "ctx") == 0) {
+        test_ctx_cases();
+        return test_finish();
+    }
     test_glb_chunks();
     test_fifos();
     test_png_bomb();
