@@ -15,7 +15,12 @@ if(TARGET snell-render)
     "msg_render_missing_mesh|1|^snell-render: mesh: cannot open '/nonexistent/u28.obj': No such file or directory$|--mesh|/nonexistent/u28.obj|--size|8x8|-o|${o}"
     "msg_render_missing_env|1|^snell-render: environment: cannot open image \"/nonexistent/u28.png\": No such file or directory$|--env|/nonexistent/u28.png|--size|8x8|-o|${o}"
     "msg_render_missing_scene|1|^snell-render: scene: cannot open '/nonexistent/u28.gltf': No such file or directory$|--scene|/nonexistent/u28.gltf|--size|8x8|-o|${o}"
-    "msg_render_unwritable_png|1|^snell-render: cannot write PNG \"/nonexistent/u28/x.png\": No such file or directory$|--size|8x8|-o|/nonexistent/u28/x.png")
+    "msg_render_unwritable_png|1|^snell-render: cannot write PNG \"/nonexistent/u28/x.png\": No such file or directory$|--size|8x8|-o|/nonexistent/u28/x.png"
+    # issue 40 item 7: a full device (stb ignored fwrite's and fclose's errors: exit 0, no message)
+    "msg_render_full_device|1|^snell-render: cannot write PNG \"/dev/full\": No space left on device$|--size|8x8|-o|/dev/full"
+    "msg_render_full_device_trace|1|^snell-render: cannot write PNG \"/dev/full\": No space left on device$|--size|8x8|--trace-pixel|4,4|-o|/dev/full"
+    "msg_render_full_device_2d|1|^snell-render --2d: SNELL_E_IO: cannot write PNG \"/dev/full\": No space left on device$|--2d|${CMAKE_CURRENT_SOURCE_DIR}/data/lm2d/shadow.txt|--size|16x16|-o|/dev/full"
+    "msg_render_full_device_water|1|^snell-render --water: cannot write PNG \"/dev/full\": No space left on device$|--water|--size|8x8|-o|/dev/full")
   foreach(gl 0 1)
     if(gl)
       set(cases ${msg_gl_cases})
@@ -45,6 +50,10 @@ if(TARGET snell-bench)
            "-DERR=^snell-bench: unknown option '--bogus'. see --help$" -P ${one_error})
   add_test(NAME msg_bench_no_value COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=-b|single|--frames" -DCODE=2
            "-DERR=^snell-bench: --frames needs a value. see --help$" -P ${one_error})
+  # issue 40 item 7: --images into a missing folder ran, wrote nothing and exited 0
+  add_test(NAME msg_bench_images_missing_dir COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=-b|single|--images|/nonexistent/u40" -DCODE=2
+           "-DERR=^snell-bench: --images '/nonexistent/u40' is not a directory .No such file or directory.$" -P ${one_error})
+  set_tests_properties(msg_bench_images_missing_dir PROPERTIES LABELS "cli")
   add_test(NAME msg_bench_bad_value COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--plot-y|nope" -DCODE=2
            "-DERR=^snell-bench: --plot-y wants full-mean\\|full-p99\\|full-rmse\\|matched-mean, got 'nope'$" -P ${one_error})
   add_test(NAME msg_bench_water_help COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--water|--help" -DCODE=0 -DERR=

@@ -236,8 +236,12 @@ static int parse(int argc, char **argv, water_options *o)
 
 static int save(snell_ctx *ctx, snell_renderer *r, const water_options *o, uint8_t *px, const char *path)
 {
-    if (snell_renderer_read_rgba(r, px) != SNELL_OK || snell_write_png(path, o->width, o->height, px) != SNELL_OK) {
+    if (snell_renderer_read_rgba(r, px) != SNELL_OK) {
         fprintf(stderr, "snell-render --water: %s: %s\n", path, snell_last_error(ctx));
+        return 0;
+    }
+    if (snell_write_png(path, o->width, o->height, px) != SNELL_OK) { /* no context: the thread's message */
+        fprintf(stderr, "snell-render --water: %s\n", snell_last_error(NULL));
         return 0;
     }
     return 1;

@@ -69,10 +69,28 @@ snell_status snell_write_png(const char *path, int width, int height, const uint
 {
     if (!path || !rgba || width <= 0 || height <= 0 || width > 16384 || height > 16384)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_write_png: bad arguments (%dx%d)", width, height);
-    errno = 0;
-    if (!stbi_write_png(path, width, height, 4, rgba, width * 4)) {
-        int e = errno; /* stb's fopen or fwrite */
-        return snell__fail(NULL, SNELL_E_IO, "cannot write PNG \"%s\": %s", path, e ? strerror(e) : "encoding failed");
+    {
+        /* encoded in memory and written here: stbi_write_png ignores fwrite's
+         * and fclose's errors, so a full disk gave a truncated file and SNELL_OK */
+        int len = 0, ok, e;
+        unsigned char *png = stbi_write_png_to_mem(rgba, width * 4, width, height, 4, &len);
+        FILE *f;
+        if (!png) return snell__fail(NULL, SNELL_E_NOMEM, "cannot encode PNG \"%s\" (%dx%d)", path, width, height);
+        errno = 0;
+        f = fopen(path, "wb");
+        if (!f) {
+            e = errno;
+            free(png);
+            return snell__fail(NULL, SNELL_E_IO, "cannot write PNG \"%s\": %s", path, strerror(e));
+        }
+        ok = fwrite(png, 1, (size_t)len, f) == (size_t)len;
+        e = errno;
+        if (fclose(f) != 0 && ok) {
+            ok = 0;
+            e = errno;
+        }
+        free(png);
+        if (!ok) return snell__fail(NULL, SNELL_E_IO, "cannot write PNG \"%s\": %s", path, e ? strerror(e) : "write error");
     }
     return SNELL_OK;
 }
