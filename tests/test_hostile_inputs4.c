@@ -190,6 +190,47 @@ static void test_png_bomb(void)
     free(rgba);
 }
 
+/* ------------------------------------- item 8: control characters in messages */
+/* 1 if msg holds a C0 control (but newline and tab), DEL or a UTF-8 C1 control. */
+static int has_control(const char *msg)
+{
+    const unsigned char *p = (const unsigned char *)msg;
+    for (; *p; p++)
+        if ((*p < 0x20 && *p != '\n' && *p != '\t') || *p == 0x7f || (*p == 0xc2 && p[1] >= 0x80 && p[1] <= 0x9f))
+            return 1;
+    return 0;
+}
+
+static void test_control_chars(void)
+{
+    /* tinygltf quotes the buffer's URI, which JSON escapes made ESC ] 0 ; T BEL (a terminal title) */
+    static const char gltf[] = "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":4,\"uri\":"
+                               "\"data:application/octet-stream;base64,\\u001b]0;T\\u0007\\u00c2\\u009b\"}]}";
+    char dir[800], scene[1024];
+    snell_mesh *m = NULL;
+    snell_scene2d *s2 = NULL;
+    snell_status st;
+    const char *msg;
+    st = snell_mesh_load_gltf_mem(NULL, gltf, sizeof gltf - 1, &m);
+    msg = snell_last_error(NULL);
+    CHECK(st != SNELL_OK && !m && has(msg, "]0;T") && !has_control(msg), "tinygltf message with ESC/BEL: %s: %s",
+          snell_status_str(st), msg);
+    snell_mesh_destroy(m);
+    /* a 2D scene naming a CSV whose name clears the screen and rings */
+    snprintf(dir, sizeof dir, "%.790s", test_out("hostile4_ctrl"));
+    mkdir(dir, 0755);
+    snprintf(scene, sizeof scene, "%s", path_in(dir, "ctrl.txt"));
+    {
+        static const char text[] = "view 0 0 10 10\nobject \033[2J\007.csv t 1\n";
+        CHECK(write_file(scene, text, sizeof text - 1), "ctrl.txt");
+    }
+    st = snell_scene2d_load(NULL, scene, &s2, NULL, NULL);
+    msg = snell_last_error(NULL);
+    CHECK(st == SNELL_E_IO && !s2 && has(msg, "[2J") && !has_control(msg), "2D scene message with ESC/BEL: %s: %s",
+          snell_status_str(st), msg);
+    snell_scene2d_destroy(s2);
+}
+
 /* ------------------------------------ item 2: the 2D lightmap's memory budget */
 /* A lightmap of w x h (cpu_only as given) on a scene of `lights` point lights
  * of `rays` rays each, in a glass box; returns the status of its first frame
@@ -274,5 +315,6 @@ int main(int argc, char **argv)
     test_glb_chunks();
     test_fifos();
     test_png_bomb();
+    test_control_chars();
     return test_finish();
 }
