@@ -3,7 +3,7 @@
  * Without arguments: the CPU-only cases (ctx NULL). With "ctx": the cases that
  * need a context with a small snell_ctx_desc.memory_budget (label gl). Inputs
  * are made here at run time; the fuzz corpora hold the small ones too. */
-#define _POSIX_C_SOURCE 200809L /* mkfifo, alarm, mmap */
+#define _POSIX_C_SOURCE 200809L /* mkfifo, alarm, mmap, symlink */
 #define _DEFAULT_SOURCE         /* MAP_ANONYMOUS */
 #include "test_util.h"
 #include "snell/snell_2d.h"
@@ -190,6 +190,58 @@ static void test_png_bomb(void)
     free(rgba);
 }
 
+/* ------------------------------- item 4: 2D scenes confined to their folder */
+static void scene2d_expect(const char *path, snell_status want, const char *needle, const char *secret,
+                           const char *what)
+{
+    snell_scene2d *s2 = NULL;
+    snell_status st = snell_scene2d_load(NULL, path, &s2, NULL, NULL);
+    const char *msg = snell_last_error(NULL);
+    CHECK(st == want && (want != SNELL_OK) == (s2 == NULL), "%s: %s (want %s): %s", what, snell_status_str(st),
+          snell_status_str(want), msg);
+    if (needle) CHECK(has(msg, needle), "%s: message lacks \"%s\": %s", what, needle, msg);
+    if (secret) CHECK(!has(msg, secret), "%s: message shows the file's content: %s", what, msg);
+    snell_scene2d_destroy(s2);
+}
+
+static void test_scene2d_folder(void)
+{
+    static const char square[] = "0,0\n1,0\n1,1\n0,1\n";
+    static const char secret[] = "name,value\nAPI_KEY,sk-1234567890abcdef\n"; /* a header line, then the key */
+    char dir[800], model[1024], text[1400];
+    int n;
+    snprintf(dir, sizeof dir, "%.790s", test_out("hostile4_scene2d"));
+    snprintf(model, sizeof model, "%s/scene", dir);
+    mkdir(dir, 0755);
+    mkdir(model, 0755);
+    mkdir(path_in(model, "sub"), 0755);
+    CHECK(write_file(path_in(dir, "secret.csv"), secret, sizeof secret - 1), "secret.csv");
+    CHECK(write_file(path_in(dir, "square.csv"), square, sizeof square - 1), "square.csv");
+    CHECK(write_file(path_in(model, "inside.csv"), square, sizeof square - 1), "inside.csv");
+    CHECK(write_file(path_in(model, "bad.csv"), secret, sizeof secret - 1), "bad.csv");
+    unlink(path_in(model, "link.csv"));
+    CHECK(symlink("../secret.csv", path_in(model, "link.csv")) == 0, "symlink");
+#define SCENE(file, body) CHECK(write_file(path_in(model, file), body, strlen(body)), file)
+    SCENE("ok.txt", "view 0 0 2 2\nobject inside.csv t 1\nobject sub/../inside.csv t 1\n");
+    SCENE("dotdot.txt", "view 0 0 2 2\nobject ../secret.csv t 1\n");
+    SCENE("dotdot_ok.txt", "view 0 0 2 2\nobject ../square.csv t 1\n");
+    SCENE("link.txt", "view 0 0 2 2\nobject link.csv t 1\n");
+    SCENE("bad.txt", "view 0 0 2 2\nobject bad.csv t 1\n");
+    SCENE("key.txt", "API_KEY=sk-1234567890abcdef\n");
+    n = snprintf(text, sizeof text, "view 0 0 2 2\nobject %s/square.csv t 1\n", dir);
+    CHECK(n > 0 && (size_t)n < sizeof text && write_file(path_in(model, "abs.txt"), text, (size_t)n), "abs.txt");
+#undef SCENE
+    scene2d_expect(path_in(model, "ok.txt"), SNELL_OK, NULL, NULL, "CSVs inside the folder");
+    scene2d_expect(path_in(model, "dotdot.txt"), SNELL_E_IO, "outside the scene's folder", "sk-123", "../secret.csv");
+    scene2d_expect(path_in(model, "dotdot_ok.txt"), SNELL_E_IO, "outside the scene's folder", NULL,
+                   "../square.csv (a valid polygon)");
+    scene2d_expect(path_in(model, "link.txt"), SNELL_E_IO, "outside the scene's folder", "sk-123", "link out");
+    scene2d_expect(path_in(model, "abs.txt"), SNELL_E_IO, "relative to the scene's folder", NULL, "absolute path");
+    /* a CSV in the folder that is not one, and a scene that is not one: named by line, not quoted */
+    scene2d_expect(path_in(model, "bad.txt"), SNELL_E_PARSE, "bad.csv:2", "sk-123", "bad CSV");
+    scene2d_expect(path_in(model, "key.txt"), SNELL_E_PARSE, "key.txt:1", "sk-123", "a key file as a scene");
+}
+
 /* ------------------------------------- item 8: control characters in messages */
 /* 1 if msg holds a C0 control (but newline and tab), DEL or a UTF-8 C1 control. */
 static int has_control(const char *msg)
@@ -316,5 +368,6 @@ int main(int argc, char **argv)
     test_fifos();
     test_png_bomb();
     test_control_chars();
+    test_scene2d_folder();
     return test_finish();
 }
