@@ -10,12 +10,18 @@ if(TARGET snell-render)
     "msg_render_unknown|2|^snell-render: unknown option '--bogus'. see --help$|--bogus|1"
     "msg_render_no_value|2|^snell-render: --size needs a value. see --help$|--mesh|sphere|--size"
     "msg_render_param_no_value|2|^snell-render: --iterations needs a value. see --help$|--iterations"
-    "msg_render_bad_value|2|^snell-render: --size wants WxH within 1..16384, got '0x5'$|--size|0x5")
+    "msg_render_bad_value|2|^snell-render: --size wants WxH within 1..16384, got '0x5'$|--size|0x5"
+    # issue 40 item 11: a drop's frame of 1e30 or NaN was accepted and never applied
+    "msg_water_drop_frame_huge|2|^snell-render --water: --drop 0,0,0.08,-0.03,1e30: frame F must be a whole number 0..99999$|--water|--drop|0,0,0.08,-0.03,1e30"
+    "msg_water_drop_frame_nan|2|^snell-render --water: --drop 0,0,0.08,-0.03,nan: frame F must be a whole number 0..99999$|--water|--drop|0,0,0.08,-0.03,nan"
+    "msg_water_drop_frame_late|2|^snell-render --water: --drop 1: before frame 3, but only 1 frame.s. are made .--frames.$|--water|--drop|0,0,0.08,-0.03,3")
   set(msg_gl_cases
     "msg_render_missing_mesh|1|^snell-render: mesh: cannot open '/nonexistent/u28.obj': No such file or directory$|--mesh|/nonexistent/u28.obj|--size|8x8|-o|${o}"
     "msg_render_missing_env|1|^snell-render: environment: cannot open image \"/nonexistent/u28.png\": No such file or directory$|--env|/nonexistent/u28.png|--size|8x8|-o|${o}"
     "msg_render_missing_scene|1|^snell-render: scene: cannot open '/nonexistent/u28.gltf': No such file or directory$|--scene|/nonexistent/u28.gltf|--size|8x8|-o|${o}"
     "msg_render_unwritable_png|1|^snell-render: cannot write PNG \"/nonexistent/u28/x.png\": No such file or directory$|--size|8x8|-o|/nonexistent/u28/x.png"
+    # issue 40 item 11: a shape's segment count out of range is no "unknown mesh file extension"
+    "msg_render_shape_segments|1|^snell-render: mesh: shape segments 1000000 / rings 500000 exceed 4096$|--mesh|sphere@1000000|--size|8x8|-o|${o}"
     # issue 40 item 7: a full device (stb ignored fwrite's and fclose's errors: exit 0, no message)
     "msg_render_full_device|1|^snell-render: cannot write PNG \"/dev/full\": No space left on device$|--size|8x8|-o|/dev/full"
     "msg_render_full_device_trace|1|^snell-render: cannot write PNG \"/dev/full\": No space left on device$|--size|8x8|--trace-pixel|4,4|-o|/dev/full"

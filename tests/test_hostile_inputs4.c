@@ -283,6 +283,113 @@ static void test_control_chars(void)
     snell_scene2d_destroy(s2);
 }
 
+/* ---------------------------------------------- item 11: the smaller ones */
+static void test_small_cpu(void)
+{
+    static const char bom_obj[] = "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    char dir[800];
+    snell_mesh *m = NULL;
+    snell_scene2d *s2 = NULL;
+    snell_status st;
+    float mx[3] = {1, 1, 1};
+    /* NULL outputs are skipped (it segfaulted) */
+    snell_mesh_bounds(NULL, NULL, NULL);
+    snell_mesh_bounds(NULL, NULL, mx);
+    CHECK(mx[0] == 0.0f && mx[2] == 0.0f, "snell_mesh_bounds(NULL, NULL, mx)");
+    /* a UTF-8 byte-order mark before the first "v" (the line was dropped) */
+    st = snell_mesh_load_obj_mem(NULL, bom_obj, sizeof bom_obj - 1, &m);
+    CHECK(st == SNELL_OK && snell_mesh_vertex_count(m) == 3 && snell_mesh_triangle_count(m) == 1,
+          "OBJ with a byte-order mark: %s: %s", snell_status_str(st), snell_last_error(NULL));
+    snell_mesh_destroy(m);
+    /* a folder named as a CSV: "is a directory", not "larger than 67108864 bytes" */
+    snprintf(dir, sizeof dir, "%.790s", test_out("hostile4_dircsv"));
+    mkdir(dir, 0755);
+    mkdir(path_in(dir, "poly.csv"), 0755);
+    {
+        static const char text[] = "view 0 0 2 2\nobject poly.csv t 1\n";
+        CHECK(write_file(path_in(dir, "s.txt"), text, sizeof text - 1), "s.txt");
+    }
+    st = snell_scene2d_load(NULL, path_in(dir, "s.txt"), &s2, NULL, NULL);
+    CHECK(st == SNELL_E_IO && has(snell_last_error(NULL), "is a directory") &&
+              !has(snell_last_error(NULL), "larger than"),
+          "a folder as a CSV: %s: %s", snell_status_str(st), snell_last_error(NULL));
+    snell_scene2d_destroy(s2);
+}
+
+/* The context cases of item 11 (4 MiB budget): a renderer beyond it, a
+ * budget message that rounds both sides to the same MiB, a model scale whose
+ * determinant overflows, an environment whose context was destroyed. */
+static void test_small_ctx(snell_ctx *ctx)
+{
+    snell_renderer_desc rd;
+    snell_renderer *r = NULL;
+    snell_lightmap2d_desc ld;
+    snell_lightmap2d *lm = NULL;
+    snell_env_desc ed;
+    snell_env *env = NULL, *env2 = NULL;
+    snell_mesh *mesh = NULL;
+    snell_frame_desc fd;
+    snell_glass g;
+    snell_ctx *ctx2 = NULL;
+    snell_status st;
+    float model[16] = {1e20f, 0, 0, 0, 0, 1e20f, 0, 0, 0, 0, 1e20f, 0, 0, 0, 0, 1};
+    const char *msg;
+    memset(&rd, 0, sizeof rd);
+    rd.width = rd.height = 1024; /* 8 MiB of colour and depth */
+    st = snell_renderer_create(ctx, &rd, &r);
+    msg = snell_last_error(ctx);
+    CHECK(st == SNELL_E_LIMIT && !r && has(msg, "1024x1024 offscreen renderer") && has(msg, "memory budget"),
+          "1024^2 renderer in 4 MiB: %s: %s", snell_status_str(st), msg);
+    snell_renderer_destroy(r);
+    r = NULL;
+    /* 481 x 545 pixels of 16 bytes: 16 bytes over 4 MiB */
+    memset(&ld, 0, sizeof ld);
+    ld.width = 481;
+    ld.height = 545;
+    ld.cpu_only = 1;
+    st = snell_lightmap2d_create(ctx, &ld, &lm);
+    msg = snell_last_error(ctx);
+    CHECK(st == SNELL_E_LIMIT && has(msg, "needs 4194320 bytes, more than the memory budget of 4194304 bytes"),
+          "budget message at the rounding: %s: %s", snell_status_str(st), msg);
+    snell_lightmap2d_destroy(lm);
+    /* a model scale of 1e20: its determinant overflows, the matrix is not singular */
+    memset(&ed, 0, sizeof ed);
+    ed.face_size = 16;
+    CHECK_OK_CTX(ctx, snell_env_create(ctx, &ed, &env));
+    {
+        snell_shape_desc sd;
+        memset(&sd, 0, sizeof sd);
+        sd.shape = SNELL_SHAPE_SPHERE;
+        CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &mesh));
+    }
+    rd.width = rd.height = 32;
+    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));
+    if (r && env && mesh) {
+        test_frame_one(&fd, &g, mesh, env);
+        g.model = model;
+        st = snell_render(r, &fd, NULL);
+        msg = snell_last_error(ctx);
+        CHECK(st == SNELL_E_INVALID_ARG && has(msg, "overflows") && !has(msg, "singular"), "scale 1e20: %s: %s",
+              snell_status_str(st), msg);
+        /* an environment of a context destroyed since */
+        if (snell_ctx_create(NULL, &ctx2) == SNELL_OK) {
+            CHECK_OK_CTX(ctx2, snell_env_create(ctx2, &ed, &env2));
+            snell_ctx_destroy(ctx2);
+            snell_ctx_make_current(ctx);
+            g.model = NULL;
+            fd.env = env2;
+            st = snell_render(r, &fd, NULL);
+            msg = snell_last_error(ctx);
+            CHECK(st == SNELL_E_INVALID_ARG && has(msg, "went with its context"), "env of a destroyed context: %s: %s",
+                  snell_status_str(st), msg);
+            snell_env_destroy(env2);
+        }
+    }
+    snell_renderer_destroy(r);
+    snell_mesh_destroy(mesh);
+    snell_env_destroy(env);
+}
+
 /* ------------------------------------ item 2: the 2D lightmap's memory budget */
 /* A lightmap of w x h (cpu_only as given) on a scene of `lights` point lights
  * of `rays` rays each, in a glass box; returns the status of its first frame
@@ -354,6 +461,7 @@ static void test_ctx_cases(void)
         return;
     }
     test_lm2d_budget(ctx);
+    test_small_ctx(ctx);
     snell_ctx_destroy(ctx);
 }
 
@@ -369,5 +477,6 @@ int main(int argc, char **argv)
     test_png_bomb();
     test_control_chars();
     test_scene2d_folder();
+    test_small_cpu();
     return test_finish();
 }

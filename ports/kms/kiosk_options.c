@@ -111,8 +111,8 @@ static int value_option(const char *a, const char *v, kiosk_options *o)
 /* Is a an option that takes a value (value_option's)? */
 static int takes_value(const char *a)
 {
-    static const char *const names[] = {"-b",     "--device", "--dri-dir", "--connector", "--mode",
-                                        "--spin", "--frames", "--report",  "--warmup",    "--json"};
+    static const char *const names[] = {"-b",       "--device", "--dri-dir", "--connector", "--mode", "--spin",
+                                        "--budget", "--frames", "--report",  "--warmup",    "--json"};
     size_t k;
     for (k = 0; k < sizeof names / sizeof *names; k++)
         if (!strcmp(a, names[k])) return 1;

@@ -74,6 +74,11 @@ snell_status snell__budget_check(const snell_ctx *ctx, size_t bytes, const char 
 {
     size_t budget = snell__ctx_budget(ctx);
     if (bytes <= budget) return SNELL_OK;
+    /* "needs 256.0 MiB, more than ... 256.0 MiB" said nothing: bytes then */
+    if ((size_t)((double)bytes / 104857.6) == (size_t)((double)budget / 104857.6))
+        return snell__fail(ctx, SNELL_E_LIMIT,
+                           "%s needs %zu bytes, more than the memory budget of %zu bytes (snell_ctx_desc.memory_budget)",
+                           what, bytes, budget);
     return snell__fail(ctx, SNELL_E_LIMIT,
                        "%s needs %.1f MiB, more than the memory budget of %.1f MiB (snell_ctx_desc.memory_budget)",
                        what, (double)bytes / 1048576.0, (double)budget / 1048576.0);
