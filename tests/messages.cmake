@@ -20,6 +20,8 @@ if(TARGET snell-render)
     "msg_render_missing_env|1|^snell-render: environment: cannot open image \"/nonexistent/u28.png\": No such file or directory$|--env|/nonexistent/u28.png|--size|8x8|-o|${o}"
     "msg_render_missing_scene|1|^snell-render: scene: cannot open '/nonexistent/u28.gltf': No such file or directory$|--scene|/nonexistent/u28.gltf|--size|8x8|-o|${o}"
     "msg_render_unwritable_png|1|^snell-render: cannot write PNG \"/nonexistent/u28/x.png\": No such file or directory$|--size|8x8|-o|/nonexistent/u28/x.png"
+    # issue 40 item 9: an eye 1e-24 from the target drew the background alone, exit 0
+    "msg_render_camera_tiny|1|^snell-render: render: snell_render: camera.distance 1e-24 is too small .at least 1e-06: a millionth of the scene's scale.$|--camera|30,20,1e-24|--size|8x8|-o|${o}"
     # issue 40 item 11: a shape's segment count out of range is no "unknown mesh file extension"
     "msg_render_shape_segments|1|^snell-render: mesh: shape segments 1000000 / rings 500000 exceed 4096$|--mesh|sphere@1000000|--size|8x8|-o|${o}"
     # issue 40 item 7: a full device (stb ignored fwrite's and fclose's errors: exit 0, no message)

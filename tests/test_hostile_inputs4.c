@@ -283,6 +283,64 @@ static void test_control_chars(void)
     snell_scene2d_destroy(s2);
 }
 
+/* ------------------------------------------------ item 9: silent wrong frames */
+/* A glTF of one triangle (data: URI) in a node given by node_json, with a
+ * second primitive of mode `extra_mode` (-1: none) beside it. */
+static int gltf_tri(char *out, size_t cap, const char *node_json, int extra_mode)
+{
+    char extra[96] = "";
+    if (extra_mode >= 0) snprintf(extra, sizeof extra, ",{\"attributes\":{\"POSITION\":0},\"mode\":%d}", extra_mode);
+    return snprintf(out, cap,
+                    "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[%s],"
+                    "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}%s]}],"
+                    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+                    "\"min\":[0,0,0],\"max\":[1,1,0]}],"
+                    "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],\"buffers\":[{\"byteLength\":36,\"uri\":"
+                    "\"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA\"}]}",
+                    node_json, extra);
+}
+
+static void gltf_expect(snell_ctx *ctx, const char *node_json, int extra_mode, snell_status want, const char *needle,
+                        const char *what)
+{
+    char json[2048];
+    int n = gltf_tri(json, sizeof json, node_json, extra_mode);
+    snell_mesh *m = NULL;
+    snell_scene_file *sc = NULL;
+    snell_status st = snell_mesh_load_gltf_mem(ctx, json, (size_t)n, &m);
+    const char *msg = snell_last_error(ctx);
+    CHECK(st == want && (st == SNELL_OK) == (m != NULL), "%s (mesh): %s: %s", what, snell_status_str(st), msg);
+    if (needle && st != SNELL_OK) CHECK(has(msg, needle), "%s (mesh): message lacks \"%s\": %s", what, needle, msg);
+    snell_mesh_destroy(m);
+    st = snell_scene_load_gltf_mem(ctx, json, (size_t)n, &sc);
+    msg = snell_last_error(ctx);
+    CHECK(st == want && (st == SNELL_OK) == (sc != NULL), "%s (scene): %s: %s", what, snell_status_str(st), msg);
+    if (needle && st != SNELL_OK) CHECK(has(msg, needle), "%s (scene): message lacks \"%s\": %s", what, needle, msg);
+    snell_scene_file_destroy(sc);
+}
+
+static void test_wrong_frames(void)
+{
+    gltf_expect(NULL, "{\"mesh\":0}", -1, SNELL_OK, NULL, "plain triangle");
+    gltf_expect(NULL, "{\"mesh\":0,\"matrix\":[1,0,0,1, 0,1,0,1, 0,0,1,1, 0,0,0,1]}", -1, SNELL_E_PARSE,
+                "not affine", "bottom row 1,1,1,1");
+    gltf_expect(NULL, "{\"mesh\":0,\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,2]}", -1, SNELL_E_PARSE,
+                "not affine", "w = 2");
+    gltf_expect(NULL, "{\"mesh\":0,\"matrix\":[2,0,0,0, 0,2,0,0, 0,0,2,0, 1,2,3,1]}", -1, SNELL_OK, NULL,
+                "affine matrix");
+    gltf_expect(NULL, "{\"mesh\":0}", 99, SNELL_E_PARSE, "primitive mode 99", "mode 99");
+    gltf_expect(NULL, "{\"mesh\":0}", 1, SNELL_OK, NULL, "a line primitive beside a triangle");
+}
+
+static char g_log[2048];
+static void log_cb(snell_log_level level, const char *msg, void *user)
+{
+    size_t n = strlen(g_log);
+    (void)level;
+    (void)user;
+    snprintf(g_log + n, sizeof g_log - n, "%s\n", msg);
+}
+
 /* ---------------------------------------------- item 11: the smaller ones */
 static void test_small_cpu(void)
 {
@@ -455,11 +513,16 @@ static void test_ctx_cases(void)
     snell_status st;
     memset(&cd, 0, sizeof cd);
     cd.memory_budget = (size_t)4 << 20;
+    cd.log = log_cb;
     st = snell_ctx_create(&cd, &ctx);
     if (st != SNELL_OK) {
         printf("SKIP budget cases: no context (%s)\n", snell_last_error(NULL));
         return;
     }
+    /* item 9: a line primitive left out says so */
+    g_log[0] = '\0';
+    gltf_expect(ctx, "{\"mesh\":0}", 1, SNELL_OK, NULL, "a line primitive beside a triangle");
+    CHECK(has(g_log, "points or lines (mode 1) left out"), "no log line for a line primitive: %s", g_log);
     test_lm2d_budget(ctx);
     test_small_ctx(ctx);
     snell_ctx_destroy(ctx);
@@ -478,5 +541,6 @@ int main(int argc, char **argv)
     test_control_chars();
     test_scene2d_folder();
     test_small_cpu();
+    test_wrong_frames();
     return test_finish();
 }

@@ -405,6 +405,14 @@ Mat4 local_transform(const tinygltf::Node &n, int idx)
         check_finite(n.matrix, idx, "matrix");
         Mat4 r;
         for (int i = 0; i < 16; i++) r.m[i] = n.matrix[static_cast<size_t>(i)];
+        /* glTF 2.0 §5.25: a node's matrix is a TRS transform; a projective
+         * bottom row sheared and projected the glass (or lost it, as a mesh) */
+        if (std::fabs(r.m[3]) > 1e-6 || std::fabs(r.m[7]) > 1e-6 || std::fabs(r.m[11]) > 1e-6 ||
+            std::fabs(r.m[15] - 1.0) > 1e-6) {
+            std::snprintf(buf, sizeof buf, "node %d: matrix is not affine (bottom row %g %g %g %g, want 0 0 0 1)", idx,
+                          r.m[3], r.m[7], r.m[11], r.m[15]);
+            fail(SNELL_E_PARSE, buf);
+        }
         return r;
     }
     if ((!n.translation.empty() && n.translation.size() != 3) || (!n.scale.empty() && n.scale.size() != 3) ||
@@ -443,6 +451,7 @@ struct Builder {
     std::vector<float> pos, nrm;
     std::vector<uint32_t> idx;
     size_t instances = 0;
+    bool logged_no_surface = false;
     Builder(const tinygltf::Model &m, snell_ctx *c) : model(m), ctx(c) {}
 
     void add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mesh_idx);
@@ -452,9 +461,19 @@ struct Builder {
 void Builder::add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mesh_idx)
 {
     char buf[256];
+    if (p.mode < TINYGLTF_MODE_POINTS || p.mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+        std::snprintf(buf, sizeof buf, "mesh %d: primitive mode %d is not a glTF mode (0..6)", mesh_idx, p.mode);
+        fail(SNELL_E_PARSE, buf);
+    }
     if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        p.mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        return; /* points and lines have no surface */
+        p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        /* points and lines have no surface: left out, and said once a file */
+        if (!logged_no_surface)
+            snell__log(ctx, SNELL_LOG_WARN, "glTF: mesh %d: a primitive of points or lines (mode %d) left out: no surface",
+                       mesh_idx, p.mode);
+        logged_no_surface = true;
+        return;
+    }
     auto pit = p.attributes.find("POSITION");
     if (pit == p.attributes.end()) return; /* nothing to draw */
     View vp = get_view(model, pit->second, TINYGLTF_TYPE_VEC3, false, "POSITION");
