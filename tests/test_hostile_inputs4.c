@@ -332,6 +332,39 @@ static void test_wrong_frames(void)
     gltf_expect(NULL, "{\"mesh\":0}", 1, SNELL_OK, NULL, "a line primitive beside a triangle");
 }
 
+/* ------------------------------------- item 5: the glTF parse's memory estimate */
+/* 4 MiB budget: 40 KB of JSON holding 20,000 numbers in "extras" (about 190
+ * bytes a value when parsed: 3.8 MB) passed an estimate of 8 bytes a JSON byte. */
+static void test_gltf_values(snell_ctx *ctx)
+{
+    char tri[2048];
+    size_t cap = 64 * 1024, n;
+    char *json = (char *)malloc(cap);
+    int i, k = gltf_tri(tri, sizeof tri, "{\"mesh\":0}", -1);
+    snell_mesh *m = NULL;
+    snell_status st;
+    const char *msg;
+    if (!json || k <= 0) {
+        free(json);
+        return;
+    }
+    /* {"extras":[0,0,...], then the triangle's members */
+    n = (size_t)snprintf(json, cap, "{\"extras\":[0");
+    for (i = 1; i < 20000; i++) json[n++] = ',', json[n++] = '0';
+    n += (size_t)snprintf(json + n, cap - n, "],%s", tri + 1);
+    st = snell_mesh_load_gltf_mem(ctx, json, n, &m);
+    msg = snell_last_error(ctx);
+    CHECK(st == SNELL_E_LIMIT && !m && has(msg, "about 20040 values") && has(msg, "memory budget of 4.0 MiB"),
+          "20,000 numbers in extras under 4 MiB: %s: %s", snell_status_str(st), msg);
+    snell_mesh_destroy(m);
+    m = NULL;
+    /* the triangle alone loads */
+    st = snell_mesh_load_gltf_mem(ctx, tri, (size_t)k, &m);
+    CHECK(st == SNELL_OK && m, "the triangle alone under 4 MiB: %s", snell_last_error(ctx));
+    snell_mesh_destroy(m);
+    free(json);
+}
+
 static char g_log[2048];
 static void log_cb(snell_log_level level, const char *msg, void *user)
 {
@@ -524,6 +557,7 @@ static void test_ctx_cases(void)
     gltf_expect(ctx, "{\"mesh\":0}", 1, SNELL_OK, NULL, "a line primitive beside a triangle");
     CHECK(has(g_log, "points or lines (mode 1) left out"), "no log line for a line primitive: %s", g_log);
     test_lm2d_budget(ctx);
+    test_gltf_values(ctx);
     test_small_ctx(ctx);
     snell_ctx_destroy(ctx);
 }

@@ -651,11 +651,13 @@ std::vector<int> scene_roots(const tinygltf::Model &m)
 
 /* tinygltf and nlohmann::json convert nested JSON (e.g. "extras") recursively,
  * so deeply nested input overflows the stack: a 200000-deep array segfaulted
- * in testing. Measure the nesting depth first (brackets outside strings). */
-void check_json_depth(const unsigned char *s, size_t n)
+ * in testing. Measure the nesting depth first (brackets outside strings).
+ * Returns about how many values the JSON holds (commas and opening brackets
+ * outside strings), which the parse's memory grows with. */
+size_t check_json_depth(const unsigned char *s, size_t n)
 {
     const size_t kMaxJsonDepth = 512; /* real glTF files stay below ~20 */
-    size_t depth = 0;
+    size_t depth = 0, values = 1;
     bool in_str = false;
     for (size_t i = 0; i < n; i++) {
         unsigned char c = s[i];
@@ -665,11 +667,15 @@ void check_json_depth(const unsigned char *s, size_t n)
         } else if (c == '"') {
             in_str = true;
         } else if (c == '[' || c == '{') {
+            values++;
             if (++depth > kMaxJsonDepth) fail(SNELL_E_LIMIT, "JSON nested deeper than 512 levels");
         } else if ((c == ']' || c == '}') && depth > 0) {
             depth--;
+        } else if (c == ',') {
+            values++;
         }
     }
+    return values;
 }
 
 /* GLB container check before tinygltf sees it: the 12-byte header, a JSON
@@ -757,16 +763,23 @@ void check_version_and_extensions(const tinygltf::Model &model)
  * at 164 MB resident); 8 leaves room. A GLB's BIN chunk is copied once more
  * into the buffer. Checked against the budget before parsing. */
 const size_t kJsonMemFactor = 8;
+/* Every JSON value costs a DOM node and a tinygltf::Value (where it lands in
+ * "extras", a map or vector entry besides), whatever its text's length: an
+ * array of one-digit numbers peaked at about 190 bytes a value (96 a JSON
+ * byte), so the byte factor alone let 28 MB take 2.7 GB. */
+const size_t kJsonValueBytes = 256;
 
-void check_parse_budget(snell_ctx *ctx, size_t json_bytes, size_t bin_bytes, FsPolicy *pol)
+void check_parse_budget(snell_ctx *ctx, size_t json_bytes, size_t bin_bytes, size_t values, FsPolicy *pol)
 {
-    char what[160];
-    size_t est = json_bytes > (SIZE_MAX - 2 * bin_bytes) / kJsonMemFactor ? SIZE_MAX
-                                                                          : kJsonMemFactor * json_bytes + 2 * bin_bytes;
+    char what[200];
+    double d = static_cast<double>(kJsonMemFactor) * static_cast<double>(json_bytes) + 2.0 * static_cast<double>(bin_bytes) +
+               static_cast<double>(kJsonValueBytes) * static_cast<double>(values);
+    size_t est = d >= 1.8e19 ? SIZE_MAX : static_cast<size_t>(d);
     pol->used = est;
     if (est <= pol->budget) return;
-    std::snprintf(what, sizeof what, "parsing %zu bytes of JSON (data: URIs included) and %zu of binary chunk",
-                  json_bytes, bin_bytes);
+    std::snprintf(what, sizeof what,
+                  "parsing %zu bytes of JSON (about %zu values; data: URIs included) and %zu of binary chunk",
+                  json_bytes, values, bin_bytes);
     snell_status st = snell__budget_check(ctx, est, what);
     fail(st, snell_last_error(ctx));
 }
@@ -801,12 +814,12 @@ void parse(snell_ctx *ctx, const unsigned char *data, size_t size, const std::st
         check_glb(data, size);
         uint32_t jlen;
         std::memcpy(&jlen, data + 12, 4);
-        check_json_depth(data + 20, jlen);
-        check_parse_budget(ctx, jlen, size - 20 - jlen, &pol);
+        size_t values = check_json_depth(data + 20, jlen);
+        check_parse_budget(ctx, jlen, size - 20 - jlen, values, &pol);
         ok = loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned int>(size), base_dir);
     } else {
-        check_json_depth(data, size);
-        check_parse_budget(ctx, size, 0, &pol);
+        size_t values = check_json_depth(data, size);
+        check_parse_budget(ctx, size, 0, values, &pol);
         ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char *>(data),
                                         static_cast<unsigned int>(size), base_dir);
     }
