@@ -20,7 +20,7 @@ static int shape_segments(const char *name)
     if (!at) return 0;
     n = strtol(at + 1, &end, 10);
     /* a count out of range is the library's to refuse with its limits
-     * (refused here, sphere@1000000 was taken for a file name) */
+     * (refused here, the name would be tried as a file) */
     if (*end || end == at + 1 || n < 0) return -1;
     return n > 1000000000L ? 1000000000 : (int)n;
 }

@@ -171,7 +171,7 @@ static int parse(int argc, char **argv, water_options *o)
                 fprintf(stderr, "snell-render --water: --drop %s: X,Z[,R[,A[,F]]]\n", v);
                 return 0;
             }
-            /* F becomes an int: 1e30 or NaN was undefined there, and no frame ever matched it */
+            /* F becomes an int: a value that is no whole frame number (1e30, NaN) has no defined conversion */
             if (!(f >= 0.0f && f < 100000.0f) || f != floorf(f)) {
                 fprintf(stderr, "snell-render --water: --drop %s: frame F must be a whole number 0..99999\n", v);
                 return 0;

@@ -74,7 +74,7 @@ snell_status snell__budget_check(const snell_ctx *ctx, size_t bytes, const char 
 {
     size_t budget = snell__ctx_budget(ctx);
     if (bytes <= budget) return SNELL_OK;
-    /* "needs 256.0 MiB, more than ... 256.0 MiB" said nothing: bytes then */
+    /* when both round to the same MiB, bytes say how far over it is */
     if ((size_t)((double)bytes / 104857.6) == (size_t)((double)budget / 104857.6))
         return snell__fail(ctx, SNELL_E_LIMIT,
                            "%s needs %zu bytes, more than the memory budget of %zu bytes (snell_ctx_desc.memory_budget)",

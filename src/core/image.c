@@ -71,7 +71,7 @@ snell_status snell_write_png(const char *path, int width, int height, const uint
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_write_png: bad arguments (%dx%d)", width, height);
     {
         /* encoded in memory and written here: stbi_write_png ignores fwrite's
-         * and fclose's errors, so a full disk gave a truncated file and SNELL_OK */
+         * and fclose's errors (a full disk would leave a truncated file) */
         int len = 0, ok, e;
         unsigned char *png = stbi_write_png_to_mem(rgba, width * 4, width, height, 4, &len);
         FILE *f;

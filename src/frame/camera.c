@@ -74,8 +74,8 @@ snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *ca
                            who, cam->z_far);
     {
         /* An eye closer to the target than a millionth of the scene's scale
-         * (1, or the target's distance from the origin) sees nothing in
-         * float: distance 1e-24 drew the background alone, rc 0. */
+         * (1, or the target's distance from the origin) derives near and far
+         * planes that clip the whole scene: the frame would be background. */
         float scale = fmaxf(1.0f, fmaxf(fabsf(cam->target[0]), fmaxf(fabsf(cam->target[1]), fabsf(cam->target[2]))));
         if (cam->distance > 0.0f && cam->distance < 1e-6f * scale)
             return snell__fail(ctx, SNELL_E_INVALID_ARG,

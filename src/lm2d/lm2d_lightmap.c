@@ -248,19 +248,20 @@ unsigned snell_lightmap2d_texture(const snell_lightmap2d *lm) { return lm ? lm2d
  * what is left as their limit. */
 static snell_status check_budget(snell_lightmap2d *lm, const snell_scene2d *s)
 {
-    size_t budget = snell__ctx_budget(lm->ctx), segs = 0, per_light, total, bins = 0;
+    size_t budget = snell__ctx_budget(lm->ctx), segs, per_light, total, bins = 0;
     int i, T = lm2d_pool_size(lm->pool);
-    double sum;
+    double sum, segs_d = 0.0; /* summed in double: no wrap, however many lights */
     char what[160];
     per_light = sizeof(light_state) + sizeof(int) + sizeof(lm2d_raster_src) + (size_t)T * sizeof(slice);
     for (i = 0; i < s->n_lights; i++) {
         const snell_light2d_desc *L = &s->lights[i].d;
         size_t n = L->power > 0.0f && L->rays > 0 ? (size_t)L->rays * (size_t)(lm->d.max_bounces + 1) : 0;
         if (i < lm->n_ls && lm->ls[i].cap > n) n = lm->ls[i].cap;
-        segs += n; /* at most 2^31 x 1001 a light, 2^24 lights: no overflow in 64 bits */
+        segs_d += (double)n;
     }
+    segs = segs_d >= 1.8e19 ? (size_t)-1 : (size_t)segs_d;
     if (!use_gl(lm)) bins = lm2d_raster_bins_bytes(segs);
-    sum = (double)lm->image_bytes + (double)s->n_lights * (double)per_light + (double)segs * sizeof(lm2d_path) +
+    sum = (double)lm->image_bytes + (double)s->n_lights * (double)per_light + segs_d * sizeof(lm2d_path) +
           (double)bins;
     total = sum >= 1.8e19 ? (size_t)-1 : (size_t)sum;
     if (total > budget) {

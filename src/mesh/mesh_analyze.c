@@ -463,7 +463,7 @@ static snell_status topology(const snell_mesh *m, topo *out)
         }
     }
     out->closed = ne > 0 && !out->boundary && !out->nonmanifold && !out->flipped;
-    /* e is done with: its room (12 bytes a triangle corner) holds the forest */
+    /* e is done with: its room (an edge record a triangle side) holds the forest */
     out->pieces = (size_t)out->welded * sizeof(uint32_t) <= (size_t)nt * 3 * sizeof *e
                       ? count_pieces(m, wid, out->welded, (uint32_t *)e)
                       : 0;

@@ -406,7 +406,7 @@ Mat4 local_transform(const tinygltf::Node &n, int idx)
         Mat4 r;
         for (int i = 0; i < 16; i++) r.m[i] = n.matrix[static_cast<size_t>(i)];
         /* glTF 2.0 §5.25: a node's matrix is a TRS transform; a projective
-         * bottom row sheared and projected the glass (or lost it, as a mesh) */
+         * bottom row would shear and project the glass */
         if (std::fabs(r.m[3]) > 1e-6 || std::fabs(r.m[7]) > 1e-6 || std::fabs(r.m[11]) > 1e-6 ||
             std::fabs(r.m[15] - 1.0) > 1e-6) {
             std::snprintf(buf, sizeof buf, "node %d: matrix is not affine (bottom row %g %g %g %g, want 0 0 0 1)", idx,
@@ -764,9 +764,8 @@ void check_version_and_extensions(const tinygltf::Model &model)
  * into the buffer. Checked against the budget before parsing. */
 const size_t kJsonMemFactor = 8;
 /* Every JSON value costs a DOM node and a tinygltf::Value (where it lands in
- * "extras", a map or vector entry besides), whatever its text's length: an
- * array of one-digit numbers peaked at about 190 bytes a value (96 a JSON
- * byte), so the byte factor alone let 28 MB take 2.7 GB. */
+ * "extras", a map or vector entry besides), whatever its text's length: a
+ * long array of one-digit numbers costs many times the byte factor a byte. */
 const size_t kJsonValueBytes = 256;
 
 void check_parse_budget(snell_ctx *ctx, size_t json_bytes, size_t bin_bytes, size_t values, FsPolicy *pol)

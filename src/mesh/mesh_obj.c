@@ -525,7 +525,7 @@ snell_status snell_mesh_load_obj_mem(snell_ctx *ctx, const char *data, size_t si
     ps.end = data + size;
     ps.line = 1;
     /* a UTF-8 byte-order mark (editors on Windows write one) is no part of
-     * the first line: read as such it made "v" an unknown keyword */
+     * the first line, whose keyword it would hide */
     if (size >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0) ps.p += 3;
     while (ps.p < ps.end) {
         const char *ls;
