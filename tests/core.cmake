@@ -82,7 +82,7 @@ if(VALGRIND AND TARGET snell-render AND NOT SNELL_SANITIZE)
 endif()
 
 # Image input (environment maps) as a fuzz target replayed on valid and broken files.
-file(GLOB SNELL_IMAGE_FUZZ_INPUTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/data/images/*)
+file(GLOB SNELL_IMAGE_FUZZ_INPUTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/data/images/* ${CMAKE_CURRENT_SOURCE_DIR}/data/hostile/*.png)
 snell_add_test(fuzz_image SOURCES fuzz/fuzz_image.c LABELS "unit;fuzz" ARGS ${SNELL_IMAGE_FUZZ_INPUTS})
 target_link_libraries(fuzz_image PRIVATE m)
 

@@ -6,3 +6,8 @@ snell_add_test(test_hostile_files SOURCES test_hostile_files.c LABELS "unit")
 target_link_libraries(test_hostile_files PRIVATE m)
 snell_add_test(test_hostile_files_ctx SOURCES test_hostile_files.c LABELS "unit;gl" ARGS ctx)
 target_link_libraries(test_hostile_files_ctx PRIVATE m)
+# Hostile input, fourth round (issue 40): one function per item of the issue.
+snell_add_test(test_hostile_inputs4 SOURCES test_hostile_inputs4.c LABELS "unit")
+target_link_libraries(test_hostile_inputs4 PRIVATE m)
+snell_add_test(test_hostile_inputs4_ctx SOURCES test_hostile_inputs4.c LABELS "unit;gl" ARGS ctx)
+target_link_libraries(test_hostile_inputs4_ctx PRIVATE m)

@@ -20,6 +20,14 @@ if(TARGET snell-kiosk)
   add_test(NAME kiosk_device_missing COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=--device|/nonexistent/card0"
            -DCODE=1 "-DERR=cannot use a DRM device: /nonexistent/card0: No such file" -P ${expect})
   set_tests_properties(kiosk_no_device kiosk_no_kms_card kiosk_device_missing PROPERTIES LABELS "cli")
+  # --budget is an option (issue 40 item 11: it was "unknown", so its bad values passed for the wrong reason)
+  add_test(NAME kiosk_budget_accepted COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+           "-DARGS=--budget|16|--dri-dir|${CMAKE_CURRENT_BINARY_DIR}/no_such_dri" -DCODE=77 "-DERR=nothing to show on" -P ${expect})
+  set_tests_properties(kiosk_budget_accepted PROPERTIES LABELS "cli")
+  # a -b typo is bad usage (2) without a display too (issue 40 item 11: it exited 77)
+  add_test(NAME kiosk_bad_spec_no_display COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+           "-DARGS=-b|cubemapp|--dri-dir|${CMAKE_CURRENT_BINARY_DIR}/no_such_dri" -DCODE=2 "-DERR=unknown method 'cubemapp'" -P ${expect})
+  set_tests_properties(kiosk_bad_spec_no_display PROPERTIES LABELS "cli")
   foreach(bad "--mode|1920x" "--mode|1920x1080@" "--frames|0" "--spin|nan" "-b|cubemap|-b|single"
               "--connector|x" "--nosuch" "--budget|0" "--budget|nan")
     string(MAKE_C_IDENTIFIER "kiosk_bad_${bad}" name)

@@ -10,12 +10,25 @@ if(TARGET snell-render)
     "msg_render_unknown|2|^snell-render: unknown option '--bogus'. see --help$|--bogus|1"
     "msg_render_no_value|2|^snell-render: --size needs a value. see --help$|--mesh|sphere|--size"
     "msg_render_param_no_value|2|^snell-render: --iterations needs a value. see --help$|--iterations"
-    "msg_render_bad_value|2|^snell-render: --size wants WxH within 1..16384, got '0x5'$|--size|0x5")
+    "msg_render_bad_value|2|^snell-render: --size wants WxH within 1..16384, got '0x5'$|--size|0x5"
+    # issue 40 item 11: a drop's frame of 1e30 or NaN was accepted and never applied
+    "msg_water_drop_frame_huge|2|^snell-render --water: --drop 0,0,0.08,-0.03,1e30: frame F must be a whole number 0..99999$|--water|--drop|0,0,0.08,-0.03,1e30"
+    "msg_water_drop_frame_nan|2|^snell-render --water: --drop 0,0,0.08,-0.03,nan: frame F must be a whole number 0..99999$|--water|--drop|0,0,0.08,-0.03,nan"
+    "msg_water_drop_frame_late|2|^snell-render --water: --drop 1: before frame 3, but only 1 frame.s. are made .--frames.$|--water|--drop|0,0,0.08,-0.03,3")
   set(msg_gl_cases
     "msg_render_missing_mesh|1|^snell-render: mesh: cannot open '/nonexistent/u28.obj': No such file or directory$|--mesh|/nonexistent/u28.obj|--size|8x8|-o|${o}"
     "msg_render_missing_env|1|^snell-render: environment: cannot open image \"/nonexistent/u28.png\": No such file or directory$|--env|/nonexistent/u28.png|--size|8x8|-o|${o}"
     "msg_render_missing_scene|1|^snell-render: scene: cannot open '/nonexistent/u28.gltf': No such file or directory$|--scene|/nonexistent/u28.gltf|--size|8x8|-o|${o}"
-    "msg_render_unwritable_png|1|^snell-render: cannot write PNG \"/nonexistent/u28/x.png\": No such file or directory$|--size|8x8|-o|/nonexistent/u28/x.png")
+    "msg_render_unwritable_png|1|^snell-render: cannot write PNG \"/nonexistent/u28/x.png\": No such file or directory$|--size|8x8|-o|/nonexistent/u28/x.png"
+    # issue 40 item 9: an eye 1e-24 from the target drew the background alone, exit 0
+    "msg_render_camera_tiny|1|^snell-render: render: snell_render: camera.distance 1e-24 is too small .at least 1e-06: a millionth of the scene's scale.$|--camera|30,20,1e-24|--size|8x8|-o|${o}"
+    # issue 40 item 11: a shape's segment count out of range is no "unknown mesh file extension"
+    "msg_render_shape_segments|1|^snell-render: mesh: shape segments 1000000 / rings 500000 exceed 4096$|--mesh|sphere@1000000|--size|8x8|-o|${o}"
+    # issue 40 item 7: a full device (stb ignored fwrite's and fclose's errors: exit 0, no message)
+    "msg_render_full_device|1|^snell-render: cannot write PNG \"/dev/full\": No space left on device$|--size|8x8|-o|/dev/full"
+    "msg_render_full_device_trace|1|^snell-render: cannot write PNG \"/dev/full\": No space left on device$|--size|8x8|--trace-pixel|4,4|-o|/dev/full"
+    "msg_render_full_device_2d|1|^snell-render --2d: SNELL_E_IO: cannot write PNG \"/dev/full\": No space left on device$|--2d|${CMAKE_CURRENT_SOURCE_DIR}/data/lm2d/shadow.txt|--size|16x16|-o|/dev/full"
+    "msg_render_full_device_water|1|^snell-render --water: cannot write PNG \"/dev/full\": No space left on device$|--water|--size|8x8|-o|/dev/full")
   foreach(gl 0 1)
     if(gl)
       set(cases ${msg_gl_cases})
@@ -45,6 +58,10 @@ if(TARGET snell-bench)
            "-DERR=^snell-bench: unknown option '--bogus'. see --help$" -P ${one_error})
   add_test(NAME msg_bench_no_value COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=-b|single|--frames" -DCODE=2
            "-DERR=^snell-bench: --frames needs a value. see --help$" -P ${one_error})
+  # issue 40 item 7: --images into a missing folder ran, wrote nothing and exited 0
+  add_test(NAME msg_bench_images_missing_dir COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=-b|single|--images|/nonexistent/u40" -DCODE=2
+           "-DERR=^snell-bench: --images '/nonexistent/u40' is not a directory .No such file or directory.$" -P ${one_error})
+  set_tests_properties(msg_bench_images_missing_dir PROPERTIES LABELS "cli")
   add_test(NAME msg_bench_bad_value COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--plot-y|nope" -DCODE=2
            "-DERR=^snell-bench: --plot-y wants full-mean\\|full-p99\\|full-rmse\\|matched-mean, got 'nope'$" -P ${one_error})
   add_test(NAME msg_bench_water_help COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--water|--help" -DCODE=0 -DERR=

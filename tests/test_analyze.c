@@ -892,7 +892,8 @@ int main(void)
         if (!m) continue;
         CHECK_OK(snell_mesh_analyze(m, &a));
         print(names[k], &a);
-        CHECK(a.closed && a.convex && a.inside, "%s must be closed, convex, centre inside", names[k]);
+        CHECK(a.closed && a.convex && a.inside && a.pieces == 1, "%s must be closed, convex, centre inside, one piece",
+              names[k]);
         CHECK(a.hidden_fraction == 0.0f, "%s is star-shaped: hidden %g", names[k], a.hidden_fraction);
         CHECK(sqrtf(a.centre[0] * a.centre[0] + a.centre[1] * a.centre[1] + a.centre[2] * a.centre[2]) < 0.05f,
               "%s centre should be the volume centroid (origin)", names[k]);
@@ -901,6 +902,36 @@ int main(void)
         /* The cube's faces are at the half edge, its corners sqrt(3) times as far. */
         if (k == 1) CHECK(fabsf(a.inner_radius * 1.7320508f - a.radius) < 1e-5f, "cube inner radius %g", a.inner_radius);
         snell_mesh_destroy(m);
+    }
+
+    {
+        /* two cubes apart (issue 40 item 10): each convex, together two pieces and no convex solid */
+        geo c = geo_shape(SNELL_SHAPE_CUBE), two;
+        uint32_t i;
+        memset(&two, 0, sizeof two);
+        two.nv = 2 * c.nv;
+        two.nt = 2 * c.nt;
+        two.pos = (float *)malloc(3 * sizeof(float) * two.nv);
+        two.idx = (uint32_t *)malloc(3 * sizeof(uint32_t) * two.nt);
+        if (c.pos && two.pos && two.idx) {
+            for (i = 0; i < 3 * c.nv; i++) {
+                two.pos[i] = c.pos[i];
+                two.pos[3 * c.nv + i] = c.pos[i] + (i % 3 == 0 ? 3.0f : 0.0f);
+            }
+            for (i = 0; i < 3 * c.nt; i++) {
+                two.idx[i] = c.idx[i];
+                two.idx[3 * c.nt + i] = c.idx[i] + c.nv;
+            }
+            m = geo_mesh(&two);
+            if (m) {
+                CHECK_OK(snell_mesh_analyze(m, &a));
+                CHECK(a.closed && !a.convex && a.pieces == 2, "two cubes: closed %d, convex %d, %u pieces", a.closed,
+                      a.convex, (unsigned)a.pieces);
+                snell_mesh_destroy(m);
+            }
+        }
+        geo_free(&c);
+        geo_free(&two);
     }
 
     m = shape(NULL, SNELL_SHAPE_TORUS);

@@ -571,6 +571,66 @@ static void case_contour(int size)
     free(rgba);
 }
 
+/* The 2D lightmap's first frame of a scene file (ctx NULL: the default memory
+ * budget, CPU only): within the per-byte bound of its file, with status want. */
+static void lightmap2d_timed(const char *what, const char *path, double bytes, int size, snell_status want)
+{
+    snell_scene2d *s = NULL;
+    snell_lightmap2d *lm = NULL;
+    snell_lightmap2d_desc d;
+    snell_status st;
+    double t0;
+    char label[96];
+    alarm(60);
+    t0 = now_s();
+    st = snell_scene2d_load(NULL, path, &s, NULL, NULL);
+    if (st == SNELL_OK) {
+        memset(&d, 0, sizeof d);
+        d.width = d.height = size;
+        d.cpu_only = 1;
+        st = snell_lightmap2d_create(NULL, &d, &lm);
+        if (st == SNELL_OK) st = snell_lightmap2d_frame(lm, s, NULL);
+    }
+    alarm(0);
+    snprintf(label, sizeof label, "%s (%s)", what, snell_status_str(st));
+    snell_lightmap2d_destroy(lm);
+    snell_scene2d_destroy(s);
+    check_time(label, now_s() - t0, bytes, "bytes", PER_BYTE);
+    CHECK(st == want, "%s: %s, want %s: %s", what, snell_status_str(st), snell_status_str(want),
+          snell_last_error(NULL));
+    if (want == SNELL_E_LIMIT)
+        CHECK(strstr(snell_last_error(NULL), "memory budget") != NULL, "%s: message: %s", what, snell_last_error(NULL));
+}
+
+/* Scene files of a few hundred bytes to a few MB that ask the lightmap for
+ * gigabytes (issue 40 item 2): refused before allocating, in about no time. */
+static void case_lightmap2d(void)
+{
+    char scene[1024];
+    size_t cap = (size_t)24 << 20, n;
+    char *text = (char *)malloc(cap);
+    int i;
+    printf("J. 2D lightmap frames\n");
+    snprintf(scene, sizeof scene, "%s", test_out("slow_lights.txt"));
+    /* twelve lights of 500,000 rays in a glass box whose walls trap light (TIR) */
+    n = (size_t)snprintf(text, cap, "view 0 0 100 100\npolygon 10 10 90 10 90 90 10 90 ; t 1 ior 1.5\n");
+    for (i = 0; i < 12; i++) n += (size_t)snprintf(text + n, cap - n, "light point pos %d 50 rays 500000\n", 20 + 5 * i);
+    CHECK(write_file(scene, text, n), "writing %s", scene);
+    lightmap2d_timed("12 lights of 500,000 rays", scene, (double)n, 256, SNELL_E_LIMIT);
+    /* a million lights of the default rays (22 MB) */
+    n = (size_t)snprintf(text, cap, "view 0 0 100 100\npolygon 10 10 90 10 90 90 10 90 ; t 1 ior 1.5\n");
+    for (i = 0; i < 1000000 && n + 32 < cap; i++)
+        n += (size_t)snprintf(text + n, cap - n, "light point pos %d 50\n", 20 + i % 60);
+    CHECK(write_file(scene, text, n), "writing %s", scene);
+    lightmap2d_timed("a million lights", scene, (double)n, 256, SNELL_E_LIMIT);
+    /* a 16384^2 lightmap (4 GiB of floats) for a one-light scene */
+    n = (size_t)snprintf(text, cap, "view 0 0 100 100\nlight point pos 50 50 rays 100\n");
+    CHECK(write_file(scene, text, n), "writing %s", scene);
+    lightmap2d_timed("a 16384x16384 lightmap", scene, (double)n, 16384, SNELL_E_LIMIT);
+    lightmap2d_timed("the same scene on 256x256", scene, (double)n, 256, SNELL_OK);
+    free(text);
+}
+
 int main(void)
 {
     signal(SIGALRM, on_alarm);
@@ -584,5 +644,6 @@ int main(void)
     case_gltf();
     case_scene2d();
     case_contour(1024);
+    case_lightmap2d();
     return test_finish();
 }

@@ -272,8 +272,8 @@ typedef struct snell_mesh_analysis {
     uint32_t flipped_edges;     /* edges whose two triangles run it the same way (inconsistent winding) */
     int closed;              /* none of these three (and some triangle): every edge has two triangles of
                               * opposite orientation (vertices where two sheets touch are not checked) */
-    int convex;              /* closed and every edge locally convex within 4 weld tolerances
-                              * (so the solid is convex) */
+    int convex;              /* closed, one piece, and every edge locally convex within 4 weld
+                              * tolerances (so the solid is convex) */
     int inside;              /* closed and the centre's crossing parity was odd along 3 rays */
     int winding;             /* closed: +1 counter-clockwise triangles face outward (signed
                               * volume > 0), -1 they face inward; 0 open or zero volume */
@@ -283,6 +283,8 @@ typedef struct snell_mesh_analysis {
      * gives 2, a torus 4. */
     int depth_complexity;    /* the most surfaces any sampled line crosses */
     float deep_fraction;     /* of the sampled lines that hit the mesh, the share crossing more than 2 */
+    uint32_t pieces;         /* connected pieces: triangles joined through welded corners (two
+                              * separate balls: 2); the centre-based methods serve one */
 } snell_mesh_analysis;
 
 /* Analyzes the mesh (O(triangles) memory; 0.16 s for the 70k-triangle bunny on

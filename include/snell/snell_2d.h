@@ -98,7 +98,8 @@ snell_status snell_scene2d_set_light(snell_scene2d *scene, int id, const snell_l
  *   view X0 Y0 X1 Y1          size W H
  *   object FILE.csv [key value ...]       polygon X Y X Y X Y ... [; key value ...]
  *   light point|bar|beam [key value ...]
- * CSV paths are relative to the scene file. "view"/"size" are returned through
+ * CSV paths are relative to the scene file and must stay inside its folder
+ * (no absolute paths, no ../ or links out of it). "view"/"size" are returned through
  * view (float[4], may be NULL) and size (int[2], may be NULL); absent = zeros. */
 snell_status snell_scene2d_load(snell_ctx *ctx, const char *path, snell_scene2d **out,
                                 float view[4], int size[2]);

@@ -258,4 +258,7 @@ int snell_bench_water_main(int argc, char **argv);
 /* snell-bench --budget: AUTO by frame budget against its rung table's fixed configurations (bench_budget.c). */
 int snell_bench_budget_main(int argc, char **argv);
 
+/* Images of --images that could not be written (bench_measure.c). */
+extern int bench_image_failures;
+
 #endif

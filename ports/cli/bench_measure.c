@@ -37,6 +37,16 @@ void bench_fail(bench_config *c, const char *what, snell_ctx *ctx)
 
 /* Error map for --images: grey background, glass pixels coloured by the
  * log of the angle, 0.01 degrees (black) .. 10 degrees (white), red = NaN. */
+int bench_image_failures;
+
+/* --images: a file that cannot be written is reported and fails the run. */
+static void write_png(const char *path, int w, int h, const uint8_t *px)
+{
+    if (snell_write_png(path, w, h, px) == SNELL_OK) return;
+    fprintf(stderr, "snell-bench: %s\n", snell_last_error(NULL));
+    bench_image_failures++;
+}
+
 static void write_error_map(const char *path, const float *err, const uint8_t *mask, const float *dirs, int w,
                             int h)
 {
@@ -58,7 +68,7 @@ static void write_error_map(const char *path, const float *err, const uint8_t *m
             p[2] = (uint8_t)(255 * 2 * t * (1 - t));
         }
     }
-    snell_write_png(path, w, h, px);
+    write_png(path, w, h, px);
     free(px);
 }
 
@@ -202,10 +212,10 @@ static void write_images(const bench_options *o, const bench_config *c, int mode
     sanitize(name);
     if (mode == 0) {
         snprintf(path, sizeof path, "%s/%s.png", o->images_dir, name);
-        snell_write_png(path, c->width, c->height, b->rgba);
+        write_png(path, c->width, c->height, b->rgba);
     }
     snprintf(path, sizeof path, "%s/%s.ref-%s.png", o->images_dir, name, mode ? "full" : "matched");
-    snell_write_png(path, c->width, c->height, ref->rgba);
+    write_png(path, c->width, c->height, ref->rgba);
     snprintf(path, sizeof path, "%s/%s.err-%s.png", o->images_dir, name, mode ? "full" : "matched");
     write_error_map(path, b->err, b->mask, b->dirs, c->width, c->height);
 }
@@ -390,9 +400,9 @@ static void whole_scene(snell_ctx *ctx, const snell_frame_desc *fd, const snell_
         snprintf(name, sizeof name, "%s", c->spec);
         sanitize(name);
         snprintf(path, sizeof path, "%s/%s.alone.png", o->images_dir, name);
-        snell_write_png(path, c->width, c->height, b->alone_rgba);
+        write_png(path, c->width, c->height, b->alone_rgba);
         snprintf(path, sizeof path, "%s/%s.ref-scene.png", o->images_dir, name);
-        snell_write_png(path, c->width, c->height, ref->rgba);
+        write_png(path, c->width, c->height, ref->rgba);
     }
     bench_ref_free(&other);
 }

@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L /* stat */
 /* bench_options.c — snell-bench's command line and --help; the methods and
  * their parameters (with the defaults the library resolves) come from the
  * registry through cli_method.c. */
@@ -8,6 +9,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 int bench_parse_int(const char *key, const char *v, int lo, int hi, int *out)
 {
@@ -191,6 +193,16 @@ int bench_parse_options(int argc, char **argv, bench_options *o)
             return 0;
         } else {
             i++;
+        }
+    }
+    if (o->images_dir) {
+        /* refused before a run that would write none of them */
+        struct stat sb;
+        errno = 0;
+        if (stat(o->images_dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+            fprintf(stderr, "snell-bench: --images '%s' is not a directory (%s)\n", o->images_dir,
+                    errno ? strerror(errno) : "not a directory");
+            return 0;
         }
     }
     return 1;

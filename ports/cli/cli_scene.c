@@ -19,7 +19,10 @@ static int shape_segments(const char *name)
     long n;
     if (!at) return 0;
     n = strtol(at + 1, &end, 10);
-    return !*end && n >= 3 && n <= 4096 ? (int)n : -1;
+    /* a count out of range is the library's to refuse with its limits
+     * (refused here, the name would be tried as a file) */
+    if (*end || end == at + 1 || n < 0) return -1;
+    return n > 1000000000L ? 1000000000 : (int)n;
 }
 
 int cli_shape_from_name(const char *name, snell_shape *out)

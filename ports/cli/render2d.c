@@ -275,7 +275,11 @@ int snell_render2d_main(int argc, char **argv)
         }
         rgba[4 * i + 3] = albedo ? albedo[4 * i + 3] : 255;
     }
-    if ((st = snell_write_png(out, w, h, rgba)) != SNELL_OK) goto fail;
+    if ((st = snell_write_png(out, w, h, rgba)) != SNELL_OK) {
+        /* a call without a context: its message is the thread's */
+        fprintf(stderr, "snell-render --2d: %s: %s\n", snell_status_str(st), snell_last_error(NULL));
+        goto done;
+    }
     printf("%s: %dx%d, %s, %s, %llu rays, %llu paths, %d pass(es), trace %.1f ms, raster %.1f ms, exposure %.4g\n",
            out, w, h, ctx ? snell_ctx_gl_renderer(ctx) : "no GL",
            stats.raster == SNELL_RASTER2D_GL ? "GL lines" : "CPU exact rasteriser", (unsigned long long)stats.rays,

@@ -167,8 +167,13 @@ static int parse(int argc, char **argv, water_options *o)
             d->radius = 0.08f;
             d->amplitude = -0.03f;
             n = sscanf(v, "%f,%f,%f,%f,%f", &d->x, &d->z, &d->radius, &d->amplitude, &f);
-            if (n < 2 || f < 0.0f) {
+            if (n < 2) {
                 fprintf(stderr, "snell-render --water: --drop %s: X,Z[,R[,A[,F]]]\n", v);
+                return 0;
+            }
+            /* F becomes an int: a value that is no whole frame number (1e30, NaN) has no defined conversion */
+            if (!(f >= 0.0f && f < 100000.0f) || f != floorf(f)) {
+                fprintf(stderr, "snell-render --water: --drop %s: frame F must be a whole number 0..99999\n", v);
                 return 0;
             }
             d->frame = (int)f;
@@ -231,13 +236,23 @@ static int parse(int argc, char **argv, water_options *o)
         fprintf(stderr, "snell-render --water: --frames 1..100000, --steps >= 0, --save-every >= 0, --size > 0\n");
         return 0;
     }
+    for (i = 0; i < o->drop_count; i++)
+        if (o->drops[i].frame >= o->frames) {
+            fprintf(stderr, "snell-render --water: --drop %d: before frame %d, but only %d frame(s) are made (--frames)\n",
+                    i + 1, o->drops[i].frame, o->frames);
+            return 0;
+        }
     return 1;
 }
 
 static int save(snell_ctx *ctx, snell_renderer *r, const water_options *o, uint8_t *px, const char *path)
 {
-    if (snell_renderer_read_rgba(r, px) != SNELL_OK || snell_write_png(path, o->width, o->height, px) != SNELL_OK) {
+    if (snell_renderer_read_rgba(r, px) != SNELL_OK) {
         fprintf(stderr, "snell-render --water: %s: %s\n", path, snell_last_error(ctx));
+        return 0;
+    }
+    if (snell_write_png(path, o->width, o->height, px) != SNELL_OK) { /* no context: the thread's message */
+        fprintf(stderr, "snell-render --water: %s\n", snell_last_error(NULL));
         return 0;
     }
     return 1;

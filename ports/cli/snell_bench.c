@@ -177,7 +177,7 @@ int main(int argc, char **argv)
                             : "not available: times are CPU wall clock of render + glFinish only");
     }
     bench_time_all(ctx, env, &o, cs, n);
-    if (measure_all(ctx, env, &o, cs, n, t_start) > 0) rc = 1;
+    if (measure_all(ctx, env, &o, cs, n, t_start) > 0 || bench_image_failures) rc = 1;
     cli_loadavg(load_after, sizeof load_after);
     bench_mark_pareto(cs, n, &o);
     command_line(argc, argv, command, sizeof command);

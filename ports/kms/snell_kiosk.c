@@ -482,6 +482,25 @@ done:
     return status;
 }
 
+/* The -b specs parse (sizes aside, which are the display's): a typo is bad
+ * usage, exit 2, on a machine without a display as on one with it. */
+static int specs_parse(const kiosk_options *o)
+{
+    static bench_options bo;
+    bench_config *cs;
+    int i, n = 0, ok = 1;
+    if (!o->spec_count) return 1;
+    if (!(cs = (bench_config *)calloc(BENCH_MAX_CONFIGS, sizeof *cs))) return 1; /* checked again later */
+    memset(&bo, 0, sizeof bo);
+    snprintf(bo.scenes, sizeof bo.scenes, "sphere");
+    snprintf(bo.sizes, sizeof bo.sizes, "64x64");
+    bo.frames = 1;
+    bo.plot_y = "full-mean";
+    for (i = 0; i < o->spec_count && ok; i++) ok = bench_expand_spec(o->specs[i], &bo, cs, &n);
+    free(cs);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     static kiosk_options o;
@@ -495,6 +514,7 @@ int main(int argc, char **argv)
     int n = 0, ok = 0, usage_ok = 1, lost = 0, r;
 
     if ((r = kiosk_parse_options(argc, argv, &o)) <= 0) return r < 0 ? 0 : 2;
+    if (!specs_parse(&o)) return 2;
     if (o.preview) return preview(&o);
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal; /* no SA_RESTART: a blocked poll returns at once */

@@ -74,6 +74,11 @@ snell_status snell__budget_check(const snell_ctx *ctx, size_t bytes, const char 
 {
     size_t budget = snell__ctx_budget(ctx);
     if (bytes <= budget) return SNELL_OK;
+    /* when both round to the same MiB, bytes say how far over it is */
+    if ((size_t)((double)bytes / 104857.6) == (size_t)((double)budget / 104857.6))
+        return snell__fail(ctx, SNELL_E_LIMIT,
+                           "%s needs %zu bytes, more than the memory budget of %zu bytes (snell_ctx_desc.memory_budget)",
+                           what, bytes, budget);
     return snell__fail(ctx, SNELL_E_LIMIT,
                        "%s needs %.1f MiB, more than the memory budget of %.1f MiB (snell_ctx_desc.memory_budget)",
                        what, (double)bytes / 1048576.0, (double)budget / 1048576.0);
@@ -144,11 +149,25 @@ const char *snell_last_error(const snell_ctx *ctx)
     return ctx ? ctx->last_error : g_thread_error;
 }
 
+/* Messages quote file names and file content (tokens, URIs, tinygltf's
+ * errors); a terminal would act on their control characters (ESC sequences
+ * retitle or clear it, BEL rings). Every C0 control but newline and tab, DEL
+ * and the UTF-8 encoded C1 controls (U+0080..U+009F) become '?'. */
+static void scrub(char *s)
+{
+    unsigned char *p = (unsigned char *)s;
+    for (; *p; p++) {
+        if ((*p < 0x20 && *p != '\n' && *p != '\t') || *p == 0x7f) *p = '?';
+        else if (*p == 0xc2 && p[1] >= 0x80 && p[1] <= 0x9f) p[0] = p[1] = '?';
+    }
+}
+
 static void vlog(const snell_ctx *ctx, snell_log_level level, const char *fmt, va_list ap)
 {
     char buf[1024];
     if (!ctx || !ctx->log) return;
     vsnprintf(buf, sizeof buf, fmt, ap);
+    scrub(buf);
     ctx->log(level, buf, ctx->log_user);
 }
 
@@ -162,6 +181,7 @@ snell_status snell__fail(const snell_ctx *ctx, snell_status status, const char *
     va_start(ap, fmt);
     vsnprintf(dst, cap, fmt, ap);
     va_end(ap);
+    scrub(dst);
     if (ctx && ctx->log) ctx->log(SNELL_LOG_ERROR, dst, ctx->log_user);
     return status;
 }

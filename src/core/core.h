@@ -7,6 +7,7 @@
 #include "snell/snell.h"
 #include "snell_components.h" /* generated: SNELL_WITH_<X> 0/1 (cmake/components.cmake) */
 #include <stdarg.h>
+#include <stdio.h>
 
 #if defined(__GNUC__)
 #define SNELL_PRINTF(a, b) __attribute__((format(printf, a, b)))
@@ -41,6 +42,13 @@ const char *snell__software_rasteriser(const char *gl_renderer);
 
 /* Monotonic clock in milliseconds (timing statistics). */
 double snell__now_ms(void);
+
+/* Opens an input file for reading: a regular file only, opened so that a FIFO
+ * or a device cannot block (file.c). On failure: -1 / NULL, *opened 0 with
+ * *why = strerror(errno) when open() failed, *opened 1 with *why "a directory"
+ * or "not a regular file" when it was refused. */
+int snell__open_regular(const char *path, int *opened, const char **why);
+FILE *snell__fopen_regular(const char *path, int *opened, const char **why);
 
 /* The context's memory budget (snell_ctx_desc.memory_budget; the default for NULL). */
 size_t snell__ctx_budget(const snell_ctx *ctx);

@@ -15,8 +15,26 @@
  * PNG makes stb double its output buffer up to 2 GiB (found by fuzzing);
  * with it stb fails with "outofmem", reported as SNELL_E_PARSE. */
 #define IMAGE_MAX_ALLOC ((size_t)640 << 20)
-static void *image_malloc(size_t n) { return n > IMAGE_MAX_ALLOC ? NULL : malloc(n); }
-static void *image_realloc(void *p, size_t n) { return n > IMAGE_MAX_ALLOC ? NULL : realloc(p, n); }
+#if defined(__GNUC__)
+#define IMAGE_THREAD_LOCAL __thread
+#else
+#define IMAGE_THREAD_LOCAL
+#endif
+/* While a PNG decodes, the largest allocation its own size justifies
+ * (png_alloc_cap); a larger request is refused and remembered, so that a zlib
+ * stream inflating far past the image (a decompression bomb) stops there. */
+static IMAGE_THREAD_LOCAL size_t g_alloc_cap;
+static IMAGE_THREAD_LOCAL int g_cap_hit;
+static int alloc_ok(size_t n)
+{
+    if (g_alloc_cap && n > g_alloc_cap) {
+        g_cap_hit = 1;
+        return 0;
+    }
+    return n <= IMAGE_MAX_ALLOC;
+}
+static void *image_malloc(size_t n) { return alloc_ok(n) ? malloc(n) : NULL; }
+static void *image_realloc(void *p, size_t n) { return alloc_ok(n) ? realloc(p, n) : NULL; }
 #define STBI_MALLOC(sz) image_malloc(sz)
 #define STBI_REALLOC(p, newsz) image_realloc(p, newsz)
 #define STBI_FREE(p) free(p)
@@ -51,10 +69,28 @@ snell_status snell_write_png(const char *path, int width, int height, const uint
 {
     if (!path || !rgba || width <= 0 || height <= 0 || width > 16384 || height > 16384)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_write_png: bad arguments (%dx%d)", width, height);
-    errno = 0;
-    if (!stbi_write_png(path, width, height, 4, rgba, width * 4)) {
-        int e = errno; /* stb's fopen or fwrite */
-        return snell__fail(NULL, SNELL_E_IO, "cannot write PNG \"%s\": %s", path, e ? strerror(e) : "encoding failed");
+    {
+        /* encoded in memory and written here: stbi_write_png ignores fwrite's
+         * and fclose's errors (a full disk would leave a truncated file) */
+        int len = 0, ok, e;
+        unsigned char *png = stbi_write_png_to_mem(rgba, width * 4, width, height, 4, &len);
+        FILE *f;
+        if (!png) return snell__fail(NULL, SNELL_E_NOMEM, "cannot encode PNG \"%s\" (%dx%d)", path, width, height);
+        errno = 0;
+        f = fopen(path, "wb");
+        if (!f) {
+            e = errno;
+            free(png);
+            return snell__fail(NULL, SNELL_E_IO, "cannot write PNG \"%s\": %s", path, strerror(e));
+        }
+        ok = fwrite(png, 1, (size_t)len, f) == (size_t)len;
+        e = errno;
+        if (fclose(f) != 0 && ok) {
+            ok = 0;
+            e = errno;
+        }
+        free(png);
+        if (!ok) return snell__fail(NULL, SNELL_E_IO, "cannot write PNG \"%s\": %s", path, e ? strerror(e) : "write error");
     }
     return SNELL_OK;
 }
@@ -186,6 +222,16 @@ static int hdr_complete(const uint8_t *b, size_t n, size_t pos, size_t w, size_t
     return 1;
 }
 
+/* The largest single allocation stb makes for a PNG of w x h pixels in n
+ * bytes: its IDAT chunks joined (less than 2n as the buffer doubles), the
+ * inflated scanlines (at most 8 bytes a pixel and a filter byte a row, twice
+ * that when an interlaced image's passes outgrow stb's first guess) and the
+ * unfiltered image. Inflating past it means data the image has no room for. */
+static size_t png_alloc_cap(size_t w, size_t h, size_t n)
+{
+    return 2 * (w * h * 8 + h) + 2 * n + 65536;
+}
+
 snell_status snell__image_decode_budget(const void *data, size_t size, size_t budget, int *width, int *height,
                                         uint8_t **rgba)
 {
@@ -240,7 +286,16 @@ snell_status snell__image_decode_budget(const void *data, size_t size, size_t bu
         }
         stbi_image_free(px);
     } else {
+        int bomb;
+        g_alloc_cap = png_alloc_cap((size_t)w, (size_t)h, size);
+        g_cap_hit = 0;
         *rgba = stbi_load_from_memory(bytes, (int)size, &w, &h, &n, 4);
+        bomb = g_cap_hit;
+        g_alloc_cap = 0;
+        if (!*rgba && bomb)
+            return snell__fail(NULL, SNELL_E_PARSE,
+                               "PNG image of %dx%d pixels: its compressed data inflates past the image's size "
+                               "(a decompression bomb?)", w, h);
         if (!*rgba) return snell__fail(NULL, SNELL_E_PARSE, "cannot decode image: %s", stbi_failure_reason());
     }
     if (w < 1 || h < 1) {
@@ -259,18 +314,14 @@ snell_status snell__image_read_budget(const char *path, size_t budget, int *widt
     long len;
     uint8_t *buf;
     snell_status st;
-    struct stat sb;
+    const char *why;
+    int opened;
     if (!path || !width || !height || !rgba)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_image_read: NULL argument");
     *rgba = NULL;
-    f = fopen(path, "rb");
-    if (!f) return snell__fail(NULL, SNELL_E_IO, "cannot open image \"%s\": %s", path, strerror(errno));
-    /* fopen opens a directory as well, and ftell then says LONG_MAX */
-    if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        int dir = S_ISDIR(sb.st_mode);
-        fclose(f);
-        return snell__fail(NULL, SNELL_E_IO, "image \"%s\" is %s", path, dir ? "a directory" : "not a regular file");
-    }
+    f = snell__fopen_regular(path, &opened, &why);
+    if (!f && !opened) return snell__fail(NULL, SNELL_E_IO, "cannot open image \"%s\": %s", path, why);
+    if (!f) return snell__fail(NULL, SNELL_E_IO, "image \"%s\" is %s", path, why);
     if (fseek(f, 0, SEEK_END) != 0 || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);
         return snell__fail(NULL, SNELL_E_IO, "cannot read image \"%s\"", path);

@@ -118,6 +118,16 @@ snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *ca
     if (!(cam->z_far >= 0.0f) || !isfinite(cam->z_far))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_far %g: 0 (derived) or a finite distance > 0",
                            who, cam->z_far);
+    {
+        /* An eye closer to the target than a millionth of the scene's scale
+         * (1, or the target's distance from the origin) derives near and far
+         * planes that clip the whole scene: the frame would be background. */
+        float scale = fmaxf(1.0f, fmaxf(fabsf(cam->target[0]), fmaxf(fabsf(cam->target[1]), fabsf(cam->target[2]))));
+        if (cam->distance > 0.0f && cam->distance < 1e-6f * scale)
+            return snell__fail(ctx, SNELL_E_INVALID_ARG,
+                               "%s: camera.distance %g is too small (at least %g: a millionth of the scene's scale)",
+                               who, cam->distance, 1e-6f * scale);
+    }
     /* The planes as snell_camera_matrices derives them. */
     dist = cam->distance > 0.0f ? cam->distance : 3.5f;
     zn = cam->z_near > 0.0f ? cam->z_near : dist * 0.01f;

@@ -160,6 +160,11 @@ int snell__fit_solid_few_surfaces(const snell_mesh_analysis *an, float max_hidde
                    (unsigned)an->flipped_edges);
         return 0;
     }
+    if (an->pieces > 1) {
+        snell__why(why, n, "closed, but %u separate pieces: the farthest back face may be another piece's",
+                   (unsigned)an->pieces);
+        return 0;
+    }
     if (an->hidden_fraction > max_hidden) {
         snell__why(why, n, "closed, but %.2f > %.2f of the surface is hidden from the centre: light leaves through "
                            "surfaces before the farthest back face", an->hidden_fraction, max_hidden);

@@ -53,6 +53,7 @@ struct snell_lightmap2d {
     lm2d_raster_src *src;     /* n_ls: the CPU rasteriser's segment lists */
     lm2d_raster_bins *bins;   /* its scratch */
     lm2d_energy frame_e;      /* bookkeeping of the last traced frame, all lights */
+    size_t image_bytes;       /* the CPU image and, with GL, the texture and its readback */
 };
 
 
@@ -173,6 +174,17 @@ snell_status snell_lightmap2d_create(snell_ctx *ctx, const snell_lightmap2d_desc
     lm->cpu_view.lo[1] = d.view_max[1];
     lm->cpu_view.hi[1] = d.view_min[1];
     px = (size_t)d.width * (size_t)d.height;
+    /* 16 bytes a pixel each: the CPU image, and with GL the texture (at most
+     * RGBA32F) and the readback the first read allocates */
+    lm->image_bytes = px * LM2D_RASTER_PX * sizeof(float) * (ctx && !d.cpu_only ? 3 : 1);
+    {
+        char what[96];
+        snprintf(what, sizeof what, "lightmap2d: a %dx%d lightmap", d.width, d.height);
+        if ((st = snell__budget_check(ctx, lm->image_bytes, what)) != SNELL_OK) {
+            snell__free(al, lm);
+            return st;
+        }
+    }
     lm->cpu = (float *)snell__calloc(al, px, LM2D_RASTER_PX * sizeof(float));
     if (!lm->cpu) {
         snell__free(al, lm);
@@ -227,6 +239,39 @@ void snell_lightmap2d_finish(snell_lightmap2d *lm)
 }
 
 unsigned snell_lightmap2d_texture(const snell_lightmap2d *lm) { return lm ? lm2d_gl_texture(lm->gl) : 0; }
+
+/* Everything the lightmap holds for this scene, checked against the memory
+ * budget before any of it is allocated (a scene file of a few hundred bytes
+ * may ask for gigabytes): the images, per-light state, every light's path
+ * buffer (rays x (max_bounces + 1) segments, or what it holds already) and,
+ * rasterising on the CPU, the bins over all those segments. The bins get
+ * what is left as their limit. */
+static snell_status check_budget(snell_lightmap2d *lm, const snell_scene2d *s)
+{
+    size_t budget = snell__ctx_budget(lm->ctx), segs, per_light, total, bins = 0;
+    int i, T = lm2d_pool_size(lm->pool);
+    double sum, segs_d = 0.0; /* summed in double: no wrap, however many lights */
+    char what[160];
+    per_light = sizeof(light_state) + sizeof(int) + sizeof(lm2d_raster_src) + (size_t)T * sizeof(slice);
+    for (i = 0; i < s->n_lights; i++) {
+        const snell_light2d_desc *L = &s->lights[i].d;
+        size_t n = L->power > 0.0f && L->rays > 0 ? (size_t)L->rays * (size_t)(lm->d.max_bounces + 1) : 0;
+        if (i < lm->n_ls && lm->ls[i].cap > n) n = lm->ls[i].cap;
+        segs_d += (double)n;
+    }
+    segs = segs_d >= 1.8e19 ? (size_t)-1 : (size_t)segs_d;
+    if (!use_gl(lm)) bins = lm2d_raster_bins_bytes(segs);
+    sum = (double)lm->image_bytes + (double)s->n_lights * (double)per_light + segs_d * sizeof(lm2d_path) +
+          (double)bins;
+    total = sum >= 1.8e19 ? (size_t)-1 : (size_t)sum;
+    if (total > budget) {
+        snprintf(what, sizeof what, "lightmap2d: a %dx%d lightmap, %d lights and their %zu path segments",
+                 lm->d.width, lm->d.height, s->n_lights, segs);
+        return snell__budget_check(lm->ctx, total, what);
+    }
+    lm2d_raster_bins_limit(lm->bins, budget - (total - bins));
+    return SNELL_OK;
+}
 
 /* Per-light state follows the scene's light count (grows only when lights are added). */
 static snell_status sync_lights(snell_lightmap2d *lm, const snell_scene2d *s)
@@ -351,6 +396,7 @@ snell_status snell_lightmap2d_frame(snell_lightmap2d *lm, snell_scene2d *s, snel
     stats->raster_threads = use_gl(lm) ? 0 : lm2d_pool_size(lm->pool);
     memcpy(stats->raster_reason, lm->raster_reason, sizeof stats->raster_reason);
     if ((st = lm2d_scene_prepare(s)) != SNELL_OK) return st;
+    if ((st = check_budget(lm, s)) != SNELL_OK) return st;
     if ((st = sync_lights(lm, s)) != SNELL_OK) return st;
     T = lm2d_pool_size(lm->pool);
     stats->format = lm->gl ? lm2d_gl_format(lm->gl) : SNELL_FORMAT2D_AUTO;

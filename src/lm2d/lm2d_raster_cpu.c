@@ -311,7 +311,17 @@ struct lm2d_raster_bins {
     uint32_t *cursor;    /* threads * n_bands: per-thread counts, then fill positions */
     uint32_t *base;      /* n_src + 1 */
     size_t cap_start, cap_cursor, cap_base;
+    size_t limit;        /* most bytes of segs and entries (0: none) */
 };
+
+size_t lm2d_raster_bins_bytes(size_t segments)
+{
+    size_t per = sizeof(seg) + sizeof(uint32_t);
+    if (segments > ((size_t)-1 - 64) / 2 / per) return (size_t)-1;
+    return (segments + segments / 4 + 64) * per;
+}
+
+void lm2d_raster_bins_limit(lm2d_raster_bins *bins, size_t bytes) { bins->limit = bytes; }
 
 snell_status lm2d_raster_bins_create(const snell_ctx *ctx, const snell_alloc *al, lm2d_raster_bins **out)
 {
@@ -454,6 +464,7 @@ static int bin(job *j, lm2d_pool *pool)
     int i, b, t, T = j->threads;
     for (i = 0; i < j->n_src; i++) total += j->src[i].n;
     if (total >= 0xffffffffu) return 0;
+    if (bs->limit && lm2d_raster_bins_bytes((size_t)total) > bs->limit) return 0;
     if (!grow(bs->al, (void **)&bs->base, &bs->cap_base, (size_t)j->n_src + 1, sizeof(uint32_t)) ||
         !grow(bs->al, (void **)&bs->start, &bs->cap_start, (size_t)j->n_bands + 1, sizeof(uint32_t)) ||
         !grow(bs->al, (void **)&bs->cursor, &bs->cap_cursor, (size_t)T * (size_t)j->n_bands, sizeof(uint32_t)) ||
@@ -474,6 +485,7 @@ static int bin(job *j, lm2d_pool *pool)
         if (run >= 0xffffffffu) return 0;
     }
     bs->start[j->n_bands] = (uint32_t)run;
+    if (bs->limit && ((size_t)run + run / 4 + 64) * sizeof(uint32_t) + bs->cap_segs * sizeof(seg) > bs->limit) return 0;
     if (!grow(bs->al, (void **)&bs->entries, &bs->cap_entries, (size_t)run, sizeof(uint32_t))) return 0;
     if (T > 1) lm2d_pool_run(pool, fill_job, j);
     else fill_job(0, 1, j);

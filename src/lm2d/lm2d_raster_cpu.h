@@ -38,6 +38,12 @@ typedef enum lm2d_raster_op {
 typedef struct lm2d_raster_bins lm2d_raster_bins;
 snell_status lm2d_raster_bins_create(const snell_ctx *ctx, const snell_alloc *al, lm2d_raster_bins **out);
 void lm2d_raster_bins_destroy(lm2d_raster_bins *bins);
+/* Bytes the bins need for n segments: a setup and one band entry each, with
+ * the growth headroom (a segment crossing several bands needs more entries). */
+size_t lm2d_raster_bins_bytes(size_t segments);
+/* The most bytes the bins may hold (0: no limit); past it a frame's bands scan
+ * every segment instead. */
+void lm2d_raster_bins_limit(lm2d_raster_bins *bins, size_t bytes);
 
 /* Rasterises src[0], src[1], ... into img (LM2D_RASTER_PX floats per pixel,
  * rows in the order of the view's y: lo[1] > hi[1] gives rows bottom first as

@@ -1,3 +1,4 @@
+#define _XOPEN_SOURCE 700 /* realpath */
 /* lm2d_scene.c — 2D scene objects, lights, CSV polygons and the text scene
  * format; flattening into one edge array with normals (Brückner 6.2.1-6.2.2). */
 #include "lm2d/lm2d_scene.h"
@@ -6,6 +7,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -363,10 +365,13 @@ snell_status lm2d_read_file(const snell_ctx *ctx, const snell_alloc *al, const c
     FILE *f;
     long len;
     char *buf;
+    const char *why;
+    int opened;
     *text = NULL;
     *size = 0;
-    f = fopen(path, "rb");
-    if (!f) return snell__fail(ctx, SNELL_E_IO, "cannot open \"%s\": %s", path, strerror(errno));
+    f = snell__fopen_regular(path, &opened, &why);
+    if (!f && !opened) return snell__fail(ctx, SNELL_E_IO, "cannot open \"%s\": %s", path, why);
+    if (!f) return snell__fail(ctx, SNELL_E_IO, "\"%s\" is %s", path, why);
     if (fseek(f, 0, SEEK_END) != 0 || (len = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);
         return snell__fail(ctx, SNELL_E_IO, "cannot read \"%s\" (not a regular file?)", path);
@@ -455,8 +460,8 @@ snell_status lm2d_parse_csv(const snell_ctx *ctx, const snell_alloc *al, const c
                 continue;
             }
             snell__free(al, out);
-            return snell__fail(ctx, SNELL_E_PARSE, "%s:%d: \"%.*s\" is not two finite numbers", name, line,
-                               (int)(b - a > 60 ? 60 : b - a), a);
+            /* the line itself is not quoted: messages show no file content */
+            return snell__fail(ctx, SNELL_E_PARSE, "%s:%d: not two finite numbers \"x,y\"", name, line);
         }
         header_ok = 0;
         if (count >= LM2D_MAX_POINTS) {
@@ -562,8 +567,9 @@ static snell_status parse_material(snell_scene2d *s, const tok_line *t, int i, s
             st = key_floats(s, t, &i, 1, &deg, name, line);
             m->smooth_angle = deg * LM2D_PI / 180.0f;
         } else
-            return snell__fail(s->ctx, SNELL_E_PARSE, "%s:%d: unknown object key \"%.*s\"", name, line, t->len[i],
-                               t->tok[i]);
+            return snell__fail(s->ctx, SNELL_E_PARSE,
+                               "%s:%d: unknown object key (word %d; keys: t o d a ior color offset smooth)", name, line,
+                               i + 1);
     }
     return st;
 }
@@ -610,12 +616,31 @@ static snell_status parse_light(snell_scene2d *s, const tok_line *t, const char 
             st = key_floats(s, t, &i, 1, &two, name, line);
             d.two_sided = two != 0.0f;
         } else
-            return snell__fail(s->ctx, SNELL_E_PARSE, "%s:%d: unknown light key \"%.*s\"", name, line, t->len[i],
-                               t->tok[i]);
+            return snell__fail(s->ctx, SNELL_E_PARSE,
+                               "%s:%d: unknown light key (word %d; keys: pos end power color dir spread rays two_sided)",
+                               name, line, i + 1);
     }
     if (st != SNELL_OK) return st;
     st = snell_scene2d_add_light(s, &d, NULL);
     if (st != SNELL_OK) return rewrap(s, st, name, line);
+    return SNELL_OK;
+}
+
+/* A scene file names CSVs inside its own folder only, as glTF URIs (a scene
+ * from elsewhere must not read ../secret or a link out of the folder). A
+ * file that does not exist is left for the read to report. */
+static snell_status confine(const snell_scene2d *s, const char *path, const char *base, const char *name, int line)
+{
+    char root[PATH_MAX], real[PATH_MAX];
+    size_t n;
+    if (!realpath(base[0] ? base : ".", root))
+        return snell__fail(s->ctx, SNELL_E_IO, "%s:%d: cannot resolve the scene's folder: %s", name, line,
+                           strerror(errno));
+    if (!realpath(path, real)) return SNELL_OK;
+    n = strlen(root);
+    if (n > 1 && (strncmp(real, root, n) != 0 || real[n] != '/'))
+        return snell__fail(s->ctx, SNELL_E_IO, "%s:%d: object CSV \"%s\" is outside the scene's folder", name, line,
+                           path);
     return SNELL_OK;
 }
 
@@ -653,11 +678,14 @@ static snell_status parse_line(snell_scene2d *s, const tok_line *t, const char *
         char path[1024];
         int n;
         if (t->n < 2) return snell__fail(s->ctx, SNELL_E_PARSE, "%s:%d: object needs a CSV file name", name, line);
-        if (t->tok[1][0] == '/') n = snprintf(path, sizeof path, "%.*s", t->len[1], t->tok[1]);
-        else n = snprintf(path, sizeof path, "%s%.*s", base, t->len[1], t->tok[1]);
+        if (t->tok[1][0] == '/')
+            return snell__fail(s->ctx, SNELL_E_IO, "%s:%d: object CSV must be a path relative to the scene's folder",
+                               name, line);
+        n = snprintf(path, sizeof path, "%s%.*s", base, t->len[1], t->tok[1]);
         if (n < 0 || (size_t)n >= sizeof path)
             return snell__fail(s->ctx, SNELL_E_LIMIT, "%s:%d: CSV path too long", name, line);
         if ((st = parse_material(s, t, 2, &m, off, name, line)) != SNELL_OK) return st;
+        if ((st = confine(s, path, base, name, line)) != SNELL_OK) return st;
         st = snell_scene2d_add_object_csv(s, path, &m, off, NULL);
         if (st != SNELL_OK) return rewrap(s, st, name, line);
         return SNELL_OK;
@@ -668,8 +696,8 @@ static snell_status parse_line(snell_scene2d *s, const tok_line *t, const char *
         snell_object2d_desc d;
         while (i < t->n && !tok_is(t, i, ";")) {
             if (!tok_float(t, i, &pts[n]))
-                return snell__fail(s->ctx, SNELL_E_PARSE, "%s:%d: polygon coordinate \"%.*s\" is not a number", name,
-                                   line, t->len[i], t->tok[i]);
+                return snell__fail(s->ctx, SNELL_E_PARSE, "%s:%d: polygon coordinate %d is not a number", name, line,
+                                   i);
             n++;
             i++;
         }
@@ -686,7 +714,10 @@ static snell_status parse_line(snell_scene2d *s, const tok_line *t, const char *
         if (st != SNELL_OK) return rewrap(s, st, name, line);
         return SNELL_OK;
     }
-    return snell__fail(s->ctx, SNELL_E_PARSE, "%s:%d: unknown directive \"%.*s\"", name, line, t->len[0], t->tok[0]);
+    /* the word is not quoted: a scene loaded from the wrong file (a key, a
+     * password) would otherwise show its first word */
+    return snell__fail(s->ctx, SNELL_E_PARSE,
+                       "%s:%d: unknown directive (expected view, size, object, polygon or light)", name, line);
 }
 
 snell_status lm2d_scene_parse(snell_scene2d *s, const char *text, const char *name, const char *base, float view[4],

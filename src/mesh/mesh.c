@@ -323,9 +323,9 @@ const uint32_t *snell_mesh_indices(const snell_mesh *m) { return m ? m->indices 
 void snell_mesh_bounds(const snell_mesh *m, float mn[3], float mx[3])
 {
     int k;
-    for (k = 0; k < 3; k++) {
-        mn[k] = m ? m->bmin[k] : 0.0f;
-        mx[k] = m ? m->bmax[k] : 0.0f;
+    for (k = 0; k < 3; k++) { /* NULL outputs are skipped, as the other getters take NULL */
+        if (mn) mn[k] = m ? m->bmin[k] : 0.0f;
+        if (mx) mx[k] = m ? m->bmax[k] : 0.0f;
     }
 }
 

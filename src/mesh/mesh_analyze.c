@@ -326,7 +326,7 @@ static int cmp_edge(const void *x, const void *y)
 
 /* What topology() finds; the counts are those of snell_mesh_analysis. */
 typedef struct topo {
-    uint32_t welded, boundary, nonmanifold, flipped;
+    uint32_t welded, boundary, nonmanifold, flipped, pieces;
     int closed, convex;
     double volume; /* signed, object units^3 (> 0: counter-clockwise faces outward) */
     double vcentroid[3]; /* volume centroid (0 when the volume is 0) */
@@ -346,8 +346,39 @@ typedef struct topo {
  * tolerance the vertices themselves may be off by). A closed connected
  * surface that is locally convex everywhere bounds a convex solid. Signed
  * volume decides which side is "outer" (the mesh may be wound inside out).
- * Vertices where otherwise separate sheets touch are not detected. */
+ * Vertices where otherwise separate sheets touch are not detected. A mesh of
+ * several pieces (triangles joined by welded corners) is no convex solid,
+ * however convex each piece is. */
 #define CONVEX_SLACK 4.0
+
+/* Connected pieces of the triangles over their welded corners (parent: room
+ * for the welded ids, a union-find forest). */
+static uint32_t count_pieces(const snell_mesh *m, const uint32_t *wid, uint32_t nw, uint32_t *parent)
+{
+    uint32_t i, n = 0, nt = m->triangle_count;
+    for (i = 0; i < nw; i++) parent[i] = UINT32_MAX;
+    for (i = 0; i < nt; i++) {
+        const uint32_t *t = m->indices + 3 * (size_t)i;
+        uint32_t j, r[3];
+        for (j = 0; j < 3; j++) {
+            uint32_t w = wid[t[j]];
+            if (parent[w] == UINT32_MAX) {
+                parent[w] = w;
+                n++;
+            }
+            r[j] = uf_find(parent, w);
+        }
+        for (j = 1; j < 3; j++) {
+            r[0] = uf_find(parent, r[0]);
+            r[j] = uf_find(parent, r[j]);
+            if (r[j] != r[0]) {
+                parent[r[j]] = r[0];
+                n--;
+            }
+        }
+    }
+    return n;
+}
 
 static snell_status topology(const snell_mesh *m, topo *out)
 {
@@ -432,7 +463,11 @@ static snell_status topology(const snell_mesh *m, topo *out)
         }
     }
     out->closed = ne > 0 && !out->boundary && !out->nonmanifold && !out->flipped;
-    out->convex = out->closed && cvx;
+    /* e is done with: its room (an edge record a triangle side) holds the forest */
+    out->pieces = (size_t)out->welded * sizeof(uint32_t) <= (size_t)nt * 3 * sizeof *e
+                      ? count_pieces(m, wid, out->welded, (uint32_t *)e)
+                      : 0;
+    out->convex = out->closed && cvx && out->pieces == 1;
     snell__free(al, wid);
     snell__free(al, e);
     return SNELL_OK;
@@ -876,6 +911,7 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
     out->flipped_edges = tp.flipped;
     out->closed = tp.closed;
     out->convex = tp.convex;
+    out->pieces = tp.pieces;
     out->inside = tp.closed && best_inside;
     out->winding = winding_of(&tp);
     snell__bvh_destroy(an.bvh);

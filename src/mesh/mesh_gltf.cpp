@@ -174,7 +174,7 @@ bool fs_read(std::vector<unsigned char> *out, std::string *err, const std::strin
         if (err) *err += "refused\n";
         return false;
     }
-    int fd = open(real.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    int fd = open(real.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC); /* a FIFO must not block */
     struct stat sb;
     if (fd < 0 || fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
         int e = fd < 0 ? errno : 0;
@@ -405,6 +405,14 @@ Mat4 local_transform(const tinygltf::Node &n, int idx)
         check_finite(n.matrix, idx, "matrix");
         Mat4 r;
         for (int i = 0; i < 16; i++) r.m[i] = n.matrix[static_cast<size_t>(i)];
+        /* glTF 2.0 §5.25: a node's matrix is a TRS transform; a projective
+         * bottom row would shear and project the glass */
+        if (std::fabs(r.m[3]) > 1e-6 || std::fabs(r.m[7]) > 1e-6 || std::fabs(r.m[11]) > 1e-6 ||
+            std::fabs(r.m[15] - 1.0) > 1e-6) {
+            std::snprintf(buf, sizeof buf, "node %d: matrix is not affine (bottom row %g %g %g %g, want 0 0 0 1)", idx,
+                          r.m[3], r.m[7], r.m[11], r.m[15]);
+            fail(SNELL_E_PARSE, buf);
+        }
         return r;
     }
     if ((!n.translation.empty() && n.translation.size() != 3) || (!n.scale.empty() && n.scale.size() != 3) ||
@@ -443,6 +451,7 @@ struct Builder {
     std::vector<float> pos, nrm;
     std::vector<uint32_t> idx;
     size_t instances = 0;
+    bool logged_no_surface = false;
     Builder(const tinygltf::Model &m, snell_ctx *c) : model(m), ctx(c) {}
 
     void add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mesh_idx);
@@ -452,9 +461,19 @@ struct Builder {
 void Builder::add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mesh_idx)
 {
     char buf[256];
+    if (p.mode < TINYGLTF_MODE_POINTS || p.mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+        std::snprintf(buf, sizeof buf, "mesh %d: primitive mode %d is not a glTF mode (0..6)", mesh_idx, p.mode);
+        fail(SNELL_E_PARSE, buf);
+    }
     if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        p.mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        return; /* points and lines have no surface */
+        p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        /* points and lines have no surface: left out, and said once a file */
+        if (!logged_no_surface)
+            snell__log(ctx, SNELL_LOG_WARN, "glTF: mesh %d: a primitive of points or lines (mode %d) left out: no surface",
+                       mesh_idx, p.mode);
+        logged_no_surface = true;
+        return;
+    }
     auto pit = p.attributes.find("POSITION");
     if (pit == p.attributes.end()) return; /* nothing to draw */
     View vp = get_view(model, pit->second, TINYGLTF_TYPE_VEC3, false, "POSITION");
@@ -632,11 +651,13 @@ std::vector<int> scene_roots(const tinygltf::Model &m)
 
 /* tinygltf and nlohmann::json convert nested JSON (e.g. "extras") recursively,
  * so deeply nested input overflows the stack: a 200000-deep array segfaulted
- * in testing. Measure the nesting depth first (brackets outside strings). */
-void check_json_depth(const unsigned char *s, size_t n)
+ * in testing. Measure the nesting depth first (brackets outside strings).
+ * Returns about how many values the JSON holds (commas and opening brackets
+ * outside strings), which the parse's memory grows with. */
+size_t check_json_depth(const unsigned char *s, size_t n)
 {
     const size_t kMaxJsonDepth = 512; /* real glTF files stay below ~20 */
-    size_t depth = 0;
+    size_t depth = 0, values = 1;
     bool in_str = false;
     for (size_t i = 0; i < n; i++) {
         unsigned char c = s[i];
@@ -646,15 +667,21 @@ void check_json_depth(const unsigned char *s, size_t n)
         } else if (c == '"') {
             in_str = true;
         } else if (c == '[' || c == '{') {
+            values++;
             if (++depth > kMaxJsonDepth) fail(SNELL_E_LIMIT, "JSON nested deeper than 512 levels");
         } else if ((c == ']' || c == '}') && depth > 0) {
             depth--;
+        } else if (c == ',') {
+            values++;
         }
     }
+    return values;
 }
 
-/* GLB container header check before tinygltf sees it (12-byte header, then
- * a JSON chunk that must fit). */
+/* GLB container check before tinygltf sees it: the 12-byte header, a JSON
+ * chunk first, and every chunk's 8-byte header and data inside both the
+ * header's length and the buffer (tinygltf 2.7 checks the BIN chunk's data
+ * without its header and so copies up to 8 bytes past the buffer). */
 void check_glb(const unsigned char *d, size_t size)
 {
     char buf[160];
@@ -675,6 +702,19 @@ void check_glb(const unsigned char *d, size_t size)
     if (ctype != 0x4E4F534Au /* "JSON" */ || clen > length - 20) {
         std::snprintf(buf, sizeof buf, "GLB: bad JSON chunk (type 0x%08x, %u bytes)", ctype, clen);
         fail(SNELL_E_PARSE, buf);
+    }
+    for (size_t off = 12; off < length;) {
+        if (length - off < 8) {
+            std::snprintf(buf, sizeof buf, "GLB: chunk header at byte %zu runs past the end (%u bytes)", off, length);
+            fail(SNELL_E_PARSE, buf);
+        }
+        std::memcpy(&clen, d + off, 4);
+        if (clen > length - off - 8) {
+            std::snprintf(buf, sizeof buf, "GLB: chunk at byte %zu says %u bytes, only %zu follow its header", off,
+                          clen, length - off - 8);
+            fail(SNELL_E_PARSE, buf);
+        }
+        off += 8 + static_cast<size_t>(clen);
     }
 }
 
@@ -723,16 +763,22 @@ void check_version_and_extensions(const tinygltf::Model &model)
  * at 164 MB resident); 8 leaves room. A GLB's BIN chunk is copied once more
  * into the buffer. Checked against the budget before parsing. */
 const size_t kJsonMemFactor = 8;
+/* Every JSON value costs a DOM node and a tinygltf::Value (where it lands in
+ * "extras", a map or vector entry besides), whatever its text's length: a
+ * long array of one-digit numbers costs many times the byte factor a byte. */
+const size_t kJsonValueBytes = 256;
 
-void check_parse_budget(snell_ctx *ctx, size_t json_bytes, size_t bin_bytes, FsPolicy *pol)
+void check_parse_budget(snell_ctx *ctx, size_t json_bytes, size_t bin_bytes, size_t values, FsPolicy *pol)
 {
-    char what[160];
-    size_t est = json_bytes > (SIZE_MAX - 2 * bin_bytes) / kJsonMemFactor ? SIZE_MAX
-                                                                          : kJsonMemFactor * json_bytes + 2 * bin_bytes;
+    char what[200];
+    double d = static_cast<double>(kJsonMemFactor) * static_cast<double>(json_bytes) + 2.0 * static_cast<double>(bin_bytes) +
+               static_cast<double>(kJsonValueBytes) * static_cast<double>(values);
+    size_t est = d >= 1.8e19 ? SIZE_MAX : static_cast<size_t>(d);
     pol->used = est;
     if (est <= pol->budget) return;
-    std::snprintf(what, sizeof what, "parsing %zu bytes of JSON (data: URIs included) and %zu of binary chunk",
-                  json_bytes, bin_bytes);
+    std::snprintf(what, sizeof what,
+                  "parsing %zu bytes of JSON (about %zu values; data: URIs included) and %zu of binary chunk",
+                  json_bytes, values, bin_bytes);
     snell_status st = snell__budget_check(ctx, est, what);
     fail(st, snell_last_error(ctx));
 }
@@ -767,12 +813,12 @@ void parse(snell_ctx *ctx, const unsigned char *data, size_t size, const std::st
         check_glb(data, size);
         uint32_t jlen;
         std::memcpy(&jlen, data + 12, 4);
-        check_json_depth(data + 20, jlen);
-        check_parse_budget(ctx, jlen, size - 20 - jlen, &pol);
+        size_t values = check_json_depth(data + 20, jlen);
+        check_parse_budget(ctx, jlen, size - 20 - jlen, values, &pol);
         ok = loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned int>(size), base_dir);
     } else {
-        check_json_depth(data, size);
-        check_parse_budget(ctx, size, 0, &pol);
+        size_t values = check_json_depth(data, size);
+        check_parse_budget(ctx, size, 0, values, &pol);
         ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char *>(data),
                                         static_cast<unsigned int>(size), base_dir);
     }
@@ -1277,13 +1323,15 @@ snell_status load_scene(snell_ctx *ctx, const unsigned char *data, size_t size, 
  * at most 1 GiB and within the memory budget. */
 snell_status read_model_file(snell_ctx *ctx, const char *path, std::vector<unsigned char> *bytes)
 {
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    int opened;
+    const char *why;
+    int fd = snell__open_regular(path, &opened, &why);
     struct stat sb;
-    if (fd < 0) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, std::strerror(errno));
-    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        bool dir = S_ISDIR(sb.st_mode);
+    if (fd < 0 && !opened) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, why);
+    if (fd < 0) return snell__fail(ctx, SNELL_E_IO, "glTF: '%s' is %s", path, why);
+    if (fstat(fd, &sb) != 0) {
         close(fd);
-        return snell__fail(ctx, SNELL_E_IO, "glTF: '%s' is %s", path, dir ? "a directory" : "not a regular file");
+        return snell__fail(ctx, SNELL_E_IO, "glTF: cannot stat '%s'", path);
     }
     if (static_cast<unsigned long long>(sb.st_size) > kMaxInputBytes) {
         close(fd);

@@ -524,6 +524,9 @@ snell_status snell_mesh_load_obj_mem(snell_ctx *ctx, const char *data, size_t si
     ps.p = data;
     ps.end = data + size;
     ps.line = 1;
+    /* a UTF-8 byte-order mark (editors on Windows write one) is no part of
+     * the first line, whose keyword it would hide */
+    if (size >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0) ps.p += 3;
     while (ps.p < ps.end) {
         const char *ls;
         skip_ws(&ps);
@@ -567,20 +570,15 @@ snell_status snell_mesh_load_obj(snell_ctx *ctx, const char *path, snell_mesh **
     char *buf = NULL;
     size_t len = 0, cap = 0;
     snell_status st;
+    const char *why;
+    int opened;
     if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_obj: out is NULL");
     *out = NULL;
     if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_obj: path is NULL");
-    f = fopen(path, "rb");
-    if (!f) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, strerror(errno));
-    {
-        /* fopen opens a directory too; its reads then fail with EISDIR */
-        struct stat sb;
-        if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
-            fclose(f);
-            return snell__fail(ctx, SNELL_E_IO, "'%s' is a directory, not an OBJ file", path);
-        }
-    }
-    /* read in chunks (works for pipes and files whose size changes) */
+    f = snell__fopen_regular(path, &opened, &why);
+    if (!f && !opened) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, why);
+    if (!f) return snell__fail(ctx, SNELL_E_IO, "OBJ: '%s' is %s", path, why);
+    /* read in chunks (works for files whose size changes) */
     for (;;) {
         size_t got;
         if (len == cap) {

@@ -145,6 +145,11 @@ static snell__fit cubemap_fit(const snell_mesh_analysis *an, const snell_glass_r
         snell__why(why, n, "needs its centre inside the mesh; no inside candidate was found");
         return SNELL__FIT_FAILS;
     }
+    if (an->pieces > 1) {
+        snell__why(why, n, "closed, but %u separate pieces: the cube from one centre serves one of them",
+                   (unsigned)an->pieces);
+        return SNELL__FIT_RUNS;
+    }
     if (an->hidden_fraction > AUTO_MAX_HIDDEN) {
         snell__why(why, n, "closed, centre inside, but %.2f > %.2f of the surface is hidden from the centre",
                    an->hidden_fraction, AUTO_MAX_HIDDEN);

@@ -129,6 +129,18 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     if (d.ssaa > 1 && (d.width * d.ssaa > max_rb || d.height * d.ssaa > max_rb))
         return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d with ssaa %d exceeds %d pixels a side", d.width,
                            d.height, d.ssaa, max_rb);
+    if (d.target == SNELL_TARGET_OFFSCREEN) {
+        /* the targets made now, before any frame: colour and depth (4 + 4 bytes
+         * a pixel, 16 + 4 for exit directions) at the SSAA size, a sample each
+         * with MSAA, and the resolved image beside them; a software GL holds
+         * them in this process */
+        size_t f = d.ssaa > 1 ? (size_t)d.ssaa : 1, px = (size_t)d.width * (size_t)d.height;
+        size_t bytes = px * f * f * (d.output == SNELL_OUTPUT_COLOR ? 8u : 20u) * (d.msaa > 1 ? (size_t)d.msaa : 1u) +
+                       (f > 1 || d.msaa > 1 ? px * 4u : 0u);
+        char what[96];
+        snprintf(what, sizeof what, "a %dx%d offscreen renderer", d.width, d.height);
+        if ((st = snell__budget_check(ctx, bytes, what)) != SNELL_OK) return st;
+    }
     r = (snell_renderer *)snell__calloc(&ctx->alloc, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     r->ctx = ctx;
@@ -218,6 +230,9 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
     if (st != SNELL_OK) return st;
     st = snell__camera_validate(r->ctx, &fd->camera, (float)r->width / (float)r->height, "snell_render");
     if (st != SNELL_OK) return st;
+    if (fd->env && fd->env->ctx && fd->env->ctx->destroyed)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG,
+                           "the frame's environment went with its context (snell_ctx_destroy): create it again");
     if (!fd->env || !fd->env->texture)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "frame needs an environment created with a context");
     if (fd->env->ctx && fd->env->ctx != r->ctx)

@@ -4,6 +4,7 @@
 #ifndef SNELL_FUZZ_COMMON_H
 #define SNELL_FUZZ_COMMON_H
 
+#define _DEFAULT_SOURCE /* MAP_ANONYMOUS */
 #include "snell/snell.h"
 
 #include <math.h>
@@ -11,8 +12,28 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+/* A copy of the input that ends exactly where an inaccessible page begins, so
+ * a loader reading even one byte past [data, data + size) faults in every
+ * build, not only under ASan (a caller's mmap'd file has no redzone after it).
+ * The copy lives until the next call. */
+static inline const uint8_t *fuzz_at_end_of_mapping(const uint8_t *data, size_t size)
+{
+    static uint8_t *map;
+    static size_t map_len;
+    size_t page = (size_t)sysconf(_SC_PAGESIZE), len = (size + page - 1) / page * page + page;
+    if (map) munmap(map, map_len);
+    map = (uint8_t *)mmap(NULL, len, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (map == (uint8_t *)MAP_FAILED) abort();
+    map_len = len;
+    if (mprotect(map + len - page, page, PROT_NONE) != 0) abort();
+    if (size) memcpy(map + len - page - size, data, size);
+    return map + len - page - size;
+}
 
 /* The stages that consume loaded data (DESIGN.md "Tests"): normalisation and
  * the analysis either fail with a message or give sane values (positions

@@ -8,7 +8,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     int w = 0, h = 0;
     uint8_t *px = NULL;
-    snell_status st = snell_image_decode(data, size, &w, &h, &px);
+    snell_status st;
+    data = fuzz_at_end_of_mapping(data, size);
+    st = snell_image_decode(data, size, &w, &h, &px);
     if (st != SNELL_OK) {
         if (px || !snell_last_error(NULL)[0]) abort();
         return 0;

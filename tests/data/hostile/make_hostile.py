@@ -14,11 +14,13 @@ model's folder) are made by the test at run time, not committed.
   huge_coords.obj         a tetrahedron at +-1e38 (normalises: bounds in double)
   too_big_coords.obj      a tetrahedron spanning -3e38..3e38 (extent beyond float: SNELL_E_LIMIT)
   tiny_coords.obj         a tetrahedron of size 1e-30 (float squared distances underflow)
+  png_bomb.png            a 1x1 RGBA PNG whose IDAT inflates to 32 MiB of zeros (issue 40 item 6)
 Run: python3 make_hostile.py  (in tests/data/hostile)
 """
 import base64
 import json
 import struct
+import zlib
 
 tri = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3H", 0, 1, 2) + b"\0\0"
 uri = "data:application/octet-stream;base64," + base64.b64encode(tri).decode()
@@ -90,3 +92,12 @@ tetra("huge_coords.obj", [(1e38, 1e38, 1e38), (-1e38, -1e38, 1e38), (-1e38, 1e38
 tetra("too_big_coords.obj", [(3e38, 0.0, 0.0), (-3e38, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)])
 tetra("tiny_coords.obj", [(1e-30, 1e-30, 1e-30), (-1e-30, -1e-30, 1e-30), (-1e-30, 1e-30, -1e-30),
                           (1e-30, -1e-30, -1e-30)])
+
+
+def png_chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+
+
+with open("png_bomb.png", "wb") as f:
+    f.write(b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", struct.pack(">IIBBBBB", 1, 1, 8, 6, 0, 0, 0)) +
+            png_chunk(b"IDAT", zlib.compress(bytes(32 << 20), 9)) + png_chunk(b"IEND", b""))
