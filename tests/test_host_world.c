@@ -287,12 +287,15 @@ static void orbit_as_matrices(snell_ctx *ctx)
     {
         snell_frame_desc m = fd;
         m.camera.kind = SNELL_CAMERA_MATRICES;
-        glm_lookat((vec3){0, 0, 3}, (vec3){0, 0, 0}, (vec3){0, 1, 0}, (vec4 *)m.camera.view);
-        glm_perspective(0.8f, 1.0f, 0.1f, 10.0f, (vec4 *)m.camera.projection);
+        mat4 view, proj; /* cglm's matrices are 16-byte aligned: made here, then copied */
+        glm_lookat((vec3){0, 0, 3}, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
+        glm_perspective(0.8f, 1.0f, 0.1f, 10.0f, proj);
+        memcpy(m.camera.view, view, sizeof m.camera.view);
+        memcpy(m.camera.projection, proj, sizeof m.camera.projection);
         m.camera.projection[3] = 0.2f; /* a bottom row 0.2 0 -1 0: a tilted image plane */
         CHECK(snell_render(r, &m, NULL) == SNELL_E_UNSUPPORTED && strstr(snell_last_error(ctx), "camera.projection"),
               "projective: %s", snell_last_error(ctx));
-        glm_perspective(0.8f, 1.0f, 0.1f, 10.0f, (vec4 *)m.camera.projection);
+        memcpy(m.camera.projection, proj, sizeof m.camera.projection);
         memset(m.camera.view, 0, sizeof m.camera.view);
         CHECK(snell_render(r, &m, NULL) == SNELL_E_INVALID_ARG && strstr(snell_last_error(ctx), "camera.view"),
               "singular view: %s", snell_last_error(ctx));
@@ -371,13 +374,16 @@ static void projections_accuracy(snell_ctx *ctx)
 {
     const snell_camera orbit = {.azimuth = 0.3f, .elevation = 0.25f, .distance = 4.0f, .fov_y = 0.7f};
     snell_camera off = orbit, ortho;
+    mat4 proj; /* cglm's matrices are 16-byte aligned: made here, then copied */
     float eye[3], t = 0.04f * tanf(0.35f), half = 4.0f * tanf(0.35f);
     int i;
     off.kind = SNELL_CAMERA_MATRICES;
     snell_camera_matrices(&orbit, 1.0f, eye, off.view, off.projection);
-    glm_frustum(-0.6f * t, 1.4f * t, -1.3f * t, 0.7f * t, 0.04f, 400.0f, (vec4 *)off.projection);
+    glm_frustum(-0.6f * t, 1.4f * t, -1.3f * t, 0.7f * t, 0.04f, 400.0f, proj);
+    memcpy(off.projection, proj, sizeof off.projection);
     ortho = off;
-    glm_ortho(-half, half, -half, half, 0.04f, 400.0f, (vec4 *)ortho.projection);
+    glm_ortho(-half, half, -half, half, 0.04f, 400.0f, proj);
+    memcpy(ortho.projection, proj, sizeof ortho.projection);
     for (i = -1; i < snell_method_count(); i++) {
         snell_method method = i < 0 ? SNELL_METHOD_AUTO : snell_method_info_at(i)->method;
         double on_axis = sphere_psnr(ctx, &orbit, method), shifted = sphere_psnr(ctx, &off, method);
