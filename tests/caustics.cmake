@@ -31,7 +31,8 @@ set_tests_properties(bench_caustics_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR
 # test_caustics_opaque: opaque objects as receivers: a glass sphere over an opaque box (its top at the ball
 # lens's focus), a small cube and the floor; the lit view against the reference's (snell_ref_set_light) over the
 # opaque pixels, the caustic maps' flux and peak, photons stopped by the box, its shadow edge; a spot light.
-snell_add_test(test_caustics_opaque SOURCES test_caustics_opaque.c LABELS "render;gl")
+# TIMEOUT: under ASan + UBSan at -O0 (.ci/run) its CPU references take minutes.
+snell_add_test(test_caustics_opaque SOURCES test_caustics_opaque.c LABELS "render;gl" TIMEOUT 900)
 target_link_libraries(test_caustics_opaque PRIVATE m)
 add_test(NAME bench_caustics_opaque_runs COMMAND bench_caustics 64 2 32 32 1)
 set_tests_properties(bench_caustics_opaque_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "opaque box.*made/off median ratio")
@@ -72,5 +73,6 @@ target_link_libraries(test_caustics_thin PRIVATE m)
 # test_caustics_chain: a glass sphere above a tinted one, their beams overlapping: photons through both in
 # sequence (the chain path) against the reference's chain, directional and spot; each caster alone (the path
 # before) clearly off; side by side under a light from above: no chain.
-snell_add_test(test_caustics_chain SOURCES test_caustics_chain.c LABELS "render;gl")
+# TIMEOUT: under ASan + UBSan at -O0 (.ci/run) its CPU references take minutes.
+snell_add_test(test_caustics_chain SOURCES test_caustics_chain.c LABELS "render;gl" TIMEOUT 900)
 target_link_libraries(test_caustics_chain PRIVATE m)
