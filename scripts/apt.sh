@@ -10,39 +10,41 @@
 # SNELL_APT_TRIES (default 3) and SNELL_APT_DELAY (seconds, default 15; the
 # n-th retry waits n times that) tune the retries.
 
-# snell_apt_update [apt-get options...]: 0 when an update succeeded, 1 when
-# every try failed (the lists that did download are kept by apt).
-snell_apt_update() {
-    local tries=${SNELL_APT_TRIES:-3} delay=${SNELL_APT_DELAY:-15} i
+# snell_apt_retry WHAT COMMAND...: COMMAND up to SNELL_APT_TRIES times, the
+# n-th retry after n times SNELL_APT_DELAY; 0 as soon as it succeeds.
+snell_apt_retry() {
+    local what=$1 tries=${SNELL_APT_TRIES:-3} delay=${SNELL_APT_DELAY:-15} i
+    shift
     for ((i = 1; i <= tries; i++)); do
-        if DEBIAN_FRONTEND=noninteractive apt-get update -qq -o Acquire::Retries=3 "$@"; then
-            return 0
-        fi
+        "$@" && return 0
         if ((i < tries)); then
-            echo "apt: update failed (try $i of $tries); again in $((delay * i)) s" >&2
+            echo "apt: $what failed (try $i of $tries); again in $((delay * i)) s" >&2
             sleep $((delay * i))
         fi
     done
-    echo "apt: update failed $tries times; going on with the package lists that arrived" >&2
     return 1
 }
 
-# snell_apt_install PACKAGE...: update (tolerating a failed index), then
-# install; an install that fails (a package list too old for the mirror's
-# files) is retried after a fresh update, up to SNELL_APT_TRIES times.
+snell__apt_update_once() { DEBIAN_FRONTEND=noninteractive apt-get update -qq -o Acquire::Retries=3 "$@"; }
+
+# snell_apt_update [apt-get options...]: 0 when an update succeeded, 1 when
+# every try failed (the lists that did download are kept by apt).
+snell_apt_update() {
+    snell_apt_retry update snell__apt_update_once "$@" && return 0
+    echo "apt: update failed ${SNELL_APT_TRIES:-3} times; going on with the package lists that arrived" >&2
+    return 1
+}
+
+# One try of an install: update (tolerating a failed index), then install.
+snell__apt_install_once() {
+    snell_apt_update || true
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends -o Acquire::Retries=3 "$@"
+}
+
+# snell_apt_install PACKAGE...: an install that fails (a package list too
+# old for the mirror's files) is retried after a fresh update.
 snell_apt_install() {
-    local tries=${SNELL_APT_TRIES:-3} delay=${SNELL_APT_DELAY:-15} i
-    for ((i = 1; i <= tries; i++)); do
-        snell_apt_update || true
-        if DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-            -o Acquire::Retries=3 "$@"; then
-            return 0
-        fi
-        if ((i < tries)); then
-            echo "apt: install of $* failed (try $i of $tries); again in $((delay * i)) s" >&2
-            sleep $((delay * i))
-        fi
-    done
+    snell_apt_retry "install of $*" snell__apt_install_once "$@" && return 0
     echo "apt: could not install $*" >&2
     return 1
 }
