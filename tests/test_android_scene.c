@@ -21,22 +21,6 @@ static const char cube_obj[] = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
                                "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
                                "f 4 8 7\nf 4 7 3\nf 2 3 7\nf 2 7 6\nf 1 5 8\nf 1 8 4\n";
 
-static unsigned char *read_all(const char *path, size_t *size)
-{
-    FILE *f = fopen(path, "rb");
-    unsigned char *b = NULL;
-    long n;
-    if (!f) return NULL;
-    if (fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0 &&
-        (b = (unsigned char *)malloc((size_t)n)) && fread(b, 1, (size_t)n, f) != (size_t)n) {
-        free(b);
-        b = NULL;
-    }
-    if (b) *size = (size_t)n;
-    fclose(f);
-    return b;
-}
-
 /* The window surface's stand-in: an RGBA8 + depth framebuffer, bound. */
 typedef struct target {
     GLuint fbo, rb[2];
@@ -100,9 +84,9 @@ int main(void)
             }
         CHECK_OK(snell_write_png(test_out("android_env.png"), 32, 16, img));
     }
-    png = read_all(test_out("android_env.png"), &png_size);
-    glb = read_all(test_data("nodes.glb"), &glb_size);
-    bad = read_all(test_data("images/bad_truncated.png"), &bad_size);
+    png = test_read_file(test_out("android_env.png"), &png_size);
+    glb = test_read_file(test_data("nodes.glb"), &glb_size);
+    bad = test_read_file(test_data("images/bad_truncated.png"), &bad_size);
     CHECK(png && glb && bad, "test assets");
     if (!png || !glb || !bad) return test_finish();
     if (!test_host_context(&dpy, &first)) SKIP("cannot make a host GLES 3 context");

@@ -36,14 +36,6 @@ static void on_alarm(int sig)
     _exit(1);
 }
 
-static int write_file(const char *path, const void *data, size_t n)
-{
-    FILE *f = fopen(path, "wb");
-    int ok = f && fwrite(data, 1, n, f) == n;
-    if (f) fclose(f);
-    return ok;
-}
-
 static const char *path_in(const char *dir, const char *name)
 {
     static char buf[4][1024];
@@ -74,7 +66,7 @@ static void write_gltf(const char *path, const char *uri, int byte_length)
                      "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36}],"
                      "\"buffers\":[{\"byteLength\":%d,\"uri\":\"%s\"}]}",
                      byte_length, uri);
-    CHECK(n > 0 && (size_t)n < sizeof json && write_file(path, json, (size_t)n), "writing %s", path);
+    CHECK(n > 0 && (size_t)n < sizeof json && test_write_file(path, json, (size_t)n), "writing %s", path);
 }
 
 static void test_uris(void)
@@ -88,9 +80,9 @@ static void test_uris(void)
     mkdir(dir, 0755);
     mkdir(model, 0755);
     mkdir(path_in(model, "sub"), 0755);
-    CHECK(write_file(path_in(dir, "secret.bin"), tri, sizeof tri), "secret.bin");
-    CHECK(write_file(path_in(dir, "cwdonly.bin"), tri, sizeof tri), "cwdonly.bin");
-    CHECK(write_file(path_in(model, "inside.bin"), tri, sizeof tri), "inside.bin");
+    CHECK(test_write_file(path_in(dir, "secret.bin"), tri, sizeof tri), "secret.bin");
+    CHECK(test_write_file(path_in(dir, "cwdonly.bin"), tri, sizeof tri), "cwdonly.bin");
+    CHECK(test_write_file(path_in(model, "inside.bin"), tri, sizeof tri), "inside.bin");
     unlink(path_in(model, "link.bin"));
     CHECK(symlink("../secret.bin", path_in(model, "link.bin")) == 0, "symlink");
     unlink(path_in(model, "fifo"));
@@ -308,7 +300,7 @@ static void test_budget_lm2d(snell_ctx *ctx, int rays, const char *needle)
     float view[4];
     int size[2];
     int n = snprintf(text, sizeof text, "size 64 64\nview 0 0 64 64\nlight point pos 32 32 power 1 rays %d\n", rays);
-    CHECK(write_file(path, text, (size_t)n), "writing %s", path);
+    CHECK(test_write_file(path, text, (size_t)n), "writing %s", path);
     st = snell_scene2d_load(ctx, path, &scene, view, size);
     CHECK(st == SNELL_OK, "scene with rays %d: %s", rays, snell_last_error(ctx));
     if (st != SNELL_OK) return;

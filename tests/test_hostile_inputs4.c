@@ -24,14 +24,6 @@ static void on_alarm(int sig)
     _exit(1);
 }
 
-static int write_file(const char *path, const void *data, size_t n)
-{
-    FILE *f = fopen(path, "wb");
-    int ok = f && fwrite(data, 1, n, f) == n;
-    if (f && fclose(f) != 0) ok = 0;
-    return ok;
-}
-
 static const char *path_in(const char *dir, const char *name)
 {
     static char buf[4][1024];
@@ -39,25 +31,6 @@ static const char *path_in(const char *dir, const char *name)
     k = (k + 1) % 4;
     if (snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name) >= (int)sizeof buf[k]) buf[k][0] = '\0';
     return buf[k];
-}
-
-/* The whole file in a fresh buffer (NULL on failure). */
-static uint8_t *read_all(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    uint8_t *b = NULL;
-    long len;
-    *n = 0;
-    if (!f) return NULL;
-    if (fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0 &&
-        (b = (uint8_t *)malloc((size_t)len)) && fread(b, 1, (size_t)len, f) == (size_t)len)
-        *n = (size_t)len;
-    else {
-        free(b);
-        b = NULL;
-    }
-    fclose(f);
-    return b;
 }
 
 /* A copy of data that ends where an inaccessible page begins: a read past
@@ -88,7 +61,7 @@ static int has(const char *msg, const char *needle) { return strstr(msg, needle)
 static void test_glb_chunks(void)
 {
     size_t n, map_len;
-    uint8_t *file = read_all(test_data("../fuzz/regressions/glb_bin_chunk_past_end.glb"), &n);
+    uint8_t *file = test_read_file(test_data("../fuzz/regressions/glb_bin_chunk_past_end.glb"), &n);
     uint8_t *buf;
     snell_mesh *m = NULL;
     snell_scene_file *sc = NULL;
@@ -109,7 +82,7 @@ static void test_glb_chunks(void)
         unmap_end(buf, n, map_len);
     }
     free(file);
-    file = read_all(test_data("nodes.glb"), &n);
+    file = test_read_file(test_data("nodes.glb"), &n);
     if (file && n > 1676) {
         uint32_t len = 1676; /* the JSON chunk (12 + 8 + 1652) and 4 bytes of the BIN chunk's header */
         memcpy(file + 8, &len, 4);
@@ -142,7 +115,7 @@ static void test_fifos(void)
         unlink(path_in(dir, names[i]));
         CHECK(mkfifo(path_in(dir, names[i]), 0644) == 0, "mkfifo %s", names[i]);
     }
-    CHECK(write_file(path_in(dir, "csv_fifo.txt"), "view 0 0 10 10\nobject f.csv t 1\nlight point pos 1 1\n", 52),
+    CHECK(test_write_file(path_in(dir, "csv_fifo.txt"), "view 0 0 10 10\nobject f.csv t 1\nlight point pos 1 1\n", 52),
           "csv_fifo.txt");
     alarm(20);
     st = snell_mesh_load_obj(NULL, path_in(dir, "f.obj"), &m);
@@ -215,13 +188,13 @@ static void test_scene2d_folder(void)
     mkdir(dir, 0755);
     mkdir(model, 0755);
     mkdir(path_in(model, "sub"), 0755);
-    CHECK(write_file(path_in(dir, "secret.csv"), secret, sizeof secret - 1), "secret.csv");
-    CHECK(write_file(path_in(dir, "square.csv"), square, sizeof square - 1), "square.csv");
-    CHECK(write_file(path_in(model, "inside.csv"), square, sizeof square - 1), "inside.csv");
-    CHECK(write_file(path_in(model, "bad.csv"), secret, sizeof secret - 1), "bad.csv");
+    CHECK(test_write_file(path_in(dir, "secret.csv"), secret, sizeof secret - 1), "secret.csv");
+    CHECK(test_write_file(path_in(dir, "square.csv"), square, sizeof square - 1), "square.csv");
+    CHECK(test_write_file(path_in(model, "inside.csv"), square, sizeof square - 1), "inside.csv");
+    CHECK(test_write_file(path_in(model, "bad.csv"), secret, sizeof secret - 1), "bad.csv");
     unlink(path_in(model, "link.csv"));
     CHECK(symlink("../secret.csv", path_in(model, "link.csv")) == 0, "symlink");
-#define SCENE(file, body) CHECK(write_file(path_in(model, file), body, strlen(body)), file)
+#define SCENE(file, body) CHECK(test_write_file(path_in(model, file), body, strlen(body)), file)
     SCENE("ok.txt", "view 0 0 2 2\nobject inside.csv t 1\nobject sub/../inside.csv t 1\n");
     SCENE("dotdot.txt", "view 0 0 2 2\nobject ../secret.csv t 1\n");
     SCENE("dotdot_ok.txt", "view 0 0 2 2\nobject ../square.csv t 1\n");
@@ -229,7 +202,7 @@ static void test_scene2d_folder(void)
     SCENE("bad.txt", "view 0 0 2 2\nobject bad.csv t 1\n");
     SCENE("key.txt", "API_KEY=sk-1234567890abcdef\n");
     n = snprintf(text, sizeof text, "view 0 0 2 2\nobject %s/square.csv t 1\n", dir);
-    CHECK(n > 0 && (size_t)n < sizeof text && write_file(path_in(model, "abs.txt"), text, (size_t)n), "abs.txt");
+    CHECK(n > 0 && (size_t)n < sizeof text && test_write_file(path_in(model, "abs.txt"), text, (size_t)n), "abs.txt");
 #undef SCENE
     scene2d_expect(path_in(model, "ok.txt"), SNELL_OK, NULL, NULL, "CSVs inside the folder");
     scene2d_expect(path_in(model, "dotdot.txt"), SNELL_E_IO, "outside the scene's folder", "sk-123", "../secret.csv");
@@ -274,7 +247,7 @@ static void test_control_chars(void)
     snprintf(scene, sizeof scene, "%s", path_in(dir, "ctrl.txt"));
     {
         static const char text[] = "view 0 0 10 10\nobject \033[2J\007.csv t 1\n";
-        CHECK(write_file(scene, text, sizeof text - 1), "ctrl.txt");
+        CHECK(test_write_file(scene, text, sizeof text - 1), "ctrl.txt");
     }
     st = snell_scene2d_load(NULL, scene, &s2, NULL, NULL);
     msg = snell_last_error(NULL);
@@ -398,7 +371,7 @@ static void test_small_cpu(void)
     mkdir(path_in(dir, "poly.csv"), 0755);
     {
         static const char text[] = "view 0 0 2 2\nobject poly.csv t 1\n";
-        CHECK(write_file(path_in(dir, "s.txt"), text, sizeof text - 1), "s.txt");
+        CHECK(test_write_file(path_in(dir, "s.txt"), text, sizeof text - 1), "s.txt");
     }
     st = snell_scene2d_load(NULL, path_in(dir, "s.txt"), &s2, NULL, NULL);
     CHECK(st == SNELL_E_IO && has(snell_last_error(NULL), "is a directory") &&
@@ -497,7 +470,7 @@ static snell_status lm2d_case(snell_ctx *ctx, int w, int h, int cpu_only, int li
     n = snprintf(text, sizeof text, "view 0 0 100 100\npolygon 10 10 90 10 90 90 10 90 ; t 1 ior 1.5\n");
     for (i = 0; i < lights && n < (int)sizeof text - 80; i++)
         n += snprintf(text + n, sizeof text - (size_t)n, "light point pos %d 50 rays %d\n", 20 + i, rays);
-    CHECK(write_file(path, text, (size_t)n), "writing %s", path);
+    CHECK(test_write_file(path, text, (size_t)n), "writing %s", path);
     st = snell_scene2d_load(ctx, path, &scene, NULL, NULL);
     CHECK(st == SNELL_OK, "scene of %d lights: %s", lights, snell_last_error(ctx));
     if (st != SNELL_OK) return st;

@@ -436,14 +436,6 @@ static void case_gltf(void)
 
 /* -------------------------------------------------------------------- 2D */
 
-static int write_file(const char *path, const char *data, size_t n)
-{
-    FILE *f = fopen(path, "wb");
-    int ok = f && fwrite(data, 1, n, f) == n;
-    if (f) fclose(f);
-    return ok;
-}
-
 static snell_status scene2d_timed(const char *what, const char *path, double bytes, snell_status want,
                                   const char *needle)
 {
@@ -488,7 +480,7 @@ static void case_scene2d(void)
         }
         n += (size_t)snprintf(text + n, cap - n, " ; t 1 ior 1.5\n");
     }
-    CHECK(write_file(scene, text, n), "writing %s", scene);
+    CHECK(test_write_file(scene, text, n), "writing %s", scene);
     if (scene2d_timed("400 polygons of 2000 points", scene, (double)n, SNELL_OK, NULL) == SNELL_E_UNSUPPORTED) {
         free(text);
         return;
@@ -497,11 +489,11 @@ static void case_scene2d(void)
     n = (size_t)snprintf(text, cap, "polygon");
     for (j = 0; j < 5000; j++) n += (size_t)snprintf(text + n, cap - n, " 1");
     n += (size_t)snprintf(text + n, cap - n, "\n");
-    CHECK(write_file(scene, text, n), "writing %s", scene);
+    CHECK(test_write_file(scene, text, n), "writing %s", scene);
     scene2d_timed("a line of 5000 tokens", scene, (double)n, SNELL_E_LIMIT, "tokens");
     /* 10 MB of comments and blank lines */
     for (n = 0; n + 16 < (size_t)10 << 20 && n + 16 < cap;) n += (size_t)snprintf(text + n, cap - n, "#\n\n   \n");
-    CHECK(write_file(scene, text, n), "writing %s", scene);
+    CHECK(test_write_file(scene, text, n), "writing %s", scene);
     scene2d_timed("10 MB of comments", scene, (double)n, SNELL_OK, NULL);
     /* a CSV of 200,000 points named on 30 lines of a 1 KB scene: 6M points
      * (issue 26: the scene's cost was not bounded by its bytes) */
@@ -509,19 +501,19 @@ static void case_scene2d(void)
         double a = 6.283185307179586 * j / 200000;
         n += (size_t)snprintf(text + n, cap - n, "%.4f,%.4f\n", 32 + 20 * cos(a), 32 + 20 * sin(a));
     }
-    CHECK(write_file(csv, text, n), "writing %s", csv);
+    CHECK(test_write_file(csv, text, n), "writing %s", csv);
     csv_bytes = n;
     for (n = 0, i = 0; i < 30; i++) n += (size_t)snprintf(text + n, cap - n, "object slow_points.csv t 1\n");
-    CHECK(write_file(scene, text, n), "writing %s", scene);
+    CHECK(test_write_file(scene, text, n), "writing %s", scene);
     /* bounded by the points the scene may hold (4M: 21 reads of the CSV) */
     scene2d_timed("one 200k-point CSV named 30 times", scene, 21.0 * (double)csv_bytes, SNELL_E_LIMIT,
                   "more than 4000000 points");
     /* a CSV of 1,000,000 equal points: a degenerate polygon */
     for (n = 0, j = 0; j < 1000000 && n + 16 < cap; j++) n += (size_t)snprintf(text + n, cap - n, "1,1\n");
-    CHECK(write_file(csv, text, n), "writing %s", csv);
+    CHECK(test_write_file(csv, text, n), "writing %s", csv);
     csv_bytes = n;
     n = (size_t)snprintf(text, cap, "object slow_points.csv\n");
-    CHECK(write_file(scene, text, n), "writing %s", scene);
+    CHECK(test_write_file(scene, text, n), "writing %s", scene);
     scene2d_timed("a CSV of 1M equal points", scene, (double)csv_bytes, SNELL_E_INVALID_ARG, "degenerate");
     free(text);
 }
@@ -615,17 +607,17 @@ static void case_lightmap2d(void)
     /* twelve lights of 500,000 rays in a glass box whose walls trap light (TIR) */
     n = (size_t)snprintf(text, cap, "view 0 0 100 100\npolygon 10 10 90 10 90 90 10 90 ; t 1 ior 1.5\n");
     for (i = 0; i < 12; i++) n += (size_t)snprintf(text + n, cap - n, "light point pos %d 50 rays 500000\n", 20 + 5 * i);
-    CHECK(write_file(scene, text, n), "writing %s", scene);
+    CHECK(test_write_file(scene, text, n), "writing %s", scene);
     lightmap2d_timed("12 lights of 500,000 rays", scene, (double)n, 256, SNELL_E_LIMIT);
     /* a million lights of the default rays (22 MB) */
     n = (size_t)snprintf(text, cap, "view 0 0 100 100\npolygon 10 10 90 10 90 90 10 90 ; t 1 ior 1.5\n");
     for (i = 0; i < 1000000 && n + 32 < cap; i++)
         n += (size_t)snprintf(text + n, cap - n, "light point pos %d 50\n", 20 + i % 60);
-    CHECK(write_file(scene, text, n), "writing %s", scene);
+    CHECK(test_write_file(scene, text, n), "writing %s", scene);
     lightmap2d_timed("a million lights", scene, (double)n, 256, SNELL_E_LIMIT);
     /* a 16384^2 lightmap (4 GiB of floats) for a one-light scene */
     n = (size_t)snprintf(text, cap, "view 0 0 100 100\nlight point pos 50 50 rays 100\n");
-    CHECK(write_file(scene, text, n), "writing %s", scene);
+    CHECK(test_write_file(scene, text, n), "writing %s", scene);
     lightmap2d_timed("a 16384x16384 lightmap", scene, (double)n, 16384, SNELL_E_LIMIT);
     lightmap2d_timed("the same scene on 256x256", scene, (double)n, 256, SNELL_OK);
     free(text);

@@ -50,6 +50,10 @@ int test_finish(void);
 const char *test_data(const char *name);
 /* Path for an output file in the test's build directory (static buffer). */
 const char *test_out(const char *name);
+/* Writes n bytes to path: 1 if every byte was written and the file closed. */
+int test_write_file(const char *path, const void *data, size_t n);
+/* The whole file in a fresh malloc'd buffer, its size in *n; NULL (and *n 0) on failure. */
+unsigned char *test_read_file(const char *path, size_t *n);
 /* Reference parameters that match frame fd rendered at w x h: MATCHED mode
  * with the given interface cap, the frame's environment and camera (the
  * materials come from the reference's scene: test_ref_create). */
