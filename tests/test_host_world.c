@@ -329,7 +329,6 @@ static double sphere_psnr(snell_ctx *ctx, const snell_camera *cam, snell_method 
     snell_ref *ref = NULL;
     snell_glass g;
     snell_frame_desc fd;
-    snell_ref_desc rdsc = {0};
     snell_ref_params p;
     snell_ref_output o = {0};
     snell_image_error e = {0};
@@ -343,16 +342,10 @@ static double sphere_psnr(snell_ctx *ctx, const snell_camera *cam, snell_method 
     fd.camera = *cam;
     CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
     CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, px));
-    rdsc.glass = &g;
-    rdsc.glass_count = 1;
-    CHECK_OK(snell_ref_create(ctx, &rdsc, &ref));
-    memset(&p, 0, sizeof p);
+    CHECK_OK(test_ref_create(ctx, &fd, &ref));
+    test_ref_params(&fd, N, N, 0, &p); /* 0: the default interface cap */
     p.mode = SNELL_REF_FULL;
     p.isolate_glass = 1;
-    p.env = env;
-    p.camera = *cam;
-    p.width = N;
-    p.height = N;
     o.rgb = rgb;
     o.hit = hit;
     if (ref) CHECK_OK(snell_ref_render(ref, &p, &o));

@@ -78,7 +78,7 @@ static void frames_all(snell_ctx *ctx, snell_shading shading, int gpu_water, int
     fd.receiver.height = -0.9f;
     fd.receiver.extent = 3.0f;
     fd.receiver.map_size = 32;
-    for (i = paraboloid ? snell_method_count() - 1 : 0; st == SNELL_OK && i < snell_method_count(); i++) {
+    for (i = 0; st == SNELL_OK && i < (paraboloid ? 1 : snell_method_count()); i++) { /* paraboloid: AUTO alone */
         snell_method m = paraboloid ? SNELL_METHOD_AUTO : snell_method_info_at(i)->method;
         g[0].material.method = g[1].material.method = m;
         CHECK(snell_render(r, &fd, NULL) == SNELL_OK, "%s, %s: %s", snell_method_str(m),

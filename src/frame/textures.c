@@ -109,14 +109,20 @@ int snell__samplers_unit(const snell__samplers *s, const char *name)
     return -1;
 }
 
+/* Binds on unit, leaving that unit active. */
+static void bind_unit(int unit, unsigned target, unsigned texture, unsigned sampler)
+{
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+    glBindTexture(target, texture);
+    if (sampler) glBindSampler((GLuint)unit, sampler);
+}
+
 void snell__samplers_bind(const snell__samplers *s, const char *name, unsigned target, unsigned texture,
                           unsigned sampler)
 {
     int unit = snell__samplers_unit(s, name);
     if (unit < 0) return;
-    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
-    glBindTexture(target, texture);
-    if (sampler) glBindSampler((GLuint)unit, sampler);
+    bind_unit(unit, target, texture, sampler);
     glActiveTexture(GL_TEXTURE0);
 }
 
@@ -126,9 +132,7 @@ void snell__samplers_bind_published(const snell__samplers *s, const snell__textu
     for (i = 0; i < s->count; i++)
         for (j = 0; j < ts->count; j++)
             if (ts->t[j].hash == s->hash[i]) {
-                glActiveTexture(GL_TEXTURE0 + (GLenum)i);
-                glBindTexture(ts->t[j].target, ts->t[j].texture);
-                if (ts->t[j].sampler) glBindSampler((GLuint)i, ts->t[j].sampler);
+                bind_unit(i, ts->t[j].target, ts->t[j].texture, ts->t[j].sampler);
                 break;
             }
     glActiveTexture(GL_TEXTURE0);

@@ -120,8 +120,6 @@ static snell_status set_up_glass(const snell__frame *f, snell__object *o, snell_
 static snell_status draw_method(void *user, const snell__view *v, const snell__object *o, snell_object_stats *st)
 {
     snell_renderer *r = (snell_renderer *)user;
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, o->env_texture);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -433,24 +431,26 @@ static snell_status run_background(snell__frame *f)
 {
     snell_renderer *r = f->r;
     snell_status st = SNELL_OK;
-    mat4 rot, vp; /* vp: then its inverse, what the background's shader takes */
+    mat4 rot, vp, inv; /* inv: a pixel's far-plane point to the direction it sees */
     int paraboloid = snell__renderer_env_paraboloid(r, 0);
     unsigned tex = f->fd->env->texture;
-    glm_mat4_copy(f->sc->view.view, rot);
-    rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
-    glm_mat4_mul(f->sc->view.proj, rot, vp);
-    glm_mat4_inv(vp, vp);
     if (f->sc->view.view_axis[3] > 0.5f) {
         /* orthographic: every view ray, so every background pixel, looks
          * along the axis (as the reference's rays do) */
-        glm_mat4_zero(vp);
-        memcpy(vp[3], f->sc->view.view_axis, 3 * sizeof(float));
-        vp[3][3] = 1.0f;
+        glm_mat4_zero(inv);
+        memcpy(inv[3], f->sc->view.view_axis, 3 * sizeof(float));
+        inv[3][3] = 1.0f;
+    } else {
+        glm_mat4_copy(f->sc->view.view, rot);
+        rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
+        glm_mat4_mul(f->sc->view.proj, rot, vp);
+        glm_mat4_inv(vp, inv);
     }
     if (paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, f->fd->env, &tex);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, tex);
-    if (st == SNELL_OK) st = snell__composite_background_lookup(r->ctx, &r->comp, r->out, paraboloid, (const float *)vp);
+    if (st == SNELL_OK)
+        st = snell__composite_background_lookup(r->ctx, &r->comp, r->out, paraboloid, (const float *)inv);
     f->s->background_drawn = 1;
     f->s->background_paraboloid = paraboloid;
     return st;
