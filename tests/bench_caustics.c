@@ -13,7 +13,7 @@
 #include "core/gl.h"
 #include "core/core.h"
 #include "snell/snell.h"
-#include "render/renderer.h" /* caustics.maps_only */
+#include "render/stages.h" /* caustics.maps_only */
 #include "cli_time.h" /* ports/cli: the median the ports use */
 
 #include <stdio.h>
@@ -73,7 +73,7 @@ int main(int argc, char **argv)
     op.mesh = cube, op.model = box;
     fd.opaque = &op, fd.opaque_count = opaque;
     fd.camera.azimuth = 0.5f, fd.camera.elevation = 0.6f, fd.camera.distance = 6.0f, fd.camera.fov_y = 0.8f;
-    r[3]->caustics.maps_only = 1;
+    snell__renderer_caustics(r[3])->maps_only = 1;
     for (k = 0; k < 4; k++) t[k] = (double *)calloc((size_t)rounds, sizeof(double));
     for (k = 0; k < 4; k++) ratio[k] = (double *)calloc((size_t)rounds, sizeof(double));
     for (i = -1; i < rounds; i++) /* round -1 warms every program and target up */

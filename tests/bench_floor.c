@@ -12,7 +12,7 @@
  * (sphere: 256 x 128 segments, dense enough that AUTO would shade it in screen space) */
 #include "core/gl.h"
 #include "frame/env.h"
-#include "render/renderer.h"
+#include "render/stages.h"
 #include "cli_time.h" /* ports/cli: the median the ports use */
 
 #include <stdio.h>
@@ -90,14 +90,18 @@ int main(int argc, char **argv)
         glClear(GL_DEPTH_BUFFER_BIT);
         glFinish();
         t0 = snell__now_ms();
-        snell__gbuffer_draw(ctx, &r->gbuffer, &r->scene.view, r->screen_list, 1, r->depth_rb, st.glass);
+        {
+            /* the G-buffer stage's state begins with its G-buffer (render/gbuffer.c) */
+            snell__gbuffer *gb = (snell__gbuffer *)snell__renderer_stage_state(r, &snell__stage_gbuffer);
+            snell__gbuffer_draw(ctx, gb, &r->scene.view, &o, 1, r->depth_rb, st.glass);
+        }
         glFinish();
         t[1][i] = snell__now_ms() - t0;
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_CUBE_MAP, o->env_texture);
         glEnable(GL_DEPTH_TEST);
         t0 = snell__now_ms();
-        r->object_method[0]->draw(ctx, r->object_state[0], &r->scene.view, o, st.glass);
+        o->method->draw(ctx, o->method_state, &r->scene.view, o, st.glass);
         glFinish();
         t[2][i] = snell__now_ms() - t0;
         glm_mat4_copy(r->scene.view.view, rot);

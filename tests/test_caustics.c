@@ -12,7 +12,7 @@
  * receiver byte-identical to frames without the fields, bad input refused. */
 #include "test_util.h"
 #include "core/gl.h"
-#include "render/renderer.h"
+#include "render/stages.h"
 #include "ref/ref_trace.h"
 
 #include <math.h>
@@ -108,7 +108,7 @@ int main(void)
     CHECK(strstr(fs.caustics_reason, "paths: 0 BVH, 1 depth maps") != NULL, "the sphere's photons: %s",
           fs.caustics_reason);
     CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, img0));
-    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
     CHECK(size == MAP, "map size %d", size);
     snell_write_png(test_out("caustics_view.png"), W, W, img0);
 
@@ -181,7 +181,7 @@ int main(void)
         flat.material.ior = 1.0001f;
         fdf.glass = &flat;
         CHECK_OK_CTX(ctx, snell_render(r, &fdf, &fs));
-        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
         CHECK_OK(snell_ref_set_material(ref, 0, &flat.material));
         CHECK_OK(snell_ref_receiver_render(ref, &fdf.light, &fdf.receiver, 1024, 4, ref_rgb, NULL));
         CHECK_OK(snell_ref_set_material(ref, 0, &g.material));
@@ -237,7 +237,7 @@ int main(void)
             int n = 0, j;
             fv.receiver.height = (float)(1.5 - z);
             CHECK_OK_CTX(ctx, snell_render(r, &fv, &fs));
-            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &n));
+            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &n));
             CHECK_OK(snell_ref_receiver_render(ref_exact, &fv.light, &fv.receiver, 384, 1, ref_rgb, rc3));
             for (j = 0; j < 128; j++)
                 for (i = 0; i < 128; i++) {
@@ -282,7 +282,7 @@ int main(void)
         sp.receiver.height = -1.0f, sp.receiver.center[0] = 0.0f, sp.receiver.extent = 3.0f;
         CHECK_OK_CTX(ctx, snell_render(r, &sp, &fs));
         CHECK(strstr(fs.caustics_reason, "made") && fs.caustics_photons == 256 * 256, "spot: %s", fs.caustics_reason);
-        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &n));
+        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &n));
         CHECK_OK(snell_ref_receiver_render(ref, &sp.light, &sp.receiver, 1024, 4, ref_rgb, ref_caustic));
         for (i = 0; i < MAP * MAP; i++) {
             eg += gpu[4 * i + 3];
@@ -303,7 +303,7 @@ int main(void)
             int j;
             sp.receiver.height = (float)(1.5 - z);
             CHECK_OK_CTX(ctx, snell_render(r, &sp, &fs));
-            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &n));
+            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &n));
             CHECK_OK(snell_ref_receiver_render(ref_exact, &sp.light, &sp.receiver, 384, 1, ref_rgb, ref_caustic));
             for (j = 0; j < 128; j++)
                 for (i = 0; i < 128; i++) {
@@ -384,12 +384,12 @@ int main(void)
         if (r16 && r0 && m16) {
             double e16 = 0, e32 = 0;
             int n = 0;
-            r16->caustics.map_format = GL_RGBA16F;
+            snell__renderer_caustics(r16)->map_format = GL_RGBA16F;
             CHECK_OK_CTX(ctx, snell_render(r16, &fd, &fs));
             CHECK(strstr(fs.caustics_reason, "RGBA16F") != NULL, "16F: %s", fs.caustics_reason);
-            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r16->caustics, m16, &n));
+            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r16), m16, &n));
             CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
-            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &n));
+            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &n));
             for (i = 0; i < MAP * MAP; i++) e16 += m16[4 * i + 3], e32 += gpu[4 * i + 3];
             {
                 double db = 0, se = 0;
@@ -404,7 +404,7 @@ int main(void)
                  * saturates) barely changes */
                 CHECK(e16 / e32 > 0.7 && e16 / e32 <= 1.001 && db > 40.0, "16F flux ratio %.4f, %.1f dB", e16 / e32, db);
             }
-            r0->caustics.map_format = SNELL__CAUSTICS_NO_FLOAT;
+            snell__renderer_caustics(r0)->map_format = SNELL__CAUSTICS_NO_FLOAT;
             CHECK_OK_CTX(ctx, snell_render(r0, &fd, &fs));
             CHECK(strstr(fs.caustics_reason, "float target") && fs.caustics_photons == 0, "none: %s",
                   fs.caustics_reason);

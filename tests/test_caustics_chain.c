@@ -19,7 +19,7 @@
  * (caustics_chain_gpu.png, _ref.png, _alone.png, caustics_chain_spot_*,
  * caustics_chain_thin_*, caustics_chain_clear_*). */
 #include "test_util.h"
-#include "render/renderer.h"
+#include "render/stages.h"
 #include "ref/ref_scene.h"
 
 #include <math.h>
@@ -58,7 +58,7 @@ static void run(snell_ctx *ctx, snell_renderer *r, const snell_frame_desc *fd, c
     printf("%s: %s\n", name, fs.caustics_reason);
     CHECK(strstr(fs.caustics_reason, "paths: 0 BVH, 0 depth maps, 2 chained (beams overlap: 1 group)") != NULL,
           "%s: %s", name, fs.caustics_reason);
-    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
     CHECK_OK(test_ref_create(NULL, fd, &ref));
     if (!ref) return;
     CHECK_OK(snell_ref_receiver_render(ref, &fd->light, &fd->receiver, 1024, 4, ref_rgb, ref_c));
@@ -71,11 +71,11 @@ static void run(snell_ctx *ctx, snell_renderer *r, const snell_frame_desc *fd, c
     out->e_gpu = through_glass(gpu, ref_rgb, ref_c, texel);
     out->e_ref = test_light_map_flux(ref_c, 3, MAP * MAP, texel);
     out->e_all = test_light_map_flux(gpu, 4, MAP * MAP, texel);
-    r->caustics.maps_only = 1;
+    snell__renderer_caustics(r)->maps_only = 1;
     CHECK_OK_CTX(ctx, snell_render(r, fd, &fs));
     CHECK(strstr(fs.caustics_reason, "chained") == NULL, "%s alone: %s", name, fs.caustics_reason);
-    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
-    r->caustics.maps_only = 0;
+    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
+    snell__renderer_caustics(r)->maps_only = 0;
     snprintf(file, sizeof file, "%s_alone.png", name);
     test_write_light_map(file, gpu, 4, MAP, 0.8f);
     out->db_alone = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
@@ -188,7 +188,7 @@ int main(void)
         snell_ref_destroy(ref);
         CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
         CHECK(strstr(fs.caustics_reason, "2 chained") != NULL, "near-clear top: %s", fs.caustics_reason);
-        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
         if (ref_alone) {
             test_write_light_map("caustics_chain_clear_ref.png", ref_rgb, 3, MAP, 0.8f);
             test_write_light_map("caustics_chain_clear_gpu.png", gpu, 4, MAP, 0.8f);
@@ -205,10 +205,10 @@ int main(void)
             CHECK(db_gpu >= 31.0 && fabs(e_gpu / e_alone - 1.0) <= 0.005, "near-clear top, GPU: %.2f dB, %.4f against "
                   "%.4f", db_gpu, e_gpu, e_alone);
             /* each caster alone (the path before): the light through both counted twice */
-            r->caustics.maps_only = 1;
+            snell__renderer_caustics(r)->maps_only = 1;
             CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
-            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
-            r->caustics.maps_only = 0;
+            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
+            snell__renderer_caustics(r)->maps_only = 0;
             db_gpu = test_light_map_psnr(gpu, 4, ref_alone, MAP * MAP, 0.8f);
             e_gpu = test_light_map_flux(gpu, 4, MAP * MAP, texel);
             printf("  each caster alone: %.2f dB (%+.3f%%)\n", db_gpu, 100.0 * (e_gpu / e_alone - 1.0));
@@ -241,10 +241,10 @@ int main(void)
         for (pass = 0; pass < 2 && ref && cube && map; pass++) {
             const double *rm = snell__ref_lit_map(ref, &rs, &ra);
             double *e = pass ? &ea : &eg;
-            r->caustics.maps_only = pass; /* then each caster alone */
+            snell__renderer_caustics(r)->maps_only = pass; /* then each caster alone */
             CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
             printf("over a box%s: %s\n", pass ? ", each alone" : "", fs.caustics_reason);
-            CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, &r->caustics, map, &n));
+            CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, snell__renderer_caustics(r), map, &n));
             CHECK(rm && n == rs, "caustic maps %d and %d texels a side", n, rs);
             if (rm && n == rs)
                 for (i = 0, er = 0.0; i < n * n; i++) {
@@ -252,7 +252,7 @@ int main(void)
                     er += (rm[3 * i] + rm[3 * i + 1] + rm[3 * i + 2]) / 3.0 * ra;
                 }
         }
-        r->caustics.maps_only = 0;
+        snell__renderer_caustics(r)->maps_only = 0;
         printf("light through glass on the box: GPU %.4f, reference %.4f (%+.2f%%), each alone %.4f (%+.2f%%)\n", eg, er,
                100.0 * (eg / er - 1.0), ea, 100.0 * (ea / er - 1.0));
         CHECK(er > 0.0 && fabs(eg / er - 1.0) <= 0.03, "box: GPU %.4f reference %.4f", eg, er);

@@ -22,7 +22,7 @@
 #include "test_util.h"
 #include "core/gl.h"
 #include "frame/method.h"
-#include "render/renderer.h"
+#include "render/stages.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -91,7 +91,7 @@ int main(void)
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
     printf("frame: %s\n", fs.caustics_reason);
     CHECK(strstr(fs.caustics_reason, "paths: 1 BVH, 0 depth maps") != NULL, "the torus's photons: %s", fs.caustics_reason);
-    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
     CHECK(size == MAP, "map size %d", size);
     {
         uint8_t *img = (uint8_t *)malloc((size_t)W * W * 4);
@@ -150,16 +150,16 @@ int main(void)
         /* the depth maps' one crossing (the stage's only path before) is
          * wrong here: measured 22.7 dB, -14% light through glass */
         double db_maps, e_maps;
-        r->caustics.maps_only = 1;
+        snell__renderer_caustics(r)->maps_only = 1;
         CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
         CHECK(strstr(fs.caustics_reason, "paths: 0 BVH, 1 depth maps") != NULL, "maps only: %s", fs.caustics_reason);
-        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
         db_maps = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
         e_maps = through_glass(gpu, ref_rgb, ref_c, gpu_c, texel);
         printf("depth maps' one crossing: %.2f dB from the reference, light through glass %+.2f%%\n", db_maps,
                100.0 * (e_maps / test_light_map_flux(ref_c, 3, MAP * MAP, texel) - 1.0));
         CHECK(db_maps <= 28.0 && fabs(e_maps / test_light_map_flux(ref_c, 3, MAP * MAP, texel) - 1.0) >= 0.08, "depth maps: %.2f dB", db_maps);
-        r->caustics.maps_only = 0;
+        snell__renderer_caustics(r)->maps_only = 0;
     }
     {
         /* the BVH is the prepared cache's, made once for the mesh: the light
@@ -200,7 +200,7 @@ int main(void)
             CHECK_OK(snell_ref_receiver_render(ref_spot, &fs_spot.light, &fs_spot.receiver, 1024, 4, ref_rgb, ref_c));
             CHECK_OK_CTX(ctx, snell_render(r, &fs_spot, &fs));
             CHECK(strstr(fs.caustics_reason, "paths: 1 BVH, 0 depth maps") != NULL, "spot: %s", fs.caustics_reason);
-            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
             test_write_light_map("caustics_torus_spot_gpu.png", gpu, 4, MAP, 0.8f);
             test_write_light_map("caustics_torus_spot_ref.png", ref_rgb, 3, MAP, 0.8f);
             db_s = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
@@ -242,15 +242,15 @@ int main(void)
             e_ref = test_light_map_flux(ref_c, 3, MAP * MAP, texel);
             CHECK_OK_CTX(ctx, snell_render(r, &fc, &fs));
             CHECK(strstr(fs.caustics_reason, "paths: 1 BVH, 0 depth maps") != NULL, "the cube's: %s", fs.caustics_reason);
-            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
             test_write_light_map("caustics_cube_tir_gpu.png", gpu, 4, MAP, 0.8f);
             test_write_light_map("caustics_cube_tir_ref.png", ref_rgb, 3, MAP, 0.8f);
             db_c = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
             e_c = through_glass(gpu, ref_rgb, ref_c, gpu_c, texel);
-            r->caustics.maps_only = 1;
+            snell__renderer_caustics(r)->maps_only = 1;
             CHECK_OK_CTX(ctx, snell_render(r, &fc, &fs));
-            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
-            r->caustics.maps_only = 0;
+            CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
+            snell__renderer_caustics(r)->maps_only = 0;
             db_m = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
             e_m = through_glass(gpu, ref_rgb, ref_c, gpu_c, texel);
             printf("cube, TIR: the BVH %.2f dB from the reference, light through glass %+.2f%%; the depth maps %.2f dB, "

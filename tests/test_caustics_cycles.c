@@ -68,7 +68,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "test_util.h"
 #include "snell/snell_ref.h"
-#include "render/renderer.h"
+#include "render/stages.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -423,7 +423,7 @@ int main(int argc, char **argv)
                 gf.camera.azimuth = 0.5f, gf.camera.elevation = 0.6f, gf.camera.distance = 7.0f, gf.camera.fov_y = 0.8f;
                 gf.light.photons = PHOTONS;
                 CHECK_OK_CTX(ctx, snell_render(r, &gf, &fs));
-                CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, rgba, &got));
+                CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), rgba, &got));
                 CHECK(got == size, "GPU light map %d texels a side, asked %d", got, size);
                 if (got == size) {
                     for (i = 0; i < (int)nn; i++) gpu_c[i] = rgba[4 * i + 3];

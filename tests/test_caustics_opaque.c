@@ -17,7 +17,7 @@
  * byte-identical to one without the fields. */
 #include "test_util.h"
 #include "core/gl.h"
-#include "render/renderer.h"
+#include "render/stages.h"
 #include "ref/ref_scene.h"
 
 #include <math.h>
@@ -127,7 +127,7 @@ int main(void)
         int rs = 0;
         double ra = 0.0, eg = 0.0, er = 0.0;
         const double *rm = snell__ref_lit_map(ref, &rs, &ra);
-        CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, &r->caustics, map, &n));
+        CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, snell__renderer_caustics(r), map, &n));
         CHECK(rm && n == rs && n == 2 * MAP, "caustic maps %d and %d texels a side", n, rs);
         if (rm && n == rs)
             for (i = 0; i < n * n; i++) {
@@ -148,7 +148,7 @@ int main(void)
                 if (map[4 * i + 3] > map[4 * best + 3]) best = i;
                 if (rm[3 * i + 1] > rm[3 * best_r + 1]) best_r = i;
             }
-            memcpy(vp, r->caustics.frame_vp, sizeof vp);
+            memcpy(vp, snell__renderer_caustics(r)->frame_vp, sizeof vp);
             glm_mat4_inv(vp, inv);
             for (b = 0; b < 2; b++) {
                 int t = b ? best_r : best;
@@ -163,7 +163,7 @@ int main(void)
             }
             printf("caustic peak on the box: GPU (%.4f, %.4f), reference (%.4f, %.4f), paraxial focus (%.4f, %.4f); "
                    "light-frame texel %.4f\n", at[0][0], at[0][1], at[1][0], at[1][1], want[0], want[1],
-                   r->caustics.frame_lin[3]);
+                   snell__renderer_caustics(r)->frame_lin[3]);
             /* 2% of f, as test_caustics's plane */
             CHECK(hypot(at[0][0] - want[0], at[0][1] - want[1]) <= 0.03 && hypot(at[1][0] - want[0], at[1][1] - want[1]) <= 0.03,
                   "peaks %.4f (GPU), %.4f (reference) from the focus", hypot(at[0][0] - want[0], at[0][1] - want[1]),
@@ -183,7 +183,7 @@ int main(void)
         CHECK(strstr(fs.caustics_reason, "paths: 1 BVH, 0 depth maps") != NULL, "exact's photons: %s", fs.caustics_reason);
         db = compare_view(ctx, r, &fd, ref, "caustics_opaque_bvh", img1, &count);
         rm = snell__ref_lit_map(ref, &rs, &ra);
-        CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, &r->caustics, map, &n));
+        CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, snell__renderer_caustics(r), map, &n));
         if (rm && n == rs)
             for (i = 0; i < n * n; i++) {
                 eg += map[4 * i + 3] * ra;
@@ -200,7 +200,7 @@ int main(void)
     /* 3. photons stopped by the box: the floor's light through glass */
     {
         double eg = 0.0, er = 0.0, texel = 6.0 / MAP;
-        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, map, &n));
+        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), map, &n));
         CHECK_OK(snell_ref_receiver_render(ref, &fd.light, &fd.receiver, 1024, 4, floor_ref, floor_c));
         for (i = 0; i < MAP * MAP; i++) {
             eg += map[4 * i + 3] * texel * texel;

@@ -29,7 +29,7 @@
  * caustics_thin_gpu.png, caustics_thin_ref.png. */
 #include "test_util.h"
 #include "core/gl.h"
-#include "render/renderer.h"
+#include "render/stages.h"
 #include "ref/ref_trace.h"
 
 #include <math.h>
@@ -132,7 +132,7 @@ int main(void)
     CHECK(fs.caustics_photons == 256 * 256 && strstr(fs.caustics_reason, "made: 1 glass casting;") &&
               strstr(fs.caustics_reason, "0 BVH, 1 depth maps"),
           "photons %d: %s", fs.caustics_photons, fs.caustics_reason);
-    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
     CHECK_OK(snell_ref_receiver_render(ref, &fd.light, &fd.receiver, 512, 2, ref_rgb, ref_c));
 
     /* 1. the shadow's centre: texels within RHO of the axis hold photons of
@@ -192,7 +192,7 @@ int main(void)
      * light through glass against the closed form */
     fd.light.direction[0] = (float)sin(25.0 * PI_D / 180.0), fd.light.direction[1] = (float)-cos(25.0 * PI_D / 180.0);
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
-    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu, &size));
+    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &size));
     CHECK_OK(snell_ref_receiver_render(ref, &fd.light, &fd.receiver, 512, 2, ref_rgb, ref_c));
     {
         double db = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
@@ -216,7 +216,7 @@ int main(void)
     g.material.method = SNELL_METHOD_EXACT;
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &fs));
     CHECK(strstr(fs.caustics_reason, "1 BVH, 0 depth maps") != NULL, "exact: %s", fs.caustics_reason);
-    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu2, &size));
+    CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu2, &size));
     {
         double db = test_light_map_psnr(gpu2, 4, ref_rgb, MAP * MAP, 0.8f), se = 0;
         for (i = 0; i < MAP * MAP * 4; i++)
@@ -237,7 +237,7 @@ int main(void)
         sp.light.spot_angle = 0.5f;
         sp.light.color[0] = sp.light.color[1] = sp.light.color[2] = 25.0f;
         CHECK_OK_CTX(ctx, snell_render(r, &sp, &fs));
-        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu2, &size));
+        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu2, &size));
         CHECK_OK(snell_ref_receiver_render(ref, &sp.light, &sp.receiver, 512, 2, ref_rgb, ref_c));
         {
             double db = test_light_map_psnr(gpu2, 4, ref_rgb, MAP * MAP, 0.8f);
@@ -258,7 +258,7 @@ int main(void)
         tf.light.direction[0] = 0.0f, tf.light.direction[1] = -1.0f;
         CHECK_OK_CTX(ctx, snell_render(r, &tf, &fs));
         CHECK(strstr(fs.caustics_reason, "1 BVH, 0 depth maps") != NULL, "torus: %s", fs.caustics_reason);
-        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, &r->caustics, gpu2, &size));
+        CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu2, &size));
         CHECK_OK(test_ref_create(NULL, &tf, &ref_t));
         if (ref_t && cap_rgb) {
             double db, db2;
@@ -310,7 +310,7 @@ int main(void)
             const double *rm;
             CHECK_OK(snell_ref_set_light(ref_o, &of.light, &of.receiver, 512));
             rm = snell__ref_lit_map(ref_o, &rs, &ra);
-            CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, &r->caustics, map, &n));
+            CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, snell__renderer_caustics(r), map, &n));
             CHECK(rm && n == rs, "caustic maps %d and %d texels a side", n, rs);
             for (k = 0; k < 3 && rm && n == rs; k++) {
                 double eg = 0.0, er = 0.0, want = sphere_flux(k);

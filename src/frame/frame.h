@@ -44,6 +44,7 @@ typedef struct snell__back_maps {
 /* The frame's scene layers (render/layers.h), which the kernels' exit
  * look-ups read when an object's beyond flag is set. */
 typedef struct snell__scene_layers {
+    int active;                     /* 1: the layers stage ran this frame (the water's rays march them too) */
     int count;                      /* layers peeled that hold something; 0: none this frame */
     int capped;                     /* 1: the peel stopped at its cap with surfaces left behind */
     int glass_ids, opaque_count;     /* ids 1..glass_ids and the opaque ids of opaque_count objects may be in it */
@@ -99,6 +100,8 @@ typedef struct snell__object {
     int scissor[4];                 /* that projection in window pixels: x, y, w, h */
     int front_whole;                /* screen space: the G-buffer holds its whole front surface (nothing
                                      * else in the G-buffer's depth over its scissor; render/stages.c) */
+    const struct snell__method *method; /* this frame's method (frame/method.h), chosen by the glass stage */
+    void *method_state;             /* its GL state (the renderer's, made on first use) */
     void *prepared;                 /* the method's resources for (mesh version, settings) */
     unsigned vao;                   /* 0: draw the mesh's own VAO; else the method's (vertex_array()):
                                      * the mesh's attributes plus attribute 2, a per-vertex scalar that

@@ -33,7 +33,7 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
              variant & SNELL__GLASS_ENV_PARABOLOID ? SNELL__ENV_PARABOLOID_DEFINE : "");
     /* What the frame's stages add (frame/stage.h), in frame order. */
     for (i = 0; i < snell__stage_count; i++) {
-        const snell__kernel_hook *h = snell__stages[i].kernel;
+        const snell__kernel_hook *h = snell__stages[i]->kernel;
         if (!h || !((unsigned)variant & h->variant_mask)) continue;
         len = strlen(defines);
         snprintf(defines + len, sizeof defines - len, "%s", h->defines((unsigned)variant & h->variant_mask));
@@ -41,6 +41,11 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     len = strlen(defines);
     snprintf(defines + len, sizeof defines - len, "%s", extra_defines ? extra_defines : "");
     memset(g, 0, sizeof *g);
+    for (i = 0, len = 0; i < snell__stage_count; i++)
+        if (snell__stages[i]->kernel) len += (size_t)snell__stages[i]->kernel->uniform_count;
+    if (len > SNELL__HOOK_LOCS)
+        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s: the stages' kernel hooks declare %d uniforms, more than %d",
+                           fs_path, (int)len, SNELL__HOOK_LOCS);
     st = snell__program_build(ctx, screen_space ? "screen.vert" : "object.vert", fs_path, defines, &g->prog);
     if (st != SNELL_OK) return st;
     if ((st = snell__samplers_assign(ctx, g->prog, fs_path, &g->samplers)) != SNELL_OK) {
@@ -52,7 +57,7 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     {
         int offset = 0, k;
         for (i = 0; i < snell__stage_count; i++) {
-            const snell__kernel_hook *h = snell__stages[i].kernel;
+            const snell__kernel_hook *h = snell__stages[i]->kernel;
             if (!h) continue;
             for (k = 0; k < h->uniform_count && offset + k < SNELL__HOOK_LOCS; k++)
                 g->hook_locs[offset + k] = (g->variant & h->variant_mask)
@@ -136,7 +141,7 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniform3fv(g->tint, 1, o->glass->material.tint);
     glUniform4fv(g->bsphere, 1, o->bsphere);
     for (i = 0; i < snell__stage_count; i++) {
-        const snell__kernel_hook *h = snell__stages[i].kernel;
+        const snell__kernel_hook *h = snell__stages[i]->kernel;
         if (!h) continue;
         if (g->variant & h->variant_mask) h->uniforms(g, g->hook_locs + offset, v, o);
         offset += h->uniform_count;

@@ -34,18 +34,36 @@ typedef struct snell__kernel_hook {
     void (*uniforms)(const snell__glass_program *g, const int *locs, const snell__view *v, const snell__object *o);
 } snell__kernel_hook;
 
+/* A stage is a module: its own files hold its state, its validation of its
+ * part of the frame description and its passes; the renderer keeps one
+ * opaque slot of state_size bytes per stage (zeroed at creation, freed with
+ * it) and hands it to every call. What one stage makes for another it
+ * publishes through the frame: textures by sampler name in the view
+ * (frame/textures.h), its per-object choices in the objects. */
 typedef struct snell__stage {
     const char *name;               /* as snell_frame_stats.stages lists it */
-    int (*wanted)(const snell__frame *f); /* NULL: every frame */
-    snell_status (*run)(snell__frame *f);
-    /* May be NULL. Which of kernel->variant_mask's bits object o's program
-     * needs this frame (set up before any kernel draws: o->stage_bits). */
-    unsigned (*kernel_variant)(const snell__frame *f, const snell__object *o);
+    size_t state_size;              /* its slot's bytes, 0: none */
+    /* All may be NULL. init: its state's first values after zeroing;
+     * destroy: its GL objects and memory, in the renderer's context. */
+    void (*init)(void *state);
+    void (*destroy)(snell_ctx *ctx, void *state);
+    /* Its part of the frame description, checked before anything is drawn. */
+    snell_status (*validate)(snell_ctx *ctx, const snell_frame_desc *fd);
+    /* Before any stage runs: what it will do this frame, which earlier
+     * stages' set-up may depend on (the scene layers: every glass kernel's
+     * variant). */
+    void (*plan)(snell__frame *f, void *state);
+    int (*wanted)(const snell__frame *f, const void *state); /* NULL: every frame */
+    snell_status (*run)(snell__frame *f, void *state);
+    /* Which of kernel->variant_mask's bits object o's program needs this
+     * frame (set up before any kernel draws: o->stage_bits). */
+    unsigned (*kernel_variant)(const snell__frame *f, const void *state, const snell__object *o);
     const snell__kernel_hook *kernel; /* NULL: it adds nothing to the kernels */
 } snell__stage;
 
-/* The frame's stages in frame order (render/stages.c). */
-extern const snell__stage snell__stages[];
+/* The frame's stages in frame order (render/stages.c), at most SNELL__STAGES_MAX. */
+#define SNELL__STAGES_MAX 16
+extern const snell__stage *const snell__stages[];
 extern const int snell__stage_count;
 
 #endif

@@ -9,12 +9,37 @@
 #include "mesh/mesh.h"
 #include "render/gbuffer.h"
 
+#include <math.h>
 #include <string.h>
 
 static const char *const g_class_names[SNELL__BUDGET_CLASSES] = {
     "a convex", "a closed concave (cubemap-served)", "a closed concave (deep)", "an open or non-manifold"};
 
-int snell__budget_wanted(const snell__frame *f) { return f->fd->budget_ms > 0.0f; }
+/* The stage's state: the controller and what measures the frames. */
+typedef struct budget_state {
+    snell__budget ctl;                         /* AUTO by budget's controller (budget.h) */
+    snell__budget_object obj[SNELL_MAX_GLASS]; /* this frame's ladders */
+    char note[SNELL_MAX_GLASS][128];           /* each object's rung and why (snell__object.budget_note) */
+    void *fence;                               /* GLsync after the last budget frame, NULL none */
+    double start_ms, done_ms;                  /* that frame's start; its completion seen (-1 not yet) */
+    double cpu_ms;                             /* that frame's time inside snell_render */
+    unsigned query;                            /* its GL_TIME_ELAPSED_EXT query (0: none made yet) */
+    int timer;                                 /* EXT_disjoint_timer_query: 0 not probed, 1 yes, -1 no */
+    int query_state;                           /* 1 running in this frame, 2 ended (read next frame), 0 */
+    const int *force;                          /* snell_renderer_warm: the plan to draw (ladder index per
+                                                * object), NULL: the controller's */
+} budget_state;
+
+static budget_state *budget_of(const snell_renderer *r)
+{
+    return (budget_state *)snell__renderer_stage_state(r, &snell__stage_budget);
+}
+
+static int stage_wanted(const snell__frame *f, const void *state)
+{
+    (void)state;
+    return f->fd->budget_ms > 0.0f;
+}
 
 /* A method may be on a ladder if its GL state can be made here. */
 static int usable(void *user, snell_method id)
@@ -29,30 +54,30 @@ static int usable(void *user, snell_method id)
  * only, not a host's work between frames that the fence is seen late by.
  * Not while a host's own TIME_ELAPSED query runs (they cannot nest), nor
  * across a disjoint event (a clock change: the result is meaningless). */
-static void timer_begin(snell_renderer *r)
+static void timer_begin(snell_ctx *ctx, budget_state *bs)
 {
     GLint running = 0, disjoint;
-    if (!r->budget_timer) r->budget_timer = snell_ctx_has_gl_extension(r->ctx, "GL_EXT_disjoint_timer_query") ? 1 : -1;
-    if (r->budget_timer < 0) return;
+    if (!bs->timer) bs->timer = snell_ctx_has_gl_extension(ctx, "GL_EXT_disjoint_timer_query") ? 1 : -1;
+    if (bs->timer < 0) return;
     glGetQueryiv(GL_TIME_ELAPSED_EXT, GL_CURRENT_QUERY_EXT, &running);
     if (running) return;
-    if (!r->budget_query) glGenQueries(1, &r->budget_query);
+    if (!bs->query) glGenQueries(1, &bs->query);
     glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint); /* reading clears it */
-    glBeginQuery(GL_TIME_ELAPSED_EXT, r->budget_query);
-    r->budget_query_state = 1;
+    glBeginQuery(GL_TIME_ELAPSED_EXT, bs->query);
+    bs->query_state = 1;
 }
 
 /* The ended query's ms, or -1: none, not yet available, disjoint, or 4.3 s
  * and more (the 32-bit read's limit; the fence's clock measures those). */
-static double timer_read(snell_renderer *r)
+static double timer_read(budget_state *bs)
 {
     GLuint ready = 0, ns = 0;
     GLint disjoint = 1;
-    if (r->budget_query_state != 2) return -1.0;
-    r->budget_query_state = 0;
-    glGetQueryObjectuiv(r->budget_query, GL_QUERY_RESULT_AVAILABLE, &ready);
+    if (bs->query_state != 2) return -1.0;
+    bs->query_state = 0;
+    glGetQueryObjectuiv(bs->query, GL_QUERY_RESULT_AVAILABLE, &ready);
     if (!ready) return -1.0;
-    glGetQueryObjectuiv(r->budget_query, GL_QUERY_RESULT, &ns);
+    glGetQueryObjectuiv(bs->query, GL_QUERY_RESULT, &ns);
     glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
     return disjoint || ns == 0xFFFFFFFFu ? -1.0 : ns * 1e-6;
 }
@@ -62,80 +87,85 @@ static double timer_read(snell_renderer *r)
  * is issued); the fence's clock (wall: start to completion seen) without
  * the timer, or where the timer reads more than that clock (a driver's
  * bogus first query: llvmpipe's reads hours). clock: 2 GPU timer, 1 wall. */
-static double frame_ms(snell_renderer *r, double wall, double cpu, int *clock)
+static double frame_ms(budget_state *bs, double wall, double cpu, int *clock)
 {
-    double gpu = timer_read(r);
+    double gpu = timer_read(bs);
     *clock = gpu >= 0.0 && gpu <= wall + 1.0 ? 2 : 1;
     return *clock == 1 ? wall : gpu > cpu ? gpu : cpu;
 }
 
 /* The last budget frame's time, once the GPU finished it (waits for it if
  * it has not: a frame still running at the next one's start is over). */
-static void collect(snell_renderer *r, snell_frame_stats *s)
+static void collect(budget_state *bs, snell_frame_stats *s)
 {
-    GLsync fence = (GLsync)r->budget_fence;
+    GLsync fence = (GLsync)bs->fence;
     if (!fence) return;
-    if (r->budget_done_ms < 0.0) {
+    if (bs->done_ms < 0.0) {
         GLenum w = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull);
-        if (w == GL_ALREADY_SIGNALED || w == GL_CONDITION_SATISFIED) r->budget_done_ms = snell__now_ms();
+        if (w == GL_ALREADY_SIGNALED || w == GL_CONDITION_SATISFIED) bs->done_ms = snell__now_ms();
     }
-    if (r->budget_done_ms >= 0.0)
-        snell__budget_observe(&r->budget, frame_ms(r, r->budget_done_ms - r->budget_start_ms, r->budget_cpu_ms,
+    if (bs->done_ms >= 0.0)
+        snell__budget_observe(&bs->ctl, frame_ms(bs, bs->done_ms - bs->start_ms, bs->cpu_ms,
                                                    &s->budget_clock));
-    r->budget_query_state = 0;
+    bs->query_state = 0;
     glDeleteSync(fence);
-    r->budget_fence = NULL;
+    bs->fence = NULL;
+}
+
+static void stage_destroy(snell_ctx *ctx, void *state)
+{
+    budget_state *bs = (budget_state *)state;
+    (void)ctx;
+    if (bs->fence) glDeleteSync((GLsync)bs->fence);
+    if (bs->query) glDeleteQueries(1, &bs->query);
+    bs->fence = NULL;
+    bs->query = 0;
+    bs->query_state = 0;
+    snell__budget_reset(&bs->ctl);
 }
 
 void snell__budget_gpu_done(snell_renderer *r)
 {
-    if (r->budget_fence && r->budget_done_ms < 0.0 &&
-        glClientWaitSync((GLsync)r->budget_fence, 0, 0) != GL_TIMEOUT_EXPIRED)
-        r->budget_done_ms = snell__now_ms();
+    budget_state *bs = budget_of(r);
+    if (bs->fence && bs->done_ms < 0.0 &&
+        glClientWaitSync((GLsync)bs->fence, 0, 0) != GL_TIMEOUT_EXPIRED)
+        bs->done_ms = snell__now_ms();
 }
 
 void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, double start_ms, int drawn)
 {
-    if (r->budget_query_state == 1) {
+    budget_state *bs = budget_of(r);
+    if (bs->query_state == 1) {
         glEndQuery(GL_TIME_ELAPSED_EXT);
-        r->budget_query_state = drawn ? 2 : 0;
+        bs->query_state = drawn ? 2 : 0;
     }
-    if (!drawn || r->budget_force) return; /* warming: measured by snell_renderer_warm */
+    if (!drawn || bs->force) return; /* warming: measured by snell_renderer_warm */
     if (!(fd->budget_ms > 0.0f)) {
-        if (r->budget.frame) snell__budget_destroy(r); /* budget off: start afresh when it returns */
+        if (bs->ctl.frame) stage_destroy(r->ctx, bs); /* budget off: start afresh when it returns */
         return;
     }
-    if (r->budget_fence) glDeleteSync((GLsync)r->budget_fence);
-    r->budget_fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    r->budget_start_ms = start_ms;
-    r->budget_cpu_ms = snell__now_ms() - start_ms;
-    r->budget_done_ms = -1.0;
+    if (bs->fence) glDeleteSync((GLsync)bs->fence);
+    bs->fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    bs->start_ms = start_ms;
+    bs->cpu_ms = snell__now_ms() - start_ms;
+    bs->done_ms = -1.0;
 }
 
-void snell__budget_destroy(snell_renderer *r)
-{
-    if (r->budget_fence) glDeleteSync((GLsync)r->budget_fence);
-    if (r->budget_query) glDeleteQueries(1, &r->budget_query);
-    r->budget_fence = NULL;
-    r->budget_query = 0;
-    r->budget_query_state = 0;
-    snell__budget_reset(&r->budget);
-}
-
-snell_status snell__budget_run(snell__frame *f)
+static snell_status stage_run(snell__frame *f, void *state)
 {
     snell_renderer *r = f->r;
+    budget_state *bs = (budget_state *)state;
     snell__scene *sc = f->sc;
     snell_frame_stats *s = f->s;
     int plan[SNELL_MAX_GLASS];
     int i, drawn[SNELL_MAX_GLASS] = {0};
     double predicted = -1.0;
-    if (!r->budget_force) collect(r, s);
-    timer_begin(r);
+    if (!bs->force) collect(bs, s);
+    timer_begin(r->ctx, bs);
     for (i = 0; i < sc->drawn; i++) drawn[sc->order[i]] = 1;
     for (i = 0; i < sc->count; i++) {
         snell__object *o = &sc->obj[i];
-        snell__budget_object *b = &r->budget_obj[i];
+        snell__budget_object *b = &bs->obj[i];
         const snell_glass_material *g = &o->glass->material;
         const snell_mesh_analysis *an = NULL;
         memset(b, 0, sizeof *b);
@@ -156,23 +186,23 @@ snell_status snell__budget_run(snell__frame *f)
                     b->fixed_cost = snell__rung_at(k)->cost[cls];
         }
     }
-    if (r->budget_force) {
+    if (bs->force) {
         /* snell_renderer_warm draws the plan it measures */
         for (i = 0; i < sc->count; i++) {
-            const snell__budget_object *b = &r->budget_obj[i];
-            plan[i] = !b->n ? -1 : r->budget_force[i] < b->floor ? b->floor : r->budget_force[i] >= b->n ? b->n - 1
-                                                                                                    : r->budget_force[i];
+            const snell__budget_object *b = &bs->obj[i];
+            plan[i] = !b->n ? -1 : bs->force[i] < b->floor ? b->floor : bs->force[i] >= b->n ? b->n - 1
+                                                                                                    : bs->force[i];
         }
         snell__why(s->budget_reason, sizeof s->budget_reason, "warming: measuring the rungs on this device");
     } else
-        s->budget_changed = snell__budget_plan(&r->budget, r->budget_obj, sc->count, f->fd->budget_ms, plan,
+        s->budget_changed = snell__budget_plan(&bs->ctl, bs->obj, sc->count, f->fd->budget_ms, plan,
                                                &predicted, s->budget_reason, sizeof s->budget_reason);
     s->budget_ms = f->fd->budget_ms;
-    s->budget_first_use = r->budget.first_use;
-    s->budget_measured_ms = r->budget.last_ms;
+    s->budget_first_use = bs->ctl.first_use;
+    s->budget_measured_ms = bs->ctl.last_ms;
     s->budget_predicted_ms = predicted;
     for (i = 0; i < sc->count; i++) {
-        const snell__budget_object *b = &r->budget_obj[i];
+        const snell__budget_object *b = &bs->obj[i];
         snell__object *o = &sc->obj[i];
         const snell__rung *g;
         char name[40];
@@ -190,9 +220,9 @@ snell_status snell__budget_run(snell__frame *f)
                 return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "budget: rung %s=%d refused", g->param, g->value);
         }
         snell__rung_name(g, name, sizeof name);
-        snprintf(r->budget_note[i], sizeof r->budget_note[i], "%s (rung %d of %d, %.1f dB predicted for %s mesh)",
+        snprintf(bs->note[i], sizeof bs->note[i], "%s (rung %d of %d, %.1f dB predicted for %s mesh)",
                  name, plan[i] + 1, b->n, (double)g->db[b->cls], g_class_names[b->cls]);
-        o->budget_note = r->budget_note[i];
+        o->budget_note = bs->note[i];
     }
     return SNELL_OK;
 }
@@ -224,14 +254,15 @@ static double warm_measure(void *user, const int *plan)
 {
     warm_state *w = user;
     snell_renderer *r = w->r;
+    budget_state *bs = budget_of(r);
     const snell_frame_desc *fd = plan ? w->fd : &w->bare;
     double t0, ms[3], t;
     int i, clock, fresh = !plan ? !w->bare_drawn : 0;
     if (plan) {
-        r->budget_force = plan;
+        bs->force = plan;
         for (i = 0; i < r->scene.count; i++)
-            if (r->budget_obj[i].n && plan[i] >= 0 && !r->budget.drawn[r->budget_obj[i].ladder[plan[i]]]) {
-                r->budget.drawn[r->budget_obj[i].ladder[plan[i]]] = 1; /* built below */
+            if (bs->obj[i].n && plan[i] >= 0 && !bs->ctl.drawn[bs->obj[i].ladder[plan[i]]]) {
+                bs->ctl.drawn[bs->obj[i].ladder[plan[i]]] = 1; /* built below */
                 fresh = 1;
             }
     }
@@ -242,7 +273,7 @@ static double warm_measure(void *user, const int *plan)
         t0 = snell__now_ms();
         if (warm_draw(w, fd) != SNELL_OK) return -1.0;
         glFinish();
-        ms[i] = frame_ms(r, snell__now_ms() - t0, r->stats.cpu_ms, &clock); /* the clock frames are measured by */
+        ms[i] = frame_ms(bs, snell__now_ms() - t0, r->stats.cpu_ms, &clock); /* the clock frames are measured by */
     }
     if (ms[0] > ms[1]) t = ms[0], ms[0] = ms[1], ms[1] = t;
     if (ms[1] > ms[2]) t = ms[1], ms[1] = ms[2], ms[2] = t;
@@ -254,32 +285,34 @@ snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *fd, 
 {
     warm_state w;
     snell_warm_stats out;
+    budget_state *bs;
     int floor_plan[SNELL_MAX_GLASS], i, n;
     double t0 = snell__now_ms();
     memset(&out, 0, sizeof out);
     if (stats) *stats = out;
     if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_renderer_warm: renderer and frame required");
+    bs = budget_of(r);
     memset(&w, 0, sizeof w);
     w.r = r, w.fd = fd, w.bare = *fd, w.st = SNELL_OK;
     w.bare.glass = NULL, w.bare.glass_count = 0;
     if (fd->budget_ms > 0.0f) {
-        /* The floor plan first: it builds the ladders (r->budget_obj) the calibration walks. */
+        /* The floor plan first: it builds the ladders (bs->obj) the calibration walks. */
         for (i = 0; i < SNELL_MAX_GLASS; i++) floor_plan[i] = -1;
-        snell__budget_reset(&r->budget);
-        r->budget_force = floor_plan;
+        snell__budget_reset(&bs->ctl);
+        bs->force = floor_plan;
         if (warm_draw(&w, fd) == SNELL_OK) {
             snell__budget_object obj[SNELL_MAX_GLASS];
             n = r->scene.count;
-            memcpy(obj, r->budget_obj, sizeof(snell__budget_object) * (size_t)n);
+            memcpy(obj, bs->obj, sizeof(snell__budget_object) * (size_t)n);
             for (i = 0; i < n; i++)
-                if (obj[i].n) r->budget.drawn[obj[i].ladder[obj[i].floor]] = 1; /* built by that frame */
-            if (snell__budget_calibrate(&r->budget, obj, n, warm_measure, &w) > 0) {
-                for (i = 0; i < SNELL__BUDGET_MAX_RUNGS; i++) out.rungs += r->budget.rung_ms[i] > 0.0;
-                out.base_ms = r->budget.base_ms;
+                if (obj[i].n) bs->ctl.drawn[obj[i].ladder[obj[i].floor]] = 1; /* built by that frame */
+            if (snell__budget_calibrate(&bs->ctl, obj, n, warm_measure, &w) > 0) {
+                for (i = 0; i < SNELL__BUDGET_MAX_RUNGS; i++) out.rungs += bs->ctl.rung_ms[i] > 0.0;
+                out.base_ms = bs->ctl.base_ms;
             }
         }
-        r->budget_force = NULL;
-        if (w.st != SNELL_OK) snell__budget_reset(&r->budget);
+        bs->force = NULL;
+        if (w.st != SNELL_OK) snell__budget_reset(&bs->ctl);
     } else {
         warm_draw(&w, fd);
     }
@@ -289,3 +322,26 @@ snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *fd, 
     if (stats) *stats = out;
     return w.st;
 }
+
+static void stage_init(void *state) { snell__budget_reset(&((budget_state *)state)->ctl); }
+
+/* The frame's budget_ms and quality floor. */
+static snell_status stage_validate(snell_ctx *ctx, const snell_frame_desc *fd)
+{
+    if (!isfinite(fd->budget_ms) || fd->budget_ms < 0.0f || fd->budget_ms > 1e6f)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "budget_ms %g: 0 (none) or a finite time up to 1e6 ms",
+                           (double)fd->budget_ms);
+    if (!isfinite(fd->quality_floor_db) || fd->quality_floor_db < 0.0f || fd->quality_floor_db > 100.0f)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "quality_floor_db %g outside 0..100", (double)fd->quality_floor_db);
+    return SNELL_OK;
+}
+
+const snell__stage snell__stage_budget = {
+    .name = "budget",
+    .state_size = sizeof(budget_state),
+    .init = stage_init,
+    .destroy = stage_destroy,
+    .validate = stage_validate,
+    .wanted = stage_wanted,
+    .run = stage_run,
+};

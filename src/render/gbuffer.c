@@ -1,5 +1,6 @@
 /* gbuffer.c — see gbuffer.h. */
 #include "render/gbuffer.h"
+#include "render/stages.h"
 #include "frame/pass.h"
 #include "frame/glass_program.h"
 #include "core/ctx.h"
@@ -326,3 +327,109 @@ void snell__object_project(const snell__view *v, snell__object *o)
     o->scissor[2] = x1 > x0 ? x1 - x0 : 0;
     o->scissor[3] = y1 > y0 ? y1 - y0 : 0;
 }
+
+
+/* --- the back-face and G-buffer stages ------------------------------------ */
+
+typedef struct pass_stage {
+    snell__gbuffer g;
+    snell__object *list[SNELL_MAX_GLASS];
+} pass_stage;
+
+static void stage_destroy(snell_ctx *ctx, void *state)
+{
+    (void)ctx;
+    snell__gbuffer_destroy(&((pass_stage *)state)->g);
+}
+
+/* One back-face pass for every object whose method reads back faces. */
+static int back_wanted(const snell__frame *f, const void *state)
+{
+    int i;
+    (void)state;
+    for (i = 0; i < f->sc->drawn; i++)
+        if (f->sc->obj[f->sc->order[i]].method->needs_back_faces) return 1;
+    return 0;
+}
+
+/* Each object's detail and guard band (o->back_coarse, o->back_guard); the
+ * pass keeps the largest band. */
+static snell_status back_run(snell__frame *f, void *state)
+{
+    pass_stage *ps = (pass_stage *)state;
+    snell_renderer *r = f->r;
+    snell__scene *sc = f->sc;
+    int i, n = 0, band = 0;
+    snell_status st;
+    for (i = 0; i < sc->drawn; i++) {
+        snell__object *o = &sc->obj[sc->order[i]];
+        const snell__method *m = o->method;
+        if (!m->needs_back_faces) continue;
+        o->back_coarse = m->back_detail && m->back_detail(o->glass) == SNELL_BACK_DETAIL_AUTO &&
+                         o->pixels_per_triangle < SNELL__BACK_COARSE_PPT;
+        o->back_guard = o->crosses_edge && m->back_guard_percent && m->back_guard_percent(o->glass) > 0
+                            ? (m->back_guard_percent(o->glass) * r->height + 99) / 100
+                            : 0;
+        if (o->back_guard > band) band = o->back_guard;
+        ps->list[n++] = o;
+    }
+    st = snell__gbuffer_draw_back(r->ctx, &ps->g, &sc->view, ps->list, n, band, &sc->view.back, f->s->glass);
+    snell__gbuffer_publish(&ps->g, &sc->view.textures, 1);
+    f->s->back_face_pass = 1;
+    f->s->back_face_guard = band;
+    return st;
+}
+
+const snell__stage snell__stage_back_faces = {
+    .name = "back_faces",
+    .state_size = sizeof(pass_stage),
+    .destroy = stage_destroy,
+    .wanted = back_wanted,
+    .run = back_run,
+};
+
+static int gbuffer_wanted(const snell__frame *f, const void *state)
+{
+    int i;
+    (void)state;
+    for (i = 0; i < f->sc->drawn; i++)
+        if (f->sc->obj[f->sc->order[i]].screen_space) return 1;
+    return 0;
+}
+
+/* Where the G-buffer keeps an object's whole front surface (o->front_whole:
+ * peel takes its first layer from there): no other object of the pass
+ * overlaps its scissor rectangle, and the G-buffer's depth holds nothing
+ * drawn before (its own buffer, or a target's with no opaque object, water
+ * or receiver plane, whose screen bounds are not at hand here). */
+static snell_status gbuffer_run(snell__frame *f, void *state)
+{
+    pass_stage *ps = (pass_stage *)state;
+    snell_renderer *r = f->r;
+    snell__scene *sc = f->sc;
+    unsigned depth = r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? r->depth_rb : 0;
+    int clear = !depth || (f->fd->opaque_count == 0 && !f->fd->water && !sc->view.receiver_map), i, j, n = 0;
+    snell_status st;
+    for (i = 0; i < sc->drawn; i++)
+        if (sc->obj[sc->order[i]].screen_space) ps->list[n++] = &sc->obj[sc->order[i]];
+    for (i = 0; i < n; i++) {
+        const int *a = ps->list[i]->scissor;
+        ps->list[i]->front_whole = clear;
+        for (j = 0; j < n; j++) {
+            const int *b = ps->list[j]->scissor;
+            if (j != i && a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3])
+                ps->list[i]->front_whole = 0;
+        }
+    }
+    st = snell__gbuffer_draw(r->ctx, &ps->g, &sc->view, ps->list, n, depth, f->s->glass);
+    snell__gbuffer_publish(&ps->g, &sc->view.textures, 0);
+    return st;
+}
+
+const snell__stage snell__stage_gbuffer = {
+    .name = "gbuffer",
+    .state_size = sizeof(pass_stage),
+    .destroy = stage_destroy,
+    .wanted = gbuffer_wanted,
+    .run = gbuffer_run,
+};

@@ -1,5 +1,7 @@
 /* layers.c — see layers.h. */
 #include "render/layers.h"
+#include "render/stages.h"
+#include "frame/beyond.h"
 #include "frame/pass.h"
 #include "render/scene.h"
 #include "frame/glass_program.h"
@@ -261,3 +263,130 @@ snell_status snell__layers_draw(snell_ctx *ctx, snell__layers *l, snell__view *v
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "GL error peeling scene layers");
 }
 
+
+
+/* --- the scene layers stage ------------------------------------------------ */
+
+typedef struct layers_stage {
+    snell__layers layers;
+    snell__object *list[SNELL_MAX_GLASS]; /* the glass objects peeled */
+    int count;                      /* of them, -1: no layers this frame */
+} layers_stage;
+
+static void stage_init(void *state) { ((layers_stage *)state)->layers.last.count = -1; /* none peeled yet */ }
+
+static void stage_destroy(snell_ctx *ctx, void *state)
+{
+    (void)ctx;
+    snell__layers_destroy(&((layers_stage *)state)->layers);
+}
+
+static snell_status stage_validate(snell_ctx *ctx, const snell_frame_desc *fd)
+{
+    if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d", fd->scene_layers,
+                           SNELL_MAX_SCENE_LAYERS);
+    return SNELL_OK;
+}
+
+/* Whether the frame needs the scene layers (snell_frame_desc.scene_layers):
+ * only where a glass object's exit ray, or the water's rays, have something
+ * other than the environment and the container to meet. Decided before the
+ * glass is set up: every kernel of a frame with layers marches them. */
+static void stage_plan(snell__frame *f, void *state)
+{
+    layers_stage *ls = (layers_stage *)state;
+    const snell_frame_desc *fd = f->fd;
+    snell_frame_stats *s = f->s;
+    snell__scene *sc = f->sc;
+    int i, n = 0, solid = 0;
+    for (i = 0; i < sc->drawn; i++) {
+        snell__object *o = &sc->obj[sc->order[i]];
+        ls->list[n++] = o;
+        solid += o->glass->material.thickness <= 0.0f;
+    }
+    ls->count = -1;
+    if (fd->scene_layers < 0) {
+        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "off (scene_layers -1)");
+        return;
+    }
+    if (n == 0 || (n == 1 && fd->opaque_count == 0 && !fd->water)) {
+        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "not needed: %s",
+                   n == 0 ? "no glass object drawn" : "one glass object and nothing else");
+        return;
+    }
+    /* With water, every glass object's kernel reads them too: its exit rays
+     * leaving under the water are bent for the water's index with the
+     * normal the layers hold (common/beyond.glsl). */
+    if (n == 1 && fd->opaque_count == 0)
+        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "one glass object in a frame with water: "
+                   "the water's rays meet it, its rays leave into the water");
+    else
+        snell__why(s->scene_layers_reason, sizeof s->scene_layers_reason, "%d glass (%d solid, %d thin walls) and %d "
+                   "opaque objects%s: exit rays meet the others", n, solid, n - solid, fd->opaque_count,
+                   fd->water ? " and water" : "");
+    ls->count = n;
+}
+
+static int stage_wanted(const snell__frame *f, const void *state)
+{
+    (void)f;
+    return ((const layers_stage *)state)->count >= 0;
+}
+
+/* Every solid glass object drawn and every opaque one, peeled together
+ * once, before any kernel reads them. */
+static snell_status stage_run(snell__frame *f, void *state)
+{
+    layers_stage *ls = (layers_stage *)state;
+    int peels = 0;
+    snell_status st = snell__layers_draw(f->r->ctx, &ls->layers, &f->sc->view, ls->list, ls->count, f->fd->opaque,
+                                         f->fd->opaque_count,
+                                         f->fd->scene_layers > 0 ? f->fd->scene_layers : SNELL_DEFAULT_SCENE_LAYERS,
+                                         &peels, &f->s->scene_layers_reused);
+    f->sc->view.layers.active = 1;
+    f->s->scene_layer_passes = peels;
+    f->s->scene_layers = f->sc->view.layers.count;
+    f->s->passes += peels;
+    return st;
+}
+
+static unsigned stage_variant(const snell__frame *f, const void *state, const snell__object *o)
+{
+    (void)f, (void)o;
+    return ((const layers_stage *)state)->count >= 0 ? SNELL__GLASS_BEYOND : 0;
+}
+
+static const char *hook_defines(unsigned bits)
+{
+    (void)bits;
+    return "#define SNELL_BEYOND 1\n";
+}
+
+static void hook_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v, const snell__object *o)
+{
+    (void)g;
+    snell__beyond_uniforms((const snell__beyond_locs *)(const void *)locs, v,
+                           o->index + 1 + (o->glass->material.thickness > 0.0f ? SNELL__LAYERS_THIN_ID : 0));
+}
+
+static const snell__kernel_hook g_hook = {
+    .variant_mask = SNELL__GLASS_BEYOND,
+    .defines = hook_defines,
+    .uniform_names = snell__beyond_uniform_names,
+    .uniform_count = SNELL__BEYOND_UNIFORMS,
+    .uniforms = hook_uniforms,
+};
+
+const snell__stage snell__stage_layers = {
+    .name = "layers",
+    .state_size = sizeof(layers_stage),
+    .init = stage_init,
+    .destroy = stage_destroy,
+    .validate = stage_validate,
+    .plan = stage_plan,
+    .wanted = stage_wanted,
+    .run = stage_run,
+    .kernel_variant = stage_variant,
+    .kernel = &g_hook,
+};

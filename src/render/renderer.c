@@ -69,6 +69,21 @@ static snell_status make_target(snell_renderer *r)
                                                      r->width, r->height);
 }
 
+/* Each stage's slot, zeroed, then as its init() sets it: made once, so a
+ * frame allocates nothing for its stages. */
+static snell_status create_stage_states(snell_renderer *r)
+{
+    int i;
+    for (i = 0; i < snell__stage_count; i++) {
+        const snell__stage *sg = snell__stages[i];
+        if (!sg->state_size) continue;
+        r->stage_state[i] = snell__calloc(&r->ctx->alloc, 1, sg->state_size);
+        if (!r->stage_state[i]) return snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for the %s stage", sg->name);
+        if (sg->init) sg->init(r->stage_state[i]);
+    }
+    return SNELL_OK;
+}
+
 static snell_status create_resources(snell_renderer *r)
 {
     snell_status st = snell__ssaa_create(r->ctx, &r->ssaa, r->ssaa.factor, r->out_width, r->out_height);
@@ -144,8 +159,6 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     r = (snell_renderer *)snell__calloc(&ctx->alloc, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     r->ctx = ctx;
-    snell__budget_reset(&r->budget);
-    r->layers.last.count = -1; /* no layers peeled yet */
     r->ssaa.factor = d.ssaa > 1 ? d.ssaa : 1;
     r->out_width = d.width;
     r->out_height = d.height;
@@ -170,7 +183,8 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
                  : SNELL__OUT_DIR_PACKED;
     snell__ctx_retain(ctx); /* from here on released by snell_renderer_destroy */
     snell__glstate_save(&saved);
-    st = create_resources(r);
+    st = create_stage_states(r);
+    if (st == SNELL_OK) st = create_resources(r);
     snell__glstate_restore(&saved);
     if (st != SNELL_OK) {
         snell_renderer_destroy(r);
@@ -190,19 +204,14 @@ void snell_renderer_destroy(snell_renderer *r)
      * if need be; after snell_ctx_destroy they are gone with it and the GL
      * calls below reach no context (snell__gl_scope_enter). */
     snell__gl_scope_enter(r->ctx, &sc);
-    snell__budget_destroy(r);
+    for (m = snell__stage_count - 1; m >= 0; m--)
+        if (r->stage_state[m] && snell__stages[m]->destroy) snell__stages[m]->destroy(r->ctx, r->stage_state[m]);
     snell__prepared_destroy(r->ctx, &r->prepared);
-    snell__water_programs_destroy(&r->water);
     for (m = 0; m < SNELL_METHOD_COUNT_; m++)
         if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
     snell__paraboloid_gen_destroy(&r->dp);
     snell__composite_destroy(&r->comp);
-    snell__gbuffer_destroy(&r->gbuffer);
-    snell__gbuffer_destroy(&r->backfaces);
-    snell__layers_destroy(&r->layers);
-    snell__caustics_destroy(&r->caustics);
-    snell__glass_scale_destroy(&r->glass_scale);
     snell__ssaa_destroy(&r->ssaa);
     snell__host_depth_destroy(&r->host_depth);
     if (r->msaa_fbo) glDeleteFramebuffers(1, &r->msaa_fbo);
@@ -214,9 +223,57 @@ void snell_renderer_destroy(snell_renderer *r)
     ctx = r->ctx;
     snell__free(&ctx->alloc, r->readback);
     snell__free(&ctx->alloc, r->readback8);
+    for (m = 0; m < snell__stage_count; m++) snell__free(&ctx->alloc, r->stage_state[m]);
     snell__free(&ctx->alloc, r);
     snell__ctx_release(ctx);
 }
+
+/* Methods are created on first use; one that fails (a device that cannot
+ * compile its shaders, say) fails alone and is not retried, except after
+ * running out of memory. */
+snell_status snell__renderer_method_state(void *user, const snell__method *m, void **state)
+{
+    snell_renderer *r = (snell_renderer *)user;
+    int id = (int)m->info->method;
+    if (!r->method_state[id] && r->method_status[id] == SNELL_OK) {
+        snell_status st = m->create(r->ctx, r->out, &r->method_state[id]);
+        if (st == SNELL_E_NOMEM) return st;
+        if (st != SNELL_OK) {
+            r->method_status[id] = st;
+            snprintf(r->method_error[id], sizeof r->method_error[id], "%s", snell_last_error(r->ctx));
+            snell__log(r->ctx, SNELL_LOG_WARN, "method %s unavailable: %s", m->info->name, r->method_error[id]);
+        }
+    }
+    if (r->method_status[id] != SNELL_OK)
+        return snell__fail(r->ctx, r->method_status[id], "method %s unavailable: %s", m->info->name,
+                           r->method_error[id]);
+    *state = r->method_state[id];
+    return SNELL_OK;
+}
+
+/* The MSAA resolve: the samples' mean per pixel. */
+static int msaa_wanted(const snell__frame *f, const void *state)
+{
+    (void)state;
+    return f->r->msaa != 0;
+}
+
+static snell_status msaa_run(snell__frame *f, void *state)
+{
+    snell_renderer *r = f->r;
+    (void)state;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->msaa_fbo);
+    glBlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    f->s->passes++;
+    return SNELL_OK;
+}
+
+const snell__stage snell__stage_msaa = {
+    .name = "msaa",
+    .wanted = msaa_wanted,
+    .run = msaa_run,
+};
 
 int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic)
 {
@@ -226,6 +283,7 @@ int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic)
 
 static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd)
 {
+    int i;
     snell_status st = snell__ctx_check_current(r->ctx, "snell_render");
     if (st != SNELL_OK) return st;
     st = snell__camera_validate(r->ctx, &fd->camera, (float)r->width / (float)r->height, "snell_render");
@@ -239,25 +297,14 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the environment belongs to another context");
     if (fd->dynamic_env_size != 0 && (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048))
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "dynamic_env_size %d outside 16..2048", fd->dynamic_env_size);
-    if (fd->water && !SNELL_WITH_WATER)
-        return snell__fail(r->ctx, SNELL_E_UNSUPPORTED, "frame has water: built without SNELL_WITH_WATER");
-    if (fd->water && fd->water->ctx != r->ctx)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the water belongs to another context (or to none)");
-    if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d",
-                           fd->scene_layers, SNELL_MAX_SCENE_LAYERS);
-    if (!isfinite(fd->budget_ms) || fd->budget_ms < 0.0f || fd->budget_ms > 1e6f)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "budget_ms %g: 0 (none) or a finite time up to 1e6 ms",
-                           (double)fd->budget_ms);
-    if (!isfinite(fd->quality_floor_db) || fd->quality_floor_db < 0.0f || fd->quality_floor_db > 100.0f)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "quality_floor_db %g outside 0..100", (double)fd->quality_floor_db);
     if ((unsigned)fd->depth > SNELL_DEPTH_TEST_NO_WRITE)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "depth %d is not a snell_depth_mode", (int)fd->depth);
     if (fd->depth == SNELL_DEPTH_TEST_NO_WRITE && r->target == SNELL_TARGET_OFFSCREEN)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "SNELL_DEPTH_TEST_NO_WRITE is for a bound framebuffer: "
                            "the offscreen target's depth is the renderer's own");
-    if ((st = snell__caustics_validate(r->ctx, fd)) != SNELL_OK) return st;
-    return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
+    for (i = 0; i < snell__stage_count; i++)
+        if (snell__stages[i]->validate && (st = snell__stages[i]->validate(r->ctx, fd)) != SNELL_OK) return st;
+    return SNELL_OK;
 }
 
 /* The frame's fixed state; the target's depth as the frame's mode asks
@@ -298,16 +345,18 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     if (st != SNELL_OK) return st;
     r->scene.view.water = fd->water;
     memset(&f, 0, sizeof f);
-    f.r = r, f.fd = fd, f.s = s, f.sc = &r->scene, f.n_layers = -1;
+    f.r = r, f.fd = fd, f.s = s, f.sc = &r->scene, f.state = r->stage_state;
     external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
     if (external) snell__glstate_save(&saved);
     st = begin_frame_state(r, fd);
     snell__prepared_frame(&r->prepared);
-    /* The stage table in frame order (stages.c); each says whether this frame wants it. */
+    /* The stage table in frame order (stages.c): each plans, then runs if this frame wants it. */
+    for (i = 0; i < snell__stage_count; i++)
+        if (snell__stages[i]->plan) snell__stages[i]->plan(&f, r->stage_state[i]);
     for (i = 0; i < snell__stage_count && st == SNELL_OK; i++) {
-        const snell__stage *sg = &snell__stages[i];
-        if (sg->wanted && !sg->wanted(&f)) continue;
-        st = sg->run(&f);
+        const snell__stage *sg = snell__stages[i];
+        if (sg->wanted && !sg->wanted(&f, r->stage_state[i])) continue;
+        st = sg->run(&f, r->stage_state[i]);
         named += (size_t)snprintf(s->stages + named, named < sizeof s->stages ? sizeof s->stages - named : 0, "%s%s",
                                   named ? " " : "", sg->name);
     }

@@ -1,5 +1,6 @@
 /* ssaa.c — supersampling resolve; see ssaa.h. */
 #include "render/ssaa.h"
+#include "render/stages.h"
 #include "core/gl.h"
 #include "core/program.h"
 
@@ -62,3 +63,24 @@ void snell__ssaa_resolve(const snell__ssaa *s, int w, int h)
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindTexture(GL_TEXTURE_2D, 0);
 }
+
+/* The resolve stage: the frame's samples averaged into the output. */
+static int stage_wanted(const snell__frame *f, const void *state)
+{
+    (void)state;
+    return f->r->ssaa.factor > 1;
+}
+
+static snell_status stage_run(snell__frame *f, void *state)
+{
+    (void)state;
+    snell__ssaa_resolve(&f->r->ssaa, f->r->out_width, f->r->out_height);
+    f->s->passes++;
+    return SNELL_OK;
+}
+
+const snell__stage snell__stage_ssaa = {
+    .name = "ssaa",
+    .wanted = stage_wanted,
+    .run = stage_run,
+};

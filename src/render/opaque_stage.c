@@ -1,0 +1,28 @@
+/* opaque_stage.c — the opaque stage: the frame's opaque objects, drawn with
+ * depth write before any glass (render/composite.c). */
+#include "render/stages.h"
+
+static snell_status validate(snell_ctx *ctx, const snell_frame_desc *fd)
+{
+    return snell__opaque_validate(ctx, fd->opaque, fd->opaque_count);
+}
+
+static snell_status run(snell__frame *f, void *state)
+{
+    snell_renderer *r = f->r;
+    snell_status st = snell__composite_opaque(r->ctx, &r->comp, r->out, f->fd->opaque, f->fd->opaque_count,
+                                              (const float *)f->sc->view.view_proj, f->sc->view.eye,
+                                              f->sc->view.view_axis, NULL);
+    (void)state;
+    if (f->fd->opaque_count > 0) {
+        f->s->opaque_drawn = f->fd->opaque_count;
+        f->s->passes++;
+    }
+    return st;
+}
+
+const snell__stage snell__stage_opaque = {
+    .name = "opaque",
+    .validate = validate,
+    .run = run,
+};

@@ -1,0 +1,102 @@
+/* water_stage.c — the water stage: the water surface and its container,
+ * opaque to what follows (glass behind them is depth-tested away, glass in
+ * front is drawn over them). The glass kernels drawn after see the water
+ * along their exit rays (kernel hook SNELL_WATER, common/water.glsl); the
+ * water sees the glass and opaque objects in it through the scene layers. */
+#include "render/stages.h"
+#include "frame/env.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "frame/glass_program.h"
+
+static snell_status validate(snell_ctx *ctx, const snell_frame_desc *fd)
+{
+    if (fd->water && !SNELL_WITH_WATER)
+        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "frame has water: built without SNELL_WITH_WATER");
+    if (fd->water && fd->water->ctx != ctx)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "the water belongs to another context (or to none)");
+    return SNELL_OK;
+}
+
+static int wanted(const snell__frame *f, const void *state)
+{
+    (void)state;
+    return f->fd->water != NULL;
+}
+
+static snell_status run(snell__frame *f, void *state)
+{
+    snell__water_programs *wp = (snell__water_programs *)state;
+    snell_renderer *r = f->r;
+    const snell_frame_desc *fd = f->fd;
+    snell_status st = SNELL_OK;
+    /* Without layers (no glass), opaque objects in the water are searched
+     * for in a copy of what the opaque pass drew: an offscreen single-sample
+     * colour target (a host's framebuffer or a multisampled one cannot be
+     * copied with its depth format known; exit directions need no colour).
+     * Cheaper than peeling them into layers for the water alone, for the
+     * same error (bench/notes). */
+    int layers = f->sc->view.layers.active, i;
+    int objects = !layers && fd->opaque_count > 0 && r->target == SNELL_TARGET_OFFSCREEN && !r->msaa &&
+                  r->out == SNELL__OUT_COLOR;
+    unsigned env_tex = fd->env->texture;
+    int paraboloid = snell__renderer_env_paraboloid(r, 0); /* the water sees the static environment */
+    if (objects) {
+        st = snell__water_copy_scene(r->ctx, wp, r->fbo, r->width, r->height);
+        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    }
+    if (st == SNELL_OK && paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &env_tex);
+    if (st == SNELL_OK)
+        st = snell__water_draw(r->ctx, wp, r->out, fd->water, &f->sc->view, env_tex, paraboloid, fd->opaque,
+                               objects ? fd->opaque_count : 0, layers, f->s);
+    if (st == SNELL_OK) snell__water_publish(fd->water, &f->sc->view.textures);
+    f->s->water_objects = objects || layers; /* layers: at least one glass object drawn */
+    f->s->water_layers = layers;
+    for (i = 0; i < f->sc->drawn; i++) f->s->glass[f->sc->order[i]].sees_water = 1;
+    return st;
+}
+
+/* Every kernel's exit rays meet the water (heights as the simulation keeps them). */
+static unsigned variant(const snell__frame *f, const void *state, const snell__object *o)
+{
+    (void)state, (void)o;
+    if (!f->fd->water) return 0;
+    return SNELL__GLASS_WATER | (f->fd->water->d.sim == SNELL_WATER_SIM_GPU ? SNELL__GLASS_WATER_UINT : 0);
+}
+
+static const char *hook_defines(unsigned bits)
+{
+    return bits & SNELL__GLASS_WATER_UINT ? "#define SNELL_WATER 1\n#define SNELL_WATER_STATE_UINT 1\n"
+                                          : "#define SNELL_WATER 1\n";
+}
+
+static void hook_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v, const snell__object *o)
+{
+    (void)g, (void)o;
+    snell__water_set_uniforms(locs, v->water);
+}
+
+static const snell__kernel_hook g_hook = {
+    .variant_mask = SNELL__GLASS_WATER | SNELL__GLASS_WATER_UINT,
+    .defines = hook_defines,
+    .uniform_names = snell__water_uniform_names,
+    .uniform_count = SNELL__WATER_UNIFORMS,
+    .uniforms = hook_uniforms,
+};
+
+static void destroy(snell_ctx *ctx, void *state)
+{
+    (void)ctx;
+    snell__water_programs_destroy((snell__water_programs *)state);
+}
+
+const snell__stage snell__stage_water = {
+    .name = "water",
+    .state_size = sizeof(snell__water_programs),
+    .destroy = destroy,
+    .validate = validate,
+    .wanted = wanted,
+    .run = run,
+    .kernel_variant = variant,
+    .kernel = &g_hook,
+};
