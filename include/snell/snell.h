@@ -756,6 +756,7 @@ typedef struct snell_param_info {
     int min, max;                  /* valid range of explicit values */
     int def;                       /* the resolved default */
     const char *const *value_names; /* enum parameters: name of each value min..max, else NULL */
+    size_t offset;                 /* where it lives in snell_glass_material (offsetof; an int or an enum) */
 } snell_param_info;
 
 /* A number a method reports per object and frame (snell_object_stats.counters). */

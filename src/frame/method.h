@@ -17,7 +17,6 @@ typedef enum snell__fit {
 
 typedef struct snell__method {
     const snell_method_info *info;  /* public: id, name, summary, needs, cost rank, params */
-    const size_t *param_offsets;    /* byte offset of each info->params[i] in snell_glass_material */
     int needs_analysis;             /* adequate() reads the mesh analysis */
     /* May be NULL (always ADEQUATE). analysis may be NULL (unanalysable mesh).
      * Writes why into why (a short clause, no method name). */

@@ -250,35 +250,54 @@ static const char *const g_fresnel_names[] = {"default", "schlick", "exact"};
 static const char *const g_inner_names[] = {"auto", "off", "on"};
 
 static const snell_param_info g_params[] = {
-    {"iterations", "binary-search steps per interface", 1, SNELL_CUBEMAP_MAX_ITERATIONS, DEFAULT_ITERATIONS, NULL},
-    {"linear", "linear pre-search steps before the binary search", 0, SNELL_CUBEMAP_MAX_LINEAR_STEPS, 0, NULL},
-    {"interfaces", "surfaces processed per path (1 = single surface, 2 = entry + exit, more = TIR bounces)", 1,
-     SNELL_CUBEMAP_MAX_INTERFACES, 2, NULL},
-    {"face", "normal+distance cubemap face size, texels", 16, 2048, 256, NULL},
-    /* PLAIN: filtered, lower error than OCT, which is 3-7% cheaper on llvmpipe */
-    {"encoding", "texel packing: plain (Unger 4.1, filtered) or oct (octahedral normal, 16-bit distance)", 0, 2,
-     SNELL_NDCUBE_PLAIN, g_encoding_names},
-    {"fresnel", "reflectance at the interfaces: schlick (the MATCHED model) or exact (unpolarised, as FULL)", 0, 2,
-     DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, g_fresnel_names},
-    {"inner", "Fresnel at the exit too (1 - F out, the internal reflection followed by one more search): auto (on "
-     "for convex meshes), off, on", 0, 2, SNELL_INNER_FRESNEL_AUTO, g_inner_names},
+    {.name = "iterations",
+     .offset = offsetof(snell_glass_material, cubemap.iterations),
+     .help = "binary-search steps per interface",
+     .min = 1, .max = SNELL_CUBEMAP_MAX_ITERATIONS, .def = DEFAULT_ITERATIONS},
+    {.name = "linear",
+     .offset = offsetof(snell_glass_material, cubemap.linear_steps),
+     .help = "linear pre-search steps before the binary search",
+     .min = 0, .max = SNELL_CUBEMAP_MAX_LINEAR_STEPS, .def = 0},
+    {.name = "interfaces",
+     .offset = offsetof(snell_glass_material, cubemap.max_interfaces),
+     .help = "surfaces processed per path (1 = single surface, 2 = entry + exit, more = TIR bounces)",
+     .min = 1, .max = SNELL_CUBEMAP_MAX_INTERFACES, .def = 2},
+    {.name = "face",
+     .offset = offsetof(snell_glass_material, cubemap.face_size),
+     .help = "normal+distance cubemap face size, texels",
+     .min = 16, .max = 2048, .def = 256},
+    {.name = "encoding",
+     .offset = offsetof(snell_glass_material, cubemap.encoding),
+     .help = "texel packing: plain (Unger 4.1, filtered) or oct (octahedral normal, 16-bit distance)",
+     .min = 0, .max = 2, .def = SNELL_NDCUBE_PLAIN, .value_names = g_encoding_names},
+    {.name = "fresnel",
+     .offset = offsetof(snell_glass_material, cubemap.fresnel),
+     .help = "reflectance at the interfaces: schlick (the MATCHED model) or exact (unpolarised, as FULL)",
+     .min = 0, .max = 2, .def = DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, .value_names = g_fresnel_names},
+    {.name = "inner",
+     .offset = offsetof(snell_glass_material, cubemap.inner_fresnel),
+     .help = "Fresnel at the exit too (1 - F out, the internal reflection followed by one more search): auto (on for convex meshes), off, on",
+     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = g_inner_names},
 };
 
-static const size_t g_offsets[] = {
-    offsetof(snell_glass_material, cubemap.iterations), offsetof(snell_glass_material, cubemap.linear_steps),
-    offsetof(snell_glass_material, cubemap.max_interfaces), offsetof(snell_glass_material, cubemap.face_size),
-    offsetof(snell_glass_material, cubemap.encoding), offsetof(snell_glass_material, cubemap.fresnel),
-    offsetof(snell_glass_material, cubemap.inner_fresnel)};
 
 static const snell_method_info g_info = {
-    SNELL_METHOD_CUBEMAP, "cubemap",
-    "two-sided: exit found in a normal+distance cubemap, TIR bounces (Li et al., Unger 4.1)",
-    "a closed mesh with its analysed centre inside; exact when star-shaped about it", 3,
-    (int)(sizeof g_params / sizeof *g_params), g_params, 0, NULL, 0, 0, "iterations=4,6,12"};
+    .method = SNELL_METHOD_CUBEMAP,
+    .name = "cubemap",
+    .summary = "two-sided: exit found in a normal+distance cubemap, TIR bounces (Li et al., Unger 4.1)",
+    .needs = "a closed mesh with its analysed centre inside; exact when star-shaped about it",
+    .cost_rank = 3,
+    .param_count = (int)(sizeof g_params / sizeof *g_params),
+    .params = g_params,
+    .counter_count = 0,
+    .counters = NULL,
+    .ref_interfaces = 0,
+    .ref_chord_absorption = 0,
+    .default_sweep = "iterations=4,6,12",
+};
 
 const snell__method snell__method_cubemap = {
     .info = &g_info,
-    .param_offsets = g_offsets,
     .needs_analysis = 1,
     .fit = cubemap_fit,
     .create = cubemap_create,

@@ -554,22 +554,28 @@ static const char *const g_auto_names[] = {"default", "never", "allow"};
 static const char *const g_walk_names[] = {"default", "stackless", "stack"};
 
 static const snell_param_info g_params[] = {
-    {"interfaces", "surfaces processed per path (1 = single surface with the exact path length; more = exit and "
-     "TIR bounces), the MATCHED reference's cap", 1, SNELL_EXACT_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
-    {"budget", "BVH nodes a pixel may visit over all its rays; past it the single-surface answer", SNELL_EXACT_MIN_BUDGET,
-     SNELL_EXACT_MAX_BUDGET, DEFAULT_BUDGET, NULL},
-    {"nodes", "node bounds: f32 (RGBA32F, 2 texels) or q16 (16-bit quantised, rounded outward, 1 RGBA32UI texel)", 0,
-     2, NODES_F32, g_nodes_names},
-    {"auto", "whether AUTO may pick it (where no cheaper method is adequate): never or allow", 0, 2,
-     SNELL_EXACT_AUTO_NEVER, g_auto_names},
-    {"walk", "traversal: stack (near-first, a 32-entry stack a pixel; deeper trees fall back) or stackless (escape "
-     "indices: no stack, no depth bound, for GPUs where the stack spills)", 0, 2, WALK_STACK, g_walk_names},
+    {.name = "interfaces",
+     .offset = offsetof(snell_glass_material, exact.max_interfaces),
+     .help = "surfaces processed per path (1 = single surface with the exact path length; more = exit and TIR bounces), the MATCHED reference's cap",
+     .min = 1, .max = SNELL_EXACT_MAX_INTERFACES, .def = DEFAULT_INTERFACES},
+    {.name = "budget",
+     .offset = offsetof(snell_glass_material, exact.node_budget),
+     .help = "BVH nodes a pixel may visit over all its rays; past it the single-surface answer",
+     .min = SNELL_EXACT_MIN_BUDGET, .max = SNELL_EXACT_MAX_BUDGET, .def = DEFAULT_BUDGET},
+    {.name = "nodes",
+     .offset = offsetof(snell_glass_material, exact.node_format),
+     .help = "node bounds: f32 (RGBA32F, 2 texels) or q16 (16-bit quantised, rounded outward, 1 RGBA32UI texel)",
+     .min = 0, .max = 2, .def = NODES_F32, .value_names = g_nodes_names},
+    {.name = "auto",
+     .offset = offsetof(snell_glass_material, exact.auto_pick),
+     .help = "whether AUTO may pick it (where no cheaper method is adequate): never or allow",
+     .min = 0, .max = 2, .def = SNELL_EXACT_AUTO_NEVER, .value_names = g_auto_names},
+    {.name = "walk",
+     .offset = offsetof(snell_glass_material, exact.walk),
+     .help = "traversal: stack (near-first, a 32-entry stack a pixel; deeper trees fall back) or stackless (escape indices: no stack, no depth bound, for GPUs where the stack spills)",
+     .min = 0, .max = 2, .def = WALK_STACK, .value_names = g_walk_names},
 };
 
-static const size_t g_offsets[] = {
-    offsetof(snell_glass_material, exact.max_interfaces), offsetof(snell_glass_material, exact.node_budget),
-    offsetof(snell_glass_material, exact.node_format), offsetof(snell_glass_material, exact.auto_pick),
-    offsetof(snell_glass_material, exact.walk)};
 
 static const snell_counter_info g_counters[] = {
     /* Counted only by SNELL_OUTPUT_EXIT_DIRECTION renderers with an RGBA32F
@@ -583,15 +589,22 @@ static const snell_counter_info g_counters[] = {
 
 /* It is the MATCHED model itself: its error there is float rounding. */
 static const snell_method_info g_info = {
-    SNELL_METHOD_EXACT, "exact",
-    "exact: the mesh's BVH traversed per pixel (watertight triangles, TIR), the MATCHED reference on the GPU",
-    "nothing (any mesh); AUTO only where material.exact.auto_pick allows", 7,
-    (int)(sizeof g_params / sizeof *g_params), g_params, (int)(sizeof g_counters / sizeof *g_counters), g_counters,
-    0, 0, ""};
+    .method = SNELL_METHOD_EXACT,
+    .name = "exact",
+    .summary = "exact: the mesh's BVH traversed per pixel (watertight triangles, TIR), the MATCHED reference on the GPU",
+    .needs = "nothing (any mesh); AUTO only where material.exact.auto_pick allows",
+    .cost_rank = 7,
+    .param_count = (int)(sizeof g_params / sizeof *g_params),
+    .params = g_params,
+    .counter_count = (int)(sizeof g_counters / sizeof *g_counters),
+    .counters = g_counters,
+    .ref_interfaces = 0,
+    .ref_chord_absorption = 0,
+    .default_sweep = "",
+};
 
 const snell__method snell__method_exact = {
     .info = &g_info,
-    .param_offsets = g_offsets,
     .fit = exact_fit,
     .create = exact_create,
     .destroy = exact_destroy,

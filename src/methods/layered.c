@@ -549,23 +549,32 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
 static const char *const g_inner_names[] = {"auto", "off", "on"};
 
 static const snell_param_info g_params[] = {
-    {"layers", "distance-map layers baked from the centre (the first surfaces along each direction)", 1,
-     SNELL_LAYERED_MAX_LAYERS, DEFAULT_LAYERS, NULL},
-    {"face", "cube face size of every layer, texels", 16, 1024, DEFAULT_FACE, NULL},
-    {"linear", "linear march steps from a point to the bounding sphere's far side", 1, 64, DEFAULT_LINEAR, NULL},
-    {"iterations", "binary steps at each crossing found (on a convex mesh that one layer holds: tangent-plane "
-     "steps to each exit, half as many for the inner Fresnel's reflection); 0: 6, on a convex mesh 2", 0, 16, 0,
-     NULL},
-    {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
-     SNELL_LAYERED_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
-    {"inner", "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more march): auto "
-     "(on for convex meshes), off, on", 0, 2, SNELL_INNER_FRESNEL_AUTO, g_inner_names},
+    {.name = "layers",
+     .offset = offsetof(snell_glass_material, layered.layers),
+     .help = "distance-map layers baked from the centre (the first surfaces along each direction)",
+     .min = 1, .max = SNELL_LAYERED_MAX_LAYERS, .def = DEFAULT_LAYERS},
+    {.name = "face",
+     .offset = offsetof(snell_glass_material, layered.face_size),
+     .help = "cube face size of every layer, texels",
+     .min = 16, .max = 1024, .def = DEFAULT_FACE},
+    {.name = "linear",
+     .offset = offsetof(snell_glass_material, layered.linear_steps),
+     .help = "linear march steps from a point to the bounding sphere's far side",
+     .min = 1, .max = 64, .def = DEFAULT_LINEAR},
+    {.name = "iterations",
+     .offset = offsetof(snell_glass_material, layered.binary_steps),
+     .help = "binary steps at each crossing found (on a convex mesh that one layer holds: tangent-plane steps to each exit, half as many for the inner Fresnel's reflection); 0: 6, on a convex mesh 2",
+     .min = 0, .max = 16, .def = 0},
+    {.name = "interfaces",
+     .offset = offsetof(snell_glass_material, layered.max_interfaces),
+     .help = "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)",
+     .min = 1, .max = SNELL_LAYERED_MAX_INTERFACES, .def = DEFAULT_INTERFACES},
+    {.name = "inner",
+     .offset = offsetof(snell_glass_material, layered.inner_fresnel),
+     .help = "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more march): auto (on for convex meshes), off, on",
+     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = g_inner_names},
 };
 
-static const size_t g_offsets[] = {
-    offsetof(snell_glass_material, layered.layers), offsetof(snell_glass_material, layered.face_size),
-    offsetof(snell_glass_material, layered.linear_steps), offsetof(snell_glass_material, layered.binary_steps),
-    offsetof(snell_glass_material, layered.max_interfaces), offsetof(snell_glass_material, layered.inner_fresnel)};
 
 static const snell_counter_info g_counters[] = {
     {"layers_used", "layers that hold a surface in some direction (the march reads these)"},
@@ -576,16 +585,22 @@ static const snell_counter_info g_counters[] = {
 /* Its path goes on through re-entries as FULL's dominant branch does (as
  * peel's): snell-bench measures it against FULL too. */
 static const snell_method_info g_info = {
-    SNELL_METHOD_LAYERED, "layered",
-    "multi-layer, view-independent: depth-peeled distance cube map layers from the centre, a march through them, "
-    "TIR, re-entries (Umenhoffer et al. 2007)",
-    "the mesh analysis (its centre); baked once per mesh version, nothing per frame", 2,
-    (int)(sizeof g_params / sizeof *g_params), g_params, (int)(sizeof g_counters / sizeof *g_counters), g_counters,
-    0, 0, "linear=12,24,48"};
+    .method = SNELL_METHOD_LAYERED,
+    .name = "layered",
+    .summary = "multi-layer, view-independent: depth-peeled distance cube map layers from the centre, a march through them, TIR, re-entries (Umenhoffer et al. 2007)",
+    .needs = "the mesh analysis (its centre); baked once per mesh version, nothing per frame",
+    .cost_rank = 2,
+    .param_count = (int)(sizeof g_params / sizeof *g_params),
+    .params = g_params,
+    .counter_count = (int)(sizeof g_counters / sizeof *g_counters),
+    .counters = g_counters,
+    .ref_interfaces = 0,
+    .ref_chord_absorption = 0,
+    .default_sweep = "linear=12,24,48",
+};
 
 const snell__method snell__method_layered = {
     .info = &g_info,
-    .param_offsets = g_offsets,
     .needs_analysis = 1,
     .fit = layered_fit,
     .create = layered_create,

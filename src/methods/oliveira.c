@@ -129,41 +129,57 @@ static const char *const g_fresnel_names[] = {"default", "schlick", "exact"};
 static const char *const g_inner_names[] = {"auto", "off", "on"};
 
 static const snell_param_info g_params[] = {
-    {"linear", "linear steps along the refracted ray before the binary search", 0, SNELL_OLIVEIRA_MAX_LINEAR_STEPS,
-     DEFAULT_LINEAR_STEPS, NULL},
-    {"iterations", "binary-search steps per interface (stops earlier at one pixel)", 1, SNELL_OLIVEIRA_MAX_ITERATIONS,
-     DEFAULT_ITERATIONS, NULL},
-    {"interfaces", "surfaces processed per path (2 = entry + exit, more = TIR bounces)", 2,
-     SNELL_OLIVEIRA_MAX_INTERFACES, 2, NULL},
-    {"backdetail", SNELL__BACK_DETAIL_HELP, 0, 2, SNELL_BACK_DETAIL_AUTO, snell__back_detail_names},
-    {"guard", SNELL__GUARD_HELP, -1, SNELL_MAX_GUARD_BAND, SNELL__GUARD_DEFAULT, NULL},
-    {"fresnel", "reflectance model: schlick (the MATCHED model) or exact (unpolarised dielectric)", 0, 2,
-     SNELL_FRESNEL_SCHLICK, g_fresnel_names},
-    {"inner", "Fresnel at the exit and one internal reflection: auto (on for convex meshes), off, on", 0, 2,
-     SNELL_INNER_FRESNEL_AUTO, g_inner_names},
+    {.name = "linear",
+     .offset = offsetof(snell_glass_material, oliveira.linear_steps),
+     .help = "linear steps along the refracted ray before the binary search",
+     .min = 0, .max = SNELL_OLIVEIRA_MAX_LINEAR_STEPS, .def = DEFAULT_LINEAR_STEPS},
+    {.name = "iterations",
+     .offset = offsetof(snell_glass_material, oliveira.iterations),
+     .help = "binary-search steps per interface (stops earlier at one pixel)",
+     .min = 1, .max = SNELL_OLIVEIRA_MAX_ITERATIONS, .def = DEFAULT_ITERATIONS},
+    {.name = "interfaces",
+     .offset = offsetof(snell_glass_material, oliveira.max_interfaces),
+     .help = "surfaces processed per path (2 = entry + exit, more = TIR bounces)",
+     .min = 2, .max = SNELL_OLIVEIRA_MAX_INTERFACES, .def = 2},
+    {.name = "backdetail",
+     .offset = offsetof(snell_glass_material, oliveira.back_detail),
+     .help = SNELL__BACK_DETAIL_HELP,
+     .min = 0, .max = 2, .def = SNELL_BACK_DETAIL_AUTO, .value_names = snell__back_detail_names},
+    {.name = "guard",
+     .offset = offsetof(snell_glass_material, oliveira.guard_band),
+     .help = SNELL__GUARD_HELP,
+     .min = -1, .max = SNELL_MAX_GUARD_BAND, .def = SNELL__GUARD_DEFAULT},
+    {.name = "fresnel",
+     .offset = offsetof(snell_glass_material, oliveira.fresnel),
+     .help = "reflectance model: schlick (the MATCHED model) or exact (unpolarised dielectric)",
+     .min = 0, .max = 2, .def = SNELL_FRESNEL_SCHLICK, .value_names = g_fresnel_names},
+    {.name = "inner",
+     .offset = offsetof(snell_glass_material, oliveira.inner_fresnel),
+     .help = "Fresnel at the exit and one internal reflection: auto (on for convex meshes), off, on",
+     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = g_inner_names},
 };
 
-static const size_t g_offsets[] = {offsetof(snell_glass_material, oliveira.linear_steps),
-                                   offsetof(snell_glass_material, oliveira.iterations),
-                                   offsetof(snell_glass_material, oliveira.max_interfaces),
-                                   offsetof(snell_glass_material, oliveira.back_detail),
-                                   offsetof(snell_glass_material, oliveira.guard_band),
-                                   offsetof(snell_glass_material, oliveira.fresnel),
-                                   offsetof(snell_glass_material, oliveira.inner_fresnel)};
 
 static snell_back_detail oliveira_back_detail(const snell_glass_resolved *g) { return g->material.oliveira.back_detail; }
 static int oliveira_guard(const snell_glass_resolved *g) { return g->material.oliveira.guard_band; }
 
 static const snell_method_info g_info = {
-    SNELL_METHOD_OLIVEIRA, "oliveira",
-    "two-sided in image space: exit by a conservative linear + binary search against the back faces, TIR bounces "
-    "(Oliveira and Brauwers 2007)",
-    "a closed mesh (no centre, no star shape, nothing prepared); per frame a back-face pass; screen space", 5,
-    (int)(sizeof g_params / sizeof *g_params), g_params, 0, NULL, 0, 0, "linear=1,8,16"}; /* 0 reads as the default 8: 1 is the fewest */
+    .method = SNELL_METHOD_OLIVEIRA,
+    .name = "oliveira",
+    .summary = "two-sided in image space: exit by a conservative linear + binary search against the back faces, TIR bounces (Oliveira and Brauwers 2007)",
+    .needs = "a closed mesh (no centre, no star shape, nothing prepared); per frame a back-face pass; screen space",
+    .cost_rank = 5,
+    .param_count = (int)(sizeof g_params / sizeof *g_params),
+    .params = g_params,
+    .counter_count = 0,
+    .counters = NULL,
+    .ref_interfaces = 0,
+    .ref_chord_absorption = 0,
+    .default_sweep = "linear=1,8,16",
+}; /* 0 reads as the default 8: 1 is the fewest */
 
 const snell__method snell__method_oliveira = {
     .info = &g_info,
-    .param_offsets = g_offsets,
     .needs_analysis = 1,
     .fit = oliveira_fit,
     .create = oliveira_create,

@@ -444,32 +444,40 @@ static const char *const g_inner_names[] = {"auto", "off", "on"};
 static const char *const g_layer0_names[] = {"gbuffer", "peel"};
 
 static const snell_param_info g_params[] = {
-    {"layers", "depth layers peeled (front and back faces alternate; fewer where the mesh needs fewer)", 2,
-     SNELL_PEEL_MAX_LAYERS, DEFAULT_LAYERS, NULL},
-    /* "linear" and "interfaces" are also the cubemap's names (a CLI's
-     * --linear sets both): their ranges include the cubemap's, 0 the default */
-    {"linear", "linear search steps over the bounding diameter (0: the default)", 0, 128, DEFAULT_LINEAR, NULL},
-    {"binary", "binary refinement steps after a linear crossing", 1, 16, DEFAULT_BINARY, NULL},
-    {"interfaces", "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)", 1,
-     SNELL_PEEL_MAX_INTERFACES, DEFAULT_INTERFACES, NULL},
-    {"fixes", "the seed's search fixes (3.5): none, discontinuity, merge or both", 0, 4, SNELL_PEEL_FIXES_BOTH,
-     g_fix_names},
-    /* "fresnel" and "inner" are also the cubemap's names, with the same values */
-    {"fresnel", "reflectance at the interfaces: schlick (the MATCHED model) or exact (unpolarised, as FULL)", 0, 2,
-     DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, g_fresnel_names},
-    {"inner", "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more search): "
-     "auto (on), off, on", 0, 2, SNELL_INNER_FRESNEL_AUTO, g_inner_names},
-    {"layer0", "the front layer: gbuffer (converted from the screen-space G-buffer where it holds the whole "
-     "front surface, the peels are culled and the triangles are below 16 px; else peeled) or peel (always "
-     "peeled)", 0, 1,
-     SNELL_PEEL_LAYER0_GBUFFER, g_layer0_names},
+    {.name = "layers",
+     .offset = offsetof(snell_glass_material, peel.layers),
+     .help = "depth layers peeled (front and back faces alternate; fewer where the mesh needs fewer)",
+     .min = 2, .max = SNELL_PEEL_MAX_LAYERS, .def = DEFAULT_LAYERS},
+    {.name = "linear",
+     .offset = offsetof(snell_glass_material, peel.linear_steps),
+     .help = "linear search steps over the bounding diameter (0: the default)",
+     .min = 0, .max = 128, .def = DEFAULT_LINEAR},
+    {.name = "binary",
+     .offset = offsetof(snell_glass_material, peel.binary_steps),
+     .help = "binary refinement steps after a linear crossing",
+     .min = 1, .max = 16, .def = DEFAULT_BINARY},
+    {.name = "interfaces",
+     .offset = offsetof(snell_glass_material, peel.max_interfaces),
+     .help = "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)",
+     .min = 1, .max = SNELL_PEEL_MAX_INTERFACES, .def = DEFAULT_INTERFACES},
+    {.name = "fixes",
+     .offset = offsetof(snell_glass_material, peel.fixes),
+     .help = "the seed's search fixes (3.5): none, discontinuity, merge or both",
+     .min = 0, .max = 4, .def = SNELL_PEEL_FIXES_BOTH, .value_names = g_fix_names},
+    {.name = "fresnel",
+     .offset = offsetof(snell_glass_material, peel.fresnel),
+     .help = "reflectance at the interfaces: schlick (the MATCHED model) or exact (unpolarised, as FULL)",
+     .min = 0, .max = 2, .def = DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, .value_names = g_fresnel_names},
+    {.name = "inner",
+     .offset = offsetof(snell_glass_material, peel.inner_fresnel),
+     .help = "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more search): auto (on), off, on",
+     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = g_inner_names},
+    {.name = "layer0",
+     .offset = offsetof(snell_glass_material, peel.layer0),
+     .help = "the front layer: gbuffer (converted from the screen-space G-buffer where it holds the whole front surface, the peels are culled and the triangles are below 16 px; else peeled) or peel (always peeled)",
+     .min = 0, .max = 1, .def = SNELL_PEEL_LAYER0_GBUFFER, .value_names = g_layer0_names},
 };
 
-static const size_t g_offsets[] = {
-    offsetof(snell_glass_material, peel.layers), offsetof(snell_glass_material, peel.linear_steps),
-    offsetof(snell_glass_material, peel.binary_steps), offsetof(snell_glass_material, peel.max_interfaces),
-    offsetof(snell_glass_material, peel.fixes), offsetof(snell_glass_material, peel.fresnel),
-    offsetof(snell_glass_material, peel.inner_fresnel), offsetof(snell_glass_material, peel.layer0)};
 
 static const snell_counter_info g_counters[] = {
     {"layers_peeled", "depth layers drawn this frame (at most peel.layers, fewer where the mesh's depth complexity "
@@ -482,15 +490,22 @@ static const snell_counter_info g_counters[] = {
 /* Its cap goes on through re-entries as FULL's dominant branch does, where
  * MATCHED stops at the first exit: snell-bench measures it against FULL too. */
 static const snell_method_info g_info = {
-    SNELL_METHOD_PEEL, "peel",
-    "multi-layer in image space: depth-peeled layers, ray-height-field search between them, TIR (Wang 2014)",
-    "a closed mesh of depth complexity above 2 (concave); per object and frame a few depth peels", 6,
-    (int)(sizeof g_params / sizeof *g_params), g_params, (int)(sizeof g_counters / sizeof *g_counters), g_counters,
-    0, 0, "linear=8,16"}; /* layers and fixes: bench/BENCHMARKS.md */
+    .method = SNELL_METHOD_PEEL,
+    .name = "peel",
+    .summary = "multi-layer in image space: depth-peeled layers, ray-height-field search between them, TIR (Wang 2014)",
+    .needs = "a closed mesh of depth complexity above 2 (concave); per object and frame a few depth peels",
+    .cost_rank = 6,
+    .param_count = (int)(sizeof g_params / sizeof *g_params),
+    .params = g_params,
+    .counter_count = (int)(sizeof g_counters / sizeof *g_counters),
+    .counters = g_counters,
+    .ref_interfaces = 0,
+    .ref_chord_absorption = 0,
+    .default_sweep = "linear=8,16",
+}; /* layers and fixes: bench/BENCHMARKS.md */
 
 const snell__method snell__method_peel = {
     .info = &g_info,
-    .param_offsets = g_offsets,
     .needs_analysis = 1,
     .fit = peel_fit,
     .create = peel_create,

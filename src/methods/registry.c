@@ -112,7 +112,7 @@ snell_status snell_method_from_str(const char *name, snell_method *out)
 
 static int *param_ptr(snell_glass_material *m, const snell__method *e, int i)
 {
-    return (int *)((char *)m + e->param_offsets[i]);
+    return (int *)((char *)m + e->info->params[i].offset);
 }
 
 /* Zero = default; anything else must lie in min..max. */

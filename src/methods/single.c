@@ -93,8 +93,15 @@ static snell_status single_draw(snell_ctx *ctx, void *state, const snell__view *
 }
 
 static const snell_method_info g_info = {
-    SNELL_METHOD_SINGLE, "single", "refraction at the front surface only (Unger 3.3); thin walls as slabs",
-    "nothing", 1, 0, NULL, 0, NULL, 1, 1, ""};
+    .method = SNELL_METHOD_SINGLE,
+    .name = "single",
+    .summary = "refraction at the front surface only (Unger 3.3); thin walls as slabs",
+    .needs = "nothing",
+    .cost_rank = 1,
+    .ref_interfaces = 1,
+    .ref_chord_absorption = 1,
+    .default_sweep = "",
+};
 
 /* llvmpipe, 512x512 (BENCHMARKS.md): screen space 0.87x forward on the bunny
  * (5.1 estimated px/triangle), 0.99x at 5.5, 1.14x at 22. */

@@ -238,27 +238,37 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
 }
 
 static const snell_param_info g_params[] = {
-    {"backdetail", SNELL__BACK_DETAIL_HELP, 0, 2, SNELL_BACK_DETAIL_AUTO, snell__back_detail_names},
-    {"guard", SNELL__GUARD_HELP, -1, SNELL_MAX_GUARD_BAND, SNELL__GUARD_DEFAULT, NULL},
+    {.name = "backdetail",
+     .offset = offsetof(snell_glass_material, wyman.back_detail),
+     .help = SNELL__BACK_DETAIL_HELP,
+     .min = 0, .max = 2, .def = SNELL_BACK_DETAIL_AUTO, .value_names = snell__back_detail_names},
+    {.name = "guard",
+     .offset = offsetof(snell_glass_material, wyman.guard_band),
+     .help = SNELL__GUARD_HELP,
+     .min = -1, .max = SNELL_MAX_GUARD_BAND, .def = SNELL__GUARD_DEFAULT},
 };
 
-static const size_t g_offsets[] = {offsetof(snell_glass_material, wyman.back_detail),
-                                   offsetof(snell_glass_material, wyman.guard_band)};
 
 static snell_back_detail wyman_back_detail(const snell_glass_resolved *g) { return g->material.wyman.back_detail; }
 static int wyman_guard(const snell_glass_resolved *g) { return g->material.wyman.guard_band; }
 
 static const snell_method_info g_info = {
-    SNELL_METHOD_WYMAN, "wyman",
-    "two-sided in image space: exit interpolated between view-ray and normal thickness, back-face normal "
-    "(Wyman 2005)",
-    "a closed mesh (no centre, no star shape); per frame a back-face pass", 4,
-    (int)(sizeof g_params / sizeof *g_params), g_params, 0, NULL,
-    2, 0, ""}; /* its model stops after two interfaces (TIR reflects and leaves) */
+    .method = SNELL_METHOD_WYMAN,
+    .name = "wyman",
+    .summary = "two-sided in image space: exit interpolated between view-ray and normal thickness, back-face normal (Wyman 2005)",
+    .needs = "a closed mesh (no centre, no star shape); per frame a back-face pass",
+    .cost_rank = 4,
+    .param_count = (int)(sizeof g_params / sizeof *g_params),
+    .params = g_params,
+    .counter_count = 0,
+    .counters = NULL,
+    .ref_interfaces = 2,
+    .ref_chord_absorption = 0,
+    .default_sweep = "",
+}; /* its model stops after two interfaces (TIR reflects and leaves) */
 
 const snell__method snell__method_wyman = {
     .info = &g_info,
-    .param_offsets = g_offsets,
     .needs_analysis = 1,
     .fit = wyman_fit,
     .create = wyman_create,
