@@ -68,6 +68,13 @@ typedef struct snell__method {
      * rule or snell_renderer_desc.shading says, because the kernel reads the
      * G-buffer at pixels other than its own (oliveira.c). */
     int screen_space_only;
+    /* Its configurations on AUTO's budget ladder (render/budget.c): each a
+     * parameter setting and a resolution scale with its frame time over
+     * single's and its glass PSNR against FULL per mesh class, measured as
+     * bench/notes/budget_rungs.md says and corrected on the device by
+     * snell_renderer_warm. None: AUTO by budget never picks it. */
+    const snell_budget_rung *rungs;
+    int rung_count;
 } snell__method;
 
 /* Value names of snell_back_detail parameters (registry.c). */

@@ -296,6 +296,13 @@ static const snell_method_info g_info = {
     .default_sweep = "iterations=4,6,12",
 };
 
+/* AUTO by budget's rungs (frame/method.h): method, parameter, value; frame
+ * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
+ * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
+static const snell_budget_rung g_rungs[] = {
+    {SNELL_METHOD_CUBEMAP, NULL, 0, {2.14f, 1.08f, 1.44f, 1.02f}, {34.95f, 17.09f, 15.50f, 15.98f}, 1},
+};
+
 const snell__method snell__method_cubemap = {
     .info = &g_info,
     .needs_analysis = 1,
@@ -308,4 +315,6 @@ const snell__method snell__method_cubemap = {
     .release = cubemap_release,
     .draw = cubemap_draw,
     .software_screen_ppt = CUBEMAP_SOFTWARE_SCREEN_PPT,
+    .rungs = g_rungs,
+    .rung_count = (int)(sizeof g_rungs / sizeof *g_rungs),
 };

@@ -603,6 +603,14 @@ static const snell_method_info g_info = {
     .default_sweep = "",
 };
 
+/* AUTO by budget's rungs (frame/method.h): method, parameter, value; frame
+ * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
+ * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
+static const snell_budget_rung g_rungs[] = {
+    {SNELL_METHOD_EXACT, "interfaces", 2, {14.50f, 5.68f, 11.78f, 5.30f}, {32.30f, 18.17f, 20.65f, 18.80f}, 1},
+    {SNELL_METHOD_EXACT, NULL, 0, {14.74f, 10.16f, 16.00f, 8.19f}, {32.31f, 24.95f, 24.48f, 22.71f}, 1},
+};
+
 const snell__method snell__method_exact = {
     .info = &g_info,
     .fit = exact_fit,
@@ -614,4 +622,6 @@ const snell__method snell__method_exact = {
     .release = exact_release,
     .draw = exact_draw,
     .software_screen_ppt = EXACT_SOFTWARE_SCREEN_PPT,
+    .rungs = g_rungs,
+    .rung_count = (int)(sizeof g_rungs / sizeof *g_rungs),
 };

@@ -178,6 +178,13 @@ static const snell_method_info g_info = {
     .default_sweep = "linear=1,8,16",
 }; /* 0 reads as the default 8: 1 is the fewest */
 
+/* AUTO by budget's rungs (frame/method.h): method, parameter, value; frame
+ * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
+ * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
+static const snell_budget_rung g_rungs[] = {
+    {SNELL_METHOD_OLIVEIRA, NULL, 0, {3.84f, 1.31f, 1.86f, 1.41f}, {27.98f, 16.34f, 20.29f, 17.52f}, 1},
+};
+
 const snell__method snell__method_oliveira = {
     .info = &g_info,
     .needs_analysis = 1,
@@ -190,4 +197,6 @@ const snell__method snell__method_oliveira = {
     .back_detail = oliveira_back_detail,
     .back_guard_percent = oliveira_guard,
     .screen_space_only = 1,
+    .rungs = g_rungs,
+    .rung_count = (int)(sizeof g_rungs / sizeof *g_rungs),
 };

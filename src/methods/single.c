@@ -105,6 +105,13 @@ static const snell_method_info g_info = {
 
 /* llvmpipe, 512x512 (BENCHMARKS.md): screen space 0.87x forward on the bunny
  * (5.1 estimated px/triangle), 0.99x at 5.5, 1.14x at 22. */
+/* AUTO by budget's rungs (frame/method.h): method, parameter, value; frame
+ * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
+ * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
+static const snell_budget_rung g_rungs[] = {
+    {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}, 1},
+};
+
 const snell__method snell__method_single = {
     .info = &g_info,
     .fit = single_fit,
@@ -112,4 +119,6 @@ const snell__method snell__method_single = {
     .destroy = single_destroy,
     .draw = single_draw,
     .software_screen_ppt = 8.0f,
+    .rungs = g_rungs,
+    .rung_count = (int)(sizeof g_rungs / sizeof *g_rungs),
 };

@@ -267,6 +267,13 @@ static const snell_method_info g_info = {
     .default_sweep = "",
 }; /* its model stops after two interfaces (TIR reflects and leaves) */
 
+/* AUTO by budget's rungs (frame/method.h): method, parameter, value; frame
+ * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
+ * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
+static const snell_budget_rung g_rungs[] = {
+    {SNELL_METHOD_WYMAN, NULL, 0, {2.22f, 1.33f, 1.92f, 1.86f}, {18.59f, 15.27f, 17.01f, 17.26f}, 1},
+};
+
 const snell__method snell__method_wyman = {
     .info = &g_info,
     .needs_analysis = 1,
@@ -283,4 +290,6 @@ const snell__method snell__method_wyman = {
     .back_detail = wyman_back_detail,
     .back_guard_percent = wyman_guard,
     .vertex_array = wyman_vertex_array,
+    .rungs = g_rungs,
+    .rung_count = (int)(sizeof g_rungs / sizeof *g_rungs),
 };

@@ -7,53 +7,25 @@
 #include <stdio.h>
 #include <string.h>
 
-/* The rung table: what AUTO by budget chooses from. cost: frame time over
- * single's; db: glass PSNR against FULL (area-averaged 2x2), per class: a
- * convex mesh (the sphere), a closed concave one whose analysed centre the
- * cubemap serves (AUTO's cubemap: the bunny), one it does not (the torus),
- * and an open or non-manifold one (glmark2's horse), IOR 1.5, 256x256. A
- * class is a proxy for the mesh: the bunny and the torus order oliveira and
- * the cubemap the other way round, so they are two classes. scale: the
- * resolution scale (snell_glass_material.scale); such a rung is kept where it
- * is on some class's Pareto front (peel at 2 and 4, layered at 2; exact at 2
- * only on the open class's, by 1% of the cost and 0.1 dB against peel at 2:
- * left out). --aa 2 measures the error on the frame at ssaa 2 and times the
- * plain frame: at scale 2 the error is of one kernel sample a pixel, the time
- * of one per 4 pixels. Measured side by side in one run on llvmpipe (LLVM 15),
- * 2 CPUs shared, load 0.79 -> 1.43, 2026-12-04 13:55 UTC, a Release build of
- * main ea59bcd (this table's rendering code; the convex layered rung at its
- * 2 tangent-plane steps):
- *   snell-bench -b single -b cubemap -b wyman -b oliveira -b layered -b peel:layers=2,4 \
- *     -b exact:interfaces=2,8 -b layered:scale=2 -b peel:layers=2,4:scale=2,4 \
- *     -b exact:interfaces=2,8:scale=2 --scenes sphere,torus,bunny,tests/data/real/horse.obj \
- *     --sizes 256x256 --aa 2 --frames 41 --warmup 3 --threads 2
- * (the table before, the same command on 2026-12-03 at load 5.87 -> 4.62,
- * the two CPUs oversubscribed, had the same errors, the scaled rungs up to
- * 43% cheaper against single and exact up to 57% dearer: how much a rung
- * costs against single depends on the load as well as on the device). The scaled rungs
- * come last: test_budget.c's synthetic devices skew each rung's cost by its
- * index, and those of the others stay as they were. On another device the
- * costs move: snell_renderer_warm measures each rung on it
- * (snell__budget_calibrate), and the controller learns from the frames it
- * draws; the table gives the order and the first guess. */
-static const snell__rung g_rungs[] = {
-    /* method, param, value, cost: convex bunny-like torus-like open, db: the same classes, scale */
-    {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}, 1},
-    {SNELL_METHOD_CUBEMAP, NULL, 0, {2.14f, 1.08f, 1.44f, 1.02f}, {34.95f, 17.09f, 15.50f, 15.98f}, 1},
-    {SNELL_METHOD_WYMAN, NULL, 0, {2.22f, 1.33f, 1.92f, 1.86f}, {18.59f, 15.27f, 17.01f, 17.26f}, 1},
-    {SNELL_METHOD_OLIVEIRA, NULL, 0, {3.84f, 1.31f, 1.86f, 1.41f}, {27.98f, 16.34f, 20.29f, 17.52f}, 1},
-    {SNELL_METHOD_LAYERED, NULL, 0, {2.07f, 5.58f, 12.41f, 5.17f}, {40.61f, 19.63f, 25.68f, 18.38f}, 1},
-    {SNELL_METHOD_PEEL, "layers", 2, {7.94f, 3.58f, 5.89f, 3.62f}, {40.32f, 21.88f, 22.70f, 20.71f}, 1},
-    {SNELL_METHOD_PEEL, NULL, 0, {8.03f, 5.89f, 8.43f, 5.56f}, {40.32f, 22.47f, 26.42f, 21.65f}, 1},
-    {SNELL_METHOD_EXACT, "interfaces", 2, {14.50f, 5.68f, 11.78f, 5.30f}, {32.30f, 18.17f, 20.65f, 18.80f}, 1},
-    {SNELL_METHOD_EXACT, NULL, 0, {14.74f, 10.16f, 16.00f, 8.19f}, {32.31f, 24.95f, 24.48f, 22.71f}, 1},
-    {SNELL_METHOD_LAYERED, NULL, 0, {2.76f, 3.45f, 5.64f, 3.28f}, {34.42f, 17.92f, 23.85f, 17.34f}, 2},
-    {SNELL_METHOD_PEEL, "layers", 2, {4.73f, 4.06f, 4.22f, 3.42f}, {34.25f, 19.10f, 22.02f, 18.56f}, 2},
-    {SNELL_METHOD_PEEL, NULL, 0, {4.63f, 5.43f, 5.21f, 4.38f}, {34.25f, 19.30f, 24.16f, 18.86f}, 2},
-    {SNELL_METHOD_PEEL, "layers", 2, {3.53f, 3.44f, 3.12f, 2.66f}, {27.22f, 17.10f, 20.65f, 16.77f}, 4},
-    {SNELL_METHOD_PEEL, NULL, 0, {3.42f, 4.96f, 3.86f, 3.50f}, {27.22f, 17.25f, 21.58f, 16.80f}, 4},
-};
-#define RUNG_COUNT ((int)(sizeof g_rungs / sizeof *g_rungs))
+/* The rungs AUTO by budget chooses from are the methods' own
+ * (snell__method.rungs, frame/method.h), so a method reaches the ladder from
+ * its registry entry. They are numbered in registry order, every method's
+ * full-resolution rungs first, then the scaled ones (synthetic devices in
+ * test_budget.c skew each rung's cost by its index). */
+static const snell__rung *rung_walk(int want, int *count)
+{
+    int pass, i, k, n = 0;
+    for (pass = 0; pass < 2; pass++)
+        for (i = 0; i < snell_method_count(); i++) {
+            const snell__method *m = snell__method_get(snell_method_info_at(i)->method);
+            for (k = 0; k < m->rung_count && n < SNELL__BUDGET_MAX_RUNGS; k++) {
+                if ((m->rungs[k].scale > 1) != pass) continue;
+                if (n++ == want) return &m->rungs[k];
+            }
+        }
+    if (count) *count = n;
+    return NULL;
+}
 
 /* The cost of a frame without glass, in units (single's frame drawing the
  * target full of glass is 1 + BASE_UNITS): background, opaque objects. */
@@ -67,9 +39,14 @@ static const snell__rung g_rungs[] = {
 #define PROBE_REACH_CALIBRATED (1.05 / HEADROOM) /* ... or within 105% of the budget once the costs were measured */
 #define LEARN_RUNG 0.6   /* weight of the newest frame in a learned cost, times its share of the frame */
 
-int snell_budget_rung_count(void) { return RUNG_COUNT; }
+int snell_budget_rung_count(void)
+{
+    int n = 0;
+    rung_walk(-1, &n);
+    return n;
+}
 
-const snell_budget_rung *snell_budget_rung_at(int i) { return i >= 0 && i < RUNG_COUNT ? &g_rungs[i] : NULL; }
+const snell_budget_rung *snell_budget_rung_at(int i) { return i >= 0 ? rung_walk(i, NULL) : NULL; }
 
 void snell__rung_name(const snell__rung *g, char *buf, size_t n)
 {
@@ -98,15 +75,15 @@ void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resol
     out->cls = snell__budget_class(an, glass);
     out->floor = 0;
     out->fixed_cost = 1.0f;
-    for (i = 0; i < RUNG_COUNT; i++) {
-        const snell__rung *g = &g_rungs[i];
+    for (i = 0; i < snell__rung_count(); i++) {
+        const snell__rung *g = snell__rung_at(i);
         const snell__method *m = snell__method_get(g->method);
         char why[SNELL_REASON_SIZE];
         if (!m || g->db[out->cls] <= 0.0f || !usable(user, g->method) || g->scale > snell__glass_scale_max(m)) continue;
         if (m->fit && m->fit(an, glass, why, sizeof why) == SNELL__FIT_FAILS) continue;
         /* Pareto: drop every rung this one beats (cheaper or as cheap, and better or as good). */
         for (j = 0; j < out->n;) {
-            const snell__rung *h = &g_rungs[out->ladder[j]];
+            const snell__rung *h = snell__rung_at(out->ladder[j]);
             if (g->cost[out->cls] <= h->cost[out->cls] && g->db[out->cls] >= h->db[out->cls]) {
                 memmove(&out->ladder[j], &out->ladder[j + 1], sizeof(int) * (size_t)(out->n - j - 1));
                 out->n--;
@@ -114,19 +91,19 @@ void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resol
                 j++;
         }
         for (j = 0; j < out->n; j++) {
-            const snell__rung *h = &g_rungs[out->ladder[j]];
+            const snell__rung *h = snell__rung_at(out->ladder[j]);
             if (h->cost[out->cls] <= g->cost[out->cls] && h->db[out->cls] >= g->db[out->cls]) break; /* beaten */
         }
         if (j < out->n) continue;
         /* insert in cost order (the Pareto front is then in PSNR order too) */
-        for (j = out->n; j > 0 && g_rungs[out->ladder[j - 1]].cost[out->cls] > g->cost[out->cls]; j--) out->ladder[j] = out->ladder[j - 1];
+        for (j = out->n; j > 0 && snell__rung_at(out->ladder[j - 1])->cost[out->cls] > g->cost[out->cls]; j--) out->ladder[j] = out->ladder[j - 1];
         out->ladder[j] = i;
         out->n++;
     }
     if (quality_floor_db > 0.0f) {
         out->floor = out->n > 0 ? out->n - 1 : 0; /* none reaches it: the best there is */
         for (j = 0; j < out->n; j++)
-            if (g_rungs[out->ladder[j]].db[out->cls] >= quality_floor_db) {
+            if (snell__rung_at(out->ladder[j])->db[out->cls] >= quality_floor_db) {
                 out->floor = j;
                 break;
             }
@@ -145,10 +122,10 @@ void snell__budget_reset(snell__budget *b)
 
 static double rung_cost(const snell__budget_object *o, int k)
 {
-    return o->n == 0 ? o->fixed_cost : g_rungs[o->ladder[k]].cost[o->cls];
+    return o->n == 0 ? o->fixed_cost : snell__rung_at(o->ladder[k])->cost[o->cls];
 }
 
-static double rung_db(const snell__budget_object *o, int k) { return g_rungs[o->ladder[k]].db[o->cls]; }
+static double rung_db(const snell__budget_object *o, int k) { return snell__rung_at(o->ladder[k])->db[o->cls]; }
 
 /* A plan in the table's units (what bars compare; device independent). */
 static double plan_units(const snell__budget_object *obj, int n, const int plan[])
@@ -171,7 +148,7 @@ static double rung_k(const snell__budget *b, int r)
 static double object_ms(const snell__budget *b, const snell__budget_object *o, int k)
 {
     if (!o->n) return o->area * o->fixed_cost * b->ms_per_unit;
-    return o->area * g_rungs[o->ladder[k]].cost[o->cls] * rung_k(b, o->ladder[k]);
+    return o->area * snell__rung_at(o->ladder[k])->cost[o->cls] * rung_k(b, o->ladder[k]);
 }
 
 /* A plan's predicted ms on this device. */
@@ -214,7 +191,7 @@ static double learned_mean(const snell__budget *b)
 {
     double sum = 0.0;
     int r, m = 0;
-    for (r = 0; r < RUNG_COUNT; r++)
+    for (r = 0; r < snell__rung_count(); r++)
         if (b->rung_ms[r] > 0.0) sum += b->rung_ms[r], m++;
     return m ? sum / m : 0.0;
 }
@@ -252,7 +229,7 @@ void snell__budget_observe(snell__budget *b, double ms)
                     fresh[r] = 1;
                     fresh_part += part[r];
                 }
-            for (r = 0; r < RUNG_COUNT && fresh_part > 0.0; r++)
+            for (r = 0; r < snell__rung_count() && fresh_part > 0.0; r++)
                 if (fresh[r]) {
                     b->rung_ms[r] = rung_k(b, r) * clampd((fresh_part + d) / fresh_part, 0.25, 4.0);
                     learned = 1;
@@ -262,7 +239,7 @@ void snell__budget_observe(snell__budget *b, double ms)
             /* The same plan again: the error goes to the base and each rung by its share of the prediction. */
             double rho = ms / pred;
             b->base_ms *= pow(rho, LEARN_RUNG * b->base_ms / pred);
-            for (r = 0; r < RUNG_COUNT; r++)
+            for (r = 0; r < snell__rung_count(); r++)
                 if (part[r] > 0.0) b->rung_ms[r] = rung_k(b, r) * pow(rho, LEARN_RUNG * part[r] / pred);
         }
         /* the mean that stands in for rungs not drawn yet */
@@ -472,7 +449,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
 int snell__budget_calibrate(snell__budget *b, const snell__budget_object *obj, int n,
                             double (*measure)(void *user, const int *plan), void *user)
 {
-    double base, m0, ms, floor_units = 0.0, k_floor, num[RUNG_COUNT] = {0}, den[RUNG_COUNT] = {0};
+    double base, m0, ms, floor_units = 0.0, k_floor, num[SNELL__BUDGET_MAX_RUNGS] = {0}, den[SNELL__BUDGET_MAX_RUNGS] = {0};
     int plan[SNELL_MAX_GLASS], i, k, r, frames = 2;
     unsigned char built[SNELL__BUDGET_MAX_RUNGS];
     memcpy(built, b->drawn, sizeof built); /* what was drawn before stays built */
@@ -506,7 +483,7 @@ int snell__budget_calibrate(snell__budget *b, const snell__budget_object *obj, i
             num[r] += ms - m0 + u_floor * k_floor;
             den[r] += u;
         }
-    for (r = 0; r < RUNG_COUNT; r++)
+    for (r = 0; r < snell__rung_count(); r++)
         if (den[r] > 1e-9) {
             /* the table's order of costs is kept within a factor 4 of the floor's ms per unit */
             b->rung_ms[r] = clampd(num[r] / den[r], 0.25 * k_floor, 4.0 * k_floor);
