@@ -115,7 +115,7 @@ static void render(snell_ctx *ctx, snell_frame_desc *fd, snell_glass *g, snell_m
     CHECK_OK(snell_renderer_create(ctx, &rd, &r));
     if (!r) return;
     g->material.method = m;
-    g->material.layered.binary_steps = g_iterations;
+    g->material.layered.binary_steps = g->material.layered.convex_steps = g_iterations; /* convex meshes */
     CHECK_OK_CTX(ctx, snell_render(r, fd, stats));
     CHECK_OK(snell_renderer_read_exit_dirs(r, dirs));
     snell_renderer_destroy(r);
@@ -233,7 +233,7 @@ static void test_inner_fresnel(snell_ctx *ctx, snell_env *env)
         snell_image_error e;
         g.material.method = SNELL_METHOD_LAYERED;
         g.material.layered.inner_fresnel = k == 1 ? SNELL_INNER_FRESNEL_OFF : SNELL_INNER_FRESNEL_AUTO;
-        g.material.layered.binary_steps = k < 2 ? 0 : 4 - k; /* 2 and 1: the inner branch's exit in 1 step */
+        g.material.layered.convex_steps = k < 2 ? 0 : 4 - k; /* 2 and 1: the inner branch's exit in 1 step */
         CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
         CHECK_OK(snell_renderer_read_rgba(r, px));
         CHECK_OK(snell_metrics_image_error(px, ref, W, H, hit, &e));

@@ -618,6 +618,23 @@ typedef enum snell_exact_auto {
                                    * cheaper method represents AUTO still picks that one */
 } snell_exact_auto;
 
+/* How exact's BVH nodes store their bounds. */
+typedef enum snell_exact_nodes {
+    SNELL_EXACT_NODES_DEFAULT = 0,  /* F32 */
+    SNELL_EXACT_NODES_F32,          /* RGBA32F, two texels a node */
+    SNELL_EXACT_NODES_Q16           /* 16 bits a coordinate relative to the root box, rounded outward, one
+                                     * RGBA32UI texel a node (bench/BENCHMARKS.md, "Exact") */
+} snell_exact_nodes;
+
+/* How exact walks its tree. */
+typedef enum snell_exact_walk {
+    SNELL_EXACT_WALK_DEFAULT = 0,   /* STACK */
+    SNELL_EXACT_WALK_STACKLESS,     /* escape indices: no per-pixel array, no depth bound (GPUs where the
+                                     * stack spills) */
+    SNELL_EXACT_WALK_STACK          /* near-first with a 32-entry stack a pixel; pixels whose walk would
+                                     * overflow it (a tree deeper than 32) fall back as past the budget */
+} snell_exact_walk;
+
 /* SNELL_METHOD_EXACT's parameters (material.exact); zero = the default. The
  * budget is a compile-time constant of the traversal program (one program per
  * (budget, node format, absorption, shading), built on first use, 8 kept); the
@@ -633,18 +650,9 @@ typedef struct snell_exact_params {
      * shader, instead of running on (weak GPUs, watchdogs); counted in
      * snell_object_stats.exact_fallback_pixels. */
     int node_budget;
-    /* How node bounds are stored: 0 = default (1, f32); 1 = f32: RGBA32F, two
-     * texels a node; 2 = q16: 16 bits a coordinate relative to the root box,
-     * rounded outward, one RGBA32UI texel a node (bench/BENCHMARKS.md, "Exact"). */
-    int node_format;
+    snell_exact_nodes node_format;
     snell_exact_auto auto_pick;
-    /* How the tree is walked: 0 = default (2, stack); 1 = stackless: escape
-     * indices, no per-pixel array, no depth bound; 2 = stack: near-first with
-     * a 32-entry stack a pixel, 0.71-0.81x the stackless frame on llvmpipe; a
-     * tree deeper than the stack (the reference's SAH build of a 70k-triangle
-     * mesh is 20 deep) makes the pixels that would overflow it fall back as
-     * past the budget. Stackless is for GPUs where the stack spills. */
-    int walk;
+    snell_exact_walk walk;
 } snell_exact_params;
 
 #define SNELL_EXACT_MAX_INTERFACES 10
@@ -662,10 +670,10 @@ typedef struct snell_layered_params {
     int face_size;             /* texels a cube face side, 16..1024 (default 128) */
     int linear_steps;          /* linear march steps from a point to the bounding sphere's far side,
                                 * 1..64 (default 24) */
-    int binary_steps;          /* binary refinement steps after a crossing, 1..16 (default 6); on a convex
-                                * mesh that one layer holds, the tangent-plane steps to each exit (half as
-                                * many, at least one, for the inner Fresnel's internal reflection; default
-                                * 2 there) */
+    int binary_steps;          /* binary refinement steps after a crossing, 1..16 (default 6) */
+    int convex_steps;          /* on a convex mesh that one layer holds (no march): the tangent-plane steps
+                                * to each exit, 1..16 (default 2; half as many, at least one, for the inner
+                                * Fresnel's internal reflection) */
     int max_interfaces;        /* surfaces processed per path, 1..10 (default 8: exits, re-entries, TIR) */
     /* Fresnel at the last exit too (1 - F out; the internal reflection F
      * followed one march more): AUTO on convex meshes (as the cubemap's). */
@@ -816,10 +824,10 @@ typedef enum snell_camera_kind {
 typedef struct snell_camera {
     float azimuth;             /* radians, around +Y, 0 = camera on +Z */
     float elevation;           /* radians above the XZ plane */
-    float distance;            /* from target; 0 = 3.5 */
+    float distance;            /* from target; 0 = SNELL_DEFAULT_CAMERA_DISTANCE (3.5) */
     float fov_y;               /* vertical field of view, radians; 0 = 45 degrees */
     float target[3];           /* orbit centre, world space */
-    float z_near, z_far;       /* 0 = derived from distance and the mesh bounds */
+    float z_near, z_far;       /* 0 = derived from the distance (0.01 and 100 times it) */
     snell_camera_kind kind;
     /* SNELL_CAMERA_MATRICES: world to eye and eye to clip, column-major, GL
      * conventions (the eye looks down -Z, clip depth -w..w), as an app passes
@@ -835,6 +843,14 @@ typedef struct snell_camera {
  * plane, and a distance so large that the derived far plane overflows; for
  * SNELL_CAMERA_MATRICES, a matrix that is not finite or not invertible, and
  * (SNELL_E_UNSUPPORTED) a projection neither perspective nor orthographic. */
+
+#define SNELL_DEFAULT_CAMERA_DISTANCE 3.5f
+#define SNELL_DEFAULT_FOV_Y 0.78539816339744831f /* 45 degrees */
+
+/* An orbit camera with every default applied: distance, fov_y, and z_near
+ * and z_far derived from the distance (0.01 and 100 times it); a
+ * SNELL_CAMERA_MATRICES camera as given. in NULL: the default camera. */
+void snell_camera_defaults(const snell_camera *in, snell_camera *out);
 
 /* Eye position and view/projection matrices (column-major) of a camera:
  * the orbit's, or the matrices given (then aspect is unused). */
@@ -971,6 +987,18 @@ typedef struct snell_receiver {
     int map_size;                   /* texels per side of its light map; 0 = 256, 16..2048 */
 } snell_receiver;
 
+#define SNELL_DEFAULT_PHOTONS 256
+#define SNELL_DEFAULT_SPOT_ANGLE 0.5f
+#define SNELL_DEFAULT_RECEIVER_MAP 256
+#define SNELL_DEFAULT_RECEIVER_ALBEDO 0.8f
+
+/* The light and the receiver with every default applied (the values the
+ * renderer and the reference use): a light's colour (all zero = 1), its
+ * spot angle and photons; a receiver's albedo (all zero = 0.8 grey) and
+ * light-map size. Nothing is validated (snell_render does that). */
+void snell_light_defaults(const snell_light *in, snell_light *out);
+void snell_receiver_defaults(const snell_receiver *in, snell_receiver *out);
+
 #define SNELL_MAX_GLASS 32
 #define SNELL_MAX_OPAQUE 64
 
@@ -995,6 +1023,16 @@ typedef enum snell_depth_mode {
                                      * whose depth buffer can be blitted) */
 } snell_depth_mode;
 
+/* What the frame draws where nothing else is. */
+typedef enum snell_background {
+    SNELL_BACKGROUND_NONE = -1,     /* leave the target's pixels as they are (a host's scene, alpha 0) */
+    SNELL_BACKGROUND_DRAW = 0       /* default: the environment */
+} snell_background;
+
+/* scene_layers' modes; 2..SNELL_MAX_SCENE_LAYERS is a cap on the layers. */
+#define SNELL_SCENE_LAYERS_OFF (-1)
+#define SNELL_SCENE_LAYERS_AUTO 0
+
 typedef struct snell_frame_desc {
     const snell_env *env;           /* required */
     snell_camera camera;
@@ -1002,7 +1040,7 @@ typedef struct snell_frame_desc {
     int glass_count;
     const snell_opaque *opaque;     /* opaque_count entries (0..SNELL_MAX_OPAQUE) */
     int opaque_count;
-    int draw_background;            /* 0 = default (draw skybox); -1 = leave background untouched */
+    snell_background draw_background; /* SNELL_BACKGROUND_DRAW (0) or SNELL_BACKGROUND_NONE (-1) */
     int dynamic_env_size;           /* dynamic environment face size, 16..2048; 0 = half of env's, at most 256 */
     int scene_layers;               /* glass seen through glass, and opaque objects seen through glass where
                                      * they are: 0 = auto (on when the frame draws two or more glass
@@ -1246,6 +1284,17 @@ typedef struct snell_budget_rung {
 } snell_budget_rung;
 int snell_budget_rung_count(void);
 const snell_budget_rung *snell_budget_rung_at(int i); /* NULL outside 0..count-1 */
+
+#define SNELL_DEFAULT_RENDER_SIZE 512
+
+/* The descriptions with every default applied: what snell_renderer_create
+ * and snell_render use (zero fields to their defaults, sokol-style; the
+ * camera, light and receiver through their own _defaults). Nothing is
+ * validated here. A frame's scene_layers 0 (auto) becomes its cap,
+ * SNELL_DEFAULT_SCENE_LAYERS (on only where the frame needs the layers,
+ * as for any cap); dynamic_env_size needs the frame's env. */
+void snell_renderer_defaults(const snell_renderer_desc *in, snell_renderer_desc *out);
+void snell_frame_defaults(const snell_frame_desc *in, snell_frame_desc *out);
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out);
 void snell_renderer_destroy(snell_renderer *r);

@@ -7,15 +7,29 @@
 #include <math.h>
 #include <string.h>
 
+void snell_camera_defaults(const snell_camera *in, snell_camera *out)
+{
+    snell_camera c;
+    memset(&c, 0, sizeof c);
+    if (in) c = *in;
+    if (c.kind == SNELL_CAMERA_ORBIT) {
+        if (!(c.distance > 0.0f)) c.distance = SNELL_DEFAULT_CAMERA_DISTANCE;
+        if (!(c.fov_y > 0.0f)) c.fov_y = SNELL_DEFAULT_FOV_Y;
+        /* Near and far span 1e4 around the target, enough for 24-bit depth. */
+        if (!(c.z_near > 0.0f)) c.z_near = c.distance * 0.01f;
+        if (!(c.z_far > c.z_near)) c.z_far = c.distance * 100.0f;
+    }
+    *out = c;
+}
+
 void snell_camera_matrices(const snell_camera *cam, float aspect, float eye_out[3], float view_out[16],
                            float proj_out[16])
 {
     snell_camera c;
     vec3 eye, target, up = {0.0f, 1.0f, 0.0f};
     mat4 view, proj;
-    float ce, dist, fov, zn, zf;
-    memset(&c, 0, sizeof c);
-    if (cam) c = *cam;
+    float ce, dist;
+    snell_camera_defaults(cam, &c);
     if (c.kind == SNELL_CAMERA_MATRICES) {
         /* The eye is where the view matrix puts the origin of eye space. */
         mat4 inv;
@@ -26,8 +40,7 @@ void snell_camera_matrices(const snell_camera *cam, float aspect, float eye_out[
         if (proj_out) memcpy(proj_out, c.projection, sizeof(mat4));
         return;
     }
-    dist = c.distance > 0.0f ? c.distance : 3.5f;
-    fov = c.fov_y > 0.0f ? c.fov_y : (float)(45.0 * SNELL_PI / 180.0);
+    dist = c.distance;
     if (!(aspect > 0.0f)) aspect = 1.0f;
     ce = cosf(c.elevation);
     target[0] = c.target[0]; target[1] = c.target[1]; target[2] = c.target[2];
@@ -40,11 +53,8 @@ void snell_camera_matrices(const snell_camera *cam, float aspect, float eye_out[
         up[1] = 0.0f;
         up[2] = -cosf(c.azimuth) * (c.elevation > 0 ? 1.0f : -1.0f);
     }
-    /* Near/far default to a 1e4 range around the target, enough for 24-bit depth. */
-    zn = c.z_near > 0.0f ? c.z_near : dist * 0.01f;
-    zf = c.z_far > zn ? c.z_far : dist * 100.0f;
     glm_lookat(eye, target, up, view);
-    glm_perspective(fov, aspect, zn, zf, proj);
+    glm_perspective(c.fov_y, aspect, c.z_near, c.z_far, proj);
     if (eye_out) memcpy(eye_out, eye, sizeof(vec3));
     if (view_out) memcpy(view_out, view, sizeof(mat4));
     if (proj_out) memcpy(proj_out, proj, sizeof(mat4));
@@ -128,10 +138,14 @@ snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *ca
                                "%s: camera.distance %g is too small (at least %g: a millionth of the scene's scale)",
                                who, cam->distance, 1e-6f * scale);
     }
-    /* The planes as snell_camera_matrices derives them. */
-    dist = cam->distance > 0.0f ? cam->distance : 3.5f;
-    zn = cam->z_near > 0.0f ? cam->z_near : dist * 0.01f;
-    zf = cam->z_far > 0.0f ? cam->z_far : dist * 100.0f;
+    /* The planes as given, or as snell_camera_defaults derives them. */
+    {
+        snell_camera c;
+        snell_camera_defaults(cam, &c);
+        dist = c.distance;
+        zn = c.z_near;
+        zf = cam->z_far > 0.0f ? cam->z_far : c.z_far;
+    }
     if (!isfinite(zf))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.distance %g is too large (the derived far plane "
                            "overflows; set z_far)", who, cam->distance);

@@ -35,16 +35,11 @@
 /* Node indices are stored as float values in the RGBA32F layout: exact below 2^24. */
 #define F32_INDEX_LIMIT (1u << 24)
 
-/* How node bounds are stored (the `nodes` parameter). */
-enum { NODES_DEFAULT = 0, NODES_F32, NODES_Q16 };
-/* How the tree is walked (the `walk` parameter): near-first with a short
- * stack takes 0.75-0.79x the frame of the stackless walk on the bunny at
- * 256x256 and 512x512, 0.71-0.81x on a 1024-triangle torus (llvmpipe,
- * bench/BENCHMARKS.md "Exact"):
- * it visits the nearer child first, so the closest hit shortens the ray
- * sooner. The stackless walk needs no per-pixel array and has no depth
- * bound (drei's 60-entry stack is what mobile GPUs choked on). */
-enum { WALK_DEFAULT = 0, WALK_STACKLESS, WALK_STACK };
+/* The walk (snell_exact_walk) defaults to the short stack: it visits the
+ * nearer child first, so the closest hit shortens the ray sooner
+ * (bench/BENCHMARKS.md "Exact"). The stackless walk needs no per-pixel
+ * array and has no depth bound (drei's 60-entry stack is what mobile GPUs
+ * choked on). */
 
 /* llvmpipe: per-pixel traversal costs so much more than the G-buffer pass
  * that full 4x4 blocks win at every density, as for the cubemap: at 256x256
@@ -65,12 +60,12 @@ typedef struct flat_node {
 typedef struct exact_prepared {
     snell_alloc alloc;         /* release() has no context */
     unsigned texture;          /* RGBA32F (f32 nodes) or RGBA32UI (q16 nodes), TEX_WIDTH wide */
-    int format;                /* NODES_F32 or NODES_Q16 */
+    int format;                /* SNELL_EXACT_NODES_F32 or SNELL_EXACT_NODES_Q16 */
     int node_count;
     int tri_base;              /* texel of the first triangle entry */
     int rows;                  /* of the texture */
     int builds, refits;        /* SAH builds and refits this resource has had */
-    float qlo[3], qstep[3];    /* NODES_Q16: bound = qlo + q * qstep (object space) */
+    float qlo[3], qstep[3];    /* SNELL_EXACT_NODES_Q16: bound = qlo + q * qstep (object space) */
     uint32_t triangle_count;
     flat_node *nodes;          /* node_count, depth-first */
     double *boxes;             /* 6 per node: lo, hi (object space) */
@@ -280,7 +275,7 @@ static void pack_texels(exact_prepared *p, const snell_mesh *mesh)
     for (i = 0; i < (uint32_t)p->node_count; i++) {
         const flat_node *n = &p->nodes[i];
         const double *b = p->boxes + 6 * (size_t)i;
-        if (p->format == NODES_F32) {
+        if (p->format == SNELL_EXACT_NODES_F32) {
             float *t = tf + 8 * (size_t)i;
             for (k = 0; k < 3; k++) {
                 t[k] = (float)b[k] - pad;
@@ -311,7 +306,7 @@ static void pack_texels(exact_prepared *p, const snell_mesh *mesh)
                 v[4 * j + k] = mesh->positions[3 * (size_t)tri[j] + k];
                 v[12 + 4 * j + k] = mesh->normals[3 * (size_t)tri[j] + k];
             }
-        memcpy(p->format == NODES_F32 ? (void *)(tf + 4 * ((size_t)p->tri_base + 6 * (size_t)i))
+        memcpy(p->format == SNELL_EXACT_NODES_F32 ? (void *)(tf + 4 * ((size_t)p->tri_base + 6 * (size_t)i))
                                       : (void *)(tu + 4 * ((size_t)p->tri_base + 6 * (size_t)i)),
                v, sizeof v);
     }
@@ -346,10 +341,10 @@ static snell_status build(snell_ctx *ctx, const snell_mesh *mesh, int format, ex
                              bvh->nodes[i].count, LEAF_MAX);
             goto out;
         }
-    texels_n = (size_t)bvh->node_count * (format == NODES_F32 ? 2u : 1u) + 6 * (size_t)bvh->triangle_count;
+    texels_n = (size_t)bvh->node_count * (format == SNELL_EXACT_NODES_F32 ? 2u : 1u) + 6 * (size_t)bvh->triangle_count;
     rows = (texels_n + TEX_WIDTH - 1) / TEX_WIDTH;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    if (rows > (size_t)max_size || (format == NODES_F32 && bvh->node_count >= F32_INDEX_LIMIT) ||
+    if (rows > (size_t)max_size || (format == SNELL_EXACT_NODES_F32 && bvh->node_count >= F32_INDEX_LIMIT) ||
         bvh->triangle_count >= (1u << 29)) {
         st = snell__fail(ctx, SNELL_E_LIMIT, "exact: %u triangles need a %dx%zu BVH texture (at most %d rows here)",
                          bvh->triangle_count, TEX_WIDTH, rows, (int)max_size);
@@ -359,7 +354,7 @@ static snell_status build(snell_ctx *ctx, const snell_mesh *mesh, int format, ex
     p->format = format;
     p->node_count = (int)bvh->node_count;
     p->triangle_count = bvh->triangle_count;
-    p->tri_base = (int)(bvh->node_count * (format == NODES_F32 ? 2u : 1u));
+    p->tri_base = (int)(bvh->node_count * (format == SNELL_EXACT_NODES_F32 ? 2u : 1u));
     p->rows = (int)rows;
     p->nodes = (flat_node *)snell__calloc(&p->alloc, bvh->node_count, sizeof *p->nodes);
     p->boxes = (double *)snell__calloc(&p->alloc, 6 * (size_t)bvh->node_count, sizeof(double));
@@ -409,15 +404,15 @@ static snell_status prepare_mesh(snell_ctx *ctx, exact_prepared *p, const snell_
         glBindTexture(GL_TEXTURE_2D, p->texture);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        if (p->format == NODES_F32)
+        if (p->format == SNELL_EXACT_NODES_F32)
             glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, TEX_WIDTH, p->rows, 0, GL_RGBA, GL_FLOAT, p->texels);
         else
             glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, TEX_WIDTH, p->rows, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
                          p->texels);
     } else {
         glBindTexture(GL_TEXTURE_2D, p->texture);
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, TEX_WIDTH, p->rows, p->format == NODES_F32 ? GL_RGBA : GL_RGBA_INTEGER,
-                        p->format == NODES_F32 ? GL_FLOAT : GL_UNSIGNED_INT, p->texels);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, TEX_WIDTH, p->rows, p->format == SNELL_EXACT_NODES_F32 ? GL_RGBA : GL_RGBA_INTEGER,
+                        p->format == SNELL_EXACT_NODES_F32 ? GL_FLOAT : GL_UNSIGNED_INT, p->texels);
     }
     snell__pixel_unpack_end(&unpack);
     if (glGetError() != GL_NO_ERROR)
@@ -437,12 +432,12 @@ void snell__exact_bvh_of(const void *prepared, const snell_glass_material *m, sn
 {
     const exact_prepared *p = (const exact_prepared *)prepared;
     out->texture = p->texture;
-    out->q16 = p->format == NODES_Q16;
+    out->q16 = p->format == SNELL_EXACT_NODES_Q16;
     out->node_count = p->node_count;
     out->tri_base = p->tri_base;
     out->qlo = p->qlo;
     out->qstep = p->qstep;
-    out->stack = m->exact.walk == WALK_STACK;
+    out->stack = m->exact.walk == SNELL_EXACT_WALK_STACK;
 }
 
 static void exact_release(void *prepared)
@@ -461,9 +456,9 @@ snell_status snell__exact_bvh_make(snell_ctx *ctx, const snell_mesh *mesh, void 
     snell_status st;
     if (!*prepared && !(*prepared = snell__calloc(&ctx->alloc, 1, sizeof(exact_prepared))))
         return snell__fail(ctx, SNELL_E_NOMEM, "exact: out of memory");
-    if ((st = prepare_mesh(ctx, (exact_prepared *)*prepared, mesh, NODES_F32)) != SNELL_OK) return st;
+    if ((st = prepare_mesh(ctx, (exact_prepared *)*prepared, mesh, SNELL_EXACT_NODES_F32)) != SNELL_OK) return st;
     memset(&stack, 0, sizeof stack);
-    stack.exact.walk = WALK_STACK;
+    stack.exact.walk = SNELL_EXACT_WALK_STACK;
     snell__exact_bvh_of(*prepared, &stack, out);
     return SNELL_OK;
 }
@@ -513,8 +508,8 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
     /* Dispersion: always three traces (SNELL_DISPERSION 1), whatever the
      * material's model: exact is the accuracy ceiling, and one path would
      * give red and blue estimated exits where the traversal finds the true ones. */
-    snell_status st = get_prog(ctx, s, e->node_budget, ep->format == NODES_Q16, o->glass->absorbs,
-                                snell__glass_variant(o), e->walk == WALK_STACK, o->glass->disperses ? 1 : 0, &p);
+    snell_status st = get_prog(ctx, s, e->node_budget, ep->format == SNELL_EXACT_NODES_Q16, o->glass->absorbs,
+                                snell__glass_variant(o), e->walk == SNELL_EXACT_WALK_STACK, o->glass->disperses ? 1 : 0, &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->slot.g, v, o);
     snell__glass_program_bind(&p->slot.g, "u_bvh", GL_TEXTURE_2D, ep->texture, 0);
@@ -565,7 +560,7 @@ static const snell_param_info g_params[] = {
     {.name = "nodes",
      .offset = offsetof(snell_glass_material, exact.node_format),
      .help = "node bounds: f32 (RGBA32F, 2 texels) or q16 (16-bit quantised, rounded outward, 1 RGBA32UI texel)",
-     .min = 0, .max = 2, .def = NODES_F32, .value_names = g_nodes_names},
+     .min = 0, .max = 2, .def = SNELL_EXACT_NODES_F32, .value_names = g_nodes_names},
     {.name = "auto",
      .offset = offsetof(snell_glass_material, exact.auto_pick),
      .help = "whether AUTO may pick it (where no cheaper method is adequate): never or allow",
@@ -573,7 +568,7 @@ static const snell_param_info g_params[] = {
     {.name = "walk",
      .offset = offsetof(snell_glass_material, exact.walk),
      .help = "traversal: stack (near-first, a 32-entry stack a pixel; deeper trees fall back) or stackless (escape indices: no stack, no depth bound, for GPUs where the stack spills)",
-     .min = 0, .max = 2, .def = WALK_STACK, .value_names = g_walk_names},
+     .min = 0, .max = 2, .def = SNELL_EXACT_WALK_STACK, .value_names = g_walk_names},
 };
 
 

@@ -31,7 +31,7 @@
 #define DEFAULT_FACE 128
 #define DEFAULT_LINEAR 24
 #define DEFAULT_BINARY 6
-/* iterations 0 (the default) on a convex mesh that one layer holds: its
+/* convex_steps' default: on a convex mesh that one layer holds, the
  * tangent-plane steps to each exit. Side by side (snell-bench, 512x512,
  * --aa 4, load 0.7-0.8), glass PSNR against FULL and x single: sphere 1, 2,
  * 3, 6 steps 40.43 / 40.89 / 40.95 / 40.95 dB at 1.97 / 2.19 / 2.59 / 3.39x;
@@ -513,7 +513,7 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
      * march is nearly exact and the missing internal reflection is the
      * largest error left). */
     const int one_layer_convex = convex && lpr->used <= 1; /* layered.frag's convex program */
-    const int steps = lp->binary_steps > 0 ? lp->binary_steps : one_layer_convex ? DEFAULT_CONVEX_STEPS : DEFAULT_BINARY;
+    const int steps = one_layer_convex ? lp->convex_steps : lp->binary_steps;
     const int key[8] = {lpr->used > 0 ? lpr->used : 1, lp->linear_steps, steps, o->glass->absorbs,
                         !convex, snell__glass_variant(o), snell__dispersion_variant(o->glass),
                         lp->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
@@ -563,8 +563,13 @@ static const snell_param_info g_params[] = {
      .min = 1, .max = 64, .def = DEFAULT_LINEAR},
     {.name = "iterations",
      .offset = offsetof(snell_glass_material, layered.binary_steps),
-     .help = "binary steps at each crossing found (on a convex mesh that one layer holds: tangent-plane steps to each exit, half as many for the inner Fresnel's reflection); 0: 6, on a convex mesh 2",
-     .min = 0, .max = 16, .def = 0},
+     .help = "binary steps at each crossing the march finds",
+     .min = 1, .max = 16, .def = DEFAULT_BINARY},
+    {.name = "convex",
+     .offset = offsetof(snell_glass_material, layered.convex_steps),
+     .help = "on a convex mesh that one layer holds: tangent-plane steps to each exit (half as many for the "
+             "inner Fresnel's reflection)",
+     .min = 1, .max = 16, .def = DEFAULT_CONVEX_STEPS},
     {.name = "interfaces",
      .offset = offsetof(snell_glass_material, layered.max_interfaces),
      .help = "surfaces processed per path (1 = single surface; exits, re-entries, TIR bounces)",

@@ -194,6 +194,8 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
                                        int photons, int samples, float *rgb, float *caustic)
 {
     plane_map m;
+    snell_light lt;
+    snell_receiver rr;
     double d[3], u[3], v[3], col[3], pos[3], cos_cone, len;
     int spot = light->type == SNELL_LIGHT_SPOT;
     int size, i, j, k, g, a, b;
@@ -207,15 +209,17 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
     if (photons < 1 || photons > 4096 || samples < 1 || samples > 16)
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: photons %d (1..4096), "
                            "samples %d (1..16)", photons, samples);
+    snell_light_defaults(light, &lt);
+    snell_receiver_defaults(rc, &rr);
+    light = &lt, rc = &rr;
     for (k = 0; k < 3; k++) d[k] = light->direction[k];
     len = sqrt(snell__ref_dot3(d, d));
     if (!(len > 0.0) || !isfinite(len))
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: light.direction zero or not finite");
     for (k = 0; k < 3; k++) d[k] /= len, pos[k] = light->position[k];
-    cos_cone = cos(light->spot_angle > 0.0f ? (double)light->spot_angle : 0.5);
-    for (k = 0; k < 3; k++)
-        col[k] = light->color[0] == 0.0f && light->color[1] == 0.0f && light->color[2] == 0.0f ? 1.0 : light->color[k];
-    size = rc->map_size ? rc->map_size : 256;
+    cos_cone = cos((double)light->spot_angle);
+    for (k = 0; k < 3; k++) col[k] = light->color[k];
+    size = rc->map_size;
     n = (size_t)size * (size_t)size;
     m.cx = rc->center[0], m.cz = rc->center[1], m.h = rc->height, m.ext = rc->extent;
     m.size = size, m.texel = 2.0 * rc->extent / size;
@@ -381,7 +385,7 @@ static void lit_frame(const snell_ref *ref, const snell_receiver *rc, struct ref
     }
     if (L->spot)
         for (i = 0; i < 2; i++) L->lo[i] = fmax(L->lo[i], -12.0), L->hi[i] = fmin(L->hi[i], 12.0);
-    L->size = rc->map_size ? rc->map_size : 256;
+    L->size = rc->map_size ? rc->map_size : SNELL_DEFAULT_RECEIVER_MAP;
     L->size = L->size * 2 > 2048 ? 2048 : L->size * 2;
     L->texel = fmax(L->hi[0] - L->lo[0], L->hi[1] - L->lo[1]) / L->size;
     L->area = (L->hi[0] - L->lo[0]) * (L->hi[1] - L->lo[1]) / ((double)L->size * L->size);
@@ -465,6 +469,7 @@ void snell__ref_lit_free(snell_ref *r)
 snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const snell_receiver *rc, int photons)
 {
     struct ref_lit *L;
+    snell_light lt;
     double len;
     int g, i, j, k;
     size_t n;
@@ -489,12 +494,13 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
     L = (struct ref_lit *)snell__calloc(&ref->alloc, 1, sizeof *L);
     if (!L) return snell__fail(ref->ctx, SNELL_E_NOMEM, "snell_ref_set_light: out of memory");
     ref->lit = L;
+    snell_light_defaults(light, &lt);
     L->spot = light->type == SNELL_LIGHT_SPOT;
     for (k = 0; k < 3; k++) {
         L->d[k] = light->direction[k] / len, L->pos[k] = light->position[k];
-        L->col[k] = light->color[0] == 0.0f && light->color[1] == 0.0f && light->color[2] == 0.0f ? 1.0 : light->color[k];
+        L->col[k] = lt.color[k];
     }
-    L->cos_cone = cos(light->spot_angle > 0.0f ? (double)light->spot_angle : 0.5);
+    L->cos_cone = cos((double)lt.spot_angle);
     lit_frame(ref, rc, L);
     n = (size_t)L->size * (size_t)L->size;
     L->acc = (double *)snell__calloc(&ref->alloc, 3 * n, sizeof(double));

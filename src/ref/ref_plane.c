@@ -37,7 +37,7 @@ snell_status snell_ref_set_receiver(snell_ref *r, const snell_light *light, cons
         return snell__fail(r->ctx, st,
                            "snell_ref_set_receiver: receiver height and center finite, albedo 0..1, "
                            "map_size 0..4096");
-    n = rc->map_size ? rc->map_size : 256;
+    n = rc->map_size ? rc->map_size : SNELL_DEFAULT_RECEIVER_MAP;
     P = (struct ref_plane *)snell__calloc(&r->alloc, 1, sizeof *P + (size_t)n * (size_t)n * 3 * sizeof(float));
     if (!P) return snell__fail(r->ctx, SNELL_E_NOMEM, "snell_ref_set_receiver: out of memory");
     P->size = n;

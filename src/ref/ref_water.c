@@ -579,6 +579,7 @@ snell_status snell_ref_water_floor_render(snell_water *w, const snell_ref *objec
     pthread_t tids[SNELL_REF_MAX_THREADS];
     float *h;
     size_t nodes, texels, i;
+    snell_light lt;
     double len, r;
     int k, t, started = 0;
     snell_status st = SNELL_OK;
@@ -625,6 +626,7 @@ snell_status snell_ref_water_floor_render(snell_water *w, const snell_ref *objec
         if (h[i] < ft->s.hmin) ft->s.hmin = h[i];
         if (h[i] > ft->s.hmax) ft->s.hmax = h[i];
     }
+    snell_light_defaults(light, &lt);
     ft->spot = light->type == SNELL_LIGHT_SPOT;
     ft->photons = photons;
     ft->size = size;
@@ -632,7 +634,7 @@ snell_status snell_ref_water_floor_render(snell_water *w, const snell_ref *objec
     for (k = 0; k < 3; k++) {
         ft->d[k] = light->direction[k] / len;
         ft->pos[k] = light->position[k];
-        ft->col[k] = light->color[0] == 0.0f && light->color[1] == 0.0f && light->color[2] == 0.0f ? 1.0 : light->color[k];
+        ft->col[k] = lt.color[k];
     }
     {
         double a[3] = {0.0, 1.0, 0.0};
@@ -646,7 +648,7 @@ snell_status snell_ref_water_floor_render(snell_water *w, const snell_ref *objec
         ft->v[2] = ft->d[0] * ft->u[1] - ft->d[1] * ft->u[0];
     }
     if (ft->spot) {
-        ft->cos_cone = cos(light->spot_angle > 0.0f ? (double)light->spot_angle : 0.5);
+        ft->cos_cone = cos((double)lt.spot_angle);
         ft->extent = tan(acos(ft->cos_cone));
     } else {
         /* a sphere about the water's top holds every point a ray can meet it at */

@@ -37,9 +37,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#define DEFAULT_PHOTONS 256
 #define SHADOW_BIAS 2e-4f /* depth bias of the shadow look-ups (plane, opaque objects), shadow map units */
-#define DEFAULT_MAP 256
 
 static int finite3(const float v[3]) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
 
@@ -59,7 +57,7 @@ snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd
                 return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.color[%d] %g: finite and >= 0", k, l->color[k]);
         if (l->photons != 0 && (l->photons < 16 || l->photons > 1024))
             return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.photons %d outside 16..1024 (0 = %d)", l->photons,
-                               DEFAULT_PHOTONS);
+                               SNELL_DEFAULT_PHOTONS);
         if (l->type == SNELL_LIGHT_SPOT && !finite3(l->position))
             return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.position must be finite");
         if (l->type == SNELL_LIGHT_SPOT && (!isfinite(l->spot_angle) || l->spot_angle < 0.0f || l->spot_angle > 1.5f))
@@ -78,7 +76,7 @@ snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd
     if ((rc->extent > 0.0f || (l->type != SNELL_LIGHT_NONE && fd->opaque_count > 0)) && rc->map_size != 0 &&
         (rc->map_size < 16 || rc->map_size > 2048))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.map_size %d outside 16..2048 (0 = %d)", rc->map_size,
-                           DEFAULT_MAP);
+                           SNELL_DEFAULT_RECEIVER_MAP);
     return SNELL_OK;
 }
 
@@ -258,14 +256,14 @@ static void resolve_light(const snell_light *l, light_res *o)
 {
     float len = sqrtf(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
                       l->direction[2] * l->direction[2]);
-    int k, white = l->color[0] == 0.0f && l->color[1] == 0.0f && l->color[2] == 0.0f;
+    int k;
     o->spot = l->type == SNELL_LIGHT_SPOT;
     for (k = 0; k < 3; k++) {
         o->d[k] = l->direction[k] / len;
         o->pos[k] = l->position[k];
-        o->col[k] = white ? 1.0f : l->color[k];
+        o->col[k] = l->color[k];
     }
-    o->cos_cone = cosf(l->spot_angle > 0.0f ? l->spot_angle : 0.5f);
+    o->cos_cone = cosf(l->spot_angle);
 }
 
 /* A perspective view from eye towards target (spot lights), frustum
@@ -355,7 +353,7 @@ static void make_frame(const snell_frame_desc *fd, const snell__scene *sc, const
     float back = 1.0f, lo[2] = {1e30f, 1e30f}, hi[2] = {-1e30f, -1e30f}, far_ = 0.0f, b[4];
     mat4 view;
     const float *d = L->d;
-    F->size = rc->map_size ? rc->map_size : DEFAULT_MAP;
+    F->size = rc->map_size;
     F->size = F->size * 2 > 2048 ? 2048 : F->size * 2;
     if (!plane) { /* the opaque receivers' mean centre */
         centre[0] = centre[1] = centre[2] = 0.0f;
@@ -762,7 +760,7 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
                         const light_frame *F, GLuint prog, const snell__exact_bvh *bvh, const chain *ch)
 {
     const snell_receiver *rc = &fd->receiver;
-    int n = fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS, i, k, plane = rc->extent > 0.0f, target;
+    int n = fd->light.photons, i, k, plane = rc->extent > 0.0f, target;
     float r = o->bsphere[3], lo[2] = {-r, -r}, hi[2] = {r, r}, flux[3], flux_recv[3];
     float texel = plane ? 2.0f * rc->extent / (float)c->map_size : 1.0f;
     float cell = 2.0f * r / (float)n, tan_half = 0.0f;
@@ -901,7 +899,7 @@ static snell_status draw_receiver(snell__caustics *c, const snell_frame_desc *fd
 {
     const snell_receiver *rc = &fd->receiver;
     float albedo[3];
-    snell__receiver_albedo(rc, albedo);
+    memcpy(albedo, rc->albedo, sizeof rc->albedo);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -932,7 +930,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
                                  const snell_frame_desc *fd, const snell__scene *sc, snell_frame_stats *s)
 {
     GLint fbo = 0, viewport[4];
-    int size = fd->receiver.map_size ? fd->receiver.map_size : DEFAULT_MAP, i, casters = 0, shot = 0, key_len, by_bvh = 0;
+    int size = fd->receiver.map_size, i, casters = 0, shot = 0, key_len, by_bvh = 0;
     int group[SNELL_MAX_GLASS], gsize[SNELL_MAX_GLASS], chained = 0, chain_shot = 0, groups = 0, alone_over = 0;
     int plane = fd->receiver.extent > 0.0f, opaque = fd->opaque_count > 0;
     char map[112], chains[64] = "";
@@ -975,7 +973,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     c->frame_lin[0] = F.near_, c->frame_lin[1] = F.far_, c->frame_lin[2] = (float)L.spot, c->frame_lin[3] = F.texel;
     st = programs(ctx, c);
     if (st == SNELL_OK && plane) st = map_target(ctx, c, size);
-    if (st == SNELL_OK) st = glass_targets(ctx, c, fd->light.photons ? fd->light.photons : DEFAULT_PHOTONS);
+    if (st == SNELL_OK) st = glass_targets(ctx, c, fd->light.photons);
     if (st == SNELL_OK) st = draw_shadows(ctx, c, fd, sc, &F);
     if (st == SNELL_OK && opaque) st = draw_receivers(ctx, c, fd, &F);
     if (st == SNELL_OK) {
@@ -1116,7 +1114,7 @@ void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_
     snell__textures_publish(&v->textures, "u_plane_map", GL_TEXTURE_2D, c->map_tex, 0);
     v->receiver_plane[0] = rc->height, v->receiver_plane[1] = rc->center[0];
     v->receiver_plane[2] = rc->center[1], v->receiver_plane[3] = rc->extent;
-    snell__receiver_albedo(rc, v->receiver_albedo);
+    memcpy(v->receiver_albedo, rc->albedo, sizeof rc->albedo);
 }
 
 static const char *receiver_defines(unsigned bits)

@@ -73,13 +73,6 @@ snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgb
  * SNELL_E_INVALID_ARG if none. */
 snell_status snell__caustics_read_opaque(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size);
 
-/* The receiver's albedo as the plane is drawn with it (all zero: 0.8 grey). */
-static inline void snell__receiver_albedo(const snell_receiver *rc, float albedo[3])
-{
-    int zero = rc->albedo[0] == 0.0f && rc->albedo[1] == 0.0f && rc->albedo[2] == 0.0f, k;
-    for (k = 0; k < 3; k++) albedo[k] = zero ? 0.8f : rc->albedo[k];
-}
-
 /* The glass kernels' hook SNELL_RECEIVER (common/receiver.glsl,
  * common/opaque_lit.glsl): their exit and reflected rays meet the plane lit
  * by the stage, and the opaque objects they meet through the scene layers

@@ -342,7 +342,7 @@ static snell_status stage_run(snell__frame *f, void *state)
     int peels = 0;
     snell_status st = snell__layers_draw(f->r->ctx, &ls->layers, &f->sc->view, ls->list, ls->count, f->fd->opaque,
                                          f->fd->opaque_count,
-                                         f->fd->scene_layers > 0 ? f->fd->scene_layers : SNELL_DEFAULT_SCENE_LAYERS,
+                                         f->fd->scene_layers,
                                          &peels, &f->s->scene_layers_reused);
     f->sc->view.layers.active = 1;
     f->s->scene_layer_passes = peels;

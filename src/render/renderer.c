@@ -110,10 +110,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     if (!ctx || !out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_renderer_create: ctx and out are required");
     *out = NULL;
     if ((st = snell__ctx_check_current(ctx, "snell_renderer_create")) != SNELL_OK) return st;
-    memset(&d, 0, sizeof d);
-    if (desc) d = *desc;
-    if (!d.width) d.width = 512;
-    if (!d.height) d.height = 512;
+    snell_renderer_defaults(desc, &d);
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
     if (d.width < 1 || d.height < 1 || d.width > MAX_RENDER_SIZE || d.height > MAX_RENDER_SIZE ||
         (d.target == SNELL_TARGET_OFFSCREEN && (d.width > max_rb || d.height > max_rb)))
@@ -341,6 +338,9 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     s = &r->stats;
     memset(s, 0, sizeof *s);
     st = validate_frame(r, fd);
+    /* From here on the frame as resolved: the stages see no zero that means a default. */
+    snell_frame_defaults(fd, &r->frame);
+    fd = &r->frame;
     if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->width, r->height, r->out, &r->scene, s);
     if (st != SNELL_OK) return st;
     r->scene.view.water = fd->water;

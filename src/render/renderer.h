@@ -40,6 +40,7 @@ struct snell_renderer {
     snell__env_dynamic dyn;
     snell_shading shading;
     snell__device_class device;                       /* for the AUTO shading rule, found at creation */
+    snell_frame_desc frame;                           /* this frame's description, resolved (snell_frame_defaults) */
     snell__scene scene;                               /* this frame's resolved scene */
     void *stage_state[SNELL__STAGES_MAX];             /* each stage's slot (frame/stage.h), by table index */
     snell_frame_stats stats;                          /* filled, then copied to the caller */

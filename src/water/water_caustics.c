@@ -168,10 +168,10 @@ static void draw_map(snell_water *w, const snell_light *l, int columns)
 {
     GLuint prog = w->light_prog;
     float d[3], u[3], v[3], col[3], len, texel = w->d.width / (float)w->light_size;
-    int k, white = l->color[0] == 0.0f && l->color[1] == 0.0f && l->color[2] == 0.0f;
+    int k;
     len = sqrtf(l->direction[0] * l->direction[0] + l->direction[1] * l->direction[1] +
                 l->direction[2] * l->direction[2]);
-    for (k = 0; k < 3; k++) d[k] = l->direction[k] / len, col[k] = white ? 1.0f : l->color[k];
+    for (k = 0; k < 3; k++) d[k] = l->direction[k] / len, col[k] = l->color[k];
     across(d, u, v);
     glBindFramebuffer(GL_FRAMEBUFFER, w->light_fbo);
     glViewport(0, 0, w->light_size, w->light_size);
@@ -192,7 +192,7 @@ static void draw_map(snell_water *w, const snell_light *l, int columns)
     glUniform3fv(glGetUniformLocation(prog, "u_beam_u"), 1, u);
     glUniform3fv(glGetUniformLocation(prog, "u_beam_v"), 1, v);
     glUniform3fv(glGetUniformLocation(prog, "u_color"), 1, col);
-    glUniform1f(glGetUniformLocation(prog, "u_cos_cone"), cosf(l->spot_angle > 0.0f ? l->spot_angle : 0.5f));
+    glUniform1f(glGetUniformLocation(prog, "u_cos_cone"), cosf(l->spot_angle));
     glUniform1f(glGetUniformLocation(prog, "u_texel_area"), texel * texel);
     glUniform1i(glGetUniformLocation(prog, "u_columns"), columns);
     glUniform1f(glGetUniformLocation(prog, "u_column_top"), w->column_top);

@@ -1,0 +1,30 @@
+/* lighting.c — the light's and the receiver's defaults, resolved once for
+ * the renderer (render/defaults.c) and the reference tracer alike. */
+#include "core/core.h"
+
+#include <string.h>
+
+void snell_light_defaults(const snell_light *in, snell_light *out)
+{
+    snell_light l;
+    int k;
+    memset(&l, 0, sizeof l);
+    if (in) l = *in;
+    if (l.color[0] == 0.0f && l.color[1] == 0.0f && l.color[2] == 0.0f)
+        for (k = 0; k < 3; k++) l.color[k] = 1.0f;
+    if (l.spot_angle == 0.0f) l.spot_angle = SNELL_DEFAULT_SPOT_ANGLE;
+    if (l.photons == 0) l.photons = SNELL_DEFAULT_PHOTONS;
+    *out = l;
+}
+
+void snell_receiver_defaults(const snell_receiver *in, snell_receiver *out)
+{
+    snell_receiver rc;
+    int k;
+    memset(&rc, 0, sizeof rc);
+    if (in) rc = *in;
+    if (rc.albedo[0] == 0.0f && rc.albedo[1] == 0.0f && rc.albedo[2] == 0.0f)
+        for (k = 0; k < 3; k++) rc.albedo[k] = SNELL_DEFAULT_RECEIVER_ALBEDO;
+    if (rc.map_size == 0) rc.map_size = SNELL_DEFAULT_RECEIVER_MAP;
+    *out = rc;
+}
