@@ -1190,6 +1190,13 @@ typedef struct snell_frame_stats {
     int back_face_guard;            /* pixels of guard band it drew around the target (an object crossing the
                                      * target's edge asked for it: guard_band), 0 if none */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
+    /* The renderer's one cache of kernel programs (every method's, bounded:
+     * the least recently used is dropped when full): programs held, programs
+     * built since the renderer was made (growing every frame: the frame's
+     * variants do not fit), and their size as the driver reports it
+     * (GL_PROGRAM_BINARY_LENGTH; 0 where it reports none). */
+    int programs, programs_built;
+    size_t program_bytes;
     int scene_layer_passes;         /* depth peels of the scene layers drawn (0: the stage did not run) */
     int scene_layers;               /* of those, the layers that hold something */
     int scene_layers_reused;        /* 1: the last frame's layers, nothing they depend on having changed

@@ -82,27 +82,51 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     return SNELL_OK;
 }
 
-snell__program_slot *snell__program_cache_get(void *slots, size_t stride, int count, const int *key, int n,
-                                              unsigned long *clock, int *hit)
+snell__program_slot *snell__program_cache_get(snell__program_cache *c, snell_method method, const int *key, int n,
+                                              int *hit)
 {
-    snell__program_slot *victim = (snell__program_slot *)slots;
+    snell__program_slot *victim = &c->slot[0];
     int i;
-    ++*clock;
-    for (i = 0; i < count; i++) {
-        snell__program_slot *c = (snell__program_slot *)((char *)slots + (size_t)i * stride);
-        if (c->g.prog && !memcmp(c->key, key, (size_t)n * sizeof *key)) {
-            c->last_use = *clock;
+    ++c->clock;
+    for (i = 0; i < SNELL__PROGRAM_CACHE; i++) {
+        snell__program_slot *s = &c->slot[i];
+        if (s->g.prog && s->method == (int)method && !memcmp(s->key, key, (size_t)n * sizeof *key)) {
+            s->last_use = c->clock;
             *hit = 1;
-            return c;
+            return s;
         }
-        if (!c->g.prog || (victim->g.prog && c->last_use < victim->last_use)) victim = c;
+        if (!s->g.prog || (victim->g.prog && s->last_use < victim->last_use)) victim = s;
     }
     snell__glass_program_destroy(&victim->g);
     memset(victim->key, 0, sizeof victim->key);
     memcpy(victim->key, key, (size_t)n * sizeof *key);
-    victim->last_use = *clock;
+    memset(victim->loc, -1, sizeof victim->loc);
+    victim->method = (int)method;
+    victim->last_use = c->clock;
+    c->built++;
     *hit = 0;
     return victim;
+}
+
+void snell__program_cache_destroy(snell__program_cache *c)
+{
+    int i;
+    for (i = 0; i < SNELL__PROGRAM_CACHE; i++) snell__glass_program_destroy(&c->slot[i].g);
+}
+
+int snell__program_cache_count(const snell__program_cache *c, size_t *binary_bytes)
+{
+    int i, n = 0;
+    size_t bytes = 0;
+    for (i = 0; i < SNELL__PROGRAM_CACHE; i++) {
+        GLint len = 0;
+        if (!c->slot[i].g.prog) continue;
+        n++;
+        glGetProgramiv(c->slot[i].g.prog, GL_PROGRAM_BINARY_LENGTH, &len);
+        bytes += len > 0 ? (size_t)len : 0u;
+    }
+    if (binary_bytes) *binary_bytes = bytes;
+    return n;
 }
 
 int snell__dispersion_variant(const snell_glass_resolved *g)

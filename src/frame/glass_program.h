@@ -43,22 +43,37 @@ void snell__glass_program_bind(const snell__glass_program *g, const char *name, 
 #define SNELL__GLASS_VARIANTS 128
 int snell__glass_variant(const snell__object *o);
 
-/* One slot of a kernel's small cache of programs, keyed by their
- * compile-time constants (cubemap.c, oliveira.c, peel.c keep 8): the first
- * member of the kernel's own slot struct, which adds its uniform locations. */
+/* The renderer's one bounded cache of kernel programs, every method's
+ * (each method's state keeps the pointer create() was given): a program is
+ * keyed by its method and its compile-time constants (the variant among
+ * them); when the cache is full the least recently used one is destroyed. */
 #define SNELL__PROGRAM_KEY_INTS 10
+#define SNELL__PROGRAM_LOCS 12      /* a method's own uniform locations per program */
+#define SNELL__PROGRAM_CACHE 48
 typedef struct snell__program_slot {
-    snell__glass_program g;    /* g.prog == 0: empty */
+    snell__glass_program g;         /* g.prog == 0: empty */
+    int method;                     /* snell_method that built it */
     int key[SNELL__PROGRAM_KEY_INTS];
+    int loc[SNELL__PROGRAM_LOCS];   /* the method's uniforms, found once (its own struct of ints overlays them) */
     unsigned long last_use;
 } snell__program_slot;
 
-/* The slot (in slots[0..count-1], stride bytes apart) whose program was built
- * for key (n ints, n <= SNELL__PROGRAM_KEY_INTS): *hit = 1. Else *hit = 0 and
- * the empty or least recently used slot, its program destroyed and its key
- * set: the caller builds into it (a failed build leaves it empty). */
-snell__program_slot *snell__program_cache_get(void *slots, size_t stride, int count, const int *key, int n,
-                                              unsigned long *clock, int *hit);
+struct snell__program_cache {
+    snell__program_slot slot[SNELL__PROGRAM_CACHE];
+    unsigned long clock;
+    int built;                      /* programs built over its life */
+};
+
+/* The slot whose program method built for key (n ints, n <=
+ * SNELL__PROGRAM_KEY_INTS): *hit = 1. Else *hit = 0 and the empty or least
+ * recently used slot, its program destroyed and its key set: the caller
+ * builds into it (a failed build leaves it empty). */
+snell__program_slot *snell__program_cache_get(snell__program_cache *c, snell_method method, const int *key, int n,
+                                              int *hit);
+void snell__program_cache_destroy(snell__program_cache *c);
+/* Programs it holds; *binary_bytes: their size as the driver reports it
+ * (GL_PROGRAM_BINARY_LENGTH, 0 where it reports none). */
+int snell__program_cache_count(const snell__program_cache *c, size_t *binary_bytes);
 
 /* The kernel fs_path with the output kind's defines and extra_defines (may be
  * NULL), for a variant (snell__glass_variant): forward (object.vert) or for

@@ -8,6 +8,8 @@
 #define SNELL_METHOD_H
 
 #include "frame/frame.h"
+typedef struct snell__program_cache snell__program_cache; /* frame/glass_program.h */
+
 /* How well a method serves an object. */
 typedef enum snell__fit {
     SNELL__FIT_FAILS = 0,           /* preconditions fail: wrong images (explicit use warns) */
@@ -22,8 +24,9 @@ typedef struct snell__method {
      * Writes why into why (a short clause, no method name). */
     snell__fit (*fit)(const snell_mesh_analysis *analysis, const snell_glass_resolved *glass, char *why,
                       size_t why_size);
-    /* GL state, made on the first frame that uses the method. */
-    snell_status (*create)(snell_ctx *ctx, snell__output_kind out, void **state);
+    /* GL state, made on the first frame that uses the method; its kernel
+     * programs live in the renderer's cache `programs`, which outlives it. */
+    snell_status (*create)(snell_ctx *ctx, snell__output_kind out, snell__program_cache *programs, void **state);
     void (*destroy)(snell_ctx *ctx, void *state);
     /* Prepared resources per (mesh version, key): prepared_size bytes,
      * zeroed on creation; key() fills the settings they depend on; prepare()

@@ -22,7 +22,6 @@
  * cost; BENCHMARKS.md). DEFAULT_FRESNEL 1 = exact. */
 #define DEFAULT_FRESNEL 0
 
-#define PROG_CACHE 8
 
 /* The AUTO threshold on hidden_fraction (snell_mesh_analyze): the share of
  * surface the cubemap cannot represent. Measured mean exit-direction errors
@@ -47,16 +46,18 @@ typedef struct cube_prepared {
     float inner_radius;        /* object units; 0 when the centre may be outside */
 } cube_prepared;
 
-typedef struct cube_prog {
-    snell__program_slot slot;  /* key: prog_key's fields in order */
+/* A program's own uniforms (over its cache slot's loc); its key: key: prog_key's fields in order */
+typedef struct cube_locs {
     int inv_model, centre, radius, inner_radius, max_interfaces, texel_angle;
-} cube_prog;
+} cube_locs;
+#define LOCS(p) ((const cube_locs *)(const void *)(p)->loc)
+#define LOCS_W(p) ((cube_locs *)(void *)(p)->loc)
+typedef char cube_locs_fit[sizeof(cube_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
 
 typedef struct cubemap_state {
     snell__output_kind out;
-    cube_prog prog[PROG_CACHE];
+    snell__program_cache *programs; /* the renderer's */
     snell__ndcube_baker baker;
-    unsigned long clock;
 } cubemap_state;
 
 static void cubemap_destroy(snell_ctx *ctx, void *state);
@@ -67,7 +68,7 @@ typedef struct prog_key {
     int iterations, linear, no_search, screen, absorb, fresnel_exact, inner, dispersion;
 } prog_key;
 
-static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const prog_key *k, cube_prog *p)
+static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const prog_key *k, snell__program_slot *p)
 {
     char def[320];
     snell_status st;
@@ -77,37 +78,39 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
              "#define SNELL_INNER_FRESNEL %d\n#define SNELL_DISPERSION %d\n",
              k->enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", k->iterations, k->linear, k->no_search, k->absorb,
              k->fresnel_exact, k->inner, k->dispersion);
-    st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->slot.g);
+    st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->g);
     if (st != SNELL_OK) return st;
-    p->inv_model = glGetUniformLocation(p->slot.g.prog, "u_inv_model");
-    p->centre = glGetUniformLocation(p->slot.g.prog, "u_centre");
-    p->radius = glGetUniformLocation(p->slot.g.prog, "u_radius");
-    p->inner_radius = glGetUniformLocation(p->slot.g.prog, "u_inner_radius");
-    p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
-    p->texel_angle = glGetUniformLocation(p->slot.g.prog, "u_texel_angle");
+    LOCS_W(p)->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
+    LOCS_W(p)->centre = glGetUniformLocation(p->g.prog, "u_centre");
+    LOCS_W(p)->radius = glGetUniformLocation(p->g.prog, "u_radius");
+    LOCS_W(p)->inner_radius = glGetUniformLocation(p->g.prog, "u_inner_radius");
+    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    LOCS_W(p)->texel_angle = glGetUniformLocation(p->g.prog, "u_texel_angle");
     return SNELL_OK;
 }
 
 /* The program of these settings: cached, else built into the least recently
  * used slot. */
-static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, const prog_key *k, const cube_prog **out)
+static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, const prog_key *k, const snell__program_slot **out)
 {
     const int key[9] = {(int)k->enc, k->iterations, k->linear, k->no_search, k->screen, k->absorb, k->fresnel_exact,
                         k->inner, k->dispersion};
     int hit;
-    cube_prog *p = (cube_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 9, &s->clock, &hit);
+    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_CUBEMAP, key, 9, &hit);
     snell_status st = hit ? SNELL_OK : build_prog(ctx, s->out, k, p);
     if (st == SNELL_OK) *out = p;
     return st;
 }
 
-static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void **state)
+static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, snell__program_cache *programs,
+                                 void **state)
 {
     cubemap_state *s = (cubemap_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
-    const cube_prog *p;
+    const snell__program_slot *p;
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
+    s->programs = programs;
     prog_key k = {SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, 0, 0, DEFAULT_FRESNEL, 0, 0};
     st = get_prog(ctx, s, &k, &p);
     if (st == SNELL_OK) st = snell__ndcube_baker_create(ctx, &s->baker);
@@ -122,9 +125,7 @@ static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, void 
 static void cubemap_destroy(snell_ctx *ctx, void *state)
 {
     cubemap_state *s = (cubemap_state *)state;
-    int i;
     if (!s) return;
-    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
     snell__ndcube_baker_destroy(&s->baker);
     snell__free(&ctx->alloc, s);
 }
@@ -205,7 +206,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     const snell_cubemap_params *c = &o->glass->material.cubemap;
     const cube_prepared *cp = (const cube_prepared *)o->prepared;
     prog_key k;
-    const cube_prog *p;
+    const snell__program_slot *p;
     snell_status st;
 
     k.enc = c->encoding;
@@ -226,16 +227,16 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     st = get_prog(ctx, s, &k, &p);
     if (st != SNELL_OK) return st;
     if (k.no_search) stats->skipped |= SNELL_SKIP_SEARCH;
-    snell__glass_program_use(&p->slot.g, v, o);
-    snell__glass_program_bind(&p->slot.g, "u_ndcube", GL_TEXTURE_CUBE_MAP, cp->cube.texture, 0);
-    glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
-    glUniform3fv(p->centre, 1, cp->cube.centre);
-    glUniform1f(p->radius, cp->cube.radius);
-    glUniform1f(p->inner_radius, cp->inner_radius);
-    glUniform1i(p->max_interfaces, c->max_interfaces);
+    snell__glass_program_use(&p->g, v, o);
+    snell__glass_program_bind(&p->g, "u_ndcube", GL_TEXTURE_CUBE_MAP, cp->cube.texture, 0);
+    glUniformMatrix4fv(LOCS(p)->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
+    glUniform3fv(LOCS(p)->centre, 1, cp->cube.centre);
+    glUniform1f(LOCS(p)->radius, cp->cube.radius);
+    glUniform1f(LOCS(p)->inner_radius, cp->inner_radius);
+    glUniform1i(LOCS(p)->max_interfaces, c->max_interfaces);
     /* A texel is 2/N wide in face coordinates; it subtends 2/N rad at a face
      * centre and sqrt(2)/3 * 2/N at a corner: the smaller is the stop bound. */
-    glUniform1f(p->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)c->face_size);
+    glUniform1f(LOCS(p)->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)c->face_size);
     /* Back faces are culled on closed meshes (snell__draw_surface). A depth
      * pre-pass would do the same for any mesh but cost more than it saved: it
      * doubles the triangle setup, which dominates on llvmpipe for the

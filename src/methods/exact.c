@@ -25,7 +25,6 @@
 
 #define DEFAULT_INTERFACES 8
 #define DEFAULT_BUDGET 4096
-#define PROG_CACHE 8
 /* Texels per row of the BVH texture (exact.frag's TEX_SHIFT): GLES 3.0's
  * smallest GL_MAX_TEXTURE_SIZE, so every device takes the width. */
 #define TEX_WIDTH 2048
@@ -73,15 +72,17 @@ typedef struct exact_prepared {
     void *texels;              /* rows * TEX_WIDTH texels of 16 bytes */
 } exact_prepared;
 
-typedef struct exact_prog {
-    snell__program_slot slot; /* key: budget, q16, absorb, variant (snell__glass_variant), stack walk */
+/* A program's own uniforms (over its cache slot's loc); its key: key: budget, q16, absorb, variant (snell__glass_variant), stack walk */
+typedef struct exact_locs {
     int inv_model, node_count, tri_base, max_interfaces, eps, qlo, qstep, mark, cam_basis, cam_proj, pixel_to_ndc;
-} exact_prog;
+} exact_locs;
+#define LOCS(p) ((const exact_locs *)(const void *)(p)->loc)
+#define LOCS_W(p) ((exact_locs *)(void *)(p)->loc)
+typedef char exact_locs_fit[sizeof(exact_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
 
 typedef struct exact_state {
     snell__output_kind out;
-    exact_prog prog[PROG_CACHE];
-    unsigned long clock;
+    snell__program_cache *programs; /* the renderer's */
     float *readback;           /* RGBA32F exit-direction renderers: the object's rectangle, to count fallbacks */
     size_t readback_size;      /* floats */
 } exact_state;
@@ -89,12 +90,12 @@ typedef struct exact_state {
 static void exact_destroy(snell_ctx *ctx, void *state);
 
 static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16, int absorb, int variant,
-                             int stack, int dispersion, const exact_prog **out)
+                             int stack, int dispersion, const snell__program_slot **out)
 {
     const int key[6] = {budget, q16, absorb, variant, stack, dispersion};
     char def[192];
     int hit;
-    exact_prog *p = (exact_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 6, &s->clock, &hit);
+    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_EXACT, key, 6, &hit);
     snell_status st;
     if (hit) {
         *out = p;
@@ -104,30 +105,32 @@ static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16
              "#define SNELL_NODE_BUDGET %d\n#define SNELL_NODES_Q16 %d\n#define SNELL_ABSORB %d\n#define SNELL_STACK_WALK %d\n"
              "#define SNELL_DISPERSION %d\n",
              budget, q16, absorb, stack, dispersion);
-    st = snell__glass_program_build(ctx, "exact.frag", s->out, def, variant, &p->slot.g);
+    st = snell__glass_program_build(ctx, "exact.frag", s->out, def, variant, &p->g);
     if (st != SNELL_OK) return st;
-    p->inv_model = glGetUniformLocation(p->slot.g.prog, "u_inv_model");
-    p->node_count = glGetUniformLocation(p->slot.g.prog, "u_node_count");
-    p->tri_base = glGetUniformLocation(p->slot.g.prog, "u_tri_base");
-    p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
-    p->eps = glGetUniformLocation(p->slot.g.prog, "u_eps");
-    p->qlo = glGetUniformLocation(p->slot.g.prog, "u_qlo");
-    p->qstep = glGetUniformLocation(p->slot.g.prog, "u_qstep");
-    p->mark = glGetUniformLocation(p->slot.g.prog, "u_fallback_mark");
-    p->cam_basis = glGetUniformLocation(p->slot.g.prog, "u_cam_basis");
-    p->cam_proj = glGetUniformLocation(p->slot.g.prog, "u_cam_proj");
-    p->pixel_to_ndc = glGetUniformLocation(p->slot.g.prog, "u_pixel_to_ndc");
+    LOCS_W(p)->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
+    LOCS_W(p)->node_count = glGetUniformLocation(p->g.prog, "u_node_count");
+    LOCS_W(p)->tri_base = glGetUniformLocation(p->g.prog, "u_tri_base");
+    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    LOCS_W(p)->eps = glGetUniformLocation(p->g.prog, "u_eps");
+    LOCS_W(p)->qlo = glGetUniformLocation(p->g.prog, "u_qlo");
+    LOCS_W(p)->qstep = glGetUniformLocation(p->g.prog, "u_qstep");
+    LOCS_W(p)->mark = glGetUniformLocation(p->g.prog, "u_fallback_mark");
+    LOCS_W(p)->cam_basis = glGetUniformLocation(p->g.prog, "u_cam_basis");
+    LOCS_W(p)->cam_proj = glGetUniformLocation(p->g.prog, "u_cam_proj");
+    LOCS_W(p)->pixel_to_ndc = glGetUniformLocation(p->g.prog, "u_pixel_to_ndc");
     *out = p;
     return SNELL_OK;
 }
 
-static snell_status exact_create(snell_ctx *ctx, snell__output_kind out, void **state)
+static snell_status exact_create(snell_ctx *ctx, snell__output_kind out, snell__program_cache *programs,
+                                 void **state)
 {
     exact_state *s = (exact_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
-    const exact_prog *p;
+    const snell__program_slot *p;
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
+    s->programs = programs;
     st = get_prog(ctx, s, DEFAULT_BUDGET, 0, 0, 0, 1, 0, &p);
     if (st != SNELL_OK) {
         exact_destroy(ctx, s);
@@ -140,9 +143,7 @@ static snell_status exact_create(snell_ctx *ctx, snell__output_kind out, void **
 static void exact_destroy(snell_ctx *ctx, void *state)
 {
     exact_state *s = (exact_state *)state;
-    int i;
     if (!s) return;
-    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
     snell__free(&ctx->alloc, s->readback);
     snell__free(&ctx->alloc, s);
 }
@@ -504,39 +505,39 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
     exact_state *s = (exact_state *)state;
     const snell_exact_params *e = &o->glass->material.exact;
     const exact_prepared *ep = (const exact_prepared *)o->prepared;
-    const exact_prog *p;
+    const snell__program_slot *p;
     /* Dispersion: always three traces (SNELL_DISPERSION 1), whatever the
      * material's model: exact is the accuracy ceiling, and one path would
      * give red and blue estimated exits where the traversal finds the true ones. */
     snell_status st = get_prog(ctx, s, e->node_budget, ep->format == SNELL_EXACT_NODES_Q16, o->glass->absorbs,
                                 snell__glass_variant(o), e->walk == SNELL_EXACT_WALK_STACK, o->glass->disperses ? 1 : 0, &p);
     if (st != SNELL_OK) return st;
-    snell__glass_program_use(&p->slot.g, v, o);
-    snell__glass_program_bind(&p->slot.g, "u_bvh", GL_TEXTURE_2D, ep->texture, 0);
-    glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
-    glUniform1i(p->node_count, ep->node_count);
-    glUniform1i(p->tri_base, ep->tri_base);
-    glUniform1i(p->max_interfaces, e->max_interfaces);
+    snell__glass_program_use(&p->g, v, o);
+    snell__glass_program_bind(&p->g, "u_bvh", GL_TEXTURE_2D, ep->texture, 0);
+    glUniformMatrix4fv(LOCS(p)->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
+    glUniform1i(LOCS(p)->node_count, ep->node_count);
+    glUniform1i(LOCS(p)->tri_base, ep->tri_base);
+    glUniform1i(LOCS(p)->max_interfaces, e->max_interfaces);
     /* Secondary rays skip the triangle they start on, as the reference's do;
      * this minimum distance (world units, 1e-5 of the bounding radius; the
      * reference's is 1e-9 of its extent, in double) keeps them off the
      * neighbours of an edge they start on, within float rounding. */
-    glUniform1f(p->eps, SNELL__EXACT_EPS(o->bsphere[3]));
-    glUniform3fv(p->qlo, 1, ep->qlo);
-    glUniform3fv(p->qstep, 1, ep->qstep);
-    glUniform1f(p->mark, -(float)(o->index + 1));
+    glUniform1f(LOCS(p)->eps, SNELL__EXACT_EPS(o->bsphere[3]));
+    glUniform3fv(LOCS(p)->qlo, 1, ep->qlo);
+    glUniform3fv(LOCS(p)->qstep, 1, ep->qstep);
+    glUniform1f(LOCS(p)->mark, -(float)(o->index + 1));
     {
         /* the eye rays (exact.frag main): view -> world rotation, projection terms */
         float basis[9];
         int i, j;
         for (i = 0; i < 3; i++)
             for (j = 0; j < 3; j++) basis[3 * i + j] = v->view[j][i];
-        glUniformMatrix3fv(p->cam_basis, 1, GL_FALSE, basis);
+        glUniformMatrix3fv(LOCS(p)->cam_basis, 1, GL_FALSE, basis);
         if (v->view_axis[3] > 0.5f)
-            glUniform4f(p->cam_proj, v->proj[0][0], v->proj[1][1], -v->proj[3][0], -v->proj[3][1]);
+            glUniform4f(LOCS(p)->cam_proj, v->proj[0][0], v->proj[1][1], -v->proj[3][0], -v->proj[3][1]);
         else
-            glUniform4f(p->cam_proj, v->proj[0][0], v->proj[1][1], v->proj[2][0], v->proj[2][1]);
-        glUniform2f(p->pixel_to_ndc, 2.0f / (float)v->width, 2.0f / (float)v->height);
+            glUniform4f(LOCS(p)->cam_proj, v->proj[0][0], v->proj[1][1], v->proj[2][0], v->proj[2][1]);
+        glUniform2f(LOCS(p)->pixel_to_ndc, 2.0f / (float)v->width, 2.0f / (float)v->height);
     }
     snell__draw_surface(o, stats);
     stats->passes++;

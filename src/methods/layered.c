@@ -40,7 +40,6 @@
  * far off); the cubemap 33.70 dB at 2.47x, 15.70 at 4.40x. */
 #define DEFAULT_CONVEX_STEPS 2
 #define DEFAULT_INTERFACES 8
-#define PROG_CACHE 8
 
 /* llvmpipe: the march costs so much per pixel that full 4x4 blocks of the
  * screen-space stage pay at any density (as for cubemap.c and peel.c). The
@@ -66,15 +65,17 @@ typedef struct layered_prepared {
     float centre[3], radius;    /* object space */
 } layered_prepared;
 
-typedef struct layered_prog {
-    snell__program_slot slot;   /* key: layers, linear, binary, absorb, reentry, screen, dispersion */
+/* A program's own uniforms (over its cache slot's loc); its key: key: layers, linear, binary, absorb, reentry, screen, dispersion */
+typedef struct layered_locs {
     int stride, groups, dist_base, inv_model, model, centre, radius, max_interfaces;
-} layered_prog;
+} layered_locs;
+#define LOCS(p) ((const layered_locs *)(const void *)(p)->loc)
+#define LOCS_W(p) ((layered_locs *)(void *)(p)->loc)
+typedef char layered_locs_fit[sizeof(layered_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
 
 typedef struct layered_state {
     snell__output_kind out;
-    layered_prog prog[PROG_CACHE];
-    unsigned long clock;
+    snell__program_cache *programs; /* the renderer's */
     unsigned bake_prog;
     unsigned nearest;           /* sampler object: the inner Fresnel's environment look-ups (SNELL__UNIT_ENV_NEAREST) */
     int u_view_proj, u_centre, u_inv_radius, u_first, u_prev;
@@ -82,12 +83,14 @@ typedef struct layered_state {
 
 static void layered_destroy(snell_ctx *ctx, void *state);
 
-static snell_status layered_create(snell_ctx *ctx, snell__output_kind out, void **state)
+static snell_status layered_create(snell_ctx *ctx, snell__output_kind out, snell__program_cache *programs,
+                                 void **state)
 {
     layered_state *s = (layered_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
+    s->programs = programs;
     st = snell__program_build(ctx, "ndcube_bake.vert", "layered_bake.frag", NULL, &s->bake_prog);
     if (st != SNELL_OK) {
         layered_destroy(ctx, s);
@@ -111,9 +114,7 @@ static snell_status layered_create(snell_ctx *ctx, snell__output_kind out, void 
 static void layered_destroy(snell_ctx *ctx, void *state)
 {
     layered_state *s = (layered_state *)state;
-    int i;
     if (!s) return;
-    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
     if (s->bake_prog) glDeleteProgram(s->bake_prog);
     if (s->nearest) glDeleteSamplers(1, &s->nearest);
     snell__free(&ctx->alloc, s);
@@ -473,7 +474,7 @@ static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__ob
     return st;
 }
 
-static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[8], layered_prog *p)
+static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[8], snell__program_slot *p)
 {
     char def[320];
     snell_status st;
@@ -482,16 +483,16 @@ static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[8
              "#define SNELL_REENTRY %d\n#define SNELL_DISPERSION %d\n#define SNELL_INNER_FRESNEL %d\n"
              "#define SNELL_ENV_NEAREST 1\n",
              key[0], key[1], key[2], key[3], key[4], key[6], key[7]);
-    st = snell__glass_program_build(ctx, "layered.frag", s->out, def, key[5], &p->slot.g);
+    st = snell__glass_program_build(ctx, "layered.frag", s->out, def, key[5], &p->g);
     if (st != SNELL_OK) return st;
-    p->stride = glGetUniformLocation(p->slot.g.prog, "u_stride");
-    p->groups = glGetUniformLocation(p->slot.g.prog, "u_groups");
-    p->dist_base = glGetUniformLocation(p->slot.g.prog, "u_dist_base");
-    p->inv_model = glGetUniformLocation(p->slot.g.prog, "u_inv_model");
-    p->model = glGetUniformLocation(p->slot.g.prog, "u_model");
-    p->centre = glGetUniformLocation(p->slot.g.prog, "u_centre");
-    p->radius = glGetUniformLocation(p->slot.g.prog, "u_radius");
-    p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
+    LOCS_W(p)->stride = glGetUniformLocation(p->g.prog, "u_stride");
+    LOCS_W(p)->groups = glGetUniformLocation(p->g.prog, "u_groups");
+    LOCS_W(p)->dist_base = glGetUniformLocation(p->g.prog, "u_dist_base");
+    LOCS_W(p)->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
+    LOCS_W(p)->model = glGetUniformLocation(p->g.prog, "u_model");
+    LOCS_W(p)->centre = glGetUniformLocation(p->g.prog, "u_centre");
+    LOCS_W(p)->radius = glGetUniformLocation(p->g.prog, "u_radius");
+    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
     return SNELL_OK;
 }
 
@@ -501,7 +502,7 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     layered_state *s = (layered_state *)state;
     const snell_layered_params *lp = &o->glass->material.layered;
     const layered_prepared *lpr = (const layered_prepared *)o->prepared;
-    layered_prog *p;
+    snell__program_slot *p;
     snell_status st = SNELL_OK;
     int hit, nearest_unit;
     int convex = o->analysis && o->analysis->convex;
@@ -518,24 +519,24 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
                         !convex, snell__glass_variant(o), snell__dispersion_variant(o->glass),
                         lp->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
                             (lp->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && convex)};
-    p = (layered_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 8, &s->clock, &hit);
+    p = snell__program_cache_get(s->programs, SNELL_METHOD_LAYERED, key, 8, &hit);
     if (!hit) st = build_prog(ctx, s, key, p);
     if (st != SNELL_OK) return st;
-    snell__glass_program_use(&p->slot.g, v, o);
-    snell__glass_program_bind(&p->slot.g, "u_layers", GL_TEXTURE_2D_ARRAY, lpr->layers_tex, 0);
+    snell__glass_program_use(&p->g, v, o);
+    snell__glass_program_bind(&p->g, "u_layers", GL_TEXTURE_2D_ARRAY, lpr->layers_tex, 0);
     /* the environment again, nearest (the inner Fresnel's look-ups); the
      * sampler is unbound after the draw, as a frame starts (core/glstate.c) */
-    nearest_unit = snell__samplers_unit(&p->slot.g.samplers, "u_env_nearest");
-    snell__glass_program_bind(&p->slot.g, "u_env_nearest", o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP,
+    nearest_unit = snell__samplers_unit(&p->g.samplers, "u_env_nearest");
+    snell__glass_program_bind(&p->g, "u_env_nearest", o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP,
                               o->env_texture, s->nearest);
-    glUniformMatrix4fv(p->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
-    glUniformMatrix4fv(p->model, 1, GL_FALSE, (const GLfloat *)o->model);
-    glUniform3fv(p->centre, 1, lpr->centre);
-    glUniform1f(p->radius, lpr->radius);
-    glUniform1i(p->stride, lpr->layers);
-    glUniform1i(p->groups, lpr->groups);
-    glUniform1i(p->dist_base, 6 * lpr->layers);
-    glUniform1i(p->max_interfaces, lp->max_interfaces);
+    glUniformMatrix4fv(LOCS(p)->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
+    glUniformMatrix4fv(LOCS(p)->model, 1, GL_FALSE, (const GLfloat *)o->model);
+    glUniform3fv(LOCS(p)->centre, 1, lpr->centre);
+    glUniform1f(LOCS(p)->radius, lpr->radius);
+    glUniform1i(LOCS(p)->stride, lpr->layers);
+    glUniform1i(LOCS(p)->groups, lpr->groups);
+    glUniform1i(LOCS(p)->dist_base, 6 * lpr->layers);
+    glUniform1i(LOCS(p)->max_interfaces, lp->max_interfaces);
     snell__draw_surface(o, stats);
     if (nearest_unit >= 0) glBindSampler((unsigned)nearest_unit, 0);
     stats->passes++;

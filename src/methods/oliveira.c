@@ -17,21 +17,22 @@
 
 #define DEFAULT_LINEAR_STEPS 8
 #define DEFAULT_ITERATIONS 6
-#define PROG_CACHE 8
 
 /* fit(): as Wyman's (wyman.c): a solid's back faces, few enough surfaces
  * along a ray that the farthest back face is where light leaves. */
 #define OLIVEIRA_MAX_HIDDEN 0.6f
 
-typedef struct oli_prog {
-    snell__program_slot slot;  /* key: get_prog's arguments in order */
+/* A program's own uniforms (over its cache slot's loc); its key: key: get_prog's arguments in order */
+typedef struct oli_locs {
     int max_interfaces, back_band;
-} oli_prog;
+} oli_locs;
+#define LOCS(p) ((const oli_locs *)(const void *)(p)->loc)
+#define LOCS_W(p) ((oli_locs *)(void *)(p)->loc)
+typedef char oli_locs_fit[sizeof(oli_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
 
 typedef struct oliveira_state {
     snell__output_kind out;
-    oli_prog prog[PROG_CACHE];
-    unsigned long clock;
+    snell__program_cache *programs; /* the renderer's */
 } oliveira_state;
 
 static void oliveira_destroy(snell_ctx *ctx, void *state);
@@ -39,12 +40,12 @@ static void oliveira_destroy(snell_ctx *ctx, void *state);
 /* The program of these compile-time constants: cached, else built into the
  * least recently used slot. */
 static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int iterations, int screen, int absorb,
-                             int fresnel_exact, int inner, int dispersion, const oli_prog **out)
+                             int fresnel_exact, int inner, int dispersion, const snell__program_slot **out)
 {
     const int key[7] = {linear, iterations, screen, absorb, fresnel_exact, inner, dispersion};
     char def[256];
     int hit;
-    oli_prog *p = (oli_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 7, &s->clock, &hit);
+    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_OLIVEIRA, key, 7, &hit);
     snell_status st;
     if (hit) {
         *out = p;
@@ -54,21 +55,23 @@ static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int 
              "#define SNELL_LINEAR_STEPS %d\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_ABSORB %d\n"
              "#define SNELL_FRESNEL_EXACT %d\n#define SNELL_INNER_FRESNEL %d\n#define SNELL_DISPERSION %d\n",
              linear, iterations, absorb, fresnel_exact, inner, dispersion);
-    st = snell__glass_program_build(ctx, "oliveira.frag", s->out, def, screen, &p->slot.g);
+    st = snell__glass_program_build(ctx, "oliveira.frag", s->out, def, screen, &p->g);
     if (st != SNELL_OK) return st;
-    p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
-    p->back_band = glGetUniformLocation(p->slot.g.prog, "u_back_band");
+    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    LOCS_W(p)->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
     *out = p;
     return SNELL_OK;
 }
 
-static snell_status oliveira_create(snell_ctx *ctx, snell__output_kind out, void **state)
+static snell_status oliveira_create(snell_ctx *ctx, snell__output_kind out, snell__program_cache *programs,
+                                 void **state)
 {
     oliveira_state *s = (oliveira_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
-    const oli_prog *p;
+    const snell__program_slot *p;
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
+    s->programs = programs;
     /* the default program, so that a device that cannot build it fails here, once */
     st = get_prog(ctx, s, DEFAULT_LINEAR_STEPS, DEFAULT_ITERATIONS, SNELL__SCREEN_SHARED_DEPTH, 0, 0, 0, 0, &p);
     if (st != SNELL_OK) {
@@ -82,9 +85,7 @@ static snell_status oliveira_create(snell_ctx *ctx, snell__output_kind out, void
 static void oliveira_destroy(snell_ctx *ctx, void *state)
 {
     oliveira_state *s = (oliveira_state *)state;
-    int i;
     if (!s) return;
-    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
     snell__free(&ctx->alloc, s);
 }
 
@@ -106,7 +107,7 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
 {
     oliveira_state *s = (oliveira_state *)state;
     const snell_oliveira_params *c = &o->glass->material.oliveira;
-    const oli_prog *p;
+    const snell__program_slot *p;
     snell_status st;
     if (!o->screen_space)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: oliveira shades in screen space only", o->index);
@@ -117,9 +118,9 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
     st = get_prog(ctx, s, c->linear_steps, c->iterations, snell__glass_variant(o), o->glass->absorbs,
                   c->fresnel == SNELL_FRESNEL_EXACT, inner, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;
-    snell__glass_program_use(&p->slot.g, v, o);
-    glUniform1i(p->max_interfaces, c->max_interfaces);
-    glUniform1i(p->back_band, v->back.band);
+    snell__glass_program_use(&p->g, v, o);
+    glUniform1i(LOCS(p)->max_interfaces, c->max_interfaces);
+    glUniform1i(LOCS(p)->back_band, v->back.band);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;

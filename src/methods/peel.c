@@ -55,7 +55,6 @@
 #define DEFAULT_INTERFACES 8
 /* Fresnel reflectance model: 0 = Schlick (the MATCHED model), 1 = exact. */
 #define DEFAULT_FRESNEL 0
-#define PROG_CACHE 8
 /* The texture unit of the layers (render/gbuffer.h: 0 env, 1 the kernel's). */
 #define LAYER_UNIT 1
 
@@ -73,10 +72,13 @@
  * sphere (89 px) 14.4 -> 14.7. */
 #define LAYER0_GBUFFER_PPT 16.0f
 
-typedef struct peel_prog {
-    snell__program_slot slot; /* key: prog_key's fields in order */
+/* A program's own uniforms (over its cache slot's loc); its key: key: prog_key's fields in order */
+typedef struct peel_locs {
     int layer_count, fwd, near_, inv_range, size, max_interfaces;
-} peel_prog;
+} peel_locs;
+#define LOCS(p) ((const peel_locs *)(const void *)(p)->loc)
+#define LOCS_W(p) ((peel_locs *)(void *)(p)->loc)
+typedef char peel_locs_fit[sizeof(peel_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
 
 /* One glass object's (by its index in the frame) last peels: their
  * occlusion queries and what the last ones read found. */
@@ -90,8 +92,7 @@ typedef struct peel_history {
 
 typedef struct peel_state {
     snell__output_kind out;
-    peel_prog prog[PROG_CACHE];
-    unsigned long clock;
+    snell__program_cache *programs; /* the renderer's */
     /* the peel pass */
     unsigned layer_prog;
     int u_model, u_normal_matrix, u_view_proj, u_eye, u_fwd, u_near, u_inv_range, u_first, u_prev;
@@ -110,7 +111,7 @@ typedef struct prog_key {
     int screen, absorb, linear, binary, fixes, fresnel_exact, inner, dispersion, layers;
 } prog_key;
 
-static snell_status build_prog(snell_ctx *ctx, peel_state *s, const prog_key *k, peel_prog *p)
+static snell_status build_prog(snell_ctx *ctx, peel_state *s, const prog_key *k, snell__program_slot *p)
 {
     char def[360];
     snell_status st;
@@ -121,37 +122,39 @@ static snell_status build_prog(snell_ctx *ctx, peel_state *s, const prog_key *k,
              k->linear, k->binary, k->fixes == SNELL_PEEL_FIXES_DISCONTINUITY || k->fixes == SNELL_PEEL_FIXES_BOTH,
              k->fixes == SNELL_PEEL_FIXES_MERGE || k->fixes == SNELL_PEEL_FIXES_BOTH, k->absorb, k->fresnel_exact,
              k->inner, k->dispersion, k->layers);
-    st = snell__glass_program_build(ctx, "peel.frag", s->out, def, k->screen, &p->slot.g);
+    st = snell__glass_program_build(ctx, "peel.frag", s->out, def, k->screen, &p->g);
     if (st != SNELL_OK) return st;
-    p->layer_count = glGetUniformLocation(p->slot.g.prog, "u_layer_count");
-    p->fwd = glGetUniformLocation(p->slot.g.prog, "u_fwd");
-    p->near_ = glGetUniformLocation(p->slot.g.prog, "u_near");
-    p->inv_range = glGetUniformLocation(p->slot.g.prog, "u_inv_range");
-    p->size = glGetUniformLocation(p->slot.g.prog, "u_size");
-    p->max_interfaces = glGetUniformLocation(p->slot.g.prog, "u_max_interfaces");
+    LOCS_W(p)->layer_count = glGetUniformLocation(p->g.prog, "u_layer_count");
+    LOCS_W(p)->fwd = glGetUniformLocation(p->g.prog, "u_fwd");
+    LOCS_W(p)->near_ = glGetUniformLocation(p->g.prog, "u_near");
+    LOCS_W(p)->inv_range = glGetUniformLocation(p->g.prog, "u_inv_range");
+    LOCS_W(p)->size = glGetUniformLocation(p->g.prog, "u_size");
+    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
     return SNELL_OK;
 }
 
 /* The kernel of these settings: cached, else built into the least recently used slot. */
-static snell_status get_prog(snell_ctx *ctx, peel_state *s, const prog_key *k, const peel_prog **out)
+static snell_status get_prog(snell_ctx *ctx, peel_state *s, const prog_key *k, const snell__program_slot **out)
 {
     const int key[9] = {k->screen, k->absorb, k->linear, k->binary, k->fixes, k->fresnel_exact, k->inner,
                         k->dispersion, k->layers};
     int hit;
-    peel_prog *p = (peel_prog *)snell__program_cache_get(s->prog, sizeof *s->prog, PROG_CACHE, key, 9, &s->clock, &hit);
+    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_PEEL, key, 9, &hit);
     snell_status st = hit ? SNELL_OK : build_prog(ctx, s, k, p);
     if (st == SNELL_OK) *out = p;
     return st;
 }
 
-static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, void **state)
+static snell_status peel_create(snell_ctx *ctx, snell__output_kind out, snell__program_cache *programs,
+                                 void **state)
 {
     peel_state *s = (peel_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
-    const peel_prog *p;
+    const snell__program_slot *p;
     const prog_key d = {0, 0, DEFAULT_LINEAR, DEFAULT_BINARY, SNELL_PEEL_FIXES_BOTH, DEFAULT_FRESNEL, 0, 0, DEFAULT_LAYERS};
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
+    s->programs = programs;
     st = snell__program_build(ctx, "object.vert", "depth_peel.frag", NULL, &s->layer_prog);
     if (st == SNELL_OK) st = snell__program_build(ctx, "screen.vert", "peel_layer0.frag", NULL, &s->zero_prog);
     if (st == SNELL_OK) st = get_prog(ctx, s, &d, &p);
@@ -191,7 +194,6 @@ static void peel_destroy(snell_ctx *ctx, void *state)
     peel_state *s = (peel_state *)state;
     int i;
     if (!s) return;
-    for (i = 0; i < PROG_CACHE; i++) snell__glass_program_destroy(&s->prog[i].slot.g);
     for (i = 0; i < SNELL_MAX_GLASS; i++)
         if (s->hist[i].query[0]) glDeleteQueries(SNELL_PEEL_MAX_LAYERS, s->hist[i].query);
     if (s->layer_prog) glDeleteProgram(s->layer_prog);
@@ -363,7 +365,7 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     peel_state *s = (peel_state *)state;
     const snell_peel_params *pp = &o->glass->material.peel;
     float fwd[3], near_, inv_range;
-    const peel_prog *p;
+    const snell__program_slot *p;
     peel_history *h = &s->hist[o->index];
     int peeled, gbuffer = 0;
     prog_key k;
@@ -397,14 +399,14 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     stats->counters[1] = h->found;
     stats->counters[2] = gbuffer;
     depth_frame(v, o, fwd, &near_, &inv_range);
-    snell__glass_program_use(&p->slot.g, v, o);
-    snell__glass_program_bind(&p->slot.g, "u_layers", GL_TEXTURE_2D_ARRAY, s->t.array_tex, 0);
-    glUniform1i(p->layer_count, peeled); /* those drawn empty read as no surface */
-    glUniform3fv(p->fwd, 1, fwd);
-    glUniform1f(p->near_, near_);
-    glUniform1f(p->inv_range, inv_range);
-    glUniform2f(p->size, (float)v->width, (float)v->height);
-    glUniform1i(p->max_interfaces, pp->max_interfaces);
+    snell__glass_program_use(&p->g, v, o);
+    snell__glass_program_bind(&p->g, "u_layers", GL_TEXTURE_2D_ARRAY, s->t.array_tex, 0);
+    glUniform1i(LOCS(p)->layer_count, peeled); /* those drawn empty read as no surface */
+    glUniform3fv(LOCS(p)->fwd, 1, fwd);
+    glUniform1f(LOCS(p)->near_, near_);
+    glUniform1f(LOCS(p)->inv_range, inv_range);
+    glUniform2f(LOCS(p)->size, (float)v->width, (float)v->height);
+    glUniform1i(LOCS(p)->max_interfaces, pp->max_interfaces);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;

@@ -7,42 +7,45 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 
-/* Program variants: [snell__glass_variant: shading, scene layers][thin wall][absorption][dispersion variant,
- * snell__dispersion_variant: a thin wall has none]; the forward solid
- * one without absorption (the default) is built with the method, the others
- * on first use. */
+/* Programs are keyed by variant (snell__glass_variant), thin wall,
+ * absorption and dispersion variant (snell__dispersion_variant: a thin wall
+ * has none); the forward solid one without absorption (the default) is
+ * built with the method, the others on first use. loc[0]: u_thickness. */
 typedef struct single_state {
     snell__output_kind out;
-    snell__glass_program prog[SNELL__GLASS_VARIANTS][2][2][3];
-    int u_thickness[SNELL__GLASS_VARIANTS][2][2][3];
+    snell__program_cache *programs;
 } single_state;
 
 static void single_destroy(snell_ctx *ctx, void *state);
 
 static snell_status get_prog(snell_ctx *ctx, single_state *s, int screen, int thin, int absorb, int dispersion,
-                             const snell__glass_program **out)
+                             const snell__program_slot **out)
 {
-    snell__glass_program *p = &s->prog[screen][thin][absorb][dispersion];
-    if (!p->prog) {
+    const int key[4] = {screen, thin, absorb, dispersion};
+    int hit;
+    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_SINGLE, key, 4, &hit);
+    if (!hit) {
         char defines[128];
         snell_status st;
         snprintf(defines, sizeof defines, "%s%s#define SNELL_DISPERSION %d\n", thin ? "#define SNELL_THIN 1\n" : "",
                  absorb ? "#define SNELL_ABSORB 1\n" : "", dispersion);
-        st = snell__glass_program_build(ctx, "single.frag", s->out, defines, screen, p);
+        st = snell__glass_program_build(ctx, "single.frag", s->out, defines, screen, &p->g);
         if (st != SNELL_OK) return st;
-        s->u_thickness[screen][thin][absorb][dispersion] = glGetUniformLocation(p->prog, "u_thickness");
+        p->loc[0] = glGetUniformLocation(p->g.prog, "u_thickness");
     }
     *out = p;
     return SNELL_OK;
 }
 
-static snell_status single_create(snell_ctx *ctx, snell__output_kind out, void **state)
+static snell_status single_create(snell_ctx *ctx, snell__output_kind out, snell__program_cache *programs,
+                                  void **state)
 {
     single_state *s = (single_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
-    const snell__glass_program *p;
+    const snell__program_slot *p;
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
+    s->programs = programs;
     st = get_prog(ctx, s, 0, 0, 0, 0, &p);
     if (st != SNELL_OK) {
         single_destroy(ctx, s);
@@ -54,12 +57,7 @@ static snell_status single_create(snell_ctx *ctx, snell__output_kind out, void *
 
 static void single_destroy(snell_ctx *ctx, void *state)
 {
-    single_state *s = (single_state *)state;
-    int i;
-    if (!s) return;
-    for (i = 0; i < 12 * SNELL__GLASS_VARIANTS; i++)
-        snell__glass_program_destroy(&s->prog[i / 12][(i / 6) % 2][(i / 3) % 2][i % 3]);
-    snell__free(&ctx->alloc, s);
+    if (state) snell__free(&ctx->alloc, state);
 }
 
 /* A thin wall is one slab: exact for a sheet; a closed thin-walled mesh's far
@@ -82,11 +80,11 @@ static snell_status single_draw(snell_ctx *ctx, void *state, const snell__view *
 {
     single_state *s = (single_state *)state;
     int thin = o->glass->material.thickness > 0.0f, screen = snell__glass_variant(o), absorb = o->glass->absorbs;
-    const snell__glass_program *p;
+    const snell__program_slot *p;
     snell_status st = get_prog(ctx, s, screen, thin, absorb, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;
-    snell__glass_program_use(p, v, o);
-    if (thin) glUniform1f(s->u_thickness[screen][thin][absorb][0], o->glass->material.thickness);
+    snell__glass_program_use(&p->g, v, o);
+    if (thin) glUniform1f(p->loc[0], o->glass->material.thickness);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;

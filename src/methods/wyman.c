@@ -34,45 +34,48 @@ typedef struct wyman_prepared {
     uint32_t misses;       /* vertices whose inward ray found no surface (bounding-sphere chord used) */
 } wyman_prepared;
 
-typedef struct wyman_prog {
-    snell__glass_program g;
+/* A program's own uniforms (over its cache slot's loc). */
+typedef struct wyman_locs {
     int dn_scale, back_band;
-} wyman_prog;
+} wyman_locs;
+#define LOCS(p) ((const wyman_locs *)(const void *)(p)->loc)
 
-/* [snell__glass_variant: shading, scene layers][absorption][dispersion variant,
- * snell__dispersion_variant]; built on first use. */
 typedef struct wyman_state {
     snell__output_kind out;
-    wyman_prog prog[SNELL__GLASS_VARIANTS][2][3];
+    snell__program_cache *programs; /* the renderer's: keyed by variant, absorption, dispersion variant */
 } wyman_state;
 
 static void wyman_destroy(snell_ctx *ctx, void *state);
 
 static snell_status get_prog(snell_ctx *ctx, wyman_state *s, int screen, int absorb, int dispersion,
-                             const wyman_prog **out)
+                             const snell__program_slot **out)
 {
-    wyman_prog *p = &s->prog[screen][absorb][dispersion];
-    if (!p->g.prog) {
+    const int key[3] = {screen, absorb, dispersion};
+    int hit;
+    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_WYMAN, key, 3, &hit);
+    if (!hit) {
         char defines[128];
+        wyman_locs *l = (wyman_locs *)(void *)p->loc;
         snell_status st;
         snprintf(defines, sizeof defines, "#define SNELL_VERTEX_AUX 1\n#define SNELL_ABSORB %d\n#define SNELL_DISPERSION %d\n",
                  absorb, dispersion);
         st = snell__glass_program_build(ctx, "wyman.frag", s->out, defines, screen, &p->g);
         if (st != SNELL_OK) return st;
-        p->dn_scale = glGetUniformLocation(p->g.prog, "u_dn_scale");
-        p->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
+        l->dn_scale = glGetUniformLocation(p->g.prog, "u_dn_scale");
+        l->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
     }
     *out = p;
     return SNELL_OK;
 }
 
-static snell_status wyman_create(snell_ctx *ctx, snell__output_kind out, void **state)
+static snell_status wyman_create(snell_ctx *ctx, snell__output_kind out, snell__program_cache *programs, void **state)
 {
     wyman_state *s = (wyman_state *)snell__calloc(&ctx->alloc, 1, sizeof *s);
-    const wyman_prog *p;
+    const snell__program_slot *p;
     snell_status st;
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
+    s->programs = programs;
     st = get_prog(ctx, s, 0, 0, 0, &p);
     if (st != SNELL_OK) {
         wyman_destroy(ctx, s);
@@ -84,11 +87,7 @@ static snell_status wyman_create(snell_ctx *ctx, snell__output_kind out, void **
 
 static void wyman_destroy(snell_ctx *ctx, void *state)
 {
-    wyman_state *s = (wyman_state *)state;
-    int i;
-    if (!s) return;
-    for (i = 0; i < 6 * SNELL__GLASS_VARIANTS; i++) snell__glass_program_destroy(&s->prog[i / 6][(i / 3) % 2][i % 3].g);
-    snell__free(&ctx->alloc, s);
+    if (state) snell__free(&ctx->alloc, state);
 }
 
 /* The seed's limits (3.4.1): one entry and one exit, the exit always on the
@@ -220,7 +219,7 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
     wyman_state *s = (wyman_state *)state;
     const wyman_prepared *wp = (const wyman_prepared *)o->prepared;
     int screen = snell__glass_variant(o), absorb = o->glass->absorbs;
-    const wyman_prog *p;
+    const snell__program_slot *p;
     snell_status st = get_prog(ctx, s, screen, absorb, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
@@ -230,8 +229,8 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
         glUniform2f(p->g.inv_size, 1.0f / (float)v->width, 1.0f / (float)v->height);
         glUniform1i(p->g.gid, o->gid);
     }
-    glUniform1f(p->dn_scale, wp ? wp->dn_scale : 0.0f);
-    glUniform1i(p->back_band, v->back.band);
+    glUniform1f(LOCS(p)->dn_scale, wp ? wp->dn_scale : 0.0f);
+    glUniform1i(LOCS(p)->back_band, v->back.band);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;

@@ -15,6 +15,7 @@
 #include "core/platform.h"
 #include "frame/camera.h"
 #include "frame/env.h"
+#include "frame/glass_program.h"
 #include "render/gbuffer.h"
 
 #include <math.h>
@@ -74,6 +75,8 @@ static snell_status make_target(snell_renderer *r)
 static snell_status create_stage_states(snell_renderer *r)
 {
     int i;
+    r->programs = (snell__program_cache *)snell__calloc(&r->ctx->alloc, 1, sizeof *r->programs);
+    if (!r->programs) return snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for the program cache");
     for (i = 0; i < snell__stage_count; i++) {
         const snell__stage *sg = snell__stages[i];
         if (!sg->state_size) continue;
@@ -206,6 +209,7 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__prepared_destroy(r->ctx, &r->prepared);
     for (m = 0; m < SNELL_METHOD_COUNT_; m++)
         if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
+    if (r->programs) snell__program_cache_destroy(r->programs);
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
     snell__paraboloid_gen_destroy(&r->dp);
     snell__composite_destroy(&r->comp);
@@ -220,6 +224,7 @@ void snell_renderer_destroy(snell_renderer *r)
     ctx = r->ctx;
     snell__free(&ctx->alloc, r->readback);
     snell__free(&ctx->alloc, r->readback8);
+    snell__free(&ctx->alloc, r->programs);
     for (m = 0; m < snell__stage_count; m++) snell__free(&ctx->alloc, r->stage_state[m]);
     snell__free(&ctx->alloc, r);
     snell__ctx_release(ctx);
@@ -233,7 +238,7 @@ snell_status snell__renderer_method_state(void *user, const snell__method *m, vo
     snell_renderer *r = (snell_renderer *)user;
     int id = (int)m->info->method;
     if (!r->method_state[id] && r->method_status[id] == SNELL_OK) {
-        snell_status st = m->create(r->ctx, r->out, &r->method_state[id]);
+        snell_status st = m->create(r->ctx, r->out, r->programs, &r->method_state[id]);
         if (st == SNELL_E_NOMEM) return st;
         if (st != SNELL_OK) {
             r->method_status[id] = st;
@@ -375,6 +380,8 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     for (i = 0; i < r->scene.count; i++) s->passes += s->glass[i].passes;
     s->passes += s->background_drawn;
     s->fragment_mediump = snell__ctx_fragment_mediump(r->ctx);
+    s->programs = snell__program_cache_count(r->programs, &s->program_bytes);
+    s->programs_built = r->programs->built;
     s->cpu_ms = snell__now_ms() - t0;
     if (stats) memcpy(stats, s, sizeof *s);
     return st;
