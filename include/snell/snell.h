@@ -656,6 +656,8 @@ typedef struct snell_exact_params {
 } snell_exact_params;
 
 #define SNELL_EXACT_MAX_INTERFACES 10
+#define SNELL_EXACT_DEFAULT_INTERFACES 8
+#define SNELL_EXACT_DEFAULT_BUDGET 4096
 
 /* SNELL_METHOD_LAYERED's parameters (material.layered); zero = the default.
  * The layers are baked once per (mesh version, face size, layers) and kept

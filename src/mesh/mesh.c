@@ -2,6 +2,7 @@
  * normalisation, GPU upload. Loaders live in mesh_obj.c / mesh_gltf.cpp and
  * procedural shapes in mesh_shapes.c; all of them end in snell__mesh_adopt. */
 #include "mesh/mesh.h"
+#include "mesh/bvh_gpu.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 
@@ -210,10 +211,13 @@ void snell_mesh_destroy(snell_mesh *m)
 {
     snell_alloc al;
     if (!m) return;
-    if (m->vao || m->vbo || m->ibo || m->coarse_vao || m->coarse_ibo) {
+    if (m->vao || m->vbo || m->ibo || m->coarse_vao || m->coarse_ibo || m->gpu_bvh[0] || m->gpu_bvh[1]) {
         /* In the GL context that holds them; nowhere if it is gone. */
         snell__gl_scope sc;
-        if (snell__gl_scope_enter(m->gpu_ctx, &sc)) {
+        int gl = snell__gl_scope_enter(m->gpu_ctx, &sc);
+        snell__gpu_bvh_free(m->gpu_bvh[0], gl);
+        snell__gpu_bvh_free(m->gpu_bvh[1], gl);
+        if (gl) {
             if (m->vao) glDeleteVertexArrays(1, &m->vao);
             if (m->vbo) glDeleteBuffers(1, &m->vbo);
             if (m->ibo) glDeleteBuffers(1, &m->ibo);

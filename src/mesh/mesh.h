@@ -39,6 +39,7 @@ struct snell_mesh {
     int order_warned;          /* 1: the upload logged that the vertex-cache reorder was skipped (once a mesh) */
     unsigned coarse_vao, coarse_ibo;
     uint32_t coarse_index_count;
+    void *gpu_bvh[2];          /* its BVH on the GPU, f32 and q16 nodes (mesh/bvh_gpu.c), made on first ask */
 };
 
 /* Limits that protect against absurd inputs (files claiming 2^40 vertices). */

@@ -1,38 +1,23 @@
 /* exact.c — exact refraction by ray traversal of the mesh's BVH in the
  * fragment shader (exact.frag): the MATCHED reference's model (ref_trace.c)
- * on the GPU. Prepared per mesh version: the reference tracer's SAH build
- * (mesh/bvh.c, object space; refitted for later versions) flattened into depth-first order with an
- * escape index per node (so the shader can walk it near-first with a short
- * stack, the default, or without any stack: the `walk` parameter), and packed
- * with the triangles (vertices and vertex normals, leaf order) into one 2D
- * texture read with texelFetch (core GLES 3.0). Per frame one pass over the
- * front faces; each pixel's node visits are capped by a compile-time budget,
- * past which it takes the single-surface answer (counted in
- * the fallback_pixels counter (snell_object_stats.counters) on RGBA32F exit-direction
- * renderers). A deformed mesh (snell_mesh_set_vertices: a new version) is
- * refitted, not rebuilt: see exact_prepare. */
-#include "methods/exact.h"
+ * on the GPU. The BVH is the mesh's (mesh/bvh_gpu.h: the reference tracer's
+ * SAH build flattened with escape indices, walked near-first with a short
+ * stack, the default, or without any stack: the `walk` parameter), refitted
+ * when the mesh deforms. Per frame one pass over the front faces; each
+ * pixel's node visits are capped by a compile-time budget, past which it
+ * takes the single-surface answer (counted in the fallback_pixels counter,
+ * snell_object_stats.counters, on RGBA32F exit-direction renderers). */
+#include "mesh/bvh_gpu.h"
 #include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/glstate.h"
-#include "mesh/bvh.h"
 
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
-#define DEFAULT_INTERFACES 8
-#define DEFAULT_BUDGET 4096
-/* Texels per row of the BVH texture (exact.frag's TEX_SHIFT): GLES 3.0's
- * smallest GL_MAX_TEXTURE_SIZE, so every device takes the width. */
-#define TEX_WIDTH 2048
-/* mesh/bvh.c's MAX_LEAF (leaves hold 1..4 triangles; more only if its build
- * changes: prepare then fails with a message rather than drop triangles). */
-#define LEAF_MAX 4
-/* Node indices are stored as float values in the RGBA32F layout: exact below 2^24. */
-#define F32_INDEX_LIMIT (1u << 24)
 
 /* The walk (snell_exact_walk) defaults to the short stack: it visits the
  * nearer child first, so the closest hit shortens the ray sooner
@@ -49,27 +34,10 @@
 
 /* A node in depth-first order: a leaf's entries, or an interior node's
  * escape (the node after its subtree; its first child is the next node). */
-typedef struct flat_node {
-    uint32_t escape;           /* every node: where the walk goes on a miss */
-    uint32_t first, count;     /* a leaf: its leaf-order entries; count 0: interior */
-} flat_node;
-
-/* One mesh's flattened BVH (the prepared resource), with what a refit needs:
- * the tree's shape and the CPU copy of the texture. */
+/* The prepared resource: the mesh's BVH (mesh/bvh_gpu.h, a mesh-level
+ * resource the caustics' photons walk too) in the material's node format. */
 typedef struct exact_prepared {
-    snell_alloc alloc;         /* release() has no context */
-    unsigned texture;          /* RGBA32F (f32 nodes) or RGBA32UI (q16 nodes), TEX_WIDTH wide */
-    int format;                /* SNELL_EXACT_NODES_F32 or SNELL_EXACT_NODES_Q16 */
-    int node_count;
-    int tri_base;              /* texel of the first triangle entry */
-    int rows;                  /* of the texture */
-    int builds, refits;        /* SAH builds and refits this resource has had */
-    float qlo[3], qstep[3];    /* SNELL_EXACT_NODES_Q16: bound = qlo + q * qstep (object space) */
-    uint32_t triangle_count;
-    flat_node *nodes;          /* node_count, depth-first */
-    double *boxes;             /* 6 per node: lo, hi (object space) */
-    uint32_t *tri_ids;         /* leaf order -> the mesh's triangle */
-    void *texels;              /* rows * TEX_WIDTH texels of 16 bytes */
+    snell__gpu_bvh bvh;
 } exact_prepared;
 
 /* A program's own uniforms (over its cache slot's loc); its key: key: budget, q16, absorb, variant (snell__glass_variant), stack walk */
@@ -131,7 +99,7 @@ static snell_status exact_create(snell_ctx *ctx, snell__output_kind out, snell__
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
     s->programs = programs;
-    st = get_prog(ctx, s, DEFAULT_BUDGET, 0, 0, 0, 1, 0, &p);
+    st = get_prog(ctx, s, SNELL_EXACT_DEFAULT_BUDGET, 0, 0, 0, 1, 0, &p);
     if (st != SNELL_OK) {
         exact_destroy(ctx, s);
         return st;
@@ -169,309 +137,12 @@ static void exact_key(const snell__object *o, int key[4])
     key[1] = key[2] = key[3] = 0;
 }
 
-/* ------------------------------------------------------------- flatten */
-
-typedef struct flat_ctx {
-    const snell__bvh *bvh;
-    exact_prepared *p;
-    uint32_t next;
-} flat_ctx;
-
-/* Depth-first (pre-order) numbering of the build's tree: a node's first
- * child follows it, and its escape is where the walk goes when the ray
- * misses it (or is done with a leaf): the next node after its subtree.
- * Recursion is bounded by the tree's depth (mesh/bvh.c keeps it below 128). */
-static void flatten(flat_ctx *f, uint32_t node)
-{
-    const snell__bvh_node *n = &f->bvh->nodes[node];
-    uint32_t at = f->next++;
-    int k;
-    for (k = 0; k < 3; k++) {
-        f->p->boxes[6 * (size_t)at + k] = n->bmin[k];
-        f->p->boxes[6 * (size_t)at + 3 + k] = n->bmax[k];
-    }
-    f->p->nodes[at].first = n->count ? n->index : 0;
-    f->p->nodes[at].count = n->count;
-    if (!n->count) {
-        flatten(f, n->index);
-        flatten(f, n->index + 1);
-    }
-    f->p->nodes[at].escape = f->next;
-}
-
-/* Refit: every box again from the moved vertices, children before parents
- * (reverse depth-first order: an interior node's children are the next
- * node and that one's escape), padded as mesh/bvh.c pads. */
-static void refit_boxes(exact_prepared *p, const snell_mesh *mesh)
-{
-    double ext = 0.0, pad;
-    int i, k;
-    for (i = p->node_count - 1; i >= 0; i--) {
-        const flat_node *n = &p->nodes[i];
-        double *b = p->boxes + 6 * (size_t)i;
-        for (k = 0; k < 3; k++) {
-            b[k] = HUGE_VAL;
-            b[3 + k] = -HUGE_VAL;
-        }
-        if (n->count) {
-            uint32_t e, j;
-            for (e = n->first; e < n->first + n->count; e++)
-                for (j = 0; j < 3; j++) {
-                    const float *v = mesh->positions + 3 * (size_t)mesh->indices[3 * (size_t)p->tri_ids[e] + j];
-                    for (k = 0; k < 3; k++) {
-                        b[k] = fmin(b[k], (double)v[k]);
-                        b[3 + k] = fmax(b[3 + k], (double)v[k]);
-                    }
-                }
-        } else {
-            const double *c0 = p->boxes + 6 * (size_t)(i + 1), *c1 = p->boxes + 6 * (size_t)p->nodes[i + 1].escape;
-            for (k = 0; k < 3; k++) {
-                b[k] = fmin(c0[k], c1[k]);
-                b[3 + k] = fmax(c0[3 + k], c1[3 + k]);
-            }
-        }
-    }
-    for (k = 0; k < 6; k++) ext = fmax(ext, fabs(p->boxes[k]));
-    pad = 1e-10 * (ext > 0.0 ? ext : 1.0);
-    for (i = 0; i < p->node_count; i++)
-        for (k = 0; k < 3; k++) {
-            p->boxes[6 * (size_t)i + k] -= pad;
-            p->boxes[6 * (size_t)i + 3 + k] += pad;
-        }
-}
-
-/* Quantised 16-bit bounds, rounded outward: the frame is the root box grown
- * by two steps a side, each bound moves one more step out, so that float
- * rounding of qlo + q * qstep in the shader (far below a step) cannot pull
- * a box inside the triangles it holds. */
-static uint32_t quant(double x, double lo, double step, int up)
-{
-    double q = up ? ceil((x - lo) / step) + 1.0 : floor((x - lo) / step) - 1.0;
-    return q < 0.0 ? 0u : (q > 65535.0 ? 65535u : (uint32_t)q);
-}
-
-/* Writes the texture's texels: nodes (f32: 2 texels, lo + escape or first,
- * hi + count; q16: 1 texel, bounds as 6 x 16 bits + a word: interior the
- * escape, leaf 0x80000000 | first << 2 | count - 1), then per triangle entry
- * 6 texels: v0, v1, v2, n0, n1, n2 (object space; q16: the floats' bits), v0's w the
- * mesh's triangle index (a float: exact below 2^24). */
-static void pack_texels(exact_prepared *p, const snell_mesh *mesh)
-{
-    float *tf = (float *)p->texels;
-    uint32_t *tu = (uint32_t *)p->texels, i;
-    const double *root = p->boxes;
-    double lo[3], step[3], scale = 0.0;
-    float pad;
-    int k;
-    /* the largest coordinate: float slab tests round at a few ulps of it */
-    for (k = 0; k < 6; k++) scale = fmax(scale, fabs(root[k]));
-    pad = (float)(1e-5 * scale);
-    for (k = 0; k < 3; k++) {
-        /* 65531 steps over the extent (a flat axis: 1e-6 of the scale), 2 more a side */
-        step[k] = fmax(root[3 + k] - root[k], 1e-6 * scale + 1e-30) / 65531.0;
-        lo[k] = root[k] - 2.0 * step[k];
-        p->qlo[k] = (float)lo[k];
-        p->qstep[k] = (float)step[k];
-    }
-    for (i = 0; i < (uint32_t)p->node_count; i++) {
-        const flat_node *n = &p->nodes[i];
-        const double *b = p->boxes + 6 * (size_t)i;
-        if (p->format == SNELL_EXACT_NODES_F32) {
-            float *t = tf + 8 * (size_t)i;
-            for (k = 0; k < 3; k++) {
-                t[k] = (float)b[k] - pad;
-                t[4 + k] = (float)b[3 + k] + pad;
-            }
-            t[3] = (float)(n->count ? n->first : n->escape);
-            t[7] = (float)n->count;
-        } else {
-            uint32_t *t = tu + 4 * (size_t)i, q[6];
-            for (k = 0; k < 3; k++) {
-                q[k] = quant(b[k], lo[k], step[k], 0);
-                q[3 + k] = quant(b[3 + k], lo[k], step[k], 1);
-            }
-            t[0] = q[0] | q[1] << 16;
-            t[1] = q[2] | q[3] << 16;
-            t[2] = q[4] | q[5] << 16;
-            t[3] = n->count ? 0x80000000u | n->first << 2 | (n->count - 1) : n->escape;
-        }
-    }
-    for (i = 0; i < p->triangle_count; i++) {
-        const uint32_t *tri = mesh->indices + 3 * (size_t)p->tri_ids[i];
-        float v[24];
-        int j;
-        memset(v, 0, sizeof v);
-        v[3] = (float)p->tri_ids[i]; /* the mesh's triangle, unread by exact (the caustics' chain: its object) */
-        for (j = 0; j < 3; j++)
-            for (k = 0; k < 3; k++) {
-                v[4 * j + k] = mesh->positions[3 * (size_t)tri[j] + k];
-                v[12 + 4 * j + k] = mesh->normals[3 * (size_t)tri[j] + k];
-            }
-        memcpy(p->format == SNELL_EXACT_NODES_F32 ? (void *)(tf + 4 * ((size_t)p->tri_base + 6 * (size_t)i))
-                                      : (void *)(tu + 4 * ((size_t)p->tri_base + 6 * (size_t)i)),
-               v, sizeof v);
-    }
-}
-
-static void free_arrays(exact_prepared *p)
-{
-    snell__free(&p->alloc, p->nodes);
-    snell__free(&p->alloc, p->boxes);
-    snell__free(&p->alloc, p->tri_ids);
-    snell__free(&p->alloc, p->texels);
-    p->nodes = NULL;
-    p->boxes = NULL;
-    p->tri_ids = NULL;
-    p->texels = NULL;
-}
-
-/* The reference tracer's SAH build in object space (one BVH serves every
- * model matrix), flattened. */
-static snell_status build(snell_ctx *ctx, const snell_mesh *mesh, int format, exact_prepared *p)
-{
-    snell__bvh *bvh = NULL;
-    flat_ctx f;
-    GLint max_size = 0;
-    size_t texels_n, rows;
-    uint32_t i;
-    snell_status st = snell__bvh_build_mesh(ctx, mesh, NULL, &bvh);
-    if (st != SNELL_OK) return st;
-    for (i = 0; i < bvh->node_count; i++)
-        if (bvh->nodes[i].count > LEAF_MAX) {
-            st = snell__fail(ctx, SNELL_E_LIMIT, "exact: a BVH leaf holds %u triangles, the shader reads %d",
-                             bvh->nodes[i].count, LEAF_MAX);
-            goto out;
-        }
-    texels_n = (size_t)bvh->node_count * (format == SNELL_EXACT_NODES_F32 ? 2u : 1u) + 6 * (size_t)bvh->triangle_count;
-    rows = (texels_n + TEX_WIDTH - 1) / TEX_WIDTH;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    if (rows > (size_t)max_size || (format == SNELL_EXACT_NODES_F32 && bvh->node_count >= F32_INDEX_LIMIT) ||
-        bvh->triangle_count >= (1u << 29)) {
-        st = snell__fail(ctx, SNELL_E_LIMIT, "exact: %u triangles need a %dx%zu BVH texture (at most %d rows here)",
-                         bvh->triangle_count, TEX_WIDTH, rows, (int)max_size);
-        goto out;
-    }
-    free_arrays(p);
-    p->format = format;
-    p->node_count = (int)bvh->node_count;
-    p->triangle_count = bvh->triangle_count;
-    p->tri_base = (int)(bvh->node_count * (format == SNELL_EXACT_NODES_F32 ? 2u : 1u));
-    p->rows = (int)rows;
-    p->nodes = (flat_node *)snell__calloc(&p->alloc, bvh->node_count, sizeof *p->nodes);
-    p->boxes = (double *)snell__calloc(&p->alloc, 6 * (size_t)bvh->node_count, sizeof(double));
-    p->tri_ids = (uint32_t *)snell__calloc(&p->alloc, bvh->triangle_count, sizeof(uint32_t));
-    p->texels = snell__calloc(&p->alloc, rows * TEX_WIDTH, 16);
-    if (!p->nodes || !p->boxes || !p->tri_ids || !p->texels) {
-        free_arrays(p);
-        st = snell__fail(ctx, SNELL_E_NOMEM, "exact: out of memory for a %u-node BVH", bvh->node_count);
-        goto out;
-    }
-    memcpy(p->tri_ids, bvh->tri_ids, bvh->triangle_count * sizeof(uint32_t));
-    f.bvh = bvh;
-    f.p = p;
-    f.next = 0;
-    flatten(&f, 0);
-    p->builds++;
-    p->refits = 0;
-out:
-    snell__bvh_destroy(bvh);
-    return st;
-}
-
-/* Built once per mesh, refitted for each new version of it: the prepared
- * cache hands a deformed mesh (snell_mesh_set_vertices: a new version, the
- * same triangles) the slot of its previous version, so the tree's shape is
- * here and only its boxes are recomputed (O(n), no SAH build: bunny 69k
- * triangles, bench/BENCHMARKS.md "Exact"); the splits stay those of the
- * first shape, which a large deformation makes worse to traverse, never
- * wrong. A new node format or triangle count builds again. */
-static snell_status prepare_mesh(snell_ctx *ctx, exact_prepared *p, const snell_mesh *mesh, int format)
-{
-    const int refit = p->texture && p->nodes && p->format == format && p->triangle_count == mesh->triangle_count;
-    snell__pixel_store unpack;
-    snell_status st;
-    p->alloc = ctx->alloc;
-    if (refit) {
-        refit_boxes(p, mesh);
-        p->refits++;
-    } else if ((st = build(ctx, mesh, format, p)) != SNELL_OK) {
-        return st;
-    }
-    pack_texels(p, mesh);
-    snell__pixel_unpack_begin(&unpack, 4);
-    if (!refit) {
-        if (p->texture) glDeleteTextures(1, &p->texture);
-        glGenTextures(1, &p->texture);
-        glBindTexture(GL_TEXTURE_2D, p->texture);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        if (p->format == SNELL_EXACT_NODES_F32)
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, TEX_WIDTH, p->rows, 0, GL_RGBA, GL_FLOAT, p->texels);
-        else
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, TEX_WIDTH, p->rows, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                         p->texels);
-    } else {
-        glBindTexture(GL_TEXTURE_2D, p->texture);
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, TEX_WIDTH, p->rows, p->format == SNELL_EXACT_NODES_F32 ? GL_RGBA : GL_RGBA_INTEGER,
-                        p->format == SNELL_EXACT_NODES_F32 ? GL_FLOAT : GL_UNSIGNED_INT, p->texels);
-    }
-    snell__pixel_unpack_end(&unpack);
-    if (glGetError() != GL_NO_ERROR)
-        return snell__fail(ctx, SNELL_E_GL, "exact: uploading a %dx%d BVH texture failed", TEX_WIDTH, p->rows);
-    return SNELL_OK;
-}
-
 static snell_status exact_prepare(snell_ctx *ctx, void *state, const snell__object *o, void *prepared,
                                   snell_object_stats *stats)
 {
-    (void)state;
-    (void)stats;
-    return prepare_mesh(ctx, (exact_prepared *)prepared, o->mesh, o->glass->material.exact.node_format);
+    (void)state, (void)stats;
+    return snell__mesh_gpu_bvh(ctx, o->mesh, o->glass->material.exact.node_format, &((exact_prepared *)prepared)->bvh);
 }
-
-void snell__exact_bvh_of(const void *prepared, const snell_glass_material *m, snell__exact_bvh *out)
-{
-    const exact_prepared *p = (const exact_prepared *)prepared;
-    out->texture = p->texture;
-    out->q16 = p->format == SNELL_EXACT_NODES_Q16;
-    out->node_count = p->node_count;
-    out->tri_base = p->tri_base;
-    out->qlo = p->qlo;
-    out->qstep = p->qstep;
-    out->stack = m->exact.walk == SNELL_EXACT_WALK_STACK;
-}
-
-static void exact_release(void *prepared)
-{
-    exact_prepared *p = (exact_prepared *)prepared;
-    if (p->texture) glDeleteTextures(1, &p->texture);
-    p->texture = 0;
-    free_arrays(p);
-    p->builds = p->refits = 0;
-}
-
-#if SNELL_WITH_CAUSTICS
-snell_status snell__exact_bvh_make(snell_ctx *ctx, const snell_mesh *mesh, void **prepared, snell__exact_bvh *out)
-{
-    snell_glass_material stack;
-    snell_status st;
-    if (!*prepared && !(*prepared = snell__calloc(&ctx->alloc, 1, sizeof(exact_prepared))))
-        return snell__fail(ctx, SNELL_E_NOMEM, "exact: out of memory");
-    if ((st = prepare_mesh(ctx, (exact_prepared *)*prepared, mesh, SNELL_EXACT_NODES_F32)) != SNELL_OK) return st;
-    memset(&stack, 0, sizeof stack);
-    stack.exact.walk = SNELL_EXACT_WALK_STACK;
-    snell__exact_bvh_of(*prepared, &stack, out);
-    return SNELL_OK;
-}
-
-void snell__exact_bvh_free(void *prepared)
-{
-    exact_prepared *p = (exact_prepared *)prepared;
-    if (!p) return;
-    exact_release(p);
-    snell__free(&p->alloc, p);
-}
-#endif
 
 /* Pixels of this object that took the fallback: the kernel marks them with
  * alpha -(index + 1) in the RGBA32F exit-direction target (other kernels and
@@ -504,12 +175,12 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
 {
     exact_state *s = (exact_state *)state;
     const snell_exact_params *e = &o->glass->material.exact;
-    const exact_prepared *ep = (const exact_prepared *)o->prepared;
+    const snell__gpu_bvh *ep = &((const exact_prepared *)o->prepared)->bvh;
     const snell__program_slot *p;
     /* Dispersion: always three traces (SNELL_DISPERSION 1), whatever the
      * material's model: exact is the accuracy ceiling, and one path would
      * give red and blue estimated exits where the traversal finds the true ones. */
-    snell_status st = get_prog(ctx, s, e->node_budget, ep->format == SNELL_EXACT_NODES_Q16, o->glass->absorbs,
+    snell_status st = get_prog(ctx, s, e->node_budget, ep->q16, o->glass->absorbs,
                                 snell__glass_variant(o), e->walk == SNELL_EXACT_WALK_STACK, o->glass->disperses ? 1 : 0, &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
@@ -522,7 +193,7 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
      * this minimum distance (world units, 1e-5 of the bounding radius; the
      * reference's is 1e-9 of its extent, in double) keeps them off the
      * neighbours of an edge they start on, within float rounding. */
-    glUniform1f(LOCS(p)->eps, SNELL__EXACT_EPS(o->bsphere[3]));
+    glUniform1f(LOCS(p)->eps, SNELL__BVH_EPS(o->bsphere[3]));
     glUniform3fv(LOCS(p)->qlo, 1, ep->qlo);
     glUniform3fv(LOCS(p)->qstep, 1, ep->qstep);
     glUniform1f(LOCS(p)->mark, -(float)(o->index + 1));
@@ -553,11 +224,11 @@ static const snell_param_info g_params[] = {
     {.name = "interfaces",
      .offset = offsetof(snell_glass_material, exact.max_interfaces),
      .help = "surfaces processed per path (1 = single surface with the exact path length; more = exit and TIR bounces), the MATCHED reference's cap",
-     .min = 1, .max = SNELL_EXACT_MAX_INTERFACES, .def = DEFAULT_INTERFACES},
+     .min = 1, .max = SNELL_EXACT_MAX_INTERFACES, .def = SNELL_EXACT_DEFAULT_INTERFACES},
     {.name = "budget",
      .offset = offsetof(snell_glass_material, exact.node_budget),
      .help = "BVH nodes a pixel may visit over all its rays; past it the single-surface answer",
-     .min = SNELL_EXACT_MIN_BUDGET, .max = SNELL_EXACT_MAX_BUDGET, .def = DEFAULT_BUDGET},
+     .min = SNELL_EXACT_MIN_BUDGET, .max = SNELL_EXACT_MAX_BUDGET, .def = SNELL_EXACT_DEFAULT_BUDGET},
     {.name = "nodes",
      .offset = offsetof(snell_glass_material, exact.node_format),
      .help = "node bounds: f32 (RGBA32F, 2 texels) or q16 (16-bit quantised, rounded outward, 1 RGBA32UI texel)",
@@ -615,7 +286,6 @@ const snell__method snell__method_exact = {
     .prepared_size = sizeof(exact_prepared),
     .key = exact_key,
     .prepare = exact_prepare,
-    .release = exact_release,
     .draw = exact_draw,
     .software_screen_ppt = EXACT_SOFTWARE_SCREEN_PPT,
     .rungs = g_rungs,

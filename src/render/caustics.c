@@ -30,7 +30,7 @@
 #include "frame/glass_program.h"
 #include "frame/method.h"
 #include "mesh/mesh.h"
-#include "methods/exact.h"
+#include "mesh/bvh_gpu.h"
 #include "water/water_draw.h"
 
 #include <math.h>
@@ -547,46 +547,48 @@ static void frame_uniforms(GLuint prog, const snell__caustics *c)
 /* How a glass object's photons find their way through it: the depth maps'
  * one crossing (prog 0), or, where the mesh is not convex (or has no
  * analysis) or its material is the exact method's (whose interfaces ask for
- * TIR bounces), the exact method's BVH of the mesh (bvh, prog: the photon
- * program of its node format and walk). The BVH is the prepared cache's
- * entry exact uses (built once per mesh version, refitted when deformed,
- * shared with an exact object of the same mesh); exact's prepare reads no
- * method state. A convex mesh keeps the maps: one crossing is its whole
- * path there, at a fraction of the cost. */
-static snell_status photon_path(snell_ctx *ctx, snell__caustics *c, snell__prepared_cache *prep, const snell__object *o,
-                                snell__exact_bvh *bvh, GLuint *prog)
+ * TIR bounces), the mesh's BVH (mesh/bvh_gpu.h: built once, refitted when
+ * deformed, the one an exact object of the same mesh walks; bvh, prog: the
+ * photon program of its node format and the material's walk). A convex mesh
+ * keeps the maps: one crossing is its whole path there, at a fraction of
+ * the cost. */
+static snell_status photon_path(snell_ctx *ctx, snell__caustics *c, const snell__object *o, snell__gpu_bvh *bvh,
+                                GLuint *prog)
 {
-#if SNELL__BUILT_exact
+    const snell_glass_material *m = &o->glass->material;
     const snell_mesh_analysis *an = NULL;
-    snell_object_stats scratch; /* the object's own stats count its method's preparing */
-    void *data = NULL;
+    int stack = m->exact.walk != SNELL_EXACT_WALK_STACKLESS;
     snell_status st;
     char def[96];
     GLuint *p;
     *prog = 0;
-    if (c->maps_only ||
-        (o->glass->material.method != SNELL_METHOD_EXACT && snell__mesh_analysis(o->mesh, &an) == SNELL_OK && an->convex))
+    if (c->maps_only || (m->method != SNELL_METHOD_EXACT && snell__mesh_analysis(o->mesh, &an) == SNELL_OK && an->convex))
         return SNELL_OK;
-    memset(&scratch, 0, sizeof scratch);
-    st = snell__prepared_lookup(ctx, prep, snell__method_get(SNELL_METHOD_EXACT), NULL, o, &scratch, &data);
-    if (st != SNELL_OK) return st;
-    snell__exact_bvh_of(data, &o->glass->material, bvh);
-    p = &c->photon_bvh_prog[bvh->q16][bvh->stack];
+    if ((st = snell__mesh_gpu_bvh(ctx, o->mesh, m->exact.node_format, bvh)) != SNELL_OK) return st;
+    p = &c->photon_bvh_prog[bvh->q16][stack];
     snprintf(def, sizeof def, "#define SNELL_PHOTON_BVH 1\n#define SNELL_NODES_Q16 %d\n#define SNELL_STACK_WALK %d\n",
-             bvh->q16, bvh->stack);
+             bvh->q16, stack);
     if (!*p && (st = snell__program_build(ctx, "caustics_photon.vert", "caustics_splat.frag", def, p)) != SNELL_OK)
         return st;
     *prog = *p;
-#else
-    (void)ctx, (void)c, (void)prep, (void)o, (void)bvh;
-    *prog = 0; /* a build without the exact method: the maps' one crossing */
-#endif
     return SNELL_OK;
+}
+
+/* The material's exact parameters as the photons walk by them: resolved by
+ * the registry where the exact method is built, its defaults where not. */
+static int photon_budget(const snell_glass_material *m)
+{
+    return m->exact.node_budget > 0 ? m->exact.node_budget : SNELL_EXACT_DEFAULT_BUDGET;
+}
+
+static int photon_interfaces(const snell_glass_material *m)
+{
+    return m->exact.max_interfaces > 0 ? m->exact.max_interfaces : SNELL_EXACT_DEFAULT_INTERFACES;
 }
 
 /* The photon program's uniforms of the BVH path (bvh.glsl, the path's cap
  * and budget: the material's exact parameters), its texture on unit 5. */
-static void bvh_texture_uniforms(GLuint p, const snell__exact_bvh *bvh)
+static void bvh_texture_uniforms(GLuint p, const snell__gpu_bvh *bvh)
 {
     glActiveTexture(GL_TEXTURE5);
     glBindTexture(GL_TEXTURE_2D, bvh->texture);
@@ -597,13 +599,12 @@ static void bvh_texture_uniforms(GLuint p, const snell__exact_bvh *bvh)
     glUniform3fv(glGetUniformLocation(p, "u_qstep"), 1, bvh->qstep);
 }
 
-static void bvh_uniforms(GLuint p, const snell__object *o, const snell__exact_bvh *bvh)
+static void bvh_uniforms(GLuint p, const snell__object *o, const snell__gpu_bvh *bvh)
 {
-    const snell_exact_params *e = &o->glass->material.exact;
     bvh_texture_uniforms(p, bvh);
-    glUniform1i(glGetUniformLocation(p, "u_node_budget"), e->node_budget);
-    glUniform1i(glGetUniformLocation(p, "u_max_interfaces"), e->max_interfaces);
-    glUniform1f(glGetUniformLocation(p, "u_eps"), SNELL__EXACT_EPS(o->bsphere[3]));
+    glUniform1i(glGetUniformLocation(p, "u_node_budget"), photon_budget(&o->glass->material));
+    glUniform1i(glGetUniformLocation(p, "u_max_interfaces"), photon_interfaces(&o->glass->material));
+    glUniform1f(glGetUniformLocation(p, "u_eps"), SNELL__BVH_EPS(o->bsphere[3]));
     glUniformMatrix4fv(glGetUniformLocation(p, "u_model"), 1, GL_FALSE, (const GLfloat *)o->model);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_model"), 1, GL_FALSE, (const GLfloat *)o->inv_model);
     glUniformMatrix3fv(glGetUniformLocation(p, "u_normal_matrix"), 1, GL_FALSE, (const GLfloat *)o->normal_matrix);
@@ -619,14 +620,13 @@ static void bvh_uniforms(GLuint p, const snell__object *o, const snell__exact_bv
  * one's optics (ref_caustics.c chain), by a world-space BVH of the group's
  * meshes (exact's format, common/bvh.glsl) whose triangles say their object. */
 typedef struct chain {
-    snell__exact_bvh bvh;
+    snell__gpu_bvh bvh;
     int count, first[SNELL__CAUSTICS_CHAIN + 1]; /* its casters; their triangles' ranges in the merged mesh */
     const snell__object *obj[SNELL__CAUSTICS_CHAIN];
     float sphere[4];                             /* a sphere holding them: the directional photons start before it */
     int budget;                                  /* node visits a photon may take: all their exact.node_budget */
 } chain;
 
-#if SNELL__BUILT_exact
 /* Whether the bounding spheres a and b overlap seen from light L (along a
  * directional light, or in angle from a spot; a spot inside one: yes). */
 static int beams_overlap(const light_res *L, const float a[4], const float b[4])
@@ -706,7 +706,7 @@ static snell_status chain_make(snell_ctx *ctx, snell__caustics *c, const snell__
         for (i = 0; i < 3 * (int)me->triangle_count; i++) c->chain_idx[3 * t0 + (size_t)i] = me->indices[i] + (uint32_t)v0;
         ch->first[k] = (int)t0;
         v0 += me->vertex_count, t0 += me->triangle_count;
-        ch->budget += o->glass->material.exact.node_budget;
+        ch->budget += photon_budget(&o->glass->material);
         glm_vec3_sub((float *)o->bsphere, ch->sphere, d);
         ch->sphere[3] = fmaxf(ch->sphere[3], glm_vec3_norm(d) + o->bsphere[3]);
     }
@@ -714,9 +714,8 @@ static snell_status chain_make(snell_ctx *ctx, snell__caustics *c, const snell__
     memset(&m, 0, sizeof m);
     m.positions = c->chain_geo, m.normals = c->chain_geo + 3 * nv, m.indices = c->chain_idx;
     m.vertex_count = (uint32_t)nv, m.triangle_count = (uint32_t)nt;
-    return snell__exact_bvh_make(ctx, &m, &c->chain_bvh, &ch->bvh);
+    return snell__gpu_bvh_make(ctx, &m, &c->chain_bvh, &ch->bvh);
 }
-#endif
 
 /* The chain program's uniforms for caster o's photons: the group's BVH
  * (world space: identity matrices), its casters' materials and ranges. */
@@ -731,7 +730,7 @@ static void chain_uniforms(GLuint p, const chain *ch, const snell__object *o)
         const snell__object *h = ch->obj[k < ch->count ? k : 0];
         if (h == o && k < ch->count) self = k;
         ior[k] = h->glass->material.ior, thick[k] = h->glass->material.thickness;
-        eps[k] = SNELL__EXACT_EPS(h->bsphere[3]);
+        eps[k] = SNELL__BVH_EPS(h->bsphere[3]);
         maxif[k] = h->glass->material.exact.max_interfaces;
         memcpy(sigma + 3 * k, h->glass->absorption, 3 * sizeof(float));
         memcpy(tint + 3 * k, h->glass->material.tint, 3 * sizeof(float));
@@ -757,7 +756,7 @@ static void chain_uniforms(GLuint p, const chain *ch, const snell__object *o)
  * into the opaque receivers' caustic map (F). Returns how many were shot
  * (0: a spot light inside its bounding sphere). */
 static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const snell__object *o, const light_res *L,
-                        const light_frame *F, GLuint prog, const snell__exact_bvh *bvh, const chain *ch)
+                        const light_frame *F, GLuint prog, const snell__gpu_bvh *bvh, const chain *ch)
 {
     const snell_receiver *rc = &fd->receiver;
     int n = fd->light.photons, i, k, plane = rc->extent > 0.0f, target;
@@ -847,7 +846,6 @@ static int draw_photons(snell__caustics *c, const snell_frame_desc *fd, const sn
     return n * n;
 }
 
-#if SNELL__BUILT_exact
 /* Group leader's casters' photons by the chain path (their merged BVH made
  * once for the group); *shot counts the casters that shot any. */
 static snell_status chain_draw(snell_ctx *ctx, snell__caustics *c, const snell_frame_desc *fd, const snell__scene *sc,
@@ -869,7 +867,6 @@ static snell_status chain_draw(snell_ctx *ctx, snell__caustics *c, const snell_f
     }
     return st;
 }
-#endif
 
 /* The opaque objects lit (caustics_opaque.frag), over what the opaque stage
  * drew: the same vertices (object.vert), depth LEQUAL. */
@@ -926,7 +923,7 @@ static snell_status draw_view(snell__caustics *c, const snell_frame_desc *fd, co
 }
 
 /* The plane and the opaque objects: their light maps made or reused, then drawn. */
-static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prepared_cache *prep,
+static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c,
                                  const snell_frame_desc *fd, const snell__scene *sc, snell_frame_stats *s)
 {
     GLint fbo = 0, viewport[4];
@@ -979,23 +976,19 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c, snell__prep
     if (st == SNELL_OK) {
         if (plane) draw_direct(c, fd, &L, &F);
         for (i = 0; i < sc->count; i++) group[i] = -1;
-#if SNELL__BUILT_exact
         if (!c->maps_only) chain_groups(sc, &L, group, gsize);
-#endif
         for (i = 0; i < sc->count && st == SNELL_OK; i++)
             if (casts(&sc->obj[i])) {
-                snell__exact_bvh bvh;
+                snell__gpu_bvh bvh;
                 GLuint prog = 0;
                 int n, together = group[i] >= 0 ? gsize[group[i]] : 1;
-#if SNELL__BUILT_exact
                 if (together >= 2 && together <= SNELL__CAUSTICS_CHAIN) {
                     if (group[i] == i) st = chain_draw(ctx, c, fd, sc, &L, &F, group, i, s, &chain_shot);
                     chained++, groups += group[i] == i, casters++;
                     continue;
                 }
-#endif
                 alone_over += together > SNELL__CAUSTICS_CHAIN;
-                if ((st = photon_path(ctx, c, prep, &sc->obj[i], &bvh, &prog)) != SNELL_OK) break;
+                if ((st = photon_path(ctx, c, &sc->obj[i], &bvh, &prog)) != SNELL_OK) break;
                 n = draw_photons(c, fd, &sc->obj[i], &L, &F, prog ? prog : c->photon_prog, prog ? &bvh : NULL, NULL);
                 s->caustics_photons += n;
                 shot += n > 0;
@@ -1048,11 +1041,11 @@ snell_status snell__caustics_read_opaque(snell_ctx *ctx, snell__caustics *c, flo
 
 /* The receiver plane and the opaque objects, then the water's floor
  * (water/water_caustics.c), which adds its part to the reason. */
-snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, snell__prepared_cache *prep,
+snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c,
                                  const snell_frame_desc *fd, const snell__scene *sc, snell_frame_stats *s)
 {
     snell_status st =
-        fd->receiver.extent > 0.0f || fd->opaque_count > 0 ? receiver_run(ctx, c, prep, fd, sc, s) : SNELL_OK;
+        fd->receiver.extent > 0.0f || fd->opaque_count > 0 ? receiver_run(ctx, c, fd, sc, s) : SNELL_OK;
 #if SNELL_WITH_WATER
     if (st == SNELL_OK && fd->water)
         st = snell__water_caustics(ctx, fd->water, &fd->light, fd->opaque, fd->opaque_count, s);
@@ -1078,9 +1071,7 @@ void snell__caustics_destroy(snell__caustics *c)
     if (c->cm_tex) glDeleteTextures(1, &c->cm_tex);
     if (c->photon_prog) glDeleteProgram(c->photon_prog);
     if (c->photon_chain_prog) glDeleteProgram(c->photon_chain_prog);
-#if SNELL__BUILT_exact
-    snell__exact_bvh_free(c->chain_bvh);
-#endif
+    snell__gpu_bvh_free(c->chain_bvh, 1);
     snell__free(&c->chain_alloc, c->chain_geo);
     snell__free(&c->chain_alloc, c->chain_idx);
     for (i = 0; i < 4; i++)

@@ -18,7 +18,7 @@ typedef struct snell__caustics {
     unsigned map_prog, photon_prog, direct_prog, receiver_prog, opaque_prog, vao;
     unsigned photon_bvh_prog[2][2];                /* photons by exact's BVH: [q16 nodes][stack walk] */
     unsigned photon_chain_prog;                    /* photons through the overlapping casters in sequence */
-    void *chain_bvh;                               /* their world-space BVH (exact's, snell__exact_bvh_make) */
+    void *chain_bvh;                               /* their world-space BVH (snell__gpu_bvh_make) */
     float *chain_geo;                              /* its merged mesh: positions then normals (world) */
     uint32_t *chain_idx;                           /* and triangles */
     size_t chain_geo_cap, chain_idx_cap;           /* floats, indices allocated */
@@ -57,10 +57,9 @@ int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n);
 
 /* Makes (or reuses) the light maps and draws the receiver plane (depth-tested,
  * depth written) and the opaque objects lit (over what the opaque stage drew,
- * depth LEQUAL) into the bound framebuffer with the view's view_proj. prep:
- * the renderer's prepared cache, where concave glass's photons find the
- * exact method's BVH of their mesh. */
-snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, snell__prepared_cache *prep,
+ * depth LEQUAL) into the bound framebuffer with the view's view_proj;
+ * concave glass's photons walk the mesh's BVH (mesh/bvh_gpu.h). */
+snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c,
                                  const snell_frame_desc *fd, const snell__scene *sc, snell_frame_stats *s);
 
 /* The light map as last made: size x size texels of rgba floats (rgb the

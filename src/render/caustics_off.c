@@ -20,10 +20,10 @@ int snell__caustics_wanted(const snell_frame_desc *fd, char *why, size_t n)
     return 0;
 }
 
-snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c, snell__prepared_cache *prep,
+snell_status snell__caustics_run(snell_ctx *ctx, snell__caustics *c,
                                  const snell_frame_desc *fd, const snell__scene *sc, snell_frame_stats *s)
 {
-    (void)c, (void)prep, (void)fd, (void)sc, (void)s;
+    (void)c, (void)fd, (void)sc, (void)s;
     return snell__fail(ctx, SNELL_E_UNSUPPORTED, "caustics: built without SNELL_WITH_CAUSTICS");
 }
 

@@ -23,7 +23,7 @@ static int wanted(const snell__frame *f, const void *state)
 static snell_status run(snell__frame *f, void *state)
 {
     snell__caustics *c = (snell__caustics *)state;
-    snell_status st = snell__caustics_run(f->r->ctx, c, &f->r->prepared, f->fd, f->sc, f->s);
+    snell_status st = snell__caustics_run(f->r->ctx, c, f->fd, f->sc, f->s);
     if (st == SNELL_OK) snell__receiver_view(&f->sc->view, c, &f->fd->receiver);
     return st;
 }
