@@ -849,11 +849,6 @@ typedef struct snell_camera {
 #define SNELL_DEFAULT_CAMERA_DISTANCE 3.5f
 #define SNELL_DEFAULT_FOV_Y 0.78539816339744831f /* 45 degrees */
 
-/* An orbit camera with every default applied: distance, fov_y, and z_near
- * and z_far derived from the distance (0.01 and 100 times it); a
- * SNELL_CAMERA_MATRICES camera as given. in NULL: the default camera. */
-void snell_camera_defaults(const snell_camera *in, snell_camera *out);
-
 /* Eye position and view/projection matrices (column-major) of a camera:
  * the orbit's, or the matrices given (then aspect is unused). */
 void snell_camera_matrices(const snell_camera *cam, float aspect, float eye[3],
@@ -994,12 +989,6 @@ typedef struct snell_receiver {
 #define SNELL_DEFAULT_RECEIVER_MAP 256
 #define SNELL_DEFAULT_RECEIVER_ALBEDO 0.8f
 
-/* The light and the receiver with every default applied (the values the
- * renderer and the reference use): a light's colour (all zero = 1), its
- * spot angle and photons; a receiver's albedo (all zero = 0.8 grey) and
- * light-map size. Nothing is validated (snell_render does that). */
-void snell_light_defaults(const snell_light *in, snell_light *out);
-void snell_receiver_defaults(const snell_receiver *in, snell_receiver *out);
 
 #define SNELL_MAX_GLASS 32
 #define SNELL_MAX_OPAQUE 64
@@ -1297,11 +1286,14 @@ const snell_budget_rung *snell_budget_rung_at(int i); /* NULL outside 0..count-1
 #define SNELL_DEFAULT_RENDER_SIZE 512
 
 /* The descriptions with every default applied: what snell_renderer_create
- * and snell_render use (zero fields to their defaults, sokol-style; the
- * camera, light and receiver through their own _defaults). Nothing is
- * validated here. A frame's scene_layers 0 (auto) becomes its cap,
- * SNELL_DEFAULT_SCENE_LAYERS (on only where the frame needs the layers,
- * as for any cap); dynamic_env_size needs the frame's env. */
+ * and snell_render use (zero fields to their defaults, sokol-style). The
+ * frame's camera (an orbit's distance, fov_y, and z_near and z_far at 0.01
+ * and 100 times the distance; matrices as given), light (colour all zero =
+ * 1, spot angle, photons) and receiver (albedo all zero = 0.8, map size) are
+ * resolved too; scene_layers 0 (auto) becomes its cap,
+ * SNELL_DEFAULT_SCENE_LAYERS (on only where the frame needs the layers, as
+ * for any cap); dynamic_env_size needs the frame's env. Nothing is
+ * validated here (snell_render does that). */
 void snell_renderer_defaults(const snell_renderer_desc *in, snell_renderer_desc *out);
 void snell_frame_defaults(const snell_frame_desc *in, snell_frame_desc *out);
 

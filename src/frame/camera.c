@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-void snell_camera_defaults(const snell_camera *in, snell_camera *out)
+void snell__camera_defaults(const snell_camera *in, snell_camera *out)
 {
     snell_camera c;
     memset(&c, 0, sizeof c);
@@ -29,7 +29,7 @@ void snell_camera_matrices(const snell_camera *cam, float aspect, float eye_out[
     vec3 eye, target, up = {0.0f, 1.0f, 0.0f};
     mat4 view, proj;
     float ce, dist;
-    snell_camera_defaults(cam, &c);
+    snell__camera_defaults(cam, &c);
     if (c.kind == SNELL_CAMERA_MATRICES) {
         /* The eye is where the view matrix puts the origin of eye space. */
         mat4 inv;
@@ -138,10 +138,10 @@ snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *ca
                                "%s: camera.distance %g is too small (at least %g: a millionth of the scene's scale)",
                                who, cam->distance, 1e-6f * scale);
     }
-    /* The planes as given, or as snell_camera_defaults derives them. */
+    /* The planes as given, or as snell__camera_defaults derives them. */
     {
         snell_camera c;
-        snell_camera_defaults(cam, &c);
+        snell__camera_defaults(cam, &c);
         dist = c.distance;
         zn = c.z_near;
         zf = cam->z_far > 0.0f ? cam->z_far : c.z_far;

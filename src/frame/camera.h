@@ -6,6 +6,11 @@
 
 #include "core/core.h"
 
+/* An orbit camera with every default applied: distance, fov_y, and z_near
+ * and z_far derived from the distance (0.01 and 100 times it); a
+ * SNELL_CAMERA_MATRICES camera as given. in NULL: the default camera. */
+void snell__camera_defaults(const snell_camera *in, snell_camera *out);
+
 /* SNELL_OK, or SNELL_E_INVALID_ARG with a message "who: camera.FIELD ..."
  * naming the field: every value finite, distance >= 0, 0 <= fov_y < pi,
  * z_near and z_far >= 0 with the near plane (given or derived) before the

@@ -1,10 +1,9 @@
-/* lighting.c — the light's and the receiver's defaults, resolved once for
- * the renderer (render/defaults.c) and the reference tracer alike. */
-#include "core/core.h"
+/* lighting.c — see lighting.h. */
+#include "frame/lighting.h"
 
 #include <string.h>
 
-void snell_light_defaults(const snell_light *in, snell_light *out)
+void snell__light_defaults(const snell_light *in, snell_light *out)
 {
     snell_light l;
     int k;
@@ -17,7 +16,7 @@ void snell_light_defaults(const snell_light *in, snell_light *out)
     *out = l;
 }
 
-void snell_receiver_defaults(const snell_receiver *in, snell_receiver *out)
+void snell__receiver_defaults(const snell_receiver *in, snell_receiver *out)
 {
     snell_receiver rc;
     int k;

@@ -15,6 +15,7 @@
  * receivers alike; the GPU does so where beams overlap (its chain path).
  * The GPU follows the same path by exact's BVH where the mesh is not
  * convex, and one crossing of depth maps where it is (caustics_photon.vert). */
+#include "frame/lighting.h"
 #include "ref/ref_trace.h"
 #include "core/ctx.h"
 #include "core/optics.h"
@@ -209,8 +210,8 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
     if (photons < 1 || photons > 4096 || samples < 1 || samples > 16)
         return snell__fail(ref->ctx, SNELL_E_INVALID_ARG, "snell_ref_receiver_render: photons %d (1..4096), "
                            "samples %d (1..16)", photons, samples);
-    snell_light_defaults(light, &lt);
-    snell_receiver_defaults(rc, &rr);
+    snell__light_defaults(light, &lt);
+    snell__receiver_defaults(rc, &rr);
     light = &lt, rc = &rr;
     for (k = 0; k < 3; k++) d[k] = light->direction[k];
     len = sqrt(snell__ref_dot3(d, d));
@@ -494,7 +495,7 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
     L = (struct ref_lit *)snell__calloc(&ref->alloc, 1, sizeof *L);
     if (!L) return snell__fail(ref->ctx, SNELL_E_NOMEM, "snell_ref_set_light: out of memory");
     ref->lit = L;
-    snell_light_defaults(light, &lt);
+    snell__light_defaults(light, &lt);
     L->spot = light->type == SNELL_LIGHT_SPOT;
     for (k = 0; k < 3; k++) {
         L->d[k] = light->direction[k] / len, L->pos[k] = light->position[k];

@@ -12,6 +12,7 @@
  * are traced by ref_trace.c's MATCHED model within the two media: the air
  * and the water are snell__ref_medium's, the water's chosen where a point
  * lies inside the box below the surface. */
+#include "frame/lighting.h"
 #include "core/optics.h"
 #include "ref/ref_scene.h"
 #include "ref/ref_trace.h"
@@ -626,7 +627,7 @@ snell_status snell_ref_water_floor_render(snell_water *w, const snell_ref *objec
         if (h[i] < ft->s.hmin) ft->s.hmin = h[i];
         if (h[i] > ft->s.hmax) ft->s.hmax = h[i];
     }
-    snell_light_defaults(light, &lt);
+    snell__light_defaults(light, &lt);
     ft->spot = light->type == SNELL_LIGHT_SPOT;
     ft->photons = photons;
     ft->size = size;

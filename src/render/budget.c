@@ -70,12 +70,12 @@ int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolve
 void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resolved *glass, float quality_floor_db,
                           int (*usable)(void *user, snell_method m), void *user, snell__budget_object *out)
 {
-    int i, j;
+    int i, j, count = snell__rung_count();
     out->n = 0;
     out->cls = snell__budget_class(an, glass);
     out->floor = 0;
     out->fixed_cost = 1.0f;
-    for (i = 0; i < snell__rung_count(); i++) {
+    for (i = 0; i < count; i++) {
         const snell__rung *g = snell__rung_at(i);
         const snell__method *m = snell__method_get(g->method);
         char why[SNELL_REASON_SIZE];
@@ -100,10 +100,15 @@ void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resol
         out->ladder[j] = i;
         out->n++;
     }
+    for (j = 0; j < out->n; j++) {
+        const snell__rung *g = snell__rung_at(out->ladder[j]);
+        out->cost[j] = g->cost[out->cls];
+        out->db[j] = g->db[out->cls];
+    }
     if (quality_floor_db > 0.0f) {
         out->floor = out->n > 0 ? out->n - 1 : 0; /* none reaches it: the best there is */
         for (j = 0; j < out->n; j++)
-            if (snell__rung_at(out->ladder[j])->db[out->cls] >= quality_floor_db) {
+            if (out->db[j] >= quality_floor_db) {
                 out->floor = j;
                 break;
             }
@@ -122,10 +127,10 @@ void snell__budget_reset(snell__budget *b)
 
 static double rung_cost(const snell__budget_object *o, int k)
 {
-    return o->n == 0 ? o->fixed_cost : snell__rung_at(o->ladder[k])->cost[o->cls];
+    return o->n == 0 ? o->fixed_cost : o->cost[k];
 }
 
-static double rung_db(const snell__budget_object *o, int k) { return snell__rung_at(o->ladder[k])->db[o->cls]; }
+static double rung_db(const snell__budget_object *o, int k) { return o->db[k]; }
 
 /* A plan in the table's units (what bars compare; device independent). */
 static double plan_units(const snell__budget_object *obj, int n, const int plan[])
@@ -148,7 +153,7 @@ static double rung_k(const snell__budget *b, int r)
 static double object_ms(const snell__budget *b, const snell__budget_object *o, int k)
 {
     if (!o->n) return o->area * o->fixed_cost * b->ms_per_unit;
-    return o->area * snell__rung_at(o->ladder[k])->cost[o->cls] * rung_k(b, o->ladder[k]);
+    return o->area * o->cost[k] * rung_k(b, o->ladder[k]);
 }
 
 /* A plan's predicted ms on this device. */
@@ -191,7 +196,7 @@ static double learned_mean(const snell__budget *b)
 {
     double sum = 0.0;
     int r, m = 0;
-    for (r = 0; r < snell__rung_count(); r++)
+    for (r = 0; r < SNELL__BUDGET_MAX_RUNGS; r++)
         if (b->rung_ms[r] > 0.0) sum += b->rung_ms[r], m++;
     return m ? sum / m : 0.0;
 }
@@ -229,7 +234,7 @@ void snell__budget_observe(snell__budget *b, double ms)
                     fresh[r] = 1;
                     fresh_part += part[r];
                 }
-            for (r = 0; r < snell__rung_count() && fresh_part > 0.0; r++)
+            for (r = 0; r < SNELL__BUDGET_MAX_RUNGS && fresh_part > 0.0; r++)
                 if (fresh[r]) {
                     b->rung_ms[r] = rung_k(b, r) * clampd((fresh_part + d) / fresh_part, 0.25, 4.0);
                     learned = 1;
@@ -239,7 +244,7 @@ void snell__budget_observe(snell__budget *b, double ms)
             /* The same plan again: the error goes to the base and each rung by its share of the prediction. */
             double rho = ms / pred;
             b->base_ms *= pow(rho, LEARN_RUNG * b->base_ms / pred);
-            for (r = 0; r < snell__rung_count(); r++)
+            for (r = 0; r < SNELL__BUDGET_MAX_RUNGS; r++)
                 if (part[r] > 0.0) b->rung_ms[r] = rung_k(b, r) * pow(rho, LEARN_RUNG * part[r] / pred);
         }
         /* the mean that stands in for rungs not drawn yet */
@@ -483,7 +488,7 @@ int snell__budget_calibrate(snell__budget *b, const snell__budget_object *obj, i
             num[r] += ms - m0 + u_floor * k_floor;
             den[r] += u;
         }
-    for (r = 0; r < snell__rung_count(); r++)
+    for (r = 0; r < SNELL__BUDGET_MAX_RUNGS; r++)
         if (den[r] > 1e-9) {
             /* the table's order of costs is kept within a factor 4 of the floor's ms per unit */
             b->rung_ms[r] = clampd(num[r] / den[r], 0.25 * k_floor, 4.0 * k_floor);

@@ -41,6 +41,7 @@ int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolve
 /* One object as the controller sees it. */
 typedef struct snell__budget_object {
     int ladder[SNELL__BUDGET_MAX_RUNGS]; /* rung indices, cost and PSNR ascending */
+    float cost[SNELL__BUDGET_MAX_RUNGS], db[SNELL__BUDGET_MAX_RUNGS]; /* each ladder rung's, for its class */
     int n;                          /* 0: not budgeted (explicit method, thin wall): fixed_cost counts */
     int cls;
     float area;                     /* 0..1 */

@@ -179,11 +179,12 @@ static snell_status stage_run(snell__frame *f, void *state)
         if (b->n == 0) {
             /* drawn as asked (or single for a thin wall): its table cost, else single's */
             snell_method m = g->thickness > 0.0f || g->method == SNELL_METHOD_AUTO ? SNELL_METHOD_SINGLE : g->method;
-            int k, cls = snell__budget_class(an, o->glass);
+            int k, cls = snell__budget_class(an, o->glass), n = snell__rung_count();
             b->fixed_cost = 1.0f;
-            for (k = 0; k < snell__rung_count(); k++)
-                if (snell__rung_at(k)->method == m && !snell__rung_at(k)->param && snell__rung_at(k)->scale <= 1)
-                    b->fixed_cost = snell__rung_at(k)->cost[cls];
+            for (k = 0; k < n; k++) {
+                const snell__rung *g = snell__rung_at(k);
+                if (g->method == m && !g->param && g->scale <= 1) b->fixed_cost = g->cost[cls];
+            }
         }
     }
     if (bs->force) {

@@ -7,7 +7,6 @@
 #include "render/stages.h"
 #include "frame/glass_program.h"
 
-static snell_status validate(snell_ctx *ctx, const snell_frame_desc *fd) { return snell__caustics_validate(ctx, fd); }
 
 static int wanted(const snell__frame *f, const void *state)
 {
@@ -44,7 +43,7 @@ const snell__stage snell__stage_caustics = {
     .name = "caustics",
     .state_size = SNELL_WITH_CAUSTICS ? sizeof(snell__caustics) : 0,
     .destroy = destroy,
-    .validate = validate,
+    .validate = snell__caustics_validate,
     .wanted = wanted,
     .run = run,
     .kernel_variant = variant,

@@ -1,6 +1,8 @@
 /* defaults.c — the renderer's and the frame's descriptions with every
  * default applied, once: snell_renderer_create and snell_render resolve
  * what they are given here, and the stages see only resolved values. */
+#include "frame/camera.h"
+#include "frame/lighting.h"
 #include "render/renderer.h"
 #include "frame/env.h"
 
@@ -23,9 +25,9 @@ void snell_frame_defaults(const snell_frame_desc *in, snell_frame_desc *out)
     snell_frame_desc f;
     memset(&f, 0, sizeof f);
     if (in) f = *in;
-    snell_camera_defaults(&f.camera, &f.camera);
-    if (f.light.type != SNELL_LIGHT_NONE) snell_light_defaults(&f.light, &f.light);
-    if (f.receiver.extent > 0.0f || f.light.type != SNELL_LIGHT_NONE) snell_receiver_defaults(&f.receiver, &f.receiver);
+    snell__camera_defaults(&f.camera, &f.camera);
+    if (f.light.type != SNELL_LIGHT_NONE) snell__light_defaults(&f.light, &f.light);
+    if (f.receiver.extent > 0.0f || f.light.type != SNELL_LIGHT_NONE) snell__receiver_defaults(&f.receiver, &f.receiver);
     if (f.scene_layers == SNELL_SCENE_LAYERS_AUTO) f.scene_layers = SNELL_DEFAULT_SCENE_LAYERS;
     if (!f.dynamic_env_size && f.env && f.env->size > 0) {
         /* Unger 4.1: lower resolution than the static map; half of it, capped. */

@@ -24,6 +24,8 @@ static int wanted(const snell__frame *f, const void *state)
     return f->fd->water != NULL;
 }
 
+#if SNELL_WITH_WATER
+
 static snell_status run(snell__frame *f, void *state)
 {
     snell__water_programs *wp = (snell__water_programs *)state;
@@ -100,3 +102,14 @@ const snell__stage snell__stage_water = {
     .kernel_variant = variant,
     .kernel = &g_hook,
 };
+
+#else
+
+/* Built without the water: a frame with water is refused, so the stage never runs. */
+const snell__stage snell__stage_water = {
+    .name = "water",
+    .validate = validate,
+    .wanted = wanted,
+};
+
+#endif
