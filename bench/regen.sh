@@ -131,7 +131,7 @@ EOF
     cat <<EOF
 ## AUTO by frame budget
 
-\`snell_frame_desc.budget_ms\` (README "AUTO by frame budget"): AUTO with the budget beside every
+\`snell_frame_desc.budget_ms\` (docs/integrating.md, "Frame budget"): AUTO with the budget beside every
 fixed configuration of its rung table, on a camera turning 1.2° a frame; AUTO draws every frame,
 the fixed configurations every 5th, taking turns; glass PSNR against FULL at pixel centres on 4
 frames spread over the run. A budget Nx is N times single's median frame along the first frames

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# docs/regen.sh — renders the README's images that come from a snell-render
-# command (the command is each image's caption in the README), into docs/.
+# docs/regen.sh — renders the docs' images that come from a snell-render
+# command (the command is each image's caption in README.md or docs/*.md, or
+# the images are linked from docs/integrating.md), into docs/.
 # The other images come from tests (their captions name the test; the test
 # writes them under its build folder's test output) and the default image,
 # docs/snell.png, is checked byte for byte by the test suite (readme and

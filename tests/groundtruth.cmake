@@ -18,7 +18,7 @@ target_link_libraries(test_groundtruth PRIVATE m)
 # alone): 25 s measured alone on 2 cores at load 5-7 (each render about 5 s
 # with Blender's start, the reference 2 s), 51-56 s inside the whole suite
 # (ctest -j2, load 8-10). Skipped where Blender is missing. The
-# full size (figures in README "Caustics and shadows of glass", 50 s):
+# full size (figures in docs/accuracy.md "Caustics", 50 s):
 # test_caustics_cycles BLENDER SCRIPT 256 64.
 snell_add_test(test_caustics_cycles SOURCES test_caustics_cycles.c LABELS "groundtruth" TIMEOUT 900
   ARGS ${BLENDER_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/cycles_caustics.py 64 16)

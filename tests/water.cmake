@@ -53,7 +53,7 @@ target_link_libraries(test_water_glass PRIVATE m)
 snell_add_test(test_water_caustics SOURCES test_water_caustics.c LABELS "render;gl")
 target_link_libraries(test_water_caustics PRIVATE m)
 # bench_water_caustics: the frame cost with the floor's caustics against without, the water moving,
-# rounds taking turns (a tool, not a test: uses internals; numbers in README's caustics section).
+# rounds taking turns (a tool, not a test: uses internals; numbers in bench/notes/readme-1f9ff36.md).
 if(SNELL_WITH_CAUSTICS AND SNELL_WITH_WATER)
   add_executable(bench_water_caustics bench_water_caustics.c ${PROJECT_SOURCE_DIR}/ports/cli/cli_time.c)
   target_link_libraries(bench_water_caustics PRIVATE snell_static)
