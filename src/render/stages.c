@@ -4,25 +4,34 @@
  * glass set-up (method, mesh, prepared resources, dynamic environment,
  * shading) -> scene layers -> water -> back faces -> G-buffer -> kernels ->
  * background -> resolves. snell_render (renderer.c) runs the entries a frame
- * wants. Adding a stage: its module and one line here. */
+ * wants. Adding a stage: its module and one line of SNELL__STAGE_TABLE. */
 #include "render/stages.h"
 
 #include <stddef.h>
 
-const snell__stage *const snell__stages[] = {
-    &snell__stage_budget,
-    &snell__stage_opaque,
-    &snell__stage_caustics,
-    &snell__stage_glass,
-    &snell__stage_layers,
-    &snell__stage_water,
-    &snell__stage_back_faces,
-    &snell__stage_gbuffer,
-    &snell__stage_kernels,
-    &snell__stage_background,
-    &snell__stage_ssaa,
-    &snell__stage_msaa,
-};
+/* The table: one line S(name) per stage, in frame order; each line declares
+ * snell__stage_<name> (defined in its module) and takes it into the table. */
+#define SNELL__STAGE_TABLE(S) \
+    S(budget)                 \
+    S(opaque)                 \
+    S(caustics)               \
+    S(glass)                  \
+    S(layers)                 \
+    S(water)                  \
+    S(back_faces)             \
+    S(gbuffer)                \
+    S(kernels)                \
+    S(background)             \
+    S(ssaa)                   \
+    S(msaa)
+
+#define DECLARE(name) extern const snell__stage snell__stage_##name;
+SNELL__STAGE_TABLE(DECLARE)
+#undef DECLARE
+
+#define ENTRY(name) &snell__stage_##name,
+const snell__stage *const snell__stages[] = {SNELL__STAGE_TABLE(ENTRY)};
+#undef ENTRY
 const int snell__stage_count = (int)(sizeof snell__stages / sizeof *snell__stages);
 
 typedef char snell__stages_fit[sizeof snell__stages / sizeof *snell__stages <= SNELL__STAGES_MAX ? 1 : -1];

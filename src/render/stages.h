@@ -15,19 +15,10 @@ struct snell__frame {
     void *const *state;             /* each stage's slot, by table index (r->stage_state) */
 };
 
-/* The stages, in the modules that own them. */
+/* The stages other modules name (the table, stages.c, declares them all). */
 extern const snell__stage snell__stage_budget;     /* budget_stage.c */
-extern const snell__stage snell__stage_opaque;     /* composite.c */
 extern const snell__stage snell__stage_caustics;   /* caustics_stage.c */
-extern const snell__stage snell__stage_glass;      /* glass_stage.c */
-extern const snell__stage snell__stage_layers;     /* layers.c */
-extern const snell__stage snell__stage_water;      /* water_stage.c */
-extern const snell__stage snell__stage_back_faces; /* gbuffer.c */
-extern const snell__stage snell__stage_gbuffer;    /* gbuffer.c */
-extern const snell__stage snell__stage_kernels;    /* kernels_stage.c */
-extern const snell__stage snell__stage_background; /* composite.c */
-extern const snell__stage snell__stage_ssaa;       /* ssaa.c */
-extern const snell__stage snell__stage_msaa;       /* renderer.c */
+extern const snell__stage snell__stage_gbuffer;    /* gbuffer.c (bench_floor times its pass) */
 
 /* A stage's slot in renderer r (NULL: it keeps no state). */
 void *snell__renderer_stage_state(const snell_renderer *r, const snell__stage *stage);
