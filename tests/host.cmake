@@ -55,3 +55,10 @@ if(TARGET snell-render)
            ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(cli_camera_projective cli_camera_view_alone PROPERTIES LABELS "cli")
 endif()
+
+# The host's scene behind the glass (snell_frame_desc.backdrop): a host's
+# frame and depth as textures or copied from its framebuffer, searched by
+# every glass's exit rays; against the reference with the same backdrop.
+snell_add_test(test_backdrop SOURCES test_backdrop.c LABELS "render;gl" TIMEOUT 600)
+target_link_libraries(test_backdrop PRIVATE PkgConfig::EGL PkgConfig::GLES m)
+

@@ -994,6 +994,41 @@ typedef enum snell_depth_mode {
                                      * whose depth buffer can be blitted) */
 } snell_depth_mode;
 
+/* The host's scene behind the glass (snell_frame_desc.backdrop): what the
+ * host drew before calling snell_render, as textures. The glass's exit and
+ * reflected rays that leave it (every method, the scene layers' march:
+ * common/beyond.glsl) look for it in screen space before the environment.
+ * With a depth texture, each ray is searched against it as a depth field
+ * (32 steps across the screen, then 6 halvings): a texel of depth d
+ * stands for everything behind its surface (a ray passing behind a thin
+ * object is stopped by it), and depth 1 (nothing drawn) for nothing. The
+ * colour where the ray goes behind the field is taken, bilinearly; a ray
+ * that leaves the view, or finds nothing, sees the environment. Without
+ * depth, the colour where the ray is `distance` past the glass (one look-up,
+ * as Filament's and three.js's screen-space refraction). The backdrop is
+ * met after the frame's own objects, water and receiver plane. */
+typedef enum snell_backdrop_source {
+    SNELL_BACKDROP_TEXTURES = 0,    /* color_texture and depth_texture as given */
+    SNELL_BACKDROP_COPY_BOUND       /* snell copies the bound framebuffer's colour at the frame's start, and
+                                     * its depth where a blit can (a depth buffer of 16, 24 or 32F bits; else
+                                     * the colour at distance); SNELL_TARGET_BOUND_FRAMEBUFFER only */
+} snell_backdrop_source;
+
+typedef struct snell_backdrop {
+    snell_backdrop_source source;
+    unsigned color_texture;         /* TEXTURES: a GL_TEXTURE_2D of the renderer's context, required; rows
+                                     * bottom first, as GL draws them; not the frame's target */
+    unsigned depth_texture;         /* TEXTURES: its window depths (a depth-format GL_TEXTURE_2D, drawn with
+                                     * glDepthRangef(0, 1)); 0 = none */
+    int width, height;              /* TEXTURES: the textures' size in texels (GLES 3.0 cannot ask), required */
+    int region[4];                  /* x, y (from the bottom), w, h: the texels that hold the view; all 0 =
+                                     * the whole texture (COPY_BOUND: the frame's size) */
+    const snell_camera *camera;     /* the camera it was drawn with (ORBIT: aspect of the region); NULL =
+                                     * the frame's */
+    float distance;                 /* without depth: how far past the glass a ray takes the colour,
+                                     * world units; 0 = 1 */
+} snell_backdrop;
+
 typedef struct snell_frame_desc {
     const snell_env *env;           /* required */
     snell_camera camera;
@@ -1078,6 +1113,7 @@ typedef struct snell_frame_desc {
     snell_receiver receiver;
     /* What the frame does with the target's depth buffer (snell_depth_mode). */
     snell_depth_mode depth;
+    const snell_backdrop *backdrop; /* the host's scene behind the glass; NULL = none */
 } snell_frame_desc;
 
 #define SNELL_MAX_SCENE_LAYERS 8
@@ -1178,6 +1214,7 @@ typedef struct snell_frame_stats {
     int caustics_photons;           /* photons splatted onto the receiver this frame (0: none or reused) */
     int caustics_reused;            /* 1: the last frame's light map (light, glass and receiver still) */
     char caustics_reason[SNELL_REASON_SIZE]; /* why the caustics stage ran or did not */
+    int backdrop;                   /* 0 none; 1 the backdrop's colour at its distance; 2 searched against its depth */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

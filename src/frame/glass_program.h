@@ -40,7 +40,8 @@ void snell__glass_program_bind(const snell__glass_program *g, const char *name, 
 #define SNELL__GLASS_WATER 16       /* the frame has water, heights in R32F (common/water.glsl) */
 #define SNELL__GLASS_WATER_UINT 32  /* ... in the GPU simulation's RG32UI state */
 #define SNELL__GLASS_RECEIVER 64    /* the frame's receiver plane is lit (common/receiver.glsl) */
-#define SNELL__GLASS_VARIANTS 128
+#define SNELL__GLASS_BACKDROP 128   /* the host's scene behind the glass (common/backdrop.glsl) */
+#define SNELL__GLASS_VARIANTS 256
 int snell__glass_variant(const snell__object *o);
 
 /* One slot of a kernel's small cache of programs, keyed by their

@@ -15,6 +15,7 @@
 #include "core/platform.h"
 #include "frame/camera.h"
 #include "frame/env.h"
+#include "render/backdrop.h"
 #include "render/gbuffer.h"
 
 #include <math.h>
@@ -205,6 +206,7 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__glass_scale_destroy(&r->glass_scale);
     snell__ssaa_destroy(&r->ssaa);
     snell__host_depth_destroy(&r->host_depth);
+    snell__backdrop_destroy(r->ctx, r->backdrop);
     if (r->msaa_fbo) glDeleteFramebuffers(1, &r->msaa_fbo);
     if (r->msaa_rb) glDeleteRenderbuffers(1, &r->msaa_rb);
     if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
@@ -257,6 +259,7 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "SNELL_DEPTH_TEST_NO_WRITE is for a bound framebuffer: "
                            "the offscreen target's depth is the renderer's own");
     if ((st = snell__caustics_validate(r->ctx, fd)) != SNELL_OK) return st;
+    if ((st = snell__backdrop_validate(r->ctx, fd, r->target)) != SNELL_OK) return st;
     return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
 }
 

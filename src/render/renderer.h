@@ -29,6 +29,7 @@ struct snell_renderer {
     snell__output_kind out;
     unsigned fbo, color_rb, depth_rb;
     snell__host_depth host_depth;                     /* the target's depth as the frame's mode asks */
+    struct snell__backdrop *backdrop;                 /* the backdrop stage's state (render/backdrop.h), first use */
     void *method_state[SNELL_METHOD_COUNT_];
     snell_status method_status[SNELL_METHOD_COUNT_];  /* creation failed: not retried */
     char method_error[SNELL_METHOD_COUNT_][160];

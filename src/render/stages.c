@@ -14,6 +14,7 @@
 #include "frame/beyond.h"
 #include "frame/env.h"
 #include "frame/glass_program.h"
+#include "render/backdrop.h"
 
 #include <string.h>
 
@@ -482,6 +483,7 @@ static snell_status run_msaa(snell__frame *f)
 
 const snell__stage snell__stages[] = {
     {"budget", snell__budget_wanted, snell__budget_run, NULL, NULL},
+    {"backdrop", snell__backdrop_wanted, snell__backdrop_run, snell__backdrop_variant, &snell__backdrop_hook},
     {"opaque", NULL, run_opaque, NULL, NULL},
     {"caustics", want_caustics, run_caustics, receiver_variant, &snell__receiver_hook},
     {"glass", NULL, run_glass, NULL, NULL},
@@ -497,5 +499,6 @@ const snell__stage snell__stages[] = {
 const int snell__stage_count = (int)(sizeof snell__stages / sizeof *snell__stages);
 
 /* The hooks' uniforms fit a program's share of locations. */
-typedef char snell__hook_locs_fit[SNELL__BEYOND_UNIFORMS + SNELL__WATER_UNIFORMS + SNELL__RECEIVER_UNIFORMS <=
+typedef char snell__hook_locs_fit[SNELL__BEYOND_UNIFORMS + SNELL__WATER_UNIFORMS + SNELL__RECEIVER_UNIFORMS +
+                                          SNELL__BACKDROP_UNIFORMS <=
                                           SNELL__HOOK_LOCS ? 1 : -1];
