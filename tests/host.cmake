@@ -62,3 +62,6 @@ endif()
 snell_add_test(test_backdrop SOURCES test_backdrop.c LABELS "render;gl" TIMEOUT 600)
 target_link_libraries(test_backdrop PRIVATE PkgConfig::EGL PkgConfig::GLES m)
 
+# The host's cube map as the environment (SNELL_ENV_GL_TEXTURE): borrowed, not copied.
+snell_add_test(test_env_gl SOURCES test_env_gl.c LABELS "render;gl")
+target_link_libraries(test_env_gl PRIVATE PkgConfig::GLES)

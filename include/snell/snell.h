@@ -392,7 +392,11 @@ snell_status snell_mesh_simplify(snell_ctx *ctx, const snell_mesh *src, const sn
 typedef enum snell_env_source {
     SNELL_ENV_PROCEDURAL = 0,  /* built in: sky gradient, sun, checkered floor */
     SNELL_ENV_FACES,           /* six square images: +X -X +Y -Y +Z -Z (GL cubemap layout) */
-    SNELL_ENV_EQUIRECT         /* one equirectangular (lat-long) image */
+    SNELL_ENV_EQUIRECT,        /* one equirectangular (lat-long) image */
+    SNELL_ENV_GL_TEXTURE       /* the host's GL_TEXTURE_CUBE_MAP (gl_texture), sampled where it is: not
+                                * copied, so what the host draws into it shows in the next frame; no CPU
+                                * copy, so what needs one (the reference tracer) refuses it with
+                                * SNELL_E_UNSUPPORTED and snell_env_sample gives black */
 } snell_env_source;
 
 typedef struct snell_env_desc {
@@ -406,10 +410,17 @@ typedef struct snell_env_desc {
      * Copied into the faces: the caller keeps ownership. */
     const uint8_t *equirect_rgba;
     int equirect_width, equirect_height;
+    /* SNELL_ENV_GL_TEXTURE: a cube map texture of ctx's GL context (which must be
+     * current), with face_size its faces' size (required: GLES 3.0 cannot ask).
+     * The host keeps it alive while the environment is used and deletes it
+     * itself; snell_env_destroy leaves it alone. Sampled with its own filter
+     * (GL_LINEAR without mipmaps gives the images other sources give). */
+    unsigned gl_texture;
 } snell_env_desc;
 
 /* Creates the cubemap texture (ctx needed) and keeps a CPU copy of the faces so
- * that references can sample exactly the same texels. ctx may be NULL: CPU only. */
+ * that references can sample exactly the same texels. ctx may be NULL: CPU only.
+ * SNELL_ENV_GL_TEXTURE borrows the host's cube map instead (ctx required). */
 snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_env **out);
 void snell_env_destroy(snell_env *env);
 int snell_env_face_size(const snell_env *env);
