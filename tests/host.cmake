@@ -65,3 +65,8 @@ target_link_libraries(test_backdrop PRIVATE PkgConfig::EGL PkgConfig::GLES m)
 # The host's cube map as the environment (SNELL_ENV_GL_TEXTURE): borrowed, not copied.
 snell_add_test(test_env_gl SOURCES test_env_gl.c LABELS "render;gl")
 target_link_libraries(test_env_gl PRIVATE PkgConfig::GLES)
+
+# Premultiplied alpha over a transparent target: the composite over a colour
+# is the frame drawn in a world of that colour, every method.
+snell_add_test(test_premultiplied SOURCES test_premultiplied.c LABELS "render;gl" TIMEOUT 600)
+target_link_libraries(test_premultiplied PRIVATE PkgConfig::GLES)

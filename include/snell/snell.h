@@ -924,6 +924,17 @@ typedef struct snell_renderer_desc {
      * only, not with ssaa. */
     int msaa;
     snell_env_lookup env_lookup;    /* for every glass object and the background */
+    /* 1: premultiplied alpha for compositing over what lies behind the target
+     * (video, UI): the glass writes rgb = what it shows with the environment
+     * black (its reflections and what it shows of the frame's own objects and
+     * backdrop) and alpha = 1 - the weight of the environment in its colour
+     * (the glass's transmittance and its reflectance of the environment,
+     * averaged over rgb), so that rgb + (1 - alpha) * behind is the glass's
+     * colour over a uniform world of that colour (exactly for untinted or
+     * grey glass). Opaque objects write alpha 1; where nothing is drawn
+     * (draw_background = -1) the target keeps what it held (clear it to 0).
+     * Each glass kernel runs twice a pixel. Colour output only; 0 = off. */
+    int premultiplied_alpha;
 } snell_renderer_desc;
 
 #define SNELL_MAX_SSAA 8

@@ -15,6 +15,7 @@
 #include "frame/env.h"
 #include "frame/glass_program.h"
 #include "render/backdrop.h"
+#include "render/premultiplied.h"
 
 #include <string.h>
 
@@ -495,6 +496,7 @@ const snell__stage snell__stages[] = {
     {"background", want_background, run_background, NULL, NULL},
     {"ssaa", want_ssaa, run_ssaa, NULL, NULL},
     {"msaa", want_msaa, run_msaa, NULL, NULL},
+    {"premultiplied", snell__premultiplied_wanted, NULL, snell__premultiplied_variant, &snell__premultiplied_hook},
 };
 const int snell__stage_count = (int)(sizeof snell__stages / sizeof *snell__stages);
 
