@@ -8,8 +8,9 @@
 #   bash scripts/footprint.sh [test]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-FULL_BUDGET=$((672 * 1024)) # 640 until 2026-12-04: the caustics through glass in sequence (+8 KB of code) passed it
-DEVICE_BUDGET=$((192 * 1024))
+FULL_BUDGET=$((680 * 1024)) # 640 until 2026-12-04: the caustics through glass in sequence (+8 KB of code) passed it;
+                            # 672 until the host's backdrop, borrowed cube map and premultiplied alpha (+12 KB)
+DEVICE_BUDGET=$((200 * 1024)) # 192 until the same three: they are for the apps that embed the device build
 
 size_of() { # build dir -> stripped size in bytes
     strip -o "$1/libsnell.stripped.so" "$1/libsnell.so"

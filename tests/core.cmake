@@ -125,5 +125,5 @@ endif()
 # Texture units and uniforms bound per program (frame/textures.h): every
 # method in both shadings with every kernel hook on, against GLES 3.0's
 # minimum limits read back from the programs; too many samplers refused.
-snell_add_test(test_units SOURCES test_units.c LABELS "unit;gl")
+snell_add_test(test_units SOURCES test_units.c LABELS "unit;gl" TIMEOUT 1500)
 target_link_libraries(test_units PRIVATE PkgConfig::GLES)

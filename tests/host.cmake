@@ -54,4 +54,38 @@ if(TARGET snell-render)
            "-DARGS=--view|${view}|--size|8x8" -DCODE=2 "-DERR=snell-render: --view and --projection go together" -P
            ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(cli_camera_projective cli_camera_view_alone PROPERTIES LABELS "cli")
+  # snell-bench takes the same matrices: every scene's frame and reference through them
+  add_test(NAME bench_camera_matrices COMMAND snell-bench --view ${view}
+           --projection 2.414,0,0,0,0,2.414,0,0,0.3,0.2,-1.002,-1,0,0,-0.07,0 -b single --scenes sphere --sizes 32x32
+           --frames 1 --warmup 0 --no-cache -q -o ${CMAKE_CURRENT_BINARY_DIR}/bench_camera_matrices)
+  set_tests_properties(bench_camera_matrices PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "wrote .*bench_camera_matrices.json")
+  add_test(NAME bench_camera_view_alone COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-bench>"
+           "-DARGS=--view|${view}|-b|single" -DCODE=2 "-DERR=snell-bench: --view and --projection go together" -P
+           ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+  set_tests_properties(bench_camera_view_alone PROPERTIES LABELS "cli")
 endif()
+
+# The host's scene behind the glass (snell_frame_desc.backdrop): a host's
+# frame and depth as textures or copied from its framebuffer, searched by
+# every glass's exit rays; against the reference with the same backdrop.
+snell_add_test(test_backdrop SOURCES test_backdrop.c LABELS "render;gl" TIMEOUT 600)
+target_link_libraries(test_backdrop PRIVATE PkgConfig::EGL PkgConfig::GLES m)
+
+# The host's cube map as the environment (SNELL_ENV_GL_TEXTURE): borrowed, not copied.
+snell_add_test(test_env_gl SOURCES test_env_gl.c LABELS "render;gl")
+target_link_libraries(test_env_gl PRIVATE PkgConfig::GLES)
+
+# Premultiplied alpha over a transparent target: the composite over a colour
+# is the frame drawn in a world of that colour, every method.
+snell_add_test(test_premultiplied SOURCES test_premultiplied.c LABELS "render;gl" TIMEOUT 600)
+target_link_libraries(test_premultiplied PRIVATE PkgConfig::GLES)
+
+# examples/host_scene.c: an app with its own context, shaders and a walking
+# first-person camera puts a glass bunny and a sphere into its scene (its
+# matrices, its depth tested, its frame copied and refracted). Built and run;
+# exit 0 when the glass was drawn into the app's frame searched against its depth.
+add_executable(host_scene ${PROJECT_SOURCE_DIR}/examples/host_scene.c)
+target_link_libraries(host_scene PRIVATE snell_static PkgConfig::EGL PkgConfig::GLES m)
+add_test(NAME example_host_scene COMMAND host_scene ${CMAKE_CURRENT_BINARY_DIR}/host_scene.png)
+set_tests_properties(example_host_scene PROPERTIES LABELS "render;gl" SKIP_RETURN_CODE 77
+                     PASS_REGULAR_EXPRESSION "searched against the app's depth")

@@ -149,6 +149,25 @@ int main(void)
         static uint8_t small[40 * 30 * 4];
         draw_read(&s, 40, 30, small);
     }
+    { /* into the app's frame (a red wall at depth 0.99), through the app's camera:
+       * the corners stay the app's, the glass shows the wall through it */
+        static uint8_t app[40 * 30 * 4];
+        float eye[3], view[16], proj[16];
+        const uint8_t *centre = app + 4 * (15 * 40 + 20), *corner = app;
+        snell_camera_matrices(&s.camera, 40.0f / 30.0f, eye, view, proj);
+        glClearColor(0.9f, 0.1f, 0.1f, 1.0f);
+        glClearDepthf(0.99f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glClearDepthf(1.0f);
+        CHECK(glass_scene_draw_in(&s, view, proj) == SNELL_OK, "draw_in: %s", s.error);
+        glReadPixels(0, 0, 40, 30, GL_RGBA, GL_UNSIGNED_BYTE, app);
+        printf("in the app's frame: corner %d %d %d, centre %d %d %d\n", corner[0], corner[1], corner[2], centre[0],
+               centre[1], centre[2]);
+        CHECK(corner[0] == 230 && corner[1] == 26 && corner[2] == 26, "the app's corner pixel changed");
+        CHECK(centre[0] != 230 && centre[0] > 2 * centre[1] && centre[0] > 2 * centre[2],
+              "the glass shows the app's red frame: %d %d %d", centre[0], centre[1], centre[2]);
+        CHECK(glass_scene_draw_in(&s, NULL, proj) == SNELL_E_INVALID_ARG, "draw_in without a view");
+    }
     glass_scene_free(&s);
     CHECK(!s.mesh_bytes && !s.env_rgba && !s.ctx, "freed");
 

@@ -793,6 +793,8 @@ static void host_objects_make(host_objects *h)
 typedef struct host_scene {
     snell_mesh *sphere, *torus, *cube;
     snell_water *water;
+    snell_backdrop bd;              /* the host's frame behind the glass: a colour and a depth texture */
+    GLuint bd_tex[2];
     snell_glass g[2];
     snell_opaque op;
     float m_sphere[16], m_torus[16], m_cube[16];
@@ -849,6 +851,29 @@ static void scene_frame(host_scene *s, const snell_env *env, snell_frame_desc *f
     fd->light.direction[0] = 0.3f, fd->light.direction[1] = -1.0f, fd->light.direction[2] = 0.2f;
     fd->light.photons = 32;
     fd->receiver.height = -0.9f, fd->receiver.extent = 2.5f, fd->receiver.map_size = 64;
+    /* the host's frame behind the glass: its samplers (own sampler objects) under the host's */
+    fd->backdrop = &s->bd;
+}
+
+/* The backdrop's textures: stripes of colour, the right half at depth 0.99, the left empty (1). */
+static void backdrop_make(host_scene *s)
+{
+    static uint8_t rgba[16 * 16 * 4];
+    static GLuint depth[16 * 16];
+    int i;
+    for (i = 0; i < 16 * 16; i++) {
+        rgba[4 * i] = (uint8_t)(i * 37), rgba[4 * i + 1] = (uint8_t)(i * 11), rgba[4 * i + 2] = 200, rgba[4 * i + 3] = 255;
+        depth[i] = i % 16 < 8 ? 0xffffffffu : (GLuint)(0.99 * 4294967295.0);
+    }
+    glGenTextures(2, s->bd_tex);
+    glBindTexture(GL_TEXTURE_2D, s->bd_tex[0]);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 16, 16, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glBindTexture(GL_TEXTURE_2D, s->bd_tex[1]);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, 16, 16, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, depth);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    memset(&s->bd, 0, sizeof s->bd);
+    s->bd.color_texture = s->bd_tex[0], s->bd.depth_texture = s->bd_tex[1];
+    s->bd.width = s->bd.height = 16;
 }
 
 /* A frame with a new renderer (so bakes, dynamic environments, G-buffers and
@@ -921,6 +946,7 @@ static void check_external_state(void)
     s.sphere = shape(ctx, SNELL_SHAPE_SPHERE);
     s.torus = shape(ctx, SNELL_SHAPE_TORUS);
     s.cube = shape(ctx, SNELL_SHAPE_CUBE);
+    backdrop_make(&s);
     CHECK_OK_CTX(ctx, snell_water_create(ctx, &(snell_water_desc){.grid = 64, .width = 3.0f,
                                                                    .sim = SNELL_WATER_SIM_CPU}, &s.water));
     CHECK_OK_CTX(ctx, snell_water_drop(s.water, 0.2f, 0.3f, 0.2f, -0.05f));
@@ -996,6 +1022,7 @@ static void check_external_state(void)
     snell_mesh_destroy(s.cube);
     snell_water_destroy(s.water);
     snell_env_destroy(env);
+    glDeleteTextures(2, s.bd_tex);
     CHECK(eglGetCurrentContext() == host, "destroying objects after their EXTERNAL context keeps the host current");
     CHECK(glGetError() == GL_NO_ERROR, "GL error after the late destroys");
 

@@ -26,7 +26,8 @@ static const float k_place[3][16] = {
 
 /* Everything at once: two glass objects (the scene layers) and an opaque
  * one, water (CPU or GPU heights), a light with a receiver plane (the lit
- * plane and opaque objects), dispersion and absorption on one object; each
+ * plane and opaque objects), dispersion and absorption on one object, the
+ * host's scene behind the glass (a backdrop with colour and depth); each
  * method of the registry forced on both, in the given shading (one renderer,
  * so the stages' own programs are built once). */
 static void frames_all(snell_ctx *ctx, snell_shading shading, int gpu_water, int paraboloid)
@@ -39,9 +40,19 @@ static void frames_all(snell_ctx *ctx, snell_shading shading, int gpu_water, int
     snell_glass g[2];
     snell_opaque op;
     snell_frame_desc fd;
+    snell_backdrop bd;
     snell_status st;
+    GLuint tex[2];
     int i, k;
     memset(g, 0, sizeof g);
+    memset(&bd, 0, sizeof bd);
+    glGenTextures(2, tex);
+    glBindTexture(GL_TEXTURE_2D, tex[0]);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, 8, 8);
+    glBindTexture(GL_TEXTURE_2D, tex[1]);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT24, 8, 8);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    bd.color_texture = tex[0], bd.depth_texture = tex[1], bd.width = bd.height = 8;
     memset(&op, 0, sizeof op);
     memset(&fd, 0, sizeof fd);
     if (paraboloid) rd.env_lookup = SNELL_ENV_LOOKUP_DUAL_PARABOLOID;
@@ -78,6 +89,7 @@ static void frames_all(snell_ctx *ctx, snell_shading shading, int gpu_water, int
     fd.receiver.height = -0.9f;
     fd.receiver.extent = 3.0f;
     fd.receiver.map_size = 32;
+    fd.backdrop = &bd;
     for (i = 0; st == SNELL_OK && i < (paraboloid ? 1 : snell_method_count()); i++) { /* paraboloid: AUTO alone */
         snell_method m = paraboloid ? SNELL_METHOD_AUTO : snell_method_info_at(i)->method;
         g[0].material.method = g[1].material.method = m;
@@ -85,6 +97,7 @@ static void frames_all(snell_ctx *ctx, snell_shading shading, int gpu_water, int
               shading == SNELL_SHADING_SCREEN ? "screen" : "forward", snell_last_error(ctx));
     }
     snell_renderer_destroy(r);
+    glDeleteTextures(2, tex);
     snell_water_destroy(water);
     snell_env_destroy(env);
     snell_mesh_destroy(cube);

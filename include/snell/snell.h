@@ -392,7 +392,11 @@ snell_status snell_mesh_simplify(snell_ctx *ctx, const snell_mesh *src, const sn
 typedef enum snell_env_source {
     SNELL_ENV_PROCEDURAL = 0,  /* built in: sky gradient, sun, checkered floor */
     SNELL_ENV_FACES,           /* six square images: +X -X +Y -Y +Z -Z (GL cubemap layout) */
-    SNELL_ENV_EQUIRECT         /* one equirectangular (lat-long) image */
+    SNELL_ENV_EQUIRECT,        /* one equirectangular (lat-long) image */
+    SNELL_ENV_GL_TEXTURE       /* the host's GL_TEXTURE_CUBE_MAP (gl_texture), sampled where it is: not
+                                * copied, so what the host draws into it shows in the next frame; no CPU
+                                * copy, so what needs one (the reference tracer) refuses it with
+                                * SNELL_E_UNSUPPORTED and snell_env_sample gives black */
 } snell_env_source;
 
 typedef struct snell_env_desc {
@@ -406,10 +410,17 @@ typedef struct snell_env_desc {
      * Copied into the faces: the caller keeps ownership. */
     const uint8_t *equirect_rgba;
     int equirect_width, equirect_height;
+    /* SNELL_ENV_GL_TEXTURE: a cube map texture of ctx's GL context (which must be
+     * current), with face_size its faces' size (required: GLES 3.0 cannot ask).
+     * The host keeps it alive while the environment is used and deletes it
+     * itself; snell_env_destroy leaves it alone. Sampled with its own filter
+     * (GL_LINEAR without mipmaps gives the images other sources give). */
+    unsigned gl_texture;
 } snell_env_desc;
 
 /* Creates the cubemap texture (ctx needed) and keeps a CPU copy of the faces so
- * that references can sample exactly the same texels. ctx may be NULL: CPU only. */
+ * that references can sample exactly the same texels. ctx may be NULL: CPU only.
+ * SNELL_ENV_GL_TEXTURE borrows the host's cube map instead (ctx required). */
 snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_env **out);
 void snell_env_destroy(snell_env *env);
 int snell_env_face_size(const snell_env *env);
@@ -927,6 +938,17 @@ typedef struct snell_renderer_desc {
      * only, not with ssaa. */
     int msaa;
     snell_env_lookup env_lookup;    /* for every glass object and the background */
+    /* 1: premultiplied alpha for compositing over what lies behind the target
+     * (video, UI): the glass writes rgb = what it shows with the environment
+     * black (its reflections and what it shows of the frame's own objects and
+     * backdrop) and alpha = 1 - the weight of the environment in its colour
+     * (the glass's transmittance and its reflectance of the environment,
+     * averaged over rgb), so that rgb + (1 - alpha) * behind is the glass's
+     * colour over a uniform world of that colour (exactly for untinted or
+     * grey glass). Opaque objects write alpha 1; where nothing is drawn
+     * (draw_background = -1) the target keeps what it held (clear it to 0).
+     * Each glass kernel runs twice a pixel. Colour output only; 0 = off. */
+    int premultiplied_alpha;
 } snell_renderer_desc;
 
 #define SNELL_MAX_SSAA 8
@@ -1024,6 +1046,41 @@ typedef enum snell_background {
 #define SNELL_SCENE_LAYERS_OFF (-1)
 #define SNELL_SCENE_LAYERS_AUTO 0
 
+/* The host's scene behind the glass (snell_frame_desc.backdrop): what the
+ * host drew before calling snell_render, as textures. The glass's exit and
+ * reflected rays that leave it (every method, the scene layers' march:
+ * common/beyond.glsl) look for it in screen space before the environment.
+ * With a depth texture, each ray is searched against it as a depth field
+ * (32 steps across the screen, then 6 halvings): a texel of depth d
+ * stands for everything behind its surface (a ray passing behind a thin
+ * object is stopped by it), and depth 1 (nothing drawn) for nothing. The
+ * colour where the ray goes behind the field is taken, bilinearly; a ray
+ * that leaves the view, or finds nothing, sees the environment. Without
+ * depth, the colour where the ray is `distance` past the glass (one look-up,
+ * as Filament's and three.js's screen-space refraction). The backdrop is
+ * met after the frame's own objects, water and receiver plane. */
+typedef enum snell_backdrop_source {
+    SNELL_BACKDROP_TEXTURES = 0,    /* color_texture and depth_texture as given */
+    SNELL_BACKDROP_COPY_BOUND       /* snell copies the bound framebuffer's colour at the frame's start, and
+                                     * its depth where a blit can (a depth buffer of 16, 24 or 32F bits; else
+                                     * the colour at distance); SNELL_TARGET_BOUND_FRAMEBUFFER only */
+} snell_backdrop_source;
+
+typedef struct snell_backdrop {
+    snell_backdrop_source source;
+    unsigned color_texture;         /* TEXTURES: a GL_TEXTURE_2D of the renderer's context, required; rows
+                                     * bottom first, as GL draws them; not the frame's target */
+    unsigned depth_texture;         /* TEXTURES: its window depths (a depth-format GL_TEXTURE_2D, drawn with
+                                     * glDepthRangef(0, 1)); 0 = none */
+    int width, height;              /* TEXTURES: the textures' size in texels (GLES 3.0 cannot ask), required */
+    int region[4];                  /* x, y (from the bottom), w, h: the texels that hold the view; all 0 =
+                                     * the whole texture (COPY_BOUND: the frame's size) */
+    const snell_camera *camera;     /* the camera it was drawn with (ORBIT: aspect of the region); NULL =
+                                     * the frame's */
+    float distance;                 /* without depth: how far past the glass a ray takes the colour,
+                                     * world units; 0 = 1 */
+} snell_backdrop;
+
 typedef struct snell_frame_desc {
     const snell_env *env;           /* required */
     snell_camera camera;
@@ -1108,6 +1165,7 @@ typedef struct snell_frame_desc {
     snell_receiver receiver;
     /* What the frame does with the target's depth buffer (snell_depth_mode). */
     snell_depth_mode depth;
+    const snell_backdrop *backdrop; /* the host's scene behind the glass; NULL = none */
 } snell_frame_desc;
 
 #define SNELL_MAX_SCENE_LAYERS 8
@@ -1215,6 +1273,7 @@ typedef struct snell_frame_stats {
     int caustics_photons;           /* photons splatted onto the receiver this frame (0: none or reused) */
     int caustics_reused;            /* 1: the last frame's light map (light, glass and receiver still) */
     char caustics_reason[SNELL_REASON_SIZE]; /* why the caustics stage ran or did not */
+    int backdrop;                   /* 0 none; 1 the backdrop's colour at its distance; 2 searched against its depth */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

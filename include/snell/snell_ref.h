@@ -343,6 +343,32 @@ snell_status snell_ref_set_light(snell_ref *ref, const snell_light *light, const
 snell_status snell_ref_set_receiver(snell_ref *ref, const snell_light *light, const snell_receiver *receiver,
                                     int photons);
 
+/* ------------------------------------------- the host's scene behind the glass */
+/* A backdrop as snell_frame_desc.backdrop gives the renderer one: the
+ * host's frame and its window depths, here from memory. */
+typedef struct snell_ref_backdrop {
+    const uint8_t *rgba;            /* width x height RGBA8, bottom row first (as glReadPixels reads them) */
+    const float *depth;             /* width x height window depths 0..1, bottom row first; NULL = none */
+    int width, height;              /* 1..16384 */
+    snell_camera camera;            /* the camera it was drawn with (aspect width / height) */
+    float distance;                 /* without depth, as snell_backdrop.distance; 0 = 1 */
+} snell_ref_backdrop;
+
+/* Shows the backdrop (copied) to every ray in air of snell_ref_render and
+ * snell_ref_trace_pixel / _ray (MATCHED and FULL), before the environment,
+ * as a depth field: the ray, clipped to the camera's frustum, meets it
+ * where its window depth first reaches the depth of the texel it is over
+ * (depth 1: nothing there), searched in steps of at most a quarter texel
+ * and halved 40 times; that point must come before the nearest object
+ * surface ahead. It shows the colour there, bilinear as GL_LINEAR with
+ * clamped edges (radiance = byte / 255). Without depth: the colour where
+ * the ray is `distance` past its start, if that point is in view. A view
+ * ray that meets it first ends there (hit 0, object -1). NULL: none.
+ * SNELL_E_INVALID_ARG for a NULL rgba, a size out of range, a camera
+ * snell_render would refuse, a depth not in 0..1 or a distance below 0.
+ * Not while a render runs. */
+snell_status snell_ref_set_backdrop(snell_ref *ref, const snell_ref_backdrop *backdrop);
+
 /* ---------------------------------------------------- light path (Unger 4.2.2) */
 typedef enum snell_ref_event {
     SNELL_REF_EVENT_EYE = 0,   /* points[0]: the ray origin (camera) */

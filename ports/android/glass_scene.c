@@ -133,6 +133,35 @@ snell_status glass_scene_draw(glass_scene *s, double seconds)
     return SNELL_OK;
 }
 
+snell_status glass_scene_draw_in(glass_scene *s, const float view[16], const float projection[16])
+{
+    snell_frame_desc fd;
+    snell_glass g;
+    snell_backdrop bd;
+    snell_status st;
+    if (!s->renderer || !view || !projection) {
+        snprintf(s->error, sizeof s->error, "glass_scene_draw_in without GL objects or the app's matrices");
+        return SNELL_E_INVALID_ARG;
+    }
+    memset(&fd, 0, sizeof fd);
+    memset(&g, 0, sizeof g);
+    memset(&bd, 0, sizeof bd);
+    g.mesh = s->mesh;
+    g.material = s->material;
+    bd.source = SNELL_BACKDROP_COPY_BOUND;
+    fd.env = s->env;
+    fd.glass = &g;
+    fd.glass_count = 1;
+    fd.camera.kind = SNELL_CAMERA_MATRICES;
+    memcpy(fd.camera.view, view, sizeof fd.camera.view);
+    memcpy(fd.camera.projection, projection, sizeof fd.camera.projection);
+    fd.depth = SNELL_DEPTH_TEST;
+    fd.draw_background = -1;
+    fd.backdrop = &bd;
+    if ((st = snell_render(s->renderer, &fd, NULL)) != SNELL_OK) return fail(s, st, "frame in the app's");
+    return SNELL_OK;
+}
+
 void glass_scene_destroy_gl(glass_scene *s)
 {
     snell_renderer_destroy(s->renderer);

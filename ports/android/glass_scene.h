@@ -44,6 +44,12 @@ snell_status glass_scene_create_gl(glass_scene *s, int width, int height);
 snell_status glass_scene_resize(glass_scene *s, int width, int height);
 /* Draws one frame into the bound framebuffer, the camera turned by seconds. */
 snell_status glass_scene_draw(glass_scene *s, double seconds);
+/* Draws the glass into the app's own frame, bound with its opaque scene
+ * drawn: through the app's camera (view and projection, column-major, GL
+ * clip conventions), depth-tested against what the app drew, refracting it
+ * (snell copies the bound framebuffer's colour and depth: a backdrop of
+ * SNELL_BACKDROP_COPY_BOUND), nothing drawn where the glass is not. */
+snell_status glass_scene_draw_in(glass_scene *s, const float view[16], const float projection[16]);
 /* Destroys the GL objects (in their context if it is current; after a loss
  * the dead context ignores the deletes) and keeps the CPU data. */
 void glass_scene_destroy_gl(glass_scene *s);

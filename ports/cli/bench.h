@@ -46,6 +46,8 @@ typedef struct bench_options {
      * the same spec on scene S (NULL: groups of one scene, no vs_scene) */
     const char *baseline_scene;
     const char *markdown;          /* --markdown FILE: bench_write_markdown (NULL: none) */
+    float view[16], projection[16]; /* --view / --projection: the host's camera for every scene */
+    int view_given, projection_given;
 } bench_options;
 
 /* 1: run; 0: bad usage (message printed, exit 2); -1: --help/--list printed (exit 0). */
@@ -194,6 +196,9 @@ snell_status bench_scene_get(snell_ctx *ctx, const char *name, const bench_scene
 void bench_scene_release_all(void);
 /* 1 if name is a glTF scene file (ends in .gltf or .glb). */
 int bench_scene_is_file(const char *name);
+/* --view/--projection (snell_render's SNELL_CAMERA_MATRICES): the camera of every
+ * configuration's frame and reference, over camera= and a scene file's. */
+void bench_scene_set_matrices(const float view[16], const float projection[16]);
 /* The camera (azimuth, elevation in degrees, distance) of a scene when the spec has none. */
 void bench_scene_camera(const char *name, float cam[3]);
 void bench_scene_help(FILE *f);

@@ -7,6 +7,7 @@
 #include "cli_scene.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -38,6 +39,8 @@ static void usage(FILE *f)
             "  --baseline-scene S     configurations of one size take turns across scenes, and vs_scene\n"
             "                         (the table's xscene) is each one's time over the same spec's on S\n"
             "  --sizes LIST           sizes for specs without size= (default 256x256)\n"
+            "  --view M --projection M  the camera as a host gives it (16 comma-separated numbers each,\n"
+            "                         column-major, GL clip conventions), for every scene\n"
             "  --frames N             timed frames per configuration, median reported (default 15)\n"
             "  --warmup N             untimed frames first (default 3)\n"
             "  --full-interfaces N    interface cap of the FULL reference (default 10)\n"
@@ -115,6 +118,19 @@ static int value_option(const char *a, const char *v, bench_options *o)
         return 1;
     }
     if (!strcmp(a, "--sizes")) return set_list(o->sizes, sizeof o->sizes, a, v);
+    if (!strcmp(a, "--view") || !strcmp(a, "--projection")) {
+        float *m = a[2] == 'v' ? o->view : o->projection;
+        const char *s = v;
+        char *end;
+        int k;
+        for (k = 0; k < 16; k++, s = end + (k < 16)) {
+            m[k] = strtof(s, &end);
+            if (end == s || !isfinite(m[k]) || *end != (k < 15 ? ',' : '\0'))
+                return fprintf(stderr, "snell-bench: %s '%s': 16 comma-separated finite numbers\n", a, v), 0;
+        }
+        *(a[2] == 'v' ? &o->view_given : &o->projection_given) = 1;
+        return 1;
+    }
     if (!strcmp(a, "--frames")) return bench_parse_int(a, v, 1, 100000, &o->frames);
     if (!strcmp(a, "--warmup")) return bench_parse_int(a, v, 0, 100000, &o->warmup);
     if (!strcmp(a, "--full-interfaces")) return bench_parse_int(a, v, 1, SNELL_REF_MAX_INTERFACES, &o->full_interfaces);
@@ -147,7 +163,7 @@ static int takes_value(const char *a)
 {
     static const char *const names[] = {"-b", "--benchmark", "--scenes", "--scene", "--baseline-scene", "--sizes",
                                         "--frames", "--warmup", "--full-interfaces", "--threads", "--aa", "--env",
-                                        "-o", "--markdown", "--cache", "--images", "--plot-y"};
+                                        "-o", "--markdown", "--cache", "--images", "--plot-y", "--view", "--projection"};
     size_t k;
     for (k = 0; k < sizeof names / sizeof *names; k++)
         if (!strcmp(a, names[k])) return 1;
@@ -195,6 +211,9 @@ int bench_parse_options(int argc, char **argv, bench_options *o)
             i++;
         }
     }
+    if (o->view_given != o->projection_given)
+        return fprintf(stderr, "snell-bench: --view and --projection go together\n"), 0;
+    if (o->view_given) bench_scene_set_matrices(o->view, o->projection);
     if (o->images_dir) {
         /* refused before a run that would write none of them */
         struct stat sb;

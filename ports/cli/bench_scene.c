@@ -283,6 +283,15 @@ snell_status bench_scene_lod(snell_ctx *ctx, const bench_config *c, snell_glass 
     return st;
 }
 
+static snell_camera g_matrices; /* kind MATRICES once --view/--projection are given */
+
+void bench_scene_set_matrices(const float view[16], const float projection[16])
+{
+    g_matrices.kind = SNELL_CAMERA_MATRICES;
+    memcpy(g_matrices.view, view, sizeof g_matrices.view);
+    memcpy(g_matrices.projection, projection, sizeof g_matrices.projection);
+}
+
 void bench_scene_frame(const bench_config *c, const bench_scene *s, const snell_env *env, snell_glass *glass,
                        snell_frame_desc *fd)
 {
@@ -306,6 +315,10 @@ void bench_scene_frame(const bench_config *c, const bench_scene *s, const snell_
     fd->opaque = s->opaque_count ? s->opaque : NULL;
     fd->opaque_count = s->opaque_count;
     fd->scene_layers = c->scene_layers;
+    if (g_matrices.kind == SNELL_CAMERA_MATRICES) {
+        fd->camera = g_matrices;
+        return;
+    }
     if (s->has_camera && !c->cam_set) {
         fd->camera = s->camera;
         return;

@@ -61,6 +61,10 @@
 // refracted out for air; it is bent again for the water's index (the exit
 // normal from the layers).
 //
+// SNELL_BACKDROP (the host's scene behind the glass, common/backdrop.glsl):
+// past everything above, before the environment, the ray looks for what
+// the host drew in screen space.
+//
 // SNELL_RECEIVER (the frame's caustics stage lit a receiver plane or the
 // opaque objects, common/receiver.glsl, common/opaque_lit.glsl): past the
 // objects, before the environment, the ray meets the plane from above and
@@ -71,6 +75,9 @@
 #include "common/receiver.glsl"
 #include "common/opaque_lit.glsl"
 uniform int u_lit_opaque;
+#endif
+#ifdef SNELL_BACKDROP
+#include "common/backdrop.glsl"
 #endif
 #ifdef SNELL_WATER
 #include "common/water.glsl"
@@ -89,6 +96,10 @@ vec3 beyond_miss(highp vec3 o, highp vec3 dir)
 #ifdef SNELL_RECEIVER
     vec3 lit;
     if (receiver_seen(o, dir, lit)) return lit;
+#endif
+#ifdef SNELL_BACKDROP
+    vec3 host;
+    if (backdrop_seen(o, dir, host)) return host;
 #endif
     return snell_env(dir);
 }

@@ -67,14 +67,28 @@ vec3 snell_env_from(samplerCube s, vec3 dir)
 }
 #endif
 
+// SNELL_PREMULTIPLIED (premultiplied alpha output, common/output.glsl):
+// the kernel runs twice, with the environment 0 and 1 everywhere.
+#ifdef SNELL_PREMULTIPLIED
+float snell_env_level;
+#endif
+
 vec3 snell_env(vec3 dir)
 {
+#ifdef SNELL_PREMULTIPLIED
+    return vec3(snell_env_level);
+#else
     return snell_env_from(u_env, dir);
+#endif
 }
 
 #ifdef SNELL_ENV_NEAREST
 vec3 snell_env_nearest(vec3 dir)
 {
+#ifdef SNELL_PREMULTIPLIED
+    return vec3(snell_env_level);
+#else
     return snell_env_from(u_env_nearest, dir);
+#endif
 }
 #endif

@@ -9,6 +9,29 @@ layout(location = 0) out highp vec4 o_color;
 layout(location = 0) out vec4 o_color;
 #endif
 
+// SNELL_PREMULTIPLIED (a glass kernel's variant, render/premultiplied.c):
+// its colour is linear in the environment it looks up, C = A + W env, so
+// two runs of the kernel's main, with the environment 0 and then 1
+// (common/env.glsl), give A (what the glass shows of everything else) and
+// W (the environment's weight: its transmittance and its reflectance of the
+// environment). It writes A premultiplied, alpha 1 - mean(W): composited
+// over what lies behind the target, that stands in for the environment.
+// The kernel's own main is renamed for the wrapper to call.
+#ifdef SNELL_PREMULTIPLIED
+void snell_kernel_main();
+void main()
+{
+    snell_env_level = 0.0;
+    snell_kernel_main();
+    vec4 own = o_color;
+    snell_env_level = 1.0;
+    snell_kernel_main();
+    vec3 w = o_color.rgb - own.rgb;
+    o_color = vec4(own.rgb, clamp(1.0 - (w.r + w.g + w.b) / 3.0, 0.0, 1.0));
+}
+#define main snell_kernel_main
+#endif
+
 void snell_write(vec3 color, highp vec3 exit_dir)
 {
 #if defined(SNELL_OUTPUT_EXIT_DIR_FLOAT)

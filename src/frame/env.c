@@ -269,6 +269,27 @@ unsigned snell__cube_texture_create(int size, int filter)
     return tex;
 }
 
+/* The host's cube map, borrowed: a texture of this context bound as a cube map without error. */
+static snell_status borrow(snell_ctx *ctx, snell_env *env, const snell_env_desc *d)
+{
+    GLint prev = 0;
+    GLenum err;
+    if (!ctx || !d->gl_texture || !glIsTexture(d->gl_texture) || !d->face_size)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "SNELL_ENV_GL_TEXTURE: a context, gl_texture (a texture of it, "
+                           "%u given) and its face_size are required", d->gl_texture);
+    while (glGetError() != GL_NO_ERROR) {}
+    glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &prev);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, d->gl_texture);
+    err = glGetError();
+    glBindTexture(GL_TEXTURE_CUBE_MAP, (GLuint)prev);
+    if (err != GL_NO_ERROR)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "SNELL_ENV_GL_TEXTURE: texture %u is not a cube map",
+                           d->gl_texture);
+    env->texture = d->gl_texture;
+    env->borrowed = 1;
+    return SNELL_OK;
+}
+
 snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_env **out)
 {
     snell_env_desc d;
@@ -298,9 +319,10 @@ snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_
         break;
     case SNELL_ENV_FACES: st = load_faces(ctx, env, d.face_paths); break;
     case SNELL_ENV_EQUIRECT: st = load_equirect(ctx, env, &d); break;
+    case SNELL_ENV_GL_TEXTURE: st = borrow(ctx, env, &d); break;
     default: st = snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown environment source %d", (int)d.source);
     }
-    if (st == SNELL_OK && ctx) st = upload(ctx, env);
+    if (st == SNELL_OK && ctx && !env->borrowed) st = upload(ctx, env);
     if (st != SNELL_OK) {
         snell_env_destroy(env);
         return st;
@@ -318,7 +340,7 @@ void snell_env_destroy(snell_env *env)
         /* In its context; after snell_ctx_destroy the texture is gone with it. */
         snell__gl_scope sc;
         if (snell__gl_scope_enter(env->ctx, &sc)) {
-            glDeleteTextures(1, &env->texture);
+            if (!env->borrowed) glDeleteTextures(1, &env->texture);
             if (env->paraboloid) glDeleteTextures(1, &env->paraboloid);
         }
         snell__gl_scope_leave(&sc);
@@ -338,7 +360,7 @@ void snell_env_sample_d(const snell_env *env, const double dir[3], double rgb[3]
     const uint8_t *tex;
     if (!rgb) return;
     /* No environment, or no direction to look in: black, like the other getters' zero. */
-    if (!env || !dir || !isfinite(dir[0]) || !isfinite(dir[1]) || !isfinite(dir[2])) {
+    if (!env || !env->faces[0] || !dir || !isfinite(dir[0]) || !isfinite(dir[1]) || !isfinite(dir[2])) {
         rgb[0] = rgb[1] = rgb[2] = 0.0;
         return;
     }

@@ -11,6 +11,8 @@ struct snell_env {
     int size;                  /* face size in texels */
     uint8_t *faces[6];         /* RGBA8, row 0 = GL t=0, GL face order +X -X +Y -Y +Z -Z */
     unsigned texture;          /* GL_TEXTURE_CUBE_MAP, 0 if CPU only */
+    int borrowed;              /* texture is the host's (SNELL_ENV_GL_TEXTURE): never deleted here, may
+                                * change between frames; faces are NULL */
     unsigned paraboloid;       /* its dual-paraboloid maps (render/env_paraboloid.h), 0 until first used */
     int paraboloid_size;
 };

@@ -72,6 +72,8 @@ typedef struct snell__view {
      * (the kernels see them lit through the scene layers: common/opaque_lit.glsl),
      * NULL none. Read only by its hook (render/caustics.c). */
     const struct snell__caustics *lit_opaque;
+    /* The host's scene behind the glass this frame (render/backdrop.c), NULL none. Read only by its hook. */
+    const struct snell__backdrop *backdrop;
     /* What the stages made for the programs after them, by sampler name
      * (frame/textures.h): the G-buffer's and back faces' maps, the scene
      * layers, the water's heights, the receiver's and the lit opaque

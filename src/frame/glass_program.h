@@ -40,7 +40,9 @@ void snell__glass_program_bind(const snell__glass_program *g, const char *name, 
 #define SNELL__GLASS_WATER 16       /* the frame has water, heights in R32F (common/water.glsl) */
 #define SNELL__GLASS_WATER_UINT 32  /* ... in the GPU simulation's RG32UI state */
 #define SNELL__GLASS_RECEIVER 64    /* the frame's receiver plane is lit (common/receiver.glsl) */
-#define SNELL__GLASS_VARIANTS 128
+#define SNELL__GLASS_BACKDROP 128   /* the host's scene behind the glass (common/backdrop.glsl) */
+#define SNELL__GLASS_PREMULTIPLIED 256 /* premultiplied alpha output (common/output.glsl) */
+#define SNELL__GLASS_VARIANTS 512
 int snell__glass_variant(const snell__object *o);
 
 /* The renderer's one bounded cache of kernel programs, every method's

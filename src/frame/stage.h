@@ -47,8 +47,9 @@ typedef struct snell__stage {
      * destroy: its GL objects and memory, in the renderer's context. */
     void (*init)(void *state);
     void (*destroy)(snell_ctx *ctx, void *state);
-    /* Its part of the frame description, checked before anything is drawn. */
-    snell_status (*validate)(snell_ctx *ctx, const snell_frame_desc *fd);
+    /* Its part of the frame description for renderer r (its context, its
+     * target), checked before anything is drawn. */
+    snell_status (*validate)(const snell_renderer *r, const snell_frame_desc *fd);
     /* Before any stage runs: what it will do this frame, which earlier
      * stages' set-up may depend on (the scene layers: every glass kernel's
      * variant). */

@@ -61,10 +61,11 @@ int snell__ref_plane_hit(const snell_ref *r, const double o[3], const double d[3
     const struct ref_plane *P = r->plane;
     double t, tx, tz;
     int q, k;
-    if (!P || !(d[1] < 0.0) || !(o[1] > P->h)) return 0; /* none, or met from below: it has no underside */
+    /* none, or met from below (it has no underside): the backdrop, if any, after it */
+    if (!P || !(d[1] < 0.0) || !(o[1] > P->h)) return snell__ref_backdrop_hit(r, o, d, tmax, rgb);
     t = (P->h - o[1]) / d[1];
     tx = (o[0] + t * d[0] - P->cx) / P->ext, tz = (o[2] + t * d[2] - P->cz) / P->ext;
-    if (!(t < tmax && fabs(tx) <= 1.0 && fabs(tz) <= 1.0)) return 0;
+    if (!(t < tmax && fabs(tx) <= 1.0 && fabs(tz) <= 1.0)) return snell__ref_backdrop_hit(r, o, d, tmax, rgb);
     if (!rgb) return 1;
     tx = (0.5 * tx + 0.5) * P->size - 0.5, tz = (0.5 * tz + 0.5) * P->size - 0.5; /* texel centres at integers */
     rgb[0] = rgb[1] = rgb[2] = 0.0;

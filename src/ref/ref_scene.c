@@ -430,6 +430,7 @@ void snell_ref_destroy(snell_ref *ref)
     al = ref->alloc;
     snell__ref_lit_free(ref);
     snell__ref_plane_free(ref);
+    snell__ref_backdrop_free(ref);
     snell__bvh_destroy(ref->bvh);
     snell__free(&al, ref->normals);
     snell__free(&al, ref->indices);

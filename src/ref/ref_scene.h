@@ -40,6 +40,7 @@ struct snell_ref {
     struct ref_lit *lit;      /* snell_ref_set_light's light on the opaque objects (ref_caustics.c);
                                * NULL: opaque.frag's sky light */
     struct ref_plane *plane;  /* snell_ref_set_receiver's plane in the view (ref_plane.c); NULL: none */
+    struct ref_backdrop *backdrop; /* snell_ref_set_backdrop's (ref_backdrop.c); NULL: none */
     snell__bvh *bvh;          /* all triangles; NULL for analytic spheres */
     double *normals;          /* 3 per vertex of every object in part order: inverse-transpose(model)
                                * * n, not renormalised (object.vert) */
@@ -92,6 +93,10 @@ const double *snell__ref_lit_map(const snell_ref *r, int *size, double *area);
  * and rgb (NULL: not wanted) the colour it shows there; 0 without a plane. */
 void snell__ref_plane_free(snell_ref *r);
 int snell__ref_plane_hit(const snell_ref *r, const double o[3], const double d[3], double tmax, double rgb[3]);
+/* ref_backdrop.c: snell_ref_set_backdrop's field; its release. Its hit as
+ * snell__ref_plane_hit's (which asks it after the plane). */
+void snell__ref_backdrop_free(snell_ref *r);
+int snell__ref_backdrop_hit(const snell_ref *r, const double o[3], const double d[3], double tmax, double rgb[3]);
 
 /* Vector helpers of the tracer (double precision). */
 static inline double snell__ref_dot3(const double a[3], const double b[3])

@@ -596,7 +596,10 @@ static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, opt
     if (!p->env && !p->env_fn)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: an environment (env or env_fn) is required");
     if (!p->env_fn && !p->env->faces[0])
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: the environment has no CPU faces");
+        return snell__fail(ctx, p->env->borrowed ? SNELL_E_UNSUPPORTED : SNELL_E_INVALID_ARG,
+                           "reference: the environment has no CPU faces%s", p->env->borrowed
+                               ? " (SNELL_ENV_GL_TEXTURE samples the host's texture on the GPU only: give the "
+                                 "reference env_fn or an environment made from images)" : "");
     memset(op, 0, sizeof *op);
     op->mode = p->mode;
     op->max_if = p->max_interfaces ? p->max_interfaces : 10;

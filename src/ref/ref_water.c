@@ -411,7 +411,9 @@ snell_status snell_ref_water_render(snell_water *w, const snell_ref *objects, co
     if (!params->env && !params->env_fn)
         return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: params need env or env_fn");
     if (!params->env_fn && !params->env->faces[0])
-        return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: the environment has no CPU faces");
+        return snell__fail(w->ctx, params->env->borrowed ? SNELL_E_UNSUPPORTED : SNELL_E_INVALID_ARG,
+                           "snell_ref_water_render: the environment has no CPU faces%s",
+                           params->env->borrowed ? " (SNELL_ENV_GL_TEXTURE: the host's texture, GPU only)" : "");
     if (params->max_interfaces < 0 || params->max_interfaces > SNELL_REF_MAX_INTERFACES)
         return snell__fail(w->ctx, SNELL_E_INVALID_ARG, "snell_ref_water_render: max_interfaces %d outside 0..%d",
                            params->max_interfaces, SNELL_REF_MAX_INTERFACES);

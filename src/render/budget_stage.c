@@ -327,8 +327,9 @@ snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *fd, 
 static void stage_init(void *state) { snell__budget_reset(&((budget_state *)state)->ctl); }
 
 /* The frame's budget_ms and quality floor. */
-static snell_status stage_validate(snell_ctx *ctx, const snell_frame_desc *fd)
+static snell_status stage_validate(const snell_renderer *r, const snell_frame_desc *fd)
 {
+    snell_ctx *ctx = r->ctx;
     if (!isfinite(fd->budget_ms) || fd->budget_ms < 0.0f || fd->budget_ms > 1e6f)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "budget_ms %g: 0 (none) or a finite time up to 1e6 ms",
                            (double)fd->budget_ms);

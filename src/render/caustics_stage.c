@@ -8,6 +8,11 @@
 #include "frame/glass_program.h"
 
 
+static snell_status validate(const snell_renderer *r, const snell_frame_desc *fd)
+{
+    return snell__caustics_validate(r->ctx, fd);
+}
+
 static int wanted(const snell__frame *f, const void *state)
 {
     (void)state;
@@ -43,7 +48,7 @@ const snell__stage snell__stage_caustics = {
     .name = "caustics",
     .state_size = SNELL_WITH_CAUSTICS ? sizeof(snell__caustics) : 0,
     .destroy = destroy,
-    .validate = snell__caustics_validate,
+    .validate = validate,
     .wanted = wanted,
     .run = run,
     .kernel_variant = variant,

@@ -46,7 +46,9 @@ static int changed(const snell__env_view *v, const snell_env *env, const snell_o
                    const float centre[3], int size, const snell__caustics *lit)
 {
     int i;
-    if (!v->valid || v->size != size || v->env != env || v->count != count || v->lit != lighting(lit) ||
+    /* a host's cube (SNELL_ENV_GL_TEXTURE) may have changed since the last frame */
+    if (!v->valid || v->size != size || v->env != env || env->borrowed || v->count != count ||
+        v->lit != lighting(lit) ||
         memcmp(v->centre, centre, sizeof v->centre))
         return 1;
     for (i = 0; i < count; i++) {

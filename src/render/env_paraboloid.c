@@ -133,10 +133,11 @@ snell_status snell__paraboloid_from_cube(snell_ctx *ctx, snell__paraboloid_gen *
 snell_status snell__env_paraboloid(snell_ctx *ctx, snell__paraboloid_gen *g, const snell_env *env, unsigned *tex)
 {
     /* A cache on the environment, as the mesh keeps its analysis: made once
-     * from the cube it never changes. */
+     * from the cube it never changes; a host's cube (borrowed) may change
+     * between frames, so its maps are drawn again each time. */
     snell_env *e = (snell_env *)env;
     snell_status st = SNELL_OK;
-    if (!e->paraboloid)
+    if (!e->paraboloid || e->borrowed)
         st = snell__paraboloid_from_cube(ctx, g, e->texture, snell__paraboloid_size(e->size), &e->paraboloid,
                                          &e->paraboloid_size);
     *tex = e->paraboloid;

@@ -10,9 +10,7 @@ snell_depth_mode snell__depth_mode_of(snell_depth_mode asked, snell_target targe
     return target == SNELL_TARGET_OFFSCREEN ? SNELL_DEPTH_CLEAR : SNELL_DEPTH_TEST;
 }
 
-/* The depth format of the bound draw framebuffer, as glBlitFramebuffer
- * needs it matched; 0 if none is known. */
-static unsigned bound_depth_format(GLint fbo)
+unsigned snell__host_depth_format(int fbo)
 {
     GLint type = 0, depth = 0, stencil = 0;
     GLenum att = fbo ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
@@ -52,7 +50,7 @@ snell_status snell__host_depth_begin(snell_ctx *ctx, snell__host_depth *d, snell
     if (samples > 0)
         return snell__fail(ctx, SNELL_E_UNSUPPORTED, "SNELL_DEPTH_TEST_NO_WRITE: the bound framebuffer is "
                            "multisampled; its depth cannot be copied back (use SNELL_DEPTH_TEST)");
-    format = bound_depth_format(fbo);
+    format = snell__host_depth_format(fbo);
     if (!format)
         return snell__fail(ctx, SNELL_E_UNSUPPORTED, "SNELL_DEPTH_TEST_NO_WRITE: the bound framebuffer has no depth "
                            "buffer of a format that can be copied (16, 24 or 32F bits)");

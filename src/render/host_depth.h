@@ -15,6 +15,9 @@ typedef struct snell__host_depth {
     int saved;                      /* a copy waits to be given back */
 } snell__host_depth;
 
+/* The depth format of the bound draw framebuffer fbo (0: the default one),
+ * as glBlitFramebuffer needs it matched; 0 if none is known. */
+unsigned snell__host_depth_format(int fbo);
 /* The mode the frame uses: DEFAULT resolved for the target. */
 snell_depth_mode snell__depth_mode_of(snell_depth_mode asked, snell_target target);
 /* At the frame's start, with the target bound and the viewport set:

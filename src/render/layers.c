@@ -281,10 +281,10 @@ static void stage_destroy(snell_ctx *ctx, void *state)
     snell__layers_destroy(&((layers_stage *)state)->layers);
 }
 
-static snell_status stage_validate(snell_ctx *ctx, const snell_frame_desc *fd)
+static snell_status stage_validate(const snell_renderer *r, const snell_frame_desc *fd)
 {
     if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d", fd->scene_layers,
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d", fd->scene_layers,
                            SNELL_MAX_SCENE_LAYERS);
     return SNELL_OK;
 }

@@ -2,9 +2,9 @@
  * depth write before any glass (render/composite.c). */
 #include "render/stages.h"
 
-static snell_status validate(snell_ctx *ctx, const snell_frame_desc *fd)
+static snell_status validate(const snell_renderer *r, const snell_frame_desc *fd)
 {
-    return snell__opaque_validate(ctx, fd->opaque, fd->opaque_count);
+    return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
 }
 
 static snell_status run(snell__frame *f, void *state)

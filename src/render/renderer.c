@@ -131,6 +131,9 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     if (d.msaa < 0 || (d.msaa > 1 && (d.target != SNELL_TARGET_OFFSCREEN || d.output != SNELL_OUTPUT_COLOR)))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d needs an offscreen colour renderer (0 or 1 = off)",
                            d.msaa);
+    if (d.premultiplied_alpha && (d.premultiplied_alpha != 1 || d.output != SNELL_OUTPUT_COLOR))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "premultiplied_alpha %d: 0 or 1, with colour output",
+                           d.premultiplied_alpha);
     if (d.msaa > 1 && d.ssaa > 1)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d and ssaa %d: one antialiasing at a time", d.msaa,
                            d.ssaa);
@@ -166,6 +169,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     r->width = d.width * r->ssaa.factor;
     r->height = d.height * r->ssaa.factor;
     r->target = d.target;
+    r->premultiplied = d.premultiplied_alpha;
     if ((unsigned)d.shading > SNELL_SHADING_SCREEN) {
         snell__free(&ctx->alloc, r);
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown shading %d", (int)d.shading);
@@ -305,7 +309,7 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "SNELL_DEPTH_TEST_NO_WRITE is for a bound framebuffer: "
                            "the offscreen target's depth is the renderer's own");
     for (i = 0; i < snell__stage_count; i++)
-        if (snell__stages[i]->validate && (st = snell__stages[i]->validate(r->ctx, fd)) != SNELL_OK) return st;
+        if (snell__stages[i]->validate && (st = snell__stages[i]->validate(r, fd)) != SNELL_OK) return st;
     return SNELL_OK;
 }
 

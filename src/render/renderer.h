@@ -27,6 +27,7 @@ struct snell_renderer {
     int msaa;                                         /* samples of the colour and depth targets; 0 = off */
     unsigned msaa_fbo, msaa_rb;                       /* the single-sample target it is resolved into */
     snell_target target;
+    int premultiplied;                                /* snell_renderer_desc.premultiplied_alpha */
     snell__output_kind out;
     unsigned fbo, color_rb, depth_rb;
     snell__host_depth host_depth;                     /* the target's depth as the frame's mode asks */

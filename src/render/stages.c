@@ -13,6 +13,7 @@
  * snell__stage_<name> (defined in its module) and takes it into the table. */
 #define SNELL__STAGE_TABLE(S) \
     S(budget)                 \
+    S(backdrop)               \
     S(opaque)                 \
     S(caustics)               \
     S(glass)                  \

@@ -9,8 +9,9 @@
 #include "core/gl.h"
 #include "frame/glass_program.h"
 
-static snell_status validate(snell_ctx *ctx, const snell_frame_desc *fd)
+static snell_status validate(const snell_renderer *r, const snell_frame_desc *fd)
 {
+    snell_ctx *ctx = r->ctx;
     if (fd->water && !SNELL_WITH_WATER)
         return snell__fail(ctx, SNELL_E_UNSUPPORTED, "frame has water: built without SNELL_WITH_WATER");
     if (fd->water && fd->water->ctx != ctx)

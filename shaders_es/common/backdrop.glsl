@@ -1,0 +1,90 @@
+// backdrop.glsl - the host's scene behind the glass (snell_frame_desc.backdrop,
+// render/backdrop.h): what a ray that leaves the glass sees of what the host
+// drew, before the environment (beyond.glsl's beyond_miss).
+//
+// With the host's depth (u_backdrop_distance 0) the ray is searched against
+// it in screen space as the peel kernel searches its layers (Wang 2014,
+// seed 001 3.4): the ray, clipped to the backdrop camera's frustum, is
+// stepped BACKDROP_LINEAR times evenly across the screen (window depth is
+// affine in screen position along a projected line, so it is interpolated,
+// not re-projected), and where it first lies behind the depth at its texel
+// the crossing is halved BACKDROP_BINARY times. A texel's depth stands for
+// everything behind it (a depth field: a ray passing behind a thin object
+// is stopped by it); depth 1 (nothing drawn) for nothing. The colour there
+// is read bilinearly. The reference models the same field exactly
+// (ref/ref_backdrop.c). Without depth: the colour where the ray is
+// u_backdrop_distance past its start, one look-up (Filament's and three.js's
+// screen-space refraction). Off the view, or not found: false.
+uniform highp mat4 u_backdrop_view_proj;
+uniform highp vec4 u_backdrop_region;   // x, y, w, h of the texels that hold the view
+uniform highp vec2 u_backdrop_size;     // the textures' size in texels
+uniform highp float u_backdrop_distance; // > 0: no depth, the one look-up's distance
+uniform mediump sampler2D u_backdrop_color;
+uniform highp sampler2D u_backdrop_depth;
+
+#define BACKDROP_LINEAR 32 // steps across the screen
+#define BACKDROP_BINARY 6
+
+highp vec2 backdrop_texel(highp vec2 ndc)
+{
+    return u_backdrop_region.xy + (ndc * 0.5 + 0.5) * u_backdrop_region.zw;
+}
+
+vec3 backdrop_color(highp vec2 ndc)
+{
+    return textureLod(u_backdrop_color, backdrop_texel(ndc) / u_backdrop_size, 0.0).rgb;
+}
+
+// Whether the point of ndc xy and window depth z lies behind the field.
+bool backdrop_behind(highp vec3 p)
+{
+    highp vec2 t = clamp(backdrop_texel(p.xy), u_backdrop_region.xy, u_backdrop_region.xy + u_backdrop_region.zw - 1.0);
+    highp float d = texelFetch(u_backdrop_depth, ivec2(t), 0).r;
+    return d < 1.0 && p.z >= d;
+}
+
+bool backdrop_seen(highp vec3 o, highp vec3 dir, out vec3 col)
+{
+    highp vec4 c0 = u_backdrop_view_proj * vec4(o, 1.0), cd = u_backdrop_view_proj * vec4(dir, 0.0);
+    col = vec3(0.0);
+    if (u_backdrop_distance > 0.0) {
+        highp vec4 c = c0 + u_backdrop_distance * cd;
+        if (c.w <= 0.0 || any(greaterThan(abs(c.xy), vec2(c.w)))) return false;
+        col = backdrop_color(c.xy / c.w);
+        return true;
+    }
+    // the part of o + t dir, t >= 0, inside -w <= x, y, z <= w (Liang-Barsky)
+    highp float t0 = 0.0, t1 = 1e6;
+    for (int k = 0; k < 6; k++) {
+        highp float s = (k & 1) == 0 ? 1.0 : -1.0;
+        int a = k / 2;
+        highp float f = c0.w + s * c0[a], g = cd.w + s * cd[a];
+        if (g < 0.0) t1 = min(t1, -f / g);
+        else if (g > 0.0) t0 = max(t0, -f / g);
+        else if (f < 0.0) return false;
+    }
+    if (t0 > t1) return false;
+    highp vec4 ca = c0 + t0 * cd, cb = c0 + t1 * cd;
+    highp vec3 a = ca.xyz / ca.w, b = cb.xyz / cb.w;
+    a.z = a.z * 0.5 + 0.5;
+    b.z = b.z * 0.5 + 0.5;
+    highp float ua = 0.0, ub = -1.0;
+    for (int i = 0; i <= BACKDROP_LINEAR; i++) {
+        highp float u = float(i) / float(BACKDROP_LINEAR);
+        if (backdrop_behind(mix(a, b, u))) {
+            ub = u;
+            break;
+        }
+        ua = u;
+    }
+    if (ub < 0.0) return false;
+    if (ub > 0.0) {
+        for (int s = 0; s < BACKDROP_BINARY; s++) {
+            highp float um = 0.5 * (ua + ub);
+            if (backdrop_behind(mix(a, b, um))) ub = um;
+            else ua = um;
+        }
+    }
+    col = backdrop_color(mix(a.xy, b.xy, ub));
+    return true;
+}

@@ -1,0 +1,232 @@
+/* backdrop.c — the backdrop stage: the host's scene behind the glass
+ * (snell_frame_desc.backdrop). It publishes the host's colour and depth
+ * textures (or its own copies of the bound framebuffer's), and its kernel
+ * hook, SNELL_BACKDROP, makes every glass kernel's rays that leave the glass
+ * search them in screen space before the environment (common/backdrop.glsl
+ * via common/beyond.glsl). */
+#include "render/host_depth.h"
+#include "render/stages.h"
+#include "core/ctx.h"
+#include "core/gl.h"
+#include "frame/camera.h"
+#include "frame/glass_program.h"
+
+#include <math.h>
+#include <string.h>
+
+#define SNELL__BACKDROP_UNIFORMS 4
+
+typedef struct snell__backdrop snell__backdrop;
+
+/* The stage's state (its slot) and what the hook reads from the view. */
+struct snell__backdrop {
+    unsigned color_sampler, depth_sampler; /* linear colour; nearest depth, no comparison */
+    /* COPY_BOUND: the copies, made on first use and remade when the size or depth format changes */
+    unsigned color_tex, depth_tex, fbo;
+    unsigned depth_format;
+    int width, height;
+    /* this frame's, for the kernels' uniforms */
+    float view_proj[16], region[4], size[2], distance; /* distance 0: search the depth */
+};
+
+static snell_status validate(const snell_renderer *r, const snell_frame_desc *fd)
+{
+    const snell_backdrop *b = fd->backdrop;
+    snell_ctx *ctx = r->ctx;
+    snell_target target = r->target;
+    snell_status st;
+    int k;
+    if (!b) return SNELL_OK;
+    if ((unsigned)b->source > SNELL_BACKDROP_COPY_BOUND)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.source %d is not a snell_backdrop_source", (int)b->source);
+    if (b->source == SNELL_BACKDROP_COPY_BOUND && target != SNELL_TARGET_BOUND_FRAMEBUFFER)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop SNELL_BACKDROP_COPY_BOUND needs a renderer of "
+                           "SNELL_TARGET_BOUND_FRAMEBUFFER");
+    if (b->source == SNELL_BACKDROP_COPY_BOUND && fd->depth == SNELL_DEPTH_CLEAR)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop SNELL_BACKDROP_COPY_BOUND with SNELL_DEPTH_CLEAR: "
+                           "the depth would be cleared before it is copied");
+    if (b->source == SNELL_BACKDROP_TEXTURES) {
+        if (!b->color_texture || !glIsTexture(b->color_texture))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.color_texture %u is not a texture of this context",
+                               b->color_texture);
+        if (b->depth_texture && !glIsTexture(b->depth_texture))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.depth_texture %u is not a texture of this context",
+                               b->depth_texture);
+        if (b->width < 1 || b->height < 1 || b->width > 16384 || b->height > 16384)
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.width x height %dx%d outside 1..16384 (the "
+                               "textures' size is required)", b->width, b->height);
+        if ((b->region[2] || b->region[3]) &&
+            (b->region[0] < 0 || b->region[1] < 0 || b->region[2] < 1 || b->region[3] < 1 ||
+             b->region[0] > b->width - b->region[2] || b->region[1] > b->height - b->region[3]))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.region %d,%d %dx%d is not inside its %dx%d textures",
+                               b->region[0], b->region[1], b->region[2], b->region[3], b->width, b->height);
+    }
+    for (k = 0; k < 4; k++)
+        if (b->region[k] && !(b->region[2] || b->region[3]))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.region: an offset needs a size");
+    if (b->camera && (st = snell__camera_validate(ctx, b->camera, 1.0f, "backdrop")) != SNELL_OK) return st;
+    if (!isfinite(b->distance) || b->distance < 0.0f)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.distance %g: 0 (1) or a finite distance",
+                           (double)b->distance);
+    return SNELL_OK;
+}
+
+static int wanted(const snell__frame *f, const void *state)
+{
+    (void)state;
+    return f->fd->backdrop != NULL;
+}
+
+static void sampler(unsigned *s, GLint filter)
+{
+    glGenSamplers(1, s);
+    glSamplerParameteri(*s, GL_TEXTURE_MIN_FILTER, filter);
+    glSamplerParameteri(*s, GL_TEXTURE_MAG_FILTER, filter);
+    glSamplerParameteri(*s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(*s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(*s, GL_TEXTURE_COMPARE_MODE, GL_NONE); /* a depth texture reads its depth */
+}
+
+/* Copies the bound draw framebuffer's colour, and its depth where its format
+ * is one a blit can match (render/host_depth.h), into the state's textures.
+ * *depth: 1 the depth was copied. */
+static snell_status copy_bound(snell_ctx *ctx, snell__backdrop *b, int w, int h, int *depth)
+{
+    GLint fbo = 0;
+    unsigned format;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    format = snell__host_depth_format(fbo);
+    if (!b->color_tex || b->width != w || b->height != h || b->depth_format != format) {
+        if (b->color_tex) glDeleteTextures(1, &b->color_tex);
+        if (b->depth_tex) glDeleteTextures(1, &b->depth_tex);
+        if (b->fbo) glDeleteFramebuffers(1, &b->fbo); /* none of the old attachments stays */
+        glGenFramebuffers(1, &b->fbo);
+        glGenTextures(1, &b->color_tex);
+        glBindTexture(GL_TEXTURE_2D, b->color_tex);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+        b->depth_tex = 0;
+        if (format) {
+            glGenTextures(1, &b->depth_tex);
+            glBindTexture(GL_TEXTURE_2D, b->depth_tex);
+            glTexStorage2D(GL_TEXTURE_2D, 1, format, w, h);
+        }
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, b->fbo);
+        glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, b->color_tex, 0);
+        if (format)
+            glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER,
+                                   format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8
+                                       ? GL_DEPTH_STENCIL_ATTACHMENT
+                                       : GL_DEPTH_ATTACHMENT,
+                                   GL_TEXTURE_2D, b->depth_tex, 0);
+        b->width = w, b->height = h, b->depth_format = format;
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, b->fbo);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT | (format ? GL_DEPTH_BUFFER_BIT : 0), GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
+    *depth = format != 0;
+    if (glGetError() != GL_NO_ERROR)
+        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "backdrop SNELL_BACKDROP_COPY_BOUND: copying the bound "
+                           "framebuffer (%dx%d, depth format 0x%x) failed: a multisampled one must match RGBA8",
+                           w, h, format);
+    return SNELL_OK;
+}
+
+static snell_status run(snell__frame *f, void *state)
+{
+    snell_renderer *r = f->r;
+    const snell_backdrop *bd = f->fd->backdrop;
+    snell__view *v = &f->sc->view;
+    snell__backdrop *b = (snell__backdrop *)state;
+    unsigned color = bd->color_texture, depth_tex = bd->depth_texture;
+    int depth = depth_tex != 0, w = bd->width, h = bd->height;
+    snell_status st;
+    if (!b->color_sampler) {
+        sampler(&b->color_sampler, GL_LINEAR);
+        sampler(&b->depth_sampler, GL_NEAREST);
+    }
+    if (bd->source == SNELL_BACKDROP_COPY_BOUND) {
+        w = r->width, h = r->height;
+        if ((st = copy_bound(r->ctx, b, w, h, &depth)) != SNELL_OK) return st;
+        color = b->color_tex, depth_tex = b->depth_tex;
+    }
+    if (bd->region[2]) {
+        b->region[0] = (float)bd->region[0], b->region[1] = (float)bd->region[1];
+        b->region[2] = (float)bd->region[2], b->region[3] = (float)bd->region[3];
+    } else {
+        b->region[0] = b->region[1] = 0.0f, b->region[2] = (float)w, b->region[3] = (float)h;
+    }
+    b->size[0] = (float)w, b->size[1] = (float)h;
+    b->distance = depth ? 0.0f : bd->distance > 0.0f ? bd->distance : 1.0f;
+    if (bd->camera) {
+        mat4 view, proj, vp;
+        float eye[3];
+        snell_camera_matrices(bd->camera, b->region[2] / b->region[3], eye, (float *)view, (float *)proj);
+        glm_mat4_mul(proj, view, vp);
+        memcpy(b->view_proj, vp, sizeof b->view_proj);
+    } else {
+        memcpy(b->view_proj, v->view_proj, sizeof b->view_proj);
+    }
+    v->backdrop = b;
+    snell__textures_publish(&v->textures, "u_backdrop_color", GL_TEXTURE_2D, color, b->color_sampler);
+    snell__textures_publish(&v->textures, "u_backdrop_depth", GL_TEXTURE_2D, depth_tex, b->depth_sampler);
+    f->s->backdrop = depth ? 2 : 1;
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "GL error setting up the backdrop");
+}
+
+/* Every kernel's rays that leave the glass meet the backdrop. */
+static unsigned variant(const snell__frame *f, const void *state, const snell__object *o)
+{
+    (void)state, (void)o;
+    return f->fd->backdrop ? SNELL__GLASS_BACKDROP : 0;
+}
+
+static const char *backdrop_defines(unsigned bits)
+{
+    (void)bits;
+    return "#define SNELL_BACKDROP 1\n";
+}
+
+static const char *const backdrop_uniform_names[SNELL__BACKDROP_UNIFORMS] = {
+    "u_backdrop_view_proj", "u_backdrop_region", "u_backdrop_size", "u_backdrop_distance"};
+
+static void backdrop_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v,
+                              const snell__object *o)
+{
+    const snell__backdrop *b = v->backdrop;
+    (void)g, (void)o;
+    glUniformMatrix4fv(locs[0], 1, GL_FALSE, b->view_proj);
+    glUniform4fv(locs[1], 1, b->region);
+    glUniform2fv(locs[2], 1, b->size);
+    glUniform1f(locs[3], b->distance);
+}
+
+static const snell__kernel_hook g_hook = {
+    .variant_mask = SNELL__GLASS_BACKDROP,
+    .defines = backdrop_defines,
+    .uniform_names = backdrop_uniform_names,
+    .uniform_count = SNELL__BACKDROP_UNIFORMS,
+    .uniforms = backdrop_uniforms,
+};
+
+static void destroy(snell_ctx *ctx, void *state)
+{
+    snell__backdrop *b = (snell__backdrop *)state;
+    (void)ctx;
+    if (b->color_sampler) glDeleteSamplers(1, &b->color_sampler);
+    if (b->depth_sampler) glDeleteSamplers(1, &b->depth_sampler);
+    if (b->color_tex) glDeleteTextures(1, &b->color_tex);
+    if (b->depth_tex) glDeleteTextures(1, &b->depth_tex);
+    if (b->fbo) glDeleteFramebuffers(1, &b->fbo);
+}
+
+const snell__stage snell__stage_backdrop = {
+    .name = "backdrop",
+    .state_size = sizeof(snell__backdrop),
+    .destroy = destroy,
+    .validate = validate,
+    .wanted = wanted,
+    .run = run,
+    .kernel_variant = variant,
+    .kernel = &g_hook,
+};
