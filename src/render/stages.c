@@ -24,7 +24,8 @@
     S(kernels)                \
     S(background)             \
     S(ssaa)                   \
-    S(msaa)
+    S(msaa)                   \
+    S(premultiplied)
 
 #define DECLARE(name) extern const snell__stage snell__stage_##name;
 SNELL__STAGE_TABLE(DECLARE)
