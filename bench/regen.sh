@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # bench/regen.sh — regenerates bench/BENCHMARKS.md, the current results page:
 # one snell-bench run per scene (every method at its defaults and AUTO's
 # pick, side by side), whose own --markdown table, plot (--plot-y full-rmse,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # docs/regen.sh — renders the README's images that come from a snell-render
 # command (the command is each image's caption in the README), into docs/.
 # The other images come from tests (their captions name the test; the test

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # footprint.sh — the size budgets of README "Footprint and components" (issue 24):
 # builds the stripped libsnell.so of the full build (Release) and of the device
 # preset (its default MinSizeRel), prints both and fails past 672 KiB / 192 KiB;

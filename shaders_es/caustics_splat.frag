@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // caustics_splat.frag - a photon's share for this texel of its 4 x 4 point
 // (caustics_photon.vert): a tent of half-width 2 texels along each axis,
 // (1 - |dx| / 2) (1 - |dz| / 2) / 4 at the texel centres within 2 texels of

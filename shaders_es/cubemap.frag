@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // cubemap.frag - two-sided refraction with a normal+distance cubemap (Li et
 // al. 2007 as in Unger 4.1, Listing 2). Refract at the front surface, find the
 // exit point along the refracted ray by a binary search against the distance

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // glass_scale.frag - an object's colour at full resolution from its glass
 // shaded at a resolution scale (render/glass_scale.c), drawn as any kernel
 // is (forward on its faces, or on the frame's G-buffer), so which pixels are

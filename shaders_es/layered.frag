@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // layered.frag - multi-layer refraction through layered distance cube maps
 // (Umenhoffer, Patow and Szirmay-Kalos 2007, "Robust multiple specular
 // reflections and refractions", GPU Gems 3 ch. 17). The layers (baked once

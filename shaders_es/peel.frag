@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // peel.frag - multi-layer refraction from depth-peeled layers (Wang 2014,
 // seed 001 3.3-3.6). The object's surfaces along each pixel's view ray are
 // in u_layers (methods/peel.c, depth_peel.frag): layer k's normal in array

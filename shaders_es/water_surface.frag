@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_surface.frag - the water surface (Dachsbacher 2002, "Refraction
 // Mapping"): the view ray refracted at the per-pixel normal meets the
 // container exactly - the seed's five ray-wall distances, the nearest

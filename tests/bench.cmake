@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # snell-bench: a tiny interleaved sweep and its outputs; bad specs.
 if(TARGET snell-bench)
   set(bench $<TARGET_FILE:snell-bench>)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # AUTO by frame budget (issue 25 item 3; src/render/budget.c, budget_stage.c):
 # the controller against synthetic devices (no GL), and the renderer's budget
 # stage on real frames (its stats, the rung drawn, the refusals).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The CLI ports with a scene (issue 9): repeated --mesh with per-object options and
 # --opaque objects, per-object statistics (each object's method and why), methods and
 # parameters from the library's registry, --trace-pixel through a scene, and

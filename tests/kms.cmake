@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # snell-kiosk (issue 16). Its choices (card, connector, mode, CRTC, format)
 # and its page-flip state machine are plain C, tested on made-up resources
 # whether or not the kiosk is built (ports/kms/kms_select.c, kms_flip.c).

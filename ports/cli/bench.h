@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench.h — snell-bench's shared types, and the one job of each of its files:
  *   snell_bench.c    main: options -> configurations -> context -> timing -> errors -> outputs
  *   bench_options.c  the command line and --help (methods and parameters from the registry)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench2d.c — `snell-bench --2d`: the 2D lightmap benchmarks of Brückner ch. 7
  * on the public API: tracer rays/s per core on a 2263-edge polygon set (7.3.1),
  * BVH leaf-size sweep (7.3.2), GL line rasterisation in paths/ms (7.4), and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_budget.c — snell-bench --budget: AUTO by frame budget against every
  * fixed configuration of its rung table (issue 25 item 3), on a moving
  * camera. Per scene: AUTO with the budget and each rung (every glass object

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_env.c — snell-bench --env-lookup: the cube against the dual-paraboloid
  * environment look-up (snell_renderer_desc.env_lookup: dynamic maps made from
  * the cube, or rendered directly), all in one run. Time: frames that take

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L /* stat */
 /* bench_options.c — snell-bench's command line and --help; the methods and
  * their parameters (with the defaults the library resolves) come from the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_output.c — what snell-bench writes: PREFIX.json, PREFIX.csv, the
  * points and labels of the time-vs-error plot (drawn by bench_plot.c), the
  * Pareto front per scene and size, and the summary table on stdout. */

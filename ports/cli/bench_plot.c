@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_plot.c — the time-vs-error scatter plot of snell-bench as a PNG:
  * log-log axes with decade grid and labels, one colour per scene, one marker
  * per method, the Pareto front of each scene+size group ringed and joined by

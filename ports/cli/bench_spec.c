@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_spec.c — spec expansion, glmark2 style: "method:key=value:key=v1,v2"
  * (a comma list sweeps) -> one configuration per element of the cartesian
  * product. Keys are the scene/view/material keys below, which every method

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_timing.c — timing of snell-bench's configurations. Those of one scene
  * and size take turns frame by frame (each with its own renderer, so nothing
  * is re-baked between turns), so a shared machine's drift hits all of them

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_water.c — snell-bench --water: the water scene's costs measured
  * apart (issue 17): one simulation step on the CPU and on the GPU (each
  * timed over a batch of steps, the GPU's finished with glFinish), a frame's

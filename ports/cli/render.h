@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render.h — the parts of snell-render: its command line read as a scene
  * (render_args.c), the reference light paths of --trace-pixel (trace_pixel.c)
  * and the 2D lightmap mode --2d (render2d.c); main is snell_render.c. */

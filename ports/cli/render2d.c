@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render2d.c — `snell-render --2d`: a 2D scene file -> lightmap PNG, optionally
  * multiplied onto an albedo image (Brückner A.3); and `--contour`: an image's
  * alpha outline -> polygon CSV (A.5). Public API only (+ stb_image, file-local). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render_args.c — snell-render's command line read as a scene: repeated
  * --mesh (glass) and --opaque objects, each followed by its own options, the
  * view and the outputs. Method names and parameters come from the library's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render_water.c — snell-render --water: the container scene of issue 17
  * (Dachsbacher 2002): a water surface in a tiled box, drops at the points
  * the flags give, simulated and rendered frame by frame; with --save-every K

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell-bench — time vs error of the refraction methods (issue 3).
  *
  * Runs scenes x methods x parameters; for each configuration it times the

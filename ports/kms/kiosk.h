@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kiosk.h — snell-kiosk's files and their one job each:
  *   snell_kiosk.c    main: options -> display -> GBM/EGL -> snell (EXTERNAL) -> frames -> teardown
  *   kiosk_options.c  the command line and --help

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kiosk_options.c — snell-kiosk's command line. */
 #include "kiosk.h"
 

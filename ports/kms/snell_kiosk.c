@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell-kiosk — refractive glass full screen on a DRM/KMS display (issue 16).
  *
  * kmscube's pipeline: open the display (card, connector, mode, CRTC), make a

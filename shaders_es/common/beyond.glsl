@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // beyond.glsl - what a ray sees once it leaves the kernel's glass object.
 // snell_exit(p, dir): the light arriving back along the ray that leaves the
 // object at p in direction dir. Without SNELL_BEYOND, the environment. With

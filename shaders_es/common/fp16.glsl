@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // fp16.glsl - mediump study (issue 3). Shaders declare what a GPU with real
 // fp16 holds at mediump as SNELL_MEDIUMP, which the context's precision policy
 // makes highp on llvmpipe (it emulates fp16 mediump in software, slower than

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // opaque_lit.glsl - the irradiance of an opaque surface point under the
 // frame's light (the caustics stage, render/caustics.c): the direct light
 // (directional: colour * cosine; spot: intensity * cosine / distance^2

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* program.c — shader assembly (#include of embedded chunks), compile, link,
  * with the info log carried into the error message. */
 #include "core/program.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* material.c — the one resolve step of a glass material (sokol's _sg_def):
  * zero fields become their documented defaults, every method's nested
  * parameters are resolved by the method's own table (methods/registry.c),

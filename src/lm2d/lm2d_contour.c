@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_contour.c — image -> polygon without OpenCV (Brückner A.5): marching
  * squares on the alpha channel (sub-pixel by linear interpolation), the
  * longest closed contour, Ramer-Douglas-Peucker simplification, CSV output. */

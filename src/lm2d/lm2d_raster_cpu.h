@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_raster_cpu.h — the exact CPU rasteriser of light paths (Brückner eq. 4.2):
  * every pixel receives the flux integrated along the part of each segment
  * inside it, length in pixel widths; threaded over row bands, bitwise the same

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #define _XOPEN_SOURCE 700 /* realpath */
 /* lm2d_scene.c — 2D scene objects, lights, CSV polygons and the text scene
  * format; flattening into one edge array with normals (Brückner 6.2.1-6.2.2). */

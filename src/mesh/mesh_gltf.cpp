@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 /* mesh_gltf.cpp — glTF 2.0 loader (.gltf / .glb) on top of Debian's tinygltf.
  * The only C++ file of the library: every entry point catches all exceptions, and
  * every accessor is bounds-checked here before a byte of it is read. */

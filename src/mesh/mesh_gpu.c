@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh_gpu.c — the mesh as the GPU draws it (DESIGN.md "frame": geometry fed
  * well): triangles reordered for the post-transform vertex cache, vertices
  * for fetch locality (meshoptimizer, when built with it), 16-bit indices where

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh_lod.c — snell_mesh_simplify: an optional level of detail (issue 10 item 3)
  * for meshes whose triangles are far below a pixel, made with meshoptimizer's
  * edge-collapse simplifier, cleaned so that a closed mesh stays closed.

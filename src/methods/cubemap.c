@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cubemap.c — two-sided refraction with a normal+distance cubemap (Li et
  * al. 2007 as in Unger 4.1): prepared once per (mesh version, face size,
  * encoding) by baking the cubemap about the analysed centre (ndcube.c,

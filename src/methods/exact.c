@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* exact.c — exact refraction by ray traversal of the mesh's BVH in the
  * fragment shader (exact.frag): the MATCHED reference's model (ref_trace.c)
  * on the GPU. Prepared per mesh version: the reference tracer's SAH build

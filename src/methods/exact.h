@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* exact.h — what the exact method's prepared resource (methods/exact.c, one
  * per mesh version in the prepared cache) lends to a stage that walks the
  * same BVH with common/bvh.glsl: the caustics' photons (render/caustics.c). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* layered.c — multi-layer refraction through layered distance cube maps
  * (Umenhoffer, Patow and Szirmay-Kalos 2007, GPU Gems 3 ch. 17): prepared
  * once per (mesh version, face size, layers) by depth peeling the mesh from

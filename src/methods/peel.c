@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* peel.c — multi-layer refraction from depth-peeled layers (Wang 2014, seed
  * 001 3.1-3.6), for concave objects whose view rays cross more than two
  * surfaces (a torus, a goblet, ears and legs). Per object and frame: up to

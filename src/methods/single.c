@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* single.c — single-surface refraction (Unger 3.3), the baseline: one pass,
  * refraction and reflection at the front surface only; and the thin-wall
  * (slab) model, which is exact for a thin-walled material whatever method

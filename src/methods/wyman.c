@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* wyman.c — two-sided refraction in image space (Wyman 2005, as in the
  * seed's 3.4.1): refract at the front surface, put the exit point at
  * P2 = P1 + d T1 with d interpolated between d_V (front to farthest back

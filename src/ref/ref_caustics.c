@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_caustics.c — the reference of the caustics stage (issue 27): the
  * receiver plane's irradiance traced from the light in double precision:
  * shadow rays for the direct light, and photons refracted through each glass

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_plane.c — the receiver plane in the reference's view (issue 27,
  * snell_ref_set_receiver): its square, seen from above by the rays in air,
  * albedo times its irradiance map as the view and the glass kernels show

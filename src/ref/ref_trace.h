@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_trace.h — internals of the reference tracer shared with its tests: a
  * scene of exact spheres that runs the very same optics code (ref_trace.c)
  * on analytic geometry, so closed-form checks are not blurred by

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* budget.h — AUTO by frame budget (snell_frame_desc.budget_ms).
  *
  * Each AUTO glass object gets a ladder: the configurations of the rung

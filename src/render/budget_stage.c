@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* budget_stage.c — the budget stage: measures the last frame (the GPU's
  * timer query where there is one, else a fence),
  * gives every AUTO glass object its ladder and the controller's rung

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* caustics.c — the caustics stage (issue 27; Wyman & Davis 2006, caustic
  * maps; Unger 3.5 names light refracted onto surfaces as beyond its scope):
  * the receiver plane's light map holds its irradiance, in units of the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gbuffer.h — the screen-space stage (DESIGN.md "frame"): the front surface
  * of the glass objects shaded in screen space, drawn once with a trivial
  * shader (gbuffer.frag) into two RGBA8 textures (the normal in 16+16 bits;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glass_scale.c — see glass_scale.h. The object's method draws as it would
  * at full resolution in screen space, into a view whose grid is the frame's
  * divided by the scale: every pass it makes (peels, the kernel) costs

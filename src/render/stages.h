@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* stages.h — the renderer's per-frame state that the stages of the stage
  * table (stages.c, frame/stage.h) read and write, in frame order. */
 #ifndef SNELL_STAGES_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* water_caustics.c — the container floor's light map (issue 27 item 4;
  * after Evan Wallace's webgl-water): the light refracted at the water
  * surface onto the floor, remade in one draw whenever the surface or the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* water_sim.c — the water surface object and its CPU simulation (Dachsbacher
  * 2002, "Berechnung der Wasseroberflaeche"): heights on a grid of nodes, per
  * node a force from the height differences to its eight neighbours (the

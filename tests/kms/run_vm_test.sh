@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # run_vm_test.sh KIOSK RENDER COMPARE OUT_DIR — the real KMS test (issue 16,
 # ctest label kms): Debian's own kernel (linux-image-amd64) boots in
 # qemu-system-x86_64 under TCG with a bochs-display; a busybox initramfs

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Runs snell-bench (EXE) on a tiny sweep in OUT_DIR and checks what it wrote:
 # exit 0; every configuration ok with a median time and a 95th percentile
 # between it and the worst frame; the single-surface row

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The README stays true (issue 28 item 8): the test counts it states are what
 # ctest lists for this build, and the package list of its quick start is the
 # PACKAGES of scripts/quickstart.sh (and EXTRA_PACKAGES are each named).
