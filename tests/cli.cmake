@@ -58,8 +58,12 @@ if(TARGET snell-render)
   add_test(NAME cli_version COMMAND ${cli} --version)
   set_tests_properties(cli_version PROPERTIES PASS_REGULAR_EXPRESSION
     "^snell-render [0-9]+\\.[0-9]+\\.[0-9]+ \\(commit ([0-9a-f]+(-dirty)?|unknown)\\)\n$")
+  add_test(NAME cli_2d_opt_unknown COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--2d|--bogus" -DCODE=2
+           "-DERR=^snell-render --2d: unknown option '--bogus'. see --2d --help$" -P ${one_error})
+  add_test(NAME cli_water_opt_unexpected COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--water|stray" -DCODE=2
+           "-DERR=^snell-render --water: unexpected argument 'stray'. see --water --help$" -P ${one_error})
   set_tests_properties(cli_key_of_other_method cli_qualified_key_of_other_method cli_unexpected_argument cli_no_value
-                       cli_version PROPERTIES LABELS "cli")
+                       cli_version cli_2d_opt_unknown cli_water_opt_unexpected PROPERTIES LABELS "cli")
   set_tests_properties(cli_key_auto PROPERTIES LABELS "cli;gl")
   add_test(NAME cli_help_registry COMMAND ${cli} --help)
   set_tests_properties(cli_help_registry PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
