@@ -20,7 +20,7 @@
  * line of a few bytes reads a CSV of up to LM2D_MAX_POINTS points (64 MiB),
  * so without it a scene file's cost would not be bounded by its own size: a
  * 20 KB file naming one 1M-point CSV a thousand times would parse 2e9 bytes
- * and hold 8 GB of points (issue 26). Beyond it: SNELL_E_LIMIT, after at most
+ * and hold 8 GB of points. Beyond it: SNELL_E_LIMIT, after at most
  * one CSV more than the bound. */
 #define LM2D_MAX_SCENE_POINTS (4 * LM2D_MAX_POINTS)
 #define LM2D_MAX_RAYS 100000000

@@ -39,18 +39,13 @@
 /* How node bounds are stored (the `nodes` parameter). */
 enum { NODES_DEFAULT = 0, NODES_F32, NODES_Q16 };
 /* How the tree is walked (the `walk` parameter): near-first with a short
- * stack takes 0.75-0.79x the frame of the stackless walk on the bunny at
- * 256x256 and 512x512, 0.71-0.81x on a 1024-triangle torus (llvmpipe,
- * bench/BENCHMARKS.md "Exact"):
- * it visits the nearer child first, so the closest hit shortens the ray
- * sooner. The stackless walk needs no per-pixel array and has no depth
+ * stack is the faster (bench/BENCHMARKS.md "Exact"): it visits the nearer
+ * child first, so the closest hit shortens the ray sooner. The stackless walk needs no per-pixel array and has no depth
  * bound (drei's 60-entry stack is what mobile GPUs choked on). */
 enum { WALK_DEFAULT = 0, WALK_STACKLESS, WALK_STACK };
 
 /* llvmpipe: per-pixel traversal costs so much more than the G-buffer pass
- * that full 4x4 blocks win at every density, as for the cubemap: at 256x256
- * forward shading took 5.5x the screen-space frame on the bunny (2578 vs
- * 470 ms, 5 px/triangle) and 1.7x on a 1024-triangle torus (276 vs 161 ms)
+ * that full 4x4 blocks win at every density, as for the cubemap
  * (bench/BENCHMARKS.md, "Exact"). */
 #define EXACT_SOFTWARE_SCREEN_PPT 1e9f
 

@@ -65,8 +65,7 @@ static void single_destroy(snell_ctx *ctx, void *state)
 
 /* A thin wall is one slab: exact for a sheet; a closed thin-walled mesh's far
  * wall is not crossed (the FULL reference and the caustics' light cross
- * every wall: a thin sphere 26.9 dB against FULL, README "Methods"). For a
- * solid it misses the exit surface. */
+ * every wall; README "Methods"). For a solid it misses the exit surface. */
 static snell__fit single_fit(const snell_mesh_analysis *an, const snell_glass_resolved *g, char *why, size_t n)
 {
     (void)an;
@@ -97,8 +96,8 @@ static const snell_method_info g_info = {
     SNELL_METHOD_SINGLE, "single", "refraction at the front surface only (Unger 3.3); thin walls as slabs",
     "nothing", 1, 0, NULL, 0, NULL, 1, 1, ""};
 
-/* llvmpipe, 512x512 (BENCHMARKS.md): screen space 0.87x forward on the bunny
- * (5.1 estimated px/triangle), 0.99x at 5.5, 1.14x at 22. */
+/* llvmpipe (BENCHMARKS.md): screen space is the cheaper below about 5.5
+ * estimated pixels a front triangle, forward above. */
 const snell__method snell__method_single = {
     .info = &g_info,
     .fit = single_fit,

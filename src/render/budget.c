@@ -17,22 +17,11 @@
  * the cubemap the other way round, so they are two classes. scale: the
  * resolution scale (snell_glass_material.scale); such a rung is kept where it
  * is on some class's Pareto front (peel at 2 and 4, layered at 2; exact at 2
- * only on the open class's, by 1% of the cost and 0.1 dB against peel at 2:
- * left out). --aa 2 measures the error on the frame at ssaa 2 and times the
- * plain frame: at scale 2 the error is of one kernel sample a pixel, the time
- * of one per 4 pixels. Measured side by side in one run on llvmpipe (LLVM 15),
- * 2 CPUs shared, load 0.79 -> 1.43, 2026-12-04 13:55 UTC, a Release build of
- * main ea59bcd (this table's rendering code; the convex layered rung at its
- * 2 tangent-plane steps):
- *   snell-bench -b single -b cubemap -b wyman -b oliveira -b layered -b peel:layers=2,4 \
- *     -b exact:interfaces=2,8 -b layered:scale=2 -b peel:layers=2,4:scale=2,4 \
- *     -b exact:interfaces=2,8:scale=2 --scenes sphere,torus,bunny,tests/data/real/horse.obj \
- *     --sizes 256x256 --aa 2 --frames 41 --warmup 3 --threads 2
- * (the table before, the same command on 2026-12-03 at load 5.87 -> 4.62,
- * the two CPUs oversubscribed, had the same errors, the scaled rungs up to
- * 43% cheaper against single and exact up to 57% dearer: how much a rung
- * costs against single depends on the load as well as on the device). The scaled rungs
- * come last: test_budget.c's synthetic devices skew each rung's cost by its
+ * only on the open class's, by a hair against peel at 2: left out). --aa 2
+ * measures the error on the frame at ssaa 2 and times the plain frame: at
+ * scale 2 the error is of one kernel sample a pixel, the time of one per 4
+ * pixels. The figures are snell-bench's, side by side on llvmpipe; how they
+ * were made is in bench/notes/code.md, "budget.c". The scaled rungs come last: test_budget.c's synthetic devices skew each rung's cost by its
  * index, and those of the others stay as they were. On another device the
  * costs move: snell_renderer_warm measures each rung on it
  * (snell__budget_calibrate), and the controller learns from the frames it
@@ -396,7 +385,8 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         } else if (!over && same_objects && new_ms < cur_ms && cur_ms <= budget_ms && new_q < cur_q) {
             /* predicted within the budget though above the aim: kept (the band 95-100% is the
              * hysteresis). Only against a worse plan: one both cheaper and better is taken (a rung
-             * learned dear under load can predict a better rung not drawn yet as the cheaper) */
+             * learned dear while the machine was busy can predict a better rung not drawn yet as the
+             * cheaper) */
             memcpy(plan, cur, sizeof(int) * (size_t)n);
             snell__why(why, why_size, "kept: %.2f ms predicted, within the budget's %.2f", cur_ms, (double)budget_ms);
         }

@@ -24,7 +24,7 @@ static int usable(void *user, snell_method id)
     return snell__renderer_method_state(user, snell__method_get(id), &state) == SNELL_OK;
 }
 
-/* The GPU's own clock (EXT_disjoint_timer_query, issue 25 item 3): a
+/* The GPU's own clock (EXT_disjoint_timer_query): a
  * TIME_ELAPSED query around the frame's commands, read at the next frame
  * once its fence has passed, so it never stalls. It counts the GPU's time
  * only, not a host's work between frames that the fence is seen late by.

@@ -312,9 +312,9 @@ static snell_status run_water(snell__frame *f)
      * searched for in a copy of what the opaque pass drew: an offscreen
      * single-sample colour target (a host's framebuffer or a
      * multisampled one cannot be copied with its depth format known;
-     * exit directions need no colour). Measured against peeling them
-     * into layers for the water alone: 74 against 175 ms and 38.7
-     * against 36.1 dB (snell-bench --water --size 256, two spheres). */
+     * exit directions need no colour): cheaper and more accurate than
+     * peeling them into layers for the water alone (bench/notes/code.md,
+     * "stages.c"). */
     int layers = f->n_layers >= 0, i;
     int objects = !layers && fd->opaque_count > 0 && r->target == SNELL_TARGET_OFFSCREEN && !r->msaa &&
                   r->out == SNELL__OUT_COLOR;
