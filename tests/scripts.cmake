@@ -7,3 +7,7 @@ set_tests_properties(test_apt PROPERTIES LABELS "unit" TIMEOUT 60)
 add_test(NAME source_spdx COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
          -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_spdx.cmake)
 set_tests_properties(source_spdx PROPERTIES LABELS "unit")
+# Comments in src/ and shaders_es/ say why; measurements, dates, loads, commit
+# hashes, issue numbers and history live in bench/notes/ and commit messages.
+add_test(NAME source_comments COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_comments.sh ${PROJECT_SOURCE_DIR})
+set_tests_properties(source_comments PROPERTIES LABELS "unit")
