@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # bench/band_check.sh — issue 25's two speed-against-error criteria, measured
 # side by side in one snell-bench run each, on whatever device runs it:
 #   bunny  SIZE, --aa AA: some configuration >= 26 dB glass PSNR vs FULL at

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # glmark2_compare.sh — frame time of snell's single-surface glass vs glmark2-es2's
 # "refract" scene on the same bunny (/usr/share/glmark2/models/bunny.obj) at the
 # same sizes, runs alternated (glmark2, snell, glmark2, snell, ...) so that load

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # bench/regen.sh — regenerates bench/BENCHMARKS.md, the current results page:
 # one snell-bench run per scene (every method at its defaults and AUTO's
 # pick, side by side), whose own --markdown table, plot (--plot-y full-rmse,
@@ -16,7 +17,7 @@
 # a budget in ms or times single's frame; default "bunny=8x
 # tests/data/scenes/three_glass_two_opaque.gltf=2x": bands where the fixed
 # configurations split into those that hold it and those that do not),
-# BUDGET_SIZE (256), BUDGET_FRAMES (300),
+# BUDGET_SIZE (256x256), BUDGET_FRAMES (300),
 # REV (the source the build is of, stated in the page; default: git's HEAD,
 # "+ uncommitted changes" when the tree differs from it).
 # The history (every earlier measurement with its command) is
@@ -65,17 +66,18 @@ for s in $scenes; do
     rm -f "current/$name.csv" # the JSON holds the same and more
 done
 budget_runs=${BUDGET_RUNS:-bunny=8x $root/tests/data/scenes/three_glass_two_opaque.gltf=2x}
-budget_size=${BUDGET_SIZE:-256}
+budget_size=${BUDGET_SIZE:-256x256}
 budget_frames=${BUDGET_FRAMES:-300}
 for run in $budget_runs; do
     s=${run%=*}
     budget=${run##*=}
     name=$(basename "$s" | sed 's/\.[^.]*$//')
     echo "regen.sh: budget $budget on $s ($budget_size, $budget_frames frames) ..." >&2
-    if ! "$bench" --budget "$budget" --scene "$s" --size "$budget_size" --frames "$budget_frames" \
-            --threads "$threads" --cache "$cache" > "$tmp/budget_$name.out" 2>&1; then
+    if ! "$bench" --budget "$budget" --scene "$s" --sizes "$budget_size" --frames "$budget_frames" \
+            --threads "$threads" --cache "$cache" -o "current/budget_$name" > "$tmp/budget_$name.out" 2>&1; then
         failed="$failed budget:$name"
     fi
+    rm -f "current/budget_$name.csv" # the JSON holds the same and more
 done
 up_after=$(uptime)
 t1=$(date +%s)
@@ -136,13 +138,13 @@ fixed configuration of its rung table, on a camera turning 1.2° a frame; AUTO d
 the fixed configurations every 5th, taking turns; glass PSNR against FULL at pixel centres on 4
 frames spread over the run. A budget Nx is N times single's median frame along the first frames
 of the path; "within the budget": the 95th percentile. Command: \`snell-bench --budget BUDGET
---scene SCENE --size $budget_size --frames $budget_frames --threads $threads\` with (SCENE=BUDGET)
+--scene SCENE --sizes $budget_size --frames $budget_frames --threads $threads\` with (SCENE=BUDGET)
 \`$(echo $budget_runs | sed "s|$root/||g")\`.
 
 EOF
     for run in $budget_runs; do
         name=$(basename "${run%=*}" | sed 's/\.[^.]*$//')
-        echo "### $name, ${budget_size}x$budget_size, budget ${run##*=}"
+        echo "### $name, $budget_size, budget ${run##*=}"
         echo
         sed -n '/^scene /,$p' "$tmp/budget_$name.out"
         echo

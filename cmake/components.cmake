@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # components.cmake — what goes into libsnell. Every component is an option;
 # turning one off leaves out its C files and its shaders, and its public API
 # then returns SNELL_E_UNSUPPORTED with a message (stubs generated from the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Turns the shader files named in LIST (absolute paths under SHADER_DIR, a
 # CMake list written by the build) into NUL-terminated const char arrays and
 # a lookup table SYMBOL[] = {path, source}, so the library needs no files at

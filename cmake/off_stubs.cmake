@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # off_stubs.cmake — snell_off_stubs(OUT OPTION HEADER...): for a component
 # built without, one C file with every function its public headers declare:
 # snell_status ones fail with SNELL_E_UNSUPPORTED and a message naming the

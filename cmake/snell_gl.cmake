@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # snell_gl.cmake — the targets snell_dep::egl and snell_dep::gles, for the
 # build and (installed beside snellConfig.cmake) for its users.
 # pkg-config where it is found and knows the package (desktop Linux, Debian

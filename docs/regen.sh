@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # docs/regen.sh — renders the docs' images that come from a snell-render
 # command (the command is each image's caption in README.md or docs/*.md, or
 # the images are linked from docs/integrating.md), into docs/.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* host_scene.c — glass in an app's own world. The app has its own GLES 3.0
  * context, shaders and framebuffer, and a first-person camera that walks
  * and turns; each frame it draws its opaque scene (a checkered ground and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # shellcheck shell=bash
 # apt.sh — sourced by the scripts that install packages. A Debian mirror
 # caught mid-sync serves an index whose size or hash disagrees with its

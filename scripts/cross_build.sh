@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # cross_build.sh arm64|armhf [test] — a Raspberry Pi (Debian arm64/armhf) build
 # on an x86-64 Debian 12 host: the sysroot (scripts/make_sysroot.sh, cached in
 # build-sysroot/ARCH), then build-ARCH with cmake/toolchains/, and with `test`

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # make_sysroot.sh arm64|armhf [DIR] — a Debian 12 sysroot for cross builds
 # (cmake/toolchains/), made from Debian's own arm64/armhf packages without
 # touching the host's package state: a private APT configuration (own sources,

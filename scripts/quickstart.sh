@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # quickstart.sh render|test|test-all — the README's commands.
 #   render:   install what is missing, build, render the default scene to snell.png
 #   test:     install what is missing, build, run the whole ctest suite, then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // caustics_direct.frag - the direct light on the receiver's light map: at
 // each of a texel's 2 x 2 sample points the light's irradiance (directional:
 // colour * cosine; spot: intensity * cosine / distance^2 inside its cone)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // caustics_map.frag - a glass object seen from the light (render/caustics.c):
 // its world normal (unit, packed n * 0.5 + 0.5 into RGB10_A2, alpha 1 where
 // covered); the light-space depth goes to the depth texture. Drawn twice:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // caustics_opaque.frag - an opaque object lit by the frame's light (the
 // caustics stage, render/caustics.c; used instead of opaque.frag only in a
 // frame with a light): colour = albedo * irradiance (common/opaque_lit.glsl),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // caustics_photon.vert - one photon per texel of the light's view of a glass
 // object (Wyman & Davis 2006, caustic maps; Unger 3.5 names caustics as the
 // step beyond its methods): enters where the nearest-surface map says

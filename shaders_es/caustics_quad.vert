@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // caustics_quad.vert - the receiver plane's square (4 vertices, a triangle
 // strip): in the light map, the whole target (v_ndc); in the view, the square
 // at y = h under u_view_proj.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // caustics_receiver.frag - the receiver plane in the view: albedo times its
 // light map (direct light where unshadowed plus the caustics,
 // common/receiver.glsl, which the glass reads too), linear.

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: MIT
 // caustics_splat.frag - a photon's share for this texel of its 4 x 4 point
 // (caustics_photon.vert): a tent of half-width 2 texels along each axis,
 // (1 - |dx| / 2) (1 - |dz| / 2) / 4 at the texel centres within 2 texels of
-// the photon, which sum to 1, added into the receiver's light map. Against
-// the 2 x 2 bilinear share it had first: 41.8 against 35.3 dB over the
-// receiver (test_caustics), the regular photon grid's moire where photons
-// are sparse mostly gone, the focus one texel wider.
+// the photon, which sum to 1, added into the receiver's light map. Wider
+// than a 2 x 2 bilinear share so that the regular photon grid leaves no moire
+// where photons are sparse, at the price of a focus one texel wider
+// (bench/notes/code.md, "caustics_splat.frag").
 precision highp float;
 
 in vec4 v_flux;

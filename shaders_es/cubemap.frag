@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // cubemap.frag - two-sided refraction with a normal+distance cubemap (Li et
 // al. 2007 as in Unger 4.1, Listing 2). Refract at the front surface, find the
 // exit point along the refracted ray by a binary search against the distance
@@ -82,12 +83,10 @@ vec3 fetch_normal(vec3 q)
 // stays inside the final bracket either way).
 //
 // The step counts are compile-time constants (one program per setting,
-// built on first use, method_cubemap.c). Measured on llvmpipe, bunny at
-// 512x512, cost relative to single-surface in alternating frames: the former
-// single loop bounded by uniforms (pre-search and bisection merged) 1.46x;
-// the same search with a constant bound 1.31-1.35x; a pre-search loop left
-// in the program but disabled by its uniform costs +0.06x by itself. On GPUs
-// a constant bound lets the compiler unroll.
+// built on first use, method_cubemap.c): a loop bounded by uniforms, or one
+// left in the program but disabled, costs llvmpipe time by itself
+// (bench/notes/code.md, "cubemap.frag"). On GPUs a constant bound lets the
+// compiler unroll.
 float search_exit(vec3 p, vec3 d)
 {
     float a2 = dot(d, d);

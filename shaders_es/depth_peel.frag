@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // depth_peel.frag - one depth peel (the peel kernel, methods/peel.c, and the scene layers, render/layers.c; Wang
 // 2014 3.4, after Everitt's depth peeling): every face, front and back, is
 // drawn with depth test LESS, and a fragment no deeper than the previous

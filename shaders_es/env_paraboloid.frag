@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // env_paraboloid.frag - one layer of the dual-paraboloid maps made from the
 // cubemap (render/env_paraboloid.c): each texel holds the cube's bilinear
 // radiance along its own direction (common/env.glsl, snell_dp_dir), also

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // env_probe.frag - snell_env (common/env.glsl, as the kernels and the skybox
 // build it) evaluated for a list of directions, one per pixel, read from a
 // float texture: how snell_renderer_env_probe measures a look-up's error.

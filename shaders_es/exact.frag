@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // exact.frag - exact refraction by BVH ray traversal (methods/exact.c): the
 // MATCHED reference's model (src/ref/ref_trace.c, m_air and m_inside) in
 // float. Per pixel: the eye ray through the pixel is traced against the

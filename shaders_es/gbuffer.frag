@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // gbuffer.frag - the screen-space stage's geometry pass (render/gbuffer.c):
 // the glass's front surface with a trivial shader, so that the rasteriser's
 // partly filled blocks of tiny triangles cost little; the kernels shade

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // glass_scale.frag - an object's colour at full resolution from its glass
 // shaded at a resolution scale (render/glass_scale.c), drawn as any kernel
 // is (forward on its faces, or on the frame's G-buffer), so which pixels are
@@ -12,9 +13,8 @@
 // refraction at the front, Schlick, the tint, Beer-Lambert to the bounding
 // sphere's far side; a thin wall's slab straight through), not black; of
 // single.frag's variants only dispersion is left out there. (A depth weight as
-// well, joint bilateral upsampling with the texels within 2% of the pixel's
-// view depth, changed no glass PSNR against FULL on the bunny by 0.01 dB at
-// scales 2 and 4: left out.)
+// well, joint bilateral upsampling, gained nothing measurable: left out;
+// bench/notes/code.md, "glass_scale.frag".)
 precision highp float;
 
 #include "common/optics.glsl"

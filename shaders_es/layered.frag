@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // layered.frag - multi-layer refraction through layered distance cube maps
 // (Umenhoffer, Patow and Szirmay-Kalos 2007, "Robust multiple specular
 // reflections and refractions", GPU Gems 3 ch. 17). The layers (baked once
@@ -143,8 +144,8 @@ highp float sphere_exit(highp vec3 p, highp vec3 d)
 // surface, so the exit of a ray from inside is its one crossing, and a texel
 // holds both what the search needs and the normal there. Its own trace below,
 // no march: the general one's code is not compiled in (llvmpipe runs a
-// branch's code under an empty mask; measured: sphere 512^2 3.91 -> 3.41x
-// single with the march compiled out, nothing else changed).
+// branch's code under an empty mask, so dead code costs time;
+// bench/notes/code.md, "layered.frag").
 
 // Layer 0 in q's direction: the object-space normal (not normalised) and
 // the distance / u_radius, filtered.
@@ -168,15 +169,13 @@ highp vec4 texel0(highp vec3 q)
 // each; the normal is the last one's. p lies on the surface (the entry, or
 // an exit or bounce point), so the first look-up is where the ray meets the
 // sphere through p about the centre: on a round mesh that is next to the
-// exit, where the bounding sphere's far side is a step away. Measured
-// (snell-bench, sphere 512^2, aa 4, vs FULL): iterations 1 38.98 -> 40.43
-// dB, 2 41.07 -> 40.89 (its second step lands a little nearer from the far
-// side); chord() in closed form, not as sphere_far (two square roots less:
-// 2.04 -> 1.98x single, iterations 1, load 1.5). That point may lie inside the mesh (a cube's entry mid-face); if
-// the plane it looks up is one the ray moves away from, the first step goes
-// to the bounding sphere's far side instead, as before: any later plane is
-// met outside the mesh or on it (the texel-distance sphere there trapped
-// the cube's rays on a wrong face: mean 0.06 -> 3.55 degrees).
+// exit, where the bounding sphere's far side is a step away. chord() is in
+// closed form (two square roots fewer than sphere_far). That point may lie
+// inside the mesh (a cube's entry mid-face); if the plane it looks up is one
+// the ray moves away from, the first step goes to the bounding sphere's far
+// side instead: any later plane is met outside the mesh or on it (the
+// texel-distance sphere there trapped the cube's rays on a wrong face;
+// bench/notes/code.md, "layered.frag").
 // Where p + t d meets the sphere through p about the centre again (inside
 // the bounding sphere: p lies on the mesh).
 highp float chord(highp vec3 p, highp vec3 d)
@@ -202,21 +201,18 @@ highp float convex_exit(highp vec3 p, highp vec3 d, out highp vec3 n, const int 
 }
 
 #if SNELL_INNER_FRESNEL
-// Its light is F of the pixel's: half the steps (at least one) find its exit.
-// Measured (snell-bench, sphere 512^2, aa 4, vs FULL, beside single, load 5):
-// iterations 2 with 2 steps here 40.96 dB at 2.71x single, with 1 41.07 dB
-// at 2.53x. With iterations 1 no plane step: where it meets the sphere
-// through the exit point (chord), with that texel's normal (the sphere's
-// colour the same 40.43 dB, 2.07-2.09x -> 2.04x single, load 1.5).
+// Its light is F of the pixel's: half the steps (at least one) find its exit,
+// as accurately as all of them. With iterations 1 no plane step: where it
+// meets the sphere through the exit point (chord), with that texel's normal
+// (bench/notes/code.md, "layered.frag").
 #define INNER_STEPS ((SNELL_BINARY + 1) / 2)
 // The branch reflected inside at the exit (weight F there): one more search
 // from the exit point q along rdir, refracted out at the next surface with
 // (1 - F'), its own reflection F' leaving in the mirror direction (the rest
 // of the tree lumped, so that no energy is lost), as cubemap.frag's
 // inner_branch. Radiance, before the tint. Its environment look-ups take
-// the nearest texel (snell_env_nearest): filtered, they were about 0.2x
-// single's frame of the sphere's (snell-bench 512^2, iterations 1, 2.48 ->
-// 2.20x single) for 0.013 dB (40.44 -> 40.43 against FULL).
+// the nearest texel (snell_env_nearest): its light is weak, so filtering it
+// costs time for no visible change (bench/notes/code.md, "layered.frag").
 vec3 inner_branch(highp vec3 q, vec3 rdir, float path)
 {
     highp vec3 d = mat3(u_inv_model) * rdir, n;

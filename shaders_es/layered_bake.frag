@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // layered_bake.frag - one layer of one face of the layered method's distance
 // cube maps (methods/layered.c; Umenhoffer, Patow and Szirmay-Kalos 2007, GPU
 // Gems 3 ch. 17): the mesh seen from the analysed centre through a 90 degree

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ndcube_bake.frag - writes the normal and the distance to the centre of the
 // farthest surface (depth test GREATER, no culling; Unger 4.1) packed into
 // RGBA8 by common/pack.glsl. Depth is the Euclidean distance / radius, so the

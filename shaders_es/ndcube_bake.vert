@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ndcube_bake.vert - the mesh seen from the cubemap centre, one cube face per
 // pass (Unger 4.1). Object space: the cubemap is baked once per mesh version,
 // independent of the model matrix.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // object.vert - world-space position and normal of a mesh, for every glass
 // kernel and for opaque objects (in the view and in dynamic environments).
 // Positions are highp (depth, search parameters).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // oliveira.frag - two-sided refraction by a conservative search in image
 // space (Oliveira and Brauwers 2007; seed 000 3.4.2, Listing 1). Refract the
 // view ray at the front surface P1 into T1, then search along T1 for where it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // opaque.frag - diffuse albedo lit by a sky-like light from +Y (half-Lambert,
 // so no side is black). In exit-direction output the view ray is written, as
 // for the background: an opaque pixel has no refracted path.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // opaque_paraboloid.vert - an opaque object drawn straight into one map of a
 // dynamic environment's dual-paraboloid pair (render/env_dynamic.c): each
 // vertex goes to the texel of its direction from the glass centre

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // peel.frag - multi-layer refraction from depth-peeled layers (Wang 2014,
 // seed 001 3.3-3.6). The object's surfaces along each pixel's view ray are
 // in u_layers (methods/peel.c, depth_peel.frag): layer k's normal in array
@@ -109,9 +110,8 @@ vec3 layer_normal(ivec2 px, int k)
 // bilinearly, those of the same smooth surface as the texel q projects to
 // (depth within a linear step of q's, normal within 18 degrees of that
 // texel's: not across a depth jump or a crease, e.g. a cube's edge); that
-// texel's alone if none is. Measured at 256x256 against the FULL reference,
-// pixel-centre normals alone gave 1.16-1.57x this mean error (bunny, torus,
-// sphere, goblet).
+// texel's alone if none is. Pixel-centre normals alone gave a larger error
+// against FULL on every mesh measured (bench/notes/code.md, "peel.frag").
 vec3 layer_normal_at(highp vec3 q, int k)
 {
     highp vec4 c = u_view_proj * vec4(q, 1.0);
@@ -183,7 +183,7 @@ int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m,
     // the search range: to the far side of the bounding sphere grown by
     // one step, so that the last sample lies clearly beyond a surface on
     // the sphere (a tessellated sphere's vertices are on it): a point just
-    // beyond it can still test as before it, against the depth at its
+    // beyond it can still test as in front of it, against the depth at its
     // pixel's centre
     highp vec3 oc = p - u_bsphere.xyz;
     highp float b = dot(oc, dir), rs = u_bsphere.w + step;

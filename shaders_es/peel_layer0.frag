@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // peel_layer0.frag - the peel kernel's first layer (methods/peel.c) from the
 // screen-space stage's G-buffer, which already holds the object's front
 // surface there: a full-screen triangle over the object's scissor writes, at

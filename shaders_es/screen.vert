@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // screen.vert - one full-screen triangle for the screen-space stage: a glass
 // kernel then runs once per pixel the scissor and the G-buffer leave it
 // (common/surface.glsl).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // single.frag - single-surface refraction (Unger 3.3): refract the view ray at
 // the front surface, look the refracted direction up in the environment, mix
 // with the reflection by Schlick's Fresnel term. Absorption uses the distance

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // skybox.frag - the environment drawn as the background (Unger 2.2.2): the
 // view direction through each pixel, rotation only, looked up in the cubemap.
 precision SNELL_MEDIUMP float; // the context's policy (core/program.c)

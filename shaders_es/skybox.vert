@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // skybox.vert - one full-screen triangle at the far plane; the fragment
 // shader turns its clip position back into a world direction.
 precision highp float;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ssaa_resolve.frag - supersampling resolve (render/ssaa.c): each output
 // pixel is the mean of its SNELL_SSAA x SNELL_SSAA block of the frame rendered
 // that many times larger, a box filter over the pixel's area, which is what

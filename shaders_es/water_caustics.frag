@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_caustics.frag - a triangle of the refracted surface grid on the
 // floor's light map (water_caustics.vert): its irradiance is the light's
 // (directional: per unit area across the beam; spot: its intensity per unit

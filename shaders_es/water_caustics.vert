@@ -1,4 +1,5 @@
-// water_caustics.vert - the container floor's light map (issue 27; after
+// SPDX-License-Identifier: MIT
+// water_caustics.vert - the container floor's light map (after
 // Evan Wallace's webgl-water): one vertex per node of the water's height
 // field (gl_VertexID = j * n + i, the surface's own index buffer), where the
 // light's ray meets the surface. It is refracted at the node's normal (the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_columns.frag - the opaque objects seen from above the water's box
 // (water/water_caustics.c draw_columns): only their depth is kept, the
 // highest and the lowest surface over each texel of the floor.

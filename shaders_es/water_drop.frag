@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_drop.frag - a drop on the GPU water state (snell_water_drop): every
 // node within u_drop.z of the point u_drop.xy moves by
 // amplitude * (1 + cos(pi r / radius)) / 2 (snell__water_bell).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_reduce.frag - the settle check of the GPU water simulation: each
 // texel holds max |height - mean| and max |velocity| over a 16 x 16 block of
 // nodes, read back by snell__water_gpu_deviation (a 32 x 32 read for 512^2).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_step.frag - one step of the water simulation on the GPU (Dachsbacher
 // 2002; src/water/water_sim.c derives the scheme and its stability limit):
 // per node the force from the eight neighbours (diagonals times 1/sqrt 2,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_surface.frag - the water surface (Dachsbacher 2002, "Refraction
 // Mapping"): the view ray refracted at the per-pixel normal meets the
 // container exactly - the seed's five ray-wall distances, the nearest
@@ -13,9 +14,9 @@
 //   in the water (index and absorption the water's): it refracts into and
 //   out of the glass objects it meets, stops at an opaque one, and ends at
 //   the container. The mirror ray sees the walls and the environment only:
-//   marching it too doubled the surface's cost on llvmpipe (324 against 163
-//   ms, snell-bench --water --size 256) for no gain (29.07 against 29.27 dB
-//   over the water pixels: the objects' reflections are small and faint).
+//   the objects' reflections are small and faint, so marching it too would
+//   double the surface's cost for no gain (bench/notes/code.md,
+//   "water_surface.frag").
 // - SNELL_WATER_OBJECTS (opaque objects only): their colour and depth,
 //   drawn before the water and copied from the target, are searched along
 //   the refracted ray in screen space (the seed has no objects; the search
@@ -85,7 +86,7 @@ float find_object(vec3 p, vec3 t, float dmax, out vec3 col)
     vec4 c0 = u_view_proj * vec4(p + a * t, 1.0), c1 = u_view_proj * vec4(p + b * t, 1.0);
     // a twelfth of the way to the container: thick enough for a step over the
     // objects' spheres to land inside, thin enough not to stop behind them
-    // (measured: 35.0 dB against 32.7 for two steps over the spheres' part)
+    // (bench/notes/code.md, "water_surface.frag")
     float lo = 0.0, hi = -1.0, thickness = 2.0 * dmax / 24.0;
     for (int k = 1; k <= 24; k++) {
         float f = float(k) / 24.0;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_surface.vert - the water's height field as a grid of nodes (one vertex
 // per node, gl_VertexID = j * n + i, no vertex attributes): the world
 // position (x, h, z) and the seed's per-node normal (-dh/dx, 1, -dh/dz) from

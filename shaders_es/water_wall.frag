@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_wall.frag - the container's tiles where the view sees them directly
 // (outside, and inside above the water); exit-direction output: the view ray.
 precision highp float;

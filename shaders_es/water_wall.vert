@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_wall.vert - the container's floor and walls (zero thickness, both
 // sides drawn): world positions and the face each belongs to.
 precision highp float;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // wyman.frag - two-sided refraction in image space (Wyman 2005; seed
 // 000 3.4.1). Refract the view ray at the front surface P1 into T1; the exit
 // point is P2 = P1 + d T1 with d = (th_t / th_i) d_V + (1 - th_t / th_i) d_N

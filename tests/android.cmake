@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The Android port (ports/android): its lifecycle rules and its scene (CPU
 # data kept, GL objects made again after a context loss) run on the host; the
 # NDK glue itself is syntax-checked for aarch64-linux-android24 against

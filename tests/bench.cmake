@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # snell-bench: a tiny interleaved sweep and its outputs; bad specs.
 if(TARGET snell-bench)
   set(bench $<TARGET_FILE:snell-bench>)
@@ -27,13 +28,13 @@ if(TARGET snell-bench)
       "(PASS|FAIL) bunny >= 26 dB at <= 3x single: .*  layered:scene=sphere:size=48x48 +[0-9.]+x +[1-9][0-9][.][0-9]+ dB.*(PASS|FAIL) sphere >= 40 dB at <= 2x single: ")
   endif()
   # --env-lookup: both look-ups timed and probed (64x64, 3 rounds: ~3 s); that it runs and prints both tables
-  add_test(NAME bench_env_lookup COMMAND ${bench} --env-lookup --frames 3 --size 64)
+  add_test(NAME bench_env_lookup COMMAND ${bench} --env-lookup --frames 3 --sizes 64x64)
   set_tests_properties(bench_env_lookup PROPERTIES LABELS "cli;gl" TIMEOUT 120
     PASS_REGULAR_EXPRESSION "cubemap, dynamic env .*within 1 deg of the rim, smooth")
   add_test(NAME bench_env_lookup_bad COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--env-lookup|--frames|1" -DCODE=2
            "-DERR=snell-bench --env-lookup: " -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(bench_env_lookup_bad PROPERTIES LABELS "cli")
-  foreach(bad "-b|nosuch" "-b|cubemap:iterations=0" "-b|cubemap:face=99999" "--frames|0" "-b|auto"
+  foreach(bad "-b|nosuch" "-b|cubemap:iterations=0" "-b|cubemap:face=99999" "--frames|0"
               "-b|single:iterations=4" "-b|cubemap:encoding=rgb" "-b|cubemap:scene=pair:attenuation=2/1/1/1"
               "-b|single:lod=0" "-b|single:lod=1.5" "-b|single:lod=nan" "-b|single:dispersion=-1"
               "-b|single:dispersion=21" "-b|single:dispersion_model=spectral"
@@ -47,6 +48,39 @@ if(TARGET snell-bench)
              -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
     set_tests_properties(${name} PROPERTIES LABELS "cli")
   endforeach()
+  # Flags read by getopt_long in every mode: one message per error, naming the option
+  # and where to look (NAME|EXIT|stderr regex|ARGS)
+  foreach(case
+      "bench_opt_unknown|2|^snell-bench: unknown option '--frobnicate'. see --help$|--frobnicate"
+      "bench_opt_no_value|2|^snell-bench: --frames needs a value. see --help$|-q|--frames"
+      "bench_opt_short|2|^snell-bench: unknown option '-x'. see --help$|-x"
+      "bench_opt_key_of_other_method|2|^snell-bench: method single has no key 'face' \\(see --list\\)$|-b|single:face=64"
+      "bench_budget_sizes|2|^snell-bench --budget: --sizes 64: want one size WxH within 16..2048$|--budget|5|--sizes|64"
+      "bench_budget_old_size|2|^snell-bench --budget: --sizes 64: want one size WxH within 16..2048$|--budget|5|--size|64"
+      "bench_budget_value|2|^snell-bench --budget 0: want a budget in ms \\(e.g. 40\\) or times single's frame \\(e.g. 4x\\)$|--budget|0"
+      "bench_water_sizes|2|^snell-bench --water: --sizes 64x32: want a square size SxS$|--water|--sizes|64x32"
+      "bench_env_lookup_unknown|2|^snell-bench --env-lookup: unknown option '--bogus'. see --env-lookup --help$|--env-lookup|--bogus"
+      "bench_2d_no_value|2|^snell-bench --2d: --rays needs a value. see --2d --help$|--2d|--rays"
+      "bench_compare_one|2|^snell-bench --compare: wants two JSON files, A.json B.json$|--compare|a.json"
+      "bench_compare_missing|1|^snell-bench --compare: cannot read '/nonexistent/a.json'$|--compare|/nonexistent/a.json|/nonexistent/b.json"
+      "bench_compare_not_bench|1|^snell-bench --compare: '.*nodes.gltf' is not a snell-bench JSON \\(no \"results\" array\\)$|--compare|${CMAKE_CURRENT_SOURCE_DIR}/data/nodes.gltf|${CMAKE_CURRENT_SOURCE_DIR}/data/nodes.gltf")
+    string(REPLACE "|" ";" parts "${case}")
+    list(GET parts 0 name)
+    list(GET parts 1 code)
+    list(GET parts 2 err)
+    list(SUBLIST parts 3 -1 args)
+    string(REPLACE ";" "|" args "${args}")
+    add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=${args}" -DCODE=${code} "-DERR=${err}"
+             -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_one_error.cmake)
+    set_tests_properties(${name} PROPERTIES LABELS "cli")
+  endforeach()
+  # --help lists every mode and option of the tool
+  add_test(NAME bench_help_complete COMMAND ${bench} --help)
+  set_tests_properties(bench_help_complete PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
+    "--compare A.json B.json.*--budget MS\\|Nx.*--water.*--env-lookup.*--2d.*--version")
+  add_test(NAME bench_version COMMAND ${bench} --version)
+  set_tests_properties(bench_version PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
+    "^snell-bench [0-9]+\\.[0-9]+\\.[0-9]+ \\(commit ([0-9a-f]+(-dirty)?|unknown)\\)\n$")
 endif()
 
 # bench_floor: issue 10's frame floor (G-buffer pass + kernel at full blocks +

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_caustics.c — the caustics stage's frame cost (issue 27): a glass
  * sphere (or MESH: torus, or an OBJ file fitted in the unit sphere) over a
  * receiver under a directional light, four frames taking turns each round:

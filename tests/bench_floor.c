@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_floor — issue 10's frame floor measured the way the frame is made:
  * the screen-space frame of one glass mesh split into its three necessary
  * parts, each timed alone (ended by glFinish) right after a full frame left

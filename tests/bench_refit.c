@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_refit — what a deforming mesh costs SNELL_METHOD_EXACT: frames that
  * move the mesh's vertices (snell_mesh_set_vertices, alternating between
  * two shapes) drawn with single (the mesh's own update, no BVH), with exact

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_water_caustics.c — the frame cost of the water's caustics (issue
  * 27 item 4): two identical CPU-simulated waters with the same drops, one
  * drawn without a light, one under a directional light (the floor's light

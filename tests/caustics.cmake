@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Caustics and shadows of glass on a receiver plane (render/caustics.c,
 # ref/ref_caustics.c; issue 27).
 # test_caustics: a glass sphere over a plane under a directional light: the caustic's peak at the ball lens's

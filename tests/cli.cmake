@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The CLI ports with a scene (issue 9): repeated --mesh with per-object options and
 # --opaque objects, per-object statistics (each object's method and why), methods and
 # parameters from the library's registry, --trace-pixel through a scene, and
@@ -39,6 +40,31 @@ if(TARGET snell-render)
   add_test(NAME cli_param COMMAND ${cli} --mesh sphere --method cubemap --param cubemap.iterations=3 --param encoding=oct
            --linear 2 --stats --size 16x16 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_param.png)
   set_tests_properties(cli_param PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "\\(sphere, ior 1.5\\): method cubemap")
+  # A parameter only other methods have is refused for --method M, not ignored (AUTO takes any)
+  set(one_error ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_one_error.cmake)
+  add_test(NAME cli_key_of_other_method COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--method|single|--face|64" -DCODE=2
+           "-DERR=^snell-render: --face is a parameter of [a-z, ]*cubemap[a-z, ]*, not of --method single \\(the default sphere\\). see --help$"
+           -P ${one_error})
+  add_test(NAME cli_qualified_key_of_other_method COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}"
+           "-DARGS=--mesh|sphere|--param|cubemap.face=64|--method|single" -DCODE=2
+           "-DERR=^snell-render: --face is a parameter of cubemap, not of --method single \\(--mesh sphere\\). see --help$"
+           -P ${one_error})
+  add_test(NAME cli_key_auto COMMAND ${cli} --face 64 --size 16x16 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_key_auto.png)
+  # getopt_long: one message per error
+  add_test(NAME cli_unexpected_argument COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--size|16x16|stray" -DCODE=2
+           "-DERR=^snell-render: unexpected argument 'stray'. see --help$" -P ${one_error})
+  add_test(NAME cli_no_value COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--mesh|sphere|--ior" -DCODE=2
+           "-DERR=^snell-render: --ior needs a value. see --help$" -P ${one_error})
+  add_test(NAME cli_version COMMAND ${cli} --version)
+  set_tests_properties(cli_version PROPERTIES PASS_REGULAR_EXPRESSION
+    "^snell-render [0-9]+\\.[0-9]+\\.[0-9]+ \\(commit ([0-9a-f]+(-dirty)?|unknown)\\)\n$")
+  add_test(NAME cli_2d_opt_unknown COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--2d|--bogus" -DCODE=2
+           "-DERR=^snell-render --2d: unknown option '--bogus'. see --2d --help$" -P ${one_error})
+  add_test(NAME cli_water_opt_unexpected COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--water|stray" -DCODE=2
+           "-DERR=^snell-render --water: unexpected argument 'stray'. see --water --help$" -P ${one_error})
+  set_tests_properties(cli_key_of_other_method cli_qualified_key_of_other_method cli_unexpected_argument cli_no_value
+                       cli_version cli_2d_opt_unknown cli_water_opt_unexpected PROPERTIES LABELS "cli")
+  set_tests_properties(cli_key_auto PROPERTIES LABELS "cli;gl")
   add_test(NAME cli_help_registry COMMAND ${cli} --help)
   set_tests_properties(cli_help_registry PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
     "method cubemap: .*--iterations V +1\\.\\.32 \\(default 6\\).*--encoding V +default\\|plain\\|oct \\(default plain\\)")
@@ -88,7 +114,7 @@ if(TARGET snell-bench)
   set_tests_properties(bench_list_registry PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
     "pair .*many .*method cubemap: .*iterations +1\\.\\.32 \\(default 6\\)")
   add_test(NAME bench_unknown_method COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=-b|nosuch:scene=pair" -DCODE=2
-           "-DERR=snell-bench: unknown method 'nosuch' in 'nosuch:scene=pair'; methods: single, layered, cubemap, wyman, oliveira, peel"
+           "-DERR=snell-bench: unknown method 'nosuch' in 'nosuch:scene=pair'; methods: auto, single, layered, cubemap, wyman, oliveira, peel"
            -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(bench_unknown_method PROPERTIES LABELS "cli")
 endif()

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Foundation tests: context, shaders, optics twin, single-surface render, CLI, install.
 snell_add_test(test_why SOURCES test_why.c LABELS "unit")
 snell_add_test(test_ctx SOURCES test_ctx.c LABELS "unit;gl")

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Cubemap method (Unger 4.1, src/methods/cubemap.c, methods/ndcube.c, mesh/mesh_analyze.c):
 # packing twin, bake vs CPU ray casts, sphere/cube/TIR vs the reference,
 # analysis (star-shapedness), CLI flags.

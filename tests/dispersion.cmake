@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Dispersion (material.dispersion, core/optics.h, common/dispersion.glsl, ref/ref_trace.c):
 # the channels' IORs, the reference's per-channel traces, and every kernel in both
 # variants on a prism and a sphere against the per-channel reference. 5 s a run at

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Exact refraction by BVH traversal in the fragment shader (issue 18:
 # src/methods/exact.c, shaders_es/exact.frag): exit directions vs the MATCHED
 # reference on sphere, torus, goblet, an open real mesh (cat) and the bunny,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gl_count.h — GL objects alive in the current context, counted by name
  * (glIs* over every name handed out so far): textures, buffers, framebuffers,
  * renderbuffers, vertex arrays, samplers, programs and shaders. Mesa hands

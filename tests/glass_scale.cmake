@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # A glass object shaded at a resolution scale (issue 25 item 3:
 # src/render/glass_scale.c, shaders_es/glass_scale.frag, the material's
 # scale): values, scale 1 byte-identical, scale 2 close to 1 with no

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # FULL reference against Blender Cycles (test_groundtruth.c,
 # tests/scripts/cycles_render.py): a sphere and a torus at 96x96, 64 samples
 # per pixel (about 30 s on 2 cores, most of it Cycles). Skipped where Blender

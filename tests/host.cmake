@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The library in a careless or hostile host's hands (issue 14): contexts,
 # host GL state (EXTERNAL), pixel buffers, destroy order, NULL/NaN lookups,
 # camera and model values; the CLI's --env pattern; and the long run (flat

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Hostile files (issue 14): glTF URIs leaving the model's folder, coordinates at
 # the float range, coincident triangles, the memory budget and the messages of
 # refused files. Inputs under tests/data/hostile (make_hostile.py), bigger ones

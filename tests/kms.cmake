@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # snell-kiosk (issue 16). Its choices (card, connector, mode, CRTC, format)
 # and its page-flip state machine are plain C, tested on made-up resources
 # whether or not the kiosk is built (ports/kms/kms_select.c, kms_flip.c).
@@ -29,12 +30,25 @@ if(TARGET snell-kiosk)
            "-DARGS=-b|cubemapp|--dri-dir|${CMAKE_CURRENT_BINARY_DIR}/no_such_dri" -DCODE=2 "-DERR=unknown method 'cubemapp'" -P ${expect})
   set_tests_properties(kiosk_bad_spec_no_display PROPERTIES LABELS "cli")
   foreach(bad "--mode|1920x" "--mode|1920x1080@" "--frames|0" "--spin|nan" "-b|cubemap|-b|single"
-              "--connector|x" "--nosuch" "--budget|0" "--budget|nan")
+              "--connector|x" "--nosuch" "--budget|0" "--budget|nan" "--bench|--vsync|maybe" "--vsync|off" "stray")
     string(MAKE_C_IDENTIFIER "kiosk_bad_${bad}" name)
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=${bad}" -DCODE=2 "-DERR=snell-kiosk: "
              -P ${expect})
     set_tests_properties(${name} PROPERTIES LABELS "cli")
   endforeach()
+
+  # getopt_long: one message per error, naming the option
+  set(one_error ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_one_error.cmake)
+  add_test(NAME kiosk_opt_no_value COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=--bench|--frames" -DCODE=2
+           "-DERR=^snell-kiosk: --frames needs a value. see --help$" -P ${one_error})
+  add_test(NAME kiosk_opt_vsync COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}" "-DARGS=--bench|--vsync|maybe" -DCODE=2
+           "-DERR=^snell-kiosk: --vsync maybe: on or off$" -P ${one_error})
+  add_test(NAME kiosk_version COMMAND ${kiosk} --version)
+  set_tests_properties(kiosk_version PROPERTIES PASS_REGULAR_EXPRESSION
+    "^snell-kiosk [0-9]+\\.[0-9]+\\.[0-9]+ \\(commit ([0-9a-f]+(-dirty)?|unknown)\\)\n$")
+  add_test(NAME kiosk_help_vsync COMMAND ${kiosk} --help)
+  set_tests_properties(kiosk_help_vsync PROPERTIES PASS_REGULAR_EXPRESSION "--vsync on\\|off.*--version")
+  set_tests_properties(kiosk_opt_no_value kiosk_opt_vsync kiosk_version kiosk_help_vsync PROPERTIES LABELS "cli")
 
   # --config: the same checks as the command line. Each bad command line above,
   # written as a configuration file, is refused with exit 2 and its line.

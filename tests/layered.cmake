@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The layered method (issue 25 item 1: src/methods/layered.c,
 # shaders_es/layered.frag, layered_bake.frag): the bake's layers, memory and
 # once-per-version rule, exit directions against MATCHED (sphere) and FULL

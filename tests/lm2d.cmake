@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # 2D lightmap (lm2d) tests: unit (geometry, scene files, tracer, contour, the
 # threaded exact CPU rasteriser) and render (GL lines vs the exact rasteriser,
 # the rasteriser choice on a ctx, showcase scenes) on llvmpipe.

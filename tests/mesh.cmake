@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Mesh loaders (OBJ, glTF) and procedural shapes; fuzz targets replayed on the
 # assets in tests/data (valid and malformed) and on tests/fuzz/regressions.
 snell_add_test(test_mesh_obj SOURCES test_mesh_obj.c LABELS "unit")

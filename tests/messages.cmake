@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # What a user reads (issue 28 items 5-8): one message per error with the offending value and
 # the reason, --help wherever it is given; snell-bench's progress lines agreeing with its table
 # and JSON; the reference's progress only on a terminal; the README's counts and package list.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Oliveira and Brauwers' conservative image-space search (issue 11:
 # src/methods/oliveira.c, shaders_es/oliveira.frag): the sphere against its
 # exact exit where the seed's model holds, a slab (both image-space methods),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Multi-layer refraction from depth-peeled layers (issue 12: src/methods/peel.c,
 # shaders_es/peel.frag, peel_layer.frag; depth complexity in mesh/mesh_analyze.c):
 # layer counts, two layers = two surfaces, the sphere against the cubemap, torus

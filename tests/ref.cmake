@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Reference tracer (snell_ref_*, src/ref/*.c): BVH (one or several parts),
 # analytic checks (sphere, slab, TIR prism; scenes of several glass objects,
 # thin walls, opaque objects), image-level properties of single objects and

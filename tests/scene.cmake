@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The scene and the method seam (issue 9: src/render/scene.c, renderer.c,
 # prepared.c, env_dynamic.c, composite.c, methods/registry.c): registry and
 # material resolve, AUTO's per-object choice, order, skips, 8 glass + 4

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Glass seen through glass and opaque objects seen through glass where they
 # are (issue 13: src/render/layers.c, shaders_es/common/beyond.glsl): three
 # glass + two opaque objects against the reference over the whole scene,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* shader_strip.h — for test_shader_strip*.c: a scene renders the same bytes
  * from the stripped shader table the library embeds and from the sources as
  * written (generated/shaders_readable.c, linked into these tests only), each

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Slow inputs (issue 26 item 3): every loader and stage within a per-byte,
 # per-corner or per-pixel bound on inputs made to be slow (repeated indices,
 # coincident faces, all vertices equal, a vertex of valence 100,000, deep and

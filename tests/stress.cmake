@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Stress harness (issue 3, item 6): every method vs the reference across IOR,
 # grazing views, mesh scale and thin shells; zero NaN/Inf, stated error bounds.
 # One test per method so a failure names it: the methods of the registry this

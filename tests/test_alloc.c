@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_alloc — every allocation the library makes goes through the context's
  * allocator and is returned: a counting allocator must read zero outstanding
  * blocks after a full create/render/destroy cycle, and an allocator that

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_analyze — snell_mesh_analyze (src/mesh/mesh_analyze.c): closed/convex
  * flags, the cubemap centre and the hidden fraction on shapes whose answers
  * follow from their geometry:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_android_lifecycle — ports/android/lifecycle.c, the rules for what the
  * Android port makes and destroys on each activity event. (1) Scenarios with
  * the actions the rules say, written out: start, pause/resume keeping the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_android_scene — ports/android/glass_scene.c, the Android port's scene,
  * in a host-made GLES 3 context (EXTERNAL backend) as the port runs it in its
  * EGL window context: assets given as bytes (an OBJ or .glb mesh, a PNG

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_auto_pieces.c — issue 40 item 10: AUTO on a mesh of several separate
  * pieces. Convexity was tested as closed and locally convex, not connected, so
  * two octahedra were "convex" and AUTO drew them with layered's convex

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_backdrop — the host's scene behind the glass (snell_frame_desc.backdrop).
  * A host with its own EGL context, shaders and off-axis camera draws a
  * ground and a red box (lit as snell's opaque objects are lit) into its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_bench_classes — snell-bench's errors per object class (ports/cli/
  * bench_classes.c, issue 13 item 5) on images whose differences are placed
  * by hand, so every expected figure follows from the construction:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_bench_keys — every key snell-bench's spec parser accepts changes the
  * configuration it names, and nothing else (issue 25 item 4: peel:layers=
  * once set the frame's scene layers, because the common keys were looked up

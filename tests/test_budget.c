@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_budget.c — AUTO by frame budget's controller (render/budget.c)
  * without GL: each object's ladder from the rung table and a mesh analysis,
  * and the controller against a synthetic device whose true costs differ

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_budget_render.c — AUTO by frame budget in real frames (issue 25
  * item 3; render/budget_stage.c): the stage runs only with a budget and
  * says what it did; with a budget no frame can miss it climbs its ladder to

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_caustics.c — the caustics stage (issue 27) against the reference's
  * light tracing (snell_ref_receiver_render) and the ball lens in closed
  * form: a glass sphere (radius 1, IOR 1.5) over a plane under a directional

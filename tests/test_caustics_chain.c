@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_caustics_chain.c — light through two glass objects in sequence
  * (issue 27): a glass sphere (radius 0.45, IOR 1.5) above a larger tinted
  * one (radius 0.6, IOR 1.5, tint 0.6, 0.85, 1), over the receiver plane,

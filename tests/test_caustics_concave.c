@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_caustics_concave.c — caustic photons through concave glass (issue
  * 27): a torus (major radius 1, minor 0.4, IOR 1.5) standing over a plane,
  * its axis along z, under a directional light 16 degrees off vertical: light

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_caustics_cycles — the caustics reference (snell_ref_receiver_render)
  * and the GPU caustics stage against an independent renderer, Blender Cycles
  * (tests/scripts/cycles_caustics.py), on one scene (issue 27 item 5): a glass

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_caustics_env — the glass sees the opaque objects lit through its
  * dynamic environment (issue 27; scene layers off: render/env_dynamic.c
  * draws them with caustics_opaque.frag, common/opaque_lit.glsl, as the view

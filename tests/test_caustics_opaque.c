@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_caustics_opaque.c — the caustics stage's opaque receivers (issue 27
  * items 1-3) against the reference (snell_ref_set_light): a glass sphere
  * (radius 1, IOR 1.5) above an opaque box whose top face (y = 0) holds the

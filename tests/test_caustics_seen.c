@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_caustics_seen — the glass sees the lit receiver plane (issue 27;
  * common/receiver.glsl, the caustics stage's kernel hook SNELL_RECEIVER):
  * along their exit and reflected rays every method's kernel meets the plane

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_caustics_seen_ref.c — the glass seeing the lit receiver plane against
  * the reference (issue 27): snell_ref_set_receiver makes the reference's
  * view rays meet the plane, lit by the reference's own traced

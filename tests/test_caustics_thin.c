@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_caustics_thin.c — the shadow and light of thin-walled glass (issue
  * 27; material.thickness > 0): a closed thin-walled sphere (radius 1,
  * thickness 0.02, IOR 1.5, tinted and absorbing) over the receiver plane.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_components — the component options (cmake/components.cmake), in every
  * preset: snell_build_has() agrees with what works; a component left out
  * returns SNELL_E_UNSUPPORTED from its API with a message naming its option

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ctx — context creation on every backend available here, failure paths,
  * and the EXTERNAL backend inside a context the test made itself: the host's
  * GL state must be untouched by a snell frame. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_cubemap — the cubemap method (Unger 4.1) on a sphere, where every
  * error term can be bounded:
  *  1. packing twin: the exact worst-case normal quantisation of both

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_cubemap_env — opaque objects and the dynamic environment (Unger 4.1):
  *  - the cubemap is rendered in the first frame, skipped while nothing moves
  *    (also when only kernel parameters change), re-rendered when an object

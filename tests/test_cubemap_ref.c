@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_cubemap_ref — the cubemap method on the cube [-1,1]^3 (flat faces: many
  * internal reflections) at IOR 1.5 and at IOR 2.42 (diamond: TIR-heavy),
  * against the reference in MATCHED mode with the same max_interfaces.

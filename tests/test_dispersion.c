@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_dispersion — dispersion (material.dispersion, KHR_materials_dispersion):
  *  - the channels' IORs (core/optics.h, material.c): the spec's Cauchy fit,
  *    red < green = ior < blue, n_F - n_C = (n_d - 1) / V_d within the fit's

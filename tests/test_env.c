@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_env — environment construction and sampling: GL cube-face rules round
  * trip, six-face and equirectangular images land in the right directions, the
  * GPU skybox agrees with the CPU sampler, and bad images are refused cleanly. */

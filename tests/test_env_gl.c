@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_env_gl — an environment from the host's GL cube map
  * (SNELL_ENV_GL_TEXTURE): borrowing the texture of a procedural environment
  * gives the same bytes as that environment (cube and dual-paraboloid

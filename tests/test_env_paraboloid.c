@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_env_paraboloid — dual-paraboloid environment maps (render/env_paraboloid.h,
  * common/env.glsl). (1) The C twin of the parameterisation inverts itself and
  * gives a rim direction the same texel in both maps. (2) The GPU look-up

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_exact — SNELL_METHOD_EXACT (methods/exact.c, exact.frag) against the
  * CPU reference it reimplements:
  *  1. exit directions vs MATCHED with the same interface cap (2 and 8) on

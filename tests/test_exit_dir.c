@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_exit_dir — the exit-direction debug output that error measurement
  * relies on. (1) src/pack.h and shaders_es/common/pack.glsl agree bit for bit
  * (transform feedback) and the packed encoding's own error is below 1e-4 rad;

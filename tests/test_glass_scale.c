@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_glass_scale — a glass object shaded at a resolution scale
  * (snell_glass_material.scale, render/glass_scale.c, glass_scale.frag).
  * The torus with SNELL_METHOD_PEEL (4 layers), 96x96 with 2x2 supersampling

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_groundtruth — snell's FULL reference against an independent path
  * tracer, Blender Cycles (tests/scripts/cycles_render.py), on a glass sphere
  * and a torus (a small closed mesh with internal reflections and TIR): the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_host — the library in the hands of a careless host (issue 14): objects
  * of one context used in another (3), host GL state that must not change the
  * output of an EXTERNAL frame and must come back as it was (4), host pixel

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_host_world — glass in a host's world: the host's own off-axis
  * camera given as matrices (SNELL_CAMERA_MATRICES), its depth kept and
  * tested (SNELL_DEPTH_TEST). A host with its own EGL context, shaders and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_hostile_files.c — issue 14, files as an attacker writes them: glTF
  * URIs that leave the model's folder (item 2), coordinates at the float range
  * (item 6), coincident triangles that stalled the analysis (item 7), sizes

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_hostile_inputs4.c — issue 40, hostile input, fourth round: one
  * function per item of the issue, each failing on the code before its fix.
  * Without arguments: the CPU-only cases (ctx NULL). With "ctx": the cases that

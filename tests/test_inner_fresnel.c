@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_inner_fresnel — inner-surface Fresnel in the cubemap kernel
  * (material.cubemap.inner_fresnel, cubemap.frag SNELL_INNER_FRESNEL) and in
  * oliveira's image-space search (material.oliveira.inner_fresnel), each:

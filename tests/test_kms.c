@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_kms.c — snell-kiosk's choices and page-flip state machine on made-up
  * DRM resources (ports/kms/kms_select.c, kms_flip.c; no DRM device needed):
  * a Pi 4 with a render-only card before the display card, connectors in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_layered — the layered method (methods/layered.c, shaders_es/layered*.frag):
  * the bake (layers used and capped, its memory, once per mesh version: no
  * pass of its own in later frames, again after snell_mesh_set_vertices), exit

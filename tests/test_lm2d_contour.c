@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_lm2d_contour.c — image -> polygon (Brückner A.5 without OpenCV): a disc's
  * outline has the disc's area and radius, RDP keeps few points within epsilon,
  * the outer loop wins over a hole, empty images are rejected, and the CSV

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_lm2d_geom.c — ray/segment intersection (parallel, endpoint, vertex hits)
  * and BVH traversal against brute force on random scenes, for several leaf sizes. */
 #include "lm2d/lm2d_bvh.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_lm2d_raster.c — GL lines (llvmpipe, forced: AUTO picks the CPU
  * rasteriser here) against the exact CPU rasteriser of the same paths (eq.
  * 4.2): total flux, per-pixel and block-averaged relative error for every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_lm2d_raster_cpu.c — the exact CPU rasteriser (eq. 4.2, no GL): against an
  * independent reference (each segment clipped to each pixel square), flux
  * conservation, SCREEN, a flipped view; and the threaded lightmap: bitwise the

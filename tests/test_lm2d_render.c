@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_lm2d_render.c — the showcase lightmaps, written as PNGs for looking at
  * (lm2d_*.png in the test's build directory) and checked numerically:
  * a bar light casts a soft shadow (wide penumbra, dark umbra), a red diffuse

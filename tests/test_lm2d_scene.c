@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_lm2d_scene.c — CSV and text scene loading: good files load, malformed
  * ones fail with SNELL_E_PARSE/IO/INVALID_ARG and a message naming the line;
  * edge normals point outward for either winding; hard vs smooth point normals. */

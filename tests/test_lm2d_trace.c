@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_lm2d_trace.c — light tracer: energy bookkeeping (no energy created; a
  * closed white box with a = 0 keeps all of it until the bounce cap), refraction
  * angles through a glass slab (shared optics kernel), clipping to the view,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_longrun — the long run of issue 14: 2,000 frames that change every
  * per-frame setting (camera, materials, methods with AUTO, cubemap
  * parameters, moving opaque objects, 0..8 glass objects, dynamic environment

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_mesh_3ds.c — glmark2's model formats (src/mesh/mesh_3ds.c): a .3ds
  * built here chunk by chunk (and tests/data/tetra.3ds, the same bytes, the
  * fuzz seed), every truncation and every single-byte change of it (a status,

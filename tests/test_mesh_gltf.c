@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_mesh_gltf.c — glTF loader: node hierarchy and transforms (TRS, matrix,
  * mirroring), index types, strips, interleaved buffers, .gltf/.glb/external
  * buffer equivalence, and malformed files (status + non-empty message, no crash). */

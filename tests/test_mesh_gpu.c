@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_mesh_gpu — the GPU copy of a mesh (src/mesh/mesh_gpu.c): reordered
  * for the vertex cache and fetch, it still holds exactly the mesh's
  * triangles, each with its corner order (winding), and its cache miss ratio

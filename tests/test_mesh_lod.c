@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_mesh_lod — snell_mesh_simplify (src/mesh/mesh_lod.c), the optional level
  * of detail: triangle counts come down as asked; a closed mesh stays closed
  * (snell_mesh_analyze: no boundary, non-manifold or flipped edge, same

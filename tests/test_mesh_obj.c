@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_mesh_obj.c — OBJ loader: polygons, index forms, normals, dispatch by
  * extension, malformed input (status + line-numbered message), big inputs. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */

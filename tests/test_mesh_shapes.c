@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_mesh_shapes.c — procedural shapes: closed and consistently wound (every
  * directed edge once, its reverse once, after welding equal positions), positive
  * volume near the analytic one, outward analytic normals, inside/outside by the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_metrics — the error metrics of snell_metrics.h on inputs whose answer
  * is known by construction: angles of rotated vectors (down to 1e-7 rad,
  * where acos would fail), statistics and mask handling on a hand-built

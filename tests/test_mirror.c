@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_mirror — a glass object's model matrix, mirrors included, is the
  * same object as its vertices moved by that matrix. Every method in the
  * registry renders mesh A under model M (a rotation, a non-uniform scale, a

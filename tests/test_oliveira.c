@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_oliveira — the conservative image-space search (Oliveira and
  * Brauwers 2007, methods/oliveira.c), with Wyman's method beside it where
  * the two answer the same question.

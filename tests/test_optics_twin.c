@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_optics_twin — src/core/optics.h and shaders_es/common/optics.glsl must agree.
  * The GLSL runs in a vertex shader whose outputs are captured with transform
  * feedback (core GLES 3.0, exact float32 results, no float render target

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_peel — multi-layer refraction from depth-peeled layers (Wang 2014,
  * methods/peel.c, shaders_es/peel.frag, depth_peel.frag).
  *

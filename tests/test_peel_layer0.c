@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_peel_layer0 — peel's first layer converted from the screen-space
  * G-buffer (methods/peel.c, shaders_es/peel_layer0.frag; material.peel.layer0,
  * counter layer0_gbuffer) against the same layer peeled (layer0 = peel).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_premultiplied — premultiplied alpha output
  * (snell_renderer_desc.premultiplied_alpha), over a transparent target: a
  * grey-tinted glass sphere with an opaque cube beside it drawn with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ref_analytic — the reference tracer against closed forms.
  *
  * (a) Sphere. The geometry is the tracer's analytic sphere (ref_trace.h), so

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ref_bvh — the reference BVH (src/mesh/bvh.c):
  *  - closest hit equals brute force (the same watertight predicate over every
  *    triangle, world vertices computed independently here) for random rays on

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ref_gpu_single — the reference in MATCHED mode with max_interfaces = 1
  * and the bounding-sphere absorption model must reproduce the GPU
  * single-surface method (SNELL_METHOD_SINGLE, Unger 3.3) pixel for pixel, up

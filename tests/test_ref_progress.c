@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ref_progress.c — snell_ref_params.progress (issue 28 item 7): on a
  * render long enough to report (an exact sphere, FULL, area samples), the
  * callback is called with fractions in (0, 1] that never decrease, at most

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ref_render — image-level properties of the reference tracer on the
  * glmark2 bunny (or, without it, the torus), a glass sphere and scenes of
  * several glass and opaque objects:

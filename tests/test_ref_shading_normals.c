@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ref_shading_normals — FULL where a mesh's smooth (shading) normal and
  * its triangle's plane disagree about which way the surface faces (issue 15:
  * along the Stanford bunny's base, whose sharp crease the smooth normals

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_render_single — the single-surface kernel on a glass sphere, against
  * pixels derived independently on the CPU: camera rays through pixel centres,
  * brute-force closest hit on the same triangles (double precision), the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene — a frame of many glass and opaque objects (issue 9): the
  * method registry and the material resolve step; AUTO's choice per object
  * and its reason (an open mesh never gets the cubemap); an explicit method

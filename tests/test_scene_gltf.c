@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_gltf — glTF scene files (snell_scene_load_gltf, issue 13 item 4):
  * the authored scenes in tests/data/scenes (make_scenes.py says what each
  * holds; the expected values below are read off its definitions).

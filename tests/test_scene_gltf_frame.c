@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_gltf_frame — camera-less glTF scenes framed from their bounds
  * (snell_scene_file_frame, issue 28 item 3), on tests/data/scenes
  * (make_scenes.py): framed_large (an opaque sphere of radius 60 at

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_gltf_limits — glTF scenes beyond the frame's object limits and
  * the objects' node names (issue 28 item 4), on tests/data/scenes
  * (make_scenes.py says what each holds; the expected values are read off it).

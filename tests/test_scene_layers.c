@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_scene_layers — glass seen through glass, and opaque objects seen
  * through glass where they are (issue 13: render/layers.c,
  * shaders_es/common/beyond.glsl, peel_layer.frag's ids).

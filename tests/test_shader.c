@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_shader — the program builder: embedded chunks resolve, and compile and
  * link failures come back as SNELL_E_GL with the driver's info log. */
 #include "test_util.h"

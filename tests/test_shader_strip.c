@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_shader_strip — the shaders the library embeds are stored without
  * comments and spare whitespace (cmake/embed_shaders.cmake): every program
  * still compiles, and renders the same bytes as the sources as written, for

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_shader_strip_water — as test_shader_strip, for the programs of the
  * optional components: the water (surface, walls, the GPU simulation's
  * steps and drops; glass in it) and the 2D lightmap's GL lines. Same bytes

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_slow_inputs.c — issue 26 item 3: inputs made to be slow, not to crash.
  * Every loader and stage must finish within a bound that grows with its input
  * (per byte, corner, point or pixel), or stop at a stated limit. Each case

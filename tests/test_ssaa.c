@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ssaa — supersampling (snell_renderer_desc.ssaa): a frame at w x h with
  * ssaa = S equals, channel for channel within 1/255 (the resolve rounds the
  * mean of S^2 bytes once; the CPU mean below rounds the same way), the S x S

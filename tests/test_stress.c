@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_stress — every refraction method against the reference (MATCHED, the
  * method's own optical model) under conditions that break naive float code:
  * IOR 1.0 / 1.0001 (no or almost no bending), 1.33, 1.5, 2.42 (diamond), 4.0

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_twin.h — double-precision twins for the image-space kernels' tests
  * (test_wyman.c, test_oliveira.c): angles between directions, optics.h's
  * refraction, the analytic unit sphere, and the renderer's camera and pixel

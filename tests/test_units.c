@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_units — texture units and uniforms are bound per program
  * (frame/textures.h): frames that switch every kernel hook on, for every
  * method of the registry in both shadings, build programs that stay inside

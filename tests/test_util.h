@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_util.h — tiny test harness: CHECK counts failures and keeps going,
  * test_finish() prints "N passed, N failed" and returns the exit code,
  * SKIP exits 77 (ctest's skip code) with the reason. */

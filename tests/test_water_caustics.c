@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_water_caustics.c — the water's caustics on the container floor
  * (issue 27 item 4; src/water/water_caustics.c) against the reference's
  * light tracing through the same height field (snell_ref_water_floor_render,

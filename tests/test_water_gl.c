@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_water_gl.c — the GPU water simulation against the CPU one (the same
  * drops and steps: heights within a stated bound), its settle check, and the
  * rendered water scene against the reference tracer (snell_ref_water_render)

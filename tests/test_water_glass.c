@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_water_glass.c — glass objects in the water (issue 17): a glass sphere
  * half under a rippled surface, another wholly under it and an opaque cube
  * on the floor, rendered by the library and by the reference

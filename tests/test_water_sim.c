@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_water_sim.c — the CPU water simulation (src/water/water_sim.c): the
  * stability limit against a numerical scan of the stencil's symbol, 100,000
  * steps at the clamped step bounded and volume-conserving, the same run past

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_why — the reasons people read (snell__why, core/core.c): a text that
  * fits is kept whole; a longer one is cut at the buffer's end and says so
  * with "...", never through a UTF-8 character; appending after a cut one

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_wyman — the image-space two-surface method (Wyman 2005, methods/wyman.c).
  *
  * 1. Sphere (radius 1, IOR 1.5): against a CPU twin of Wyman's model on the

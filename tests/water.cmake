@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Water (snell_water_*, src/water/, ref/ref_water.c; issue 17).
 # test_water_sim: the CPU simulation, no GL (100,000 steps of 64^2, and a run past the stability
 # limit that overflows early; ~3-5 s).

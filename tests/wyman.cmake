@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Wyman's image-space two-surface method (issue 11: src/methods/wyman.c,
 # shaders_es/wyman.frag, the back-face pass in render/gbuffer.c): the sphere
 # against a closed-form twin of the model and the reference, torus and goblet

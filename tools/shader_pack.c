@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* shader_pack.c — build-time tool (runs on the build machine, never linked
  * into libsnell): packs the embedded shaders, already stripped by
  * cmake/embed_shaders.cmake, into one LZ77 stream that src/core/shader_lz.c

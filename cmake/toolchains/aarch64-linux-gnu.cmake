@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # 64-bit Raspberry Pi OS / Debian arm64 (Pi 3, 4, 5): crossbuild-essential-arm64,
 # a sysroot from scripts/make_sysroot.sh arm64, tests under qemu-aarch64-static.
 #   cmake -S . -B build-arm64 -DCMAKE_TOOLCHAIN_FILE=cmake/toolchains/aarch64-linux-gnu.cmake

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # 32-bit Raspberry Pi OS / Debian armhf (ARMv7 + VFPv3-D16, Pi 2 and later):
 # crossbuild-essential-armhf, a sysroot from scripts/make_sysroot.sh armhf,
 # tests (if run) under qemu-arm-static.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Shared part of the Debian cross toolchains (aarch64-linux-gnu.cmake,
 # arm-linux-gnueabihf.cmake): Debian's crossbuild-essential-<arch> compilers
 # against a sysroot made by scripts/make_sysroot.sh from Debian's own packages

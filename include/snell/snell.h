@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell — real-time refractive glass on OpenGL ES 3.0 over EGL.
  *
  * Public API. Conventions (see DESIGN.md):

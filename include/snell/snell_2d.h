@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell_2d.h — 2D global illumination lightmaps (Brückner 2019): polygon scenes
  * with a simple per-object BSDF, CPU light tracing through a perimeter-SAH BVH,
  * and rasterisation of the light paths into a lightmap (GLES lines or an exact

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell_metrics.h — error metrics of a method against the reference (issue 3):
  * per-pixel exit-direction angle, image RMSE/PSNR, SSIM, shares above 1 and 5
  * degrees, NaN/Inf counts. Pure CPU functions on caller-owned buffers; no allocation.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell_ref.h — the CPU reference ray tracer: ground truth for the GPU methods.
  *
  * Double precision, one BVH over every object of the scene (watertight

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell_water.h — animated water in a box container (Dachsbacher 2002,
  * "Wasser-Spiegel", PC Magazin 1/2002; issue 17).
  *

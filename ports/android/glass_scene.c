@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glass_scene — the Android port's scene: CPU data kept, GL objects per context (glass_scene.h). */
 #include "glass_scene.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glass_scene — what the Android port draws, split into the CPU data that
  * lives as long as the activity (asset bytes, the decoded environment image,
  * the scene's settings) and the GL objects that live as long as one EGL

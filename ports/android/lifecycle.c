@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lifecycle — the Android port's create/destroy rules (lifecycle.h). */
 #include "lifecycle.h"
 

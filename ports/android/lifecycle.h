@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lifecycle — what the Android port creates and destroys, and when, as a plain
  * state machine with no Android or EGL types, so the host's ctest runs it.
  *

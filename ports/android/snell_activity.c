@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell_activity — the NativeActivity entry point (ANativeActivity_onCreate):
  * glass on an ANativeWindow through EGL, in the host-context mode a phone app
  * uses (snell's EXTERNAL backend drawing into the window's framebuffer).

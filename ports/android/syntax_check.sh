@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # syntax_check.sh — compiles the Android port for aarch64-linux-android24
 # with clang -fsyntax-only -Wall -Wextra -Werror: no NDK exists in Debian, so
 # this is a syntax and type check, not an NDK build (nothing is linked).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench.h — snell-bench's shared types, and the one job of each of its files:
  *   snell_bench.c    main: options -> configurations -> context -> timing -> errors -> outputs
  *   bench_options.c  the command line and --help (methods and parameters from the registry)
@@ -25,6 +26,8 @@
 #define BENCH_MAX_CONFIGS 4096
 #define BENCH_MAX_SPECS 256
 #define BENCH_MAX_SCENES 32
+/* Timed frames by default: 100, so that the 99th percentile and the 1% low are not the worst frame. */
+#define BENCH_DEFAULT_FRAMES 100
 
 /* --------------------------------------------------------------- options */
 typedef struct bench_options {
@@ -126,6 +129,10 @@ typedef struct bench_config {
     char error[256];
     int frames;
     double t_median, t_p95, t_min, t_max; /* ms per frame, CPU wall clock, each frame ended by glFinish */
+    double t_p99, t_low1;          /* 99th percentile; "1% low": the mean of the slowest 1% of frames (at
+                                    * least one), the stutter a median hides */
+    double *frame_ms;              /* every timed frame in the order drawn (frames of them; malloc'd, freed by
+                                    * bench_configs_free), written to the JSON so that runs can be re-summarised */
     double gpu_median;             /* ms, GL_EXT_disjoint_timer_query; < 0 if not measured */
     double vs_single;              /* median over rounds of time / time of the single-surface
                                     * configuration of the same scene and size; < 0 if none */
@@ -164,6 +171,8 @@ typedef struct bench_config {
 /* "method:k=v:k=v1,v2" plus the options' scene and size lists -> configurations
  * appended to out[*n..]. 0 on a bad spec (message printed). */
 int bench_expand_spec(const char *spec, const bench_options *o, bench_config *out, int *n);
+/* A method's registry entry, or the bench's own entry for auto (no parameters). */
+const snell_method_info *bench_method_info(snell_method m);
 /* The keys every method takes, for --help. */
 void bench_spec_help(FILE *f);
 /* The same keys by index (0 .. bench_spec_key_count() - 1; NULL past the end), so that a
@@ -226,10 +235,17 @@ void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, c
 void bench_fail(bench_config *c, const char *what, snell_ctx *ctx);
 /* Same scene and image size: compared with each other, timed side by side. */
 int bench_same_group(const bench_config *a, const bench_config *b);
+/* c's time summary (median, p95, p99, 1% low, min, max) from the n frame
+ * times ms[] in the order drawn, which c keeps (c->frame_ms). 0 out of memory. */
+int bench_frame_times(bench_config *c, const double *ms, int n);
+/* Frees what the configurations own (their frame times). */
+void bench_configs_free(bench_config *cs, int n);
 
 /* ---------------------------------------------------------------- output */
 typedef struct bench_run_info {
     const char *renderer, *date, *load_before, *load_after;
+    const struct cli_system *system; /* the build, GL driver, kernel and board (cli_system.h); NULL: not written */
+    const char *vsync;             /* how frames met the display: "off: ..." offscreen, "on: ..." page-flipped */
     int timer;                     /* GL timer queries available */
     /* Another tool writing this JSON (snell-kiosk) names itself and says how
      * it timed; NULL: "snell-bench" and snell-bench's timing. */
@@ -251,9 +267,13 @@ int bench_write_markdown(const char *path, const bench_config *cs, int n, const 
                          const bench_run_info *run, const char *command);
 /* The summary table, then bench_print_scene_table. */
 void bench_print_table(const bench_config *cs, int n);
+/* Frame times per configuration: frames, p50, p95, p99, 1% low, worst. */
+void bench_print_frame_table(const bench_config *cs, int n);
 /* Per object class against the whole-scene reference (configurations with whole_measured). */
 void bench_print_scene_table(const bench_config *cs, int n);
 
+/* snell-bench --compare A.json B.json (bench_compare.c): two runs side by side. */
+int snell_bench_compare_main(int argc, char **argv);
 /* snell-bench --2d (bench2d.c). */
 int snell_bench2d_main(int argc, char **argv);
 /* snell-bench --env-lookup (bench_env.c). */

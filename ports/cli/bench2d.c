@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench2d.c — `snell-bench --2d`: the 2D lightmap benchmarks of Brückner ch. 7
  * on the public API: tracer rays/s per core on a 2263-edge polygon set (7.3.1),
  * BVH leaf-size sweep (7.3.2), GL line rasterisation in paths/ms (7.4), and the
@@ -7,6 +8,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "snell/snell.h"
 #include "snell/snell_2d.h"
+#include "cli_opts.h"
 #include "cli_time.h"
 
 #include <errno.h>
@@ -174,7 +176,7 @@ static void usage(FILE *out)
 
 int snell_bench2d_main(int argc, char **argv)
 {
-    int rays = 200000, repeat = 9, threads = 0, gpu = 1, frame_only = 0, i, li, c, nf = 0, edges = 2263, write_failed = 0;
+    int rays = 200000, repeat = 9, threads = 0, gpu = 1, frame_only = 0, li, c, nf = 0, edges = 2263, write_failed = 0;
     const char *json = "bench2d.json", *csv = "bench2d.csv";
     static const int leaves[] = {1, 2, 3, 4, 6, 8, 12, 16};
     double leaf_rps[8] = {0}, leaf_cpu[8] = {0};
@@ -187,34 +189,35 @@ int snell_bench2d_main(int argc, char **argv)
     int lp;
     FILE *f;
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    for (i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            usage(stdout);
-            return 0;
-        }
-    for (i = 1; i < argc; i++) {
-        static const char *const valued[] = {"--rays", "--repeat", "--threads", "--json", "--csv"};
-        size_t k;
-        if (strcmp(argv[i], "--2d") == 0) continue;
-        for (k = 0; k < sizeof valued / sizeof *valued && strcmp(argv[i], valued[k]); k++) {}
-        if (k < sizeof valued / sizeof *valued && i + 1 >= argc) {
-            fprintf(stderr, "snell-bench --2d: %s needs a value\n", argv[i]);
-            return 2;
-        }
-        if (strcmp(argv[i], "--rays") == 0 && i + 1 < argc) rays = atoi(argv[++i]);
-        else if (strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) repeat = atoi(argv[++i]);
-        else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) threads = atoi(argv[++i]);
-        else if (strcmp(argv[i], "--json") == 0 && i + 1 < argc) json = argv[++i];
-        else if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv = argv[++i];
-        else if (strcmp(argv[i], "--no-gpu") == 0) gpu = 0;
-        else if (strcmp(argv[i], "--frame") == 0) frame_only = 1;
-        else if (strcmp(argv[i], "--quick") == 0) {
+    static const struct option longopts[] = {
+        {"2d", no_argument, NULL, '2'},          {"rays", required_argument, NULL, 'r'},
+        {"repeat", required_argument, NULL, 'R'}, {"threads", required_argument, NULL, 't'},
+        {"json", required_argument, NULL, 'j'},  {"csv", required_argument, NULL, 'c'},
+        {"no-gpu", no_argument, NULL, 'n'},      {"frame", no_argument, NULL, 'f'},
+        {"quick", no_argument, NULL, 'q'},       {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0}};
+    if (cli_wants_help(argc, argv)) {
+        usage(stdout);
+        return 0;
+    }
+    cli_opts_reset();
+    while ((c = cli_getopt("snell-bench --2d", "--2d --help", argc, argv, "h", longopts)) != -1) {
+        if (c == '?') return 2;
+        if (c == 'r') rays = atoi(optarg);
+        else if (c == 'R') repeat = atoi(optarg);
+        else if (c == 't') threads = atoi(optarg);
+        else if (c == 'j') json = optarg;
+        else if (c == 'c') csv = optarg;
+        else if (c == 'n') gpu = 0;
+        else if (c == 'f') frame_only = 1;
+        else if (c == 'q') {
             rays = 50000;
             repeat = 3;
-        } else {
-            fprintf(stderr, "snell-bench --2d: unknown option '%s'; see --2d --help\n", argv[i]);
-            return 2;
         }
+    }
+    if (optind < argc) {
+        fprintf(stderr, "snell-bench --2d: unexpected argument '%s'; see --2d --help\n", argv[optind]);
+        return 2;
     }
     if (rays < 1000 || repeat < 1 || repeat > MAX_REPEAT || threads < 0) {
         fprintf(stderr, "snell-bench --2d: want --rays >= 1000, --repeat 1..%d and --threads >= 0, got %d, %d, %d\n",

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_budget.c — snell-bench --budget: AUTO by frame budget against every
  * fixed configuration of its rung table (issue 25 item 3), on a moving
  * camera. Per scene: AUTO with the budget and each rung (every glass object
@@ -13,25 +14,31 @@
  * from. */
 #include "bench.h"
 #include "bench_ref.h"
+#include "cli_opts.h"
 #include "cli_progress.h"
+#include "cli_system.h"
 #include "cli_time.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define MAX_CONFIGS 16
 #define MAX_SAMPLES 8
 
 typedef struct budget_opts {
     const char *scene;
-    int size, frames, samples, threads, warmup, every;
+    int width, height, frames, samples, threads, warmup, every;
     float spin, budget_ms, budget_x; /* budget_x > 0: the budget is that many times single's median */
     float ior;                      /* of every glass object of a mesh scene (0: 1.5) */
     int exact_auto;                 /* AUTO's objects let exact on their ladders (material.exact.auto_pick) */
     int no_warm;                    /* --warm off: AUTO starts cold (the table's costs, first uses in the run) */
     const char *cache;
+    const char *out_prefix;         /* -o: PREFIX.json, PREFIX.csv */
+    int quiet;                      /* -q: no rung table, no progress */
 } budget_opts;
 
 typedef struct budget_config {
@@ -50,94 +57,129 @@ typedef struct budget_config {
     char slow[8][200];
 } budget_config;
 
+static void usage(void)
+{
+    printf("usage: snell-bench --budget MS|Nx [--scene S] [--sizes WxH] [--frames F] [--spin DEG] [--samples K]\n"
+           "                   [--fixed-every K] [--ior N] [--exact-auto allow|never] [--threads T]\n"
+           "                   [--warm on|off] [--cache DIR] [-o PREFIX] [-q]\n"
+           "AUTO by frame budget (snell_frame_desc.budget_ms) against every fixed configuration of its rung\n"
+           "table, frame by frame on a moving camera. MS: the budget in ms; Nx: N times single's median frame\n"
+           "(measured first). AUTO draws every frame, the fixed configurations every K-th (and at the\n"
+           "samples). AUTO's renderer is first warmed (snell_renderer_warm: every rung of its ladders built\n"
+           "and timed on this device) unless --warm off. Writes PREFIX.json and PREFIX.csv as snell-bench\n"
+           "does (every frame's time, p50/p95/p99/1%% low, the glass PSNR vs FULL as vs_full.psnr_glass_db).\n"
+           "Defaults: --scene bunny --sizes 256x256 --frames 300 --spin 1.2 --samples 4 --fixed-every 5\n"
+           "--warm on -o snell-bench-budget.\n");
+}
+
+/* An integer option in lo..hi. */
+static int int_opt(const char *name, const char *v, int lo, int hi, int *out)
+{
+    char key[48];
+    snprintf(key, sizeof key, "--budget: %s", name);
+    return bench_parse_int(key, v, lo, hi, out);
+}
+
+/* A number option in lo..hi. */
+static int float_opt(const char *name, const char *v, float lo, float hi, float *out)
+{
+    char *end;
+    double x = strtod(v, &end);
+    if (end == v || *end || !isfinite(x) || x < lo || x > hi) {
+        fprintf(stderr, "snell-bench --budget: %s %s: want a number in %g..%g\n", name, v, (double)lo, (double)hi);
+        return 0;
+    }
+    *out = (float)x;
+    return 1;
+}
+
 static int parse(int argc, char **argv, budget_opts *o)
 {
-    int i;
+    static const struct option longopts[] = {
+        {"budget", required_argument, NULL, 'B'}, {"scene", required_argument, NULL, 's'},
+        {"sizes", required_argument, NULL, 'S'},  {"frames", required_argument, NULL, 'f'},
+        {"samples", required_argument, NULL, 'k'}, {"fixed-every", required_argument, NULL, 'e'},
+        {"threads", required_argument, NULL, 't'}, {"spin", required_argument, NULL, 'p'},
+        {"cache", required_argument, NULL, 'c'},  {"ior", required_argument, NULL, 'i'},
+        {"exact-auto", required_argument, NULL, 'x'}, {"warm", required_argument, NULL, 'w'},
+        {"help", no_argument, NULL, 'h'},          {NULL, 0, NULL, 0}};
+    int c;
+    char tail;
     memset(o, 0, sizeof *o);
     o->scene = "bunny";
-    o->size = 256;
+    o->width = o->height = 256;
     o->frames = 300;
     o->samples = 4;
     o->spin = 1.2f;
     o->warmup = 3;
     o->every = 5;
     o->cache = "snell-bench-cache";
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { /* wherever it is (issue 28 item 5) */
-            printf("usage: snell-bench --budget MS|Nx [--scene S] [--size N] [--frames F] [--spin DEG] [--samples K]\n"
-                   "                   [--fixed-every K] [--ior N] [--exact-auto allow|never] [--threads T]\n"
-                   "                   [--warm on|off] [--cache DIR]\n"
-                   "AUTO by frame budget (snell_frame_desc.budget_ms) against every fixed configuration of its rung\n"
-                   "table, frame by frame on a moving camera. MS: the budget in ms; Nx: N times single's median frame\n"
-                   "(measured first). AUTO draws every frame, the fixed configurations every K-th (and at the\n"
-                   "samples). AUTO's renderer is first warmed (snell_renderer_warm: every rung of its ladders built\n"
-                   "and timed on this device) unless --warm off. Defaults: --scene bunny --size 256 --frames 300\n"
-                   "--spin 1.2 --samples 4 --fixed-every 5 --warm on.\n");
-            return -1;
-        }
+    o->out_prefix = "snell-bench-budget";
+    if (cli_wants_help(argc, argv)) { /* wherever it is */
+        usage();
+        return -1;
     }
-    for (i = 1; i < argc; i++) {
-        static const char *const valued[] = {"--budget", "--scene",   "--size",    "--frames", "--samples",
-                                             "--fixed-every", "--threads", "--spin", "--cache", "--ior", "--exact-auto",
-                                             "--warm"};
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    cli_opts_reset();
+    while ((c = cli_getopt("snell-bench --budget", "--budget --help", argc, argv, "o:qh", longopts)) != -1) {
+        const char *v = optarg;
         char *end = NULL;
-        size_t k;
-        for (k = 0; k < sizeof valued / sizeof *valued && strcmp(a, valued[k]); k++) {}
-        if (k == sizeof valued / sizeof *valued) {
-            fprintf(stderr, "snell-bench --budget: unknown option '%s'; see --budget --help\n", a);
-            return 0;
-        }
-        if (!v) {
-            fprintf(stderr, "snell-bench --budget: %s needs a value\n", a);
-            return 0;
-        }
-        if (!strcmp(a, "--budget")) {
+        switch (c) {
+        case 'B': {
             double x = strtod(v, &end);
-            if (end && (*end == 'x' || *end == 'X') && end[1] == 0) o->budget_x = (float)x;
-            else if (end && *end == 0) o->budget_ms = (float)x;
-            if (!(x > 0.0) || !isfinite(x)) o->budget_ms = o->budget_x = 0.0f;
-        } else if (!strcmp(a, "--scene")) o->scene = v;
-        else if (!strcmp(a, "--size")) o->size = atoi(v);
-        else if (!strcmp(a, "--frames")) o->frames = atoi(v);
-        else if (!strcmp(a, "--samples")) o->samples = atoi(v);
-        else if (!strcmp(a, "--fixed-every")) o->every = atoi(v);
-        else if (!strcmp(a, "--threads")) o->threads = atoi(v);
-        else if (!strcmp(a, "--spin")) o->spin = (float)atof(v);
-        else if (!strcmp(a, "--cache")) o->cache = v;
-        else if (!strcmp(a, "--ior")) o->ior = (float)atof(v);
-        else if (!strcmp(a, "--exact-auto")) {
+            o->budget_ms = o->budget_x = 0.0f;
+            if (x > 0.0 && isfinite(x) && end && (*end == 'x' || *end == 'X') && end[1] == 0) o->budget_x = (float)x;
+            else if (x > 0.0 && isfinite(x) && end && *end == 0) o->budget_ms = (float)x;
+            else {
+                fprintf(stderr, "snell-bench --budget %s: want a budget in ms (e.g. 40) or times single's frame "
+                                "(e.g. 4x)\n", v);
+                return 0;
+            }
+            break;
+        }
+        case 's': o->scene = v; break;
+        case 'S':
+            if (sscanf(v, "%dx%d%c", &o->width, &o->height, &tail) != 2 || o->width < 16 || o->height < 16 ||
+                o->width > 2048 || o->height > 2048) {
+                fprintf(stderr, "snell-bench --budget: --sizes %s: want one size WxH within 16..2048\n", v);
+                return 0;
+            }
+            break;
+        case 'f': if (!int_opt("--frames", v, 10, 100000, &o->frames)) return 0; break;
+        case 'k': if (!int_opt("--samples", v, 1, MAX_SAMPLES, &o->samples)) return 0; break;
+        case 'e': if (!int_opt("--fixed-every", v, 1, 100000, &o->every)) return 0; break;
+        case 't': if (!int_opt("--threads", v, 0, SNELL_REF_MAX_THREADS, &o->threads)) return 0; break;
+        case 'p': if (!float_opt("--spin", v, -360.0f, 360.0f, &o->spin)) return 0; break;
+        case 'c': o->cache = v; break;
+        case 'i': if (!float_opt("--ior", v, 1.0f, 4.0f, &o->ior)) return 0; break;
+        case 'x':
             if (strcmp(v, "allow") && strcmp(v, "never")) {
                 fprintf(stderr, "snell-bench --budget: --exact-auto %s: allow or never\n", v);
                 return 0;
             }
             o->exact_auto = !strcmp(v, "allow");
-        } else if (!strcmp(a, "--warm")) {
+            break;
+        case 'w':
             if (strcmp(v, "on") && strcmp(v, "off")) {
                 fprintf(stderr, "snell-bench --budget: --warm %s: on or off\n", v);
                 return 0;
             }
             o->no_warm = !strcmp(v, "off");
+            break;
+        case 'o': o->out_prefix = v; break;
+        case 'q': o->quiet = 1; break;
+        default: return 0; /* '?': the message is printed */
         }
-        else {
-            fprintf(stderr, "snell-bench --budget: unknown option %s\n", a);
-            return 0;
-        }
-        i++;
+    }
+    if (optind < argc) {
+        fprintf(stderr, "snell-bench --budget: unexpected argument '%s'; see --budget --help\n", argv[optind]);
+        return 0;
     }
     if (!(o->budget_ms > 0.0f) && !(o->budget_x > 0.0f)) {
         fprintf(stderr, "snell-bench --budget: needs a budget in ms (e.g. 40) or times single's frame (e.g. 4x)\n");
         return 0;
     }
-    if (o->ior != 0.0f && !(o->ior >= 1.0f && o->ior <= 4.0f)) {
-        fprintf(stderr, "snell-bench --budget: --ior 1..4\n");
-        return 0;
-    }
-    if (o->size < 16 || o->size > 2048 || o->frames < 10 || o->frames > 100000 || o->samples < 1 ||
-        o->samples > MAX_SAMPLES || o->every < 1 || o->every > o->frames) {
-        fprintf(stderr, "snell-bench --budget: --size 16..2048, --frames 10..100000, --samples 1..%d, "
-                        "--fixed-every 1..frames\n", MAX_SAMPLES);
+    if (o->every > o->frames) {
+        fprintf(stderr, "snell-bench --budget: --fixed-every %d: at most --frames (%d)\n", o->every, o->frames);
         return 0;
     }
     return 1;
@@ -246,7 +288,7 @@ static int measure(const budget_opts *o, const bench_scene *s, budget_config *ks
     snell_ref_params p;
     bench_ref_image ref;
     bench_class_error cls[BENCH_CLASS_COUNT];
-    uint8_t *mask = (uint8_t *)malloc((size_t)o->size * o->size);
+    uint8_t *mask = (uint8_t *)malloc((size_t)o->width * o->height);
     snell_glass ref_glass[SNELL_MAX_GLASS];
     int cached = 0, k, i;
     cli_progress bar;
@@ -266,10 +308,11 @@ static int measure(const budget_opts *o, const bench_scene *s, budget_config *ks
     p.env = ks[0].fd.env;
     p.camera = ks[0].fd.camera;
     p.camera.azimuth = azimuth_at(o, az0, f);
-    p.width = p.height = o->size;
+    p.width = o->width;
+    p.height = o->height;
     p.threads = o->threads;
     p.samples = 1;
-    if (cli_progress_wanted(0)) { /* a trace (not a cache hit) shows its progress on a terminal */
+    if (!o->quiet && cli_progress_wanted(0)) { /* a trace (not a cache hit) shows its progress on a terminal */
         cli_progress_start(&bar, "reference FULL");
         p.progress = cli_progress_report;
         p.progress_user = &bar;
@@ -281,12 +324,85 @@ static int measure(const budget_opts *o, const bench_scene *s, budget_config *ks
     }
     for (k = 0; k < n; k++) {
         ks[k].psnr[j] = -1.0;
-        if (bench_class_errors(ks[k].img[j], ref.rgba, ref.object, NULL, o->size, o->size, mask, cls) == SNELL_OK)
+        if (bench_class_errors(ks[k].img[j], ref.rgba, ref.object, NULL, o->width, o->height, mask, cls) == SNELL_OK)
             ks[k].psnr[j] = cls[BENCH_CLASS_GLASS].img.psnr_db;
     }
     bench_ref_free(&ref);
     free(mask);
     return 1;
+}
+
+/* PREFIX.json and PREFIX.csv in snell-bench's form: one result per
+ * configuration (AUTO first), spec "METHOD:scene=S:size=WxH" plus the rung's
+ * parameter and scale or AUTO's budget, its frame times, and the mean glass
+ * PSNR of its samples as vs_full.psnr_glass_db. 1 if both were written. */
+static int write_files(const budget_opts *o, const budget_config *ks, int n, const char *load0, const char *load1,
+                       snell_ctx *ctx, double psnr_mean[MAX_CONFIGS])
+{
+    bench_config *cs = (bench_config *)calloc((size_t)n, sizeof *cs);
+    bench_options bo;
+    bench_run_info run;
+    cli_system sys;
+    char path[1200], date[64], timing[256];
+    time_t now = time(NULL);
+    int k, m, ok = 1;
+    if (!cs) return 0;
+    memset(&bo, 0, sizeof bo);
+    bo.frames = o->frames;
+    bo.warmup = o->warmup;
+    bo.full_interfaces = 10;
+    bo.aa = 1;
+    for (k = 0; k < n; k++) {
+        bench_config *c = &cs[k];
+        const snell_budget_rung *g = ks[k].rung >= 0 ? snell_budget_rung_at(ks[k].rung) : NULL;
+        char extra[64] = "";
+        c->method = bench_method_info(g ? g->method : SNELL_METHOD_AUTO);
+        if (!g) snprintf(extra, sizeof extra, ":budget_ms=%.2f", (double)o->budget_ms);
+        else if (g->param) snprintf(extra, sizeof extra, ":%s=%d", g->param, g->value);
+        if (g && g->scale > 1) snprintf(extra + strlen(extra), sizeof extra - strlen(extra), ":scale=%d", g->scale);
+        snprintf(c->spec, sizeof c->spec, "%s:scene=%s:size=%dx%d%s", c->method->name, o->scene, o->width, o->height,
+                 extra);
+        snprintf(c->scene, sizeof c->scene, "%s", o->scene);
+        c->width = o->width;
+        c->height = o->height;
+        c->glass = ks[k].glass[0].material;
+        c->ok = bench_frame_times(c, ks[k].ms, ks[k].n_ms);
+        if (!c->ok) snprintf(c->error, sizeof c->error, "out of memory");
+        c->gpu_median = c->vs_single = c->vs_scene = -1.0;
+        c->encoding = "none";
+        c->glass_objects = ks[k].fd.glass_count;
+        c->opaque_objects = ks[k].fd.opaque_count;
+        for (m = 0; m < 2; m++) {
+            snell_dir_error *d = &c->dir[m];
+            d->mean_deg = d->rms_deg = d->median_deg = d->p99_deg = d->max_deg = NAN;
+            d->frac_above_1deg = d->frac_above_5deg = NAN;
+            c->img[m].rmse = c->img[m].psnr_db = c->img_glass[m].rmse = c->ssim_glass[m] = NAN;
+            c->img_glass[m].psnr_db = m ? psnr_mean[k] : NAN;
+        }
+    }
+    cli_system_read(&sys);
+    strftime(date, sizeof date, "%Y-%m-%d %H:%M", localtime(&now));
+    snprintf(timing, sizeof timing, "snell-bench --budget: frames on a camera turning %.2f deg a frame; AUTO every "
+             "frame, the fixed rungs every %d-th; each frame = snell_render + glFinish (CPU wall clock); "
+             "vs_full.psnr_glass_db: the mean over %d samples", (double)o->spin, o->every, o->samples);
+    memset(&run, 0, sizeof run);
+    run.system = &sys;
+    run.renderer = snell_ctx_gl_renderer(ctx);
+    run.date = date;
+    run.load_before = load0;
+    run.load_after = load1;
+    run.timing = timing;
+    run.no_errors = 1;
+    snprintf(path, sizeof path, "%s.json", o->out_prefix);
+    errno = 0;
+    if (!bench_write_json(path, cs, n, &bo, &run)) ok = 0;
+    snprintf(path + strlen(path) - 5, 6, ".csv");
+    if (ok && !bench_write_csv(path, cs, n)) ok = 0;
+    if (!ok) fprintf(stderr, "snell-bench --budget: cannot write '%s': %s\n", path, errno ? strerror(errno) : "write failed");
+    else printf("wrote %s.json, %s.csv\n", o->out_prefix, o->out_prefix);
+    bench_configs_free(cs, n);
+    free(cs);
+    return ok;
 }
 
 int snell_bench_budget_main(int argc, char **argv)
@@ -298,12 +414,13 @@ int snell_bench_budget_main(int argc, char **argv)
     budget_config ks[MAX_CONFIGS];
     int n = 0, i, f, k, ok = 1, rc = 0, sample_at[MAX_SAMPLES], best = -1;
     float cam[3], az0;
+    double psnr_mean[MAX_CONFIGS];
     char load0[64], load1[64];
     size_t px;
     int r = parse(argc, argv, &o);
     if (r <= 0) return r < 0 ? 0 : 2;
     memset(ks, 0, sizeof ks);
-    px = (size_t)o.size * o.size * 4;
+    px = (size_t)o.width * o.height * 4;
     if (snell_ctx_create(NULL, &ctx) != SNELL_OK) {
         fprintf(stderr, "snell-bench --budget: cannot create a GL context: %s\n", snell_last_error(NULL));
         return 1;
@@ -313,7 +430,7 @@ int snell_bench_budget_main(int argc, char **argv)
         rc = 1;
         goto done;
     }
-    print_table();
+    if (!o.quiet) print_table();
     bench_scene_camera(o.scene, cam);
     /* AUTO, then every rung the build has */
     for (i = -1; i < snell_budget_rung_count() && n < MAX_CONFIGS; i++) {
@@ -327,7 +444,7 @@ int snell_bench_budget_main(int argc, char **argv)
         c->ms = (double *)calloc((size_t)o.frames, sizeof(double));
         c->first = (unsigned char *)calloc((size_t)o.frames, 1);
         for (k = 0; k < o.samples; k++) c->img[k] = (uint8_t *)malloc(px);
-        if (!c->ms || !c->first || snell_renderer_create(ctx, &(snell_renderer_desc){.width = o.size, .height = o.size}, &c->r) !=
+        if (!c->ms || !c->first || snell_renderer_create(ctx, &(snell_renderer_desc){.width = o.width, .height = o.height}, &c->r) !=
                           SNELL_OK) {
             fprintf(stderr, "snell-bench --budget: %s\n", snell_last_error(ctx));
             rc = 1;
@@ -370,7 +487,7 @@ int snell_bench_budget_main(int argc, char **argv)
         printf("AUTO not warmed (--warm off): it starts from the rung table's costs\n");
     for (k = 0; k < o.samples; k++) sample_at[k] = (int)((long)o.frames * (k + 1) / (o.samples + 1));
     cli_loadavg(load0, sizeof load0);
-    printf("scene %s, %dx%d, %d frames turning %.2f deg each, budget %.2f ms%s; load %s\n", o.scene, o.size, o.size,
+    printf("scene %s, %dx%d, %d frames turning %.2f deg each, budget %.2f ms%s; load %s\n", o.scene, o.width, o.height,
            o.frames, (double)o.spin, (double)o.budget_ms, o.budget_x > 0.0f ? " (Nx single's median)" : "", load0);
     fflush(stdout);
     for (f = 0; f < o.frames && ok; f++) {
@@ -426,6 +543,7 @@ int snell_bench_budget_main(int argc, char **argv)
             ks[k].over_steady += ks[k].ms[f] > 1.1 * o.budget_ms && !ks[k].first[f];
         }
         for (i = 0; i < o.samples; i++) q += ks[k].psnr[i] / o.samples;
+        psnr_mean[k] = q;
         printf("| %s | %.2f | %.2f | %.2f | %d of %d | %d | %.2f |\n", ks[k].name, med, p95, worst, ks[k].over, m,
                ks[k].over_steady, q);
         if (k > 0 && p95 <= o.budget_ms) {
@@ -451,6 +569,7 @@ int snell_bench_budget_main(int argc, char **argv)
             printf("no fixed configuration holds the budget at the 95th percentile; AUTO %.2f dB\n", aq);
     }
     printf("load %s before, %s after\n", load0, load1);
+    if (!write_files(&o, ks, n, load0, load1, ctx, psnr_mean)) rc = 1;
 done:
     for (k = 0; k < n; k++) {
         if (ks[k].r) snell_renderer_destroy(ks[k].r);

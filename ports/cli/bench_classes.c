@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_classes.c — snell-bench's errors per object class: the pixels whose
  * view ray meets glass first, an opaque object first, or nothing, in the
  * reference (its first-hit object ids, snell_ref_output.object), and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_env.c — snell-bench --env-lookup: the cube against the dual-paraboloid
  * environment look-up (snell_renderer_desc.env_lookup: dynamic maps made from
  * the cube, or rendered directly), all in one run. Time: frames that take
@@ -8,6 +9,7 @@
  * radiance (snell_env_procedural_radiance), for uniformly random directions
  * and for directions within 1 degree of the paraboloids' rim (z = 0). */
 #include "snell/snell.h"
+#include "cli_opts.h"
 #include "cli_time.h"
 
 #include <math.h>
@@ -211,41 +213,45 @@ int snell_bench_env_main(int argc, char **argv)
     snell_shape_desc dd = {SNELL_SHAPE_SPHERE, 256, 128};
     static double t[N_CASES][N_LOOKUPS][256], ratio[N_CASES][256];
     float *dirs = (float *)malloc(sizeof(float) * 3 * N_DIRS);
-    for (i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            printf("usage: snell-bench --env-lookup [--frames N] [--size S] [--face N]\n"
-                   "The cube against the dual-paraboloid environment look-up: frame times side by side.\n"
-                   "  --frames N   timed frames, 3..256 (default 21)\n"
-                   "  --size S     image size S x S, 16..4096 (default 512)\n"
-                   "  --face N     environment face size, 16..4096 (default 512)\n"
-                   "  -h, --help   this text\n");
-            free(dirs);
-            return 0;
-        }
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int *dst = !strcmp(a, "--frames") ? &frames : !strcmp(a, "--size") ? &size : !strcmp(a, "--face") ? &face : NULL;
-        char *end;
+    static const struct option longopts[] = {
+        {"env-lookup", no_argument, NULL, 'E'}, {"frames", required_argument, NULL, 'f'},
+        {"sizes", required_argument, NULL, 's'}, {"face", required_argument, NULL, 'F'},
+        {"help", no_argument, NULL, 'h'},       {NULL, 0, NULL, 0}};
+    if (cli_wants_help(argc, argv)) {
+        printf("usage: snell-bench --env-lookup [--frames N] [--sizes SxS] [--face N]\n"
+               "The cube against the dual-paraboloid environment look-up: frame times side by side.\n"
+               "  --frames N   timed frames, 3..256 (default 21)\n"
+               "  --sizes SxS  image size (square), 16..4096 (default 512x512)\n"
+               "  --face N     environment face size, 16..4096 (default 512)\n"
+               "  -h, --help   this text\n");
+        free(dirs);
+        return 0;
+    }
+    cli_opts_reset();
+    while ((c = cli_getopt("snell-bench --env-lookup", "--env-lookup --help", argc, argv, "h", longopts)) != -1) {
+        char *end, tail;
         long v;
-        if (!strcmp(a, "--env-lookup")) continue;
-        if (!dst) {
-            fprintf(stderr, "snell-bench --env-lookup: unknown option '%s' (--frames N, --size S, --face N)\n", a);
-            free(dirs);
-            return 2;
+        int h = 0;
+        if (c == '?') return free(dirs), 2;
+        if (c == 's') {
+            if (sscanf(optarg, "%dx%d%c", &size, &h, &tail) != 2 || h != size || size < 16 || size > 4096) {
+                fprintf(stderr, "snell-bench --env-lookup: --sizes %s: want a square size SxS, 16..4096\n", optarg);
+                return free(dirs), 2;
+            }
+            continue;
         }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "snell-bench --env-lookup: %s needs a value\n", a);
-            free(dirs);
-            return 2;
+        if (c != 'f' && c != 'F') continue; /* --env-lookup itself */
+        v = strtol(optarg, &end, 10);
+        if (end == optarg || *end || v < (c == 'f' ? 3 : 16) || v > (c == 'f' ? 256 : 4096)) {
+            fprintf(stderr, "snell-bench --env-lookup: %s wants %s, got '%s'\n", c == 'f' ? "--frames" : "--face",
+                    c == 'f' ? "3..256" : "16..4096", optarg);
+            return free(dirs), 2;
         }
-        v = strtol(argv[++i], &end, 10);
-        if (end == argv[i] || *end || v < (dst == &frames ? 3 : 16) || v > (dst == &frames ? 256 : 4096)) {
-            fprintf(stderr, "snell-bench --env-lookup: %s wants %s, got '%s'\n", a,
-                    dst == &frames ? "3..256" : "16..4096", argv[i]);
-            free(dirs);
-            return 2;
-        }
-        *dst = (int)v;
+        *(c == 'f' ? &frames : &face) = (int)v;
+    }
+    if (optind < argc) {
+        fprintf(stderr, "snell-bench --env-lookup: unexpected argument '%s'; see --env-lookup --help\n", argv[optind]);
+        return free(dirs), 2;
     }
     if (!dirs) {
         fprintf(stderr, "snell-bench --env-lookup: out of memory\n");

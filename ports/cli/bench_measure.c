@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_measure.c — one configuration's error against the CPU reference: its
  * colour frame and exit directions (SNELL_OUTPUT_EXIT_DIRECTION) compared with
  * the reference of the same scene in the MATCHED model (the method's own,

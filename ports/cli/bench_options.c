@@ -1,10 +1,13 @@
+/* SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L /* stat */
 /* bench_options.c — snell-bench's command line and --help; the methods and
  * their parameters (with the defaults the library resolves) come from the
  * registry through cli_method.c. */
 #include "bench.h"
 #include "cli_method.h"
+#include "cli_opts.h"
 #include "cli_scene.h"
+#include "cli_system.h"
 
 #include <errno.h>
 #include <math.h>
@@ -30,10 +33,12 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: snell-bench [options] [-b SPEC]...\n"
+            "       snell-bench --compare A.json B.json\n"
+            "       snell-bench --budget MS|Nx | --water | --env-lookup | --2d [their options; each has --help]\n"
             "Times refraction methods and measures their error against the CPU reference.\n"
             "With no SPEC: a quick default sweep of every method that renders here.\n\n"
-            "  -b, --benchmark SPEC   method[:key=value[,value...]]... (a comma list sweeps);\n"
-            "                         bare SPEC arguments are accepted too\n"
+            "  -b, --benchmark SPEC   method[:key=value[,value...]]... (a comma list sweeps); method auto:\n"
+            "                         the renderer picks per object; bare SPEC arguments are accepted too\n"
             "  --scenes LIST          scenes for specs without scene= (default sphere,torus,goblet,bunny)\n"
             "  --scene FILE           one scene for specs without scene=, e.g. a glTF scene file\n"
             "  --baseline-scene S     configurations of one size take turns across scenes, and vs_scene\n"
@@ -41,7 +46,9 @@ static void usage(FILE *f)
             "  --sizes LIST           sizes for specs without size= (default 256x256)\n"
             "  --view M --projection M  the camera as a host gives it (16 comma-separated numbers each,\n"
             "                         column-major, GL clip conventions), for every scene\n"
-            "  --frames N             timed frames per configuration, median reported (default 15)\n"
+            "  --frames N             timed frames per configuration (default %d, so that p99 and the\n"
+            "                         1%% low are a frame of their own); p50, p95, p99 and 1%% low reported,\n"
+            "                         every frame's time in the JSON\n"
             "  --warmup N             untimed frames first (default 3)\n"
             "  --full-interfaces N    interface cap of the FULL reference (default 10)\n"
             "  --threads N            reference tracer threads (default: all CPUs)\n"
@@ -61,9 +68,19 @@ static void usage(FILE *f)
             "  --images DIR           also write each configuration's colour image and error map\n"
             "  --plot-y WHAT          full-mean (default), full-p99, full-rmse, matched-mean\n"
             "  --list                 methods and their keys (also shown by --help)\n"
+            "  --compare A.json B.json  two runs side by side (two boards, two builds): per configuration\n"
+            "                         the median and p99 frame time, their ratio and the glass PSNR vs FULL\n"
+            "  --budget MS|Nx ...     AUTO by frame budget against its rung table (see --budget --help)\n"
+            "  --water ...            the water scene's simulation and rendering timed apart (--water --help)\n"
+            "  --env-lookup ...       environment look-ups: cube map vs dual paraboloid (--env-lookup --help)\n"
             "  --2d ...               the 2D lightmap benchmarks (see --2d --help)\n"
             "  -q                     no progress lines\n"
+            "  --version              the version and the commit it was built from\n"
             "  -h, --help             this text\n\n"
+            "Every JSON records the snell version and commit, GL vendor, renderer and version, the kernel,\n"
+            "the board model where the system states it, the vsync mode and the load before and after.\n\n",
+            BENCH_DEFAULT_FRAMES);
+    fprintf(f,
             "The error is measured against the reference tracer rendering the same scene as the frame\n"
             "drew it: isolate_glass = 1 (light that left a glass object sees the environment and the opaque\n"
             "objects but no other glass object) unless the frame drew the scene layers (glass seen through\n"
@@ -158,59 +175,57 @@ static int value_option(const char *a, const char *v, bench_options *o)
     return 1;
 }
 
-/* Is a an option that takes a value (value_option's)? */
-static int takes_value(const char *a)
-{
-    static const char *const names[] = {"-b", "--benchmark", "--scenes", "--scene", "--baseline-scene", "--sizes",
-                                        "--frames", "--warmup", "--full-interfaces", "--threads", "--aa", "--env",
-                                        "-o", "--markdown", "--cache", "--images", "--plot-y", "--view", "--projection"};
-    size_t k;
-    for (k = 0; k < sizeof names / sizeof *names; k++)
-        if (!strcmp(a, names[k])) return 1;
-    return 0;
-}
+/* The long options; each value is its index + 256, so that its name gives value_option the option. */
+static const struct option g_long[] = {
+    {"benchmark", required_argument, NULL, 256},       {"scenes", required_argument, NULL, 257},
+    {"scene", required_argument, NULL, 258},           {"baseline-scene", required_argument, NULL, 259},
+    {"sizes", required_argument, NULL, 260},           {"frames", required_argument, NULL, 261},
+    {"warmup", required_argument, NULL, 262},          {"full-interfaces", required_argument, NULL, 263},
+    {"threads", required_argument, NULL, 264},         {"aa", required_argument, NULL, 265},
+    {"env", required_argument, NULL, 266},             {"markdown", required_argument, NULL, 267},
+    {"cache", required_argument, NULL, 268},           {"images", required_argument, NULL, 269},
+    {"plot-y", required_argument, NULL, 270},          {"no-cache", no_argument, NULL, 271},
+    {"list", no_argument, NULL, 272},                  {"help", no_argument, NULL, 'h'},
+    {"version", no_argument, NULL, 273},               {"view", required_argument, NULL, 274},
+    {"projection", required_argument, NULL, 275},      {NULL, 0, NULL, 0}};
 
 int bench_parse_options(int argc, char **argv, bench_options *o)
 {
-    int i, r;
+    int c;
     memset(o, 0, sizeof *o);
     snprintf(o->scenes, sizeof o->scenes, "sphere,torus,goblet,bunny");
     snprintf(o->sizes, sizeof o->sizes, "256x256");
-    o->frames = 15;
+    o->frames = BENCH_DEFAULT_FRAMES;
     o->warmup = 3;
     o->out_prefix = "snell-bench";
     o->cache_dir = "snell-bench-cache";
     o->full_interfaces = 10;
     o->aa = 1;
     o->plot_y = "full-mean";
-    for (i = 1; i < argc; i++) /* --help wherever it is */
-        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help") || !strcmp(argv[i], "--list")) {
+    if (cli_wants_help(argc, argv)) { /* --help wherever it is */
+        usage(stdout);
+        return -1;
+    }
+    cli_opts_reset();
+    while ((c = cli_getopt("snell-bench", "--help", argc, argv, "b:o:qh", g_long)) != -1) {
+        char name[40];
+        if (c == '?') return 0;
+        if (c == 'q') o->quiet = 1;
+        else if (c == 271) o->cache_dir = NULL;
+        else if (c == 272) {
             usage(stdout);
             return -1;
-        }
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--no-cache")) {
-            o->cache_dir = NULL;
-        } else if (!strcmp(a, "-q")) {
-            o->quiet = 1;
-        } else if (a[0] != '-') {
-            if (!add_spec(o, a)) return 0;
-        } else if (!takes_value(a)) {
-            fprintf(stderr, "snell-bench: unknown option '%s'; see --help\n", a);
-            return 0;
-        } else if (!v) {
-            fprintf(stderr, "snell-bench: %s needs a value; see --help\n", a);
-            return 0;
-        } else if ((r = value_option(a, v, o)) < 0) {
-            fprintf(stderr, "snell-bench: unknown option '%s'; see --help\n", a);
-            return 0;
-        } else if (!r) {
-            return 0;
+        } else if (c == 273) {
+            cli_print_version("snell-bench");
+            return -1;
         } else {
-            i++;
+            if (c >= 256) snprintf(name, sizeof name, "--%s", g_long[c - 256].name);
+            else snprintf(name, sizeof name, "-%c", c);
+            if (value_option(name, optarg, o) <= 0) return 0;
         }
     }
+    for (; optind < argc; optind++) /* bare SPEC arguments */
+        if (!add_spec(o, argv[optind])) return 0;
     if (o->view_given != o->projection_given)
         return fprintf(stderr, "snell-bench: --view and --projection go together\n"), 0;
     if (o->view_given) bench_scene_set_matrices(o->view, o->projection);

@@ -1,8 +1,10 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_output.c — what snell-bench writes: PREFIX.json, PREFIX.csv, the
  * points and labels of the time-vs-error plot (drawn by bench_plot.c), the
  * Pareto front per scene and size, and the summary table on stdout. */
 #include "bench.h"
 #include "bench_plot.h"
+#include "cli_system.h"
 #include "cli_time.h"
 
 #include <math.h>
@@ -141,6 +143,37 @@ static void json_whole_scene(FILE *f, const bench_config *c)
     fprintf(f, "}");
 }
 
+/* A string, or null where it is empty (the system did not say). */
+static void json_str_or_null(FILE *f, const char *s)
+{
+    if (s && *s) json_str(f, s);
+    else fprintf(f, "null");
+}
+
+/* What two boards' runs are compared by: the build, the GL driver, the
+ * kernel and board (cli_system.h), the vsync mode and the load. */
+static void json_system(FILE *f, const bench_run_info *run)
+{
+    const cli_system *s = run->system;
+    fprintf(f, ",\n  \"snell\": {\"version\": ");
+    json_str(f, s->version);
+    fprintf(f, ", \"commit\": ");
+    json_str(f, s->commit);
+    fprintf(f, "},\n  \"gl\": {\"vendor\": ");
+    json_str(f, s->gl_vendor);
+    fprintf(f, ", \"renderer\": ");
+    json_str(f, s->gl_renderer);
+    fprintf(f, ", \"version\": ");
+    json_str(f, s->gl_version);
+    fprintf(f, "},\n  \"system\": {\"kernel\": ");
+    json_str(f, s->kernel);
+    fprintf(f, ", \"board\": ");
+    json_str_or_null(f, s->board);
+    fprintf(f, ", \"board_from\": ");
+    json_str_or_null(f, s->board_from);
+    fprintf(f, "}");
+}
+
 static void json_header(FILE *f, const bench_options *o, const bench_run_info *run)
 {
     char why[64];
@@ -149,6 +182,9 @@ static void json_header(FILE *f, const bench_options *o, const bench_run_info *r
     json_str(f, run->tool ? run->tool : "snell-bench");
     fprintf(f, ",\n  \"date\": ");
     json_str(f, run->date);
+    if (run->system) json_system(f, run);
+    fprintf(f, ",\n  \"vsync\": ");
+    json_str(f, run->vsync ? run->vsync : "off: offscreen frames, each ended by glFinish");
     fprintf(f, ",\n  \"gl_renderer\": ");
     json_str(f, run->renderer);
     if (lp >= 0) fprintf(f, ",\n  \"llvmpipe_threads\": %d", lp);
@@ -215,13 +251,22 @@ static void json_result(FILE *f, const bench_config *c)
     json_num(f, c->t_median);
     fprintf(f, ", \"p95\": ");
     json_num(f, c->t_p95);
+    fprintf(f, ", \"p99\": ");
+    json_num(f, c->t_p99);
+    fprintf(f, ", \"low_1pct\": ");
+    json_num(f, c->t_low1);
     fprintf(f, ", \"min\": ");
     json_num(f, c->t_min);
     fprintf(f, ", \"max\": ");
     json_num(f, c->t_max);
     fprintf(f, ", \"gpu_median\": ");
     json_num(f, c->gpu_median >= 0 ? c->gpu_median : NAN);
-    fprintf(f, "}, \"vs_single\": ");
+    fprintf(f, "}, \"frames_ms\": [");
+    for (n = 0; c->frame_ms && n < c->frames; n++) {
+        if (n) fprintf(f, n % 16 ? ", " : ",\n       ");
+        fprintf(f, "%.4g", c->frame_ms[n]);
+    }
+    fprintf(f, "], \"vs_single\": ");
     json_num(f, c->vs_single >= 0 ? c->vs_single : NAN);
     fprintf(f, ", \"pareto\": %s, \"exit_dir_encoding\": ", c->pareto ? "true" : "false");
     json_str(f, c->encoding);
@@ -328,7 +373,8 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
     char why[64];
     int i, m, lp = cli_llvmpipe_threads(run_renderer, why, sizeof why);
     if (!f) return 0;
-    fprintf(f, "spec,method,scene,width,height,ior,ok,time_median_ms,time_p95_ms,time_min_ms,time_max_ms,gpu_median_ms,"
+    fprintf(f, "spec,method,scene,width,height,ior,ok,time_median_ms,time_p95_ms,time_p99_ms,time_low_1pct_ms,"
+               "time_min_ms,time_max_ms,gpu_median_ms,"
                "vs_single,pareto,exit_dir_encoding,nan_inf,glass_objects,opaque_objects,warnings");
     for (m = 0; m < 2; m++) {
         const char *p = m ? "full" : "matched";
@@ -353,6 +399,8 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
         if (c->ok) {
             csv_num(f, c->t_median);
             csv_num(f, c->t_p95);
+            csv_num(f, c->t_p99);
+            csv_num(f, c->t_low1);
             csv_num(f, c->t_min);
             csv_num(f, c->t_max);
             csv_num(f, c->gpu_median >= 0 ? c->gpu_median : NAN);
@@ -363,8 +411,8 @@ int bench_write_csv(const char *path, const bench_config *cs, int n)
             csv_scene(f, c);
             fprintf(f, ",");
         } else {
-            /* 12 empty fields from time_median_ms to warnings, the error fields, then the error */
-            for (m = 0; m < 12 + 2 * CSV_MODE_FIELDS + CSV_SCENE_FIELDS + 1; m++) fputc(',', f);
+            /* 14 empty fields from time_median_ms to warnings, the error fields, then the error */
+            for (m = 0; m < 14 + 2 * CSV_MODE_FIELDS + CSV_SCENE_FIELDS + 1; m++) fputc(',', f);
             fprintf(f, "\"%s\"", c->error);
         }
         if (lp >= 0) fprintf(f, ",%d\n", lp);
@@ -519,7 +567,24 @@ void bench_print_table(const bench_config *cs, int n)
     printf("dB/FULL, SSIM: colour over the glass pixels against the FULL reference (area-averaged with --aa); "
            "deg: mean exit-direction error, '-' on meshes where per-pixel angles are chaotic%s\n",
            xscene ? "; xscene: time over the same spec's on --baseline-scene, frames side by side" : "");
+    bench_print_frame_table(cs, n);
     bench_print_scene_table(cs, n);
+}
+
+void bench_print_frame_table(const bench_config *cs, int n)
+{
+    int i, few = 0;
+    printf("\nframe times [ms]\n%-58s %7s %9s %9s %9s %9s %9s\n", "configuration", "frames", "p50", "p95", "p99",
+           "1% low", "worst");
+    for (i = 0; i < n; i++) {
+        const bench_config *c = &cs[i];
+        if (!c->ok) continue;
+        printf("%-58s %7d %9.2f %9.2f %9.2f %9.2f %9.2f\n", c->spec, c->frames, c->t_median, c->t_p95, c->t_p99,
+               c->t_low1, c->t_max);
+        few |= c->frames < 100;
+    }
+    printf("1%% low: the mean of the slowest 1%% of frames%s\n",
+           few ? "; with fewer than 100 frames it is the worst frame, and p99 too (--frames)" : "");
 }
 
 void bench_print_scene_table(const bench_config *cs, int n)

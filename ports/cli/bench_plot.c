@@ -1,9 +1,12 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_plot.c — the time-vs-error scatter plot of snell-bench as a PNG:
  * log-log axes with decade grid and labels, one colour per scene, one marker
  * per method, the Pareto front of each scene+size group ringed and joined by
- * a dashed line, and a legend. Text uses an embedded 6x10 bitmap font. */
+ * a dashed line, labels placed clear of the points and of each other, and a
+ * legend. Text uses an embedded 6x10 bitmap font. */
 #include "bench_plot.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -247,6 +250,75 @@ static axis make_axis(double vmin, double vmax)
 static int map_x(const axis *a, double v) { return LEFT + (int)lround((log10(v) - a->lo) / (a->hi - a->lo) * (RIGHT - LEFT)); }
 static int map_y(const axis *a, double v) { return BOTTOM - (int)lround((log10(v) - a->lo) / (a->hi - a->lo) * (BOTTOM - TOP)); }
 
+typedef struct point_px {
+    int x, y; /* INT_MIN: not drawn */
+} point_px;
+
+typedef struct box {
+    int x0, y0, x1, y1;
+} box;
+
+static int overlaps(const box *a, const box *b) { return a->x0 <= b->x1 && b->x0 <= a->x1 && a->y0 <= b->y1 && b->y0 <= a->y1; }
+
+/* Draws each point's label where it covers no marker and no label placed
+ * before it: beside the point (right, left, above, below, then right or left
+ * one and two lines up or down), else in the nearest free line to its right
+ * or left; anywhere but right of it, a thin line joins it to its point. If
+ * nothing is free, on its right. Labels inside the plot area only. */
+static void place_labels(canvas *c, const bench_plot_desc *d, const point_px *pos, const uint8_t rgb[3])
+{
+    static const uint8_t light[3] = {160, 160, 160};
+    static const int beside[][2] = {{12, -4}, {-12, -4}, {0, -20}, {0, 12}, {12, -16}, {12, 8}, {-12, -16},
+                                    {-12, 8}, {12, -28}, {12, 20}, {-12, -28}, {-12, 20}};
+    box *placed = (box *)malloc(sizeof(box) * (size_t)(d->count > 0 ? d->count : 1));
+    int i, j, k, n = 0;
+    for (i = 0; i < d->count; i++) {
+        const char *label = d->points[i].label;
+        int w, found = 0, lead = 0, tries = (int)(sizeof beside / sizeof *beside) + 2 * 24;
+        box b;
+        if (!label || pos[i].x == INT_MIN) continue;
+        w = (int)strlen(label) * 6;
+        for (k = 0; k < tries && !found; k++) {
+            int dx, dy;
+            if (k < (int)(sizeof beside / sizeof *beside)) {
+                dx = beside[k][0];
+                dy = beside[k][1];
+            } else { /* further lines away, alternating down and up, right then left */
+                int step = (k - (int)(sizeof beside / sizeof *beside)) / 2 / 2 + 3, up = (k / 2) % 2;
+                dx = k % 2 ? -24 : 24;
+                dy = -4 + (up ? -12 : 12) * step;
+            }
+            b.x0 = dx < 0 ? pos[i].x + dx - w : dx == 0 ? pos[i].x - w / 2 : pos[i].x + dx;
+            b.y0 = pos[i].y + dy;
+            b.x1 = b.x0 + w;
+            b.y1 = b.y0 + 10;
+            found = b.x0 > LEFT + 2 && b.x1 < RIGHT - 2 && b.y0 > TOP + 2 && b.y1 < BOTTOM - 2;
+            for (j = 0; found && j < d->count; j++) { /* every marker with its ring */
+                box m = {pos[j].x - 10, pos[j].y - 10, pos[j].x + 10, pos[j].y + 10};
+                if (pos[j].x != INT_MIN && overlaps(&b, &m)) found = 0;
+            }
+            for (j = 0; found && placed && j < n; j++)
+                if (overlaps(&b, &placed[j])) found = 0;
+            lead = k > 0; /* anywhere but the usual place: a line says whose label it is */
+        }
+        if (!found) {
+            b.x0 = pos[i].x + 12;
+            b.y0 = pos[i].y - 4;
+            b.x1 = b.x0 + w;
+            b.y1 = b.y0 + 10;
+            lead = 0;
+        }
+        if (lead) {
+            int lx = b.x1 < pos[i].x ? b.x1 + 2 : b.x0 > pos[i].x ? b.x0 - 2 : pos[i].x;
+            int ly = lx == pos[i].x ? (b.y0 > pos[i].y ? b.y0 - 1 : b.y1 + 1) : b.y0 + 5;
+            line(c, pos[i].x, pos[i].y, lx, ly, light, 1, 0);
+        }
+        text(c, b.x0, b.y0, label, rgb, 1, 0);
+        if (placed) placed[n++] = b;
+    }
+    free(placed);
+}
+
 snell_status bench_plot_write(const char *path, const bench_plot_desc *d)
 {
     static const uint8_t white[3] = {255, 255, 255}, black[3] = {0, 0, 0}, grid[3] = {205, 205, 205},
@@ -254,14 +326,17 @@ snell_status bench_plot_write(const char *path, const bench_plot_desc *d)
     canvas c;
     double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
     int i, k, m, clamped = 0, *pareto;
+    point_px *pos;
     axis ax, ay;
     char buf[128];
     snell_status st;
     c.px = (uint8_t *)malloc((size_t)PW * PH * 4);
     pareto = (int *)calloc((size_t)(d->count > 0 ? d->count : 1), sizeof *pareto);
-    if (!c.px || !pareto) {
+    pos = (point_px *)calloc((size_t)(d->count > 0 ? d->count : 1), sizeof *pos);
+    if (!c.px || !pareto || !pos) {
         free(c.px);
         free(pareto);
+        free(pos);
         return SNELL_E_NOMEM;
     }
     fill_rect(&c, 0, 0, PW - 1, PH - 1, white);
@@ -337,22 +412,22 @@ snell_status bench_plot_write(const char *path, const bench_plot_desc *d)
                  g_palette[d->points[i].color % PALETTE_N], 2, 6);
         }
     }
-    /* points, rings, labels */
+    /* points and rings, then the labels placed clear of every point and of each other */
     for (i = 0; i < d->count; i++) {
         const bench_plot_point *p = &d->points[i];
         double y = p->y;
-        int px, py;
+        pos[i].x = INT_MIN;
         if (!(p->x > 0.0) || !isfinite(p->x) || !isfinite(p->y)) continue;
         if (!(y >= pow(10.0, ay.lo))) {
             y = pow(10.0, ay.lo);
             clamped++;
         }
-        px = map_x(&ax, p->x);
-        py = map_y(&ay, y);
-        marker(&c, px, py, p->marker, g_palette[p->color % PALETTE_N], 5);
-        if (pareto[i]) ring(&c, px, py, 9, black);
-        if (p->label) text(&c, px + 12, py - 4, p->label, grey, 1, 0);
+        pos[i].x = map_x(&ax, p->x);
+        pos[i].y = map_y(&ay, y);
+        marker(&c, pos[i].x, pos[i].y, p->marker, g_palette[p->color % PALETTE_N], 5);
+        if (pareto[i]) ring(&c, pos[i].x, pos[i].y, 9, black);
     }
+    place_labels(&c, d, pos, grey);
     if (clamped) {
         snprintf(buf, sizeof buf, "%d point(s) below the axis drawn on it", clamped);
         text(&c, LEFT + 6, BOTTOM - 14, buf, grey, 1, 0);
@@ -385,5 +460,6 @@ snell_status bench_plot_write(const char *path, const bench_plot_desc *d)
     st = snell_write_png(path, PW, PH, c.px);
     free(c.px);
     free(pareto);
+    free(pos);
     return st;
 }

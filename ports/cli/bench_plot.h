@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_plot.h — the time-vs-error scatter plot of snell-bench as a PNG, and
  * the Pareto front it rings (bench_plot.c). */
 #ifndef SNELL_BENCH_PLOT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_ref.c — reference images for snell-bench (snell_ref_render of the
  * configuration's scene), cached on disk per scene, material, camera, size
  * and model, so that reruns only time the GPU. A cache file holds a text key

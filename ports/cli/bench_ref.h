@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_ref.h — reference images for snell-bench (snell_ref_render of the
  * configuration's whole scene), cached on disk so that reruns only time the GPU. */
 #ifndef SNELL_BENCH_REF_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_scene.c — snell-bench's scenes: one mesh at the origin (a shape,
  * glmark2's bunny or a file, normalised to the unit sphere), a named scene
  * of several glass and opaque objects, or a glTF scene file (its objects,

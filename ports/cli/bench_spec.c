@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_spec.c — spec expansion, glmark2 style: "method:key=value:key=v1,v2"
  * (a comma list sweeps) -> one configuration per element of the cartesian
  * product. Keys are the scene/view/material keys below, which every method
@@ -436,13 +437,24 @@ static int expand(expansion *e, int depth, const char **chosen)
     return 1;
 }
 
+/* "auto": the renderer picks each object's method (snell_method_info has no
+ * entry for it). It takes the keys every method takes; its MATCHED reference
+ * is FULL's model (any method may draw an object), so vs_matched = vs_full. */
+static const snell_method_info g_auto = {SNELL_METHOD_AUTO, "auto", "the cheapest adequate method per object",
+                                         "", 0, 0, NULL, 0, NULL, 10, 0, ""};
+
+const snell_method_info *bench_method_info(snell_method m)
+{
+    return m == SNELL_METHOD_AUTO ? &g_auto : snell_method_info_of(m);
+}
+
 static int parse_method(const char *name, const char *spec, const snell_method_info **out)
 {
     snell_method m = SNELL_METHOD_COUNT_;
     int i;
+    if (snell_method_from_str(name, &m) == SNELL_OK && m == SNELL_METHOD_AUTO) return *out = &g_auto, 1;
     if (snell_method_from_str(name, &m) == SNELL_OK && (*out = snell_method_info_of(m)) != NULL) return 1;
-    fprintf(stderr, "snell-bench: %s method '%s' in '%s'; methods:",
-            m == SNELL_METHOD_AUTO ? "no benchmark of the" : "unknown", name, spec);
+    fprintf(stderr, "snell-bench: unknown method '%s' in '%s'; methods: auto,", name, spec);
     for (i = 0; i < snell_method_count(); i++) fprintf(stderr, "%s %s", i ? "," : "", snell_method_info_at(i)->name);
     fprintf(stderr, "\n");
     return 0;

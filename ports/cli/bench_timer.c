@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_timer.c — GPU frame time with GL_EXT_disjoint_timer_query, when the
  * context has it (llvmpipe advertises it, but its query measures command
  * submission, not the deferred rasterisation: bench/BENCHMARKS.md; the wall

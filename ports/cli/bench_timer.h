@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_timer.h — GPU frame time with GL_EXT_disjoint_timer_query, when the
  * context has it; one query in flight (snell-bench ends every frame with glFinish). */
 #ifndef SNELL_BENCH_TIMER_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_timing.c — timing of snell-bench's configurations. Those of one scene
  * and size take turns frame by frame (each with its own renderer, so nothing
  * is re-baked between turns), so a shared machine's drift hits all of them
@@ -112,14 +113,49 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
     }
 }
 
-/* Medians of a slot, then its resources freed. */
+int bench_frame_times(bench_config *c, const double *ms, int n)
+{
+    double *sorted = (double *)malloc(sizeof(double) * (size_t)(n > 0 ? n : 1)), sum = 0.0;
+    int i, tail = (n + 99) / 100; /* the slowest 1%, at least one frame */
+    free(c->frame_ms);
+    c->frame_ms = (double *)malloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
+    if (!sorted || !c->frame_ms || n < 1) {
+        free(sorted);
+        free(c->frame_ms);
+        c->frame_ms = NULL;
+        return 0;
+    }
+    memcpy(c->frame_ms, ms, sizeof(double) * (size_t)n);
+    memcpy(sorted, ms, sizeof(double) * (size_t)n);
+    c->frames = n;
+    c->t_p95 = cli_percentile(sorted, n, 0.95); /* sorts */
+    c->t_p99 = cli_percentile(sorted, n, 0.99);
+    c->t_median = cli_median(sorted, n);
+    c->t_min = sorted[0];
+    c->t_max = sorted[n - 1];
+    for (i = n - tail; i < n; i++) sum += sorted[i];
+    c->t_low1 = sum / tail;
+    free(sorted);
+    return 1;
+}
+
+void bench_configs_free(bench_config *cs, int n)
+{
+    int i;
+    for (i = 0; cs && i < n; i++) {
+        free(cs[i].frame_ms);
+        cs[i].frame_ms = NULL;
+    }
+}
+
+/* The slot's time summary, then its resources freed. */
 static void close_slot(const bench_options *o, timing_slot *t)
 {
     if (t->c->ok) {
-        t->c->t_p95 = cli_percentile(t->times, o->frames, 0.95); /* sorts */
-        t->c->t_median = cli_median(t->times, o->frames);
-        t->c->t_min = t->times[0];
-        t->c->t_max = t->times[o->frames - 1];
+        if (!bench_frame_times(t->c, t->times, o->frames)) {
+            t->c->ok = 0;
+            snprintf(t->c->error, sizeof t->c->error, "out of memory");
+        }
         t->c->gpu_median = t->gpu_n == o->frames ? cli_median(t->gpu, t->gpu_n) : -1.0;
     }
     snell_renderer_destroy(t->r);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_water.c — snell-bench --water: the water scene's costs measured
  * apart (issue 17): one simulation step on the CPU and on the GPU (each
  * timed over a batch of steps, the GPU's finished with glFinish), a frame's
@@ -5,6 +6,7 @@
  * snell_ref_water_render for the still and the rippled surface. The CPU and
  * GPU batches and the frames take turns round by round; times are medians
  * over the rounds. One line per figure, and the load average. */
+#include "cli_opts.h"
 #include "cli_progress.h"
 #include "cli_time.h"
 #include "snell/snell_metrics.h"
@@ -23,11 +25,11 @@ typedef struct water_bench {
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: snell-bench --water [--grid N] [--size S] [--rounds R] [--steps K]\n"
+    fprintf(f, "usage: snell-bench --water [--grid N] [--sizes SxS] [--rounds R] [--steps K]\n"
                "The water scene's costs apart: a simulation step on the CPU and the GPU, a frame, and its\n"
                "error against the reference tracer.\n"
                "  --grid N     height-field nodes per side (default 256)\n"
-               "  --size S     image size S x S, 16..4096 (default 512)\n"
+               "  --sizes SxS  image size (square), 16..4096 (default 512x512)\n"
                "  --rounds R   rounds, 1..%d (default 15); times are medians over them\n"
                "  --steps K    simulation steps per timed batch (default 10)\n"
                "  -h, --help   this text\n", MAX_ROUNDS);
@@ -49,35 +51,39 @@ static int parse_count(const char *a, const char *v, int *out)
 /* 1: run; 0: bad usage (message printed); -1: --help printed. */
 static int parse(int argc, char **argv, water_bench *b)
 {
-    int i;
-    for (i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            usage(stdout);
-            return -1;
-        }
+    static const struct option longopts[] = {
+        {"water", no_argument, NULL, 'W'},       {"grid", required_argument, NULL, 'g'},
+        {"sizes", required_argument, NULL, 's'}, {"rounds", required_argument, NULL, 'r'},
+        {"steps", required_argument, NULL, 'k'}, {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0}};
+    int c, h;
+    char tail;
+    if (cli_wants_help(argc, argv)) {
+        usage(stdout);
+        return -1;
+    }
     b->grid = 256;
     b->size = 512;
     b->rounds = 15;
     b->steps = 10;
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int *dst = !strcmp(a, "--grid") ? &b->grid : !strcmp(a, "--size") ? &b->size
-                 : !strcmp(a, "--rounds") ? &b->rounds : !strcmp(a, "--steps") ? &b->steps : NULL;
-        if (!strcmp(a, "--water")) continue;
-        if (!dst) {
-            fprintf(stderr, "snell-bench --water: unknown option '%s' (--grid N --size S --rounds R --steps K)\n", a);
+    cli_opts_reset();
+    while ((c = cli_getopt("snell-bench --water", "--water --help", argc, argv, "h", longopts)) != -1) {
+        if (c == '?') return 0;
+        if (c == 'g' && !parse_count("--grid", optarg, &b->grid)) return 0;
+        if (c == 'r' && !parse_count("--rounds", optarg, &b->rounds)) return 0;
+        if (c == 'k' && !parse_count("--steps", optarg, &b->steps)) return 0;
+        if (c == 's' && (sscanf(optarg, "%dx%d%c", &b->size, &h, &tail) != 2 || h != b->size)) {
+            fprintf(stderr, "snell-bench --water: --sizes %s: want a square size SxS\n", optarg);
             return 0;
         }
-        if (!v) {
-            fprintf(stderr, "snell-bench --water: %s needs a value\n", a);
-            return 0;
-        }
-        if (!parse_count(a, v, dst)) return 0;
-        i++;
+    }
+    if (optind < argc) {
+        fprintf(stderr, "snell-bench --water: unexpected argument '%s'; see --water --help\n", argv[optind]);
+        return 0;
     }
     if (b->rounds < 1 || b->rounds > MAX_ROUNDS || b->steps < 1 || b->size < 16 || b->size > 4096) {
-        fprintf(stderr, "snell-bench --water: want --rounds 1..%d and --size 16..4096, got %d and %d\n", MAX_ROUNDS,
-                b->rounds, b->size);
+        fprintf(stderr, "snell-bench --water: want --rounds 1..%d and --sizes 16x16..4096x4096, got %d and %dx%d\n",
+                MAX_ROUNDS, b->rounds, b->size, b->size);
         return 0;
     }
     return 1;

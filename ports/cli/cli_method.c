@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli_method.c — method names and parameters from the library's registry. */
 #include "cli_method.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli_method.h — the library's method registry as the CLI ports parse and
  * show it: method names, each method's parameters with their ranges and the
  * defaults the library resolves (no copies of either kept here). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli_progress.c — the progress line with an ETA (cli_progress.h). */
 #define _POSIX_C_SOURCE 200809L /* fileno */
 #include "cli_progress.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli_progress.h — the ports' progress line for long work (the reference
  * tracer, through snell_ref_params.progress): percent done, time so far and
  * an ETA on stderr, redrawn in place; only on a terminal and never with -q,

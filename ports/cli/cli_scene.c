@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli_scene.c — meshes, environments and placements by name for the CLIs. */
 #include "cli_scene.h"
 

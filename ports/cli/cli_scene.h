@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli_scene.h — scene pieces by name for the CLI ports: meshes (built-in
  * shapes or OBJ/glTF files), environments (procedural, equirectangular, six
  * faces) and placement matrices. Public API only. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, sysconf */
 /* cli_time.c — monotonic wall clock, medians and the load average shared by the ports. */
 #include "cli_time.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli_time.h — the ports' one clock: monotonic wall time in milliseconds,
  * the median and percentiles of a sample (snell-render --frames, snell-bench 3D and --2d,
  * snell-kiosk), the load average and how many threads a software renderer

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render.h — the parts of snell-render: its command line read as a scene
  * (render_args.c), the reference light paths of --trace-pixel (trace_pixel.c)
  * and the 2D lightmap mode --2d (render2d.c); main is snell_render.c. */
@@ -15,6 +16,13 @@ typedef struct render_object {
     int placed;                    /* 0: identity model (NULL), as without --place */
     snell_glass_material material; /* glass objects */
     float color[3];                /* opaque objects; zero = the library's grey */
+    /* method parameters given for it (--NAME V, --param [METHOD.]NAME=V), so that one its
+     * --method does not have is refused rather than ignored; method: AUTO when not qualified */
+    struct {
+        char name[32];
+        snell_method method;
+    } given[16];
+    int given_count;
 } render_object;
 
 typedef struct render_options {

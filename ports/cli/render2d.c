@@ -1,8 +1,10 @@
+/* SPDX-License-Identifier: MIT */
 /* render2d.c — `snell-render --2d`: a 2D scene file -> lightmap PNG, optionally
  * multiplied onto an albedo image (Brückner A.3); and `--contour`: an image's
  * alpha outline -> polygon CSV (A.5). Public API only (+ stb_image, file-local). */
 #include "snell/snell.h"
 #include "snell/snell_2d.h"
+#include "cli_opts.h"
 
 #include <math.h>
 #include <errno.h>
@@ -40,18 +42,6 @@ static int arg_float(const char *opt, const char *v, float lo, float hi, float *
     }
     *out = x;
     return 1;
-}
-
-/* Is a an option with a value? */
-static int takes_value(const char *a)
-{
-    static const char *const names[] = {"-o",       "--albedo",  "--contour", "--epsilon", "--threshold",
-                                        "--size",   "--exposure", "--gamma",  "--bounces", "--passes",
-                                        "--threads", "--seed",    "--blend",  "--raster",  "--format"};
-    size_t k;
-    for (k = 0; k < sizeof names / sizeof *names; k++)
-        if (!strcmp(a, names[k])) return 1;
-    return 0;
 }
 
 static void usage(FILE *out)
@@ -105,7 +95,17 @@ int snell_render2d_main(int argc, char **argv)
 {
     const char *scene_path = NULL, *out = NULL, *albedo_path = NULL, *contour = NULL;
     float exposure = 0.0f, gamma = 2.2f, eps = 0.0f, view[4];
-    int i, w = 0, h = 0, passes = 1, thr = 128, size[2], aw = 0, ah = 0, rc = 1;
+    static const struct option longopts[] = {
+        {"albedo", required_argument, NULL, 256},  {"contour", required_argument, NULL, 257},
+        {"epsilon", required_argument, NULL, 258}, {"threshold", required_argument, NULL, 259},
+        {"size", required_argument, NULL, 260},    {"exposure", required_argument, NULL, 261},
+        {"gamma", required_argument, NULL, 262},   {"bounces", required_argument, NULL, 263},
+        {"passes", required_argument, NULL, 264},  {"threads", required_argument, NULL, 265},
+        {"seed", required_argument, NULL, 266},    {"blend", required_argument, NULL, 267},
+        {"raster", required_argument, NULL, 268},  {"format", required_argument, NULL, 269},
+        {"cpu", no_argument, NULL, 270},           {"2d", no_argument, NULL, 271},
+        {"help", no_argument, NULL, 'h'},          {NULL, 0, NULL, 0}};
+    int i, c, w = 0, h = 0, passes = 1, thr = 128, size[2], aw = 0, ah = 0, rc = 1;
     snell_lightmap2d_desc d;
     snell_ctx *ctx = NULL;
     snell_scene2d *s = NULL;
@@ -115,87 +115,86 @@ int snell_render2d_main(int argc, char **argv)
     uint8_t *albedo = NULL, *rgba = NULL;
     float *rgb = NULL, *lum = NULL;
     memset(&d, 0, sizeof d);
-    for (i = 1; i < argc; i++) /* --help wherever it is */
-        if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
-            usage(stdout);
-            return 0;
-        }
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (cli_wants_help(argc, argv)) { /* --help wherever it is */
+        usage(stdout);
+        return 0;
+    }
+    cli_opts_reset();
+    while ((c = cli_getopt("snell-render --2d", "--2d --help", argc, argv, "o:h", longopts)) != -1) {
+        char a[32];
+        const char *v = optarg;
+        if (c == '?') return 2;
+        if (c >= 256) snprintf(a, sizeof a, "--%s", longopts[c - 256].name);
+        else snprintf(a, sizeof a, "-%c", c);
         if (strcmp(a, "--2d") == 0) continue;
-        if (strcmp(a, "-o") == 0 && v) out = argv[++i];
-        else if (strcmp(a, "--albedo") == 0 && v) albedo_path = argv[++i];
-        else if (strcmp(a, "--contour") == 0 && v) contour = argv[++i];
-        else if (strcmp(a, "--epsilon") == 0 && v) {
-            if (!arg_float(a, argv[++i], 0.0f, 1e6f, &eps)) return 2;
-        } else if (strcmp(a, "--threshold") == 0 && v) {
-            if (!arg_int(a, argv[++i], 0, 255, &thr)) return 2;
-        }
-        else if (strcmp(a, "--size") == 0 && v) {
-            if (sscanf(argv[++i], "%dx%d", &w, &h) != 2 || w < 1 || h < 1) {
-                fprintf(stderr, "snell-render --2d: --size wants WxH, got '%s'\n", argv[i]);
+        if (strcmp(a, "-o") == 0) out = v;
+        else if (strcmp(a, "--albedo") == 0) albedo_path = v;
+        else if (strcmp(a, "--contour") == 0) contour = v;
+        else if (strcmp(a, "--epsilon") == 0) {
+            if (!arg_float(a, v, 0.0f, 1e6f, &eps)) return 2;
+        } else if (strcmp(a, "--threshold") == 0) {
+            if (!arg_int(a, v, 0, 255, &thr)) return 2;
+        } else if (strcmp(a, "--size") == 0) {
+            if (sscanf(v, "%dx%d", &w, &h) != 2 || w < 1 || h < 1) {
+                fprintf(stderr, "snell-render --2d: --size wants WxH, got '%s'\n", v);
                 return 2;
             }
-        } else if (strcmp(a, "--exposure") == 0 && v) {
-            if (strcmp(argv[++i], "auto") == 0) exposure = 0.0f;
-            else if (!arg_float(a, argv[i], 1e-30f, 1e30f, &exposure)) return 2;
-        } else if (strcmp(a, "--gamma") == 0 && v) {
-            if (!arg_float(a, argv[++i], 0.01f, 100.0f, &gamma)) return 2;
-        } else if (strcmp(a, "--bounces") == 0 && v) {
+        } else if (strcmp(a, "--exposure") == 0) {
+            if (strcmp(v, "auto") == 0) exposure = 0.0f;
+            else if (!arg_float(a, v, 1e-30f, 1e30f, &exposure)) return 2;
+        } else if (strcmp(a, "--gamma") == 0) {
+            if (!arg_float(a, v, 0.01f, 100.0f, &gamma)) return 2;
+        } else if (strcmp(a, "--bounces") == 0) {
             int b;
-            if (!arg_int(a, argv[++i], 0, 1000, &b)) return 2;
+            if (!arg_int(a, v, 0, 1000, &b)) return 2;
             d.max_bounces = b == 0 ? -1 : b;
-        } else if (strcmp(a, "--passes") == 0 && v) {
-            if (!arg_int(a, argv[++i], 1, 100000, &passes)) return 2;
-        } else if (strcmp(a, "--threads") == 0 && v) {
-            if (!arg_int(a, argv[++i], 0, 256, &d.threads)) return 2;
-        }
-        else if (strcmp(a, "--seed") == 0 && v) {
+        } else if (strcmp(a, "--passes") == 0) {
+            if (!arg_int(a, v, 1, 100000, &passes)) return 2;
+        } else if (strcmp(a, "--threads") == 0) {
+            if (!arg_int(a, v, 0, 256, &d.threads)) return 2;
+        } else if (strcmp(a, "--seed") == 0) {
             char *end;
             errno = 0;
-            d.seed = (uint64_t)strtoull(argv[++i], &end, 10);
-            if (end == argv[i] || *end || errno) {
-                fprintf(stderr, "snell-render --2d: --seed wants an unsigned integer, got '%s'\n", argv[i]);
+            d.seed = (uint64_t)strtoull(v, &end, 10);
+            if (end == v || *end || errno) {
+                fprintf(stderr, "snell-render --2d: --seed wants an unsigned integer, got '%s'\n", v);
                 return 2;
             }
-        } else if (strcmp(a, "--blend") == 0 && v) {
-            const char *b = argv[++i];
-            if (strcmp(b, "screen") && strcmp(b, "add")) {
-                fprintf(stderr, "snell-render --2d: --blend wants add or screen, got '%s'\n", b);
+        } else if (strcmp(a, "--blend") == 0) {
+            if (strcmp(v, "screen") && strcmp(v, "add")) {
+                fprintf(stderr, "snell-render --2d: --blend wants add or screen, got '%s'\n", v);
                 return 2;
             }
-            d.blend = strcmp(b, "screen") == 0 ? SNELL_BLEND2D_SCREEN : SNELL_BLEND2D_ADD;
-        }
-        else if (strcmp(a, "--cpu") == 0) d.cpu_only = 1;
-        else if (strcmp(a, "--raster") == 0 && v) {
-            const char *r = argv[++i];
-            if (strcmp(r, "auto") == 0) d.raster = SNELL_RASTER2D_AUTO;
-            else if (strcmp(r, "gl") == 0) d.raster = SNELL_RASTER2D_GL;
-            else if (strcmp(r, "cpu") == 0) d.raster = SNELL_RASTER2D_CPU;
+            d.blend = strcmp(v, "screen") == 0 ? SNELL_BLEND2D_SCREEN : SNELL_BLEND2D_ADD;
+        } else if (strcmp(a, "--cpu") == 0) {
+            d.cpu_only = 1;
+        } else if (strcmp(a, "--raster") == 0) {
+            if (strcmp(v, "auto") == 0) d.raster = SNELL_RASTER2D_AUTO;
+            else if (strcmp(v, "gl") == 0) d.raster = SNELL_RASTER2D_GL;
+            else if (strcmp(v, "cpu") == 0) d.raster = SNELL_RASTER2D_CPU;
             else {
-                fprintf(stderr, "snell-render --2d: --raster wants auto, gl or cpu, got '%s'\n", r);
+                fprintf(stderr, "snell-render --2d: --raster wants auto, gl or cpu, got '%s'\n", v);
                 return 2;
             }
-        }
-        else if (strcmp(a, "--format") == 0 && v) {
-            const char *f = argv[++i];
-            d.format = strcmp(f, "rgba32f") == 0 ? SNELL_FORMAT2D_RGBA32F
-                       : strcmp(f, "rgba16f") == 0 ? SNELL_FORMAT2D_RGBA16F
-                       : strcmp(f, "rgb10a2") == 0 ? SNELL_FORMAT2D_RGB10A2
-                       : strcmp(f, "rgba8") == 0   ? SNELL_FORMAT2D_RGBA8
+        } else if (strcmp(a, "--format") == 0) {
+            d.format = strcmp(v, "rgba32f") == 0 ? SNELL_FORMAT2D_RGBA32F
+                       : strcmp(v, "rgba16f") == 0 ? SNELL_FORMAT2D_RGBA16F
+                       : strcmp(v, "rgb10a2") == 0 ? SNELL_FORMAT2D_RGB10A2
+                       : strcmp(v, "rgba8") == 0   ? SNELL_FORMAT2D_RGBA8
                                                    : SNELL_FORMAT2D_AUTO;
-            if (d.format == SNELL_FORMAT2D_AUTO && strcmp(f, "auto")) {
-                fprintf(stderr, "snell-render --2d: unknown --format '%s'\n", f);
+            if (d.format == SNELL_FORMAT2D_AUTO && strcmp(v, "auto")) {
+                fprintf(stderr, "snell-render --2d: unknown --format '%s'\n", v);
                 return 2;
             }
-        } else if (a[0] != '-' && !scene_path) scene_path = a;
-        else if (!v && takes_value(a)) {
-            fprintf(stderr, "snell-render --2d: %s needs a value\n", a);
-            return 2;
-        } else {
-            fprintf(stderr, "snell-render --2d: unknown option '%s'; see --2d --help\n", a);
+        }
+    }
+    for (; optind < argc; optind++) { /* the one SCENE */
+        if (scene_path) {
+            fprintf(stderr, "snell-render --2d: one SCENE, got '%s' and '%s'; see --2d --help\n", scene_path,
+                    argv[optind]);
             return 2;
         }
+        scene_path = argv[optind];
     }
     if (contour) {
         if (!out) {

@@ -1,10 +1,13 @@
+/* SPDX-License-Identifier: MIT */
 /* render_args.c — snell-render's command line read as a scene: repeated
  * --mesh (glass) and --opaque objects, each followed by its own options, the
  * view and the outputs. Method names and parameters come from the library's
  * registry (cli_method.c); defaults shown in --help from snell_glass_defaults. */
 #include "render.h"
 #include "cli_method.h"
+#include "cli_opts.h"
 #include "cli_scene.h"
+#include "cli_system.h"
 
 #include <errno.h>
 #include <math.h>
@@ -93,6 +96,7 @@ void render_usage(FILE *f)
             "  --trace-pixel X,Y      reference light path of pixel X,Y through the whole scene (repeatable):\n"
             "                         drawn over a second view into FILE_trace.png, points in FILE_trace.json\n"
             "  --2d SCENE             2D lightmap mode (see the 2D options with --2d --help)\n"
+            "  --version              the version and the commit it was built from\n"
             "  -h, --help             this text\n", SNELL_MAX_SCENE_LAYERS);
 }
 
@@ -146,16 +150,57 @@ static int in_range3(const float *v, float lo, float hi)
     return v[0] >= lo && v[0] <= hi && v[1] >= lo && v[1] <= hi && v[2] >= lo && v[2] <= hi;
 }
 
+/* Notes that parameter name (of method, or AUTO: any that has it) was given for g. */
+static void remember_param(render_object *g, const char *name, snell_method method)
+{
+    int i;
+    for (i = 0; i < g->given_count; i++)
+        if (!strcmp(g->given[i].name, name) && g->given[i].method == method) return;
+    if (g->given_count == (int)(sizeof g->given / sizeof *g->given)) return;
+    snprintf(g->given[g->given_count].name, sizeof g->given[0].name, "%s", name);
+    g->given[g->given_count++].method = method;
+}
+
 /* A registry parameter of the current glass: "--NAME V" or "--param [METHOD.]NAME=V".
  * 1 set, 0 bad value (printed), -1 not a parameter name. */
-static int method_param(const char *name, const char *v, snell_glass_material *m)
+static int method_param(const char *name, const char *v, render_object *g)
 {
     size_t k;
     int at = 0;
     for (k = 0; k < sizeof g_param_alias / sizeof *g_param_alias; k++)
         if (!strcmp(name, g_param_alias[k][0])) name = g_param_alias[k][1];
     if (!cli_param_owner(name, &at)) return -1;
-    return cli_param_set(PROG, m, name, v);
+    remember_param(g, name, SNELL_METHOD_AUTO);
+    return cli_param_set(PROG, &g->material, name, v);
+}
+
+/* A parameter that one of the object's methods has: --method M with a parameter
+ * only other methods have is refused (AUTO may pick any method, so it takes any). */
+static int check_params(const render_object *g, const char *what)
+{
+    const snell_method_info *mi = snell_method_info_of(g->material.method);
+    int i, k;
+    if (g->material.method == SNELL_METHOD_AUTO || !mi) return 1;
+    for (i = 0; i < g->given_count; i++) {
+        int has = g->given[i].method == SNELL_METHOD_AUTO || g->given[i].method == g->material.method;
+        for (k = 0; has && g->given[i].method == SNELL_METHOD_AUTO && k < mi->param_count; k++)
+            if (!strcmp(mi->params[k].name, g->given[i].name)) break;
+        if (!has || (g->given[i].method == SNELL_METHOD_AUTO && k == mi->param_count)) {
+            char owners[160] = "";
+            size_t len = 0;
+            int at = 0;
+            const snell_method_info *owner;
+            if (g->given[i].method != SNELL_METHOD_AUTO)
+                snprintf(owners, sizeof owners, "%s", snell_method_str(g->given[i].method));
+            else
+                while ((owner = cli_param_owner(g->given[i].name, &at)) != NULL && len < sizeof owners)
+                    len += (size_t)snprintf(owners + len, sizeof owners - len, "%s%s", len ? ", " : "", owner->name);
+            fprintf(stderr, PROG ": --%s is a parameter of %s, not of --method %s (%s); see --help\n",
+                    g->given[i].name, owners, mi->name, what);
+            return 0;
+        }
+    }
+    return 1;
 }
 
 static int scale_option(const char *v, snell_glass_material *m)
@@ -165,8 +210,9 @@ static int scale_option(const char *v, snell_glass_material *m)
     return 1;
 }
 
-static int param_option(const char *v, snell_glass_material *m)
+static int param_option(const char *v, render_object *g)
 {
+    snell_glass_material *m = &g->material;
     char name[96];
     const char *eq = strchr(v, '='), *dot;
     snell_method method;
@@ -177,11 +223,12 @@ static int param_option(const char *v, snell_glass_material *m)
     dot = strchr(name, '.');
     if (!strcmp(name, "scale")) return scale_option(eq + 1, m); /* every method's: the material's own field */
     if (!dot) {
-        int r = method_param(name, eq + 1, m);
+        int r = method_param(name, eq + 1, g);
         return r >= 0 ? r : usage_error("%s: no method has a parameter '%s' (see --help)", "--param", name);
     }
     name[dot - name] = '\0';
     if (!cli_method_parse(PROG, name, &method)) return 0;
+    remember_param(g, dot + 1, method);
     return cli_param_set_one(PROG, m, method, dot + 1, eq + 1);
 }
 
@@ -227,9 +274,9 @@ static int glass_option(const char *a, const char *v, render_object *g)
     } else if (!strcmp(a, "--method")) {
         if (!cli_method_parse(PROG, v, &m->method)) return 0;
     } else if (!strcmp(a, "--param")) {
-        return param_option(v, m);
+        return param_option(v, g);
     } else if (!strncmp(a, "--", 2)) {
-        return method_param(a + 2, v, m);
+        return method_param(a + 2, v, g);
     } else {
         return -1;
     }
@@ -377,24 +424,35 @@ static void set_defaults(render_options *o)
     o->normalize = 1;
 }
 
-/* Is a an option that takes a value? (A message then says it needs one;
- * anything else starting with '-' is unknown.) */
-static int takes_value(const char *a)
+/* The long options: the fixed ones, then the old spellings and every method
+ * parameter of the registry (--NAME V). Each value is its index + 256. */
+static const struct option *long_options(void)
 {
-    static const char *const names[] = {"--scene", "--mesh", "--opaque", "--place", "--color", "--env", "--size",
-                                        "--camera", "--fov", "--view", "--projection", "--backend", "--shading", "--env-lookup", "--ssaa",
-                                        "--msaa", "--scene-layers", "--frames", "--trace-pixel", "-o", "--ior",
-                                        "--absorption", "--attenuation", "--tint", "--thickness", "--dispersion",
-                                        "--abbe", "--dispersion-model", "--scale", "--method", "--param", "--light",
-                                        "--photons", "--floor", "--floor-map"};
+    static const char *const valued[] = {"scene", "mesh", "opaque", "place", "color", "env", "size", "camera", "fov",
+                                         "view", "projection", "backend", "shading", "env-lookup", "ssaa", "msaa",
+                                         "scene-layers", "frames", "trace-pixel", "ior", "absorption", "attenuation",
+                                         "tint", "thickness", "dispersion", "abbe", "dispersion-model", "scale",
+                                         "method", "param", "light", "photons", "floor", "floor-map"};
+    static const char *const flags[] = {"no-normalize", "stats", "verbose", "help", "version"};
+    static struct option opts[256];
+    static int n;
     size_t k;
-    int at = 0;
-    for (k = 0; k < sizeof names / sizeof *names; k++)
-        if (!strcmp(a, names[k])) return 1;
-    if (strncmp(a, "--", 2)) return 0;
+    int i, j;
+    if (n) return opts;
+    for (k = 0; k < sizeof valued / sizeof *valued; k++) opts[n] = (struct option){valued[k], required_argument, NULL, 256 + n}, n++;
+    for (k = 0; k < sizeof flags / sizeof *flags; k++) opts[n] = (struct option){flags[k], no_argument, NULL, 256 + n}, n++;
     for (k = 0; k < sizeof g_param_alias / sizeof *g_param_alias; k++)
-        if (!strcmp(a + 2, g_param_alias[k][0])) return 1;
-    return cli_param_owner(a + 2, &at) != 0; /* a method's parameter, --NAME V */
+        opts[n] = (struct option){g_param_alias[k][0], required_argument, NULL, 256 + n}, n++;
+    for (i = 0; i < snell_method_count(); i++) {
+        const snell_method_info *m = snell_method_info_at(i);
+        for (j = 0; j < m->param_count && n < 255; j++) {
+            int seen = 0, q;
+            for (q = 0; q < n && !seen; q++) seen = !strcmp(opts[q].name, m->params[j].name);
+            if (!seen) opts[n] = (struct option){m->params[j].name, required_argument, NULL, 256 + n}, n++;
+        }
+    }
+    opts[n] = (struct option){NULL, 0, NULL, 0};
+    return opts;
 }
 
 int render_parse_args(int argc, char **argv, render_options *o)
@@ -402,16 +460,21 @@ int render_parse_args(int argc, char **argv, render_options *o)
     /* cur: the last --mesh or --opaque (--place); glass: the last --mesh, or
      * base before the first (glass options); opaque: cur if it is opaque. */
     render_object *cur = NULL, *glass, *opaque = NULL;
-    int i, r;
+    const struct option *longopts = long_options();
+    int i, r, c;
     set_defaults(o);
     glass = &o->base;
-    for (i = 1; i < argc; i++) /* --help wherever it is */
-        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            render_usage(stdout);
-            return -1;
-        }
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (cli_wants_help(argc, argv)) { /* --help wherever it is */
+        render_usage(stdout);
+        return -1;
+    }
+    cli_opts_reset();
+    while ((c = cli_getopt(PROG, "--help", argc, argv, "o:vh", longopts)) != -1) {
+        char name[64];
+        const char *a = name, *v = optarg;
+        if (c == '?') return 0;
+        if (c >= 256) snprintf(name, sizeof name, "--%s", longopts[c - 256].name);
+        else snprintf(name, sizeof name, "-%c", c);
         if (!strcmp(a, "--no-normalize")) {
             o->normalize = 0;
             continue;
@@ -421,14 +484,10 @@ int render_parse_args(int argc, char **argv, render_options *o)
         } else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) {
             o->verbose = 1;
             continue;
-        } else if (!takes_value(a)) {
-            fprintf(stderr, PROG ": unknown option '%s'; see --help\n", a);
-            return 0;
-        } else if (!v) {
-            fprintf(stderr, PROG ": %s needs a value; see --help\n", a);
-            return 0;
+        } else if (!strcmp(a, "--version")) {
+            cli_print_version(PROG);
+            return -1;
         }
-        i++;
         if (!strcmp(a, "--scene")) {
             o->scene_file = v;
         } else if (!strcmp(a, "--mesh")) {
@@ -457,6 +516,16 @@ int render_parse_args(int argc, char **argv, render_options *o)
             fprintf(stderr, PROG ": unknown option '%s'; see --help\n", a);
             return 0;
         }
+    }
+    if (optind < argc) {
+        fprintf(stderr, PROG ": unexpected argument '%s'; see --help\n", argv[optind]);
+        return 0;
+    }
+    if (o->glass_count == 0 && !check_params(&o->base, "the default sphere")) return 0;
+    for (i = 0; i < o->glass_count; i++) {
+        char what[300];
+        snprintf(what, sizeof what, "--mesh %s", o->glass[i].mesh);
+        if (!check_params(&o->glass[i], what)) return 0;
     }
     if (o->scene_file && (o->glass_count > 0 || o->opaque_count > 0 || o->orbit > 0))
         return usage_error("--scene %s gives the objects; it does not combine with --mesh or --opaque%s", o->scene_file, "");

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render_water.c — snell-render --water: the container scene of issue 17
  * (Dachsbacher 2002): a water surface in a tiled box, drops at the points
  * the flags give, simulated and rendered frame by frame; with --save-every K
@@ -6,6 +7,7 @@
  * renderer -> frames (step, render, save) -> statistics. Exit 0, 1 on a
  * runtime failure, 2 on bad usage. */
 #include "render.h"
+#include "cli_opts.h"
 #include "cli_scene.h"
 #include "snell/snell_water.h"
 
@@ -75,19 +77,6 @@ static void usage(FILE *f)
             "  --stats                per-frame simulation statistics on stdout\n");
 }
 
-/* Is a one of parse()'s options with a value? */
-static int takes_value(const char *a)
-{
-    static const char *const names[] = {"--grid",       "--sim",       "--drop",   "--object",       "--glass",
-                                        "--frames",     "--steps",     "--dt",     "--save-every",   "--damping",
-                                        "--wave-speed", "--size",      "--ssaa",   "--camera",       "--env", "-o",
-                                        "--light",      "--light-map"};
-    size_t k;
-    for (k = 0; k < sizeof names / sizeof *names; k++)
-        if (!strcmp(a, names[k])) return 1;
-    return 0;
-}
-
 /* --light dir:X,Y,Z[,I] or spot:PX,PY,PZ,X,Y,Z,ANGLE[,I], as snell-render's. */
 static int parse_light(const char *v, snell_light *l)
 {
@@ -118,7 +107,19 @@ static int parse_light(const char *v, snell_light *l)
 
 static int parse(int argc, char **argv, water_options *o)
 {
-    int i;
+    static const struct option longopts[] = {
+        {"grid", required_argument, NULL, 256},      {"sim", required_argument, NULL, 257},
+        {"drop", required_argument, NULL, 258},      {"object", required_argument, NULL, 259},
+        {"glass", required_argument, NULL, 260},     {"frames", required_argument, NULL, 261},
+        {"steps", required_argument, NULL, 262},     {"dt", required_argument, NULL, 263},
+        {"save-every", required_argument, NULL, 264}, {"damping", required_argument, NULL, 265},
+        {"wave-speed", required_argument, NULL, 266}, {"size", required_argument, NULL, 267},
+        {"ssaa", required_argument, NULL, 268},      {"camera", required_argument, NULL, 269},
+        {"env", required_argument, NULL, 270},       {"light", required_argument, NULL, 271},
+        {"light-map", required_argument, NULL, 272}, {"water", no_argument, NULL, 273},
+        {"stats", no_argument, NULL, 274},           {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0}};
+    int i, c;
     memset(o, 0, sizeof *o);
     o->frames = 1;
     o->steps = 2;
@@ -128,25 +129,21 @@ static int parse(int argc, char **argv, water_options *o)
     o->el_deg = 35.0f;
     o->dist = 3.6f;
     o->out = "water.png";
-    for (i = 1; i < argc; i++) /* --help wherever it is */
-        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            usage(stdout);
-            return -1;
-        }
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int used = 1;
+    if (cli_wants_help(argc, argv)) { /* --help wherever it is */
+        usage(stdout);
+        return -1;
+    }
+    cli_opts_reset();
+    while ((c = cli_getopt("snell-render --water", "--water --help", argc, argv, "o:h", longopts)) != -1) {
+        char name[32];
+        const char *a = name, *v = optarg;
+        if (c == '?') return 0;
+        if (c >= 256) snprintf(name, sizeof name, "--%s", longopts[c - 256].name);
+        else snprintf(name, sizeof name, "-%c", c);
         if (!strcmp(a, "--water")) {
-            used = 0;
+            continue;
         } else if (!strcmp(a, "--stats")) {
             o->stats = 1;
-            used = 0;
-        } else if (!takes_value(a)) {
-            fprintf(stderr, "snell-render --water: unknown option '%s'; see --water --help\n", a);
-            return 0;
-        } else if (!v) {
-            fprintf(stderr, "snell-render --water: %s needs a value\n", a);
-            return 0;
         } else if (!strcmp(a, "--grid")) {
             o->desc.grid = atoi(v);
         } else if (!strcmp(a, "--sim")) {
@@ -226,11 +223,11 @@ static int parse(int argc, char **argv, water_options *o)
             o->desc.light_map = atoi(v);
         } else if (!strcmp(a, "-o")) {
             o->out = v;
-        } else {
-            fprintf(stderr, "snell-render --water: unknown option %s\n", a);
-            return 0;
         }
-        i += used;
+    }
+    if (optind < argc) {
+        fprintf(stderr, "snell-render --water: unexpected argument '%s'; see --water --help\n", argv[optind]);
+        return 0;
     }
     if (o->frames < 1 || o->frames > 100000 || o->steps < 0 || o->save_every < 0 || o->width < 1 || o->height < 1) {
         fprintf(stderr, "snell-render --water: --frames 1..100000, --steps >= 0, --save-every >= 0, --size > 0\n");

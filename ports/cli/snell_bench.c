@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell-bench — time vs error of the refraction methods (issue 3).
  *
  * Runs scenes x methods x parameters; for each configuration it times the
@@ -17,6 +18,7 @@
 #include "bench.h"
 #include "bench_timer.h"
 #include "cli_scene.h"
+#include "cli_system.h"
 #include "cli_time.h"
 
 #include <errno.h>
@@ -124,6 +126,7 @@ int main(int argc, char **argv)
     snell_env *env = NULL;
     bench_config *cs = NULL;
     bench_run_info run;
+    cli_system sys;
     int i, n = 0, rc = 0, timer;
     char load_before[64], load_after[64], date[64];
     static char command[8192];
@@ -131,7 +134,8 @@ int main(int argc, char **argv)
     time_t now = time(NULL);
 
     for (i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--2d")) return snell_bench2d_main(argc, argv);
+        if (!strcmp(argv[i], "--compare")) return snell_bench_compare_main(argc, argv);
+        else if (!strcmp(argv[i], "--2d")) return snell_bench2d_main(argc, argv);
         else if (!strcmp(argv[i], "--env-lookup")) return snell_bench_env_main(argc, argv);
         else if (!strcmp(argv[i], "--water")) return snell_bench_water_main(argc, argv);
         else if (!strcmp(argv[i], "--budget")) return snell_bench_budget_main(argc, argv);
@@ -160,6 +164,8 @@ int main(int argc, char **argv)
         goto done;
     }
     memset(&run, 0, sizeof run);
+    cli_system_read(&sys);
+    run.system = &sys;
     run.renderer = snell_ctx_gl_renderer(ctx);
     timer = bench_timer_init(ctx);
     run.timer = timer > 0;
@@ -187,6 +193,7 @@ int main(int argc, char **argv)
     if (i) printf("wrote %s.json, %s.csv, %s.png (%.1f s)\n", o.out_prefix, o.out_prefix, o.out_prefix,
            (cli_now_ms() - t_start) / 1000.0);
 done:
+    bench_configs_free(cs, n);
     bench_scene_release_all();
     snell_env_destroy(env);
     snell_ctx_destroy(ctx);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell-render — renders one frame of a scene of glass and opaque objects to PNG.
  * With no arguments: one glass sphere in the procedural environment, written
  * to snell.png. main reads as the pipeline: options -> context -> scene ->

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* trace_pixel.c — `snell-render --trace-pixel X,Y`: the reference light paths
  * of chosen pixels (snell_ref_trace_pixel; Unger 4.2.2) through the whole
  * scene (every glass and opaque object; paths may pass from one glass object

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kiosk.h — snell-kiosk's files and their one job each:
  *   snell_kiosk.c    main: options -> display -> GBM/EGL -> snell (EXTERNAL) -> frames -> teardown
  *   kiosk_options.c  the command line and --help
@@ -28,6 +29,8 @@ typedef struct kiosk_options {
     int hold;                  /* keep the last frame on screen until a signal */
     double report_s;           /* FPS report period, 0 = at the end only */
     int bench;
+    int vsync_off;             /* --vsync off: --bench draws offscreen, each frame ended by glFinish, not capped
+                                * by the refresh (default: page-flipped frames at vblank) */
     int warmup;
     const char *json;
     const char *preview;       /* --preview FILE: draw offscreen to this PNG, no display */

@@ -1,5 +1,9 @@
+/* SPDX-License-Identifier: MIT */
 /* kiosk_options.c — snell-kiosk's command line. */
 #include "kiosk.h"
+#include "bench.h"
+#include "cli_opts.h"
+#include "cli_system.h"
 
 #include <errno.h>
 #include <math.h>
@@ -28,21 +32,25 @@ static void usage(FILE *f)
             "  --budget MS         show mode: AUTO by frame budget (snell_frame_desc.budget_ms): each AUTO object\n"
             "                      drawn by the best configuration that holds MS a frame; the reports say which.\n"
             "                      Every configuration is built and timed first (snell_renderer_warm)\n"
-            "  --frames N          stop after N frames (default: run until SIGINT/SIGTERM; --bench: 60)\n"
+            "  --frames N          stop after N frames (default: run until SIGINT/SIGTERM; --bench: %d)\n"
             "  --hold              after the last frame keep it on screen until SIGINT/SIGTERM\n"
             "  --report S          print frames per second every S seconds (default 5; 0: at the end only)\n"
             "  --bench             time each -b configuration (default: every method on scene=bunny) for\n"
             "                      --warmup then --frames frames; glmark2-style lines, snell-bench's JSON\n"
+            "  --vsync on|off      --bench: on (default) times frames reaching the screen by page flips, capped\n"
+            "                      at the refresh rate; off draws them offscreen at the display's size, each\n"
+            "                      ended by glFinish, as snell-bench times (the JSON says which)\n"
             "  --warmup N          benchmark warm-up frames (default 5)\n"
             "  --json FILE         benchmark JSON (default snell-kiosk.json)\n"
             "  --config FILE       options from FILE, one a line as written here ('--spin 0.25', '-b SPEC');\n"
             "                      '#' starts a comment; options after --config override it\n"
             "  --preview FILE      no display: draw the configured scene's first frame offscreen at the\n"
             "                      --mode size (default 1920x1080) into the PNG FILE, after the same checks\n"
+            "  --version           the version and the commit it was built from\n"
             "  -h, --help          this text\n"
             "Exit status: 0, 1 on failure, 2 on bad usage, %d when the display went away while showing,\n"
             "%d when there is no DRM/KMS display (a service restarts on both: README \"As a kiosk\").\n",
-            KIOSK_EXIT_DISPLAY_LOST, KIOSK_EXIT_NO_DISPLAY);
+            BENCH_DEFAULT_FRAMES, KIOSK_EXIT_DISPLAY_LOST, KIOSK_EXIT_NO_DISPLAY);
 }
 
 static int parse_long(const char *opt, const char *v, long lo, long hi, long *out)
@@ -109,6 +117,10 @@ static int value_option(const char *a, const char *v, kiosk_options *o)
         o->json = v;
     } else if (!strcmp(a, "--preview")) {
         o->preview = v;
+    } else if (!strcmp(a, "--vsync")) {
+        if (strcmp(v, "on") && strcmp(v, "off"))
+            return fprintf(stderr, "snell-kiosk: --vsync %s: on or off\n", v), 0;
+        o->vsync_off = !strcmp(v, "off");
     } else {
         return -1;
     }
@@ -120,7 +132,7 @@ static int takes_value(const char *a)
 {
     static const char *const names[] = {"-b",       "--device", "--dri-dir", "--connector", "--mode",
                                         "--spin",   "--frames", "--report",  "--warmup",    "--json",
-                                        "--budget", "--preview"};
+                                        "--budget", "--preview", "--vsync"};
     size_t k;
     for (k = 0; k < sizeof names / sizeof *names; k++)
         if (!strcmp(a, names[k])) return 1;
@@ -216,31 +228,54 @@ static int read_config(const char *path, kiosk_options *o, int *spin_set)
 
 int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
 {
-    int i, spin_set = 0, used;
+    /* the long options by name; one_option takes each as a --config line would give it */
+    static const struct option longopts[] = {
+        {"device", required_argument, NULL, 256},  {"dri-dir", required_argument, NULL, 257},
+        {"connector", required_argument, NULL, 258}, {"mode", required_argument, NULL, 259},
+        {"spin", required_argument, NULL, 260},    {"frames", required_argument, NULL, 261},
+        {"report", required_argument, NULL, 262},  {"warmup", required_argument, NULL, 263},
+        {"json", required_argument, NULL, 264},    {"budget", required_argument, NULL, 265},
+        {"preview", required_argument, NULL, 266}, {"vsync", required_argument, NULL, 267},
+        {"config", required_argument, NULL, 268},  {"hold", no_argument, NULL, 269},
+        {"bench", no_argument, NULL, 270},         {"atomic", no_argument, NULL, 271},
+        {"version", no_argument, NULL, 272},       {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0}};
+    int c, spin_set = 0, used;
     memset(o, 0, sizeof *o);
     o->spin_deg = 0.5f;
     o->report_s = 5.0;
     o->warmup = 5;
     o->json = "snell-kiosk.json";
-    for (i = 1; i < argc; i++) /* --help wherever it is */
-        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            usage(stdout);
+    if (cli_wants_help(argc, argv)) { /* --help wherever it is */
+        usage(stdout);
+        return -1;
+    }
+    cli_opts_reset();
+    while ((c = cli_getopt("snell-kiosk", "--help", argc, argv, "b:h", longopts)) != -1) {
+        char name[32];
+        if (c == '?') return 0;
+        if (c == 272) {
+            cli_print_version("snell-kiosk");
             return -1;
         }
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--config")) {
-            if (!v) return fprintf(stderr, "snell-kiosk: --config needs a value; see --help\n"), 0;
-            if (!read_config(v, o, &spin_set)) return 0;
-            i++;
-        } else if (!one_option(a, v, 0, o, &spin_set, &used)) {
+        if (c >= 256) snprintf(name, sizeof name, "--%s", longopts[c - 256].name);
+        else snprintf(name, sizeof name, "-%c", c);
+        if (c == 268) {
+            if (!read_config(optarg, o, &spin_set)) return 0;
+        } else if (!one_option(name, optarg, 0, o, &spin_set, &used)) {
             return 0;
-        } else {
-            i += used;
         }
     }
+    if (optind < argc) {
+        fprintf(stderr, "snell-kiosk: unexpected argument '%s'; see --help\n", argv[optind]);
+        return 0;
+    }
     if (o->bench && !spin_set) o->spin_deg = 0.0f; /* timed frames of one view, as snell-bench times them */
-    if (o->bench && !o->frames) o->frames = 60;
+    if (o->bench && !o->frames) o->frames = BENCH_DEFAULT_FRAMES; /* p99 and the 1% low a frame of their own */
+    if (o->vsync_off && !o->bench) {
+        fprintf(stderr, "snell-kiosk: --vsync off times --bench offscreen; the kiosk shows frames at vblank\n");
+        return 0;
+    }
     if (!o->bench && o->spec_count > 1) {
         fprintf(stderr, "snell-kiosk: one -b shows one configuration; several need --bench\n");
         return 0;

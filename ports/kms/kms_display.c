@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kms_display.c — the DRM card, connector, mode and CRTC snell-kiosk drives,
  * framebuffers, modeset, legacy page flips, restore (kms_display.h). What is
  * chosen is decided by kms_select.c; this file only reads the card into its

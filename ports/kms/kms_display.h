@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kms_display.h — snell-kiosk's DRM side (libdrm): the card, connector, mode
  * and CRTC it drives (chosen by kms_select.c from what the card reports), the
  * primary plane's formats and modifiers, the CRTC as it was before (restored

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kms_flip.c — the page-flip state machine (kms_flip.h). */
 #include "kms_flip.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kms_flip.h — snell-kiosk's page-flip state machine, with no DRM in it: the
  * buffer on screen, the one queued for the next vblank, what submitting a new
  * one takes (a modeset for the first, a page flip after, a wait while one is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kms_gpu.c — GBM device and surface, EGL on them, framebuffers of buffer
  * objects (kms_gpu.h). The format/config choice is kms_pick_config's. */
 #include "kms_gpu.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kms_gpu.h — snell-kiosk's rendering side: a GBM device on the display's
  * card, a scanout surface in the first of XRGB8888/ARGB8888 that the primary
  * plane takes and an EGL config has as native visual id, allocated with the

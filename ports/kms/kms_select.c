@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kms_select.c — which card, connector, mode, CRTC and format snell-kiosk
  * drives (kms_select.h); no libdrm here, the kiosk fills the structs. */
 #include "kms_select.h"

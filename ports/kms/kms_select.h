@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kms_select.h — snell-kiosk's choices as plain functions on plain data (no
  * libdrm, so they are unit-tested on made-up resources): the card, the
  * connector, the mode (preferred or --mode WxH@R), the CRTC, and the GBM

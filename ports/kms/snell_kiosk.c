@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* snell-kiosk — refractive glass full screen on a DRM/KMS display (issue 16).
  *
  * kmscube's pipeline: open the display (card, connector, mode, CRTC), make a
@@ -12,6 +13,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bench.h"
 #include "cli_scene.h"
+#include "cli_system.h"
 #include "cli_time.h"
 #include "kiosk.h"
 #include "kms_flip.h"
@@ -259,6 +261,8 @@ static int show(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_conf
     return ok;
 }
 
+static int bench_done(bench_config *c, int ok, const char *msg, const snell_frame_stats *stats, int opaque_count);
+
 /* One benchmark configuration: warm-up, then timed frames; c gets the
  * times and a glmark2-style line is printed. */
 static int bench_one(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_config *c, const kiosk_options *o)
@@ -268,7 +272,7 @@ static int bench_one(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_confi
     snell_frame_desc fd;
     snell_frame_stats stats;
     long i;
-    int ok = open_config(k, ctx, env, c, &r, glass, &fd), g;
+    int ok = open_config(k, ctx, env, c, &r, glass, &fd);
     memset(&stats, 0, sizeof stats);
     k->record = 0;
     for (i = 0; ok && !g_stop && i < o->warmup + o->frames; i++) {
@@ -279,19 +283,58 @@ static int bench_one(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_confi
     ok = ok && wait_for_flip(k) && !g_stop;
     k->record = 0;
     snell_renderer_destroy(r);
+    if (ok && (k->interval_count < 1 || k->interval_count > MAX_INTERVALS ||
+               !bench_frame_times(c, k->intervals, (int)k->interval_count)))
+        ok = 0, snprintf(k->msg, sizeof k->msg, "%ld frame intervals recorded: want 1..%d", k->interval_count,
+                         MAX_INTERVALS);
+    return bench_done(c, ok, k->msg, &stats, fd.opaque_count);
+}
+
+/* --vsync off: one benchmark configuration drawn offscreen at the display's
+ * size, each frame snell_render + snell_renderer_finish (glFinish) on the CPU
+ * clock, as snell-bench times: what the GPU does when no refresh caps it.
+ * Nothing reaches the screen. */
+static int bench_offscreen(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_config *c, const kiosk_options *o)
+{
+    snell_renderer *r = NULL;
+    snell_glass glass[SNELL_MAX_GLASS];
+    snell_frame_desc fd;
+    snell_frame_stats stats;
+    double *ms = (double *)malloc(sizeof(double) * (size_t)o->frames);
+    long i;
+    int ok = ms && scene_open(ctx, env, c, k->gpu.width, k->gpu.height, SNELL_TARGET_OFFSCREEN, &r, glass, &fd,
+                              k->msg, sizeof k->msg);
+    if (!ms) snprintf(k->msg, sizeof k->msg, "out of memory for %ld frame times", o->frames);
+    memset(&stats, 0, sizeof stats);
+    for (i = 0; ok && !g_stop && i < o->warmup + o->frames; i++) {
+        double t0 = cli_now_ms();
+        fd.camera.azimuth = (float)((c->cam[0] + (double)i * o->spin_deg) * PI / 180.0);
+        if (snell_render(r, &fd, &stats) != SNELL_OK)
+            ok = 0, snprintf(k->msg, sizeof k->msg, "snell_render: %s", snell_last_error(ctx));
+        snell_renderer_finish(r);
+        if (i >= o->warmup) ms[i - o->warmup] = cli_now_ms() - t0;
+    }
+    snell_renderer_destroy(r);
+    ok = ok && !g_stop && bench_frame_times(c, ms, (int)o->frames);
+    free(ms);
+    return bench_done(c, ok, k->msg, &stats, fd.opaque_count);
+}
+
+/* The end of one benchmark configuration: c's fields, and the glmark2-style line. */
+static int bench_done(bench_config *c, int ok, const char *msg, const snell_frame_stats *stats, int opaque_count)
+{
+    int g;
     if (!ok) {
-        snprintf(c->error, sizeof c->error, "%.200s", g_stop ? "interrupted" : k->msg);
+        snprintf(c->error, sizeof c->error, "%.200s", g_stop ? "interrupted" : msg);
         c->ok = 0;
         return 0;
     }
     c->ok = 1;
-    c->frames = (int)k->interval_count;
-    c->t_median = interval_median(k, &c->t_min, &c->t_max);
     c->gpu_median = c->vs_single = -1.0;
     c->encoding = "none"; /* no exit directions: times only */
-    c->glass_objects = stats.glass_count;
-    c->opaque_objects = fd.opaque_count;
-    for (g = 0; g < stats.glass_count; g++) c->warnings += stats.glass[g].warning;
+    c->glass_objects = stats->glass_count;
+    c->opaque_objects = opaque_count;
+    for (g = 0; g < stats->glass_count; g++) c->warnings += stats->glass[g].warning;
     /* glmark2: "[scene] options: FPS: n FrameTime: t ms" */
     printf("[%s] %s: FPS: %.0f FrameTime: %.3f ms\n", c->method->name, c->spec + strlen(c->method->name) + 1,
            1000.0 / c->t_median, c->t_median);
@@ -340,14 +383,16 @@ static int bench(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_config *c
     char load_before[64], load_after[64], date[64];
     time_t now = time(NULL);
     bench_run_info run;
+    cli_system sys;
     double fps_sum = 0.0;
     int i, done = 0, ok = 1;
     cli_loadavg(load_before, sizeof load_before);
     strftime(date, sizeof date, "%Y-%m-%d %H:%M", localtime(&now));
-    printf("snell-kiosk: %d configuration(s) on %s at %dx%d, %d warm-up + %ld timed frames each; load %s\n", n,
-           snell_ctx_gl_renderer(ctx), k->gpu.width, k->gpu.height, o->warmup, o->frames, load_before);
+    printf("snell-kiosk: %d configuration(s) on %s at %dx%d, %d warm-up + %ld timed frames each, vsync %s; load %s\n",
+           n, snell_ctx_gl_renderer(ctx), k->gpu.width, k->gpu.height, o->warmup, o->frames,
+           o->vsync_off ? "off (offscreen)" : "on (page flips)", load_before);
     for (i = 0; i < n && !g_stop; i++) {
-        if (bench_one(k, ctx, env, &cs[i], o))
+        if (o->vsync_off ? bench_offscreen(k, ctx, env, &cs[i], o) : bench_one(k, ctx, env, &cs[i], o))
             fps_sum += 1000.0 / cs[i].t_median, done++;
         else
             fprintf(stderr, "snell-kiosk: %s FAILED: %s\n", cs[i].spec, cs[i].error), ok = 0;
@@ -356,10 +401,17 @@ static int bench(kiosk *k, snell_ctx *ctx, const snell_env *env, bench_config *c
     memset(&run, 0, sizeof run);
     run.tool = "snell-kiosk";
     run.no_errors = 1;
-    run.timing = "median frame interval after warm-up: time between successive frames reaching the screen (the "
-                 "kernel's vblank time stamps of the page-flip events); each frame = snell_render into the window "
-                 "surface + eglSwapBuffers + a page flip at vblank, the next frame rendered while the flip waits; "
-                 "no error measurement (the vs_* fields are null)";
+    run.timing = o->vsync_off
+                     ? "frames after warm-up drawn offscreen at the display's size, each = snell_render + glFinish "
+                       "(CPU wall clock), nothing shown; no error measurement (the vs_* fields are null)"
+                     : "frame intervals after warm-up: time between successive frames reaching the screen (the "
+                       "kernel's vblank time stamps of the page-flip events); each frame = snell_render into the "
+                       "window surface + eglSwapBuffers + a page flip at vblank, the next frame rendered while the "
+                       "flip waits; no error measurement (the vs_* fields are null)";
+    run.vsync = o->vsync_off ? "off: offscreen frames at the display's size, each ended by glFinish"
+                             : "on: page-flipped at vblank, capped at the refresh rate";
+    cli_system_read(&sys);
+    run.system = &sys;
     run.renderer = snell_ctx_gl_renderer(ctx);
     run.date = date;
     run.load_before = load_before;
@@ -563,6 +615,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "snell-kiosk: the display went away (connector %u on %s); exit %d for a restart\n",
                 k.disp.connector_id, k.disp.path, KIOSK_EXIT_DISPLAY_LOST);
 done:
+    bench_configs_free(cs, n);
     bench_scene_release_all();
     snell_env_destroy(env);
     snell_ctx_destroy(ctx);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // backdrop.glsl - the host's scene behind the glass (snell_frame_desc.backdrop,
 // render/backdrop.h): what a ray that leaves the glass sees of what the host
 // drew, before the environment (beyond.glsl's beyond_miss).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // beyond.glsl - what a ray sees once it leaves the kernel's glass object.
 // snell_exit(p, dir): the light arriving back along the ray that leaves the
 // object at p in direction dir. Without SNELL_BEYOND, the environment. With
@@ -43,9 +44,8 @@
 // snell_reflection(p, r): the same for the mirror ray r off the kernel's
 // object at its front surface p (every kernel's reflection): marched
 // through the layers it sees the other objects (with the environment alone,
-// silhouettes that reflect most missed the opaque objects behind them:
-// three_glass_two_opaque, peel, 256x256 aa 2, opaque class 36.0 dB against
-// 41.3 with no layers and a dynamic environment; marched, 45.6).
+// silhouettes that reflect most missed the opaque objects behind them;
+// bench/notes/code.md, "beyond.glsl").
 //
 // SNELL_WATER (the frame has a water surface, common/water.glsl): past the
 // objects the ray meets the water and its container before the
@@ -107,8 +107,8 @@ vec3 beyond_miss(highp vec3 o, highp vec3 dir)
 #ifdef SNELL_BEYOND
 #define BEYOND_MAX_LAYERS 8         // SNELL_MAX_SCENE_LAYERS
 #define BEYOND_MAX_INTERFACES 8
-#define BEYOND_LINEAR 32          // per bounding diameter: three_glass_two_opaque at 256x256, peel, glass dB vs FULL: 16: 19.5, 32: 22.0, 48: 22.4, 64: 22.5
-#define BEYOND_BINARY 6           // 8: the same to 0.01 dB
+#define BEYOND_LINEAR 32          // per bounding diameter: where more steps stop paying (bench/notes/code.md, "beyond.glsl")
+#define BEYOND_BINARY 6           // more changes nothing visible (bench/notes/code.md, "beyond.glsl")
 #define BEYOND_OPAQUE_ID0 33        // SNELL__LAYERS_OPAQUE_ID0
 #define BEYOND_UNKNOWN (-2)
 
@@ -174,9 +174,8 @@ bool beyond_thin(int id)
 // cur's surfaces is missing at this pixel: seen edge-on, or rasterised into
 // the neighbour), another enters one (objects are disjoint or nested, two
 // deep at most). This agrees with counting each object's surfaces' parity
-// (measured: the same 23.95 dB on three_glass_two_opaque, peel, 256x256,
-// against the whole-scene FULL) without an array of ids; without the
-// middle rule, a missing surface swapped two objects (22.0 dB).
+// without an array of ids; without the middle rule, a missing surface swapped
+// two objects (bench/notes/code.md, "beyond.glsl").
 #define BEYOND_THIN_ODD 256
 int beyond_medium(highp vec3 p, int excl)
 {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // bvh.glsl - closest-hit traversal of a mesh's BVH texture (methods/exact.c
 // builds and packs it, once per mesh version, in the prepared cache), shared
 // by exact.frag (eye rays) and caustics_photon.vert (photons from the light).

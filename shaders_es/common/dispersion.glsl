@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // dispersion.glsl - a glass kernel with a dispersive material (the
 // material's per-channel IORs u_ior_rgb, render/material.c: red at 656.3 nm,
 // green = u_ior, blue at 486.1 nm). The kernel's main() is its trace for one

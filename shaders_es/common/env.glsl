@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // env.glsl - the environment's radiance along a direction (Unger 2.2.2: a
 // cubemap indexed by direction only, the light from infinitely far). Every
 // kernel looks the environment up through snell_env, so that another

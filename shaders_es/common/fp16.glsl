@@ -1,4 +1,5 @@
-// fp16.glsl - mediump study (issue 3). Shaders declare what a GPU with real
+// SPDX-License-Identifier: MIT
+// fp16.glsl - mediump study. Shaders declare what a GPU with real
 // fp16 holds at mediump as SNELL_MEDIUMP, which the context's precision policy
 // makes highp on llvmpipe (it emulates fp16 mediump in software, slower than
 // highp; core/program.c). A build with SNELL_FP16_EMULATION sets the policy

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // opaque_lit.glsl - the irradiance of an opaque surface point under the
 // frame's light (the caustics stage, render/caustics.c): the direct light
 // (directional: colour * cosine; spot: intensity * cosine / distance^2
@@ -57,12 +58,9 @@ highp vec3 snell_lit_irradiance(highp vec3 p, highp vec3 n)
         // direct: the shadow map at the point moved half a texel along its
         // normal, its depth compared less a slope-scaled bias (the surface's
         // depth changes by tw tan(theta) over a texel, 1.5 of them for the 2 x 2
-        // filter; tan at most 8) against self-shadowing. test_caustics_opaque,
-        // directional / spot / grazing: this 33.3 / 35.9 / 39.6 dB; the normal
-        // move alone of 1.5 texels 31.5 / 33.7 / -, 1: 32.6 / 34.9 / -, 0.5:
-        // 33.3 / 35.9 / 33.3 (and acne on three_glass_two_opaque's wall at cos
-        // 0.42), 0.25: 30.8 / 36.3 / -; a move of tw tan / cos (at most 4
-        // texels) instead of the bias 33.1 / 35.9 / 30.1 (the shadow's edges move)
+        // filter; tan at most 8) against self-shadowing: a normal move alone
+        // leaves acne on walls at grazing light, and a larger move shifts the
+        // shadow's edges (test_caustics_opaque; bench/notes/code.md, "opaque_lit.glsl")
         highp vec3 so = light_frame(p + n * 0.5 * tw);
         highp float n_ = u_recv_lin.x, f_ = u_recv_lin.y;
         highp float slope = 1.5 * tw * min(8.0, sqrt(max(0.0, 1.0 - cosl * cosl)) / cosl);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // output.glsl - what a glass kernel (and the skybox) writes: the colour, or
 // for error measurement the final direction of the light path, either as
 // floats (RGBA32F target) or packed octahedrally into RGBA8 (pack.glsl).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pack.glsl - GLSL twin of src/pack.h: octahedral unit vectors and 16-bit
 // values split over two 8-bit channels of an RGBA8 target. Needs highp for
 // the 16-bit split.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // paraboloid_view.glsl - an opaque object's fragments drawn straight into a
 // dual-paraboloid map of a dynamic environment (SNELL_PARABOLOID_VIEW,
 // opaque_paraboloid.vert), lit or not (opaque.frag, caustics_opaque.frag):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // peel_depth.glsl - the test of a depth peel (Everitt; Wang 2014 3.4) shared by
 // the passes that peel: depth_peel.frag (the peel kernel, the scene layers)
 // and layered_bake.frag (the layered method's cube layers). A depth in [0,1]

@@ -1,4 +1,5 @@
-// receiver.glsl - the receiver plane (issue 27: snell_frame_desc.receiver)
+// SPDX-License-Identifier: MIT
+// receiver.glsl - the receiver plane (snell_frame_desc.receiver)
 // lit by the caustics stage's light map, as the view sees it
 // (caustics_receiver.frag) and as the glass sees it along its exit and
 // reflected rays (common/beyond.glsl, SNELL_RECEIVER): albedo times the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // surface.glsl - the front surface a glass kernel shades: world position and
 // (unnormalised) normal. Forward: the interpolated vertex outputs of
 // object.vert. SNELL_SCREEN_SPACE: fetched from the G-buffer that the

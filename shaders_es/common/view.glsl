@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The view ray at a world point p, as the frame's projection makes it: from
 // the eye through p (perspective), or the camera's axis at every point
 // (orthographic: u_view_axis.w = 1). frame/camera.c resolves the camera.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water.glsl - the water and its container as something a ray meets (issue
 // 17; GLSL twin of src/ref/ref_water.c): included by beyond.glsl under
 // SNELL_WATER, which every kernel's exit look-up and the water surface's own

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // water_tiles.glsl - the container's procedural tiles (GLSL twin of
 // snell__water_tile, src/water/water_sim.c): squares of side u_water_tile_size from
 // the container's corner, a checker of two colours with grout lines 5% of a

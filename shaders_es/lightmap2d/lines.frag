@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // lines.frag - additive line fragment. With a fixed-point target (u_quant > 0,
 // the fallback without float colour buffers) the value is rounded stochastically
 // to a multiple of 1/u_quant so the blended sum stays unbiased (values far below

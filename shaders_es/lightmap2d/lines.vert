@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // lines.vert - light path segments as GL_LINES (Brueckner 6.5.1). Positions in
 // lightmap pixels (x right, y down); colour = flux x flux correction (eq. 6.4),
 // already scaled on the CPU.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 /* core.c — allocator plumbing, status names, error/log reporting, the clock. */
 #include "core/core.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* core.h — allocation through the user's allocator and error reporting.
  * Every module reports failures with snell__fail(), which records the message
  * on the context (or thread-locally when there is none) and returns the status. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ctx.c — context creation over the platform backends, GL capability probing
  * and KHR_debug forwarding to the log callback. */
 #include "core/ctx.h"

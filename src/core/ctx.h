@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ctx.h — the context: allocator, logging, the platform backend that owns (or
  * borrows) the EGL context, GL capabilities probed once, and saved GL state. */
 #ifndef SNELL_CTX_H

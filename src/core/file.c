@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #define _POSIX_C_SOURCE 200809L /* fdopen, O_CLOEXEC */
 /* file.c — opening an input file for a loader: regular files only, and never
  * blocking in open() on a FIFO or a device. */

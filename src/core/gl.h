@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gl.h — the one place GLES headers are included. The library targets
  * OpenGL ES 3.0 core; everything newer is an extension probed by name. */
 #ifndef SNELL_GL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glstate.c — save/restore of every piece of GL state snell's per-frame calls
  * may change or its output depends on. Saved only with the EXTERNAL backend:
  * glGet* can stall a real driver's pipeline, so an owned context skips it.

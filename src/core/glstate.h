@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glstate.h — snapshot and restore of the GL state the renderer touches, so
  * the library can draw inside a host application's context (EXTERNAL backend). */
 #ifndef SNELL_GLSTATE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* image.c — PNG/HDR input and PNG output through stb (libstb-dev headers).
  * The stb implementations are compiled here with static linkage so they never
  * clash with a host application's own copy of stb. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* optics.h — the optics kernel shared by every method and the references:
  * Snell refraction with total internal reflection, mirror reflection, Schlick
  * and exact (unpolarised dielectric) Fresnel and Beer-Lambert attenuation

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pack.h — the C twin of shaders_es/common/pack.glsl: unit directions in
  * octahedral form (Cigolle et al. 2014) and values in [0,1] split across
  * 8-bit channels, so tests know exactly what a packed RGBA8 texel holds. */

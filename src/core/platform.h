@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* platform.h — the small interface each EGL backend implements
  * (platform_surfaceless.c, platform_pbuffer.c, platform_external.c).
  * To add a backend: write platform_xxx.c with an open function filling the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* platform_egl.c — EGL code shared by the surfaceless and pbuffer backends:
  * extension checks, platform displays, config choice and ES 3.0 context creation. */
 #include "core/ctx.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* platform_external.c — borrow the caller's current GLES 3.x context. Nothing
  * is created or destroyed; the renderer saves and restores the GL state it
  * touches (glstate.c) so the host's render loop is unaffected. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* platform_pbuffer.c — a 1x1 pbuffer surface on the first display that
  * initialises: EGL_EXT_platform_device (NVIDIA and Mesa headless), then the
  * default display (Android, Raspberry Pi), then Mesa's surfaceless platform. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* platform_surfaceless.c — headless EGL without any window system:
  * EGL_MESA_platform_surfaceless display, EGL_KHR_surfaceless_context when
  * available, else a 1x1 pbuffer on the same display. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* program.c — shader assembly (#include of embedded chunks), compile, link,
  * with the info log carried into the error message. */
 #include "core/program.h"
@@ -147,8 +148,8 @@ static int expand(snell_ctx *ctx, text_buf *b, const char *src, const char **see
  * NULL on failure, with *st set (SNELL_E_GL for a bad #include, SNELL_E_NOMEM). */
 /* The precision policy (DESIGN.md "Shaders"): SNELL_MEDIUMP is what shaders
  * write for values a GPU with real fp16 holds at mediump. Software
- * rasterisers emulate fp16 for mediump (llvmpipe: 2.3x slower than highp for
- * single.frag full screen, bench/BENCHMARKS.md), and a driver whose mediump
+ * rasterisers emulate fp16 for mediump (llvmpipe: slower than highp,
+ * bench/BENCHMARKS.md), and a driver whose mediump
  * is as precise as highp gains nothing from it: both get highp. */
 static int fragment_mediump(snell_ctx *ctx)
 {

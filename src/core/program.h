@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* program.h — builds GL programs from the embedded shaders_es/ sources.
  * A source may contain lines `#include "common/x.glsl"`; each chunk is pasted
  * once. The builder prepends `#version 300 es` and the caller's defines, and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* shaders_embedded.h — the table of GLSL sources under shaders_es/, generated
  * into the build tree at build time by cmake/embed_shaders.cmake. */
 #ifndef SNELL_SHADERS_EMBEDDED_H

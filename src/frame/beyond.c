@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* beyond.c — see beyond.h. */
 #include "frame/beyond.h"
 #include "core/gl.h"

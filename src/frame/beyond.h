@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* beyond.h — the GPU side of the seam "what a ray sees past its object":
  * the uniforms of common/beyond.glsl's march through the frame's scene
  * layers (drawn by render/layers.c), which every kernel's exit rays and the

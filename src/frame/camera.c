@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* camera.c — the camera shared by the renderer, the references and the
  * CLI: an orbit (eye on a sphere around the target, +Y up) or the host's
  * matrices, GL clip conventions. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* camera.h — validation of an orbit camera (snell_camera), shared by the
  * renderer and the reference tracer so both refuse the same values, and of
  * model matrices. */

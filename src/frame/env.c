@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* env.c — environments: the built-in procedural sky/floor, six face images or
  * one equirectangular image, all turned into six RGBA8 faces kept on the CPU
  * (so references sample exactly the GPU's texels) and a GL cubemap. */

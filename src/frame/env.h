@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* env.h — environment: six RGBA8 cube faces on the CPU (the exact texels the
  * GPU samples) and the GL cubemap made from them. */
 #ifndef SNELL_ENV_H

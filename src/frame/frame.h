@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* frame.h — the frame contract every pass of a frame reads: what the
  * shaders write, the frame's view (camera, target, and what the stages made
  * for the kernels: back-face maps, scene layers, water) and one glass object

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glass_program.c — build and bind a kernel's program; shared uniforms. */
 #include "frame/glass_program.h"
 #include "core/gl.h"

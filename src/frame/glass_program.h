@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glass_program.h — a glass kernel's GL program (object.vert + the kernel's
  * fragment shader), the uniforms every kernel shares, and drawing the object. */
 #ifndef SNELL_GLASS_PROGRAM_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lighting.c — see lighting.h. */
 #include "frame/lighting.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lighting.h — the light's and the receiver's defaults, resolved once for
  * the renderer (snell_frame_defaults) and the reference tracer alike: a
  * light's colour (all zero = 1), spot angle and photons; a receiver's albedo

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* material.c — the one resolve step of a glass material (sokol's _sg_def):
  * zero fields become their documented defaults, every method's nested
  * parameters are resolved by the method's own table (methods/registry.c),
@@ -69,8 +70,8 @@ snell_status snell__glass_resolve(const snell_glass_material *in, int object, sn
     /* A thin wall sends light on parallel to how it came: no angular spread to show. */
     out->disperses = m.dispersion > 0.0f && m.thickness == 0.0f;
     snell_opt_ior_rgb(m.ior, out->disperses ? m.dispersion : 0.0f, out->ior_rgb);
-    /* one path: within 0.4 dB of three traces on every kernel measured, for a
-     * 1.1-2.2x cheaper frame where the kernel searches (BENCHMARKS.md, "Dispersion") */
+    /* one path: nearly as accurate as three traces on every kernel, for a
+     * cheaper frame where the kernel searches (BENCHMARKS.md, "Dispersion") */
     if (m.dispersion_model == SNELL_DISPERSION_AUTO) m.dispersion_model = SNELL_DISPERSION_ONE_PATH;
     out->material = m;
     return SNELL_OK;

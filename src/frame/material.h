@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* material.h — resolving a glass material (material.c): defaults, validation
  * and the derived absorption, for the renderer and the reference tracer. */
 #ifndef SNELL_MATERIAL_H

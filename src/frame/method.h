@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* method.h — the method seam: a refraction kernel (src/methods/, one file
  * each) is a registry entry (methods/registry.c) with its public
  * description, its parameters, an adequacy test on the analysed mesh, and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ndcube.c — bake the normal+distance cubemap (Unger 4.1, Li et al. 2007):
  * 6 passes (one per face) of the mesh from the centre with depth test GREATER
  * and culling off, so the farthest surface wins; see ndcube.h. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ndcube.h — the normal+distance cubemap of Li et al. as in Unger 4.1: per
  * direction from a centre inside the mesh, the farthest surface's normal and
  * distance packed into RGBA8 (pack.h), baked in 6 passes (GLES 3.0 has no

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pass.c — see pass.h. The state saved is what passes change and what the
  * frame around them relies on. Not the program: every draw binds its own,
  * and the current one may be a deleted program kept alive only by being

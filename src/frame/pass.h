@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pass.h — offscreen passes: begin binds a framebuffer, sets the viewport,
  * depth state and clears; end puts back what begin changed, so kernels that
  * render extra passes (cube bakes, dynamic environments, back faces, peels)

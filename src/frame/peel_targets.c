@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* peel_targets.c — see peel_targets.h. */
 #include "frame/peel_targets.h"
 #include "core/ctx.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* peel_targets.h — the targets of a depth peel (Everitt; Wang 2014 3.4) and
  * the per-layer set-up, shared by the peel kernel (methods/peel.c: one
  * object's layers) and the scene layers (render/layers.c: every object's):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* stage.h — the stage seam: a frame is the entries of one table
  * (render/stages.c) run in order, each with whether this frame wants it,
  * what it draws, and what it adds to every glass kernel's program (the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* textures.c — see textures.h. */
 #include "frame/textures.h"
 #include "core/ctx.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* textures.h — texture units bound per program, by sampler name. A program's
  * samplers get units 0..n-1, once, when it is linked (snell__samplers_assign);
  * whoever made a texture publishes it under the name of the sampler that reads

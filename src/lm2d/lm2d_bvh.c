@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_bvh.c — perimeter-SAH BVH over 2D edges and its nearest-first traversal
  * (Brückner 6.3, 6.4.1.1-6.4.1.4). */
 #include "lm2d/lm2d_bvh.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_bvh.h — binary BVH over 2D edges: full-sweep SAH with the perimeter as
  * the hit-probability measure (Brückner 6.3), nodes in one array, and the
  * nearest-first stack traversal (Algorithm 4) with float-error-expanded slabs (6.4.1.4). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_contour.c — image -> polygon without OpenCV (Brückner A.5): marching
  * squares on the alpha channel (sub-pixel by linear interpolation), the
  * longest closed contour, Ramer-Douglas-Peucker simplification, CSV output. */
@@ -39,12 +40,10 @@ static void edge_point(const grid *g, int id, float p[2])
  * Each split scans its chain, so a chain that splits off a little at a time
  * costs up to (points)^2. Blobs need ~log2 of the points kept per point
  * (4096^2 images: a disc 13, a 12-lobed flower 16, a 40-pointed star 28); a
- * spiral outline needs ~(its turns) per point and grows with the image
- * (turns 6 px apart: 1024^2 176 per point, 4096^2 12.6 s, as pixels^1.4).
- * Past the bound (128 per point, 4.5x the star's) the chains still waiting
- * keep all their points (the outline stays exact, only less simplified:
- * the 4096^2 spiral keeps 5.3M of its 5.6M points, 3.6 s) and a warning says
- * so (issue 26). */
+ * spiral outline needs ~(its turns) per point and grows with the image.
+ * Past the bound (128 per point, several times a star's) the chains still
+ * waiting keep all their points (the outline stays exact, only less
+ * simplified) and a warning says so (bench/notes/code.md, "lm2d_contour.c"). */
 #define RDP_WORK_BASE 16777216.0 /* 2^24 */
 #define RDP_WORK_PER_POINT 128.0
 

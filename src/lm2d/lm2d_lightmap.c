@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_lightmap.c — the public lightmap object: decides per frame what must be
  * traced (changed lights, lights whose paths a moved object can touch, or one
  * more progressive pass), runs the tracer on the pool and rasterises (GL lines,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_raster.c — GL_LINES rasterisation of light paths into the lightmap
  * accumulation texture (Brückner 6.5), with saved/restored GL state. */
 #include "lm2d/lm2d_raster.h"

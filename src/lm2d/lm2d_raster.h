@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_raster.h — GLES rasteriser of light paths: additive GL_LINES with the
  * slope flux correction (Brückner 6.5.2.2, eq. 6.4) into a float (or, as a
  * fallback, stochastically rounded fixed-point) accumulation texture. */

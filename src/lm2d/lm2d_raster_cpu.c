@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_raster_cpu.c — exact length-weighted rasterisation of path segments
  * (eq. 4.2) in pixel space, threaded over row bands.
  *

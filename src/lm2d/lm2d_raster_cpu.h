@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_raster_cpu.h — the exact CPU rasteriser of light paths (Brückner eq. 4.2):
  * every pixel receives the flux integrated along the part of each segment
  * inside it, length in pixel widths; threaded over row bands, bitwise the same
@@ -13,9 +14,9 @@ typedef struct lm2d_raster_view {
 } lm2d_raster_view;
 
 /* Rows per band: the unit of work a thread takes (17 bands at 1080p). A segment
- * costs a walk in every band it crosses: at 1080p (86129 paths) 16 rows took
- * about 1.6x, 32 rows 1.2x the CPU time of 64, and 128 rows 0.9x (but only 9
- * bands to share between threads). The result does not depend on it. */
+ * costs a walk in every band it crosses, so narrower bands cost more CPU time
+ * and wider ones leave fewer bands to share between threads
+ * (bench/notes/code.md, "lm2d_raster_cpu.h"). The result does not depend on it. */
 #ifndef LM2D_RASTER_BAND
 #define LM2D_RASTER_BAND 64
 #endif

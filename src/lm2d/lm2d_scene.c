@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #define _XOPEN_SOURCE 700 /* realpath */
 /* lm2d_scene.c — 2D scene objects, lights, CSV polygons and the text scene
  * format; flattening into one edge array with normals (Brückner 6.2.1-6.2.2). */
@@ -19,7 +20,7 @@
  * line of a few bytes reads a CSV of up to LM2D_MAX_POINTS points (64 MiB),
  * so without it a scene file's cost would not be bounded by its own size: a
  * 20 KB file naming one 1M-point CSV a thousand times would parse 2e9 bytes
- * and hold 8 GB of points (issue 26). Beyond it: SNELL_E_LIMIT, after at most
+ * and hold 8 GB of points. Beyond it: SNELL_E_LIMIT, after at most
  * one CSV more than the bound. */
 #define LM2D_MAX_SCENE_POINTS (4 * LM2D_MAX_POINTS)
 #define LM2D_MAX_RAYS 100000000

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_scene.h — the 2D scene: polygon objects with BSDF parameters, lights,
  * the flattened edge array with edge and point normals (Brückner 6.2), and the
  * change tracking that lets the lightmap re-trace only what changed. */

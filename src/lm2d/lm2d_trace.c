@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_trace.c — light tracing through the 2D scene (Brückner 6.4, 6.2.1.2)
  * with per-ray deterministic RNG, Russian roulette and energy bookkeeping. */
 #define _POSIX_C_SOURCE 200809L

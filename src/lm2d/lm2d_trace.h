@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lm2d_trace.h — the CPU light tracer (Brückner 6.4): rays from lights through
  * mirror/diffuse BRDF, Fresnel refraction and attenuated interior paths, into
  * preallocated path segments; plus the small pthread pool that runs it. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh/bvh.c — double-precision triangle BVH: binned SAH build (32 bins per
  * axis over centroid bounds), depth-first flattened nodes with adjacent
  * children, near-first stack traversal, watertight ray-triangle test

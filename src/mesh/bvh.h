@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bvh.h — 3D triangle BVH in double precision (world space): binned SAH
  * build over one or several parts (meshes, each with its model matrix),
  * flattened node array, watertight ray-triangle test, closest/any hit with an

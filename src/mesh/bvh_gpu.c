@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bvh_gpu.c — the triangle BVH on the GPU (see bvh_gpu.h): the reference
  * tracer's SAH build (bvh.c, object space) flattened into depth-first order
  * with an escape index per node (so a shader can walk it near-first with a

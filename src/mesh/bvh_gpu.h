@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bvh_gpu.h — the triangle BVH as a GPU texture, a mesh-level resource:
  * made on the first ask per node format (snell_exact_nodes), refitted when
  * the mesh's vertices move (a new version, the same triangles), freed with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh.c — mesh objects from arrays: validation, smooth normals, bounds,
  * normalisation, GPU upload. Loaders live in mesh_obj.c / mesh_gltf.cpp and
  * procedural shapes in mesh_shapes.c; all of them end in snell__mesh_adopt. */

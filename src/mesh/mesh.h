@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh.h — the mesh object: CPU geometry (positions, unit smooth normals,
  * triangle indices, bounds), its cached analysis and lazily created GPU buffers. */
 #ifndef SNELL_MESH_H

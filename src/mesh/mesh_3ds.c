@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh_3ds.c — glmark2's model formats: Autodesk .3ds (the triangle-mesh
  * chunks only) and glmark2's .jobj text. Both parse a buffer that need not be
  * NUL-terminated and never read past it; a malformed file is refused with

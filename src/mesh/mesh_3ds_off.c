@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh_3ds_off.c — glmark2's formats in a build without SNELL_WITH_3DS
  * (the device preset: OBJ only): every entry says so. */
 #include "mesh/mesh.h"

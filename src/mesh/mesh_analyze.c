@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh_analyze.c — the "analyze" stage (DESIGN.md): topology on position-welded
  * vertices (boundary, non-manifold and flipped edges, closed, convex, winding),
  * the centre for the normal+distance cubemap with the share of surface that

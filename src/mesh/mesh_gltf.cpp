@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 /* mesh_gltf.cpp — glTF 2.0 loader (.gltf / .glb) on top of Debian's tinygltf.
  * The only C++ file of the library: every entry point catches all exceptions, and
  * every accessor is bounds-checked here before a byte of it is read. */
@@ -596,9 +597,8 @@ void Builder::add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mes
         }
     }
     /* push_back grows the array geometrically; a reserve of exactly what
-     * this primitive adds reallocated (and copied) the whole array on every
-     * instance: 2^16 instances of one triangle took 1.2 s, 2^20 minutes
-     * (issue 26) */
+     * this primitive adds would reallocate (and copy) the whole array on
+     * every instance: quadratic in the instances */
     for (uint32_t c : tris) idx.push_back(static_cast<uint32_t>(base + c));
 }
 

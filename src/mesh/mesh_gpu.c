@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh_gpu.c — the mesh as the GPU draws it (DESIGN.md "frame": geometry fed
  * well): triangles reordered for the post-transform vertex cache, vertices
  * for fetch locality (meshoptimizer, when built with it), 16-bit indices where
@@ -47,21 +48,16 @@ float snell__mesh_acmr(const uint32_t *indices, uint32_t triangle_count, uint32_
  * cache, so a vertex on d triangle corners costs about d^2 / 2 steps over
  * its time there: sum over vertices of d^2 is the cost, which real meshes
  * keep near 6 per corner (valence ~6) and a fan of n triangles on one vertex
- * makes n^2. Measured (meshoptimizer 0.18, this machine): bunny 1.27e6 for
- * 209k corners, 27 ms; 2048x1024 UV sphere 8.4e7 for 12.6M corners, 0.78 s;
- * one OBJ face of 40,000 repeated corners on 3 vertices 5.9e9, 6.6 s, of
- * 120,000 corners 5.3e10 (issue 26: 66 s); a disc of 100,000 triangles
- * fanned about its centre 1e10, 10.4 s: about 1.1 ns a step where the
- * squares dominate. Above the bound the reorder is skipped for
+ * makes n^2, so a hostile file (one face of many repeated corners, a large
+ * fan) can take minutes. Above the bound the reorder is skipped for
  * meshoptimizer's FIFO order (Tipsify: each vertex's triangles are fanned
- * once, so it is linear in the corners: 1.7 ms for the 40,000-corner face,
- * 6 ms for the bunny). The bound lets any mesh within 64 steps a corner
- * through (10x the real meshes', a UV sphere with 1024 segments needs 17) plus
- * a base of 2^25 (a fan of 5,800 triangles; ~40 ms), so what it admits costs
- * at most ~1.5x a real mesh of its size plus ~40 ms. The simplifier of the
- * coarse copy has the same quadratic cost (it tests every triangle of a
- * vertex for flips on each collapse onto it: 58 s for the 100,000-triangle
- * disc) and the same bound (mesh_lod.c too). */
+ * once, so it is linear in the corners). The bound lets any mesh within 64
+ * steps a corner through (10x the real meshes', a UV sphere with 1024
+ * segments needs 17) plus a base of 2^25 (a fan of 5,800 triangles), so what
+ * it admits costs at most about half as much again as a real mesh of its size
+ * plus a small constant. The simplifier of the coarse copy has the same quadratic cost (it
+ * tests every triangle of a vertex for flips on each collapse onto it) and
+ * the same bound (mesh_lod.c too). Timings: bench/notes/code.md, "mesh_gpu.c". */
 #define ORDER_WORK_BASE 33554432.0 /* 2^25 */
 #define ORDER_WORK_PER_CORNER 64.0
 

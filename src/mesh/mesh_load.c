@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh_load.c — snell_mesh_load: picks the OBJ or glTF loader by file extension.
  * Also the glTF stubs for builds without SNELL_WITH_GLTF (mesh_gltf.cpp is then absent). */
 #include "mesh/mesh.h"

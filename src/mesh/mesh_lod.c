@@ -1,4 +1,5 @@
-/* mesh_lod.c — snell_mesh_simplify: an optional level of detail (issue 10 item 3)
+/* SPDX-License-Identifier: MIT */
+/* mesh_lod.c — snell_mesh_simplify: an optional level of detail
  * for meshes whose triangles are far below a pixel, made with meshoptimizer's
  * edge-collapse simplifier, cleaned so that a closed mesh stays closed.
  *
@@ -397,8 +398,8 @@ static snell_status simplify(snell_ctx *ctx, const snell_mesh *src, const lod_pa
         /* meshoptimizer's simplifier tests each triangle of a vertex on every
          * collapse onto it: its cost grows with the square of the corners on
          * a vertex, as the vertex-cache reorder's does (mesh_gpu.c: the
-         * estimate and its bound, which real meshes stay 10x below; a disc of
-         * 100,000 triangles fanned about its centre took 62 s here) */
+         * estimate and its bound, which real meshes stay far below; a large
+         * fan about one vertex takes minutes without it) */
         double work = 0.0, limit = snell__mesh_work_limit(3 * ntw);
         uint32_t top = 0;
         st = snell__mesh_work_estimate(ctx, w.al, w.widx, 3 * ntw, nw, &work, &top);

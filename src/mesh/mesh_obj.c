@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh_obj.c — Wavefront OBJ loader (v, vn, vt, f; everything else ignored).
  * Own bounded parser: works on a buffer that need not be NUL-terminated, never
  * reads past it, and reports malformed input with the line number. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mesh_shapes.c — procedural test objects: UV sphere, cube, torus, a lathe goblet and a prism.
  * All are closed, wound counter-clockwise seen from outside, with analytic normals. */
 #include "mesh/mesh.h"

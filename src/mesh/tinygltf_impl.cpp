@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // tinygltf_impl.cpp — tinygltf's implementation, compiled only when snell is
 // configured with -DSNELL_TINYGLTF_DIR (tinygltf used header-only from a source
 // tree, as an NDK app vendors it); otherwise the library links libtinygltf.so.

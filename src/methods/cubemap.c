@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cubemap.c — two-sided refraction with a normal+distance cubemap (Li et
  * al. 2007 as in Unger 4.1): prepared once per (mesh version, face size,
  * encoding) by baking the cubemap about the analysed centre (ndcube.c,
@@ -18,26 +19,22 @@
 
 #define DEFAULT_ITERATIONS 6
 /* Schlick by default: the MATCHED model the tests and the reference share
- * (the exact reflectance gains 0.05-0.6 dB against FULL at no measurable
- * cost; BENCHMARKS.md). DEFAULT_FRESNEL 1 = exact. */
+ * (the exact reflectance gains little against FULL; BENCHMARKS.md).
+ * DEFAULT_FRESNEL 1 = exact. */
 #define DEFAULT_FRESNEL 0
 
 
 /* The AUTO threshold on hidden_fraction (snell_mesh_analyze): the share of
- * surface the cubemap cannot represent. Measured mean exit-direction errors
- * vs FULL at 512x512 with the defaults (bench/BENCHMARKS.md "Oliveira"):
- * bunny (hidden 0.25) 33.0 degrees against single's 50.7 and the image-space
- * search's 33.2 at 1.8x its cost; torus (0.45) 40.7 against single's 44.6
- * and the search's 21.9; goblet (0.97) 30.4 against single's 28.1. So the
- * cubemap represents meshes about as hidden as the bunny and no longer the
- * torus; the threshold sits between them (above it AUTO goes on to the
- * image-space methods, which are adequate up to 0.6). */
+ * surface the cubemap cannot represent. Against FULL the cubemap represents
+ * meshes about as hidden as the bunny (0.25) but not the torus (0.45), where
+ * the image-space search is far nearer; the threshold sits between them
+ * (above it AUTO goes on to the image-space methods, which are adequate up to
+ * 0.6). Errors: bench/BENCHMARKS.md "Oliveira", bench/notes/code.md "cubemap.c". */
 #define AUTO_MAX_HIDDEN 0.35f
 
-/* llvmpipe, 512x512 (BENCHMARKS.md): screen space is faster at every density
- * measured, 0.93x forward on a 32-segment sphere (355 estimated px/triangle)
- * down to 0.56x on the bunny (5.1): the search costs so much per pixel that
- * full 4x4 blocks always win. */
+/* llvmpipe (BENCHMARKS.md): screen space is faster at every density, from a
+ * 32-segment sphere's large triangles to the bunny's small ones: the search
+ * costs so much per pixel that full 4x4 blocks always win. */
 #define CUBEMAP_SOFTWARE_SCREEN_PPT 1e9f
 
 /* One mesh version's baked cubemap (the prepared resource). */
@@ -218,9 +215,8 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     k.fresnel_exact = c->fresnel == SNELL_FRESNEL_EXACT;
     /* Where it pays (BENCHMARKS.md, "Inner-surface Fresnel"): on a convex
      * mesh the two-interface search is nearly exact and the missing exit
-     * Fresnel is the largest error left (sphere 256^2, area-averaged PSNR
-     * against FULL 31.1 -> 35.8 dB at --aa 4 for 1.38x the frame); on the torus and the
-     * bunny the exit search's own error dominates (+0.1-0.2 dB for 1.3-1.6x). */
+     * Fresnel is the largest error left; on the torus and the bunny the exit
+     * search's own error dominates, so the branch costs more than it gains. */
     k.inner = !k.no_search && (c->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
                                (c->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && o->analysis && o->analysis->convex));
     k.dispersion = snell__dispersion_variant(o->glass);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* exact.c — exact refraction by ray traversal of the mesh's BVH in the
  * fragment shader (exact.frag): the MATCHED reference's model (ref_trace.c)
  * on the GPU. The BVH is the mesh's (mesh/bvh_gpu.h: the reference tracer's
@@ -26,9 +27,7 @@
  * choked on). */
 
 /* llvmpipe: per-pixel traversal costs so much more than the G-buffer pass
- * that full 4x4 blocks win at every density, as for the cubemap: at 256x256
- * forward shading took 5.5x the screen-space frame on the bunny (2578 vs
- * 470 ms, 5 px/triangle) and 1.7x on a 1024-triangle torus (276 vs 161 ms)
+ * that full 4x4 blocks win at every density, as for the cubemap
  * (bench/BENCHMARKS.md, "Exact"). */
 #define EXACT_SOFTWARE_SCREEN_PPT 1e9f
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* layered.c — multi-layer refraction through layered distance cube maps
  * (Umenhoffer, Patow and Szirmay-Kalos 2007, GPU Gems 3 ch. 17): prepared
  * once per (mesh version, face size, layers) by depth peeling the mesh from
@@ -7,8 +8,8 @@
  * to be rendered to), in one 2D array texture, slice face * layers + layer
  * (GLES 3.0 has no cube map arrays), the gaps at fold rims closed (pinch),
  * then per face one slice for each four
- * layers' distances (the march's count in one look-up: bunny 512^2 548 ->
- * 273 ms a frame, the image byte-identical); per frame one
+ * layers' distances (the march's count in one look-up instead of one per
+ * layer; bench/notes/code.md, "layered.c"); per frame one
  * pass of layered.frag over the front faces, which
  * marches the refracted ray through the layers, refracting or reflecting at
  * each surface crossed, re-entries included. Rigid meshes pay no per-frame
@@ -32,23 +33,18 @@
 #define DEFAULT_LINEAR 24
 #define DEFAULT_BINARY 6
 /* convex_steps' default: on a convex mesh that one layer holds, the
- * tangent-plane steps to each exit. Side by side (snell-bench, 512x512,
- * --aa 4, load 0.7-0.8), glass PSNR against FULL and x single: sphere 1, 2,
- * 3, 6 steps 40.43 / 40.89 / 40.95 / 40.95 dB at 1.97 / 2.19 / 2.59 / 3.39x;
- * cube 13.76 / 28.71 / 32.49 / 32.31 dB at 2.04 / 2.27 / 2.62 / 3.58x (one
- * step leaves a ray that starts over one face and exits through another
- * far off); the cubemap 33.70 dB at 2.47x, 15.70 at 4.40x. */
+ * tangent-plane steps to each exit. Two: one step leaves a ray that starts
+ * over one face and exits through another far off (a cube), and more gain
+ * little on smooth meshes (bench/notes/code.md, "layered.c"). */
 #define DEFAULT_CONVEX_STEPS 2
 #define DEFAULT_INTERFACES 8
 
 /* llvmpipe: the march costs so much per pixel that full 4x4 blocks of the
  * screen-space stage pay at any density (as for cubemap.c and peel.c). The
  * convex program costs less, so forward shading pays on large triangles
- * (no G-buffer pass): on the sphere, iterations 1, snell-bench side by side
- * (load 6-7), at 512^2 (89 estimated pixels a front triangle) forward 2.02x
- * and 2.16x single's frame against 2.20x and 2.32x in screen space; at
- * 256^2 (22) 3.20x against 2.70x. The crossover lies between; 48 is not
- * measured. */
+ * (no G-buffer pass): it won at 89 estimated pixels a front triangle and lost
+ * at 22; 48 lies between, not measured itself (bench/notes/code.md,
+ * "layered.c"). */
 #define LAYERED_SOFTWARE_SCREEN_PPT 1e9f
 #define LAYERED_SOFTWARE_SCREEN_PPT_CONVEX 48.0f
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* oliveira.c — two-sided refraction by a conservative image-space search
  * (Oliveira and Brauwers 2007, the seed's 3.4.2): refract at the front
  * surface, walk the refracted ray in linear then binary steps against the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* peel.c — multi-layer refraction from depth-peeled layers (Wang 2014, seed
  * 001 3.1-3.6), for concave objects whose view rays cross more than two
  * surfaces (a torus, a goblet, ears and legs). Per object and frame: up to
@@ -65,11 +66,8 @@
 /* Layer 0 comes from the G-buffer only for objects whose front triangles
  * are estimated below this many pixels each: there a peel of the mesh is
  * bound by triangle set-up and the conversion, one full-screen pass over
- * the scissor, costs less; on large triangles it costs more. llvmpipe,
- * 512x512, peel:interfaces=1:layers=2, load < 2, ms per frame peeled ->
- * converted: bunny (5.1 px) 45.4 -> 21.3, torus@256 (5.4 px) 29.8 -> 21.4,
- * torus@128 (21.5 px) 14.3 -> 14.4, torus (86 px) 16.9 -> 17.9 (4 layers),
- * sphere (89 px) 14.4 -> 14.7. */
+ * the scissor, costs less; on large triangles it costs more. On llvmpipe
+ * the two cross near 20 pixels a triangle (bench/notes/code.md, "peel.c"). */
 #define LAYER0_GBUFFER_PPT 16.0f
 
 /* A program's own uniforms (over its cache slot's loc); its key: key: prog_key's fields in order */
@@ -349,11 +347,8 @@ static int layers_wanted(const snell__object *o)
  * AUTO is on for every mesh (BENCHMARKS.md, "Inner-surface Fresnel in
  * peel"): unlike the cubemap's two-surface search, the layer search is
  * close enough on concave meshes too that the missing exit Fresnel is a
- * large part of the error left (256^2, area-averaged PSNR against FULL:
- * goblet +2.0 dB, bunny +0.9, torus +0.5, sphere +8.9) for the frame +4-33%
- * on the goblet, bunny and torus, 1.6x on the sphere, which peels twice only.
- * (At 512^2 on the bunny the kernel, not the peels, is most of the method's
- * cost: 60-100 ms of CPU against 25-50 for 2-4 peels; its inner branch 25.) */
+ * large part of the error left, on every mesh measured, for a modest share of
+ * the frame (bench/notes/code.md, "peel.c"). */
 static int inner_wanted(const snell__object *o)
 {
     return o->glass->material.peel.inner_fresnel != SNELL_INNER_FRESNEL_OFF;

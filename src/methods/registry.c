@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* registry.c — the method registry: every kernel is one entry of g_methods
  * (in cost order); AUTO walks it, CLIs list its names and parameters, and
  * the generic parameter code below resolves and validates each method's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* single.c — single-surface refraction (Unger 3.3), the baseline: one pass,
  * refraction and reflection at the front surface only; and the thin-wall
  * (slab) model, which is exact for a thin-walled material whatever method
@@ -62,8 +63,7 @@ static void single_destroy(snell_ctx *ctx, void *state)
 
 /* A thin wall is one slab: exact for a sheet; a closed thin-walled mesh's far
  * wall is not crossed (the FULL reference and the caustics' light cross
- * every wall: a thin sphere 26.9 dB against FULL, README "Methods"). For a
- * solid it misses the exit surface. */
+ * every wall; docs/methods.md). For a solid it misses the exit surface. */
 static snell__fit single_fit(const snell_mesh_analysis *an, const snell_glass_resolved *g, char *why, size_t n)
 {
     (void)an;
@@ -101,8 +101,8 @@ static const snell_method_info g_info = {
     .default_sweep = "",
 };
 
-/* llvmpipe, 512x512 (BENCHMARKS.md): screen space 0.87x forward on the bunny
- * (5.1 estimated px/triangle), 0.99x at 5.5, 1.14x at 22. */
+/* llvmpipe (BENCHMARKS.md): screen space is the cheaper below about 5.5
+ * estimated pixels a front triangle, forward above. */
 /* AUTO by budget's rungs (frame/method.h): method, parameter, value; frame
  * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
  * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* wyman.c — two-sided refraction in image space (Wyman 2005, as in the
  * seed's 3.4.1): refract at the front surface, put the exit point at
  * P2 = P1 + d T1 with d interpolated between d_V (front to farthest back
@@ -109,9 +110,8 @@ static snell__fit wyman_fit(const snell_mesh_analysis *an, const snell_glass_res
     if (!snell__fit_solid_few_surfaces(an, WYMAN_MAX_HIDDEN, why, n)) return SNELL__FIT_RUNS;
     /* Even where its preconditions hold, the interpolated exit distance is
      * an approximation that oliveira's search (later in cost order) removes
-     * for 1.1-1.4x the cost: vs FULL at 512x512 (bench/BENCHMARKS.md) sphere
-     * 14.3 degrees against 2.9, torus 29.1 against 21.9, bunny 40.9 against
-     * 33.2. So AUTO uses it only as a fallback; explicit use is never warned. */
+     * for a little more cost and far less error (bench/BENCHMARKS.md). So AUTO
+     * uses it only as a fallback; explicit use is never warned. */
     snell__why(why, n, "closed, %.2f <= %.2f hidden: entry and farthest back face in image space; the exit distance "
                        "is interpolated (oliveira searches it)", an->hidden_fraction, WYMAN_MAX_HIDDEN);
     return SNELL__FIT_RUNS;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* metrics.c — error metrics against the reference (snell_metrics.h): angular
  * error of exit directions, RGBA8 image RMSE/PSNR, non-finite counts. */
 #include "core/core.h"

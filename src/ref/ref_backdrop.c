@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_backdrop.c — the host's scene behind the glass in the reference's
  * view (snell_ref_set_backdrop): the host's frame as a depth field, met by
  * the rays in air as common/backdrop.glsl meets it on the GPU, with a far

@@ -1,4 +1,5 @@
-/* ref_caustics.c — the reference of the caustics stage (issue 27): the
+/* SPDX-License-Identifier: MIT */
+/* ref_caustics.c — the reference of the caustics stage: the
  * receiver plane's irradiance traced from the light in double precision:
  * shadow rays for the direct light, and photons refracted through each glass
  * object (the stage's optics: Schlick and Snell at every refraction, the

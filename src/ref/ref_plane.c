@@ -1,5 +1,6 @@
-/* ref_plane.c — the receiver plane in the reference's view (issue 27,
- * snell_ref_set_receiver): its square, seen from above by the rays in air,
+/* SPDX-License-Identifier: MIT */
+/* ref_plane.c — the receiver plane in the reference's view
+ * (snell_ref_set_receiver): its square, seen from above by the rays in air,
  * albedo times its irradiance map as the view and the glass kernels show
  * it (caustics_receiver.frag, common/receiver.glsl). The map is the
  * reference's own, traced once by snell_ref_receiver_render at the stage's

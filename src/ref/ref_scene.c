@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_scene.c — the reference tracer's scene (ref_scene.h): creation and
  * validation of the glass and opaque object lists, materials resolved by
  * snell_glass_defaults' own code (render/material.c), one BVH over every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_scene.h — the reference tracer's scene (ref_scene.c): glass objects
  * with resolved materials and opaque objects, one BVH over all their
  * triangles (or exact spheres), closest-hit queries that see only what a ray

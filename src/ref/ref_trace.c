@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_trace.c — the double-precision CPU reference tracer (snell_ref.h): the
  * MATCHED chain and the FULL Whitted tree through a scene of glass and opaque
  * objects (ref_scene.c), camera rays, the pthread image loop and light paths.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_trace.h — internals of the reference tracer shared with its tests: a
  * scene of exact spheres that runs the very same optics code (ref_trace.c)
  * on analytic geometry, so closed-form checks are not blurred by
@@ -34,7 +35,7 @@ void snell__ref_camera_ray(const camera_rays *cr, int x, int y, double fx, doubl
 
 /* snell_ref_params.progress for an image loop of `rows` rows handed out under
  * one lock: snell__ref_progress_row() is called under that lock after each
- * finished row (it reports at most every 100 ms), snell__ref_progress_end()
+ * finished row (it reports at most ten times a second), snell__ref_progress_end()
  * once by the calling thread after the workers are joined (reports 1.0). */
 typedef struct snell__ref_progress {
     snell_ref_progress_fn fn;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_water.c — the reference for the water scene (snell_ref_water_render):
  * the height field intersected exactly, in double, as the triangles the GPU
  * draws (two per cell, split along (i, j)-(i+1, j+1)), found by walking the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* backdrop.c — the backdrop stage: the host's scene behind the glass
  * (snell_frame_desc.backdrop). It publishes the host's colour and depth
  * textures (or its own copies of the bound framebuffer's), and its kernel

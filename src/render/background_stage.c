@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* background_stage.c — the background goes last, where the depth buffer is
  * still clear, so pixels covered by glass or opaque objects are never
  * shaded twice. Exit-direction output always needs it (misses = the view

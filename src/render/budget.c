@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* budget.c — AUTO by frame budget: the rung table, each object's ladder,
  * and the controller (see budget.h). */
 #include "render/budget.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* budget.h — AUTO by frame budget (snell_frame_desc.budget_ms).
  *
  * Each AUTO glass object gets a ladder: the configurations of the rung
@@ -58,7 +59,7 @@ typedef struct snell__budget {
     int last_plan_rung[SNELL_MAX_GLASS]; /* the measured plan's rung (table index) per object, -1 none */
     float last_area[SNELL_MAX_GLASS];   /* its units: area times the rung's cost */
     double last_fixed;              /* its units of fixed-cost objects (explicit methods, thin walls) */
-    int prev_valid;                 /* the measured frame before: its plan's rungs and units, its ms */
+    int prev_valid;                 /* the measured frame preceding it: its plan's rungs and units, its ms */
     int prev_rung[SNELL_MAX_GLASS];
     float prev_area[SNELL_MAX_GLASS];
     double prev_ms, prev_fixed;

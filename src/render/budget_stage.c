@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* budget_stage.c — the budget stage: measures the last frame (the GPU's
  * timer query where there is one, else a fence),
  * gives every AUTO glass object its ladder and the controller's rung
@@ -48,7 +49,7 @@ static int usable(void *user, snell_method id)
     return snell__renderer_method_state(user, snell__method_get(id), &state) == SNELL_OK;
 }
 
-/* The GPU's own clock (EXT_disjoint_timer_query, issue 25 item 3): a
+/* The GPU's own clock (EXT_disjoint_timer_query): a
  * TIME_ELAPSED query around the frame's commands, read at the next frame
  * once its fence has passed, so it never stalls. It counts the GPU's time
  * only, not a host's work between frames that the fence is seen late by.

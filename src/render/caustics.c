@@ -1,4 +1,5 @@
-/* caustics.c — the caustics stage (issue 27; Wyman & Davis 2006, caustic
+/* SPDX-License-Identifier: MIT */
+/* caustics.c — the caustics stage (Wyman & Davis 2006, caustic
  * maps; Unger 3.5 names light refracted onto surfaces as beyond its scope):
  * the receiver plane's light map holds its irradiance, in units of the
  * light's colour: the direct light where a shadow map of every glass and
@@ -1017,7 +1018,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c,
                  casters > 0 && texel > 0.25f * smallest ? " (texels > caster radius/4: blurred)" : "");
     } else
         snprintf(map, sizeof map, "no plane");
-    /* the chain path only where beams overlap (single casters: their own path, as before) */
+    /* the chain path only where beams overlap (single casters keep their own path) */
     if (chained) snprintf(chains, sizeof chains, ", %d chained (beams overlap: %d group%s)", chained, groups,
                           groups > 1 ? "s" : "");
     if (alone_over) snprintf(chains + strlen(chains), sizeof chains - strlen(chains),

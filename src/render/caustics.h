@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* caustics.h — the caustics stage (render/caustics.c): light refracted
  * through the glass onto a receiver plane as a light map and onto the opaque
  * objects as a light-space caustic map (photons from the light, splatted

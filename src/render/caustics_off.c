@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* caustics_off.c — the caustics stage in a build without SNELL_WITH_CAUSTICS
  * (cmake/components.cmake; the device preset): a frame that asks for a light
  * on a receiver is refused with the option named, one without them is drawn

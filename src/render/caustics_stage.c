@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* caustics_stage.c — the caustics stage: the receiver plane lit by the
  * light, directly where no object shadows it and through the glass
  * (render/caustics.c), drawn like an opaque object before the glass, and

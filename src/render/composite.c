@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* composite.c — opaque objects and background; see composite.h. */
 #include "render/composite.h"
 #include "core/ctx.h"

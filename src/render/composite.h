@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* composite.h — what is drawn around the glass: the opaque objects (diffuse,
  * lit from above, or in a dynamic environment lit by the caustics stage's
  * light) and the background (the environment through each pixel), in the

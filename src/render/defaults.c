@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* defaults.c — the renderer's and the frame's descriptions with every
  * default applied, once: snell_renderer_create and snell_render resolve
  * what they are given here, and the stages see only resolved values. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* env_dynamic.c — dynamic environment (Unger 4.1: "the environment map is
  * rendered from the centre with the background and all other objects", at a
  * lower resolution than the static one). Unlike the seed, which re-renders

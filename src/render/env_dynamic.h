@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* env_dynamic.h — dynamic environments (Unger 4.1): per glass object, the
  * static environment plus the opaque objects rendered into a cubemap from
  * the object's bounding-sphere centre, re-rendered only when something it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* env_paraboloid.c — dual-paraboloid maps from a cubemap; see env_paraboloid.h
  * and common/env.glsl for the parameterisation and the rim. */
 #include "render/env_paraboloid.h"

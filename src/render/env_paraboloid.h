@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* env_paraboloid.h — dual-paraboloid environment maps (Dachsbacher 2002,
  * seed 003; Heidrich and Seidel 1998): two 180-degree maps, +Z and -Z, made
  * on the GPU from a cubemap into the two layers of one RGBA8 2D array

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* env_probe.c — snell_renderer_env_probe: the kernels' environment look-up
  * (common/env.glsl) run on the GPU for given directions, one per pixel of a
  * scratch target, so its error can be measured against exact radiance. */

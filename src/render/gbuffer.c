@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gbuffer.c — see gbuffer.h. */
 #include "render/gbuffer.h"
 #include "render/stages.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gbuffer.h — the screen-space stage (DESIGN.md "frame"): the front surface
  * of the glass objects shaded in screen space, drawn once with a trivial
  * shader (gbuffer.frag) into two RGBA8 textures (the normal in 16+16 bits;
@@ -16,9 +17,8 @@
  * triangles are estimated below this many pixels each and its method's
  * back_detail parameter allows (snell__object.back_coarse): the pass
  * rasterises every back triangle again and is bound by triangle setup on
- * llvmpipe there (bunny at 512x512, ~5 px/triangle: 0.6-0.7x a
- * single-surface frame; bench/BENCHMARKS.md "Oliveira"). The same
- * crossover as single-surface's screen-space rule. */
+ * llvmpipe there (bench/BENCHMARKS.md "Oliveira"). The same crossover as
+ * single-surface's screen-space rule. */
 #define SNELL__BACK_COARSE_PPT 8.0f
 
 

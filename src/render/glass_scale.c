@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glass_scale.c — see glass_scale.h. The object's method draws as it would
  * at full resolution in screen space, into a view whose grid is the frame's
  * divided by the scale: every pass it makes (peels, the kernel) costs
@@ -7,13 +8,10 @@
  * pass shades each of the object's pixels once more with a few texture
  * reads: which pixels are glass, and the depth test against what is already
  * drawn, are exactly as unscaled.
- * What it buys (snell-bench, 512x512 --aa 4, one run each, load 7-11 on 2
- * cores; glass PSNR against FULL, x single): bunny peel layers=4
- * interfaces=5 at scale 1, 2, 4: 26.09, 24.36, 21.50 dB at 10.3, 5.5, 2.5x;
- * torus peel 27.90, 27.27, 25.62 dB at 17.8, 6.8, 2.2x; sphere layered
- * 40.96 / 40.44 dB at 3.1 / 2.5x. The error it adds is the supersampling it
- * gives up: where the refraction changes within a pixel (the bunny's folds)
- * the kernel sees 16 / s^2 samples of it instead of 16. */
+ * What it buys: a kernel frame near s^2 times cheaper for a small loss of
+ * glass PSNR (bench/notes/code.md, "glass_scale.c"). The error it adds is the
+ * supersampling it gives up: where the refraction changes within a pixel (the
+ * bunny's folds) the kernel sees 16 / s^2 samples of it instead of 16. */
 #include "render/glass_scale.h"
 #include "core/ctx.h"
 #include "core/gl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glass_scale.h — a glass object shaded at a resolution scale
  * (snell_glass_material.scale): its method's passes and kernel drawn on a
  * G-buffer of its own at 1/scale of the frame's sample grid per axis, into

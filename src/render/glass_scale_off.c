@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glass_scale_off.c — the resolution scale in a build without the methods
  * it serves (peel, exact; cmake/components.cmake, the device preset): every
  * object is drawn at scale 1, as snell_object_stats.scale says, and AUTO by

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glass_stage.c — the glass stage: every drawn glass object's method (AUTO
  * walks the registry), its mesh on the GPU, prepared resources, dynamic
  * environment and where it is shaded (forward or screen space), before any

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* host_depth.c — see host_depth.h. */
 #include "render/host_depth.h"
 #include "core/gl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* host_depth.h — the target's depth buffer as the frame's snell_depth_mode
  * asks: cleared, kept and tested, or kept, tested and given back unchanged
  * (SNELL_DEPTH_TEST_NO_WRITE: blitted into a renderbuffer of the same format

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kernels_stage.c — the kernels: the objects shaded in screen space first
  * (they cover disjoint pixels of the G-buffer), then the forward ones back
  * to front (Franke), each depth-tested against all of those; an object at a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* layers.c — see layers.h. */
 #include "render/layers.h"
 #include "render/stages.h"

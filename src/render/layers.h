@@ -1,4 +1,5 @@
-/* layers.h — the scene layers (DESIGN.md "frame"; #13): what a ray sees
+/* SPDX-License-Identifier: MIT */
+/* layers.h — the scene layers (DESIGN.md "frame"): what a ray sees
  * after it leaves a glass object, when the frame has other objects for it
  * to meet. Every drawn solid glass object and every opaque object is depth
  * peeled together (depth_peel.frag, the peel kernel's pass) into one RGBA8

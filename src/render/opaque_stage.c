@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* opaque_stage.c — the opaque stage: the frame's opaque objects, drawn with
  * depth write before any glass (render/composite.c). */
 #include "render/stages.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* premultiplied.c — premultiplied alpha output (snell_renderer_desc.
  * premultiplied_alpha): a stage that draws nothing and adds a kernel hook,
  * whose variant runs each glass kernel twice a pixel, with the environment

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* prepared.c — see prepared.h. Keys use the mesh pointer and its
  * process-unique geometry version, so a freed mesh's address reused by a new
  * mesh cannot match a stale entry. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* prepared.h — the "prepare" stage's cache: per (mesh version, method,
  * settings key) the resources a method builds for a mesh (baked cubemaps,
  * per-vertex data), owned by the renderer. It holds twice as many entries as

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* renderer.c — the renderer object (its target, method states, caches) and
  * snell_render: validate the frame, resolve the scene (scene.c), then run
  * the stage table (stages.c: opaque objects, glass set-up, scene layers,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* renderer.h — the renderer object: its target, the lazily created method
  * states, the prepared-resource cache, dynamic environments, and the scratch
  * a frame works in (so a frame allocates nothing). */

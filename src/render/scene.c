@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene.c — see scene.h. */
 #include "render/scene.h"
 #include "frame/camera.h"

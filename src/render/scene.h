@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene.h — the frame's scene, resolved once (DESIGN.md "frame"): camera
  * matrices, every glass object's material (the one resolve step), model
  * matrices and bounding sphere, what is skipped (outside the view,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ssaa.c — supersampling resolve; see ssaa.h. */
 #include "render/ssaa.h"
 #include "render/stages.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ssaa.h — supersampling for offscreen colour renderers
  * (snell_renderer_desc.ssaa = S): the frame is drawn into an S-times larger
  * colour texture, then resolved by a box filter into the w x h target that

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* stages.c — the frame as a table of stages in frame order (frame/stage.h):
  * AUTO by budget's plan -> opaque objects -> caustics (the light's maps, which
  * the glass set-up's dynamic environments light the opaque objects with) ->

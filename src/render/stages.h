@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* stages.h — the frame that the stages of the stage table (stages.c,
  * frame/stage.h) run on, and the stages themselves, each defined in its own
  * module. */

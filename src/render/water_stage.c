@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* water_stage.c — the water stage: the water surface and its container,
  * opaque to what follows (glass behind them is depth-tested away, glass in
  * front is drawn over them). The glass kernels drawn after see the water

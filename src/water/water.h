@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* water.h — the water surface object (snell_water.h): its resolved
  * description, the CPU simulation's arrays (water_sim.c), the GPU
  * simulation's ping-pong targets (water_gpu.c) and what drawing it needs

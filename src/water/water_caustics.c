@@ -1,4 +1,5 @@
-/* water_caustics.c — the container floor's light map (issue 27 item 4;
+/* SPDX-License-Identifier: MIT */
+/* water_caustics.c — the container floor's light map (
  * after Evan Wallace's webgl-water): the light refracted at the water
  * surface onto the floor, remade in one draw whenever the surface or the
  * light moved. The surface's own grid (its index buffer) is drawn with every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* water_draw.c — see water_draw.h. The grid is drawn from an index buffer
  * alone (the vertex shader finds node (i, j) from gl_VertexID), two
  * triangles per cell split along the (i, j)-(i+1, j+1) diagonal, as the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* water_draw.h — the water surface as an object of a frame (renderer.c):
  * its kernel's programs, owned by the renderer because they depend on the
  * renderer's output kind, and the draw of one water surface and its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* water_gpu.c — the GPU water simulation: two RG32UI textures holding the
  * fp32 bits of (height, velocity) per node, ping-ponged by one full-grid
  * fragment pass per step (shaders_es/water_step.frag), drops as a pass of

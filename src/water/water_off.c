@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* water_off.c — the water's frame hooks in a build without SNELL_WITH_WATER
  * (the public API's stubs are generated from snell_water.h): no water can
  * be made, so a frame never has one, and these are never reached with one. */

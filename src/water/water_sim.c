@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* water_sim.c — the water surface object and its CPU simulation (Dachsbacher
  * 2002, "Berechnung der Wasseroberflaeche"): heights on a grid of nodes, per
  * node a force from the height differences to its eight neighbours (the
@@ -92,8 +93,8 @@ static snell_status resolve(const snell_ctx *ctx, const snell_water_desc *in, sn
     if (d->attenuation_distance == 0.0f) d->attenuation_distance = 1.5f;
     if (d->tile_size == 0.0f) d->tile_size = d->width / 8.0f;
     if (d->settle_threshold == 0.0f) d->settle_threshold = 1e-5f * d->width;
-    /* AUTO: measured on llvmpipe, a GPU step costs 10-25x a CPU step
-     * (bench/BENCHMARKS.md "Water"): on software GL the CPU simulates. */
+    /* AUTO: on llvmpipe a GPU step costs many CPU steps (bench/BENCHMARKS.md
+     * "Water"): on software GL the CPU simulates. */
     if (d->sim == SNELL_WATER_SIM_AUTO)
         d->sim = ctx && !snell__software_rasteriser(snell_ctx_gl_renderer(ctx)) ? SNELL_WATER_SIM_GPU
                                                                                 : SNELL_WATER_SIM_CPU;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Uses only the installed public header: makes a context, renders one small
  * frame of one glass object and checks that glass pixels differ from the
  * plain background; then loads the .glb named by argv[1], if any (tests/data/nodes.glb),

@@ -1,4 +1,6 @@
-# Installs the build tree into a scratch prefix other than the configured one,
+# SPDX-License-Identifier: MIT
+# Installs the build tree into a scratch prefix other than the configured one
+# (the licence and third-party notices with it),
 # moves it (a package must not remember where it was installed), then builds
 # and runs consumers against it as users would:
 #   consumer_shared, consumer_static   find_package(snell), a C-only project;
@@ -17,6 +19,17 @@ if(rc)
 endif()
 file(RENAME ${WORK_DIR}/staging ${WORK_DIR}/prefix)
 set(prefix ${WORK_DIR}/prefix)
+
+# The licence, the third-party notices and their texts, as installed.
+foreach(f LICENSE THIRD_PARTY.md LICENSES/stb.txt LICENSES/cglm.txt LICENSES/tinygltf.txt LICENSES/meshoptimizer.txt)
+  if(NOT EXISTS ${prefix}/share/doc/snell/${f})
+    message(FATAL_ERROR "not installed: share/doc/snell/${f}")
+  endif()
+endforeach()
+file(READ ${prefix}/share/doc/snell/LICENSE text)
+if(NOT text MATCHES "^MIT License\n")
+  message(FATAL_ERROR "share/doc/snell/LICENSE is not the MIT licence:\n${text}")
+endif()
 
 function(run_consumer exe)
   execute_process(COMMAND ${exe} ${GLB} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out

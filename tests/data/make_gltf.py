@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Generates the glTF test assets used by tests/test_mesh_gltf.c:
 
   nodes.gltf      JSON with the buffer embedded as a base64 data URI

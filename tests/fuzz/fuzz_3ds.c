@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_3ds.c — libFuzzer target for glmark2's model formats: every input goes
  * through the .3ds and the .jobj loader (snell_mesh_load_3ds_mem,
  * snell_mesh_load_jobj_mem) and what they accept through the checks after

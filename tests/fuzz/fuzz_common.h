@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_common.h — shared by the fuzz targets: mesh invariants that must hold for
  * every accepted input, and a replay main() for builds without libFuzzer
  * (ctest feeds it the files under tests/data). */

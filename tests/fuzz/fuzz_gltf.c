@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_gltf.c — libFuzzer target for the glTF loader (snell_mesh_load_gltf_mem,
  * JSON and GLB) and the stages after it (snell_mesh_normalize,
  * snell_mesh_analyze: fuzz_check_result), and the scene loader

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_image.c — libFuzzer target for environment image input
  * (snell_image_decode: PNG, HDR; JPEG is refused). Built with -DSNELL_LIBFUZZER for
  * libFuzzer; otherwise a replay program (see fuzz_common.h). An input either

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_obj.c — libFuzzer target for the OBJ loader (snell_mesh_load_obj_mem)
  * and the stages after it (snell_mesh_normalize, snell_mesh_analyze). Built with -DSNELL_LIBFUZZER for libFuzzer; otherwise a replay program. */
 #include "fuzz_common.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_scene2d.c — libFuzzer target for the 2D lightmap's text inputs: every
  * input goes through the CSV polygon parser and the scene-file parser
  * (lm2d_parse_csv, lm2d_scene_parse). CSV references inside a fuzzed scene

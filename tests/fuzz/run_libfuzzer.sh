@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # run_libfuzzer.sh [SECONDS] — builds the fuzz targets (fuzz_obj, fuzz_gltf, fuzz_3ds,
 # fuzz_image, fuzz_scene2d) with clang's libFuzzer, ASan and UBSan, and runs
 # each for SECONDS (default 5) on a corpus seeded from the test assets. A

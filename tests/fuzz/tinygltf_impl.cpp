@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // tinygltf_impl.cpp — FUZZ BUILDS ONLY (never part of the library, which links
 // Debian's libtinygltf.so). Compiling tinygltf's implementation from its header
 // lets ASan and libFuzzer's coverage instrument tinygltf's own parsing code.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # PID 1 of the KMS test VM (tests/kms/run_vm_test.sh): loads the modules in
 # order, mounts the host's root read-only over virtio-9p at /host with the
 # guest's own /proc, /sys and /dev and the test's output folder (snell_out=DIR,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* kms_compare.c — the KMS VM test's pixel check (run_vm_test.sh): the display
  * as qemu's screendump saw it (binary PPM) against snell-render's offscreen
  * render of the same frame on this machine (PNG), and, to show the check can

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # make_initramfs.sh OUT KVER — the KMS test VM's initramfs (newc cpio, not
 # compressed): busybox-static, the kernel modules for virtio-9p and the bochs
 # DRM driver of kernel KVER (in load order, from kmod's modprobe --show-depends

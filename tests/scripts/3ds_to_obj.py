@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """3ds_to_obj.py IN.3ds OUT.obj — the triangle meshes of an Autodesk 3DS file as OBJ.
 
 Reads the chunk tree (each chunk: uint16 id, uint32 length including its

@@ -1,21 +1,44 @@
+# SPDX-License-Identifier: MIT
 # Runs snell-bench (EXE) on a tiny sweep in OUT_DIR and checks what it wrote:
 # exit 0; every configuration ok with a median time and a 95th percentile
 # between it and the worst frame; the single-surface row
 # is its own baseline (vs_single 1) and every row of its scene has a positive
 # ratio; the fastest configuration of the scene is on the Pareto front (no
-# other one can be faster); the CSV carries the same columns.
+# other one can be faster); the CSV carries the same columns. Every field a
+# comparison of boards needs is there: snell version and commit, GL vendor,
+# renderer and version, kernel, board (null where the system does not say),
+# vsync, load; per result p99 and 1% low between p95 and the worst frame and
+# every frame's time; -b auto runs; --compare of the run with itself prints
+# each configuration with B/A 1.
 file(REMOVE_RECURSE "${OUT_DIR}")
 file(MAKE_DIRECTORY "${OUT_DIR}")
 execute_process(COMMAND ${EXE} -b single:scene=sphere:size=48x48 -b cubemap:scene=sphere:size=48x48:iterations=4,6
-                        --frames 3 --warmup 1 --no-cache -q -o ${OUT_DIR}/bench
+                        -b auto:scene=sphere:size=48x48 --frames 3 --warmup 1 --no-cache -q -o ${OUT_DIR}/bench
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "snell-bench exit ${rc}: ${err}")
 endif()
 file(READ "${OUT_DIR}/bench.json" json)
 string(JSON n LENGTH "${json}" results)
-if(NOT n EQUAL 3)
-  message(FATAL_ERROR "expected 3 results, got ${n}")
+if(NOT n EQUAL 4)
+  message(FATAL_ERROR "expected 4 results, got ${n}")
+endif()
+foreach(field "snell;version" "snell;commit" "gl;vendor" "gl;renderer" "gl;version" "system;kernel" "vsync"
+              "loadavg_before" "loadavg_after")
+  string(JSON v ERROR_VARIABLE e GET "${json}" ${field})
+  if(e OR v STREQUAL "")
+    message(FATAL_ERROR "JSON: no ${field}: ${e}")
+  endif()
+endforeach()
+foreach(field board board_from) # present; null where the system does not say
+  string(JSON type ERROR_VARIABLE e TYPE "${json}" system ${field})
+  if(e OR NOT type MATCHES "^(STRING|NULL)$")
+    message(FATAL_ERROR "JSON: system.${field} missing (${e})")
+  endif()
+endforeach()
+string(JSON commit GET "${json}" snell commit)
+if(NOT commit MATCHES "^([0-9a-f]+(-dirty)?|unknown)$")
+  message(FATAL_ERROR "JSON: snell.commit '${commit}'")
 endif()
 set(fastest "")
 set(fastest_t 1e30)
@@ -28,6 +51,15 @@ foreach(i RANGE ${last})
   string(JSON tmax GET "${json}" results ${i} time_ms max)
   if(p95 LESS t OR p95 GREATER tmax)
     message(FATAL_ERROR "${spec}: p95 ${p95} ms outside median ${t} .. max ${tmax}")
+  endif()
+  string(JSON p99 GET "${json}" results ${i} time_ms p99)
+  string(JSON low GET "${json}" results ${i} time_ms low_1pct)
+  if(p99 LESS p95 OR p99 GREATER tmax OR low LESS p99 OR low GREATER tmax)
+    message(FATAL_ERROR "${spec}: p95 ${p95}, p99 ${p99}, 1% low ${low}, max ${tmax}: not in order")
+  endif()
+  string(JSON nframes LENGTH "${json}" results ${i} frames_ms)
+  if(NOT nframes EQUAL 3)
+    message(FATAL_ERROR "${spec}: ${nframes} frame times, 3 timed")
   endif()
   string(JSON ratio GET "${json}" results ${i} vs_single)
   string(JSON pareto GET "${json}" results ${i} pareto)
@@ -51,11 +83,24 @@ if(NOT fastest_pareto STREQUAL "ON" AND NOT fastest_pareto STREQUAL "true")
 endif()
 file(STRINGS "${OUT_DIR}/bench.csv" csv)
 list(GET csv 0 header)
-if(NOT header MATCHES "time_median_ms,time_p95_ms,time_min_ms,time_max_ms,gpu_median_ms,vs_single,pareto,")
+if(NOT header MATCHES "time_median_ms,time_p95_ms,time_p99_ms,time_low_1pct_ms,time_min_ms,time_max_ms,gpu_median_ms,vs_single,pareto,")
   message(FATAL_ERROR "CSV header: ${header}")
 endif()
 list(LENGTH csv lines)
-if(NOT lines EQUAL 4)
+if(NOT lines EQUAL 5)
   message(FATAL_ERROR "CSV: ${lines} lines")
 endif()
+# --compare: the run beside itself, every configuration with B/A 1
+execute_process(COMMAND ${EXE} --compare ${OUT_DIR}/bench.json ${OUT_DIR}/bench.json
+                RESULT_VARIABLE rc OUTPUT_VARIABLE cmp ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT cmp MATCHES "A: .*bench.json .*commit ${commit}.*B: .*configuration +A p50 +A p99 +B p50 +B p99 +B/A +A dB +B dB")
+  message(FATAL_ERROR "snell-bench --compare: exit ${rc}: ${cmp}${err}")
+endif()
+foreach(i RANGE ${last})
+  string(JSON spec GET "${json}" results ${i} spec)
+  string(REGEX REPLACE "([.+*?^$()])" "\\\\\\1" re "${spec}")
+  if(NOT cmp MATCHES "\n${re} +[0-9.]+ +[0-9.]+ +[0-9.]+ +[0-9.]+ +1\\.000 +([0-9.]+|-) +([0-9.]+|-)\n")
+    message(FATAL_ERROR "snell-bench --compare: no row 'spec A A B B 1.000 dB dB' for ${spec}:\n${cmp}")
+  endif()
+endforeach()
 message(STATUS "snell-bench: ${n} configurations, fastest ${fastest} (${fastest_t} ms)")

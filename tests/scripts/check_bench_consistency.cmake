@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # snell-bench says one thing once (issue 28 item 6): a small run (two methods, a
 # smooth shape and a scanned mesh, 32x32, one frame) whose progress lines (stderr),
 # summary table (stdout) and JSON are read back and compared:

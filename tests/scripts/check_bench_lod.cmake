@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # snell-bench lod=: the glass mesh is simplified before timing and the
 # references keep the original, so the error includes the simplification:
 # at lod=0.25 the error against MATCHED (single-surface: its own model, ~0 at

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # snell-bench on glTF scene files (issue 13 item 5), in OUT_DIR; SCENES is
 # tests/data/scenes. Checks what follows from the scenes and the references:
 #  - exit 0, the per-class table printed (method, alone, ref-alone rows, pixel counts);

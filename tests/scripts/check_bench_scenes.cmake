@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Runs snell-bench (EXE) on the multi-object scenes in OUT_DIR and checks what it
 # wrote: exit 0; every configuration ok; pair has 2 glass + 1 opaque objects, many
 # 8 + 4; the single-surface row is its own baseline; errors were measured (pixels

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # check_exports.cmake — libsnell.so exports the public API only (cmake/snell.map):
 # every defined dynamic symbol is snell_*, and the API's entry points are there.
 # Run: cmake -DNM=<nm> -DLIB=<libsnell.so> -P check_exports.cmake

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # check_kiosk_install.cmake — snell-kiosk ships as a service: installed to a
 # scratch prefix, the systemd unit and the example configuration are there,
 # the unit starts the installed kiosk with that configuration (systemd-analyze

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # check_layers.cmake — the import rule of docs/ARCHITECTURE.md "Layers": a
 # folder of src/ includes only folders below it, so nothing imports back up
 # and there are no circles:

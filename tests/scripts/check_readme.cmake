@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The README and the docs pages stay true for this build (ctest readme_true).
 #   SOURCE_DIR  the source tree (README.md, docs/*.md, scripts/, bench/BENCHMARKS.md)
 #   CTEST       the ctest executable; BUILD_DIR the build tree it lists

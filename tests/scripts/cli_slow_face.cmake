@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Issue 26 item 1 through the CLI: one OBJ face of 120,000 corners on 3
 # vertices (119,998 triangles, 40,000 of them the same one) rendered by
 # snell-render. Its vertex-cache reorder took 66 s here; now the upload skips

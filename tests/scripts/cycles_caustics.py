@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # cycles_caustics.py - renders the irradiance of a white diffuse plane under a
 # glass mesh lit by a sun with Blender Cycles, as an independent check of
 # snell's caustics reference (tests/test_caustics_cycles.c writes the scene

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # cycles_common.py - what tests/scripts/cycles_render.py and cycles_caustics.py
 # share: the mesh file snell's tests write (test_util.c test_write_blender_mesh),
 # the normals Cycles shades with, a raw linear view, and a render read back

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # cycles_render.py - renders one glass mesh in an equirectangular environment
 # with Blender Cycles, as an independent check of snell's FULL reference
 # (tests/test_groundtruth.c writes the scene and compares).

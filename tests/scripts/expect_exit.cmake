@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Runs EXE with ARGS (separated by |) and requires exit code CODE and stderr matching ERR, so
 # a crash (signal) or a silent failure never counts as the expected error.
 string(REPLACE "|" ";" args "${ARGS}")

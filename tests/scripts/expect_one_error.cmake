@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Runs EXE with ARGS (separated by |) and requires exit code CODE and exactly
 # one line on stderr, matching ERR (issue 28 item 5: one message per error,
 # with the offending value and the reason; never the library's log beside the

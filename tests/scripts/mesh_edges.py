@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """mesh_edges.py MESH.obj [...] — edge counts of an OBJ on position-welded vertices.
 
 An independent cross-check of snell_mesh_analyze's topology counts

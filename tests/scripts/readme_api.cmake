@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The README's "API in ten lines" as a program (ctest readme_api): the first ```c block after
 # that heading, its #include lines first, the rest as main's body, which leaves its status in s.
 #   README  README.md;  OUT  the C file to write

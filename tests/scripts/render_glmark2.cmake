@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # render_glmark2.cmake — snell-render --mesh draws every model of glmark2-data
 # (.3ds, .obj, .jobj): each exits 0, writes its PNG and its stats name the
 # one glass object with the method that drew it.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # test_apt.sh — scripts/apt.sh against a fake apt-get that fails the way a
 # mirror mid-sync does: updates that fail some times then pass, updates that
 # never pass while install works, and an install that never works.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # build.sh WORK_DIR [arm64 [PROJECT]] — builds tests/subproject (or PROJECT,
 # e.g. ports/android/app/src/main/cpp: configured and built, not run) (snell by add_subdirectory
 # in a project that asks for CMake 3.22) as an NDK app's build would meet it:

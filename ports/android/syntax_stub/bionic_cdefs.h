@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* SYNTAX-CHECK STUB, not part of any build. Debian has no NDK: the syntax
  * check (ports/android/syntax_check.sh) compiles the port against Debian's
  * Android headers with aarch64 glibc standing in for bionic's C headers.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Generates the small hostile inputs of tests/test_hostile_files.c (issue 14).
 Bigger ones (a 40 MB data: URI, a 40,000-corner OBJ face, files outside a
 model's folder) are made by the test at run time, not committed.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Generates the glTF scene files used by tests/test_scene_gltf.c (issue 13).
 
 Shared geometry (one buffer, embedded as a base64 data URI):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* SYNTAX-CHECK STUB, not part of any build: Debian's Android header packages
  * lack <android/native_window.h> (and <android/rect.h>), which the NDK has.
  * These are the NDK's declarations of what the port and <android/
