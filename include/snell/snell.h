@@ -1,7 +1,22 @@
 /* SPDX-License-Identifier: MIT */
 /* snell — real-time refractive glass on OpenGL ES 3.0 over EGL.
  *
- * Public API. Conventions (see DESIGN.md):
+ * A frame, step by step (every call returns a snell_status; 0 is SNELL_OK):
+ *   1. snell_ctx_create(&desc, &ctx)       a headless EGL context, or the one
+ *      current in your app (desc.backend = SNELL_BACKEND_EXTERNAL)
+ *   2. snell_mesh_load(ctx, path, &mesh)   OBJ, glTF, .3ds; or snell_mesh_create
+ *   3. snell_env_create(ctx, &env_desc, &env)   what the glass refracts
+ *   4. snell_renderer_create(ctx, &renderer_desc, &r)   offscreen or your framebuffer
+ *   5. fill a snell_frame_desc: env, camera, glass objects (mesh, model,
+ *      material; method 0 = AUTO), optionally opaque objects, light, water,
+ *      your depth and your frame behind the glass (backdrop)
+ *   6. snell_render(r, &frame, &stats)     stats say what was drawn and why
+ *   7. snell_renderer_read_rgba(r, pixels) for an offscreen target
+ * The sections below follow that order: status and context, meshes,
+ * environments, materials and methods, the renderer and the frame, then
+ * scene files and images. docs/integrating.md shows it in an app.
+ *
+ * Conventions (docs/ARCHITECTURE.md):
  *  - every fallible call returns snell_status; snell_last_error() gives the detail;
  *  - descriptor structs are zero-initialisable, zero means the documented default;
  *  - objects are opaque; snell_xxx_create(ctx, &desc, &out) / snell_xxx_destroy(x);
@@ -244,7 +259,7 @@ const float *snell_mesh_normals(const snell_mesh *mesh);     /* 3 * vertex_count
 const uint32_t *snell_mesh_indices(const snell_mesh *mesh);  /* 3 * triangle_count */
 void snell_mesh_bounds(const snell_mesh *mesh, float min[3], float max[3]);
 
-/* What a mesh needs (DESIGN.md "analyze"), found with exact ray casts against
+/* What a mesh needs (docs/methods.md), found with exact ray casts against
  * a CPU BVH in object space. The centre is the point the normal+distance
  * cubemap (SNELL_METHOD_CUBEMAP) is rendered from: among candidates (vertex
  * average, box centre, surface and volume centroids, an interior grid) the one
@@ -288,8 +303,8 @@ typedef struct snell_mesh_analysis {
                               * separate balls: 2); the centre-based methods serve one */
 } snell_mesh_analysis;
 
-/* Analyzes the mesh (O(triangles) memory; 0.16 s for the 70k-triangle bunny on
- * one core, nearly all of it the ray casts). The renderer does this itself,
+/* Analyzes the mesh (O(triangles) memory, nearly all of the time in ray
+ * casts; docs/methods.md). The renderer does this itself,
  * once per mesh version (cached on the mesh), for AUTO and the methods that
  * need it; this returns that cached result when there is one, and analyses
  * afresh otherwise; exposed so users can see why a mesh is (not) suited.
@@ -298,17 +313,16 @@ typedef struct snell_mesh_analysis {
  * in their thousands: not seen in real meshes) and for one whose ray casts
  * exceed the analysis's work bound (2^23 + 256 per triangle BVH steps, over
  * 10x what real meshes need: thousands of triangles on top of each other, e.g.
- * one OBJ face of 40,000 repeated corners, which then fails in ~0.1 s). */
+ * one OBJ face of 40,000 repeated corners, which then fails at once). */
 snell_status snell_mesh_analyze(const snell_mesh *mesh, snell_mesh_analysis *out);
 
 /* How the renderer lays a mesh out for the GPU: the order of the triangles
  * (the same triangles, each with its winding, either way) that the vertex
  * cache sees. meshoptimizer's vertex-cache optimisation costs about the sum
- * over vertices of (triangle corners on the vertex)^2 steps: ~6 per corner
- * on real meshes (bunny: 1.3e6 for 209k corners, 27 ms), but 5.3e10 for one
- * OBJ face of 120,000 repeated corners on 3 vertices (66 s, issue 26). Over
- * its bound (2^25 + 64 per corner: what it admits costs at most ~1.5x a real
- * mesh of its size plus ~40 ms) the optimisation is skipped for
+ * over vertices of (triangle corners on the vertex)^2 steps: a few per
+ * corner on real meshes, but billions for one OBJ face of a hundred thousand
+ * repeated corners on 3 vertices. Over its bound (2^25 + 64 per corner: at
+ * most a small multiple of a real mesh of its size) the optimisation is skipped for
  * meshoptimizer's linear-time FIFO order (order SNELL_GPU_ORDER_LINEAR),
  * copies of a triangle are not drawn twice (copies_hidden), this is
  * logged once a mesh at WARN by the upload, and the coarse copy of the
@@ -385,7 +399,7 @@ typedef struct snell_simplify_report {
  * its bound: hundreds of thousands of triangles on one vertex); SNELL_E_UNSUPPORTED
  * when built without SNELL_WITH_MESHOPT. Memory is ctx's allocator's
  * (meshoptimizer's own scratch, freed before the call returns, is its
- * process-wide allocator's). Takes ~70 ms for the 70k-triangle bunny. */
+ * process-wide allocator's). */
 snell_status snell_mesh_simplify(snell_ctx *ctx, const snell_mesh *src, const snell_simplify_desc *desc,
                                  snell_mesh **out, snell_simplify_report *report);
 
@@ -521,8 +535,7 @@ typedef enum snell_back_detail {
     SNELL_BACK_DETAIL_DEFAULT = 0, /* SNELL_BACK_DETAIL_AUTO */
     SNELL_BACK_DETAIL_AUTO,        /* a coarse copy (a quarter of the triangles, within 1% of the extent,
                                     * made once per mesh) when the mesh's triangles are below 8 px each:
-                                    * 0.3-0.5x single's frame cheaper on a 70k-triangle mesh on llvmpipe,
-                                    * 1-1.5 degrees less accurate (bench/BENCHMARKS.md) */
+                                    * cheaper, slightly less accurate (bench/BENCHMARKS.md) */
     SNELL_BACK_DETAIL_FULL         /* always the mesh itself */
 } snell_back_detail;
 
@@ -587,7 +600,7 @@ typedef struct snell_peel_params {
                                 * peeled where the mesh's depth_complexity or the object's last
                                 * peels (one past the layers they found non-empty) allow) */
     int linear_steps;          /* linear search steps over the bounding diameter, 1..128 (default 16; the
-                                * seed's 50 cost 1.4x for 2-10% less error, bench/BENCHMARKS.md) */
+                                * seed's 50 cost more for little less error, bench/BENCHMARKS.md) */
     int binary_steps;          /* binary refinement steps after a linear crossing, 1..16 (default 6) */
     int max_interfaces;        /* surfaces processed per path, 1..10 (1 = single surface; then exits,
                                 * re-entries, TIR bounces; default 8) */
@@ -650,9 +663,9 @@ typedef enum snell_exact_walk {
 /* SNELL_METHOD_EXACT's parameters (material.exact); zero = the default. The
  * budget is a compile-time constant of the traversal program (one program per
  * (budget, node format, absorption, shading), built on first use, 8 kept); the
- * BVH is built once per mesh and node format (the reference tracer's SAH
- * build, about 0.4 s for a 70k-triangle mesh on llvmpipe's host) and refitted,
- * not rebuilt, when snell_mesh_set_vertices moves the vertices. */
+ * BVH is the mesh's, built once per node format (the reference tracer's SAH
+ * build) and refitted, not rebuilt, when snell_mesh_set_vertices moves the
+ * vertices. */
 typedef struct snell_exact_params {
     int max_interfaces;        /* surfaces processed per path, 1..10 (1 = single surface with the exact path
                                 * length for absorption; default 8); the MATCHED reference's cap */
@@ -905,9 +918,8 @@ typedef enum snell_shading {
  * environment's once, kept with it; a dynamic one's each time it is
  * re-rendered) at twice its face size, RGBA8, in one 2D array texture. */
 typedef enum snell_env_lookup {
-    SNELL_ENV_LOOKUP_AUTO = 0,      /* per use, what measured better on llvmpipe (bench/BENCHMARKS.md
-                                     * "Environment look-up"): the cube for the static and dynamic
-                                     * environments alike (as fast, more accurate; cheaper updates) */
+    SNELL_ENV_LOOKUP_AUTO = 0,      /* per use, what measured better (bench/BENCHMARKS.md "Environment
+                                     * look-up"): the cube for the static and dynamic environments alike */
     SNELL_ENV_LOOKUP_CUBE,
     SNELL_ENV_LOOKUP_DUAL_PARABOLOID,
     /* the same, but a dynamic environment's maps are rendered straight from

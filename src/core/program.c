@@ -146,7 +146,7 @@ static int expand(snell_ctx *ctx, text_buf *b, const char *src, const char **see
 
 /* "#version 300 es" + defines + FP16 emulation switch + expanded source.
  * NULL on failure, with *st set (SNELL_E_GL for a bad #include, SNELL_E_NOMEM). */
-/* The precision policy (DESIGN.md "Shaders"): SNELL_MEDIUMP is what shaders
+/* The precision policy (docs/ARCHITECTURE.md "Shaders"): SNELL_MEDIUMP is what shaders
  * write for values a GPU with real fp16 holds at mediump. Software
  * rasterisers emulate fp16 for mediump (llvmpipe: slower than highp,
  * bench/BENCHMARKS.md), and a driver whose mediump

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* mesh_analyze.c — the "analyze" stage (DESIGN.md): topology on position-welded
+/* mesh_analyze.c — the "analyze" stage (docs/ARCHITECTURE.md "One frame"): topology on position-welded
  * vertices (boundary, non-manifold and flipped edges, closed, convex, winding),
  * the centre for the normal+distance cubemap with the share of surface that
  * the cubemap cannot represent (snell_mesh_analyze, declared in snell.h), and

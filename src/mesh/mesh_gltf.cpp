@@ -55,7 +55,7 @@ struct LoadError {
 [[noreturn]] void fail(snell_status st, const std::string &msg) { throw LoadError{st, msg}; }
 
 /* --- filesystem callbacks -------------------------------------------------- */
-/* Files are untrusted (DESIGN.md): a model's buffer and image URIs may name
+/* Files are untrusted: a model's buffer and image URIs may name
  * files in its own folder only. Memory input must not touch the filesystem at
  * all: a URI naming a file is an error there. tinygltf percent-decodes a URI,
  * joins it to the base directory and asks FileExists/ReadWholeFile; it then

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* mesh_gpu.c — the mesh as the GPU draws it (DESIGN.md "frame": geometry fed
+/* mesh_gpu.c — the mesh as the GPU draws it (docs/ARCHITECTURE.md "One frame": geometry fed
  * well): triangles reordered for the post-transform vertex cache, vertices
  * for fetch locality (meshoptimizer, when built with it), 16-bit indices where
  * the vertex count allows. Only the GPU copy changes: the mesh's own arrays,

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* gbuffer.h — the screen-space stage (DESIGN.md "frame"): the front surface
+/* gbuffer.h — the screen-space stage (docs/ARCHITECTURE.md "One frame"): the front surface
  * of the glass objects shaded in screen space, drawn once with a trivial
  * shader (gbuffer.frag) into two RGBA8 textures (the normal in 16+16 bits;
  * the depth in 24 bits and the object id in 8) and, for an offscreen target,
@@ -46,7 +46,7 @@ snell_status snell__gbuffer_draw(snell_ctx *ctx, snell__gbuffer *g, const snell_
  * the front G-buffer's as u_gnormal, u_gdepth_id and u_gaux (where drawn),
  * the back-face pass's (back) as u_bnormal and u_bdepth_id. */
 void snell__gbuffer_publish(const snell__gbuffer *g, snell__textures *ts, int back);
-/* The back-face pass (DESIGN.md "extra passes the method needs"): the
+/* The back-face pass (wyman, oliveira): the
  * farthest surface of objects[0..count-1] (depth GREATER into a depth buffer
  * of its own, cleared to 0, front faces culled where the winding is known;
  * opaque objects are not tested: a back face behind one is still where the

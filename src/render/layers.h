@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* layers.h — the scene layers (DESIGN.md "frame"): what a ray sees
+/* layers.h — the scene layers (docs/ARCHITECTURE.md "One frame"): what a ray sees
  * after it leaves a glass object, when the frame has other objects for it
  * to meet. Every drawn solid glass object and every opaque object is depth
  * peeled together (depth_peel.frag, the peel kernel's pass) into one RGBA8

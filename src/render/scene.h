@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* scene.h — the frame's scene, resolved once (DESIGN.md "frame"): camera
+/* scene.h — the frame's scene, resolved once (docs/ARCHITECTURE.md "One frame"): camera
  * matrices, every glass object's material (the one resolve step), model
  * matrices and bounding sphere, what is skipped (outside the view,
  * passthrough), the back-to-front order, and per object the method: the

@@ -36,7 +36,7 @@ static inline const uint8_t *fuzz_at_end_of_mapping(const uint8_t *data, size_t 
     return map + len - page - size;
 }
 
-/* The stages that consume loaded data (DESIGN.md "Tests"): normalisation and
+/* The stages that consume loaded data (docs/ARCHITECTURE.md "Tests and CI"): normalisation and
  * the analysis either fail with a message or give sane values (positions
  * within the unit sphere after normalising, fractions in [0,1], finite radii
  * with inner <= outer). The analysis's cost is bounded by the triangle count
