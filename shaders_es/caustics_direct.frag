@@ -39,4 +39,7 @@ void main()
         e += ek * texture(u_shadow, vec3(s.xy, s.z - u_bias));
     }
     o_color = vec4(e * 0.25, 0.0);
+#ifdef SNELL_LIGHT_RANGE
+    o_color /= SNELL_LIGHT_RANGE; // an RGB10_A2 map (core/glstate.h), written once: rounded to the nearest step
+#endif
 }

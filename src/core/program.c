@@ -202,6 +202,10 @@ static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snel
         buf_append(&b, fp16, sizeof fp16 - 1);
     }
 #endif
+    if (ctx && ctx->light_fixed) {
+        static const char fixed[] = "#define SNELL_LIGHT_RANGE 8.0\n"; /* SNELL__LIGHT_RANGE, core/glstate.h */
+        buf_append(&b, fixed, sizeof fixed - 1);
+    }
     if (defines) buf_append(&b, defines, strlen(defines));
     if (!b.failed && expand(ctx, &b, src, seen, &n_seen)) {
         snell__free(b.al, b.data);
@@ -225,6 +229,7 @@ static snell_status compile(snell_ctx *ctx, GLenum type, const char *defines, co
     GLuint sh;
     GLint ok = 0;
     if (!full) return st;
+    if (ctx && ctx->on_source) ctx->on_source(ctx, type, full);
     sh = glCreateShader(type);
     glShaderSource(sh, 1, (const GLchar *const *)&full, NULL);
     glCompileShader(sh);
