@@ -83,6 +83,8 @@ double test_time_scale(void);
 int test_host_context(EGLDisplay *dpy, EGLContext *ctx);
 /* A headless context (default backend) or NULL, message printed. */
 snell_ctx *test_ctx(void);
+/* Writes every program's final sources built in ctx into dir (see test_util.c). */
+void test_glsl_dump(snell_ctx *ctx, const char *dir);
 /* The procedural sky environment (snell_env_desc zero but face_size) on ctx,
  * or NULL with the failure counted (CHECK_OK). */
 snell_env *test_sky(snell_ctx *ctx, int face_size);
