@@ -1,5 +1,6 @@
 #include "test_util.h"
 #include "core/ctx.h"
+#include "core/glstate.h"
 
 #include <EGL/eglext.h>
 
@@ -291,6 +292,15 @@ double test_light_map_flux(const float *v, int stride, int n, double texel)
     double e = 0;
     int i;
     for (i = 0; i < n; i++) e += v[i * stride + 1] * texel * texel;
+    return e;
+}
+
+double test_light_map_excess(snell_ctx *ctx, const float *ref_rgb, int n, double texel)
+{
+    double e = 0;
+    int i;
+    if (!ctx || !ctx->light_fixed) return 0.0;
+    for (i = 0; i < n; i++) e += fmax(0.0, ref_rgb[3 * i + 1] - SNELL__LIGHT_RANGE) * texel * texel;
     return e;
 }
 

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""glsl_check.py DIR: every program's final sources that a test dumped into
+"""glsl_check.py DIR [PROFILES]: every program's final sources that a test dumped into
 DIR (tests/test_util.c, SNELL_TEST_GLSL_DUMP; test_units always does), as
 pairs <hash>.vert + <hash>.frag, validated and linked as GLSL ES 3.00 by
 glslangValidator (Khronos' reference front end, stricter than Mesa's), then
-counted against every device profile of DIR/profiles.txt (src/core/profile.c):
+counted against every device profile of DIR/profiles.txt or PROFILES (test_units
+writes it from src/core/profile.c):
 varying vectors, fragment outputs (draw buffers), vertex uniform vectors and
 samplers per stage, read from the preprocessed text (glslangValidator -E).
 Declarations are counted, not only what is used, and without packing: a
@@ -75,9 +76,10 @@ def preprocess(tool, path):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: glsl_check.py DIR")
+    if len(sys.argv) not in (2, 3):
+        sys.exit("usage: glsl_check.py DIR [PROFILES.txt]")
     folder = sys.argv[1]
+    profiles_txt = sys.argv[2] if len(sys.argv) == 3 else os.path.join(folder, "profiles.txt")
     tool = shutil.which("glslangValidator")
     if not tool:
         print("skipped: glslangValidator not found (Debian package glslang-tools)")
@@ -86,7 +88,7 @@ def main():
     if not pairs:
         sys.exit(f"no dumped programs in {folder}: run test_units (or a suite with SNELL_TEST_GLSL_DUMP) first")
     profiles = {}
-    with open(os.path.join(folder, "profiles.txt")) as f:
+    with open(profiles_txt) as f:
         for line in f:
             w = line.split()
             profiles[w[0]] = dict(zip(LIMITS, map(int, w[1:])))
