@@ -15,6 +15,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
 
 #define W 48
@@ -141,6 +142,20 @@ static void units_given(snell_ctx *ctx)
     glDeleteProgram(prog);
 }
 
+/* An earlier run's sources (of an older build) would be validated with these. */
+static void clear_dump(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    char path[1400];
+    while (d && (e = readdir(d)) != NULL)
+        if (strstr(e->d_name, ".vert") || strstr(e->d_name, ".frag")) {
+            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+            remove(path);
+        }
+    if (d) closedir(d);
+}
+
 /* The profiles' limits beside the dumped sources, for glsl_check.py: a
  * line per profile, its name and its limits in snell_limit's order. */
 static void write_profiles(const char dir[1024])
@@ -168,6 +183,7 @@ int main(void)
     /* every program the frames build, its final sources, for the
      * glsl_validate test (unless SNELL_TEST_GLSL_DUMP collects them) */
     mkdir(dump, 0755);
+    clear_dump(dump);
     if (!getenv("SNELL_TEST_GLSL_DUMP")) test_glsl_dump(ctx, dump);
     write_profiles(dump);
     memset(&ctx->census, 0, sizeof ctx->census);
