@@ -229,12 +229,12 @@ static snell_status compile(snell_ctx *ctx, GLenum type, const char *defines, co
     GLuint sh;
     GLint ok = 0;
     if (!full) return st;
-    if (ctx && ctx->on_source) ctx->on_source(ctx, type, full);
     sh = glCreateShader(type);
     glShaderSource(sh, 1, (const GLchar *const *)&full, NULL);
     glCompileShader(sh);
-    snell__free(snell__ctx_alloc(ctx), full);
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (ok && ctx && ctx->on_source) ctx->on_source(ctx, type, full); /* what compiled (tests' deliberate errors not) */
+    snell__free(snell__ctx_alloc(ctx), full);
     if (!ok) {
         char log[768];
         log[0] = '\0';
