@@ -17,7 +17,7 @@ cd "$(dirname "$0")/.."
 PACKAGES=(build-essential g++ cmake pkg-config
           libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
           libcglm-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libmeshoptimizer-dev
-          glmark2-data valgrind
+          glmark2-data valgrind glslang-tools
           libdrm-dev libgbm-dev)
 
 install_missing() {

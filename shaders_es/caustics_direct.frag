@@ -40,4 +40,13 @@ void main()
         e += ek * texture(u_shadow, vec3(s.xy, s.z - u_bias));
     }
     o_color = vec4(e * 0.25, 0.0);
+#ifdef SNELL_LIGHT_RANGE
+    // An RGB10_A2 map (core/glstate.h): in 1/1023 steps of the range, rounded
+    // up with the probability of the fraction, as caustics_splat.frag's
+    // photons are (rounding a region's one value the same way everywhere
+    // would bias its mean by up to half a step)
+    highp uint h = (uint(gl_FragCoord.x) * 2654435761u ^ uint(gl_FragCoord.y) * 2246822519u) * 3266489917u;
+    h ^= h >> 15;
+    o_color = (floor(o_color * (1023.0 / SNELL_LIGHT_RANGE) + float(h >> 8) / 16777216.0) + 0.25) / 1023.0;
+#endif
 }

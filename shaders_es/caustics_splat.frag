@@ -15,4 +15,16 @@ void main()
 {
     vec2 d = abs(gl_PointCoord * 2.0 - 1.0); // 0..1 = 0..2 texels from the photon
     o_color = v_flux * (1.0 - d.x) * (1.0 - d.y) * 0.25;
+#ifdef SNELL_LIGHT_RANGE
+    // An RGB10_A2 map (no float target, core/glstate.h): the share in steps
+    // of 1/1023 of the range, rounded up with the probability of its
+    // fraction (hashed from the photon's place in its point and the texel),
+    // so that the blend's many rounded additions sum right on average
+    // (+ 0.25 step: the same whole step whether the GL rounds or truncates;
+    // highp: a fragment shader's ints are mediump, 16 bits, by default).
+    highp uvec2 k = floatBitsToUint(gl_PointCoord) ^ uvec2(gl_FragCoord.xy) * 2654435761u;
+    highp uint h = (k.x ^ k.y * 2246822519u) * 3266489917u;
+    h ^= h >> 15;
+    o_color = (floor(o_color * (1023.0 / SNELL_LIGHT_RANGE) + float(h >> 8) / 16777216.0) + 0.25) / 1023.0;
+#endif
 }

@@ -83,4 +83,12 @@ void main()
         e *= c >= u_cos_cone ? c * c * c : 0.0;
     }
     o_color = vec4(e, (e.r + e.g + e.b) / 3.0);
+#ifdef SNELL_LIGHT_RANGE
+    // an RGB10_A2 map (core/glstate.h): cells overlap where the surface folds
+    // the light, so their sum is rounded at random as caustics_splat.frag's
+    highp uint h = (uint(gl_FragCoord.x) * 2654435761u ^ uint(gl_FragCoord.y) * 2246822519u ^
+              floatBitsToUint(v_beam.x)) * 3266489917u;
+    h ^= h >> 15;
+    o_color = (floor(o_color * (1023.0 / SNELL_LIGHT_RANGE) + float(h >> 8) / 16777216.0) + 0.25) / 1023.0;
+#endif
 }

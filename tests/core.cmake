@@ -128,3 +128,16 @@ endif()
 # minimum limits read back from the programs; too many samplers refused.
 snell_add_test(test_units SOURCES test_units.c LABELS "unit;gl" TIMEOUT 1500)
 target_link_libraries(test_units PRIVATE PkgConfig::GLES)
+# Every program those frames build, its final source (defines and chunks
+# pasted; dumped by test_units into glsl/), validated and linked as GLSL ES
+# 3.00 by glslangValidator and counted against every device profile's
+# varyings, draw buffers, vertex uniform vectors and samplers
+# (tests/scripts/glsl_check.py); skipped, saying so, without glslangValidator.
+find_program(SNELL_PYTHON3 python3)
+if(SNELL_PYTHON3 AND TARGET test_units AND NOT CMAKE_CROSSCOMPILING)
+  add_test(NAME glsl_validate COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/glsl_check.py
+           ${CMAKE_CURRENT_BINARY_DIR}/glsl)
+  set_tests_properties(glsl_validate PROPERTIES LABELS "unit;gl" SKIP_RETURN_CODE 77 FIXTURES_REQUIRED glsl_dump
+                       TIMEOUT 600)
+  set_tests_properties(test_units PROPERTIES FIXTURES_SETUP glsl_dump)
+endif()

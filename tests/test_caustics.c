@@ -12,6 +12,8 @@
  * reference >= 30 dB, the stage's skips and reuse, frames without light or
  * receiver byte-identical to frames without the fields, bad input refused. */
 #include "test_util.h"
+#include "core/ctx.h"
+#include "core/glstate.h"
 #include "core/gl.h"
 #include "render/stages.h"
 #include "ref/ref_trace.h"
@@ -48,9 +50,29 @@ static void peak(const float *v, const snell_receiver *rc, double out[2])
     out[0] = sx / sw, out[1] = sz / sw;
 }
 
+/* The light through glass in texel i of a GPU light map (4 floats a
+ * texel): its alpha, the photons' own tally, in a float map. An RGB10_A2
+ * map (a context without float targets: the gles30-min leg) has 2 bits of
+ * alpha; there it is the green irradiance less the reference's direct light
+ * (its total ref_rgb less its light through glass ref_c, 3 floats a texel). */
+static int g_fixed;
+static double through_glass(const float *gpu, const float *ref_rgb, const float *ref_c, int i)
+{
+    if (!g_fixed) return gpu[4 * i + 3];
+    return gpu[4 * i + 1] - (ref_rgb[3 * i + 1] - ref_c[3 * i + 1]);
+}
+
+/* The reference's counterpart (green where the GPU's is). */
+static double ref_through_glass(const float *ref_rgb, const float *ref_c, int i)
+{
+    (void)ref_rgb;
+    return g_fixed ? ref_c[3 * i + 1] : (ref_c[3 * i] + ref_c[3 * i + 1] + ref_c[3 * i + 2]) / 3.0;
+}
+
 int main(void)
 {
     snell_ctx *ctx = test_ctx();
+    g_fixed = ctx && ctx->light_fixed;
     snell_mesh *sphere = NULL;
     snell_env *env = NULL;
     snell_renderer *r = NULL;
@@ -105,6 +127,8 @@ int main(void)
     CHECK(fs.caustics_photons == 256 * 256 && !fs.caustics_reused, "photons %d reused %d (%s)", fs.caustics_photons,
           fs.caustics_reused, fs.caustics_reason);
     printf("frame 1: %s\n", fs.caustics_reason);
+    CHECK(strstr(fs.caustics_reason, g_fixed ? "RGB10_A2" : "RGBA32F") != NULL, "the light map's format: %s",
+          fs.caustics_reason);
     /* convex: the depth maps' one crossing is its whole path (the BVH's is test_caustics_concave's) */
     CHECK(strstr(fs.caustics_reason, "paths: 0 BVH, 1 depth maps") != NULL, "the sphere's photons: %s",
           fs.caustics_reason);
@@ -120,7 +144,7 @@ int main(void)
     CHECK_OK(snell_ref_receiver_render(ref, &fd.light, &fd.receiver, 1024, 4, ref_rgb, ref_caustic));
 
     /* 1. the caustic's peak at the ball lens's paraxial focus */
-    for (i = 0; i < MAP * MAP; i++) mono[i] = gpu[4 * i + 3];
+    for (i = 0; i < MAP * MAP; i++) mono[i] = (float)through_glass(gpu, ref_rgb, ref_caustic, i);
     peak(mono, &fd.receiver, p_gpu);
     for (i = 0; i < MAP * MAP; i++) mono[i] = (ref_caustic[3 * i] + ref_caustic[3 * i + 1] + ref_caustic[3 * i + 2]) / 3;
     peak(mono, &fd.receiver, p_ref);
@@ -140,8 +164,11 @@ int main(void)
     }
     printf("focus expected (%.4f, %.4f); peak GPU (%.4f, %.4f) ref mesh (%.4f, %.4f) ref exact sphere (%.4f, %.4f); "
            "texel %.4f\n", focus[0], focus[2], p_gpu[0], p_gpu[1], p_ref[0], p_ref[1], p_exact[0], p_exact[1], texel);
-    CHECK(hypot(p_gpu[0] - focus[0], p_gpu[1] - focus[2]) <= 0.02 * kF, "GPU peak %.4f from the focus (2%% of f: %.4f)",
-          hypot(p_gpu[0] - focus[0], p_gpu[1] - focus[2]), 0.02 * kF);
+    if (g_fixed) /* the focus's 212 times the light is a plateau at the RGB10_A2 map's range */
+        printf("skipped: the GPU's focus (an RGB10_A2 map saturates there; the float leg checks it)\n");
+    else
+        CHECK(hypot(p_gpu[0] - focus[0], p_gpu[1] - focus[2]) <= 0.02 * kF, "GPU peak %.4f from the focus (2%% of f: %.4f)",
+              hypot(p_gpu[0] - focus[0], p_gpu[1] - focus[2]), 0.02 * kF);
     CHECK(hypot(p_ref[0] - focus[0], p_ref[1] - focus[2]) <= 0.02 * kF, "reference peak %.4f from the focus",
           hypot(p_ref[0] - focus[0], p_ref[1] - focus[2]));
     CHECK(hypot(p_exact[0] - focus[0], p_exact[1] - focus[2]) <= 0.02 * kF, "exact-sphere peak %.4f from the focus",
@@ -149,12 +176,16 @@ int main(void)
 
     /* 2. the light through the glass on the plane: GPU against reference */
     for (i = 0; i < MAP * MAP; i++) {
-        e_gpu += gpu[4 * i + 3] * texel * texel;
-        e_ref += (ref_caustic[3 * i] + ref_caustic[3 * i + 1] + ref_caustic[3 * i + 2]) / 3.0 * texel * texel;
+        e_gpu += through_glass(gpu, ref_rgb, ref_caustic, i) * texel * texel;
+        e_ref += ref_through_glass(ref_rgb, ref_caustic, i) * texel * texel;
     }
     printf("flux through glass on the plane: GPU %.4f, reference %.4f (%.2f%%), pi R^2 = %.4f\n", e_gpu, e_ref,
            100.0 * (e_gpu / e_ref - 1.0), PI_D);
-    CHECK(fabs(e_gpu / e_ref - 1.0) <= 0.05, "GPU %.4f against reference %.4f", e_gpu, e_ref);
+    {
+        double excess = test_light_map_excess(ctx, ref_rgb, MAP * MAP, texel); /* 0 with float maps */
+        CHECK(fabs(e_gpu - e_ref) <= 0.05 * e_ref + excess, "GPU %.4f against reference %.4f (%.4f above an RGB10_A2 "
+              "map's range)", e_gpu, e_ref, excess);
+    }
 
     /* 3. the lit receiver (albedo 0.8) against the reference */
     {
@@ -244,7 +275,7 @@ int main(void)
                 for (i = 0; i < 128; i++) {
                     double x = -0.3 + (i + 0.5) * tx, y = -0.3 + (j + 0.5) * tx;
                     if (x * x + y * y > RHO * RHO) continue;
-                    v += gpu[4 * (j * 128 + i) + 3] * tx * tx;
+                    v += through_glass(gpu, ref_rgb, rc3, j * 128 + i) * tx * tx;
                     v_ref += rc3[3 * (j * 128 + i) + 1] * tx * tx;
                 }
             for (j = 0; j < 20000; j++) { /* the zones, midpoint rule */
@@ -262,9 +293,13 @@ int main(void)
         printf("flux within %.2f of the axis largest %.2f below the centre (closed form, %.4f), %.2f (GPU, %.4f), "
                "%.2f (reference, %.4f); paraxial focus f = %.2f\n", RHO, at_cf, best_cf, at, best, at_ref, best_ref,
                kF);
-        CHECK(fabs(at - at_cf) <= 0.02 * kF, "GPU brightest at %.3f, closed form %.3f", at, at_cf);
         CHECK(fabs(at_ref - at_cf) <= 0.02 * kF, "reference brightest at %.3f, closed form %.3f", at_ref, at_cf);
-        CHECK(fabs(best / best_ref - 1.0) < 0.05, "GPU flux there %.4f, reference %.4f", best, best_ref);
+        if (g_fixed) {
+            printf("skipped: the GPU's flux near the focus (it saturates an RGB10_A2 map; the float leg checks it)\n");
+        } else {
+            CHECK(fabs(at - at_cf) <= 0.02 * kF, "GPU brightest at %.3f, closed form %.3f", at, at_cf);
+            CHECK(fabs(best / best_ref - 1.0) < 0.05, "GPU flux there %.4f, reference %.4f", best, best_ref);
+        }
     }
 
     /* 3b. a spot light 6 above the centre (a point-like light; the ball
@@ -286,14 +321,16 @@ int main(void)
         CHECK_OK_CTX(ctx, snell__caustics_read(ctx, snell__renderer_caustics(r), gpu, &n));
         CHECK_OK(snell_ref_receiver_render(ref, &sp.light, &sp.receiver, 1024, 4, ref_rgb, ref_caustic));
         for (i = 0; i < MAP * MAP; i++) {
-            eg += gpu[4 * i + 3];
-            er += (ref_caustic[3 * i] + ref_caustic[3 * i + 1] + ref_caustic[3 * i + 2]) / 3.0;
+            eg += through_glass(gpu, ref_rgb, ref_caustic, i);
+            er += ref_through_glass(ref_rgb, ref_caustic, i);
         }
         {
             double db = test_light_map_psnr(gpu, 4, ref_rgb, MAP * MAP, 0.8f);
             printf("spot: flux through glass GPU %.4f reference %.4f (%.2f%%), receiver %.2f dB\n", eg * 0.0234375 * 0.0234375,
                    er * 0.0234375 * 0.0234375, 100.0 * (eg / er - 1.0), db);
-            CHECK(fabs(eg / er - 1.0) <= 0.05, "spot flux GPU %.4f reference %.4f", eg, er);
+            double excess = test_light_map_excess(ctx, ref_rgb, MAP * MAP, 1.0); /* texels, as eg and er */
+            CHECK(fabs(eg - er) <= 0.05 * er + excess, "spot flux GPU %.4f reference %.4f (%.4f above the range)", eg,
+                  er, excess);
             CHECK(db >= 30.0, "spot PSNR %.2f dB", db);
         }
         test_write_light_map("caustics_spot_gpu.png", gpu, 4, MAP, 0.8f);
@@ -310,7 +347,7 @@ int main(void)
                 for (i = 0; i < 128; i++) {
                     double x = -0.3 + (i + 0.5) * tx, y = -0.3 + (j + 0.5) * tx;
                     if (x * x + y * y > 0.02 * 0.02) continue;
-                    v += gpu[4 * (j * 128 + i) + 3];
+                    v += through_glass(gpu, ref_rgb, ref_caustic, j * 128 + i);
                     v_ref += ref_caustic[3 * (j * 128 + i) + 1];
                 }
             if (v > best) best = v, at = z;
@@ -318,8 +355,13 @@ int main(void)
         }
         printf("spot: flux within 0.02 of the axis largest %.3f (GPU), %.3f (reference) below the centre; paraxial "
                "image %.3f\n", at, at_ref, s_i);
-        CHECK(fabs(at - at_ref) <= 0.02 * s_i, "spot: GPU %.3f reference %.3f", at, at_ref);
-        CHECK(at < s_i && at > 0.8 * s_i, "spot: brightest %.3f short of the paraxial image %.3f (aberration)", at, s_i);
+        if (g_fixed) {
+            printf("skipped: the spot's image (it saturates an RGB10_A2 map; the float leg checks it)\n");
+        } else {
+            CHECK(fabs(at - at_ref) <= 0.02 * s_i, "spot: GPU %.3f reference %.3f", at, at_ref);
+            CHECK(at < s_i && at > 0.8 * s_i, "spot: brightest %.3f short of the paraxial image %.3f (aberration)", at,
+                  s_i);
+        }
     }
 
     /* 4. reuse: nothing moved; then the light moves */
@@ -375,14 +417,14 @@ int main(void)
     }
 
     /* 5b. the light map's formats: RGBA16F (no GL_EXT_float_blend) on a
-     * fresh renderer made to take it, against the RGBA32F map of frame 1;
-     * none (no float target): the stage says so and draws nothing */
-    {
-        snell_renderer *r16 = NULL, *r0 = NULL;
+     * fresh renderer made to take it, against the RGBA32F map of frame 1
+     * (a context without float targets has RGB10_A2, which the whole test
+     * then runs on: the gles30-min leg) */
+    if (!ctx->light_fixed) {
+        snell_renderer *r16 = NULL;
         float *m16 = (float *)calloc((size_t)MAP * MAP * 4, sizeof(float));
         CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r16));
-        CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r0));
-        if (r16 && r0 && m16) {
+        if (r16 && m16) {
             double e16 = 0, e32 = 0;
             int n = 0;
             snell__renderer_caustics(r16)->map_format = GL_RGBA16F;
@@ -405,18 +447,9 @@ int main(void)
                  * saturates) barely changes */
                 CHECK(e16 / e32 > 0.7 && e16 / e32 <= 1.001 && db > 40.0, "16F flux ratio %.4f, %.1f dB", e16 / e32, db);
             }
-            snell__renderer_caustics(r0)->map_format = SNELL__CAUSTICS_NO_FLOAT;
-            CHECK_OK_CTX(ctx, snell_render(r0, &fd, &fs));
-            CHECK(strstr(fs.caustics_reason, "float target") && fs.caustics_photons == 0, "none: %s",
-                  fs.caustics_reason);
-            CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r0, img1));
-            CHECK_OK_CTX(ctx, snell_render(r0, &plain, &fs));
-            CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r0, img0));
-            CHECK(memcmp(img0, img1, (size_t)W * W * 4) == 0, "without a float target the frame is the plain one");
         }
         free(m16);
         snell_renderer_destroy(r16);
-        snell_renderer_destroy(r0);
     }
 
     /* 5c. exit-direction output has no receiver: the stage is left out, said why */

@@ -140,7 +140,9 @@ int main(void)
         CHECK(db - db_one >= 6.0, "GPU %.2f dB from the full path, %.2f dB from one crossing", db, db_one);
         /* (c) measured +0.05%; glass adds no light: all of it on the plane at
          * most what the plane has without the torus (22.8 against 24.0) */
-        CHECK(fabs(e_gpu / e_ref - 1.0) <= 0.03, "light through glass: GPU %.4f, reference %.4f", e_gpu, e_ref);
+        CHECK(fabs(e_gpu - e_ref) <= 0.03 * e_ref + test_light_map_excess(ctx, ref_rgb, MAP * MAP, texel),
+              "light through glass: GPU %.4f, reference %.4f (%.4f above an RGB10_A2 map's range)", e_gpu, e_ref,
+              test_light_map_excess(ctx, ref_rgb, MAP * MAP, texel));
         CHECK(e_all <= e_free && test_light_map_flux(ref_rgb, 3, MAP * MAP, texel) <= e_free, "all light %.4f (reference %.4f), %.4f without",
               e_all, test_light_map_flux(ref_rgb, 3, MAP * MAP, texel), e_free);
         /* and the light through glass is no more than the light the torus takes */
@@ -205,8 +207,9 @@ int main(void)
                    "against %.4f (%+.2f%%)\n", db_s, e_s, e_sref, 100.0 * (e_s / e_sref - 1.0));
             /* measured 38.6 dB, +0.13% (512^2 photons); a photon's solid angle
              * without the cos^3 (cos^2) gives +2.0%, and 256^2 photons' moire 31.8 dB */
-            CHECK(db_s >= 34.0 && fabs(e_s / e_sref - 1.0) <= 0.01, "spot: %.2f dB, %.4f against %.4f", db_s, e_s,
-                  e_sref);
+            CHECK(db_s >= 34.0 && fabs(e_s - e_sref) <= 0.01 * e_sref + test_light_map_excess(ctx, ref_rgb, MAP * MAP, texel),
+                  "spot: %.2f dB, %.4f against %.4f (%.4f above an RGB10_A2 map's range)", db_s, e_s, e_sref,
+                  test_light_map_excess(ctx, ref_rgb, MAP * MAP, texel));
         }
         snell_ref_destroy(ref_spot);
     }

@@ -73,6 +73,10 @@ static void render_dirs_with(snell_ctx *ctx, snell_renderer *r, const snell_fram
     snell_renderer_destroy(own);
 }
 
+/* exact counts fallback pixels on an RGBA32F exit-direction target
+ * (GL_EXT_color_buffer_float), which packed directions have no room for */
+static int fallbacks_counted(snell_ctx *ctx) { return snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float"); }
+
 static void render_dirs(snell_ctx *ctx, const snell_frame_desc *fd, float *dirs, snell_frame_stats *st)
 {
     render_dirs_with(ctx, NULL, fd, dirs, st);
@@ -121,8 +125,8 @@ static agreement agree_with(snell_ctx *ctx, snell_renderer *r, const snell_frame
     int i;
     render_dirs_with(ctx, r, fd, gpu, &st);
     CHECK(st.glass[0].method_used == SNELL_METHOD_EXACT, "drawn with exact (%s)", st.glass[0].reason);
-    CHECK(snell_object_counter(&st.glass[0], "fallback_pixels") == 0, "no pixel ran out of the default budget (%d did)",
-          snell_object_counter(&st.glass[0], "fallback_pixels"));
+    CHECK(snell_object_counter(&st.glass[0], "fallback_pixels") == (fallbacks_counted(ctx) ? 0 : -1),
+          "no pixel ran out of the default budget (%d did)", snell_object_counter(&st.glass[0], "fallback_pixels"));
     coverage(ctx, fd, gpu, cov);
     for (i = 0; i < W * H; i++) {
         double e;
@@ -270,8 +274,13 @@ static void check_budget(snell_ctx *ctx, snell_env *env, snell_mesh *mesh)
     render_dirs(ctx, &fd, single, NULL);
     g.material.method = SNELL_METHOD_EXACT;
     render_dirs(ctx, &fd, full, &st);
-    CHECK(snell_object_counter(&st.glass[0], "fallback_pixels") == 0, "the default budget: no fallback (%d)",
-          snell_object_counter(&st.glass[0], "fallback_pixels"));
+    CHECK(snell_object_counter(&st.glass[0], "fallback_pixels") == (fallbacks_counted(ctx) ? 0 : -1),
+          "the default budget: no fallback (%d)", snell_object_counter(&st.glass[0], "fallback_pixels"));
+    if (!fallbacks_counted(ctx)) {
+        printf("skipped: the node budget's fallback count (counted on an RGBA32F exit-direction target only; "
+               "no GL_EXT_color_buffer_float: the counter reads -1, not counted)\n");
+        return;
+    }
     g.material.exact.node_budget = 128;
     render_dirs(ctx, &fd, small, &st);
     counted = snell_object_counter(&st.glass[0], "fallback_pixels");

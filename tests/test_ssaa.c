@@ -210,7 +210,12 @@ int main(void)
     rd.target = SNELL_TARGET_BOUND_FRAMEBUFFER;
     refused(ctx, rd, "ssaa on the bound framebuffer");
     rd.target = SNELL_TARGET_OFFSCREEN;
-    rd.width = rd.height = 4096;
+    {
+        /* a size the context takes (a device profile's renderbuffer may be 2048), ssaa times it not */
+        snell_device_limits lim;
+        snell_ctx_limits(ctx, &lim);
+        rd.width = rd.height = lim.limit[SNELL_LIMIT_RENDERBUFFER_SIZE] < 4096 ? lim.limit[SNELL_LIMIT_RENDERBUFFER_SIZE] : 4096;
+    }
     rd.ssaa = SNELL_MAX_SSAA;
     refused(ctx, rd, "ssaa beyond the largest renderbuffer");
     snell_mesh_destroy(torus);

@@ -14,7 +14,10 @@
 #include "frame/textures.h"
 #include "snell/snell_water.h"
 
+#include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
+#include <sys/stat.h>
 
 #define W 48
 #define H 48
@@ -153,12 +156,56 @@ static void units_given(snell_ctx *ctx)
     glDeleteProgram(prog);
 }
 
+/* An earlier run's sources (of an older build) would be validated with these. */
+static void clear_dump(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    char path[1400];
+    while (d && (e = readdir(d)) != NULL)
+        if (strstr(e->d_name, ".vert") || strstr(e->d_name, ".frag")) {
+            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+            remove(path);
+        }
+    if (d) closedir(d);
+}
+
+/* The profiles' limits beside the dumped sources, for glsl_check.py: a
+ * line per profile, its name and its limits in snell_limit's order. */
+static void write_profiles(const char dir[1024])
+{
+    char path[1100], text[2048] = "";
+    int i, k;
+    for (i = 0; i < snell__profile_count; i++) {
+        snprintf(text + strlen(text), sizeof text - strlen(text), "%s", snell__profiles[i].name);
+        for (k = 0; k < SNELL__LIMITS; k++)
+            snprintf(text + strlen(text), sizeof text - strlen(text), " %d", snell__profiles[i].limit[k]);
+        snprintf(text + strlen(text), sizeof text - strlen(text), "\n");
+    }
+    snprintf(path, sizeof path, "%s/profiles.txt", dir);
+    CHECK(test_write_file(path, text, strlen(text)), "cannot write %s", path);
+}
+
 int main(void)
 {
     snell_ctx *ctx = test_ctx();
+    static char dump[1024];
     if (!ctx) SKIP("no GL context");
-    units_given(ctx);
-    too_many_samplers(ctx);
+    snprintf(dump, sizeof dump, "%s", test_out("glsl"));
+    {
+        /* the two test programs here are not snell's (one has 17 samplers) */
+        void (*hook)(snell_ctx *, unsigned, const char *) = ctx->on_source;
+        ctx->on_source = NULL;
+        units_given(ctx);
+        too_many_samplers(ctx);
+        ctx->on_source = hook;
+    }
+    /* every program the frames build, its final sources, for the
+     * glsl_validate test */
+    mkdir(dump, 0755);
+    clear_dump(dump);
+    test_glsl_dump(ctx, dump); /* here even when SNELL_TEST_GLSL_DUMP collects the other tests' */
+    write_profiles(dump);
     memset(&ctx->census, 0, sizeof ctx->census);
     frames_all(ctx, SNELL_SHADING_FORWARD, 0, 0);
     frames_all(ctx, SNELL_SHADING_SCREEN, 1, 0);

@@ -1,5 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 #include "test_util.h"
+#include "core/ctx.h"
+#include "core/glstate.h"
 
 #include <EGL/eglext.h>
 
@@ -89,14 +91,57 @@ int test_host_context(EGLDisplay *dpy, EGLContext *ctx)
     return *ctx != EGL_NO_CONTEXT && eglMakeCurrent(*dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, *ctx);
 }
 
+/* SNELL_TEST_GLSL_DUMP=dir: every program's final sources (core/program.c,
+ * defines and chunks pasted), a vertex shader and the fragment shader built
+ * after it, written once per pair as dir/<hash>.vert and .frag for
+ * tests/scripts/glsl_check.py (glslangValidator). */
+static char *g_dump_vert;
+
+static unsigned long long fnv64(unsigned long long h, const char *s)
+{
+    for (; *s; s++) h = (h ^ (unsigned char)*s) * 1099511628211ull;
+    return h;
+}
+
+static void dump_source(snell_ctx *ctx, unsigned stage, const char *src)
+{
+    const char *dir = (const char *)ctx->on_source_user;
+    char path[1024];
+    unsigned long long h;
+    FILE *f;
+    if (stage == 0x8B31) { /* GL_VERTEX_SHADER: kept until its fragment shader comes */
+        free(g_dump_vert);
+        if ((g_dump_vert = (char *)malloc(strlen(src) + 1)) != NULL) memcpy(g_dump_vert, src, strlen(src) + 1);
+        return;
+    }
+    if (!g_dump_vert) return;
+    h = fnv64(fnv64(14695981039346656037ull, g_dump_vert), src);
+    snprintf(path, sizeof path, "%s/%016llx.frag", dir, h);
+    if ((f = fopen(path, "r")) != NULL) {
+        fclose(f);
+        return;
+    }
+    test_write_file(path, src, strlen(src));
+    snprintf(path, sizeof path, "%s/%016llx.vert", dir, h);
+    test_write_file(path, g_dump_vert, strlen(g_dump_vert));
+}
+
+void test_glsl_dump(snell_ctx *ctx, const char *dir)
+{
+    ctx->on_source = dump_source;
+    ctx->on_source_user = (void *)dir;
+}
+
 snell_ctx *test_ctx(void)
 {
     snell_ctx *ctx = NULL;
     snell_ctx_desc d = {0};
+    const char *dump = getenv("SNELL_TEST_GLSL_DUMP");
     if (snell_ctx_create(&d, &ctx) != SNELL_OK) {
         fprintf(stderr, "no headless GL context: %s\n", snell_last_error(NULL));
         return NULL;
     }
+    if (dump && *dump) test_glsl_dump(ctx, dump);
     return ctx;
 }
 
@@ -248,6 +293,15 @@ double test_light_map_flux(const float *v, int stride, int n, double texel)
     double e = 0;
     int i;
     for (i = 0; i < n; i++) e += v[i * stride + 1] * texel * texel;
+    return e;
+}
+
+double test_light_map_excess(snell_ctx *ctx, const float *ref_rgb, int n, double texel)
+{
+    double e = 0;
+    int i;
+    if (!ctx || !ctx->light_fixed) return 0.0;
+    for (i = 0; i < n; i++) e += fmax(0.0, ref_rgb[3 * i + 1] - SNELL__LIGHT_RANGE) * texel * texel;
     return e;
 }
 

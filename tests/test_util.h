@@ -84,6 +84,8 @@ double test_time_scale(void);
 int test_host_context(EGLDisplay *dpy, EGLContext *ctx);
 /* A headless context (default backend) or NULL, message printed. */
 snell_ctx *test_ctx(void);
+/* Writes every program's final sources built in ctx into dir (see test_util.c). */
+void test_glsl_dump(snell_ctx *ctx, const char *dir);
 /* The procedural sky environment (snell_env_desc zero but face_size) on ctx,
  * or NULL with the failure counted (CHECK_OK). */
 snell_env *test_sky(snell_ctx *ctx, int face_size);
@@ -118,6 +120,11 @@ double test_dir_angle(const float a[3], const float b[3]);
 double test_light_map_psnr(const float *a, int stride_a, const float *b, int n, float albedo);
 /* The flux of a light map's green channel: n texels of stride floats, each texel x texel (world area). */
 double test_light_map_flux(const float *v, int stride, int n, double texel);
+/* The flux (green, texel side texel) of the reference's light map ref_rgb (3
+ * floats a texel) above what ctx's light maps hold: 0 with float maps; an
+ * RGB10_A2 map (no float colour target) saturates at SNELL__LIGHT_RANGE
+ * times the light, so a focus loses up to this much of the light through glass. */
+double test_light_map_excess(snell_ctx *ctx, const float *ref_rgb, int n, double texel);
 void test_write_light_map(const char *name, const float *v, int stride, int n, float albedo);
 /* The PSNR (dB) of two RGBA8 images of n pixels over the pixels where mask
  * is set (their rgb); their count in *count. 999 where they agree. */

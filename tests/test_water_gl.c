@@ -97,8 +97,14 @@ static void compare(snell_ctx *ctx, snell_water *w, const snell_env *env, const 
            "p99 %.2e, max %.2e\n", name, ie.pixels, ie.psnr_db, ie.rmse, ie.above_3, de.mean_deg, de.p99_deg, de.max_deg);
     CHECK(ie.pixels > W * H / 8, "water covers %ld pixels", ie.pixels);
     CHECK(ie.psnr_db >= min_psnr, "%s: water PSNR %.2f dB below %.1f", name, ie.psnr_db, min_psnr);
-    CHECK(de.mean_deg <= max_mean_deg && de.p99_deg <= max_p99_deg, "%s: exit direction mean %.4f p99 %.4f deg",
-          name, de.mean_deg, de.p99_deg);
+    {
+        /* packed directions (no float target: RGBA8, octahedral 2 x 16 bits)
+         * add their quantisation, below 1e-4 rad (snell.h, snell_output) */
+        double q = strcmp(snell_renderer_exit_dir_encoding(rd), "float") ? 1e-4 * 180.0 / 3.14159265358979 : 0.0;
+        CHECK(de.mean_deg <= max_mean_deg + q && de.p99_deg <= max_p99_deg + q,
+              "%s: exit direction mean %.4f p99 %.4f deg (%s)", name, de.mean_deg, de.p99_deg,
+              snell_renderer_exit_dir_encoding(rd));
+    }
     snprintf(path, sizeof path, "%s_gpu.png", name);
     snell_write_png(test_out(path), W, H, gpu);
     snprintf(path, sizeof path, "%s_ref.png", name);

@@ -112,6 +112,14 @@ typedef struct snell_ctx_desc {
      * Calls without a context (ctx == NULL) use the default. It bounds each
      * request, it does not account for everything the context holds. */
     size_t memory_budget;
+    /* A device profile's name ("gles30-min", "rpi-v3d", "mali-bifrost",
+     * "adreno-6xx", "powervr-rogue"; src/core/profile.c gives each value's
+     * source): snell then uses only the extensions the profile has and
+     * refuses what exceeds its limits or the GL context's, whichever is
+     * lower, as it would on that device. NULL: the environment variable
+     * SNELL_DEVICE_PROFILE, if set, else none (the GL context's own). An
+     * unknown name fails with SNELL_E_INVALID_ARG listing the names. */
+    const char *device_profile;
 } snell_ctx_desc;
 
 /* 256 MiB: on a 1 GB board (RAM shared by the OS, the app, and the GPU's
@@ -162,6 +170,24 @@ int snell_ctx_has_gl_extension(const snell_ctx *ctx, const char *name);
 const char *snell_ctx_precision(snell_ctx *ctx);
 /* GL_RENDERER string of the context. */
 const char *snell_ctx_gl_renderer(const snell_ctx *ctx);
+
+/* The limits snell checks what it builds against (GLES 3.0's names:
+ * GL_MAX_TEXTURE_SIZE, GL_MAX_CUBE_MAP_TEXTURE_SIZE, GL_MAX_ARRAY_TEXTURE_LAYERS,
+ * GL_MAX_RENDERBUFFER_SIZE, GL_MAX_SAMPLES, GL_MAX_TEXTURE_IMAGE_UNITS,
+ * GL_MAX_FRAGMENT_UNIFORM_VECTORS, GL_MAX_VERTEX_UNIFORM_VECTORS,
+ * GL_MAX_VARYING_VECTORS, GL_MAX_DRAW_BUFFERS). */
+typedef enum snell_limit {
+    SNELL_LIMIT_TEXTURE_SIZE, SNELL_LIMIT_CUBE_SIZE, SNELL_LIMIT_ARRAY_LAYERS, SNELL_LIMIT_RENDERBUFFER_SIZE,
+    SNELL_LIMIT_SAMPLES, SNELL_LIMIT_FRAGMENT_UNITS, SNELL_LIMIT_FRAGMENT_VECTORS, SNELL_LIMIT_VERTEX_VECTORS,
+    SNELL_LIMIT_VARYINGS, SNELL_LIMIT_DRAW_BUFFERS, SNELL_LIMIT_COUNT
+} snell_limit;
+typedef struct snell_device_limits {
+    const char *profile;            /* the device profile in force, "none" without one */
+    int limit[SNELL_LIMIT_COUNT];   /* the GL context's, lowered to the profile's */
+} snell_device_limits;
+void snell_ctx_limits(const snell_ctx *ctx, snell_device_limits *out);
+/* "texture_size", "cube_size", ...: the limit's name in messages and JSON. */
+const char *snell_limit_str(snell_limit which);
 
 /* ------------------------------------------------------------------- mesh */
 /* Meshes are CPU data (positions, smooth normals, triangle indices) plus GPU

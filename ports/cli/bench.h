@@ -252,6 +252,8 @@ typedef struct bench_run_info {
     const char *tool, *timing;
     int no_errors;                 /* errors not measured: the error fields are null and the JSON does
                                     * not describe a reference or mask policy */
+    const snell_device_limits *limits; /* the device profile in force and its limits (snell_ctx_limits);
+                                        * NULL: not written */
 } bench_run_info;
 
 void bench_mark_pareto(bench_config *cs, int n, const bench_options *o);

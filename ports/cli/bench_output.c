@@ -191,6 +191,15 @@ static void json_header(FILE *f, const bench_options *o, const bench_run_info *r
     else fprintf(f, ",\n  \"llvmpipe_threads\": null");
     fprintf(f, ",\n  \"llvmpipe_threads_from\": ");
     json_str(f, why);
+    if (run->limits) { /* what the run could use: the device profile (SNELL_DEVICE_PROFILE) and its limits */
+        int k;
+        fprintf(f, ",\n  \"device_profile\": ");
+        json_str(f, run->limits->profile);
+        fprintf(f, ",\n  \"device_limits\": {");
+        for (k = 0; k < SNELL_LIMIT_COUNT; k++)
+            fprintf(f, "%s\"%s\": %d", k ? ", " : "", snell_limit_str((snell_limit)k), run->limits->limit[k]);
+        fprintf(f, "}");
+    }
     fprintf(f, ",\n  \"timer_query\": %s,\n  \"timing\": ", run->timer ? "true" : "false");
     json_str(f, run->timing ? run->timing
                             : "median of frames after warm-up; each frame = snell_render + glFinish (CPU wall clock); "

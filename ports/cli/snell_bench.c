@@ -127,6 +127,7 @@ int main(int argc, char **argv)
     bench_config *cs = NULL;
     bench_run_info run;
     cli_system sys;
+    snell_device_limits limits;
     int i, n = 0, rc = 0, timer;
     char load_before[64], load_after[64], date[64];
     static char command[8192];
@@ -167,6 +168,8 @@ int main(int argc, char **argv)
     cli_system_read(&sys);
     run.system = &sys;
     run.renderer = snell_ctx_gl_renderer(ctx);
+    snell_ctx_limits(ctx, &limits);
+    run.limits = &limits;
     timer = bench_timer_init(ctx);
     run.timer = timer > 0;
     cli_loadavg(load_before, sizeof load_before);

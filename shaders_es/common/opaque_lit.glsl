@@ -82,6 +82,9 @@ highp vec3 snell_lit_irradiance(highp vec3 p, highp vec3 n)
                 w += wk;
             }
         }
+#ifdef SNELL_LIGHT_RANGE
+        acc *= SNELL_LIGHT_RANGE; // an RGB10_A2 map holds irradiance / range (core/glstate.h)
+#endif
         if (w > 0.0) e += acc / w * (fall * cosl);
     }
     return e;

@@ -18,10 +18,14 @@ vec3 receiver_irradiance(highp vec2 uv)
     ivec2 b = ivec2(floor(t));
     vec2 f = t - floor(t);
     ivec2 hi = n - 1;
-    return mix(mix(texelFetch(u_plane_map, clamp(b, ivec2(0), hi), 0).rgb,
-                   texelFetch(u_plane_map, clamp(b + ivec2(1, 0), ivec2(0), hi), 0).rgb, f.x),
-               mix(texelFetch(u_plane_map, clamp(b + ivec2(0, 1), ivec2(0), hi), 0).rgb,
-                   texelFetch(u_plane_map, clamp(b + ivec2(1, 1), ivec2(0), hi), 0).rgb, f.x), f.y);
+    vec3 e = mix(mix(texelFetch(u_plane_map, clamp(b, ivec2(0), hi), 0).rgb,
+                     texelFetch(u_plane_map, clamp(b + ivec2(1, 0), ivec2(0), hi), 0).rgb, f.x),
+                 mix(texelFetch(u_plane_map, clamp(b + ivec2(0, 1), ivec2(0), hi), 0).rgb,
+                     texelFetch(u_plane_map, clamp(b + ivec2(1, 1), ivec2(0), hi), 0).rgb, f.x), f.y);
+#ifdef SNELL_LIGHT_RANGE
+    e *= SNELL_LIGHT_RANGE; // an RGB10_A2 map holds irradiance / range (core/glstate.h)
+#endif
+    return e;
 }
 
 // What the ray o + t dir (t > 0) sees of the plane: its lit colour where it

@@ -59,10 +59,14 @@ vec3 water_floor_light(highp vec2 xz)
     highp vec2 t = (xz / (2.0 * u_water_half) + 0.5) * vec2(n) - 0.5;
     ivec2 b = ivec2(floor(t)), hi = n - 1;
     highp vec2 f = t - floor(t);
-    return mix(mix(texelFetch(u_water_light, clamp(b, ivec2(0), hi), 0).rgb,
-                   texelFetch(u_water_light, clamp(b + ivec2(1, 0), ivec2(0), hi), 0).rgb, f.x),
-               mix(texelFetch(u_water_light, clamp(b + ivec2(0, 1), ivec2(0), hi), 0).rgb,
-                   texelFetch(u_water_light, clamp(b + ivec2(1, 1), ivec2(0), hi), 0).rgb, f.x), f.y);
+    vec3 e = mix(mix(texelFetch(u_water_light, clamp(b, ivec2(0), hi), 0).rgb,
+                     texelFetch(u_water_light, clamp(b + ivec2(1, 0), ivec2(0), hi), 0).rgb, f.x),
+                 mix(texelFetch(u_water_light, clamp(b + ivec2(0, 1), ivec2(0), hi), 0).rgb,
+                     texelFetch(u_water_light, clamp(b + ivec2(1, 1), ivec2(0), hi), 0).rgb, f.x), f.y);
+#ifdef SNELL_LIGHT_RANGE
+    e *= SNELL_LIGHT_RANGE; // an RGB10_A2 map holds irradiance / range (core/glstate.h)
+#endif
+    return e;
 }
 
 // A face's tile seen from inside the water: the floor lit by the light map

@@ -6,6 +6,7 @@
 
 #include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static pthread_mutex_t g_ref_lock = PTHREAD_MUTEX_INITIALIZER;
@@ -52,8 +53,34 @@ static snell_status probe_gl(snell_ctx *ctx)
         *p++ = ' ';
     }
     *p = '\0';
+    for (i = 0; i < SNELL__LIMITS; i++) {
+        GLint v = 0;
+        glGetIntegerv(snell__limit_enum[i], &v);
+        ctx->limit[i] = ctx->profile && ctx->profile->limit[i] < v ? ctx->profile->limit[i] : v;
+    }
     ctx->has_khr_debug = snell_ctx_has_gl_extension(ctx, "GL_KHR_debug");
+    ctx->light_fixed = !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_half_float") &&
+                       !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float");
     return SNELL_OK;
+}
+
+/* The profile named by the description, else by SNELL_DEVICE_PROFILE. */
+static snell_status find_profile(const char *name, const snell__profile **out)
+{
+    char names[96] = "";
+    int i;
+    *out = NULL;
+    if (!name) name = getenv("SNELL_DEVICE_PROFILE");
+    if (!name || !*name) return SNELL_OK;
+    for (i = 0; i < snell__profile_count; i++) {
+        if (strcmp(name, snell__profiles[i].name) == 0) {
+            *out = &snell__profiles[i];
+            return SNELL_OK;
+        }
+        snprintf(names + strlen(names), sizeof names - strlen(names), " %s", snell__profiles[i].name);
+    }
+    return snell__fail(NULL, SNELL_E_INVALID_ARG, "unknown device profile \"%s\" (known:%s)", name,
+                       names);
 }
 
 static void install_debug(snell_ctx *ctx, int enable)
@@ -76,6 +103,7 @@ snell_status snell_ctx_create(const snell_ctx_desc *desc, snell_ctx **out)
     snell_alloc al;
     snell_ctx *ctx;
     snell_status st;
+    const snell__profile *profile;
 
     if (!out) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_ctx_create: out is NULL");
     *out = NULL;
@@ -83,11 +111,13 @@ snell_status snell_ctx_create(const snell_ctx_desc *desc, snell_ctx **out)
     if (desc) d = *desc;
     if ((unsigned)d.backend > SNELL_BACKEND_EXTERNAL)
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_ctx_create: unknown backend %d", (int)d.backend);
+    if ((st = find_profile(d.device_profile, &profile)) != SNELL_OK) return st;
     al = snell__alloc_from(&d.allocator);
     ctx = (snell_ctx *)snell__calloc(&al, 1, sizeof *ctx);
     if (!ctx) return snell__fail(NULL, SNELL_E_NOMEM, "snell_ctx_create: out of memory");
     ctx->alloc = al;
     ctx->refs = 1; /* the caller's handle */
+    ctx->profile = profile;
     ctx->log = d.log;
     ctx->log_user = d.log_user;
     ctx->memory_budget = d.memory_budget ? d.memory_budget : SNELL_DEFAULT_MEMORY_BUDGET;
@@ -249,10 +279,16 @@ const char *snell_backend_str(snell_backend b)
     return "unknown";
 }
 
+/* Under a profile, only the extensions it lists (and the GL context has). */
 int snell_ctx_has_gl_extension(const snell_ctx *ctx, const char *name)
 {
     char token[128];
+    int i;
     if (!ctx || !ctx->gl_extensions || !name || strlen(name) + 3 > sizeof token) return 0;
+    if (ctx->profile) {
+        for (i = 0; i < SNELL__PROFILE_EXTS && strcmp(name, snell__profile_ext[i]) != 0; i++) {}
+        if (i == SNELL__PROFILE_EXTS || !(ctx->profile->ext >> i & 1)) return 0;
+    }
     snprintf(token, sizeof token, " %s ", name);
     return strstr(ctx->gl_extensions, token) != NULL;
 }

@@ -6,6 +6,7 @@
 
 #include "core/core.h"
 #include "core/platform.h"
+#include "core/profile.h"
 
 struct snell_ctx {
     snell_alloc alloc;
@@ -15,7 +16,10 @@ struct snell_ctx {
     snell_platform platform;
     char gl_renderer[128];
     char *gl_extensions;            /* space-separated, with a leading and trailing space */
+    const snell__profile *profile;  /* the device profile in force, NULL none (profile.c) */
+    int limit[SNELL__LIMITS];       /* the GL context's limits, lowered to the profile's */
     int has_khr_debug;
+    int light_fixed;                /* no float colour target: light maps in RGB10_A2 (glstate.h) */
     int debug_installed;
     char last_error[1024];
     int fragment_mediump;           /* shader precision policy (program.c): 0 unknown, 1 mediump, -1 highp */
@@ -36,6 +40,10 @@ struct snell_ctx {
         int programs, samplers, vectors;
         char samplers_of[48], vectors_of[48];
     } census;
+    /* Tests only: sees each shader's final source (stage: GL_VERTEX_SHADER
+     * or GL_FRAGMENT_SHADER) before it is compiled (program.c). */
+    void (*on_source)(snell_ctx *ctx, unsigned stage, const char *source);
+    void *on_source_user;
 };
 
 /* An object takes (retain) and gives back (release) a reference; ctx may be

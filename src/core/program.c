@@ -203,6 +203,10 @@ static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snel
         buf_append(&b, fp16, sizeof fp16 - 1);
     }
 #endif
+    if (ctx && ctx->light_fixed) {
+        static const char fixed[] = "#define SNELL_LIGHT_RANGE 8.0\n"; /* SNELL__LIGHT_RANGE, core/glstate.h */
+        buf_append(&b, fixed, sizeof fixed - 1);
+    }
     if (defines) buf_append(&b, defines, strlen(defines));
     if (!b.failed && expand(ctx, &b, src, seen, &n_seen)) {
         snell__free(b.al, b.data);
@@ -229,8 +233,9 @@ static snell_status compile(snell_ctx *ctx, GLenum type, const char *defines, co
     sh = glCreateShader(type);
     glShaderSource(sh, 1, (const GLchar *const *)&full, NULL);
     glCompileShader(sh);
-    snell__free(snell__ctx_alloc(ctx), full);
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (ok && ctx && ctx->on_source) ctx->on_source(ctx, type, full); /* what compiled (tests' deliberate errors not) */
+    snell__free(snell__ctx_alloc(ctx), full);
     if (!ok) {
         char log[768];
         log[0] = '\0';

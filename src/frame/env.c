@@ -304,6 +304,7 @@ snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_
     if (d.face_size < 0 || d.face_size > ENV_MAX_SIZE)
         return snell__fail(ctx, SNELL_E_LIMIT, "environment face size %d outside 1..%d", d.face_size, ENV_MAX_SIZE);
     if (ctx && (st = snell__ctx_check_current(ctx, "snell_env_create")) != SNELL_OK) return st;
+    if (ctx && (st = snell__ctx_limit(ctx, SNELL__LIM_CUBE, d.face_size, "environment face size")) != SNELL_OK) return st;
     env = (snell_env *)snell__calloc(snell__ctx_alloc(ctx), 1, sizeof *env);
     if (!env) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     env->ctx = ctx;

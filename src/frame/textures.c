@@ -56,11 +56,10 @@ static int vectors_of(GLenum type)
 
 snell_status snell__samplers_assign(snell_ctx *ctx, unsigned prog, const char *what, snell__samplers *s)
 {
-    GLint n = 0, max_units = 16, current = 0, i;
+    GLint n = 0, max_units = ctx->limit[SNELL__LIM_UNITS], current = 0, i;
     char names[512] = "";
     int count = 0, vectors = 0;
     glGetProgramiv(prog, GL_ACTIVE_UNIFORMS, &n);
-    glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &max_units);
     if (max_units > SNELL__PROGRAM_SAMPLERS) max_units = SNELL__PROGRAM_SAMPLERS;
     glGetIntegerv(GL_CURRENT_PROGRAM, &current);
     glUseProgram(prog);
@@ -97,6 +96,9 @@ snell_status snell__samplers_assign(snell_ctx *ctx, unsigned prog, const char *w
     if (count > max_units)
         return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s samples %d textures, more than the %d units the context has: %s",
                            what, count, max_units, names);
+    /* counted over both stages: within the fragment limit (GLES 3.0: 224, below
+     * the vertex stage's 256; core/profile.c), each stage fits its own */
+    if (snell__ctx_limit(ctx, SNELL__LIM_FRAG_VECTORS, vectors, what) != SNELL_OK) return SNELL_E_UNSUPPORTED;
     s->count = count;
     return SNELL_OK;
 }

@@ -70,7 +70,7 @@ snell_status lm2d_gl_create(snell_ctx *ctx, int width, int height, snell_format2
     snell_format2d f;
     snell_glstate ss;
     GLint prev_tex;
-    GLenum ifmt, type, status;
+    GLenum ifmt, type, status, err;
     snell_status st;
     *out = NULL;
     f = pick_format(ctx, format);
@@ -90,6 +90,7 @@ snell_status lm2d_gl_create(snell_ctx *ctx, int width, int height, snell_format2
         snell__free(al, g);
         return snell__fail(ctx, SNELL_E_NOMEM, "lightmap2d: out of memory");
     }
+    while (glGetError() != GL_NO_ERROR) {} /* an earlier call's error is not this one's */
     st = snell__program_build(ctx, "lightmap2d/lines.vert", "lightmap2d/lines.frag", NULL, &g->prog);
     if (st != SNELL_OK) {
         lm2d_gl_destroy(g);
@@ -129,10 +130,11 @@ snell_status lm2d_gl_create(snell_ctx *ctx, int width, int height, snell_format2
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, FLOATS_PER_VERTEX * sizeof(float),
                           (const void *)(2 * sizeof(float)));
     snell__glstate_restore(&ss);
-    if (status != GL_FRAMEBUFFER_COMPLETE || glGetError() != GL_NO_ERROR) {
+    err = glGetError();
+    if (status != GL_FRAMEBUFFER_COMPLETE || err != GL_NO_ERROR) {
         lm2d_gl_destroy(g);
-        return snell__fail(ctx, SNELL_E_GL, "lightmap2d: accumulation framebuffer (format %d) incomplete: 0x%x",
-                           (int)f, (unsigned)status);
+        return snell__fail(ctx, SNELL_E_GL, "lightmap2d: accumulation framebuffer (format %d): status 0x%x, GL error 0x%x",
+                           (int)f, (unsigned)status, (unsigned)err);
     }
     *out = g;
     lm2d_gl_clear(g);

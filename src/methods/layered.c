@@ -453,6 +453,7 @@ static snell_status layered_prepare(snell_ctx *ctx, void *state, const snell__ob
         int groups = (layers + 3) / 4;
         size_t bytes = (size_t)lp->face_size * (size_t)lp->face_size * 48u * (size_t)(layers + groups);
         st = snell__budget_check(ctx, bytes, "the layered method's distance cube maps");
+        if (st == SNELL_OK) st = snell__ctx_limit(ctx, SNELL__LIM_LAYERS, 6 * (layers + groups), "layered: array layers");
         if (st != SNELL_OK) return st;
         layered_release(p);
         glActiveTexture(GL_TEXTURE1);

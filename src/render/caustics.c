@@ -235,8 +235,7 @@ static snell_status map_target(snell_ctx *ctx, snell__caustics *c, int size)
         glGenTextures(1, &c->map_tex);
     }
     glBindTexture(GL_TEXTURE_2D, c->map_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)c->map_format, size, size, 0, GL_RGBA,
-                 c->map_format == GL_RGBA32F ? GL_FLOAT : GL_HALF_FLOAT, NULL);
+    snell__light_map_image(c->map_format, size);
     tex_params(GL_NEAREST); /* read bilinearly by caustics_receiver.frag (32F need not filter) */
     glBindFramebuffer(GL_FRAMEBUFFER, c->map_fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c->map_tex, 0);
@@ -483,8 +482,7 @@ static snell_status draw_receivers(snell_ctx *ctx, snell__caustics *c, const sne
         glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, F->size, F->size, 0, GL_DEPTH_COMPONENT, GL_FLOAT, NULL);
         tex_params(GL_NEAREST);
         glBindTexture(GL_TEXTURE_2D, c->cm_tex);
-        glTexImage2D(GL_TEXTURE_2D, 0, (GLint)c->map_format, F->size, F->size, 0, GL_RGBA,
-                     c->map_format == GL_RGBA32F ? GL_FLOAT : GL_HALF_FLOAT, NULL);
+        snell__light_map_image(c->map_format, F->size);
         tex_params(GL_NEAREST);
         glBindFramebuffer(GL_FRAMEBUFFER, c->cm_fbo);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c->cm_tex, 0);
@@ -935,22 +933,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c,
     snell_status st;
     light_res L;
     light_frame F;
-    if (!c->map_format) {
-        /* float32 blending is an extension of its own in ES (EXT_float_blend) */
-        if (snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") &&
-            snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend"))
-            c->map_format = GL_RGBA32F;
-        else if (snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_half_float") ||
-                 snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float"))
-            c->map_format = GL_RGBA16F;
-        else
-            c->map_format = SNELL__CAUSTICS_NO_FLOAT;
-    }
-    if (c->map_format == SNELL__CAUSTICS_NO_FLOAT) {
-        snell__why(s->caustics_reason, sizeof s->caustics_reason,
-                   "skipped: the light map needs a float target (GL_EXT_color_buffer_half_float or _float)");
-        return SNELL_OK;
-    }
+    if (!c->map_format) c->map_format = snell__light_map_format(ctx);
     key_len = make_key(c->scratch, c, fd, sc);
     if (c->valid && key_len == c->key_len && memcmp(c->scratch, c->key, (size_t)key_len * sizeof(float)) == 0) {
         s->caustics_reused = 1;
@@ -1014,7 +997,7 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c,
         for (i = 0; i < sc->count; i++)
             if (casts(&sc->obj[i]) && (smallest == 0.0f || sc->obj[i].bsphere[3] < smallest))
                 smallest = sc->obj[i].bsphere[3];
-        snprintf(map, sizeof map, "%dx%d %s light map%s", size, size, c->map_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F",
+        snprintf(map, sizeof map, "%dx%d %s light map%s", size, size, snell__light_map_str(c->map_format),
                  casters > 0 && texel > 0.25f * smallest ? " (texels > caster radius/4: blurred)" : "");
     } else
         snprintf(map, sizeof map, "no plane");
@@ -1037,7 +1020,7 @@ snell_status snell__caustics_read_opaque(snell_ctx *ctx, snell__caustics *c, flo
 {
     if (!c->valid || !c->made_opaque) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no caustic map made yet");
     *size = c->recv_size;
-    return snell__read_rgba_float(ctx, c->cm_fbo, c->recv_size, rgba, "the caustic map");
+    return snell__read_light_map(ctx, c->map_format, c->cm_fbo, c->recv_size, rgba, "the caustic map");
 }
 
 /* The receiver plane and the opaque objects, then the water's floor
@@ -1058,7 +1041,7 @@ snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgb
 {
     if (!c->valid || !c->made_plane) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no light map made yet");
     *size = c->map_size;
-    return snell__read_rgba_float(ctx, c->map_fbo, c->map_size, rgba, "the caustics light map");
+    return snell__read_light_map(ctx, c->map_format, c->map_fbo, c->map_size, rgba, "the caustics light map");
 }
 
 void snell__caustics_destroy(snell__caustics *c)

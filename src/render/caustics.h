@@ -13,7 +13,7 @@
 #include "frame/stage.h"
 
 #define SNELL__CAUSTICS_KEY 4096 /* floats of the reuse key */
-#define SNELL__CAUSTICS_NO_FLOAT 1u /* map_format: probed, no float target (the stage is skipped) */
+
 
 typedef struct snell__caustics {
     unsigned map_prog, photon_prog, direct_prog, receiver_prog, opaque_prog, vao;
@@ -38,7 +38,7 @@ typedef struct snell__caustics {
     int maps_only;                                 /* tests, bench_caustics: every photon takes the depth
                                                     * maps' one crossing (the only path before the BVH's),
                                                     * each caster alone (no chain) */
-    unsigned map_format;                           /* GL_RGBA32F or GL_RGBA16F, SNELL__CAUSTICS_NO_FLOAT,
+    unsigned map_format;                           /* snell__light_map_format (core/glstate.h),
                                                     * 0 = not probed yet (tests set it to take a path) */
     int valid;                                     /* the maps hold the frame keyed by key[] */
     int made_plane, made_opaque;                   /* which of them it made (the plane's, the opaque ones') */

@@ -115,7 +115,9 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     *out = NULL;
     if ((st = snell__ctx_check_current(ctx, "snell_renderer_create")) != SNELL_OK) return st;
     snell_renderer_defaults(desc, &d);
-    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
+    /* its targets are renderbuffers and textures: the lower limit, the profile's if lower (core/profile.c) */
+    max_rb = ctx->limit[SNELL__LIM_RENDERBUFFER] < ctx->limit[SNELL__LIM_TEXTURE] ? ctx->limit[SNELL__LIM_RENDERBUFFER]
+                                                                                  : ctx->limit[SNELL__LIM_TEXTURE];
     if (d.width < 1 || d.height < 1 || d.width > MAX_RENDER_SIZE || d.height > MAX_RENDER_SIZE ||
         (d.target == SNELL_TARGET_OFFSCREEN && (d.width > max_rb || d.height > max_rb)))
         return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d outside 1..%d", d.width, d.height,
@@ -138,13 +140,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     if (d.msaa > 1 && d.ssaa > 1)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d and ssaa %d: one antialiasing at a time", d.msaa,
                            d.ssaa);
-    if (d.msaa > 1) {
-        GLint max_samples = 0;
-        glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-        if (d.msaa > max_samples)
-            return snell__fail(ctx, SNELL_E_UNSUPPORTED, "msaa %d: this GL has at most %d samples", d.msaa,
-                               (int)max_samples);
-    }
+    if (d.msaa > 1 && (st = snell__ctx_limit(ctx, SNELL__LIM_SAMPLES, d.msaa, "msaa")) != SNELL_OK) return st;
     if (d.ssaa > 1 && (d.width * d.ssaa > max_rb || d.height * d.ssaa > max_rb))
         return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d with ssaa %d exceeds %d pixels a side", d.width,
                            d.height, d.ssaa, max_rb);

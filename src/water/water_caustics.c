@@ -45,8 +45,7 @@ static snell_status resources(snell_ctx *ctx, snell_water *w, int size)
         glGenTextures(1, &w->light_tex);
     }
     glBindTexture(GL_TEXTURE_2D, w->light_tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)w->light_format, size, size, 0, GL_RGBA,
-                 w->light_format == GL_RGBA32F ? GL_FLOAT : GL_HALF_FLOAT, NULL);
+    snell__light_map_image(w->light_format, size);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST); /* read bilinearly by hand (water.glsl) */
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -216,22 +215,7 @@ snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_l
     int size = w->d.light_map ? w->d.light_map : DEFAULT_LIGHT_MAP;
     GLint fbo = 0, viewport[4];
     snell_status st;
-    if (!w->light_format) {
-        /* float32 blending is an extension of its own in ES (EXT_float_blend) */
-        if (snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") &&
-            snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend"))
-            w->light_format = GL_RGBA32F;
-        else if (snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_half_float") ||
-                 snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float"))
-            w->light_format = GL_RGBA16F;
-        else
-            w->light_format = SNELL__WATER_NO_FLOAT;
-    }
-    if (w->light_format == SNELL__WATER_NO_FLOAT) {
-        snell__why(why + used, room - used, "%swater floor skipped: its light map needs a float target "
-                   "(GL_EXT_color_buffer_half_float or _float)", sep);
-        return SNELL_OK;
-    }
+    if (!w->light_format) w->light_format = snell__light_map_format(ctx);
     w->lit_pending = 1;
     key = column_key(objects, count);
     if (w->light_valid && w->light_version == w->version && w->light_size == size &&
@@ -260,7 +244,7 @@ snell_status snell__water_caustics(snell_ctx *ctx, snell_water *w, const snell_l
     w->column_key = key;
     s->passes += 1 + 2 * (count > 0);
     snell__why(why + used, room - used, "%swater floor: made (something moved), %dx%d %s map of %dx%d nodes, %d opaque "
-               "shadowing", sep, size, size, w->light_format == GL_RGBA32F ? "RGBA32F" : "RGBA16F", w->n, w->n, count);
+               "shadowing", sep, size, size, snell__light_map_str(w->light_format), w->n, w->n, count);
     return SNELL_OK;
 }
 
@@ -268,5 +252,5 @@ snell_status snell__water_caustics_read(snell_ctx *ctx, snell_water *w, float *r
 {
     if (!w->light_valid) return snell__fail(ctx, SNELL_E_INVALID_ARG, "water caustics: no light map made yet");
     *size = w->light_size;
-    return snell__read_rgba_float(ctx, w->light_fbo, w->light_size, rgba, "the water floor's light map");
+    return snell__read_light_map(ctx, w->light_format, w->light_fbo, w->light_size, rgba, "the water floor's light map");
 }
