@@ -185,9 +185,9 @@ static const struct option g_long[] = {
     {"env", required_argument, NULL, 266},             {"markdown", required_argument, NULL, 267},
     {"cache", required_argument, NULL, 268},           {"images", required_argument, NULL, 269},
     {"plot-y", required_argument, NULL, 270},          {"no-cache", no_argument, NULL, 271},
-    {"list", no_argument, NULL, 272},                  {"help", no_argument, NULL, 'h'},
-    {"version", no_argument, NULL, 273},               {"view", required_argument, NULL, 274},
-    {"projection", required_argument, NULL, 275},      {NULL, 0, NULL, 0}};
+    {"list", no_argument, NULL, 272},                  {"version", no_argument, NULL, 273},
+    {"view", required_argument, NULL, 274},            {"projection", required_argument, NULL, 275},
+    {"help", no_argument, NULL, 'h'},                  {NULL, 0, NULL, 0}};
 
 int bench_parse_options(int argc, char **argv, bench_options *o)
 {
