@@ -170,6 +170,8 @@ EOF
              printf "- [%s](notes/history.md#%s)\n", title, a
          }' notes/history.md
 } > "$page.tmp"
-mv "$page.tmp" "$page"
+# paths relative to the repository: the page reads the same from any checkout
+sed "s|$root/||g" "$page.tmp" > "$page"
+rm -f "$page.tmp"
 echo "regen.sh: wrote $here/$page and current/ ($((t1 - t0)) s)${failed:+; snell-bench failed on:$failed}" >&2
 [ -z "$failed" ]
