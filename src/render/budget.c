@@ -337,7 +337,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
                        double *predicted_ms, char *why, size_t why_size)
 {
     int i, changed = 0, probed = 0, same_objects = 1;
-    int cur[SNELL_MAX_GLASS];
+    int cur[SNELL_MAX_GLASS] = {0}; /* n of them set below; zeroed so that no compiler sees a read of an unset one */
     int over = b->fresh && b->last_ms > OVER * budget_ms;
     b->fresh = 0;
     snell__why(why, why_size, "unchanged");
