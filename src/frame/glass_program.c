@@ -102,6 +102,7 @@ snell__program_slot *snell__program_cache_get(snell__program_cache *c, snell_met
     memset(victim->key, 0, sizeof victim->key);
     memcpy(victim->key, key, (size_t)n * sizeof *key);
     memset(victim->loc, -1, sizeof victim->loc);
+    victim->binary_length = -1;
     victim->method = (int)method;
     victim->last_use = c->clock;
     c->built++;
@@ -115,16 +116,20 @@ void snell__program_cache_destroy(snell__program_cache *c)
     for (i = 0; i < SNELL__PROGRAM_CACHE; i++) snell__glass_program_destroy(&c->slot[i].g);
 }
 
-int snell__program_cache_count(const snell__program_cache *c, size_t *binary_bytes)
+int snell__program_cache_count(snell__program_cache *c, size_t *binary_bytes)
 {
     int i, n = 0;
     size_t bytes = 0;
     for (i = 0; i < SNELL__PROGRAM_CACHE; i++) {
-        GLint len = 0;
-        if (!c->slot[i].g.prog) continue;
+        snell__program_slot *s = &c->slot[i];
+        if (!s->g.prog) continue;
         n++;
-        glGetProgramiv(c->slot[i].g.prog, GL_PROGRAM_BINARY_LENGTH, &len);
-        bytes += len > 0 ? (size_t)len : 0u;
+        if (s->binary_length < 0) {
+            GLint len = 0;
+            glGetProgramiv(s->g.prog, GL_PROGRAM_BINARY_LENGTH, &len);
+            s->binary_length = len > 0 ? len : 0;
+        }
+        bytes += (size_t)s->binary_length;
     }
     if (binary_bytes) *binary_bytes = bytes;
     return n;

@@ -59,6 +59,7 @@ typedef struct snell__program_slot {
     int key[SNELL__PROGRAM_KEY_INTS];
     int loc[SNELL__PROGRAM_LOCS];   /* the method's uniforms, found once (its own struct of ints overlays them) */
     unsigned long last_use;
+    int binary_length;              /* GL_PROGRAM_BINARY_LENGTH, asked once per program; -1 not yet */
 } snell__program_slot;
 
 struct snell__program_cache {
@@ -75,8 +76,9 @@ snell__program_slot *snell__program_cache_get(snell__program_cache *c, snell_met
                                               int *hit);
 void snell__program_cache_destroy(snell__program_cache *c);
 /* Programs it holds; *binary_bytes: their size as the driver reports it
- * (GL_PROGRAM_BINARY_LENGTH, 0 where it reports none). */
-int snell__program_cache_count(const snell__program_cache *c, size_t *binary_bytes);
+ * (GL_PROGRAM_BINARY_LENGTH, 0 where it reports none), asked once per
+ * program, not every frame. */
+int snell__program_cache_count(snell__program_cache *c, size_t *binary_bytes);
 
 /* The kernel fs_path with the output kind's defines and extra_defines (may be
  * NULL), for a variant (snell__glass_variant): forward (object.vert) or for
