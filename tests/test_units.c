@@ -100,6 +100,16 @@ static void frames_all(snell_ctx *ctx, snell_shading shading, int gpu_water, int
         CHECK(snell_render(r, &fd, NULL) == SNELL_OK, "%s, %s: %s", snell_method_str(m),
               shading == SNELL_SHADING_SCREEN ? "screen" : "forward", snell_last_error(ctx));
     }
+    if (st == SNELL_OK) {
+        /* the program cache: bounded, and the same frame again builds nothing */
+        snell_frame_stats a, b;
+        CHECK(snell_render(r, &fd, &a) == SNELL_OK && snell_render(r, &fd, &b) == SNELL_OK, "%s",
+              snell_last_error(ctx));
+        CHECK(a.programs > 0 && a.programs <= SNELL__PROGRAM_CACHE && a.programs_built >= a.programs,
+              "program cache: %d held, %d built", a.programs, a.programs_built);
+        CHECK(b.programs_built == a.programs_built && b.programs == a.programs && b.program_bytes == a.program_bytes,
+              "program cache: a repeated frame built %d programs", b.programs_built - a.programs_built);
+    }
     snell_renderer_destroy(r);
     glDeleteTextures(2, tex);
     snell_water_destroy(water);
