@@ -282,17 +282,21 @@ static void choice(snell_ctx *ctx, snell_scene2d *s)
             CHECK(memcmp(a, b, sizeof a) == 0, "CPU rasteriser with a ctx differs from cpu_only (blend %d)", bl);
             CHECK(snell_lightmap2d_texture(lm) != 0 && snell_lightmap2d_texture(cpu) == 0, "textures %u %u",
                   snell_lightmap2d_texture(lm), snell_lightmap2d_texture(cpu));
-            int fixed = 0;
+            int fixed = 0, half = st.format == SNELL_FORMAT2D_RGBA16F;
             read_texture(snell_lightmap2d_texture(lm), t, &fixed);
             err = 0.0;
             for (i = 0; i < W * H * 3; i++) {
-                /* float ADD holds the raw sum (exposure 1, one pass here);
-                 * RGB10_A2 that clamped to 0..1 and rounded to 1/1023 */
+                /* float ADD holds the raw sum (exposure 1, one pass here):
+                 * RGBA16F within a unit in the last place (the GL may round
+                 * toward zero); RGB10_A2 that clamped to 0..1 and rounded
+                 * to 1/1023 */
                 double e = fabs((double)t[i] - (fixed ? fmin(a[i], 1.0) : a[i]));
+                if (half) e /= fmax(fabs(a[i]), 6.2e-5); /* relative, above half's smallest normal */
                 if (e > err) err = e;
             }
-            CHECK(err < (fixed ? 0.5 / 1023.0 + 1e-6 : 1e-6), "texture (%s) differs from the image read back by %.3g "
-                  "(blend %d)", fixed ? "RGB10_A2" : "float", err, bl);
+            CHECK(err < (fixed ? 0.5 / 1023.0 + 1e-6 : half ? 1.0 / 1024.0 + 1e-6 : 1e-6),
+                  "texture (%s) differs from the image read back by %.3g%s (blend %d)",
+                  fixed ? "RGB10_A2" : half ? "RGBA16F" : "RGBA32F", err, half ? " of the value" : "", bl);
         }
         snell_lightmap2d_destroy(lm);
         snell_lightmap2d_destroy(cpu);
