@@ -103,8 +103,34 @@ static void frames_all(snell_ctx *ctx, snell_shading shading, int gpu_water, int
     if (st == SNELL_OK) {
         /* the program cache: bounded, and the same frame again builds nothing */
         snell_frame_stats a, b;
+        GLuint mark;
+        GLint units = 0, bound = 0;
+        int u, changed = 0;
+        /* the units the frame reports are the ones it bound on: a marker on
+         * every unit (nothing restores them in a context snell owns) stays
+         * where the frame did not bind */
+        glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
+        units = units < 32 ? units : 32;
+        glGenTextures(1, &mark);
+        for (u = 0; u < units; u++) {
+            glActiveTexture((GLenum)(GL_TEXTURE0 + u));
+            glBindTexture(GL_TEXTURE_2D, mark);
+        }
+        glActiveTexture(GL_TEXTURE0);
         CHECK(snell_render(r, &fd, &a) == SNELL_OK && snell_render(r, &fd, &b) == SNELL_OK, "%s",
               snell_last_error(ctx));
+        for (u = 0; u < units; u++) {
+            glActiveTexture((GLenum)(GL_TEXTURE0 + u));
+            glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+            changed += bound != (GLint)mark;
+        }
+        glActiveTexture(GL_TEXTURE0);
+        glDeleteTextures(1, &mark);
+        printf("%s frame: %d texture units used, %d of the %d units' 2D bindings changed\n",
+               shading == SNELL_SHADING_SCREEN ? "screen" : "forward", b.texture_units, changed, (int)units);
+        CHECK(b.texture_units >= 1 && b.texture_units <= 16 && changed <= b.texture_units && a.texture_units ==
+              b.texture_units, "texture units: %d and %d reported, %d changed", a.texture_units, b.texture_units,
+              changed);
         CHECK(a.programs > 0 && a.programs <= SNELL__PROGRAM_CACHE && a.programs_built >= a.programs,
               "program cache: %d held, %d built", a.programs, a.programs_built);
         CHECK(b.programs_built == a.programs_built && b.programs == a.programs && b.program_bytes == a.program_bytes,

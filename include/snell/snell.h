@@ -1285,6 +1285,8 @@ typedef struct snell_frame_stats {
      * (GL_PROGRAM_BINARY_LENGTH; 0 where it reports none). */
     int programs, programs_built;
     size_t program_bytes;
+    int texture_units;              /* texture units the frame bound on; inside a host's context (EXTERNAL)
+                                     * only these were saved and restored */
     int scene_layer_passes;         /* depth peels of the scene layers drawn (0: the stage did not run) */
     int scene_layers;               /* of those, the layers that hold something */
     int scene_layers_reused;        /* 1: the last frame's layers, nothing they depend on having changed

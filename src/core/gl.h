@@ -7,4 +7,16 @@
 #include <GLES3/gl3.h>
 #include <GLES2/gl2ext.h>
 
+/* Every texture unit snell selects or binds on goes through these
+ * (core/glstate.c), so that a frame saves, resets and restores only the
+ * units it uses. */
+void snell__active_texture(GLenum unit);
+void snell__bind_texture(GLenum target, GLuint texture);
+void snell__bind_sampler(GLuint unit, GLuint sampler);
+#ifndef SNELL_GL_UNTRACKED
+#define glActiveTexture snell__active_texture
+#define glBindTexture snell__bind_texture
+#define glBindSampler snell__bind_sampler
+#endif
+
 #endif

@@ -4,12 +4,113 @@
  * glGet* can stall a real driver's pipeline, so an owned context skips it.
  * Also the frame's defaults for state no pass sets (all backends), and the
  * pixel pack/unpack scope of read-backs and uploads. */
+/* the real unit calls: this file is what the wrappers of core/gl.h call */
+#define SNELL_GL_UNTRACKED 1
 #include "core/glstate.h"
 #include "core/gl.h"
 #include "core/core.h"
 #include "core/ctx.h"
 
 #include <string.h>
+
+#if defined(__GNUC__) || defined(__clang__)
+#define THREAD_LOCAL __thread
+#elif defined(_MSC_VER)
+#define THREAD_LOCAL __declspec(thread)
+#else
+#define THREAD_LOCAL /* a compiler without thread-local storage: GL work on one thread only */
+#endif
+
+/* The calling thread's innermost units scope and its active unit (a GL
+ * context is current on one thread, whose calls these follow). */
+static THREAD_LOCAL snell__units *g_scope;
+static THREAD_LOCAL int g_active;
+
+/* The first use of unit u in every open scope: saved where a scope saves
+ * (before any reset changes it), then its sampler object unbound where one
+ * resets. The unit is active on return when any scope saved it. */
+static void use_unit(int u)
+{
+    unsigned bit = 1u << u;
+    snell__units *s;
+    int saved = 0, reset = 0;
+    GLint b[4];
+    if (u < 0 || u >= SNELL__UNITS_MAX) return;
+    for (s = g_scope; s; s = s->outer) {
+        if (s->used & bit) continue;
+        if (s->save && !saved) {
+            glActiveTexture((GLenum)(GL_TEXTURE0 + u));
+            glGetIntegerv(GL_TEXTURE_BINDING_2D, &b[0]);
+            glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &b[1]);
+            glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &b[2]);
+            glGetIntegerv(GL_SAMPLER_BINDING, &b[3]);
+            glActiveTexture((GLenum)(GL_TEXTURE0 + g_active));
+            saved = 1;
+        }
+        if (s->save) {
+            s->tex_2d[u] = b[0], s->tex_cube[u] = b[1], s->tex_2d_array[u] = b[2];
+            s->sampler[u] = b[3];
+        }
+        reset |= s->reset_samplers;
+        s->used |= bit;
+    }
+    if (reset) glBindSampler((GLuint)u, 0);
+}
+
+void snell__active_texture(GLenum unit)
+{
+    g_active = (int)unit - GL_TEXTURE0;
+    glActiveTexture(unit);
+    use_unit(g_active);
+}
+
+void snell__bind_texture(GLenum target, GLuint texture)
+{
+    use_unit(g_active);
+    glBindTexture(target, texture);
+}
+
+void snell__bind_sampler(GLuint unit, GLuint sampler)
+{
+    use_unit((int)unit);
+    glBindSampler(unit, sampler);
+}
+
+void snell__units_begin(snell__units *u, int save, int reset_samplers)
+{
+    u->outer = g_scope;
+    u->used = 0;
+    u->save = save, u->reset_samplers = reset_samplers;
+    if (!g_scope) {
+        GLint active = GL_TEXTURE0;
+        if (save) glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+        else glActiveTexture(GL_TEXTURE0);
+        g_active = (int)active - GL_TEXTURE0;
+    }
+    g_scope = u;
+}
+
+void snell__units_end(snell__units *u)
+{
+    int i;
+    g_scope = u->outer;
+    for (i = 0; u->save && i < SNELL__UNITS_MAX; i++) {
+        if (!(u->used >> i & 1u)) continue;
+        glActiveTexture((GLenum)(GL_TEXTURE0 + i));
+        glBindTexture(GL_TEXTURE_2D, (GLuint)u->tex_2d[i]);
+        glBindTexture(GL_TEXTURE_CUBE_MAP, (GLuint)u->tex_cube[i]);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, (GLuint)u->tex_2d_array[i]);
+        glBindSampler((GLuint)i, (GLuint)u->sampler[i]);
+    }
+    if (u->save && u->used) glActiveTexture((GLenum)(GL_TEXTURE0 + g_active));
+}
+
+int snell__units_count(const snell__units *u)
+{
+    int i, n = 0;
+    for (i = 0; i < SNELL__UNITS_MAX; i++) n += (int)(u->used >> i & 1u);
+    return n;
+}
 
 static unsigned char enabled(GLenum cap) { return glIsEnabled(cap) ? 1 : 0; }
 static void set_enabled(GLenum cap, unsigned char on) { if (on) glEnable(cap); else glDisable(cap); }
@@ -118,8 +219,6 @@ snell_status snell__read_light_map(snell_ctx *ctx, unsigned format, unsigned fbo
 
 void snell__glstate_frame_defaults(void)
 {
-    int i;
-    for (i = 0; i < SNELL_GLSTATE_UNITS; i++) glBindSampler((GLuint)i, 0);
     glDepthRangef(0.0f, 1.0f);
     glDisable(GL_RASTERIZER_DISCARD);
     glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
@@ -142,14 +241,6 @@ void snell__glstate_save(snell_glstate *s)
     glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->array_buffer);
     glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
-    for (i = 0; i < SNELL_GLSTATE_UNITS; i++) {
-        glActiveTexture((GLenum)(GL_TEXTURE0 + i));
-        glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->tex_2d[i]);
-        glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &s->tex_cube[i]);
-        glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &s->tex_2d_array[i]);
-        glGetIntegerv(GL_SAMPLER_BINDING, &s->sampler[i]);
-    }
-    glActiveTexture((GLenum)s->active_texture);
     glGetIntegerv(GL_VIEWPORT, s->viewport);
     glGetIntegerv(GL_SCISSOR_BOX, s->scissor_box);
     s->depth_test = enabled(GL_DEPTH_TEST);
@@ -183,25 +274,20 @@ void snell__glstate_save(snell_glstate *s)
     s->primitive_restart = enabled(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     pixel_save(&s->pack, 1);
     pixel_save(&s->unpack, 0);
+    snell__units_begin(&s->units, 1, 0);
 }
 
-void snell__glstate_restore(const snell_glstate *s)
+void snell__glstate_restore(snell_glstate *s)
 {
-    int i;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_fbo);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_fbo);
     glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)s->renderbuffer);
     glUseProgram((GLuint)s->program);
     glBindVertexArray((GLuint)s->vao);
     glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
-    for (i = 0; i < SNELL_GLSTATE_UNITS; i++) {
-        glActiveTexture((GLenum)(GL_TEXTURE0 + i));
-        glBindTexture(GL_TEXTURE_2D, (GLuint)s->tex_2d[i]);
-        glBindTexture(GL_TEXTURE_CUBE_MAP, (GLuint)s->tex_cube[i]);
-        glBindTexture(GL_TEXTURE_2D_ARRAY, (GLuint)s->tex_2d_array[i]);
-        glBindSampler((GLuint)i, (GLuint)s->sampler[i]);
-    }
+    snell__units_end(&s->units);
     glActiveTexture((GLenum)s->active_texture);
+    g_active = s->active_texture - GL_TEXTURE0;
     glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
     glScissor(s->scissor_box[0], s->scissor_box[1], s->scissor_box[2], s->scissor_box[3]);
     set_enabled(GL_DEPTH_TEST, s->depth_test);

@@ -6,7 +6,9 @@
 
 #include "snell/snell.h"
 
-#define SNELL_GLSTATE_UNITS 16 /* texture units saved and restored: every unit a program may take (frame/textures.c checks) */
+/* Texture units a scope tracks: bit u of a mask is GL_TEXTURE0 + u (a
+ * program takes at most 16, frame/textures.c checks). */
+#define SNELL__UNITS_MAX 32
 
 /* Pixel pack or unpack state (GLES 3.0 tables 6.29, 6.30) and the pixel
  * buffer bound for it. */
@@ -14,10 +16,31 @@ typedef struct snell__pixel_store {
     int buffer, alignment, row_length, skip_rows, skip_pixels, image_height, skip_images;
 } snell__pixel_store;
 
+/* A scope of the calling thread's GL work that follows its texture units
+ * (glActiveTexture, glBindTexture and glBindSampler go through core/gl.h's
+ * wrappers): each unit's first use in the scope saves its bindings (save)
+ * and unbinds its sampler object (reset_samplers: the frame's defaults).
+ * Scopes nest; a use counts in every open scope. */
+typedef struct snell__units {
+    struct snell__units *outer;
+    unsigned used; /* units selected or bound on so far */
+    int save, reset_samplers;
+    int tex_2d[SNELL__UNITS_MAX], tex_cube[SNELL__UNITS_MAX], tex_2d_array[SNELL__UNITS_MAX];
+    int sampler[SNELL__UNITS_MAX];
+} snell__units;
+
+/* Opens the scope u. The outermost scope without save selects unit 0 (a
+ * context snell owns: nothing to ask). */
+void snell__units_begin(snell__units *u, int save, int reset_samplers);
+/* Closes the scope u (the innermost), restoring the saved units' bindings;
+ * the active unit is left to the caller. */
+void snell__units_end(snell__units *u);
+/* Units used in the scope u so far. */
+int snell__units_count(const snell__units *u);
+
 typedef struct snell_glstate {
     int draw_fbo, read_fbo, renderbuffer, program, vao, array_buffer, active_texture;
-    int tex_2d[SNELL_GLSTATE_UNITS], tex_cube[SNELL_GLSTATE_UNITS];
-    int tex_2d_array[SNELL_GLSTATE_UNITS]; /* the depth-peeled layers (methods/peel.c) */
+    snell__units units; /* the texture units used since the save, as they were */
     int viewport[4], scissor_box[4];
     unsigned char depth_test, cull_face, blend, scissor_test, stencil_test, polygon_offset, dither;
     unsigned char color_mask[4], depth_mask;
@@ -25,21 +48,23 @@ typedef struct snell_glstate {
     int blend_src_rgb, blend_dst_rgb, blend_src_a, blend_dst_a, blend_eq_rgb, blend_eq_a;
     float clear_color[4], clear_depth;
     int pack_alignment, unpack_alignment;
-    int sampler[SNELL_GLSTATE_UNITS];
     float depth_range[2];
     unsigned char rasterizer_discard, alpha_to_coverage, sample_coverage, primitive_restart;
     snell__pixel_store pack, unpack;
 } snell_glstate;
 
+/* Saves the state and opens a units scope that saves each unit at its
+ * first use; restore closes it and puts everything back (innermost first). */
 void snell__glstate_save(snell_glstate *s);
-void snell__glstate_restore(const snell_glstate *s);
+void snell__glstate_restore(snell_glstate *s);
 
 /* Sets the state a frame's output depends on that the passes do not set
- * themselves (all backends; EXTERNAL saved it first): no sampler objects on
- * the units above, depth range 0..1, no rasterizer discard, coverage or
- * primitive restart, counter-clockwise front faces culled from the back, no
- * pixel buffers bound and default pixel store state (texture allocations in a
- * frame pass NULL data, which a bound unpack buffer would turn into an offset). */
+ * themselves (all backends; EXTERNAL saved it first): depth range 0..1, no
+ * rasterizer discard, coverage or primitive restart, counter-clockwise front
+ * faces culled from the back, no pixel buffers bound and default pixel store
+ * state (texture allocations in a frame pass NULL data, which a bound unpack
+ * buffer would turn into an offset). The frame's units scope unbinds sampler
+ * objects from each unit it uses. */
 void snell__glstate_frame_defaults(void);
 
 /* Around a read-back into (an upload from) client memory: saves the pack

@@ -141,5 +141,5 @@ void snell__samplers_bind_published(const snell__samplers *s, const snell__textu
     glActiveTexture(GL_TEXTURE0);
 }
 
-/* The EXTERNAL backend's snapshot covers every unit a program may take. */
-typedef char snell__samplers_fit_glstate[SNELL__PROGRAM_SAMPLERS <= SNELL_GLSTATE_UNITS ? 1 : -1];
+/* A frame's units scope can follow every unit a program may take. */
+typedef char snell__samplers_fit_units[SNELL__PROGRAM_SAMPLERS <= SNELL__UNITS_MAX ? 1 : -1];

@@ -336,6 +336,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     snell__frame f;
     snell_frame_stats *s;
     snell_glstate saved;
+    snell__units units;
     snell_status st;
     int external, i;
     size_t named = 0;
@@ -354,6 +355,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     f.r = r, f.fd = fd, f.s = s, f.sc = &r->scene, f.state = r->stage_state;
     external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
     if (external) snell__glstate_save(&saved);
+    snell__units_begin(&units, 0, 1); /* the frame's units: each one's sampler object unbound at its first use */
     st = begin_frame_state(r, fd);
     snell__prepared_frame(&r->prepared);
     /* The stage table in frame order (stages.c): each plans, then runs if this frame wants it. */
@@ -375,6 +377,8 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         snell_status back = snell__host_depth_end(r->ctx, &r->host_depth);
         if (st == SNELL_OK) st = back;
     }
+    snell__units_end(&units);
+    s->texture_units = snell__units_count(&units);
     if (external) snell__glstate_restore(&saved);
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(r->ctx, SNELL_E_GL, "GL error during the frame");
     snell__budget_frame_end(r, fd, t0, st == SNELL_OK);

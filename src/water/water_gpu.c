@@ -135,7 +135,7 @@ static void ping_pong(snell_water *w)
     w->cur = 1 - w->cur;
 }
 
-static snell_status end_pass(snell_water *w, const snell_glstate *saved, const char *what)
+static snell_status end_pass(snell_water *w, snell_glstate *saved, const char *what)
 {
     GLenum err = glGetError();
     glUseProgram(0);
