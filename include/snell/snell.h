@@ -1010,8 +1010,9 @@ typedef struct snell_opaque {
     const snell_mesh *mesh;         /* required; GPU buffers made on first draw */
     const float *model;             /* float[16] object-to-world; NULL = identity; finite and
                                      * invertible (else SNELL_E_INVALID_ARG) */
-    float color[3];                 /* diffuse albedo 0..1; all zero = 0.8 grey */
+    float color[3];                 /* diffuse albedo 0..1; all zero = SNELL_DEFAULT_OPAQUE_ALBEDO grey */
 } snell_opaque;
+#define SNELL_DEFAULT_OPAQUE_ALBEDO 0.8f
 
 /* A light for the caustics stage (snell_frame_desc.light): zero = none. */
 typedef enum snell_light_type {
@@ -1117,8 +1118,9 @@ typedef struct snell_backdrop {
     const snell_camera *camera;     /* the camera it was drawn with (ORBIT: aspect of the region); NULL =
                                      * the frame's */
     float distance;                 /* without depth: how far past the glass a ray takes the colour,
-                                     * world units; 0 = 1 */
+                                     * world units; 0 = SNELL_DEFAULT_BACKDROP_DISTANCE (1) */
 } snell_backdrop;
+#define SNELL_DEFAULT_BACKDROP_DISTANCE 1.0f
 
 typedef struct snell_frame_desc {
     const snell_env *env;           /* required */

@@ -28,3 +28,12 @@ void snell__receiver_defaults(const snell_receiver *in, snell_receiver *out)
     if (rc.map_size == 0) rc.map_size = SNELL_DEFAULT_RECEIVER_MAP;
     *out = rc;
 }
+
+void snell__opaque_defaults(const snell_opaque *in, snell_opaque *out)
+{
+    snell_opaque o = *in;
+    int k;
+    if (o.color[0] == 0.0f && o.color[1] == 0.0f && o.color[2] == 0.0f)
+        for (k = 0; k < 3; k++) o.color[k] = SNELL_DEFAULT_OPAQUE_ALBEDO;
+    *out = o;
+}

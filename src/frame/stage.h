@@ -51,6 +51,10 @@ typedef struct snell__stage {
     /* Its part of the frame description for renderer r (its context, its
      * target), checked before anything is drawn. */
     snell_status (*validate)(const snell_renderer *r, const snell_frame_desc *fd);
+    /* Its part of the frame description with its defaults applied, kept in
+     * its state, once the frame is valid: fd is renderer r's copy, which it
+     * points at them, so that every stage sees only resolved values. */
+    void (*resolve)(const snell_renderer *r, snell_frame_desc *fd, void *state);
     /* Before any stage runs: what it will do this frame, which earlier
      * stages' set-up may depend on (the scene layers: every glass kernel's
      * variant). */

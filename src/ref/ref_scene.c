@@ -10,6 +10,7 @@
 #include "core/ctx.h"
 #include "mesh/mesh.h"
 #include "frame/material.h"
+#include "frame/lighting.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -348,10 +349,10 @@ snell_status snell_ref_create(snell_ctx *ctx, const snell_ref_desc *desc, snell_
                 return st;
             }
         } else {
-            const float *c = desc->opaque[j].color;
-            int grey = c[0] == 0.0f && c[1] == 0.0f && c[2] == 0.0f;
+            snell_opaque o;
             double bc[3];
-            for (k = 0; k < 3; k++) r->opaque_color[j][k] = grey ? (double)0.8f : (double)c[k];
+            snell__opaque_defaults(&desc->opaque[j], &o); /* the renderer's albedo */
+            for (k = 0; k < 3; k++) r->opaque_color[j][k] = (double)o.color[k];
             for (k = 0; k < 3; k++) bc[k] = 0.5 * ((double)m->bmin[k] + (double)m->bmax[k]);
             for (k = 0; k < 3; k++)
                 r->opaque_bs[j][k] = M[k] * bc[0] + M[4 + k] * bc[1] + M[8 + k] * bc[2] + M[12 + k];

@@ -26,6 +26,7 @@ struct snell__backdrop {
     unsigned color_tex, depth_tex, fbo;
     unsigned depth_format;
     int width, height;
+    snell_backdrop desc; /* the frame's, its defaults applied */
     /* this frame's, for the kernels' uniforms */
     float view_proj[16], region[4], size[2], distance; /* distance 0: search the depth */
 };
@@ -133,6 +134,19 @@ static snell_status copy_bound(snell_ctx *ctx, snell__backdrop *b, int w, int h,
     return SNELL_OK;
 }
 
+/* Region all 0 = the whole texture (COPY_BOUND: the renderer's size), distance 0 = the default. */
+static void resolve(const snell_renderer *r, snell_frame_desc *fd, void *state)
+{
+    snell__backdrop *b = (snell__backdrop *)state;
+    snell_backdrop *d = &b->desc;
+    if (!fd->backdrop) return;
+    *d = *fd->backdrop;
+    if (d->source == SNELL_BACKDROP_COPY_BOUND) d->width = r->width, d->height = r->height;
+    if (!d->region[2]) d->region[0] = d->region[1] = 0, d->region[2] = d->width, d->region[3] = d->height;
+    if (d->distance == 0.0f) d->distance = SNELL_DEFAULT_BACKDROP_DISTANCE;
+    fd->backdrop = d;
+}
+
 static snell_status run(snell__frame *f, void *state)
 {
     snell_renderer *r = f->r;
@@ -140,25 +154,19 @@ static snell_status run(snell__frame *f, void *state)
     snell__view *v = &f->sc->view;
     snell__backdrop *b = (snell__backdrop *)state;
     unsigned color = bd->color_texture, depth_tex = bd->depth_texture;
-    int depth = depth_tex != 0, w = bd->width, h = bd->height;
+    int depth = depth_tex != 0, k;
     snell_status st;
     if (!b->color_sampler) {
         sampler(&b->color_sampler, GL_LINEAR);
         sampler(&b->depth_sampler, GL_NEAREST);
     }
     if (bd->source == SNELL_BACKDROP_COPY_BOUND) {
-        w = r->width, h = r->height;
-        if ((st = copy_bound(r->ctx, b, w, h, &depth)) != SNELL_OK) return st;
+        if ((st = copy_bound(r->ctx, b, bd->width, bd->height, &depth)) != SNELL_OK) return st;
         color = b->color_tex, depth_tex = b->depth_tex;
     }
-    if (bd->region[2]) {
-        b->region[0] = (float)bd->region[0], b->region[1] = (float)bd->region[1];
-        b->region[2] = (float)bd->region[2], b->region[3] = (float)bd->region[3];
-    } else {
-        b->region[0] = b->region[1] = 0.0f, b->region[2] = (float)w, b->region[3] = (float)h;
-    }
-    b->size[0] = (float)w, b->size[1] = (float)h;
-    b->distance = depth ? 0.0f : bd->distance > 0.0f ? bd->distance : 1.0f;
+    for (k = 0; k < 4; k++) b->region[k] = (float)bd->region[k];
+    b->size[0] = (float)bd->width, b->size[1] = (float)bd->height;
+    b->distance = depth ? 0.0f : bd->distance;
     if (bd->camera) {
         mat4 view, proj, vp;
         float eye[3];
@@ -226,6 +234,7 @@ const snell__stage snell__stage_backdrop = {
     .state_size = sizeof(snell__backdrop),
     .destroy = destroy,
     .validate = validate,
+    .resolve = resolve,
     .wanted = wanted,
     .run = run,
     .kernel_variant = variant,

@@ -881,10 +881,7 @@ static void draw_lit_opaque(snell__caustics *c, const snell_frame_desc *fd, cons
     glUniform3fv(glGetUniformLocation(p, "u_eye"), 1, sc->view.eye);
     glUniform4fv(glGetUniformLocation(p, "u_view_axis"), 1, sc->view.view_axis);
     for (i = 0; i < fd->opaque_count; i++) {
-        float albedo[3] = {0.8f, 0.8f, 0.8f};
-        const float *col = fd->opaque[i].color;
-        if (col[0] != 0.0f || col[1] != 0.0f || col[2] != 0.0f) memcpy(albedo, col, sizeof albedo);
-        glUniform3fv(glGetUniformLocation(p, "u_color"), 1, albedo);
+        glUniform3fv(glGetUniformLocation(p, "u_color"), 1, fd->opaque[i].color);
         draw_mesh(p, fd->opaque[i].mesh, fd->opaque[i].model, (const float *)sc->view.view_proj);
     }
     glDepthFunc(GL_LESS);

@@ -79,16 +79,14 @@ static void draw_opaque_list(const snell__opaque_prog *p, const snell_opaque *li
         const snell_mesh *m = o->mesh;
         mat4 model, inv;
         mat3 nm;
-        float color[3] = {0.8f, 0.8f, 0.8f};
         if (o->model) memcpy(model, o->model, sizeof model);
         else glm_mat4_identity(model);
         glm_mat4_inv(model, inv);
         glm_mat4_transpose(inv);
         glm_mat4_pick3(inv, nm);
-        if (o->color[0] != 0.0f || o->color[1] != 0.0f || o->color[2] != 0.0f) memcpy(color, o->color, sizeof color);
         glUniformMatrix4fv(p->model, 1, GL_FALSE, (const GLfloat *)model);
         glUniformMatrix3fv(p->normal_matrix, 1, GL_FALSE, (const GLfloat *)nm);
-        glUniform3fv(p->color, 1, color);
+        glUniform3fv(p->color, 1, o->color);
         snell__mesh_draw(m);
     }
 }

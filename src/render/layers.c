@@ -109,9 +109,7 @@ static void table_column(snell__layers *l, const layer_item *it, const snell_opa
         }
         r1[3] = g->material.thickness; /* > 0: a thin wall */
     } else {
-        /* composite.c's rule: all zero = 0.8 grey */
-        int grey = opaque->color[0] == 0.0f && opaque->color[1] == 0.0f && opaque->color[2] == 0.0f;
-        for (k = 0; k < 3; k++) r3[k] = grey ? 0.8f : opaque->color[k];
+        for (k = 0; k < 3; k++) r3[k] = opaque->color[k]; /* resolved by the opaque stage */
     }
 }
 

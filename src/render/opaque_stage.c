@@ -1,11 +1,26 @@
 /* SPDX-License-Identifier: MIT */
 /* opaque_stage.c — the opaque stage: the frame's opaque objects, drawn with
- * depth write before any glass (render/composite.c). */
+ * depth write before any glass (render/composite.c). It resolves their
+ * albedo for every stage that draws or lights them. */
 #include "render/stages.h"
+#include "frame/lighting.h"
+
+typedef struct opaque_state {
+    snell_opaque resolved[SNELL_MAX_OPAQUE];
+} opaque_state;
 
 static snell_status validate(const snell_renderer *r, const snell_frame_desc *fd)
 {
     return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
+}
+
+static void resolve(const snell_renderer *r, snell_frame_desc *fd, void *state)
+{
+    opaque_state *s = (opaque_state *)state;
+    int i;
+    (void)r;
+    for (i = 0; i < fd->opaque_count; i++) snell__opaque_defaults(&fd->opaque[i], &s->resolved[i]);
+    if (fd->opaque_count > 0) fd->opaque = s->resolved;
 }
 
 static snell_status run(snell__frame *f, void *state)
@@ -24,6 +39,8 @@ static snell_status run(snell__frame *f, void *state)
 
 const snell__stage snell__stage_opaque = {
     .name = "opaque",
+    .state_size = sizeof(opaque_state),
     .validate = validate,
+    .resolve = resolve,
     .run = run,
 };

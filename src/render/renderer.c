@@ -348,6 +348,8 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     /* From here on the frame as resolved: the stages see no zero that means a default. */
     snell_frame_defaults(fd, &r->frame);
     fd = &r->frame;
+    for (i = 0; st == SNELL_OK && i < snell__stage_count; i++)
+        if (snell__stages[i]->resolve) snell__stages[i]->resolve(r, &r->frame, r->stage_state[i]);
     if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->width, r->height, r->out, &r->scene, s);
     if (st != SNELL_OK) return st;
     r->scene.view.water = fd->water;
