@@ -509,6 +509,13 @@ void main()
         if (u_spot == 1) { // the texel's solid angle: cos^3 off the frame's axis (straight down)
             float cl = (u_pos.y - h.y) / length(h - u_pos);
             flux /= cl * cl * cl;
+#ifdef SNELL_LIGHT_RANGE
+            // Flux per solid angle is intensity, which an RGB10_A2 map's range
+            // (irradiance) cannot hold: as irradiance at the frame's far plane,
+            // so that no texel saturates below the range's irradiance
+            // (common/opaque_lit.glsl scales it back).
+            flux /= u_recv_lin.y * u_recv_lin.y;
+#endif
         }
         v_flux = vec4(flux, (flux.r + flux.g + flux.b) / 3.0);
         gl_Position = vec4(c.xy / c.w, 0.0, 1.0);

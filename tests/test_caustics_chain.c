@@ -20,6 +20,8 @@
  * (caustics_chain_gpu.png, _ref.png, _alone.png, caustics_chain_spot_*,
  * caustics_chain_thin_*, caustics_chain_clear_*). */
 #include "test_util.h"
+#include "core/ctx.h"
+#include "core/glstate.h"
 #include "render/stages.h"
 #include "ref/ref_scene.h"
 
@@ -231,7 +233,12 @@ int main(void)
         snell_ref *ref = NULL;
         float box[16] = {1.5f, 0, 0, 0, 0, 0.2f, 0, 0, 0, 0, 1.5f, 0, 0, 0.2f, 0, 1}; /* top y = 0.4 */
         float *map = (float *)calloc((size_t)2 * MAP * 2 * MAP * 4, sizeof(float));
-        double er = 0.0, eg = 0.0, ea = 0.0, ra = 0.0;
+        double er = 0.0, eg = 0.0, ea = 0.0, ra = 0.0, ex = 0.0;
+        /* an RGB10_A2 map (no float colour target: ctx->light_fixed) has 2 bits of alpha, not
+         * the photons' tally: green there (the caustic map holds only light through glass),
+         * and it saturates at SNELL__LIGHT_RANGE times the light, losing up to what of the
+         * reference's exceeds that (ex) */
+        int fixed = ctx->light_fixed;
         int n = 0, rs = 0, i, pass;
         CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &cd, &cube));
         memset(&op, 0, sizeof op);
@@ -248,16 +255,22 @@ int main(void)
             CHECK_OK_CTX(ctx, snell__caustics_read_opaque(ctx, snell__renderer_caustics(r), map, &n));
             CHECK(rm && n == rs, "caustic maps %d and %d texels a side", n, rs);
             if (rm && n == rs)
-                for (i = 0, er = 0.0; i < n * n; i++) {
-                    *e += map[4 * i + 3] * ra;
-                    er += (rm[3 * i] + rm[3 * i + 1] + rm[3 * i + 2]) / 3.0 * ra;
+                for (i = 0, er = ex = 0.0; i < n * n; i++) {
+                    *e += map[4 * i + (fixed ? 1 : 3)] * ra;
+                    er += (fixed ? rm[3 * i + 1] : (rm[3 * i] + rm[3 * i + 1] + rm[3 * i + 2]) / 3.0) * ra;
+                    if (fixed) ex += fmax(0.0, rm[3 * i + 1] - SNELL__LIGHT_RANGE) * ra;
                 }
         }
         snell__renderer_caustics(r)->maps_only = 0;
-        printf("light through glass on the box: GPU %.4f, reference %.4f (%+.2f%%), each alone %.4f (%+.2f%%)\n", eg, er,
-               100.0 * (eg / er - 1.0), ea, 100.0 * (ea / er - 1.0));
-        CHECK(er > 0.0 && fabs(eg / er - 1.0) <= 0.03, "box: GPU %.4f reference %.4f", eg, er);
-        CHECK(er > 0.0 && fabs(ea / er - 1.0) >= 0.1, "box, each alone: %.4f reference %.4f", ea, er);
+        printf("light through glass on the box: GPU %.4f, reference %.4f (%+.2f%%), each alone %.4f (%+.2f%%); %.4f "
+               "above an RGB10_A2 map's range\n", eg, er, 100.0 * (eg / er - 1.0), ea, 100.0 * (ea / er - 1.0), ex);
+        CHECK(er > 0.0 && fabs(eg - er) <= 0.03 * er + ex, "box: GPU %.4f reference %.4f (%.4f above the range)", eg,
+              er, ex);
+        if (fixed) /* each alone's extra light lands in the foci, which the map clips: not measurable */
+            printf("skipped: each alone against the chain on the box (its foci saturate an RGB10_A2 map at %.0f "
+                   "times the light; the float leg checks it)\n", SNELL__LIGHT_RANGE);
+        else
+            CHECK(er > 0.0 && fabs(ea / er - 1.0) >= 0.1, "box, each alone: %.4f reference %.4f", ea, er);
         fd.opaque = NULL, fd.opaque_count = 0;
         snell_ref_destroy(ref);
         snell_mesh_destroy(cube);

@@ -84,6 +84,7 @@ highp vec3 snell_lit_irradiance(highp vec3 p, highp vec3 n)
         }
 #ifdef SNELL_LIGHT_RANGE
         acc *= SNELL_LIGHT_RANGE; // an RGB10_A2 map holds irradiance / range (core/glstate.h)
+        if (u_recv_lin.z > 0.5) acc *= u_recv_lin.y * u_recv_lin.y; // a spot's: at the far plane (caustics_photon.vert)
 #endif
         if (w > 0.0) e += acc / w * (fall * cosl);
     }

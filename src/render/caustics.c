@@ -1016,8 +1016,15 @@ static snell_status receiver_run(snell_ctx *ctx, snell__caustics *c,
 snell_status snell__caustics_read_opaque(snell_ctx *ctx, snell__caustics *c, float *rgba, int *size)
 {
     if (!c->valid || !c->made_opaque) return snell__fail(ctx, SNELL_E_INVALID_ARG, "caustics: no caustic map made yet");
+    snell_status st;
+    size_t i, n = (size_t)c->recv_size * (size_t)c->recv_size * 4;
     *size = c->recv_size;
-    return snell__read_light_map(ctx, c->map_format, c->cm_fbo, c->recv_size, rgba, "the caustic map");
+    st = snell__read_light_map(ctx, c->map_format, c->cm_fbo, c->recv_size, rgba, "the caustic map");
+    /* an RGB10_A2 map holds a spot's intensity as irradiance at the frame's far
+     * plane (caustics_photon.vert): back to the units of a float map */
+    if (st == SNELL_OK && c->map_format == GL_RGB10_A2 && c->frame_lin[2] > 0.5f)
+        for (i = 0; i < n; i++) rgba[i] *= c->frame_lin[1] * c->frame_lin[1];
+    return st;
 }
 
 /* The receiver plane and the opaque objects, then the water's floor
