@@ -23,5 +23,5 @@ void main()
 {
     snell_paraboloid_clip();
     highp vec3 p = v_world_pos;
-    snell_write(u_color * snell_lit_irradiance(p, normalize(v_world_normal)), snell_view_vec(p));
+    snell_write_path(u_color * snell_lit_irradiance(p, normalize(v_world_normal)), snell_view_vec(p), false);
 }

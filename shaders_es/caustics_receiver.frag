@@ -14,5 +14,5 @@ in highp vec3 v_world_pos;
 
 void main()
 {
-    snell_write(u_plane_albedo * receiver_irradiance(v_ndc * 0.5 + 0.5), snell_view_vec(v_world_pos));
+    snell_write_path(u_plane_albedo * receiver_irradiance(v_ndc * 0.5 + 0.5), snell_view_vec(v_world_pos), false);
 }

@@ -18,5 +18,5 @@ void main()
     snell_paraboloid_clip();
     vec3 n = normalize(v_world_normal);
     float l = 0.5 + 0.5 * dot(n, normalize(vec3(0.3, 1.0, 0.2)));
-    snell_write(u_color * (0.25 + 0.75 * l), snell_view_vec(v_world_pos));
+    snell_write_path(u_color * (0.25 + 0.75 * l), snell_view_vec(v_world_pos), false);
 }

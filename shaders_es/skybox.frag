@@ -15,5 +15,5 @@ void main()
 {
     highp vec4 d = u_inv_view_proj_rot * vec4(v_ndc, 1.0, 1.0);
     highp vec3 dir = d.xyz / d.w;
-    snell_write(snell_env(dir), dir);
+    snell_write_path(snell_env(dir), dir, false);
 }

@@ -13,5 +13,5 @@ flat in int v_face;
 
 void main()
 {
-    snell_write(water_tile(v_face, v_world_pos), snell_view_vec(v_world_pos));
+    snell_write_path(water_tile(v_face, v_world_pos), snell_view_vec(v_world_pos), false);
 }

@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* test_exit_dir — the exit-direction debug output that error measurement
  * relies on. (1) src/pack.h and shaders_es/common/pack.glsl agree bit for bit
- * (transform feedback) and the packed encoding's own error is below 1e-4 rad;
+ * (transform feedback), for the 16+16-bit direction and for the exit target's
+ * 16+15 bits and coverage bit, and each encoding's own error is below 1e-4
+ * rad (the exit's measured 9.4e-5, the direction's 6.4e-5);
  * (2) SNELL_OUTPUT_EXIT_DIRECTION (float target if available) and the forced
  * RGBA8 fallback reproduce the reference tracer's exit directions for the
  * single-surface method (MATCHED, one interface) on a sphere. The kernel runs
@@ -10,7 +12,9 @@
  * median error is 5e-8 rad; at mediump 2.3e-4 rad). Bounds: median below one
  * fp16 unit roundoff, 2^-11 = 4.9e-4 rad, 99% of glass pixels below 2e-3 rad
  * (silhouette pixels are decided by coverage and may differ), and background
- * pixels (computed at highp) within 1e-3 rad of the view ray. */
+ * pixels (computed at highp) within 1e-3 rad of the view ray; the renderer's
+ * coverage (snell_renderer_read_coverage) is empty for the background alone
+ * and the reference's hit mask but along the silhouette. */
 #include "test_util.h"
 #include "core/gl.h"
 #include "core/pack.h"
@@ -49,16 +53,24 @@ static void test_dir(int i, int n, float d[3])
     if (i % 97 == 0) { d[0] = 0; d[1] = (i & 1) ? 1.0f : -1.0f; d[2] = 0; }
 }
 
-static void pack_twin(snell_ctx *ctx)
+/* exit 0: snell_pack_dir_rgba8 (16+16 bits: the G-buffer's and the layers'
+ * normals); 1: snell_pack_exit_rgba8 (16+15 bits and the coverage bit: the
+ * packed exit-direction target), every other direction marked as glass. */
+static void pack_twin(snell_ctx *ctx, int exit)
 {
     enum { N = 4096 };
-    static const char vs[] = "precision highp float;\n#include \"common/pack.glsl\"\n"
-                             "layout(location = 0) in vec3 a_dir;\nout vec4 o_packed;\n"
-                             "void main() { o_packed = snell_pack_dir_rgba8(a_dir); gl_Position = vec4(0.0); }\n";
+    static const char vs_dir[] = "precision highp float;\n#include \"common/pack.glsl\"\n"
+                                 "layout(location = 0) in vec3 a_dir;\nout vec4 o_packed;\n"
+                                 "void main() { o_packed = snell_pack_dir_rgba8(a_dir); gl_Position = vec4(0.0); }\n";
+    static const char vs_exit[] = "precision highp float;\n#include \"common/pack.glsl\"\n"
+                                  "layout(location = 0) in vec3 a_dir;\nout vec4 o_packed;\n"
+                                  "void main() { o_packed = snell_pack_exit_rgba8(a_dir, (gl_VertexID & 1) == 1);\n"
+                                  "    gl_Position = vec4(0.0); }\n";
+    const char *vs = exit ? vs_exit : vs_dir;
     const char *varyings[] = {"o_packed"};
     static float dirs[N][3], out[N][4];
     GLuint prog = 0, vao, vbo, tfb, fbo, rb;
-    int i, mismatches = 0;
+    int i, mismatches = 0, marks = 0;
     double worst = 0;
     void *p;
     for (i = 0; i < N; i++) test_dir(i, N, dirs[i]);
@@ -95,17 +107,24 @@ static void pack_twin(snell_ctx *ctx)
         uint8_t c[4], g[4];
         float back[3];
         int k;
-        snell_pack_dir_rgba8(dirs[i], c);
+        if (exit)
+            snell_pack_exit_rgba8(dirs[i], i & 1, c);
+        else
+            snell_pack_dir_rgba8(dirs[i], c);
         /* The shader writes (byte + 0.25) / 255; both rounding and truncating
          * UNORM8 conversions store the byte. Check the truncating one. */
         for (k = 0; k < 4; k++) g[k] = (uint8_t)(out[i][k] * 255.0f);
         mismatches += memcmp(c, g, 4) != 0;
-        snell_unpack_dir_rgba8(c, back);
+        if (exit)
+            marks += snell_unpack_exit_rgba8(c, back) != (i & 1);
+        else
+            snell_unpack_dir_rgba8(c, back);
         if (angle(back, dirs[i]) > worst) worst = angle(back, dirs[i]);
     }
-    printf("pack twin: %d of %d directions differ between C and GLSL; worst packed error %.3g rad\n", mismatches, N,
-           worst);
+    printf("pack twin (%s): %d of %d directions differ between C and GLSL; worst packed error %.3g rad\n",
+           exit ? "exit, coverage bit" : "direction", mismatches, N, worst);
     CHECK(mismatches == 0, "%d packed directions differ between C and GLSL", mismatches);
+    CHECK(marks == 0, "%d coverage bits not read back as written", marks);
     CHECK(worst < 1e-4, "packed RGBA8 direction error %.3g rad >= 1e-4", worst);
     glDeleteBuffers(1, &tfb);
     glDeleteBuffers(1, &vbo);
@@ -119,7 +138,7 @@ static void against_reference(snell_ctx *ctx, snell_output output)
 {
     static float gpu[W * H * 3], ref_dir[W * H * 3], rgb[W * H * 3], errs[W * H];
     static double sorted[W * H];
-    static uint8_t hit[W * H];
+    static uint8_t hit[W * H], cover[W * H];
     snell_mesh *mesh = NULL;
     snell_env *env = NULL;
     snell_renderer *r = NULL;
@@ -129,7 +148,7 @@ static void against_reference(snell_ctx *ctx, snell_output output)
     snell_glass g;
     snell_ref *ref = NULL;
     snell_ref_params p;
-    int i, n = 0, below = 0, bg_bad = 0, nbg = 0;
+    int i, n = 0, below = 0, bg_bad = 0, nbg = 0, bg_cover = 0, cover_diff = 0;
     double bg_sum = 0;
     memset(&ed, 0, sizeof ed);
     ed.face_size = 64;
@@ -155,8 +174,15 @@ static void against_reference(snell_ctx *ctx, snell_output output)
     fd.camera.azimuth = 0.4f;
     fd.camera.elevation = 0.3f;
     fd.camera.distance = 3.2f;
+    fd.glass_count = 0; /* the background alone: nothing covered */
+    CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
+    CHECK_OK(snell_renderer_read_coverage(r, cover));
+    for (i = 0; i < W * H; i++) bg_cover += cover[i] != 0;
+    CHECK(bg_cover == 0, "%d pixels of the background alone covered", bg_cover);
+    fd.glass_count = 1;
     CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
     CHECK_OK(snell_renderer_read_exit_dirs(r, gpu));
+    CHECK_OK(snell_renderer_read_coverage(r, cover));
     {
         uint8_t px[4];
         CHECK(snell_renderer_read_rgba(r, px) == SNELL_E_INVALID_ARG, "colour readback of a direction target");
@@ -172,6 +198,7 @@ static void against_reference(snell_ctx *ctx, snell_output output)
     for (i = 0; i < W * H; i++) {
         double e = angle(gpu + 3 * i, ref_dir + 3 * i);
         CHECK(isfinite(gpu[3 * i]) && isfinite(gpu[3 * i + 1]) && isfinite(gpu[3 * i + 2]), "NaN at %d", i);
+        cover_diff += !cover[i] != !hit[i];
         if (hit[i]) {
             errs[n] = (float)e;
             sorted[n++] = e;
@@ -186,6 +213,10 @@ static void against_reference(snell_ctx *ctx, snell_output output)
     printf("  %d glass pixels: median %.3g rad, 99th percentile %.3g rad; background: mean %.3g rad, %d off by > 1e-3\n",
            n, sorted[n / 2], sorted[(int)(n * 0.99)], nbg ? bg_sum / nbg : 0.0, bg_bad);
     CHECK(n > W * H / 10, "sphere covers the image");
+    /* Coverage (snell_renderer_read_coverage) is the reference's hit mask but
+     * along the silhouette (a triangle edge vs the exact sphere). */
+    printf("  coverage: %d pixels differ from the reference's hit mask\n", cover_diff);
+    CHECK(cover_diff <= 2 * (W + H), "coverage differs from the reference's in %d pixels", cover_diff);
     CHECK(sorted[n / 2] < 4.9e-4, "median exit-direction error %.3g rad", sorted[n / 2]);
     CHECK(below >= 0.99 * n, "only %d of %d glass pixels below 2e-3 rad", below, n);
     CHECK(bg_bad <= W * H / 100, "%d background pixels are not the view ray", bg_bad);
@@ -206,7 +237,8 @@ int main(void)
      * Mesa's MESA_EXTENSION_OVERRIDE, as on a driver without it, so that the
      * RGBA8 fallback is what EXIT_DIRECTION picks. */
     if (hidden && snell_ctx_has_gl_extension(ctx, hidden)) SKIP("the driver did not hide %s", hidden);
-    pack_twin(ctx);
+    pack_twin(ctx, 0);
+    pack_twin(ctx, 1);
     against_reference(ctx, SNELL_OUTPUT_EXIT_DIRECTION);
     against_reference(ctx, SNELL_OUTPUT_EXIT_DIRECTION_PACKED);
     {

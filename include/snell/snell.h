@@ -915,8 +915,10 @@ typedef enum snell_target {
  * holds the world direction in which its light path finally leaves (the view
  * ray for background pixels). It uses an RGBA32F target when
  * GL_EXT_color_buffer_float is present, else RGBA8 with the direction packed
- * octahedrally in 2x16 bits (quantisation error below 1e-4 rad; see
- * snell_renderer_exit_dir_encoding). Offscreen targets only. */
+ * octahedrally in 16+15 bits (quantisation error below 1e-4 rad; see
+ * snell_renderer_exit_dir_encoding) and a coverage bit. Whether a pixel's
+ * path went through glass: snell_renderer_read_coverage. Offscreen targets
+ * only. */
 typedef enum snell_output {
     SNELL_OUTPUT_COLOR = 0,
     SNELL_OUTPUT_EXIT_DIRECTION,
@@ -1407,6 +1409,12 @@ snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels);
 /* Read an EXIT_DIRECTION target: 3 floats (unit world direction) per pixel,
  * top row first. */
 snell_status snell_renderer_read_exit_dirs(snell_renderer *r, float *xyz);
+/* Read an EXIT_DIRECTION target's coverage: 1 byte per pixel, top row first,
+ * 1 where the pixel's light path went through glass (or the water's
+ * surface), 0 for the background and opaque objects. The direction alone
+ * cannot say so: a path that leaves unbent (a slab, IOR 1) has the view
+ * ray's direction, as the background has. */
+snell_status snell_renderer_read_coverage(snell_renderer *r, uint8_t *mask);
 /* "float" or "packed-rgba8": how an EXIT_DIRECTION renderer stores directions. */
 const char *snell_renderer_exit_dir_encoding(const snell_renderer *r);
 /* The environment look-up the kernels and the background use

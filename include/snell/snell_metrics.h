@@ -4,10 +4,13 @@
  * degrees, NaN/Inf counts. Pure CPU functions on caller-owned buffers; no allocation.
  *
  * Pixel sets. A "glass pixel" is one whose light path met the glass. For the
- * reference it is snell_ref_output.hit; for a GPU method it is a pixel whose
- * exit direction differs from that of a background-only frame of the same
- * camera (snell_metrics_coverage_mask: the skybox shader is deterministic, so
- * any pixel the glass kernel wrote differs in at least one bit). The angular
+ * reference it is snell_ref_output.hit; for a GPU method it is what the
+ * renderer marks (snell_renderer_read_coverage). snell_metrics_coverage_mask,
+ * a pixel whose exit direction differs from that of a background-only frame
+ * of the same camera, misses glass a path leaves unbent (IOR 1, a slab's
+ * parallel faces): its exit is the view ray, the background's own direction,
+ * told apart on a float target only where rounding differs and on the packed
+ * RGBA8 target not at all. The angular
  * statistics are taken over the pixels that are glass in BOTH masks; pixels
  * where the masks disagree (silhouette coverage: a triangle edge vs the BVH
  * hit) are counted in mask_mismatch and left out, because there one side is a
@@ -56,7 +59,8 @@ double snell_metrics_angle(const float a[3], const float b[3]);
 snell_status snell_metrics_dir_error(const snell_dir_error_desc *desc, snell_dir_error *out);
 
 /* mask[i] = 1 where dirs differs from background in any component (bitwise,
- * NaN counts as different), else 0. n = pixel count. */
+ * NaN counts as different), else 0. n = pixel count. Blind to unbent exits
+ * (see above): snell_renderer_read_coverage is the renderer's own mask. */
 snell_status snell_metrics_coverage_mask(const float *dirs, const float *background, long n, uint8_t *mask);
 
 /* Image error of RGBA8 images over the RGB channels (alpha ignored), in

@@ -33,13 +33,24 @@ void main()
 #define main snell_kernel_main
 #endif
 
-void snell_write(vec3 color, highp vec3 exit_dir)
+// glass: whether the light path went through a refracting surface. The exit
+// direction cannot tell (an unbent path leaves along the view ray, as the
+// background does), so it is written beside it: the float target's alpha
+// (0 where not; exact.frag's fallback mark is nonzero too), the packed
+// target's coverage bit.
+void snell_write_path(vec3 color, highp vec3 exit_dir, bool glass)
 {
 #if defined(SNELL_OUTPUT_EXIT_DIR_FLOAT)
-    o_color = vec4(normalize(exit_dir), 1.0);
+    o_color = vec4(normalize(exit_dir), glass ? 1.0 : 0.0);
 #elif defined(SNELL_OUTPUT_EXIT_DIR_PACKED)
-    o_color = snell_pack_dir_rgba8(normalize(exit_dir));
+    o_color = snell_pack_exit_rgba8(normalize(exit_dir), glass);
 #else
     o_color = vec4(color, 1.0);
 #endif
+}
+
+// A refracting surface's kernel (glass, the water's surface).
+void snell_write(vec3 color, highp vec3 exit_dir)
+{
+    snell_write_path(color, exit_dir, true);
 }

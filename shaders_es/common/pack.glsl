@@ -45,6 +45,17 @@ highp vec4 snell_pack_dir_rgba8(highp vec3 n)
     return vec4(snell_pack_unorm16(e.x), snell_pack_unorm16(e.y));
 }
 
+// An exit direction with a coverage bit (pack.h twin): octahedral x in 16
+// bits, y in 15 and the low bit of y's word set where the path went through
+// glass, since an unbent path's direction is the background's own.
+highp vec4 snell_pack_exit_rgba8(highp vec3 n, bool glass)
+{
+    highp vec2 e = snell_oct_encode(n) * 0.5 + 0.5;
+    highp float q = floor(clamp(e.y, 0.0, 1.0) * 32767.0 + 0.5) * 2.0 + (glass ? 1.0 : 0.0);
+    highp float hi = floor(q / 256.0);
+    return vec4(snell_pack_unorm16(e.x), (vec2(hi, q - hi * 256.0) + 0.25) / 255.0);
+}
+
 // Normal + distance texels of the cubemap method (src/pack.h twin, ndcube.c).
 // d = distance from the cubemap centre / mesh radius, in [0,1].
 highp vec4 snell_pack_ndist_plain(highp vec3 n, highp float d)

@@ -67,6 +67,31 @@ static inline void snell_unpack_dir_rgba8(const uint8_t px[4], float n[3])
     snell_oct_decode(e, n);
 }
 
+/* An exit direction as RGBA8 with a coverage bit: octahedral x in 16 bits, y
+ * in 15, and the low bit of y's word set where the light path went through
+ * glass. A direction alone cannot say so: a path that leaves unbent (a slab,
+ * IOR 1) has the view ray's direction, which is what the background holds. */
+static inline void snell_pack_exit_rgba8(const float n[3], int glass, uint8_t px[4])
+{
+    float e[2];
+    uint32_t q;
+    snell_oct_encode(n, e);
+    snell_pack_unorm16(e[0] * 0.5f + 0.5f, &px[0], &px[1]);
+    q = (uint32_t)(fminf(fmaxf(e[1] * 0.5f + 0.5f, 0.0f), 1.0f) * 32767.0f + 0.5f) * 2u + (glass ? 1u : 0u);
+    px[2] = (uint8_t)(q >> 8);
+    px[3] = (uint8_t)(q & 255u);
+}
+
+/* Returns the coverage bit. */
+static inline int snell_unpack_exit_rgba8(const uint8_t px[4], float n[3])
+{
+    float e[2];
+    e[0] = snell_unpack_unorm16(px[0], px[1]) * 2.0f - 1.0f;
+    e[1] = (float)(((px[2] << 8) | px[3]) >> 1) / 32767.0f * 2.0f - 1.0f;
+    snell_oct_decode(e, n);
+    return px[3] & 1;
+}
+
 /* ---- normal + distance texels of the cubemap method (Unger 4.1; ndcube.c) ----
  * d is the distance from the cubemap centre divided by the mesh radius about
  * that centre, in [0,1]; n a unit object-space normal. GL converts a float
