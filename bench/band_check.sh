@@ -73,7 +73,7 @@ verdict() {
 
 uptime
 run bunny bunny single cubemap oliveira layered peel peel:layers=2 peel:scale=2 peel:scale=4 exact single:methods=auto
-run sphere sphere single cubemap layered layered:convex=1 peel single:methods=auto
+run sphere sphere single cubemap layered layered:convex_steps=1 peel single:methods=auto
 uptime
 echo "bunny $size, --aa $aa ($out/bunny.csv):"
 verdict "$out/bunny.csv" "bunny >= 26 dB at <= 3x single" 26 3

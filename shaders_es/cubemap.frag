@@ -251,7 +251,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 transmitted = snell_disp_exit(exit_p, dir) * u_tint;
 #endif
 #if SNELL_INNER_FRESNEL && !SNELL_NO_SEARCH
-    // Fresnel inside too (cubemap param inner=1): the exit transmits 1 - F
+    // Fresnel inside too (cubemap param inner_fresnel=1): the exit transmits 1 - F
     // of the chain and reflects F back in, the strongest of the branches the
     // two-interface model drops (the first internal reflection: the ghost);
     // one more search follows it (inner_branch). Called for every pixel and

@@ -411,7 +411,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 transmitted = snell_disp_exit(p, dir) * tint;
 #endif
 #if SNELL_INNER_FRESNEL
-    // Fresnel inside too (peel param inner=on): the last exit transmits
+    // Fresnel inside too (peel param inner_fresnel=on): the last exit transmits
     // 1 - F of the chain and reflects F back in, the strongest branch the
     // chain drops (the first internal reflection at the exit: the ghost);
     // one more search through the layers follows it (inner_branch). Called

@@ -34,13 +34,13 @@ if(TARGET snell-bench)
   add_test(NAME bench_env_lookup_bad COMMAND ${CMAKE_COMMAND} "-DEXE=${bench}" "-DARGS=--env-lookup|--frames|1" -DCODE=2
            "-DERR=snell-bench --env-lookup: " -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
   set_tests_properties(bench_env_lookup_bad PROPERTIES LABELS "cli")
-  foreach(bad "-b|nosuch" "-b|cubemap:iterations=0" "-b|cubemap:face=99999" "--frames|0"
+  foreach(bad "-b|nosuch" "-b|cubemap:iterations=0" "-b|cubemap:face_size=99999" "--frames|0"
               "-b|single:iterations=4" "-b|cubemap:encoding=rgb" "-b|cubemap:scene=pair:attenuation=2/1/1/1"
               "-b|single:lod=0" "-b|single:lod=1.5" "-b|single:lod=nan" "-b|single:dispersion=-1"
               "-b|single:dispersion=21" "-b|single:dispersion_model=spectral"
               "-b|single:methods=nosuch" "-b|single:methods=peel//single"
               # 0 means the default (8, 10) to the library: refused, not run as the default (issue 25)
-              "-b|oliveira:linear=0" "-b|wyman:guard=0"
+              "-b|oliveira:linear_steps=0" "-b|wyman:guard_band=0"
               # the frame's scene layers are scene_layers=; layers= is peel's own (2..8)
               "-b|single:layers=2" "-b|peel:layers=1")
     string(MAKE_C_IDENTIFIER "bench_bad_${bad}" name)
@@ -54,7 +54,7 @@ if(TARGET snell-bench)
       "bench_opt_unknown|2|^snell-bench: unknown option '--frobnicate'. see --help$|--frobnicate"
       "bench_opt_no_value|2|^snell-bench: --frames needs a value. see --help$|-q|--frames"
       "bench_opt_short|2|^snell-bench: unknown option '-x'. see --help$|-x"
-      "bench_opt_key_of_other_method|2|^snell-bench: method single has no key 'face' \\(see --list\\)$|-b|single:face=64"
+      "bench_opt_key_of_other_method|2|^snell-bench: method single has no key 'face_size' \\(see --list\\)$|-b|single:face_size=64"
       "bench_budget_sizes|2|^snell-bench --budget: --sizes 64: want one size WxH within 16..2048$|--budget|5|--sizes|64"
       "bench_budget_old_size|2|^snell-bench --budget: --sizes 64: want one size WxH within 16..2048$|--budget|5|--size|64"
       "bench_budget_value|2|^snell-bench --budget 0: want a budget in ms \\(e.g. 40\\) or times single's frame \\(e.g. 4x\\)$|--budget|0"

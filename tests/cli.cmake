@@ -38,18 +38,18 @@ if(TARGET snell-render)
            "-DERR=snell-render: unknown method 'nosuch'; methods: auto, single, layered, cubemap, wyman, oliveira, peel" -P ${expect})
   set_tests_properties(cli_unknown_method PROPERTIES LABELS "cli")
   add_test(NAME cli_param COMMAND ${cli} --mesh sphere --method cubemap --param cubemap.iterations=3 --param encoding=oct
-           --linear 2 --stats --size 16x16 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_param.png)
+           --linear_steps 2 --stats --size 16x16 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_param.png)
   set_tests_properties(cli_param PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "\\(sphere, ior 1.5\\): method cubemap")
   # A parameter only other methods have is refused for --method M, not ignored (AUTO takes any)
   set(one_error ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_one_error.cmake)
-  add_test(NAME cli_key_of_other_method COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--method|single|--face|64" -DCODE=2
-           "-DERR=^snell-render: --face is a parameter of [a-z, ]*cubemap[a-z, ]*, not of --method single \\(the default sphere\\). see --help$"
+  add_test(NAME cli_key_of_other_method COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--method|single|--face_size|64" -DCODE=2
+           "-DERR=^snell-render: --face_size is a parameter of [a-z, ]*cubemap[a-z, ]*, not of --method single \\(the default sphere\\). see --help$"
            -P ${one_error})
   add_test(NAME cli_qualified_key_of_other_method COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}"
-           "-DARGS=--mesh|sphere|--param|cubemap.face=64|--method|single" -DCODE=2
-           "-DERR=^snell-render: --face is a parameter of cubemap, not of --method single \\(--mesh sphere\\). see --help$"
+           "-DARGS=--mesh|sphere|--param|cubemap.face_size=64|--method|single" -DCODE=2
+           "-DERR=^snell-render: --face_size is a parameter of cubemap, not of --method single \\(--mesh sphere\\). see --help$"
            -P ${one_error})
-  add_test(NAME cli_key_auto COMMAND ${cli} --face 64 --size 16x16 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_key_auto.png)
+  add_test(NAME cli_key_auto COMMAND ${cli} --face_size 64 --size 16x16 -o ${CMAKE_CURRENT_BINARY_DIR}/cli_key_auto.png)
   # getopt_long: one message per error
   add_test(NAME cli_unexpected_argument COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--size|16x16|stray" -DCODE=2
            "-DERR=^snell-render: unexpected argument 'stray'. see --help$" -P ${one_error})

@@ -116,6 +116,10 @@ snell_add_test(test_components SOURCES test_components.c LABELS "unit;gl")
 # The folders' import rule (docs/ARCHITECTURE.md "Layers"): nothing imports back up.
 add_test(NAME source_layers COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR}/src -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_layers.cmake)
 set_tests_properties(source_layers PROPERTIES LABELS "unit")
+# A method parameter's name is the name of the field it sets (snell_param_info).
+add_test(NAME source_param_names COMMAND ${CMAKE_COMMAND} -DSRC=${PROJECT_SOURCE_DIR}/src
+         -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_param_names.cmake)
+set_tests_properties(source_param_names PROPERTIES LABELS "unit")
 
 # The shared library exports snell_* only (cmake/snell.map).
 if(CMAKE_NM)

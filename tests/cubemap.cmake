@@ -13,8 +13,8 @@ target_link_libraries(test_cubemap_ref PRIVATE m)
 # CLI: the cubemap flags, and clear failures (exit 2) for bad values.
 if(TARGET snell-render)
   set(cli $<TARGET_FILE:snell-render>)
-  add_test(NAME cli_cubemap COMMAND ${cli} --mesh shape:sphere --method cubemap --iterations 6 --linear-steps 4
-           --interfaces 3 --face-size 64 --encoding plain --size 64x64 --frames 3 --stats
+  add_test(NAME cli_cubemap COMMAND ${cli} --mesh shape:sphere --method cubemap --iterations 6 --linear_steps 4
+           --max_interfaces 3 --face_size 64 --encoding plain --size 64x64 --frames 3 --stats
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_cubemap.png)
   set_tests_properties(cli_cubemap PROPERTIES LABELS "cli"
     PASS_REGULAR_EXPRESSION "stats: glass 0 \\(sphere, ior 1.5\\): method cubemap, warning 0, passes [0-9]+, prepared 0.*hidden_fraction 0.0000")
@@ -24,8 +24,8 @@ if(TARGET snell-render)
   add_test(NAME cli_auto_sphere COMMAND ${cli} --mesh shape:sphere --method auto --size 32x32 --stats
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto.png)
   set_tests_properties(cli_auto_sphere PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\(sphere[^)]*\\): method layered")
-  foreach(bad "--iterations;0" "--iterations;33" "--iterations;x" "--interfaces;9" "--interfaces;0"
-              "--face-size;8" "--face-size;4096" "--encoding;rgb" "--linear-steps;-1" "--method;cube")
+  foreach(bad "--iterations;0" "--iterations;33" "--iterations;x" "--max_interfaces;9" "--max_interfaces;0"
+              "--face_size;8" "--face_size;4096" "--encoding;rgb" "--linear_steps;-1" "--method;cube")
     string(MAKE_C_IDENTIFIER "cli_bad_cubemap_${bad}" name)
     string(REPLACE ";" "|" bad_args "${bad}")
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=${bad_args}" -DCODE=2 "-DERR=snell-render: "

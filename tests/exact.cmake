@@ -11,17 +11,17 @@ if(TARGET snell-render)
   # The open cat with the budget and cap set by name; the stats line says
   # exact drew it and that a colour renderer does not count fallbacks.
   add_test(NAME cli_exact COMMAND $<TARGET_FILE:snell-render> --mesh ${CMAKE_CURRENT_SOURCE_DIR}/data/real/cat.obj
-           --method exact --param exact.interfaces=4 --param exact.budget=2048 --param exact.nodes=q16 --size 48x48
+           --method exact --param exact.max_interfaces=4 --param exact.node_budget=2048 --param exact.node_format=q16 --size 48x48
            --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_exact.png)
   set_tests_properties(cli_exact PROPERTIES LABELS "cli"
     PASS_REGULAR_EXPRESSION "stats: glass 0 \\([^)]*cat.obj[^)]*\\): method exact, .*fallback_pixels not counted")
   # AUTO takes exact for the open cat only with the opt-in.
   add_test(NAME cli_auto_exact COMMAND $<TARGET_FILE:snell-render> --mesh ${CMAKE_CURRENT_SOURCE_DIR}/data/real/cat.obj
-           --param exact.auto=allow --size 32x32 --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto_exact.png)
+           --param exact.auto_pick=allow --size 32x32 --stats -o ${CMAKE_CURRENT_BINARY_DIR}/cli_auto_exact.png)
   set_tests_properties(cli_auto_exact PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\([^)]*cat.obj[^)]*\\): method exact")
   # Clear failures (exit 2, the library's range message) for bad values.
-  foreach(bad "exact.interfaces=11" "exact.interfaces=0" "exact.budget=63" "exact.budget=65537" "exact.nodes=f16"
-          "exact.auto=always" "exact.walk=sideways")
+  foreach(bad "exact.max_interfaces=11" "exact.max_interfaces=0" "exact.node_budget=63" "exact.node_budget=65537"
+          "exact.node_format=f16" "exact.auto_pick=always" "exact.walk=sideways")
     string(MAKE_C_IDENTIFIER "cli_bad_exact_${bad}" name)
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>"
              "-DARGS=--mesh|sphere|--method|exact|--param|${bad}" -DCODE=2 "-DERR=snell-render: "

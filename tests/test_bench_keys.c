@@ -13,10 +13,10 @@
  *  - each of the method's parameters (info->params) with a value other than
  *    its default and other than 0: exactly the bytes snell_glass_set_param
  *    writes for it in a zeroed material changed, inside bench_config.glass
- *    (plus the MATCHED reference's cap for "interfaces", which the bench
+ *    (plus the MATCHED reference's cap for "max_interfaces", which the bench
  *    derives from it), and snell_glass_get_param reads the value back;
  *  - an integer parameter whose range holds 0 but whose default is not 0
- *    (oliveira linear, peel linear, the guard bands): the library reads 0 as
+ *    (oliveira and peel linear_steps, guard_band): the library reads 0 as
  *    "the default" (snell_glass_material: zero = default), so "=0" cannot ask
  *    for 0; the bench must refuse it rather than run the default under the
  *    name 0;
@@ -205,7 +205,7 @@ static void method_params(const snell_method_info *m)
             CHECK(0, "%s: refused", spec);
             continue;
         }
-        check_diff(spec, g_base, g_test, must, 1, may, strcmp(p->name, "interfaces") ? 0 : 1);
+        check_diff(spec, g_base, g_test, must, 1, may, strcmp(p->name, "max_interfaces") ? 0 : 1);
         CHECK_OK(snell_glass_get_param(&g_test->glass, m->method, p->name, &got));
         printf("%-22s -> %s.%s = %d\n", spec, m->name, p->name, got);
 
@@ -225,7 +225,7 @@ static void method_params(const snell_method_info *m)
 
 /* The registry's default sweep, as the bench runs it (bench_default_sweep):
  * it expands, and no two of its configurations are the same one under two
- * names (oliveira's linear=0,8,16 was 8, 8, 16). */
+ * names (oliveira's linear_steps=0,8,16 was 8, 8, 16). */
 static void default_sweep(const snell_method_info *m)
 {
     static bench_config cs[64];

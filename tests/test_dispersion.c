@@ -213,7 +213,7 @@ static void test_blue_bends_more(snell_ctx *ctx, const scene *s, const snell_env
 
 /* The interface cap of a kernel's MATCHED model, as its registry entry
  * states it (snell-bench's reference_model): a fixed count, else its
- * "interfaces" parameter's default. */
+ * "max_interfaces" parameter's default. */
 static int model_interfaces(snell_method method)
 {
     const snell_method_info *info = snell_method_info_of(method);
@@ -222,7 +222,7 @@ static int model_interfaces(snell_method method)
     if (!info) return 2;
     if (info->ref_interfaces > 0) return info->ref_interfaces;
     snell_glass_defaults(NULL, &r);
-    return snell_glass_get_param(&r.material, method, "interfaces", &n) == SNELL_OK && n > 0 ? n : 2;
+    return snell_glass_get_param(&r.material, method, "max_interfaces", &n) == SNELL_OK && n > 0 ? n : 2;
 }
 
 static double psnr(const uint8_t *a, const uint8_t *b, const uint8_t *hit)

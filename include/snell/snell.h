@@ -812,7 +812,9 @@ snell_status snell_glass_set_abbe(snell_glass_material *m, float abbe);
 /* ------------------------------------------------------- method registry */
 /* One integer parameter of a method (enums are integers with value names). */
 typedef struct snell_param_info {
-    const char *name;              /* "iterations": what CLIs accept as name=value */
+    const char *name;              /* "max_interfaces": the name of the field it sets (the last part of
+                                    * snell_glass_material.cubemap.max_interfaces), what CLIs accept as
+                                    * name=value and snell_glass_set_param / get_param take */
     const char *help;
     int min, max;                  /* valid range of explicit values */
     int def;                       /* the resolved default */
@@ -838,7 +840,7 @@ typedef struct snell_method_info {
     int counter_count;             /* 0..SNELL_MAX_METHOD_COUNTERS */
     const snell_counter_info *counters;
     /* The MATCHED reference model it approximates (snell_ref.h): surfaces per
-     * path, a fixed count, or 0 for its "interfaces" parameter's value; 1 if
+     * path, a fixed count, or 0 for its "max_interfaces" parameter's value; 1 if
      * absorption runs over the bounding-sphere chord (the single-surface
      * model), 0 over the traced path. */
     int ref_interfaces;

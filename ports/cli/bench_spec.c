@@ -261,7 +261,7 @@ static void reference_model(bench_config *c)
     c->ref_absorb = c->method->ref_chord_absorption ? SNELL_REF_ABSORB_BOUNDING_SPHERE : SNELL_REF_ABSORB_PATH;
     c->ref_interfaces = c->method->ref_interfaces > 0 ? c->method->ref_interfaces : 10;
     if (c->method->ref_interfaces > 0 || snell_glass_defaults(&c->glass, &r) != SNELL_OK) return;
-    if (snell_glass_get_param(&r.material, c->method->method, "interfaces", &interfaces) == SNELL_OK && interfaces > 0)
+    if (snell_glass_get_param(&r.material, c->method->method, "max_interfaces", &interfaces) == SNELL_OK && interfaces > 0)
         c->ref_interfaces = interfaces;
 }
 

@@ -16,9 +16,6 @@
 
 #define PROG "snell-render"
 
-/* Old spellings of registry parameters, kept because tests and bench/ use them. */
-static const char *const g_param_alias[][2] = {{"linear-steps", "linear"}, {"face-size", "face"}};
-
 void render_usage(FILE *f)
 {
     snell_glass_resolved d;
@@ -59,8 +56,8 @@ void render_usage(FILE *f)
         for (i = 0; i < snell_method_count(); i++) fprintf(f, ", %s", snell_method_info_at(i)->name);
     }
     fprintf(f, "\n"
-               "  --NAME V               a parameter of a method, listed below (--linear-steps, --face-size:\n"
-               "                         old names of --linear, --face); --param [METHOD.]NAME=V is the same\n");
+               "  --NAME V               a parameter of a method, listed below (NAME: the field it sets,\n"
+               "                         snell_glass_material.METHOD.NAME); --param [METHOD.]NAME=V is the same\n");
     cli_method_help(f, "  ", "--", " V");
     fprintf(f,
             "\nview and output:\n"
@@ -165,10 +162,7 @@ static void remember_param(render_object *g, const char *name, snell_method meth
  * 1 set, 0 bad value (printed), -1 not a parameter name. */
 static int method_param(const char *name, const char *v, render_object *g)
 {
-    size_t k;
     int at = 0;
-    for (k = 0; k < sizeof g_param_alias / sizeof *g_param_alias; k++)
-        if (!strcmp(name, g_param_alias[k][0])) name = g_param_alias[k][1];
     if (!cli_param_owner(name, &at)) return -1;
     remember_param(g, name, SNELL_METHOD_AUTO);
     return cli_param_set(PROG, &g->material, name, v);
@@ -424,8 +418,8 @@ static void set_defaults(render_options *o)
     o->normalize = 1;
 }
 
-/* The long options: the fixed ones, then the old spellings and every method
- * parameter of the registry (--NAME V). Each value is its index + 256. */
+/* The long options: the fixed ones, then every method parameter of the
+ * registry (--NAME V). Each value is its index + 256. */
 static const struct option *long_options(void)
 {
     static const char *const valued[] = {"scene", "mesh", "opaque", "place", "color", "env", "size", "camera", "fov",
@@ -441,8 +435,6 @@ static const struct option *long_options(void)
     if (n) return opts;
     for (k = 0; k < sizeof valued / sizeof *valued; k++) opts[n] = (struct option){valued[k], required_argument, NULL, 256 + n}, n++;
     for (k = 0; k < sizeof flags / sizeof *flags; k++) opts[n] = (struct option){flags[k], no_argument, NULL, 256 + n}, n++;
-    for (k = 0; k < sizeof g_param_alias / sizeof *g_param_alias; k++)
-        opts[n] = (struct option){g_param_alias[k][0], required_argument, NULL, 256 + n}, n++;
     for (i = 0; i < snell_method_count(); i++) {
         const snell_method_info *m = snell_method_info_at(i);
         for (j = 0; j < m->param_count && n < 255; j++) {

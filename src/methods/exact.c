@@ -220,19 +220,19 @@ static const char *const g_auto_names[] = {"default", "never", "allow"};
 static const char *const g_walk_names[] = {"default", "stackless", "stack"};
 
 static const snell_param_info g_params[] = {
-    {.name = "interfaces",
+    {.name = "max_interfaces",
      .offset = offsetof(snell_glass_material, exact.max_interfaces),
      .help = "surfaces processed per path (1 = single surface with the exact path length; more = exit and TIR bounces), the MATCHED reference's cap",
      .min = 1, .max = SNELL_EXACT_MAX_INTERFACES, .def = SNELL_EXACT_DEFAULT_INTERFACES},
-    {.name = "budget",
+    {.name = "node_budget",
      .offset = offsetof(snell_glass_material, exact.node_budget),
      .help = "BVH nodes a pixel may visit over all its rays; past it the single-surface answer",
      .min = SNELL_EXACT_MIN_BUDGET, .max = SNELL_EXACT_MAX_BUDGET, .def = SNELL_EXACT_DEFAULT_BUDGET},
-    {.name = "nodes",
+    {.name = "node_format",
      .offset = offsetof(snell_glass_material, exact.node_format),
      .help = "node bounds: f32 (RGBA32F, 2 texels) or q16 (16-bit quantised, rounded outward, 1 RGBA32UI texel)",
      .min = 0, .max = 2, .def = SNELL_EXACT_NODES_F32, .value_names = g_nodes_names},
-    {.name = "auto",
+    {.name = "auto_pick",
      .offset = offsetof(snell_glass_material, exact.auto_pick),
      .help = "whether AUTO may pick it (where no cheaper method is adequate): never or allow",
      .min = 0, .max = 2, .def = SNELL_EXACT_AUTO_NEVER, .value_names = g_auto_names},
@@ -273,7 +273,7 @@ static const snell_method_info g_info = {
  * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
  * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
 static const snell_budget_rung g_rungs[] = {
-    {SNELL_METHOD_EXACT, "interfaces", 2, {14.50f, 5.68f, 11.78f, 5.30f}, {32.30f, 18.17f, 20.65f, 18.80f}, 1},
+    {SNELL_METHOD_EXACT, "max_interfaces", 2, {14.50f, 5.68f, 11.78f, 5.30f}, {32.30f, 18.17f, 20.65f, 18.80f}, 1},
     {SNELL_METHOD_EXACT, NULL, 0, {14.74f, 10.16f, 16.00f, 8.19f}, {32.31f, 24.95f, 24.48f, 22.71f}, 1},
 };
 

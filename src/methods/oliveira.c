@@ -131,7 +131,7 @@ static const char *const g_fresnel_names[] = {"default", "schlick", "exact"};
 static const char *const g_inner_names[] = {"auto", "off", "on"};
 
 static const snell_param_info g_params[] = {
-    {.name = "linear",
+    {.name = "linear_steps",
      .offset = offsetof(snell_glass_material, oliveira.linear_steps),
      .help = "linear steps along the refracted ray before the binary search",
      .min = 0, .max = SNELL_OLIVEIRA_MAX_LINEAR_STEPS, .def = DEFAULT_LINEAR_STEPS},
@@ -139,15 +139,15 @@ static const snell_param_info g_params[] = {
      .offset = offsetof(snell_glass_material, oliveira.iterations),
      .help = "binary-search steps per interface (stops earlier at one pixel)",
      .min = 1, .max = SNELL_OLIVEIRA_MAX_ITERATIONS, .def = DEFAULT_ITERATIONS},
-    {.name = "interfaces",
+    {.name = "max_interfaces",
      .offset = offsetof(snell_glass_material, oliveira.max_interfaces),
      .help = "surfaces processed per path (2 = entry + exit, more = TIR bounces)",
      .min = 2, .max = SNELL_OLIVEIRA_MAX_INTERFACES, .def = 2},
-    {.name = "backdetail",
+    {.name = "back_detail",
      .offset = offsetof(snell_glass_material, oliveira.back_detail),
      .help = SNELL__BACK_DETAIL_HELP,
      .min = 0, .max = 2, .def = SNELL_BACK_DETAIL_AUTO, .value_names = snell__back_detail_names},
-    {.name = "guard",
+    {.name = "guard_band",
      .offset = offsetof(snell_glass_material, oliveira.guard_band),
      .help = SNELL__GUARD_HELP,
      .min = -1, .max = SNELL_MAX_GUARD_BAND, .def = SNELL__GUARD_DEFAULT},
@@ -155,7 +155,7 @@ static const snell_param_info g_params[] = {
      .offset = offsetof(snell_glass_material, oliveira.fresnel),
      .help = "reflectance model: schlick (the MATCHED model) or exact (unpolarised dielectric)",
      .min = 0, .max = 2, .def = SNELL_FRESNEL_SCHLICK, .value_names = g_fresnel_names},
-    {.name = "inner",
+    {.name = "inner_fresnel",
      .offset = offsetof(snell_glass_material, oliveira.inner_fresnel),
      .help = "Fresnel at the exit and one internal reflection: auto (on for convex meshes), off, on",
      .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = g_inner_names},
@@ -177,7 +177,7 @@ static const snell_method_info g_info = {
     .counters = NULL,
     .ref_interfaces = 0,
     .ref_chord_absorption = 0,
-    .default_sweep = "linear=1,8,16",
+    .default_sweep = "linear_steps=1,8,16",
 }; /* 0 reads as the default 8: 1 is the fewest */
 
 /* AUTO by budget's rungs (frame/method.h): method, parameter, value; frame

@@ -237,11 +237,11 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
 }
 
 static const snell_param_info g_params[] = {
-    {.name = "backdetail",
+    {.name = "back_detail",
      .offset = offsetof(snell_glass_material, wyman.back_detail),
      .help = SNELL__BACK_DETAIL_HELP,
      .min = 0, .max = 2, .def = SNELL_BACK_DETAIL_AUTO, .value_names = snell__back_detail_names},
-    {.name = "guard",
+    {.name = "guard_band",
      .offset = offsetof(snell_glass_material, wyman.guard_band),
      .help = SNELL__GUARD_HELP,
      .min = -1, .max = SNELL_MAX_GUARD_BAND, .def = SNELL__GUARD_DEFAULT},
