@@ -37,7 +37,7 @@
 typedef struct method_case {
     const char *name;
     int interfaces;             /* MATCHED cap; 0: the registry's model (ref_interfaces, else its
-                                 * "interfaces" parameter's default) */
+                                 * "max_interfaces" parameter's default) */
     int absorb;                 /* a snell_ref_absorption; -1: the registry's (ref_chord_absorption) */
     double max_mean_deg;        /* mean angular error over compared pixels */
     double max_frac_above_5;    /* share of compared pixels above 5 degrees */
@@ -105,7 +105,7 @@ static int resolve_method(const snell_method_info *info, stress_method *out)
     out->interfaces = info->ref_interfaces;
     if (out->interfaces <= 0) {
         for (i = 0; i < (size_t)info->param_count; i++)
-            if (!strcmp(info->params[i].name, "interfaces")) v = info->params[i].def;
+            if (!strcmp(info->params[i].name, "max_interfaces")) v = info->params[i].def;
         out->interfaces = v > 0 ? v : 10;
     }
     out->absorb = info->ref_chord_absorption ? SNELL_REF_ABSORB_BOUNDING_SPHERE : SNELL_REF_ABSORB_PATH;
