@@ -22,9 +22,12 @@
 #endif
 
 /* The calling thread's innermost units scope and its active unit (a GL
- * context is current on one thread, whose calls these follow). */
-static THREAD_LOCAL snell__units *g_scope;
-static THREAD_LOCAL int g_active;
+ * context is current on one thread, whose calls these follow); one
+ * thread-local object, so that each function finds it once. */
+static THREAD_LOCAL struct {
+    snell__units *scope;
+    int active;
+} g_units;
 
 /* The first use of unit u in every open scope: saved where a scope saves
  * (before any reset changes it), then its sampler object unbound where one
@@ -36,7 +39,7 @@ static void use_unit(int u)
     int saved = 0, reset = 0;
     GLint b[4];
     if (u < 0 || u >= SNELL__UNITS_MAX) return;
-    for (s = g_scope; s; s = s->outer) {
+    for (s = g_units.scope; s; s = s->outer) {
         if (s->used & bit) continue;
         if (s->save && !saved) {
             glActiveTexture((GLenum)(GL_TEXTURE0 + u));
@@ -44,7 +47,7 @@ static void use_unit(int u)
             glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &b[1]);
             glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &b[2]);
             glGetIntegerv(GL_SAMPLER_BINDING, &b[3]);
-            glActiveTexture((GLenum)(GL_TEXTURE0 + g_active));
+            glActiveTexture((GLenum)(GL_TEXTURE0 + g_units.active));
             saved = 1;
         }
         if (s->save) {
@@ -59,14 +62,14 @@ static void use_unit(int u)
 
 void snell__active_texture(GLenum unit)
 {
-    g_active = (int)unit - GL_TEXTURE0;
+    g_units.active = (int)unit - GL_TEXTURE0;
     glActiveTexture(unit);
-    use_unit(g_active);
+    use_unit(g_units.active);
 }
 
 void snell__bind_texture(GLenum target, GLuint texture)
 {
-    use_unit(g_active);
+    use_unit(g_units.active);
     glBindTexture(target, texture);
 }
 
@@ -78,22 +81,22 @@ void snell__bind_sampler(GLuint unit, GLuint sampler)
 
 void snell__units_begin(snell__units *u, int save, int reset_samplers)
 {
-    u->outer = g_scope;
+    u->outer = g_units.scope;
     u->used = 0;
     u->save = save, u->reset_samplers = reset_samplers;
-    if (!g_scope) {
+    if (!g_units.scope) {
         GLint active = GL_TEXTURE0;
         if (save) glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
         else glActiveTexture(GL_TEXTURE0);
-        g_active = (int)active - GL_TEXTURE0;
+        g_units.active = (int)active - GL_TEXTURE0;
     }
-    g_scope = u;
+    g_units.scope = u;
 }
 
 void snell__units_end(snell__units *u)
 {
     int i;
-    g_scope = u->outer;
+    g_units.scope = u->outer;
     for (i = 0; u->save && i < SNELL__UNITS_MAX; i++) {
         if (!(u->used >> i & 1u)) continue;
         glActiveTexture((GLenum)(GL_TEXTURE0 + i));
@@ -102,13 +105,14 @@ void snell__units_end(snell__units *u)
         glBindTexture(GL_TEXTURE_2D_ARRAY, (GLuint)u->tex_2d_array[i]);
         glBindSampler((GLuint)i, (GLuint)u->sampler[i]);
     }
-    if (u->save && u->used) glActiveTexture((GLenum)(GL_TEXTURE0 + g_active));
+    if (u->save && u->used) glActiveTexture((GLenum)(GL_TEXTURE0 + g_units.active));
 }
 
 int snell__units_count(const snell__units *u)
 {
-    int i, n = 0;
-    for (i = 0; i < SNELL__UNITS_MAX; i++) n += (int)(u->used >> i & 1u);
+    unsigned m = u->used;
+    int n = 0;
+    for (; m; m &= m - 1) n++;
     return n;
 }
 
@@ -287,7 +291,7 @@ void snell__glstate_restore(snell_glstate *s)
     glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
     snell__units_end(&s->units);
     glActiveTexture((GLenum)s->active_texture);
-    g_active = s->active_texture - GL_TEXTURE0;
+    g_units.active = s->active_texture - GL_TEXTURE0;
     glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
     glScissor(s->scissor_box[0], s->scissor_box[1], s->scissor_box[2], s->scissor_box[3]);
     set_enabled(GL_DEPTH_TEST, s->depth_test);

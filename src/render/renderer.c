@@ -435,37 +435,17 @@ snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels)
     return SNELL_OK;
 }
 
-snell_status snell_renderer_read_exit_dirs(snell_renderer *r, float *xyz)
+/* The exit-direction target read back into xyz (3 floats a pixel) or into
+ * mask (the coverage flag), top row first. */
+static snell_status read_output(snell_renderer *r, float *xyz, uint8_t *mask)
 {
-    int x, y;
+    int x, y, f = r && r->out == SNELL__OUT_DIR_FLOAT;
     snell_status st;
-    if (!r || !xyz) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "read_exit_dirs: NULL argument");
+    if (!r || (!xyz && !mask))
+        return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "read_exit_dirs/coverage: NULL argument");
     if (r->out == SNELL__OUT_COLOR)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "renderer was not created with SNELL_OUTPUT_EXIT_DIRECTION");
-    st = r->out == SNELL__OUT_DIR_FLOAT ? read_target(r, GL_FLOAT, r->readback)
-                                        : read_target(r, GL_UNSIGNED_BYTE, r->readback8);
-    if (st != SNELL_OK) return st;
-    for (y = 0; y < r->height; y++)
-        for (x = 0; x < r->width; x++) {
-            size_t src = (size_t)(r->height - 1 - y) * r->width + x, dst = (size_t)y * r->width + x;
-            if (r->out == SNELL__OUT_DIR_FLOAT) {
-                memcpy(xyz + 3 * dst, r->readback + 4 * src, 3 * sizeof(float));
-            } else {
-                (void)snell_unpack_exit_rgba8(r->readback8 + 4 * src, xyz + 3 * dst);
-            }
-        }
-    return SNELL_OK;
-}
-
-snell_status snell_renderer_read_coverage(snell_renderer *r, uint8_t *mask)
-{
-    int x, y;
-    snell_status st;
-    if (!r || !mask) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "read_coverage: NULL argument");
-    if (r->out == SNELL__OUT_COLOR)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "renderer was not created with SNELL_OUTPUT_EXIT_DIRECTION");
-    st = r->out == SNELL__OUT_DIR_FLOAT ? read_target(r, GL_FLOAT, r->readback)
-                                        : read_target(r, GL_UNSIGNED_BYTE, r->readback8);
+    st = f ? read_target(r, GL_FLOAT, r->readback) : read_target(r, GL_UNSIGNED_BYTE, r->readback8);
     if (st != SNELL_OK) return st;
     for (y = 0; y < r->height; y++)
         for (x = 0; x < r->width; x++) {
@@ -473,10 +453,21 @@ snell_status snell_renderer_read_coverage(snell_renderer *r, uint8_t *mask)
             /* output.glsl: alpha 0 where the path met no glass (any other
              * value, exact's fallback mark included, is glass); packed, the
              * low bit of the last byte. */
-            mask[dst] = (uint8_t)(r->out == SNELL__OUT_DIR_FLOAT ? r->readback[4 * src + 3] != 0.0f
-                                                                 : (r->readback8[4 * src + 3] & 1u));
+            if (mask) mask[dst] = (uint8_t)(f ? r->readback[4 * src + 3] != 0.0f : (r->readback8[4 * src + 3] & 1u));
+            else if (f) memcpy(xyz + 3 * dst, r->readback + 4 * src, 3 * sizeof(float));
+            else (void)snell_unpack_exit_rgba8(r->readback8 + 4 * src, xyz + 3 * dst);
         }
     return SNELL_OK;
+}
+
+snell_status snell_renderer_read_exit_dirs(snell_renderer *r, float *xyz)
+{
+    return read_output(r, xyz, NULL);
+}
+
+snell_status snell_renderer_read_coverage(snell_renderer *r, uint8_t *mask)
+{
+    return read_output(r, NULL, mask);
 }
 
 const char *snell_renderer_exit_dir_encoding(const snell_renderer *r)
