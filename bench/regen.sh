@@ -87,6 +87,13 @@ if [ "$aa" -gt 1 ]; then
 else
     aa_words="at pixel centres (\`--aa 1\`)"
 fi
+# the device the runs had: the GL renderer, and the device profile and limits snell
+# used (snell-bench's JSON: SNELL_DEVICE_PROFILE, else the context's own limits)
+first=$(echo $scenes | cut -d' ' -f1)
+json1=$here/current/$(basename "$first" | sed 's/\.[^.]*$//').json
+gl=$(sed -n 's/^  "gl_renderer": "\(.*\)",*$/\1/p' "$json1" 2>/dev/null)
+profile=$(sed -n 's/^  "device_profile": "\(.*\)",*$/\1/p' "$json1" 2>/dev/null)
+limits=$(sed -n 's/^  "device_limits": {\(.*\)},*$/\1/p' "$json1" 2>/dev/null | sed 's/"//g')
 page=BENCHMARKS.md
 {
     cat <<EOF
@@ -107,6 +114,8 @@ sections are listed at the end).
   the glass RMSE against FULL versus the median frame time, the Pareto front ringed.
 - **Machine**: $(nproc) CPUs, $(uname -sm); snell-bench built from \`$REV\` in \`$(basename "$build")\`
   ($(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null || echo unknown build type)).
+- **Device**: ${gl:-unknown GL renderer}; device profile \`${profile:-not recorded}\`, limits
+  ${limits:-not recorded} (\`snell_ctx_limits\`; \`SNELL_DEVICE_PROFILE\` picks a profile).
 - **Load**: \`uptime\` before: \`$(echo "$up_before" | sed 's/^ *//')\`; after:
   \`$(echo "$up_after" | sed 's/^ *//')\` ($((t1 - t0)) s for the whole run, references
   included; each table also gives the load average snell-bench read before and after).
