@@ -59,8 +59,8 @@ static snell_status probe_gl(snell_ctx *ctx)
         ctx->limit[i] = ctx->profile && ctx->profile->limit[i] < v ? ctx->profile->limit[i] : v;
     }
     ctx->has_khr_debug = snell_ctx_has_gl_extension(ctx, "GL_KHR_debug");
-    ctx->light_fixed = !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_half_float") &&
-                       !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float");
+    ctx->light_fixed = !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") ||
+                       !snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend");
     return SNELL_OK;
 }
 

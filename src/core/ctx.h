@@ -19,7 +19,7 @@ struct snell_ctx {
     const snell__profile *profile;  /* the device profile in force, NULL none (profile.c) */
     int limit[SNELL__LIMITS];       /* the GL context's limits, lowered to the profile's */
     int has_khr_debug;
-    int light_fixed;                /* no float colour target: light maps in RGB10_A2 (glstate.h) */
+    int light_fixed;                /* no blendable 32-bit float target: light maps in RGB10_A2 (glstate.h) */
     int debug_installed;
     char last_error[1024];
     int fragment_mediump;           /* shader precision policy (program.c): 0 unknown, 1 mediump, -1 highp */

@@ -172,12 +172,7 @@ void snell__pixel_unpack_end(const snell__pixel_store *saved) { pixel_set(saved,
 
 unsigned snell__light_map_format(snell_ctx *ctx)
 {
-    if (ctx->light_fixed) return GL_RGB10_A2;
-    /* float32 blending is an extension of its own in ES (EXT_float_blend) */
-    return snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") &&
-                   snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend")
-               ? GL_RGBA32F
-               : GL_RGBA16F;
+    return ctx->light_fixed ? GL_RGB10_A2 : GL_RGBA32F;
 }
 
 void snell__light_map_image(unsigned format, int size)

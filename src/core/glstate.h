@@ -79,10 +79,11 @@ void snell__pixel_unpack_end(const snell__pixel_store *saved);
 
 /* Light maps (the caustics stage's, the water floor's) add irradiance up by
  * blending: RGBA32F where float targets blend (EXT_color_buffer_float +
- * EXT_float_blend), else RGBA16F (EXT_color_buffer_half_float or _float),
- * else RGB10_A2, which GLES 3.0 renders and blends without extensions,
- * holding irradiance / SNELL__LIGHT_RANGE (the programs' SNELL_LIGHT_RANGE,
- * core/program.c). */
+ * EXT_float_blend), else RGB10_A2, which GLES 3.0 renders and blends without
+ * extensions, holding irradiance / SNELL__LIGHT_RANGE (the programs'
+ * SNELL_LIGHT_RANGE, core/program.c) with each photon's share rounded
+ * stochastically. Not RGBA16F: half floats drop every share under half the
+ * sum's last place, so a map loses light wherever photons pile up. */
 #define SNELL__LIGHT_RANGE 8.0f
 unsigned snell__light_map_format(snell_ctx *ctx);
 /* Allocates the bound 2D texture as a size x size light map of format. */
