@@ -9,13 +9,7 @@
 #include <string.h>
 #include <time.h>
 
-#if defined(__GNUC__)
-#define SNELL_THREAD_LOCAL __thread
-#else
-#define SNELL_THREAD_LOCAL
-#endif
-
-static SNELL_THREAD_LOCAL char g_thread_error[1024];
+static SNELL__THREAD_LOCAL char g_thread_error[1024];
 
 static void *libc_alloc(size_t size, void *user) { (void)user; return malloc(size); }
 static void *libc_realloc(void *p, size_t size, void *user) { (void)user; return realloc(p, size); }

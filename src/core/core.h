@@ -16,6 +16,16 @@
 #define SNELL_PRINTF(a, b)
 #endif
 
+/* Per-thread state (the last error, a decode's allocation cap, the GL unit
+ * scope); a compiler without it gets one shared copy: one thread only. */
+#if defined(__GNUC__) || defined(__clang__)
+#define SNELL__THREAD_LOCAL __thread
+#elif defined(_MSC_VER)
+#define SNELL__THREAD_LOCAL __declspec(thread)
+#else
+#define SNELL__THREAD_LOCAL
+#endif
+
 #define SNELL_PI 3.14159265358979323846
 
 /* An allocator with NULL members filled in from libc. */

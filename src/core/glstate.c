@@ -13,18 +13,10 @@
 
 #include <string.h>
 
-#if defined(__GNUC__) || defined(__clang__)
-#define THREAD_LOCAL __thread
-#elif defined(_MSC_VER)
-#define THREAD_LOCAL __declspec(thread)
-#else
-#define THREAD_LOCAL /* a compiler without thread-local storage: GL work on one thread only */
-#endif
-
 /* The calling thread's innermost units scope and its active unit (a GL
  * context is current on one thread, whose calls these follow); one
  * thread-local object, so that each function finds it once. */
-static THREAD_LOCAL struct {
+static SNELL__THREAD_LOCAL struct {
     snell__units *scope;
     int active;
 } g_units;
@@ -239,7 +231,6 @@ void snell__glstate_save(snell_glstate *s)
     glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
     glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->array_buffer);
-    glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
     glGetIntegerv(GL_VIEWPORT, s->viewport);
     glGetIntegerv(GL_SCISSOR_BOX, s->scissor_box);
     s->depth_test = enabled(GL_DEPTH_TEST);
@@ -274,6 +265,7 @@ void snell__glstate_save(snell_glstate *s)
     pixel_save(&s->pack, 1);
     pixel_save(&s->unpack, 0);
     snell__units_begin(&s->units, 1, 0);
+    s->active_texture = GL_TEXTURE0 + g_units.active; /* asked by the outermost scope, followed since */
 }
 
 void snell__glstate_restore(snell_glstate *s)

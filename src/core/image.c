@@ -16,16 +16,11 @@
  * PNG makes stb double its output buffer up to 2 GiB (found by fuzzing);
  * with it stb fails with "outofmem", reported as SNELL_E_PARSE. */
 #define IMAGE_MAX_ALLOC ((size_t)640 << 20)
-#if defined(__GNUC__)
-#define IMAGE_THREAD_LOCAL __thread
-#else
-#define IMAGE_THREAD_LOCAL
-#endif
 /* While a PNG decodes, the largest allocation its own size justifies
  * (png_alloc_cap); a larger request is refused and remembered, so that a zlib
  * stream inflating far past the image (a decompression bomb) stops there. */
-static IMAGE_THREAD_LOCAL size_t g_alloc_cap;
-static IMAGE_THREAD_LOCAL int g_cap_hit;
+static SNELL__THREAD_LOCAL size_t g_alloc_cap;
+static SNELL__THREAD_LOCAL int g_cap_hit;
 static int alloc_ok(size_t n)
 {
     if (g_alloc_cap && n > g_alloc_cap) {
