@@ -145,3 +145,10 @@ if(SNELL_PYTHON3 AND TARGET test_units AND NOT CMAKE_CROSSCOMPILING)
                        TIMEOUT 600)
   set_tests_properties(test_units PROPERTIES FIXTURES_SETUP glsl_dump)
 endif()
+# The same rule on the symbols the library's objects use: a call up through a
+# header a lower folder declares passes the include check and fails this one.
+if(SNELL_PYTHON3)
+  add_test(NAME source_layers_symbols COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_layers_symbols.py
+           ${PROJECT_BINARY_DIR}/CMakeFiles/snell_objects.dir)
+  set_tests_properties(source_layers_symbols PROPERTIES LABELS "unit")
+endif()

@@ -27,14 +27,15 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     char defines[1024];
     size_t len;
     snell_status st;
-    int screen_space = variant & SNELL__GLASS_SHADING_MASK, i;
+    int screen_space = variant & SNELL__GLASS_SHADING_MASK, i, stage_count = g->stage_count;
+    const snell__stage *const *stages = g->stages; /* the cache's (snell__program_cache_get), kept */
     snprintf(defines, sizeof defines, "%s%s%s%s", snell__output_defines(out),
              screen_space ? "#define SNELL_SCREEN_SPACE 1\n" : "",
              screen_space == SNELL__SCREEN_WRITES_DEPTH ? "#define SNELL_SCREEN_WRITES_DEPTH 1\n" : "",
              variant & SNELL__GLASS_ENV_PARABOLOID ? SNELL__ENV_PARABOLOID_DEFINE : "");
     /* What the frame's stages add (frame/stage.h), in frame order. */
-    for (i = 0; i < snell__stage_count; i++) {
-        const snell__kernel_hook *h = snell__stages[i]->kernel;
+    for (i = 0; i < stage_count; i++) {
+        const snell__kernel_hook *h = stages[i]->kernel;
         if (!h || !((unsigned)variant & h->variant_mask)) continue;
         len = strlen(defines);
         snprintf(defines + len, sizeof defines - len, "%s", h->defines((unsigned)variant & h->variant_mask));
@@ -42,8 +43,10 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     len = strlen(defines);
     snprintf(defines + len, sizeof defines - len, "%s", extra_defines ? extra_defines : "");
     memset(g, 0, sizeof *g);
-    for (i = 0, len = 0; i < snell__stage_count; i++)
-        if (snell__stages[i]->kernel) len += (size_t)snell__stages[i]->kernel->uniform_count;
+    g->stages = stages;
+    g->stage_count = stage_count;
+    for (i = 0, len = 0; i < stage_count; i++)
+        if (stages[i]->kernel) len += (size_t)stages[i]->kernel->uniform_count;
     if (len > SNELL__HOOK_LOCS)
         return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s: the stages' kernel hooks declare %d uniforms, more than %d",
                            fs_path, (int)len, SNELL__HOOK_LOCS);
@@ -57,8 +60,8 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     g->variant = (unsigned)variant;
     {
         int offset = 0, k;
-        for (i = 0; i < snell__stage_count; i++) {
-            const snell__kernel_hook *h = snell__stages[i]->kernel;
+        for (i = 0; i < g->stage_count; i++) {
+            const snell__kernel_hook *h = g->stages[i]->kernel;
             if (!h) continue;
             for (k = 0; k < h->uniform_count && offset + k < SNELL__HOOK_LOCS; k++)
                 g->hook_locs[offset + k] = (g->variant & h->variant_mask)
@@ -104,6 +107,8 @@ snell__program_slot *snell__program_cache_get(snell__program_cache *c, snell_met
     memset(victim->loc, -1, sizeof victim->loc);
     victim->binary_length = -1;
     victim->method = (int)method;
+    victim->g.stages = c->stages;
+    victim->g.stage_count = c->stage_count;
     victim->last_use = c->clock;
     c->built++;
     *hit = 0;
@@ -170,8 +175,8 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniform3fv(g->sigma, 1, o->glass->absorption);
     glUniform3fv(g->tint, 1, o->glass->material.tint);
     glUniform4fv(g->bsphere, 1, o->bsphere);
-    for (i = 0; i < snell__stage_count; i++) {
-        const snell__kernel_hook *h = snell__stages[i]->kernel;
+    for (i = 0; i < g->stage_count; i++) {
+        const snell__kernel_hook *h = g->stages[i]->kernel;
         if (!h) continue;
         if (g->variant & h->variant_mask) h->uniforms(g, g->hook_locs + offset, v, o);
         offset += h->uniform_count;

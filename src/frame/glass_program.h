@@ -15,6 +15,8 @@ struct snell__glass_program {
     int model, normal_matrix, view_proj, eye, view_axis, ior, ior_rgb, sigma, tint, bsphere;
     int inv_view_proj, inv_size, gid;
     int hook_locs[SNELL__HOOK_LOCS]; /* the frame stages' uniforms (frame/stage.h) */
+    const snell__stage *const *stages; /* the frame's stages, whose kernel hooks it takes (its cache's) */
+    int stage_count;
     snell__samplers samplers;       /* its texture units, by sampler name (frame/textures.h) */
 };
 
@@ -64,6 +66,8 @@ typedef struct snell__program_slot {
 
 struct snell__program_cache {
     snell__program_slot slot[SNELL__PROGRAM_CACHE];
+    const snell__stage *const *stages; /* set by its owner: the frame's stages in frame order */
+    int stage_count;
     unsigned long clock;
     int built;                      /* programs built over its life */
 };

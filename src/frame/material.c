@@ -1,11 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* material.c — the one resolve step of a glass material (sokol's _sg_def):
- * zero fields become their documented defaults, every method's nested
- * parameters are resolved by the method's own table (methods/registry.c),
- * the per-unit absorption is derived from glTF's attenuation form, and the
- * channels' IORs from the dispersion (core/optics.h). */
+/* material.c — the resolve step of a glass material (sokol's _sg_def): zero
+ * fields become their documented defaults, the per-unit absorption is
+ * derived from glTF's attenuation form, and the channels' IORs from the
+ * dispersion (core/optics.h). The methods' parameters are the registry's
+ * (methods/registry.c, snell__glass_resolve_all). */
 #include "frame/material.h"
-#include "frame/method.h"
 #include "core/optics.h"
 
 #include <math.h>
@@ -22,7 +21,7 @@ static int finite_nonneg(float v) { return isfinite(v) && v >= 0.0f; }
 snell_status snell__glass_resolve(const snell_glass_material *in, int object, snell_glass_resolved *out)
 {
     snell_glass_material m;
-    int k, i;
+    int k;
     memset(&m, 0, sizeof m);
     if (in) m = *in;
     memset(out, 0, sizeof *out);
@@ -46,15 +45,6 @@ snell_status snell__glass_resolve(const snell_glass_material *in, int object, sn
     if (!isfinite(m.scale) || (m.scale != 0.0f && (m.scale < 1.0f || m.scale > SNELL_MAX_GLASS_SCALE)))
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: scale %g outside 1..%d (0: 1)", object, m.scale,
                            SNELL_MAX_GLASS_SCALE);
-    if (m.method != SNELL_METHOD_AUTO && !snell__method_get(m.method)) {
-        char who[32];
-        snprintf(who, sizeof who, "glass %d: ", object);
-        return snell__method_unbuilt(m.method, who);
-    }
-    for (i = 0; i < snell_method_count(); i++) {
-        snell_status st = snell__method_params_resolve(snell__method_get(snell_method_info_at(i)->method), &m, object);
-        if (st != SNELL_OK) return st;
-    }
     if (m.ior == 0.0f) m.ior = DEFAULT_IOR;
     if (m.scale == 0.0f) m.scale = 1.0f;
     if (m.tint[0] == 0.0f && m.tint[1] == 0.0f && m.tint[2] == 0.0f) m.tint[0] = m.tint[1] = m.tint[2] = 1.0f;
@@ -75,12 +65,6 @@ snell_status snell__glass_resolve(const snell_glass_material *in, int object, sn
     if (m.dispersion_model == SNELL_DISPERSION_AUTO) m.dispersion_model = SNELL_DISPERSION_ONE_PATH;
     out->material = m;
     return SNELL_OK;
-}
-
-snell_status snell_glass_defaults(const snell_glass_material *in, snell_glass_resolved *out)
-{
-    if (!out) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_glass_defaults: out is NULL");
-    return snell__glass_resolve(in, 0, out);
 }
 
 void snell_glass_set_absorption(snell_glass_material *m, const float sigma[3])

@@ -6,7 +6,8 @@
 
 #include "core/core.h"
 
-/* snell_glass_defaults with the object's index in messages ("glass 3: ..."). */
+/* snell_glass_defaults but for the methods' parameters, with the object's
+ * index in messages ("glass 3: ..."): what the reference tracer uses. */
 snell_status snell__glass_resolve(const snell_glass_material *in, int object, snell_glass_resolved *out);
 
 #endif

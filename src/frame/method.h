@@ -94,7 +94,9 @@ const snell__method *snell__method_get(snell_method id);
  * (unknown); the message starts with who (e.g. "glass 2: "). */
 snell_status snell__method_unbuilt(snell_method id, const char *who);
 
-/* Resolves (zero = default) and range-checks the method's nested parameters in m. */
-snell_status snell__method_params_resolve(const snell__method *e, snell_glass_material *m, int object);
+/* A glass material resolved whole (snell_glass_defaults with the object's
+ * index in messages): frame/material.c's part, then the method it names
+ * (built?) and every method's nested parameters (zero = default), range-checked. */
+snell_status snell__glass_resolve_all(const snell_glass_material *in, int object, snell_glass_resolved *out);
 
 #endif

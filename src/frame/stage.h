@@ -67,9 +67,7 @@ typedef struct snell__stage {
     const snell__kernel_hook *kernel; /* NULL: it adds nothing to the kernels */
 } snell__stage;
 
-/* The frame's stages in frame order (render/stages.c), at most SNELL__STAGES_MAX. */
+/* The frame has at most this many stages (its table: render/stages.h). */
 #define SNELL__STAGES_MAX 16
-extern const snell__stage *const snell__stages[];
-extern const int snell__stage_count;
 
 #endif

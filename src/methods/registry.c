@@ -5,6 +5,7 @@
  * nested struct from its snell_param_info table. Adding a method: its file
  * under src/methods/, its shaders, its tests, and one line here. */
 #include "frame/method.h"
+#include "frame/material.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -117,7 +118,7 @@ static int *param_ptr(snell_glass_material *m, const snell__method *e, int i)
 }
 
 /* Zero = default; anything else must lie in min..max. */
-snell_status snell__method_params_resolve(const snell__method *e, snell_glass_material *m, int object)
+static snell_status params_resolve(const snell__method *e, snell_glass_material *m, int object)
 {
     int i;
     for (i = 0; i < e->info->param_count; i++) {
@@ -129,6 +130,27 @@ snell_status snell__method_params_resolve(const snell__method *e, snell_glass_ma
                                e->info->name, p->name, *v, p->min, p->max);
     }
     return SNELL_OK;
+}
+
+snell_status snell__glass_resolve_all(const snell_glass_material *in, int object, snell_glass_resolved *out)
+{
+    snell_glass_material *m = &out->material;
+    snell_status st = snell__glass_resolve(in, object, out);
+    int i;
+    if (st != SNELL_OK) return st;
+    if (m->method != SNELL_METHOD_AUTO && !snell__method_get(m->method)) {
+        char who[32];
+        snprintf(who, sizeof who, "glass %d: ", object);
+        return snell__method_unbuilt(m->method, who);
+    }
+    for (i = 0; i < METHOD_COUNT && st == SNELL_OK; i++) st = params_resolve(g_methods[i], m, object);
+    return st;
+}
+
+snell_status snell_glass_defaults(const snell_glass_material *in, snell_glass_resolved *out)
+{
+    if (!out) return snell__fail(NULL, SNELL_E_INVALID_ARG, "snell_glass_defaults: out is NULL");
+    return snell__glass_resolve_all(in, 0, out);
 }
 
 snell_status snell_glass_set_param(snell_glass_material *m, snell_method method, const char *name,

@@ -78,6 +78,8 @@ static snell_status create_stage_states(snell_renderer *r)
     int i;
     r->programs = (snell__program_cache *)snell__calloc(&r->ctx->alloc, 1, sizeof *r->programs);
     if (!r->programs) return snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for the program cache");
+    r->programs->stages = snell__stages;
+    r->programs->stage_count = snell__stage_count;
     for (i = 0; i < snell__stage_count; i++) {
         const snell__stage *sg = snell__stages[i];
         if (!sg->state_size) continue;

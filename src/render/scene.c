@@ -2,7 +2,6 @@
 /* scene.c — see scene.h. */
 #include "render/scene.h"
 #include "frame/camera.h"
-#include "frame/material.h"
 #include "core/ctx.h"
 
 #include <math.h>
@@ -64,7 +63,7 @@ static snell_status build_object(snell_ctx *ctx, const snell_glass *g, int i, sn
     if (g->model)
         for (k = 0; k < 16; k++)
             if (!isfinite(g->model[k])) return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: model matrix is not finite", i);
-    s = snell__glass_resolve(&g->material, i, &sc->glass[i]);
+    s = snell__glass_resolve_all(&g->material, i, &sc->glass[i]);
     if (s != SNELL_OK) return snell__fail(ctx, s, "%s", snell_last_error(NULL));
     o->index = i;
     o->mesh = (snell_mesh *)g->mesh;

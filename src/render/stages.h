@@ -16,6 +16,11 @@ struct snell__frame {
     void *const *state;             /* each stage's slot, by table index (r->stage_state) */
 };
 
+/* The frame's stages in frame order (stages.c), at most SNELL__STAGES_MAX;
+ * the renderer hands them to its program cache for the kernels' hooks. */
+extern const snell__stage *const snell__stages[];
+extern const int snell__stage_count;
+
 /* The stages other modules name (the table, stages.c, declares them all). */
 extern const snell__stage snell__stage_budget;     /* budget_stage.c */
 extern const snell__stage snell__stage_caustics;   /* caustics_stage.c */
