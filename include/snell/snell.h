@@ -834,7 +834,6 @@ typedef struct snell_method_info {
     const char *name;              /* "single", "cubemap" */
     const char *summary;           /* one line */
     const char *needs;             /* its preconditions, in words */
-    int cost_rank;                 /* AUTO tries lower ranks first */
     int param_count;
     const snell_param_info *params;
     int counter_count;             /* 0..SNELL_MAX_METHOD_COUNTERS */

@@ -283,7 +283,6 @@ static const snell_method_info g_info = {
     .name = "cubemap",
     .summary = "two-sided: exit found in a normal+distance cubemap, TIR bounces (Li et al., Unger 4.1)",
     .needs = "a closed mesh with its analysed centre inside; exact when star-shaped about it",
-    .cost_rank = 3,
     .param_count = (int)(sizeof g_params / sizeof *g_params),
     .params = g_params,
     .counter_count = 0,

@@ -259,7 +259,6 @@ static const snell_method_info g_info = {
     .name = "exact",
     .summary = "exact: the mesh's BVH traversed per pixel (watertight triangles, TIR), the MATCHED reference on the GPU",
     .needs = "nothing (any mesh); AUTO only where material.exact.auto_pick allows",
-    .cost_rank = 7,
     .param_count = (int)(sizeof g_params / sizeof *g_params),
     .params = g_params,
     .counter_count = (int)(sizeof g_counters / sizeof *g_counters),

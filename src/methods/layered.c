@@ -592,7 +592,6 @@ static const snell_method_info g_info = {
     .name = "layered",
     .summary = "multi-layer, view-independent: depth-peeled distance cube map layers from the centre, a march through them, TIR, re-entries (Umenhoffer et al. 2007)",
     .needs = "the mesh analysis (its centre); baked once per mesh version, nothing per frame",
-    .cost_rank = 2,
     .param_count = (int)(sizeof g_params / sizeof *g_params),
     .params = g_params,
     .counter_count = (int)(sizeof g_counters / sizeof *g_counters),

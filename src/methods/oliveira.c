@@ -170,7 +170,6 @@ static const snell_method_info g_info = {
     .name = "oliveira",
     .summary = "two-sided in image space: exit by a conservative linear + binary search against the back faces, TIR bounces (Oliveira and Brauwers 2007)",
     .needs = "a closed mesh (no centre, no star shape, nothing prepared); per frame a back-face pass; screen space",
-    .cost_rank = 5,
     .param_count = (int)(sizeof g_params / sizeof *g_params),
     .params = g_params,
     .counter_count = 0,

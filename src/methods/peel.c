@@ -491,7 +491,6 @@ static const snell_method_info g_info = {
     .name = "peel",
     .summary = "multi-layer in image space: depth-peeled layers, ray-height-field search between them, TIR (Wang 2014)",
     .needs = "a closed mesh of depth complexity above 2 (concave); per object and frame a few depth peels",
-    .cost_rank = 6,
     .param_count = (int)(sizeof g_params / sizeof *g_params),
     .params = g_params,
     .counter_count = (int)(sizeof g_counters / sizeof *g_counters),

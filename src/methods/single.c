@@ -95,7 +95,6 @@ static const snell_method_info g_info = {
     .name = "single",
     .summary = "refraction at the front surface only (Unger 3.3); thin walls as slabs",
     .needs = "nothing",
-    .cost_rank = 1,
     .ref_interfaces = 1,
     .ref_chord_absorption = 1,
     .default_sweep = "",

@@ -256,7 +256,6 @@ static const snell_method_info g_info = {
     .name = "wyman",
     .summary = "two-sided in image space: exit interpolated between view-ray and normal thickness, back-face normal (Wyman 2005)",
     .needs = "a closed mesh (no centre, no star shape); per frame a back-face pass",
-    .cost_rank = 4,
     .param_count = (int)(sizeof g_params / sizeof *g_params),
     .params = g_params,
     .counter_count = 0,
