@@ -441,7 +441,7 @@ static int expand(expansion *e, int depth, const char **chosen)
  * entry for it). It takes the keys every method takes; its MATCHED reference
  * is FULL's model (any method may draw an object), so vs_matched = vs_full. */
 static const snell_method_info g_auto = {SNELL_METHOD_AUTO, "auto", "the cheapest adequate method per object",
-                                         "", 0, 0, NULL, 0, NULL, 10, 0, ""};
+                                         "", 0, NULL, 0, NULL, 10, 0, ""};
 
 const snell_method_info *bench_method_info(snell_method m)
 {
