@@ -12,8 +12,7 @@
 // Spaces: the cubemap is in object space about u_centre; the search runs in
 // object space with the world ray parameter (d = M^-1 * unit world direction),
 // so t is a world length for any model matrix, non-uniform scale included.
-// highp throughout: this shader is the search (DESIGN.md, highp for search
-// parameters).
+// highp throughout: a search's parameters lose their steps in mediump.
 precision highp float;
 
 #include "common/optics.glsl"

@@ -3,7 +3,7 @@
 // pixel is the mean of its SNELL_SSAA x SNELL_SSAA block of the frame rendered
 // that many times larger, a box filter over the pixel's area, which is what
 // the reference tracer's samples = S computes (snell_ref_params). The block
-// size is a compile-time constant (DESIGN.md: constant loop bounds).
+// size is a compile-time constant (docs/ARCHITECTURE.md "Conventions").
 precision highp float;
 
 uniform highp sampler2D u_frame;

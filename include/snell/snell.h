@@ -1199,10 +1199,9 @@ typedef struct snell_frame_desc {
      * shadows them and by the photons that land on them (photons stop at the
      * first opaque object); with a light and opaque objects the stage runs
      * without a plane as well. Zero = none: the
-     * frame is drawn as without them. Limits: one refraction in and one out
-     * per object (a convex solid; TIR inside drops the photon), light
-     * through two glass objects is not followed, glass does not see the
-     * receiver. With water and a light (no receiver needed), the light
+     * frame is drawn as without them. Limit: through a convex mesh a photon
+     * crosses one surface in and one out (TIR inside drops it); other meshes
+     * and chains of casters are traced surface to surface. With water and a light (no receiver needed), the light
      * refracted through the moving surface lights the container's floor:
      * its caustics (snell_water.h). */
     snell_light light;
