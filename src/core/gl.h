@@ -19,4 +19,8 @@ void snell__bind_sampler(GLuint unit, GLuint sampler);
 #define glBindSampler snell__bind_sampler
 #endif
 
+/* The bound texture of target samples its nearest texel (texelFetch or exact
+ * look-ups), clamped at its edges where clamp is nonzero. */
+void snell__texture_nearest(GLenum target, int clamp);
+
 #endif

@@ -59,6 +59,15 @@ void snell__active_texture(GLenum unit)
     use_unit(g_units.active);
 }
 
+void snell__texture_nearest(GLenum target, int clamp)
+{
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    if (!clamp) return;
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
 void snell__bind_texture(GLenum target, GLuint texture)
 {
     use_unit(g_units.active);

@@ -15,14 +15,6 @@ void snell__peel_targets_release(snell__peel_targets *t)
     t->width = t->height = t->capacity = 0;
 }
 
-static void nearest_texture(GLenum target)
-{
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-}
-
 snell_status snell__peel_targets_ensure(snell_ctx *ctx, snell__peel_targets *t, int w, int h, int layers, int unit,
                                         const char *what, int *remade)
 {
@@ -34,12 +26,12 @@ snell_status snell__peel_targets_ensure(snell_ctx *ctx, snell__peel_targets *t, 
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
     glGenTextures(1, &t->array_tex);
     glBindTexture(GL_TEXTURE_2D_ARRAY, t->array_tex);
-    nearest_texture(GL_TEXTURE_2D_ARRAY);
+    snell__texture_nearest(GL_TEXTURE_2D_ARRAY, 1);
     glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA8, w, h, 2 * layers);
     glGenTextures(2, t->next_tex);
     for (i = 0; i < 2; i++) {
         glBindTexture(GL_TEXTURE_2D, t->next_tex[i]);
-        nearest_texture(GL_TEXTURE_2D);
+        snell__texture_nearest(GL_TEXTURE_2D, 1);
         glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
     }
     glActiveTexture(GL_TEXTURE0);

@@ -111,8 +111,7 @@ snell_status lm2d_gl_create(snell_ctx *ctx, int width, int height, snell_format2
     glBindTexture(GL_TEXTURE_2D, g->tex);
     glTexStorage2D(GL_TEXTURE_2D, 1, ifmt, width, height);
     (void)type;
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    snell__texture_nearest(GL_TEXTURE_2D, 0);
     glBindTexture(GL_TEXTURE_2D, (GLuint)prev_tex);
     glGenFramebuffers(1, &g->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);

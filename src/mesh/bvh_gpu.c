@@ -277,8 +277,7 @@ static snell_status prepare_mesh(snell_ctx *ctx, bvh_data *p, const snell_mesh *
         if (p->texture) glDeleteTextures(1, &p->texture);
         glGenTextures(1, &p->texture);
         glBindTexture(GL_TEXTURE_2D, p->texture);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        snell__texture_nearest(GL_TEXTURE_2D, 0);
         if (p->format == SNELL_EXACT_NODES_F32)
             glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, TEX_WIDTH, p->rows, 0, GL_RGBA, GL_FLOAT, p->texels);
         else

@@ -41,8 +41,7 @@ static snell_status upload_dirs(snell_renderer *r, probe_gl *p, const float *dir
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, p->dirs_tex);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, p->width, p->height, 0, GL_RGBA, GL_FLOAT, scratch);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    snell__texture_nearest(GL_TEXTURE_2D, 0);
     snell__pixel_unpack_end(&unpack);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "env probe: direction upload failed");
 }

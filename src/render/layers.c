@@ -52,8 +52,7 @@ static snell_status ensure_targets(snell_ctx *ctx, snell__layers *l, int w, int 
     if (st != SNELL_OK || l->table_tex) return st;
     glGenTextures(1, &l->table_tex);
     glBindTexture(GL_TEXTURE_2D, l->table_tex);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    snell__texture_nearest(GL_TEXTURE_2D, 0);
     /* RGBA32F is sampleable unfiltered in core GLES 3.0 (texelFetch) */
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, SNELL__LAYERS_IDS, SNELL__LAYERS_TABLE_ROWS);
     glActiveTexture(GL_TEXTURE0);

@@ -19,8 +19,7 @@ snell_status snell__ssaa_create(snell_ctx *ctx, snell__ssaa *s, int factor, int 
     glGenTextures(1, &s->frame_tex);
     glBindTexture(GL_TEXTURE_2D, s->frame_tex);
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w * factor, h * factor);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    snell__texture_nearest(GL_TEXTURE_2D, 0);
     glGenRenderbuffers(1, &s->resolve_rb);
     glBindRenderbuffer(GL_RENDERBUFFER, s->resolve_rb);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);

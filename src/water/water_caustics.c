@@ -46,10 +46,7 @@ static snell_status resources(snell_ctx *ctx, snell_water *w, int size)
     }
     glBindTexture(GL_TEXTURE_2D, w->light_tex);
     snell__light_map_image(w->light_format, size);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST); /* read bilinearly by hand (water.glsl) */
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    snell__texture_nearest(GL_TEXTURE_2D, 1); /* read bilinearly by hand (water.glsl) */
     glBindFramebuffer(GL_FRAMEBUFFER, w->light_fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, w->light_tex, 0);
     status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
@@ -119,10 +116,7 @@ static snell_status draw_columns(snell_ctx *ctx, snell_water *w, const snell_opa
         for (k = 0; k < 2; k++) {
             glBindTexture(GL_TEXTURE_2D, w->column_tex[k]);
             glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size, size, 0, GL_DEPTH_COMPONENT, GL_FLOAT, NULL);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+            snell__texture_nearest(GL_TEXTURE_2D, 1);
             glBindFramebuffer(GL_FRAMEBUFFER, w->column_fbo[k]);
             glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, w->column_tex[k], 0);
             glDrawBuffers(1, &none);

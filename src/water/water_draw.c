@@ -130,8 +130,7 @@ static snell_status make_geometry(snell_water *w)
     if (w->d.sim == SNELL_WATER_SIM_CPU) {
         glGenTextures(1, &w->height_tex);
         glBindTexture(GL_TEXTURE_2D, w->height_tex);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST); /* texelFetch only; R32F is not filterable */
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        snell__texture_nearest(GL_TEXTURE_2D, 0); /* texelFetch only; R32F is not filterable */
         glTexStorage2D(GL_TEXTURE_2D, 1, GL_R32F, n, n);
     }
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(w->ctx, SNELL_E_GL, "water: GL error making its geometry");
@@ -140,10 +139,7 @@ static snell_status make_geometry(snell_water *w)
 static void nearest_texture(GLuint tex, GLenum format, int width, int height)
 {
     glBindTexture(GL_TEXTURE_2D, tex);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    snell__texture_nearest(GL_TEXTURE_2D, 1);
     glTexStorage2D(GL_TEXTURE_2D, 1, format, width, height);
 }
 

@@ -29,10 +29,7 @@ static snell_status check_fbo(snell_water *w, const char *what)
 static void make_uint_target(GLuint tex, int size)
 {
     glBindTexture(GL_TEXTURE_2D, tex);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    snell__texture_nearest(GL_TEXTURE_2D, 1);
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_RG32UI, size, size);
 }
 
