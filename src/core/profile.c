@@ -38,20 +38,25 @@ const snell__profile snell__profiles[] = {
      * v3d: src/broadcom/common/v3d_limits.h V3D_MAX_IMAGE_DIMENSION 4096,
      * V3D_MAX_ARRAY_LAYERS 2048, V3D_MAX_SAMPLES 4,
      * V3D_OPENGL_MAX_TEXTURE_SAMPLERS 16, V3D_MAX_FS_INPUTS / 4 varyings,
-     * V3D_MAX_RENDER_TARGETS(42) 4; uniform vectors min. */
+     * V3D_MAX_RENDER_TARGETS(42) 4, as Mesa 22.3.6 over drm-shim reports;
+     * uniform vectors min. */
     {"rpi-v3d", DEBUG, {4096, 4096, 2048, 4096, 4, 16, 224, 256, 16, 4}},
     /* Mali G52 / G31 (Bifrost, arch 7), Mesa panfrost: pan_screen.c
      * panfrost_init_screen_caps max_texture_array_layers 2048,
      * max_varyings 32 (arch < 9), max_render_targets 8 (has_mrt),
-     * texture_float_linear; 2D and cube 1 << (PAN_MAX_MIP_LEVELS - 1)
-     * under Mesa's cap; samples, units, uniform vectors min. */
-    {"mali-bifrost", DEBUG | FLOAT_LINEAR, {16384, 16384, 2048, 16384, 4, 16, 224, 256, 32, 8}},
+     * texture_float_linear; 2D, cube and renderbuffer 8192: Mesa 22.3.6
+     * over drm-shim reports 8192 on both GPUs (the newer Mesa named here
+     * allows 16384; a device's driver may be as old as 22.3); samples,
+     * units, uniform vectors min. */
+    {"mali-bifrost", DEBUG | FLOAT_LINEAR, {8192, 8192, 2048, 8192, 4, 16, 224, 256, 32, 8}},
     /* Adreno 6xx, Mesa freedreno: freedreno_screen.c fd_init_screen_caps
      * max_texture_2d_size 16384, max_texture_cube_levels 15,
-     * max_texture_array_layers 2048 (a6xx), query_time_elapsed (a6xx with
-     * the kernel's max_freq: EXT_disjoint_timer_query); samples, units,
-     * uniform vectors, varyings, draw buffers min. */
-    {"adreno-6xx", DEBUG | TIMER, {16384, 16384, 2048, 16384, 4, 16, 224, 256, 15, 4}},
+     * query_time_elapsed (a6xx with the kernel's max_freq:
+     * EXT_disjoint_timer_query); array layers 256: Mesa 22.3.6 over
+     * drm-shim reports 256 on Adreno 618, 630 and 660 (the newer Mesa
+     * named here allows 2048; a device's driver may be as old as 22.3);
+     * samples, units, uniform vectors, varyings, draw buffers min. */
+    {"adreno-6xx", DEBUG | TIMER, {16384, 16384, 256, 16384, 4, 16, 224, 256, 15, 4}},
     /* PowerVR Rogue: no open GLES driver to read; Imagination's "PowerVR
      * Supported Extensions, OpenGL ES and EGL" (SDK REL_4.0) lists
      * GL_EXT_color_buffer_float; every limit min. */
