@@ -12,6 +12,8 @@
 #include "test_util.h"
 #include "render/budget.h"
 #include "render/glass_scale.h"
+#include "core/device_cost.h"
+#include "render/scene.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -271,9 +273,9 @@ static void better_and_cheaper(const snell_mesh_analysis *an, const snell_glass_
     char why[SNELL_REASON_SIZE];
     double pred, budget = 1e5;
     int plan[1] = {-1}, f, r, top_lo, exact_drawn = 0;
-    snell__budget_ladder(an, &ga, 0.0f, all_usable, NULL, &lo);
+    snell__budget_ladder(an, &ga, 0.0f, NULL, all_usable, NULL, &lo);
     ga.material.exact.auto_pick = SNELL_EXACT_AUTO_ALLOW;
-    snell__budget_ladder(an, &ga, 0.0f, all_usable, NULL, &hi);
+    snell__budget_ladder(an, &ga, 0.0f, NULL, all_usable, NULL, &hi);
     lo.area = hi.area = 1.0f;
     top_lo = lo.ladder[lo.n - 1];
     CHECK(snell__rung_at(hi.ladder[hi.n - 1])->method == SNELL_METHOD_EXACT, "exact not the top of the open ladder");
@@ -300,6 +302,100 @@ static void better_and_cheaper(const snell_mesh_analysis *an, const snell_glass_
           why);
 }
 
+/* The device models (core/device_cost.c): which GL_RENDERER names which,
+ * and the ladder priced by one: each method's default rung at the model's
+ * cost, its other rungs in the table's ratios, the front in cost order. */
+static void device_costs(const snell_mesh_analysis *convex, const snell_mesh_analysis *bunny,
+                         const snell_glass_resolved *g)
+{
+    static const char *const names[][2] = {
+        {"V3D 4.2", "V3D 4.2"}, {"FD630", "Adreno 630"}, {"FD618", "Adreno 630"}, {"Adreno (TM) 650", "Adreno 630"},
+        {"Mali-G52 (Panfrost)", "Mali-G52"}, {"Mali-G52 MC2", "Mali-G52"},
+    };
+    const char *none[] = {"llvmpipe (LLVM 15.0.6, 256 bits)", "softpipe", "Mali-G57 (Panfrost)", "V3D 7.1", ""};
+    int i, k, cls, i_rung, n = snell__rung_count();
+    for (i = 0; i < (int)(sizeof names / sizeof *names); i++) {
+        const snell__device_cost *d = snell__device_cost_find(names[i][0]);
+        CHECK(d && strcmp(d->name, names[i][1]) == 0, "GL_RENDERER \"%s\": model %s, want %s", names[i][0],
+              d ? d->name : "none", names[i][1]);
+    }
+    for (i = 0; i < (int)(sizeof none / sizeof *none); i++)
+        CHECK(!snell__device_cost_find(none[i]), "GL_RENDERER \"%s\": no model", none[i]);
+    CHECK(!snell__device_cost_find(NULL), "no renderer: no model");
+    for (i = 0; i < 3; i++) {
+        const snell__device_cost *d = snell__device_cost_find(names[i == 0 ? 0 : i == 1 ? 1 : 4][0]);
+        snell__budget_object lo;
+        for (cls = 0; cls < 3; cls++) {
+            CHECK(d->cost[SNELL_METHOD_SINGLE][cls] == 1.0f, "%s: single is the unit (class %d)", d->name, cls);
+            CHECK(d->cost[SNELL_METHOD_CUBEMAP][cls] > 1.0f && d->cost[SNELL_METHOD_PEEL][cls] > 1.0f,
+                  "%s: class %d modelled", d->name, cls);
+        }
+        for (cls = 0; cls < 4; cls++)
+            for (k = 0; k < n; k++) {
+                const snell__rung *r = snell__rung_at(k);
+                float want = d->cost[r->method][cls], base = 0.0f, got = snell__rung_cost(d, r, cls);
+                int j;
+                for (j = 0; j < n; j++)
+                    if (snell__rung_at(j)->method == r->method && !snell__rung_at(j)->param && snell__rung_at(j)->scale <= 1)
+                        base = snell__rung_at(j)->cost[cls];
+                if (want <= 0.0f) want = r->cost[cls]; /* not modelled: the table's */
+                else if (base > 0.0f) want *= r->cost[cls] / base;
+                CHECK(fabsf(got - want) <= 1e-5f * want, "%s: rung %d class %d costs %g, want %g", d->name, k, cls,
+                      (double)got, (double)want);
+                CHECK(snell__rung_cost(NULL, r, cls) == r->cost[cls], "no model: rung %d class %d the table's", k, cls);
+            }
+        for (k = 0; k < 2; k++) {
+            snell__budget_ladder(k ? bunny : convex, g, 0.0f, d, all_usable, NULL, &lo);
+            CHECK(lo.n > 0, "%s: a ladder on class %d", d->name, lo.cls);
+            for (i_rung = 0; i_rung < lo.n; i_rung++) {
+                float c = snell__rung_cost(d, snell__rung_at(lo.ladder[i_rung]), lo.cls);
+                CHECK(lo.cost[i_rung] == c, "%s class %d: ladder rung %d costs %g, the model %g", d->name, lo.cls,
+                      i_rung, (double)lo.cost[i_rung], (double)c);
+                CHECK(i_rung == 0 || (lo.cost[i_rung] >= lo.cost[i_rung - 1] && lo.db[i_rung] > lo.db[i_rung - 1]),
+                      "%s class %d: the front rises in cost and PSNR at rung %d", d->name, lo.cls, i_rung);
+            }
+        }
+    }
+}
+
+static int registry_index(const snell__method *m)
+{
+    int i;
+    for (i = 0; i < snell_method_count(); i++)
+        if (snell_method_info_at(i) == m->info) return i;
+    return -1;
+}
+
+/* AUTO's order (render/scene.c): the registry's without a model; by a
+ * model's cost where it has one, a method it leaves out after the rest. */
+static void auto_order(void)
+{
+    const snell__method *order[SNELL_METHOD_COUNT_];
+    snell__device_cost dev;
+    int i, n = snell__auto_order(NULL, 0, order), pos_cube = -1, pos_layered = -1, pos_single = -1;
+    CHECK(n == snell_method_count(), "%d methods in order, %d built", n, snell_method_count());
+    for (i = 0; i < n; i++)
+        CHECK(order[i]->info == snell_method_info_at(i), "no model: registry order at %d (%s)", i, order[i]->info->name);
+    memset(&dev, 0, sizeof dev);
+    dev.cost[SNELL_METHOD_SINGLE][0] = 1.0f;
+    dev.cost[SNELL_METHOD_CUBEMAP][0] = 2.0f;
+    dev.cost[SNELL_METHOD_LAYERED][0] = 3.0f; /* dearer than the cubemap here, unlike the registry's device */
+    snell__auto_order(&dev, 0, order);
+    for (i = 0; i < n; i++) {
+        if (order[i]->info->method == SNELL_METHOD_CUBEMAP) pos_cube = i;
+        if (order[i]->info->method == SNELL_METHOD_LAYERED) pos_layered = i;
+        if (order[i]->info->method == SNELL_METHOD_SINGLE) pos_single = i;
+    }
+    CHECK(pos_single == 0 && pos_cube == 1 && (pos_layered == 2 || !snell_build_has("layered")),
+          "model order: single %d, cubemap %d, layered %d", pos_single, pos_cube, pos_layered);
+    for (i = pos_layered >= 0 ? 4 : 3; i < n; i++) /* the rest unmodelled: the registry's order among them */
+        CHECK(registry_index(order[i]) > registry_index(order[i - 1]), "unmodelled %s after %s", order[i]->info->name,
+              order[i - 1]->info->name);
+    snell__auto_order(&dev, 1, order); /* a class it does not model: the registry's */
+    for (i = 0; i < n; i++)
+        CHECK(order[i]->info == snell_method_info_at(i), "unmodelled class: registry order at %d", i);
+}
+
 int main(void)
 {
     /* the classes: convex; closed concave that the cubemap serves (a bunny: 25% hidden from its centre);
@@ -312,18 +408,18 @@ int main(void)
     int r, s;
 
     /* Ladders: Pareto fronts, in the right class, the floor where asked. */
-    snell__budget_ladder(&convex, &g, 0.0f, all_usable, NULL, &obj[0]);
+    snell__budget_ladder(&convex, &g, 0.0f, NULL, all_usable, NULL, &obj[0]);
     CHECK(obj[0].cls == 0, "convex class %d", obj[0].cls);
     check_ladder(&obj[0], "convex");
-    snell__budget_ladder(&torus, &g, 0.0f, all_usable, NULL, &obj[1]);
+    snell__budget_ladder(&torus, &g, 0.0f, NULL, all_usable, NULL, &obj[1]);
     CHECK(obj[1].cls == 2, "deep concave class %d", obj[1].cls);
     check_ladder(&obj[1], "deep concave");
-    snell__budget_ladder(&open, &g, 0.0f, all_usable, NULL, &obj[2]);
+    snell__budget_ladder(&open, &g, 0.0f, NULL, all_usable, NULL, &obj[2]);
     CHECK(obj[2].cls == 3, "open class %d", obj[2].cls);
     check_ladder(&obj[2], "open");
     {
         snell__budget_object bo;
-        snell__budget_ladder(&bunny, &g, 0.0f, all_usable, NULL, &bo);
+        snell__budget_ladder(&bunny, &g, 0.0f, NULL, all_usable, NULL, &bo);
         CHECK(bo.cls == 1, "cubemap-served class %d", bo.cls);
         check_ladder(&bo, "cubemap-served");
         scale_rungs(&bo, "cubemap-served");
@@ -351,14 +447,14 @@ int main(void)
         snell__budget_object ex;
         int has = 0;
         ga.material.exact.auto_pick = SNELL_EXACT_AUTO_ALLOW;
-        snell__budget_ladder(&bunny, &ga, 0.0f, all_usable, NULL, &ex);
+        snell__budget_ladder(&bunny, &ga, 0.0f, NULL, all_usable, NULL, &ex);
         for (r = 0; r < ex.n; r++) has |= snell__rung_at(ex.ladder[r])->method == SNELL_METHOD_EXACT;
         CHECK(has, "exact allowed but not on the ladder");
     }
     better_and_cheaper(&open, &g);
     {
         snell__budget_object fl;
-        snell__budget_ladder(&torus, &g, 20.0f, all_usable, NULL, &fl);
+        snell__budget_ladder(&torus, &g, 20.0f, NULL, all_usable, NULL, &fl);
         CHECK(fl.floor > 0 && snell__rung_at(fl.ladder[fl.floor])->db[fl.cls] >= 20.0f &&
                   snell__rung_at(fl.ladder[fl.floor - 1])->db[fl.cls] < 20.0f,
               "quality floor 20 dB: floor rung %d", fl.floor);
@@ -405,7 +501,7 @@ int main(void)
         double pred;
         char why[SNELL_REASON_SIZE];
         snell__budget_object fl;
-        snell__budget_ladder(&torus, &g, 20.0f, all_usable, NULL, &fl);
+        snell__budget_ladder(&torus, &g, 20.0f, NULL, all_usable, NULL, &fl);
         fl.area = 1.0f;
         snell__budget_reset(&b);
         for (f = 0; f < 50; f++) {
@@ -414,5 +510,7 @@ int main(void)
         }
         CHECK(plan[0] == fl.floor, "floor: rung %d, floor %d", plan[0], fl.floor);
     }
+    device_costs(&convex, &bunny, &g);
+    auto_order();
     return test_finish();
 }

@@ -184,6 +184,8 @@ typedef enum snell_limit {
 typedef struct snell_device_limits {
     const char *profile;            /* the device profile in force, "none" without one */
     int limit[SNELL_LIMIT_COUNT];   /* the GL context's, lowered to the profile's */
+    const char *cost_model;         /* the GPU whose method costs AUTO ranks by ("V3D 4.2", "Adreno 630",
+                                     * "Mali-G52": bench/devices/COSTS.md), "reference" for any other */
 } snell_device_limits;
 void snell_ctx_limits(const snell_ctx *ctx, snell_device_limits *out);
 /* "texture_size", "cube_size", ...: the limit's name in messages and JSON. */

@@ -195,6 +195,8 @@ static void json_header(FILE *f, const bench_options *o, const bench_run_info *r
         int k;
         fprintf(f, ",\n  \"device_profile\": ");
         json_str(f, run->limits->profile);
+        fprintf(f, ",\n  \"cost_model\": ");
+        json_str(f, run->limits->cost_model);
         fprintf(f, ",\n  \"device_limits\": {");
         for (k = 0; k < SNELL_LIMIT_COUNT; k++)
             fprintf(f, "%s\"%s\": %d", k ? ", " : "", snell_limit_str((snell_limit)k), run->limits->limit[k]);

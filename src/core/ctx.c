@@ -58,6 +58,7 @@ static snell_status probe_gl(snell_ctx *ctx)
         glGetIntegerv(snell__limit_enum[i], &v);
         ctx->limit[i] = ctx->profile && ctx->profile->limit[i] < v ? ctx->profile->limit[i] : v;
     }
+    ctx->cost = snell__device_cost_find(ctx->gl_renderer);
     ctx->has_khr_debug = snell_ctx_has_gl_extension(ctx, "GL_KHR_debug");
     ctx->light_fixed = !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") ||
                        !snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend");

@@ -7,6 +7,7 @@
 #include "core/core.h"
 #include "core/platform.h"
 #include "core/profile.h"
+#include "core/device_cost.h"
 
 struct snell_ctx {
     snell_alloc alloc;
@@ -18,6 +19,7 @@ struct snell_ctx {
     char *gl_extensions;            /* space-separated, with a leading and trailing space */
     const snell__profile *profile;  /* the device profile in force, NULL none (profile.c) */
     int limit[SNELL__LIMITS];       /* the GL context's limits, lowered to the profile's */
+    const snell__device_cost *cost; /* the GPU's method costs, NULL: the rung tables' (device_cost.h) */
     int has_khr_debug;
     int light_fixed;                /* no blendable 32-bit float target: light maps in RGB10_A2 (glstate.h) */
     int debug_installed;

@@ -87,5 +87,6 @@ void snell_ctx_limits(const snell_ctx *ctx, snell_device_limits *out)
     int i;
     if (!out) return;
     out->profile = ctx && ctx->profile ? ctx->profile->name : "none";
+    out->cost_model = ctx && ctx->cost ? ctx->cost->name : "reference";
     for (i = 0; i < SNELL_LIMIT_COUNT; i++) out->limit[i] = ctx ? ctx->limit[i] : 0;
 }

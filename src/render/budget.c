@@ -68,14 +68,29 @@ int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolve
     return cube && cube->fit && cube->fit(an, glass, why, sizeof why) == SNELL__FIT_ADEQUATE ? 1 : 2;
 }
 
-void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resolved *glass, float quality_floor_db,
-                          int (*usable)(void *user, snell_method m), void *user, snell__budget_object *out)
+float snell__rung_cost(const snell__device_cost *dev, const snell__rung *g, int cls)
 {
+    float base = 0.0f, on_dev = dev ? dev->cost[g->method][cls] : 0.0f;
+    int i, n = snell__rung_count();
+    /* the device's cost of the method's default rung; its other rungs keep their ratios to it */
+    for (i = 0; i < n && on_dev > 0.0f; i++) {
+        const snell__rung *h = snell__rung_at(i);
+        if (h->method == g->method && !h->param && h->scale <= 1) base = h->cost[cls];
+    }
+    return base > 0.0f ? g->cost[cls] * on_dev / base : g->cost[cls];
+}
+
+void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resolved *glass, float quality_floor_db,
+                          const snell__device_cost *dev, int (*usable)(void *user, snell_method m), void *user,
+                          snell__budget_object *out)
+{
+    float cost[SNELL__BUDGET_MAX_RUNGS];
     int i, j, count = snell__rung_count();
     out->n = 0;
     out->cls = snell__budget_class(an, glass);
     out->floor = 0;
     out->fixed_cost = 1.0f;
+    for (i = 0; i < count && i < SNELL__BUDGET_MAX_RUNGS; i++) cost[i] = snell__rung_cost(dev, snell__rung_at(i), out->cls);
     for (i = 0; i < count; i++) {
         const snell__rung *g = snell__rung_at(i);
         const snell__method *m = snell__method_get(g->method);
@@ -85,7 +100,7 @@ void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resol
         /* Pareto: drop every rung this one beats (cheaper or as cheap, and better or as good). */
         for (j = 0; j < out->n;) {
             const snell__rung *h = snell__rung_at(out->ladder[j]);
-            if (g->cost[out->cls] <= h->cost[out->cls] && g->db[out->cls] >= h->db[out->cls]) {
+            if (cost[i] <= cost[out->ladder[j]] && g->db[out->cls] >= h->db[out->cls]) {
                 memmove(&out->ladder[j], &out->ladder[j + 1], sizeof(int) * (size_t)(out->n - j - 1));
                 out->n--;
             } else
@@ -93,17 +108,17 @@ void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resol
         }
         for (j = 0; j < out->n; j++) {
             const snell__rung *h = snell__rung_at(out->ladder[j]);
-            if (h->cost[out->cls] <= g->cost[out->cls] && h->db[out->cls] >= g->db[out->cls]) break; /* beaten */
+            if (cost[out->ladder[j]] <= cost[i] && h->db[out->cls] >= g->db[out->cls]) break; /* beaten */
         }
         if (j < out->n) continue;
         /* insert in cost order (the Pareto front is then in PSNR order too) */
-        for (j = out->n; j > 0 && snell__rung_at(out->ladder[j - 1])->cost[out->cls] > g->cost[out->cls]; j--) out->ladder[j] = out->ladder[j - 1];
+        for (j = out->n; j > 0 && cost[out->ladder[j - 1]] > cost[i]; j--) out->ladder[j] = out->ladder[j - 1];
         out->ladder[j] = i;
         out->n++;
     }
     for (j = 0; j < out->n; j++) {
         const snell__rung *g = snell__rung_at(out->ladder[j]);
-        out->cost[j] = g->cost[out->cls];
+        out->cost[j] = cost[out->ladder[j]];
         out->db[j] = g->db[out->cls];
     }
     if (quality_floor_db > 0.0f) {

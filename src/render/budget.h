@@ -24,6 +24,7 @@
 #define SNELL_BUDGET_H
 
 #include "frame/method.h"
+#include "core/device_cost.h"
 
 #define SNELL__BUDGET_CLASSES 4 /* 0 convex, 1 closed concave the cubemap serves, 2 closed concave it does
                                  * not, 3 open, non-manifold or unanalysed */
@@ -106,9 +107,15 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
 int snell__budget_calibrate(snell__budget *b, const snell__budget_object *obj, int n,
                             double (*measure)(void *user, const int *plan), void *user);
 
+/* A rung's cost over single's for the mesh class on the device (NULL: the
+ * table's own): its method's default rung priced by the device's model,
+ * the method's other rungs in the table's ratios to it. */
+float snell__rung_cost(const snell__device_cost *dev, const snell__rung *g, int cls);
+
 /* Renderer side (budget.c): the ladder of one object (fit per method of the
- * table, methods that failed to build excluded by usable(id)). */
+ * table, methods that failed to build excluded by usable(id)), priced on dev. */
 void snell__budget_ladder(const snell_mesh_analysis *an, const snell_glass_resolved *glass, float quality_floor_db,
-                          int (*usable)(void *user, snell_method m), void *user, snell__budget_object *out);
+                          const snell__device_cost *dev, int (*usable)(void *user, snell_method m), void *user,
+                          snell__budget_object *out);
 
 #endif

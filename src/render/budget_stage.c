@@ -176,7 +176,7 @@ static snell_status stage_run(snell__frame *f, void *state)
         if (b->area > 1.0f) b->area = 1.0f;
         if (snell__mesh_analysis(o->mesh, &an) != SNELL_OK) an = NULL; /* cached on the mesh */
         if (g->method == SNELL_METHOD_AUTO && g->thickness <= 0.0f)
-            snell__budget_ladder(an, o->glass, f->fd->quality_floor_db, usable, r, b);
+            snell__budget_ladder(an, o->glass, f->fd->quality_floor_db, r->ctx->cost, usable, r, b);
         if (b->n == 0) {
             /* drawn as asked (or single for a thin wall): its table cost, else single's */
             snell_method m = g->thickness > 0.0f || g->method == SNELL_METHOD_AUTO ? SNELL_METHOD_SINGLE : g->method;
@@ -184,7 +184,7 @@ static snell_status stage_run(snell__frame *f, void *state)
             b->fixed_cost = 1.0f;
             for (k = 0; k < n; k++) {
                 const snell__rung *g = snell__rung_at(k);
-                if (g->method == m && !g->param && g->scale <= 1) b->fixed_cost = g->cost[cls];
+                if (g->method == m && !g->param && g->scale <= 1) b->fixed_cost = snell__rung_cost(r->ctx->cost, g, cls);
             }
         }
     }

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* scene.c — see scene.h. */
 #include "render/scene.h"
+#include "render/budget.h"
 #include "frame/camera.h"
 #include "core/ctx.h"
 
@@ -153,6 +154,22 @@ static const snell_mesh_analysis *analysis_of(snell__object *o, snell_object_sta
     return o->analysis;
 }
 
+int snell__auto_order(const snell__device_cost *dev, int cls, const snell__method *order[])
+{
+    int i, j, n = snell_method_count();
+    for (i = 0; i < n; i++) {
+        const snell__method *m = snell__method_get(snell_method_info_at(i)->method);
+        float c = dev ? dev->cost[m->info->method][cls] : 0.0f;
+        for (j = i; j > 0 && c > 0.0f; j--) {
+            float p = dev->cost[order[j - 1]->info->method][cls];
+            if (p > 0.0f && p <= c) break;
+            order[j] = order[j - 1];
+        }
+        order[j] = m;
+    }
+    return n;
+}
+
 snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method_state_fn get_state, void *user,
                                  const snell__method **method, void **state, snell_object_stats *st)
 {
@@ -161,8 +178,9 @@ snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method
     void *best_state = NULL, *fallback_state = NULL;
     char why[SNELL_REASON_SIZE], rejected[SNELL_REASON_SIZE] = "", fallback_why[SNELL_REASON_SIZE] = "";
     char runs[SNELL_REASON_SIZE] = "";
+    const snell__method *order[SNELL_METHOD_COUNT_];
     snell_status s;
-    int i;
+    int i, n_order;
 
     if (g->thickness > 0.0f || g->method != SNELL_METHOD_AUTO) {
         /* A thin wall has no interior: every method reduces to the slab model. */
@@ -187,9 +205,10 @@ snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method
             snell__why(st->reason, sizeof st->reason, "requested (%s)", why);
         return SNELL_OK;
     }
-    /* AUTO: the registry is in cost order. */
-    for (i = 0; i < snell_method_count() && !best; i++) {
-        const snell__method *m = snell__method_get(snell_method_info_at(i)->method);
+    /* AUTO: the cheapest adequate method, in the device's cost order where it is modelled */
+    n_order = snell__auto_order(ctx->cost, ctx->cost ? snell__budget_class(analysis_of(o, st), o->glass) : 0, order);
+    for (i = 0; i < n_order && !best; i++) {
+        const snell__method *m = order[i];
         snell__fit fit = SNELL__FIT_ADEQUATE;
         void *ms = NULL;
         size_t n = strlen(rejected);
@@ -220,7 +239,8 @@ snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method
     if (best) {
         *method = best;
         *state = best_state;
-        snell__why(st->reason, sizeof st->reason, "auto: %s", why);
+        snell__why(st->reason, sizeof st->reason, "auto: %s%s%s", why, ctx->cost ? "; cheapest on " : "",
+                   ctx->cost ? ctx->cost->name : "");
     } else if (fallback) {
         *method = fallback;
         *state = fallback_state;

@@ -8,6 +8,7 @@
 #define SNELL_SCENE_H
 
 #include "frame/method.h"
+#include "core/device_cost.h"
 
 typedef struct snell__scene {
     snell__view view;
@@ -30,10 +31,16 @@ snell_status snell__scene_build(snell_ctx *ctx, const snell_frame_desc *fd, int 
 /* The method state for m, created on first use (renderer.c). */
 typedef snell_status (*snell__method_state_fn)(void *user, const snell__method *m, void **state);
 
+/* The built methods in the order AUTO tries them for a mesh class
+ * (render/budget.h): the registry's, its cost order on the reference
+ * device; on a device with a cost model (NULL: none), by the model's cost,
+ * those it does not model after, in the registry's order. Returns their count. */
+int snell__auto_order(const snell__device_cost *dev, int cls, const snell__method *order[]);
+
 /* Chooses the object's method (analysing its mesh if a candidate needs it):
  * an explicit request is honoured, with a warning if the mesh fails the
  * method's preconditions; AUTO takes the cheapest adequate method the device
- * can run, else the cheapest one that runs. Writes method_used, reason,
+ * can run (snell__auto_order), else the cheapest one that runs. Writes method_used, reason,
  * warning, hidden_fraction and SNELL_SKIP_ANALYSIS into st. */
 snell_status snell__scene_choose(snell_ctx *ctx, snell__object *o, snell__method_state_fn get_state, void *user,
                                  const snell__method **method, void **state, snell_object_stats *st);
