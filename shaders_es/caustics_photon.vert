@@ -265,86 +265,88 @@ void thin_maps(vec3 p, vec3 n, vec3 dir, ivec2 ij, float zf, out vec3 q, out vec
 }
 
 #if SNELL_PHOTON_BVH
-// A thin wall's photon by the BVH, straight on from o along dir through
-// every wall of the mesh on its line, up to u_max_interfaces (p_map, n_map:
-// the nearest-surface map's where the ray misses the mesh, at the
-// silhouette). e: the walls' transmittance, the tint at each after the
-// first (u_flux holds the first); q the last wall.
-void thin_bvh(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 e)
-{
-    mat3 inv3 = mat3(u_inv_model);
-    vec3 b, n, p = (u_inv_model * vec4(o, 1.0)).xyz;
-    int at = -1;
-    e = wall(n_map, dir);
-    q = p_map;
-    for (int k = 0; k < MAX_INTERFACES; k++) {
-        float t = 3.0e38;
-        int h = closest(make_ray(p, inv3 * dir), k == 0 ? 0.0 : u_eps, t, at, b);
-        if (h < 0 || k >= u_max_interfaces) break;
-        at = h;
-        surface_at(h, b, dir, p, n);
-        e = (k == 0 ? vec3(1.0) : e * u_tint) * wall(n, dir);
-        q = (u_model * vec4(p, 1.0)).xyz;
-    }
-}
-
-// The photon's path by the mesh's BVH (exact.frag's rays and model, ref_caustics.c
-// through): from o along the light's ray dir, in where it meets the mesh
-// (p_map, n_map: the nearest-surface map's point and normal where the ray
-// misses it, at the silhouette), inside from surface to surface, TIR
-// followed, refracted out, and in again where its way out meets the mesh
-// once more, the entry counted, up to u_max_interfaces surfaces; at the cap
-// it leaves through the next surface in its direction. e: the
-// transmittance, (1 - Schlick) at every refraction, the tint at every entry
-// after the first (u_flux holds the first), Beer-Lambert inside; q and t2
-// the last exit (world) and the direction out. false: dropped.
+// The photon's path by the mesh's BVH (exact.frag's rays and model,
+// ref_caustics.c through): from o along the light's ray dir, in where it
+// meets the mesh (p_map, n_map: the nearest-surface map's point and normal
+// where the ray misses it, at the silhouette), inside from surface to
+// surface, TIR followed, refracted out, and in again where its way out
+// meets the mesh once more, the entry counted, up to u_max_interfaces
+// surfaces; at the cap it leaves through the next surface in its
+// direction. e: the transmittance, (1 - Schlick) at every refraction, the
+// tint at every entry after the first (u_flux holds the first),
+// Beer-Lambert inside; q and t2 the last exit (world) and the direction
+// out. false: dropped. A thin wall (u_thickness > 0) goes straight on from
+// o through every wall on its line, up to u_max_interfaces: e the walls'
+// transmittance, the tint at each after the first, q the last wall (p_map
+// where the ray misses the mesh).
+// One traversal call site for all the photon's rays (each call site is a
+// copy of the walk, common/bvh.glsl): each iteration traces one ray, from
+// outside (the first, or a way out that may meet the mesh again) or inside.
 bool bvh_path(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 t2, out vec3 e)
 {
     mat3 inv3 = mat3(u_inv_model);
-    vec3 b, p, n, d = dir;
-    float t = 3.0e38;
-    int at = closest(make_ray((u_inv_model * vec4(o, 1.0)).xyz, inv3 * d), 0.0, t, -1, b);
-    if (at >= 0) surface_at(at, b, d, p, n);
-    else {
-        p = (u_inv_model * vec4(p_map, 1.0)).xyz;
-        n = n_map;
-    }
-    int depth = 0;
-    e = vec3(1.0);
+    bool thin = u_thickness > 0.0, inside = false;
+    vec3 p = (u_inv_model * vec4(o, 1.0)).xyz, d = dir;
+    int at = RAY_FIRST, depth = 0;
+    float len = 0.0;
+    e = thin ? wall(n_map, dir) : vec3(1.0);
     q = p_map;
     t2 = dir;
-    for (int k = 0; k < MAX_INTERFACES; k++) {
-        vec3 tr;
+    for (int i = 0; i < 2 * MAX_INTERFACES + 2; i++) {
+        if (thin && i >= MAX_INTERFACES) break;
+        Ray ray = make_ray(p, inv3 * d);
+        float t = 3.0e38;
+        int h = closest(ray, u_eps, t, at);
+        vec3 ps, ns;
+        surface_at(max(h, 0), ray, d, ps, ns);
+        if (thin) {                                     // straight on through the next wall
+            if (h < 0 || i >= u_max_interfaces) break;
+            at = h;
+            p = ps;
+            e = (i == 0 ? vec3(1.0) : e * u_tint) * wall(ns, d);
+            q = (u_model * vec4(p, 1.0)).xyz;
+            continue;
+        }
+        if (inside) {
+            // the next surface from inside (none: an open mesh, it leaves in
+            // its direction); at the cap the way ends there
+            bool cap = h >= 0 && depth >= u_max_interfaces, left = false;
+            if (h >= 0) {
+                len += t;
+                at = h;
+                p = ps;
+            }
+            if (h >= 0 && !cap) {
+                depth++;
+                vec3 o2;
+                left = snell_refract(d, ns, u_ior, o2); // refracted out, or totally reflected
+                if (left) e *= 1.0 - snell_fresnel_schlick(dot(ns, -d), u_ior, 1.0);
+                d = normalize(o2);
+            }
+            if (h < 0 || cap || left) {
+                e *= exp(-u_sigma * len);
+                if (depth >= u_max_interfaces) break;
+                inside = false;
+            }
+            continue;
+        }
+        // outside: the first ray (a miss: the map's point), or the way out
+        // meeting the mesh again (a miss: out for good)
+        if (h < 0 && i > 0) break;
+        at = h >= 0 ? h : RAY_AFTER_MISS;
+        p = h >= 0 ? ps : (u_inv_model * vec4(p_map, 1.0)).xyz;
+        vec3 n = h >= 0 ? ns : n_map, tr;
         if (!snell_refract(d, n, 1.0 / u_ior, tr)) return false;
-        e *= (k > 0 ? u_tint : vec3(1.0)) * (1.0 - snell_fresnel_schlick(dot(n, -d), 1.0, u_ior));
+        e *= (depth > 0 ? u_tint : vec3(1.0)) * (1.0 - snell_fresnel_schlick(dot(n, -d), 1.0, u_ior));
         d = normalize(tr);
         depth++;
-        float len = 0.0;
-        for (int j = 0; j < MAX_INTERFACES; j++) {
-            float th = 3.0e38;
-            int h = closest(make_ray(p, inv3 * d), u_eps, th, at, b);
-            if (h < 0) break;                           // open mesh: leaves in its direction
-            len += th;
-            at = h;
-            vec3 n2;
-            surface_at(h, b, d, p, n2);
-            if (depth >= u_max_interfaces) break;      // the cap
-            depth++;
-            vec3 o2;
-            bool left = snell_refract(d, n2, u_ior, o2); // refracted out, or totally reflected
-            if (left) e *= 1.0 - snell_fresnel_schlick(dot(n2, -d), u_ior, 1.0);
-            d = normalize(o2);
-            if (left) break;
-        }
-        e *= exp(-u_sigma * len);
-        if (depth >= u_max_interfaces) break;
-        float tn = 3.0e38;
-        at = closest(make_ray(p, inv3 * d), u_eps, tn, at, b);
-        if (at < 0) break;                              // out for good
-        surface_at(at, b, d, p, n);
+        len = 0.0;
+        inside = true;
     }
-    q = (u_model * vec4(p, 1.0)).xyz;
-    t2 = d;
+    if (!thin) {
+        q = (u_model * vec4(p, 1.0)).xyz;
+        t2 = d;
+    }
     return true;
 }
 #endif
@@ -358,95 +360,112 @@ int object_of(int e)
     return k;
 }
 
-// The closest hit from p along d (at: the entry p lies on) on any object
-// but skip (done with the photon), stepping over skip's surfaces: its entry
-// (b its weights) or -1.
-int hit_other(vec3 p, vec3 d, int at, int skip, float eps, out vec3 b)
-{
-    vec3 n;
-    for (int k = 0; k < MAX_INTERFACES; k++) {
-        float t = 3.0e38;
-        int h = closest(make_ray(p, d), eps, t, at, b);
-        if (h < 0 || object_of(h) != skip) return h;
-        surface_at(h, b, d, p, n);
-        at = h;
-    }
-    return -1;
-}
-
 // The photon through the casters in sequence (ref_caustics.c chain): from o
 // along the light's ray dir it counts only if the light meets this caster
 // first (else it is another's photon; a miss: light past it); through each
-// object it meets as bvh_path and thin_bvh go through one, by that one's
-// material (the tint at every entry but the photon's first, which u_flux
-// holds), leaving it for the next object it meets (the one it left not
-// seen), up to SNELL_PHOTON_CHAIN objects; one more stops it (as the
-// reference's landing). q and t2 the last exit and the direction out, e the
+// object it meets as bvh_path goes through one, by that one's material (the
+// tint at every entry but the photon's first, which u_flux holds), leaving
+// it for the next object it meets (the one it left not seen), up to
+// SNELL_PHOTON_CHAIN objects; one more stops it (as the reference's
+// landing). q and t2 the last exit and the direction out, e the
 // transmittance. false: dropped.
+// One traversal call site, as bvh_path: each iteration traces one ray in
+// one of four roles: the first (FIRST), inside object k (INSIDE), out of k
+// where it may meet k again (OUT), or past k's cap, stepping over k's
+// surfaces to the next object (SKIP; q_cap holds where the way goes on).
+#define CHAIN_FIRST 0
+#define CHAIN_INSIDE 1
+#define CHAIN_OUT 2
+#define CHAIN_SKIP 3
 bool chain_path(vec3 o, vec3 dir, out vec3 q, out vec3 t2, out vec3 e)
 {
-    vec3 b, p = o, n, d = dir;
-    float t = 3.0e38;
+    vec3 p = o, d = dir, q_cap = o;
+    int at = RAY_FIRST, role = CHAIN_FIRST, k = u_chain_self, v = 0, depth = 0, m = 0;
+    float len = 0.0;
     e = vec3(1.0);
     q = o;
     t2 = dir;
-    int at = closest(make_ray(o, d), 0.0, t, -1, b);
-    if (at < 0 || object_of(at) != u_chain_self) return false;
-    int k = u_chain_self;
-    for (int v = 0; v < SNELL_PHOTON_CHAIN; v++) {
+    for (int i = 0; i < SNELL_PHOTON_CHAIN * 4 * (MAX_INTERFACES + 1); i++) {
         float ior = u_chain_ior[k], eps = u_chain_eps[k];
-        int depth = 0, next = -1;
-        bool cap = false;
-        surface_at(at, b, d, p, n);
-        for (int m = 0; m < MAX_INTERFACES; m++) {
-            vec3 tint = v == 0 && m == 0 ? vec3(1.0) : u_chain_tint[k];
-            if (u_chain_thick[k] > 0.0) { // a thin wall: the slab, straight on
-                vec3 rs, ts;
-                snell_thin_slab(dot(n, d), ior, u_chain_sigma[k], u_chain_thick[k], rs, ts);
-                e *= tint * ts;
+        Ray ray = make_ray(p, d);
+        float t = 3.0e38;
+        int h = closest(ray, eps, t, at);
+        vec3 ps, ns;
+        surface_at(max(h, 0), ray, d, ps, ns);
+        int obj = h >= 0 ? object_of(h) : -1;
+        if (role == CHAIN_FIRST && obj != u_chain_self) return false;
+        if (role == CHAIN_INSIDE) {
+            // as bvh_path's inside rays, by object k's material
+            bool cap = h >= 0 && depth >= u_chain_maxif[k], left = false;
+            if (h >= 0) {
+                len += t;
+                at = h;
+                p = ps;
+            }
+            if (h >= 0 && !cap) {
                 depth++;
-            } else {
-                vec3 tr;
-                if (!snell_refract(d, n, 1.0 / ior, tr)) return false;
-                e *= tint * (1.0 - snell_fresnel_schlick(dot(n, -d), 1.0, ior));
-                d = normalize(tr);
-                depth++;
-                float len = 0.0;
-                for (int j = 0; j < MAX_INTERFACES; j++) {
-                    float th = 3.0e38;
-                    int h = closest(make_ray(p, d), eps, th, at, b);
-                    if (h < 0) break; // open mesh: leaves in its direction
-                    len += th;
-                    at = h;
-                    vec3 n2;
-                    surface_at(h, b, d, p, n2);
-                    if (depth >= u_chain_maxif[k]) break; // the cap
-                    depth++;
-                    vec3 o2;
-                    bool left = snell_refract(d, n2, ior, o2);
-                    if (left) e *= 1.0 - snell_fresnel_schlick(dot(n2, -d), ior, 1.0);
-                    d = normalize(o2);
-                    if (left) break;
-                }
+                vec3 o2;
+                left = snell_refract(d, ns, ior, o2);
+                if (left) e *= 1.0 - snell_fresnel_schlick(dot(ns, -d), ior, 1.0);
+                d = normalize(o2);
+            }
+            if (h < 0 || cap || left) {
                 e *= exp(-u_chain_sigma[k] * len);
+                role = CHAIN_OUT;
+                q_cap = p;
+                if (depth >= u_chain_maxif[k]) role = CHAIN_SKIP; // at the cap it sees k no more
+                m = role == CHAIN_SKIP ? 0 : m;
             }
-            if (depth >= u_chain_maxif[k]) {
-                cap = true;
-                break;
-            }
-            float tn = 3.0e38;
-            next = closest(make_ray(p, d), eps, tn, at, b);
-            if (next < 0 || object_of(next) != k) break; // out of k: next is what it meets
-            at = next;
-            surface_at(at, b, d, p, n);
+            continue;
         }
-        if (cap) next = hit_other(p, d, at, k, eps, b); // at the cap it sees k no more
-        if (next < 0) break;                             // out for good: it lands
-        if (v == SNELL_PHOTON_CHAIN - 1) return false;   // one more object past the cap: stopped
-        at = next;
-        k = object_of(next);
+        if (role == CHAIN_SKIP) {
+            // k's surfaces stepped over (at most MAX_INTERFACES of them)
+            if (h >= 0 && obj == k) {
+                at = h;
+                p = ps;
+                if (++m < MAX_INTERFACES) continue;
+                h = -1;
+            }
+            p = q_cap;
+        }
+        if (role == CHAIN_OUT || role == CHAIN_SKIP) {
+            if (h < 0) break;                              // out for good: it lands
+            if (obj != k) {                                // the next object
+                if (v == SNELL_PHOTON_CHAIN - 1) return false; // one more object past the cap: stopped
+                v++;
+                k = obj;
+                depth = 0;
+                m = 0;
+            } else {
+                m++;
+            }
+        } else {
+            m = 0;
+        }
+        // in at entry h of object k (its m-th entry)
+        at = h;
+        p = ps;
+        vec3 tint = v == 0 && m == 0 ? vec3(1.0) : u_chain_tint[k];
+        ior = u_chain_ior[k];
+        if (u_chain_thick[k] > 0.0) { // a thin wall: the slab, straight on
+            vec3 rs, ts;
+            snell_thin_slab(dot(ns, d), ior, u_chain_sigma[k], u_chain_thick[k], rs, ts);
+            e *= tint * ts;
+            depth++;
+            role = depth >= u_chain_maxif[k] ? CHAIN_SKIP : CHAIN_OUT;
+            q_cap = p;
+            m = role == CHAIN_SKIP ? 0 : m;
+        } else {
+            vec3 tr;
+            if (!snell_refract(d, ns, 1.0 / ior, tr)) return false;
+            e *= tint * (1.0 - snell_fresnel_schlick(dot(ns, -d), 1.0, ior));
+            d = normalize(tr);
+            depth++;
+            len = 0.0;
+            role = CHAIN_INSIDE;
+        }
     }
-    q = p;
+    q = role == CHAIN_SKIP ? q_cap : p;
     t2 = d;
     return true;
 }
@@ -482,12 +501,11 @@ void main()
     bool through = true, by_maps = true;
 #ifdef SNELL_PHOTON_CHAIN
     vec3 o = u_spot == 1 ? u_pos : p - dir * (dot(p - u_chain_sphere.xyz, dir) + u_chain_sphere.w + 1.0);
-    through = chain_path(o, dir, q, t2, e) && !g_over; // past the node budget: dropped
+    through = chain_path(o, dir, q, t2, e) && !bvh_over(); // past the node budget: dropped
     by_maps = false;
 #elif SNELL_PHOTON_BVH
-    if (u_thickness > 0.0) thin_bvh(p - dir * u_reach, dir, p, n, q, e);
-    else through = bvh_path(p - dir * u_reach, dir, p, n, q, t2, e);
-    by_maps = g_over; // past the node budget: the depth maps' path
+    through = bvh_path(p - dir * u_reach, dir, p, n, q, t2, e);
+    by_maps = bvh_over(); // past the node budget: the depth maps' path
     if (by_maps) e = vec3(1.0);
 #endif
     if (by_maps && u_thickness > 0.0) thin_maps(p, n, dir, ivec2(i, j), z, q, e);

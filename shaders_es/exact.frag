@@ -47,7 +47,7 @@ uniform mat3 u_cam_basis;        // view -> world rotation (the view matrix's 3x
 uniform vec4 u_cam_proj;         // the projection's P00, P11, P20, P21 (orthographic: P00, P11, -P30, -P31)
 uniform vec2 u_pixel_to_ndc;     // 2 / target size in pixels
 
-// The colour for one IOR, snell_ior (common/dispersion.glsl); g_over
+// The colour for one IOR, snell_ior (common/dispersion.glsl); g_visits
 // accumulates over the calls, as the budget counts all of a pixel's rays.
 vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
@@ -66,52 +66,54 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     } else {
         v = normalize(u_cam_basis * lens);
     }
-    vec3 n = normalize(world_normal);
-    if (dot(n, v) > 0.0) n = -n;
+    vec3 n_raster = normalize(world_normal);
+    if (dot(n_raster, v) > 0.0) n_raster = -n_raster;
     mat3 inv3 = mat3(u_inv_model);
 
-    // the entry: the eye ray's first hit, else (silhouette) the rasterised surface
-    vec3 p = (u_inv_model * vec4(world_pos, 1.0)).xyz;
-    float t_in = 3.0e38;
-    vec3 b;
-    int at = closest(make_ray((u_inv_model * vec4(eye, 1.0)).xyz, inv3 * v), 0.0, t_in, -1, b);
-    if (at >= 0) surface_at(at, b, v, p, n);
-
-    vec3 r = snell_reflect(v, n);
-    vec3 dir;
-    bool entered = snell_refract(v, n, 1.0 / snell_ior, dir);
-    float fresnel = entered ? snell_fresnel_schlick(-dot(v, n), 1.0, snell_ior) : 1.0;
-    dir = entered ? normalize(dir) : r;   // an IOR below 1 at grazing incidence: the mirror, in air
+    // One traversal call site for all the pixel's rays (each call site is a
+    // copy of the walk): ray 0 is the eye ray to the entry, its first hit,
+    // else (silhouette) the rasterised surface; ray k >= 1 goes inside to
+    // interface k, refracted or totally reflected while k <
+    // u_max_interfaces; at the cap the light leaves through it in its
+    // direction (ref_trace.c m_inside).
+    vec3 p = (u_inv_model * vec4(eye, 1.0)).xyz, dir = v, n_entry = vec3(0.0);
     float path = 0.0;
-    // Inside: interface k (k = 1 the first surface after the entry) is
-    // refracted or totally reflected while k < u_max_interfaces; at the cap
-    // the light leaves through it in its direction (ref_trace.c m_inside).
-    for (int k = 1; k <= MAX_INTERFACES; k++) {
-        if (!entered) break;
+    int at = RAY_FIRST;
+    for (int k = 0; k <= MAX_INTERFACES; k++) {
+        Ray ray = make_ray(p, inv3 * dir);
         float t = 3.0e38;
-        int h = closest(make_ray(p, inv3 * dir), u_eps, t, at, b);
-        if (h < 0) break;                                       // open mesh: leaves in its direction
-        path += t;
-        at = h;
-        vec3 n2;
-        surface_at(h, b, dir, p, n2);
-        if (k >= u_max_interfaces) break;                      // the cap
+        int h = closest(ray, u_eps, t, at);
+        if (h < 0 && k > 0) break;                              // open mesh: leaves in its direction
+        vec3 ps, ns;
+        surface_at(max(h, 0), ray, dir, ps, ns);
+        p = h >= 0 ? ps : (u_inv_model * vec4(world_pos, 1.0)).xyz;
+        vec3 n2 = h >= 0 ? ns : n_raster;
+        at = h >= 0 ? h : RAY_AFTER_MISS;
+        path += k > 0 ? t : 0.0;
+        if (k > 0 && k >= u_max_interfaces) break;             // the cap
         vec3 out_dir;
-        bool exited = snell_refract(dir, n2, snell_ior, out_dir);
-        dir = normalize(out_dir);                               // refracted out, or totally reflected
-        if (exited) break;
+        bool through = snell_refract(dir, n2, k == 0 ? 1.0 / snell_ior : snell_ior, out_dir);
+        n_entry = k == 0 ? n2 : n_entry;                        // its reflection after the loop
+        // the entry with an IOR below 1 at grazing incidence: the mirror, in
+        // air; inside: refracted out, or totally reflected
+        dir = k == 0 && !through ? snell_reflect(v, n2) : normalize(out_dir);
+        if (through != (k == 0)) break;                        // not entered, or out
     }
-    if (g_over) {
+    // The entry's reflection and Fresnel, computed from its normal as before
+    // the loop was one (the same expressions, so that they compile to the
+    // same bits), not carried through it.
+    vec3 r = snell_reflect(v, n_entry), in_dir;
+    float fresnel = snell_refract(v, n_entry, 1.0 / snell_ior, in_dir) ?
+                        snell_fresnel_schlick(-dot(v, n_entry), 1.0, snell_ior) : 1.0;
+    if (bvh_over()) {
         // the budget ran out: single.frag's answer from the rasterised
         // surface (absorption over the bounding-sphere chord)
-        n = normalize(world_normal);
-        if (dot(n, v) > 0.0) n = -n;
-        r = snell_reflect(v, n);
-        snell_refract(v, n, 1.0 / snell_ior, dir);
-        fresnel = snell_fresnel_schlick(-dot(v, n), 1.0, snell_ior);
+        r = snell_reflect(v, n_raster);
+        snell_refract(v, n_raster, 1.0 / snell_ior, dir);
+        fresnel = snell_fresnel_schlick(-dot(v, n_raster), 1.0, snell_ior);
         path = snell_sphere_exit(world_pos, dir, u_bsphere);
     }
-    highp vec3 exit_p = g_over ? world_pos : (u_model * vec4(p, 1.0)).xyz;
+    highp vec3 exit_p = bvh_over() ? world_pos : (u_model * vec4(p, 1.0)).xyz;
     // The look-ups after the branches: their implicit derivatives are
     // undefined in non-uniform control flow (GLSL ES 3.00, 8.9).
 #if SNELL_ABSORB
@@ -127,9 +129,21 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 void main()
 {
     highp vec3 exit_dir;
+#if SNELL_DISPERSION == 1
+    // Per channel: the three traces in one loop, not three inlined copies of
+    // the walk; red, blue, then green, whose exit direction is written (the
+    // order of dispersion.glsl's snell_disp_trace).
+    vec3 color = vec3(0.0);
+    for (int c = 0; c < 3; c++) {
+        vec3 m = c == 0 ? vec3(1.0, 0.0, 0.0) : (c == 1 ? vec3(0.0, 0.0, 1.0) : vec3(0.0, 1.0, 0.0));
+        snell_ior = dot(u_ior_rgb, m);
+        color += m * snell_glass_trace(exit_dir);
+    }
+#else
     vec3 color = snell_disp_trace(exit_dir);
+#endif
     snell_write(color, exit_dir);
 #ifdef SNELL_OUTPUT_EXIT_DIR_FLOAT
-    if (g_over) o_color.a = u_fallback_mark;
+    if (bvh_over()) o_color.a = u_fallback_mark;
 #endif
 }
