@@ -11,8 +11,8 @@
 // Refract the view ray at the front surface (Schlick Fresnel there, or the
 // exact one with SNELL_FRESNEL_EXACT; with SNELL_INNER_FRESNEL the last exit
 // into air weights the chain by 1 - F too and adds its internal reflection,
-// followed by one more search: inner_branch); the ray
-// is then in gap 1. The ray-height-field search (3.3): march along the ray
+// followed by one more search, the interface loop's last iteration); the
+// ray is then in gap 1. The ray-height-field search (3.3): march along the ray
 // from its point in steps of the bounding diameter / SNELL_PEEL_LINEAR (the
 // seed's size is 1/50 of the depth range), to where the ray leaves the
 // bounding sphere grown by a step (the Z_min/Z_max bound); at each step project the point to
@@ -78,12 +78,14 @@ highp float depth_of(highp vec3 p)
 }
 
 // The pixel of clip-space position c; (-1, -1) outside the target or behind the eye.
+// The helpers below select rather than branch: every value a branch merges
+// inside the interface loop is one more register through all of it on V3D
+// (its conditional writes do not end a value's life).
 ivec2 pixel_at(highp vec4 c)
 {
-    if (c.w <= 0.0) return ivec2(-1);
     highp vec2 w = (c.xy / c.w * 0.5 + 0.5) * u_size;
-    if (any(lessThan(w, vec2(0.0))) || any(greaterThanEqual(w, u_size))) return ivec2(-1);
-    return ivec2(w);
+    bool in_target = c.w > 0.0 && all(greaterThanEqual(w, vec2(0.0))) && all(lessThan(w, u_size));
+    return in_target ? ivec2(w) : ivec2(-1);
 }
 
 // The pixel p projects to.
@@ -94,16 +96,21 @@ ivec2 pixel_of(highp vec3 p)
 
 highp float layer_depth(ivec2 px, int k)
 {
-    if (px.x < 0 || k < 0 || k >= u_layer_count) return EMPTY;
-    highp uvec4 b = uvec4(texelFetch(u_layers, ivec3(px, 2 * k + 1), 0) * 255.0 + 0.5);
-    if (b.a == 0u) return EMPTY;
-    return float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+    bool valid = px.x >= 0 && k >= 0 && k < u_layer_count;
+    highp uvec4 b = uvec4(texelFetch(u_layers, ivec3(max(px, ivec2(0)), 2 * clamp(k, 0, MAX_LAYERS - 1) + 1), 0) * 255.0 + 0.5);
+    return valid && b.a != 0u ? float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0 : EMPTY;
 }
 
+// Layer k's normal at px: common/pack.glsl's octahedral decode, selected
+// rather than branched (the same operations, so the same bits).
 vec3 layer_normal(ivec2 px, int k)
 {
     highp vec4 g = texelFetch(u_layers, ivec3(px, 2 * k), 0);
-    return snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0);
+    highp vec2 e = vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0;
+    highp vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    highp vec2 s = vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    n.xy = n.z < 0.0 ? (1.0 - abs(n.yx)) * s : n.xy;
+    return normalize(n);
 }
 
 // Layer k's normal at point q: the four texels around q's position,
@@ -112,7 +119,7 @@ vec3 layer_normal(ivec2 px, int k)
 // texel's: not across a depth jump or a crease, e.g. a cube's edge); that
 // texel's alone if none is. Pixel-centre normals alone gave a larger error
 // against FULL on every mesh measured (bench/notes/code.md, "peel.frag").
-vec3 layer_normal_at(highp vec3 q, int k)
+vec3 layer_normal_at(highp vec3 q, int k, out vec3 n0)
 {
     highp vec4 c = u_view_proj * vec4(q, 1.0);
     highp vec2 w = (c.xy / c.w * 0.5 + 0.5) * u_size - 0.5;
@@ -120,15 +127,17 @@ vec3 layer_normal_at(highp vec3 q, int k)
     highp vec2 f = w - floor(w);
     highp float z = depth_of(q);
     ivec2 own = pixel_of(q);
-    vec3 n0 = layer_normal(own, k), sum = vec3(0.0);
+    n0 = layer_normal(own, k);
+    vec3 sum = vec3(0.0);
     for (int i = 0; i < 4; i++) {
         ivec2 px = base + ivec2(i & 1, i >> 1);
-        if (any(lessThan(px, ivec2(0))) || any(greaterThanEqual(px, ivec2(u_size)))) continue;
-        if (abs(layer_depth(px, k) - z) > 1.0 / float(SNELL_PEEL_LINEAR)) continue;
+        bool use = all(greaterThanEqual(px, ivec2(0))) && all(lessThan(px, ivec2(u_size)));
+        px = clamp(px, ivec2(0), ivec2(u_size) - 1);
+        highp float dk = layer_depth(px, k);     // before the &&: no short-circuit branch
+        use = use && !(abs(dk - z) > 1.0 / float(SNELL_PEEL_LINEAR));
         vec3 n = layer_normal(px, k);
-        if (dot(n, n0) < 0.95) continue;
         float wt = ((i & 1) == 1 ? f.x : 1.0 - f.x) * ((i >> 1) == 1 ? f.y : 1.0 - f.y);
-        sum += wt * n;
+        sum += use && dot(n, n0) >= 0.95 ? wt * n : vec3(0.0);
     }
     return dot(sum, sum) > 1e-12 ? sum : n0;
 }
@@ -136,10 +145,39 @@ vec3 layer_normal_at(highp vec3 q, int k)
 // How many layers at px lie in front of depth z: the gap z is in there.
 int gap_at(ivec2 px, highp float z)
 {
-    int n = 0;
-    for (int k = 0; k < MAX_LAYERS; k++)
-        if (layer_depth(px, k) < z) n = k + 1;
+    // written out, not a loop (a loop's count is one more value live
+    // through the interface loop on V3D)
+    int n = layer_depth(px, 0) < z ? 1 : 0;
+    n = layer_depth(px, 1) < z ? 2 : n;
+#if MAX_LAYERS > 2
+    n = layer_depth(px, 2) < z ? 3 : n;
+#endif
+#if MAX_LAYERS > 3
+    n = layer_depth(px, 3) < z ? 4 : n;
+#endif
+#if MAX_LAYERS > 4
+    n = layer_depth(px, 4) < z ? 5 : n;
+#endif
+#if MAX_LAYERS > 5
+    n = layer_depth(px, 5) < z ? 6 : n;
+#endif
+#if MAX_LAYERS > 6
+    n = layer_depth(px, 6) < z ? 7 : n;
+#endif
+#if MAX_LAYERS > 7
+    n = layer_depth(px, 7) < z ? 8 : n;
+#endif
     return n;
+}
+
+// MERGE: an inside gap m >= 3 with no layer m - 1 at px: gap m - 2 stands
+// for it (its lower layer lo fetched only then).
+void merge_step(ivec2 px, inout int m, inout highp float lo)
+{
+    if ((m & 1) == 1 && m >= 3 && lo == EMPTY) {
+        m -= 2;
+        lo = layer_depth(px, m - 1);
+    }
 }
 
 // The depths bounding gap j at px: lo = layer j - 1 (none for gap 0 or an
@@ -151,16 +189,20 @@ bool gap_bounds(ivec2 px, int j, out int m, out highp float lo, out highp float 
     m = j;
     lo = layer_depth(px, j - 1);
 #if SNELL_PEEL_FIX_MERGE && MAX_LAYERS > 2
-    for (int i = 0; i < MAX_LAYERS / 2; i++) {
-        if ((m & 1) == 0 || m < 3 || lo != EMPTY) break;
-        m -= 2;
-        lo = layer_depth(px, m - 1);
-    }
+    // at most (MAX_LAYERS - 1) / 2 steps down (gap j <= MAX_LAYERS), written
+    // out: no loop whose values stay live through the interface loop on V3D
+    merge_step(px, m, lo);
+#if MAX_LAYERS > 4
+    merge_step(px, m, lo);
+#endif
+#if MAX_LAYERS > 6
+    merge_step(px, m, lo);
+#endif
 #endif
     hi = layer_depth(px, m);
-    if ((m & 1) == 1 && lo == EMPTY) return false;
-    if (lo == EMPTY) lo = -1.0;
-    return true;
+    bool seen = !((m & 1) == 1 && lo == EMPTY);
+    lo = lo == EMPTY ? -1.0 : lo;
+    return seen;
 }
 
 // 0: z lies in gap j at px; 1: above it (crossed layer m - 1); 2: below it
@@ -168,8 +210,8 @@ bool gap_bounds(ivec2 px, int j, out int m, out highp float lo, out highp float 
 int classify(ivec2 px, int j, highp float z, out int m)
 {
     highp float lo, hi;
-    if (!gap_bounds(px, j, m, lo, hi)) return 3;
-    return z < lo ? 1 : z > hi ? 2 : 0;
+    bool seen = gap_bounds(px, j, m, lo, hi);
+    return !seen ? 3 : z < lo ? 1 : z > hi ? 2 : 0;
 }
 
 // The search (3.3) from p along dir in gap j, out to the bounding sphere
@@ -192,44 +234,49 @@ int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m,
     tb = -1.0;
     m = j;
     int kind = 0;
-    // The linear scan stops at the first step out of the gap; the bisection
-    // follows it, outside the scan's loop: a software rasteriser runs a
-    // branch's body for the whole block whenever any pixel of it takes it
-    // (llvmpipe masks, it does not jump), so a bisection inside the scan
-    // was paid at every step. A DISCONTINUITY restart scans on from the
-    // next step (the outer loop), as the single loop did.
+    // One loop, one sample (one classify) an iteration: the linear scan's
+    // steps until the first one out of the gap, then the bisection's
+    // SNELL_PEEL_BINARY halvings of [ta, tb], then (DISCONTINUITY) the
+    // scan goes on from the next step. One copy of the classification
+    // (texture fetches and all) instead of one for the scan and one per
+    // unrolled bisection step; and no branch whose body a software
+    // rasteriser runs for the whole block at every step (llvmpipe masks,
+    // it does not jump): every pixel takes one sample an iteration.
     // clip position and depth are linear along the ray: one projection per search
     highp vec4 c0 = u_view_proj * vec4(p, 1.0), cd = u_view_proj * vec4(dir, 0.0);
     highp float z0 = depth_of(p), dz = dot(dir, u_fwd) * u_inv_range;
-    int i = 1;
-    for (int restart = 0; restart <= SNELL_PEEL_LINEAR; restart++) {
-        highp float t = 0.0;
-        for (; i <= SNELL_PEEL_LINEAR + 1; i++) {
-            t = min(float(i) * step, t_max);
-            kind = classify(pixel_at(c0 + t * cd), j, z0 + t * dz, m);
-            if (kind != 0) break;
-            ta = t;
-            if (t >= t_max) break;
-        }
-        if (kind == 0) break;
-        // bisect [ta, t]: ta in the gap, tb out of it
-        tb = t;
-        for (int s = 0; s < SNELL_PEEL_BINARY; s++) {
-            highp float tm = 0.5 * (ta + tb);
-            int mm;
-            int km = classify(pixel_at(c0 + tm * cd), j, z0 + tm * dz, mm);
-            if (km == 0) ta = tm;
-            else {
-                tb = tm;
-                kind = km;
-                m = mm;
+    int i = 1;      // the scan's next step (it stays while bisecting)
+    int s = -1;     // bisection steps done; -1: scanning
+    while (i <= SNELL_PEEL_LINEAR + 1) {
+        highp float t = s < 0 ? min(float(i) * step, t_max) : 0.5 * (ta + tb);
+        int mt;
+        int kt = classify(pixel_at(c0 + t * cd), j, z0 + t * dz, mt);
+        if (s < 0) {
+            kind = kt;
+            m = mt;
+            if (kt == 0) {
+                ta = t;
+                if (t >= t_max) break;
+                i++;
+            } else {
+                tb = t;      // bisect [ta, tb]: ta in the gap, tb out of it
+                s = 0;
             }
+            continue;
         }
+        if (kt == 0) ta = t;
+        else {
+            tb = t;
+            kind = kt;
+            m = mt;
+        }
+        if (++s < SNELL_PEEL_BINARY) continue;
 #if SNELL_PEEL_FIX_DISCONTINUITY
         highp vec3 qa = p + ta * dir, qb = p + tb * dir;
         ivec2 pa = pixel_of(qa), pb = pixel_of(qb);
         int crossed = kind == 1 ? m - 1 : m;
-        if (kind != 3 && abs(layer_depth(pa, crossed) - layer_depth(pb, crossed)) > 1.0 / float(SNELL_PEEL_LINEAR)) {
+        highp float da = layer_depth(pa, crossed), db = layer_depth(pb, crossed);
+        if (kind != 3 && abs(da - db) > 1.0 / float(SNELL_PEEL_LINEAR)) {
             int g = gap_at(pb, depth_of(qb));
             if ((g & 1) == (j & 1)) {
                 // case 2: a layer boundary, not a surface; go on in the gap found there
@@ -238,6 +285,7 @@ int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m,
                 tb = -1.0;
                 kind = 0;
                 i++;
+                s = -1;
                 continue;
             }
         }
@@ -248,21 +296,20 @@ int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m,
 }
 
 // The normal (not normalised) of the surface a search from p along dir
-// crossed (kind != 0), and the gap beyond it (next).
+// crossed (kind != 0), and the gap beyond it (next). Out through the
+// silhouette (kind 3) its normal is the last pixel's layer nearest the
+// point (the side wall there): the texel layer_normal_at reads at qa.
 vec3 crossing_normal(highp vec3 p, vec3 dir, int kind, int j, int m, highp float ta, highp float tb, out int next)
 {
     highp vec3 qb = p + tb * dir, qa = p + ta * dir;
-    if (kind == 3) {
-        // out through the silhouette: its normal is the last pixel's
-        // layer nearest the point (the side wall there)
-        ivec2 pa = pixel_of(qa);
-        highp float za = depth_of(qa);
-        int near_k = abs(layer_depth(pa, m - 1) - za) < abs(layer_depth(pa, m) - za) ? m - 1 : m;
-        next = j + 1;
-        return pa.x >= 0 && layer_depth(pa, near_k) != EMPTY ? layer_normal(pa, near_k) : -dir;
-    }
+    bool sil = kind == 3;
+    ivec2 pa = pixel_of(qa);
+    highp float za = depth_of(qa), d0 = layer_depth(pa, m - 1), d1 = layer_depth(pa, m);
+    bool near0 = abs(d0 - za) < abs(d1 - za);
+    int layer = sil ? (near0 ? m - 1 : m) : (kind == 1 ? m - 1 : m);
     next = kind == 1 ? j - 1 : j + 1;
-    return layer_normal_at(qb, kind == 1 ? m - 1 : m);
+    vec3 n0, n = layer_normal_at(sil ? qa : qb, layer, n0);
+    return !sil ? n : pa.x >= 0 && (near0 ? d0 : d1) != EMPTY ? n0 : -dir;
 }
 
 #if SNELL_DISPERSION == 2
@@ -279,37 +326,21 @@ vec3 disp_crossing(inout highp vec3 q, vec3 dir, highp float t, int k, vec3 n_gr
     highp float rate = dot(dir, u_fwd) * u_inv_range; // depth per unit of t
     highp float z = layer_depth(pixel_of(q), k);
     if (z != EMPTY && abs(rate) > 1e-6) q += clamp((z - depth_of(q)) / rate, -t, t) * dir;
-    vec3 n = normalize(layer_normal_at(q, k));
+    vec3 n0, n = normalize(layer_normal_at(q, k, n0));
     n = dot(n, dir) > 0.0 ? -n : n;
     return dot(n, n_green) < 0.95 ? n_green : n;
 }
 #endif
 
-#if SNELL_INNER_FRESNEL
-// The branch reflected inside at the last exit (weight F there): one more
-// search from q (in inside gap j) along rdir, refracted out at the surface
-// it finds with (1 - F'), whose own reflection F' leaves in its mirror
-// direction (the rest of the tree, lumped so that no energy is lost); no
-// surface found (no far layer): it leaves along rdir, as the chain does.
-// Radiance, before the tint.
-vec3 inner_branch(highp vec3 q, vec3 rdir, int j, highp float step, highp float path)
+// common/optics.glsl's snell_refract, selected rather than branched (the
+// same operations, so the same bits).
+bool refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
 {
-    int m, next;
-    highp float ta, tb, t_max;
-    int kind = search_gap(q, rdir, step, j, m, ta, tb, t_max);
-    vec3 n2 = normalize(crossing_normal(q, rdir, kind == 0 ? 2 : kind, j, m, ta, tb, next));
-    if (dot(n2, rdir) > 0.0) n2 = -n2;
-    vec3 out_dir;
-    bool exited = snell_refract(rdir, n2, snell_ior, out_dir);
-    float f = kind == 0 ? 0.0 : exited ? snell_fresnel(-dot(rdir, n2), snell_ior, 1.0) : 1.0;
-    out_dir = kind == 0 ? rdir : normalize(out_dir);
-    vec3 l = (1.0 - f) * snell_env(out_dir) + f * snell_env(snell_reflect(rdir, n2));
-#if SNELL_ABSORB
-    l *= snell_beer_lambert(u_sigma, path + (kind == 0 ? t_max : tb));
-#endif
-    return l;
+    float c = -dot(n, i);
+    float k = 1.0 - eta * eta * (1.0 - c * c);
+    t = k < 0.0 ? snell_reflect(i, n) : eta * i + (eta * c - sqrt(k)) * n;
+    return !(k < 0.0);
 }
-#endif
 
 // The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
 vec3 snell_glass_trace(out highp vec3 exit_dir)
@@ -325,45 +356,102 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     dir = normalize(dir);
     snell_disp_enter(v, n);
     float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
+    // the reflection before the loop: three values through it, not six
+    // (its direction and origin)
+    vec3 reflected = snell_reflection(p1, r);
 
     highp vec3 p = p1;
     highp float step = 2.0 * u_bsphere.w / float(SNELL_PEEL_LINEAR);
     highp float path = 0.0;
-    vec3 tint = u_tint;
 #if SNELL_DISPERSION == 2
     highp vec3 p_red = p, p_blue = p; // where the red and blue rays are, after the green ray's lengths
 #endif
     int j = 1;             // the gap the ray is in
-    int done = 1;          // interfaces processed (the entry)
 #if SNELL_INNER_FRESNEL
-    float exit_fresnel = 0.0;   // F at the last exit into air (0: none)
-    vec3 exit_in = dir;         // the direction that reached it from inside
-    vec3 exit_n = n;
-    highp vec3 exit_q = p;      // the last point inside before it
-    int exit_gap = 1;
+    // Fresnel inside too (peel param inner_fresnel=on): the last exit into
+    // air transmits 1 - F of the chain and reflects F back in, the
+    // strongest branch the chain drops (the first internal reflection at
+    // the exit: the ghost); one more search follows it from the last point
+    // inside before the exit, in the loop's last iteration (inner): its
+    // surface refracts it out with 1 - F', its own reflection F' leaves in
+    // its mirror direction (the rest of the tree, lumped so that no energy
+    // is lost); no surface found (no far layer): it leaves along its way,
+    // as the chain does. Searched for every pixel and selected, not
+    // branched on: its environment look-ups (after the loop) take implicit
+    // derivatives, which GLSL ES 3.0 leaves undefined in non-uniform
+    // control flow (8.9).
+    // The last exit: its F (0: none), the direction reflected back in, the
+    // last point inside before it, its gap, the path and entries up to it;
+    // the inner search starts from them and leaves its own end in them
+    // (exit_r and exit_q its two directions, exit_path its length): no
+    // register more through the loop. The counts are packed in one int (one
+    // value live through the loop, not five): bits 0-3 the entries after the
+    // first, 4-7 those up to the last exit, 8-11 its gap, 12: the chain
+    // ended, 13: the inner search.
+    float exit_fresnel = 0.0, inner_fresnel = 0.0;
+    vec3 exit_r = snell_reflect(dir, n);
+    highp vec3 exit_q = p;
     highp float exit_path = 0.0;
-    vec3 exit_tint = tint;
+    int marks = 1 << 8;
+#define M_ENTRIES (marks & 15)
+#define M_INNER ((marks & 0x2000) != 0)
+#else
+    int entries = 0;
 #endif
-    for (int it = 0; it < MAX_INTERFACES; it++) {
-        bool capped = done >= u_max_interfaces;  // inside at the cap: this search gives the length only
-        if (capped && ((j & 1) == 0 || SNELL_ABSORB == 0)) break;
+    // Values that change in the loop are selected, not assigned in branches
+    // (each such value would stay live through the whole loop on V3D).
+    for (int it = 0; it < MAX_INTERFACES + SNELL_INNER_FRESNEL; it++) {
+        // interfaces processed: the entry and one an iteration before this one
+        bool capped = it + 1 >= u_max_interfaces;  // inside at the cap: this search gives the length only
+        bool ended = it == MAX_INTERFACES || (capped && ((j & 1) == 0 || SNELL_ABSORB == 0));
+#if SNELL_INNER_FRESNEL
+        // the chain ended: the inner search from the last exit (in exit_q,
+        // exit_r, exit_path and its gap; where it ends goes there too)
+        marks |= (ended || (marks & 0x1000) != 0) && !M_INNER ? 0x2000 : 0;
+        bool inner = M_INNER;
+        capped = capped && !inner;
+        highp vec3 q = inner ? exit_q : p;
+        vec3 d = inner ? exit_r : dir;
+        int g = inner ? (marks >> 8) & 15 : j;
+#else
+        if (ended) break;
+        highp vec3 q = p;
+        vec3 d = dir;
+        int g = j;
+#endif
         int m;
         highp float ta, tb, t_max;
-        int kind = search_gap(p, dir, step, j, m, ta, tb, t_max);
-        if (kind == 0) {
-            // no surface before the bounding sphere's far side
-            if ((j & 1) == 1) path += t_max;
-            break;
+        int kind = search_gap(q, d, step, g, m, ta, tb, t_max);
+        bool inside = (g & 1) == 1;
+        // no surface before the bounding sphere's far side: the length to it
+        highp float len = inside ? (kind == 0 ? t_max : tb) : 0.0;
+#if SNELL_INNER_FRESNEL
+        exit_path += inner ? len : 0.0;
+        path += inner ? 0.0 : len;
+        if (!inner && (kind == 0 || capped)) {
+            marks |= 0x1000;
+            continue;  // the next iteration is the inner search
         }
-        if ((j & 1) == 1) path += tb;
-        if (capped) break;
+#else
+        path += len;
+        if (kind == 0 || capped) break;
+#endif
         // the crossed layer's normal where the ray crossed it
         int next;
-        vec3 n2 = normalize(crossing_normal(p, dir, kind, j, m, ta, tb, next));
-        if (dot(n2, dir) > 0.0) n2 = -n2;   // face the ray
+        vec3 n2 = normalize(crossing_normal(q, d, kind == 0 ? 2 : kind, g, m, ta, tb, next));
+        n2 = dot(n2, d) > 0.0 ? -n2 : n2;   // face the ray
         vec3 out_dir;
-        bool inside = (j & 1) == 1;
-        bool through = snell_refract(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+        bool through = refract_sel(d, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+#if SNELL_INNER_FRESNEL
+        if (inner) {
+            // the inner branch's way out: exit_r and exit_q take its two
+            // directions
+            inner_fresnel = kind == 0 ? 0.0 : through ? snell_fresnel(-dot(d, n2), snell_ior, 1.0) : 1.0;
+            exit_q = snell_reflect(d, n2);
+            exit_r = kind == 0 ? d : normalize(out_dir);
+            break;
+        }
+#endif
 #if SNELL_DISPERSION == 2
         // red and blue cross the layer near where their own rays are after
         // the green ray's length: its normal there (a curved surface bends
@@ -383,46 +471,57 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         snell_disp_cross(n2, through, inside);
 #endif
 #if SNELL_INNER_FRESNEL
-        if (through && inside) {
-            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
-            exit_in = dir;
-            exit_n = n2;
-            exit_q = p + ta * dir;       // qa
-            exit_gap = j;
-            exit_path = path;
-            exit_tint = tint;
-        }
+        bool leaves = through && inside;
+        exit_fresnel = leaves ? snell_fresnel(-dot(dir, n2), snell_ior, 1.0) : exit_fresnel;
+        exit_r = leaves ? snell_reflect(dir, n2) : exit_r;
+        exit_q = leaves ? p + ta * dir : exit_q;   // qa
+        exit_path = leaves ? path : exit_path;
+        marks = leaves ? (marks & 15) * 17 | g << 8 : marks;
 #endif
-        highp vec3 qb = p + tb * dir, qa = p + ta * dir;
+        // through: just beyond the surface, in the next gap (entering again:
+        // one more tint); TIR: from the last point inside the gap (3.6)
+        p += (through ? tb : ta) * dir;
         dir = normalize(out_dir);
-        done++;
-        if (through) {
-            j = next;
-            p = qb;                          // just beyond the surface
-            if (!inside) tint *= u_tint;     // entering again
-        } else {
-            p = qa;                          // TIR: from the last point inside the gap (3.6)
-        }
+#if SNELL_INNER_FRESNEL
+        marks += through && !inside ? 1 : 0;
+#else
+        entries += through && !inside ? 1 : 0;
+#endif
+        j = through ? next : g;                  // (g: the search may have moved on to another gap)
+    }
+    // the tints: u_tint at the entry and at each entry after it (the same
+    // products, in the same order, as multiplying at each)
+    vec3 tint = u_tint;
+#if SNELL_INNER_FRESNEL
+    int entries = M_ENTRIES, exit_entries = (marks >> 4) & 15;
+    vec3 exit_tint = u_tint;
+#endif
+    for (int e = 1; e <= entries; e++) {
+        tint *= u_tint;
+#if SNELL_INNER_FRESNEL
+        exit_tint = e == exit_entries ? tint : exit_tint;
+#endif
     }
 
+#if SNELL_INNER_FRESNEL
+    // the inner branch's two directions are in exit_r and exit_q now, its
+    // length in exit_path
+    vec3 inner_l = (1.0 - inner_fresnel) * snell_env(exit_r) + inner_fresnel * snell_env(exit_q);
+#if SNELL_ABSORB
+    inner_l *= snell_beer_lambert(u_sigma, exit_path);
+#endif
+#endif
 #if SNELL_ABSORB
     vec3 transmitted = snell_disp_exit(p, dir) * tint * snell_beer_lambert(u_sigma, path);
 #else
     vec3 transmitted = snell_disp_exit(p, dir) * tint;
 #endif
 #if SNELL_INNER_FRESNEL
-    // Fresnel inside too (peel param inner_fresnel=on): the last exit transmits
-    // 1 - F of the chain and reflects F back in, the strongest branch the
-    // chain drops (the first internal reflection at the exit: the ghost);
-    // one more search through the layers follows it (inner_branch). Called
-    // for every pixel and selected, not branched on: its environment
-    // look-ups take implicit derivatives, which GLSL ES 3.0 leaves
-    // undefined in non-uniform control flow (8.9).
-    vec3 inner = inner_branch(exit_q, snell_reflect(exit_in, exit_n), exit_gap, step, exit_path);
-    transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * exit_tint * inner
+    transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * exit_tint * inner_l
                                      : transmitted;
+#undef M_ENTRIES
+#undef M_INNER
 #endif
-    vec3 reflected = snell_reflection(p1, r);
     exit_dir = dir;
     return mix(transmitted, reflected, fresnel);
 }
