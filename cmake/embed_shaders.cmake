@@ -6,7 +6,7 @@
 # readable sources stay in shaders_es/; test_shader_strip renders every
 # program from both and compares the images byte for byte).
 # With PACK (the path of tools/shader_pack, built for the build machine), the
-# stripped sources go into one LZ77 stream that src/core/program.c unpacks once.
+# stripped sources go into one stream (LZ77 and a range coder) that src/core/program.c unpacks once.
 # Invoked at build time:
 #   cmake -DSHADER_DIR=... -DLIST=... -DOUTPUT=... -DSTRIP=ON|OFF -DSYMBOL=... [-DPACK=...] -P embed_shaders.cmake
 if(LIST)

@@ -90,11 +90,12 @@ int main(void)
     readable = strip_table_bytes(snell_shader_files_readable);
     stored = snell_shader_files_pack.packed ? snell_shader_files_pack.packed_size : stripped;
     printf("embedded shaders: %zu bytes as written, %zu stripped, %zu stored (%s)\n", readable, stripped, stored,
-           snell_shader_files_pack.packed ? "LZ77-packed" : "not packed");
-    /* Measured for the full build: stripped 46% of the sources (comments are
-     * half of them), packed 19%. */
+           snell_shader_files_pack.packed ? "packed" : "not packed");
+    /* Measured for the full build: stripped 44% of the sources (comments are
+     * half of them), packed 9.4% (LZ77 and a range coder; 18% with LZ77 alone),
+     * the device preset's 10.5%. */
     CHECK(stripped < readable * 6 / 10, "stripping saved too little: %zu of %zu bytes", stripped, readable);
-    CHECK(!snell_shader_files_pack.packed || stored < readable * 3 / 10, "packing saved too little: %zu of %zu bytes",
+    CHECK(!snell_shader_files_pack.packed || stored < readable * 15 / 100, "packing saved too little: %zu of %zu bytes",
           stored, readable);
     for (i = 0; i < snell_method_count(); i++) {
         char name[64];

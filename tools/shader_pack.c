@@ -1,77 +1,234 @@
 /* SPDX-License-Identifier: MIT */
 /* shader_pack.c — build-time tool (runs on the build machine, never linked
  * into libsnell): packs the embedded shaders, already stripped by
- * cmake/embed_shaders.cmake, into one LZ77 stream that src/core/shader_lz.c
- * unpacks once at run time. One stream for all files, so a chunk's words are
- * matched across every program that includes it.
+ * cmake/embed_shaders.cmake, into one stream that src/core/program.c
+ * (lz_unpack) unpacks once at run time. One stream for all files, so a chunk's
+ * words are matched across every program that includes it.
  *
  *   shader_pack OUT.c SYMBOL REL1 FILE1 [REL2 FILE2 ...]
  *
- * Stream (as LZ4's block format, without its end rules): a token byte, high
- * nibble the literal count, low nibble the match length - 4 (15: more bytes
- * follow, each added, until one below 255); the literals; a 2-byte
- * little-endian match offset back into the output (1..65535). The last
- * sequence has literals only. Greedy matching with a hash of 4 bytes. */
+ * Stream: LZ77 (matches of 2..273 bytes at any distance back) coded by an
+ * adaptive binary range coder, LZMA's (11-bit probabilities moved by 1/32 of
+ * the way each bit; 5 bytes flushed at the end, the first always 0), with a
+ * smaller model. Each item starts with an is-match bit (context: the last item
+ * was a literal, a match or a repeat):
+ *   literal  8 bits, a bit tree in the context of the previous byte's top 3 bits;
+ *   repeat   is-rep bit 1, then the length: a match at the last distance again;
+ *   match    is-rep bit 0, the length, then the distance - 1: a 6-bit slot
+ *            (a bit tree per length 2, 3, 4, more), slots 0..3 the distance
+ *            itself, slot s >= 4 (2 | s & 1) << (s/2 - 1) plus s/2 - 1 extra
+ *            bits, high first, each with its own probability per slot.
+ * A length - 2 is a choice bit (0: 3 more bits, 0..7), a second (0: 3 bits,
+ * 8..15; 1: 8 bits, 16..271); matches and repeats have their own.
+ * The model's layout is LZ_* below; program.c's must be the same.
+ * Parsing is optimal for prices from the model as the previous pass left it
+ * (three passes, the first priced at the model's start). */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define MIN_MATCH 4
-#define MAX_OFFSET 65535
-#define HASH_BITS 14
+enum {
+    LZ_IS_MATCH = 0, LZ_IS_REP = 3, LZ_LIT = 6, LZ_LEN = LZ_LIT + 8 * 256, LZ_SLOT = LZ_LEN + 2 * 274,
+    LZ_EXTRA = LZ_SLOT + 4 * 64, LZ_PROBS = LZ_EXTRA + 48 * 24
+};
+#define MAX_LEN 273
+#define HASH_BITS 16
+#define CHAIN 4096 /* candidates tried per position, nearest first */
 
-static unsigned hash4(const unsigned char *p)
-{
-    unsigned v = (unsigned)p[0] | (unsigned)p[1] << 8 | (unsigned)p[2] << 16 | (unsigned)p[3] << 24;
-    return (v * 2654435761u) >> (32 - HASH_BITS);
-}
+static uint16_t g_p[LZ_PROBS];
 
-static void put_length(unsigned char **o, size_t n)
+/* ---- the range coder ---- */
+typedef struct coder {
+    uint64_t low;
+    uint32_t range;
+    unsigned char cache;
+    size_t cache_size, n;
+    unsigned char *out;
+} coder;
+
+static void shift_low(coder *c)
 {
-    while (n >= 255) {
-        *(*o)++ = 255;
-        n -= 255;
+    if ((uint32_t)c->low < 0xFF000000u || (c->low >> 32) != 0) {
+        unsigned char carry = (unsigned char)(c->low >> 32), b = c->cache;
+        do {
+            c->out[c->n++] = (unsigned char)(b + carry);
+            b = 0xFF;
+        } while (--c->cache_size != 0);
+        c->cache = (unsigned char)(c->low >> 24);
     }
-    *(*o)++ = (unsigned char)n;
+    c->cache_size++;
+    c->low = (c->low & 0x00FFFFFFu) << 8;
 }
 
-/* Writes the sequence: literals lit[0..nlit) then a match (mlen 0: none). */
-static void put_sequence(unsigned char **o, const unsigned char *lit, size_t nlit, size_t mlen, size_t off)
+static void put_bit(coder *c, unsigned k, unsigned bit)
 {
-    unsigned char *token = (*o)++;
-    size_t m = mlen ? mlen - MIN_MATCH : 0;
-    *token = (unsigned char)((nlit < 15 ? nlit : 15) << 4 | (m < 15 ? m : 15));
-    if (nlit >= 15) put_length(o, nlit - 15);
-    memcpy(*o, lit, nlit);
-    *o += nlit;
-    if (!mlen) return;
-    *(*o)++ = (unsigned char)(off & 255);
-    *(*o)++ = (unsigned char)(off >> 8);
-    if (m >= 15) put_length(o, m - 15);
+    uint16_t *p = &g_p[k];
+    uint32_t bound = (c->range >> 11) * *p;
+    if (bit) {
+        c->low += bound;
+        c->range -= bound;
+        *p = (uint16_t)(*p - (*p >> 5));
+    } else {
+        c->range = bound;
+        *p = (uint16_t)(*p + ((2048 - *p) >> 5));
+    }
+    while (c->range < 1u << 24) {
+        c->range <<= 8;
+        shift_low(c);
+    }
+}
+
+/* ---- prices: 1/16 bit, of coding the value with the model as it is ---- */
+static unsigned g_price[128]; /* -16 log2(p / 2048) for p in steps of 16 */
+
+static unsigned price_bit(unsigned k, unsigned bit)
+{
+    return g_price[(bit ? 2048 - g_p[k] : g_p[k]) >> 4];
+}
+
+/* Codes (c non-NULL) or prices an nbits-bit value in the bit tree at k. */
+static unsigned tree(coder *c, unsigned k, int nbits, unsigned v)
+{
+    unsigned m = 1, price = 0;
+    while (nbits-- > 0) {
+        unsigned bit = v >> nbits & 1;
+        if (c) put_bit(c, k + m, bit);
+        else price += price_bit(k + m, bit);
+        m = m << 1 | bit;
+    }
+    return price;
+}
+
+static unsigned bit(coder *c, unsigned k, unsigned b)
+{
+    if (c) put_bit(c, k, b);
+    return c ? 0 : price_bit(k, b);
+}
+
+static unsigned len_code(coder *c, unsigned k, unsigned l) /* l = length - 2 */
+{
+    if (l < 8) return bit(c, k, 0) + tree(c, k + 2, 3, l);
+    if (l < 16) return bit(c, k, 1) + bit(c, k + 1, 0) + tree(c, k + 10, 3, l - 8);
+    return bit(c, k, 1) + bit(c, k + 1, 1) + tree(c, k + 18, 8, l - 16);
+}
+
+static unsigned literal(coder *c, unsigned state, const unsigned char *in, size_t i)
+{
+    return bit(c, LZ_IS_MATCH + state, 0) + tree(c, LZ_LIT + (i ? in[i - 1] >> 5 : 0) * 256u, 8, in[i]);
+}
+
+static unsigned repeat(coder *c, unsigned state, size_t len)
+{
+    return bit(c, LZ_IS_MATCH + state, 1) + bit(c, LZ_IS_REP + state, 1) + len_code(c, LZ_LEN + 274, (unsigned)len - 2);
+}
+
+static unsigned match(coder *c, unsigned state, size_t len, size_t dist)
+{
+    unsigned d = (unsigned)dist - 1, slot = d, n = 0, price;
+    int nb;
+    while (d >> n > 1) n++;
+    if (d >= 4) slot = 2 * n + (d >> (n - 1) & 1);
+    price = bit(c, LZ_IS_MATCH + state, 1) + bit(c, LZ_IS_REP + state, 0) + len_code(c, LZ_LEN, (unsigned)len - 2);
+    price += tree(c, LZ_SLOT + (len < 5 ? (unsigned)len - 2 : 3) * 64u, 6, slot);
+    if (slot >= 4)
+        for (nb = (int)(slot >> 1) - 1; nb-- > 0;) price += bit(c, LZ_EXTRA + slot * 24 + (unsigned)nb, d >> nb & 1);
+    return price;
+}
+
+/* ---- parsing ---- */
+typedef struct node {
+    uint64_t cost;           /* of the cheapest way to code in[0 .. here) */
+    uint32_t len, dist, rep; /* its last item (dist 0: a literal) and the distance a repeat would take */
+    uint32_t next;           /* on the path chosen: where the next item ends */
+    unsigned state;          /* 0 literal, 1 match, 2 repeat */
+} node;
+
+static uint32_t hash3(const unsigned char *p)
+{
+    return ((uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2]) * 2654435761u >> (32 - HASH_BITS);
+}
+
+static void reach(node *to, uint64_t cost, size_t len, size_t dist, size_t rep, unsigned state)
+{
+    if (cost >= to->cost) return;
+    to->cost = cost;
+    to->len = (uint32_t)len;
+    to->dist = (uint32_t)dist;
+    to->rep = (uint32_t)rep;
+    to->state = state;
+}
+
+/* One pass: the cheapest parse at the prices of the model as it is, then
+ * that parse coded from a fresh model (which the next pass prices from). */
+static size_t pack_pass(const unsigned char *in, size_t n, unsigned char *out, node *nd, int32_t *head, int32_t *prev)
+{
+    coder c = {0, 0xFFFFFFFFu, 0, 1, 0, NULL};
+    size_t i, k;
+    memset(head, -1, sizeof(int32_t) << HASH_BITS);
+    for (i = 0; i <= n; i++) nd[i].cost = UINT64_MAX;
+    memset(&nd[0], 0, sizeof nd[0]);
+    for (i = 0; i < n; i++) {
+        const node *a = &nd[i];
+        size_t best = 1;
+        if (i + 3 <= n) {
+            uint32_t h = hash3(in + i);
+            prev[i] = head[h];
+            head[h] = (int32_t)i;
+        }
+        reach(&nd[i + 1], a->cost + literal(NULL, a->state, in, i), 1, 0, a->rep, 0);
+        if (a->rep) {
+            size_t l = 0;
+            while (i + l < n && l < MAX_LEN && in[i + l] == in[i + l - a->rep]) l++;
+            for (k = 2; k <= l; k++) reach(&nd[i + k], a->cost + repeat(NULL, a->state, k), k, a->rep, a->rep, 2);
+        }
+        if (i + 3 <= n) {
+            int32_t cand = prev[i];
+            int tries = CHAIN;
+            for (; cand >= 0 && tries-- > 0 && best < MAX_LEN; cand = prev[cand]) {
+                size_t l = 0, dist = i - (size_t)cand;
+                while (i + l < n && l < MAX_LEN && in[(size_t)cand + l] == in[i + l]) l++;
+                for (k = best + 1; k <= l; k++) /* each length at its nearest distance */
+                    reach(&nd[i + k], a->cost + match(NULL, a->state, k, dist), k, dist, dist, 1);
+                if (l > best) best = l;
+            }
+        }
+    }
+    /* The path back from the end, linked forward, then coded from a fresh model. */
+    for (i = n; i > 0; i -= nd[i].len) nd[i - nd[i].len].next = (uint32_t)i;
+    for (k = 0; k < LZ_PROBS; k++) g_p[k] = 1024;
+    c.out = out;
+    for (i = 0; i < n; i = nd[i].next) {
+        const node *to = &nd[nd[i].next];
+        if (to->dist == 0) literal(&c, nd[i].state, in, i);
+        else if (to->state == 2) repeat(&c, nd[i].state, to->len);
+        else match(&c, nd[i].state, to->len, to->dist);
+    }
+    for (k = 0; k < 5; k++) shift_low(&c);
+    return c.n;
 }
 
 static size_t compress(const unsigned char *in, size_t n, unsigned char *out)
 {
-    static long head[1 << HASH_BITS];
-    unsigned char *o = out;
-    size_t i = 0, anchor = 0;
-    memset(head, -1, sizeof head);
-    while (i + MIN_MATCH <= n) {
-        unsigned h = hash4(in + i);
-        long cand = head[h];
-        head[h] = (long)i;
-        if (cand >= 0 && i - (size_t)cand <= MAX_OFFSET && memcmp(in + cand, in + i, MIN_MATCH) == 0) {
-            size_t len = MIN_MATCH;
-            while (i + len < n && in[cand + len] == in[i + len]) len++;
-            put_sequence(&o, in + anchor, i - anchor, len, i - (size_t)cand);
-            i += len;
-            anchor = i;
-        } else {
-            i++;
-        }
+    node *nd = (node *)malloc((n + 1) * sizeof *nd);
+    int32_t *head = (int32_t *)malloc(sizeof(int32_t) << HASH_BITS), *prev = (int32_t *)malloc((n + 1) * sizeof *prev);
+    size_t packed = 0, k;
+    int pass;
+    if (!nd || !head || !prev) return 0;
+    for (k = 0; k < 128; k++) { /* -16 log2 x, x = (16 k + 8) / 2048, to 1/256 bit without libm */
+        double x = ((double)k * 16 + 8) / 2048, l = 0, b = 0.5;
+        int i;
+        while (x < 1) x *= 2, l -= 1; /* x in [1, 2): log2 = l + the bits below */
+        for (i = 0; i < 8; i++, b /= 2)
+            if ((x *= x) >= 2) x /= 2, l += b;
+        g_price[k] = (unsigned)(-16 * l + 0.5);
     }
-    put_sequence(&o, in + anchor, n - anchor, 0, 0);
-    return (size_t)(o - out);
+    for (k = 0; k < LZ_PROBS; k++) g_p[k] = 1024;
+    for (pass = 0; pass < 3; pass++) packed = pack_pass(in, n, out, nd, head, prev);
+    free(nd);
+    free(head);
+    free(prev);
+    return packed;
 }
 
 static unsigned char *read_file(const char *path, size_t *n)
@@ -126,9 +283,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "shader_pack: %zu bytes of shaders: more than the unpacker's 16 MiB\n", total);
         return 1;
     }
-    out = (unsigned char *)malloc(total + total / 255 + 16);
+    out = (unsigned char *)malloc(2 * total + 16); /* at worst about 9 bits a byte */
     if (!out) return 1;
     packed = compress(all, total, out);
+    if (!packed) return 1;
     f = fopen(argv[1], "w");
     if (!f) {
         fprintf(stderr, "shader_pack: cannot write %s\n", argv[1]);

@@ -7,6 +7,7 @@
 #include "core/shaders_embedded.h"
 
 #include <pthread.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -18,36 +19,97 @@ static const snell_shader_file *g_shader_table = snell_shader_files;
 
 void snell__shader_table_set(const snell_shader_file *table) { g_shader_table = table ? table : snell_shader_files; }
 
-/* Unpacks tools/shader_pack.c's stream; 0 if it does not fill the output
- * exactly (never reads or writes outside either). */
+/* Unpacks tools/shader_pack.c's stream (LZ77 coded by an adaptive binary
+ * range coder; the format and the model's layout are described there and
+ * must match); 0 if it does not fill the output exactly (never reads or
+ * writes outside either). */
+enum { /* the model: 11-bit probabilities, offsets into lz_probs */
+    LZ_IS_MATCH = 0, LZ_IS_REP = 3, LZ_LIT = 6, LZ_LEN = LZ_LIT + 8 * 256, LZ_SLOT = LZ_LEN + 2 * 274,
+    LZ_EXTRA = LZ_SLOT + 4 * 64, LZ_PROBS = LZ_EXTRA + 48 * 24
+};
+typedef struct lz_dec {
+    const unsigned char *in;
+    size_t n, i;
+    uint32_t range, code;
+    uint16_t p[LZ_PROBS];
+} lz_dec;
+
+static unsigned lz_bit(lz_dec *d, unsigned k)
+{
+    uint16_t *p = &d->p[k];
+    uint32_t bound = (d->range >> 11) * *p;
+    unsigned bit = d->code >= bound;
+    if (bit) {
+        d->code -= bound;
+        d->range -= bound;
+        *p = (uint16_t)(*p - (*p >> 5));
+    } else {
+        d->range = bound;
+        *p = (uint16_t)(*p + ((2048 - *p) >> 5));
+    }
+    if (d->range < 1u << 24) { /* past the end reads zeros; the caller checks i */
+        d->range <<= 8;
+        d->code = d->code << 8 | (d->i < d->n ? d->in[d->i] : 0);
+        d->i++;
+    }
+    return bit;
+}
+
+/* An nbits-bit value, most significant bit first, each bit's probability
+ * picked by the bits above it (a bit tree at p[1 .. 2^nbits)). */
+static unsigned lz_tree(lz_dec *d, unsigned k, int nbits)
+{
+    unsigned m = 1;
+    while (nbits-- > 0) m = m << 1 | lz_bit(d, k + m);
+    return m;
+}
+
+/* A match length - 2: 0..7, 8..15 or 16..271 (choice bits at k, k + 1). */
+static unsigned lz_len(lz_dec *d, unsigned k)
+{
+    if (!lz_bit(d, k)) return lz_tree(d, k + 2, 3) - 8;
+    if (!lz_bit(d, k + 1)) return lz_tree(d, k + 10, 3);
+    return lz_tree(d, k + 18, 8) - 256 + 16;
+}
+
 static int lz_unpack(const unsigned char *in, size_t n, char *out, size_t size)
 {
-    size_t i = 0, o = 0;
-    while (i < n) {
-        unsigned token = in[i++];
-        size_t lit = token >> 4, len = token & 15, off;
-        if (lit == 15)
-            do {
-                if (i >= n) return 0;
-                lit += in[i];
-            } while (in[i++] == 255);
-        if (lit > n - i || lit > size - o) return 0;
-        memcpy(out + o, in + i, lit);
-        i += lit, o += lit;
-        if (i == n) break; /* the last sequence: literals only */
-        if (n - i < 2) return 0;
-        off = (size_t)in[i] | (size_t)in[i + 1] << 8;
-        i += 2;
-        if (len == 15)
-            do {
-                if (i >= n) return 0;
-                len += in[i];
-            } while (in[i++] == 255);
-        len += 4;
-        if (off == 0 || off > o || len > size - o) return 0;
-        for (; len > 0; len--, o++) out[o] = out[o - off]; /* overlapping copies repeat */
+    static lz_dec d; /* 11 KB of model: once per process, under pthread_once */
+    size_t o = 0, rep0 = 0;
+    unsigned state = 0, k;
+    d.in = in, d.n = n, d.i = 0, d.range = 0xFFFFFFFFu, d.code = 0;
+    for (k = 0; k < LZ_PROBS; k++) d.p[k] = 1024;
+    for (k = 0; k < 5; k++) d.code = d.code << 8 | (d.i < n ? in[d.i] : 0), d.i++;
+    while (o < size) {
+        size_t len;
+        if (!lz_bit(&d, LZ_IS_MATCH + state)) { /* a literal, in the context of the byte before */
+            out[o] = (char)(lz_tree(&d, LZ_LIT + (o ? (unsigned char)out[o - 1] >> 5 : 0) * 256, 8) - 256);
+            o++;
+            state = 0;
+            continue;
+        }
+        if (lz_bit(&d, LZ_IS_REP + state)) { /* the last match's distance again */
+            len = lz_len(&d, LZ_LEN + 274) + 2;
+            state = 2;
+        } else {
+            unsigned slot, dist;
+            int nb;
+            len = lz_len(&d, LZ_LEN) + 2;
+            slot = lz_tree(&d, LZ_SLOT + (len < 5 ? (unsigned)len - 2 : 3) * 64, 6) - 64;
+            dist = slot;
+            if (slot >= 4) {
+                if (slot >= 48) return 0;
+                nb = (int)(slot >> 1) - 1;
+                dist = (2 | (slot & 1)) << nb;
+                while (nb-- > 0) dist += lz_bit(&d, LZ_EXTRA + slot * 24 + (unsigned)nb) << nb;
+            }
+            rep0 = (size_t)dist + 1;
+            state = 1;
+        }
+        if (rep0 == 0 || rep0 > o || len > size - o) return 0;
+        for (; len > 0; len--, o++) out[o] = out[o - rep0]; /* overlapping copies repeat */
     }
-    return o == size;
+    return d.i <= n;
 }
 
 static pthread_once_t g_unpack_once = PTHREAD_ONCE_INIT;

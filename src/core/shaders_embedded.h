@@ -11,7 +11,7 @@ typedef struct snell_shader_file {
     const char *source;
 } snell_shader_file;
 
-/* A table's sources packed in one LZ77 stream (tools/shader_pack.c), unpacked
+/* A table's sources packed in one stream (LZ77 + range coder, tools/shader_pack.c), unpacked
  * into unpacked[0..size) once before the table is read; packed NULL: the
  * sources are stored as they are (a build without the pack tool, the readable table). */
 typedef struct snell_shader_pack {
