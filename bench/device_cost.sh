@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # bench/device_cost.sh — regenerates bench/devices/COSTS.md, the per-device cost model (issue 46 item 2).
 #
 #   bench/device_cost.sh [BUILD_DIR] [DEVICES_DIR]     (defaults: build-h4, /tmp/dev)

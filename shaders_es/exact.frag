@@ -99,9 +99,8 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         dir = k == 0 && !through ? snell_reflect(v, n2) : normalize(out_dir);
         if (through != (k == 0)) break;                        // not entered, or out
     }
-    // The entry's reflection and Fresnel, computed from its normal as before
-    // the loop was one (the same expressions, so that they compile to the
-    // same bits), not carried through it.
+    // The entry's reflection and Fresnel from its normal, recomputed here
+    // rather than carried through the loop: fewer values live across it.
     vec3 r = snell_reflect(v, n_entry), in_dir;
     float fresnel = snell_refract(v, n_entry, 1.0 / snell_ior, in_dir) ?
                         snell_fresnel_schlick(-dot(v, n_entry), 1.0, snell_ior) : 1.0;
