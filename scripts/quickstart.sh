@@ -5,7 +5,8 @@
 #   test:     install what is missing, build, run the whole ctest suite, then
 #             say which tests skipped themselves and why (ctest counts a skip
 #             as passed: without blender, qemu and the Android headers
-#             test_groundtruth, test_caustics_cycles, kms_vm and android_syntax skip)
+#             test_groundtruth, test_caustics_cycles, kms_vm and android_syntax skip,
+#             and device_profiles without ../shared/devices, docs/devices.md)
 #   test-all: also install what those three need (as root), then as test
 # Works as root on a fresh Debian 12 (uses apt-get), or as a user when the
 # packages are already there. BUILD_DIR (default build) and extra CMake flags

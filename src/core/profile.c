@@ -2,7 +2,9 @@
 /* profile.c — the device profiles' table (see profile.h) and the limit check.
  * Each value comes from the source named beside it; where no driver source
  * states a value, the profile keeps the GLES 3.0 minimum ("min"), so a
- * profile is never more generous than its device. */
+ * profile is never more generous than its device. ctest device_profiles
+ * checks the three with open drivers against what those report
+ * (bench/device_shaders.sh --profiles). */
 #include "core/profile.h"
 #include "core/ctx.h"
 #include "core/gl.h"

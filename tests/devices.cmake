@@ -1,0 +1,17 @@
+# SPDX-License-Identifier: MIT
+# Mesa's real GPU drivers over drm-shim (shared/devices, docs/devices.md): the
+# device profiles against what each driver reports, and snell-shaderdb, the
+# tool bench/device_shaders.sh compiles every program variant with.
+add_executable(snell-shaderdb snell_shaderdb.c)
+target_link_libraries(snell-shaderdb PRIVATE snell_static PkgConfig::GLES)
+target_include_directories(snell-shaderdb PRIVATE ${PROJECT_SOURCE_DIR}/src)
+target_compile_options(snell-shaderdb PRIVATE ${SNELL_WARNINGS})
+# Each profile of src/core/profile.c with an open driver (rpi-v3d, adreno-6xx, mali-bifrost)
+# against what that driver reports on every GPU it stands for: a limit above the driver's or an
+# extension the driver lacks fails. Skipped (77), saying why, without the drivers' tarball. A
+# few seconds: no llvmpipe, no program compiled (label device, not gl).
+if(NOT CMAKE_CROSSCOMPILING)
+  add_test(NAME device_profiles COMMAND bash ${PROJECT_SOURCE_DIR}/bench/device_shaders.sh
+           --build ${PROJECT_BINARY_DIR} --profiles)
+  set_tests_properties(device_profiles PROPERTIES LABELS "device" SKIP_RETURN_CODE 77 TIMEOUT 120)
+endif()
