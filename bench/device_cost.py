@@ -81,10 +81,9 @@ def strip_comments(s):
     return ''.join(o)
 
 
-def source_loops(src):
-    """The loops device_cost_trace.c counts, in its order: (line, header text)."""
-    s = strip_comments(src)
-    out = []
+def loop_heads(s):
+    """The loops with a braced body in comment-free source s, at most 63 (device_cost_trace.c's counters):
+    (start of the keyword, index of the header's closing parenthesis, index of the body's brace)."""
     for m in re.finditer(r'(?<![A-Za-z0-9_])(for|while)\s*\(', s):
         j, d = m.end() - 1, 0
         while j < len(s):
@@ -98,9 +97,14 @@ def source_loops(src):
         k = j + 1
         while k < len(s) and s[k] in ' \t\n':
             k += 1
-        if k < len(s) and s[k] == '{' and len(out) < 63:
-            out.append((s.count('\n', 0, m.start()) + 1, ' '.join(s[m.start():j + 1].split())))
-    return out
+        if k < len(s) and s[k] == '{':
+            yield m.start(), j, k
+
+
+def source_loops(src):
+    """The loops device_cost_trace.c counts, in its order: (line, header text)."""
+    s = strip_comments(src)
+    return [(s.count('\n', 0, a) + 1, ' '.join(s[a:j + 1].split())) for a, j, _ in loop_heads(s)][:63]
 
 
 _FILES = None
@@ -394,25 +398,12 @@ def source_tree(src):
     s = strip_comments(src)
     defs = source_defines(src)
     loops = []
-    for m in re.finditer(r'(?<![A-Za-z0-9_])(for|while)\s*\(', s):
-        j, d = m.end() - 1, 0
-        while j < len(s):
-            if s[j] == '(':
-                d += 1
-            elif s[j] == ')':
-                d -= 1
-                if d == 0:
-                    break
-            j += 1
-        k = j + 1
-        while k < len(s) and s[k] in ' \t\n':
-            k += 1
-        if k < len(s) and s[k] == '{' and len(loops) < 63:
-            head = ' '.join(s[m.start():j + 1].split())
-            bm = re.search(r'<\s*=?\s*(\w+)\s*;', head)
-            cp = bool(bm and re.search(r'\bconst\s+int\s+' + bm.group(1) + r'\b', s))
-            loops.append(dict(pos=m.start(), body=(k, match_brace(s, k)), line=s.count('\n', 0, m.start()) + 1,
-                              head=head, bound=const_bound(head, defs), const_param=cp))
+    for a, j, k in list(loop_heads(s))[:63]:
+        head = ' '.join(s[a:j + 1].split())
+        bm = re.search(r'<\s*=?\s*(\w+)\s*;', head)
+        cp = bool(bm and re.search(r'\bconst\s+int\s+' + bm.group(1) + r'\b', s))
+        loops.append(dict(pos=a, body=(k, match_brace(s, k)), line=s.count('\n', 0, a) + 1,
+                          head=head, bound=const_bound(head, defs), const_param=cp))
     funcs = {}
     depth, i = 0, 0
     while i < len(s):  # function bodies: a top-level brace after "name(...)"
