@@ -66,7 +66,7 @@ def kernels(folders):
 def find_kernel(source, files, suffix):
     """The largest file whose segments all appear in order in source; failing that (a program of
     an older or newer file) the one with the most text of its longer lines in source, at least a
-    quarter of them, marked with a "~"."""
+    quarter of them and 200 characters, marked with a "~"."""
     best, best_size = None, 0
     lines = set(source.split("\n"))
     near, near_found = None, 0
@@ -86,7 +86,7 @@ def find_kernel(source, files, suffix):
             own = {l for s in segs for l in s.split("\n") if len(l) > 20}
             total = sum(len(l) for l in own)
             found = sum(len(l) for l in own if l in lines)
-            if 4 * found >= total and found > near_found:
+            if 4 * found >= total and found >= 200 and found > near_found:
                 near, near_found = name + "~", found
     return best or near
 
@@ -219,7 +219,7 @@ def parse_mali(line, glsl):
         "spills": v.get("spills"), "fills": v.get("fills"), "cycles": v.get("cycles")}
 
 
-PARSERS = {"v3d": parse_v3d, "adreno": parse_adreno, "mali": parse_mali}
+PARSERS = {"v3d": parse_v3d, "adreno": parse_adreno, "mali": parse_mali, "reference": lambda line, glsl: None}
 
 
 def read_logs(folder, device):
@@ -271,14 +271,17 @@ def num(x):
         return 0.0
 
 
-def device_report(device, programs, renderer, names, out):
-    """Writes out/DEVICE.csv and out/DEVICE.md; returns (markdown, failures, spills, one-thread)."""
+def device_report(device, programs, renderer, names, out, refused_here):
+    """Writes out/DEVICE.csv and out/DEVICE.md; returns (markdown, failures, spills, one-thread).
+    A program the suite's own driver refuses too (refused_here: a test's deliberate error) is no
+    failure."""
     rows, failures, spills, single = [], [], [], []
     for h in sorted(programs, key=lambda h: (names.get(h, "?"), h)):
         p = programs[h]
         name = names.get(h, "?")
         if p["status"] != "ok":
-            failures.append(f"{device}: {name} ({h}): " + ("; ".join(p["errors"]) or "did not finish"))
+            if h not in refused_here:
+                failures.append(f"{device}: {name} ({h}): " + ("; ".join(p["errors"]) or "did not finish"))
             continue
         # a stage compiled twice (freedreno's first variant at link, another for the draw's state):
         # the later one, which the draw used
@@ -296,13 +299,13 @@ def device_report(device, programs, renderer, names, out):
         w.writerow(COLUMNS)
         for r in rows:
             w.writerow([r.get(c) if r.get(c) is not None else "" for c in COLUMNS])
-    md = markdown(device, renderer, programs, rows, names)
+    md = markdown(device, renderer, programs, rows, names, refused_here)
     with open(os.path.join(out, device + ".md"), "w") as f:
         f.write(md)
     return md, failures, spills, single
 
 
-def markdown(device, renderer, programs, rows, names):
+def markdown(device, renderer, programs, rows, names, refused_here):
     """One row per program: its fragment shader's figures, then its vertex stages' instructions."""
     frag = {"v3d": ["instructions", "threads", "uniforms", "loops", "spills:fills"],
             "adreno": ["instructions", "full, half registers", "waves", "constlen", "loops", "stp:ldp"],
@@ -338,7 +341,8 @@ def markdown(device, renderer, programs, rows, names):
     for h, p in sorted(programs.items(), key=lambda x: (names.get(x[0], "?"), x[0])):
         if p["status"] != "ok":
             why = "; ".join(p["errors"]).replace("|", "/")
-            lines.append(f"| {names.get(h, '?')} | {h[:8]} | refused: {why} |")
+            also = " (so does the suite's own driver)" if h in refused_here else ""
+            lines.append(f"| {names.get(h, '?')} | {h[:8]} | refused{also}: {why} |")
     return "\n".join(lines) + "\n"
 
 
@@ -354,6 +358,8 @@ def main():
     ap.add_argument("--mesa", default="Mesa 22.3.6", help="the drivers' version, for the page's header")
     ap.add_argument("--dump", action="append", required=True, help="a folder of <hash>.vert + .frag")
     ap.add_argument("--device", action="append", nargs=2, required=True, metavar=("DEVICE", "LOGS"))
+    ap.add_argument("--reference", metavar="LOGS",
+                    help="logs of the programs some device refused, compiled by the suite's own driver")
     a = ap.parse_args()
     sources = {}
     for folder in a.dump:
@@ -370,11 +376,19 @@ def main():
     names = name_programs(sources, kernels(a.shaders), c_files)
     os.makedirs(a.out, exist_ok=True)
     pages, failures, spills, single, summary = [], [], [], [], []
+    refused_here = {}
+    if a.reference:
+        ref, ref_renderer = read_logs(a.reference, "reference")
+        refused_here = {h: p for h, p in ref.items() if p["status"] != "ok"}
+        if refused_here:
+            summary.append(f"{ref_renderer}, the suite's own driver, refuses {len(refused_here)} of them too "
+                           "(tests' deliberate errors): " + ", ".join(f"{names.get(h, h)} ({h[:8]})"
+                                                                      for h in sorted(refused_here)))
     for device, logs in a.device:
         if device.split("-")[0] not in PARSERS:
             ap.error(f"--device {device}: want one of {', '.join(PARSERS)} (adreno-618 and the like too)")
         programs, renderer = read_logs(logs, device)
-        md, fail, sp, one = device_report(device, programs, renderer, names, a.out)
+        md, fail, sp, one = device_report(device, programs, renderer, names, a.out, refused_here)
         pages.append(md)
         failures, spills, single = failures + fail, spills + sp, single + one
         threads = {}

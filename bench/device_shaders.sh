@@ -24,6 +24,8 @@
 #     --profiles     instead: src/core/profile.c's device profiles against their drivers' limits and
 #                    extensions (V3D 4.2; Adreno 618, 630, 660; Mali-G52, G31); fails where a profile
 #                    promises more (ctest device_profiles)
+#     --tables       only write the tables again from OUT/logs of an earlier run of the same --dump
+#                    (after a change of bench/device_shaders.py)
 #     --drivers      only print the folder of the unpacked drivers (unpacking them if needed)
 #
 # Exit: 0 ok; 1 a device's compiler refused a program (or, with --strict, a spill or a V3D program at
@@ -39,8 +41,8 @@ tarball=$shared/mesa-22.3.6-devices.tar.xz
 cache=${SNELL_DEVICES_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/snell/mesa-22.3.6-devices}
 
 dumps=() out=$root/build/device-shaders build=$root/build devices="v3d adreno mali" strict="" ci="" page=""
-jobs=$(nproc) cpu_limit=60 mem_limit=4096 only_drivers="" profiles=""
-usage() { sed -n '8,30p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+jobs=$(nproc) cpu_limit=60 mem_limit=4096 only_drivers="" profiles="" tables=""
+usage() { sed -n '8,32p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case $1 in
         --dump) dumps+=("$(cd "${2:?--dump needs a folder}" && pwd)") || exit 2; shift ;;
@@ -54,13 +56,14 @@ while [ $# -gt 0 ]; do
         --cpu-limit) cpu_limit=${2:?--cpu-limit needs seconds}; shift ;;
         --mem-limit) mem_limit=${2:?--mem-limit needs megabytes}; shift ;;
         --profiles) profiles=1 ;;
+        --tables) tables=1 ;;
         --drivers) only_drivers=1 ;;
         -h|--help) usage ;;
         *) echo "device_shaders.sh: unknown option '$1'" >&2; usage ;;
     esac
     shift
 done
-[ -z "$ci" ] || [ ${#dumps[@]} -gt 0 ] || { echo "device_shaders.sh: --ci needs --dump DIR" >&2; exit 2; }
+[ -z "$ci$tables" ] || [ ${#dumps[@]} -gt 0 ] || { echo "device_shaders.sh: --ci and --tables need --dump DIR" >&2; exit 2; }
 for d in $devices; do
     case $d in v3d|adreno|adreno-618|adreno-660|mali) ;; *) echo "device_shaders.sh: unknown device '$d'" >&2; exit 2 ;; esac
 done
@@ -189,14 +192,27 @@ for d in $devices; do
     mapfile -t list < <(find "${from[@]}" -maxdepth 1 -name '*.frag' | sed 's/\.frag$//' | awk -F/ '!seen[$NF]++')
     [ ${#list[@]} -gt 0 ] || { echo "device_shaders.sh: no <hash>.frag in ${from[*]}" >&2; exit 2; }
     echo "== $d: ${#list[@]} programs" >&2
-    rm -rf "$out/logs/$d" && mkdir -p "$out/logs/$d"
+    [ -n "$tables" ] || rm -rf "$out/logs/$d" && mkdir -p "$out/logs/$d"
     queue+=("${list[@]/#/$d }")
     report+=(--device "$d" "$out/logs/$d")
 done
+mapfile -t folders < <(printf '%s\n' "${folders[@]}" | sort -u)
 t0=$(date +%s)
 # shellcheck disable=SC2016 # $1 is the inner bash's
-printf '%s\n' "${queue[@]}" | awk -F/ '{ print $NF "\t" $0 }' | sort | cut -f2- | xargs -d '\n' -P "$jobs" -I{} bash -c 'compile_one "$1"' _ {}
-echo "   compiled in $(( $(date +%s) - t0 )) s" >&2
+[ -n "$tables" ] || printf '%s\n' "${queue[@]}" | awk -F/ '{ print $NF "\t" $0 }' | sort | cut -f2- | xargs -d '\n' -P "$jobs" -I{} bash -c 'compile_one "$1"' _ {}
+[ -n "$tables" ] || echo "   compiled in $(( $(date +%s) - t0 )) s" >&2
+# What a device's compiler refused, again on the suite's own driver (llvmpipe here): a test's
+# deliberate error, refused there too, is no failure.
+mapfile -t refused < <(grep -l '^@shaderdb error' "$out"/logs/*/*.log 2>/dev/null | xargs -r -n1 basename |
+    sed 's/\.log$//' | sort -u)
+rm -rf "$out/logs/reference" && mkdir -p "$out/logs/reference"
+for h in "${refused[@]}"; do
+    for s in "${folders[@]}"; do
+        [ -f "$s/$h.frag" ] || continue
+        "$tool" compile "$s" "$h" >"$out/logs/reference/$h.log" 2>&1 || true
+        break
+    done
+done
 
 # Programs are named by their kernel: the build's own stripped copy of it, shaders_es/ now, or
 # the C file of src/ or tests/ that holds it inline.
@@ -206,7 +222,7 @@ for s in "${dumps[@]}"; do command+=" --dump ${s#"$root"/}"; done
 args=(--shaders "$root/shaders_es" --c-sources "$root/src" --c-sources "$root/tests" --out "$out" --command "$command")
 [ ! -d "$build/generated/shaders_embedded.c.stripped" ] || args+=(--shaders "$build/generated/shaders_embedded.c.stripped")
 [ -z "$strict" ] || args+=(--strict)
-mapfile -t folders < <(printf '%s\n' "${folders[@]}" | sort -u)
+[ ${#refused[@]} -eq 0 ] || args+=(--reference "$out/logs/reference")
 for s in "${folders[@]}"; do args+=(--dump "$s"); done
 rc=0
 python3 "$root/bench/device_shaders.py" "${args[@]}" "${report[@]}" || rc=$?
