@@ -151,4 +151,7 @@ if(SNELL_PYTHON3)
   add_test(NAME source_layers_symbols COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_layers_symbols.py
            ${PROJECT_BINARY_DIR}/CMakeFiles/snell_objects.dir)
   set_tests_properties(source_layers_symbols PROPERTIES LABELS "unit")
+  # Which tests .ci/run's profile legs run: those whose profile-bound answers differ.
+  add_test(NAME profile_tests_choice COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/test_profile_tests.py)
+  set_tests_properties(profile_tests_choice PROPERTIES LABELS "unit")
 endif()

@@ -72,7 +72,7 @@ static double ref_through_glass(const float *ref_rgb, const float *ref_c, int i)
 int main(void)
 {
     snell_ctx *ctx = test_ctx();
-    g_fixed = ctx && ctx->light_fixed;
+    g_fixed = ctx && snell__light_fixed(ctx);
     snell_mesh *sphere = NULL;
     snell_env *env = NULL;
     snell_renderer *r = NULL;
@@ -421,7 +421,7 @@ int main(void)
      * the RGBA32F map of frame 1 (a context without float blending has
      * RGB10_A2, which the whole test then runs on: the gles30-min and
      * powervr-rogue legs) */
-    if (!ctx->light_fixed) {
+    if (!snell__light_fixed(ctx)) {
         snell_renderer *r16 = NULL;
         float *m16 = (float *)calloc((size_t)MAP * MAP * 4, sizeof(float));
         CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r16));

@@ -234,11 +234,11 @@ int main(void)
         float box[16] = {1.5f, 0, 0, 0, 0, 0.2f, 0, 0, 0, 0, 1.5f, 0, 0, 0.2f, 0, 1}; /* top y = 0.4 */
         float *map = (float *)calloc((size_t)2 * MAP * 2 * MAP * 4, sizeof(float));
         double er = 0.0, eg = 0.0, ea = 0.0, ra = 0.0, ex = 0.0;
-        /* an RGB10_A2 map (no float colour target: ctx->light_fixed) has 2 bits of alpha, not
+        /* an RGB10_A2 map (no float colour target: snell__light_fixed) has 2 bits of alpha, not
          * the photons' tally: green there (the caustic map holds only light through glass),
          * and it saturates at SNELL__LIGHT_RANGE times the light, losing up to what of the
          * reference's exceeds that (ex) */
-        int fixed = ctx->light_fixed;
+        int fixed = snell__light_fixed(ctx);
         int n = 0, rs = 0, i, pass;
         CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &cd, &cube));
         memset(&op, 0, sizeof op);

@@ -142,7 +142,7 @@ int main(void)
     float *floor_ref = (float *)calloc((size_t)MAP * MAP * 3, sizeof(float)), *floor_c = (float *)calloc((size_t)MAP * MAP * 3, sizeof(float));
     int i, k, n = 0, count = 0;
     if (!ctx) SKIP("no headless GL context");
-    g_fixed = ctx->light_fixed;
+    g_fixed = snell__light_fixed(ctx);
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &sd, &sphere));
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &cd, &cube));
     env = test_sky(ctx, 64);

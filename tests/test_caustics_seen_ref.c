@@ -131,7 +131,7 @@ static double fixed_db(snell_ctx *ctx, double db, const reference *r, const uint
 {
     double mean = 0.0;
     int k, n = 0, c;
-    if (!ctx->light_fixed) return db;
+    if (!snell__light_fixed(ctx)) return db;
     for (k = 0; k < N; k++)
         if (mask[k])
             for (c = 0, n++; c < 3; c++) mean += fmin(1.0, r->rgb[3 * k + c]);
@@ -176,7 +176,7 @@ static void compare(snell_ctx *ctx, snell_renderer *rend, scene *s, const bound 
               "%s %s: %d pixels see the plane, %d caustic, %d shadow", s->name, name, n_seen, caustic, shadow);
         {
             double want_seen = fixed_db(ctx, b[i].seen, &with, seen), want_plane = fixed_db(ctx, b[i].plane, &with, plane);
-            if (ctx->light_fixed)
+            if (snell__light_fixed(ctx))
                 printf("  with an RGB10_A2 light map's rounding: at least %.2f dB through the glass, %.2f on the plane "
                        "(the float leg checks %.1f, %.1f)\n", want_seen, want_plane, b[i].seen, b[i].plane);
             CHECK(db_seen >= want_seen, "%s %s: the plane through the glass %.2f dB < %.2f", s->name, name, db_seen,

@@ -166,8 +166,8 @@ int main(void)
          * summing e holds it with variance at most q e, and the mean of n texels, their rounding
          * independent, at most q e / n: 4 standard deviations more (tol, absolute) */
         for (k = 0; k < 3; k++) {
-            tol[k] = ctx->light_fixed ? 4.0 * sqrt(SNELL__LIGHT_RANGE / 1023.0 * hi[k] / (n > 0 ? n : 1)) : 0.0;
-            if (ctx->light_fixed) printf("channel %d: +-%.5f for an RGB10_A2 map's rounding\n", k, tol[k]);
+            tol[k] = snell__light_fixed(ctx) ? 4.0 * sqrt(SNELL__LIGHT_RANGE / 1023.0 * hi[k] / (n > 0 ? n : 1)) : 0.0;
+            if (snell__light_fixed(ctx)) printf("channel %d: +-%.5f for an RGB10_A2 map's rounding\n", k, tol[k]);
         }
         for (k = 0; k < 3; k++)
             CHECK(n > 50 && m[k] <= hi[k] * 1.001 + tol[k] && m[k] >= lo[k] * 0.999 - tol[k],

@@ -2,10 +2,13 @@
 /* test_ctx — context creation on every backend available here, failure paths,
  * and the EXTERNAL backend inside a context the test made itself: the host's
  * GL state must be untouched by a snell frame. */
+#define _POSIX_C_SOURCE 200112L /* setenv */
 #include "test_util.h"
 
 #include <EGL/egl.h>
 #include <GLES3/gl3.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #ifndef EGL_PLATFORM_SURFACELESS_MESA
@@ -134,6 +137,55 @@ static void check_external(void)
     eglTerminate(dpy);
 }
 
+/* Under a profile each answer it could change goes, with the driver's own, to
+ * the file SNELL_PROFILE_TRACE names (core/profile.h): .ci/run picks the tests
+ * of its profile legs by them (tests/scripts/profile_tests.py). */
+static void check_profile_trace(void)
+{
+    char path[1024], *kept = getenv("SNELL_PROFILE_TRACE"), want[256], text[4096] = "";
+    unsigned char *bytes;
+    snell_ctx *ctx = NULL;
+    snell_ctx_desc d;
+    snell_renderer *r = NULL;
+    snell_renderer_desc rd;
+    snell_device_limits lim;
+    GLint i, n = 0, debug = 0, texture = 0, renderbuffer = 0;
+    size_t len = 0;
+    snprintf(path, sizeof path, "%s", test_out("profile_trace.txt"));
+    remove(path);
+    setenv("SNELL_PROFILE_TRACE", path, 1);
+    memset(&d, 0, sizeof d);
+    d.device_profile = "gles30-min";
+    CHECK_OK(snell_ctx_create(&d, &ctx));
+    if (kept) setenv("SNELL_PROFILE_TRACE", kept, 1);
+    else unsetenv("SNELL_PROFILE_TRACE");
+    if (!ctx) return;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+    for (i = 0; i < n; i++) debug |= strcmp((const char *)glGetStringi(GL_EXTENSIONS, (GLuint)i), "GL_KHR_debug") == 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+    CHECK(!snell_ctx_has_gl_extension(ctx, "GL_KHR_debug"), "gles30-min has no KHR_debug");
+    snell_ctx_limits(ctx, &lim);
+    memset(&rd, 0, sizeof rd);
+    rd.width = 3000; /* over gles30-min's 2048 */
+    rd.height = 8;
+    CHECK(snell_renderer_create(ctx, &rd, &r) == SNELL_E_LIMIT, "3000 wide under gles30-min");
+    snell_ctx_destroy(ctx);
+    bytes = test_read_file(path, &len);
+    CHECK(bytes != NULL, "no trace in %s", path);
+    if (!bytes) return;
+    memcpy(text, bytes, len < sizeof text - 1 ? len : sizeof text - 1);
+    free(bytes);
+    snprintf(want, sizeof want, "ext %d GL_KHR_debug\n", debug ? 1 : 0);
+    CHECK(strstr(text, want) != NULL, "trace lacks \"%s\": %s", want, text);
+    snprintf(want, sizeof want, "limits %d ", texture);
+    CHECK(strstr(text, want) != NULL, "trace lacks \"%s\": %s", want, text);
+    /* light maps' format and KHR_debug are asked only by what uses them */
+    CHECK(strstr(text, "GL_EXT_float_blend") == NULL, "no light map, yet float blending asked: %s", text);
+    snprintf(want, sizeof want, "check 3 3000 %d\n", renderbuffer);
+    CHECK(strstr(text, want) != NULL, "trace lacks \"%s\": %s", want, text);
+}
+
 int main(void)
 {
     snell_ctx *ctx = (snell_ctx *)0x1;
@@ -172,5 +224,6 @@ int main(void)
     snell_ctx_destroy(NULL);
 
     check_external();
+    check_profile_trace();
     return test_finish();
 }

@@ -206,8 +206,9 @@ static void clear_dump(const char *dir)
     if (d) closedir(d);
 }
 
-/* The profiles' limits beside the dumped sources, for glsl_check.py: a
- * line per profile, its name and its limits in snell_limit's order. */
+/* The profiles' limits beside the dumped sources, for glsl_check.py and
+ * profile_tests.py: a line per profile, its name, its limits in snell_limit's
+ * order, then the extensions it has. */
 static void write_profiles(const char dir[1024])
 {
     char path[1100], text[2048] = "";
@@ -216,6 +217,9 @@ static void write_profiles(const char dir[1024])
         snprintf(text + strlen(text), sizeof text - strlen(text), "%s", snell__profiles[i].name);
         for (k = 0; k < SNELL__LIMITS; k++)
             snprintf(text + strlen(text), sizeof text - strlen(text), " %d", snell__profiles[i].limit[k]);
+        for (k = 0; k < SNELL__PROFILE_EXTS; k++)
+            if (snell__profiles[i].ext >> k & 1)
+                snprintf(text + strlen(text), sizeof text - strlen(text), " %s", snell__profile_ext[k]);
         snprintf(text + strlen(text), sizeof text - strlen(text), "\n");
     }
     snprintf(path, sizeof path, "%s/profiles.txt", dir);

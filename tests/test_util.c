@@ -300,7 +300,7 @@ double test_light_map_excess(snell_ctx *ctx, const float *ref_rgb, int n, double
 {
     double e = 0;
     int i;
-    if (!ctx || !ctx->light_fixed) return 0.0;
+    if (!ctx || !snell__light_fixed(ctx)) return 0.0;
     for (i = 0; i < n; i++) e += fmax(0.0, ref_rgb[3 * i + 1] - SNELL__LIGHT_RANGE) * texel * texel;
     return e;
 }

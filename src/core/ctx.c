@@ -56,12 +56,10 @@ static snell_status probe_gl(snell_ctx *ctx)
     for (i = 0; i < SNELL__LIMITS; i++) {
         GLint v = 0;
         glGetIntegerv(snell__limit_enum[i], &v);
+        ctx->limit_raw[i] = v;
         ctx->limit[i] = ctx->profile && ctx->profile->limit[i] < v ? ctx->profile->limit[i] : v;
     }
     ctx->cost = snell__device_cost_find(ctx->gl_renderer);
-    ctx->has_khr_debug = snell_ctx_has_gl_extension(ctx, "GL_KHR_debug");
-    ctx->light_fixed = !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") ||
-                       !snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend");
     return SNELL_OK;
 }
 
@@ -87,7 +85,9 @@ static snell_status find_profile(const char *name, const snell__profile **out)
 static void install_debug(snell_ctx *ctx, int enable)
 {
     PFNGLDEBUGMESSAGECALLBACKKHRPROC cb;
-    if (!ctx->has_khr_debug || !ctx->log) return;
+    if (!ctx->log) return; /* asked only then: a profile's KHR_debug changes nothing else */
+    if (enable) ctx->has_khr_debug = snell_ctx_has_gl_extension(ctx, "GL_KHR_debug");
+    if (!ctx->has_khr_debug) return;
     cb = (PFNGLDEBUGMESSAGECALLBACKKHRPROC)eglGetProcAddress("glDebugMessageCallbackKHR");
     if (!cb) return;
     if (enable) {
@@ -119,6 +119,7 @@ snell_status snell_ctx_create(const snell_ctx_desc *desc, snell_ctx **out)
     ctx->alloc = al;
     ctx->refs = 1; /* the caller's handle */
     ctx->profile = profile;
+    ctx->profile_trace = getenv("SNELL_PROFILE_TRACE");
     ctx->log = d.log;
     ctx->log_user = d.log_user;
     ctx->memory_budget = d.memory_budget ? d.memory_budget : SNELL_DEFAULT_MEMORY_BUDGET;
@@ -281,17 +282,29 @@ const char *snell_backend_str(snell_backend b)
 }
 
 /* Under a profile, only the extensions it lists (and the GL context has). */
+int snell__light_fixed(snell_ctx *ctx)
+{
+    if (!ctx->light_fixed)
+        ctx->light_fixed = !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") ||
+                                   !snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend")
+                               ? 1
+                               : -1;
+    return ctx->light_fixed > 0;
+}
+
 int snell_ctx_has_gl_extension(const snell_ctx *ctx, const char *name)
 {
     char token[128];
-    int i;
+    int i, has;
     if (!ctx || !ctx->gl_extensions || !name || strlen(name) + 3 > sizeof token) return 0;
+    snprintf(token, sizeof token, " %s ", name);
+    has = strstr(ctx->gl_extensions, token) != NULL;
+    snell__profile_trace(ctx, "ext %d %s", has, name);
     if (ctx->profile) {
         for (i = 0; i < SNELL__PROFILE_EXTS && strcmp(name, snell__profile_ext[i]) != 0; i++) {}
         if (i == SNELL__PROFILE_EXTS || !(ctx->profile->ext >> i & 1)) return 0;
     }
-    snprintf(token, sizeof token, " %s ", name);
-    return strstr(ctx->gl_extensions, token) != NULL;
+    return has;
 }
 
 const char *snell_ctx_gl_renderer(const snell_ctx *ctx) { return ctx ? ctx->gl_renderer : ""; }

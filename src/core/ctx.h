@@ -19,9 +19,11 @@ struct snell_ctx {
     char *gl_extensions;            /* space-separated, with a leading and trailing space */
     const snell__profile *profile;  /* the device profile in force, NULL none (profile.c) */
     int limit[SNELL__LIMITS];       /* the GL context's limits, lowered to the profile's */
+    int limit_raw[SNELL__LIMITS];   /* the GL context's own */
+    const char *profile_trace;      /* SNELL_PROFILE_TRACE: a file each profile-bound answer is appended to */
     const snell__device_cost *cost; /* the GPU's method costs, NULL: the rung tables' (device_cost.h) */
-    int has_khr_debug;
-    int light_fixed;                /* no blendable 32-bit float target: light maps in RGB10_A2 (glstate.h) */
+    int has_khr_debug;              /* asked where a log callback would get its messages (ctx.c) */
+    int light_fixed;                /* snell__light_fixed's answer: 0 not asked yet, 1 yes, -1 no */
     int debug_installed;
     char last_error[1024];
     int fragment_mediump;           /* shader precision policy (program.c): 0 unknown, 1 mediump, -1 highp */
@@ -58,6 +60,10 @@ void snell__ctx_release(snell_ctx *ctx);
  * create GL objects: drawing in whatever context happens to be current gives
  * misleading GL errors or touches another context's objects. */
 snell_status snell__ctx_check_current(snell_ctx *ctx, const char *who);
+
+/* 1 where no blendable 32-bit float target exists: light maps in RGB10_A2
+ * (glstate.h). Asked at first use, so only what uses light maps asks. */
+int snell__light_fixed(snell_ctx *ctx);
 
 /* Destroy paths: snell__gl_scope_enter returns 1 when GL deletions reach
  * ctx's own GL context (current already, or an owned one made current for the

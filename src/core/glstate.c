@@ -173,7 +173,7 @@ void snell__pixel_unpack_end(const snell__pixel_store *saved) { pixel_set(saved,
 
 unsigned snell__light_map_format(snell_ctx *ctx)
 {
-    return ctx->light_fixed ? GL_RGB10_A2 : GL_RGBA32F;
+    return snell__light_fixed(ctx) ? GL_RGB10_A2 : GL_RGBA32F;
 }
 
 void snell__light_map_image(unsigned format, int size)

@@ -9,6 +9,8 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 
+#include <stdarg.h>
+#include <stdio.h>
 #include <string.h>
 
 const char snell__profile_ext[SNELL__PROFILE_EXTS][31] = {
@@ -77,9 +79,33 @@ const char *snell_limit_str(snell_limit which)
     return p;
 }
 
+void snell__profile_trace(const snell_ctx *ctx, const char *fmt, ...)
+{
+    va_list ap;
+    FILE *f;
+    if (!ctx->profile_trace || !(f = fopen(ctx->profile_trace, "a"))) return;
+    va_start(ap, fmt);
+    vfprintf(f, fmt, ap);
+    va_end(ap);
+    fputc('\n', f);
+    fclose(f);
+}
+
+int snell__ctx_fits(const snell_ctx *ctx, int which, int value)
+{
+    snell__profile_trace(ctx, "check %d %d %d", which, value, ctx->limit_raw[which]);
+    return value <= ctx->limit[which];
+}
+
+int snell__ctx_limit_value(const snell_ctx *ctx, int which)
+{
+    snell__profile_trace(ctx, "value %d %d", which, ctx->limit_raw[which]);
+    return ctx->limit[which];
+}
+
 snell_status snell__ctx_limit(snell_ctx *ctx, int which, int value, const char *what)
 {
-    if (value <= ctx->limit[which]) return SNELL_OK;
+    if (snell__ctx_fits(ctx, which, value)) return SNELL_OK;
     return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s %d: over the %s %d (profile %s)", what, value,
                        snell_limit_str((snell_limit)which), ctx->limit[which], ctx->profile ? ctx->profile->name : "none");
 }
@@ -88,6 +114,11 @@ void snell_ctx_limits(const snell_ctx *ctx, snell_device_limits *out)
 {
     int i;
     if (!out) return;
+    if (ctx) {
+        char raw[SNELL__LIMITS * 12] = "";
+        for (i = 0; i < SNELL__LIMITS; i++) snprintf(raw + strlen(raw), sizeof raw - strlen(raw), " %d", ctx->limit_raw[i]);
+        snell__profile_trace(ctx, "limits%s", raw);
+    }
     out->profile = ctx && ctx->profile ? ctx->profile->name : "none";
     out->cost_model = ctx && ctx->cost ? ctx->cost->name : "reference";
     for (i = 0; i < SNELL_LIMIT_COUNT; i++) out->limit[i] = ctx ? ctx->limit[i] : 0;

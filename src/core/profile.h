@@ -31,6 +31,16 @@ extern const unsigned short snell__limit_enum[SNELL__LIMITS];
  * lowered by its profile); else SNELL_E_UNSUPPORTED naming what, the limit
  * and the profile. */
 snell_status snell__ctx_limit(snell_ctx *ctx, int which, int value, const char *what);
+/* 1 if value fits the context's limit `which`, quietly. */
+int snell__ctx_fits(const snell_ctx *ctx, int which, int value);
+/* The context's limit `which`, where its value itself is used (a message). */
+int snell__ctx_limit_value(const snell_ctx *ctx, int which);
+
+/* Each answer a profile can change (an extension, a limit check or value)
+ * appended with its driver's own value to the file SNELL_PROFILE_TRACE names:
+ * tests/scripts/profile_tests.py runs a test under another profile only when
+ * one of its answers would differ there. */
+void snell__profile_trace(const snell_ctx *ctx, const char *fmt, ...);
 
 typedef char snell__limits_public[(int)SNELL__LIMITS == (int)SNELL_LIMIT_COUNT ? 1 : -1];
 

@@ -166,6 +166,16 @@ static void buf_append(text_buf *b, const char *s, size_t n)
     b->data[b->len] = '\0';
 }
 
+/* Inserts s at pos: what comes after moves on. */
+static void buf_insert(text_buf *b, size_t pos, const char *s, size_t n)
+{
+    size_t tail = b->len - pos;
+    buf_append(b, s, n); /* grows it */
+    if (b->failed) return;
+    memmove(b->data + pos + n, b->data + pos, tail);
+    memcpy(b->data + pos, s, n);
+}
+
 /* Appends src, replacing `#include "path"` lines by the embedded chunk
  * (each chunk once, nesting allowed). Returns nonzero on a missing chunk. */
 static int expand(snell_ctx *ctx, text_buf *b, const char *src, const char **seen, int *n_seen)
@@ -251,6 +261,7 @@ static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snel
     text_buf b;
     const char *seen[MAX_INCLUDES];
     int n_seen = 0;
+    size_t mark;
     static const char header[] = "#version 300 es\n";
     memset(&b, 0, sizeof b);
     b.al = snell__ctx_alloc(ctx);
@@ -265,15 +276,17 @@ static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snel
         buf_append(&b, fp16, sizeof fp16 - 1);
     }
 #endif
-    if (ctx && ctx->light_fixed) {
-        static const char fixed[] = "#define SNELL_LIGHT_RANGE 8.0\n"; /* SNELL__LIGHT_RANGE, core/glstate.h */
-        buf_append(&b, fixed, sizeof fixed - 1);
-    }
+    mark = b.len;
     if (defines) buf_append(&b, defines, strlen(defines));
     if (!b.failed && expand(ctx, &b, src, seen, &n_seen)) {
         snell__free(b.al, b.data);
         *st = SNELL_E_GL;
         return NULL;
+    }
+    /* only a program that reads light maps asks for their format */
+    if (!b.failed && ctx && strstr(b.data + mark, "SNELL_LIGHT_RANGE") && snell__light_fixed(ctx)) {
+        static const char fixed[] = "#define SNELL_LIGHT_RANGE 8.0\n"; /* SNELL__LIGHT_RANGE, core/glstate.h */
+        buf_insert(&b, mark, fixed, sizeof fixed - 1);
     }
     if (b.failed) {
         snell__free(b.al, b.data);

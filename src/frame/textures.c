@@ -93,7 +93,7 @@ snell_status snell__samplers_assign(snell_ctx *ctx, unsigned prog, const char *w
         ctx->census.vectors = vectors;
         snprintf(ctx->census.vectors_of, sizeof ctx->census.vectors_of, "%s", what);
     }
-    if (count > max_units)
+    if (!snell__ctx_fits(ctx, SNELL__LIM_UNITS, count) || count > SNELL__PROGRAM_SAMPLERS)
         return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s samples %d textures, more than the %d units the context has: %s",
                            what, count, max_units, names);
     /* counted over both stages: within the fragment limit (GLES 3.0: 224, below

@@ -106,24 +106,34 @@ static snell_status create_resources(snell_renderer *r)
     return st;
 }
 
+/* Its targets are renderbuffers and textures: the lower limit, the profile's if lower (core/profile.c). */
+static int fits_targets(const snell_ctx *ctx, int size)
+{
+    return snell__ctx_fits(ctx, SNELL__LIM_RENDERBUFFER, size) && snell__ctx_fits(ctx, SNELL__LIM_TEXTURE, size);
+}
+
+static int max_target(const snell_ctx *ctx)
+{
+    int rb = snell__ctx_limit_value(ctx, SNELL__LIM_RENDERBUFFER), tex = snell__ctx_limit_value(ctx, SNELL__LIM_TEXTURE);
+    return rb < tex ? rb : tex;
+}
+
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out)
 {
     snell_renderer_desc d;
     snell_renderer *r;
     snell_status st;
     snell_glstate saved;
-    GLint max_rb = 0;
     if (!ctx || !out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_renderer_create: ctx and out are required");
     *out = NULL;
     if ((st = snell__ctx_check_current(ctx, "snell_renderer_create")) != SNELL_OK) return st;
     snell_renderer_defaults(desc, &d);
-    /* its targets are renderbuffers and textures: the lower limit, the profile's if lower (core/profile.c) */
-    max_rb = ctx->limit[SNELL__LIM_RENDERBUFFER] < ctx->limit[SNELL__LIM_TEXTURE] ? ctx->limit[SNELL__LIM_RENDERBUFFER]
-                                                                                  : ctx->limit[SNELL__LIM_TEXTURE];
     if (d.width < 1 || d.height < 1 || d.width > MAX_RENDER_SIZE || d.height > MAX_RENDER_SIZE ||
-        (d.target == SNELL_TARGET_OFFSCREEN && (d.width > max_rb || d.height > max_rb)))
+        (d.target == SNELL_TARGET_OFFSCREEN && !fits_targets(ctx, d.width > d.height ? d.width : d.height))) {
+        int most = max_target(ctx);
         return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d outside 1..%d", d.width, d.height,
-                           max_rb < MAX_RENDER_SIZE ? max_rb : MAX_RENDER_SIZE);
+                           most < MAX_RENDER_SIZE ? most : MAX_RENDER_SIZE);
+    }
     if ((unsigned)d.target > SNELL_TARGET_BOUND_FRAMEBUFFER || (unsigned)d.output > SNELL_OUTPUT_EXIT_DIRECTION_PACKED)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown render target %d or output %d", (int)d.target,
                            (int)d.output);
@@ -143,9 +153,9 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d and ssaa %d: one antialiasing at a time", d.msaa,
                            d.ssaa);
     if (d.msaa > 1 && (st = snell__ctx_limit(ctx, SNELL__LIM_SAMPLES, d.msaa, "msaa")) != SNELL_OK) return st;
-    if (d.ssaa > 1 && (d.width * d.ssaa > max_rb || d.height * d.ssaa > max_rb))
+    if (d.ssaa > 1 && !fits_targets(ctx, (d.width > d.height ? d.width : d.height) * d.ssaa))
         return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d with ssaa %d exceeds %d pixels a side", d.width,
-                           d.height, d.ssaa, max_rb);
+                           d.height, d.ssaa, max_target(ctx));
     if (d.target == SNELL_TARGET_OFFSCREEN) {
         /* the targets made now, before any frame: colour and depth (4 + 4 bytes
          * a pixel, 16 + 4 for exit directions) at the SSAA size, a sample each
