@@ -64,6 +64,12 @@ typedef struct snell__program_slot {
     int binary_length;              /* GL_PROGRAM_BINARY_LENGTH, asked once per program; -1 not yet */
 } snell__program_slot;
 
+/* A method's uniform locations: its own struct of ints laid over slot p's
+ * loc[] (type const-qualified to read); SNELL__PROGRAM_LOCS_FIT(type) at
+ * file scope fails to compile where the struct does not fit. */
+#define SNELL__PROGRAM_LOCS_OF(type, p) ((type *)(void *)(p)->loc)
+#define SNELL__PROGRAM_LOCS_FIT(type) typedef char type##_fits[sizeof(type) <= SNELL__PROGRAM_LOCS * sizeof(int) ? 1 : -1]
+
 struct snell__program_cache {
     snell__program_slot slot[SNELL__PROGRAM_CACHE];
     const snell__stage *const *stages; /* set by its owner: the frame's stages in frame order */

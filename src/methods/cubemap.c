@@ -47,9 +47,7 @@ typedef struct cube_prepared {
 typedef struct cube_locs {
     int inv_model, centre, radius, inner_radius, max_interfaces, texel_angle;
 } cube_locs;
-#define LOCS(p) ((const cube_locs *)(const void *)(p)->loc)
-#define LOCS_W(p) ((cube_locs *)(void *)(p)->loc)
-typedef char cube_locs_fit[sizeof(cube_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
+SNELL__PROGRAM_LOCS_FIT(cube_locs);
 
 typedef struct cubemap_state {
     snell__output_kind out;
@@ -77,12 +75,13 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
              k->fresnel_exact, k->inner, k->dispersion);
     st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->g);
     if (st != SNELL_OK) return st;
-    LOCS_W(p)->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
-    LOCS_W(p)->centre = glGetUniformLocation(p->g.prog, "u_centre");
-    LOCS_W(p)->radius = glGetUniformLocation(p->g.prog, "u_radius");
-    LOCS_W(p)->inner_radius = glGetUniformLocation(p->g.prog, "u_inner_radius");
-    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
-    LOCS_W(p)->texel_angle = glGetUniformLocation(p->g.prog, "u_texel_angle");
+    cube_locs *loc = SNELL__PROGRAM_LOCS_OF(cube_locs, p);
+    loc->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
+    loc->centre = glGetUniformLocation(p->g.prog, "u_centre");
+    loc->radius = glGetUniformLocation(p->g.prog, "u_radius");
+    loc->inner_radius = glGetUniformLocation(p->g.prog, "u_inner_radius");
+    loc->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    loc->texel_angle = glGetUniformLocation(p->g.prog, "u_texel_angle");
     return SNELL_OK;
 }
 
@@ -225,14 +224,15 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     if (k.no_search) stats->skipped |= SNELL_SKIP_SEARCH;
     snell__glass_program_use(&p->g, v, o);
     snell__glass_program_bind(&p->g, "u_ndcube", GL_TEXTURE_CUBE_MAP, cp->cube.texture, 0);
-    glUniformMatrix4fv(LOCS(p)->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
-    glUniform3fv(LOCS(p)->centre, 1, cp->cube.centre);
-    glUniform1f(LOCS(p)->radius, cp->cube.radius);
-    glUniform1f(LOCS(p)->inner_radius, cp->inner_radius);
-    glUniform1i(LOCS(p)->max_interfaces, c->max_interfaces);
+    const cube_locs *loc = SNELL__PROGRAM_LOCS_OF(const cube_locs, p);
+    glUniformMatrix4fv(loc->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
+    glUniform3fv(loc->centre, 1, cp->cube.centre);
+    glUniform1f(loc->radius, cp->cube.radius);
+    glUniform1f(loc->inner_radius, cp->inner_radius);
+    glUniform1i(loc->max_interfaces, c->max_interfaces);
     /* A texel is 2/N wide in face coordinates; it subtends 2/N rad at a face
      * centre and sqrt(2)/3 * 2/N at a corner: the smaller is the stop bound. */
-    glUniform1f(LOCS(p)->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)c->face_size);
+    glUniform1f(loc->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)c->face_size);
     /* Back faces are culled on closed meshes (snell__draw_surface). A depth
      * pre-pass would do the same for any mesh but cost more than it saved: it
      * doubles the triangle setup, which dominates on llvmpipe for the

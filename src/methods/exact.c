@@ -43,9 +43,7 @@ typedef struct exact_prepared {
 typedef struct exact_locs {
     int inv_model, node_count, tri_base, max_interfaces, eps, qlo, qstep, mark, cam_basis, cam_proj, pixel_to_ndc;
 } exact_locs;
-#define LOCS(p) ((const exact_locs *)(const void *)(p)->loc)
-#define LOCS_W(p) ((exact_locs *)(void *)(p)->loc)
-typedef char exact_locs_fit[sizeof(exact_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
+SNELL__PROGRAM_LOCS_FIT(exact_locs);
 
 typedef struct exact_state {
     snell__output_kind out;
@@ -74,17 +72,18 @@ static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16
              budget, q16, absorb, stack, dispersion);
     st = snell__glass_program_build(ctx, "exact.frag", s->out, def, variant, &p->g);
     if (st != SNELL_OK) return st;
-    LOCS_W(p)->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
-    LOCS_W(p)->node_count = glGetUniformLocation(p->g.prog, "u_node_count");
-    LOCS_W(p)->tri_base = glGetUniformLocation(p->g.prog, "u_tri_base");
-    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
-    LOCS_W(p)->eps = glGetUniformLocation(p->g.prog, "u_eps");
-    LOCS_W(p)->qlo = glGetUniformLocation(p->g.prog, "u_qlo");
-    LOCS_W(p)->qstep = glGetUniformLocation(p->g.prog, "u_qstep");
-    LOCS_W(p)->mark = glGetUniformLocation(p->g.prog, "u_fallback_mark");
-    LOCS_W(p)->cam_basis = glGetUniformLocation(p->g.prog, "u_cam_basis");
-    LOCS_W(p)->cam_proj = glGetUniformLocation(p->g.prog, "u_cam_proj");
-    LOCS_W(p)->pixel_to_ndc = glGetUniformLocation(p->g.prog, "u_pixel_to_ndc");
+    exact_locs *loc = SNELL__PROGRAM_LOCS_OF(exact_locs, p);
+    loc->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
+    loc->node_count = glGetUniformLocation(p->g.prog, "u_node_count");
+    loc->tri_base = glGetUniformLocation(p->g.prog, "u_tri_base");
+    loc->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    loc->eps = glGetUniformLocation(p->g.prog, "u_eps");
+    loc->qlo = glGetUniformLocation(p->g.prog, "u_qlo");
+    loc->qstep = glGetUniformLocation(p->g.prog, "u_qstep");
+    loc->mark = glGetUniformLocation(p->g.prog, "u_fallback_mark");
+    loc->cam_basis = glGetUniformLocation(p->g.prog, "u_cam_basis");
+    loc->cam_proj = glGetUniformLocation(p->g.prog, "u_cam_proj");
+    loc->pixel_to_ndc = glGetUniformLocation(p->g.prog, "u_pixel_to_ndc");
     *out = p;
     return SNELL_OK;
 }
@@ -184,30 +183,31 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
     snell__glass_program_bind(&p->g, "u_bvh", GL_TEXTURE_2D, ep->texture, 0);
-    glUniformMatrix4fv(LOCS(p)->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
-    glUniform1i(LOCS(p)->node_count, ep->node_count);
-    glUniform1i(LOCS(p)->tri_base, ep->tri_base);
-    glUniform1i(LOCS(p)->max_interfaces, e->max_interfaces);
+    const exact_locs *loc = SNELL__PROGRAM_LOCS_OF(const exact_locs, p);
+    glUniformMatrix4fv(loc->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
+    glUniform1i(loc->node_count, ep->node_count);
+    glUniform1i(loc->tri_base, ep->tri_base);
+    glUniform1i(loc->max_interfaces, e->max_interfaces);
     /* Secondary rays skip the triangle they start on, as the reference's do;
      * this minimum distance (world units, 1e-5 of the bounding radius; the
      * reference's is 1e-9 of its extent, in double) keeps them off the
      * neighbours of an edge they start on, within float rounding. */
-    glUniform1f(LOCS(p)->eps, SNELL__BVH_EPS(o->bsphere[3]));
-    glUniform3fv(LOCS(p)->qlo, 1, ep->qlo);
-    glUniform3fv(LOCS(p)->qstep, 1, ep->qstep);
-    glUniform1f(LOCS(p)->mark, -(float)(o->index + 1));
+    glUniform1f(loc->eps, SNELL__BVH_EPS(o->bsphere[3]));
+    glUniform3fv(loc->qlo, 1, ep->qlo);
+    glUniform3fv(loc->qstep, 1, ep->qstep);
+    glUniform1f(loc->mark, -(float)(o->index + 1));
     {
         /* the eye rays (exact.frag main): view -> world rotation, projection terms */
         float basis[9];
         int i, j;
         for (i = 0; i < 3; i++)
             for (j = 0; j < 3; j++) basis[3 * i + j] = v->view[j][i];
-        glUniformMatrix3fv(LOCS(p)->cam_basis, 1, GL_FALSE, basis);
+        glUniformMatrix3fv(loc->cam_basis, 1, GL_FALSE, basis);
         if (v->view_axis[3] > 0.5f)
-            glUniform4f(LOCS(p)->cam_proj, v->proj[0][0], v->proj[1][1], -v->proj[3][0], -v->proj[3][1]);
+            glUniform4f(loc->cam_proj, v->proj[0][0], v->proj[1][1], -v->proj[3][0], -v->proj[3][1]);
         else
-            glUniform4f(LOCS(p)->cam_proj, v->proj[0][0], v->proj[1][1], v->proj[2][0], v->proj[2][1]);
-        glUniform2f(LOCS(p)->pixel_to_ndc, 2.0f / (float)v->width, 2.0f / (float)v->height);
+            glUniform4f(loc->cam_proj, v->proj[0][0], v->proj[1][1], v->proj[2][0], v->proj[2][1]);
+        glUniform2f(loc->pixel_to_ndc, 2.0f / (float)v->width, 2.0f / (float)v->height);
     }
     snell__draw_surface(o, stats);
     stats->passes++;

@@ -65,9 +65,7 @@ typedef struct layered_prepared {
 typedef struct layered_locs {
     int stride, groups, dist_base, inv_model, model, centre, radius, max_interfaces;
 } layered_locs;
-#define LOCS(p) ((const layered_locs *)(const void *)(p)->loc)
-#define LOCS_W(p) ((layered_locs *)(void *)(p)->loc)
-typedef char layered_locs_fit[sizeof(layered_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
+SNELL__PROGRAM_LOCS_FIT(layered_locs);
 
 typedef struct layered_state {
     snell__output_kind out;
@@ -482,14 +480,15 @@ static snell_status build_prog(snell_ctx *ctx, layered_state *s, const int key[8
              key[0], key[1], key[2], key[3], key[4], key[6], key[7]);
     st = snell__glass_program_build(ctx, "layered.frag", s->out, def, key[5], &p->g);
     if (st != SNELL_OK) return st;
-    LOCS_W(p)->stride = glGetUniformLocation(p->g.prog, "u_stride");
-    LOCS_W(p)->groups = glGetUniformLocation(p->g.prog, "u_groups");
-    LOCS_W(p)->dist_base = glGetUniformLocation(p->g.prog, "u_dist_base");
-    LOCS_W(p)->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
-    LOCS_W(p)->model = glGetUniformLocation(p->g.prog, "u_model");
-    LOCS_W(p)->centre = glGetUniformLocation(p->g.prog, "u_centre");
-    LOCS_W(p)->radius = glGetUniformLocation(p->g.prog, "u_radius");
-    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    layered_locs *loc = SNELL__PROGRAM_LOCS_OF(layered_locs, p);
+    loc->stride = glGetUniformLocation(p->g.prog, "u_stride");
+    loc->groups = glGetUniformLocation(p->g.prog, "u_groups");
+    loc->dist_base = glGetUniformLocation(p->g.prog, "u_dist_base");
+    loc->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
+    loc->model = glGetUniformLocation(p->g.prog, "u_model");
+    loc->centre = glGetUniformLocation(p->g.prog, "u_centre");
+    loc->radius = glGetUniformLocation(p->g.prog, "u_radius");
+    loc->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
     return SNELL_OK;
 }
 
@@ -526,14 +525,15 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     nearest_unit = snell__samplers_unit(&p->g.samplers, "u_env_nearest");
     snell__glass_program_bind(&p->g, "u_env_nearest", o->env_paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP,
                               o->env_texture, s->nearest);
-    glUniformMatrix4fv(LOCS(p)->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
-    glUniformMatrix4fv(LOCS(p)->model, 1, GL_FALSE, (const GLfloat *)o->model);
-    glUniform3fv(LOCS(p)->centre, 1, lpr->centre);
-    glUniform1f(LOCS(p)->radius, lpr->radius);
-    glUniform1i(LOCS(p)->stride, lpr->layers);
-    glUniform1i(LOCS(p)->groups, lpr->groups);
-    glUniform1i(LOCS(p)->dist_base, 6 * lpr->layers);
-    glUniform1i(LOCS(p)->max_interfaces, lp->max_interfaces);
+    const layered_locs *loc = SNELL__PROGRAM_LOCS_OF(const layered_locs, p);
+    glUniformMatrix4fv(loc->inv_model, 1, GL_FALSE, (const GLfloat *)o->inv_model);
+    glUniformMatrix4fv(loc->model, 1, GL_FALSE, (const GLfloat *)o->model);
+    glUniform3fv(loc->centre, 1, lpr->centre);
+    glUniform1f(loc->radius, lpr->radius);
+    glUniform1i(loc->stride, lpr->layers);
+    glUniform1i(loc->groups, lpr->groups);
+    glUniform1i(loc->dist_base, 6 * lpr->layers);
+    glUniform1i(loc->max_interfaces, lp->max_interfaces);
     snell__draw_surface(o, stats);
     if (nearest_unit >= 0) glBindSampler((unsigned)nearest_unit, 0);
     stats->passes++;

@@ -27,9 +27,7 @@
 typedef struct oli_locs {
     int max_interfaces, back_band;
 } oli_locs;
-#define LOCS(p) ((const oli_locs *)(const void *)(p)->loc)
-#define LOCS_W(p) ((oli_locs *)(void *)(p)->loc)
-typedef char oli_locs_fit[sizeof(oli_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
+SNELL__PROGRAM_LOCS_FIT(oli_locs);
 
 typedef struct oliveira_state {
     snell__output_kind out;
@@ -58,8 +56,9 @@ static snell_status get_prog(snell_ctx *ctx, oliveira_state *s, int linear, int 
              linear, iterations, absorb, fresnel_exact, inner, dispersion);
     st = snell__glass_program_build(ctx, "oliveira.frag", s->out, def, screen, &p->g);
     if (st != SNELL_OK) return st;
-    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
-    LOCS_W(p)->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
+    oli_locs *loc = SNELL__PROGRAM_LOCS_OF(oli_locs, p);
+    loc->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    loc->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
     *out = p;
     return SNELL_OK;
 }
@@ -120,8 +119,9 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
                   c->fresnel == SNELL_FRESNEL_EXACT, inner, snell__dispersion_variant(o->glass), &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
-    glUniform1i(LOCS(p)->max_interfaces, c->max_interfaces);
-    glUniform1i(LOCS(p)->back_band, v->back.band);
+    const oli_locs *loc = SNELL__PROGRAM_LOCS_OF(const oli_locs, p);
+    glUniform1i(loc->max_interfaces, c->max_interfaces);
+    glUniform1i(loc->back_band, v->back.band);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;

@@ -74,9 +74,7 @@
 typedef struct peel_locs {
     int layer_count, fwd, near_, inv_range, size, max_interfaces;
 } peel_locs;
-#define LOCS(p) ((const peel_locs *)(const void *)(p)->loc)
-#define LOCS_W(p) ((peel_locs *)(void *)(p)->loc)
-typedef char peel_locs_fit[sizeof(peel_locs) <= sizeof(((snell__program_slot *)0)->loc) ? 1 : -1];
+SNELL__PROGRAM_LOCS_FIT(peel_locs);
 
 /* One glass object's (by its index in the frame) last peels: their
  * occlusion queries and what the last ones read found. */
@@ -122,12 +120,13 @@ static snell_status build_prog(snell_ctx *ctx, peel_state *s, const prog_key *k,
              k->inner, k->dispersion, k->layers);
     st = snell__glass_program_build(ctx, "peel.frag", s->out, def, k->screen, &p->g);
     if (st != SNELL_OK) return st;
-    LOCS_W(p)->layer_count = glGetUniformLocation(p->g.prog, "u_layer_count");
-    LOCS_W(p)->fwd = glGetUniformLocation(p->g.prog, "u_fwd");
-    LOCS_W(p)->near_ = glGetUniformLocation(p->g.prog, "u_near");
-    LOCS_W(p)->inv_range = glGetUniformLocation(p->g.prog, "u_inv_range");
-    LOCS_W(p)->size = glGetUniformLocation(p->g.prog, "u_size");
-    LOCS_W(p)->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
+    peel_locs *loc = SNELL__PROGRAM_LOCS_OF(peel_locs, p);
+    loc->layer_count = glGetUniformLocation(p->g.prog, "u_layer_count");
+    loc->fwd = glGetUniformLocation(p->g.prog, "u_fwd");
+    loc->near_ = glGetUniformLocation(p->g.prog, "u_near");
+    loc->inv_range = glGetUniformLocation(p->g.prog, "u_inv_range");
+    loc->size = glGetUniformLocation(p->g.prog, "u_size");
+    loc->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
     return SNELL_OK;
 }
 
@@ -396,12 +395,13 @@ static snell_status peel_draw(snell_ctx *ctx, void *state, const snell__view *v,
     depth_frame(v, o, fwd, &near_, &inv_range);
     snell__glass_program_use(&p->g, v, o);
     snell__glass_program_bind(&p->g, "u_layers", GL_TEXTURE_2D_ARRAY, s->t.array_tex, 0);
-    glUniform1i(LOCS(p)->layer_count, peeled); /* those drawn empty read as no surface */
-    glUniform3fv(LOCS(p)->fwd, 1, fwd);
-    glUniform1f(LOCS(p)->near_, near_);
-    glUniform1f(LOCS(p)->inv_range, inv_range);
-    glUniform2f(LOCS(p)->size, (float)v->width, (float)v->height);
-    glUniform1i(LOCS(p)->max_interfaces, pp->max_interfaces);
+    const peel_locs *loc = SNELL__PROGRAM_LOCS_OF(const peel_locs, p);
+    glUniform1i(loc->layer_count, peeled); /* those drawn empty read as no surface */
+    glUniform3fv(loc->fwd, 1, fwd);
+    glUniform1f(loc->near_, near_);
+    glUniform1f(loc->inv_range, inv_range);
+    glUniform2f(loc->size, (float)v->width, (float)v->height);
+    glUniform1i(loc->max_interfaces, pp->max_interfaces);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;

@@ -39,7 +39,7 @@ typedef struct wyman_prepared {
 typedef struct wyman_locs {
     int dn_scale, back_band;
 } wyman_locs;
-#define LOCS(p) ((const wyman_locs *)(const void *)(p)->loc)
+SNELL__PROGRAM_LOCS_FIT(wyman_locs);
 
 typedef struct wyman_state {
     snell__output_kind out;
@@ -56,14 +56,14 @@ static snell_status get_prog(snell_ctx *ctx, wyman_state *s, int screen, int abs
     snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_WYMAN, key, 3, &hit);
     if (!hit) {
         char defines[128];
-        wyman_locs *l = (wyman_locs *)(void *)p->loc;
+        wyman_locs *loc = SNELL__PROGRAM_LOCS_OF(wyman_locs, p);
         snell_status st;
         snprintf(defines, sizeof defines, "#define SNELL_VERTEX_AUX 1\n#define SNELL_ABSORB %d\n#define SNELL_DISPERSION %d\n",
                  absorb, dispersion);
         st = snell__glass_program_build(ctx, "wyman.frag", s->out, defines, screen, &p->g);
         if (st != SNELL_OK) return st;
-        l->dn_scale = glGetUniformLocation(p->g.prog, "u_dn_scale");
-        l->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
+        loc->dn_scale = glGetUniformLocation(p->g.prog, "u_dn_scale");
+        loc->back_band = glGetUniformLocation(p->g.prog, "u_back_band");
     }
     *out = p;
     return SNELL_OK;
@@ -229,8 +229,9 @@ static snell_status wyman_draw(snell_ctx *ctx, void *state, const snell__view *v
         glUniform2f(p->g.inv_size, 1.0f / (float)v->width, 1.0f / (float)v->height);
         glUniform1i(p->g.gid, o->gid);
     }
-    glUniform1f(LOCS(p)->dn_scale, wp ? wp->dn_scale : 0.0f);
-    glUniform1i(LOCS(p)->back_band, v->back.band);
+    const wyman_locs *loc = SNELL__PROGRAM_LOCS_OF(const wyman_locs, p);
+    glUniform1f(loc->dn_scale, wp ? wp->dn_scale : 0.0f);
+    glUniform1i(loc->back_band, v->back.band);
     snell__draw_surface(o, stats);
     stats->passes++;
     return SNELL_OK;
