@@ -19,7 +19,7 @@ typedef enum snell__fit {
 } snell__fit;
 
 typedef struct snell__method {
-    const snell_method_info *info;  /* public: id, name, summary, needs, cost rank, params */
+    const snell_method_info *info;  /* public: id, name, summary, needs, params */
     int needs_analysis;             /* adequate() reads the mesh analysis */
     /* May be NULL (always ADEQUATE). analysis may be NULL (unanalysable mesh).
      * Writes why into why (a short clause, no method name). */
@@ -81,8 +81,11 @@ typedef struct snell__method {
     int rung_count;
 } snell__method;
 
-/* Value names of snell_back_detail parameters (registry.c). */
+/* Value names of the parameters several methods share (registry.c):
+ * snell_back_detail, snell_fresnel_model, snell_inner_fresnel. */
 extern const char *const snell__back_detail_names[3];
+extern const char *const snell__fresnel_names[3];
+extern const char *const snell__inner_fresnel_names[3];
 #define SNELL__BACK_DETAIL_HELP "back-face pass detail: auto (a coarse copy of meshes below 8 px per triangle) or full"
 #define SNELL__GUARD_HELP "back-face guard band for objects crossing the target's edge, percent of its height (-1 none)"
 #define SNELL__GUARD_DEFAULT 10

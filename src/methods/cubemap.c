@@ -243,8 +243,6 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
 }
 
 static const char *const g_encoding_names[] = {"default", "plain", "oct"};
-static const char *const g_fresnel_names[] = {"default", "schlick", "exact"};
-static const char *const g_inner_names[] = {"auto", "off", "on"};
 
 static const snell_param_info g_params[] = {
     {.name = "iterations",
@@ -270,11 +268,11 @@ static const snell_param_info g_params[] = {
     {.name = "fresnel",
      .offset = offsetof(snell_glass_material, cubemap.fresnel),
      .help = "reflectance at the interfaces: schlick (the MATCHED model) or exact (unpolarised, as FULL)",
-     .min = 0, .max = 2, .def = DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, .value_names = g_fresnel_names},
+     .min = 0, .max = 2, .def = DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, .value_names = snell__fresnel_names},
     {.name = "inner_fresnel",
      .offset = offsetof(snell_glass_material, cubemap.inner_fresnel),
      .help = "Fresnel at the exit too (1 - F out, the internal reflection followed by one more search): auto (on for convex meshes), off, on",
-     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = g_inner_names},
+     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = snell__inner_fresnel_names},
 };
 
 

@@ -544,8 +544,6 @@ static snell_status layered_draw(snell_ctx *ctx, void *state, const snell__view 
     return SNELL_OK;
 }
 
-static const char *const g_inner_names[] = {"auto", "off", "on"};
-
 static const snell_param_info g_params[] = {
     {.name = "layers",
      .offset = offsetof(snell_glass_material, layered.layers),
@@ -575,7 +573,7 @@ static const snell_param_info g_params[] = {
     {.name = "inner_fresnel",
      .offset = offsetof(snell_glass_material, layered.inner_fresnel),
      .help = "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more march): auto (on for convex meshes), off, on",
-     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = g_inner_names},
+     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = snell__inner_fresnel_names},
 };
 
 

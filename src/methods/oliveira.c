@@ -127,8 +127,6 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
     return SNELL_OK;
 }
 
-static const char *const g_fresnel_names[] = {"default", "schlick", "exact"};
-static const char *const g_inner_names[] = {"auto", "off", "on"};
 
 static const snell_param_info g_params[] = {
     {.name = "linear_steps",
@@ -154,11 +152,11 @@ static const snell_param_info g_params[] = {
     {.name = "fresnel",
      .offset = offsetof(snell_glass_material, oliveira.fresnel),
      .help = "reflectance model: schlick (the MATCHED model) or exact (unpolarised dielectric)",
-     .min = 0, .max = 2, .def = SNELL_FRESNEL_SCHLICK, .value_names = g_fresnel_names},
+     .min = 0, .max = 2, .def = SNELL_FRESNEL_SCHLICK, .value_names = snell__fresnel_names},
     {.name = "inner_fresnel",
      .offset = offsetof(snell_glass_material, oliveira.inner_fresnel),
      .help = "Fresnel at the exit and one internal reflection: auto (on for convex meshes), off, on",
-     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = g_inner_names},
+     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = snell__inner_fresnel_names},
 };
 
 

@@ -436,8 +436,6 @@ static snell__fit peel_fit(const snell_mesh_analysis *an, const snell_glass_reso
 }
 
 static const char *const g_fix_names[] = {"default", "none", "discontinuity", "merge", "both"};
-static const char *const g_fresnel_names[] = {"default", "schlick", "exact"};
-static const char *const g_inner_names[] = {"auto", "off", "on"};
 static const char *const g_layer0_names[] = {"gbuffer", "peel"};
 
 static const snell_param_info g_params[] = {
@@ -464,11 +462,11 @@ static const snell_param_info g_params[] = {
     {.name = "fresnel",
      .offset = offsetof(snell_glass_material, peel.fresnel),
      .help = "reflectance at the interfaces: schlick (the MATCHED model) or exact (unpolarised, as FULL)",
-     .min = 0, .max = 2, .def = DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, .value_names = g_fresnel_names},
+     .min = 0, .max = 2, .def = DEFAULT_FRESNEL == 1 ? SNELL_FRESNEL_EXACT : SNELL_FRESNEL_SCHLICK, .value_names = snell__fresnel_names},
     {.name = "inner_fresnel",
      .offset = offsetof(snell_glass_material, peel.inner_fresnel),
      .help = "Fresnel at the last exit too (1 - F out, the internal reflection followed by one more search): auto (on), off, on",
-     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = g_inner_names},
+     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_AUTO, .value_names = snell__inner_fresnel_names},
     {.name = "layer0",
      .offset = offsetof(snell_glass_material, peel.layer0),
      .help = "the front layer: gbuffer (converted from the screen-space G-buffer where it holds the whole front surface, the peels are culled and the triangles are below 16 px; else peeled) or peel (always peeled)",

@@ -55,6 +55,8 @@ static const struct {
 #define METHOD_COUNT ((int)(sizeof g_methods / sizeof *g_methods))
 
 const char *const snell__back_detail_names[3] = {"default", "auto", "full"};
+const char *const snell__fresnel_names[3] = {"default", "schlick", "exact"};
+const char *const snell__inner_fresnel_names[3] = {"auto", "off", "on"};
 
 int snell_method_count(void) { return METHOD_COUNT; }
 
