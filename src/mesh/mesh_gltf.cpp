@@ -445,18 +445,78 @@ Mat4 local_transform(const tinygltf::Node &n, int idx)
     return mul(t, mul(r, s));
 }
 
+/* --- the node tree -------------------------------------------------------- */
+/* What a walk of the node tree hands each node instance: the node and its
+ * world transform (its parents' times its own), its mesh checked to exist. */
+struct NodeVisitor {
+    virtual void node(int idx, const tinygltf::Node &n, const Mat4 &world) = 0;
+    virtual ~NodeVisitor() {}
+};
+
+/* Roots to draw: the default scene, else scene 0, else every node that is
+ * nobody's child. */
+std::vector<int> scene_roots(const tinygltf::Model &m)
+{
+    if (!m.scenes.empty()) {
+        size_t s = (m.defaultScene >= 0 && static_cast<size_t>(m.defaultScene) < m.scenes.size())
+                       ? static_cast<size_t>(m.defaultScene) : 0;
+        return m.scenes[s].nodes;
+    }
+    std::vector<char> is_child(m.nodes.size(), 0);
+    for (const tinygltf::Node &n : m.nodes)
+        for (int c : n.children)
+            if (c >= 0 && static_cast<size_t>(c) < m.nodes.size()) is_child[static_cast<size_t>(c)] = 1;
+    std::vector<int> roots;
+    for (size_t i = 0; i < m.nodes.size(); i++)
+        if (!is_child[i]) roots.push_back(static_cast<int>(i));
+    return roots;
+}
+
+void walk_node(const tinygltf::Model &model, NodeVisitor &v, int node, const Mat4 &parent, int depth,
+               size_t *instances)
+{
+    char buf[160];
+    if (node < 0 || static_cast<size_t>(node) >= model.nodes.size()) {
+        std::snprintf(buf, sizeof buf, "node %d does not exist (%zu nodes)", node, model.nodes.size());
+        fail(SNELL_E_PARSE, buf);
+    }
+    if (depth > kMaxDepth) {
+        std::snprintf(buf, sizeof buf, "node hierarchy deeper than %d at node %d (cycle?)", kMaxDepth, node);
+        fail(SNELL_E_PARSE, buf);
+    }
+    if (++*instances > kMaxInstances) {
+        std::snprintf(buf, sizeof buf, "more than %zu node instances", kMaxInstances);
+        fail(SNELL_E_LIMIT, buf);
+    }
+    const tinygltf::Node &n = model.nodes[static_cast<size_t>(node)];
+    Mat4 world = mul(parent, local_transform(n, node));
+    if (n.mesh >= 0 && static_cast<size_t>(n.mesh) >= model.meshes.size()) {
+        std::snprintf(buf, sizeof buf, "node %d references missing mesh %d", node, n.mesh);
+        fail(SNELL_E_PARSE, buf);
+    }
+    v.node(node, n, world);
+    for (int c : n.children) walk_node(model, v, c, world, depth + 1, instances);
+}
+
+/* Every node instance of the scene to draw, depth first in glTF's order;
+ * the depth and the instances are bounded (kMaxDepth, kMaxInstances). */
+void walk_nodes(const tinygltf::Model &model, NodeVisitor &v)
+{
+    size_t instances = 0;
+    for (int r : scene_roots(model)) walk_node(model, v, r, identity(), 0, &instances);
+}
+
 /* --- geometry accumulation -------------------------------------------------- */
-struct Builder {
+struct Builder : NodeVisitor {
     const tinygltf::Model &model;
     snell_ctx *ctx;
     std::vector<float> pos, nrm;
     std::vector<uint32_t> idx;
-    size_t instances = 0;
     bool logged_no_surface = false;
     Builder(const tinygltf::Model &m, snell_ctx *c) : model(m), ctx(c) {}
 
     void add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mesh_idx);
-    void visit(int node, const Mat4 &parent, int depth);
+    void node(int idx, const tinygltf::Node &n, const Mat4 &world) override;
 };
 
 void Builder::add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mesh_idx)
@@ -602,51 +662,11 @@ void Builder::add_primitive(const tinygltf::Primitive &p, const Mat4 &M, int mes
     for (uint32_t c : tris) idx.push_back(static_cast<uint32_t>(base + c));
 }
 
-void Builder::visit(int node, const Mat4 &parent, int depth)
+void Builder::node(int, const tinygltf::Node &n, const Mat4 &world)
 {
-    char buf[160];
-    if (node < 0 || static_cast<size_t>(node) >= model.nodes.size()) {
-        std::snprintf(buf, sizeof buf, "node %d does not exist (%zu nodes)", node, model.nodes.size());
-        fail(SNELL_E_PARSE, buf);
-    }
-    if (depth > kMaxDepth) {
-        std::snprintf(buf, sizeof buf, "node hierarchy deeper than %d at node %d (cycle?)", kMaxDepth, node);
-        fail(SNELL_E_PARSE, buf);
-    }
-    if (++instances > kMaxInstances) {
-        std::snprintf(buf, sizeof buf, "more than %zu node instances", kMaxInstances);
-        fail(SNELL_E_LIMIT, buf);
-    }
-    const tinygltf::Node &n = model.nodes[static_cast<size_t>(node)];
-    Mat4 world = mul(parent, local_transform(n, node));
-    if (n.mesh >= 0) {
-        if (static_cast<size_t>(n.mesh) >= model.meshes.size()) {
-            std::snprintf(buf, sizeof buf, "node %d references missing mesh %d", node, n.mesh);
-            fail(SNELL_E_PARSE, buf);
-        }
-        for (const tinygltf::Primitive &p : model.meshes[static_cast<size_t>(n.mesh)].primitives)
-            add_primitive(p, world, n.mesh);
-    }
-    for (int c : n.children) visit(c, world, depth + 1);
-}
-
-/* Roots to draw: the default scene, else scene 0, else every node that is
- * nobody's child. */
-std::vector<int> scene_roots(const tinygltf::Model &m)
-{
-    if (!m.scenes.empty()) {
-        size_t s = (m.defaultScene >= 0 && static_cast<size_t>(m.defaultScene) < m.scenes.size())
-                       ? static_cast<size_t>(m.defaultScene) : 0;
-        return m.scenes[s].nodes;
-    }
-    std::vector<char> is_child(m.nodes.size(), 0);
-    for (const tinygltf::Node &n : m.nodes)
-        for (int c : n.children)
-            if (c >= 0 && static_cast<size_t>(c) < m.nodes.size()) is_child[static_cast<size_t>(c)] = 1;
-    std::vector<int> roots;
-    for (size_t i = 0; i < m.nodes.size(); i++)
-        if (!is_child[i]) roots.push_back(static_cast<int>(i));
-    return roots;
+    if (n.mesh < 0) return;
+    for (const tinygltf::Primitive &p : model.meshes[static_cast<size_t>(n.mesh)].primitives)
+        add_primitive(p, world, n.mesh);
 }
 
 /* tinygltf and nlohmann::json convert nested JSON (e.g. "extras") recursively,
@@ -863,8 +883,7 @@ snell_status load(snell_ctx *ctx, const unsigned char *data, size_t size, const 
         tinygltf::Model model;
         parse(ctx, data, size, base_dir, allow_files, flags, model);
         Builder b(model, ctx);
-        Mat4 id = identity();
-        for (int r : scene_roots(model)) b.visit(r, id, 0);
+        walk_nodes(model, b);
         if (b.idx.empty()) fail(SNELL_E_PARSE, "no triangle primitives in the scene");
         return adopt(ctx, b, out);
     } catch (const LoadError &e) {
@@ -930,7 +949,7 @@ void node_name(const tinygltf::Model &model, int node, char *out)
     copy_name(n.empty() ? "node " + std::to_string(node) : n, out);
 }
 
-struct SceneBuilder {
+struct SceneBuilder : NodeVisitor {
     const tinygltf::Model &model;
     snell_ctx *ctx;
     snell_scene_file *out;
@@ -939,7 +958,6 @@ struct SceneBuilder {
     std::vector<OpaqueInstance> opaque;
     int glass_total = 0;                                /* glass instances, counted past the limit */
     std::string ignored;                                /* extensions ignored, for one log line */
-    size_t instances = 0;
     int camera_node = -1;
     Mat4 camera_world;
     SceneBuilder(const tinygltf::Model &m, snell_ctx *c, snell_scene_file *o) : model(m), ctx(c), out(o) {}
@@ -947,7 +965,7 @@ struct SceneBuilder {
     {
         for (snell_mesh *m : owned) snell_mesh_destroy(m);
     }
-    void visit(int node, const Mat4 &parent, int depth);
+    void node(int idx, const tinygltf::Node &n, const Mat4 &world) override;
     void add(const tinygltf::Primitive &p, int mesh_idx, int prim_idx, const Mat4 &world, int node);
     snell_mesh *mesh_of(const tinygltf::Primitive &p, int mesh_idx, int prim_idx);
     void note_ignored(const tinygltf::ExtensionMap &ext);
@@ -1204,40 +1222,20 @@ void SceneBuilder::finish()
     out->radius = static_cast<float>(std::sqrt(r2));
 }
 
-void SceneBuilder::visit(int node, const Mat4 &parent, int depth)
+void SceneBuilder::node(int idx, const tinygltf::Node &n, const Mat4 &world)
 {
-    char buf[160];
-    if (node < 0 || static_cast<size_t>(node) >= model.nodes.size()) {
-        std::snprintf(buf, sizeof buf, "node %d does not exist (%zu nodes)", node, model.nodes.size());
-        fail(SNELL_E_PARSE, buf);
-    }
-    if (depth > kMaxDepth) {
-        std::snprintf(buf, sizeof buf, "node hierarchy deeper than %d at node %d (cycle?)", kMaxDepth, node);
-        fail(SNELL_E_PARSE, buf);
-    }
-    if (++instances > kMaxInstances) {
-        std::snprintf(buf, sizeof buf, "more than %zu node instances", kMaxInstances);
-        fail(SNELL_E_LIMIT, buf);
-    }
-    const tinygltf::Node &n = model.nodes[static_cast<size_t>(node)];
-    Mat4 world = mul(parent, local_transform(n, node));
     if (n.camera >= 0 && camera_node < 0) {
         if (static_cast<size_t>(n.camera) >= model.cameras.size()) {
-            std::snprintf(buf, sizeof buf, "node %d references missing camera %d", node, n.camera);
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "node %d references missing camera %d", idx, n.camera);
             fail(SNELL_E_PARSE, buf);
         }
-        camera_node = node;
+        camera_node = idx;
         camera_world = world;
     }
-    if (n.mesh >= 0) {
-        if (static_cast<size_t>(n.mesh) >= model.meshes.size()) {
-            std::snprintf(buf, sizeof buf, "node %d references missing mesh %d", node, n.mesh);
-            fail(SNELL_E_PARSE, buf);
-        }
-        const std::vector<tinygltf::Primitive> &prims = model.meshes[static_cast<size_t>(n.mesh)].primitives;
-        for (size_t i = 0; i < prims.size(); i++) add(prims[i], n.mesh, static_cast<int>(i), world, node);
-    }
-    for (int c : n.children) visit(c, world, depth + 1);
+    if (n.mesh < 0) return;
+    const std::vector<tinygltf::Primitive> &prims = model.meshes[static_cast<size_t>(n.mesh)].primitives;
+    for (size_t i = 0; i < prims.size(); i++) add(prims[i], n.mesh, static_cast<int>(i), world, idx);
 }
 
 /* The glTF camera (a pose and a perspective) as snell's orbit camera: the
@@ -1287,8 +1285,7 @@ snell_status load_scene(snell_ctx *ctx, const unsigned char *data, size_t size, 
                 bad += (bad.empty() ? "" : ", ") + shown_uri(e);
         if (!bad.empty()) fail(SNELL_E_UNSUPPORTED, "the scene requires material extensions that are not supported: " + bad);
         SceneBuilder b(model, ctx, s);
-        Mat4 id = identity();
-        for (int r : scene_roots(model)) b.visit(r, id, 0);
+        walk_nodes(model, b);
         if (b.glass_total == 0 && b.opaque.empty()) fail(SNELL_E_PARSE, "no triangle primitives in the scene");
         b.finish();
         if (!b.ignored.empty())
