@@ -115,8 +115,8 @@ if(NOT SNELL_WITH_3DS)
   list(APPEND SNELL_SOURCES ${PROJECT_SOURCE_DIR}/src/mesh/mesh_3ds_off.c)
 endif()
 if(NOT SNELL_WITH_CAUSTICS)
-  # a stage of the renderer: its file and shaders out, render/caustics_off.c says why
-  list(FILTER SNELL_SOURCES EXCLUDE REGEX "/src/render/caustics\\.c$")
+  # a stage of the renderer: its files and shaders out, render/caustics_off.c says why
+  list(FILTER SNELL_SOURCES EXCLUDE REGEX "/src/render/caustics(_maps|_photons|_receiver)?\\.c$")
   list(APPEND SNELL_SOURCES ${PROJECT_SOURCE_DIR}/src/render/caustics_off.c)
   # the water's floor light map is the stage's too (src/water/water_caustics.c, water_caustics.*)
   list(FILTER SNELL_SOURCES EXCLUDE REGEX "/src/water/water_caustics\\.c$")

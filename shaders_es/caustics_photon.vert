@@ -84,7 +84,7 @@ uniform float u_eps;          // minimum distance of a secondary hit, world unit
 #include "common/bvh.glsl"
 #endif
 #ifdef SNELL_PHOTON_CHAIN
-// the casters whose beams overlap, in sequence (render/caustics.c chain):
+// the casters whose beams overlap, in sequence (render/caustics_photons.c chain):
 // their world-space BVH (identity matrices), a triangle entry's mesh
 // triangle in its v0's w, object k's triangles u_chain_first[k] ..
 // u_chain_first[k + 1] - 1; their materials

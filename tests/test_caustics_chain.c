@@ -4,7 +4,7 @@
  * one (radius 0.6, IOR 1.5, tint 0.6, 0.85, 1), over the receiver plane,
  * their beams overlapping in the light's view. The photons of each count
  * only where the light meets it first and go on through the other (the
- * chain path, render/caustics.c; its reference ref_caustics.c chain). Checks,
+ * chain path, render/caustics_photons.c; its reference ref_caustics.c chain). Checks,
  * for a directional and a spot light: the stage says both casters took the
  * chain; GPU against the reference (PSNR) and the light through glass
  * within a few percent; no more light on the plane than without the glass

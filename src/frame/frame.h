@@ -29,7 +29,7 @@ typedef enum snell__output_kind {
 #define SNELL__SCREEN_SHARED_DEPTH 1  /* the G-buffer pass wrote the target's own depth buffer */
 #define SNELL__SCREEN_WRITES_DEPTH 2  /* the G-buffer had its own; the kernel writes gl_FragDepth */
 
-/* Light through glass in sequence (the caustics' chain, render/caustics.c,
+/* Light through glass in sequence (the caustics' chain, render/caustics_photons.c,
  * and its reference, ref_caustics.c chain): at most this many glass objects
  * a photon crosses, and the most casters with overlapping beams the stage
  * takes together. */
@@ -71,7 +71,7 @@ typedef struct snell__view {
     float receiver_plane[4], receiver_albedo[3];
     /* The caustics stage's state where it lit the opaque objects this frame
      * (the kernels see them lit through the scene layers: common/opaque_lit.glsl),
-     * NULL none. Read only by its hook (render/caustics.c). */
+     * NULL none. Read only by its hook (render/caustics_receiver.c). */
     const struct snell__caustics *lit_opaque;
     /* The host's scene behind the glass this frame (render/backdrop.c), NULL none. Read only by its hook. */
     const struct snell__backdrop *backdrop;

@@ -133,7 +133,7 @@ static int through(const snell_ref *ref, int g, int from, const double o[3], con
  * by that object's optics (through from the surface it left), and so on up
  * to SNELL__CAUSTICS_CHAIN objects: each ray of light counted once,
  * refracted by every glass it crosses (the stage's chain path,
- * render/caustics.c). A photon that would meet one more is the caller's to
+ * render/caustics_photons.c). A photon that would meet one more is the caller's to
  * stop (the landing's cast meets it). 1 if it leaves the last, *last, at x
  * along t2 (prim: the triangle it leaves from), carrying e. */
 static int chain(const snell_ref *ref, int g, const double o[3], const double d[3], const double flux[3],
@@ -299,7 +299,7 @@ snell_status snell_ref_receiver_render(const snell_ref *ref, const snell_light *
 }
 
 /* ------------------------------------------------ the opaque objects lit */
-/* The caustics stage's light frame (render/caustics.c make_frame), in
+/* The caustics stage's light frame (render/caustics_maps.c make_frame), in
  * double: directional, an orthographic view along d (x = s.(p - c), y =
  * u.(p - c), depth = d.(p - c)); spot, a perspective view from the light
  * looking straight down (x/depth, y/depth, depth = light y - p.y); its
