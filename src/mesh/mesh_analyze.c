@@ -730,67 +730,74 @@ static int parity_inside(analyzer *an, const double p[3])
 
 /* --------------------------------------------------------------- public */
 
-static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
+/* The analyzer of m: its topology (tp), its triangles in canonical order
+ * and the BVH its ray casts walk. analyzer_free releases it, whatever failed. */
+static snell_status analyzer_init(analyzer *an, const snell_mesh *m, topo *tp)
 {
-    analyzer an;
-    topo tp;
-    double cand[MAX_CANDIDATES][3], best_c[3] = {0, 0, 0}, best_h = 2.0, best_clear = 0.0, sum_area = 0.0;
-    double lo[3], hi[3], step[3];
-    int ncand = 0, i, j, k, best_inside = 0, have_inside = 0;
     snell_status st;
-    uint32_t t;
-
-    memset(out, 0, sizeof *out);
-    if (m->triangle_count == 0 || m->vertex_count == 0)
-        return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_analyze: mesh has no triangles");
-    memset(&an, 0, sizeof an);
-    an.m = m;
-    an.work_limit = WORK_BASE + WORK_PER_TRIANGLE * (double)m->triangle_count;
-    st = topology(m, &tp);
+    memset(an, 0, sizeof *an);
+    an->m = m;
+    an->work_limit = WORK_BASE + WORK_PER_TRIANGLE * (double)m->triangle_count;
+    st = topology(m, tp);
     if (st != SNELL_OK) return st;
-    an.closed = tp.closed;
-    an.cdf = (double *)snell__calloc(&m->alloc, m->triangle_count, sizeof *an.cdf);
-    an.order = (uint32_t *)snell__calloc(&m->alloc, m->triangle_count, sizeof *an.order);
-    st = an.cdf && an.order ? canonical_order(m, an.order)
-                            : snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
+    an->closed = tp->closed;
+    an->cdf = (double *)snell__calloc(&m->alloc, m->triangle_count, sizeof *an->cdf);
+    an->order = (uint32_t *)snell__calloc(&m->alloc, m->triangle_count, sizeof *an->order);
+    st = an->cdf && an->order ? canonical_order(m, an->order)
+                              : snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
     if (st == SNELL_OK)
-        st = snell__bvh_build(m->ctx, m->positions, m->vertex_count, m->indices, m->triangle_count, NULL, &an.bvh);
-    if (st != SNELL_OK) {
-        snell__free(&m->alloc, an.cdf);
-        snell__free(&m->alloc, an.order);
-        return st;
-    }
+        st = snell__bvh_build(m->ctx, m->positions, m->vertex_count, m->indices, m->triangle_count, NULL, &an->bvh);
+    return st;
+}
 
-    /* Area CDF and the area centroid. */
-    {
-        double ac[3] = {0, 0, 0};
-        for (t = 0; t < m->triangle_count; t++) {
-            double v[3][3], n[3], a;
-            canonical_verts(m, an.order[t], v);
-            tri_cross(v, n);
-            a = 0.5 * sqrt(dot3(n, n));
-            sum_area += a;
-            an.cdf[t] = sum_area;
-            for (k = 0; k < 3; k++) ac[k] += a * (v[0][k] + v[1][k] + v[2][k]) / 3.0;
-        }
-        if (!(sum_area > 0.0)) {
-            snell__bvh_destroy(an.bvh);
-            snell__free(&m->alloc, an.cdf);
-            snell__free(&m->alloc, an.order);
-            return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_analyze: mesh has zero surface area");
-        }
-        for (t = 0; t < m->triangle_count; t++) an.cdf[t] /= sum_area;
-        an.cdf[m->triangle_count - 1] = 1.0;
-        an.area = sum_area;
-        /* Candidates in order of preference on ties: volume centroid (the
-         * natural centre of a solid), area centroid, vertex average (Unger
-         * 4.1), box centre, then an interior grid. */
-        if (an.closed && fabs(tp.volume) > 0.0)
-            for (k = 0; k < 3; k++) cand[ncand][k] = tp.vcentroid[k];
-        if (an.closed && fabs(tp.volume) > 0.0) ncand++;
-        for (k = 0; k < 3; k++) cand[ncand][k] = ac[k] / sum_area;
+static void analyzer_free(analyzer *an)
+{
+    snell__bvh_destroy(an->bvh);
+    snell__free(&an->m->alloc, an->cdf);
+    snell__free(&an->m->alloc, an->order);
+}
+
+/* The area CDF over the triangles in canonical order (surface sampling)
+ * and the area centroid, ac. */
+static snell_status area_cdf(analyzer *an, double ac[3])
+{
+    const snell_mesh *m = an->m;
+    double sum_area = 0.0;
+    uint32_t t;
+    int k;
+    ac[0] = ac[1] = ac[2] = 0.0;
+    for (t = 0; t < m->triangle_count; t++) {
+        double v[3][3], n[3], a;
+        canonical_verts(m, an->order[t], v);
+        tri_cross(v, n);
+        a = 0.5 * sqrt(dot3(n, n));
+        sum_area += a;
+        an->cdf[t] = sum_area;
+        for (k = 0; k < 3; k++) ac[k] += a * (v[0][k] + v[1][k] + v[2][k]) / 3.0;
+    }
+    if (!(sum_area > 0.0))
+        return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_analyze: mesh has zero surface area");
+    for (t = 0; t < m->triangle_count; t++) an->cdf[t] /= sum_area;
+    an->cdf[m->triangle_count - 1] = 1.0;
+    an->area = sum_area;
+    for (k = 0; k < 3; k++) ac[k] /= sum_area;
+    return SNELL_OK;
+}
+
+/* Candidate centres in order of preference on ties: volume centroid (the
+ * natural centre of a solid), area centroid ac, vertex average (Unger 4.1),
+ * box centre, then an interior grid of cells step. Returns how many. */
+static int candidates(const analyzer *an, const topo *tp, const double ac[3], double cand[][3], double step[3])
+{
+    const snell_mesh *m = an->m;
+    double lo[3], hi[3];
+    int ncand = 0, i, j, k;
+    if (an->closed && fabs(tp->volume) > 0.0) {
+        for (k = 0; k < 3; k++) cand[ncand][k] = tp->vcentroid[k];
         ncand++;
     }
+    for (k = 0; k < 3; k++) cand[ncand][k] = ac[k];
+    ncand++;
     {
         /* Neumaier-compensated: the sum does not depend on the vertex order */
         double avg[3] = {0, 0, 0}, comp[3] = {0, 0, 0};
@@ -819,105 +826,154 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
                 cand[ncand][2] = lo[2] + (k + 0.5) * step[2];
                 ncand++;
             }
+    return ncand;
+}
 
-    /* Score: coarse hidden fraction; inside candidates beat outside ones
-     * (parity is meaningful for closed meshes; for open ones it still sorts
-     * "probably inside" first). Then refine around the winner on a half-step
-     * 3x3x3 grid. */
-    for (i = 0; i < ncand && !over_budget(&an); i++) {
-        int inside = parity_inside(&an, cand[i]);
+/* The best centre so far: its hidden fraction, its clearance, whether it is inside. */
+typedef struct centre {
+    double c[3], hidden, clear;
+    int inside;
+} centre;
+
+/* Scores the candidates by a coarse hidden fraction; inside candidates beat
+ * outside ones (parity is meaningful for closed meshes; for open ones it
+ * still sorts "probably inside" first). */
+static void choose_centre(analyzer *an, double cand[][3], int ncand, centre *best)
+{
+    int i, have_inside = 0;
+    for (i = 0; i < ncand && !over_budget(an); i++) {
+        int inside = parity_inside(an, cand[i]);
         double h, clear;
         if (have_inside && !inside) continue;
-        h = hidden_fraction_clear(&an, cand[i], COARSE_SAMPLES, &clear);
-        if ((inside && !have_inside) || better_centre(h, clear, best_h, best_clear)) {
-            best_h = h;
-            best_clear = clear;
-            memcpy(best_c, cand[i], sizeof best_c);
-            best_inside = inside;
+        h = hidden_fraction_clear(an, cand[i], COARSE_SAMPLES, &clear);
+        if ((inside && !have_inside) || better_centre(h, clear, best->hidden, best->clear)) {
+            best->hidden = h;
+            best->clear = clear;
+            memcpy(best->c, cand[i], sizeof best->c);
+            best->inside = inside;
             have_inside |= inside;
         }
     }
-    ncand = 0;
+}
+
+/* Then refines around the winner on a half-step 3x3x3 grid. */
+static void refine_centre(analyzer *an, const double step[3], centre *best)
+{
+    double cand[26][3];
+    int ncand = 0, i, j, k;
     for (i = -1; i <= 1; i++)
         for (j = -1; j <= 1; j++)
             for (k = -1; k <= 1; k++) {
                 if (!i && !j && !k) continue;
-                cand[ncand][0] = best_c[0] + 0.5 * i * step[0];
-                cand[ncand][1] = best_c[1] + 0.5 * j * step[1];
-                cand[ncand][2] = best_c[2] + 0.5 * k * step[2];
+                cand[ncand][0] = best->c[0] + 0.5 * i * step[0];
+                cand[ncand][1] = best->c[1] + 0.5 * j * step[1];
+                cand[ncand][2] = best->c[2] + 0.5 * k * step[2];
                 ncand++;
             }
-    if (best_h > 0.0)
-        for (i = 0; i < ncand && !over_budget(&an); i++) {
-            int inside = parity_inside(&an, cand[i]);
+    if (best->hidden > 0.0)
+        for (i = 0; i < ncand && !over_budget(an); i++) {
+            int inside = parity_inside(an, cand[i]);
             double h, clear;
-            if (best_inside && !inside) continue;
-            h = hidden_fraction_clear(&an, cand[i], COARSE_SAMPLES, &clear);
-            if (better_centre(h, clear, best_h, best_clear)) {
-                best_h = h;
-                best_clear = clear;
-                memcpy(best_c, cand[i], sizeof best_c);
-                best_inside = inside;
+            if (best->inside && !inside) continue;
+            h = hidden_fraction_clear(an, cand[i], COARSE_SAMPLES, &clear);
+            if (better_centre(h, clear, best->hidden, best->clear)) {
+                best->hidden = h;
+                best->clear = clear;
+                memcpy(best->c, cand[i], sizeof best->c);
+                best->inside = inside;
             }
         }
+}
 
-    /* The radii below are about the centre as reported (float): rounding it
+/* The centre as reported (c rounded to float in place), its hidden
+ * fraction finely sampled, and the depth complexity about the box centre. */
+static void report_centre(analyzer *an, double c[3], snell_mesh_analysis *out)
+{
+    const snell_mesh *m = an->m;
+    double bc[3];
+    int k;
+    /* The radii are about the centre as reported (float): rounding it
      * moves it by up to half a float ulp, which on a small inner radius far
      * from the origin is more than the radius's own rounding. */
     for (k = 0; k < 3; k++) {
-        out->centre[k] = (float)best_c[k];
-        best_c[k] = out->centre[k];
+        out->centre[k] = (float)c[k];
+        c[k] = out->centre[k];
     }
     out->samples = FINE_SAMPLES;
-    out->hidden_fraction = (float)hidden_fraction(&an, best_c, FINE_SAMPLES);
-    {
-        /* about the box centre, over the sphere about it that holds every vertex */
-        double bc[3];
-        for (k = 0; k < 3; k++) bc[k] = 0.5 * ((double)m->bmin[k] + m->bmax[k]);
-        depth_complexity(&an, bc, (double)m->bradius * 1.0001, &out->depth_complexity, &out->deep_fraction);
+    out->hidden_fraction = (float)hidden_fraction(an, c, FINE_SAMPLES);
+    /* over the sphere about the box centre that holds every vertex */
+    for (k = 0; k < 3; k++) bc[k] = 0.5 * ((double)m->bmin[k] + m->bmax[k]);
+    depth_complexity(an, bc, (double)m->bradius * 1.0001, &out->depth_complexity, &out->deep_fraction);
+}
+
+/* The radii about c: of the sphere holding every vertex, and of the ball
+ * free of surface. */
+static void report_radii(const snell_mesh *m, const double c[3], snell_mesh_analysis *out)
+{
+    double r2 = 0.0, v[3][3];
+    uint32_t i;
+    int k;
+    for (i = 0; i < m->vertex_count; i++) {
+        double d[3];
+        for (k = 0; k < 3; k++) d[k] = m->positions[3 * i + k] - c[k];
+        r2 = fmax(r2, dot3(d, d));
     }
+    out->radius = (float)sqrt(r2);
+    r2 = HUGE_VAL;
+    for (i = 0; i < m->triangle_count; i++) {
+        tri_verts(m, i, v);
+        r2 = fmin(r2, dist2_point_triangle(c, v));
+    }
+    /* Rounded down to float: the ball must stay free of surface. */
+    out->inner_radius = m->triangle_count ? nextafterf((float)sqrt(r2), 0.0f) : 0.0f;
+}
+
+static void report_topology(const topo *tp, int inside, snell_mesh_analysis *out)
+{
+    out->welded_vertices = tp->welded;
+    out->boundary_edges = tp->boundary;
+    out->nonmanifold_edges = tp->nonmanifold;
+    out->flipped_edges = tp->flipped;
+    out->closed = tp->closed;
+    out->convex = tp->convex;
+    out->pieces = tp->pieces;
+    out->inside = tp->closed && inside;
+    out->winding = winding_of(tp);
+}
+
+static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
+{
+    analyzer an;
+    topo tp;
+    double cand[MAX_CANDIDATES][3], ac[3], step[3];
+    centre best = {{0, 0, 0}, 2.0, 0.0, 0};
+    int ncand;
+    snell_status st;
+
+    memset(out, 0, sizeof *out);
+    if (m->triangle_count == 0 || m->vertex_count == 0)
+        return snell__fail(m->ctx, SNELL_E_INVALID_ARG, "snell_mesh_analyze: mesh has no triangles");
+    st = analyzer_init(&an, m, &tp);
+    if (st == SNELL_OK) st = area_cdf(&an, ac);
+    if (st != SNELL_OK) {
+        analyzer_free(&an);
+        return st;
+    }
+    ncand = candidates(&an, &tp, ac, cand, step);
+    choose_centre(&an, cand, ncand, &best);
+    refine_centre(&an, step, &best);
+    report_centre(&an, best.c, out);
     if (over_budget(&an)) {
-        snell__bvh_destroy(an.bvh);
-        snell__free(&m->alloc, an.cdf);
-        snell__free(&m->alloc, an.order);
+        analyzer_free(&an);
         memset(out, 0, sizeof *out);
         return snell__fail(m->ctx, SNELL_E_LIMIT,
                            "snell_mesh_analyze: the ray casts exceeded their work bound (%.0f BVH steps for %u "
                            "triangles): many triangles lie on top of each other (duplicated faces?)",
                            an.work_limit, m->triangle_count);
     }
-    {
-        double r2 = 0.0;
-        uint32_t v;
-        for (v = 0; v < m->vertex_count; v++) {
-            double d[3];
-            for (k = 0; k < 3; k++) d[k] = m->positions[3 * v + k] - best_c[k];
-            r2 = fmax(r2, dot3(d, d));
-        }
-        out->radius = (float)sqrt(r2);
-    }
-    {
-        double r2 = HUGE_VAL, v[3][3];
-        uint32_t t;
-        for (t = 0; t < m->triangle_count; t++) {
-            tri_verts(m, t, v);
-            r2 = fmin(r2, dist2_point_triangle(best_c, v));
-        }
-        /* Rounded down to float: the ball must stay free of surface. */
-        out->inner_radius = m->triangle_count ? nextafterf((float)sqrt(r2), 0.0f) : 0.0f;
-    }
-    out->welded_vertices = tp.welded;
-    out->boundary_edges = tp.boundary;
-    out->nonmanifold_edges = tp.nonmanifold;
-    out->flipped_edges = tp.flipped;
-    out->closed = tp.closed;
-    out->convex = tp.convex;
-    out->pieces = tp.pieces;
-    out->inside = tp.closed && best_inside;
-    out->winding = winding_of(&tp);
-    snell__bvh_destroy(an.bvh);
-    snell__free(&m->alloc, an.cdf);
-    snell__free(&m->alloc, an.order);
+    report_radii(m, best.c, out);
+    report_topology(&tp, best.inside, out);
+    analyzer_free(&an);
     return SNELL_OK;
 }
 
