@@ -21,7 +21,7 @@
  * caustics_chain_thin_*, caustics_chain_clear_*). */
 #include "test_util.h"
 #include "core/ctx.h"
-#include "core/glstate.h"
+#include "core/light_map.h"
 #include "render/stages.h"
 #include "ref/ref_scene.h"
 

@@ -19,7 +19,7 @@
 #include "test_util.h"
 #include "core/ctx.h"
 #include "core/gl.h"
-#include "core/glstate.h"
+#include "core/light_map.h"
 #include "render/stages.h"
 #include "ref/ref_scene.h"
 
@@ -32,7 +32,7 @@
 #define PI_D 3.14159265358979323846
 
 /* A context without float colour targets (the gles30-min leg) has RGB10_A2
- * light maps (core/glstate.h): irradiance / SNELL__LIGHT_RANGE in 10 bits
+ * light maps (core/light_map.h): irradiance / SNELL__LIGHT_RANGE in 10 bits
  * and 2 bits of alpha, so the light through glass is read from green (the
  * caustic map holds nothing else) instead of alpha, the photons' own tally. */
 static int g_fixed;

@@ -18,7 +18,7 @@
  * caustics_seen_ref_<scene>_<method>_gpu.png and _ref.png. */
 #include "test_util.h"
 #include "core/ctx.h"
-#include "core/glstate.h"
+#include "core/light_map.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -31,7 +31,7 @@
 #include "test_util.h"
 #include "core/ctx.h"
 #include "core/gl.h"
-#include "core/glstate.h"
+#include "core/light_map.h"
 #include "render/stages.h"
 #include "ref/ref_trace.h"
 

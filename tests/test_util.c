@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 #include "test_util.h"
 #include "core/ctx.h"
-#include "core/glstate.h"
+#include "core/light_map.h"
 
 #include <EGL/eglext.h>
 

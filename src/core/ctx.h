@@ -62,7 +62,7 @@ void snell__ctx_release(snell_ctx *ctx);
 snell_status snell__ctx_check_current(snell_ctx *ctx, const char *who);
 
 /* 1 where no blendable 32-bit float target exists: light maps in RGB10_A2
- * (glstate.h). Asked at first use, so only what uses light maps asks. */
+ * (light_map.h). Asked at first use, so only what uses light maps asks. */
 int snell__light_fixed(snell_ctx *ctx);
 
 /* Destroy paths: snell__gl_scope_enter returns 1 when GL deletions reach

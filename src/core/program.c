@@ -285,7 +285,7 @@ static char *assemble(snell_ctx *ctx, const char *defines, const char *src, snel
     }
     /* only a program that reads light maps asks for their format */
     if (!b.failed && ctx && strstr(b.data + mark, "SNELL_LIGHT_RANGE") && snell__light_fixed(ctx)) {
-        static const char fixed[] = "#define SNELL_LIGHT_RANGE 8.0\n"; /* SNELL__LIGHT_RANGE, core/glstate.h */
+        static const char fixed[] = "#define SNELL_LIGHT_RANGE 8.0\n"; /* SNELL__LIGHT_RANGE, core/light_map.h */
         buf_insert(&b, mark, fixed, sizeof fixed - 1);
     }
     if (b.failed) {

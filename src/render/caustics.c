@@ -10,7 +10,7 @@
  * objects and receiver are still. */
 #include "render/caustics_private.h"
 #include "core/ctx.h"
-#include "core/glstate.h"
+#include "core/light_map.h"
 #include "core/program.h"
 #include "mesh/bvh_gpu.h"
 #include "water/water_draw.h"

@@ -38,7 +38,7 @@ typedef struct snell__caustics {
     int maps_only;                                 /* tests, bench_caustics: every photon takes the depth
                                                     * maps' one crossing (the only path before the BVH's),
                                                     * each caster alone (no chain) */
-    unsigned map_format;                           /* snell__light_map_format (core/glstate.h),
+    unsigned map_format;                           /* snell__light_map_format (core/light_map.h),
                                                     * 0 = not probed yet (tests set it to take a path) */
     int valid;                                     /* the maps hold the frame keyed by key[] */
     int made_plane, made_opaque;                   /* which of them it made (the plane's, the opaque ones') */

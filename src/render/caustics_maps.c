@@ -3,7 +3,7 @@
  * (render/caustics.c): the shadow map of every object, the opaque receivers'
  * depth and caustic maps, the receiver plane's light map with the direct light. */
 #include "render/caustics_private.h"
-#include "core/glstate.h"
+#include "core/light_map.h"
 #include "mesh/mesh.h"
 
 #include <math.h>

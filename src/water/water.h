@@ -40,7 +40,7 @@ struct snell_water {
     /* the floor's light map (water_caustics.c, made by the caustics stage) */
     unsigned light_prog, light_fbo, light_tex;
     snell__samplers light_samplers; /* light_prog's units */
-    unsigned light_format;         /* snell__light_map_format (core/glstate.h), 0 = not probed yet */
+    unsigned light_format;         /* snell__light_map_format (core/light_map.h), 0 = not probed yet */
     int light_size, light_valid;   /* light_valid: the map holds the surface of light_version under light_key */
     unsigned light_version;
     snell_light light_key;

@@ -18,7 +18,7 @@
 #include "water/water_draw.h"
 #include "core/ctx.h"
 #include "core/gl.h"
-#include "core/glstate.h"
+#include "core/light_map.h"
 #include "core/program.h"
 #include "mesh/mesh.h"
 
