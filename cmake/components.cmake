@@ -110,9 +110,18 @@ foreach(c ref lm2d water)
     endif()
   endif()
 endforeach()
+# A loader left out: snell_mesh_load's table refuses its extensions naming the
+# option (src/mesh/mesh_load.c) and its public functions are generated stubs.
 if(NOT SNELL_WITH_3DS)
   list(FILTER SNELL_SOURCES EXCLUDE REGEX "/src/mesh/mesh_3ds\\.c$")
-  list(APPEND SNELL_SOURCES ${PROJECT_SOURCE_DIR}/src/mesh/mesh_3ds_off.c)
+  snell_off_stubs(${PROJECT_BINARY_DIR}/generated/3ds_api_off.c "SNELL_WITH_3DS" NAMES "^snell_mesh_load_(3ds|jobj)_"
+                  ${PROJECT_SOURCE_DIR}/include/snell/snell.h)
+  list(APPEND SNELL_SOURCES ${PROJECT_BINARY_DIR}/generated/3ds_api_off.c)
+endif()
+if(NOT SNELL_WITH_GLTF)
+  snell_off_stubs(${PROJECT_BINARY_DIR}/generated/gltf_api_off.c "SNELL_WITH_GLTF"
+                  NAMES "^snell_(mesh_load_gltf|scene_load_gltf|scene_file_)" ${PROJECT_SOURCE_DIR}/include/snell/snell.h)
+  list(APPEND SNELL_SOURCES ${PROJECT_BINARY_DIR}/generated/gltf_api_off.c)
 endif()
 if(NOT SNELL_WITH_CAUSTICS)
   # a stage of the renderer: its files and shaders out, render/caustics_off.c says why
