@@ -9,14 +9,6 @@
 #include <math.h>
 #include <string.h>
 
-void snell__caustics_tex_params(GLenum filter)
-{
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, (GLint)filter);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, (GLint)filter);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-}
-
 snell_status snell__caustics_complete(snell_ctx *ctx, const char *what)
 {
     GLenum s = glCheckFramebufferStatus(GL_FRAMEBUFFER);
@@ -35,7 +27,11 @@ static snell_status shadow_target(snell_ctx *ctx, snell__caustics *c, int size)
     }
     glBindTexture(GL_TEXTURE_2D, c->shadow_z);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size, size, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, NULL);
-    snell__caustics_tex_params(GL_LINEAR); /* with the compare mode: 2 x 2 percentage-closer filtering */
+    /* linear with the compare mode: 2 x 2 percentage-closer filtering */
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     glBindFramebuffer(GL_FRAMEBUFFER, c->shadow_fbo);
@@ -56,7 +52,7 @@ snell_status snell__caustics_map_target(snell_ctx *ctx, snell__caustics *c, int 
     }
     glBindTexture(GL_TEXTURE_2D, c->map_tex);
     snell__light_map_image(c->map_format, size);
-    snell__caustics_tex_params(GL_NEAREST); /* read bilinearly by caustics_receiver.frag (32F need not filter) */
+    snell__texture_nearest(GL_TEXTURE_2D, 1); /* read bilinearly by caustics_receiver.frag (32F need not filter) */
     glBindFramebuffer(GL_FRAMEBUFFER, c->map_fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c->map_tex, 0);
     if (snell__caustics_complete(ctx, "light map") != SNELL_OK) return SNELL_E_GL;
@@ -284,10 +280,10 @@ snell_status snell__caustics_draw_receivers(snell_ctx *ctx, snell__caustics *c, 
         }
         glBindTexture(GL_TEXTURE_2D, c->recv_z);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, F->size, F->size, 0, GL_DEPTH_COMPONENT, GL_FLOAT, NULL);
-        snell__caustics_tex_params(GL_NEAREST);
+        snell__texture_nearest(GL_TEXTURE_2D, 1);
         glBindTexture(GL_TEXTURE_2D, c->cm_tex);
         snell__light_map_image(c->map_format, F->size);
-        snell__caustics_tex_params(GL_NEAREST);
+        snell__texture_nearest(GL_TEXTURE_2D, 1);
         glBindFramebuffer(GL_FRAMEBUFFER, c->cm_fbo);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c->cm_tex, 0);
         if ((st = snell__caustics_complete(ctx, "caustic map")) != SNELL_OK) return st;

@@ -32,10 +32,10 @@ snell_status snell__caustics_glass_targets(snell_ctx *ctx, snell__caustics *c, i
         }
         glBindTexture(GL_TEXTURE_2D, c->glass_n[i]);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB10_A2, size, size, 0, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV, NULL);
-        snell__caustics_tex_params(GL_NEAREST);
+        snell__texture_nearest(GL_TEXTURE_2D, 1);
         glBindTexture(GL_TEXTURE_2D, c->glass_z[i]);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size, size, 0, GL_DEPTH_COMPONENT, GL_FLOAT, NULL);
-        snell__caustics_tex_params(GL_NEAREST);
+        snell__texture_nearest(GL_TEXTURE_2D, 1);
         glBindFramebuffer(GL_FRAMEBUFFER, c->glass_fbo[i]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, c->glass_n[i], 0);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, c->glass_z[i], 0);

@@ -45,7 +45,6 @@ typedef struct snell__caustics_counts {
 int snell__caustics_casts(const snell__object *o);
 
 /* caustics_maps.c */
-void snell__caustics_tex_params(GLenum filter);
 snell_status snell__caustics_complete(snell_ctx *ctx, const char *what);
 void snell__caustics_resolve_light(const snell_light *l, snell__caustics_light *o);
 void snell__caustics_spot_view(const float eye[3], const float target[3], const float lo[2], const float hi[2],
