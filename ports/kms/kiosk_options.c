@@ -2,6 +2,7 @@
 /* kiosk_options.c — snell-kiosk's command line. */
 #include "kiosk.h"
 #include "bench.h"
+#include "cli_input.h"
 #include "cli_opts.h"
 #include "cli_system.h"
 
@@ -180,28 +181,14 @@ static int one_option(const char *a, const char *v, int from_config, kiosk_optio
  * -b and the other string options point into it. */
 static int read_config(const char *path, kiosk_options *o, int *spin_set)
 {
-    FILE *f = fopen(path, "r");
-    char *text, *line, *next;
-    long size;
+    char *text, *line, *next, why[128], safe[256];
+    size_t size;
     int n = 0, used;
-    if (!f || fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        fprintf(stderr, "snell-kiosk: --config %s: %s\n", path, strerror(errno));
-        if (f) fclose(f);
+    if (!(text = cli_read_input(path, 65536, &size, why, sizeof why))) {
+        fprintf(stderr, "snell-kiosk: --config %s: %s%s\n", cli_safe(path, safe, sizeof safe), why,
+                strncmp(why, "larger", 6) ? "" : ": not a kiosk configuration");
         return 0;
     }
-    if (size > 65536) {
-        fprintf(stderr, "snell-kiosk: --config %s: larger than 64 KiB: not a kiosk configuration\n", path);
-        fclose(f);
-        return 0;
-    }
-    text = (char *)calloc((size_t)size + 1, 1);
-    if (!text || fread(text, 1, (size_t)size, f) != (size_t)size) {
-        fprintf(stderr, "snell-kiosk: --config %s: cannot read it\n", path);
-        fclose(f);
-        free(text);
-        return 0;
-    }
-    fclose(f);
     for (line = text; line; line = next) {
         char *a, *v, *end;
         n++;
@@ -212,6 +199,10 @@ static int read_config(const char *path, kiosk_options *o, int *spin_set)
         end = a + strlen(a);
         while (end > a && strchr(" \t\r", end[-1])) *--end = 0;
         if (!*a) continue;
+        if (cli_has_control(a)) { /* it would be echoed below, or be a path or a scene's name */
+            fprintf(stderr, "snell-kiosk: --config %s line %d: a control character\n", cli_safe(path, safe, sizeof safe), n);
+            return 0;
+        }
         v = a + strcspn(a, " \t");
         if (*v) {
             *v++ = 0;
@@ -219,7 +210,7 @@ static int read_config(const char *path, kiosk_options *o, int *spin_set)
         }
         if (!one_option(a, *v ? v : NULL, 1, o, spin_set, &used) || (*v && !used)) {
             if (*v && !used) fprintf(stderr, "snell-kiosk: %s takes no value\n", a);
-            fprintf(stderr, "snell-kiosk: in %s line %d\n", path, n);
+            fprintf(stderr, "snell-kiosk: in %s line %d\n", cli_safe(path, safe, sizeof safe), n);
             return 0; /* text stays allocated: o may point into it; the kiosk exits */
         }
     }

@@ -6,7 +6,6 @@
 #define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 #include "mesh/mesh.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -257,6 +256,7 @@ snell_status snell_mesh_load_jobj_mem(snell_ctx *ctx, const char *data, size_t s
     *out = NULL;
     if (!data && size) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load_jobj_mem: data is NULL");
     if (!data) p = end = "";
+    if (size >= 3 && !memcmp(p, "\xEF\xBB\xBF", 3)) p += 3; /* a UTF-8 byte-order mark, as OBJ skips it */
     /* an "i n" line of at least 4 bytes becomes at most 1/3 of "f a//a b//b c//c\n"
      * (3 x 23 bytes): 7 bytes out per byte in is a bound with room */
     if (size > ((size_t)-1) / 8) return snell__fail(ctx, SNELL_E_LIMIT, "jobj: %zu bytes is too large", size);
@@ -268,13 +268,13 @@ snell_status snell_mesh_load_jobj_mem(snell_ctx *ctx, const char *data, size_t s
         const char *nl = (const char *)memchr(p, '\n', (size_t)(end - p));
         const char *le = nl ? nl : end;
         size_t len = (size_t)(le - p);
-        if (len >= 2 && p[0] == 'i' && p[1] == ' ') {
+        if (len >= 2 && p[0] == 'i' && (p[1] == ' ' || p[1] == '\t')) {
             const char *q = p + 2;
             unsigned long v = 0;
             int digits = 0;
-            while (q < le && *q == ' ') q++;
+            while (q < le && (*q == ' ' || *q == '\t')) q++;
             for (; q < le && *q >= '0' && *q <= '9' && digits < 10; q++, digits++) v = 10 * v + (unsigned long)(*q - '0');
-            while (q < le && (*q == ' ' || *q == '\r')) q++;
+            while (q < le && (*q == ' ' || *q == '\t' || *q == '\r')) q++;
             if (!digits || q != le || v >= SNELL_MESH_MAX_VERTICES) {
                 snell__free(al, obj);
                 return snell__fail(ctx, SNELL_E_PARSE, "jobj line %zu: 'i' needs one index below %u", line,
@@ -297,7 +297,7 @@ snell_status snell_mesh_load_jobj_mem(snell_ctx *ctx, const char *data, size_t s
             else nv++;
             memcpy(o, p, len);
             o += len;
-        } else if (!(len >= 3 && p[0] == 'v' && (p[1] == 't' || p[1] == 'c') && p[2] == ' ') &&
+        } else if (!(len >= 3 && p[0] == 'v' && (p[1] == 't' || p[1] == 'c') && (p[2] == ' ' || p[2] == '\t')) &&
                    !(len == 0 || (len == 1 && p[0] == '\r'))) {
             snell__free(al, obj);
             return snell__fail(ctx, SNELL_E_PARSE, "jobj line %zu: not a v, vn, vt, vc or i line", line);
@@ -340,13 +340,16 @@ static snell_status load_file(snell_ctx *ctx, const char *path, mem_loader load,
     char *buf;
     size_t got;
     snell_status st;
+    const char *why;
+    int opened;
     if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load: out is NULL");
     *out = NULL;
-    f = fopen(path, "rb");
-    if (!f) return snell__fail(ctx, SNELL_E_IO, "cannot open '%s': %s", path, strerror(errno));
-    if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode)) {
+    if (!path) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_mesh_load: path is NULL");
+    f = snell__fopen_regular(path, &opened, &why);
+    if (!f) return snell__fail(ctx, SNELL_E_IO, opened ? "'%s' is %s" : "cannot open '%s': %s", path, why);
+    if (fstat(fileno(f), &sb) != 0) {
         fclose(f);
-        return snell__fail(ctx, SNELL_E_IO, "'%s' is not a regular file", path);
+        return snell__fail(ctx, SNELL_E_IO, "cannot stat '%s'", path);
     }
     if ((unsigned long long)sb.st_size > MODEL_MAX_FILE_BYTES) {
         fclose(f);
