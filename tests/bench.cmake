@@ -62,7 +62,7 @@ if(TARGET snell-bench)
       "bench_env_lookup_unknown|2|^snell-bench --env-lookup: unknown option '--bogus'. see --env-lookup --help$|--env-lookup|--bogus"
       "bench_2d_no_value|2|^snell-bench --2d: --rays needs a value. see --2d --help$|--2d|--rays"
       "bench_compare_one|2|^snell-bench --compare: wants two JSON files, A.json B.json$|--compare|a.json"
-      "bench_compare_missing|1|^snell-bench --compare: cannot read '/nonexistent/a.json'$|--compare|/nonexistent/a.json|/nonexistent/b.json"
+      "bench_compare_missing|1|^snell-bench --compare: cannot read '/nonexistent/a.json': No such file or directory$|--compare|/nonexistent/a.json|/nonexistent/b.json"
       "bench_compare_not_bench|1|^snell-bench --compare: '.*nodes.gltf' is not a snell-bench JSON \\(no \"results\" array\\)$|--compare|${CMAKE_CURRENT_SOURCE_DIR}/data/nodes.gltf|${CMAKE_CURRENT_SOURCE_DIR}/data/nodes.gltf")
     string(REPLACE "|" ";" parts "${case}")
     list(GET parts 0 name)
@@ -74,6 +74,14 @@ if(TARGET snell-bench)
              -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_one_error.cmake)
     set_tests_properties(${name} PROPERTIES LABELS "cli")
   endforeach()
+  # --compare on hostile JSON (issue 49 item 3): linear, numbers only, bounded
+  # columns, control bytes scrubbed, loads and devices shown and warned about
+  find_program(SNELL_PYTHON3 python3)
+  if(SNELL_PYTHON3)
+    add_test(NAME bench_compare_hostile COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_compare.py
+             ${bench} ${CMAKE_CURRENT_BINARY_DIR}/compare_hostile)
+    set_tests_properties(bench_compare_hostile PROPERTIES LABELS "cli" TIMEOUT 60)
+  endif()
   # --help lists every mode and option of the tool
   add_test(NAME bench_help_complete COMMAND ${bench} --help)
   set_tests_properties(bench_help_complete PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION
