@@ -47,6 +47,11 @@ if(TARGET snell-render)
       set_tests_properties(${name} PROPERTIES LABELS "${labels}")
     endforeach()
   endforeach()
+  # issue 49: an argument's ESC sequence was echoed to the terminal in the error
+  string(ASCII 27 esc)
+  add_test(NAME msg_render_control_arg COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--mesh|x${esc}]0;T.obj" -DCODE=2
+           "-DERR=^snell-render: argument 2 .'x.]0;T.obj'. holds a control character$" -P ${one_error})
+  set_tests_properties(msg_render_control_arg PROPERTIES LABELS "cli")
   add_test(NAME msg_render_help_anywhere COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--size|--help" -DCODE=0
            -DERR= "-DOUT=^usage: snell-render" -P ${one_error})
   add_test(NAME msg_render_water_help COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--water|--frames|--help" -DCODE=0

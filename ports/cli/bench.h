@@ -168,6 +168,9 @@ typedef struct bench_config {
                                     * that scene; < 0 if none */
 } bench_config;
 
+/* The tool whose name a spec's error messages begin with ("snell-bench";
+ * snell-kiosk sets its own). */
+extern const char *bench_prog;
 /* "method:k=v:k=v1,v2" plus the options' scene and size lists -> configurations
  * appended to out[*n..]. 0 on a bad spec (message printed). */
 int bench_expand_spec(const char *spec, const bench_options *o, bench_config *out, int *n);

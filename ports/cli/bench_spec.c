@@ -13,6 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+const char *bench_prog = "snell-bench";
+
 #define MAX_KEYS 16
 #define MAX_VALUES 32
 
@@ -25,7 +27,7 @@ typedef struct common_key {
 
 static int bad(const char *key, const char *v, const char *want)
 {
-    fprintf(stderr, "snell-bench: %s=%s: want %s\n", key, v, want);
+    fprintf(stderr, "%s: %s=%s: want %s\n", bench_prog, key, v, want);
     return 0;
 }
 
@@ -319,8 +321,8 @@ static void refuse_zero(const snell_method_info *m, const snell_param_info *p)
     if (p->min < 0) snprintf(range, sizeof range, "%d%s, 1..%d", p->min, p->min < -1 ? "..-1" : "", p->max);
     else snprintf(range, sizeof range, "1..%d", p->max);
     fprintf(stderr,
-            "snell-bench: %s:%s=0: the library reads 0 as the default (%d) for every parameter, so 0 itself "
-            "cannot be asked for; give %s, or leave %s= out for the default\n",
+            "%s: %s:%s=0: the library reads 0 as the default (%d) for every parameter, so 0 itself "
+            "cannot be asked for; give %s, or leave %s= out for the default\n", bench_prog,
             m->name, p->name, p->def, range, p->name);
 }
 
@@ -343,7 +345,7 @@ const char *bench_default_sweep(const snell_method_info *m)
         p = method_param(m, tok);
         for (v = strtok_r(eq + 1, ",", &vsave); v; v = strtok_r(NULL, ",", &vsave)) {
             if (p && zero_inexpressible(p, v)) {
-                fprintf(stderr, "snell-bench: %s's default sweep %s: %s=0 dropped (0 means the default %d here)\n",
+                fprintf(stderr, "%s: %s's default sweep %s: %s=0 dropped (0 means the default %d here)\n", bench_prog,
                         m->name, m->default_sweep, p->name, p->def);
                 continue;
             }
@@ -365,7 +367,7 @@ static int split_values(spec_key *k, const char *list)
         const char *e = strchr(s, ',');
         size_t n = e ? (size_t)(e - s) : strlen(s);
         if (n == 0 || n >= sizeof k->values[0] || k->count == MAX_VALUES) {
-            fprintf(stderr, "snell-bench: %s: empty, too long or too many values in '%s'\n", k->key, list);
+            fprintf(stderr, "%s: %s: empty, too long or too many values in '%s'\n", bench_prog, k->key, list);
             return 0;
         }
         memcpy(k->values[k->count], s, n);
@@ -398,7 +400,7 @@ static int apply_key(bench_config *c, const spec_key *k, const char *value)
 {
     if (k->common) return k->common->apply(c, value);
     /* the key is one of this method's parameters (checked in bench_expand_spec) */
-    return cli_param_set_one("snell-bench", &c->glass, c->method->method, k->key, value);
+    return cli_param_set_one(bench_prog, &c->glass, c->method->method, k->key, value);
 }
 
 /* Cartesian product of the keys' values, depth-first in key order. */
@@ -410,7 +412,7 @@ static int expand(expansion *e, int depth, const char **chosen)
         int k;
         size_t len;
         if (*e->n >= BENCH_MAX_CONFIGS) {
-            fprintf(stderr, "snell-bench: more than %d configurations\n", BENCH_MAX_CONFIGS);
+            fprintf(stderr, "%s: more than %d configurations\n", bench_prog, BENCH_MAX_CONFIGS);
             return 0;
         }
         c = &e->out[(*e->n)++];
@@ -418,8 +420,8 @@ static int expand(expansion *e, int depth, const char **chosen)
         len = (size_t)snprintf(c->spec, sizeof c->spec, "%s", e->method->name);
         for (k = 0; k < e->key_count; k++) {
             if (is_material_key(e->keys[k].common) && bench_scene_is_file(chosen[0])) {
-                fprintf(stderr, "snell-bench: %s=: scene=%s brings its own materials; the material keys apply to "
-                                "mesh and named scenes only\n", e->keys[k].key, chosen[0]);
+                fprintf(stderr, "%s: %s=: scene=%s brings its own materials; the material keys apply to "
+                                "mesh and named scenes only\n", bench_prog, e->keys[k].key, chosen[0]);
                 return 0;
             }
             if (!apply_key(c, &e->keys[k], chosen[k])) return 0;
@@ -454,7 +456,7 @@ static int parse_method(const char *name, const char *spec, const snell_method_i
     int i;
     if (snell_method_from_str(name, &m) == SNELL_OK && m == SNELL_METHOD_AUTO) return *out = &g_auto, 1;
     if (snell_method_from_str(name, &m) == SNELL_OK && (*out = snell_method_info_of(m)) != NULL) return 1;
-    fprintf(stderr, "snell-bench: unknown method '%s' in '%s'; methods: auto,", name, spec);
+    fprintf(stderr, "%s: unknown method '%s' in '%s'; methods: auto,", bench_prog, name, spec);
     for (i = 0; i < snell_method_count(); i++) fprintf(stderr, "%s %s", i ? "," : "", snell_method_info_at(i)->name);
     fprintf(stderr, "\n");
     return 0;
@@ -474,7 +476,7 @@ int bench_expand_spec(const char *spec, const bench_options *o, bench_config *ou
     const char *chosen[MAX_KEYS + 2];
     int k, have_scene = 0, have_size = 0;
     memset(&e, 0, sizeof e);
-    if (strlen(spec) >= sizeof buf) return fprintf(stderr, "snell-bench: spec too long\n"), 0;
+    if (strlen(spec) >= sizeof buf) return fprintf(stderr, "%s: spec too long\n", bench_prog), 0;
     strcpy(buf, spec);
     tok = strtok_r(buf, ":", &save);
     if (!parse_method(tok ? tok : "", spec, &e.method)) return 0;
@@ -484,7 +486,7 @@ int bench_expand_spec(const char *spec, const bench_options *o, bench_config *ou
         spec_key *sk;
         const common_key *ck;
         const snell_param_info *mp;
-        if (!eq) return fprintf(stderr, "snell-bench: '%s' in '%s' is not key=value\n", tok, spec), 0;
+        if (!eq) return fprintf(stderr, "%s: '%s' in '%s' is not key=value\n", bench_prog, tok, spec), 0;
         *eq = '\0';
         /* the method's own parameters first: a method's key always reaches
          * its kernel (tests/test_bench_keys.c checks that no parameter is
@@ -492,13 +494,13 @@ int bench_expand_spec(const char *spec, const bench_options *o, bench_config *ou
         mp = method_param(e.method, tok);
         ck = mp ? NULL : find_common(tok);
         if (!ck && !mp) {
-            fprintf(stderr, "snell-bench: method %s has no key '%s' (see --list)%s\n", e.method->name, tok,
+            fprintf(stderr, "%s: method %s has no key '%s' (see --list)%s\n", bench_prog, e.method->name, tok,
                     !strcmp(tok, "layers") ? "; the frame's scene layers are scene_layers=" : "");
             return 0;
         }
         if (!strcmp(tok, "scene")) sk = &e.keys[0], have_scene = 1;
         else if (!strcmp(tok, "size")) sk = &e.keys[1], have_size = 1;
-        else if (e.key_count == MAX_KEYS + 2) return fprintf(stderr, "snell-bench: too many keys\n"), 0;
+        else if (e.key_count == MAX_KEYS + 2) return fprintf(stderr, "%s: too many keys\n", bench_prog), 0;
         else sk = &e.keys[e.key_count++];
         sk->common = ck;
         snprintf(sk->key, sizeof sk->key, "%s", tok);

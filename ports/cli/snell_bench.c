@@ -17,6 +17,7 @@
 #define _POSIX_C_SOURCE 200809L /* localtime */
 #include "bench.h"
 #include "bench_timer.h"
+#include "cli_input.h"
 #include "cli_scene.h"
 #include "cli_system.h"
 #include "cli_time.h"
@@ -134,6 +135,7 @@ int main(int argc, char **argv)
     double t_start = cli_now_ms();
     time_t now = time(NULL);
 
+    if (!cli_args_clean("snell-bench", argc, argv)) return 2;
     for (i = 1; i < argc; i++)
         if (!strcmp(argv[i], "--compare")) return snell_bench_compare_main(argc, argv);
         else if (!strcmp(argv[i], "--2d")) return snell_bench2d_main(argc, argv);

@@ -5,6 +5,7 @@
  * environment -> renderer -> frames -> statistics -> PNG -> traced pixels.
  * Exit status 0 on success, 1 on a runtime failure, 2 on bad usage. */
 #include "render.h"
+#include "cli_input.h"
 #include "cli_scene.h"
 #include "cli_time.h"
 
@@ -254,6 +255,7 @@ int main(int argc, char **argv)
     snell_frame_stats fs;
     int i, rc = 1;
 
+    if (!cli_args_clean("snell-render", argc, argv)) return 2;
     for (i = 1; i < argc; i++)
         if (!strcmp(argv[i], "--2d")) return snell_render2d_main(argc, argv);
         else if (!strcmp(argv[i], "--water")) return snell_render_water_main(argc, argv);

@@ -12,6 +12,7 @@
  * the files; main reads as the pipeline. */
 #define _POSIX_C_SOURCE 200809L
 #include "bench.h"
+#include "cli_input.h"
 #include "cli_scene.h"
 #include "cli_system.h"
 #include "cli_time.h"
@@ -516,9 +517,12 @@ static int preview(const kiosk_options *o)
         fprintf(stderr, "snell-kiosk: out of memory for a %dx%d preview\n", w, h);
         goto done;
     }
-    if (snell_render(r, &fd, NULL) != SNELL_OK || snell_renderer_read_rgba(r, rgba) != SNELL_OK ||
-        snell_write_png(o->preview, w, h, rgba) != SNELL_OK) {
+    if (snell_render(r, &fd, NULL) != SNELL_OK || snell_renderer_read_rgba(r, rgba) != SNELL_OK) {
         fprintf(stderr, "snell-kiosk: --preview %s: %s\n", o->preview, snell_last_error(ctx));
+        goto done;
+    }
+    if (snell_write_png(o->preview, w, h, rgba) != SNELL_OK) { /* a call without a context: its message is the thread's */
+        fprintf(stderr, "snell-kiosk: --preview: %s\n", snell_last_error(NULL));
         goto done;
     }
     printf("snell-kiosk: preview of %s at %dx%d (%s) written to %s\n", cs[0].spec, w, h, snell_ctx_gl_renderer(ctx),
@@ -565,6 +569,8 @@ int main(int argc, char **argv)
     struct sigaction sa;
     int n = 0, ok = 0, usage_ok = 1, lost = 0, r;
 
+    bench_prog = "snell-kiosk"; /* the shared spec parser's messages */
+    if (!cli_args_clean("snell-kiosk", argc, argv)) return 2;
     if ((r = kiosk_parse_options(argc, argv, &o)) <= 0) return r < 0 ? 0 : 2;
     if (!specs_parse(&o)) return 2;
     if (o.preview) return preview(&o);
