@@ -61,6 +61,21 @@ double snell__now_ms(void);
 int snell__open_regular(const char *path, int *opened, const char **why);
 FILE *snell__fopen_regular(const char *path, int *opened, const char **why);
 
+/* 1 where SNELL_DEBUG_HANDLES=1 (snell.h): destroyed contexts and meshes are
+ * kept marked dead; snell__handle_dead then reports a second use and aborts. */
+int snell__debug_handles(void);
+void snell__handle_dead(const char *who, const void *handle);
+
+/* s for a message: cut to fit buf's n bytes with "…" at a character's
+ * boundary, newlines and tabs '?' (the message's own filter keeps them). */
+const char *snell__quote(const char *s, char *buf, size_t n);
+
+/* 1 if a column-major 4x4 matrix (a model matrix) has a non-zero, finite
+ * determinant and a finite inverse: shading needs its inverse transpose.
+ * Else 0, and why (if not NULL) says whether it is singular or its
+ * determinant only overflows or underflows float ("is singular ..."). */
+int snell__matrix_invertible(const float m[16], char *why, size_t n);
+
 /* The context's memory budget (snell_ctx_desc.memory_budget; the default for NULL). */
 size_t snell__ctx_budget(const snell_ctx *ctx);
 /* SNELL_OK if one request of `bytes` for `what` (e.g. "OBJ positions") fits

@@ -81,14 +81,15 @@ static snell_status validate_matrices(const snell_ctx *ctx, const snell_camera *
 {
     const float *p = cam->projection;
     mat4 vp, a, b;
+    char why[96];
     if (!all_finite(cam->view, 16))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.view is not finite", who);
     if (!all_finite(p, 16))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection is not finite", who);
-    if (!snell__matrix_invertible(cam->view))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.view is not invertible", who);
-    if (!snell__matrix_invertible(p))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection is not invertible", who);
+    if (!snell__matrix_invertible(cam->view, why, sizeof why))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.view %s", who, why);
+    if (!snell__matrix_invertible(p, why, sizeof why))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection %s", who, why);
     if (!snell__projection_orthographic(p) && (p[3] != 0.0f || p[7] != 0.0f || !(p[11] < 0.0f) || p[15] != 0.0f))
         return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s: camera.projection's bottom row (%g %g %g %g) is neither a "
                            "perspective one (0 0 -w 0) nor an orthographic one (0 0 0 w)",
@@ -96,8 +97,8 @@ static snell_status validate_matrices(const snell_ctx *ctx, const snell_camera *
     memcpy(a, cam->projection, sizeof a);
     memcpy(b, cam->view, sizeof b);
     glm_mat4_mul(a, b, vp);
-    if (!snell__matrix_invertible((const float *)vp))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection x camera.view is not invertible", who);
+    if (!snell__matrix_invertible((const float *)vp, why, sizeof why))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection x camera.view %s", who, why);
     return SNELL_OK;
 }
 
@@ -158,15 +159,4 @@ snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *ca
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera (distance %g, z_near %g, z_far %g) gives matrices "
                            "that are not finite", who, dist, zn, zf);
     return SNELL_OK;
-}
-
-int snell__matrix_invertible(const float m[16])
-{
-    mat4 a, inv;
-    float det;
-    memcpy(a, m, sizeof a);
-    det = glm_mat4_det(a);
-    if (!(fabsf(det) > 0.0f) || !isfinite(det)) return 0;
-    glm_mat4_inv(a, inv);
-    return all_finite((const float *)inv, 16);
 }

@@ -23,8 +23,4 @@ snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *ca
  * every view ray runs along the camera's axis. */
 int snell__projection_orthographic(const float p[16]);
 
-/* 1 if a column-major 4x4 matrix (a model matrix) has a non-zero, finite
- * determinant and a finite inverse: shading needs its inverse transpose. */
-int snell__matrix_invertible(const float m[16]);
-
 #endif

@@ -1014,6 +1014,16 @@ void SceneBuilder::add(const tinygltf::Primitive &p, int mesh_idx, int prim_idx,
             std::snprintf(buf, sizeof buf, "node %d: its world transform is not finite", node);
             fail(SNELL_E_PARSE, buf);
         }
+    {
+        /* the object's model matrix: refused here, not by every frame that draws it */
+        float mf[16];
+        char why[96];
+        for (int k = 0; k < 16; k++) mf[k] = static_cast<float>(world.m[k]);
+        if (!snell__matrix_invertible(mf, why, sizeof why)) {
+            std::snprintf(buf, sizeof buf, "node %d: its world transform %s", node, why);
+            fail(SNELL_E_PARSE, buf);
+        }
+    }
     /* glTF's default material: opaque, base colour 1 */
     double base[4] = {1.0, 1.0, 1.0, 1.0};
     const tinygltf::Material *mat = p.material >= 0 ? &model.materials[static_cast<size_t>(p.material)] : nullptr;

@@ -46,6 +46,7 @@ void snell__composite_destroy(snell__composite *c)
 
 snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, int count)
 {
+    char why[96];
     int i, k;
     if (count < 0 || count > SNELL_MAX_OPAQUE || (count > 0 && !list))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque_count %d outside 0..%d or opaque list NULL", count,
@@ -64,8 +65,8 @@ snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, in
             for (k = 0; k < 16; k++)
                 if (!isfinite(o->model[k]))
                     return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: model matrix is not finite", i);
-        if (o->model && !snell__matrix_invertible(o->model))
-            return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: model matrix is singular", i);
+        if (o->model && !snell__matrix_invertible(o->model, why, sizeof why))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "opaque object %d: model matrix %s", i, why);
     }
     return SNELL_OK;
 }

@@ -55,6 +55,7 @@ static snell_status build_object(snell_ctx *ctx, const snell_glass *g, int i, sn
     snell_status s;
     mat4 inv;
     vec4 c;
+    char why[96];
     int k;
     memset(o, 0, sizeof *o);
     if (!g->mesh) return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d has no mesh", i);
@@ -72,14 +73,8 @@ static snell_status build_object(snell_ctx *ctx, const snell_glass *g, int i, sn
     if (g->model) memcpy(o->model, g->model, sizeof o->model);
     else glm_mat4_identity(o->model);
     glm_mat4_inv(o->model, o->inv_model);
-    if (!snell__matrix_invertible((const float *)o->model)) {
-        float det = glm_mat4_det(o->model);
-        /* a scale of 1e20 overflows the determinant: that is no singular matrix */
-        if (!isfinite(det))
-            return snell__fail(ctx, SNELL_E_INVALID_ARG,
-                               "glass %d: model matrix too large for float (its determinant overflows to %g)", i, det);
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: model matrix is singular (determinant %g)", i, det);
-    }
+    if (!snell__matrix_invertible((const float *)o->model, why, sizeof why))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: model matrix %s", i, why);
     glm_mat4_transpose_to(o->inv_model, inv);
     glm_mat4_pick3(inv, o->normal_matrix);
     o->mirrored = glm_mat4_det(o->model) < 0.0f;
