@@ -941,7 +941,7 @@ static void report_topology(const topo *tp, int inside, snell_mesh_analysis *out
     out->winding = winding_of(tp);
 }
 
-static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
+static snell_status analyze_unit(const snell_mesh *m, snell_mesh_analysis *out)
 {
     analyzer an;
     topo tp;
@@ -974,6 +974,39 @@ static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
     report_radii(m, best.c, out);
     report_topology(&tp, best.inside, out);
     analyzer_free(&an);
+    return SNELL_OK;
+}
+
+/* The ray casts' tolerances suit meshes of about unit size: one far smaller
+ * (subnormal coordinates included) or larger is analysed as a copy scaled by
+ * a power of two, which is exact, and its lengths are scaled back. */
+static snell_status analyze(const snell_mesh *m, snell_mesh_analysis *out)
+{
+    snell_mesh_desc d;
+    snell_mesh *copy = NULL;
+    float *pos;
+    size_t i, n = 3 * (size_t)m->vertex_count;
+    snell_status st;
+    int e, k;
+    frexp((double)m->bradius, &e);
+    if (!(m->bradius > 0.0f) || (e >= -16 && e <= 16)) return analyze_unit(m, out);
+    if ((st = snell__budget_check(m->ctx, 2 * n * sizeof(float), "the analysis's scaled copy")) != SNELL_OK) return st;
+    if (!(pos = (float *)snell__malloc(&m->alloc, n * sizeof *pos)))
+        return snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
+    for (i = 0; i < n; i++) pos[i] = ldexpf(m->positions[i], -e);
+    memset(&d, 0, sizeof d);
+    d.positions = pos;
+    d.indices = m->indices;
+    d.vertex_count = m->vertex_count;
+    d.triangle_count = m->triangle_count;
+    st = snell_mesh_create(m->ctx, &d, &copy);
+    snell__free(&m->alloc, pos);
+    if (st == SNELL_OK) st = analyze_unit(copy, out);
+    snell_mesh_destroy(copy);
+    if (st != SNELL_OK) return st;
+    for (k = 0; k < 3; k++) out->centre[k] = ldexpf(out->centre[k], e);
+    out->radius = ldexpf(out->radius, e);
+    out->inner_radius = ldexpf(out->inner_radius, e);
     return SNELL_OK;
 }
 
