@@ -12,6 +12,9 @@ snell_add_test(test_hostile_inputs4 SOURCES test_hostile_inputs4.c LABELS "unit"
 target_link_libraries(test_hostile_inputs4 PRIVATE m)
 snell_add_test(test_hostile_inputs4_ctx SOURCES test_hostile_inputs4.c LABELS "unit;gl" ARGS ctx)
 target_link_libraries(test_hostile_inputs4_ctx PRIVATE m)
+# Hostile input, fifth round (issue 49): one function per finding.
+snell_add_test(test_hostile_inputs5 SOURCES test_hostile_inputs5.c LABELS "unit")
+snell_add_test(test_hostile_inputs5_ctx SOURCES test_hostile_inputs5.c LABELS "unit;gl" ARGS ctx)
 # Issue 49 item 1 through the tools: every path that reads a mesh, a JSON or a
 # configuration, handed a FIFO (NAME|FIFO|EXIT|stderr regex|ARGS, @F@ = the FIFO).
 set(fifo_dir ${CMAKE_CURRENT_BINARY_DIR}/hostile5_fifo)

@@ -20,9 +20,18 @@
  *  - every fallible call returns snell_status; snell_last_error() gives the detail;
  *  - descriptor structs are zero-initialisable, zero means the documented default;
  *  - objects are opaque; snell_xxx_create(ctx, &desc, &out) / snell_xxx_destroy(x);
+ *    destroy(NULL) does nothing;
  *  - vectors are float[3], matrices float[16] column-major, angles in radians,
  *    world space is right-handed with +Y up;
- *  - the library never exits, aborts or prints (unless a log callback is given).
+ *  - the library never exits, aborts or prints (unless a log callback is given,
+ *    or SNELL_DEBUG_HANDLES is set, below).
+ * Outside the contract, as free() twice is in C (undefined: a crash, or memory
+ * corrupted without one): destroying an object twice or using it after its
+ * destroy, and arrays shorter than the counts passed with them (glass_count,
+ * vertex_count, ...). Handles are plain pointers, not generation-checked.
+ * SNELL_DEBUG_HANDLES=1 in the environment (a debugging aid, read once):
+ * destroyed contexts and meshes are kept, marked dead (their memory leaks),
+ * and destroying one again or drawing a dead mesh prints what and aborts.
  */
 #ifndef SNELL_SNELL_H
 #define SNELL_SNELL_H
@@ -961,7 +970,10 @@ typedef enum snell_env_lookup {
 } snell_env_lookup;
 
 typedef struct snell_renderer_desc {
-    int width, height;              /* pixels; 0 = 512 */
+    /* pixels; 0 = 512. At most 16384 (SNELL_E_LIMIT); offscreen (times ssaa)
+     * at most the device's texture and renderbuffer size, lowered to its
+     * profile's (SNELL_E_UNSUPPORTED, naming the limit and the profile) */
+    int width, height;
     snell_target target;
     snell_output output;
     snell_shading shading;

@@ -157,6 +157,39 @@ static void scrub(char *s)
     }
 }
 
+int snell__debug_handles(void)
+{
+    static int on = -1; /* read once: a race writes the same value */
+    if (on < 0) {
+        const char *v = getenv("SNELL_DEBUG_HANDLES");
+        on = v && !strcmp(v, "1");
+    }
+    return on;
+}
+
+void snell__handle_dead(const char *who, const void *handle)
+{
+    /* the one place the library prints and aborts: the user asked for it */
+    fprintf(stderr, "snell: %s: %p was already destroyed (SNELL_DEBUG_HANDLES)\n", who, handle);
+    abort();
+}
+
+const char *snell__quote(const char *s, char *buf, size_t n)
+{
+    size_t len = strlen(s), i;
+    if (len < n) {
+        memcpy(buf, s, len + 1);
+    } else { /* cut where a UTF-8 character begins, then the ellipsis */
+        len = n - 4;
+        while (len > 0 && ((unsigned char)s[len] & 0xc0) == 0x80) len--;
+        memcpy(buf, s, len);
+        memcpy(buf + len, "\xe2\x80\xa6", 4);
+    }
+    for (i = 0; buf[i]; i++)
+        if (buf[i] == '\n' || buf[i] == '\t') buf[i] = '?';
+    return buf;
+}
+
 static void vlog(const snell_ctx *ctx, snell_log_level level, const char *fmt, va_list ap)
 {
     char buf[1024];

@@ -66,7 +66,7 @@ static snell_status probe_gl(snell_ctx *ctx)
 /* The profile named by the description, else by SNELL_DEVICE_PROFILE. */
 static snell_status find_profile(const char *name, const snell__profile **out)
 {
-    char names[96] = "";
+    char names[96] = "", quoted[64];
     int i;
     *out = NULL;
     if (!name) name = getenv("SNELL_DEVICE_PROFILE");
@@ -78,8 +78,8 @@ static snell_status find_profile(const char *name, const snell__profile **out)
         }
         snprintf(names + strlen(names), sizeof names - strlen(names), " %s", snell__profiles[i].name);
     }
-    return snell__fail(NULL, SNELL_E_INVALID_ARG, "unknown device profile \"%s\" (known:%s)", name,
-                       names);
+    return snell__fail(NULL, SNELL_E_INVALID_ARG, "unknown device profile \"%s\" (known:%s)",
+                       snell__quote(name, quoted, sizeof quoted), names);
 }
 
 static void install_debug(snell_ctx *ctx, int enable)
@@ -180,7 +180,7 @@ void snell__ctx_release(snell_ctx *ctx)
     pthread_mutex_lock(&g_ref_lock);
     last = --ctx->refs == 0;
     pthread_mutex_unlock(&g_ref_lock);
-    if (!last) return;
+    if (!last || snell__debug_handles()) return; /* kept destroyed, so that a second destroy is caught */
     al = ctx->alloc;
     snell__free(&al, ctx->gl_extensions);
     snell__free(&al, ctx);
@@ -190,6 +190,7 @@ void snell__ctx_release(snell_ctx *ctx)
  * context goes now, the struct with the last object. */
 void snell_ctx_destroy(snell_ctx *ctx)
 {
+    if (ctx && ctx->destroyed && snell__debug_handles()) snell__handle_dead("snell_ctx_destroy", ctx);
     if (!ctx || ctx->destroyed) return;
     if (ctx->debug_installed) {
         snell__gl_scope sc;

@@ -212,6 +212,7 @@ void snell_mesh_destroy(snell_mesh *m)
 {
     snell_alloc al;
     if (!m) return;
+    if (snell__debug_handles() && m->dead) snell__handle_dead("snell_mesh_destroy", m);
     if (m->vao || m->vbo || m->ibo || m->coarse_vao || m->coarse_ibo || m->gpu_bvh[0] || m->gpu_bvh[1]) {
         /* In the GL context that holds them; nowhere if it is gone. */
         snell__gl_scope sc;
@@ -232,11 +233,19 @@ void snell_mesh_destroy(snell_mesh *m)
     snell__free(&al, m->positions);
     snell__free(&al, m->normals);
     snell__free(&al, m->indices);
+    if (snell__debug_handles()) { /* kept, so that a second destroy or draw is caught */
+        m->positions = m->normals = NULL;
+        m->indices = NULL;
+        m->gpu_ctx = NULL;
+        m->dead = 1;
+        return;
+    }
     snell__free(&al, m);
 }
 
 int snell__mesh_bind_ctx(snell_mesh *m, snell_ctx *ctx)
 {
+    if (snell__debug_handles() && m->dead) snell__handle_dead("snell_render: a glass or opaque mesh", m);
     if (m->gpu_ctx) return m->gpu_ctx == ctx;
     if (m->ctx && m->ctx != ctx) return 0;
     m->gpu_ctx = ctx;

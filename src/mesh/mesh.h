@@ -9,6 +9,7 @@
 struct snell_mesh {
     snell_ctx *ctx;            /* may be NULL (CPU-only mesh) */
     snell_alloc alloc;
+    int dead;                  /* destroyed, kept only under SNELL_DEBUG_HANDLES */
     float *positions;          /* 3 * vertex_count */
     float *normals;            /* 3 * vertex_count, unit length */
     uint32_t *indices;         /* 3 * triangle_count */

@@ -106,16 +106,12 @@ static snell_status create_resources(snell_renderer *r)
     return st;
 }
 
-/* Its targets are renderbuffers and textures: the lower limit, the profile's if lower (core/profile.c). */
-static int fits_targets(const snell_ctx *ctx, int size)
+/* Its targets are renderbuffers and textures: past either limit, the
+ * profile's if lower (core/profile.c), the device cannot make them. */
+static snell_status target_limit(snell_ctx *ctx, int size, const char *what)
 {
-    return snell__ctx_fits(ctx, SNELL__LIM_RENDERBUFFER, size) && snell__ctx_fits(ctx, SNELL__LIM_TEXTURE, size);
-}
-
-static int max_target(const snell_ctx *ctx)
-{
-    int rb = snell__ctx_limit_value(ctx, SNELL__LIM_RENDERBUFFER), tex = snell__ctx_limit_value(ctx, SNELL__LIM_TEXTURE);
-    return rb < tex ? rb : tex;
+    snell_status st = snell__ctx_limit(ctx, SNELL__LIM_TEXTURE, size, what);
+    return st != SNELL_OK ? st : snell__ctx_limit(ctx, SNELL__LIM_RENDERBUFFER, size, what);
 }
 
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out)
@@ -128,12 +124,11 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     *out = NULL;
     if ((st = snell__ctx_check_current(ctx, "snell_renderer_create")) != SNELL_OK) return st;
     snell_renderer_defaults(desc, &d);
-    if (d.width < 1 || d.height < 1 || d.width > MAX_RENDER_SIZE || d.height > MAX_RENDER_SIZE ||
-        (d.target == SNELL_TARGET_OFFSCREEN && !fits_targets(ctx, d.width > d.height ? d.width : d.height))) {
-        int most = max_target(ctx);
-        return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d outside 1..%d", d.width, d.height,
-                           most < MAX_RENDER_SIZE ? most : MAX_RENDER_SIZE);
-    }
+    if (d.width < 1 || d.height < 1 || d.width > MAX_RENDER_SIZE || d.height > MAX_RENDER_SIZE)
+        return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d outside 1..%d", d.width, d.height, MAX_RENDER_SIZE);
+    if (d.target == SNELL_TARGET_OFFSCREEN &&
+        (st = target_limit(ctx, d.width > d.height ? d.width : d.height, "render size")) != SNELL_OK)
+        return st;
     if ((unsigned)d.target > SNELL_TARGET_BOUND_FRAMEBUFFER || (unsigned)d.output > SNELL_OUTPUT_EXIT_DIRECTION_PACKED)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown render target %d or output %d", (int)d.target,
                            (int)d.output);
@@ -153,9 +148,9 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d and ssaa %d: one antialiasing at a time", d.msaa,
                            d.ssaa);
     if (d.msaa > 1 && (st = snell__ctx_limit(ctx, SNELL__LIM_SAMPLES, d.msaa, "msaa")) != SNELL_OK) return st;
-    if (d.ssaa > 1 && !fits_targets(ctx, (d.width > d.height ? d.width : d.height) * d.ssaa))
-        return snell__fail(ctx, SNELL_E_LIMIT, "render size %dx%d with ssaa %d exceeds %d pixels a side", d.width,
-                           d.height, d.ssaa, max_target(ctx));
+    if (d.ssaa > 1 &&
+        (st = target_limit(ctx, d.ssaa * (d.width > d.height ? d.width : d.height), "render size x ssaa")) != SNELL_OK)
+        return st;
     if (d.target == SNELL_TARGET_OFFSCREEN) {
         /* the targets made now, before any frame: colour and depth (4 + 4 bytes
          * a pixel, 16 + 4 for exit directions) at the SSAA size, a sample each
