@@ -117,6 +117,14 @@ if(NOT SNELL_COMPONENTS_OFF AND NOT CMAKE_CROSSCOMPILING AND TARGET snell-render
            "-DRENDER=$<TARGET_FILE:snell-render>" "-DBENCH=$<TARGET_FILE:snell-bench>" "-DKIOSK=${readme_kiosk}"
            -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_readme.cmake)
   set_tests_properties(readme_true PROPERTIES LABELS "docs")
+  # Every file, section and option a doc, a header or source comment or a tool's --help
+  # names exists (issue 49 item 5; tests/scripts/check_doc_refs.py says what is checked).
+  find_program(SNELL_PYTHON3 python3)
+  if(SNELL_PYTHON3)
+    add_test(NAME doc_references COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_doc_refs.py
+             ${PROJECT_SOURCE_DIR} $<TARGET_FILE:snell-render> $<TARGET_FILE:snell-bench> ${readme_kiosk})
+    set_tests_properties(doc_references PROPERTIES LABELS "docs" TIMEOUT 60)
+  endif()
   set(readme_api_c ${CMAKE_CURRENT_BINARY_DIR}/readme_api.c)
   add_custom_command(OUTPUT ${readme_api_c}
     COMMAND ${CMAKE_COMMAND} "-DREADME=${PROJECT_SOURCE_DIR}/README.md" "-DOUT=${readme_api_c}"

@@ -64,7 +64,7 @@ typedef enum snell_status {
 const char *snell_status_str(snell_status s);
 
 /* The components this build of the library holds, by the names of its CMake
- * options (README "Components"): "ref", "lm2d", "water", "png", "gltf" and
+ * options (docs/ARCHITECTURE.md "Components"): "ref", "lm2d", "water", "png", "gltf" and
  * each method's name ("peel", ...). 1 if built in; 0 if left out (its API
  * then returns SNELL_E_UNSUPPORTED) or unknown. snell_build_components()
  * lists those built in, separated by spaces. */
@@ -231,7 +231,7 @@ snell_status snell_mesh_load_jobj_mem(snell_ctx *ctx, const char *data, size_t s
  * of the default scene, node transforms applied. SNELL_E_UNSUPPORTED if built without,
  * for glTF 1.0 and for files that require an extension the loader does not handle
  * (named in the message, e.g. KHR_draco_mesh_compression).
- * Files are untrusted (README "Trust model for files"): buffer and image URIs are
+ * Files are untrusted (docs/integrating.md "Files are untrusted"): buffer and image URIs are
  * resolved, after percent-decoding, against the model's folder only; an absolute
  * path, a path that leaves the folder (also through a symlink: real paths are
  * compared) or a non-regular file is refused (SNELL_E_IO; the message names the
@@ -1381,7 +1381,7 @@ const char *snell_scene_file_opaque_name(const snell_scene_file *scene, int i);
 /* AUTO by budget's rung table (snell_frame_desc.budget_ms): the
  * configurations it chooses among, each with its frame time relative to
  * single's and its glass PSNR against FULL per mesh class, as measured on
- * the project's reference device (bench/BENCHMARKS.md "AUTO by budget").
+ * the project's reference device (bench/BENCHMARKS.md "AUTO by frame budget").
  * An object's ladder is the rungs its mesh does not fail, cut to their
  * Pareto front; the controller replaces the costs by what it measures. */
 typedef struct snell_budget_rung {

@@ -61,7 +61,7 @@ extern "C" {
 typedef enum snell_water_sim {
     SNELL_WATER_SIM_AUTO = 0,  /* GPU when the water has a context on a hardware GPU; CPU without a
                                 * context or on a software rasteriser (llvmpipe: a GPU step costs
-                                * 10-25x a CPU step, bench/BENCHMARKS.md "Water") */
+                                * 10-25x a CPU step, bench/notes/history.md "Water") */
     SNELL_WATER_SIM_CPU,       /* C, deterministic (bitwise the same on every run and thread) */
     SNELL_WATER_SIM_GPU        /* fragment passes into ping-pong RG32UI targets (GLES 3.0, no extension) */
 } snell_water_sim;

@@ -16,7 +16,7 @@
  * and the GL objects again from that data. Dragging turns the camera.
  *
  * Syntax-checked for aarch64-linux-android24 (syntax_check.sh); not built
- * with an NDK here (README "On Android"). */
+ * with an NDK here (docs/android.md). */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, pipe under -std=c99 */
 #include "glass_scene.h"
 #include "lifecycle.h"

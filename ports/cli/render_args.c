@@ -93,6 +93,7 @@ void render_usage(FILE *f)
             "  --trace-pixel X,Y      reference light path of pixel X,Y through the whole scene (repeatable):\n"
             "                         drawn over a second view into FILE_trace.png, points in FILE_trace.json\n"
             "  --2d SCENE             2D lightmap mode (see the 2D options with --2d --help)\n"
+            "  --water                water mode: a water surface in a box, with glass (see --water --help)\n"
             "  --version              the version and the commit it was built from\n"
             "  -h, --help             this text\n", SNELL_MAX_SCENE_LAYERS);
 }

@@ -50,7 +50,7 @@ static void usage(FILE *f)
             "  --version           the version and the commit it was built from\n"
             "  -h, --help          this text\n"
             "Exit status: 0, 1 on failure, 2 on bad usage, %d when the display went away while showing,\n"
-            "%d when there is no DRM/KMS display (a service restarts on both: README \"As a kiosk\").\n",
+            "%d when there is no DRM/KMS display (a service restarts on both: docs/kiosk.md \"As a service\").\n",
             BENCH_DEFAULT_FRAMES, KIOSK_EXIT_DISPLAY_LOST, KIOSK_EXIT_NO_DISPLAY);
 }
 

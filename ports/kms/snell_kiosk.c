@@ -445,7 +445,7 @@ static void no_errors(bench_config *cs, int n)
 
 /* After a failure on the display's side: 1 if the display went away
  * (unplugged, its card gone), which the kiosk reports with its own exit
- * status for a supervisor to restart it on (README "As a kiosk"). */
+ * status for a supervisor to restart it on (docs/kiosk.md "As a service"). */
 static int display_lost(kiosk *k)
 {
     kms_connector_info now;

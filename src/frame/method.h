@@ -47,7 +47,7 @@ typedef struct snell__method {
     /* AUTO shading on software rasterisers: screen space below this many
      * (estimated) pixels per front triangle. Measured per method, because the
      * G-buffer pass pays off sooner the more a kernel costs per pixel
-     * (bench/BENCHMARKS.md "Screen-space stage"). */
+     * (bench/notes/history.md "Screen-space stage"). */
     float software_screen_ppt;
     /* The same for a convex mesh where the method runs a cheaper program of
      * its own there (0: software_screen_ppt): the cheaper a pixel, the larger

@@ -130,7 +130,7 @@ static inline void v2_from_angle(float a, float v[2])
     v[1] = sinf(a);
 }
 
-/* z = 0 wrappers so 2D uses the one optics kernel (src/optics.h). */
+/* z = 0 wrappers so 2D uses the one optics kernel (src/core/optics.h). */
 static inline void reflect2(const float i[2], const float n[2], float r[2])
 {
     float i3[3] = {i[0], i[1], 0.0f}, n3[3] = {n[0], n[1], 0.0f}, r3[3];

@@ -256,7 +256,7 @@ out:
 
 /* Built once per mesh, refitted for each new version of it (a deformed
  * mesh, snell_mesh_set_vertices: the same triangles), so only the boxes are
- * recomputed (O(n), no SAH build: bench/BENCHMARKS.md "Exact"); the splits
+ * recomputed (O(n), no SAH build: bench/notes/history.md "Exact"); the splits
  * stay those of the first shape, which a large deformation makes worse to
  * traverse, never wrong. A new triangle count builds again. */
 static snell_status prepare_mesh(snell_ctx *ctx, bvh_data *p, const snell_mesh *mesh, int format)

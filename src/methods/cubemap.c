@@ -29,7 +29,7 @@
  * meshes about as hidden as the bunny (0.25) but not the torus (0.45), where
  * the image-space search is far nearer; the threshold sits between them
  * (above it AUTO goes on to the image-space methods, which are adequate up to
- * 0.6). Errors: bench/BENCHMARKS.md "Oliveira", bench/notes/code.md "cubemap.c". */
+ * 0.6). Errors: bench/notes/history.md "Oliveira", bench/notes/code.md "cubemap.c". */
 #define AUTO_MAX_HIDDEN 0.35f
 
 /* llvmpipe (BENCHMARKS.md): screen space is faster at every density, from a

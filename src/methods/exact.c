@@ -22,7 +22,7 @@
 
 /* The walk (snell_exact_walk) defaults to the short stack: it visits the
  * nearer child first, so the closest hit shortens the ray sooner
- * (bench/BENCHMARKS.md "Exact"). The stackless walk needs no per-pixel
+ * (bench/notes/history.md "Exact"). The stackless walk needs no per-pixel
  * array and has no depth bound (drei's 60-entry stack is what mobile GPUs
  * choked on). */
 

@@ -112,7 +112,7 @@ static snell_status oliveira_draw(snell_ctx *ctx, void *state, const snell__view
     if (!o->screen_space)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: oliveira shades in screen space only", o->index);
     /* AUTO inner Fresnel: on for convex meshes, as for the cubemap (measured
-     * for this kernel in bench/BENCHMARKS.md "Inner-surface Fresnel") */
+     * for this kernel in bench/notes/history.md "Inner-surface Fresnel") */
     int inner = c->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
                 (c->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && o->analysis && o->analysis->convex);
     st = get_prog(ctx, s, c->linear_steps, c->iterations, snell__glass_variant(o), o->glass->absorbs,

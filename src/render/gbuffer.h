@@ -17,7 +17,7 @@
  * triangles are estimated below this many pixels each and its method's
  * back_detail parameter allows (snell__object.back_coarse): the pass
  * rasterises every back triangle again and is bound by triangle setup on
- * llvmpipe there (bench/BENCHMARKS.md "Oliveira"). The same crossover as
+ * llvmpipe there (bench/notes/history.md "Oliveira"). The same crossover as
  * single-surface's screen-space rule. */
 #define SNELL__BACK_COARSE_PPT 8.0f
 

@@ -53,7 +53,7 @@ struct snell_renderer {
 
 /* Is the environment looked up in dual-paraboloid maps, for the static
  * environment (dynamic 0) or an object's dynamic one? AUTO: what measured
- * better here (bench/BENCHMARKS.md "Environment look-up"). */
+ * better here (bench/notes/history.md "Environment look-up"). */
 int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic);
 
 #endif
