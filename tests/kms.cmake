@@ -100,7 +100,7 @@ if(TARGET snell-kiosk)
                        PROPERTIES LABELS "cli")
   # The unit and the example configuration install with the kiosk, and the
   # installed kiosk previews that configuration.
-  add_test(NAME kiosk_install COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR} -DPREFIX=${CMAKE_INSTALL_PREFIX}
+  add_test(NAME kiosk_install COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
            -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/kiosk_install -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_kiosk_install.cmake)
   set_tests_properties(kiosk_install PROPERTIES LABELS "install" TIMEOUT 300)
 

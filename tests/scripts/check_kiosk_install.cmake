@@ -1,11 +1,10 @@
 # SPDX-License-Identifier: MIT
 # check_kiosk_install.cmake — snell-kiosk ships as a service: installed to a
 # scratch prefix, the systemd unit and the example configuration are there,
-# the unit starts the installed kiosk with that configuration (systemd-analyze
-# verify, where there is one, with the unit's paths moved to the scratch
-# prefix), and the installed kiosk previews that configuration off the device.
-# Run: cmake -DBUILD_DIR= -DPREFIX= -DWORK_DIR= -P check_kiosk_install.cmake
-# (PREFIX: CMAKE_INSTALL_PREFIX, which the unit's paths name)
+# the unit starts the installed kiosk with that configuration by the paths of
+# that prefix, not the configured one (systemd-analyze verify, where there is
+# one), and the installed kiosk previews that configuration off the device.
+# Run: cmake -DBUILD_DIR= -DWORK_DIR= -P check_kiosk_install.cmake
 file(REMOVE_RECURSE ${WORK_DIR})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix
                 RESULT_VARIABLE rc OUTPUT_QUIET)
@@ -21,14 +20,13 @@ foreach(f ${unit} ${conf} ${p}/bin/snell-kiosk)
   endif()
 endforeach()
 file(READ ${unit} text)
-if(NOT text MATCHES "\nExecStart=${PREFIX}/bin/snell-kiosk --config ${PREFIX}/etc/snell/kiosk.conf\n" OR
+if(NOT text MATCHES "\nExecStart=${p}/bin/snell-kiosk --config ${p}/etc/snell/kiosk.conf\n" OR
    NOT text MATCHES "\nRestart=on-failure\n" OR NOT text MATCHES "\nRestartPreventExitStatus=2\n")
   message(FATAL_ERROR "${unit}: ExecStart, Restart or RestartPreventExitStatus not as expected:\n${text}")
 endif()
 find_program(SYSTEMD_ANALYZE systemd-analyze)
 if(SYSTEMD_ANALYZE)
-  string(REPLACE "${PREFIX}/" "${p}/" moved "${text}")
-  file(WRITE ${WORK_DIR}/unit/snell-kiosk.service "${moved}")
+  file(WRITE ${WORK_DIR}/unit/snell-kiosk.service "${text}")
   execute_process(COMMAND ${SYSTEMD_ANALYZE} verify ${WORK_DIR}/unit/snell-kiosk.service
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(rc OR out MATCHES "snell-kiosk")
