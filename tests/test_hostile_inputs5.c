@@ -243,6 +243,55 @@ static void test_profile_name(void)
     free(name);
 }
 
+/* ---------------------- a mesh's budget counts its analysis (item 2) */
+static void put16(unsigned char *p, unsigned v) { p[0] = (unsigned char)v, p[1] = (unsigned char)(v >> 8); }
+static void put32(unsigned char *p, uint32_t v) { put16(p, v & 0xffff), put16(p + 2, v >> 16); }
+
+/* A .3ds of one object: a strip of nv vertices, nv - 2 triangles. Its size in *n. */
+static unsigned char *strip_3ds(unsigned nv, size_t *n)
+{
+    unsigned nf = nv - 2, i;
+    size_t vbytes = 6 + 2 + 12 * (size_t)nv, fbytes = 6 + 2 + 8 * (size_t)nf, tri = 6 + vbytes + fbytes;
+    size_t obj = 6 + 2 + tri, ed = 6 + obj, total = 6 + ed;
+    unsigned char *d = (unsigned char *)calloc(total, 1), *p = d;
+    if (!d) return NULL;
+    put16(p, 0x4D4D), put32(p + 2, (uint32_t)total), p += 6;
+    put16(p, 0x3D3D), put32(p + 2, (uint32_t)ed), p += 6;
+    put16(p, 0x4000), put32(p + 2, (uint32_t)obj), p += 6;
+    p[0] = 'o', p += 2;
+    put16(p, 0x4100), put32(p + 2, (uint32_t)tri), p += 6;
+    put16(p, 0x4110), put32(p + 2, (uint32_t)vbytes), put16(p + 6, nv), p += 8;
+    for (i = 0; i < nv; i++, p += 12) {
+        float xyz[3] = {(float)(i / 2), (float)(i % 2), (float)(i % 3) * 0.1f};
+        memcpy(p, xyz, 12);
+    }
+    put16(p, 0x4120), put32(p + 2, (uint32_t)fbytes), put16(p + 6, nf), p += 8;
+    for (i = 0; i < nf; i++, p += 8) put16(p, i), put16(p + 2, i + 1), put16(p + 4, i + 2);
+    *n = total;
+    return d;
+}
+
+static void test_mesh_budget(snell_ctx *ctx)
+{
+    size_t n;
+    unsigned char *big, *small;
+    snell_mesh *m = NULL;
+    snell_status st;
+    /* 20,000 triangles: 0.5 MB of arrays, but over 7 MB with the analysis of the first frame */
+    big = strip_3ds(20002, &n);
+    st = big ? snell_mesh_load_3ds_mem(ctx, big, n, &m) : SNELL_E_NOMEM;
+    CHECK(st == SNELL_E_LIMIT && !m && has(snell_last_error(ctx), "with their analysis"),
+          "20,000 triangles of .3ds in 4 MiB: %s: %s", snell_status_str(st), snell_last_error(ctx));
+    snell_mesh_destroy(m);
+    m = NULL;
+    small = strip_3ds(1002, &n);
+    st = small ? snell_mesh_load_3ds_mem(ctx, small, n, &m) : SNELL_E_NOMEM;
+    CHECK(st == SNELL_OK && m, "1,000 triangles of .3ds in 4 MiB: %s: %s", snell_status_str(st), snell_last_error(ctx));
+    snell_mesh_destroy(m);
+    free(big);
+    free(small);
+}
+
 /* ------------------------------- GL cases: a context with a device profile */
 static void test_ctx_cases(void)
 {
@@ -279,6 +328,10 @@ static void test_ctx_cases(void)
     st = snell_renderer_create(ctx, &rd, &r);
     CHECK(st == SNELL_E_LIMIT, "20000 wide: %s: %s", snell_status_str(st), snell_last_error(ctx));
     snell_renderer_destroy(r);
+    snell_ctx_destroy(ctx);
+    memset(&cd, 0, sizeof cd);
+    cd.memory_budget = (size_t)4 << 20;
+    if (snell_ctx_create(&cd, &ctx) == SNELL_OK) test_mesh_budget(ctx);
     snell_ctx_destroy(ctx);
 }
 

@@ -102,6 +102,17 @@ void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t
     }
 }
 
+/* Bytes a triangle of the analysis's peak (snell_mesh_analyze) */
+#define ANALYSIS_BYTES_PER_TRIANGLE 360u
+
+snell_status snell__mesh_budget_check(const snell_ctx *ctx, size_t nv, size_t nt, const char *what)
+{
+    char why[160];
+    double bytes = 24.0 * (double)nv + (12.0 + ANALYSIS_BYTES_PER_TRIANGLE) * (double)nt;
+    snprintf(why, sizeof why, "%s: %zu vertices, %zu triangles with their analysis", what, nv, nt);
+    return snell__budget_check(ctx, bytes < (double)(size_t)-1 ? (size_t)bytes : (size_t)-1, why);
+}
+
 snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *positions,
                                float *normals, uint32_t *indices, uint32_t vertex_count,
                                uint32_t triangle_count, snell_mesh **out)
@@ -118,6 +129,7 @@ snell_status snell__mesh_adopt(snell_ctx *ctx, const snell_alloc *alloc, float *
         st = snell__fail(ctx, SNELL_E_INVALID_ARG, "mesh: its context was destroyed (snell_ctx_destroy)");
         goto fail;
     }
+    if ((st = snell__mesh_budget_check(ctx, vertex_count, triangle_count, "the mesh")) != SNELL_OK) goto fail;
     if (triangle_count == 0 || vertex_count < 3) {
         st = snell__fail(ctx, SNELL_E_INVALID_ARG, "mesh has no triangles");
         goto fail;
@@ -180,7 +192,7 @@ snell_status snell_mesh_create(snell_ctx *ctx, const snell_mesh_desc *desc, snel
     if (desc->vertex_count > SNELL_MESH_MAX_VERTICES || nt > SNELL_MESH_MAX_TRIANGLES)
         return snell__fail(ctx, SNELL_E_LIMIT, "mesh too large: %u vertices, %u triangles", desc->vertex_count, nt);
     /* positions + normals (given or computed) + indices, counted as one request */
-    st = snell__budget_check(ctx, 24 * (size_t)desc->vertex_count + 12 * (size_t)nt, "snell_mesh_create: the mesh");
+    st = snell__mesh_budget_check(ctx, desc->vertex_count, nt, "snell_mesh_create");
     if (st != SNELL_OK) return st;
     pos = (float *)snell__calloc(al, 3 * (size_t)desc->vertex_count, sizeof(float));
     idx = (uint32_t *)snell__calloc(al, 3 * (size_t)nt, sizeof(uint32_t));

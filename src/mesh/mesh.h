@@ -48,6 +48,12 @@ struct snell_mesh {
 #define SNELL_MESH_MAX_VERTICES (1u << 26)
 #define SNELL_MESH_MAX_TRIANGLES (1u << 26)
 
+/* SNELL_OK if a mesh of nv vertices and nt triangles fits the memory budget
+ * with what it will allocate: its arrays, and at its first frame its analysis
+ * (the largest: topology, BVH, area CDF), more than its GPU copy. Every loader
+ * checks it before making the arrays; snell__mesh_adopt again. */
+snell_status snell__mesh_budget_check(const snell_ctx *ctx, size_t nv, size_t nt, const char *what);
+
 /* Takes ownership of positions/normals/indices (allocated with alloc). normals
  * may be NULL: smooth area-weighted normals are computed. Validates indices and
  * rejects non-finite positions. On failure the arrays are freed. */

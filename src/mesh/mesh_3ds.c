@@ -221,7 +221,7 @@ snell_status snell_mesh_load_3ds_mem(snell_ctx *ctx, const void *data, size_t si
      * are bounded by its size; the budget still has the last word */
     if (s.nv > SNELL_MESH_MAX_VERTICES || s.nt > SNELL_MESH_MAX_TRIANGLES)
         return snell__fail(ctx, SNELL_E_LIMIT, "3DS: %zu vertices, %zu triangles: too large", s.nv, s.nt);
-    if ((st = snell__budget_check(ctx, 12 * s.nv + 12 * s.nt, "3DS vertices and faces")) != SNELL_OK) return st;
+    if ((st = snell__mesh_budget_check(ctx, s.nv, s.nt, "3DS")) != SNELL_OK) return st;
     s.pos = (float *)snell__calloc(al, 3 * s.nv + 1, sizeof(float));
     s.idx = (uint32_t *)snell__calloc(al, 3 * s.nt, sizeof(uint32_t));
     if (!s.pos || !s.idx) {

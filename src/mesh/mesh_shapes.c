@@ -36,11 +36,13 @@ static snell_status lathe(snell_ctx *ctx, const profile_pt *prof, uint32_t np, i
     float *pos, *nrm;
     uint32_t *idx;
     double *cu, *su;
+    snell_status st;
     if (nv64 > SNELL_MESH_MAX_VERTICES || nt64 > SNELL_MESH_MAX_TRIANGLES)
         return snell__fail(ctx, SNELL_E_LIMIT, "shape too finely tessellated: %llu vertices, %llu triangles",
                            (unsigned long long)nv64, (unsigned long long)nt64);
     nv = (uint32_t)nv64;
     nt = (uint32_t)nt64;
+    if ((st = snell__mesh_budget_check(ctx, nv, nt, "shape")) != SNELL_OK) return st;
     pos = (float *)snell__calloc(al, 3 * (size_t)nv, sizeof(float));
     nrm = (float *)snell__calloc(al, 3 * (size_t)nv, sizeof(float));
     idx = (uint32_t *)snell__calloc(al, 3 * (size_t)nt, sizeof(uint32_t));
