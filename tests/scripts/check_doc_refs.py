@@ -11,7 +11,10 @@ tool's --help names must exist (issue 49 item 5).
   the file or folder, in the tracked tree.
 - Options after a tool's name on one line of a doc or code block
   (snell-bench --frames 5): an option that tool's --help (or one of its modes'
-  --help) lists.
+  --help) lists; and every option of snell-bench's --help on docs/benchmarking.md.
+- Every doc's first shell block says how long it takes and what it takes on
+  disk: a time (12 min, 90 s) and a size (740 MB, "nothing on disk") in the
+  block's comments or a paragraph of its section that begins "How long".
 
 Usage: check_doc_refs.py SOURCE_DIR [snell-render snell-bench snell-kiosk]
 (tools left out or not built: their options are not checked)."""
@@ -165,6 +168,34 @@ for f in files:
             check_text(f, fh.read(), f.endswith(".md"))
 for name, text in helps.items():
     check_text("%s --help" % name, text, False)
+
+# a page that documents every option of a tool's --help (modes apart)
+COMPLETE = {"snell-bench": "docs/benchmarking.md"}
+for name, doc in COMPLETE.items():
+    if name in tools and doc in fileset:
+        with open(os.path.join(root, doc), encoding="utf-8") as fh:
+            text = fh.read()
+        main_help = helps[name].split("\n" + "usage: ", 1)[0]
+        for o in sorted(set(re.findall(r"(?<![\w-])(--[a-z0-9][a-z0-9-]*)", main_help))):
+            if not re.search(r"(?<![\w-])%s(?![\w-])" % re.escape(o), text):
+                problems.append("%s: %s --help lists %s, the page does not" % (doc, name, o))
+
+TIME = re.compile(r"\b\d+(?:\.\d+)?(?:\s*[-–]\s*\d+(?:\.\d+)?)?\s*(?:s|min|h|hours?|minutes?)\b")
+DISK = re.compile(r"\b\d+(?:\.\d+)?\s*(?:KB|MB|GB|KiB|MiB|GiB)\b|nothing on disk")
+for doc in sorted(f for f in files if f == "README.md" or (f.startswith("docs/") and f.endswith(".md"))):
+    with open(os.path.join(root, doc), encoding="utf-8") as fh:
+        lines = fh.read().splitlines()
+    start = next((i for i, l in enumerate(lines) if l.strip() in ("```sh", "```bash", "```shell")), None)
+    if start is None:
+        continue
+    close = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("```")), len(lines))
+    end = next((i for i in range(close, len(lines)) if lines[i].startswith("#")), len(lines))
+    # the block's comments, and a paragraph of its section that begins "How long"
+    paragraphs = re.split(r"\n\s*\n", "\n".join(lines[close + 1:end]))
+    span = "\n".join(lines[start:close] + [t for t in paragraphs if t.lstrip().startswith("How long")])
+    if not TIME.search(span) or not DISK.search(span):
+        problems.append("%s:%d: its first command says no %s" % (
+            doc, start + 1, " and no ".join(w for w, r in (("time", TIME), ("disk", DISK)) if not r.search(span))))
 
 for p in problems:
     print(p)
