@@ -102,7 +102,7 @@ void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t
     }
 }
 
-/* Bytes a triangle of the analysis's peak (snell_mesh_analyze) */
+/* Bytes a triangle at the analysis's peak (snell_mesh_analyze). */
 #define ANALYSIS_BYTES_PER_TRIANGLE 360u
 
 snell_status snell__mesh_budget_check(const snell_ctx *ctx, size_t nv, size_t nt, const char *what)
