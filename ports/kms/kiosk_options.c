@@ -185,8 +185,7 @@ static int read_config(const char *path, kiosk_options *o, int *spin_set)
     size_t size;
     int n = 0, used;
     if (!(text = cli_read_input(path, 65536, &size, why, sizeof why))) {
-        fprintf(stderr, "snell-kiosk: --config %s: %s%s\n", cli_safe(path, safe, sizeof safe), why,
-                strncmp(why, "larger", 6) ? "" : ": not a kiosk configuration");
+        fprintf(stderr, "snell-kiosk: --config %s: %s\n", cli_safe(path, safe, sizeof safe), why);
         return 0;
     }
     for (line = text; line; line = next) {
@@ -200,7 +199,8 @@ static int read_config(const char *path, kiosk_options *o, int *spin_set)
         while (end > a && strchr(" \t\r", end[-1])) *--end = 0;
         if (!*a) continue;
         if (cli_has_control(a)) { /* it would be echoed below, or be a path or a scene's name */
-            fprintf(stderr, "snell-kiosk: --config %s line %d: a control character\n", cli_safe(path, safe, sizeof safe), n);
+            fprintf(stderr, "snell-kiosk: --config %s line %d: a control character\n",
+                    cli_safe(path, safe, sizeof safe), n);
             return 0;
         }
         v = a + strcspn(a, " \t");
