@@ -158,14 +158,14 @@ static void run_free(run *r)
 static int load(run *r, const char *path)
 {
     char why[128], safe[256];
-    const char *p;
+    const char *p, *end;
     size_t len, cap = 0;
     memset(r, 0, sizeof *r);
     r->path = path;
     if (!(r->text = cli_read_input(path, COMPARE_MAX_BYTES, &len, why, sizeof why)))
         return fprintf(stderr, "snell-bench --compare: cannot read '%s': %s\n", cli_safe(path, safe, sizeof safe), why),
                0;
-    if (!skip(r->text, 0) || *ws(skip(r->text, 0))) {
+    if (!(end = skip(r->text, 0)) || *ws(end)) {
         fprintf(stderr, "snell-bench --compare: '%s' is not JSON\n", cli_safe(path, safe, sizeof safe));
         return 0;
     }
@@ -184,7 +184,7 @@ static int load(run *r, const char *path)
                    0;
         if (r->n == cap) {
             entry *e = (entry *)realloc(r->results, (cap = cap ? 2 * cap : 64) * sizeof *e);
-            if (!e) return fprintf(stderr, "snell-bench --compare: out of memory reading '%s'\n", path), 0;
+            if (!e) return fprintf(stderr, "snell-bench --compare: out of memory for %zu results\n", cap), 0;
             r->results = e;
         }
         se = sp && *sp == '"' ? skip(sp, 0) : NULL;
@@ -197,7 +197,7 @@ static int load(run *r, const char *path)
         p = ws(p + 1);
     }
     if (r->n && !(r->by_spec = (entry *)malloc(r->n * sizeof *r->by_spec)))
-        return fprintf(stderr, "snell-bench --compare: out of memory reading '%s'\n", path), 0;
+        return fprintf(stderr, "snell-bench --compare: out of memory for %zu results\n", r->n), 0;
     if (r->n) {
         memcpy(r->by_spec, r->results, r->n * sizeof *r->by_spec);
         qsort(r->by_spec, r->n, sizeof *r->by_spec, by_spec);
@@ -216,6 +216,7 @@ static const char *find(const run *r, const entry *e)
 static void describe(const char *tag, const run *r, char *dev, size_t dev_n, double *load)
 {
     char v[64], c[64], ren[256], gv[128], board[256], kernel[256], vsync[160], tool[64], prof[64], lb[64], la[64];
+    char *end;
     str(path2(r->text, "snell", "version"), v, sizeof v);
     str(path2(r->text, "snell", "commit"), c, sizeof c);
     str(path2(r->text, "gl", "renderer"), ren, sizeof ren);
@@ -237,7 +238,8 @@ static void describe(const char *tag, const run *r, char *dev, size_t dev_n, dou
                kernel[0] ? kernel : "?", vsync[0] ? vsync : "?", lb[0] ? lb : "not stated", la[0] ? la : "not stated");
     }
     snprintf(dev, dev_n, "%s | %s | %s", ren, prof[0] ? prof : "none", board);
-    *load = lb[0] ? strtod(lb, NULL) : NAN;
+    *load = strtod(lb, &end);
+    if (end == lb) *load = NAN; /* "unknown" or not stated */
 }
 
 /* A figure in a 9-character column whatever its size: 1e308 is no 309-digit number. */
