@@ -124,6 +124,11 @@ if(NOT SNELL_COMPONENTS_OFF AND NOT CMAKE_CROSSCOMPILING AND TARGET snell-render
     add_test(NAME doc_references COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_doc_refs.py
              ${PROJECT_SOURCE_DIR} $<TARGET_FILE:snell-render> $<TARGET_FILE:snell-bench> ${readme_kiosk})
     set_tests_properties(doc_references PROPERTIES LABELS "docs" TIMEOUT 60)
+    # and the check fails where references dangle (tests/data/docrefs holds four)
+    add_test(NAME doc_references_fail COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_doc_refs.py
+             ${CMAKE_CURRENT_SOURCE_DIR}/data/docrefs)
+    set_tests_properties(doc_references_fail PROPERTIES LABELS "docs" PASS_REGULAR_EXPRESSION
+                         "missing.md.*README.md#nowhere.*\"Nowhere\".*src/none.c.*4 dangling reference")
   endif()
   set(readme_api_c ${CMAKE_CURRENT_BINARY_DIR}/readme_api.c)
   add_custom_command(OUTPUT ${readme_api_c}

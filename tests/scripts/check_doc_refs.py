@@ -141,12 +141,15 @@ def check_text(path, text, is_md):
 
 def help_options(exe):
     """The options a tool's --help lists, with those of its modes: an option
-    whose own --help begins "usage: TOOL OPTION" is a mode."""
+    the usage lines name or "--X --help" points to, whose own --help begins
+    "usage: TOOL --X"."""
     name = os.path.basename(exe)
     out = subprocess.run([exe, "--help"], capture_output=True, text=True).stdout
     opts = set(re.findall(r"(?<![\w-])(--[a-z0-9][a-z0-9-]*)", out))
+    usage = out.split("\n\n", 1)[0]
+    modes = set(re.findall(r"(?<![\w-])(--[a-z0-9][a-z0-9-]*)", usage)) | set(re.findall(r"(--[a-z0-9-]+) --help", out))
     texts = [out]
-    for o in sorted(opts):
+    for o in sorted(modes):
         sub = subprocess.run([exe, o, "--help"], capture_output=True, text=True).stdout
         if sub.startswith("usage: %s %s" % (name, o)):
             texts.append(sub)
