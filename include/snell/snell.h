@@ -113,21 +113,9 @@ typedef struct snell_ctx_desc {
     snell_log_fn log;          /* receives library messages and KHR_debug output */
     void *log_user;
     int gl_debug;              /* nonzero: request a debug context, install KHR_debug callback */
-    /* The most memory one request sized by input data may ask for, in bytes;
-     * 0 = SNELL_DEFAULT_MEMORY_BUDGET. Checked before the large allocations a
-     * file or a parameter sizes (a loader's vertex/index arrays and file
-     * buffer, a glTF parse, an image, a 2D light's path buffer): beyond it the
-     * call fails with SNELL_E_LIMIT naming the budget, before allocating.
-     * Calls without a context (ctx == NULL) use the default. It bounds each
-     * request, it does not account for everything the context holds. */
+    /* bytes one request sized by input data may ask; 0 = SNELL_DEFAULT_MEMORY_BUDGET */
     size_t memory_budget;
-    /* A device profile's name ("gles30-min", "rpi-v3d", "mali-bifrost",
-     * "adreno-6xx", "powervr-rogue"; src/core/profile.c gives each value's
-     * source): snell then uses only the extensions the profile has and
-     * refuses what exceeds its limits or the GL context's, whichever is
-     * lower, as it would on that device. NULL: the environment variable
-     * SNELL_DEVICE_PROFILE, if set, else none (the GL context's own). An
-     * unknown name fails with SNELL_E_INVALID_ARG listing the names. */
+    /* a device profile ("rpi-v3d", ...); NULL = $SNELL_DEVICE_PROFILE, else none */
     const char *device_profile;
 } snell_ctx_desc;
 
@@ -312,13 +300,7 @@ typedef struct snell_mesh_analysis {
                               * this radius holds no surface (inside it if the centre is inside) */
     float hidden_fraction;   /* 0..1, area-weighted, +-1/sqrt(samples) sampling error */
     int samples;             /* surface sample points used for hidden_fraction */
-    /* Topology is found on vertices welded by position, so meshes whose
-     * vertices are split at UV or normal seams count as closed; drawing keeps
-     * the split vertices. Two vertices weld when a chain of vertices, each
-     * within 1e-5 of the bounding-box diagonal of the next, joins them.
-     * Vertices no triangle uses are ignored; triangles with two welded
-     * corners equal (no area) are left out, so they are no defect. An edge is
-     * a pair of welded vertices that are corners of one triangle side. */
+    /* Topology below is on vertices welded by position (docs/integrating.md). */
     uint32_t welded_vertices;   /* distinct positions the triangles use, after welding */
     uint32_t boundary_edges;    /* edges with one triangle (holes, open rims) */
     uint32_t nonmanifold_edges; /* edges with three or more triangles (fins, doubled faces) */
@@ -551,14 +533,7 @@ typedef struct snell_glass_material {
     float thickness;
     float tint[3];                 /* multiplies transmitted light (glTF baseColorFactor under
                                     * KHR_materials_transmission); all zero = white */
-    /* KHR_materials_dispersion "dispersion" = 20 / V_d (V_d the Abbe number,
-     * (n_d - 1) / (n_F - n_C)); 0 = none (every channel at ior), 0..20.
-     * Per channel the spec's two-term Cauchy fit through ior at 587.6 nm,
-     * n(l) = max(ior + (ior - 1) / V_d * (523655 / l^2 - 1.5168), 1), l in nm,
-     * at the Fraunhofer lines the Abbe number is defined by: red 656.3 nm
-     * (C), green 587.6 nm (d: ior itself), blue 486.1 nm (F): BK7 glass
-     * (V_d 64.2, 0.31) gives 1.5144, 1.5168, 1.5222. Solids only: a thin wall
-     * sends light on parallel to how it came, so it has no colour fringes. */
+    /* KHR_materials_dispersion: 20 / Abbe number, 0..20; 0 = none; solids only */
     float dispersion;
     snell_dispersion_model dispersion_model; /* used when dispersion > 0 */
     snell_method method;           /* SNELL_METHOD_AUTO = chosen per object and frame */
@@ -568,15 +543,7 @@ typedef struct snell_glass_material {
     snell_peel_params peel;        /* used when the method (or AUTO's choice) is PEEL */
     snell_exact_params exact;      /* used when it is EXACT (which AUTO picks only if exact.auto_pick allows) */
     snell_layered_params layered;  /* used when it is LAYERED */
-    /* Resolution scale: the glass is shaded at 1/scale of the frame's sample
-     * grid per axis (the method's own passes and kernel in a smaller target),
-     * then its front faces are drawn at full resolution taking their colour
-     * from that result, so its silhouette stays the full raster's. 0 = 1 (as
-     * drawn without it); 1..SNELL_MAX_GLASS_SCALE. Drawn at 1 where the
-     * method reads the frame's full-resolution back faces (WYMAN, OLIVEIRA),
-     * in exit-direction output, and in a build without PEEL and EXACT
-     * (snell_object_stats.scale says what was drawn). An AUTO object under a
-     * frame budget is drawn at its rung's scale (snell_budget_rung.scale). */
+    /* shaded at 1/scale per axis, silhouette at full; 0 = 1, 1..SNELL_MAX_GLASS_SCALE */
     float scale;
 } snell_glass_material;
 
@@ -682,12 +649,7 @@ typedef struct snell_camera {
     float target[3];           /* orbit centre, world space */
     float z_near, z_far;       /* 0 = derived from the distance (0.01 and 100 times it) */
     snell_camera_kind kind;
-    /* SNELL_CAMERA_MATRICES: world to eye and eye to clip, column-major, GL
-     * conventions (the eye looks down -Z, clip depth -w..w), as an app passes
-     * them to its own shaders. Any invertible perspective projection,
-     * off-axis (a VR eye, a shifted lens) included, or an orthographic one
-     * (a UI or CAD view: parallel view rays). The target's aspect is the
-     * projection's business: snell uses it as given. */
+    /* SNELL_CAMERA_MATRICES: world to eye, eye to clip; column-major, GL conventions */
     float view[16], projection[16];
 } snell_camera;
 /* snell_render and the reference tracer refuse, with SNELL_E_INVALID_ARG
@@ -765,33 +727,12 @@ typedef struct snell_renderer_desc {
     snell_target target;
     snell_output output;
     snell_shading shading;
-    /* Supersampling S (0 or 1 = off, up to SNELL_MAX_SSAA): the frame is drawn
-     * S times as wide and high and each pixel is the mean of its S x S block
-     * (a box filter over the pixel's area, as snell_ref_params.samples = S),
-     * for stills and for error measurement on area-averaged images; costs
-     * about S^2 the shading. Offscreen colour renderers only
-     * (SNELL_E_INVALID_ARG otherwise). */
+    /* supersampling S x S, box-filtered; 0 or 1 = off, up to SNELL_MAX_SSAA */
     int ssaa;
-    /* Multisampling (GLES 3.0 multisample renderbuffers, resolved by a blit):
-     * 0 or 1 = off, else the sample count (SNELL_E_UNSUPPORTED beyond
-     * GL_MAX_SAMPLES). Antialiases the edges of triangles - glass silhouettes,
-     * opaque objects against the background - not what is inside the glass
-     * (shaded once per pixel). With it AUTO shades glass forward (the
-     * screen-space stage's G-buffer is single-sample, its silhouettes would
-     * stay aliased); SCREEN is still honoured. Offscreen colour renderers
-     * only, not with ssaa. */
+    /* multisample count; 0 or 1 = off, up to GL_MAX_SAMPLES; not with ssaa */
     int msaa;
     snell_env_lookup env_lookup;    /* for every glass object and the background */
-    /* 1: premultiplied alpha for compositing over what lies behind the target
-     * (video, UI): the glass writes rgb = what it shows with the environment
-     * black (its reflections and what it shows of the frame's own objects and
-     * backdrop) and alpha = 1 - the weight of the environment in its colour
-     * (the glass's transmittance and its reflectance of the environment,
-     * averaged over rgb), so that rgb + (1 - alpha) * behind is the glass's
-     * colour over a uniform world of that colour (exactly for untinted or
-     * grey glass). Opaque objects write alpha 1; where nothing is drawn
-     * (draw_background = -1) the target keeps what it held (clear it to 0).
-     * Each glass kernel runs twice a pixel. Colour output only; 0 = off. */
+    /* 1: premultiplied alpha for compositing; colour output only; 0 = off */
     int premultiplied_alpha;
 } snell_renderer_desc;
 
@@ -936,76 +877,16 @@ typedef struct snell_frame_desc {
     int opaque_count;
     snell_background draw_background; /* SNELL_BACKGROUND_DRAW (0) or SNELL_BACKGROUND_NONE (-1) */
     int dynamic_env_size;           /* dynamic environment face size, 16..2048; 0 = half of env's, at most 256 */
-    int scene_layers;               /* glass seen through glass, and opaque objects seen through glass where
-                                     * they are: 0 = auto (on when the frame draws two or more glass
-                                     * objects, or one with opaque objects or with water: see water below),
-                                     * -1 = off (each glass object sees
-                                     * only the environment, or its dynamic one with the opaque objects),
-                                     * 2..SNELL_MAX_SCENE_LAYERS = on with at most that many layers. On, every
-                                     * glass and opaque object is depth peeled together (at most that
-                                     * many passes, each drawing every object once; fewer where fewer layers
-                                     * hold something) and each glass kernel's exit ray, and the mirror ray
-                                     * off its front, are marched through those layers: it refracts through the other glass objects (TIR inside
-                                     * them, Schlick at their entry, their tint and absorption), crosses thin
-                                     * walls as slabs, stops at an opaque one, and sees the environment past
-                                     * them all, so no dynamic environment is made. Limits: what lies off the
-                                     * target or behind the last layer of a full peel is not seen (the ray
-                                     * leaves to the environment); an exit ray passes through the other parts
-                                     * of its own object and of the object it last left (concave objects). */
-    /* A water surface in its container (snell_water.h), drawn after the
-     * opaque objects and before the glass; NULL = none. It must belong to the
-     * renderer's context. What stands in it is seen through the surface:
-     * with glass objects in the frame (and scene_layers not -1), the
-     * surface's refracted ray is marched through the scene layers in the
-     * water (the water's index between the objects, refracting through the
-     * glass, stopping at opaque objects, Beer-Lambert of the water over the
-     * path outside them; its mirror ray sees the walls and the
-     * environment); with opaque objects only, they are searched for in screen space
-     * along the refracted ray (offscreen colour renderers without msaa).
-     * snell_frame_stats.water_objects / water_layers say which. The glass
-     * kernels' exit rays and reflections (and the reflections the layers'
-     * march meets) see the water and the container (the surface found from
-     * the rest plane, refined by the heights) before the environment.
-     * Limits: a ray rising inside the water meets the walls, not the surface
-     * from below;
-     * the part of a ray inside the water that the glass's kernel traces (a
-     * glass object half under water) is traced as in air. */
+    int scene_layers;               /* 0 = auto, -1 = off, 2..SNELL_MAX_SCENE_LAYERS: layers seen through glass */
+    /* water in its container (snell_water.h), same context; NULL = none */
     snell_water *water;
-    /* AUTO by frame budget: > 0 = the frame time to hold, in ms (snell_render's
-     * start to the GPU's completion, measured by a fence after each frame and
-     * read at the next: snell_renderer_finish, a read-back or the next
-     * snell_render). Each AUTO glass object is then drawn by one rung of its
-     * ladder: the configurations of the rung table (method + parameter +
-     * resolution scale, with their measured cost and glass PSNR per mesh
-     * class) that its mesh does not fail, cut to their Pareto front (the
-     * rung's scale replaces the material's); the plan of the highest predicted
-     * PSNR (area-weighted over the objects) whose predicted time fits 95% of
-     * the budget, at the ms per unit learned from the frames measured. A frame
-     * measured over 105% of the budget steps down at once and bars plans as
-     * dear for a back-off that doubles with each failure; steps up wait 6
-     * frames after any change (no oscillation). snell_frame_stats.budget_*
-     * and each object's reason say what was chosen and why. 0 = none: AUTO
-     * takes the cheapest adequate method, as without a budget. Finite, at
-     * most 1e6. */
+    /* AUTO by frame budget: frame time to hold, ms, finite, <= 1e6; 0 = none */
     float budget_ms;
     /* With budget_ms: no object below the rung whose predicted glass PSNR
      * reaches this many dB (its best rung if none does), whatever the
      * budget; 0 = none. 0..100. */
     float quality_floor_db;
-    /* Caustics and shadows of glass (the caustics stage): with a light and a
-     * receiver, light from `light` refracted through every glass object
-     * (Schlick Fresnel at entry and exit, tint, Beer-Lambert) is splatted
-     * onto the receiver plane, which is drawn lit by it and by the direct
-     * light where no object (glass or opaque) shadows it. The opaque objects
-     * are receivers too: drawn lit by the direct light where no object
-     * shadows them and by the photons that land on them (photons stop at the
-     * first opaque object); with a light and opaque objects the stage runs
-     * without a plane as well. Zero = none: the
-     * frame is drawn as without them. Limit: through a convex mesh a photon
-     * crosses one surface in and one out (TIR inside drops it); other meshes
-     * and chains of casters are traced surface to surface. With water and a light (no receiver needed), the light
-     * refracted through the moving surface lights the container's floor:
-     * its caustics (snell_water.h). */
+    /* caustics and shadows of glass, with the receiver below; zero = none */
     snell_light light;
     snell_receiver receiver;
     /* What the frame does with the target's depth buffer (snell_depth_mode). */
@@ -1084,11 +965,7 @@ typedef struct snell_frame_stats {
     int back_face_guard;            /* pixels of guard band it drew around the target (an object crossing the
                                      * target's edge asked for it: guard_band), 0 if none */
     int fragment_mediump;           /* 1: kernels ran at mediump, 0: highp (snell_ctx_precision says why) */
-    /* The renderer's one cache of kernel programs (every method's, bounded:
-     * the least recently used is dropped when full): programs held, programs
-     * built since the renderer was made (growing every frame: the frame's
-     * variants do not fit), and their size as the driver reports it
-     * (GL_PROGRAM_BINARY_LENGTH; 0 where it reports none). */
+    /* kernel program cache: held, built since creation, bytes the driver reports */
     int programs, programs_built;
     size_t program_bytes;
     int texture_units;              /* texture units the frame bound on; inside a host's context (EXTERNAL)

@@ -44,11 +44,7 @@ typedef struct snell_cubemap_params {
     int face_size;             /* normal+distance cubemap face, 16..2048 texels (default 256) */
     snell_ndcube_encoding encoding;
     snell_fresnel_model fresnel; /* reflectance at the interfaces (default Schlick, the MATCHED model) */
-    /* Fresnel at the exit too (the FULL model's next terms): the chain's exit
-     * transmits 1 - F, and the light it reflects back inside is followed by
-     * one more search to the next surface and out (2 more environment
-     * look-ups); OFF: no loss at the exit, no internal-reflection ghost (the
-     * MATCHED model). AUTO (default): on for convex meshes, where it pays. */
+    /* Fresnel at the exit too; AUTO (default) on for convex meshes */
     snell_inner_fresnel inner_fresnel;
 } snell_cubemap_params;
 
@@ -110,11 +106,7 @@ typedef enum snell_peel_fixes {
 
 /* Where SNELL_METHOD_PEEL's first layer (the front surface) comes from. */
 typedef enum snell_peel_layer0 {
-    SNELL_PEEL_LAYER0_GBUFFER = 0, /* default: converted from the screen-space stage's G-buffer, which already
-                                    * holds it, where it holds all of it and that pays (shaded in screen
-                                    * space at full resolution, a closed mesh of known winding seen from
-                                    * outside, nothing else drawn into the G-buffer's depth over its
-                                    * rectangle, front triangles below 16 px each); else peeled */
+    SNELL_PEEL_LAYER0_GBUFFER = 0, /* default: from the screen-space G-buffer where that pays, else peeled */
     SNELL_PEEL_LAYER0_PEEL         /* always peeled (one more pass of the mesh) */
 } snell_peel_layer0;
 
@@ -132,13 +124,7 @@ typedef struct snell_peel_params {
                                 * re-entries, TIR bounces; default 8) */
     snell_peel_fixes fixes;
     snell_fresnel_model fresnel; /* reflectance at the interfaces (default Schlick, the MATCHED model) */
-    /* Fresnel where the path leaves the glass for the last time too: that
-     * exit transmits 1 - F, and the light it reflects back inside is followed
-     * by one more search through the layers and out (2 more environment
-     * look-ups); OFF: no loss at the exit, no internal-reflection ghost (the
-     * MATCHED model). AUTO (default): on for every mesh, where peel's layer
-     * search is close enough for it to pay, concave ones too (measured in
-     * bench/BENCHMARKS.md, "Inner-surface Fresnel in peel"). */
+    /* Fresnel at the last exit too; AUTO (default) on for every mesh */
     snell_inner_fresnel inner_fresnel;
     snell_peel_layer0 layer0;
 } snell_peel_params;
@@ -181,11 +167,7 @@ typedef enum snell_exact_walk {
 typedef struct snell_exact_params {
     int max_interfaces;        /* surfaces processed per path, 1..10 (1 = single surface with the exact path
                                 * length for absorption; default 8); the MATCHED reference's cap */
-    /* BVH nodes a pixel may visit over all its rays, 64..65536 (default 4096):
-     * past it the pixel takes the single-surface answer (refraction at the
-     * entry, absorption over the bounding-sphere chord), computed in the same
-     * shader, instead of running on (weak GPUs, watchdogs); counted in
-     * snell_object_stats.exact_fallback_pixels. */
+    /* BVH nodes a pixel may visit, 64..65536 (default 4096); past it: single */
     int node_budget;
     snell_exact_nodes node_format;
     snell_exact_auto auto_pick;
