@@ -1,17 +1,10 @@
 // SPDX-License-Identifier: MIT
 // cubemap.frag - two-sided refraction with a normal+distance cubemap (Li et
-// al. 2007 as in Unger 4.1, Listing 2). Refract at the front surface, find the
-// exit point along the refracted ray by a binary search against the distance
-// stored per direction from the centre, refract out there (or reflect on total
-// internal reflection and search again, up to u_max_interfaces surfaces), look
-// the final direction up in the environment; Fresnel at the entry (Schlick,
-// or the exact one with SNELL_FRESNEL_EXACT), and with SNELL_INNER_FRESNEL
-// at the exit too, with its internal reflection followed by one more search;
-// Beer-Lambert over the path length inside.
-//
-// Spaces: the cubemap is in object space about u_centre; the search runs in
-// object space with the world ray parameter (d = M^-1 * unit world direction),
-// so t is a world length for any model matrix, non-uniform scale included.
+// al. 2007 as in Unger 4.1, Listing 2): refract at the front, binary-search the
+// exit against the distance per direction, refract out (or reflect on TIR and
+// search again, up to u_max_interfaces), look the environment up; Schlick or
+// exact Fresnel, SNELL_INNER_FRESNEL at the exit too; Beer-Lambert inside.
+// Object space about u_centre with the world ray parameter (any model matrix).
 // highp throughout: a search's parameters lose their steps in mediump.
 precision highp float;
 

@@ -1,18 +1,10 @@
 // SPDX-License-Identifier: MIT
-// depth_peel.frag - one depth peel (the peel kernel, methods/peel.c, and the scene layers, render/layers.c; Wang
-// 2014 3.4, after Everitt's depth peeling): every face, front and back, is
-// drawn with depth test LESS, and a fragment no deeper than the previous
-// layer at its pixel is discarded, so the pass keeps the next surface behind
-// it. Depth is the view-axis distance mapped linearly onto the object's
-// bounding-sphere range [u_near, u_near + 1 / u_inv_range] in 24 bits; the
-// test compares the same quantised value the previous pass stored, so a
-// surface is never kept twice (two surfaces closer than 2r / 2^24 merge).
-// Writes the unit world normal octahedrally in 16+16 bits (as gbuffer.frag),
-// the depth + a flag (1; 0, the clear, marks an empty texel) to the layer,
-// and the depth + flag again to the ping-pong texture the next peel reads.
-// On a closed mesh the layers alternate front and back faces by
-// construction (every face is drawn, nearest first); the kernel takes the
-// gap's parity for inside or outside.
+// depth_peel.frag - one depth peel (methods/peel.c, render/layers.c; Wang 2014
+// 3.4, after Everitt): every face drawn with depth test LESS, a fragment no
+// deeper than the previous layer discarded. Depth is view-axis distance mapped
+// onto the bounding-sphere range in 24 bits, compared quantised, so no surface is
+// kept twice. Writes the octahedral normal, depth + flag to the layer and to the
+// ping-pong texture. More: docs/ARCHITECTURE.md, "Design notes by file".
 precision highp float;
 
 #include "common/pack.glsl"

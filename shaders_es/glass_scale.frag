@@ -1,20 +1,10 @@
 // SPDX-License-Identifier: MIT
 // glass_scale.frag - an object's colour at full resolution from its glass
-// shaded at a resolution scale (render/glass_scale.c), drawn as any kernel
-// is (forward on its faces, or on the frame's G-buffer), so which pixels are
-// glass and their depth are the full raster's. It reads the small target's
-// colour, whose alpha marks the texels the object covered (the kernels write
-// 1, the clear is 0): bilinear among the four nearest covered texels, so no
-// background from outside the silhouette (the small target holds black
-// there). Where it covers none of the four (a sliver thinner than a texel),
-// the nearest covered texel of the 4x4 around; where none of those either (a
-// feature the small grid missed altogether: a stem or a rim thinner than
-// the scale), the single-surface answer at this pixel (single.frag's model:
-// refraction at the front, Schlick, the tint, Beer-Lambert to the bounding
-// sphere's far side; a thin wall's slab straight through), not black; of
-// single.frag's variants only dispersion is left out there. (A depth weight as
-// well, joint bilateral upsampling, gained nothing measurable: left out;
-// bench/notes/code.md, "glass_scale.frag".)
+// shaded at a resolution scale (render/glass_scale.c), drawn as any kernel is,
+// so coverage and depth are the full raster's. Reads the small target: bilinear
+// among the four nearest covered texels, else the nearest covered of the 4x4,
+// else the single-surface answer here (no dispersion). More:
+// docs/ARCHITECTURE.md, "Design notes by file".
 precision highp float;
 
 #include "common/optics.glsl"

@@ -1,24 +1,12 @@
 // SPDX-License-Identifier: MIT
 // layered.frag - multi-layer refraction through layered distance cube maps
-// (Umenhoffer, Patow and Szirmay-Kalos 2007, "Robust multiple specular
-// reflections and refractions", GPU Gems 3 ch. 17). The layers (baked once
-// per mesh version by layered_bake.frag, methods/layered.c) hold, per
-// direction from the analysed centre, the first SNELL_LAYERS surfaces'
-// normals and distances. From the entry, the refracted ray is marched in
-// SNELL_LINEAR steps to the bounding sphere's far side; a sample's count of
-// surfaces closer to the centre than itself along its direction changes where
-// the ray crosses one, and SNELL_BINARY bisections on that count find where.
-// There the crossed layer's normal refracts the ray out (or reflects it on
-// total internal reflection) and the march goes on, outside too: a concave
-// mesh's re-entries are followed (FULL's dominant branch: Schlick at the
-// entry, transmission on, TIR bounces), up to u_max_interfaces surfaces. The
-// final ray leaves through snell_exit (common/beyond.glsl). A convex mesh
-// that one layer holds has a program of its own (STAR): no march, Newton
-// steps on the layer's tangent planes to each exit.
-//
-// Spaces: layers and search in object space about u_centre, the ray's
-// parameter a world length (d = M^-1 * unit world direction, as cubemap.frag),
-// so absorption and steps are right for any model matrix.
+// (Umenhoffer, Patow and Szirmay-Kalos 2007, GPU Gems 3 ch. 17): the refracted
+// ray is marched in SNELL_LINEAR steps through the layers (baked by
+// layered_bake.frag, methods/layered.c), SNELL_BINARY bisections find each
+// crossing, where it refracts or reflects, re-entries included, up to
+// u_max_interfaces; snell_exit past it. STAR: a convex mesh in one layer, Newton
+// steps instead. Layers and search in object space about u_centre with a world
+// ray parameter. More: docs/methods.md, "Design notes by file".
 precision highp float;
 
 #include "common/optics.glsl"

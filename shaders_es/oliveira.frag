@@ -1,34 +1,13 @@
 // SPDX-License-Identifier: MIT
 // oliveira.frag - two-sided refraction by a conservative search in image
-// space (Oliveira and Brauwers 2007; seed 000 3.4.2, Listing 1). Refract the
-// view ray at the front surface P1 into T1, then search along T1 for where it
-// leaves the object: the segment from S = P1 to E is walked in linear steps,
-// then halved in binary steps, and a sample counts as still inside while it
-// lies in front of the object's farthest back face at its pixel (the frame's
-// back-face pass). The invalid-texel rule: a sample whose pixel holds no back
-// face of this object (outside the silhouette) is outside: S is kept and the
-// step halved, so the search ends on a texel that has a back face, whose
-// normal is the exit normal. The search stops when a step spans less than a
-// pixel.
-//
-// Departures from the seed, each for a reason:
-// - E is where T1 leaves the object's bounding sphere, not where it meets the
-//   plane z = Z_max of the back faces: every back face lies inside the sphere,
-//   so E is as conservative as the seed's, is never farther than a diameter
-//   (the plane is arbitrarily far for rays nearly parallel to it) and needs no
-//   Z-range pass.
-// - Total internal reflection: where the seed clamps the angle, the ray is
-//   reflected and the same search continues up to u_max_interfaces surfaces.
-//   A reflected ray usually heads back towards the eye; it leaves where it
-//   passes in front of the object's front surface, which the screen-space
-//   G-buffer holds (surface.glsl), so the method always shades in screen
-//   space. Past the last interface the light leaves along the reflected
-//   direction, as the cubemap method and the reference's MATCHED model cap it.
-// Schlick Fresnel at the entry, Beer-Lambert over the path inside.
-//
-// SNELL_LINEAR_STEPS (0..32) and SNELL_SEARCH_ITERATIONS (1..32) are defined
-// by the method (methods/oliveira.c): loop bounds are constants, one program
-// per pair. highp throughout: depth comparisons and projections.
+// space (Oliveira and Brauwers 2007; seed 000 3.4.2, Listing 1): the refracted
+// ray is walked in linear, then binary steps against the frame's back-face pass;
+// the search ends on a texel with a back face (the invalid-texel rule) or when a
+// step spans less than a pixel. E is the bounding sphere's exit, TIR searches
+// on; Schlick at the entry, Beer-Lambert inside. SNELL_LINEAR_STEPS and
+// SNELL_SEARCH_ITERATIONS are the method's constants (methods/oliveira.c).
+// highp throughout. The departures from the seed and why: docs/methods.md,
+// "Design notes by file".
 precision highp float;
 
 #include "common/optics.glsl"

@@ -1,17 +1,10 @@
 // SPDX-License-Identifier: MIT
 // water_caustics.frag - a triangle of the refracted surface grid on the
-// floor's light map (water_caustics.vert): its irradiance is the light's
-// (directional: per unit area across the beam; spot: its intensity per unit
-// solid angle, a beam area on the plane at distance 1 being cos^3 of its
-// solid angle) times the ratio of the triangle's area in the beam to its
-// area on the floor (both positions are affine over the triangle, so their
-// screen derivatives are exact: Wallace's dFdx/dFdy), times what the water
-// lets through (v_carry). Added: folded triangles sum, as the light does.
-// With opaque objects (u_columns), none where the light's way to this
-// point of the floor, from the light down to the surface and on to the
-// floor, passes through one of their columns (water_caustics.c
-// draw_columns): COLUMN_STEPS samples along each of the two stretches, so
-// an object thinner than a step of them can slip through.
+// floor's light map (water_caustics.vert): the light's irradiance times the ratio
+// of the triangle's beam area to its floor area (exact screen derivatives:
+// Wallace's dFdx/dFdy) times v_carry; added, so folds sum. u_columns: shadowed
+// by the opaque objects' columns, COLUMN_STEPS samples a stretch. More:
+// docs/ARCHITECTURE.md, "Design notes by file".
 precision highp float;
 
 in highp vec2 v_beam;

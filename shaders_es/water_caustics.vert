@@ -1,20 +1,10 @@
 // SPDX-License-Identifier: MIT
-// water_caustics.vert - the container floor's light map (after
-// Evan Wallace's webgl-water): one vertex per node of the water's height
-// field (gl_VertexID = j * n + i, the surface's own index buffer), where the
-// light's ray meets the surface. It is refracted at the node's normal (the
-// surface's per-node (-dh/dx, 1, -dh/dz), water_surface.vert) and carried to
-// the floor y = -depth; the vertex lands there in the map (x, z over the
-// floor's square). v_beam is where the ray crossed the light's beam before
-// the water: directional, its position across the beam (world units);
-// spot, its direction on the plane at distance 1 along the light's axis.
-// The fragment shader divides the beam's area by the floor's (the cell's
-// area before and after, flux-correct). v_carry: what a unit of that
-// beam brings onto the floor: Schlick transmission into the water, Beer-
-// Lambert along the path to the floor, 0 where the light comes from below
-// (or the node lies behind a spot light). v_surface, v_floor,
-// v_light: the node, where its ray lands and the way back to the light, for
-// the fragment's tests: the rim's shadow and the opaque objects' columns.
+// water_caustics.vert - the container floor's light map (after Evan Wallace's
+// webgl-water): one vertex per node of the height field, where the light's ray
+// meets the surface, refracted and carried to the floor y = -depth. v_beam: its
+// place across the light's beam; v_carry: what a unit of beam brings (Schlick,
+// Beer-Lambert); v_surface, v_floor, v_light: for the fragment's shadow tests.
+// More: docs/ARCHITECTURE.md, "Design notes by file".
 precision highp float;
 precision highp int;
 

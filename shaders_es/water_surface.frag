@@ -1,32 +1,12 @@
 // SPDX-License-Identifier: MIT
 // water_surface.frag - the water surface (Dachsbacher 2002, "Refraction
-// Mapping"): the view ray refracted at the per-pixel normal meets the
-// container exactly - the seed's five ray-wall distances, the nearest
-// positive one choosing the floor or a wall - where the tiles are seen,
-// attenuated by Beer-Lambert over the path in the water; the mirror ray sees
-// the walls' inner side above the water or the environment (the seed: the
-// sky box only); Schlick's Fresnel weighs the two (the seed adds them).
-// Built with SNELL_WATER (common/water.glsl, through beyond.glsl).
-//
-// Objects in the water, two variants:
-// - SNELL_BEYOND (the frame has glass objects: render/layers.h): the
-//   refracted ray is marched through the scene layers (common/beyond.glsl)
-//   in the water (index and absorption the water's): it refracts into and
-//   out of the glass objects it meets, stops at an opaque one, and ends at
-//   the container. The mirror ray sees the walls and the environment only:
-//   the objects' reflections are small and faint, so marching it too would
-//   double the surface's cost for no gain (bench/notes/code.md,
-//   "water_surface.frag").
-// - SNELL_WATER_OBJECTS (opaque objects only): their colour and depth,
-//   drawn before the water and copied from the target, are searched along
-//   the refracted ray in screen space (the seed has no objects; the search
-//   is Oliveira's applied to the opaque depth), 24 linear steps and 6 binary
-//   ones over the part of the ray inside the objects' bounding spheres. A
-//   step counts as a hit where it lies behind the copied depth by less than
-//   a twelfth of the way to the container (view depth): a ray passing
-//   farther behind an object's visible surface goes on; one leaving the
-//   screen misses.
-// Exit-direction output: the refracted direction.
+// Mapping"): the view ray refracted at the per-pixel normal meets the container
+// exactly (the seed's five ray-wall distances); the mirror ray sees the walls
+// or the environment; Schlick weighs the two, Beer-Lambert in the water.
+// Objects in the water: SNELL_BEYOND marches the refracted ray through the scene
+// layers; SNELL_WATER_OBJECTS (opaque objects only) searches their copied depth
+// in screen space. Exit-direction output: the refracted direction. Details:
+// docs/ARCHITECTURE.md, "Design notes by file".
 precision highp float;
 
 #include "common/optics.glsl"

@@ -1,21 +1,11 @@
 // SPDX-License-Identifier: MIT
-// wyman.frag - two-sided refraction in image space (Wyman 2005; seed
-// 000 3.4.1). Refract the view ray at the front surface P1 into T1; the exit
-// point is P2 = P1 + d T1 with d = (th_t / th_i) d_V + (1 - th_t / th_i) d_N
-// (the seed's equation 10: th_i, th_t the incidence and refraction angles;
-// d_V the distance from P1 to the farthest back face along the view ray, from
-// the frame's back-face pass; d_N the thickness along the inward normal, a
-// per-vertex precomputation, methods/wyman.c). The exit normal is the
-// back-face map's at P2's projection; where P2 projects outside this object's
-// back faces (it left through a side) or outside the target, the paper's
-// fallback: a normal perpendicular to the view vector, in the plane of V and
-// T1. Refract out there; on total internal reflection, reflect and stop: the
-// direction after two interfaces, as the reference's MATCHED model with
-// max_interfaces 2 (and the cubemap method) cap it, not the seed's clamp.
-// Schlick Fresnel at the entry, Beer-Lambert over d.
-//
-// Spaces: world; window depth 24 bits, as the G-buffer stores it (gbuffer.frag).
-// highp throughout: depth reconstruction and the projection of P2.
+// wyman.frag - two-sided refraction in image space (Wyman 2005; seed 000
+// 3.4.1): the exit point P2 = P1 + d T1 interpolates the view-ray and
+// inward-normal thicknesses (the seed's equation 10); the exit normal is the
+// back-face map's at P2, or the paper's fallback off the back faces; TIR
+// reflects and stops. Schlick at the entry, Beer-Lambert over d. World space;
+// window depth 24 bits; highp throughout. More: docs/methods.md, "Design notes
+// by file".
 precision highp float;
 
 #include "common/optics.glsl"

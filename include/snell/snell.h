@@ -1,38 +1,13 @@
 /* SPDX-License-Identifier: MIT */
-/* snell — real-time refractive glass on OpenGL ES 3.0 over EGL.
- *
- * A frame, step by step (every call returns a snell_status; 0 is SNELL_OK):
- *   1. snell_ctx_create(&desc, &ctx)       a headless EGL context, or the one
- *      current in your app (desc.backend = SNELL_BACKEND_EXTERNAL)
- *   2. snell_mesh_load(ctx, path, &mesh)   OBJ, glTF, .3ds; or snell_mesh_create
- *   3. snell_env_create(ctx, &env_desc, &env)   what the glass refracts
- *   4. snell_renderer_create(ctx, &renderer_desc, &r)   offscreen or your framebuffer
- *   5. fill a snell_frame_desc: env, camera, glass objects (mesh, model,
- *      material; method 0 = AUTO), optionally opaque objects, light, water,
- *      your depth and your frame behind the glass (backdrop)
- *   6. snell_render(r, &frame, &stats)     stats say what was drawn and why
- *   7. snell_renderer_read_rgba(r, pixels) for an offscreen target
- * The sections below follow that order: status and context, meshes,
- * environments, materials and methods, the renderer and the frame, then
- * scene files and images. docs/integrating.md shows it in an app.
- *
- * Conventions (docs/ARCHITECTURE.md):
- *  - every fallible call returns snell_status; snell_last_error() gives the detail;
- *  - descriptor structs are zero-initialisable, zero means the documented default;
- *  - objects are opaque; snell_xxx_create(ctx, &desc, &out) / snell_xxx_destroy(x);
- *    destroy(NULL) does nothing;
- *  - vectors are float[3], matrices float[16] column-major, angles in radians,
- *    world space is right-handed with +Y up;
- *  - the library never exits, aborts or prints (unless a log callback is given,
- *    or SNELL_DEBUG_HANDLES is set, below).
- * Outside the contract, as free() twice is in C (undefined: a crash, or memory
- * corrupted without one): destroying an object twice or using it after its
- * destroy, and arrays shorter than the counts passed with them (glass_count,
- * vertex_count, ...). Handles are plain pointers, not generation-checked.
- * SNELL_DEBUG_HANDLES=1 in the environment (a debugging aid, read once):
- * destroyed contexts and meshes are kept, marked dead (their memory leaks),
- * and destroying one again or drawing a dead mesh prints what and aborts.
- */
+/* snell — real-time refractive glass on OpenGL ES 3.0 over EGL. A frame:
+ * snell_ctx_create (headless, or your context: SNELL_BACKEND_EXTERNAL),
+ * snell_mesh_load, snell_env_create, snell_renderer_create, then fill a
+ * snell_frame_desc (env, camera, glass objects, optionally opaque objects,
+ * light, water, your depth and backdrop), snell_render, and for an offscreen
+ * target snell_renderer_read_rgba. The sections below follow that order; each
+ * method's parameters are in snell_methods.h. The rules every call follows
+ * (status, zero = default, opaque handles, units, what is undefined) and the
+ * longer story of the fields: docs/integrating.md. */
 #ifndef SNELL_SNELL_H
 #define SNELL_SNELL_H
 

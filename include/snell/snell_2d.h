@@ -2,18 +2,11 @@
 /* snell_2d.h — 2D global illumination lightmaps (Brückner 2019): polygon scenes
  * with a simple per-object BSDF, CPU light tracing through a perimeter-SAH BVH,
  * and rasterisation of the light paths into a lightmap (GLES lines or an exact
- * CPU rasteriser).
- *
- * Conventions (besides those of snell.h):
- *  - 2D world units; x to the right, y DOWN (image convention, so polygons made
- *    from images and albedo images line up). Angles in radians, 0 = +x, pi/2 = +y.
- *  - The lightmap covers the view rectangle [view_min, view_max]; view_min is
- *    the top-left corner of pixel (0, 0), rows are stored top row first.
- *  - Lightmap value of a pixel = sum over light paths of flux x length of the
- *    path inside the pixel, in pixel widths (Brückner eq. 4.2), times exposure;
- *    a light of power P shooting N rays gives each ray the flux P / N, so the
- *    image does not change with the ray count except for noise.
- */
+ * CPU rasteriser). Besides snell.h's conventions: 2D world units, x right, y
+ * DOWN, angles from +x; the lightmap covers [view_min, view_max], top row first;
+ * a pixel's value is the sum over paths of flux x length inside it, in pixel
+ * widths (Brückner eq. 4.2), times exposure; N rays of a light of power P carry
+ * P / N each. */
 #ifndef SNELL_SNELL_2D_H
 #define SNELL_SNELL_2D_H
 

@@ -1,22 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* snell_metrics.h — error metrics of a method against the reference (issue 3):
+/* snell_metrics.h — error metrics of a method against the reference:
  * per-pixel exit-direction angle, image RMSE/PSNR, SSIM, shares above 1 and 5
- * degrees, NaN/Inf counts. Pure CPU functions on caller-owned buffers; no allocation.
- *
- * Pixel sets. A "glass pixel" is one whose light path met the glass. For the
- * reference it is snell_ref_output.hit; for a GPU method it is what the
- * renderer marks (snell_renderer_read_coverage). snell_metrics_coverage_mask,
- * a pixel whose exit direction differs from that of a background-only frame
- * of the same camera, misses glass a path leaves unbent (IOR 1, a slab's
- * parallel faces): its exit is the view ray, the background's own direction,
- * told apart on a float target only where rounding differs and on the packed
- * RGBA8 target not at all. The angular
- * statistics are taken over the pixels that are glass in BOTH masks; pixels
- * where the masks disagree (silhouette coverage: a triangle edge vs the BVH
- * hit) are counted in mask_mismatch and left out, because there one side is a
- * background view ray and the angle would measure rasterisation coverage, not
- * the optics. Non-finite test directions are counted in nan_inf (over all
- * pixels) and are never "compared". */
+ * degrees, NaN/Inf counts. Pure CPU functions on caller-owned buffers; no
+ * allocation. Angular statistics are taken over the pixels that are glass in
+ * BOTH masks; disagreeing pixels are counted in mask_mismatch, non-finite test
+ * directions in nan_inf. Why: docs/ARCHITECTURE.md, "Design notes by file". */
 #ifndef SNELL_SNELL_METRICS_H
 #define SNELL_SNELL_METRICS_H
 

@@ -1,101 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* snell_ref.h — the CPU reference ray tracer: ground truth for the GPU methods.
- *
  * Double precision, one BVH over every object of the scene (watertight
- * ray-triangle test), the GPU's smooth shading normals, camera and
- * environment filtering, so that an image difference measures only a
- * method's approximation. The scene is the renderer's: glass objects (each
- * its mesh, model and material, resolved by snell_glass_defaults: ior, tint,
- * absorption derived from attenuation_color / attenuation_distance, thin-wall
- * thickness) and opaque diffuse objects (snell_opaque).
- *
- * What a ray meets (both modes):
- *  - nothing: the environment in its direction;
- *  - an opaque object: the path ends there with the colour opaque.frag gives
- *    it, colour * (0.25 + 0.75 * (0.5 + 0.5 * dot(n, normalize(0.3, 1, 0.2))))
- *    with n the normalised interpolated world normal, not flipped (lit by a
- *    light instead after snell_ref_set_light);
- *  - the receiver plane, after snell_ref_set_receiver, met from above by a
- *    ray in air: the path ends there with the plane's lit colour;
- *  - a glass object: an interface, as the mode below says. A solid object
- *    (thickness 0) bounds a volume of glass; a thin-walled one (thickness > 0)
- *    is a slab at each of its surfaces: reflectance rs and transmittance ts of
- *    all inner bounces (snell_optd_thin_slab_model: the mode's Fresnel at both faces,
- *    Beer-Lambert along the refracted chord thickness / cos_t), light going
- *    through leaves in the direction it came; a ray is never inside it.
- * Inside/outside is tracked per object: a ray inside solid object A sees only
- * A's surfaces and opaque objects (an opaque object inside glass ends the
- * path there, absorbed on the way). Glass objects are taken to be disjoint:
- * where they overlap, the object the ray entered last is its medium until it
- * leaves that object, and the other object's surfaces inside it are passed
- * through unseen. A ray that has left a glass object may enter another one;
- * with params.isolate_glass it sees only the environment and the opaque
- * objects (and, in FULL mode, again the object it first entered, e.g. the
- * other side of a torus), never another glass object.
- *
- * Two optical models:
- *
- *  SNELL_REF_MATCHED — the model of the GPU kernels (Unger 4.1): where a ray
- *    in air meets solid glass object j, C = F*E(R) + (1-F) * tint * T * L,
- *    F = Schlick(cos_i, 1, ior), R the mirror direction, L the radiance of
- *    the refracted chain: the refracted ray continues inside j; at each
- *    further surface of j it is reflected if totally internally reflected (no
- *    Fresnel split inside), else refracted out and L = E(exit direction).
- *    T = exp(-absorption * d), d the path length inside j (or see
- *    SNELL_REF_ABSORB_BOUNDING_SPHERE). A thin-walled j gives C = rs*E(R) +
- *    ts * tint * L, L = E(the same direction), the further surfaces of j
- *    unseen (the GPU draws its front faces only). E(dir) is what a ray from
- *    that surface sees in the scene without j (the GPU looks up an
- *    environment j is not in): in a scene of one glass object, the
- *    environment. Reflection branches are ended by an env lookup once their
- *    weight drops below 1e-5 (as FULL's branches are); the chain, which the
- *    path records, never is.
- *  SNELL_REF_FULL — a Whitted tree: reflection and refraction at every
- *    interface weighted by the exact Fresnel reflectance of unpolarised
- *    light, F = (rs^2 + rp^2) / 2 (snell_optd_fresnel_exact; n1/n2 of the side
- *    the ray is on; 0 at matched indices), as real glass and Blender Cycles'
- *    Glass BSDF have it (the groundtruth test compares with Cycles),
- *    Beer-Lambert on every inner segment, tint on every entering refraction
- *    (once for a convex object), every wall of a thin object a slab (a
- *    reflected branch of weight rs, a straight-on one of weight ts * tint,
- *    the exact F at both faces); what a glass object really looks like. A branch whose throughput drops
- *    below 1e-5 ends with an env lookup in its direction instead of being
- *    traced on (error < 1e-5 per branch, far below 1/255). Smooth normals are
- *    a shading device, not the surface: at a mesh interface the triangle's
- *    plane says which side the ray is on, the smooth normal is turned to
- *    that side, and where the mirror direction about it would not stay on
- *    the ray's side (silhouettes, rounded creases) it is bent towards the
- *    plane's normal until it does (Cycles' rule; the same optics as Cycles
- *    there); a refracted ray is in the medium on the side of the plane it
- *    goes to. MATCHED, like the kernels, flips the smooth normal by its own
- *    sign.
- *
- * Dispersion (both modes): where a glass object's material disperses
- * (snell_glass_material.dispersion > 0, a solid), every ray is traced three
- * times, with every dispersive object at its red, its green (= ior) and its
- * blue IOR (snell_glass_resolved.ior_rgb: the Cauchy fit at 656.3, 587.6 and
- * 486.1 nm), each trace giving its own channel of rgb (and of sample_var):
- * per channel, not spectral. The path outputs (exit_dir, interfaces, the
- * traced path) are the green trace's.
- *
- * Interface cap (both modes): an "interface" is one ray-glass surface hit that
- * is processed (refracted and/or reflected, or a thin wall crossed); the first
- * glass surface is interface 1, and the count runs on over every object along
- * a path. At most max_interfaces are processed along any path. A ray that has
- * gone through max_interfaces interfaces and is still inside leaves through
- * the next surface in its current direction: absorption (PATH model) runs on
- * to that surface, and after it the ray sees the environment and the opaque
- * objects only; so does a capped ray in air. The same holds for a ray inside
- * that finds no surface (open mesh). max_interfaces = 1 in MATCHED mode is the
- * single-surface method (Unger 3.3): E(T1) after the front refraction.
- *
- * Conventions are those of the renderer: pixel (x, y), y = 0 the top row, ray
- * through the pixel centre of snell_camera_matrices(camera, width/height);
- * smooth normal = normalize(barycentric interpolation of the world-space vertex
- * normals, inverse-transpose(model) * n), flipped to face the incoming ray at
- * glass (FULL: turned and bent as above); environment = snell_env_sample_d (GL_LINEAR model). All directions
- * are world space, unit length. Results do not depend on the thread count
- * (bitwise). */
+ * ray-triangle test), the GPU's smooth normals, camera and environment
+ * filtering, so that an image difference measures only a method's
+ * approximation. Two optical models: SNELL_REF_MATCHED (the GPU kernels' model)
+ * and SNELL_REF_FULL (a Whitted tree with exact Fresnel, as Blender Cycles).
+ * What a ray meets, both models in full, dispersion, the interface cap and the
+ * conventions: docs/ARCHITECTURE.md, "Design notes by file". */
 #ifndef SNELL_SNELL_REF_H
 #define SNELL_SNELL_REF_H
 

@@ -1,44 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* snell_water.h — animated water in a box container (Dachsbacher 2002,
- * "Wasser-Spiegel", PC Magazin 1/2002; issue 17).
- *
- * A water surface is a height field on a square grid of nodes over the
- * container's inner footprint, simulated by the seed's eight-neighbour scheme
- * (differences to the four axial neighbours, the four diagonal ones times
- * 1/sqrt 2, summed into a force, integrated into velocity, then into height),
- * with damping and reflecting walls, on the CPU (C, deterministic) or on the
- * GPU (ping-pong RG32UI render targets holding the fp32 bits of height and
- * velocity). It is drawn as one object of a frame (snell_frame_desc.water):
- * per-pixel normals interpolated from the height field's vertex normals, the
- * view ray refracted into the container and met exactly with its walls or
- * floor (procedural tiles), the sky reflected from the environment, Schlick
- * Fresnel between the two and Beer-Lambert colouring by the path length in
- * the water. Glass and opaque objects of the frame standing in the water are
- * seen through it, and the glass sees the water (snell_frame_desc.water in
- * snell.h says how). The reference tracer renders the same scene
- * (snell_ref_water_render in snell_ref.h).
- *
- * With a light in the frame (snell_frame_desc.light, directional or spot;
- * issue 27) the floor is lit by the light refracted through the moving
- * surface: its caustics (after Evan Wallace's webgl-water). The caustics
- * stage remakes the floor's light map in one draw whenever the surface or
- * the light moved: the surface's grid, each node moved to where its
- * refracted light ray meets the floor, each triangle adding the light's
- * irradiance times its area across the beam over its area on the floor
- * (flux-correct), Schlick transmission, Beer-Lambert along the path, none
- * where the walls above the water hide the surface from the light. The
- * floor's tiles are then multiplied by that irradiance (in units of the
- * light's colour) wherever the water's surface and the glass kernels see
- * the floor through the water; the opaque objects of the frame shadow the
- * floor (the light's way through the surface to each point of it sampled
- * against their columns seen from above); the walls are not lit, and glass
- * objects in the water do not change the floor's light. Without a light the frame is as
- * before. snell_ref_water_floor_render traces the same light.
- *
- * World space: the container's inner box is |x| <= width/2, |z| <= width/2,
- * -depth <= y <= rim; the water rests at y = 0, node (i, j) sits at
- * x = -width/2 + i dx, z = -width/2 + j dx, dx = width / (grid - 1), and its
- * height is y = h[j * grid + i]. The walls have no thickness. */
+ * "Wasser-Spiegel", PC Magazin 1/2002). A height field on a square grid,
+ * simulated by the seed's eight-neighbour scheme on the CPU or the GPU, drawn as
+ * one object of a frame (snell_frame_desc.water): refraction into the container,
+ * the sky reflected, Schlick between the two, Beer-Lambert in the water; with a
+ * light, the floor's caustics. World space: the inner box is |x|, |z| <= width/2,
+ * -depth <= y <= rim; the water rests at y = 0; node (i, j) sits at
+ * x = -width/2 + i dx, z = -width/2 + j dx, dx = width / (grid - 1), height
+ * y = h[j * grid + i]. The longer story: docs/ARCHITECTURE.md, "Design notes by file". */
 #ifndef SNELL_SNELL_WATER_H
 #define SNELL_SNELL_WATER_H
 

@@ -1,21 +1,10 @@
 // SPDX-License-Identifier: MIT
 // backdrop.glsl - the host's scene behind the glass (snell_frame_desc.backdrop,
-// render/backdrop.h): what a ray that leaves the glass sees of what the host
-// drew, before the environment (beyond.glsl's beyond_miss).
-//
-// With the host's depth (u_backdrop_distance 0) the ray is searched against
-// it in screen space as the peel kernel searches its layers (Wang 2014,
-// seed 001 3.4): the ray, clipped to the backdrop camera's frustum, is
-// stepped BACKDROP_LINEAR times evenly across the screen (window depth is
-// affine in screen position along a projected line, so it is interpolated,
-// not re-projected), and where it first lies behind the depth at its texel
-// the crossing is halved BACKDROP_BINARY times. A texel's depth stands for
-// everything behind it (a depth field: a ray passing behind a thin object
-// is stopped by it); depth 1 (nothing drawn) for nothing. The colour there
-// is read bilinearly. The reference models the same field exactly
-// (ref/ref_backdrop.c). Without depth: the colour where the ray is
-// u_backdrop_distance past its start, one look-up (Filament's and three.js's
-// screen-space refraction). Off the view, or not found: false.
+// render/backdrop.h): what a ray leaving the glass sees of what the host drew,
+// before the environment. With the host's depth, a screen-space search as peel's
+// (Wang 2014, seed 001 3.4): BACKDROP_LINEAR steps, BACKDROP_BINARY halvings;
+// without it, the colour u_backdrop_distance along the ray. Off the view, or not
+// found: false. More: docs/ARCHITECTURE.md, "Design notes by file".
 uniform highp mat4 u_backdrop_view_proj;
 uniform highp vec4 u_backdrop_region;   // x, y, w, h of the texels that hold the view
 uniform highp vec2 u_backdrop_size;     // the textures' size in texels

@@ -1,76 +1,13 @@
 // SPDX-License-Identifier: MIT
 // beyond.glsl - what a ray sees once it leaves the kernel's glass object.
 // snell_exit(p, dir): the light arriving back along the ray that leaves the
-// object at p in direction dir. Without SNELL_BEYOND, the environment. With
-// it (render/layers.h: the frame has other objects for the ray to meet), the
-// ray is marched through the scene layers, the depth-peeled surfaces of every
-// other glass and opaque object of the frame (Wang 2014, seed 001 3.7, with
-// the layers of all objects in one peel instead of one peel per object):
-//
-// - The medium at a point is the object the point's pixel's layers in front
-//   of it leave it in (walked from the eye, each surface entering or leaving
-//   an object); 0 is air. The kernel's own object is skipped (its kernel has
-//   traced it), and so is the object the ray last left: a point just past
-//   a surface can test as behind it at its pixel (the layer holds the
-//   surface's depth at the pixel's centre), and read as a re-entry it made
-//   speckles of wandering rays through two spheres (seen in
-//   test_scene_layers' images); so a ray that would re-enter a concave
-//   object passes it.
-// - The ray is sampled in steps of 1/BEYOND_LINEAR of the bounding diameter
-//   of each object whose bounding sphere it passes (nearest first), or of
-//   the object it is inside; where the medium changes it bisects
-//   BEYOND_BINARY times: the surface crossed is the layer of the object
-//   entered (or left) nearest the crossing, whose normal it reads.
-// - Glass: Snell's law with the two media's indices, total internal
-//   reflection inside, Schlick's Fresnel at each entry from air (the
-//   reflected part looks the environment up, as every kernel's first entry
-//   does; inner surfaces have none, the MATCHED model), the object's tint at
-//   entry and Beer-Lambert over each length inside; up to
-//   BEYOND_MAX_INTERFACES surfaces. Opaque: shaded as opaque.frag shades it,
-//   or lit as caustics_opaque.frag in a frame with a light (the path ends). Past the last object: the environment.
-// - Thin walls (material.thickness > 0) are never a medium: a change in the
-//   parity of the thin-wall surfaces in front of the point is a wall
-//   crossed, which transmits by the slab model (snell_thin_slab, as the
-//   single kernel's thin walls do: no bend, its reflection added); the
-//   object is one slab, as there and in the MATCHED reference: its far wall
-//   is not crossed again (FULL and the caustics' light cross every wall).
-// - Where the march leaves what the layers know (the target's edge, behind
-//   the eye, behind the last of a capped peel) the ray leaves in its
-//   direction to the environment.
-//
-// dir is updated to the direction the path finally leaves in (exit-direction
-// output). highp: positions, projections and 24-bit depths.
-//
-// snell_reflection(p, r): the same for the mirror ray r off the kernel's
-// object at its front surface p (every kernel's reflection): marched
-// through the layers it sees the other objects (with the environment alone,
-// silhouettes that reflect most missed the opaque objects behind them;
-// bench/notes/code.md, "beyond.glsl").
-//
-// SNELL_WATER (the frame has a water surface, common/water.glsl): past the
-// objects the ray meets the water and its container before the
-// environment. In the air they are met where they lie nearer than the next
-// object's surface; at the water surface the ray is refracted into the
-// water (its reflection from the walls and the sky) and goes on there. A ray
-// is in the water from the start when it starts under the surface, or with
-// beyond_start_in_water (the water surface's refracted rays, which start on
-// it). In the water the ambient index is the water's, Beer-Lambert with the
-// water's absorption runs over every stretch outside the objects, and the
-// container ends the ray (water_under). Reflections met on the way look up
-// the same. A kernel's ray that leaves its object under the water was
-// refracted out for air; it is bent again for the water's index (the exit
-// normal from the layers).
-//
-// SNELL_BACKDROP (the host's scene behind the glass, common/backdrop.glsl):
-// past everything above, before the environment, the ray looks for what
-// the host drew in screen space.
-//
-// SNELL_RECEIVER (the frame's caustics stage lit a receiver plane or the
-// opaque objects, common/receiver.glsl, common/opaque_lit.glsl): past the
-// objects, before the environment, the ray meets the plane from above and
-// sees it lit by its light map, and an opaque object it meets through the
-// layers is lit by the light (shadow and caustic maps), both as the view
-// sees them (u_lit_opaque 0: the opaque objects are not lit this frame).
+// object at p in direction dir; snell_reflection(p, r): the same for the mirror
+// ray off its front. Without SNELL_BEYOND, the environment; with it, the ray is
+// marched through the scene layers of every other glass and opaque object
+// (Wang 2014, seed 001 3.7, all objects in one peel), then meets the water
+// (SNELL_WATER), the host's backdrop (SNELL_BACKDROP), the lit receiver
+// (SNELL_RECEIVER), the environment. The march's rules, step by step:
+// docs/ARCHITECTURE.md, "Design notes by file".
 #ifdef SNELL_RECEIVER
 #include "common/receiver.glsl"
 #include "common/opaque_lit.glsl"

@@ -1,19 +1,10 @@
 // SPDX-License-Identifier: MIT
 // bvh.glsl - closest-hit traversal of a mesh's BVH texture (methods/exact.c
-// builds and packs it, once per mesh version, in the prepared cache), shared
-// by exact.frag (eye rays) and caustics_photon.vert (photons from the light).
-//
-// The BVH (one 2D texture, TEX_WIDTH texels a row, texelFetch only): nodes in
-// depth-first order, a node's first child right after it and its escape
-// index where the walk goes on a miss (a leaf's escape is the next node, and
-// an interior node's second child its first child's escape); then 6 texels per triangle
-// entry: v0, v1, v2, n0, n1, n2 in object space. SNELL_NODES_Q16: the
-// texture is RGBA32UI, nodes one texel of 16-bit bounds (qlo + q * qstep,
-// rounded outward) and a word, triangles the floats' bits.
-//
-// Spaces: traversal in object space with the world ray parameter (d = M^-1 *
-// unit world direction), so t is a world length for any model matrix;
-// normals go to world space by the normal matrix. highp throughout.
+// builds and packs it), shared by exact.frag and caustics_photon.vert. Nodes in
+// depth-first order with escape indices, then 6 texels a triangle (v0..v2,
+// n0..n2, object space); SNELL_NODES_Q16: RGBA32UI, 16-bit bounds. Traversal in
+// object space with the world ray parameter. highp throughout. Layout in full:
+// docs/ARCHITECTURE.md, "Design notes by file".
 #define MAX_INTERFACES 10    // SNELL_EXACT_MAX_INTERFACES
 #define TEX_SHIFT 11         // exact.c TEX_WIDTH = 2048
 #define TEX_MASK 2047

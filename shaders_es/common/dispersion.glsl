@@ -1,24 +1,12 @@
 // SPDX-License-Identifier: MIT
-// dispersion.glsl - a glass kernel with a dispersive material (the
-// material's per-channel IORs u_ior_rgb, render/material.c: red at 656.3 nm,
-// green = u_ior, blue at 486.1 nm). The kernel's main() is its trace for one
-// IOR, snell_ior, written as
+// dispersion.glsl - a glass kernel with a dispersive material (u_ior_rgb,
+// render/material.c). The kernel's trace for one IOR is
 //     vec3 snell_glass_trace(out highp vec3 exit_dir)
-// (the colour, and the direction output.glsl writes for error measurement),
-// and the main() here calls it as SNELL_DISPERSION (compile-time) says:
-//  0: once, at u_ior: no dispersion, the kernel as it was;
-//  1: three times, at u_ior_rgb.r, .g and .b, each giving its own channel
-//     (SNELL_DISPERSION_PER_CHANNEL);
-//  2: once, at the green IOR, with the red and blue directions refracted at
-//     the entry and at every interface of that path with their own IORs (its
-//     events: refracted or totally reflected; its normals, or where the
-//     kernel can look one up cheaply, the normal where the channel's own ray
-//     reaches the surface after the green ray's length), and the transmitted
-//     light looked up per channel at the end (SNELL_DISPERSION_ONE_PATH): the
-//     kernel marks the entry, each interface and the final look-up with
-//     snell_disp_enter, snell_disp_cross (or snell_disp_cross3) and
-//     snell_disp_exit, which are plain pass-throughs in the other variants.
-// The exit direction written is the green one's.
+// and main() here calls it as SNELL_DISPERSION says: 0 once at u_ior; 1 once per
+// channel (PER_CHANNEL); 2 once at green with red and blue refracted along its
+// path (ONE_PATH: snell_disp_enter, snell_disp_cross, snell_disp_cross3,
+// snell_disp_exit). The exit direction written is the green one's. More:
+// docs/methods.md, "Design notes by file".
 #ifndef SNELL_DISPERSION
 #define SNELL_DISPERSION 0
 #endif

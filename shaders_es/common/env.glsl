@@ -1,23 +1,10 @@
 // SPDX-License-Identifier: MIT
 // env.glsl - the environment's radiance along a direction (Unger 2.2.2: a
-// cubemap indexed by direction only, the light from infinitely far). Every
-// kernel looks the environment up through snell_env, so that another
-// representation of it (or of what lies beyond the glass) changes one place.
-//
-// SNELL_ENV_DUAL_PARABOLOID (a program variant the renderer chooses,
-// render/env_paraboloid.h): the environment is two 180-degree paraboloid
-// maps (Heidrich and Seidel 1998; Dachsbacher 2002, seed 003) in the two
-// layers of a 2D array texture, layer 0 the +Z hemisphere, layer 1 the -Z
-// one. A unit direction d of hemisphere sign(d.z) lands at
-//     st = d.xy / (1 + |d.z|)    (|st| <= 1, = tan of half its angle to the axis)
-// which is the stereographic projection: conformal (texels stay square, no
-// sphere map's singularity), solid angle per texel 4/(1 + |st|^2)^2, from 4 at
-// the axis to 1 at the rim. The back map is not mirrored, so on the rim
-// (d.z = 0) both maps give a direction the same st = d.xy. The disc |st| <= 1
-// is shrunk so that the rim lies SNELL_DP_MARGIN texels inside the texture
-// edge, and every texel, inside the disc or not, holds the radiance of its own
-// direction (the projection continued past 90 degrees): the bilinear
-// footprint of a look-up at the rim never reaches a clamped or empty texel.
+// cubemap indexed by direction only). Every kernel looks it up through snell_env,
+// so another representation changes one place. SNELL_ENV_DUAL_PARABOLOID: two
+// paraboloid maps (Heidrich and Seidel 1998) in a 2D array texture,
+// st = d.xy / (1 + |d.z|), rim SNELL_DP_MARGIN texels inside the edge. Why that
+// projection and its margin: docs/ARCHITECTURE.md, "Design notes by file".
 
 #define SNELL_DP_MARGIN 2.0
 

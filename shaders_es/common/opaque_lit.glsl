@@ -1,16 +1,11 @@
 // SPDX-License-Identifier: MIT
 // opaque_lit.glsl - the irradiance of an opaque surface point under the
-// frame's light (the caustics stage, render/caustics.c): the direct light
-// (directional: colour * cosine; spot: intensity * cosine / distance^2
-// inside its cone) where the shadow map (every glass and opaque object seen
-// from the light) leaves the point lit, plus the light through the glass:
-// the light-space caustic map (Wyman & Davis 2006), read bilinearly over the
-// texels whose nearest opaque receiver is this surface (their depth within 3
-// texels of the point's), times the cosine (spot: / distance^2): its texels
-// hold flux per area facing the light (caustics_photon.vert, u_target 1).
-// One function for the opaque objects seen directly (caustics_opaque.frag)
-// and seen through glass (common/beyond.glsl under SNELL_RECEIVER), so that
-// an object behind glass of index 1 is the object seen directly.
+// frame's light (render/caustics.c): the direct light where the shadow map leaves
+// it lit, plus the light through the glass from the light-space caustic map
+// (Wyman & Davis 2006) over the texels whose receiver is this surface. One
+// function for opaque objects seen directly and through glass, so that behind
+// glass of index 1 they look the same. More: docs/ARCHITECTURE.md, "Design
+// notes by file".
 uniform highp vec3 u_light;          // the light's colour (directional: irradiance; spot: intensity)
 uniform highp vec3 u_dir;            // directional: the unit direction it travels
 uniform int u_spot;                  // 1: a spot light at u_pos, axis u_axis, cone cosine u_cos_cone

@@ -1,30 +1,10 @@
 // SPDX-License-Identifier: MIT
-// water.glsl - the water and its container as something a ray meets (issue
-// 17; GLSL twin of src/ref/ref_water.c): included by beyond.glsl under
-// SNELL_WATER, which every kernel's exit look-up and the water surface's own
-// shader use. World space as snell_water.h: the inner box |x|, |z| <= half,
-// -depth <= y <= rim, the water at rest at y = 0.
-//
-// - water_under(p, t): a ray inside the water from p; the seed's five
-//   ray-wall distances choose the floor or a wall (a rising ray goes to the
-//   walls too: the surface seen from below is not modelled), whose tile is
-//   attenuated by Beer-Lambert over the distance. In a frame with a light
-//   (u_water_lit) the floor's tile is lit by its light map: the light
-//   refracted through the surface (water_caustics.vert), water_lit_tile.
-// - water_walls_above(p, r): a ray from the surface upwards: the walls'
-//   inner side below the rim, else the environment.
-// - water_air_hit(o, d, dist, n): what a ray in the air meets first: the
-//   water surface (point and normal), a face of
-//   the container, or nothing; a ray starting under the surface is in the
-//   water. The surface is found as the plane of the rest level refined
-//   three times by the heights under the point (bilinear in the cell), its
-//   normal the bilinear blend of the four nodes' (-dh/dx, 1, -dh/dz): close
-//   to the drawn triangles where the ray is steeper than the waves, which
-//   the reference meets exactly (test_water_glass measures the difference).
-//   beyond.glsl's march refracts into the water there and goes on.
-// - water_air(o, d, col): the same, shaded: the surface with
-//   Schlick's Fresnel between water_under and water_walls_above (no
-//   objects), a face its tile; for look-ups past every object.
+// water.glsl - the water and its container as something a ray meets (GLSL
+// twin of src/ref/ref_water.c), included by beyond.glsl under SNELL_WATER.
+// World space as snell_water.h. water_under (a ray in the water: floor or wall,
+// Beer-Lambert), water_walls_above (a ray leaving the surface upwards),
+// water_air_hit (what a ray in the air meets first), water_air (the same,
+// shaded). What each does: docs/ARCHITECTURE.md, "Design notes by file".
 #include "common/water_tiles.glsl"
 
 uniform highp float u_water_rim;       // top of the walls above the rest level

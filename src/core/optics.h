@@ -1,16 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* optics.h — the optics kernel shared by every method and the references:
- * Snell refraction with total internal reflection, mirror reflection, Schlick
- * and exact (unpolarised dielectric) Fresnel and Beer-Lambert attenuation
- * (Unger 2.1), and the IOR and refraction per colour channel of a dispersive
- * material. Its GLSL twin is
- * shaders_es/common/optics.glsl; tests/test_optics_twin.c runs both on the
- * same inputs. Float versions (snell_opt_*) mirror the GPU; double versions
- * (snell_optd_*) serve the reference tracers.
- *
- * Conventions: i is the unit direction of travel towards the surface, n the
- * unit surface normal on the side the ray comes from (dot(i, n) <= 0),
- * eta = n1 / n2 (from the incident medium into the other). */
+ * Snell refraction with TIR, mirror reflection, Schlick and exact Fresnel,
+ * Beer-Lambert (Unger 2.1), per-channel IOR and refraction for dispersion. GLSL
+ * twin: shaders_es/common/optics.glsl (tests/test_optics_twin.c). snell_opt_*
+ * floats mirror the GPU, snell_optd_* doubles serve the references.
+ * Conventions: i the unit direction of travel, n the unit normal on the side
+ * the ray comes from (dot(i, n) <= 0), eta = n1 / n2. */
 #ifndef SNELL_OPTICS_H
 #define SNELL_OPTICS_H
 

@@ -1,17 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* lm2d_raster_cpu.c — exact length-weighted rasterisation of path segments
- * (eq. 4.2) in pixel space, threaded over row bands.
- *
- * A segment is walked along its major axis, one column (x-major) or row
- * (y-major) at a time: inside one such unit it crosses at most one boundary of
- * the minor axis, so it falls into one or two cells. The minor coordinate at a
- * unit boundary k is a 32.32 fixed-point number V(k) = V(k_first) + (k -
- * k_first) M, exact in integers, so the walk costs an integer add per unit and
- * a band that starts in the middle of a segment finds the same cells as a walk
- * from its start (2^-32 px resolution; crossing points and lengths are
- * doubles). A segment's walk parameters are computed once per frame (seg_setup),
- * not once per band. Bands have a fixed height and each is done by one thread,
- * segments in list order: the image is bitwise the same for any thread count. */
+ * (eq. 4.2) in pixel space, threaded over row bands. A segment is walked along
+ * its major axis in 32.32 fixed point (an integer add per unit, the same cells
+ * from any band's start); bands of fixed height, one thread each, segments in
+ * list order: bitwise the same image for any thread count. More:
+ * docs/ARCHITECTURE.md, "Design notes by file". */
 #include "lm2d/lm2d_raster_cpu.h"
 
 #include <math.h>

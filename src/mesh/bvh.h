@@ -1,19 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* bvh.h — 3D triangle BVH in double precision (world space): binned SAH
- * build over one or several parts (meshes, each with its model matrix),
- * flattened node array, watertight ray-triangle test, closest/any hit with an
- * optional per-part filter.
- *
- * Used by the reference tracer (ref_scene.c: one BVH over every object of a
- * scene, part = object) and by any module that needs exact ray casts against a
- * mesh (e.g. star-shapedness checks). The BVH owns a world-space copy of the
- * triangles (each part's model matrix is applied once at build), so queries
- * take world-space rays and the meshes may be destroyed afterwards.
- *
+/* bvh.h — 3D triangle BVH in double precision (world space): binned SAH build
+ * over one or several parts (each with its model matrix, applied once: the BVH
+ * owns a world-space copy), flattened nodes, closest/any hit with an optional
+ * per-part filter. Used by the reference tracer and exact ray casts on meshes.
  * Ray-triangle test: Woop, Benthin, Wald, "Watertight Ray/Triangle
- * Intersection", JCGT 2(1), 2013 — a ray through a shared edge or vertex hits
- * at least one of the adjacent triangles (no cracks). Traversal uses boxes
- * padded by a tiny relative margin so that the box test is conservative. */
+ * Intersection", JCGT 2(1), 2013 (no cracks); boxes padded so the box test is
+ * conservative. */
 #ifndef SNELL_REF_BVH_H
 #define SNELL_REF_BVH_H
 

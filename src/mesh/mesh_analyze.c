@@ -1,16 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* mesh_analyze.c — the "analyze" stage (docs/ARCHITECTURE.md "One frame"): topology on position-welded
- * vertices (boundary, non-manifold and flipped edges, closed, convex, winding),
- * the centre for the normal+distance cubemap with the share of surface that
- * the cubemap cannot represent (snell_mesh_analyze, declared in snell.h), and
- * its per-version cache on the mesh (snell__mesh_analysis, snell__mesh_winding).
- *
- * Why: Li et al.'s method as in Unger 4.1 stores, per direction from a centre,
- * only the farthest surface. It is exact only if every ray from the centre
- * crosses the surface once (the mesh is star-shaped about the centre); Unger
- * 4.4 shows what goes wrong otherwise (Abb. 22/23). The seed takes the vertex
- * average as the centre; here candidates are scored by exact ray casts against
- * a CPU BVH (bvh.h) in object space and the best one is kept. */
+/* mesh_analyze.c — the "analyze" stage (docs/ARCHITECTURE.md "One frame"):
+ * topology on position-welded vertices (boundary, non-manifold and flipped
+ * edges, closed, convex, winding), the centre for the normal+distance cubemap
+ * with the share of surface it cannot represent (snell_mesh_analyze), and its
+ * per-version cache on the mesh (snell__mesh_analysis, snell__mesh_winding).
+ * Why the centre is searched for (Unger 4.1, 4.4): docs/ARCHITECTURE.md,
+ * "Design notes by file". */
 #include "mesh/mesh.h"
 #include "mesh/bvh.h"
 

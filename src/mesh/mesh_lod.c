@@ -1,33 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* mesh_lod.c — snell_mesh_simplify: an optional level of detail
- * for meshes whose triangles are far below a pixel, made with meshoptimizer's
- * edge-collapse simplifier, cleaned so that a closed mesh stays closed.
- *
- * Steps, all on a copy (the source mesh is not changed):
- *  1. weld by position with the analysis's own weld (snell__mesh_weld: chains
- *     within 1e-5 of the box diagonal), so seams of split vertices neither
- *     block collapses nor open up when the two sides collapse differently;
- *     then step 3's cleaning (below) is done before the simplifier too, and a
- *     mesh whose simplification would cost more than its bound (the
- *     squared corners per vertex, as the vertex-cache reorder's in
- *     mesh_gpu.c) is refused (SNELL_E_LIMIT);
- *  2. meshopt_simplify (quadric error, collapses onto existing vertices: no
- *     vertex moves, positions stay exactly the source's);
- *  3. remove triangles with a repeated corner, and triangles on the same three
- *     vertices as another: an opposite-facing pair (a flat "pillow" left when a
- *     thin part collapses) is removed whole, same-facing copies down to one.
- *     The simplifier keeps every edge used as often a->b as b->a (a vertex map
- *     preserves the boundary of the surface's 2-chain, and a triangle with a
- *     repeated corner has none), so the pair's edges keep that balance; left
- *     in, the pair makes its edges non-manifold and the analysis calls the
- *     mesh open (the cubemap method then refuses it);
- *  4. compact the vertices (first use order) and recompute smooth
- *     area-weighted normals (snell__mesh_adopt).
- * Memory: the arrays are the context's allocator's; the weld's scratch is the
- * source mesh's; meshoptimizer's own scratch (freed before it returns) comes
- * from its process-wide allocator (meshopt_setAllocator takes no user pointer
- * and its callers do not check for NULL, so a failing user allocator cannot
- * be put under it), bounded beforehand by the memory budget. */
+/* mesh_lod.c — snell_mesh_simplify: an optional level of detail for meshes
+ * whose triangles are far below a pixel, made with meshoptimizer's edge-collapse
+ * simplifier on a copy, cleaned so that a closed mesh stays closed: weld by
+ * position, meshopt_simplify, remove degenerate and paired triangles, compact
+ * and recompute normals. meshoptimizer's scratch comes from its process-wide
+ * allocator, bounded beforehand by the memory budget. Each step and why:
+ * docs/ARCHITECTURE.md, "Design notes by file". */
 #include "mesh/mesh.h"
 
 #include <float.h>

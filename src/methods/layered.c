@@ -1,19 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* layered.c — multi-layer refraction through layered distance cube maps
- * (Umenhoffer, Patow and Szirmay-Kalos 2007, GPU Gems 3 ch. 17): prepared
- * once per (mesh version, face size, layers) by depth peeling the mesh from
- * its analysed centre into `layers` cube layers of normal and distance
- * (layered_bake.frag), read back once and stored as RGBA16F (normal,
- * distance), filtered (half floats filter in GLES 3.0 but need an extension
- * to be rendered to), in one 2D array texture, slice face * layers + layer
- * (GLES 3.0 has no cube map arrays), the gaps at fold rims closed (pinch),
- * then per face one slice for each four
- * layers' distances (the march's count in one look-up instead of one per
- * layer; bench/notes/code.md, "layered.c"); per frame one
- * pass of layered.frag over the front faces, which
- * marches the refracted ray through the layers, refracting or reflecting at
- * each surface crossed, re-entries included. Rigid meshes pay no per-frame
- * peel: the view-independent counterpart of peel.c. */
+ * (Umenhoffer, Patow and Szirmay-Kalos 2007, GPU Gems 3 ch. 17): prepared once
+ * per (mesh version, face size, layers) by depth peeling the mesh from its
+ * analysed centre into RGBA16F layers of one 2D array texture (layered_bake.frag),
+ * fold rims pinched, plus count slices; per frame one pass of layered.frag.
+ * Rigid meshes pay no per-frame peel. More: docs/methods.md, "Design notes by
+ * file". */
 #include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"

@@ -1,21 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* ref_caustics.c — the reference of the caustics stage: the
- * receiver plane's irradiance traced from the light in double precision:
- * shadow rays for the direct light, and photons refracted through each glass
- * object (the stage's optics: Schlick and Snell at every refraction, the
- * tint at every entry, Beer-Lambert inside) along their whole path through
- * the mesh by the tracer's BVH ray casts: in, inside from surface to
- * surface with total internal reflection followed (ref_trace.c's inside
- * walk, snell__ref_inside), out, and in again where the way out meets the
- * object once more, up to its exact.max_interfaces surfaces (through());
- * splatted onto the plane's texels with the stage's tent, flux-correct; a
- * thin wall's photon straight on through each of its walls, a slab each.
- * A photon counts only where the light meets its object first, and goes on
- * through each glass object it meets next, by that one's optics, up to
- * SNELL__CAUSTICS_CHAIN objects (chain()), onto the plane and the opaque
- * receivers alike; the GPU does so where beams overlap (its chain path).
- * The GPU follows the same path by exact's BVH where the mesh is not
- * convex, and one crossing of depth maps where it is (caustics_photon.vert). */
+/* ref_caustics.c — the reference of the caustics stage: the receiver plane's
+ * irradiance traced from the light in double precision: shadow rays for the
+ * direct light, and photons refracted through each glass object along their
+ * whole path by the tracer's BVH (through()), on through up to
+ * SNELL__CAUSTICS_CHAIN objects (chain()), splatted with the stage's tent,
+ * flux-correct. The optics and how the GPU matches them: docs/ARCHITECTURE.md,
+ * "Design notes by file". */
 #include "frame/lighting.h"
 #include "ref/ref_trace.h"
 #include "core/ctx.h"

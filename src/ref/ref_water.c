@@ -1,18 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* ref_water.c — the reference for the water scene (snell_ref_water_render):
- * the height field intersected exactly, in double, as the triangles the GPU
- * draws (two per cell, split along (i, j)-(i+1, j+1)), found by walking the
- * cells the ray's projection crosses (Amanatides-Woo) inside the slab between
- * the lowest and highest node; the container's five faces as exact planes.
- * The surface's optics are water_surface.frag's: the normal is the
- * barycentric blend of the nodes' (-dh/dx, 1, -dh/dz), normalised; Schlick
- * Fresnel between the mirror ray and the refracted one, the tiles where a
- * ray in the water meets the floor or a wall (the nearest of the five
- * distances, floor first, then x, then z on ties), Beer-Lambert over every
- * stretch in the water. The objects (glass and opaque, ref_scene.c's BVH)
- * are traced by ref_trace.c's MATCHED model within the two media: the air
- * and the water are snell__ref_medium's, the water's chosen where a point
- * lies inside the box below the surface. */
+ * the height field intersected exactly, in double, as the triangles the GPU draws,
+ * found by walking the cells the ray crosses (Amanatides-Woo); the container's
+ * faces as exact planes; water_surface.frag's optics; the objects traced by
+ * ref_trace.c's MATCHED model within the two media (snell__ref_medium). More:
+ * docs/ARCHITECTURE.md, "Design notes by file". */
 #include "frame/lighting.h"
 #include "core/optics.h"
 #include "ref/ref_scene.h"

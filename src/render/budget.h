@@ -1,25 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* budget.h — AUTO by frame budget (snell_frame_desc.budget_ms).
- *
- * Each AUTO glass object gets a ladder: the configurations of the rung
- * table (budget.c: method + one parameter + a resolution scale, with their
- * cost relative to single and their glass PSNR against FULL per mesh class,
- * measured by snell-bench on this project's reference device) that its mesh
- * does not fail (nor, for a scale, the build: render/glass_scale.h), cut to
- * their Pareto front (dearer only where better). A plan puts
- * every object on one rung of its ladder. Its cost in units is
- * base + sum(area_i * cost_i), area_i the share of the target the object's
- * projected bounding sphere covers; the controller learns the device's ms
- * per unit from the frames it measures (a fence after each frame: the CPU
- * clock from snell_render's start to the GPU's completion) and picks the
- * plan of the highest area-weighted predicted PSNR that fits 95% of the
- * budget. Against oscillation: a step up waits a few frames after any
- * change; a plan found over budget is stepped down from at once and plans
- * as dear are barred for a back-off that doubles with each failure.
- *
- * The controller (plan/observe) is plain C without GL so that it can be
- * tested with synthetic frame times (tests/test_budget.c); the renderer
- * adds the fence and applies the plan to the frame's resolved materials. */
+/* budget.h — AUTO by frame budget (snell_frame_desc.budget_ms): each AUTO
+ * glass object gets a ladder of rungs (budget.c's table, cut to the Pareto
+ * front); a plan puts every object on one rung; the controller learns the
+ * device's ms per unit from the frames it measures and picks the plan of the
+ * highest predicted PSNR that fits 95% of the budget. The controller is plain C
+ * without GL, testable with synthetic frame times (tests/test_budget.c).
+ * The cost model and the guards against oscillation: docs/ARCHITECTURE.md,
+ * "Design notes by file". */
 #ifndef SNELL_BUDGET_H
 #define SNELL_BUDGET_H
 

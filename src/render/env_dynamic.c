@@ -1,15 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* env_dynamic.c — dynamic environment (Unger 4.1: "the environment map is
- * rendered from the centre with the background and all other objects", at a
- * lower resolution than the static one). Unlike the seed, which re-renders
- * every frame, a cubemap is re-rendered only when an opaque object, its
- * model or colour, the glass centre or the static environment changed.
- * With the dual-paraboloid look-up (render/env_paraboloid.h) the glass
- * reads two maps instead: made from that cube, or rendered straight (2 views,
- * no cube; SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT). In a frame whose
- * caustics stage lit the opaque objects they are drawn lit here too, so the
- * glass shows them as the view does, and re-rendered also when the stage
- * remade its maps (the light, the glass or a receiver changed). */
+/* env_dynamic.c — dynamic environment (Unger 4.1: rendered from the centre with
+ * the background and the other objects, at a lower resolution). Re-rendered only
+ * when an opaque object, its model or colour, the glass centre, the static
+ * environment or the caustics stage's maps changed, not every frame as in the
+ * seed. With the dual-paraboloid look-up, two maps from that cube or rendered
+ * straight (SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT). Lit opaque objects are
+ * drawn lit here too, so the glass shows them as the view does. */
 #include "render/env_dynamic.h"
 #include "frame/env.h"
 #include "frame/pass.h"

@@ -1,17 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* glass_scale.c — see glass_scale.h. The object's method draws as it would
- * at full resolution in screen space, into a view whose grid is the frame's
- * divided by the scale: every pass it makes (peels, the kernel) costs
- * 1/scale^2 of its fragments, and on a G-buffer each pixel is shaded once
- * (drawn forward, a concave mesh's overlapping front faces would each run
- * the kernel). Its depth there marks what it covered. The full-resolution
- * pass shades each of the object's pixels once more with a few texture
- * reads: which pixels are glass, and the depth test against what is already
- * drawn, are exactly as unscaled.
- * What it buys: a kernel frame near s^2 times cheaper for a small loss of
- * glass PSNR (bench/notes/code.md, "glass_scale.c"). The error it adds is the
- * supersampling it gives up: where the refraction changes within a pixel (the
- * bunny's folds) the kernel sees 16 / s^2 samples of it instead of 16. */
+/* glass_scale.c — see glass_scale.h. The object's method draws as at full
+ * resolution in screen space, into a view whose grid is the frame's divided by
+ * the scale (every pass costs 1/scale^2 of its fragments); the full-resolution
+ * pass then shades each of its pixels once more with a few texture reads, so
+ * coverage and depth test are exactly as unscaled. The error it adds is the
+ * supersampling it gives up. More: docs/ARCHITECTURE.md, "Design notes by
+ * file". */
 #include "render/glass_scale.h"
 #include "core/ctx.h"
 #include "core/gl.h"

@@ -1,22 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* layers.h — the scene layers (docs/ARCHITECTURE.md "One frame"): what a ray sees
- * after it leaves a glass object, when the frame has other objects for it
- * to meet. Every drawn solid glass object and every opaque object is depth
- * peeled together (depth_peel.frag, the peel kernel's pass) into one RGBA8
- * texture array: layer k's normal (octahedral 16+16 bits) in slice 2k, its
- * depth (24 bits over the view-depth range of all their bounding spheres)
- * and its object's id (8 bits, 0 = empty) in slice 2k + 1; a small RGBA32F
- * table holds each id's optics (IOR, tint, absorption, bounding sphere;
- * opaque: IOR 0 and its albedo). The kernels' exit look-up
- * (common/beyond.glsl, SNELL_BEYOND) marches the exit ray through these
- * layers: the medium at a point is the innermost object with an odd number
- * of its surfaces in front of the point at its pixel, so a change of medium
- * along the ray is a surface crossed; it refracts into and out of the other
- * glass objects (TIR inside them), stops at an opaque one (shaded as
- * opaque.frag shades it), crosses thin walls by the slab model, and looks
- * the environment up when it leaves them all. Passes per frame: the peels, at most SNELL_MAX_SCENE_LAYERS, each
- * drawing every object once, whatever the number of objects; nothing is
- * copied per object. */
+/* layers.h — the scene layers (docs/ARCHITECTURE.md "One frame"): what a ray
+ * sees after it leaves a glass object, when the frame has other objects for it to
+ * meet. Every drawn solid glass and opaque object is depth peeled together into
+ * one RGBA8 texture array (normal in slice 2k, depth and object id in 2k + 1)
+ * with a small RGBA32F table of each id's optics; common/beyond.glsl marches
+ * exit rays through them. At most SNELL_MAX_SCENE_LAYERS peels, whatever the
+ * number of objects. More: docs/ARCHITECTURE.md, "Design notes by file". */
 #ifndef SNELL_LAYERS_H
 #define SNELL_LAYERS_H
 

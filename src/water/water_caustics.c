@@ -1,20 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* water_caustics.c — the container floor's light map (
- * after Evan Wallace's webgl-water): the light refracted at the water
- * surface onto the floor, remade in one draw whenever the surface or the
- * light moved. The surface's own grid (its index buffer) is drawn with every
- * node moved to where its refracted light ray meets the floor
- * (water_caustics.vert); each triangle adds the light's irradiance times the
- * ratio of its area across the beam to its area on the floor
- * (water_caustics.frag), Schlick transmission and Beer-Lambert along the
- * path: the flux through each cell of the surface lands in full on the
- * floor (flux-correct). The opaque objects shadow it: drawn from above
- * into two depth maps over the floor's square (their highest and lowest
- * surface over each texel, `columns`), each light-map fragment's way from
- * the light through the surface to the floor is sampled against them
- * (water_caustics.frag). The caustics stage calls it (render/caustics.c);
- * the water's draw and the glass kernels read the map (common/water.glsl:
- * the floor's tiles times its irradiance) in the same frame. */
+/* water_caustics.c — the container floor's light map (after Evan Wallace's
+ * webgl-water): the light refracted at the water surface onto the floor, remade
+ * in one draw whenever the surface or the light moved, flux-correct, shadowed by
+ * the opaque objects' columns. The caustics stage calls it (render/caustics.c);
+ * common/water.glsl reads it. More: docs/ARCHITECTURE.md, "Design notes by
+ * file". */
 #include "water/water_draw.h"
 #include "core/ctx.h"
 #include "core/gl.h"

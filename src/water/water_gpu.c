@@ -1,15 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* water_gpu.c — the GPU water simulation: two RG32UI textures holding the
- * fp32 bits of (height, velocity) per node, ping-ponged by one full-grid
- * fragment pass per step (shaders_es/water_step.frag), drops as a pass of
- * their own (water_drop.frag), the settle check as a 16 x 16 max-reduction
- * pass read back one call later through a pixel buffer and a fence, so the
- * check never waits for the GPU (water_reduce.frag). Why RG32UI: it is colour-renderable in
- * GLES 3.0 without extensions and keeps the state exactly (floatBitsToUint),
- * so the GPU integrates the same fp32 numbers as the CPU; float targets need
- * GL_EXT_color_buffer_float, RGBA8 would quantise the state every step.
- * Every pass saves and restores the GL state it touches (the water may be
- * stepped inside a host's render loop). */
+/* water_gpu.c — the GPU water simulation: two RG32UI textures holding the fp32
+ * bits of (height, velocity), ping-ponged by one pass per step (water_step.frag),
+ * drops as their own pass (water_drop.frag), the settle check a max-reduction
+ * read back a call later through a pixel buffer and a fence (water_reduce.frag).
+ * RG32UI: colour-renderable in GLES 3.0 without extensions and exact, so the GPU
+ * integrates the CPU's fp32 numbers. Every pass restores the GL state it
+ * touches (the water may step inside a host's loop). */
 #include "water/water.h"
 #include "core/ctx.h"
 #include "core/gl.h"

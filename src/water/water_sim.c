@@ -1,39 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* water_sim.c — the water surface object and its CPU simulation (Dachsbacher
- * 2002, "Berechnung der Wasseroberflaeche"): heights on a grid of nodes, per
- * node a force from the height differences to its eight neighbours (the
- * diagonal ones times 1/sqrt 2, "da schraege Nachbarn sqrt 2 entfernt sind"),
- * integrated into velocity and then into height (the seed's two loops:
- * v += F * 0.04; h += v, i.e. symplectic Euler with the time step folded in).
- * Here the step is explicit in dt, c and dx, with damping and walls.
- *
- * Stability (von Neumann analysis of the stencil). The scheme is
- *     v' = (v + (c^2 dt / dx^2) L h) * d,   h' = h + dt v',   d = exp(-damping dt),
- * with (L h)_ij = sum_axial (h_n - h_ij) + w sum_diag (h_n - h_ij), w = 1/sqrt 2.
- * A Fourier mode h = exp(i (a i + b j)) is an eigenvector of L on the
- * unbounded grid with eigenvalue
- *     lambda(a, b) = 2 (cos a + cos b - 2) + w (2 cos(a + b) + 2 cos(a - b) - 4)
- *                  = 2 (cos a + cos b - 2) + 4 w (cos a cos b - 1),
- * bilinear in (cos a, cos b) in [-1, 1]^2, so extreme at the corners: 0 at
- * (1, 1), -8 at (-1, -1), and -(4 + 8 w) = -(4 + 4 sqrt 2) = -9.657 at
- * (1, -1) (the mode alternating along one axis only): lambda_min =
- * -(4 + 4 sqrt 2). Each mode is an oscillator x'' = -omega^2 x with
- * omega^2 = c^2 |lambda| / dx^2; one step maps (h, v) by the matrix
- * [[1 - d s, d dt], [-d s / dt, d]] with s = omega^2 dt^2, whose trace is
- * 1 + d - d s and determinant d. Its eigenvalues stay in the unit disc iff
- * |1 + d - d s| <= 1 + d, i.e. s <= 2 (1 + d) / d; without damping (d = 1,
- * the strictest case: damping only widens the bound) s <= 4, omega dt <= 2:
- *     c dt / dx <= 2 / sqrt(4 + 4 sqrt 2) = 1 / sqrt(1 + sqrt 2) = 0.64359
- * (SNELL_WATER_COURANT_LIMIT). At equality the highest mode's eigenvalue is
- * a double -1 (linear growth), so steps are clamped to
- * SNELL_WATER_COURANT_SAFETY of it. Walls: a neighbour beyond a wall is left
- * out (no flux through the wall, so waves reflect). -L is then the weighted
- * Laplacian of a subgraph of the unbounded lattice: h^T (-L) h = sum over
- * its edges of w_e (h_u - h_v)^2 <= that sum over all lattice edges of h
- * extended by zero <= (4 + 4 sqrt 2) |h|^2, so the bound holds with walls.
- * Volume: sum_ij (L h)_ij = 0 (every edge enters twice with opposite signs),
- * so sum v stays 0 (times d) and sum h is constant up to rounding once the
- * velocities start at zero; drops add to h only. */
+ * 2002, "Berechnung der Wasseroberflaeche"): heights on a grid of nodes, per node
+ * a force from the height differences to its eight neighbours (the diagonal ones
+ * times 1/sqrt 2), integrated into velocity and then into height (symplectic
+ * Euler), explicit in dt, c and dx, with damping and reflecting walls.
+ * Stable for c dt / dx <= 1 / sqrt(1 + sqrt 2) (SNELL_WATER_COURANT_LIMIT, with
+ * walls too), volume conserved; the von Neumann analysis:
+ * docs/ARCHITECTURE.md, "Design notes by file". */
 #include "water/water.h"
 #include "core/ctx.h"
 #include "core/gl.h"
