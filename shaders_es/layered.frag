@@ -349,8 +349,8 @@ bool next_crossing(highp vec3 p, highp vec3 d, inout int c0, highp float t_max, 
                 c_hi = cm;
             }
         }
-        // measured at 96x96 against FULL (test_layered): the horse's median
-        // 18.1 degrees when every change was a surface, 12.7 since
+        // a surface crossed changes the count's parity (inside to outside); an
+        // even change is a fold's rim swept past from the centre, not a crossing
         if ((abs(c_hi - c0) & 1) == 1) return true;
         c0 = c;
         lo = t;

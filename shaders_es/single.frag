@@ -53,8 +53,8 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     float fresnel = snell_h(snell_fresnel_schlick(snell_h(-dot(v, n)), 1.0, snell_ior));
 
 #ifdef SNELL_ABSORB
-    // Only in the variant with absorption: exp per lane was 16% of the
-    // mediump cost on llvmpipe even with sigma = 0.
+    // Only in the variant with absorption: exp per lane costs even with
+    // sigma = 0 (bench/notes/code.md, "single.frag").
     highp float path = snell_sphere_exit(world_pos, t, u_bsphere);
 
     vec3 transmitted = snell_h(snell_disp_exit(world_pos, t) * u_tint * snell_beer_lambert(u_sigma, snell_h(path)));

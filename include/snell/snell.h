@@ -107,7 +107,7 @@ typedef struct snell_ctx_desc {
  * if it was current); EXTERNAL leaves the caller's context as it is.
  *
  * One current context per thread: creating a second owned context makes it
- * current, so the first is no longer. Calls that draw or make GL objects
+ * current, so the first stops being current. Calls that draw or make GL objects
  * (snell_render, snell_renderer_create, snell_env_create with a ctx, the
  * read-backs) check that their context is current and fail with
  * SNELL_E_INVALID_ARG saying so; switch with snell_ctx_make_current.

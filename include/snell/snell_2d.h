@@ -123,10 +123,9 @@ typedef enum snell_format2d {
 } snell_format2d;
 
 /* Who turns the traced paths into the lightmap. GL lines (Brückner 6.5) are
- * cheap on a GPU; a software GL sets up each line serially (llvmpipe: ~1.6 us a
- * line), where the exact CPU rasteriser on the lightmap's threads is faster and
- * has no line-rule error (1080p, 86129 paths, llvmpipe on 2 cores: GL lines
- * ~430 ms, the CPU rasteriser ~40 ms; bench/BENCHMARKS.md). Its image is the
+ * cheap on a GPU; a software GL sets up each line serially, where the exact CPU
+ * rasteriser on the lightmap's threads is faster and has no line-rule error
+ * (bench/notes/code.md, "snell_2d.h"; bench/BENCHMARKS.md). Its image is the
  * same, bit for bit, for any thread count. */
 typedef enum snell_raster2d {
     SNELL_RASTER2D_AUTO = 0,  /* CPU without a ctx, with cpu_only, or when GL_RENDERER contains

@@ -11,7 +11,7 @@ extern "C" {
 
 /* How SNELL_METHOD_CUBEMAP packs normal and distance into one RGBA8 texel. */
 typedef enum snell_ndcube_encoding {
-    SNELL_NDCUBE_DEFAULT = 0,  /* SNELL_NDCUBE_PLAIN (lower error, OCT 3-7% cheaper; bench/BENCHMARKS.md) */
+    SNELL_NDCUBE_DEFAULT = 0,  /* SNELL_NDCUBE_PLAIN (lower error; OCT is cheaper, bench/BENCHMARKS.md) */
     SNELL_NDCUBE_PLAIN,        /* Unger 4.1: normal*0.5+0.5 in RGB, distance/radius in A (8 bits), filtered */
     SNELL_NDCUBE_OCT           /* octahedral normal in RG (8+8 bits), distance in BA (16 bits), nearest */
 } snell_ndcube_encoding;

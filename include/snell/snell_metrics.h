@@ -15,7 +15,7 @@ extern "C" {
 #endif
 
 /* Angular error statistics, degrees. Percentiles come from a log-spaced
- * histogram (1e-6 .. 180 degrees, 2048 bins): relative precision 1%. */
+ * histogram (1e-6 .. 180 degrees, 2048 bins): each bin about 1% of its value wide. */
 typedef struct snell_dir_error {
     long pixels;            /* width * height */
     long glass_ref;         /* glass pixels of the reference mask */

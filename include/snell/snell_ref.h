@@ -185,7 +185,7 @@ snell_status snell_ref_water_render(snell_water *water, const snell_ref *objects
 snell_status snell_ref_water_floor_render(snell_water *water, const snell_ref *objects, const snell_light *light,
                                           int size, int photons, int threads, float *rgb);
 
-/* ------------------------------------------- light on a receiver (issue 27) */
+/* ------------------------------------------------------ light on a receiver */
 /* The receiver plane's irradiance as the caustics stage
  * (snell_frame_desc.light / .receiver) defines it, traced in double
  * precision from the light: size x size texels (receiver->map_size, 0 =

@@ -418,8 +418,8 @@ static void run_band(const job *j, int b)
     if (j->bins) {
         const uint32_t *e = j->bins->entries + j->bins->start[b], *end = j->bins->entries + j->bins->start[b + 1];
         for (; e < end; e++) {
-            /* a band's segments are scattered over the frame's setups: fetch ahead
-             * (a miss per segment was a tenth of the single-threaded frame) */
+            /* a band's segments are scattered over the frame's setups: fetch ahead,
+             * or each segment costs a cache miss (bench/notes/code.md) */
             if (e + 4 < end) LM2D_PREFETCH(&j->bins->segs[e[4]]);
             seg_band(&bd, &j->bins->segs[*e]);
         }

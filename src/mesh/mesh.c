@@ -91,7 +91,7 @@ void snell__mesh_compute_normals(const float *pos, const uint32_t *idx, uint32_t
     for (v = 0; v < nv; v++) {
         float *n = normals + 3 * v;
         /* In double: the squares of a tiny (subnormal-range) float sum lose
-         * their precision and the "unit" normal came out up to 0.8% long
+         * their precision and the "unit" normal is not of unit length
          * (libFuzzer, tests/fuzz/regressions/tiny_normals.obj). */
         double len = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
         if (len > 0.0 && isfinite(len)) {

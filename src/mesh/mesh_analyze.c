@@ -15,7 +15,7 @@
 #include <string.h>
 
 #define COARSE_SAMPLES 192   /* per candidate while choosing */
-#define FINE_SAMPLES 4096    /* for the reported hidden_fraction (sampling error ~1.6%) */
+#define FINE_SAMPLES 4096    /* for the reported hidden_fraction (sampling error 1/sqrt(4096)) */
 #define GRID 4               /* interior grid candidates: GRID^3 cell centres of the box */
 #define MAX_CANDIDATES (4 + GRID * GRID * GRID + 27)
 #define MAX_CROSSINGS 100000 /* parity walk cap (a ray cannot cross more than all triangles anyway) */

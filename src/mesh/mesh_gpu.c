@@ -217,7 +217,7 @@ snell_status snell_mesh_gpu_stats_get(const snell_mesh *mesh, snell_mesh_gpu_sta
 
 /* Target and bound of the coarse copy: a quarter of the triangles, and no
  * vertex of it farther than 1% of the extent from the full surface
- * (meshoptimizer's relative error; the bunny's comes out at 0.08%). */
+ * (meshoptimizer's relative error). */
 #define COARSE_RATIO 0.25
 #define COARSE_ERROR 0.01f
 /* meshoptimizer 0.18's simplifier scratch per vertex and per index (see

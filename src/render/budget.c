@@ -391,7 +391,7 @@ int snell__budget_plan(snell__budget *b, const snell__budget_object *obj, int n,
         } else if (!over && same_objects && new_ms > cur_ms && new_q <= cur_q) {
             memcpy(plan, cur, sizeof(int) * (size_t)n); /* dearer and no better */
         } else if (!over && same_objects && new_ms < cur_ms && cur_ms <= budget_ms && new_q < cur_q) {
-            /* predicted within the budget though above the aim: kept (the band 95-100% is the
+            /* predicted within the budget though above the aim: kept (the band from the aim, 95% of the budget, to the budget is the
              * hysteresis). Only against a worse plan: one both cheaper and better is taken (a rung
              * learned dear under load can predict a better rung not drawn yet as the cheaper) */
             memcpy(plan, cur, sizeof(int) * (size_t)n);

@@ -153,8 +153,8 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
         /* Only the depth+id target needs clearing, and only where a kernel
          * will read it: inside the objects' scissor rectangles (the normal
          * and aux targets are read only where the id matches, i.e. where
-         * this frame wrote them). Two full-target clears were ~3% of a
-         * single-surface bunny frame on llvmpipe. */
+         * this frame wrote them): full-target clears cost a share of a
+         * cheap frame (bench/notes/code.md, "gbuffer.c"). */
         static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         const GLfloat depth = back ? 0.0f : 1.0f;
         int lo[2] = {g->width, g->height}, hi[2] = {0, 0};

@@ -55,7 +55,7 @@ snell_status snell__water_draw(snell_ctx *ctx, snell__water_programs *p, snell__
 snell_status snell__water_upload(snell_water *w, snell_frame_stats *stats);
 
 /* World bounding sphere of an opaque object: the mesh's box centre through
- * the model, its radius times the model's largest axis scale (and 0.1%). */
+ * the model, its radius times the model's largest axis scale, grown by 0.1% of itself. */
 void snell__water_object_sphere(const snell_opaque *o, float s[4]);
 
 /* The container floor's light map (water_caustics.c; the caustics stage

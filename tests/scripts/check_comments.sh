@@ -1,23 +1,34 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
-# check_comments.sh SOURCE_DIR — comments in src/ and shaders_es/ say why
-# (and cite the paper or seed); measurements and history live in bench/notes/
-# and commit messages. Fails, naming file, line and text, on a comment with:
-#   a commit hash (a 7-40 digit hex word with letters and digits), a date
-#   (YYYY-MM-DD) or a UTC time, a load ("load 1.5", "at load", loadavg), an
-#   issue number ("issue 27", "#13"), a measured result in dB, ms, seconds
-#   or a ratio ("1.46x"), or history ("(before:", "before:", "as before", "no longer",
-#   "used to", "previously", "formerly").
+# check_comments.sh SOURCE_DIR — comments in src/, include/ and shaders_es/ say
+# why (and cite the paper or seed); measurements and history live in
+# bench/notes/ and commit messages. Fails, naming file, line and text, on a
+# comment with: a commit hash, a date or a UTC time, a load, an issue number
+# ("issue 27", "#13"), a result in dB, ms, seconds, a ratio ("1.46x"), a
+# percentage ("12% cheaper", "~3%", "was 16%": a share that defines a quantity,
+# "1% of the extent", "5% to spare", passes), degrees of error ("0.4 degrees",
+# "mean error 2 deg": a bound such as "> 1 degree" passes), or history
+# ("was 5", "were a tenth", "It was", "this was", "(before:", "as before", "no
+# longer", "used to", "previously", "formerly").
 # Comments are found by a small C lexer in awk (strings and character
 # literals skipped), so code and messages are not checked. POSIX sh + awk.
 set -eu
 root=${1:?usage: check_comments.sh SOURCE_DIR}
-files=$(find "$root/src" "$root/shaders_es" -type f \( -name '*.c' -o -name '*.h' -o -name '*.cpp' -o -name '*.glsl' \
+# Files another branch is rewriting now: their lines are reported as pending,
+# not failed, until it lands; then the name comes off this list.
+pending="src/methods/peel.c"
+dirs=""
+for d in src include shaders_es; do [ -d "$root/$d" ] && dirs="$dirs $root/$d"; done
+# shellcheck disable=SC2086 # dirs: paths without white space
+files=$([ -z "$dirs" ] || find $dirs -type f \( -name '*.c' -o -name '*.h' -o -name '*.cpp' -o -name '*.glsl' \
     -o -name '*.frag' -o -name '*.vert' \) | sort)
-[ -n "$files" ] || { echo "check_comments.sh: no sources under $root/src and $root/shaders_es" >&2; exit 2; }
+[ -n "$files" ] || { echo "check_comments.sh: no sources under $root/src, include and shaders_es" >&2; exit 2; }
 # shellcheck disable=SC2086 # files: a word list of paths without white space
-bad=$(awk -v root="$root/" '
-function flag(why) { printf "%s:%d: %s: %s\n", substr(FILENAME, length(root) + 1), FNR, why, text; found = 1 }
+all=$(awk -v root="$root/" -v pending=" $pending " '
+function flag(why,    rel) {
+    rel = substr(FILENAME, length(root) + 1)
+    printf "%s%s:%d: %s: %s\n", index(pending, " " rel " ") ? "pending: " : "", rel, FNR, why, text; found = 1
+}
 function check(t,    n, i, w, words) {
     text = t; found = 0
     n = split(t, words, /[^0-9A-Za-z_]+/)
@@ -34,7 +45,15 @@ function check(t,    n, i, w, words) {
     if (!found && t ~ /[0-9] ?ms([^A-Za-z]|$)/) flag("ms result")
     if (!found && (lt ~ /[0-9]x single/ || t ~ /[0-9]\.[0-9]+x([^A-Za-z0-9]|$)/)) flag("ratio result")
     if (!found && t ~ /[0-9] s[;,.)]/) flag("seconds result")
-    if (!found && (lt ~ /\(before[:,]|before:|as before([^a-z]|$)|no longer|used to|previously|formerly/)) flag("history")
+    if (!found && (t ~ /~ ?[0-9.]+%/ || lt ~ /(^|[^a-z])(was|were|is|are|out) [0-9.]+%/ || \
+        (t ~ /[0-9]%/ && lt !~ /[0-9]%( |-[a-z]+ )?(of|to spare)([^a-z]|$)/))) flag("percent result")
+    if (!found && (lt ~ /[0-9]\.[0-9]+ ?(deg|\xc2\xb0)/ || \
+        lt ~ /(error|mean|max|median|rms)( of| was| is|:)? ~?[0-9.]+ ?(deg|\xc2\xb0)/)) flag("degrees result")
+    if (!found && (lt ~ /\(before[:,]|before:|as before([^a-z]|$)|no longer|used to|previously|formerly/ || \
+        lt ~ /(^|[^a-z])(was|were) (~|about |around |only |up to |under |over )?[0-9]/ || \
+        lt ~ /(^|[^a-z])(was|were) (a |one )?(tenth|third|quarter|half|fifth|twice)/ || \
+        lt ~ /(^|[^a-z])(was|were) (slower|faster|cheaper|dearer|worse|better)/ || \
+        lt ~ /(^|[^a-z])this was([^a-z]|$)/ || t ~ /(^|[.;:(] ?|^ *)(It|This|That) (was|were)([^a-z]|$)/)) flag("history")
 }
 FNR == 1 { state = 0 } # 0 code, 1 block comment (state survives lines), strings end with their line
 {
@@ -53,9 +72,11 @@ FNR == 1 { state = 0 } # 0 code, 1 block comment (state survives lines), strings
     }
     if (out ~ /[^ \t*]/) check(out)
 }' $files)
+bad=$(printf '%s\n' "$all" | grep -v '^pending: ' | grep . || true)
+printf '%s\n' "$all" | grep '^pending: ' || true
 if [ -n "$bad" ]; then
     echo "$bad"
-    echo "check_comments.sh: $(echo "$bad" | wc -l) comment line(s) in src/ or shaders_es/ carry measurements or history;"
+    echo "check_comments.sh: $(echo "$bad" | wc -l) comment line(s) in src/, include/ or shaders_es/ carry measurements or history;"
     echo "  say why in a sentence and move the figures to bench/notes/ (with their command, date and load)"
     exit 1
 fi

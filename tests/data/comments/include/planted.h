@@ -1,0 +1,2 @@
+/* SPDX-License-Identifier: MIT */
+/* planted.h — a public header's comment is checked too: this was issue-free. */
