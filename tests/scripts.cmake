@@ -12,8 +12,9 @@ set_tests_properties(source_spdx PROPERTIES LABELS "unit")
 add_test(NAME source_comments COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_comments.sh ${PROJECT_SOURCE_DIR})
 set_tests_properties(source_comments PROPERTIES LABELS "unit")
 # and the check fails where it should: tests/data/comments plants seven bad
-# comments (a percentage, degrees of error, "was" history) beside good ones
+# comments (a percentage, degrees of error, "was" history) and an eleven-line
+# file header beside good ones
 add_test(NAME source_comments_fail COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_comments.sh
          ${CMAKE_CURRENT_SOURCE_DIR}/data/comments)
 set_tests_properties(source_comments_fail PROPERTIES LABELS "unit" PASS_REGULAR_EXPRESSION
-  "include/planted.h:2: history.*shaders_es/planted.glsl:3: degrees result.*src/planted.c:4: percent result.*src/planted.c:5: degrees result.*src/planted.c:6: history.*src/planted.c:7: percent result.*src/planted.c:8: history.*: 7 comment line")
+  "include/planted.h:2: history.*shaders_es/planted.glsl:3: degrees result.*src/long_header.c:2: header over 10 lines.*src/planted.c:4: percent result.*src/planted.c:5: degrees result.*src/planted.c:6: history.*src/planted.c:7: percent result.*src/planted.c:8: history.*: 8 comment line")
