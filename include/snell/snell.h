@@ -419,11 +419,7 @@ typedef struct snell_env_desc {
      * Copied into the faces: the caller keeps ownership. */
     const uint8_t *equirect_rgba;
     int equirect_width, equirect_height;
-    /* SNELL_ENV_GL_TEXTURE: a cube map texture of ctx's GL context (which must be
-     * current), with face_size its faces' size (required: GLES 3.0 cannot ask).
-     * The host keeps it alive while the environment is used and deletes it
-     * itself; snell_env_destroy leaves it alone. Sampled with its own filter
-     * (GL_LINEAR without mipmaps gives the images other sources give). */
+    /* SNELL_ENV_GL_TEXTURE: a cube map of ctx's (current) context, face_size required; yours to delete */
     unsigned gl_texture;
 } snell_env_desc;
 
@@ -465,15 +461,10 @@ typedef enum snell_method {
     SNELL_METHOD_PEEL,         /* multi-layer in image space (Wang 2014): depth-peeled layers of normal and
                                 * depth, a ray-height-field search between them, up to N interfaces with TIR;
                                 * for concave meshes (a view ray crossing more than two surfaces) */
-    SNELL_METHOD_EXACT,        /* exact: the mesh's BVH ray-traced per pixel (watertight triangles, TIR, up
-                                * to N interfaces), the MATCHED reference's model on the GPU; the accuracy
-                                * ceiling, the most expensive; AUTO picks it only where the material's
-                                * exact.auto_pick allows it (snell_exact_params) */
-    SNELL_METHOD_LAYERED,      /* multi-layer, view-independent (Umenhoffer, Patow and Szirmay-Kalos 2007,
-                                * GPU Gems 3 ch. 17): up to 8 layers of normal + distance cube maps depth-peeled
-                                * from the analysed centre once per mesh version; per pixel a march + binary
-                                * search through the layers, refraction or TIR at each crossing, re-entries
-                                * included, up to N interfaces; rigid meshes pay no per-frame peel */
+    SNELL_METHOD_EXACT,        /* exact: the mesh's BVH ray-traced per pixel, the MATCHED reference's model;
+                                * the dearest; AUTO only where exact.auto_pick allows */
+    SNELL_METHOD_LAYERED,      /* multi-layer, view-independent (Umenhoffer et al. 2007): layered distance
+                                * cube maps baked once per mesh version, re-entries included */
     SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 

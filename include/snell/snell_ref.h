@@ -64,11 +64,7 @@ typedef enum snell_ref_mode {
 
 typedef enum snell_ref_absorption {
     SNELL_REF_ABSORB_PATH = 0,         /* the real path length inside the glass */
-    /* MATCHED only: d = distance from the entry point of solid object j along
-     * the first refracted direction to the exit of j's
-     * snell_ref_bounding_sphere(), whatever the chain does; with
-     * max_interfaces = 1 this is exactly SNELL_METHOD_SINGLE. (Thin walls
-     * keep their slab absorption.) */
+    /* MATCHED only: absorption over the bounding-sphere chord, as SINGLE */
     SNELL_REF_ABSORB_BOUNDING_SPHERE
 } snell_ref_absorption;
 
@@ -87,11 +83,7 @@ typedef struct snell_ref_params {
     snell_ref_mode mode;
     int max_interfaces;                  /* 1..SNELL_REF_MAX_INTERFACES; 0 = 10 */
     snell_ref_absorption absorption_model;
-    /* 1: a ray that has left a glass object sees the environment and the
-     * opaque objects but no other glass object: what the GPU's per-object
-     * dynamic environment shows (without its parallax), so that the method's
-     * own error is measured apart from the glass-through-glass light that the
-     * renderer does not draw yet. 0: the full scene. */
+    /* 1: glass sees no other glass object (a method's error apart from the scene layers') */
     int isolate_glass;                   /* nonzero = 1 */
     const snell_env *env;                /* environment, or: */
     snell_ref_env_fn env_fn;             /* used instead of env when non-NULL */
@@ -99,11 +91,7 @@ typedef struct snell_ref_params {
     snell_camera camera;                 /* as snell_frame_desc.camera */
     int width, height;                   /* pixels; 0 = 512 */
     int threads;                         /* 0 = online CPUs; > SNELL_REF_MAX_THREADS clamped */
-    /* S: the colour of a pixel is the mean of S x S rays through the centres
-     * of an S x S grid over it (a box filter: the area-averaged image that
-     * snell_renderer_desc.ssaa = S gives on the GPU); 0 or 1 = the centre ray.
-     * The path outputs (exit_dir, interfaces, hit, object) are always those
-     * of the centre ray. 0..SNELL_REF_MAX_SAMPLES. */
+    /* S x S rays a pixel, box-filtered (as ssaa = S); 0 or 1 = the centre ray; 0..SNELL_REF_MAX_SAMPLES */
     int samples;
     snell_ref_progress_fn progress;      /* NULL = none (snell_ref_render, snell_ref_water_render) */
     void *progress_user;
@@ -120,13 +108,7 @@ typedef struct snell_ref_output {
     uint8_t *hit;         /* optional: 1 if the view ray hits a glass object first, else 0 */
     int16_t *object;      /* optional: what the view ray hits first: glass i -> i, opaque j ->
                            * -2 - j, nothing -> -1 */
-    /* optional: 3 per pixel, the per-sample variance of a path tracer that
-     * samples the pixel's box (uniformly, when samples > 1; the centre ray
-     * otherwise) and, in FULL mode, at each interface one branch by its
-     * Fresnel weight (reflection with probability F, as Cycles' sharp Glass
-     * BSDF): its N-sample estimate of rgb has variance sample_var / N. Second
-     * moment summed over the Whitted tree (MATCHED: deterministic rays, so
-     * only the box's spread). */
+    /* optional: 3 per pixel, a path tracer's per-sample variance: N samples, sample_var / N */
     float *sample_var;
 } snell_ref_output;
 
