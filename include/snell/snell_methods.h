@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* snell_methods.h — each refraction method's parameters (snell_glass_material's
  * cubemap, wyman, oliveira, peel, exact, layered) and their enums. Included by
- * snell.h; zero is every field's default. docs/methods.md explains the methods. */
+ * snell.h; zero is every field's default. docs/methods.md explains the methods
+ * and, under "Parameters in depth", the parameters a line does not hold. */
 #ifndef SNELL_SNELL_METHODS_H
 #define SNELL_SNELL_METHODS_H
 

@@ -6,7 +6,8 @@
  * approximation. Two optical models: SNELL_REF_MATCHED (the GPU kernels' model)
  * and SNELL_REF_FULL (a Whitted tree with exact Fresnel, as Blender Cycles).
  * What a ray meets, both models in full, dispersion, the interface cap and the
- * conventions: docs/ARCHITECTURE.md, "Design notes by file". */
+ * conventions: docs/ARCHITECTURE.md, "Design notes by file"; the longer
+ * fields: docs/accuracy.md, "The reference's fields in depth". */
 #ifndef SNELL_SNELL_REF_H
 #define SNELL_SNELL_REF_H
 
