@@ -75,7 +75,7 @@ vec3 fetch_normal(vec3 q)
 // stays inside the final bracket either way).
 //
 // The step counts are compile-time constants (one program per setting,
-// built on first use, method_cubemap.c): a loop bounded by uniforms, or one
+// built on first use, methods/cubemap.c): a loop bounded by uniforms, or one
 // left in the program but disabled, costs llvmpipe time by itself
 // (bench/notes/code.md, "cubemap.frag"). On GPUs a constant bound lets the
 // compiler unroll.

@@ -2,7 +2,7 @@
 /* test_cubemap — the cubemap method (Unger 4.1) on a sphere, where every
  * error term can be bounded:
  *  1. packing twin: the exact worst-case normal quantisation of both
- *     encodings (src/pack.h), found by brute force over many unit vectors;
+ *     encodings (src/core/pack.h), found by brute force over many unit vectors;
  *  2. bake: every texel of the baked normal+distance cubemap (read back)
  *     against a CPU ray cast from the centre through the texel centre (the
  *     farthest hit, via the BVH), within one quantisation step (+ float);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* test_exit_dir — the exit-direction debug output that error measurement
- * relies on. (1) src/pack.h and shaders_es/common/pack.glsl agree bit for bit
+ * relies on. (1) src/core/pack.h and shaders_es/common/pack.glsl agree bit for bit
  * (transform feedback), for the 16+16-bit direction and for the exit target's
  * 16+15 bits and coverage bit, and each encoding's own error is below 1e-4
  * rad (the exit's measured 9.4e-5, the direction's 6.4e-5);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // backdrop.glsl - the host's scene behind the glass (snell_frame_desc.backdrop,
-// render/backdrop.h): what a ray leaving the glass sees of what the host drew,
+// render/backdrop.c): what a ray leaving the glass sees of what the host drew,
 // before the environment. With the host's depth, a screen-space search as peel's
 // (Wang 2014, seed 001 3.4): BACKDROP_LINEAR steps, BACKDROP_BINARY halvings;
 // without it, the colour u_backdrop_distance along the ray. Off the view, or not

@@ -82,7 +82,7 @@ void leaf_range(int word, out int first, out int end)
 }
 
 // A ray o + t d with the per-ray constants of the watertight test (Woop,
-// Benthin, Wald 2013; ref_bvh.c ray_setup): kz the dominant axis, the
+// Benthin, Wald 2013; mesh/bvh.c ray_setup): kz the dominant axis, the
 // permutation (x, y, z) -> (kx, ky, kz) with kx and ky swapped when d[kz] <
 // 0 (kept as one int, not as a matrix: one register, not nine, live
 // through the walk); s the shear onto +z; inv for the slab tests.
@@ -115,7 +115,7 @@ Ray make_ray(vec3 o, vec3 d)
     return r;
 }
 
-// Watertight ray-triangle test (ref_bvh.c tri_hit, in float): whether the
+// Watertight ray-triangle test (mesh/bvh.c tri_hit, in float): whether the
 // ray meets the triangle at t in (tmin, tmax); t and the barycentric weights
 // of v0, v1, v2 are computed whatever the answer (no branches: no value
 // merged from several paths, which V3D keeps live through the whole loop).

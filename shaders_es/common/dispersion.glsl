@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // dispersion.glsl - a glass kernel with a dispersive material (u_ior_rgb,
-// render/material.c). The kernel's trace for one IOR is
+// frame/material.c). The kernel's trace for one IOR is
 //     vec3 snell_glass_trace(out highp vec3 exit_dir)
 // and main() here calls it as SNELL_DISPERSION says: 0 once at u_ior; 1 once per
 // channel (PER_CHANNEL); 2 once at green with red and blue refracted along its

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// optics.glsl - GLSL twin of src/optics.h (keep the two in step; the test
+// optics.glsl - GLSL twin of src/core/optics.h (keep the two in step; the test
 // tests/test_optics_twin.c compares them on a grid of inputs).
 // i: unit direction of travel, n: unit normal facing the incoming ray,
 // eta = n1 / n2.

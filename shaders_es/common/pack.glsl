@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// pack.glsl - GLSL twin of src/pack.h: octahedral unit vectors and 16-bit
+// pack.glsl - GLSL twin of src/core/pack.h: octahedral unit vectors and 16-bit
 // values split over two 8-bit channels of an RGBA8 target. Needs highp for
 // the 16-bit split.
 
@@ -56,7 +56,7 @@ highp vec4 snell_pack_exit_rgba8(highp vec3 n, bool glass)
     return vec4(snell_pack_unorm16(e.x), (vec2(hi, q - hi * 256.0) + 0.25) / 255.0);
 }
 
-// Normal + distance texels of the cubemap method (src/pack.h twin, ndcube.c).
+// Normal + distance texels of the cubemap method (src/core/pack.h twin, ndcube.c).
 // d = distance from the cubemap centre / mesh radius, in [0,1].
 highp vec4 snell_pack_ndist_plain(highp vec3 n, highp float d)
 {

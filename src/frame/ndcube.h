@@ -39,7 +39,7 @@ void snell__ndcube_baker_destroy(snell__ndcube_baker *b);
 
 /* (Re)bakes cube for mesh (uploaded) about centre with the given radius
  * (>= every vertex's distance). Reallocates the texture only if face size or
- * encoding changed. Restores the pass state (render/pass.h); leaves texture
+ * encoding changed. Restores the pass state (frame/pass.h); leaves texture
  * unit 1's cube binding changed. */
 snell_status snell__ndcube_bake(snell_ctx *ctx, snell__ndcube_baker *b, snell_mesh *mesh, const float centre[3],
                                 float radius, int face_size, snell_ndcube_encoding enc, snell__ndcube *cube);

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* ref_scene.c — the reference tracer's scene (ref_scene.h): creation and
  * validation of the glass and opaque object lists, materials resolved by
- * snell_glass_defaults' own code (render/material.c), one BVH over every
+ * snell_glass_defaults' own code (frame/material.c), one BVH over every
  * object's world triangles with the object as the BVH part, filtered
  * closest-hit queries with the GPU's smooth normals, and opaque shading. */
 #include "ref/ref_scene.h"

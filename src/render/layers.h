@@ -36,7 +36,7 @@ typedef struct snell__layers_key {
 typedef struct snell__layers {
     unsigned prog;
     int u_model, u_normal_matrix, u_view_proj, u_eye, u_fwd, u_near, u_inv_range, u_first, u_prev, u_id;
-    snell__peel_targets t;      /* the layers (render/peel_targets.h) */
+    snell__peel_targets t;      /* the layers (frame/peel_targets.h) */
     unsigned table_tex;         /* the object table, RGBA32F, made on first use */
     int grown;                  /* layers the scenes so far have needed (0: SNELL__LAYERS_START) */
     float table[SNELL__LAYERS_TABLE_ROWS][SNELL__LAYERS_IDS][4]; /* the frame's object table, uploaded */

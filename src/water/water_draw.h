@@ -2,7 +2,7 @@
 /* water_draw.h — the water surface as an object of a frame (renderer.c):
  * its kernel's programs, owned by the renderer because they depend on the
  * renderer's output kind, and the draw of one water surface and its
- * container. A sibling of the glass method seam (methods/method.h), not an
+ * container. A sibling of the glass method seam (frame/method.h), not an
  * entry of it: a method serves a mesh and is chosen by the mesh's analysis,
  * prepared once per mesh version; the water has no mesh, changes every
  * frame (its state is the simulation's) and brings its own geometry (the
