@@ -214,7 +214,7 @@ static void test_names(snell_ctx *ctx)
     CHECK_OK_CTX(ctx, snell_scene_load_gltf(ctx, scene_path("glass_row.gltf"), 0, &s));
     if (!s) return;
     for (i = 0; i < 3; i++) {
-        char want[16];
+        char want[24];
         snprintf(want, sizeof want, "node %d", i);
         CHECK(!strcmp(snell_scene_file_glass_name(s, i), want), "glass %d name '%s'", i,
               snell_scene_file_glass_name(s, i));
