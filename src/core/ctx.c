@@ -285,9 +285,10 @@ const char *snell_backend_str(snell_backend b)
 /* Under a profile, only the extensions it lists (and the GL context has). */
 int snell__light_fixed(snell_ctx *ctx)
 {
+    /* float blending first: without it (most devices) the float target's answer changes nothing */
     if (!ctx->light_fixed)
-        ctx->light_fixed = !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float") ||
-                                   !snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend")
+        ctx->light_fixed = !snell_ctx_has_gl_extension(ctx, "GL_EXT_float_blend") ||
+                                   !snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float")
                                ? 1
                                : -1;
     return ctx->light_fixed > 0;
