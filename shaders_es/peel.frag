@@ -39,8 +39,11 @@
 // pixel (the far part of a torus is layers 3, 4 where it is behind the near
 // part, layers 1, 2 where it is not), gap 2k - 1 there stands in for it.
 //
-// highp throughout: positions, projections and 24-bit depths.
+// highp throughout: positions, projections and 24-bit depths; highp ints
+// too, for the loops' packed counts (over 16 bits: GLSL ES's mediump int
+// need not hold them, and Mesa lowers it to 16 bits where it can).
 precision highp float;
+precision highp int;
 
 #include "common/optics.glsl"
 #include "common/env.glsl"
@@ -109,7 +112,8 @@ vec3 layer_normal(ivec2 px, int k)
     highp vec2 e = vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0;
     highp vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
     highp vec2 s = vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-    n.xy = n.z < 0.0 ? (1.0 - abs(n.yx)) * s : n.xy;
+    highp vec2 folded = (1.0 - abs(n.yx)) * s;
+    n.xy = n.z < 0.0 ? folded : n.xy;
     return normalize(n);
 }
 
@@ -119,6 +123,17 @@ vec3 layer_normal(ivec2 px, int k)
 // texel's: not across a depth jump or a crease, e.g. a cube's edge); that
 // texel's alone if none is. Pixel-centre normals alone gave a larger error
 // against FULL on every mesh measured (bench/notes/code.md, "peel.frag").
+// One texel's share: its weighted normal, or none.
+vec3 normal_tap(ivec2 px, int k, highp float z, vec3 n0, float wt)
+{
+    bool use = all(greaterThanEqual(px, ivec2(0))) && all(lessThan(px, ivec2(u_size)));
+    px = clamp(px, ivec2(0), ivec2(u_size) - 1);
+    highp float dk = layer_depth(px, k);     // before the &&: no short-circuit branch
+    use = use && !(abs(dk - z) > 1.0 / float(SNELL_PEEL_LINEAR));
+    vec3 n = layer_normal(px, k);
+    return use && dot(n, n0) >= 0.95 ? wt * n : vec3(0.0);
+}
+
 vec3 layer_normal_at(highp vec3 q, int k, out vec3 n0)
 {
     highp vec4 c = u_view_proj * vec4(q, 1.0);
@@ -128,16 +143,17 @@ vec3 layer_normal_at(highp vec3 q, int k, out vec3 n0)
     highp float z = depth_of(q);
     ivec2 own = pixel_of(q);
     n0 = layer_normal(own, k);
+    // A loop, not written out (four taps at once hold more values than the
+    // registers of V3D and Mali-G52 have beside the interface loop's), and
+    // one the compiler does not unroll: its count is not a constant to it
+    // (u_max_interfaces >> 8 is 0: at most MAX_INTERFACES; not the opaque
+    // zero the interface loop starts from, which would be one value live
+    // through that loop).
     vec3 sum = vec3(0.0);
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < 4 + (u_max_interfaces >> 8); i++) {
         ivec2 px = base + ivec2(i & 1, i >> 1);
-        bool use = all(greaterThanEqual(px, ivec2(0))) && all(lessThan(px, ivec2(u_size)));
-        px = clamp(px, ivec2(0), ivec2(u_size) - 1);
-        highp float dk = layer_depth(px, k);     // before the &&: no short-circuit branch
-        use = use && !(abs(dk - z) > 1.0 / float(SNELL_PEEL_LINEAR));
-        vec3 n = layer_normal(px, k);
         float wt = ((i & 1) == 1 ? f.x : 1.0 - f.x) * ((i >> 1) == 1 ? f.y : 1.0 - f.y);
-        sum += use && dot(n, n0) >= 0.95 ? wt * n : vec3(0.0);
+        sum += normal_tap(px, k, z, n0, wt);
     }
     return dot(sum, sum) > 1e-12 ? sum : n0;
 }
@@ -171,13 +187,14 @@ int gap_at(ivec2 px, highp float z)
 }
 
 // MERGE: an inside gap m >= 3 with no layer m - 1 at px: gap m - 2 stands
-// for it (its lower layer lo fetched only then).
+// for it (its lower layer lo fetched only then). Only lo is written in the
+// branch (m is selected): one value merged, one register through the
+// interface loop on V3D.
 void merge_step(ivec2 px, inout int m, inout highp float lo)
 {
-    if ((m & 1) == 1 && m >= 3 && lo == EMPTY) {
-        m -= 2;
-        lo = layer_depth(px, m - 1);
-    }
+    bool merge = (m & 1) == 1 && m >= 3 && lo == EMPTY;
+    m = merge ? m - 2 : m;
+    if (merge) lo = layer_depth(px, m - 1);
 }
 
 // The depths bounding gap j at px: lo = layer j - 1 (none for gap 0 or an
@@ -214,12 +231,20 @@ int classify(ivec2 px, int j, highp float z, out int m)
     return !seen ? 3 : z < lo ? 1 : z > hi ? 2 : 0;
 }
 
+// The search's state through its loop, packed in one int (one register
+// through the interface loop on V3D, not five): bits 0-7 i (the scan's
+// next step), 8-12 s + 1 (bisection steps done; 0: scanning), 13-14 the
+// crossing's kind, 15: done, 16-19 m, 20-23 j (the top: read without a
+// mask). The loop ends at its top, where its values are those it carries:
+// no copies of them for its exit.
+#define SEARCH_PACK(i, s, kind, m, j) ((i) | ((s) + 1) << 8 | (kind) << 13 | (m) << 16 | (j) << 20)
+
 // The search (3.3) from p along dir in gap j, out to the bounding sphere
 // grown by a step (t_max). Returns the crossing's kind (classify; 0: none
 // before t_max); ta: the last ray parameter in the gap, tb: the first out of
 // it; m: the gap whose layers stood for j there. DISCONTINUITY may move the
 // ray to another gap of the same medium (j).
-int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m, out highp float ta,
+int search_gap(highp vec3 p, vec3 dir, inout int j, out int m, out highp float ta,
                out highp float tb, out highp float t_max)
 {
     // the search range: to the far side of the bounding sphere grown by
@@ -227,13 +252,16 @@ int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m,
     // the sphere (a tessellated sphere's vertices are on it): a point just
     // beyond it can still test as in front of it, against the depth at its
     // pixel's centre
+    // the step: the bounding diameter / SNELL_PEEL_LINEAR (from the uniform
+    // here, in the loop: not a value live through it)
+    highp float step = 2.0 * u_bsphere.w / float(SNELL_PEEL_LINEAR);
     highp vec3 oc = p - u_bsphere.xyz;
     highp float b = dot(oc, dir), rs = u_bsphere.w + step;
     t_max = max(-b + sqrt(max(b * b - dot(oc, oc) + rs * rs, 0.0)), 0.0);
+    // tb: none yet; the range's end, not a constant (from a constant
+    // start NIR makes ta + tb a loop value of its own, see marks below)
     ta = 0.0;
-    tb = -1.0;
-    m = j;
-    int kind = 0;
+    tb = t_max;
     // One loop, one sample (one classify) an iteration: the linear scan's
     // steps until the first one out of the gap, then the bisection's
     // SNELL_PEEL_BINARY halvings of [ta, tb], then (DISCONTINUITY) the
@@ -241,65 +269,73 @@ int search_gap(highp vec3 p, vec3 dir, highp float step, inout int j, out int m,
     // (texture fetches and all) instead of one for the scan and one per
     // unrolled bisection step; and no branch whose body a software
     // rasteriser runs for the whole block at every step (llvmpipe masks,
-    // it does not jump): every pixel takes one sample an iteration.
+    // it does not jump): every pixel takes one sample an iteration. The
+    // state is selected, not assigned in branches, and packed (st): on V3D
+    // every value the loop merges stays live through the interface loop.
     // clip position and depth are linear along the ray: one projection per search
     highp vec4 c0 = u_view_proj * vec4(p, 1.0), cd = u_view_proj * vec4(dir, 0.0);
     highp float z0 = depth_of(p), dz = dot(dir, u_fwd) * u_inv_range;
-    int i = 1;      // the scan's next step (it stays while bisecting)
-    int s = -1;     // bisection steps done; -1: scanning
-    while (i <= SNELL_PEEL_LINEAR + 1) {
-        highp float t = s < 0 ? min(float(i) * step, t_max) : 0.5 * (ta + tb);
+    int st = SEARCH_PACK(1, -1, 0, j, j);
+    for (;;) {
+        if ((st & 1 << 15) != 0) break;
+        int i = st & 255, s = (st >> 8 & 31) - 1, kind = st >> 13 & 3, g = st >> 20;
+        int m = st >> 16 & 15;
+        bool scan = s < 0;
+        highp float t_scan = min(float(i) * step, t_max);
+        highp float t = scan ? t_scan : 0.5 * (ta + tb);
         int mt;
-        int kt = classify(pixel_at(c0 + t * cd), j, z0 + t * dz, mt);
-        if (s < 0) {
-            kind = kt;
-            m = mt;
-            if (kt == 0) {
-                ta = t;
-                if (t >= t_max) break;
-                i++;
-            } else {
-                tb = t;      // bisect [ta, tb]: ta in the gap, tb out of it
-                s = 0;
-            }
-            continue;
-        }
-        if (kt == 0) ta = t;
-        else {
-            tb = t;
-            kind = kt;
-            m = mt;
-        }
-        if (++s < SNELL_PEEL_BINARY) continue;
+        int kt = classify(pixel_at(c0 + t * cd), g, z0 + t * dz, mt);
+        bool in_gap = kt == 0;
+        // the scan: in the gap, on to the next step; out of it, bisect [ta,
+        // tb] (ta in the gap, tb out of it). The bisection: in the gap, ta
+        // moves; out of it, tb and the crossing (kind, m)
+        ta = in_gap ? t : ta;
+        tb = in_gap ? tb : t;
+        kind = scan || !in_gap ? kt : kind;
+        m = scan || !in_gap ? mt : m;
+        bool done = scan && in_gap && t >= t_max;
+        i += scan && in_gap ? 1 : 0;
+        s = scan ? (in_gap ? -1 : 0) : s + 1;
+        bool bisected = !scan && s >= SNELL_PEEL_BINARY;
 #if SNELL_PEEL_FIX_DISCONTINUITY
-        highp vec3 qa = p + ta * dir, qb = p + tb * dir;
-        ivec2 pa = pixel_of(qa), pb = pixel_of(qb);
-        int crossed = kind == 1 ? m - 1 : m;
-        highp float da = layer_depth(pa, crossed), db = layer_depth(pb, crossed);
-        if (kind != 3 && abs(da - db) > 1.0 / float(SNELL_PEEL_LINEAR)) {
-            int g = gap_at(pb, depth_of(qb));
-            if ((g & 1) == (j & 1)) {
-                // case 2: a layer boundary, not a surface; go on in the gap found there
-                j = g;
-                ta = tb;
-                tb = -1.0;
-                kind = 0;
-                i++;
-                s = -1;
-                continue;
+        // the gap found afresh at the far pixel, where a crossing's layer
+        // jumps there (case 2: a layer boundary, not a surface) and the
+        // medium is the same: the search goes on from it (-1: not). The
+        // only value written in a branch.
+        int moved = -1;
+        if (bisected && kind != 3) {
+            highp vec3 qa = p + ta * dir, qb = p + tb * dir;
+            ivec2 pa = pixel_of(qa), pb = pixel_of(qb);
+            int crossed = kind == 1 ? m - 1 : m;
+            highp float da = layer_depth(pa, crossed), db = layer_depth(pb, crossed);
+            if (abs(da - db) > 1.0 / float(SNELL_PEEL_LINEAR)) {
+                int ng = gap_at(pb, depth_of(qb));
+                moved = (ng & 1) == (g & 1) ? ng : -1;
             }
         }
+        bool restart = moved >= 0;
+        g = restart ? moved : g;
+        ta = restart ? tb : ta;
+        tb = restart ? -1.0 : tb;
+        kind = restart ? 0 : kind;
+        i += restart ? 1 : 0;
+        s = restart ? -1 : s;
+        done = done || (bisected && !restart);
+#else
+        done = done || bisected;
 #endif
-        break;
+        st = SEARCH_PACK(i, s, kind, m, g) | (done || i > SNELL_PEEL_LINEAR + 1 ? 1 << 15 : 0);
     }
-    return kind;
+    m = st >> 16 & 15;
+    j = st >> 20;
+    return st >> 13 & 3;
 }
 
 // The normal (not normalised) of the surface a search from p along dir
-// crossed (kind != 0), and the gap beyond it (next). Out through the
+// crossed (kind != 0; 0 gives layer m's). Out through the
 // silhouette (kind 3) its normal is the last pixel's layer nearest the
 // point (the side wall there): the texel layer_normal_at reads at qa.
-vec3 crossing_normal(highp vec3 p, vec3 dir, int kind, int j, int m, highp float ta, highp float tb, out int next)
+vec3 crossing_normal(highp vec3 p, vec3 dir, int kind, int m, highp float ta, highp float tb)
 {
     highp vec3 qb = p + tb * dir, qa = p + ta * dir;
     bool sil = kind == 3;
@@ -307,9 +343,10 @@ vec3 crossing_normal(highp vec3 p, vec3 dir, int kind, int j, int m, highp float
     highp float za = depth_of(qa), d0 = layer_depth(pa, m - 1), d1 = layer_depth(pa, m);
     bool near0 = abs(d0 - za) < abs(d1 - za);
     int layer = sil ? (near0 ? m - 1 : m) : (kind == 1 ? m - 1 : m);
-    next = kind == 1 ? j - 1 : j + 1;
+    // decided before the taps: one value live through them, not three
+    bool own = pa.x >= 0 && (near0 ? d0 : d1) != EMPTY;
     vec3 n0, n = layer_normal_at(sil ? qa : qb, layer, n0);
-    return !sil ? n : pa.x >= 0 && (near0 ? d0 : d1) != EMPTY ? n0 : -dir;
+    return !sil ? n : own ? n0 : -dir;
 }
 
 #if SNELL_DISPERSION == 2
@@ -338,8 +375,36 @@ bool refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
 {
     float c = -dot(n, i);
     float k = 1.0 - eta * eta * (1.0 - c * c);
-    t = k < 0.0 ? snell_reflect(i, n) : eta * i + (eta * c - sqrt(k)) * n;
+    vec3 mirror = snell_reflect(i, n), through = eta * i + (eta * c - sqrt(k)) * n;
+    t = k < 0.0 ? mirror : through;
     return !(k < 0.0);
+}
+
+// common/optics.glsl's snell_fresnel, selected rather than branched (the
+// same operations, so the same bits).
+float fresnel_sel(float cos_i, float n1, float n2)
+{
+#if SNELL_FRESNEL_EXACT
+    float ci = min(abs(cos_i), 1.0);
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - ci * ci);
+    float ct = sqrt(1.0 - sin2_t);
+    float rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+    float rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
+    float f = 0.5 * (rs * rs + rp * rp);
+    return n1 == n2 ? 0.0 : sin2_t >= 1.0 ? 1.0 : f;
+#else
+    float r0 = (n1 - n2) / (n1 + n2);
+    float c = abs(cos_i);
+    r0 *= r0;
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - c * c);
+    float ct = sqrt(1.0 - sin2_t);
+    c = n1 > n2 ? ct : c;
+    float m = 1.0 - c;
+    float f = r0 + (1.0 - r0) * m * m * m * m * m;
+    return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
+#endif
 }
 
 // The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
@@ -355,18 +420,19 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     snell_refract(v, n, 1.0 / snell_ior, dir);
     dir = normalize(dir);
     snell_disp_enter(v, n);
+    // the entry's Fresnel after the loop, from its cosine: its constants
+    // (1 / (1 + ior), ...) would be shared with the loop's exit Fresnel and
+    // live through the loop
     float fresnel = snell_fresnel(-dot(v, n), 1.0, snell_ior);
     // the reflection before the loop: three values through it, not six
     // (its direction and origin)
     vec3 reflected = snell_reflection(p1, r);
 
     highp vec3 p = p1;
-    highp float step = 2.0 * u_bsphere.w / float(SNELL_PEEL_LINEAR);
     highp float path = 0.0;
 #if SNELL_DISPERSION == 2
     highp vec3 p_red = p, p_blue = p; // where the red and blue rays are, after the green ray's lengths
 #endif
-    int j = 1;             // the gap the ray is in
 #if SNELL_INNER_FRESNEL
     // Fresnel inside too (peel param inner_fresnel=on): the last exit into
     // air transmits 1 - F of the chain and reflects F back in, the
@@ -380,120 +446,150 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     // branched on: its environment look-ups (after the loop) take implicit
     // derivatives, which GLSL ES 3.0 leaves undefined in non-uniform
     // control flow (8.9).
-    // The last exit: its F (0: none), the direction reflected back in, the
-    // last point inside before it, its gap, the path and entries up to it;
-    // the inner search starts from them and leaves its own end in them
-    // (exit_r and exit_q its two directions, exit_path its length): no
-    // register more through the loop. The counts are packed in one int (one
-    // value live through the loop, not five): bits 0-3 the entries after the
-    // first, 4-7 those up to the last exit, 8-11 its gap, 12: the chain
-    // ended, 13: the inner search.
+    // The last exit: its F (0: none), the direction reflected back in
+    // (exit_r), the last point inside before it (exit_q), the path up to it,
+    // its gap and entries (marks). When the chain ends (at the end of an
+    // iteration) the two change places: the inner search is from p along
+    // dir as every search, the chain's end waits in exit_q, exit_r and
+    // exit_path, and the inner search leaves its two directions in dir and
+    // p. No register more through the loop: on V3D every value it carries
+    // is live through all of it, and so is any value derived from one at
+    // the top of an iteration and used to its end (a copy of p or dir).
     float exit_fresnel = 0.0, inner_fresnel = 0.0;
     vec3 exit_r = snell_reflect(dir, n);
     highp vec3 exit_q = p;
     highp float exit_path = 0.0;
-    int marks = 1 << 8;
-#define M_ENTRIES (marks & 15)
-#define M_INNER ((marks & 0x2000) != 0)
-#else
-    int entries = 0;
 #endif
+    // The loop's counts, packed in one int (one value live through the
+    // loop, not five): bits 0-3 the entries after the first; with
+    // SNELL_INNER_FRESNEL 4-7 those up to the last exit, 8-11 its gap, 12:
+    // the chain ended (this iteration is the inner search); 14: done (the loop ends at its top, where its values
+    // are those it carries: no copies of them for its exit); 16-19 the gap
+    // the ray is in (j), 20-23 the interfaces processed (the entry and one
+    // an iteration before this one). Not a constant to the compiler (u_max_interfaces & 256 is 0:
+    // at most MAX_INTERFACES): from a constant start NIR's
+    // opt_split_alu_of_phi (nir_opt_if) makes each field the loop reads a
+    // loop value of its own, undoing the packing.
+    int marks = (1 << 8 | 1 << 16) + (u_max_interfaces & 256);
     // Values that change in the loop are selected, not assigned in branches
     // (each such value would stay live through the whole loop on V3D).
-    for (int it = 0; it < MAX_INTERFACES + SNELL_INNER_FRESNEL; it++) {
-        // interfaces processed: the entry and one an iteration before this one
-        bool capped = it + 1 >= u_max_interfaces;  // inside at the cap: this search gives the length only
-        bool ended = it == MAX_INTERFACES || (capped && ((j & 1) == 0 || SNELL_ABSORB == 0));
-#if SNELL_INNER_FRESNEL
-        // the chain ended: the inner search from the last exit (in exit_q,
-        // exit_r, exit_path and its gap; where it ends goes there too)
-        marks |= (ended || (marks & 0x1000) != 0) && !M_INNER ? 0x2000 : 0;
-        bool inner = M_INNER;
-        capped = capped && !inner;
-        highp vec3 q = inner ? exit_q : p;
-        vec3 d = inner ? exit_r : dir;
-        int g = inner ? (marks >> 8) & 15 : j;
-#else
-        if (ended) break;
-        highp vec3 q = p;
-        vec3 d = dir;
-        int g = j;
+    for (;;) {
+        if ((marks & 0x4000) != 0) break;
+#if !SNELL_INNER_FRESNEL
+        int it = marks >> 20, j = marks >> 16 & 15;
+        if (it == MAX_INTERFACES || (it + 1 >= u_max_interfaces && ((j & 1) == 0 || SNELL_ABSORB == 0))) break;
 #endif
-        int m;
+        // (what the iteration reads from marks is read where it is needed:
+        // not a value live through the search and the normal's taps)
+        int g = marks >> 16 & 15, m;
         highp float ta, tb, t_max;
-        int kind = search_gap(q, d, step, g, m, ta, tb, t_max);
+        int kind = search_gap(p, dir, g, m, ta, tb, t_max);
+        // the crossed layer's normal where the ray crossed it (kind 0, none:
+        // taken as 2, its value unused); what else the iteration reads of the
+        // search's results is read after it
+        vec3 n2 = normalize(crossing_normal(p, dir, kind, m, ta, tb));
+        n2 = dot(n2, dir) > 0.0 ? -n2 : n2;   // face the ray
         bool inside = (g & 1) == 1;
         // no surface before the bounding sphere's far side: the length to it
-        highp float len = inside ? (kind == 0 ? t_max : tb) : 0.0;
+        path += inside ? (kind == 0 ? t_max : tb) : 0.0;
+        bool capped = (marks >> 20) + 1 >= u_max_interfaces;  // inside at the cap: this search gives the length only
 #if SNELL_INNER_FRESNEL
-        exit_path += inner ? len : 0.0;
-        path += inner ? 0.0 : len;
-        if (!inner && (kind == 0 || capped)) {
-            marks |= 0x1000;
-            continue;  // the next iteration is the inner search
-        }
+        // the chain ends here (no surface, or the cap): the next iteration is
+        // the inner search, this one changes nothing more (advance: the
+        // chain goes on)
+        bool inner = (marks & 0x1000) != 0;
+        bool advance = !inner && !(kind == 0 || capped);
 #else
-        path += len;
-        if (kind == 0 || capped) break;
+        bool advance = !(kind == 0 || capped);
 #endif
-        // the crossed layer's normal where the ray crossed it
-        int next;
-        vec3 n2 = normalize(crossing_normal(q, d, kind == 0 ? 2 : kind, g, m, ta, tb, next));
-        n2 = dot(n2, d) > 0.0 ? -n2 : n2;   // face the ray
         vec3 out_dir;
-        bool through = refract_sel(d, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
-#if SNELL_INNER_FRESNEL
-        if (inner) {
-            // the inner branch's way out: exit_r and exit_q take its two
-            // directions
-            inner_fresnel = kind == 0 ? 0.0 : through ? snell_fresnel(-dot(d, n2), snell_ior, 1.0) : 1.0;
-            exit_q = snell_reflect(d, n2);
-            exit_r = kind == 0 ? d : normalize(out_dir);
-            break;
-        }
-#endif
+        bool through = refract_sel(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+        vec3 out_n = normalize(out_dir);
 #if SNELL_DISPERSION == 2
-        // red and blue cross the layer near where their own rays are after
-        // the green ray's length: its normal there (a curved surface bends
-        // them by its change of normal as much as by their IORs); through
-        // the silhouette, green's
-        mat3 n_rgb = mat3(n2, n2, n2);
-        if (kind != 3) {
-            int layer = kind == 1 ? m - 1 : m;
-            n_rgb[0] = disp_crossing(p_red, snell_disp_dirs[0], tb, layer, n2);
-            n_rgb[2] = disp_crossing(p_blue, snell_disp_dirs[2], tb, layer, n2);
-        } else {
-            p_red += tb * snell_disp_dirs[0];
-            p_blue += tb * snell_disp_dirs[2];
+        if (advance) {
+            // red and blue cross the layer near where their own rays are after
+            // the green ray's length: its normal there (a curved surface bends
+            // them by its change of normal as much as by their IORs); through
+            // the silhouette, green's
+            mat3 n_rgb = mat3(n2, n2, n2);
+            if (kind != 3) {
+                int layer = kind == 1 ? m - 1 : m;
+                n_rgb[0] = disp_crossing(p_red, snell_disp_dirs[0], tb, layer, n2);
+                n_rgb[2] = disp_crossing(p_blue, snell_disp_dirs[2], tb, layer, n2);
+            } else {
+                p_red += tb * snell_disp_dirs[0];
+                p_blue += tb * snell_disp_dirs[2];
+            }
+            snell_disp_cross3(n_rgb, through, inside);
         }
-        snell_disp_cross3(n_rgb, through, inside);
 #else
         snell_disp_cross(n2, through, inside);
 #endif
-#if SNELL_INNER_FRESNEL
-        bool leaves = through && inside;
-        exit_fresnel = leaves ? snell_fresnel(-dot(dir, n2), snell_ior, 1.0) : exit_fresnel;
-        exit_r = leaves ? snell_reflect(dir, n2) : exit_r;
-        exit_q = leaves ? p + ta * dir : exit_q;   // qa
-        exit_path = leaves ? path : exit_path;
-        marks = leaves ? (marks & 15) * 17 | g << 8 : marks;
-#endif
         // through: just beyond the surface, in the next gap (entering again:
         // one more tint); TIR: from the last point inside the gap (3.6)
-        p += (through ? tb : ta) * dir;
-        dir = normalize(out_dir);
+        highp vec3 p_next = advance ? p + (through ? tb : ta) * dir : p;
+        vec3 dir_next = advance ? out_n : dir;
+        marks += advance && through && !inside ? 1 : 0;
+        // the gap beyond the surface, or g again (the search may have moved on
+        // to another gap)
+        int nj = through ? (kind == 1 ? g - 1 : g + 1) : g;
 #if SNELL_INNER_FRESNEL
-        marks += through && !inside ? 1 : 0;
+        // an exit into air: the last exit so far
+        bool leaves = advance && through && inside;
+        float f_out = fresnel_sel(-dot(dir, n2), snell_ior, 1.0);
+        vec3 back = snell_reflect(dir, n2);
+        exit_fresnel = leaves ? f_out : exit_fresnel;
+        vec3 exit_r_next = leaves ? back : exit_r;
+        // qa, not the value crossing_normal had (which would be live through
+        // the taps): ta plus an opaque zero (u_max_interfaces >> 8: at most
+        // MAX_INTERFACES), so that the compiler cannot merge the two
+        highp vec3 exit_q_next = leaves ? p + (ta + float(u_max_interfaces >> 8)) * dir : exit_q;
+        highp float exit_path_next = leaves ? path : exit_path;
+        marks = leaves ? (marks & ~0xfff) | (marks & 15) * 17 | g << 8 : marks;
+        marks = (advance ? (marks & ~0xf0000) | nj << 16 : marks) + (1 << 20);
+        // the inner search's way out: its two directions go to dir and p
+        // (inner read again from marks: a new value of it, not one live
+        // through the taps)
+        inner = (marks & 0x1000) != 0;
+        inner_fresnel = inner ? (kind == 0 ? 0.0 : through ? f_out : 1.0) : inner_fresnel;
+        vec3 dir_inner = kind == 0 ? dir : out_n;
+        // the chain ends here, or at the cap at the next iteration's start:
+        // the last exit and the chain's end change places, the next
+        // iteration is the inner search (from the last exit's gap)
+        int it_next = marks >> 20, j_next = marks >> 16 & 15;
+        bool ended = it_next == MAX_INTERFACES ||
+                     (it_next + 1 >= u_max_interfaces && ((j_next & 1) == 0 || SNELL_ABSORB == 0));
+        bool swap = !inner && (!advance || ended);
+        p = inner ? back : swap ? exit_q_next : p_next;
+        exit_q = swap ? p_next : exit_q_next;
+        dir = inner ? dir_inner : swap ? exit_r_next : dir_next;
+        exit_r = swap ? dir_next : exit_r_next;
+        highp float path_next = path;
+        path = swap ? exit_path_next : path_next;
+        exit_path = swap ? path_next : exit_path_next;
+        marks = swap ? (marks & ~0xf0000) | (marks >> 8 & 15) << 16 | 0x1000 : marks;
+        marks |= inner ? 0x4000 : 0;
 #else
-        entries += through && !inside ? 1 : 0;
+        p = p_next;
+        dir = dir_next;
+        marks = (advance ? (marks & ~0xf0000) | nj << 16 : marks | 0x4000) + (1 << 20);
 #endif
-        j = through ? next : g;                  // (g: the search may have moved on to another gap)
     }
+#if SNELL_INNER_FRESNEL
+#define CHAIN_P exit_q
+#define CHAIN_DIR exit_r
+#define CHAIN_PATH exit_path
+#else
+#define CHAIN_P p
+#define CHAIN_DIR dir
+#define CHAIN_PATH path
+#endif
     // the tints: u_tint at the entry and at each entry after it (the same
     // products, in the same order, as multiplying at each)
     vec3 tint = u_tint;
+    int entries = marks & 15;
 #if SNELL_INNER_FRESNEL
-    int entries = M_ENTRIES, exit_entries = (marks >> 4) & 15;
+    int exit_entries = (marks >> 4) & 15;
     vec3 exit_tint = u_tint;
 #endif
     for (int e = 1; e <= entries; e++) {
@@ -504,24 +600,25 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     }
 
 #if SNELL_INNER_FRESNEL
-    // the inner branch's two directions are in exit_r and exit_q now, its
-    // length in exit_path
-    vec3 inner_l = (1.0 - inner_fresnel) * snell_env(exit_r) + inner_fresnel * snell_env(exit_q);
+    // the inner branch's two directions are in dir and p now, its length in
+    // path
+    vec3 inner_l = (1.0 - inner_fresnel) * snell_env(dir) + inner_fresnel * snell_env(p);
 #if SNELL_ABSORB
-    inner_l *= snell_beer_lambert(u_sigma, exit_path);
+    inner_l *= snell_beer_lambert(u_sigma, path);
 #endif
 #endif
 #if SNELL_ABSORB
-    vec3 transmitted = snell_disp_exit(p, dir) * tint * snell_beer_lambert(u_sigma, path);
+    vec3 transmitted = snell_disp_exit(CHAIN_P, CHAIN_DIR) * tint * snell_beer_lambert(u_sigma, CHAIN_PATH);
 #else
-    vec3 transmitted = snell_disp_exit(p, dir) * tint;
+    vec3 transmitted = snell_disp_exit(CHAIN_P, CHAIN_DIR) * tint;
 #endif
 #if SNELL_INNER_FRESNEL
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * exit_tint * inner_l
                                      : transmitted;
-#undef M_ENTRIES
-#undef M_INNER
 #endif
-    exit_dir = dir;
+    exit_dir = CHAIN_DIR;
+#undef CHAIN_P
+#undef CHAIN_DIR
+#undef CHAIN_PATH
     return mix(transmitted, reflected, fresnel);
 }
