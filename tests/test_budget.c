@@ -322,6 +322,20 @@ static void device_costs(const snell_mesh_analysis *convex, const snell_mesh_ana
     for (i = 0; i < (int)(sizeof none / sizeof *none); i++)
         CHECK(!snell__device_cost_find(none[i]), "GL_RENDERER \"%s\": no model", none[i]);
     CHECK(!snell__device_cost_find(NULL), "no renderer: no model");
+    /* exact's default walk: the stack, stackless where the compiler keeps
+     * local arrays in registers (Mali-G52 under Panfrost and its own driver);
+     * a walk asked for is that walk everywhere */
+    for (i = 0; i < (int)(sizeof names / sizeof *names); i++) {
+        const snell__device_cost *d = snell__device_cost_find(names[i][0]);
+        int mali = strncmp(names[i][0], "Mali-G52", 8) == 0;
+        CHECK(snell__exact_walk_stack(d, SNELL_EXACT_WALK_DEFAULT) == !mali, "GL_RENDERER \"%s\": default walk %s",
+              names[i][0], mali ? "stackless" : "stack");
+        CHECK(snell__exact_walk_stack(d, SNELL_EXACT_WALK_STACK) && !snell__exact_walk_stack(d, SNELL_EXACT_WALK_STACKLESS),
+              "GL_RENDERER \"%s\": the walk asked for", names[i][0]);
+    }
+    CHECK(snell__exact_walk_stack(snell__device_cost_find("llvmpipe (LLVM 15.0.6, 256 bits)"), SNELL_EXACT_WALK_DEFAULT) &&
+              snell__exact_walk_stack(NULL, SNELL_EXACT_WALK_DEFAULT),
+          "no model: the stack walk");
     for (i = 0; i < 3; i++) {
         const snell__device_cost *d = snell__device_cost_find(names[i == 0 ? 0 : i == 1 ? 1 : 4][0]);
         snell__budget_object lo;

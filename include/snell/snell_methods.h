@@ -152,7 +152,8 @@ typedef enum snell_exact_nodes {
 
 /* How exact walks its tree. */
 typedef enum snell_exact_walk {
-    SNELL_EXACT_WALK_DEFAULT = 0,   /* STACK */
+    SNELL_EXACT_WALK_DEFAULT = 0,   /* STACK, but STACKLESS on GPUs whose compiler keeps the stack in registers
+                                     * (Mali Bifrost: it spills there; bench/notes/device_tuning.md) */
     SNELL_EXACT_WALK_STACKLESS,     /* escape indices: no per-pixel array, no depth bound (GPUs where the
                                      * stack spills) */
     SNELL_EXACT_WALK_STACK          /* near-first with a 32-entry stack a pixel; pixels whose walk would

@@ -13,13 +13,16 @@
 static const snell__device_cost g_models[] = {
     {"V3D 4.2", {ROW(SINGLE, 1.0f, 1.0f, 1.0f), ROW(CUBEMAP, 4.72f, 1.63f, 1.78f), ROW(WYMAN, 2.46f, 1.97f, 2.10f),
                  ROW(OLIVEIRA, 27.00f, 6.95f, 7.83f), ROW(PEEL, 54.86f, 79.27f, 98.56f),
-                 ROW(EXACT, 51.47f, 62.74f, 54.36f), ROW(LAYERED, 3.63f, 15.60f, 22.45f)}},
+                 ROW(EXACT, 51.47f, 62.74f, 54.36f), ROW(LAYERED, 3.63f, 15.60f, 22.45f)},
+     0},
     {"Adreno 630", {ROW(SINGLE, 1.0f, 1.0f, 1.0f), ROW(CUBEMAP, 2.20f, 1.25f, 1.32f), ROW(WYMAN, 2.24f, 2.03f, 2.08f),
                     ROW(OLIVEIRA, 8.86f, 4.10f, 4.33f), ROW(PEEL, 25.43f, 24.88f, 30.40f),
-                    ROW(EXACT, 22.68f, 24.82f, 22.25f), ROW(LAYERED, 1.75f, 13.74f, 23.41f)}},
+                    ROW(EXACT, 22.68f, 24.82f, 22.25f), ROW(LAYERED, 1.75f, 13.74f, 23.41f)},
+     0},
     {"Mali-G52", {ROW(SINGLE, 1.0f, 1.0f, 1.0f), ROW(CUBEMAP, 3.62f, 1.47f, 1.59f), ROW(WYMAN, 2.49f, 2.04f, 2.15f),
                   ROW(OLIVEIRA, 12.68f, 5.11f, 5.45f), ROW(PEEL, 32.99f, 66.68f, 80.34f),
-                  ROW(EXACT, 222.29f, 0.0f, 0.0f), ROW(LAYERED, 2.58f, 26.49f, 44.68f)}},
+                  ROW(EXACT, 222.29f, 0.0f, 0.0f), ROW(LAYERED, 2.58f, 26.49f, 44.68f)},
+     1 /* Panfrost 22.3: local arrays in registers (bench/notes/device_tuning.md) */},
 };
 #undef ROW
 
@@ -40,4 +43,10 @@ const snell__device_cost *snell__device_cost_find(const char *gl_renderer)
     for (i = 0; i < sizeof g_names / sizeof *g_names; i++)
         if (strstr(gl_renderer, g_names[i].match)) return &g_models[g_names[i].model];
     return NULL;
+}
+
+int snell__exact_walk_stack(const snell__device_cost *dev, int walk)
+{
+    if (walk == SNELL_EXACT_WALK_DEFAULT) return !(dev && dev->arrays_in_registers);
+    return walk != SNELL_EXACT_WALK_STACKLESS;
 }

@@ -11,6 +11,7 @@
 #include "mesh/bvh_gpu.h"
 #include "frame/glass_program.h"
 #include "core/ctx.h"
+#include "core/device_cost.h"
 #include "core/gl.h"
 #include "core/glstate.h"
 
@@ -24,7 +25,9 @@
  * nearer child first, so the closest hit shortens the ray sooner
  * (bench/notes/history.md "Exact"). The stackless walk needs no per-pixel
  * array and has no depth bound (drei's 60-entry stack is what mobile GPUs
- * choked on). */
+ * choked on): the default on GPUs whose compiler keeps the stack in
+ * registers (core/device_cost.h, snell__exact_walk_stack), where the stack
+ * walk spills (Mali-G52: 38:169 spills:fills against none). */
 
 /* llvmpipe: per-pixel traversal costs so much more than the G-buffer pass
  * that full 4x4 blocks win at every density, as for the cubemap
@@ -97,7 +100,8 @@ static snell_status exact_create(snell_ctx *ctx, snell__output_kind out, snell__
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
     s->programs = programs;
-    st = get_prog(ctx, s, SNELL_EXACT_DEFAULT_BUDGET, 0, 0, 0, 1, 0, &p);
+    st = get_prog(ctx, s, SNELL_EXACT_DEFAULT_BUDGET, 0, 0, 0, snell__exact_walk_stack(ctx->cost, SNELL_EXACT_WALK_DEFAULT),
+                  0, &p);
     if (st != SNELL_OK) {
         exact_destroy(ctx, s);
         return st;
@@ -179,7 +183,8 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
      * material's model: exact is the accuracy ceiling, and one path would
      * give red and blue estimated exits where the traversal finds the true ones. */
     snell_status st = get_prog(ctx, s, e->node_budget, ep->q16, o->glass->absorbs,
-                                snell__glass_variant(o), e->walk == SNELL_EXACT_WALK_STACK, o->glass->disperses ? 1 : 0, &p);
+                                snell__glass_variant(o), snell__exact_walk_stack(ctx->cost, e->walk),
+                                o->glass->disperses ? 1 : 0, &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
     snell__glass_program_bind(&p->g, "u_bvh", GL_TEXTURE_2D, ep->texture, 0);
@@ -238,8 +243,8 @@ static const snell_param_info g_params[] = {
      .min = 0, .max = 2, .def = SNELL_EXACT_AUTO_NEVER, .value_names = g_auto_names},
     {.name = "walk",
      .offset = offsetof(snell_glass_material, exact.walk),
-     .help = "traversal: stack (near-first, a 32-entry stack a pixel; deeper trees fall back) or stackless (escape indices: no stack, no depth bound, for GPUs where the stack spills)",
-     .min = 0, .max = 2, .def = SNELL_EXACT_WALK_STACK, .value_names = g_walk_names},
+     .help = "traversal: stack (near-first, a 32-entry stack a pixel; deeper trees fall back) or stackless (escape indices: no stack, no depth bound, for GPUs where the stack spills); default: stack, stackless on GPUs whose compiler keeps the stack in registers (Mali-G52)",
+     .min = 0, .max = 2, .def = SNELL_EXACT_WALK_DEFAULT, .value_names = g_walk_names},
 };
 
 

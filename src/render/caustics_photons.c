@@ -58,7 +58,7 @@ static snell_status photon_path(snell_ctx *ctx, snell__caustics *c, const snell_
 {
     const snell_glass_material *m = &o->glass->material;
     const snell_mesh_analysis *an = NULL;
-    int stack = m->exact.walk != SNELL_EXACT_WALK_STACKLESS;
+    int stack = snell__exact_walk_stack(ctx->cost, m->exact.walk); /* the device's default walk too */
     snell_status st;
     char def[96];
     GLuint *p;
