@@ -47,27 +47,61 @@ uniform mat3 u_cam_basis;        // view -> world rotation (the view matrix's 3x
 uniform vec4 u_cam_proj;         // the projection's P00, P11, P20, P21 (orthographic: P00, P11, -P30, -P31)
 uniform vec2 u_pixel_to_ndc;     // 2 / target size in pixels
 
+// The front surface (common/surface.glsl), read once by main before the
+// traces: its discard is then outside the loop over the channels.
+highp vec3 g_world_pos, g_world_normal;
+
+// common/optics.glsl's snell_refract and snell_fresnel_schlick, selected
+// rather than branched (the same operations, so the same bits): a value
+// merged from branches in the channels' loop (SNELL_DISPERSION 1) stays
+// live through all of it on V3D.
+bool refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
+{
+    float c = -dot(n, i);
+    float k = 1.0 - eta * eta * (1.0 - c * c);
+    vec3 mirror = snell_reflect(i, n), through = eta * i + (eta * c - sqrt(k)) * n;
+    t = k < 0.0 ? mirror : through;
+    return !(k < 0.0);
+}
+
+float fresnel_schlick_sel(float cos_i, float n1, float n2)
+{
+    float r0 = (n1 - n2) / (n1 + n2);
+    float c = abs(cos_i);
+    r0 *= r0;
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - c * c);
+    float ct = sqrt(1.0 - sin2_t);
+    c = n1 > n2 ? ct : c;
+    float m = 1.0 - c;
+    float f = r0 + (1.0 - r0) * m * m * m * m * m;
+    return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
+}
+
 // The colour for one IOR, snell_ior (common/dispersion.glsl); g_visits
 // accumulates over the calls, as the budget counts all of a pixel's rays.
+// Selects rather than branches throughout (refract_sel above).
 vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
-    highp vec3 world_pos, world_normal;
-    snell_surface(world_pos, world_normal);
+    highp vec3 world_pos = g_world_pos, world_normal = g_world_normal;
     // The eye ray through the pixel centre from the camera's basis, as the
     // reference's camera rays (the line through the unprojected near and far
     // points): neither the interpolated position nor one reconstructed from
     // the G-buffer's depth through a float inverse of view_proj (off by up
     // to 5e-4 rad here) is on it to float precision.
     vec2 ndc = gl_FragCoord.xy * u_pixel_to_ndc - 1.0;
-    highp vec3 lens = vec3((ndc + u_cam_proj.zw) / u_cam_proj.xy, -1.0), v, eye = u_eye;
-    if (u_view_axis.w > 0.5) { // orthographic: parallel rays from the lens plane's point
-        v = u_view_axis.xyz;
-        eye += u_cam_basis * vec3(lens.xy, 0.0);
-    } else {
-        v = normalize(u_cam_basis * lens);
-    }
+    highp vec3 lens = vec3((ndc + u_cam_proj.zw) / u_cam_proj.xy, -1.0);
+    // orthographic: parallel rays from the lens plane's point
+    bool ortho = u_view_axis.w > 0.5;
+    // (the orthographic point's products apart from the perspective
+    // direction's: lens.xy plus an opaque zero, u_max_interfaces >> 8, at
+    // most MAX_INTERFACES; shared, they would round the direction
+    // differently from the branches this replaces)
+    highp vec3 v_persp = normalize(u_cam_basis * lens);
+    highp vec3 eye_ortho = u_eye + u_cam_basis * vec3(lens.xy + float(u_max_interfaces >> 8), 0.0);
+    highp vec3 v = ortho ? u_view_axis.xyz : v_persp, eye = ortho ? eye_ortho : u_eye;
     vec3 n_raster = normalize(world_normal);
-    if (dot(n_raster, v) > 0.0) n_raster = -n_raster;
+    n_raster = dot(n_raster, v) > 0.0 ? -n_raster : n_raster;
     mat3 inv3 = mat3(u_inv_model);
 
     // One traversal call site for all the pixel's rays (each call site is a
@@ -92,27 +126,36 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         path += k > 0 ? t : 0.0;
         if (k > 0 && k >= u_max_interfaces) break;             // the cap
         vec3 out_dir;
-        bool through = snell_refract(dir, n2, k == 0 ? 1.0 / snell_ior : snell_ior, out_dir);
+        bool through = refract_sel(dir, n2, k == 0 ? 1.0 / snell_ior : snell_ior, out_dir);
         n_entry = k == 0 ? n2 : n_entry;                        // its reflection after the loop
         // the entry with an IOR below 1 at grazing incidence: the mirror, in
         // air; inside: refracted out, or totally reflected
-        dir = k == 0 && !through ? snell_reflect(v, n2) : normalize(out_dir);
+        vec3 mirror = snell_reflect(v, n2), out_n = normalize(out_dir);
+        dir = k == 0 && !through ? mirror : out_n;
         if (through != (k == 0)) break;                        // not entered, or out
     }
     // The entry's reflection and Fresnel from its normal, recomputed here
     // rather than carried through the loop: fewer values live across it.
     vec3 r = snell_reflect(v, n_entry), in_dir;
-    float fresnel = snell_refract(v, n_entry, 1.0 / snell_ior, in_dir) ?
-                        snell_fresnel_schlick(-dot(v, n_entry), 1.0, snell_ior) : 1.0;
-    if (bvh_over()) {
-        // the budget ran out: single.frag's answer from the rasterised
-        // surface (absorption over the bounding-sphere chord)
+    bool entered = refract_sel(v, n_entry, 1.0 / snell_ior, in_dir);
+    float f_entry = fresnel_schlick_sel(-dot(v, n_entry), 1.0, snell_ior);
+    float fresnel = entered ? f_entry : 1.0;
+    // the budget ran out: single.frag's answer from the rasterised surface
+    // (absorption over the bounding-sphere chord); its Fresnel and exit
+    // point selected, not branched (fewer values merged: V3D keeps each
+    // through the channels' loop), its directions and path in the branch
+    // (selected, they would share their products with the entry's and
+    // round differently)
+    bool over = bvh_over();
+    if (over) {
         r = snell_reflect(v, n_raster);
         snell_refract(v, n_raster, 1.0 / snell_ior, dir);
-        fresnel = snell_fresnel_schlick(-dot(v, n_raster), 1.0, snell_ior);
         path = snell_sphere_exit(world_pos, dir, u_bsphere);
     }
-    highp vec3 exit_p = bvh_over() ? world_pos : (u_model * vec4(p, 1.0)).xyz;
+    float f_raster = fresnel_schlick_sel(-dot(v, n_raster), 1.0, snell_ior);
+    fresnel = over ? f_raster : fresnel;
+    highp vec3 exit_obj = (u_model * vec4(p, 1.0)).xyz;
+    highp vec3 exit_p = over ? world_pos : exit_obj;
     // The look-ups after the branches: their implicit derivatives are
     // undefined in non-uniform control flow (GLSL ES 3.00, 8.9).
 #if SNELL_ABSORB
@@ -128,6 +171,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 void main()
 {
     highp vec3 exit_dir;
+    snell_surface(g_world_pos, g_world_normal);
 #if SNELL_DISPERSION == 1
     // Per channel: the three traces in one loop, not three inlined copies of
     // the walk; red, blue, then green, whose exit direction is written (the
