@@ -293,10 +293,7 @@ void surface_at(int e, Ray r, vec3 d, out vec3 p, out vec3 n)
     tri_hit(r, v0, v1, v2, 0.0, 0.0, t, b);
     p = b.x * v0 + b.y * v1 + b.z * v2;
     vec3 s = u_normal_matrix * (b.x * fetch_f(base + 3).xyz + b.y * fetch_f(base + 4).xyz + b.z * fetch_f(base + 5).xyz);
-    // selected, not branched (a value merged from branches in a loop stays
-    // live through all of it on V3D)
-    vec3 face = u_normal_matrix * cross(v1 - v0, v2 - v0);
-    s = dot(s, s) == 0.0 ? face : s;
+    if (dot(s, s) == 0.0) s = u_normal_matrix * cross(v1 - v0, v2 - v0);
     n = normalize(s);
-    n = dot(n, d) > 0.0 ? -n : n;
+    if (dot(n, d) > 0.0) n = -n;
 }
