@@ -454,7 +454,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     // exit_path, and the inner search leaves its two directions in dir and
     // p. No register more through the loop: on V3D every value it carries
     // is live through all of it, and so is any value derived from one at
-    // the top of an iteration and used to its end (a copy of p or dir).
+    // the top of an iteration and read at its end (a copy of p or dir).
     float exit_fresnel = 0.0, inner_fresnel = 0.0;
     vec3 exit_r = snell_reflect(dir, n);
     highp vec3 exit_q = p;

@@ -27,7 +27,7 @@
  * array and has no depth bound (drei's 60-entry stack is what mobile GPUs
  * choked on): the default on GPUs whose compiler keeps the stack in
  * registers (core/device_cost.h, snell__exact_walk_stack), where the stack
- * walk spills (Mali-G52: 38:169 spills:fills against none). */
+ * walk spills (Mali-G52; bench/notes/device_tuning.md). */
 
 /* llvmpipe: per-pixel traversal costs so much more than the G-buffer pass
  * that full 4x4 blocks win at every density, as for the cubemap
