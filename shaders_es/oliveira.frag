@@ -41,8 +41,8 @@ highp vec2 g_size;                   // target size in pixels
 highp float map_depth(highp sampler2D depth_id, ivec2 px)
 {
     highp uvec4 b = uvec4(texelFetch(depth_id, px, 0) * 255.0 + 0.5);
-    if (int(b.a) != u_gid) return -1.0;
-    return float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+    highp float z = float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+    return int(b.a) != u_gid ? -1.0 : z;
 }
 
 vec3 map_normal(highp sampler2D normal, ivec2 px)
@@ -54,8 +54,8 @@ vec3 map_normal(highp sampler2D normal, ivec2 px)
 // Window position (pixels, depth) of clip coordinates c; w <= 0 maps off-screen.
 highp vec3 window(highp vec4 c)
 {
-    if (c.w <= 0.0) return vec3(-1.0, -1.0, 2.0);
-    return vec3((c.xy / c.w * 0.5 + 0.5) * g_size, c.z / c.w * 0.5 + 0.5);
+    highp vec3 w = vec3((c.xy / c.w * 0.5 + 0.5) * g_size, c.z / c.w * 0.5 + 0.5);
+    return c.w <= 0.0 ? vec3(-1.0, -1.0, 2.0) : w;
 }
 
 // Is the sample at window position w still inside the object? Against the
@@ -67,11 +67,13 @@ bool inside(highp vec3 w, bool away)
 {
     // the back-face maps reach band pixels past the target's edge, the G-buffer does not
     highp float band = away ? float(u_back_band) : 0.0;
-    if (!(all(greaterThanEqual(w.xy, vec2(-band))) && all(lessThan(w.xy, g_size + band)))) return false;
-    ivec2 px = ivec2(floor(w.xy));
+    bool on = all(greaterThanEqual(w.xy, vec2(-band))) && all(lessThan(w.xy, g_size + band));
+    // selected, not returned early: one value merged (z, the map read), the
+    // texel clamped into the map where the answer is off it anyway
+    ivec2 px = clamp(ivec2(floor(w.xy)), ivec2(-int(band)), ivec2(g_size + band) - 1);
     highp float z = away ? map_depth(u_bdepth_id, px + u_back_band) : map_depth(u_gdepth_id, px);
-    if (z < 0.0) return false;
-    return away ? w.z < z : w.z > z;
+    bool in_front = away ? w.z < z : w.z > z;
+    return on && z >= 0.0 && in_front;
 }
 
 // The conservative search from p along unit d: returns the distance to the
@@ -85,25 +87,32 @@ highp float search(highp vec3 p, highp vec3 d, out ivec2 px_out, out bool away_o
     highp vec3 w0 = window(c0), w_end = window(c0 + t_end * dc);
     bool away = w_end.z > w0.z;
     highp float s = 0.0, step = t_end;
+    // (the loops end at their top and select: on V3D every value a loop
+    // merges stays live through the interface loop around it)
 #if SNELL_LINEAR_STEPS > 0
     step = t_end / float(SNELL_LINEAR_STEPS + 1);
+    bool going = true;
     for (int j = 0; j < SNELL_LINEAR_STEPS; j++) {
-        if (!inside(window(c0 + (s + step) * dc), away)) break;
-        s += step;
+        if (!going) break;
+        going = inside(window(c0 + (s + step) * dc), away);
+        highp float s_next = s + step;
+        s = going ? s_next : s;
     }
 #endif
     // Listing 1: halve the step; advance S only onto samples still inside
     highp vec2 ws = window(c0 + s * dc).xy;
+    bool fine = false;
     for (int i = 0; i < SNELL_SEARCH_ITERATIONS; i++) {
+        if (fine) break;
         step *= 0.5;
         highp vec3 w = window(c0 + (s + step) * dc);
         highp vec2 span = w.xy - ws;
-        if (inside(w, away)) {
-            s += step;
-            ws = w.xy;
-        }
+        bool in_glass = inside(w, away);
+        highp float s_next = s + step;
+        s = in_glass ? s_next : s;
+        ws = in_glass ? w.xy : ws;
         // a step within one pixel: the maps resolve nothing finer
-        if (dot(span, span) < 1.0) break;
+        fine = dot(span, span) < 1.0;
     }
     highp float band = away ? float(u_back_band) : 0.0;
     px_out = ivec2(floor(clamp(ws, vec2(-band), g_size + band - 1.0)));
@@ -129,6 +138,42 @@ vec3 disp_exit_normal(inout highp vec3 q, vec3 dir, highp float t, bool away, ve
 }
 #endif
 
+// common/optics.glsl's snell_refract and snell_fresnel, selected rather
+// than branched (the same operations, so the same bits).
+bool refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
+{
+    float c = -dot(n, i);
+    float k = 1.0 - eta * eta * (1.0 - c * c);
+    vec3 mirror = snell_reflect(i, n), through = eta * i + (eta * c - sqrt(k)) * n;
+    t = k < 0.0 ? mirror : through;
+    return !(k < 0.0);
+}
+
+float fresnel_sel(float cos_i, float n1, float n2)
+{
+#if SNELL_FRESNEL_EXACT
+    float ci = min(abs(cos_i), 1.0);
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - ci * ci);
+    float ct = sqrt(1.0 - sin2_t);
+    float rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+    float rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
+    float f = 0.5 * (rs * rs + rp * rp);
+    return n1 == n2 ? 0.0 : sin2_t >= 1.0 ? 1.0 : f;
+#else
+    float r0 = (n1 - n2) / (n1 + n2);
+    float c = abs(cos_i);
+    r0 *= r0;
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - c * c);
+    float ct = sqrt(1.0 - sin2_t);
+    c = n1 > n2 ? ct : c;
+    float m = 1.0 - c;
+    float f = r0 + (1.0 - r0) * m * m * m * m * m;
+    return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
+#endif
+}
+
 #if SNELL_INNER_FRESNEL
 // The branch reflected inside at the exit: one more search from q along d,
 // refracted out at the surface found with (1 - F'), its own reflection F'
@@ -141,17 +186,18 @@ vec3 inner_branch(highp vec3 q, highp vec3 d, highp float len, highp vec3 v, vec
     bool away;
     highp float t = search(q, d, px, away);
     ivec2 tex = away ? px + u_back_band : px;
-    vec3 n3;
-    if ((away ? map_depth(u_bdepth_id, tex) : map_depth(u_gdepth_id, tex)) >= 0.0) {
-        n3 = away ? map_normal(u_bnormal, tex) : map_normal(u_gnormal, tex);
-    } else {
-        highp vec3 side = d - dot(d, v) * v;
-        n3 = dot(side, side) > 1e-12 ? normalize(side) : -n;
-    }
-    if (dot(n3, d) > 0.0) n3 = -n3;
+    // selected, as the interface loop's normal (snell_glass_trace)
+    highp float z_tex = away ? map_depth(u_bdepth_id, tex) : map_depth(u_gdepth_id, tex);
+    vec3 n_map = away ? map_normal(u_bnormal, tex) : map_normal(u_gnormal, tex);
+    highp vec3 side = d - dot(d, v) * v;
+    vec3 n_side = normalize(side);
+    vec3 n_fall = dot(side, side) > 1e-12 ? n_side : -n;
+    vec3 n3 = z_tex >= 0.0 ? n_map : n_fall;
+    n3 = dot(n3, d) > 0.0 ? -n3 : n3;
     highp vec3 out_dir;
-    bool exited = snell_refract(d, n3, snell_ior, out_dir);
-    float f = exited ? snell_fresnel(-dot(d, n3), snell_ior, 1.0) : 1.0;
+    bool exited = refract_sel(d, n3, snell_ior, out_dir);
+    float f_out = fresnel_sel(-dot(d, n3), snell_ior, 1.0);
+    float f = exited ? f_out : 1.0;
     vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(snell_reflect(d, n3));
 #if SNELL_ABSORB
     l *= snell_beer_lambert(u_sigma, len + t);
@@ -168,8 +214,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     snell_surface(p1, n1);
     highp vec3 v = snell_view_ray(p1);
     vec3 n = normalize(n1);
-    if (dot(n, v) > 0.0) n = -n;
-    vec3 r = snell_reflect(v, n);
+    n = dot(n, v) > 0.0 ? -n : n;
     highp vec3 dir;
     snell_refract(v, n, 1.0 / snell_ior, dir);
     dir = normalize(dir);
@@ -187,7 +232,11 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 exit_n = n;
     highp float exit_length = 0.0;
 #endif
+    // selects, not branches, and the loop ends at its top: on V3D every
+    // value the loop merges stays live through all of it
+    bool done = false;
     for (int k = 2; k <= MAX_INTERFACES; k++) {
+        if (done) break;
         ivec2 px;
         bool away;
         highp float t = search(p, dir, px, away);
@@ -195,20 +244,19 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         // within a pixel of the last inside sample; its normal is the map's there
         p += t * dir;
         length_inside += t;
-        vec3 n2;
         ivec2 tex = away ? px + u_back_band : px;
-        if ((away ? map_depth(u_bdepth_id, tex) : map_depth(u_gdepth_id, tex)) >= 0.0) {
-            n2 = away ? map_normal(u_bnormal, tex) : map_normal(u_gnormal, tex);
-        } else {
-            // not one sample was inside (the first step already left the
-            // silhouette): Wyman's fallback, a normal perpendicular to the
-            // view vector, in the plane of V and the ray
-            highp vec3 side = dir - dot(dir, v) * v;
-            n2 = dot(side, side) > 1e-12 ? normalize(side) : -n;
-        }
-        if (dot(n2, dir) > 0.0) n2 = -n2; // face the ray (it comes from inside)
+        highp float z_tex = away ? map_depth(u_bdepth_id, tex) : map_depth(u_gdepth_id, tex);
+        vec3 n_map = away ? map_normal(u_bnormal, tex) : map_normal(u_gnormal, tex);
+        // not one sample was inside (the first step already left the
+        // silhouette): Wyman's fallback, a normal perpendicular to the
+        // view vector, in the plane of V and the ray
+        highp vec3 side = dir - dot(dir, v) * v;
+        vec3 n_side = normalize(side);
+        vec3 n_fall = dot(side, side) > 1e-12 ? n_side : -n;
+        vec3 n2 = z_tex >= 0.0 ? n_map : n_fall;
+        n2 = dot(n2, dir) > 0.0 ? -n2 : n2; // face the ray (it comes from inside)
         highp vec3 next;
-        bool out_of_glass = snell_refract(dir, n2, snell_ior, next); // on TIR: the mirror direction
+        bool out_of_glass = refract_sel(dir, n2, snell_ior, next); // on TIR: the mirror direction
 #if SNELL_DISPERSION == 2
         // red and blue meet the surface near where their own rays are after
         // the green ray's length: the map's normal there (a curved exit bends
@@ -219,16 +267,15 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         snell_disp_cross(n2, out_of_glass, true);
 #endif
 #if SNELL_INNER_FRESNEL
-        if (out_of_glass) {
-            exit_fresnel = snell_fresnel(-dot(dir, n2), snell_ior, 1.0);
-            exit_in = dir;
-            exit_n = n2;
-            exit_p = p;
-            exit_length = length_inside;
-        }
+        float f_exit = fresnel_sel(-dot(dir, n2), snell_ior, 1.0);
+        exit_fresnel = out_of_glass ? f_exit : exit_fresnel;
+        exit_in = out_of_glass ? dir : exit_in;
+        exit_n = out_of_glass ? n2 : exit_n;
+        exit_p = out_of_glass ? p : exit_p;
+        exit_length = out_of_glass ? length_inside : exit_length;
 #endif
         dir = normalize(next);
-        if (out_of_glass || k >= u_max_interfaces) break;
+        done = out_of_glass || k >= u_max_interfaces;
     }
 
 #if SNELL_ABSORB
@@ -244,7 +291,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 inner = inner_branch(exit_p, snell_reflect(exit_in, exit_n), exit_length, v, n);
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner : transmitted;
 #endif
-    vec3 reflected = snell_reflection(p1, r);
+    // the reflected direction from v and n, which the loop keeps anyway:
+    // three values fewer live through it
+    vec3 reflected = snell_reflection(p1, snell_reflect(v, n));
     exit_dir = dir;
     return mix(transmitted, reflected, fresnel);
 }
