@@ -97,12 +97,6 @@ int snell__ctx_fits(const snell_ctx *ctx, int which, int value)
     return value <= ctx->limit[which];
 }
 
-int snell__ctx_limit_value(const snell_ctx *ctx, int which)
-{
-    snell__profile_trace(ctx, "value %d %d", which, ctx->limit_raw[which]);
-    return ctx->limit[which];
-}
-
 snell_status snell__ctx_limit(snell_ctx *ctx, int which, int value, const char *what)
 {
     if (snell__ctx_fits(ctx, which, value)) return SNELL_OK;

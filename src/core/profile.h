@@ -33,8 +33,6 @@ extern const unsigned short snell__limit_enum[SNELL__LIMITS];
 snell_status snell__ctx_limit(snell_ctx *ctx, int which, int value, const char *what);
 /* 1 if value fits the context's limit `which`, quietly. */
 int snell__ctx_fits(const snell_ctx *ctx, int which, int value);
-/* The context's limit `which`, where its value itself is used (a message). */
-int snell__ctx_limit_value(const snell_ctx *ctx, int which);
 
 /* Each answer a profile can change (an extension, a limit check or value)
  * appended with its driver's own value to the file SNELL_PROFILE_TRACE names:

@@ -51,9 +51,7 @@ def answers(lines, setting, profiles, removed):
             continue
         which, raw = int(w[1]), int(w[-1])
         limit = min(raw, prof[0][which]) if prof else raw
-        if w[0] == "value":
-            out.append(("value", which, limit))
-        elif w[0] == "check":
+        if w[0] == "check":
             value = int(w[2])
             # a failed check's message names the limit and the profile
             out.append(("check", which, value, "ok" if value <= limit else (limit, setting if prof else "none")))
