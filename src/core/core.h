@@ -59,6 +59,9 @@ double snell__now_ms(void);
  * *why = strerror(errno) when open() failed, *opened 1 with *why "a directory"
  * or "not a regular file" when it was refused. */
 int snell__open_regular(const char *path, int *opened, const char **why);
+/* The same, refusing a symbolic link as the last component (a glTF's
+ * external files, which must stay inside the folders the caller allowed). */
+int snell__open_regular_nofollow(const char *path, int *opened, const char **why);
 FILE *snell__fopen_regular(const char *path, int *opened, const char **why);
 
 /* 1 where SNELL_DEBUG_HANDLES=1 (snell.h): destroyed contexts and meshes are

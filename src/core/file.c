@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-int snell__open_regular(const char *path, int *opened, const char **why)
+static int open_regular(const char *path, int extra_flags, int *opened, const char **why)
 {
     struct stat sb;
     int fd, flags;
@@ -18,7 +18,7 @@ int snell__open_regular(const char *path, int *opened, const char **why)
     *why = "";
     /* open() of a FIFO without a writer blocks forever; O_NONBLOCK returns at
      * once, and fstat then refuses it like any other non-regular file */
-    fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | extra_flags);
     if (fd < 0) {
         *why = strerror(errno);
         return -1;
@@ -32,6 +32,16 @@ int snell__open_regular(const char *path, int *opened, const char **why)
     flags = fcntl(fd, F_GETFL);
     if (flags != -1) fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
     return fd;
+}
+
+int snell__open_regular(const char *path, int *opened, const char **why)
+{
+    return open_regular(path, 0, opened, why);
+}
+
+int snell__open_regular_nofollow(const char *path, int *opened, const char **why)
+{
+    return open_regular(path, O_NOFOLLOW, opened, why);
 }
 
 FILE *snell__fopen_regular(const char *path, int *opened, const char **why)

@@ -175,12 +175,13 @@ bool fs_read(std::vector<unsigned char> *out, std::string *err, const std::strin
         if (err) *err += "refused\n";
         return false;
     }
-    int fd = open(real.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC); /* a FIFO must not block */
+    int opened;
+    const char *why;
+    int fd = snell__open_regular_nofollow(real.c_str(), &opened, &why);
     struct stat sb;
-    if (fd < 0 || fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        int e = fd < 0 ? errno : 0;
+    if (fd < 0 || fstat(fd, &sb) != 0) {
         if (fd >= 0) close(fd);
-        if (err) *err += "cannot open '" + shown_uri(path) + "': " + (e ? std::strerror(e) : "not a regular file") + "\n";
+        if (err) *err += "cannot open '" + shown_uri(path) + "': " + (fd < 0 ? why : std::strerror(errno)) + "\n";
         return false;
     }
     size_t size = static_cast<size_t>(sb.st_size);
