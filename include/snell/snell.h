@@ -297,8 +297,8 @@ typedef struct snell_mesh_analysis {
                               * separate balls: 2); the centre-based methods serve one */
 } snell_mesh_analysis;
 
-/* Analyzes the mesh (O(triangles) memory, nearly all of the time in ray
- * casts; docs/methods.md). The renderer does this itself,
+/* Analyzes the mesh (O(triangles) memory, O(n log n) time: the BVH build and
+ * the weld dominate; docs/integrating.md). The renderer does this itself,
  * once per mesh version (cached on the mesh), for AUTO and the methods that
  * need it; this returns that cached result when there is one, and analyses
  * afresh otherwise; exposed so users can see why a mesh is (not) suited.
