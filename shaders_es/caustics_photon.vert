@@ -1,47 +1,11 @@
 // SPDX-License-Identifier: MIT
 // caustics_photon.vert - one photon per texel of the light's view of a glass
-// object (Wyman & Davis 2006, caustic maps; Unger 3.5 names caustics as the
-// step beyond its methods): enters where the nearest-surface map says
-// (Schlick Fresnel, Snell) and finds its way out by one of three paths:
-// - the depth maps (SNELL_PHOTON_BVH 0; convex meshes, where one crossing is
-//   the whole path): marches the farthest-surface depth map to its exit (an
-//   image-space search, as the methods' exit searches), leaves (Schlick,
-//   Snell; TIR drops it);
-// - the mesh's BVH (SNELL_PHOTON_BVH 1; meshes that are not convex, or
-//   glass of the exact method): exact's traversal (common/bvh.glsl, the
-//   exact method's prepared BVH texture) from surface to surface: in, TIR
-//   followed inside, out (Schlick, Snell), and in again where its way out
-//   meets the mesh once more (a torus's hole, a goblet's bowl), up to the
-//   material's exact.max_interfaces surfaces (the entry counted; at the cap
-//   it leaves through the next surface in its direction, as the MATCHED
-//   model's rays); (1 - Schlick) at each refraction, the tint at each entry,
-//   Beer-Lambert inside. Past the material's exact.budget node visits the
-//   photon takes the depth maps' path. Its reference is ref_caustics.c's
-//   through().
-// - the chain (SNELL_PHOTON_CHAIN; casters whose beams overlap seen from
-//   the light): one world-space BVH of their meshes, the photon counted only
-//   if the light meets its caster first, then through every caster it meets
-//   in turn by that one's material (chain_path; ref_caustics.c chain).
-// A thin wall (material thickness > 0, u_thickness) bends nothing: the
-// photon goes on in its direction through every wall it meets, each one a
-// slab (snell_thin_slab, Schlick at both faces, Beer-Lambert over
-// thickness / cos_t: the single kernel's and beyond.glsl's thin wall), the
-// tint at each; by the depth maps the nearest and the farthest surface (a
-// closed convex wall), by the BVH every wall on its line.
-// It then lands on the receiver plane y = h, drawn as a 4 x 4 texel point
-// whose texels share its flux by a tent (caustics_splat.frag): every
-// photon's flux lands in full (flux-correct, as the 2D lightmap's lines,
-// src/lm2d). World space throughout, but for the BVH's walk (object space,
-// as exact.frag's).
-// With opaque receivers (u_recv = 1) the photon's way on from the exit is
-// marched through their depth map seen from the light (u_recv_z: the nearest
-// opaque surface per texel of the light frame, the shadow map's view): it stops
-// at the first one. u_target 0 draws the photons that reach the plane (none
-// that an opaque object stopped); u_target 1 those that land on an opaque
-// surface the light sees, into the light-space caustic map at their
-// light-frame texel, their flux per texel area facing the light (directional:
-// world area; spot: solid angle, the texel's cos^3 off the frame's axis), so
-// that shading multiplies by the cosine at the surface (caustics_opaque.frag).
+// object (Wyman & Davis 2006, caustic maps): it enters where the nearest-
+// surface map says and leaves by the depth maps, the mesh's BVH or the chain
+// of casters (SNELL_PHOTON_BVH, SNELL_PHOTON_CHAIN), then lands on the
+// receiver plane or an opaque receiver (u_target) as a 4 x 4 tent splat.
+// Its reference is ref_caustics.c. The design notes (the three paths, thin
+// walls, receivers, flux): docs/ARCHITECTURE.md, "shaders_es/caustics_photon.vert".
 precision highp float;
 precision highp sampler2D;
 

@@ -1,24 +1,11 @@
 // SPDX-License-Identifier: MIT
-// exact.frag - exact refraction by BVH ray traversal (methods/exact.c): the
-// MATCHED reference's model (src/ref/ref_trace.c, m_air and m_inside) in
-// float. Per pixel: the eye ray through the pixel is traced against the
-// mesh's BVH (the entry the reference finds, with its smooth normal; the
-// rasterised surface only where the ray misses, at the silhouette); Schlick
-// Fresnel at the entry; inside, the closest surface ahead (skipping the
-// triangle the ray starts on), total internal reflection there or
-// refraction out, up to u_max_interfaces surfaces; at the cap the light
-// leaves through the next surface in its direction, and with no surface
-// ahead (an open mesh) in its direction; Beer-Lambert over the whole path
-// inside. Past SNELL_NODE_BUDGET node visits the pixel takes the
-// single-surface answer (single.frag's model) and is marked.
-//
-// The traversal (the BVH texture's layout, watertight triangles, the
-// stackless and short-stack walks, the node budget) is common/bvh.glsl,
-// shared with the caustics' photons (caustics_photon.vert).
-//
-// Spaces: traversal in object space with the world ray parameter (d = M^-1 *
-// unit world direction), so t and the path are world lengths for any model
-// matrix; normals go to world space by the normal matrix. highp throughout.
+// exact.frag - exact refraction by BVH ray traversal (methods/exact.c), the
+// MATCHED reference's model (src/ref/ref_trace.c) in float: the eye ray
+// traced against the mesh's BVH (common/bvh.glsl), Schlick at the entry, TIR
+// or refraction at each surface up to u_max_interfaces, Beer-Lambert inside;
+// past SNELL_NODE_BUDGET node visits the single-surface answer, marked.
+// The design notes (the cap, spaces, the walks): docs/methods.md,
+// "shaders_es/exact.frag".
 precision highp float;
 precision highp int;
 

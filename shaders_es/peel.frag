@@ -1,47 +1,11 @@
 // SPDX-License-Identifier: MIT
 // peel.frag - multi-layer refraction from depth-peeled layers (Wang 2014,
-// seed 001 3.3-3.6). The object's surfaces along each pixel's view ray are
-// in u_layers (methods/peel.c, depth_peel.frag): layer k's normal in array
-// slice 2k, its depth (the view-axis distance mapped onto the bounding
-// sphere's range, 24 bits) and a flag (0 = empty) in slice 2k + 1; layers
-// alternate front and back faces on a closed mesh. Between layer k - 1 and
-// layer k lies gap k: gap 0 before the first surface, odd gaps inside the
-// glass, even ones in air.
-//
-// Refract the view ray at the front surface (Schlick Fresnel there, or the
-// exact one with SNELL_FRESNEL_EXACT; with SNELL_INNER_FRESNEL the last exit
-// into air weights the chain by 1 - F too and adds its internal reflection,
-// followed by one more search, the interface loop's last iteration); the
-// ray is then in gap 1. The ray-height-field search (3.3): march along the ray
-// from its point in steps of the bounding diameter / SNELL_PEEL_LINEAR (the
-// seed's size is 1/50 of the depth range), to where the ray leaves the
-// bounding sphere grown by a step (the Z_min/Z_max bound); at each step project the point to
-// its pixel and compare its depth with the two layers bounding the ray's gap
-// there. Where it leaves the gap, bisect SNELL_PEEL_BINARY times between the
-// last point in the gap and the first out of it; the crossed layer (the
-// lower bound: upward into gap k - 1, the upper: downward into k + 1) gives
-// the normal. Refract, or past the critical angle reflect and stay in the
-// gap (3.6), restarting from the last point inside the gap (not the first
-// beyond the surface: the seed's false hit on the surface just left), up to
-// u_max_interfaces surfaces; then look the direction up in the environment.
-// Beer-Lambert over the length inside, tint at every entry (as the FULL
-// reference). A ray still inside at the cap leaves in its current direction
-// after the next surface (the reference's cap rule); so does an inside ray
-// whose gap has no far layer here (more surfaces than layers peeled).
-//
-// The seed's fixes, compile-time (SNELL_PEEL_FIX_*, to measure each alone):
-// DISCONTINUITY (3.5.1): a crossing where the crossed layer's depth jumps
-// between the bracket's two pixels by more than one linear step is a layer
-// boundary, not necessarily a surface (case 2 against case 3): the gap is
-// found afresh from the layers at the far pixel (how many lie in front of
-// the point); if the medium is the same there, the search goes on from that
-// gap. MERGE (3.5.2): where an inside ray's gap 2k + 1 has no layers at a
-// pixel (the far part of a torus is layers 3, 4 where it is behind the near
-// part, layers 1, 2 where it is not), gap 2k - 1 there stands in for it.
-//
-// highp throughout: positions, projections and 24-bit depths; highp ints
-// too, for the loops' packed counts (over 16 bits: GLSL ES's mediump int
-// need not hold them, and Mesa lowers it to 16 bits where it can).
+// seed 001 3.3-3.6): refract at the front surface, then march the refracted
+// ray through the layers (u_layers, methods/peel.c) with a linear search and
+// bisection, refracting or totally reflecting at each crossed layer, up to
+// u_max_interfaces surfaces; the seed's fixes (SNELL_PEEL_FIX_*) compile-time.
+// The design notes (gaps, the search, the fixes, precision): docs/methods.md,
+// "shaders_es/peel.frag".
 precision highp float;
 precision highp int;
 

@@ -1,43 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* peel.c — multi-layer refraction from depth-peeled layers (Wang 2014, seed
- * 001 3.1-3.6), for concave objects whose view rays cross more than two
- * surfaces (a torus, a goblet, ears and legs). Per object and frame: up to
- * material.peel.layers depth peels (depth_peel.frag) of every face, front
- * and back, each keeping the next surface behind the previous layer, into
- * one RGBA8 texture array (slice 2k: layer k's normal, octahedral 16+16
- * bits; slice 2k + 1: its depth in 24 bits over the bounding sphere's range
- * and a flag, 0 = empty); then the kernel (peel.frag), forward or in screen
- * space, searches along the refracted ray between the layers. Only GLES 3.0
- * core formats: RGBA8 colour targets, a texture array, an occlusion query.
- *
- * On a closed solid of known winding seen from outside its bounding sphere
- * the layers alternate front and back faces, so each peel draws only the
- * faces its layer can hold (the other half culled: ~35% less peel time on
- * the bunny); other meshes peel every face.
- *
- * Peels are skipped where they cannot hold anything: no more than the
- * mesh's depth complexity (snell_mesh_analysis.depth_complexity, surfaces
- * crossed along sampled lines, rounded up to a front/back pair), and no more
- * than one past the layers the object's last peels found non-empty (an
- * ANY_SAMPLES_PASSED query on each peel after the first, read a frame or
- * more later, once GL_QUERY_RESULT_AVAILABLE says so: never waited for
- * within a frame; peel_history). A layer drawn empty changes nothing (the
- * kernel reads it as no surface), so a still camera's image is the one of
- * every wanted layer; a view that needs two or more layers more than the
- * last one found misses them for one frame (the spare layer's query sees the
- * growth), then every wanted layer is peeled. The layer textures are the
- * method's (per renderer), sized to the target and the most layers asked
- * for; objects peel one after the other into them.
- *
- * Shaded in screen space, the G-buffer already holds the front surface:
- * where it holds all of it (o->front_whole), the peels are culled and the
- * triangles are small (LAYER0_GBUFFER_PPT), layer 0 is converted from it
- * (peel_layer0.frag: one full-screen pass over the scissor, no mesh drawn)
- * instead of peeled (material.peel.layer0). Its depth then comes from the
- * 24-bit window depth, not the interpolated position: up to some hundred
- * quanta of the layers' 24 bits off (test_peel_layer0: mean 97, worst 664
- * on a torus); layer 1 draws back faces only, so it cannot keep layer 0
- * again. */
+ * 001 3.1-3.6) for concave objects whose view rays cross more than two
+ * surfaces: up to material.peel.layers peels of front and back faces into one
+ * RGBA8 texture array, then peel.frag searches between them. Peels that cannot
+ * hold anything are skipped (depth complexity, occlusion queries read a frame
+ * later); in screen space layer 0 may come from the G-buffer. The design notes:
+ * docs/methods.md, "src/methods/peel.c". */
 #include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"

@@ -15,10 +15,6 @@
 # literals skipped), so code and messages are not checked. POSIX sh + awk.
 set -eu
 root=${1:?usage: check_comments.sh SOURCE_DIR}
-# Files another branch is rewriting now: what the newer rules (results in %,
-# degrees, "was"; headers) find in them is reported as pending, not failed,
-# until it lands; then the name comes off this list.
-pending="src/methods/peel.c shaders_es/peel.frag shaders_es/exact.frag shaders_es/caustics_photon.vert"
 dirs=""
 for d in src include shaders_es; do [ -d "$root/$d" ] && dirs="$dirs $root/$d"; done
 # shellcheck disable=SC2086 # dirs: paths without white space
@@ -26,11 +22,10 @@ files=$([ -z "$dirs" ] || find $dirs -type f \( -name '*.c' -o -name '*.h' -o -n
     -o -name '*.frag' -o -name '*.vert' \) | sort)
 [ -n "$files" ] || { echo "check_comments.sh: no sources under $root/src, include and shaders_es" >&2; exit 2; }
 # shellcheck disable=SC2086 # files: a word list of paths without white space
-all=$(awk -v root="$root/" -v pending=" $pending " '
-function flag(why, ln,    rel, late) {
+bad=$(awk -v root="$root/" '
+function flag(why, ln,    rel) {
     rel = substr(FILENAME, length(root) + 1)
-    late = why ~ /^(percent result|degrees result|history|header)/ && index(pending, " " rel " ")
-    printf "%s%s:%d: %s: %s\n", late ? "pending: " : "", rel, ln == "" ? FNR : ln, why, text; found = 1
+    printf "%s:%d: %s: %s\n", rel, ln == "" ? FNR : ln, why, text; found = 1
 }
 function check(t,    n, i, w, words) {
     text = t; found = 0
@@ -85,8 +80,6 @@ hs == 1 && /\*\// { hs = 3; if (hn > 10) { text = hn " lines"; flag("header over
     }
     if (out ~ /[^ \t*]/) check(out)
 }' $files)
-bad=$(printf '%s\n' "$all" | grep -v '^pending: ' | grep . || true)
-printf '%s\n' "$all" | grep '^pending: ' || true
 if [ -n "$bad" ]; then
     echo "$bad"
     echo "check_comments.sh: $(echo "$bad" | wc -l) comment line(s) in src/, include/ or shaders_es/ carry measurements or history, or a header over ten lines;"
