@@ -1332,6 +1332,58 @@ static void opaque_behind_glass_tests(void)
     snell_mesh_destroy(cube);
 }
 
+/* (k) The FULL model's terms added to MATCHED (snell_ref_params.terms) on the
+ * exact sphere, white environment, absorption sig: a ray at incidence
+ * cosine ci refracts to cosine ct inside and crosses chords of 2 r ct, every
+ * internal reflection keeping the angle. MATCHED: F0 + (1 - F0) e^(-sig L);
+ * with the inner reflection the first exit transmits 1 - F1 and F1 crosses
+ * a second chord: F0 + (1 - F0) ((1 - F1) e^(-sig L) + F1 e^(-2 sig L)); with
+ * the exact Fresnel every F is the unpolarised one (reciprocal: F1 = F0),
+ * with Schlick's the exit's is taken at the outside angle (optics.h), so
+ * F1 = F0 again. Unknown bits and terms with the chord's absorption are
+ * refused. */
+static void terms_tests(void)
+{
+    const double c[3] = {0.0, 0.0, 0.0}, r = 0.7, n = 1.5;
+    const unsigned sets[4] = {0u, SNELL_REF_TERM_EXACT_FRESNEL, SNELL_REF_TERM_INNER_REFLECTION,
+                              SNELL_REF_TERM_EXACT_FRESNEL | SNELL_REF_TERM_INNER_REFLECTION};
+    snell_ref *ref = NULL;
+    snell_ref_params p;
+    snell_ref_path path;
+    double sig[3], worst = 0.0;
+    int i, k, tested = 0;
+    CHECK_OK(snell__ref_create_sphere(NULL, c, r, &ref));
+    if (!ref) return;
+    set_glass(ref, 0, n, 0.9, 0.9, 0.9, 1, 1, 1, 0.0, sig);
+    memset(&p, 0, sizeof p);
+    p.env_fn = white;
+    p.max_interfaces = 10;
+    for (i = 0; i < 4; i++)
+        for (k = 0; k < 9; k++) {
+            double b = r * k / 10.0, o[3] = {b, 0.0, 3.0}, d[3] = {0.0, 0.0, -1.0};
+            double ci = sqrt(1.0 - (b / r) * (b / r)), ct = sqrt(1.0 - (1.0 - ci * ci) / (n * n));
+            double F = (sets[i] & SNELL_REF_TERM_EXACT_FRESNEL) ? fresnel(ci, n) : schlick(ci, n);
+            double T = exp(-sig[0] * 2.0 * r * ct), want;
+            want = (sets[i] & SNELL_REF_TERM_INNER_REFLECTION) ? F + (1 - F) * ((1 - F) * T + F * T * T)
+                                                               : F + (1 - F) * T;
+            p.terms = sets[i];
+            CHECK_OK(snell_ref_trace_ray(ref, &p, o, d, &path));
+            if (fabs(path.rgb[0] - want) > worst) worst = fabs(path.rgb[0] - want);
+            CHECK(fabs(path.rgb[0] - want) < 1e-6, "terms 0x%x, impact %.2f: %.9f, closed form %.9f", sets[i], b,
+                  path.rgb[0], want);
+            tested++;
+        }
+    printf("terms: %d rays, worst colour error %.3g\n", tested, worst);
+    p.terms = SNELL_REF_TERMS_ALL + 8u;
+    CHECK(snell_ref_trace_ray(ref, &p, (const double[3]){0, 0, 3}, (const double[3]){0, 0, -1}, &path) ==
+              SNELL_E_INVALID_ARG, "unknown terms refused");
+    p.terms = SNELL_REF_TERM_INNER_REFLECTION;
+    p.absorption_model = SNELL_REF_ABSORB_BOUNDING_SPHERE;
+    CHECK(snell_ref_trace_ray(ref, &p, (const double[3]){0, 0, 3}, (const double[3]){0, 0, -1}, &path) ==
+              SNELL_E_INVALID_ARG, "terms with the chord's absorption refused");
+    snell_ref_destroy(ref);
+}
+
 int main(void)
 {
     sphere_tests();
@@ -1345,5 +1397,6 @@ int main(void)
     thin_tests();
     opaque_direct_tests();
     opaque_behind_glass_tests();
+    terms_tests();
     return test_finish();
 }

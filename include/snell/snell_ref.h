@@ -63,6 +63,21 @@ typedef enum snell_ref_mode {
     SNELL_REF_FULL          /* Whitted tree, Fresnel at every interface */
 } snell_ref_mode;
 
+/* The FULL model's next terms added to MATCHED's chain (bits of
+ * snell_ref_params.terms; MATCHED only), as the kernels' options that compute
+ * them (snell_exact_params.fresnel, inner_fresnel): */
+typedef enum snell_ref_terms {
+    SNELL_REF_TERM_EXACT_FRESNEL = 1 << 0,     /* unpolarised Fresnel in place of Schlick's */
+    /* the chain's first exit into air transmits 1 - F; its internal
+     * reflection F is followed inside (total reflections too) to its own
+     * exit, where it all leaves, as the chain does, and does not re-enter */
+    SNELL_REF_TERM_INNER_REFLECTION = 1 << 1,
+    /* a ray the chain sends out that meets its glass again re-enters it
+     * (isolate_glass too), wholly: no Fresnel at the re-entry */
+    SNELL_REF_TERM_REENTRY = 1 << 2
+} snell_ref_terms;
+#define SNELL_REF_TERMS_ALL 7u
+
 typedef enum snell_ref_absorption {
     SNELL_REF_ABSORB_PATH = 0,         /* the real path length inside the glass */
     /* MATCHED only: absorption over the bounding-sphere chord, as SINGLE */
@@ -84,6 +99,7 @@ typedef struct snell_ref_params {
     snell_ref_mode mode;
     int max_interfaces;                  /* 1..SNELL_REF_MAX_INTERFACES; 0 = 10 */
     snell_ref_absorption absorption_model;
+    unsigned terms;                      /* MATCHED: snell_ref_terms bits (0: the kernels' default model) */
     /* 1: glass sees no other glass object (a method's error apart from the scene layers') */
     int isolate_glass;                   /* nonzero = 1 */
     const snell_env *env;                /* environment, or: */

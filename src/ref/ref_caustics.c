@@ -105,7 +105,7 @@ static int through(const snell_ref *ref, int g, int from, const double o[3], con
         memcpy(dir, t, sizeof dir);
         *prim = s.prim;
         len = 0.0;
-        end = snell__ref_inside(ref, g, gl->ior, NULL, max_if, pos, dir, prim, &depth, &len, &s, &cos_out, NULL);
+        end = snell__ref_inside(ref, g, gl->ior, NULL, max_if, pos, dir, prim, &depth, &len, &s, &cos_out, NULL, NULL);
         if (end == SNELL__REF_OPAQUE) return 0; /* an opaque object in the glass stops it */
         for (k = 0; k < 3; k++) {
             e[k] *= exp(-gl->sigma[k] * len);

@@ -32,6 +32,7 @@ typedef struct optics {
     int max_if;
     snell_ref_absorption absorb;
     int isolate;
+    unsigned terms; /* MATCHED: snell_ref_terms */
     const snell_env *env;
     snell_ref_env_fn env_fn;
     void *env_user;
@@ -171,7 +172,8 @@ static double interface_normal(const ref_surf *s, const double d[3], double n[3]
  * kernels' Schlick. Both are 0 at matched indices. */
 static double fresnel(const optics *op, double c, double n1, double n2)
 {
-    return op->mode == SNELL_REF_FULL ? snell_optd_fresnel_exact(c, n1, n2) : snell_optd_fresnel_schlick(c, n1, n2);
+    return op->mode == SNELL_REF_FULL || (op->terms & SNELL_REF_TERM_EXACT_FRESNEL)
+               ? snell_optd_fresnel_exact(c, n1, n2) : snell_optd_fresnel_schlick(c, n1, n2);
 }
 
 /* A thin wall at incidence cosine c: slab reflectance rs, transmittance ts
@@ -216,15 +218,19 @@ static void first_hit(snell_ref_path *path, int depth, int found, const ref_surf
  * environment j is not in). w: throughput, for pruning side branches; path:
  * the chain being recorded (the refracted/transmitted branch), or NULL. */
 static void m_inside(const snell_ref *r, const optics *op, int j, const double p[3], const double t1[3], uint32_t prim,
-                     int depth, const double w[3], snell_ref_path *path, double *len, double L[3]);
+                     int depth, int split, const double w[3], snell_ref_path *path, double *len, double L[3]);
 
 static void m_surface(const snell_ref *r, const optics *op, const snell__ref_medium *med, const double d[3], int found,
-                      const ref_surf *sp, int depth, const double w[3], snell_ref_path *path, double rgb[3]);
+                      const ref_surf *sp, int depth, int reentry, const double w[3], snell_ref_path *path,
+                      double rgb[3]);
 
+/* A ray in air from o along d. excl: the glass object it leaves, unseen;
+ * reenter (SNELL_REF_TERM_REENTRY, the chain's rays only): it sees excl
+ * again, and meeting it re-enters it wholly. */
 static void m_air(const snell_ref *r, const optics *op, const double o[3], const double d[3], uint32_t prim, int excl,
-                  int depth, const double w[3], snell_ref_path *path, double rgb[3])
+                  int reenter, int depth, const double w[3], snell_ref_path *path, double rgb[3])
 {
-    ref_view v = air_view(op, depth, excl, excl);
+    ref_view v = air_view(op, depth, reenter ? -1 : excl, excl);
     ref_surf s;
     int found, k;
     /* the medium it travels in (with surroundings): where it starts, or at the surface it leaves */
@@ -233,6 +239,7 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
         if (!med || !med->meet(op->sur->user, o, d, HUGE_VAL, rgb)) env_rgb(op, d, rgb);
         return;
     }
+    if (reenter && op->isolate && v.glass == REF_SEE_NONE && depth < op->max_if) v.glass = excl;
     found = snell__ref_hit(r, o, d, prim, &v, &s);
     if (!op->sur && snell__ref_plane_hit(r, o, d, found ? s.t : HUGE_VAL, rgb)) { /* the receiver plane first */
         first_hit(path, depth, 0, &s);
@@ -240,6 +247,7 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
         return;
     }
     first_hit(path, depth, found, &s);
+    reenter = reenter && found && s.object == excl;
     if (med) {
         if (med->meet(op->sur->user, o, d, found ? s.t : HUGE_VAL, rgb)) {
             if (path) memcpy(path->exit_dir, d, 3 * sizeof(double));
@@ -248,17 +256,19 @@ static void m_air(const snell_ref *r, const optics *op, const double o[3], const
         if (found) { /* through the ambient medium to the object */
             double wa[3];
             for (k = 0; k < 3; k++) wa[k] = w[k] * exp(-med->sigma[k] * s.t);
-            m_surface(r, op, med, d, found, &s, depth, wa, path, rgb);
+            m_surface(r, op, med, d, found, &s, depth, reenter, wa, path, rgb);
             for (k = 0; k < 3; k++) rgb[k] *= exp(-med->sigma[k] * s.t);
             return;
         }
     }
-    m_surface(r, op, med, d, found, &s, depth, w, path, rgb);
+    m_surface(r, op, med, d, found, &s, depth, reenter, w, path, rgb);
 }
 
-/* m_air's ray d at what it met (found: s, else nothing). */
+/* m_air's ray d at what it met (found: s, else nothing); reentry: the chain
+ * meets the glass it left again (SNELL_REF_TERM_REENTRY): no Fresnel there. */
 static void m_surface(const snell_ref *r, const optics *op, const snell__ref_medium *med, const double d[3], int found,
-                      const ref_surf *sp, int depth, const double w[3], snell_ref_path *path, double rgb[3])
+                      const ref_surf *sp, int depth, int reentry, const double w[3], snell_ref_path *path,
+                      double rgb[3])
 {
     const ref_surf s = *sp;
     const ref_glass *g;
@@ -287,19 +297,20 @@ static void m_surface(const snell_ref *r, const optics *op, const snell__ref_med
             wr[k] = w[k] * rs[k];
             wt[k] = w[k] * ts[k] * g->tint[k];
         }
-        m_air(r, op, s.p, rdir, s.prim, s.object, depth + 1, wr, NULL, refl);
-        m_air(r, op, s.p, d, s.prim, s.object, depth + 1, wt, path, L);
+        m_air(r, op, s.p, rdir, s.prim, s.object, 0, depth + 1, wr, NULL, refl);
+        m_air(r, op, s.p, d, s.prim, s.object, 0, depth + 1, wt, path, L);
         for (k = 0; k < 3; k++) rgb[k] = rs[k] * refl[k] + ts[k] * g->tint[k] * L[k];
     } else {
         double F = fresnel(op, c, amb, ior_of(op, g)), t1[3], L[3], len = 0.0, dist, T;
         int tir = !snell_optd_refract(d, n, amb / ior_of(op, g), t1);
         if (tir) F = 1.0; /* IOR < 1 at a grazing angle */
+        if (reentry && !tir) F = 0.0;
         if (path) {
             if (path->interfaces == 0) path->fresnel = F;
             path_point(path, s.p, tir ? SNELL_REF_EVENT_TIR : SNELL_REF_EVENT_REFRACT, s.object);
         }
         if (tir) { /* the chain goes on along the reflection */
-            m_air(r, op, s.p, rdir, s.prim, s.object, depth + 1, w, path, rgb);
+            m_air(r, op, s.p, rdir, s.prim, s.object, reentry, depth + 1, w, path, rgb);
             return;
         }
         snell__ref_normalize3(t1);
@@ -307,8 +318,8 @@ static void m_surface(const snell_ref *r, const optics *op, const snell__ref_med
             wr[k] = w[k] * F;
             wt[k] = w[k] * (1.0 - F) * g->tint[k];
         }
-        if (F > 0.0) m_air(r, op, s.p, rdir, s.prim, s.object, depth + 1, wr, NULL, refl);
-        m_inside(r, op, s.object, s.p, t1, s.prim, depth + 1, wt, path, &len, L);
+        if (F > 0.0) m_air(r, op, s.p, rdir, s.prim, s.object, 0, depth + 1, wr, NULL, refl);
+        m_inside(r, op, s.object, s.p, t1, s.prim, depth + 1, !reentry, wt, path, &len, L);
         dist = 0.0;
         if (op->absorb == SNELL_REF_ABSORB_BOUNDING_SPHERE) {
             /* Distance from the entry along t1 to the exit of j's bounding sphere (single.frag). */
@@ -328,7 +339,7 @@ static void m_surface(const snell_ref *r, const optics *op, const snell__ref_med
 
 int snell__ref_inside(const snell_ref *r, int j, double ior, const snell__ref_surroundings *sur, int max_if,
                       double pos[3], double dir[3], uint32_t *prim, int *depth, double *len, ref_surf *s,
-                      double *cos_out, snell_ref_path *path)
+                      double *cos_out, double refl[3], snell_ref_path *path)
 {
     ref_view v = inside_view(j);
     for (;;) {
@@ -350,28 +361,60 @@ int snell__ref_inside(const snell_ref *r, int j, double ior, const snell__ref_su
             continue;
         }
         snell__ref_normalize3(out);
+        if (refl) {
+            snell_optd_reflect(dir, n, refl);
+            snell__ref_normalize3(refl);
+        }
         if (path) path_point(path, s->p, SNELL_REF_EVENT_REFRACT, j);
         memcpy(dir, out, 3 * sizeof(double));
         return SNELL__REF_OUT;
     }
 }
 
-/* The refracted chain inside solid glass object j from p along t1
- * (snell__ref_inside), and L what the outgoing ray sees (m_air, j unseen).
- * At the cap, or with no surface ahead (open mesh), the ray leaves
- * unrefracted through the next surface. *len: the path length inside. An
- * opaque object inside the glass ends the chain with its colour. */
-static void m_inside(const snell_ref *r, const optics *op, int j, const double p[3], const double t1[3], uint32_t prim,
-                     int depth, const double w[3], snell_ref_path *path, double *len, double L[3])
+/* SNELL_REF_TERM_INNER_REFLECTION: what the chain's internal reflection at
+ * its first exit sees, from p along refl inside j after the chain's length
+ * len: on to its own exit (total reflections followed, the cap counted on
+ * from the split), where it all leaves into what it sees without j;
+ * absorbed over len and its own length. */
+static void m_inner(const snell_ref *r, const optics *op, int j, const double p[3], const double refl[3],
+                    uint32_t prim, int depth, double len, const double w[3], double L[3])
 {
     const ref_glass *g = &r->glass[j];
     double pos[3], dir[3], wo[3], cos_out;
     ref_surf s;
-    int k, end;
+    int k;
+    memcpy(pos, p, sizeof pos);
+    memcpy(dir, refl, sizeof dir);
+    if (snell__ref_inside(r, j, ior_of(op, g), op->sur, op->max_if, pos, dir, &prim, &depth, &len, &s, &cos_out, NULL,
+                          NULL) == SNELL__REF_OPAQUE) {
+        snell__ref_shade_opaque(r, -2 - s.object, &s, L);
+        return;
+    }
+    for (k = 0; k < 3; k++) wo[k] = w[k] * (g->has_sigma ? exp(-g->sigma[k] * len) : 1.0);
+    m_air(r, op, pos, dir, prim, j, 0, depth, wo, NULL, L);
+    for (k = 0; k < 3; k++) L[k] *= g->has_sigma ? exp(-g->sigma[k] * len) : 1.0;
+}
+
+/* The refracted chain inside solid glass object j from p along t1
+ * (snell__ref_inside), and L what the outgoing ray sees (m_air, j unseen).
+ * At the cap, or with no surface ahead (open mesh), the ray leaves
+ * unrefracted through the next surface. *len: the path length inside. An
+ * opaque object inside the glass ends the chain with its colour. With
+ * SNELL_REF_TERM_INNER_REFLECTION and split (the chain's first glass), its
+ * exit into air transmits 1 - F and the reflection F adds m_inner's light:
+ * L then holds both absorbed, and *len is 0. */
+static void m_inside(const snell_ref *r, const optics *op, int j, const double p[3], const double t1[3], uint32_t prim,
+                     int depth, int split, const double w[3], snell_ref_path *path, double *len, double L[3])
+{
+    const ref_glass *g = &r->glass[j];
+    double pos[3], dir[3], wo[3], refl[3], cos_out, F, inner[3];
+    ref_surf s;
+    int k, end, reenter = (op->terms & SNELL_REF_TERM_REENTRY) != 0;
     memcpy(pos, p, sizeof pos);
     memcpy(dir, t1, sizeof dir);
     *len = 0.0;
-    end = snell__ref_inside(r, j, ior_of(op, g), op->sur, op->max_if, pos, dir, &prim, &depth, len, &s, &cos_out, path);
+    end = snell__ref_inside(r, j, ior_of(op, g), op->sur, op->max_if, pos, dir, &prim, &depth, len, &s, &cos_out,
+                            refl, path);
     if (path && end != SNELL__REF_OUT) path->ended_inside = 1;
     if (end == SNELL__REF_OPAQUE) { /* an opaque object in the glass */
         if (path) memcpy(path->exit_dir, dir, 3 * sizeof(double));
@@ -379,7 +422,13 @@ static void m_inside(const snell_ref *r, const optics *op, int j, const double p
         return;
     }
     for (k = 0; k < 3; k++) wo[k] = w[k] * (g->has_sigma ? exp(-g->sigma[k] * *len) : 1.0);
-    m_air(r, op, pos, dir, prim, j, depth, wo, path, L);
+    m_air(r, op, pos, dir, prim, j, reenter, depth, wo, path, L);
+    if (!split || !(op->terms & SNELL_REF_TERM_INNER_REFLECTION) || end != SNELL__REF_OUT) return;
+    F = fresnel(op, cos_out, ior_of(op, g), 1.0);
+    for (k = 0; k < 3; k++) wo[k] *= F;
+    m_inner(r, op, j, pos, refl, prim, depth, *len, wo, inner);
+    for (k = 0; k < 3; k++) L[k] = (1.0 - F) * L[k] * (g->has_sigma ? exp(-g->sigma[k] * *len) : 1.0) + F * inner[k];
+    *len = 0.0;
 }
 
 /* ------------------------------------------------------------ FULL */
@@ -545,7 +594,7 @@ static void trace_channel(const snell_ref *r, const optics *op, const double o[3
     path->fresnel = 0.0;
     path->inside_length = 0.0;
     if (op->mode == SNELL_REF_MATCHED) {
-        m_air(r, op, o, d, SNELL__BVH_NONE, -1, 0, one, path, path->rgb);
+        m_air(r, op, o, d, SNELL__BVH_NONE, -1, 0, 0, one, path, path->rgb);
     } else {
         path->rgb[0] = path->rgb[1] = path->rgb[2] = 0.0;
         if (moment2) moment2[0] = moment2[1] = moment2[2] = 0.0;
@@ -588,6 +637,10 @@ static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, opt
     if (p->absorption_model != SNELL_REF_ABSORB_PATH && p->absorption_model != SNELL_REF_ABSORB_BOUNDING_SPHERE)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: unknown absorption model %d",
                            (int)p->absorption_model);
+    if (p->terms & ~(unsigned)SNELL_REF_TERMS_ALL)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: unknown terms 0x%x", p->terms);
+    if (p->terms && p->absorption_model != SNELL_REF_ABSORB_PATH)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: terms need the path's absorption");
     if (p->max_interfaces < 0 || p->max_interfaces > SNELL_REF_MAX_INTERFACES)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "reference: max_interfaces %d outside 0..%d",
                            p->max_interfaces, SNELL_REF_MAX_INTERFACES);
@@ -605,6 +658,7 @@ static snell_status resolve(const snell_ref *ref, const snell_ref_params *p, opt
     op->mode = p->mode;
     op->max_if = p->max_interfaces ? p->max_interfaces : 10;
     op->absorb = p->absorption_model;
+    op->terms = p->mode == SNELL_REF_MATCHED ? p->terms : 0;
     op->isolate = p->isolate_glass != 0;
     op->env = p->env;
     op->env_fn = p->env_fn;
@@ -630,12 +684,12 @@ void snell__ref_trace_matched(const snell_ref *ref, const snell_ref_params *para
     }
     op.sur = sur;
     op.first = first;
-    m_air(ref, &op, o, d, SNELL__BVH_NONE, -1, 0, one, NULL, rgb);
+    m_air(ref, &op, o, d, SNELL__BVH_NONE, -1, 0, 0, one, NULL, rgb);
     if (!op.disperses) return;
     for (c = 0; c < 3; c += 2) {
         double other[3];
         op.channel = c;
-        m_air(ref, &op, o, d, SNELL__BVH_NONE, -1, 0, one, NULL, other);
+        m_air(ref, &op, o, d, SNELL__BVH_NONE, -1, 0, 0, one, NULL, other);
         rgb[c] = other[c];
     }
 }

@@ -80,7 +80,7 @@ void snell__ref_trace_matched(const snell_ref *ref, const snell_ref_params *para
  * the closest surface ahead, totally internally reflected there (no Fresnel
  * split inside) while it must be, until the ray is refracted out
  * (SNELL__REF_OUT: dir the refracted direction, *cos_out the incidence
- * cosine there), reaches the cap max_if at a surface (SNELL__REF_CAP: dir
+ * cosine there, refl the internal reflection there where not NULL), reaches the cap max_if at a surface (SNELL__REF_CAP: dir
  * unchanged), finds no surface ahead (SNELL__REF_OPEN: an open mesh), or
  * meets an opaque object (SNELL__REF_OPAQUE: *s it). pos, prim and *depth
  * follow the ray, *len adds its length inside. ior: j's index (its channel's);
@@ -89,6 +89,6 @@ void snell__ref_trace_matched(const snell_ref *ref, const snell_ref_params *para
 enum { SNELL__REF_OPEN, SNELL__REF_OUT, SNELL__REF_CAP, SNELL__REF_OPAQUE };
 int snell__ref_inside(const snell_ref *r, int j, double ior, const snell__ref_surroundings *sur, int max_if,
                       double pos[3], double dir[3], uint32_t *prim, int *depth, double *len, ref_surf *s,
-                      double *cos_out, snell_ref_path *path);
+                      double *cos_out, double refl[3], snell_ref_path *path);
 
 #endif
