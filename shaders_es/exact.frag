@@ -17,9 +17,20 @@ precision highp int;
 #define SNELL_KERNEL_MAIN 1 // main below: the fallback mark goes after the write
 #include "common/dispersion.glsl"
 
-// SNELL_ABSORB (0/1) and the traversal's defines (common/bvh.glsl) are the
+// SNELL_ABSORB (0/1), SNELL_FRESNEL_EXACT, SNELL_EXACT_INNER,
+// SNELL_EXACT_REENTRY and the traversal's defines (common/bvh.glsl) are the
 // program's variant (methods/exact.c).
 #include "common/bvh.glsl"
+#ifndef SNELL_FRESNEL_EXACT
+#define SNELL_FRESNEL_EXACT 0
+#endif
+#ifndef SNELL_EXACT_INNER
+#define SNELL_EXACT_INNER 0
+#endif
+#ifndef SNELL_EXACT_REENTRY
+#define SNELL_EXACT_REENTRY 0
+#endif
+#define SNELL_EXACT_TERMS (SNELL_EXACT_INNER || SNELL_EXACT_REENTRY)
 
 #include "common/view.glsl"
 uniform vec3 u_sigma;
@@ -51,8 +62,18 @@ bool refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
     return !(k < 0.0);
 }
 
-float fresnel_schlick_sel(float cos_i, float n1, float n2)
+float fresnel_sel(float cos_i, float n1, float n2)
 {
+#if SNELL_FRESNEL_EXACT
+    float ci = min(abs(cos_i), 1.0);
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - ci * ci);
+    float ct = sqrt(max(1.0 - sin2_t, 0.0));
+    float rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+    float rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
+    float f = 0.5 * (rs * rs + rp * rp);
+    return n1 == n2 ? 0.0 : sin2_t >= 1.0 ? 1.0 : f;
+#else
     float r0 = (n1 - n2) / (n1 + n2);
     float c = abs(cos_i);
     r0 *= r0;
@@ -63,7 +84,131 @@ float fresnel_schlick_sel(float cos_i, float n1, float n2)
     float m = 1.0 - c;
     float f = r0 + (1.0 - r0) * m * m * m * m * m;
     return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
+#endif
 }
+
+#if SNELL_EXACT_TERMS
+// What exact_terms_walk leaves for the colour: the chain's entries after the
+// first (a tint each), and with SNELL_EXACT_INNER the split's Fresnel (0:
+// no split) and the inner branch's end point, direction and length.
+int g_entries;
+#if SNELL_EXACT_INNER
+float g_split_fresnel, g_inner_path;
+highp vec3 g_inner_p, g_inner_dir;
+#endif
+
+// The FULL model's next terms (SNELL_REF_TERM_* in snell_ref.h, whose
+// MATCHED reference with the same terms this walk equals): with
+// SNELL_EXACT_REENTRY a ray the chain sends out that meets the object again
+// re-enters it, wholly; with SNELL_EXACT_INNER the chain's first exit into
+// air transmits 1 - F, and its internal reflection F is followed inside
+// (total reflections too) to its own exit once the chain has ended, the cap
+// counted on from the split. One traversal call site for every ray, as the
+// chain's walk. Out: the chain's last point (object space) and direction,
+// the entry's normal, the chain's length inside.
+void exact_terms_walk(highp vec3 eye, highp vec3 v, highp vec3 world_pos, vec3 n_raster, mat3 inv3,
+                      out highp vec3 p, out highp vec3 dir, out vec3 n_entry, out highp float path)
+{
+    p = (u_inv_model * vec4(eye, 1.0)).xyz;
+    dir = v;
+    n_entry = vec3(0.0);
+    path = 0.0;
+    int at = RAY_FIRST;
+    // The loop's counts and flags packed in one int (one value live through
+    // the loop, as peel.frag's marks): bits 0-3 the interfaces processed on
+    // this branch, 4-7 the entries after the first, 8-11 the split's
+    // interfaces, 12 inside, 13 split, 14 the inner branch runs, 15 done.
+    // Not a constant to the compiler (u_max_interfaces & 256 is 0), so that
+    // NIR does not split the fields into loop values of their own.
+    int marks = u_max_interfaces & 256;
+#if SNELL_EXACT_INNER
+    // The split: its point, reflected direction, length and triangle. When
+    // the chain ends the two change places: the inner branch goes on from
+    // them, and they keep the chain's end (its entries in bits 4-7 then).
+    highp vec3 q = vec3(0.0), rq = vec3(0.0);
+    highp float q_path = 0.0;
+    int q_at = 0;
+    g_split_fresnel = 0.0;
+#define TERMS_LOOP (2 * MAX_INTERFACES + 1)
+#else
+#define TERMS_LOOP (MAX_INTERFACES + 1)
+#endif
+    for (int it = 0; it < TERMS_LOOP; it++) {
+        if ((marks & 0x8000) != 0) break;
+        Ray ray = make_ray(p, inv3 * dir);
+        float t = 3.0e38;
+        int h = closest(ray, u_eps, t, at);
+        bool first = it == 0, hit = h >= 0, inside = (marks & 0x1000) != 0;
+        // at the cap: inside, the light leaves through the surface ahead in
+        // its direction; outside, it sees the object no more
+        bool capped = !first && (marks & 15) >= u_max_interfaces;
+        bool ends = !first && (!hit || capped);
+        vec3 ps, ns;
+        surface_at(max(h, 0), ray, dir, ps, ns);
+        bool moves = first || (hit && (inside || !capped));
+        p = moves ? (hit ? ps : (u_inv_model * vec4(world_pos, 1.0)).xyz) : p;
+        path += inside && hit ? t : 0.0;
+        vec3 n2 = hit ? ns : n_raster;
+        at = moves ? (hit ? h : RAY_AFTER_MISS) : at;
+        vec3 out_dir;
+        bool through = refract_sel(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+        n_entry = first ? n2 : n_entry;
+        vec3 mirror = snell_reflect(dir, n2);
+        bool exits = !ends && inside && through;
+#if SNELL_EXACT_INNER
+        bool splits = exits && (marks & 0x6000) == 0;
+        q = splits ? p : q;
+        rq = splits ? normalize(mirror) : rq;
+        q_path = splits ? path : q_path;
+        q_at = splits ? at : q_at;
+        g_split_fresnel = splits ? fresnel_sel(-dot(dir, n2), snell_ior, 1.0) : g_split_fresnel;
+        marks = splits ? (marks & ~0xf00) | ((marks & 15) + 1) << 8 | 0x2000 : marks;
+#endif
+        marks += !ends && !first && !inside && through ? 16 : 0;
+        dir = ends ? dir : (first && !through ? mirror : normalize(out_dir));
+        marks += ends ? 0 : 1;
+        marks ^= !ends && through ? 0x1000 : 0;
+        // not entered at the eye, out (without re-entry; the inner branch
+        // never re-enters), or left for good
+#if SNELL_EXACT_REENTRY
+        bool stops = ends || (first && !through);
+#else
+        bool stops = ends || (first && !through) || exits;
+#endif
+#if SNELL_EXACT_INNER
+        stops = stops || ((marks & 0x4000) != 0 && exits);
+        // the chain has ended: its end and the split change places
+        bool swap = stops && (marks & 0x6000) == 0x2000;
+        highp vec3 p_chain = p, dir_chain = dir;
+        highp float path_chain = path;
+        p = swap ? q : p;
+        q = swap ? p_chain : q;
+        dir = swap ? rq : dir;
+        rq = swap ? dir_chain : rq;
+        path = swap ? q_path : path;
+        q_path = swap ? path_chain : q_path;
+        at = swap ? q_at : at;
+        // inside, the inner branch, its interfaces from the split's; the
+        // chain's entries stay in bits 4-7
+        marks = swap ? (marks & ~0x100f) | (marks >> 8 & 15) | 0x5000 : marks;
+        marks |= stops && !swap ? 0x8000 : 0;
+#else
+        marks |= stops ? 0x8000 : 0;
+#endif
+    }
+    g_entries = marks >> 4 & 15;
+#if SNELL_EXACT_INNER
+    bool inner = (marks & 0x4000) != 0;
+    g_inner_p = p;
+    g_inner_dir = dir;
+    g_inner_path = path;
+    p = inner ? q : p;
+    dir = inner ? rq : dir;
+    path = inner ? q_path : path;
+    g_split_fresnel = inner ? g_split_fresnel : 0.0;
+#endif
+}
+#endif
 
 // The colour for one IOR, snell_ior (common/dispersion.glsl); g_visits
 // accumulates over the calls, as the budget counts all of a pixel's rays.
@@ -90,6 +235,11 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 n_raster = normalize(world_normal);
     n_raster = dot(n_raster, v) > 0.0 ? -n_raster : n_raster;
     mat3 inv3 = mat3(u_inv_model);
+#if SNELL_EXACT_TERMS
+    vec3 p, dir, n_entry;
+    float path;
+    exact_terms_walk(eye, v, world_pos, n_raster, inv3, p, dir, n_entry, path);
+#else
 
     // One traversal call site for all the pixel's rays (each call site is a
     // copy of the walk): ray 0 is the eye ray to the entry, its first hit,
@@ -121,11 +271,12 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         dir = k == 0 && !through ? mirror : out_n;
         if (through != (k == 0)) break;                        // not entered, or out
     }
+#endif
     // The entry's reflection and Fresnel from its normal, recomputed here
     // rather than carried through the loop: fewer values live across it.
     vec3 r = snell_reflect(v, n_entry), in_dir;
     bool entered = refract_sel(v, n_entry, 1.0 / snell_ior, in_dir);
-    float f_entry = fresnel_schlick_sel(-dot(v, n_entry), 1.0, snell_ior);
+    float f_entry = fresnel_sel(-dot(v, n_entry), 1.0, snell_ior);
     float fresnel = entered ? f_entry : 1.0;
     // the budget ran out: single.frag's answer from the rasterised surface
     // (absorption over the bounding-sphere chord); its Fresnel and exit
@@ -139,16 +290,32 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         snell_refract(v, n_raster, 1.0 / snell_ior, dir);
         path = snell_sphere_exit(world_pos, dir, u_bsphere);
     }
-    float f_raster = fresnel_schlick_sel(-dot(v, n_raster), 1.0, snell_ior);
+    float f_raster = fresnel_sel(-dot(v, n_raster), 1.0, snell_ior);
     fresnel = over ? f_raster : fresnel;
     highp vec3 exit_obj = (u_model * vec4(p, 1.0)).xyz;
     highp vec3 exit_p = over ? world_pos : exit_obj;
     // The look-ups after the branches: their implicit derivatives are
     // undefined in non-uniform control flow (GLSL ES 3.00, 8.9).
-#if SNELL_ABSORB
-    vec3 transmitted = snell_exit(exit_p, dir) * u_tint * snell_beer_lambert(u_sigma, path);
+#if SNELL_EXACT_TERMS
+    vec3 tint = u_tint;
+    for (int e = 0; e < MAX_INTERFACES; e++) tint *= e < g_entries ? u_tint : vec3(1.0);
 #else
-    vec3 transmitted = snell_exit(exit_p, dir) * u_tint;
+    vec3 tint = u_tint;
+#endif
+#if SNELL_ABSORB
+    vec3 transmitted = snell_exit(exit_p, dir) * tint * snell_beer_lambert(u_sigma, path);
+#else
+    vec3 transmitted = snell_exit(exit_p, dir) * tint;
+#endif
+#if SNELL_EXACT_INNER
+    // the first exit's internal reflection, followed to its own exit
+    // (exact_terms_walk): what it sees past the object, the entry's tint
+    vec3 inner_l = beyond_miss((u_model * vec4(g_inner_p, 1.0)).xyz, g_inner_dir) * u_tint;
+#if SNELL_ABSORB
+    inner_l *= snell_beer_lambert(u_sigma, g_inner_path);
+#endif
+    float f_split = over ? 0.0 : g_split_fresnel;
+    transmitted = (1.0 - f_split) * transmitted + f_split * inner_l;
 #endif
     vec3 reflected = snell_reflection(world_pos, r);
     exit_dir = dir;

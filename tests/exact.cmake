@@ -6,6 +6,10 @@
 # its count; AUTO's opt-in; one BVH per mesh version.
 snell_add_test(test_exact SOURCES test_exact.c LABELS "render;gl" SHADINGS forward screen)
 target_link_libraries(test_exact PRIVATE m)
+# The FULL model's terms (material.exact.fresnel, inner_fresnel, reentry)
+# against the MATCHED reference with the same snell_ref_terms (issue 50 item 1).
+snell_add_test(test_exact_terms SOURCES test_exact_terms.c LABELS "render;gl")
+target_link_libraries(test_exact_terms PRIVATE m)
 
 if(TARGET snell-render)
   # The open cat with the budget and cap set by name; the stats line says
@@ -21,7 +25,8 @@ if(TARGET snell-render)
   set_tests_properties(cli_auto_exact PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\([^)]*cat.obj[^)]*\\): method exact")
   # Clear failures (exit 2, the library's range message) for bad values.
   foreach(bad "exact.max_interfaces=11" "exact.max_interfaces=0" "exact.node_budget=63" "exact.node_budget=65537"
-          "exact.node_format=f16" "exact.auto_pick=always" "exact.walk=sideways")
+          "exact.node_format=f16" "exact.auto_pick=always" "exact.walk=sideways"
+          "exact.reentry=maybe" "exact.inner_fresnel=3" "exact.fresnel=fast")
     string(MAKE_C_IDENTIFIER "cli_bad_exact_${bad}" name)
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>"
              "-DARGS=--mesh|sphere|--method|exact|--param|${bad}" -DCODE=2 "-DERR=snell-render: "

@@ -160,6 +160,14 @@ typedef enum snell_exact_walk {
                                      * overflow it (a tree deeper than 32) fall back as past the budget */
 } snell_exact_walk;
 
+/* Whether exact's chain re-enters the object it left (a concave mesh: the
+ * bunny's ear seen through its head). */
+typedef enum snell_exact_reentry {
+    SNELL_EXACT_REENTRY_DEFAULT = 0, /* OFF */
+    SNELL_EXACT_REENTRY_OFF,         /* the MATCHED model: light that left sees the object no more */
+    SNELL_EXACT_REENTRY_ON           /* it enters again, wholly (no Fresnel there), the cap counting on */
+} snell_exact_reentry;
+
 /* SNELL_METHOD_EXACT's parameters (material.exact); zero = the default. The
  * budget is a compile-time constant of the traversal program (one program per
  * (budget, node format, absorption, shading), built on first use, 8 kept); the
@@ -174,6 +182,12 @@ typedef struct snell_exact_params {
     snell_exact_nodes node_format;
     snell_exact_auto auto_pick;
     snell_exact_walk walk;
+    /* The FULL model's next terms (snell_ref_terms: the MATCHED reference with
+     * the same terms is what they compute; docs/methods.md, "exact"). */
+    snell_fresnel_model fresnel;       /* default Schlick */
+    snell_inner_fresnel inner_fresnel; /* the first exit transmits 1 - F, its reflection followed to its exit;
+                                        * AUTO: off */
+    snell_exact_reentry reentry;
 } snell_exact_params;
 
 #define SNELL_EXACT_MAX_INTERFACES 10

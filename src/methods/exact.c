@@ -57,13 +57,16 @@ typedef struct exact_state {
 
 static void exact_destroy(snell_ctx *ctx, void *state);
 
+/* Bits of a program's model (exact.frag's terms). */
+enum { TERM_FRESNEL_EXACT = 1, TERM_INNER = 2, TERM_REENTRY = 4 };
+
 static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16, int absorb, int variant,
-                             int stack, int dispersion, const snell__program_slot **out)
+                             int stack, int dispersion, int terms, const snell__program_slot **out)
 {
-    const int key[6] = {budget, q16, absorb, variant, stack, dispersion};
-    char def[192];
+    const int key[7] = {budget, q16, absorb, variant, stack, dispersion, terms};
+    char def[256];
     int hit;
-    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_EXACT, key, 6, &hit);
+    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_EXACT, key, 7, &hit);
     snell_status st;
     if (hit) {
         *out = p;
@@ -71,8 +74,10 @@ static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16
     }
     snprintf(def, sizeof def,
              "#define SNELL_NODE_BUDGET %d\n#define SNELL_NODES_Q16 %d\n#define SNELL_ABSORB %d\n#define SNELL_STACK_WALK %d\n"
-             "#define SNELL_DISPERSION %d\n",
-             budget, q16, absorb, stack, dispersion);
+             "#define SNELL_DISPERSION %d\n#define SNELL_FRESNEL_EXACT %d\n#define SNELL_EXACT_INNER %d\n"
+             "#define SNELL_EXACT_REENTRY %d\n",
+             budget, q16, absorb, stack, dispersion, (terms & TERM_FRESNEL_EXACT) != 0, (terms & TERM_INNER) != 0,
+             (terms & TERM_REENTRY) != 0);
     st = snell__glass_program_build(ctx, "exact.frag", s->out, def, variant, &p->g);
     if (st != SNELL_OK) return st;
     exact_locs *loc = SNELL__PROGRAM_LOCS_OF(exact_locs, p);
@@ -101,7 +106,7 @@ static snell_status exact_create(snell_ctx *ctx, snell__output_kind out, snell__
     s->out = out;
     s->programs = programs;
     st = get_prog(ctx, s, SNELL_EXACT_DEFAULT_BUDGET, 0, 0, 0, snell__exact_walk_stack(ctx->cost, SNELL_EXACT_WALK_DEFAULT),
-                  0, &p);
+                  0, 0, &p);
     if (st != SNELL_OK) {
         exact_destroy(ctx, s);
         return st;
@@ -172,6 +177,14 @@ static snell_status count_fallbacks(snell_ctx *ctx, exact_state *s, const snell_
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "exact: reading fallbacks failed");
 }
 
+/* The model's terms a material asks for (resolved parameters). */
+static int exact_terms(const snell_exact_params *e)
+{
+    return (e->fresnel == SNELL_FRESNEL_EXACT ? TERM_FRESNEL_EXACT : 0) |
+           (e->inner_fresnel == SNELL_INNER_FRESNEL_ON ? TERM_INNER : 0) |
+           (e->reentry == SNELL_EXACT_REENTRY_ON ? TERM_REENTRY : 0);
+}
+
 static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
                                snell_object_stats *stats)
 {
@@ -184,7 +197,7 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
      * give red and blue estimated exits where the traversal finds the true ones. */
     snell_status st = get_prog(ctx, s, e->node_budget, ep->q16, o->glass->absorbs,
                                 snell__glass_variant(o), snell__exact_walk_stack(ctx->cost, e->walk),
-                                o->glass->disperses ? 1 : 0, &p);
+                                o->glass->disperses ? 1 : 0, exact_terms(e), &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
     snell__glass_program_bind(&p->g, "u_bvh", GL_TEXTURE_2D, ep->texture, 0);
@@ -223,6 +236,7 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
 static const char *const g_nodes_names[] = {"default", "f32", "q16"};
 static const char *const g_auto_names[] = {"default", "never", "allow"};
 static const char *const g_walk_names[] = {"default", "stackless", "stack"};
+static const char *const g_reentry_names[] = {"default", "off", "on"};
 
 static const snell_param_info g_params[] = {
     {.name = "max_interfaces",
@@ -245,6 +259,18 @@ static const snell_param_info g_params[] = {
      .offset = offsetof(snell_glass_material, exact.walk),
      .help = "traversal: stack (near-first, a 32-entry stack a pixel; deeper trees fall back) or stackless (escape indices: no stack, no depth bound, for GPUs where the stack spills); default: stack, stackless on GPUs whose compiler keeps the stack in registers (Mali-G52)",
      .min = 0, .max = 2, .def = SNELL_EXACT_WALK_DEFAULT, .value_names = g_walk_names},
+    {.name = "fresnel",
+     .offset = offsetof(snell_glass_material, exact.fresnel),
+     .help = "reflectance at the interfaces: schlick (the MATCHED model) or exact (unpolarised, as FULL)",
+     .min = 0, .max = 2, .def = SNELL_FRESNEL_SCHLICK, .value_names = snell__fresnel_names},
+    {.name = "inner_fresnel",
+     .offset = offsetof(snell_glass_material, exact.inner_fresnel),
+     .help = "the first exit transmits 1 - F and its internal reflection is followed to its own exit: auto (off), off, on",
+     .min = 0, .max = 2, .def = SNELL_INNER_FRESNEL_OFF, .value_names = snell__inner_fresnel_names},
+    {.name = "reentry",
+     .offset = offsetof(snell_glass_material, exact.reentry),
+     .help = "light that left the object and meets it again enters it again (concave meshes): off (the MATCHED model) or on",
+     .min = 0, .max = 2, .def = SNELL_EXACT_REENTRY_OFF, .value_names = g_reentry_names},
 };
 
 
