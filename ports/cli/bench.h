@@ -112,6 +112,7 @@ typedef struct bench_config {
     int cam_set;                   /* camera= given; else the scene's own camera */
     int ref_interfaces;            /* MATCHED reference cap (the method's own) */
     snell_ref_absorption ref_absorb;
+    unsigned ref_terms;            /* MATCHED reference's snell_ref_terms (the method's model) */
     snell_shading shading;         /* shading= (the renderer's; default auto) */
     int ssaa, msaa;                /* ssaa=, msaa=: the renderer's antialiasing, timed and measured (0: none;
                                     * then the measured colour frame uses --aa) */

@@ -240,6 +240,7 @@ static int reference(const snell_frame_desc *fd, const snell_glass *ref_glass, c
     p.max_interfaces = mode ? o->full_interfaces : c->ref_interfaces;
     p.absorption_model = mode ? SNELL_REF_ABSORB_PATH : c->ref_absorb;
     p.isolate_glass = isolate;
+    p.terms = mode ? 0u : c->ref_terms;
     p.env = fd->env;
     p.camera = fd->camera;
     p.width = c->width;

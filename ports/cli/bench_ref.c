@@ -155,6 +155,8 @@ static int scene_key(const snell_ref_desc *scene, const snell_ref_params *p, con
             env_key, p->width, p->height, cam->azimuth, cam->elevation, cam->distance, cam->fov_y, cam->target[0],
             cam->target[1], cam->target[2], cam->z_near, cam->z_far, (int)p->mode, p->max_interfaces,
             (int)p->absorption_model, p->isolate_glass != 0, p->samples > 1 ? p->samples : 1);
+    if (p->terms) /* only when some, so that the keys already cached stay */
+        key_add(key, size, &len, " terms=%u", p->terms);
     if (cam->kind == SNELL_CAMERA_MATRICES) /* only then, so that the orbit cameras' cached keys stay */
         for (i = 0; i < 32; i++)
             key_add(key, size, &len, "%s%.9g", i == 0 ? " matrices=" : "/", i < 16 ? cam->view[i] : cam->projection[i - 16]);

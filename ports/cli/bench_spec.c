@@ -262,9 +262,14 @@ static void reference_model(bench_config *c)
     int interfaces = 0;
     c->ref_absorb = c->method->ref_chord_absorption ? SNELL_REF_ABSORB_BOUNDING_SPHERE : SNELL_REF_ABSORB_PATH;
     c->ref_interfaces = c->method->ref_interfaces > 0 ? c->method->ref_interfaces : 10;
+    c->ref_terms = 0;
     if (c->method->ref_interfaces > 0 || snell_glass_defaults(&c->glass, &r) != SNELL_OK) return;
     if (snell_glass_get_param(&r.material, c->method->method, "max_interfaces", &interfaces) == SNELL_OK && interfaces > 0)
         c->ref_interfaces = interfaces;
+    if (c->method->method == SNELL_METHOD_EXACT) /* its model's terms are the reference's (snell_ref_terms) */
+        c->ref_terms = (r.material.exact.fresnel == SNELL_FRESNEL_EXACT ? SNELL_REF_TERM_EXACT_FRESNEL : 0u) |
+                       (r.material.exact.inner_fresnel == SNELL_INNER_FRESNEL_ON ? SNELL_REF_TERM_INNER_REFLECTION : 0u) |
+                       (r.material.exact.reentry == SNELL_EXACT_REENTRY_ON ? SNELL_REF_TERM_REENTRY : 0u);
 }
 
 /* ------------------------------------------------------------- expansion */
