@@ -17,3 +17,9 @@ foreach(method IN LISTS SNELL_METHODS_ON)
     target_compile_definitions(test_stress_${method} PRIVATE SNELL_FP16_EMULATION=1)
   endif()
 endforeach()
+# exact with its FULL-model terms (material.exact fresnel, inner_fresnel,
+# reentry) against MATCHED with the same snell_ref_terms.
+if(TARGET test_stress_exact)
+  snell_add_test(test_stress_exact_terms SOURCES test_stress.c LABELS "stress;gl" ARGS exact terms TIMEOUT 240)
+  target_link_libraries(test_stress_exact_terms PRIVATE m)
+endif()

@@ -11,7 +11,9 @@
  * Built with -DSNELL_FP16_EMULATION=ON the shaders round their mediump
  * intermediates to fp16; the test then shows which cases mediump breaks
  * (expected: IOR 1.0001 loses its bending entirely, 1/1.0001 rounds to 1).
- * Argument: a method name to test only that method; the environment variable
+ * Argument: a method name to test only that method, then "terms" for exact
+ * with its FULL-model terms on (against MATCHED with the same
+ * snell_ref_terms, the same bounds); the environment variable
  * STRESS_ONLY=substring restricts the cases by label (for diagnosis). */
 #include "test_util.h"
 #include "core/pack.h"
@@ -90,6 +92,7 @@ typedef struct stress_method {
     const method_case *bounds;
     int interfaces;
     snell_ref_absorption absorb;
+    unsigned terms;             /* exact's terms on: snell_ref_terms of the reference (0: none) */
 } stress_method;
 
 static int resolve_method(const snell_method_info *info, stress_method *out)
@@ -203,6 +206,11 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
     g.model = model;
     g.material.method = mc->id;
     g.material.ior = sc->ior;
+    if (mc->terms) {
+        g.material.exact.fresnel = SNELL_FRESNEL_EXACT;
+        g.material.exact.inner_fresnel = SNELL_INNER_FRESNEL_ON;
+        g.material.exact.reentry = SNELL_EXACT_REENTRY_ON;
+    }
     fd.camera.azimuth = (float)(sc->az_deg * PI / 180.0);
     fd.camera.elevation = (float)(sc->el_deg * PI / 180.0);
     fd.camera.distance = 3.5f * sc->scale;
@@ -230,6 +238,7 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
     if (!ref) return 0;
     test_ref_params(&fd, W, H, mc->interfaces, &p);
     p.absorption_model = mc->absorb;
+    p.terms = mc->terms;
     CHECK_OK(test_ref_render(ref, &p, rgb, ref_dirs, hit));
     snell_ref_destroy(ref);
     if (strcmp(snell_renderer_exit_dir_encoding(r), "float") != 0)
@@ -346,6 +355,10 @@ int main(int argc, char **argv)
             snell_glass pg;
             if (argc > 1 && strcmp(argv[1], info->name)) continue;
             resolve_method(info, &sm);
+            if (argc > 2 && !strcmp(argv[2], "terms")) {
+                if (sm.id != SNELL_METHOD_EXACT) continue;
+                sm.terms = SNELL_REF_TERMS_ALL;
+            }
             named = 1;
             test_frame_one(&probe, &pg, sphere, env);
             pg.material.method = sm.id;
@@ -356,7 +369,7 @@ int main(int argc, char **argv)
                 continue;
             }
             ran++;
-            printf("%s vs MATCHED(%d), absorption %s\n", sm.name, sm.interfaces,
+            printf("%s%s vs MATCHED(%d), absorption %s\n", sm.name, sm.terms ? " with its terms" : "", sm.interfaces,
                    sm.absorb == SNELL_REF_ABSORB_BOUNDING_SPHERE ? "over the bounding-sphere chord" : "over the path");
             for (k = 0; k < sizeof cases / sizeof *cases; k++)
                 if (getenv("STRESS_ONLY") && !strstr(cases[k].label, getenv("STRESS_ONLY"))) continue;
