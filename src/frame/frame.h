@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* frame.h — the frame contract every pass of a frame reads: what the
- * shaders write, the frame's view (camera, target, and what the stages made
- * for the kernels: back-face maps, scene layers, water) and one glass object
+ * shaders write, the frame's view (camera, target, back-face maps, scene
+ * layers, the textures the stages published) and one glass object
  * as the scene stage resolved it (render/scene.c). Methods, stages and the
  * renderer share it; it imports only core/ and mesh/. */
 #ifndef SNELL_FRAME_H
@@ -64,17 +64,6 @@ typedef struct snell__view {
     snell__output_kind out;
     snell__back_maps back;          /* this frame's back-face maps (band 0 and the target's size if none) */
     snell__scene_layers layers;     /* this frame's scene layers (count 0 if none) */
-    const struct snell_water *water; /* the frame's water surface, NULL none (common/water.glsl) */
-    /* The receiver plane lit by this frame's caustics stage (common/receiver.glsl): its
-     * light map texture (0: none), y, centre x, z and extent, albedo. */
-    unsigned receiver_map;
-    float receiver_plane[4], receiver_albedo[3];
-    /* The caustics stage's state where it lit the opaque objects this frame
-     * (the kernels see them lit through the scene layers: common/opaque_lit.glsl),
-     * NULL none. Read only by its hook (render/caustics_receiver.c). */
-    const struct snell__caustics *lit_opaque;
-    /* The host's scene behind the glass this frame (render/backdrop.c), NULL none. Read only by its hook. */
-    const struct snell__backdrop *backdrop;
     /* What the stages made for the programs after them, by sampler name
      * (frame/textures.h): the G-buffer's and back faces' maps, the scene
      * layers, the water's heights, the receiver's and the lit opaque
@@ -115,9 +104,9 @@ typedef struct snell__object {
     float scale;                    /* the resolution scale it is drawn at (render/glass_scale.h): 1 full;
                                      * s > 1: its method draws at 1/s of the grid per axis, in screen space */
     const char *budget_note;        /* AUTO by budget: the rung it was given and why (render/budget.c), else NULL */
-    unsigned stage_bits;            /* what the frame's stages add to its kernel's program variant
-                                     * (frame/stage.h; e.g. SNELL__GLASS_BEYOND: its exit rays march
-                                     * the scene layers, view.layers, not straight to the environment) */
+    unsigned stage_bits;            /* what the frame's stages' kernel hooks add to its program's variant
+                                     * (frame/stage.h; e.g. the layers stage's: its exit rays march the
+                                     * scene layers, view.layers, not straight to the environment) */
 } snell__object;
 
 /* Defines for a program variant of the given output kind ("#define ...\n"). */

@@ -27,29 +27,24 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     char defines[1024];
     size_t len;
     snell_status st;
-    int screen_space = variant & SNELL__GLASS_SHADING_MASK, i, stage_count = g->stage_count;
-    const snell__stage *const *stages = g->stages; /* the cache's (snell__program_cache_get), kept */
+    int screen_space = variant & SNELL__GLASS_SHADING_MASK, i, k, offset;
+    const snell__kernel_hooks *hooks = g->hooks; /* the cache's (snell__program_cache_get), kept */
+    int count = hooks ? hooks->count : 0;
     snprintf(defines, sizeof defines, "%s%s%s%s", snell__output_defines(out),
              screen_space ? "#define SNELL_SCREEN_SPACE 1\n" : "",
              screen_space == SNELL__SCREEN_WRITES_DEPTH ? "#define SNELL_SCREEN_WRITES_DEPTH 1\n" : "",
              variant & SNELL__GLASS_ENV_PARABOLOID ? SNELL__ENV_PARABOLOID_DEFINE : "");
     /* What the frame's stages add (frame/stage.h), in frame order. */
-    for (i = 0; i < stage_count; i++) {
-        const snell__kernel_hook *h = stages[i]->kernel;
-        if (!h || !((unsigned)variant & h->variant_mask)) continue;
+    for (i = 0; i < count; i++) {
+        unsigned bits = snell__kernel_hook_bits(hooks, i, (unsigned)variant);
+        if (!bits) continue;
         len = strlen(defines);
-        snprintf(defines + len, sizeof defines - len, "%s", h->defines((unsigned)variant & h->variant_mask));
+        snprintf(defines + len, sizeof defines - len, "%s", hooks->stages[i]->kernel->defines(bits));
     }
     len = strlen(defines);
     snprintf(defines + len, sizeof defines - len, "%s", extra_defines ? extra_defines : "");
     memset(g, 0, sizeof *g);
-    g->stages = stages;
-    g->stage_count = stage_count;
-    for (i = 0, len = 0; i < stage_count; i++)
-        if (stages[i]->kernel) len += (size_t)stages[i]->kernel->uniform_count;
-    if (len > SNELL__HOOK_LOCS)
-        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s: the stages' kernel hooks declare %d uniforms, more than %d",
-                           fs_path, (int)len, SNELL__HOOK_LOCS);
+    g->hooks = hooks;
     st = snell__program_build(ctx, screen_space ? "screen.vert" : "object.vert", fs_path, defines, &g->prog);
     if (st != SNELL_OK) return st;
     if ((st = snell__samplers_assign(ctx, g->prog, fs_path, &g->samplers)) != SNELL_OK) {
@@ -58,17 +53,14 @@ snell_status snell__glass_program_build(snell_ctx *ctx, const char *fs_path, sne
     }
     g->screen_space = screen_space;
     g->variant = (unsigned)variant;
-    {
-        int offset = 0, k;
-        for (i = 0; i < g->stage_count; i++) {
-            const snell__kernel_hook *h = g->stages[i]->kernel;
-            if (!h) continue;
-            for (k = 0; k < h->uniform_count && offset + k < SNELL__HOOK_LOCS; k++)
-                g->hook_locs[offset + k] = (g->variant & h->variant_mask)
-                                               ? glGetUniformLocation(g->prog, h->uniform_names[k])
-                                               : -1;
-            offset += h->uniform_count;
-        }
+    for (i = 0, offset = 0; i < count; i++) {
+        const snell__kernel_hook *h = hooks->stages[i]->kernel;
+        if (!h) continue;
+        for (k = 0; k < h->uniform_count; k++)
+            g->hook_locs[offset + k] = snell__kernel_hook_bits(hooks, i, g->variant)
+                                           ? glGetUniformLocation(g->prog, h->uniform_names[k])
+                                           : -1;
+        offset += h->uniform_count;
     }
     g->inv_view_proj = glGetUniformLocation(g->prog, "u_inv_view_proj");
     g->inv_size = glGetUniformLocation(g->prog, "u_inv_size");
@@ -107,12 +99,38 @@ snell__program_slot *snell__program_cache_get(snell__program_cache *c, snell_met
     memset(victim->loc, -1, sizeof victim->loc);
     victim->binary_length = -1;
     victim->method = (int)method;
-    victim->g.stages = c->stages;
-    victim->g.stage_count = c->stage_count;
+    victim->g.hooks = &c->hooks;
     victim->last_use = c->clock;
     c->built++;
     *hit = 0;
     return victim;
+}
+
+unsigned snell__kernel_hook_bits(const snell__kernel_hooks *h, int i, unsigned variant)
+{
+    const snell__kernel_hook *k = h->stages[i]->kernel;
+    return k ? (variant >> h->shift[i]) & ((1u << k->variant_bits) - 1u) : 0u;
+}
+
+snell_status snell__program_cache_hooks(snell_ctx *ctx, snell__program_cache *c, const snell__stage *const *stages,
+                                        void *const *states, int count)
+{
+    unsigned shift = SNELL__GLASS_STAGE_SHIFT;
+    int i, uniforms = 0;
+    c->hooks.stages = stages;
+    c->hooks.states = states;
+    c->hooks.count = count;
+    for (i = 0; i < count; i++) {
+        const snell__kernel_hook *h = stages[i]->kernel;
+        c->hooks.shift[i] = shift;
+        if (!h) continue;
+        shift += (unsigned)h->variant_bits;
+        uniforms += h->uniform_count;
+    }
+    if (shift > SNELL__GLASS_VARIANT_BITS || uniforms > SNELL__HOOK_LOCS)
+        return snell__fail(ctx, SNELL_E_LIMIT, "the stages' kernel hooks take %u variant bits and %d uniforms, "
+                           "more than %d and %d", shift, uniforms, SNELL__GLASS_VARIANT_BITS, SNELL__HOOK_LOCS);
+    return SNELL_OK;
 }
 
 void snell__program_cache_destroy(snell__program_cache *c)
@@ -175,10 +193,11 @@ void snell__glass_program_use(const snell__glass_program *g, const snell__view *
     glUniform3fv(g->sigma, 1, o->glass->absorption);
     glUniform3fv(g->tint, 1, o->glass->material.tint);
     glUniform4fv(g->bsphere, 1, o->bsphere);
-    for (i = 0; i < g->stage_count; i++) {
-        const snell__kernel_hook *h = g->stages[i]->kernel;
+    for (i = 0; g->hooks && i < g->hooks->count; i++) {
+        const snell__kernel_hook *h = g->hooks->stages[i]->kernel;
         if (!h) continue;
-        if (g->variant & h->variant_mask) h->uniforms(g, g->hook_locs + offset, v, o);
+        if (snell__kernel_hook_bits(g->hooks, i, g->variant))
+            h->uniforms(g, g->hook_locs + offset, g->hooks->states[i], v, o);
         offset += h->uniform_count;
     }
     if (g->screen_space) {

@@ -15,8 +15,7 @@ struct snell__glass_program {
     int model, normal_matrix, view_proj, eye, view_axis, ior, ior_rgb, sigma, tint, bsphere;
     int inv_view_proj, inv_size, gid;
     int hook_locs[SNELL__HOOK_LOCS]; /* the frame stages' uniforms (frame/stage.h) */
-    const snell__stage *const *stages; /* the frame's stages, whose kernel hooks it takes (its cache's) */
-    int stage_count;
+    const snell__kernel_hooks *hooks; /* the stages' kernel hooks it takes (its cache's), NULL none */
     snell__samplers samplers;       /* its texture units, by sampler name (frame/textures.h) */
 };
 
@@ -27,25 +26,17 @@ void snell__glass_program_bind(const snell__glass_program *g, const char *name, 
                                unsigned sampler);
 
 /* A kernel program's variant for an object (what snell__glass_program_build
- * takes): the one table of its bits. Its shading (0 forward or
- * SNELL__SCREEN_*, the low two bits), SNELL__GLASS_ENV_PARABOLOID if it
- * looks its environment up in dual-paraboloid maps (common/env.glsl; its
- * env_texture on unit 0 is then a 2D array, render/env_paraboloid.h), and the
- * bits the frame's stages add (snell__object.stage_bits, each stage's
- * kernel hook: frame/stage.h): SNELL__GLASS_BEYOND, its exit rays march the
- * scene layers (render/stages.c "layers"), SNELL__GLASS_WATER (+ _UINT),
- * they meet the frame's water ("water"). A new stage takes the next free bit
- * and doubles SNELL__GLASS_VARIANTS. Kernels key their programs by it; it is
- * below SNELL__GLASS_VARIANTS. */
+ * takes): its shading (0 forward or SNELL__SCREEN_*, the low two bits),
+ * SNELL__GLASS_ENV_PARABOLOID if it looks its environment up in
+ * dual-paraboloid maps (common/env.glsl; its env_texture on unit 0 is then a
+ * 2D array, render/env_paraboloid.h), and from SNELL__GLASS_STAGE_SHIFT on
+ * the bits the frame's stages add (snell__object.stage_bits), each kernel
+ * hook's in the stage table's order (snell__kernel_hooks): a new stage
+ * numbers nothing by hand. Kernels key their programs by it. */
 #define SNELL__GLASS_SHADING_MASK 3
-#define SNELL__GLASS_BEYOND 4
-#define SNELL__GLASS_ENV_PARABOLOID 8
-#define SNELL__GLASS_WATER 16       /* the frame has water, heights in R32F (common/water.glsl) */
-#define SNELL__GLASS_WATER_UINT 32  /* ... in the GPU simulation's RG32UI state */
-#define SNELL__GLASS_RECEIVER 64    /* the frame's receiver plane is lit (common/receiver.glsl) */
-#define SNELL__GLASS_BACKDROP 128   /* the host's scene behind the glass (common/backdrop.glsl) */
-#define SNELL__GLASS_PREMULTIPLIED 256 /* premultiplied alpha output (common/output.glsl) */
-#define SNELL__GLASS_VARIANTS 512
+#define SNELL__GLASS_ENV_PARABOLOID 4
+#define SNELL__GLASS_STAGE_SHIFT 3
+#define SNELL__GLASS_VARIANT_BITS 16 /* the most bits a variant may take, the stages' with them */
 int snell__glass_variant(const snell__object *o);
 
 /* The renderer's one bounded cache of kernel programs, every method's
@@ -72,8 +63,7 @@ typedef struct snell__program_slot {
 
 struct snell__program_cache {
     snell__program_slot slot[SNELL__PROGRAM_CACHE];
-    const snell__stage *const *stages; /* set by its owner: the frame's stages in frame order */
-    int stage_count;
+    snell__kernel_hooks hooks;      /* the frame's stages' kernel hooks (snell__program_cache_hooks) */
     unsigned long clock;
     int built;                      /* programs built over its life */
 };
@@ -84,6 +74,12 @@ struct snell__program_cache {
  * builds into it (a failed build leaves it empty). */
 snell__program_slot *snell__program_cache_get(snell__program_cache *c, snell_method method, const int *key, int n,
                                               int *hit);
+/* Takes the frame's stages (in frame order) and their state slots, and
+ * places each kernel hook's bits in the variant after the previous one's;
+ * SNELL_E_LIMIT where they take more than SNELL__GLASS_VARIANT_BITS or
+ * declare more than SNELL__HOOK_LOCS uniforms. */
+snell_status snell__program_cache_hooks(snell_ctx *ctx, snell__program_cache *c, const snell__stage *const *stages,
+                                        void *const *states, int count);
 void snell__program_cache_destroy(snell__program_cache *c);
 /* Programs it holds; *binary_bytes: their size as the driver reports it
  * (GL_PROGRAM_BINARY_LENGTH, 0 where it reports none), asked once per

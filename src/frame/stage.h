@@ -22,17 +22,21 @@ typedef struct snell__glass_program snell__glass_program; /* frame/glass_program
 
 /* What a stage adds to every kernel program. Its textures it publishes in
  * the frame's view by sampler name (frame/textures.h) when it runs: each
- * program binds those it samples, on units of its own. */
+ * program binds those it samples, on units of its own. Its bits of the
+ * program variant are its own, counted from 1: where they sit in the
+ * variant follows from the table's order (snell__kernel_hooks). */
 typedef struct snell__kernel_hook {
-    unsigned variant_mask;          /* its bits of a kernel program's variant (snell__glass_variant) */
-    /* The #defines for the bits of variant_mask a program is built with. */
+    int variant_bits;               /* how many bits of the variant it takes (1 or more) */
+    /* The #defines for its bits (nonzero) a program is built with. */
     const char *(*defines)(unsigned bits);
     /* The uniforms it sets, by name: found once per program, handed to
      * uniforms() in this order (-1 where the variant has none). */
     const char *const *uniform_names;
     int uniform_count;
-    /* Sets its uniforms of the program in use for object o of the frame. */
-    void (*uniforms)(const snell__glass_program *g, const int *locs, const snell__view *v, const snell__object *o);
+    /* Sets its uniforms of the program in use for object o of the frame,
+     * from its stage's state (NULL where the stage keeps none). */
+    void (*uniforms)(const snell__glass_program *g, const int *locs, const void *state, const snell__view *v,
+                     const snell__object *o);
 } snell__kernel_hook;
 
 /* A stage is a module: its own files hold its state, its validation of its
@@ -61,13 +65,28 @@ typedef struct snell__stage {
     void (*plan)(snell__frame *f, void *state);
     int (*wanted)(const snell__frame *f, const void *state); /* NULL: every frame */
     snell_status (*run)(snell__frame *f, void *state);
-    /* Which of kernel->variant_mask's bits object o's program needs this
-     * frame (set up before any kernel draws: o->stage_bits). */
+    /* Which of its kernel hook's bits (its own, from 1) object o's program
+     * needs this frame, before any kernel draws (the glass stage places
+     * them in o->stage_bits). */
     unsigned (*kernel_variant)(const snell__frame *f, const void *state, const snell__object *o);
     const snell__kernel_hook *kernel; /* NULL: it adds nothing to the kernels */
 } snell__stage;
 
 /* The frame has at most this many stages (its table: render/stages.h). */
 #define SNELL__STAGES_MAX 16
+
+/* The stages' kernel hooks as the programs of one renderer see them: the
+ * table in frame order, each stage's state slot, and where each hook's bits
+ * sit in a program's variant: after the variant's own bits
+ * (frame/glass_program.h), each hook's after the previous hook's. */
+typedef struct snell__kernel_hooks {
+    const snell__stage *const *stages;
+    void *const *states;
+    int count;
+    unsigned shift[SNELL__STAGES_MAX];
+} snell__kernel_hooks;
+
+/* Stage i's hook bits (its own, from 1) in variant, 0 where it has none. */
+unsigned snell__kernel_hook_bits(const snell__kernel_hooks *h, int i, unsigned variant);
 
 #endif

@@ -19,7 +19,7 @@
 
 typedef struct snell__backdrop snell__backdrop;
 
-/* The stage's state (its slot) and what the hook reads from the view. */
+/* The stage's state (its slot), which its kernel hook reads. */
 struct snell__backdrop {
     unsigned color_sampler, depth_sampler; /* linear colour; nearest depth, no comparison */
     /* COPY_BOUND: the copies, made on first use and remade when the size or depth format changes */
@@ -176,7 +176,6 @@ static snell_status run(snell__frame *f, void *state)
     } else {
         memcpy(b->view_proj, v->view_proj, sizeof b->view_proj);
     }
-    v->backdrop = b;
     snell__textures_publish(&v->textures, "u_backdrop_color", GL_TEXTURE_2D, color, b->color_sampler);
     snell__textures_publish(&v->textures, "u_backdrop_depth", GL_TEXTURE_2D, depth_tex, b->depth_sampler);
     f->s->backdrop = depth ? 2 : 1;
@@ -187,7 +186,7 @@ static snell_status run(snell__frame *f, void *state)
 static unsigned variant(const snell__frame *f, const void *state, const snell__object *o)
 {
     (void)state, (void)o;
-    return f->fd->backdrop ? SNELL__GLASS_BACKDROP : 0;
+    return f->fd->backdrop ? 1u : 0u;
 }
 
 static const char *backdrop_defines(unsigned bits)
@@ -199,11 +198,11 @@ static const char *backdrop_defines(unsigned bits)
 static const char *const backdrop_uniform_names[SNELL__BACKDROP_UNIFORMS] = {
     "u_backdrop_view_proj", "u_backdrop_region", "u_backdrop_size", "u_backdrop_distance"};
 
-static void backdrop_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v,
-                              const snell__object *o)
+static void backdrop_uniforms(const snell__glass_program *g, const int *locs, const void *state,
+                              const snell__view *v, const snell__object *o)
 {
-    const snell__backdrop *b = v->backdrop;
-    (void)g, (void)o;
+    const snell__backdrop *b = (const snell__backdrop *)state;
+    (void)g, (void)v, (void)o;
     glUniformMatrix4fv(locs[0], 1, GL_FALSE, b->view_proj);
     glUniform4fv(locs[1], 1, b->region);
     glUniform2fv(locs[2], 1, b->size);
@@ -211,7 +210,7 @@ static void backdrop_uniforms(const snell__glass_program *g, const int *locs, co
 }
 
 static const snell__kernel_hook g_hook = {
-    .variant_mask = SNELL__GLASS_BACKDROP,
+    .variant_bits = 1,
     .defines = backdrop_defines,
     .uniform_names = backdrop_uniform_names,
     .uniform_count = SNELL__BACKDROP_UNIFORMS,

@@ -43,6 +43,9 @@ typedef struct snell__caustics {
     int valid;                                     /* the maps hold the frame keyed by key[] */
     int made_plane, made_opaque;                   /* which of them it made (the plane's, the opaque ones') */
     snell_light light;                             /* the light they were made with */
+    int frame_plane, frame_opaque;                 /* this frame lit the plane, the opaque objects (the
+                                                    * kernels' hook SNELL_RECEIVER; cleared at its plan) */
+    float frame_plane_rect[4], frame_albedo[3];    /* the lit plane's y, centre x, z, extent (0 none); albedo */
     unsigned made;                                 /* maps made so far: which lighting a dynamic environment
                                                     * drawn lit by them shows (render/env_dynamic.c) */
     int key_len;
@@ -76,14 +79,14 @@ snell_status snell__caustics_read_opaque(snell_ctx *ctx, snell__caustics *c, flo
 /* The glass kernels' hook SNELL_RECEIVER (common/receiver.glsl,
  * common/opaque_lit.glsl): their exit and reflected rays meet the plane lit
  * by the stage, and the opaque objects they meet through the scene layers
- * are lit as the view sees them. snell__receiver_view puts the plane's
- * light map and square, and the stage itself where it lit the opaque
- * objects, into the view after the stage ran (nothing without them, or in
- * a build without the stage: the hook's mask is then 0), and publishes
- * their maps (u_plane_map; u_shadow, u_recv_z, u_caustic) in v->textures. */
+ * are lit as the view sees them. snell__receiver_view keeps what the stage
+ * lit this frame in c for the hook, after the stage ran (nothing without
+ * them, or in a build without the stage: the hook then takes no program),
+ * and publishes their maps (u_plane_map; u_shadow, u_recv_z, u_caustic) in
+ * v->textures. */
 #define SNELL__RECEIVER_UNIFORMS 3
 extern const snell__kernel_hook snell__receiver_hook;
-void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc);
+void snell__receiver_view(snell__view *v, snell__caustics *c, const snell_receiver *rc);
 
 /* common/opaque_lit.glsl's uniforms (the light, c's shadow and caustic maps
  * on units unit..unit + 2; unit < 0: the program binds the maps itself, as

@@ -34,14 +34,14 @@ snell_status snell__caustics_read(snell_ctx *ctx, snell__caustics *c, float *rgb
     return snell__fail(ctx, SNELL_E_UNSUPPORTED, "caustics: built without SNELL_WITH_CAUSTICS");
 }
 
-void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc)
+void snell__receiver_view(snell__view *v, snell__caustics *c, const snell_receiver *rc)
 {
     (void)v, (void)c, (void)rc;
 }
 
-const snell__kernel_hook snell__receiver_hook = {0, NULL, NULL, 0, NULL}; /* no plane: never in a variant */
+const snell__kernel_hook snell__receiver_hook = {0, NULL, NULL, 0, NULL}; /* no bits: never in a variant */
 
-/* Never called: without the stage nothing lights the opaque objects (snell__view.lit_opaque stays NULL). */
+/* Never called: without the stage nothing lights the opaque objects (snell__frame.lit_opaque stays NULL). */
 void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int unit) { (void)prog, (void)c, (void)unit; }
 
 void snell__caustics_destroy(snell__caustics *c) { (void)c; }

@@ -59,20 +59,21 @@ snell_status snell__caustics_draw_view(snell__caustics *c, const snell_frame_des
 }
 
 /* --- the glass kernels' hook SNELL_RECEIVER ------------------------------ */
-void snell__receiver_view(snell__view *v, const snell__caustics *c, const snell_receiver *rc)
+void snell__receiver_view(snell__view *v, snell__caustics *c, const snell_receiver *rc)
 {
+    c->frame_opaque = c->made_opaque;
+    c->frame_plane = c->made_plane;
     if (c->made_opaque) {
-        v->lit_opaque = c;
         snell__textures_publish(&v->textures, "u_shadow", GL_TEXTURE_2D, c->shadow_z, 0);
         snell__textures_publish(&v->textures, "u_recv_z", GL_TEXTURE_2D, c->recv_z, 0);
         snell__textures_publish(&v->textures, "u_caustic", GL_TEXTURE_2D, c->cm_tex, 0);
     }
+    memset(c->frame_plane_rect, 0, sizeof c->frame_plane_rect); /* extent 0 without a plane: none seen */
     if (!c->made_plane) return;
-    v->receiver_map = c->map_tex;
     snell__textures_publish(&v->textures, "u_plane_map", GL_TEXTURE_2D, c->map_tex, 0);
-    v->receiver_plane[0] = rc->height, v->receiver_plane[1] = rc->center[0];
-    v->receiver_plane[2] = rc->center[1], v->receiver_plane[3] = rc->extent;
-    memcpy(v->receiver_albedo, rc->albedo, sizeof rc->albedo);
+    c->frame_plane_rect[0] = rc->height, c->frame_plane_rect[1] = rc->center[0];
+    c->frame_plane_rect[2] = rc->center[1], c->frame_plane_rect[3] = rc->extent;
+    memcpy(c->frame_albedo, rc->albedo, sizeof rc->albedo);
 }
 
 static const char *receiver_defines(unsigned bits)
@@ -109,18 +110,19 @@ void snell__lit_opaque_uniforms(unsigned prog, const snell__caustics *c, int uni
     glUniform1f(glGetUniformLocation(prog, "u_bias"), SNELL__CAUSTICS_SHADOW_BIAS);
 }
 
-static void receiver_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v,
-                              const snell__object *o)
+static void receiver_uniforms(const snell__glass_program *g, const int *locs, const void *state,
+                              const snell__view *v, const snell__object *o)
 {
-    (void)o;
-    glUniform4fv(locs[0], 1, v->receiver_plane); /* extent 0 without a plane: none seen */
-    glUniform3fv(locs[1], 1, v->receiver_albedo);
-    glUniform1i(locs[2], v->lit_opaque != NULL);
-    snell__lit_opaque_uniforms(g->prog, v->lit_opaque, -1);
+    const snell__caustics *c = (const snell__caustics *)state;
+    (void)v, (void)o;
+    glUniform4fv(locs[0], 1, c->frame_plane_rect);
+    glUniform3fv(locs[1], 1, c->frame_albedo);
+    glUniform1i(locs[2], c->frame_opaque);
+    snell__lit_opaque_uniforms(g->prog, c->frame_opaque ? c : NULL, -1);
 }
 
 const snell__kernel_hook snell__receiver_hook = {
-    .variant_mask = SNELL__GLASS_RECEIVER,
+    .variant_bits = 1,
     .defines = receiver_defines,
     .uniform_names = receiver_uniform_names,
     .uniform_count = SNELL__RECEIVER_UNIFORMS,

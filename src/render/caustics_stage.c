@@ -29,14 +29,26 @@ static snell_status run(snell__frame *f, void *state)
 {
     snell__caustics *c = (snell__caustics *)state;
     snell_status st = snell__caustics_run(f->r->ctx, c, f->fd, f->sc, f->s);
-    if (st == SNELL_OK) snell__receiver_view(&f->sc->view, c, &f->fd->receiver);
-    return st;
+    if (st != SNELL_OK) return st;
+    snell__receiver_view(&f->sc->view, c, &f->fd->receiver);
+    if (c->frame_opaque) f->lit_opaque = c; /* the glass stage's dynamic environments show them lit */
+    if (c->frame_plane) f->depth_drawn = 1;
+    return SNELL_OK;
+}
+
+/* Nothing lit yet this frame (a build without the stage keeps no state). */
+static void plan(snell__frame *f, void *state)
+{
+    snell__caustics *c = (snell__caustics *)state;
+    (void)f;
+    if (c) c->frame_plane = c->frame_opaque = 0;
 }
 
 static unsigned variant(const snell__frame *f, const void *state, const snell__object *o)
 {
-    (void)state, (void)o;
-    return f->sc->view.receiver_map || f->sc->view.lit_opaque ? SNELL__GLASS_RECEIVER : 0;
+    const snell__caustics *c = (const snell__caustics *)state;
+    (void)f, (void)o;
+    return c && (c->frame_plane || c->frame_opaque) ? 1u : 0u;
 }
 
 static void destroy(snell_ctx *ctx, void *state)
@@ -50,6 +62,7 @@ const snell__stage snell__stage_caustics = {
     .state_size = SNELL_WITH_CAUSTICS ? sizeof(snell__caustics) : 0,
     .destroy = destroy,
     .validate = validate,
+    .plan = plan,
     .wanted = wanted,
     .run = run,
     .kernel_variant = variant,

@@ -33,7 +33,7 @@ snell_status snell__composite_prepare(snell_ctx *ctx, snell__composite *c, snell
 snell_status snell__opaque_validate(snell_ctx *ctx, const snell_opaque *list, int count);
 /* Uploads the meshes (first use) and draws them with depth test LESS and
  * depth write. lit (colour output; NULL: lit from above): the caustics
- * stage that lit the opaque objects this frame (snell__view.lit_opaque),
+ * stage that lit the opaque objects this frame (snell__frame.lit_opaque, render/stages.h),
  * whose light, shadow and caustic maps light them as the view draws them
  * (its maps on units 1..3, unit 0 left active). */
 snell_status snell__composite_opaque(snell_ctx *ctx, snell__composite *c, snell__output_kind kind,

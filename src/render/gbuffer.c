@@ -406,7 +406,7 @@ static snell_status gbuffer_run(snell__frame *f, void *state)
     snell_renderer *r = f->r;
     snell__scene *sc = f->sc;
     unsigned depth = r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? r->depth_rb : 0;
-    int clear = !depth || (f->fd->opaque_count == 0 && !f->fd->water && !sc->view.receiver_map), i, j, n = 0;
+    int clear = !depth || !f->depth_drawn, i, j, n = 0;
     snell_status st;
     for (i = 0; i < sc->drawn; i++)
         if (sc->obj[sc->order[i]].screen_space) ps->list[n++] = &sc->obj[sc->order[i]];

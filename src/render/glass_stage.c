@@ -53,10 +53,12 @@ static snell_status set_up(const snell__frame *f, glass_state *g, snell__object 
     snell_status s;
     int i, beyond, dynamic;
     o->stage_bits = 0;
-    for (i = 0; i < snell__stage_count; i++)
-        if (snell__stages[i]->kernel_variant)
-            o->stage_bits |= snell__stages[i]->kernel_variant(f, f->state[i], o);
-    beyond = (o->stage_bits & SNELL__GLASS_BEYOND) != 0; /* its exit rays march the scene layers */
+    beyond = 0;
+    for (i = 0; i < snell__stage_count; i++) {
+        unsigned bits = snell__stages[i]->kernel_variant ? snell__stages[i]->kernel_variant(f, f->state[i], o) : 0;
+        o->stage_bits |= bits << r->programs->hooks.shift[i];
+        if (snell__stages[i] == &snell__stage_layers && bits) beyond = 1; /* its exit rays march the scene layers */
+    }
     dynamic = fd->opaque_count > 0 && !beyond;         /* sees them through a dynamic environment */
     o->env_paraboloid = snell__renderer_env_paraboloid(r, dynamic);
     st->env_paraboloid = o->env_paraboloid;
@@ -76,7 +78,7 @@ static snell_status set_up(const snell__frame *f, glass_state *g, snell__object 
                                       o->bsphere, o->bsphere[3], fd->dynamic_env_size,
                                       o->env_paraboloid ? &r->dp : NULL,
                                       r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT,
-                                      f->sc->view.lit_opaque, &o->env_texture, st);
+                                      f->lit_opaque, &o->env_texture, st);
         if (s != SNELL_OK) return s;
     } else if (o->env_paraboloid) {
         if ((s = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &o->env_texture)) != SNELL_OK) return s;

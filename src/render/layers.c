@@ -352,7 +352,7 @@ static snell_status stage_run(snell__frame *f, void *state)
 static unsigned stage_variant(const snell__frame *f, const void *state, const snell__object *o)
 {
     (void)f, (void)o;
-    return ((const layers_stage *)state)->count >= 0 ? SNELL__GLASS_BEYOND : 0;
+    return ((const layers_stage *)state)->count >= 0 ? 1u : 0u;
 }
 
 static const char *hook_defines(unsigned bits)
@@ -361,15 +361,16 @@ static const char *hook_defines(unsigned bits)
     return "#define SNELL_BEYOND 1\n";
 }
 
-static void hook_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v, const snell__object *o)
+static void hook_uniforms(const snell__glass_program *g, const int *locs, const void *state, const snell__view *v,
+                          const snell__object *o)
 {
-    (void)g;
+    (void)g, (void)state;
     snell__beyond_uniforms((const snell__beyond_locs *)(const void *)locs, v,
                            o->index + 1 + (o->glass->material.thickness > 0.0f ? SNELL__LAYERS_THIN_ID : 0));
 }
 
 static const snell__kernel_hook g_hook = {
-    .variant_mask = SNELL__GLASS_BEYOND,
+    .variant_bits = 1,
     .defines = hook_defines,
     .uniform_names = snell__beyond_uniform_names,
     .uniform_count = SNELL__BEYOND_UNIFORMS,

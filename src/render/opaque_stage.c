@@ -32,6 +32,7 @@ static snell_status run(snell__frame *f, void *state)
     (void)state;
     if (f->fd->opaque_count > 0) {
         f->s->opaque_drawn = f->fd->opaque_count;
+        f->depth_drawn = 1;
         f->s->passes++;
     }
     return st;

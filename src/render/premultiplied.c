@@ -16,7 +16,7 @@ static int wanted(const snell__frame *f, const void *state)
 static unsigned variant(const snell__frame *f, const void *state, const snell__object *o)
 {
     (void)state, (void)o;
-    return f->r->premultiplied ? SNELL__GLASS_PREMULTIPLIED : 0;
+    return f->r->premultiplied ? 1u : 0u;
 }
 
 static const char *hook_defines(unsigned bits)
@@ -25,13 +25,14 @@ static const char *hook_defines(unsigned bits)
     return "#define SNELL_PREMULTIPLIED 1\n";
 }
 
-static void hook_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v, const snell__object *o)
+static void hook_uniforms(const snell__glass_program *g, const int *locs, const void *state, const snell__view *v,
+                          const snell__object *o)
 {
-    (void)g, (void)locs, (void)v, (void)o;
+    (void)g, (void)locs, (void)state, (void)v, (void)o;
 }
 
 static const snell__kernel_hook g_hook = {
-    .variant_mask = SNELL__GLASS_PREMULTIPLIED,
+    .variant_bits = 1,
     .defines = hook_defines,
     .uniforms = hook_uniforms,
 };

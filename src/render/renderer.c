@@ -78,8 +78,6 @@ static snell_status create_stage_states(snell_renderer *r)
     int i;
     r->programs = (snell__program_cache *)snell__calloc(&r->ctx->alloc, 1, sizeof *r->programs);
     if (!r->programs) return snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for the program cache");
-    r->programs->stages = snell__stages;
-    r->programs->stage_count = snell__stage_count;
     for (i = 0; i < snell__stage_count; i++) {
         const snell__stage *sg = snell__stages[i];
         if (!sg->state_size) continue;
@@ -87,7 +85,7 @@ static snell_status create_stage_states(snell_renderer *r)
         if (!r->stage_state[i]) return snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for the %s stage", sg->name);
         if (sg->init) sg->init(r->stage_state[i]);
     }
-    return SNELL_OK;
+    return snell__program_cache_hooks(r->ctx, r->programs, snell__stages, r->stage_state, snell__stage_count);
 }
 
 static snell_status create_resources(snell_renderer *r)
@@ -359,7 +357,6 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
         if (snell__stages[i]->resolve) snell__stages[i]->resolve(r, &r->frame, r->stage_state[i]);
     if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->width, r->height, r->out, &r->scene, s);
     if (st != SNELL_OK) return st;
-    r->scene.view.water = fd->water;
     memset(&f, 0, sizeof f);
     f.r = r, f.fd = fd, f.s = s, f.sc = &r->scene, f.state = r->stage_state;
     external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;

@@ -14,6 +14,13 @@ struct snell__frame {
     snell_frame_stats *s;
     snell__scene *sc;
     void *const *state;             /* each stage's slot, by table index (r->stage_state) */
+    /* The caustics stage where it lit the opaque objects this frame (the
+     * glass stage's dynamic environments show them lit), NULL none. */
+    const struct snell__caustics *lit_opaque;
+    /* A stage drew into the target's depth before the glass (the opaque
+     * objects, the receiver plane, the water): the G-buffer's depth is not
+     * the glass's alone. */
+    int depth_drawn;
 };
 
 /* The frame's stages in frame order (stages.c), at most SNELL__STAGES_MAX;
@@ -25,6 +32,7 @@ extern const int snell__stage_count;
 extern const snell__stage snell__stage_budget;     /* budget_stage.c */
 extern const snell__stage snell__stage_caustics;   /* caustics_stage.c */
 extern const snell__stage snell__stage_gbuffer;    /* gbuffer.c (bench_floor times its pass) */
+extern const snell__stage snell__stage_layers;     /* layers.c (the glass stage: who marches them) */
 
 /* A stage's slot in renderer r (NULL: it keeps no state). */
 void *snell__renderer_stage_state(const snell_renderer *r, const snell__stage *stage);

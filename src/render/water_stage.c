@@ -28,9 +28,17 @@ static int wanted(const snell__frame *f, const void *state)
 
 #if SNELL_WITH_WATER
 
+/* The stage's state: its programs and this frame's water, which its kernel hook reads. */
+typedef struct water_stage {
+    snell__water_programs programs;
+    const snell_water *water;       /* the frame's, NULL none */
+} water_stage;
+
+static void plan(snell__frame *f, void *state) { ((water_stage *)state)->water = f->fd->water; }
+
 static snell_status run(snell__frame *f, void *state)
 {
-    snell__water_programs *wp = (snell__water_programs *)state;
+    snell__water_programs *wp = &((water_stage *)state)->programs;
     snell_renderer *r = f->r;
     const snell_frame_desc *fd = f->fd;
     snell_status st = SNELL_OK;
@@ -56,32 +64,36 @@ static snell_status run(snell__frame *f, void *state)
     if (st == SNELL_OK) snell__water_publish(fd->water, &f->sc->view.textures);
     f->s->water_objects = objects || layers; /* layers: at least one glass object drawn */
     f->s->water_layers = layers;
+    f->depth_drawn = 1;
     for (i = 0; i < f->sc->drawn; i++) f->s->glass[f->sc->order[i]].sees_water = 1;
     return st;
 }
 
 /* Every kernel's exit rays meet the water (heights as the simulation keeps them). */
+#define WATER_BIT 1u  /* the frame has water, heights in R32F (common/water.glsl) */
+#define WATER_UINT 2u /* ... in the GPU simulation's RG32UI state */
 static unsigned variant(const snell__frame *f, const void *state, const snell__object *o)
 {
     (void)state, (void)o;
     if (!f->fd->water) return 0;
-    return SNELL__GLASS_WATER | (f->fd->water->d.sim == SNELL_WATER_SIM_GPU ? SNELL__GLASS_WATER_UINT : 0);
+    return f->fd->water->d.sim == SNELL_WATER_SIM_GPU ? WATER_BIT | WATER_UINT : WATER_BIT;
 }
 
 static const char *hook_defines(unsigned bits)
 {
-    return bits & SNELL__GLASS_WATER_UINT ? "#define SNELL_WATER 1\n#define SNELL_WATER_STATE_UINT 1\n"
+    return bits & WATER_UINT ? "#define SNELL_WATER 1\n#define SNELL_WATER_STATE_UINT 1\n"
                                           : "#define SNELL_WATER 1\n";
 }
 
-static void hook_uniforms(const snell__glass_program *g, const int *locs, const snell__view *v, const snell__object *o)
+static void hook_uniforms(const snell__glass_program *g, const int *locs, const void *state, const snell__view *v,
+                          const snell__object *o)
 {
-    (void)g, (void)o;
-    snell__water_set_uniforms(locs, v->water);
+    (void)g, (void)v, (void)o;
+    snell__water_set_uniforms(locs, ((const water_stage *)state)->water);
 }
 
 static const snell__kernel_hook g_hook = {
-    .variant_mask = SNELL__GLASS_WATER | SNELL__GLASS_WATER_UINT,
+    .variant_bits = 2,
     .defines = hook_defines,
     .uniform_names = snell__water_uniform_names,
     .uniform_count = SNELL__WATER_UNIFORMS,
@@ -91,14 +103,15 @@ static const snell__kernel_hook g_hook = {
 static void destroy(snell_ctx *ctx, void *state)
 {
     (void)ctx;
-    snell__water_programs_destroy((snell__water_programs *)state);
+    snell__water_programs_destroy(&((water_stage *)state)->programs);
 }
 
 const snell__stage snell__stage_water = {
     .name = "water",
-    .state_size = sizeof(snell__water_programs),
+    .state_size = sizeof(water_stage),
     .destroy = destroy,
     .validate = validate,
+    .plan = plan,
     .wanted = wanted,
     .run = run,
     .kernel_variant = variant,
