@@ -14,7 +14,8 @@
 #include "core/gl.h"
 #include "core/core.h"
 #include "snell/snell.h"
-#include "render/stages.h" /* caustics.maps_only */
+#include "render/caustics.h" /* caustics.maps_only */
+#include "render/stages.h"
 #include "cli_time.h" /* ports/cli: the median the ports use */
 
 #include <stdio.h>

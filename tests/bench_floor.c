@@ -13,6 +13,8 @@
  * (sphere: 256 x 128 segments, dense enough that AUTO would shade it in screen space) */
 #include "core/gl.h"
 #include "frame/env.h"
+#include "render/caustics.h"
+#include "render/renderer.h"
 #include "render/stages.h"
 #include "cli_time.h" /* ports/cli: the median the ports use */
 
@@ -85,7 +87,7 @@ int main(int argc, char **argv)
          * G-buffer textures bound), with the depth cleared as a frame
          * starts, so the G-buffer pass shades what it shades in a frame and
          * leaves the glass depth for the kernel's test and the background. */
-        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+        glBindFramebuffer(GL_FRAMEBUFFER, r->sv.fbo);
         glViewport(0, 0, size, size);
         glDepthMask(GL_TRUE);
         glClear(GL_DEPTH_BUFFER_BIT);
@@ -94,7 +96,7 @@ int main(int argc, char **argv)
         {
             /* the G-buffer stage's state begins with its G-buffer (render/gbuffer.c) */
             snell__gbuffer *gb = (snell__gbuffer *)snell__renderer_stage_state(r, &snell__stage_gbuffer);
-            snell__gbuffer_draw(ctx, gb, &r->scene.view, &o, 1, r->depth_rb, st.glass);
+            snell__gbuffer_draw(ctx, gb, &r->scene.view, &o, 1, r->sv.depth_rb, st.glass);
         }
         glFinish();
         t[1][i] = snell__now_ms() - t0;
@@ -110,7 +112,7 @@ int main(int argc, char **argv)
         glm_mat4_mul(r->scene.view.proj, rot, vp);
         glBindTexture(GL_TEXTURE_CUBE_MAP, env->texture);
         t0 = snell__now_ms();
-        snell__composite_background(ctx, &r->comp, r->out, (const float *)vp);
+        snell__composite_background(ctx, &r->comp, r->sv.out, (const float *)vp);
         glFinish();
         t[3][i] = snell__now_ms() - t0;
     }

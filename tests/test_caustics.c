@@ -15,6 +15,8 @@
 #include "core/ctx.h"
 #include "core/glstate.h"
 #include "core/gl.h"
+#include "render/caustics.h"
+#include "render/renderer.h"
 #include "render/stages.h"
 #include "ref/ref_trace.h"
 

@@ -22,6 +22,8 @@
 #include "test_util.h"
 #include "core/ctx.h"
 #include "core/light_map.h"
+#include "render/caustics.h"
+#include "render/renderer.h"
 #include "render/stages.h"
 #include "ref/ref_scene.h"
 

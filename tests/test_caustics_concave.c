@@ -23,6 +23,8 @@
 #include "test_util.h"
 #include "core/gl.h"
 #include "frame/method.h"
+#include "render/caustics.h"
+#include "render/renderer.h"
 #include "render/stages.h"
 
 #include <math.h>

@@ -69,6 +69,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "test_util.h"
 #include "snell/snell_ref.h"
+#include "render/caustics.h"
+#include "render/renderer.h"
 #include "render/stages.h"
 
 #include <math.h>

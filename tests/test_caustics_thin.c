@@ -32,6 +32,8 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "core/light_map.h"
+#include "render/caustics.h"
+#include "render/renderer.h"
 #include "render/stages.h"
 #include "ref/ref_trace.h"
 

@@ -11,8 +11,10 @@
 
 #include "frame/frame.h"
 
-/* The renderer's per-frame state (render/stages.h); the floor only passes it on. */
+/* The renderer's per-frame state and what its stages may use of it
+ * (render/stages.h); the floor only passes them on. */
 typedef struct snell__frame snell__frame;
+typedef struct snell__services snell__services;
 
 /* Uniform locations the hooks of one kernel program may keep, in all
  * (render/stages.c checks that the hooks' names fit). */
@@ -48,17 +50,23 @@ typedef struct snell__kernel_hook {
 typedef struct snell__stage {
     const char *name;               /* as snell_frame_stats.stages lists it */
     size_t state_size;              /* its slot's bytes, 0: none */
-    /* All may be NULL. init: its state's first values after zeroing;
-     * destroy: its GL objects and memory, in the renderer's context. */
-    void (*init)(void *state);
+    /* All may be NULL. create: at the renderer's creation (d resolved),
+     * its state zeroed: its first values, and its part of the renderer
+     * (checked; the target's size, samples and colour texture in sv are
+     * its to set, before the target is made); a failure fails the
+     * creation. destroy: its GL objects and memory, in the renderer's
+     * context (also after a failed create). */
+    snell_status (*create)(snell__services *sv, const snell_renderer_desc *d, void *state);
+    /* Its part of the renderer's description (resolved), checked before the
+     * renderer makes anything. */
+    snell_status (*validate_renderer)(snell_ctx *ctx, const snell_renderer_desc *d);
     void (*destroy)(snell_ctx *ctx, void *state);
-    /* Its part of the frame description for renderer r (its context, its
-     * target), checked before anything is drawn. */
-    snell_status (*validate)(const snell_renderer *r, const snell_frame_desc *fd);
+    /* Its part of the frame description, checked before anything is drawn. */
+    snell_status (*validate)(const snell__services *sv, const snell_frame_desc *fd);
     /* Its part of the frame description with its defaults applied, kept in
-     * its state, once the frame is valid: fd is renderer r's copy, which it
-     * points at them, so that every stage sees only resolved values. */
-    void (*resolve)(const snell_renderer *r, snell_frame_desc *fd, void *state);
+     * its state, once the frame is valid: fd is the renderer's copy, which
+     * it points at them, so that every stage sees only resolved values. */
+    void (*resolve)(const snell__services *sv, snell_frame_desc *fd, void *state);
     /* Before any stage runs: what it will do this frame, which earlier
      * stages' set-up may depend on (the scene layers: every glass kernel's
      * variant). */
@@ -70,6 +78,10 @@ typedef struct snell__stage {
      * them in o->stage_bits). */
     unsigned (*kernel_variant)(const snell__frame *f, const void *state, const snell__object *o);
     const snell__kernel_hook *kernel; /* NULL: it adds nothing to the kernels */
+    /* After the frame, the host's GL state restored (st: how the frame went). */
+    void (*frame_end)(snell__frame *f, void *state, snell_status st);
+    /* The GPU finished what the renderer issued (snell_renderer_finish, a read-back). */
+    void (*gpu_done)(void *state);
 } snell__stage;
 
 /* The frame has at most this many stages (its table: render/stages.h). */

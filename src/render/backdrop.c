@@ -31,11 +31,11 @@ struct snell__backdrop {
     float view_proj[16], region[4], size[2], distance; /* distance 0: search the depth */
 };
 
-static snell_status validate(const snell_renderer *r, const snell_frame_desc *fd)
+static snell_status validate(const snell__services *sv, const snell_frame_desc *fd)
 {
     const snell_backdrop *b = fd->backdrop;
-    snell_ctx *ctx = r->ctx;
-    snell_target target = r->target;
+    snell_ctx *ctx = sv->ctx;
+    snell_target target = sv->target;
     snell_status st;
     int k;
     if (!b) return SNELL_OK;
@@ -135,13 +135,13 @@ static snell_status copy_bound(snell_ctx *ctx, snell__backdrop *b, int w, int h,
 }
 
 /* Region all 0 = the whole texture (COPY_BOUND: the renderer's size), distance 0 = the default. */
-static void resolve(const snell_renderer *r, snell_frame_desc *fd, void *state)
+static void resolve(const snell__services *sv, snell_frame_desc *fd, void *state)
 {
     snell__backdrop *b = (snell__backdrop *)state;
     snell_backdrop *d = &b->desc;
     if (!fd->backdrop) return;
     *d = *fd->backdrop;
-    if (d->source == SNELL_BACKDROP_COPY_BOUND) d->width = r->width, d->height = r->height;
+    if (d->source == SNELL_BACKDROP_COPY_BOUND) d->width = sv->width, d->height = sv->height;
     if (!d->region[2]) d->region[0] = d->region[1] = 0, d->region[2] = d->width, d->region[3] = d->height;
     if (d->distance == 0.0f) d->distance = SNELL_DEFAULT_BACKDROP_DISTANCE;
     fd->backdrop = d;
@@ -149,7 +149,7 @@ static void resolve(const snell_renderer *r, snell_frame_desc *fd, void *state)
 
 static snell_status run(snell__frame *f, void *state)
 {
-    snell_renderer *r = f->r;
+    const snell__services *sv = f->sv;
     const snell_backdrop *bd = f->fd->backdrop;
     snell__view *v = &f->sc->view;
     snell__backdrop *b = (snell__backdrop *)state;
@@ -161,7 +161,7 @@ static snell_status run(snell__frame *f, void *state)
         sampler(&b->depth_sampler, GL_NEAREST);
     }
     if (bd->source == SNELL_BACKDROP_COPY_BOUND) {
-        if ((st = copy_bound(r->ctx, b, bd->width, bd->height, &depth)) != SNELL_OK) return st;
+        if ((st = copy_bound(sv->ctx, b, bd->width, bd->height, &depth)) != SNELL_OK) return st;
         color = b->color_tex, depth_tex = b->depth_tex;
     }
     for (k = 0; k < 4; k++) b->region[k] = (float)bd->region[k];
@@ -179,7 +179,7 @@ static snell_status run(snell__frame *f, void *state)
     snell__textures_publish(&v->textures, "u_backdrop_color", GL_TEXTURE_2D, color, b->color_sampler);
     snell__textures_publish(&v->textures, "u_backdrop_depth", GL_TEXTURE_2D, depth_tex, b->depth_sampler);
     f->s->backdrop = depth ? 2 : 1;
-    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "GL error setting up the backdrop");
+    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(sv->ctx, SNELL_E_GL, "GL error setting up the backdrop");
 }
 
 /* Every kernel's rays that leave the glass meet the backdrop. */

@@ -12,15 +12,15 @@
 static int wanted(const snell__frame *f, const void *state)
 {
     (void)state;
-    return f->fd->draw_background >= 0 || f->r->out != SNELL__OUT_COLOR;
+    return f->fd->draw_background >= 0 || f->sv->out != SNELL__OUT_COLOR;
 }
 
 static snell_status run(snell__frame *f, void *state)
 {
-    snell_renderer *r = f->r;
+    const snell__services *sv = f->sv;
     snell_status st = SNELL_OK;
     mat4 rot, vp, inv; /* inv: a pixel's far-plane point to the direction it sees */
-    int paraboloid = snell__renderer_env_paraboloid(r, 0);
+    int paraboloid = snell__env_lookup_paraboloid(sv->env_lookup, 0);
     unsigned tex = f->fd->env->texture;
     (void)state;
     if (f->sc->view.view_axis[3] > 0.5f) {
@@ -35,11 +35,11 @@ static snell_status run(snell__frame *f, void *state)
         glm_mat4_mul(f->sc->view.proj, rot, vp);
         glm_mat4_inv(vp, inv);
     }
-    if (paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, f->fd->env, &tex);
+    if (paraboloid) st = snell__env_paraboloid(sv->ctx, sv->dp, f->fd->env, &tex);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(paraboloid ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_CUBE_MAP, tex);
     if (st == SNELL_OK)
-        st = snell__composite_background_lookup(r->ctx, &r->comp, r->out, paraboloid, (const float *)inv);
+        st = snell__composite_background_lookup(sv->ctx, sv->comp, sv->out, paraboloid, (const float *)inv);
     f->s->background_drawn = 1;
     f->s->background_paraboloid = paraboloid;
     return st;

@@ -4,7 +4,8 @@
  * gives every AUTO glass object its ladder and the controller's rung
  * (budget.c), and writes the rung into the object's resolved material so
  * that the glass stage draws it as an explicit method. */
-#include "render/stages.h"
+#include "render/renderer.h"
+#include "render/budget.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "mesh/mesh.h"
@@ -42,11 +43,12 @@ static int stage_wanted(const snell__frame *f, const void *state)
     return f->fd->budget_ms > 0.0f;
 }
 
-/* A method may be on a ladder if its GL state can be made here. */
+/* A method may be on a ladder if its GL state can be made here (user: the services). */
 static int usable(void *user, snell_method id)
 {
+    const snell__services *sv = (const snell__services *)user;
     void *state = NULL;
-    return snell__renderer_method_state(user, snell__method_get(id), &state) == SNELL_OK;
+    return sv->method_state(sv->user, snell__method_get(id), &state) == SNELL_OK;
 }
 
 /* The GPU's own clock (EXT_disjoint_timer_query): a
@@ -125,36 +127,41 @@ static void stage_destroy(snell_ctx *ctx, void *state)
     snell__budget_reset(&bs->ctl);
 }
 
-void snell__budget_gpu_done(snell_renderer *r)
+/* The GPU is known to be done (after glFinish or a read-back): the frame's end time if still open. */
+static void gpu_done(void *state)
 {
-    budget_state *bs = budget_of(r);
+    budget_state *bs = (budget_state *)state;
     if (bs->fence && bs->done_ms < 0.0 &&
         glClientWaitSync((GLsync)bs->fence, 0, 0) != GL_TIMEOUT_EXPIRED)
         bs->done_ms = snell__now_ms();
 }
 
-void snell__budget_frame_end(snell_renderer *r, const snell_frame_desc *fd, double start_ms, int drawn)
+/* After the frame (drawn: it succeeded): the GPU timer query ended, a
+ * fence to measure it by (budget frames only), or the controller reset
+ * when the frame has no budget. */
+static void frame_end(snell__frame *f, void *state, snell_status st)
 {
-    budget_state *bs = budget_of(r);
+    budget_state *bs = (budget_state *)state;
+    int drawn = st == SNELL_OK;
     if (bs->query_state == 1) {
         glEndQuery(GL_TIME_ELAPSED_EXT);
         bs->query_state = drawn ? 2 : 0;
     }
     if (!drawn || bs->force) return; /* warming: measured by snell_renderer_warm */
-    if (!(fd->budget_ms > 0.0f)) {
-        if (bs->ctl.frame) stage_destroy(r->ctx, bs); /* budget off: start afresh when it returns */
+    if (!(f->fd->budget_ms > 0.0f)) {
+        if (bs->ctl.frame) stage_destroy(f->sv->ctx, bs); /* budget off: start afresh when it returns */
         return;
     }
     if (bs->fence) glDeleteSync((GLsync)bs->fence);
     bs->fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    bs->start_ms = start_ms;
-    bs->cpu_ms = snell__now_ms() - start_ms;
+    bs->start_ms = f->start_ms;
+    bs->cpu_ms = snell__now_ms() - f->start_ms;
     bs->done_ms = -1.0;
 }
 
 static snell_status stage_run(snell__frame *f, void *state)
 {
-    snell_renderer *r = f->r;
+    const snell__services *sv = f->sv;
     budget_state *bs = (budget_state *)state;
     snell__scene *sc = f->sc;
     snell_frame_stats *s = f->s;
@@ -162,7 +169,7 @@ static snell_status stage_run(snell__frame *f, void *state)
     int i, drawn[SNELL_MAX_GLASS] = {0};
     double predicted = -1.0;
     if (!bs->force) collect(bs, s);
-    timer_begin(r->ctx, bs);
+    timer_begin(sv->ctx, bs);
     for (i = 0; i < sc->drawn; i++) drawn[sc->order[i]] = 1;
     for (i = 0; i < sc->count; i++) {
         snell__object *o = &sc->obj[i];
@@ -172,11 +179,11 @@ static snell_status stage_run(snell__frame *f, void *state)
         memset(b, 0, sizeof *b);
         if (!drawn[i]) continue; /* culled or passes through: costs nothing */
         snell__object_project(&sc->view, o);
-        b->area = 0.785398f * (float)o->scissor[2] * (float)o->scissor[3] / ((float)r->width * (float)r->height);
+        b->area = 0.785398f * (float)o->scissor[2] * (float)o->scissor[3] / ((float)sv->width * (float)sv->height);
         if (b->area > 1.0f) b->area = 1.0f;
         if (snell__mesh_analysis(o->mesh, &an) != SNELL_OK) an = NULL; /* cached on the mesh */
         if (g->method == SNELL_METHOD_AUTO && g->thickness <= 0.0f)
-            snell__budget_ladder(an, o->glass, f->fd->quality_floor_db, r->ctx->cost, usable, r, b);
+            snell__budget_ladder(an, o->glass, f->fd->quality_floor_db, sv->ctx->cost, usable, (void *)sv, b);
         if (b->n == 0) {
             /* drawn as asked (or single for a thin wall): its table cost, else single's */
             snell_method m = g->thickness > 0.0f || g->method == SNELL_METHOD_AUTO ? SNELL_METHOD_SINGLE : g->method;
@@ -184,7 +191,7 @@ static snell_status stage_run(snell__frame *f, void *state)
             b->fixed_cost = 1.0f;
             for (k = 0; k < n; k++) {
                 const snell__rung *g = snell__rung_at(k);
-                if (g->method == m && !g->param && g->scale <= 1) b->fixed_cost = snell__rung_cost(r->ctx->cost, g, cls);
+                if (g->method == m && !g->param && g->scale <= 1) b->fixed_cost = snell__rung_cost(sv->ctx->cost, g, cls);
             }
         }
     }
@@ -219,7 +226,7 @@ static snell_status stage_run(snell__frame *f, void *state)
             m->method = g->method;
             m->scale = g->scale > 1 ? (float)g->scale : 1.0f;
             if (g->param && snell_glass_set_param(m, g->method, g->param, value) != SNELL_OK)
-                return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "budget: rung %s=%d refused", g->param, g->value);
+                return snell__fail(sv->ctx, SNELL_E_INVALID_ARG, "budget: rung %s=%d refused", g->param, g->value);
         }
         snell__rung_name(g, name, sizeof name);
         snprintf(bs->note[i], sizeof bs->note[i], "%s (rung %d of %d, %.1f dB predicted for %s mesh)",
@@ -325,12 +332,17 @@ snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *fd, 
     return w.st;
 }
 
-static void stage_init(void *state) { snell__budget_reset(&((budget_state *)state)->ctl); }
+static snell_status stage_create(snell__services *sv, const snell_renderer_desc *d, void *state)
+{
+    (void)sv, (void)d;
+    snell__budget_reset(&((budget_state *)state)->ctl);
+    return SNELL_OK;
+}
 
 /* The frame's budget_ms and quality floor. */
-static snell_status stage_validate(const snell_renderer *r, const snell_frame_desc *fd)
+static snell_status stage_validate(const snell__services *sv, const snell_frame_desc *fd)
 {
-    snell_ctx *ctx = r->ctx;
+    snell_ctx *ctx = sv->ctx;
     if (!isfinite(fd->budget_ms) || fd->budget_ms < 0.0f || fd->budget_ms > 1e6f)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "budget_ms %g: 0 (none) or a finite time up to 1e6 ms",
                            (double)fd->budget_ms);
@@ -342,9 +354,11 @@ static snell_status stage_validate(const snell_renderer *r, const snell_frame_de
 const snell__stage snell__stage_budget = {
     .name = "budget",
     .state_size = sizeof(budget_state),
-    .init = stage_init,
+    .create = stage_create,
     .destroy = stage_destroy,
     .validate = stage_validate,
     .wanted = stage_wanted,
     .run = stage_run,
+    .frame_end = frame_end,
+    .gpu_done = gpu_done,
 };

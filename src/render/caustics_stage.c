@@ -6,19 +6,20 @@
  * (SNELL_RECEIVER): every kernel's exit and reflected rays meet the lit
  * plane before the environment, and see the opaque objects lit. */
 #include "render/stages.h"
+#include "render/caustics.h"
 #include "frame/glass_program.h"
 
 
-static snell_status validate(const snell_renderer *r, const snell_frame_desc *fd)
+static snell_status validate(const snell__services *sv, const snell_frame_desc *fd)
 {
-    return snell__caustics_validate(r->ctx, fd);
+    return snell__caustics_validate(sv->ctx, fd);
 }
 
 static int wanted(const snell__frame *f, const void *state)
 {
     (void)state;
     if (!snell__caustics_wanted(f->fd, f->s->caustics_reason, sizeof f->s->caustics_reason)) return 0;
-    if (f->r->out != SNELL__OUT_COLOR) {
+    if (f->sv->out != SNELL__OUT_COLOR) {
         snell__why(f->s->caustics_reason, sizeof f->s->caustics_reason, "not in exit-direction output");
         return 0;
     }
@@ -28,7 +29,7 @@ static int wanted(const snell__frame *f, const void *state)
 static snell_status run(snell__frame *f, void *state)
 {
     snell__caustics *c = (snell__caustics *)state;
-    snell_status st = snell__caustics_run(f->r->ctx, c, f->fd, f->sc, f->s);
+    snell_status st = snell__caustics_run(f->sv->ctx, c, f->fd, f->sc, f->s);
     if (st != SNELL_OK) return st;
     snell__receiver_view(&f->sc->view, c, &f->fd->receiver);
     if (c->frame_opaque) f->lit_opaque = c; /* the glass stage's dynamic environments show them lit */

@@ -125,7 +125,7 @@ snell_status snell_renderer_env_probe(snell_renderer *r, const snell_env *env, s
     p.height = (n + PROBE_WIDTH - 1) / PROBE_WIDTH;
     snell__glstate_save(&saved);
     st = run_probe(r, env,
-                   lookup == SNELL_ENV_LOOKUP_AUTO ? snell__renderer_env_paraboloid(r, 0) : lookup != SNELL_ENV_LOOKUP_CUBE,
+                   lookup == SNELL_ENV_LOOKUP_AUTO ? snell__env_lookup_paraboloid(r->sv.env_lookup, 0) : lookup != SNELL_ENV_LOOKUP_CUBE,
                    &p, dirs, n, rgb);
     probe_release(&p);
     glUseProgram(0); /* before restoring: ours is deleted (render/renderer.c says why) */

@@ -355,7 +355,7 @@ static int back_wanted(const snell__frame *f, const void *state)
 static snell_status back_run(snell__frame *f, void *state)
 {
     pass_stage *ps = (pass_stage *)state;
-    snell_renderer *r = f->r;
+    const snell__services *sv = f->sv;
     snell__scene *sc = f->sc;
     int i, n = 0, band = 0;
     snell_status st;
@@ -366,12 +366,12 @@ static snell_status back_run(snell__frame *f, void *state)
         o->back_coarse = m->back_detail && m->back_detail(o->glass) == SNELL_BACK_DETAIL_AUTO &&
                          o->pixels_per_triangle < SNELL__BACK_COARSE_PPT;
         o->back_guard = o->crosses_edge && m->back_guard_percent && m->back_guard_percent(o->glass) > 0
-                            ? (m->back_guard_percent(o->glass) * r->height + 99) / 100
+                            ? (m->back_guard_percent(o->glass) * sv->height + 99) / 100
                             : 0;
         if (o->back_guard > band) band = o->back_guard;
         ps->list[n++] = o;
     }
-    st = snell__gbuffer_draw_back(r->ctx, &ps->g, &sc->view, ps->list, n, band, &sc->view.back, f->s->glass);
+    st = snell__gbuffer_draw_back(sv->ctx, &ps->g, &sc->view, ps->list, n, band, &sc->view.back, f->s->glass);
     snell__gbuffer_publish(&ps->g, &sc->view.textures, 1);
     f->s->back_face_pass = 1;
     f->s->back_face_guard = band;
@@ -403,9 +403,9 @@ static int gbuffer_wanted(const snell__frame *f, const void *state)
 static snell_status gbuffer_run(snell__frame *f, void *state)
 {
     pass_stage *ps = (pass_stage *)state;
-    snell_renderer *r = f->r;
+    const snell__services *sv = f->sv;
     snell__scene *sc = f->sc;
-    unsigned depth = r->target == SNELL_TARGET_OFFSCREEN && !r->msaa ? r->depth_rb : 0;
+    unsigned depth = sv->target == SNELL_TARGET_OFFSCREEN && !sv->samples ? sv->depth_rb : 0;
     int clear = !depth || !f->depth_drawn, i, j, n = 0;
     snell_status st;
     for (i = 0; i < sc->drawn; i++)
@@ -419,7 +419,7 @@ static snell_status gbuffer_run(snell__frame *f, void *state)
                 ps->list[i]->front_whole = 0;
         }
     }
-    st = snell__gbuffer_draw(r->ctx, &ps->g, &sc->view, ps->list, n, depth, f->s->glass);
+    st = snell__gbuffer_draw(sv->ctx, &ps->g, &sc->view, ps->list, n, depth, f->s->glass);
     snell__gbuffer_publish(&ps->g, &sc->view.textures, 0);
     return st;
 }

@@ -271,7 +271,12 @@ typedef struct layers_stage {
     int count;                      /* of them, -1: no layers this frame */
 } layers_stage;
 
-static void stage_init(void *state) { ((layers_stage *)state)->layers.last.count = -1; /* none peeled yet */ }
+static snell_status stage_create(snell__services *sv, const snell_renderer_desc *d, void *state)
+{
+    (void)sv, (void)d;
+    ((layers_stage *)state)->layers.last.count = -1; /* none peeled yet */
+    return SNELL_OK;
+}
 
 static void stage_destroy(snell_ctx *ctx, void *state)
 {
@@ -279,10 +284,10 @@ static void stage_destroy(snell_ctx *ctx, void *state)
     snell__layers_destroy(&((layers_stage *)state)->layers);
 }
 
-static snell_status stage_validate(const snell_renderer *r, const snell_frame_desc *fd)
+static snell_status stage_validate(const snell__services *sv, const snell_frame_desc *fd)
 {
     if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
-        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d", fd->scene_layers,
+        return snell__fail(sv->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d", fd->scene_layers,
                            SNELL_MAX_SCENE_LAYERS);
     return SNELL_OK;
 }
@@ -338,7 +343,7 @@ static snell_status stage_run(snell__frame *f, void *state)
 {
     layers_stage *ls = (layers_stage *)state;
     int peels = 0;
-    snell_status st = snell__layers_draw(f->r->ctx, &ls->layers, &f->sc->view, ls->list, ls->count, f->fd->opaque,
+    snell_status st = snell__layers_draw(f->sv->ctx, &ls->layers, &f->sc->view, ls->list, ls->count, f->fd->opaque,
                                          f->fd->opaque_count,
                                          f->fd->scene_layers,
                                          &peels, &f->s->scene_layers_reused);
@@ -380,7 +385,7 @@ static const snell__kernel_hook g_hook = {
 const snell__stage snell__stage_layers = {
     .name = "layers",
     .state_size = sizeof(layers_stage),
-    .init = stage_init,
+    .create = stage_create,
     .destroy = stage_destroy,
     .validate = stage_validate,
     .plan = stage_plan,

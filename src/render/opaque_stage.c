@@ -9,24 +9,24 @@ typedef struct opaque_state {
     snell_opaque resolved[SNELL_MAX_OPAQUE];
 } opaque_state;
 
-static snell_status validate(const snell_renderer *r, const snell_frame_desc *fd)
+static snell_status validate(const snell__services *sv, const snell_frame_desc *fd)
 {
-    return snell__opaque_validate(r->ctx, fd->opaque, fd->opaque_count);
+    return snell__opaque_validate(sv->ctx, fd->opaque, fd->opaque_count);
 }
 
-static void resolve(const snell_renderer *r, snell_frame_desc *fd, void *state)
+static void resolve(const snell__services *sv, snell_frame_desc *fd, void *state)
 {
     opaque_state *s = (opaque_state *)state;
     int i;
-    (void)r;
+    (void)sv;
     for (i = 0; i < fd->opaque_count; i++) snell__opaque_defaults(&fd->opaque[i], &s->resolved[i]);
     if (fd->opaque_count > 0) fd->opaque = s->resolved;
 }
 
 static snell_status run(snell__frame *f, void *state)
 {
-    snell_renderer *r = f->r;
-    snell_status st = snell__composite_opaque(r->ctx, &r->comp, r->out, f->fd->opaque, f->fd->opaque_count,
+    const snell__services *sv = f->sv;
+    snell_status st = snell__composite_opaque(sv->ctx, sv->comp, sv->out, f->fd->opaque, f->fd->opaque_count,
                                               (const float *)f->sc->view.view_proj, f->sc->view.eye,
                                               f->sc->view.view_axis, NULL);
     (void)state;

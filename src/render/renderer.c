@@ -24,83 +24,72 @@
 
 #define MAX_RENDER_SIZE 16384
 
+static snell_status method_state(void *user, const snell__method *m, void **state);
+
+/* The offscreen target at the frame's size: colour in the texture a stage
+ * made (ssaa), else a renderbuffer of the stages' samples (msaa) or one. */
 static snell_status make_target(snell_renderer *r)
 {
+    snell__services *sv = &r->sv;
     GLenum status;
-    glGenFramebuffers(1, &r->fbo);
-    glGenRenderbuffers(1, &r->depth_rb);
-    glBindRenderbuffer(GL_RENDERBUFFER, r->depth_rb);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, r->width, r->height);
-    if (r->ssaa.factor > 1) { /* the large colour texture the resolve reads */
-        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->ssaa.frame_tex, 0);
-    } else if (r->msaa > 1) { /* multisampled colour and depth, resolved by a blit after the frame */
-        glBindRenderbuffer(GL_RENDERBUFFER, r->depth_rb);
-        glRenderbufferStorageMultisample(GL_RENDERBUFFER, r->msaa, GL_DEPTH_COMPONENT24, r->width, r->height);
-        glGenRenderbuffers(1, &r->color_rb);
-        glBindRenderbuffer(GL_RENDERBUFFER, r->color_rb);
-        glRenderbufferStorageMultisample(GL_RENDERBUFFER, r->msaa, GL_RGBA8, r->width, r->height);
-        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
-        glGenRenderbuffers(1, &r->msaa_rb);
-        glBindRenderbuffer(GL_RENDERBUFFER, r->msaa_rb);
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, r->width, r->height);
-        glGenFramebuffers(1, &r->msaa_fbo);
-        glBindFramebuffer(GL_FRAMEBUFFER, r->msaa_fbo);
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->msaa_rb);
-        status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-        if (status != GL_FRAMEBUFFER_COMPLETE)
-            return snell__fail(r->ctx, SNELL_E_GL, "MSAA resolve %dx%d framebuffer incomplete (0x%x)", r->width,
-                               r->height, (unsigned)status);
-        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+    glGenFramebuffers(1, &sv->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, sv->fbo);
+    glGenRenderbuffers(1, &sv->depth_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, sv->depth_rb);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, sv->samples, GL_DEPTH_COMPONENT24, sv->width, sv->height);
+    if (sv->color_texture) {
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, sv->color_texture, 0);
     } else {
         glGenRenderbuffers(1, &r->color_rb);
         glBindRenderbuffer(GL_RENDERBUFFER, r->color_rb);
-        glRenderbufferStorage(GL_RENDERBUFFER, r->out == SNELL__OUT_DIR_FLOAT ? GL_RGBA32F : GL_RGBA8, r->width,
-                              r->height);
-        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, sv->samples,
+                                         sv->out == SNELL__OUT_DIR_FLOAT ? GL_RGBA32F : GL_RGBA8, sv->width,
+                                         sv->height);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, r->color_rb);
     }
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->depth_rb);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, sv->depth_rb);
     status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        return snell__fail(r->ctx, SNELL_E_GL, "offscreen %dx%d framebuffer incomplete (0x%x)", r->width,
-                           r->height, (unsigned)status);
+        return snell__fail(r->ctx, SNELL_E_GL, "offscreen %dx%d framebuffer incomplete (0x%x)", sv->width,
+                           sv->height, (unsigned)status);
     return glGetError() == GL_NO_ERROR ? SNELL_OK
                                        : snell__fail(r->ctx, SNELL_E_GL, "GL error creating a %dx%d target",
-                                                     r->width, r->height);
+                                                     sv->width, sv->height);
 }
 
 /* Each stage's slot, zeroed, then as its init() sets it: made once, so a
  * frame allocates nothing for its stages. */
-static snell_status create_stage_states(snell_renderer *r)
+static snell_status create_stage_states(snell_renderer *r, const snell_renderer_desc *d)
 {
     int i;
-    r->programs = (snell__program_cache *)snell__calloc(&r->ctx->alloc, 1, sizeof *r->programs);
-    if (!r->programs) return snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for the program cache");
+    snell_status st;
+    r->sv.programs = (snell__program_cache *)snell__calloc(&r->ctx->alloc, 1, sizeof *r->sv.programs);
+    if (!r->sv.programs) return snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for the program cache");
     for (i = 0; i < snell__stage_count; i++) {
         const snell__stage *sg = snell__stages[i];
-        if (!sg->state_size) continue;
-        r->stage_state[i] = snell__calloc(&r->ctx->alloc, 1, sg->state_size);
-        if (!r->stage_state[i]) return snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for the %s stage", sg->name);
-        if (sg->init) sg->init(r->stage_state[i]);
+        if (sg->state_size) {
+            r->stage_state[i] = snell__calloc(&r->ctx->alloc, 1, sg->state_size);
+            if (!r->stage_state[i])
+                return snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for the %s stage", sg->name);
+        }
+        if (sg->create && (st = sg->create(&r->sv, d, r->stage_state[i])) != SNELL_OK) return st;
     }
-    return snell__program_cache_hooks(r->ctx, r->programs, snell__stages, r->stage_state, snell__stage_count);
+    return snell__program_cache_hooks(r->ctx, r->sv.programs, snell__stages, r->stage_state, snell__stage_count);
 }
 
 static snell_status create_resources(snell_renderer *r)
 {
-    snell_status st = snell__ssaa_create(r->ctx, &r->ssaa, r->ssaa.factor, r->out_width, r->out_height);
-    if (st == SNELL_OK && r->target == SNELL_TARGET_OFFSCREEN) st = make_target(r);
-    if (st == SNELL_OK && r->out != SNELL__OUT_COLOR) {
-        size_t n = (size_t)r->width * (size_t)r->height;
+    snell_status st = SNELL_OK;
+    if (r->sv.target == SNELL_TARGET_OFFSCREEN) st = make_target(r);
+    if (st == SNELL_OK && r->sv.out != SNELL__OUT_COLOR) {
+        size_t n = (size_t)r->sv.width * (size_t)r->sv.height;
         r->readback = (float *)snell__calloc(&r->ctx->alloc, n, 4 * sizeof(float));
         r->readback8 = (uint8_t *)snell__calloc(&r->ctx->alloc, n, 4);
         if (!r->readback || !r->readback8) st = snell__fail(r->ctx, SNELL_E_NOMEM, "out of memory for readback");
     }
     /* The background program of the output kind: shader errors surface here,
      * not in the first frame. Methods are made on first use. */
-    if (st == SNELL_OK) st = snell__composite_prepare(r->ctx, &r->comp, r->out);
+    if (st == SNELL_OK) st = snell__composite_prepare(r->ctx, &r->comp, r->sv.out);
     return st;
 }
 
@@ -118,6 +107,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     snell_renderer *r;
     snell_status st;
     snell_glstate saved;
+    int i;
     if (!ctx || !out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_renderer_create: ctx and out are required");
     *out = NULL;
     if ((st = snell__ctx_check_current(ctx, "snell_renderer_create")) != SNELL_OK) return st;
@@ -132,23 +122,9 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
                            (int)d.output);
     if (d.output != SNELL_OUTPUT_COLOR && d.target != SNELL_TARGET_OFFSCREEN)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "exit-direction output needs an offscreen target");
-    if (d.ssaa < 0 || d.ssaa > SNELL_MAX_SSAA)
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "ssaa %d outside 0..%d", d.ssaa, SNELL_MAX_SSAA);
-    if (d.ssaa > 1 && (d.target != SNELL_TARGET_OFFSCREEN || d.output != SNELL_OUTPUT_COLOR))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "ssaa %d needs an offscreen colour renderer", d.ssaa);
-    if (d.msaa < 0 || (d.msaa > 1 && (d.target != SNELL_TARGET_OFFSCREEN || d.output != SNELL_OUTPUT_COLOR)))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d needs an offscreen colour renderer (0 or 1 = off)",
-                           d.msaa);
-    if (d.premultiplied_alpha && (d.premultiplied_alpha != 1 || d.output != SNELL_OUTPUT_COLOR))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "premultiplied_alpha %d: 0 or 1, with colour output",
-                           d.premultiplied_alpha);
-    if (d.msaa > 1 && d.ssaa > 1)
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d and ssaa %d: one antialiasing at a time", d.msaa,
-                           d.ssaa);
-    if (d.msaa > 1 && (st = snell__ctx_limit(ctx, SNELL__LIM_SAMPLES, d.msaa, "msaa")) != SNELL_OK) return st;
-    if (d.ssaa > 1 &&
-        (st = target_limit(ctx, d.ssaa * (d.width > d.height ? d.width : d.height), "render size x ssaa")) != SNELL_OK)
-        return st;
+    for (i = 0; i < snell__stage_count; i++)
+        if (snell__stages[i]->validate_renderer && (st = snell__stages[i]->validate_renderer(ctx, &d)) != SNELL_OK)
+            return st;
     if (d.target == SNELL_TARGET_OFFSCREEN) {
         /* the targets made now, before any frame: colour and depth (4 + 4 bytes
          * a pixel, 16 + 4 for exit directions) at the SSAA size, a sample each
@@ -163,33 +139,30 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     }
     r = (snell_renderer *)snell__calloc(&ctx->alloc, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
-    r->ctx = ctx;
-    r->ssaa.factor = d.ssaa > 1 ? d.ssaa : 1;
-    r->out_width = d.width;
-    r->out_height = d.height;
-    r->msaa = d.msaa > 1 ? d.msaa : 0;
-    r->width = d.width * r->ssaa.factor;
-    r->height = d.height * r->ssaa.factor;
-    r->target = d.target;
-    r->premultiplied = d.premultiplied_alpha;
+    r->ctx = r->sv.ctx = ctx;
+    r->sv.out_width = r->sv.width = d.width; /* the ssaa stage scales the frame's */
+    r->sv.out_height = r->sv.height = d.height;
+    r->sv.target = d.target;
+    r->sv.comp = &r->comp, r->sv.dp = &r->dp, r->sv.dyn = &r->dyn, r->sv.prepared = &r->prepared;
+    r->sv.method_state = method_state, r->sv.user = r;
     if ((unsigned)d.shading > SNELL_SHADING_SCREEN) {
         snell__free(&ctx->alloc, r);
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown shading %d", (int)d.shading);
     }
-    r->shading = d.shading;
+    r->sv.shading = d.shading;
     if ((unsigned)d.env_lookup > SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT) {
         snell__free(&ctx->alloc, r);
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown env_lookup %d", (int)d.env_lookup);
     }
-    r->env_lookup = d.env_lookup;
-    r->device = snell__device_class_of(snell_ctx_gl_renderer(ctx));
-    r->out = d.output == SNELL_OUTPUT_COLOR ? SNELL__OUT_COLOR
+    r->sv.env_lookup = d.env_lookup;
+    r->sv.device = snell__device_class_of(snell_ctx_gl_renderer(ctx));
+    r->sv.out = d.output == SNELL_OUTPUT_COLOR ? SNELL__OUT_COLOR
              : d.output == SNELL_OUTPUT_EXIT_DIRECTION && snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float")
                  ? SNELL__OUT_DIR_FLOAT
                  : SNELL__OUT_DIR_PACKED;
     snell__ctx_retain(ctx); /* from here on released by snell_renderer_destroy */
     snell__glstate_save(&saved);
-    st = create_stage_states(r);
+    st = create_stage_states(r, &d);
     if (st == SNELL_OK) st = create_resources(r);
     snell__glstate_restore(&saved);
     if (st != SNELL_OK) {
@@ -215,22 +188,19 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__prepared_destroy(r->ctx, &r->prepared);
     for (m = 0; m < SNELL_METHOD_COUNT_; m++)
         if (r->method_state[m]) snell__method_get((snell_method)m)->destroy(r->ctx, r->method_state[m]);
-    if (r->programs) snell__program_cache_destroy(r->programs);
+    if (r->sv.programs) snell__program_cache_destroy(r->sv.programs);
     snell__env_dynamic_destroy(r->ctx, &r->dyn);
     snell__paraboloid_gen_destroy(&r->dp);
     snell__composite_destroy(&r->comp);
-    snell__ssaa_destroy(&r->ssaa);
     snell__host_depth_destroy(&r->host_depth);
-    if (r->msaa_fbo) glDeleteFramebuffers(1, &r->msaa_fbo);
-    if (r->msaa_rb) glDeleteRenderbuffers(1, &r->msaa_rb);
-    if (r->fbo) glDeleteFramebuffers(1, &r->fbo);
+    if (r->sv.fbo) glDeleteFramebuffers(1, &r->sv.fbo);
     if (r->color_rb) glDeleteRenderbuffers(1, &r->color_rb);
-    if (r->depth_rb) glDeleteRenderbuffers(1, &r->depth_rb);
+    if (r->sv.depth_rb) glDeleteRenderbuffers(1, &r->sv.depth_rb);
     snell__gl_scope_leave(&sc);
     ctx = r->ctx;
     snell__free(&ctx->alloc, r->readback);
     snell__free(&ctx->alloc, r->readback8);
-    snell__free(&ctx->alloc, r->programs);
+    snell__free(&ctx->alloc, r->sv.programs);
     for (m = 0; m < snell__stage_count; m++) snell__free(&ctx->alloc, r->stage_state[m]);
     snell__free(&ctx->alloc, r);
     snell__ctx_release(ctx);
@@ -239,12 +209,12 @@ void snell_renderer_destroy(snell_renderer *r)
 /* Methods are created on first use; one that fails (a device that cannot
  * compile its shaders, say) fails alone and is not retried, except after
  * running out of memory. */
-snell_status snell__renderer_method_state(void *user, const snell__method *m, void **state)
+static snell_status method_state(void *user, const snell__method *m, void **state)
 {
     snell_renderer *r = (snell_renderer *)user;
     int id = (int)m->info->method;
     if (!r->method_state[id] && r->method_status[id] == SNELL_OK) {
-        snell_status st = m->create(r->ctx, r->out, r->programs, &r->method_state[id]);
+        snell_status st = m->create(r->ctx, r->sv.out, r->sv.programs, &r->method_state[id]);
         if (st == SNELL_E_NOMEM) return st;
         if (st != SNELL_OK) {
             r->method_status[id] = st;
@@ -259,34 +229,10 @@ snell_status snell__renderer_method_state(void *user, const snell__method *m, vo
     return SNELL_OK;
 }
 
-/* The MSAA resolve: the samples' mean per pixel. */
-static int msaa_wanted(const snell__frame *f, const void *state)
-{
-    (void)state;
-    return f->r->msaa != 0;
-}
-
-static snell_status msaa_run(snell__frame *f, void *state)
-{
-    snell_renderer *r = f->r;
-    (void)state;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->fbo);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, r->msaa_fbo);
-    glBlitFramebuffer(0, 0, r->width, r->height, 0, 0, r->width, r->height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    f->s->passes++;
-    return SNELL_OK;
-}
-
-const snell__stage snell__stage_msaa = {
-    .name = "msaa",
-    .wanted = msaa_wanted,
-    .run = msaa_run,
-};
-
-int snell__renderer_env_paraboloid(const snell_renderer *r, int dynamic)
+int snell__env_lookup_paraboloid(snell_env_lookup lookup, int dynamic)
 {
     (void)dynamic;
-    return r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID || r->env_lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT;
+    return lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID || lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT;
 }
 
 static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd)
@@ -294,7 +240,7 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
     int i;
     snell_status st = snell__ctx_check_current(r->ctx, "snell_render");
     if (st != SNELL_OK) return st;
-    st = snell__camera_validate(r->ctx, &fd->camera, (float)r->width / (float)r->height, "snell_render");
+    st = snell__camera_validate(r->ctx, &fd->camera, (float)r->sv.width / (float)r->sv.height, "snell_render");
     if (st != SNELL_OK) return st;
     if (fd->env && fd->env->ctx && fd->env->ctx->destroyed)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG,
@@ -307,11 +253,11 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "dynamic_env_size %d outside 16..2048", fd->dynamic_env_size);
     if ((unsigned)fd->depth > SNELL_DEPTH_TEST_NO_WRITE)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "depth %d is not a snell_depth_mode", (int)fd->depth);
-    if (fd->depth == SNELL_DEPTH_TEST_NO_WRITE && r->target == SNELL_TARGET_OFFSCREEN)
+    if (fd->depth == SNELL_DEPTH_TEST_NO_WRITE && r->sv.target == SNELL_TARGET_OFFSCREEN)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "SNELL_DEPTH_TEST_NO_WRITE is for a bound framebuffer: "
                            "the offscreen target's depth is the renderer's own");
     for (i = 0; i < snell__stage_count; i++)
-        if (snell__stages[i]->validate && (st = snell__stages[i]->validate(r, fd)) != SNELL_OK) return st;
+        if (snell__stages[i]->validate && (st = snell__stages[i]->validate(&r->sv, fd)) != SNELL_OK) return st;
     return SNELL_OK;
 }
 
@@ -319,8 +265,8 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
  * (render/host_depth.h: never cleared for a bound framebuffer unless asked). */
 static snell_status begin_frame_state(snell_renderer *r, const snell_frame_desc *fd)
 {
-    if (r->target == SNELL_TARGET_OFFSCREEN) glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
-    glViewport(0, 0, r->width, r->height);
+    if (r->sv.target == SNELL_TARGET_OFFSCREEN) glBindFramebuffer(GL_FRAMEBUFFER, r->sv.fbo);
+    glViewport(0, 0, r->sv.width, r->sv.height);
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_STENCIL_TEST);
@@ -332,8 +278,8 @@ static snell_status begin_frame_state(snell_renderer *r, const snell_frame_desc 
     snell__glstate_frame_defaults();
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
-    return snell__host_depth_begin(r->ctx, &r->host_depth, snell__depth_mode_of(fd->depth, r->target), r->width,
-                                   r->height);
+    return snell__host_depth_begin(r->ctx, &r->host_depth, snell__depth_mode_of(fd->depth, r->sv.target), r->sv.width,
+                                   r->sv.height);
 }
 
 snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_frame_stats *stats)
@@ -354,11 +300,11 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     snell_frame_defaults(fd, &r->frame);
     fd = &r->frame;
     for (i = 0; st == SNELL_OK && i < snell__stage_count; i++)
-        if (snell__stages[i]->resolve) snell__stages[i]->resolve(r, &r->frame, r->stage_state[i]);
-    if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->width, r->height, r->out, &r->scene, s);
+        if (snell__stages[i]->resolve) snell__stages[i]->resolve(&r->sv, &r->frame, r->stage_state[i]);
+    if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->sv.width, r->sv.height, r->sv.out, &r->scene, s);
     if (st != SNELL_OK) return st;
     memset(&f, 0, sizeof f);
-    f.r = r, f.fd = fd, f.s = s, f.sc = &r->scene, f.state = r->stage_state;
+    f.sv = &r->sv, f.fd = fd, f.s = s, f.sc = &r->scene, f.state = r->stage_state, f.start_ms = t0;
     external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
     if (external) snell__glstate_save(&saved);
     snell__units_begin(&units, 0, 1); /* the frame's units: each one's sampler object unbound at its first use */
@@ -379,7 +325,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
      * restores its name would then name a freed program. */
     glUseProgram(0);
     glBindVertexArray(0);
-    if (r->target != SNELL_TARGET_OFFSCREEN) {
+    if (r->sv.target != SNELL_TARGET_OFFSCREEN) {
         snell_status back = snell__host_depth_end(r->ctx, &r->host_depth);
         if (st == SNELL_OK) st = back;
     }
@@ -387,15 +333,24 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     s->texture_units = snell__units_count(&units);
     if (external) snell__glstate_restore(&saved);
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(r->ctx, SNELL_E_GL, "GL error during the frame");
-    snell__budget_frame_end(r, fd, t0, st == SNELL_OK);
+    for (i = 0; i < snell__stage_count; i++)
+        if (snell__stages[i]->frame_end) snell__stages[i]->frame_end(&f, r->stage_state[i], st);
     for (i = 0; i < r->scene.count; i++) s->passes += s->glass[i].passes;
     s->passes += s->background_drawn;
     s->fragment_mediump = snell__ctx_fragment_mediump(r->ctx);
-    s->programs = snell__program_cache_count(r->programs, &s->program_bytes);
-    s->programs_built = r->programs->built;
+    s->programs = snell__program_cache_count(r->sv.programs, &s->program_bytes);
+    s->programs_built = r->sv.programs->built;
     s->cpu_ms = snell__now_ms() - t0;
     if (stats) memcpy(stats, s, sizeof *s);
     return st;
+}
+
+/* The GPU finished what r issued: the stages that wait for it (the budget's clock) are told. */
+static void gpu_done(snell_renderer *r)
+{
+    int i;
+    for (i = 0; i < snell__stage_count; i++)
+        if (snell__stages[i]->gpu_done) snell__stages[i]->gpu_done(r->stage_state[i]);
 }
 
 /* Reads the offscreen colour buffer (bottom row first, as GL stores it). */
@@ -408,9 +363,9 @@ static snell_status read_target(snell_renderer *r, GLenum type, void *pixels)
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev_fbo);
     /* Into client memory, tightly packed, whatever pixel buffer or pack state the host has set. */
     snell__pixel_pack_begin(&pack, 1);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->ssaa.factor > 1 ? r->ssaa.resolve_fbo : r->msaa ? r->msaa_fbo : r->fbo);
-    glReadPixels(0, 0, r->out_width, r->out_height, GL_RGBA, type, pixels);
-    snell__budget_gpu_done(r);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->sv.read_fbo ? r->sv.read_fbo : r->sv.fbo);
+    glReadPixels(0, 0, r->sv.out_width, r->sv.out_height, GL_RGBA, type, pixels);
+    gpu_done(r);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev_fbo);
     snell__pixel_pack_end(&pack);
     return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "glReadPixels failed");
@@ -422,13 +377,13 @@ snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels)
     size_t row;
     snell_status st;
     if (!r || !pixels) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "read_rgba: NULL argument");
-    if (r->target != SNELL_TARGET_OFFSCREEN || r->out != SNELL__OUT_COLOR)
+    if (r->sv.target != SNELL_TARGET_OFFSCREEN || r->sv.out != SNELL__OUT_COLOR)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "read_rgba needs an offscreen colour renderer");
     if ((st = read_target(r, GL_UNSIGNED_BYTE, pixels)) != SNELL_OK) return st;
     /* GL's row 0 is the bottom; flip in place so row 0 is the top. */
-    row = (size_t)r->out_width * 4;
-    for (y = 0; y < r->out_height / 2; y++) {
-        uint8_t *a = pixels + (size_t)y * row, *b = pixels + (size_t)(r->out_height - 1 - y) * row;
+    row = (size_t)r->sv.out_width * 4;
+    for (y = 0; y < r->sv.out_height / 2; y++) {
+        uint8_t *a = pixels + (size_t)y * row, *b = pixels + (size_t)(r->sv.out_height - 1 - y) * row;
         size_t i;
         for (i = 0; i < row; i++) {
             uint8_t t = a[i];
@@ -443,17 +398,17 @@ snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels)
  * mask (the coverage flag), top row first. */
 static snell_status read_output(snell_renderer *r, float *xyz, uint8_t *mask)
 {
-    int x, y, f = r && r->out == SNELL__OUT_DIR_FLOAT;
+    int x, y, f = r && r->sv.out == SNELL__OUT_DIR_FLOAT;
     snell_status st;
     if (!r || (!xyz && !mask))
         return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "read_exit_dirs/coverage: NULL argument");
-    if (r->out == SNELL__OUT_COLOR)
+    if (r->sv.out == SNELL__OUT_COLOR)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "renderer was not created with SNELL_OUTPUT_EXIT_DIRECTION");
     st = f ? read_target(r, GL_FLOAT, r->readback) : read_target(r, GL_UNSIGNED_BYTE, r->readback8);
     if (st != SNELL_OK) return st;
-    for (y = 0; y < r->height; y++)
-        for (x = 0; x < r->width; x++) {
-            size_t src = (size_t)(r->height - 1 - y) * r->width + x, dst = (size_t)y * r->width + x;
+    for (y = 0; y < r->sv.height; y++)
+        for (x = 0; x < r->sv.width; x++) {
+            size_t src = (size_t)(r->sv.height - 1 - y) * r->sv.width + x, dst = (size_t)y * r->sv.width + x;
             /* output.glsl: alpha 0 where the path met no glass (any other
              * value, exact's fallback mark included, is glass); packed, the
              * low bit of the last byte. */
@@ -476,12 +431,12 @@ snell_status snell_renderer_read_coverage(snell_renderer *r, uint8_t *mask)
 
 const char *snell_renderer_exit_dir_encoding(const snell_renderer *r)
 {
-    if (!r || r->out == SNELL__OUT_COLOR) return "none";
-    return r->out == SNELL__OUT_DIR_FLOAT ? "float" : "packed-rgba8";
+    if (!r || r->sv.out == SNELL__OUT_COLOR) return "none";
+    return r->sv.out == SNELL__OUT_DIR_FLOAT ? "float" : "packed-rgba8";
 }
 
 void snell_renderer_finish(snell_renderer *r)
 {
     glFinish();
-    if (r) snell__budget_gpu_done(r);
+    if (r) gpu_done(r);
 }

@@ -2,6 +2,7 @@
 /* ssaa.c — supersampling resolve; see ssaa.h. */
 #include "render/ssaa.h"
 #include "render/stages.h"
+#include "core/ctx.h"
 #include "core/gl.h"
 #include "core/program.h"
 
@@ -64,23 +65,59 @@ void snell__ssaa_resolve(const snell__ssaa *s, int w, int h)
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-/* The resolve stage: the frame's samples averaged into the output. */
+/* The ssaa stage: at the renderer's creation the frame's size and colour
+ * texture (S times the output's per axis), after each frame the samples
+ * averaged into the output. */
+static snell_status validate_renderer(snell_ctx *ctx, const snell_renderer_desc *d)
+{
+    int side = d->ssaa * (d->width > d->height ? d->width : d->height);
+    snell_status st;
+    if (d->ssaa < 0 || d->ssaa > SNELL_MAX_SSAA)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "ssaa %d outside 0..%d", d->ssaa, SNELL_MAX_SSAA);
+    if (d->ssaa <= 1) return SNELL_OK;
+    if (d->target != SNELL_TARGET_OFFSCREEN || d->output != SNELL_OUTPUT_COLOR)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "ssaa %d needs an offscreen colour renderer", d->ssaa);
+    st = snell__ctx_limit(ctx, SNELL__LIM_TEXTURE, side, "render size x ssaa");
+    return st != SNELL_OK ? st : snell__ctx_limit(ctx, SNELL__LIM_RENDERBUFFER, side, "render size x ssaa");
+}
+
+static snell_status create(snell__services *sv, const snell_renderer_desc *d, void *state)
+{
+    snell__ssaa *s = (snell__ssaa *)state;
+    snell_status st = snell__ssaa_create(sv->ctx, s, d->ssaa > 1 ? d->ssaa : 1, sv->out_width, sv->out_height);
+    if (st != SNELL_OK || s->factor <= 1) return st;
+    sv->width = sv->out_width * s->factor;
+    sv->height = sv->out_height * s->factor;
+    sv->color_texture = s->frame_tex;
+    sv->read_fbo = s->resolve_fbo;
+    return SNELL_OK;
+}
+
+static void destroy(snell_ctx *ctx, void *state)
+{
+    (void)ctx;
+    snell__ssaa_destroy((snell__ssaa *)state);
+}
+
 static int stage_wanted(const snell__frame *f, const void *state)
 {
-    (void)state;
-    return f->r->ssaa.factor > 1;
+    (void)f;
+    return ((const snell__ssaa *)state)->factor > 1;
 }
 
 static snell_status stage_run(snell__frame *f, void *state)
 {
-    (void)state;
-    snell__ssaa_resolve(&f->r->ssaa, f->r->out_width, f->r->out_height);
+    snell__ssaa_resolve((const snell__ssaa *)state, f->sv->out_width, f->sv->out_height);
     f->s->passes++;
     return SNELL_OK;
 }
 
 const snell__stage snell__stage_ssaa = {
     .name = "ssaa",
+    .state_size = sizeof(snell__ssaa),
+    .validate_renderer = validate_renderer,
+    .create = create,
+    .destroy = destroy,
     .wanted = stage_wanted,
     .run = stage_run,
 };

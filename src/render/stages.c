@@ -6,7 +6,7 @@
  * shading) -> scene layers -> water -> back faces -> G-buffer -> kernels ->
  * background -> resolves. snell_render (renderer.c) runs the entries a frame
  * wants. Adding a stage: its module and one line of SNELL__STAGE_TABLE. */
-#include "render/stages.h"
+#include "render/renderer.h"
 
 #include <stddef.h>
 

@@ -5,14 +5,15 @@
  * along their exit rays (kernel hook SNELL_WATER, common/water.glsl); the
  * water sees the glass and opaque objects in it through the scene layers. */
 #include "render/stages.h"
+#include "water/water_draw.h"
 #include "frame/env.h"
 #include "core/ctx.h"
 #include "core/gl.h"
 #include "frame/glass_program.h"
 
-static snell_status validate(const snell_renderer *r, const snell_frame_desc *fd)
+static snell_status validate(const snell__services *sv, const snell_frame_desc *fd)
 {
-    snell_ctx *ctx = r->ctx;
+    snell_ctx *ctx = sv->ctx;
     if (fd->water && !SNELL_WITH_WATER)
         return snell__fail(ctx, SNELL_E_UNSUPPORTED, "frame has water: built without SNELL_WITH_WATER");
     if (fd->water && fd->water->ctx != ctx)
@@ -39,7 +40,7 @@ static void plan(snell__frame *f, void *state) { ((water_stage *)state)->water =
 static snell_status run(snell__frame *f, void *state)
 {
     snell__water_programs *wp = &((water_stage *)state)->programs;
-    snell_renderer *r = f->r;
+    const snell__services *sv = f->sv;
     const snell_frame_desc *fd = f->fd;
     snell_status st = SNELL_OK;
     /* Without layers (no glass), opaque objects in the water are searched
@@ -49,17 +50,17 @@ static snell_status run(snell__frame *f, void *state)
      * Cheaper than peeling them into layers for the water alone, for the
      * same error (bench/notes). */
     int layers = f->sc->view.layers.active, i;
-    int objects = !layers && fd->opaque_count > 0 && r->target == SNELL_TARGET_OFFSCREEN && !r->msaa &&
-                  r->out == SNELL__OUT_COLOR;
+    int objects = !layers && fd->opaque_count > 0 && sv->target == SNELL_TARGET_OFFSCREEN && !sv->samples &&
+                  sv->out == SNELL__OUT_COLOR;
     unsigned env_tex = fd->env->texture;
-    int paraboloid = snell__renderer_env_paraboloid(r, 0); /* the water sees the static environment */
+    int paraboloid = snell__env_lookup_paraboloid(sv->env_lookup, 0); /* the water sees the static environment */
     if (objects) {
-        st = snell__water_copy_scene(r->ctx, wp, r->fbo, r->width, r->height);
-        glBindFramebuffer(GL_FRAMEBUFFER, r->fbo);
+        st = snell__water_copy_scene(sv->ctx, wp, sv->fbo, sv->width, sv->height);
+        glBindFramebuffer(GL_FRAMEBUFFER, sv->fbo);
     }
-    if (st == SNELL_OK && paraboloid) st = snell__env_paraboloid(r->ctx, &r->dp, fd->env, &env_tex);
+    if (st == SNELL_OK && paraboloid) st = snell__env_paraboloid(sv->ctx, sv->dp, fd->env, &env_tex);
     if (st == SNELL_OK)
-        st = snell__water_draw(r->ctx, wp, r->out, fd->water, &f->sc->view, env_tex, paraboloid, fd->opaque,
+        st = snell__water_draw(sv->ctx, wp, sv->out, fd->water, &f->sc->view, env_tex, paraboloid, fd->opaque,
                                objects ? fd->opaque_count : 0, layers, f->s);
     if (st == SNELL_OK) snell__water_publish(fd->water, &f->sc->view.textures);
     f->s->water_objects = objects || layers; /* layers: at least one glass object drawn */
