@@ -155,3 +155,5 @@ if(SNELL_PYTHON3)
   add_test(NAME profile_tests_choice COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/test_profile_tests.py)
   set_tests_properties(profile_tests_choice PROPERTIES LABELS "unit")
 endif()
+# test_stage_seam: the stages' kernel hooks take their variant bits in the table's order (frame/stage.h).
+snell_add_test(test_stage_seam SOURCES test_stage_seam.c LABELS "unit")
