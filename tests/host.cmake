@@ -90,3 +90,7 @@ target_link_libraries(host_scene PRIVATE snell_static PkgConfig::EGL PkgConfig::
 add_test(NAME example_host_scene COMMAND host_scene ${CMAKE_CURRENT_BINARY_DIR}/host_scene.png)
 set_tests_properties(example_host_scene PROPERTIES LABELS "render;gl" SKIP_RETURN_CODE 77
                      PASS_REGULAR_EXPRESSION "searched against the app's depth")
+# test_resolve_order: a frame's and a material's descriptions resolved once, then the resolved copy
+# validated (sokol_gfx's order): refusals name the resolved value and never re-encode a default.
+snell_add_test(test_resolve_order SOURCES test_resolve_order.c LABELS "unit;gl")
+target_link_libraries(test_resolve_order PRIVATE snell_dep::gles)

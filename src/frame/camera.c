@@ -13,12 +13,14 @@ void snell__camera_defaults(const snell_camera *in, snell_camera *out)
     snell_camera c;
     memset(&c, 0, sizeof c);
     if (in) c = *in;
+    /* Only zeros are defaults: any other value is the caller's, valid or
+     * not (snell__camera_validate checks what this resolves). */
     if (c.kind == SNELL_CAMERA_ORBIT) {
-        if (!(c.distance > 0.0f)) c.distance = SNELL_DEFAULT_CAMERA_DISTANCE;
-        if (!(c.fov_y > 0.0f)) c.fov_y = SNELL_DEFAULT_FOV_Y;
+        if (c.distance == 0.0f) c.distance = SNELL_DEFAULT_CAMERA_DISTANCE;
+        if (c.fov_y == 0.0f) c.fov_y = SNELL_DEFAULT_FOV_Y;
         /* Near and far span 1e4 around the target, enough for 24-bit depth. */
-        if (!(c.z_near > 0.0f)) c.z_near = c.distance * 0.01f;
-        if (!(c.z_far > c.z_near)) c.z_far = c.distance * 100.0f;
+        if (c.z_near == 0.0f) c.z_near = c.distance * 0.01f;
+        if (c.z_far == 0.0f) c.z_far = c.distance * 100.0f;
     }
     *out = c;
 }
@@ -102,61 +104,54 @@ static snell_status validate_matrices(const snell_ctx *ctx, const snell_camera *
     return SNELL_OK;
 }
 
+/* Resolves the camera first, then checks the resolved copy (sokol_gfx's
+ * order): a message names the value the frame would have used. */
 snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *cam, float aspect, const char *who)
 {
-    float dist, zn, zf, eye[3], view[16], proj[16];
+    float eye[3], view[16], proj[16], scale;
+    snell_camera c;
     int k;
     if (!cam) return SNELL_OK;
     if (cam->kind == SNELL_CAMERA_MATRICES) return validate_matrices(ctx, cam, who);
     if (cam->kind != SNELL_CAMERA_ORBIT)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.kind %d is not a snell_camera_kind", who, (int)cam->kind);
-    if (!isfinite(cam->azimuth))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.azimuth %g is not finite", who, cam->azimuth);
-    if (!isfinite(cam->elevation))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.elevation %g is not finite", who, cam->elevation);
+    snell__camera_defaults(cam, &c);
+    if (!isfinite(c.azimuth))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.azimuth %g is not finite", who, c.azimuth);
+    if (!isfinite(c.elevation))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.elevation %g is not finite", who, c.elevation);
     for (k = 0; k < 3; k++)
-        if (!isfinite(cam->target[k]))
+        if (!isfinite(c.target[k]))
             return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.target[%d] %g is not finite", who, k,
-                               cam->target[k]);
-    if (!(cam->distance >= 0.0f) || !isfinite(cam->distance))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.distance %g: 0 (default) or a finite distance > 0",
-                           who, cam->distance);
-    if (!(cam->fov_y >= 0.0f && cam->fov_y < (float)SNELL_PI))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.fov_y %g rad: 0 (default) or in (0, pi)", who,
-                           cam->fov_y);
-    if (!(cam->z_near >= 0.0f) || !isfinite(cam->z_near))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_near %g: 0 (derived) or a finite distance > 0",
-                           who, cam->z_near);
-    if (!(cam->z_far >= 0.0f) || !isfinite(cam->z_far))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_far %g: 0 (derived) or a finite distance > 0",
-                           who, cam->z_far);
-    {
-        /* An eye closer to the target than a millionth of the scene's scale
-         * (1, or the target's distance from the origin) derives near and far
-         * planes that clip the whole scene: the frame would be background. */
-        float scale = fmaxf(1.0f, fmaxf(fabsf(cam->target[0]), fmaxf(fabsf(cam->target[1]), fabsf(cam->target[2]))));
-        if (cam->distance > 0.0f && cam->distance < 1e-6f * scale)
-            return snell__fail(ctx, SNELL_E_INVALID_ARG,
-                               "%s: camera.distance %g is too small (at least %g: a millionth of the scene's scale)",
-                               who, cam->distance, 1e-6f * scale);
-    }
-    /* The planes as given, or as snell__camera_defaults derives them. */
-    {
-        snell_camera c;
-        snell__camera_defaults(cam, &c);
-        dist = c.distance;
-        zn = c.z_near;
-        zf = cam->z_far > 0.0f ? cam->z_far : c.z_far;
-    }
-    if (!isfinite(zf))
+                               c.target[k]);
+    if (!(c.distance > 0.0f) || !isfinite(c.distance))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.distance %g: a finite distance > 0", who,
+                           c.distance);
+    if (!(c.fov_y > 0.0f && c.fov_y < (float)SNELL_PI))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.fov_y %g rad outside (0, pi)", who, c.fov_y);
+    /* An eye closer to the target than a millionth of the scene's scale
+     * (1, or the target's distance from the origin) derives near and far
+     * planes that clip the whole scene: the frame would be background. */
+    scale = fmaxf(1.0f, fmaxf(fabsf(c.target[0]), fmaxf(fabsf(c.target[1]), fabsf(c.target[2]))));
+    if (c.distance < 1e-6f * scale)
+        return snell__fail(ctx, SNELL_E_INVALID_ARG,
+                           "%s: camera.distance %g is too small (at least %g: a millionth of the scene's scale)",
+                           who, c.distance, 1e-6f * scale);
+    if (!(c.z_near > 0.0f) || !isfinite(c.z_near))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_near %g%s: a finite distance > 0", who, c.z_near,
+                           cam->z_near == 0.0f ? " (derived from the distance)" : "");
+    if (!isfinite(c.z_far) && cam->z_far == 0.0f)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.distance %g is too large (the derived far plane "
-                           "overflows; set z_far)", who, cam->distance);
-    if (!(zn < zf))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_near %g is not before camera.z_far %g%s", who, zn,
-                           zf, cam->z_far > 0.0f && cam->z_near > 0.0f ? "" : " (0 = derived from the distance)");
-    snell_camera_matrices(cam, aspect, eye, view, proj);
+                           "overflows; set z_far)", who, c.distance);
+    if (!(c.z_far > 0.0f) || !isfinite(c.z_far))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_far %g: a finite distance > 0", who, c.z_far);
+    if (!(c.z_near < c.z_far))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.z_near %g%s is not before camera.z_far %g%s", who,
+                           c.z_near, cam->z_near == 0.0f ? " (derived from the distance)" : "", c.z_far,
+                           cam->z_far == 0.0f ? " (derived from the distance)" : "");
+    snell_camera_matrices(&c, aspect, eye, view, proj);
     if (!all_finite(eye, 3) || !all_finite(view, 16) || !all_finite(proj, 16))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera (distance %g, z_near %g, z_far %g) gives matrices "
-                           "that are not finite", who, dist, zn, zf);
+                           "that are not finite", who, c.distance, c.z_near, c.z_far);
     return SNELL_OK;
 }

@@ -25,7 +25,17 @@ snell_status snell__glass_resolve(const snell_glass_material *in, int object, sn
     memset(&m, 0, sizeof m);
     if (in) m = *in;
     memset(out, 0, sizeof *out);
-    if (!isfinite(m.ior) || m.ior < 0.0f || (m.ior != 0.0f && (m.ior < 0.05f || m.ior > 100.0f)))
+    /* The defaults first, then the resolved copy validated (sokol_gfx's
+     * order): a message names the value the kernels would see. */
+    if (m.ior == 0.0f) m.ior = DEFAULT_IOR;
+    if (m.scale == 0.0f) m.scale = 1.0f;
+    if (m.tint[0] == 0.0f && m.tint[1] == 0.0f && m.tint[2] == 0.0f) m.tint[0] = m.tint[1] = m.tint[2] = 1.0f;
+    if (m.attenuation_color[0] == 0.0f && m.attenuation_color[1] == 0.0f && m.attenuation_color[2] == 0.0f)
+        m.attenuation_color[0] = m.attenuation_color[1] = m.attenuation_color[2] = 1.0f;
+    /* one path: nearly as accurate as three traces on every kernel, for a
+     * cheaper frame where the kernel searches (BENCHMARKS.md, "Dispersion") */
+    if (m.dispersion_model == SNELL_DISPERSION_AUTO) m.dispersion_model = SNELL_DISPERSION_ONE_PATH;
+    if (!(m.ior >= 0.05f && m.ior <= 100.0f))
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: ior %g outside 0.05..100", object, m.ior);
     if (!finite_nonneg(m.attenuation_distance) || !finite_nonneg(m.thickness))
         return snell__fail(NULL, SNELL_E_INVALID_ARG,
@@ -42,14 +52,10 @@ snell_status snell__glass_resolve(const snell_glass_material *in, int object, sn
         return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: unknown dispersion_model %d", object,
                            (int)m.dispersion_model);
     /* A scale below 1 would supersample the glass alone: the frame's ssaa does that. */
-    if (!isfinite(m.scale) || (m.scale != 0.0f && (m.scale < 1.0f || m.scale > SNELL_MAX_GLASS_SCALE)))
-        return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: scale %g outside 1..%d (0: 1)", object, m.scale,
+    if (!(m.scale >= 1.0f && m.scale <= SNELL_MAX_GLASS_SCALE))
+        return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: scale %g outside 1..%d", object, m.scale,
                            SNELL_MAX_GLASS_SCALE);
-    if (m.ior == 0.0f) m.ior = DEFAULT_IOR;
-    if (m.scale == 0.0f) m.scale = 1.0f;
-    if (m.tint[0] == 0.0f && m.tint[1] == 0.0f && m.tint[2] == 0.0f) m.tint[0] = m.tint[1] = m.tint[2] = 1.0f;
-    if (m.attenuation_color[0] == 0.0f && m.attenuation_color[1] == 0.0f && m.attenuation_color[2] == 0.0f)
-        m.attenuation_color[0] = m.attenuation_color[1] = m.attenuation_color[2] = 1.0f;
+    /* Derived: no attenuation distance is an infinite one. */
     if (m.attenuation_distance == 0.0f) m.attenuation_distance = HUGE_VALF;
     for (k = 0; k < 3; k++) {
         float c = m.attenuation_color[k] > MIN_ATTENUATION_COLOR ? m.attenuation_color[k] : MIN_ATTENUATION_COLOR;
@@ -60,9 +66,6 @@ snell_status snell__glass_resolve(const snell_glass_material *in, int object, sn
     /* A thin wall sends light on parallel to how it came: no angular spread to show. */
     out->disperses = m.dispersion > 0.0f && m.thickness == 0.0f;
     snell_opt_ior_rgb(m.ior, out->disperses ? m.dispersion : 0.0f, out->ior_rgb);
-    /* one path: nearly as accurate as three traces on every kernel, for a
-     * cheaper frame where the kernel searches (BENCHMARKS.md, "Dispersion") */
-    if (m.dispersion_model == SNELL_DISPERSION_AUTO) m.dispersion_model = SNELL_DISPERSION_ONE_PATH;
     out->material = m;
     return SNELL_OK;
 }

@@ -119,7 +119,7 @@ static int *param_ptr(snell_glass_material *m, const snell__method *e, int i)
     return (int *)((char *)m + e->info->params[i].offset);
 }
 
-/* Zero = default; anything else must lie in min..max. */
+/* Zero = default, filled first; then the resolved value must lie in min..max. */
 static snell_status params_resolve(const snell__method *e, snell_glass_material *m, int object)
 {
     int i;
@@ -127,7 +127,7 @@ static snell_status params_resolve(const snell__method *e, snell_glass_material 
         const snell_param_info *p = &e->info->params[i];
         int *v = param_ptr(m, e, i);
         if (*v == 0) *v = p->def;
-        else if (*v < p->min || *v > p->max)
+        if (*v < p->min || *v > p->max)
             return snell__fail(NULL, SNELL_E_INVALID_ARG, "glass %d: %s.%s = %d outside %d..%d", object,
                                e->info->name, p->name, *v, p->min, p->max);
     }

@@ -67,8 +67,8 @@ static snell_status validate(const snell__services *sv, const snell_frame_desc *
         if (b->region[k] && !(b->region[2] || b->region[3]))
             return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.region: an offset needs a size");
     if (b->camera && (st = snell__camera_validate(ctx, b->camera, 1.0f, "backdrop")) != SNELL_OK) return st;
-    if (!isfinite(b->distance) || b->distance < 0.0f)
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.distance %g: 0 (1) or a finite distance",
+    if (!isfinite(b->distance) || !(b->distance > 0.0f))
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.distance %g: a finite distance > 0",
                            (double)b->distance);
     return SNELL_OK;
 }
@@ -134,7 +134,8 @@ static snell_status copy_bound(snell_ctx *ctx, snell__backdrop *b, int w, int h,
     return SNELL_OK;
 }
 
-/* Region all 0 = the whole texture (COPY_BOUND: the renderer's size), distance 0 = the default. */
+/* Region all 0 = the whole texture (COPY_BOUND: the renderer's size), distance 0 = the default;
+ * before validation (any other value is kept for validate() to judge). */
 static void resolve(const snell__services *sv, snell_frame_desc *fd, void *state)
 {
     snell__backdrop *b = (snell__backdrop *)state;
@@ -142,7 +143,8 @@ static void resolve(const snell__services *sv, snell_frame_desc *fd, void *state
     if (!fd->backdrop) return;
     *d = *fd->backdrop;
     if (d->source == SNELL_BACKDROP_COPY_BOUND) d->width = sv->width, d->height = sv->height;
-    if (!d->region[2]) d->region[0] = d->region[1] = 0, d->region[2] = d->width, d->region[3] = d->height;
+    if (!(d->region[0] || d->region[1] || d->region[2] || d->region[3]))
+        d->region[2] = d->width, d->region[3] = d->height;
     if (d->distance == 0.0f) d->distance = SNELL_DEFAULT_BACKDROP_DISTANCE;
     fd->backdrop = d;
 }

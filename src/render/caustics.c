@@ -35,13 +35,12 @@ snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd
         for (k = 0; k < 3; k++)
             if (!isfinite(l->color[k]) || l->color[k] < 0.0f)
                 return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.color[%d] %g: finite and >= 0", k, l->color[k]);
-        if (l->photons != 0 && (l->photons < 16 || l->photons > 1024))
-            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.photons %d outside 16..1024 (0 = %d)", l->photons,
-                               SNELL_DEFAULT_PHOTONS);
+        if (l->photons < 16 || l->photons > 1024)
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.photons %d outside 16..1024", l->photons);
         if (l->type == SNELL_LIGHT_SPOT && !finite3(l->position))
             return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.position must be finite");
-        if (l->type == SNELL_LIGHT_SPOT && (!isfinite(l->spot_angle) || l->spot_angle < 0.0f || l->spot_angle > 1.5f))
-            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.spot_angle %g outside 0..1.5 radians (0 = 0.5)",
+        if (l->type == SNELL_LIGHT_SPOT && !(l->spot_angle > 0.0f && l->spot_angle <= 1.5f))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "light.spot_angle %g outside (0, 1.5] radians",
                                l->spot_angle);
     }
     if (!isfinite(rc->extent) || rc->extent < 0.0f)
@@ -53,10 +52,9 @@ snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd
             if (!(rc->albedo[k] >= 0.0f && rc->albedo[k] <= 1.0f))
                 return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.albedo[%d] %g outside 0..1", k, rc->albedo[k]);
     }
-    if ((rc->extent > 0.0f || (l->type != SNELL_LIGHT_NONE && fd->opaque_count > 0)) && rc->map_size != 0 &&
+    if ((rc->extent > 0.0f || (l->type != SNELL_LIGHT_NONE && fd->opaque_count > 0)) &&
         (rc->map_size < 16 || rc->map_size > 2048))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.map_size %d outside 16..2048 (0 = %d)", rc->map_size,
-                           SNELL_DEFAULT_RECEIVER_MAP);
+        return snell__fail(ctx, SNELL_E_INVALID_ARG, "receiver.map_size %d outside 16..2048", rc->map_size);
     return SNELL_OK;
 }
 

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* defaults.c — the renderer's and the frame's descriptions with every
  * default applied, once: snell_renderer_create and snell_render resolve
- * what they are given here, and the stages see only resolved values. */
+ * what they are given here, then validate the resolved copy (sokol_gfx's
+ * order), and the stages see only resolved values. */
 #include "frame/camera.h"
 #include "frame/lighting.h"
 #include "render/renderer.h"

@@ -286,8 +286,8 @@ static void stage_destroy(snell_ctx *ctx, void *state)
 
 static snell_status stage_validate(const snell__services *sv, const snell_frame_desc *fd)
 {
-    if (fd->scene_layers < -1 || fd->scene_layers == 1 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS)
-        return snell__fail(sv->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off), 0 (auto) or 2..%d", fd->scene_layers,
+    if (fd->scene_layers != -1 && (fd->scene_layers < 2 || fd->scene_layers > SNELL_MAX_SCENE_LAYERS))
+        return snell__fail(sv->ctx, SNELL_E_INVALID_ARG, "scene_layers %d: -1 (off) or 2..%d", fd->scene_layers,
                            SNELL_MAX_SCENE_LAYERS);
     return SNELL_OK;
 }

@@ -19,6 +19,7 @@ static void resolve(const snell__services *sv, snell_frame_desc *fd, void *state
     opaque_state *s = (opaque_state *)state;
     int i;
     (void)sv;
+    if (fd->opaque_count < 0 || fd->opaque_count > SNELL_MAX_OPAQUE || !fd->opaque) return; /* validate() says why */
     for (i = 0; i < fd->opaque_count; i++) snell__opaque_defaults(&fd->opaque[i], &s->resolved[i]);
     if (fd->opaque_count > 0) fd->opaque = s->resolved;
 }

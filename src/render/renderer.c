@@ -57,8 +57,8 @@ static snell_status make_target(snell_renderer *r)
                                                      sv->width, sv->height);
 }
 
-/* Each stage's slot, zeroed, then as its init() sets it: made once, so a
- * frame allocates nothing for its stages. */
+/* Each stage's slot, zeroed, then as its create() sets it (and the target
+ * with it): made once, so a frame allocates nothing for its stages. */
 static snell_status create_stage_states(snell_renderer *r, const snell_renderer_desc *d)
 {
     int i;
@@ -235,12 +235,14 @@ int snell__env_lookup_paraboloid(snell_env_lookup lookup, int dynamic)
     return lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID || lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT;
 }
 
-static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd)
+/* The resolved frame fd; its camera as given (snell__camera_validate
+ * resolves it itself, and names a plane derived from the distance as such). */
+static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd, const snell_camera *camera)
 {
     int i;
     snell_status st = snell__ctx_check_current(r->ctx, "snell_render");
     if (st != SNELL_OK) return st;
-    st = snell__camera_validate(r->ctx, &fd->camera, (float)r->sv.width / (float)r->sv.height, "snell_render");
+    st = snell__camera_validate(r->ctx, camera, (float)r->sv.width / (float)r->sv.height, "snell_render");
     if (st != SNELL_OK) return st;
     if (fd->env && fd->env->ctx && fd->env->ctx->destroyed)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG,
@@ -249,7 +251,7 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "frame needs an environment created with a context");
     if (fd->env->ctx && fd->env->ctx != r->ctx)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the environment belongs to another context");
-    if (fd->dynamic_env_size != 0 && (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048))
+    if (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "dynamic_env_size %d outside 16..2048", fd->dynamic_env_size);
     if ((unsigned)fd->depth > SNELL_DEPTH_TEST_NO_WRITE)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "depth %d is not a snell_depth_mode", (int)fd->depth);
@@ -295,12 +297,15 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
     s = &r->stats;
     memset(s, 0, sizeof *s);
-    st = validate_frame(r, fd);
-    /* From here on the frame as resolved: the stages see no zero that means a default. */
+    /* The frame resolved once (sokol_gfx's order): its defaults, then each
+     * stage's part; then the resolved copy validated, so that a message
+     * names the value the frame would use and no stage sees a zero that
+     * means a default. */
     snell_frame_defaults(fd, &r->frame);
-    fd = &r->frame;
-    for (i = 0; st == SNELL_OK && i < snell__stage_count; i++)
+    for (i = 0; i < snell__stage_count; i++)
         if (snell__stages[i]->resolve) snell__stages[i]->resolve(&r->sv, &r->frame, r->stage_state[i]);
+    st = validate_frame(r, &r->frame, &fd->camera);
+    fd = &r->frame;
     if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->sv.width, r->sv.height, r->sv.out, &r->scene, s);
     if (st != SNELL_OK) return st;
     memset(&f, 0, sizeof f);
