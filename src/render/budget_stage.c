@@ -4,7 +4,7 @@
  * gives every AUTO glass object its ladder and the controller's rung
  * (budget.c), and writes the rung into the object's resolved material so
  * that the glass stage draws it as an explicit method. */
-#include "render/renderer.h"
+#include "render/stages.h"
 #include "render/budget.h"
 #include "core/ctx.h"
 #include "core/gl.h"
@@ -19,6 +19,7 @@ static const char *const g_class_names[SNELL__BUDGET_CLASSES] = {
 
 /* The stage's state: the controller and what measures the frames. */
 typedef struct budget_state {
+    snell_ctx *ctx;                            /* its renderer's */
     snell__budget ctl;                         /* AUTO by budget's controller (budget.h) */
     snell__budget_object obj[SNELL_MAX_GLASS]; /* this frame's ladders */
     char note[SNELL_MAX_GLASS][128];           /* each object's rung and why (snell__object.budget_note) */
@@ -243,12 +244,15 @@ typedef struct warm_state {
     snell_frame_desc bare;          /* the frame without its glass objects */
     int frames;
     int bare_drawn;
+    double cpu_ms;                  /* the last frame's time inside snell_render */
     snell_status st;
 } warm_state;
 
 static snell_status warm_draw(warm_state *w, const snell_frame_desc *fd)
 {
+    double t0 = snell__now_ms();
     snell_status st = snell_render(w->r, fd, NULL);
+    w->cpu_ms = snell__now_ms() - t0;
     w->frames++;
     if (st != SNELL_OK && w->st == SNELL_OK) w->st = st;
     return st;
@@ -269,7 +273,7 @@ static double warm_measure(void *user, const int *plan)
     int i, clock, fresh = !plan ? !w->bare_drawn : 0;
     if (plan) {
         bs->force = plan;
-        for (i = 0; i < r->scene.count; i++)
+        for (i = 0; i < w->fd->glass_count; i++)
             if (bs->obj[i].n && plan[i] >= 0 && !bs->ctl.drawn[bs->obj[i].ladder[plan[i]]]) {
                 bs->ctl.drawn[bs->obj[i].ladder[plan[i]]] = 1; /* built below */
                 fresh = 1;
@@ -282,7 +286,7 @@ static double warm_measure(void *user, const int *plan)
         t0 = snell__now_ms();
         if (warm_draw(w, fd) != SNELL_OK) return -1.0;
         glFinish();
-        ms[i] = frame_ms(bs, snell__now_ms() - t0, r->stats.cpu_ms, &clock); /* the clock frames are measured by */
+        ms[i] = frame_ms(bs, snell__now_ms() - t0, w->cpu_ms, &clock); /* the clock frames are measured by */
     }
     if (ms[0] > ms[1]) t = ms[0], ms[0] = ms[1], ms[1] = t;
     if (ms[1] > ms[2]) t = ms[1], ms[1] = ms[2], ms[2] = t;
@@ -299,7 +303,9 @@ snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *fd, 
     double t0 = snell__now_ms();
     memset(&out, 0, sizeof out);
     if (stats) *stats = out;
-    if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_renderer_warm: renderer and frame required");
+    if (!r || !fd)
+        return snell__fail(r ? budget_of(r)->ctx : NULL, SNELL_E_INVALID_ARG,
+                           "snell_renderer_warm: renderer and frame required");
     bs = budget_of(r);
     memset(&w, 0, sizeof w);
     w.r = r, w.fd = fd, w.bare = *fd, w.st = SNELL_OK;
@@ -311,7 +317,7 @@ snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *fd, 
         bs->force = floor_plan;
         if (warm_draw(&w, fd) == SNELL_OK) {
             snell__budget_object obj[SNELL_MAX_GLASS];
-            n = r->scene.count;
+            n = fd->glass_count;
             memcpy(obj, bs->obj, sizeof(snell__budget_object) * (size_t)n);
             for (i = 0; i < n; i++)
                 if (obj[i].n) bs->ctl.drawn[obj[i].ladder[obj[i].floor]] = 1; /* built by that frame */
@@ -334,7 +340,8 @@ snell_status snell_renderer_warm(snell_renderer *r, const snell_frame_desc *fd, 
 
 static snell_status stage_create(snell__services *sv, const snell_renderer_desc *d, void *state)
 {
-    (void)sv, (void)d;
+    (void)d;
+    ((budget_state *)state)->ctx = sv->ctx;
     snell__budget_reset(&((budget_state *)state)->ctl);
     return SNELL_OK;
 }
