@@ -64,8 +64,10 @@ typedef struct snell__stage {
     /* Its part of the frame description, checked before anything is drawn. */
     snell_status (*validate)(const snell__services *sv, const snell_frame_desc *fd);
     /* Its part of the frame description with its defaults applied, kept in
-     * its state, once the frame is valid: fd is the renderer's copy, which
-     * it points at them, so that every stage sees only resolved values. */
+     * its state, before the frame is validated (sokol_gfx's order): fd is
+     * the renderer's copy, which it points at them, so that validate() and
+     * every stage see only resolved values. It fills zeros only and must
+     * not trust the rest, which validate() judges. */
     void (*resolve)(const snell__services *sv, snell_frame_desc *fd, void *state);
     /* Before any stage runs: what it will do this frame, which earlier
      * stages' set-up may depend on (the scene layers: every glass kernel's
