@@ -50,16 +50,17 @@ typedef struct snell__kernel_hook {
 typedef struct snell__stage {
     const char *name;               /* as snell_frame_stats.stages lists it */
     size_t state_size;              /* its slot's bytes, 0: none */
-    /* All may be NULL. create: at the renderer's creation (d resolved),
-     * its state zeroed: its first values, and its part of the renderer
-     * (checked; the target's size, samples and colour texture in sv are
-     * its to set, before the target is made); a failure fails the
-     * creation. destroy: its GL objects and memory, in the renderer's
-     * context (also after a failed create). */
+    /* All may be NULL. validate_renderer: its part of the renderer's
+     * description (resolved), checked before the renderer makes anything,
+     * and the target's shape it asks for set in sv (the ssaa stage the
+     * frame's size, the msaa stage its samples), which the renderer's
+     * memory check counts. create: at the renderer's creation, its state
+     * zeroed: its first values and GL objects (the target's colour texture
+     * and the image read back, in sv, are its to set before the target is
+     * made); a failure fails the creation. destroy: its GL objects and
+     * memory, in the renderer's context (also after a failed create). */
+    snell_status (*validate_renderer)(snell__services *sv, const snell_renderer_desc *d);
     snell_status (*create)(snell__services *sv, const snell_renderer_desc *d, void *state);
-    /* Its part of the renderer's description (resolved), checked before the
-     * renderer makes anything. */
-    snell_status (*validate_renderer)(snell_ctx *ctx, const snell_renderer_desc *d);
     void (*destroy)(snell_ctx *ctx, void *state);
     /* Its part of the frame description, checked before anything is drawn. */
     snell_status (*validate)(const snell__services *sv, const snell_frame_desc *fd);

@@ -12,23 +12,26 @@ typedef struct msaa_state {
     unsigned fbo, rb;               /* the single-sample image it resolves into */
 } msaa_state;
 
-static snell_status validate_renderer(snell_ctx *ctx, const snell_renderer_desc *d)
+static snell_status validate_renderer(snell__services *sv, const snell_renderer_desc *d)
 {
+    snell_ctx *ctx = sv->ctx;
     if (d->msaa < 0 || (d->msaa > 1 && (d->target != SNELL_TARGET_OFFSCREEN || d->output != SNELL_OUTPUT_COLOR)))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d needs an offscreen colour renderer (0 or 1 = off)",
                            d->msaa);
     if (d->msaa > 1 && d->ssaa > 1)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "msaa %d and ssaa %d: one antialiasing at a time", d->msaa,
                            d->ssaa);
-    return d->msaa > 1 ? snell__ctx_limit(ctx, SNELL__LIM_SAMPLES, d->msaa, "msaa") : SNELL_OK;
+    sv->samples = d->msaa > 1 ? d->msaa : 0;
+    return sv->samples ? snell__ctx_limit(ctx, SNELL__LIM_SAMPLES, d->msaa, "msaa") : SNELL_OK;
 }
 
 static snell_status create(snell__services *sv, const snell_renderer_desc *d, void *state)
 {
     msaa_state *m = (msaa_state *)state;
     GLenum status;
-    if (d->msaa <= 1) return SNELL_OK;
-    m->samples = sv->samples = d->msaa;
+    (void)d; /* validate_renderer() read it into sv->samples */
+    if (!sv->samples) return SNELL_OK;
+    m->samples = sv->samples;
     glGenRenderbuffers(1, &m->rb);
     glBindRenderbuffer(GL_RENDERBUFFER, m->rb);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, sv->width, sv->height);

@@ -12,10 +12,10 @@ typedef struct premultiplied_state {
     int on;                         /* snell_renderer_desc.premultiplied_alpha */
 } premultiplied_state;
 
-static snell_status validate_renderer(snell_ctx *ctx, const snell_renderer_desc *d)
+static snell_status validate_renderer(snell__services *sv, const snell_renderer_desc *d)
 {
     if (d->premultiplied_alpha && (d->premultiplied_alpha != 1 || d->output != SNELL_OUTPUT_COLOR))
-        return snell__fail(ctx, SNELL_E_INVALID_ARG, "premultiplied_alpha %d: 0 or 1, with colour output",
+        return snell__fail(sv->ctx, SNELL_E_INVALID_ARG, "premultiplied_alpha %d: 0 or 1, with colour output",
                            d->premultiplied_alpha);
     return SNELL_OK;
 }

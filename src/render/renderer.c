@@ -104,6 +104,7 @@ static snell_status target_limit(snell_ctx *ctx, int size, const char *what)
 snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *desc, snell_renderer **out)
 {
     snell_renderer_desc d;
+    snell__services shape; /* the target as the stages shape it, before anything is made */
     snell_renderer *r;
     snell_status st;
     snell_glstate saved;
@@ -122,27 +123,30 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
                            (int)d.output);
     if (d.output != SNELL_OUTPUT_COLOR && d.target != SNELL_TARGET_OFFSCREEN)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "exit-direction output needs an offscreen target");
+    memset(&shape, 0, sizeof shape);
+    shape.ctx = ctx;
+    shape.target = d.target;
+    shape.out_width = shape.width = d.width;
+    shape.out_height = shape.height = d.height;
     for (i = 0; i < snell__stage_count; i++)
-        if (snell__stages[i]->validate_renderer && (st = snell__stages[i]->validate_renderer(ctx, &d)) != SNELL_OK)
+        if (snell__stages[i]->validate_renderer && (st = snell__stages[i]->validate_renderer(&shape, &d)) != SNELL_OK)
             return st;
     if (d.target == SNELL_TARGET_OFFSCREEN) {
         /* the targets made now, before any frame: colour and depth (4 + 4 bytes
-         * a pixel, 16 + 4 for exit directions) at the SSAA size, a sample each
-         * with MSAA, and the resolved image beside them; a software GL holds
-         * them in this process */
-        size_t f = d.ssaa > 1 ? (size_t)d.ssaa : 1, px = (size_t)d.width * (size_t)d.height;
-        size_t bytes = px * f * f * (d.output == SNELL_OUTPUT_COLOR ? 8u : 20u) * (d.msaa > 1 ? (size_t)d.msaa : 1u) +
-                       (f > 1 || d.msaa > 1 ? px * 4u : 0u);
+         * a pixel, 16 + 4 for exit directions) at the frame's size and samples
+         * as the stages shaped it, and the resolved image beside them where
+         * that differs from the output; a software GL holds them in this process */
+        size_t px = (size_t)shape.width * (size_t)shape.height, out_px = (size_t)d.width * (size_t)d.height;
+        size_t bytes = px * (d.output == SNELL_OUTPUT_COLOR ? 8u : 20u) * (shape.samples > 1 ? (size_t)shape.samples : 1u) +
+                       (px != out_px || shape.samples > 1 ? out_px * 4u : 0u);
         char what[96];
         snprintf(what, sizeof what, "a %dx%d offscreen renderer", d.width, d.height);
         if ((st = snell__budget_check(ctx, bytes, what)) != SNELL_OK) return st;
     }
     r = (snell_renderer *)snell__calloc(&ctx->alloc, 1, sizeof *r);
     if (!r) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
-    r->ctx = r->sv.ctx = ctx;
-    r->sv.out_width = r->sv.width = d.width; /* the ssaa stage scales the frame's */
-    r->sv.out_height = r->sv.height = d.height;
-    r->sv.target = d.target;
+    r->ctx = ctx;
+    r->sv = shape;
     r->sv.comp = &r->comp, r->sv.dp = &r->dp, r->sv.dyn = &r->dyn, r->sv.prepared = &r->prepared;
     r->sv.method_state = method_state, r->sv.user = r;
     if ((unsigned)d.shading > SNELL_SHADING_SCREEN) {

@@ -65,12 +65,13 @@ void snell__ssaa_resolve(const snell__ssaa *s, int w, int h)
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 
-/* The ssaa stage: at the renderer's creation the frame's size and colour
- * texture (S times the output's per axis), after each frame the samples
+/* The ssaa stage: the frame's size (S times the output's per axis) and, at
+ * the renderer's creation, its colour texture; after each frame the samples
  * averaged into the output. */
-static snell_status validate_renderer(snell_ctx *ctx, const snell_renderer_desc *d)
+static snell_status validate_renderer(snell__services *sv, const snell_renderer_desc *d)
 {
     int side = d->ssaa * (d->width > d->height ? d->width : d->height);
+    snell_ctx *ctx = sv->ctx;
     snell_status st;
     if (d->ssaa < 0 || d->ssaa > SNELL_MAX_SSAA)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "ssaa %d outside 0..%d", d->ssaa, SNELL_MAX_SSAA);
@@ -78,7 +79,10 @@ static snell_status validate_renderer(snell_ctx *ctx, const snell_renderer_desc 
     if (d->target != SNELL_TARGET_OFFSCREEN || d->output != SNELL_OUTPUT_COLOR)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "ssaa %d needs an offscreen colour renderer", d->ssaa);
     st = snell__ctx_limit(ctx, SNELL__LIM_TEXTURE, side, "render size x ssaa");
-    return st != SNELL_OK ? st : snell__ctx_limit(ctx, SNELL__LIM_RENDERBUFFER, side, "render size x ssaa");
+    if (st == SNELL_OK) st = snell__ctx_limit(ctx, SNELL__LIM_RENDERBUFFER, side, "render size x ssaa");
+    sv->width = d->width * d->ssaa;
+    sv->height = d->height * d->ssaa;
+    return st;
 }
 
 static snell_status create(snell__services *sv, const snell_renderer_desc *d, void *state)
@@ -86,8 +90,6 @@ static snell_status create(snell__services *sv, const snell_renderer_desc *d, vo
     snell__ssaa *s = (snell__ssaa *)state;
     snell_status st = snell__ssaa_create(sv->ctx, s, d->ssaa > 1 ? d->ssaa : 1, sv->out_width, sv->out_height);
     if (st != SNELL_OK || s->factor <= 1) return st;
-    sv->width = sv->out_width * s->factor;
-    sv->height = sv->out_height * s->factor;
     sv->color_texture = s->frame_tex;
     sv->read_fbo = s->resolve_fbo;
     return SNELL_OK;
