@@ -623,7 +623,13 @@ typedef struct snell_camera {
  * fov_y outside [0, pi), a near plane (given or derived) not before the far
  * plane, and a distance so large that the derived far plane overflows; for
  * SNELL_CAMERA_MATRICES, a matrix that is not finite or not invertible, and
- * (SNELL_E_UNSUPPORTED) a projection neither perspective nor orthographic. */
+ * (SNELL_E_UNSUPPORTED) a projection neither perspective nor orthographic, a
+ * near plane closer than a millionth of the scene's scale (depth precision),
+ * an orthographic projection x view whose clip w is negative (a negated
+ * matrix), and a reversed-Z camera with the target's depth tested.
+ * Matrices are judged by projection x view alone: reversed-Z, an infinite
+ * far plane, an oblique near plane, a mirrored or scaled view draw what the
+ * standard camera with the same rays draws (a mirrored view: flipped in x). */
 
 #define SNELL_DEFAULT_CAMERA_DISTANCE 3.5f
 #define SNELL_DEFAULT_FOV_Y 0.78539816339744831f /* 45 degrees */

@@ -6,6 +6,7 @@
 
 #include <cglm/cglm.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 void snell__camera_defaults(const snell_camera *in, snell_camera *out)
@@ -76,6 +77,157 @@ int snell__projection_orthographic(const float p[16])
     return p[3] == 0.0f && p[7] == 0.0f && p[11] == 0.0f && p[15] != 0.0f;
 }
 
+/* ------------------------------------------------ the host's matrices, standardised */
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void cross3(const double *a, const double *b, double *o)
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void unit3(double *a)
+{
+    double l = sqrt(dot3(a, a));
+    a[0] /= l, a[1] /= l, a[2] /= l;
+}
+
+/* x with the rows r0, r1, r2 (xyz) . x = y (Cramer). */
+static void solve3(const double *r0, const double *r1, const double *r2, const double y[3], double x[3])
+{
+    double c12[3], c20[3], c01[3], det;
+    int k;
+    cross3(r1, r2, c12), cross3(r2, r0, c20), cross3(r0, r1, c01);
+    det = dot3(r0, c12);
+    for (k = 0; k < 3; k++) x[k] = (y[0] * c12[k] + y[1] * c20[k] + y[2] * c01[k]) / det;
+}
+
+/* Already what snell draws with: a rigid view (orthonormal, det +1) and a
+ * projection of glm_perspective/glm_frustum/glm_ortho's form (finite far,
+ * depth -1 near to 1 far, no oblique or mirrored plane). */
+static int standard_pair(const float *v, const float *p)
+{
+    int i, j;
+    int persp = p[11] == -1.0f && p[15] == 0.0f && p[10] < -1.0f && p[14] < 0.0f && p[12] == 0.0f && p[13] == 0.0f;
+    int ortho = p[11] == 0.0f && p[15] == 1.0f && p[10] < 0.0f && p[8] == 0.0f && p[9] == 0.0f;
+    if (!(persp || ortho) || p[3] != 0.0f || p[7] != 0.0f || !(p[0] > 0.0f) || !(p[5] > 0.0f) || p[1] != 0.0f ||
+        p[2] != 0.0f || p[4] != 0.0f || p[6] != 0.0f || v[3] != 0.0f || v[7] != 0.0f || v[11] != 0.0f ||
+        v[15] != 1.0f)
+        return 0;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) {
+            float d = v[i] * v[j] + v[4 + i] * v[4 + j] + v[8 + i] * v[8 + j];
+            if (fabsf(d - (i == j)) > 1e-5f) return 0;
+        }
+    return v[0] * (v[5] * v[10] - v[6] * v[9]) - v[4] * (v[1] * v[10] - v[2] * v[9]) +
+               v[8] * (v[1] * v[6] - v[2] * v[5]) > 0.0f;
+}
+
+/* A rigid view and a standard projection (glm's forms) with the same pixel
+ * of every world point as projection x view, judged by that product alone.
+ * Perspective: the eye is where clip x, y and w vanish, the view axis the
+ * gradient of w; near and far where the host's depth reaches its near and
+ * far values along the axis and the frustum's corner rays (an oblique near
+ * plane: the nearest; an infinite far: 1e7 times the near). Orthographic:
+ * the axis is where x and y stay put, the depth rising along it (a
+ * reversed orthographic depth cannot be told from a view turned round).
+ * Returns SNELL__CAMERA_* flags, or -1 with *why. */
+static int standardize(const float *view, const float *proj, float eye[3], float v[16], float p[16], double *near_out,
+                       char *why, size_t n)
+{
+    double m[4][4], e[3], y[3], fwd[3], up[3], right[3], s = 1.0, z0, near_ = HUGE_VAL, far_ = 0.0;
+    int i, j, k, flags = 0, ortho, infinite = 0;
+    for (i = 0; i < 4; i++)
+        for (j = 0; j < 4; j++)
+            for (m[i][j] = 0.0, k = 0; k < 4; k++) m[i][j] += (double)proj[4 * k + i] * view[4 * j + k];
+    ortho = m[3][0] == 0.0 && m[3][1] == 0.0 && m[3][2] == 0.0;
+    if (ortho) {
+        if (!(m[3][3] > 0.0)) {
+            snprintf(why, n, "is orthographic with clip w %g <= 0: every point is clipped (a negated matrix?)", m[3][3]);
+            return -1;
+        }
+        for (i = 0; i < 3; i++)
+            for (j = 0; j < 4; j++) m[i][j] /= m[3][3];
+        y[0] = -m[0][3], y[1] = -m[1][3], y[2] = -1.0 - m[2][3];
+        solve3(m[0], m[1], m[2], y, e); /* the near plane's centre */
+        cross3(m[0], m[1], fwd);
+        if (dot3(fwd, m[2]) < 0.0) fwd[0] = -fwd[0], fwd[1] = -fwd[1], fwd[2] = -fwd[2];
+    } else {
+        y[0] = -m[0][3], y[1] = -m[1][3], y[2] = -m[3][3];
+        solve3(m[0], m[1], m[3], y, e);
+        memcpy(fwd, m[3], sizeof fwd);
+        s = sqrt(dot3(fwd, fwd));
+    }
+    unit3(fwd);
+    for (k = 0; k < 3; k++) up[k] = m[1][k] - dot3(m[1], fwd) * fwd[k];
+    unit3(up);
+    cross3(fwd, up, right);
+    memset(v, 0, 16 * sizeof *v);
+    memset(p, 0, 16 * sizeof *p);
+    for (k = 0; k < 3; k++) {
+        v[4 * k] = (float)right[k], v[4 * k + 1] = (float)up[k], v[4 * k + 2] = (float)-fwd[k];
+        eye[k] = (float)e[k];
+    }
+    v[12] = (float)-dot3(right, e), v[13] = (float)-dot3(up, e), v[14] = (float)dot3(fwd, e), v[15] = 1.0f;
+    p[0] = (float)(dot3(m[0], right) / s), p[4] = (float)(dot3(m[0], up) / s), p[8] = (float)(-dot3(m[0], fwd) / s);
+    p[5] = (float)(dot3(m[1], up) / s), p[9] = (float)(-dot3(m[1], fwd) / s);
+    if (p[0] < 0.0f) flags |= SNELL__CAMERA_MIRRORED;
+    if (ortho) {
+        far_ = 2.0 / dot3(m[2], fwd);
+        p[10] = (float)(-2.0 / far_), p[14] = -1.0f, p[15] = 1.0f;
+        *near_out = HUGE_VAL;
+        return flags;
+    }
+    /* Along the eye ray of depth 1 through ndc (cx, cy): ndc z = z0 / (s D) + a. */
+    z0 = m[2][0] * e[0] + m[2][1] * e[1] + m[2][2] * e[2] + m[2][3];
+    if (z0 == 0.0) {
+        snprintf(why, n, "puts the near plane through the eye");
+        return -1;
+    }
+    if (z0 > 0.0) flags |= SNELL__CAMERA_REVERSED;
+    for (k = 0; k < 5; k++) {
+        double cx = k ? ((k & 1) ? 1.0 : -1.0) : 0.0, cy = k ? ((k & 2) ? 1.0 : -1.0) : 0.0, d[3], a, dn, df;
+        double ye = (cy + p[9]) / p[5], xe = (cx + p[8] - p[4] * ye) / p[0];
+        for (j = 0; j < 3; j++) d[j] = xe * right[j] + ye * up[j] + fwd[j];
+        a = dot3(m[2], d) / s;
+        dn = z0 / (s * ((z0 > 0.0 ? 1.0 : -1.0) - a));
+        df = z0 / (s * ((z0 > 0.0 ? -1.0 : 1.0) - a));
+        if (dn > 0.0) near_ = fmin(near_, dn);
+        if (df > 0.0) far_ = fmax(far_, df);
+        else infinite = 1;
+    }
+    *near_out = near_;
+    if (!(near_ < HUGE_VAL)) {
+        snprintf(why, n, "has no near plane in front of the eye");
+        return -1;
+    }
+    if (infinite || far_ > 1e7 * near_) far_ = 1e7 * near_;
+    p[10] = (float)(-(far_ + near_) / (far_ - near_));
+    p[14] = (float)(-2.0 * far_ * near_ / (far_ - near_));
+    p[11] = -1.0f;
+    return flags;
+}
+
+int snell__camera_standard(const snell_camera *cam, float aspect, float eye[3], float view[16], float proj[16])
+{
+    snell_camera c;
+    float v[16], p[16], e[3];
+    double near_;
+    char why[8];
+    int flags;
+    snell__camera_defaults(cam, &c);
+    snell_camera_matrices(&c, aspect, eye, view, proj);
+    if (c.kind != SNELL_CAMERA_MATRICES || standard_pair(c.view, c.projection)) return 0;
+    flags = standardize(c.view, c.projection, e, v, p, &near_, why, sizeof why);
+    if (flags < 0) return 0; /* refused by snell__camera_validate */
+    if (eye) memcpy(eye, e, sizeof e);
+    if (view) memcpy(view, v, sizeof v);
+    if (proj) memcpy(proj, p, sizeof p);
+    return flags;
+}
+
 /* The host's matrices: finite, invertible, and a perspective projection
  * (bottom row 0 0 -w 0: the view rays start at the eye) or an orthographic
  * one (0 0 0 w: they run along the axis, common/view.glsl). */
@@ -101,6 +253,19 @@ static snell_status validate_matrices(const snell_ctx *ctx, const snell_camera *
     glm_mat4_mul(a, b, vp);
     if (!snell__matrix_invertible((const float *)vp, why, sizeof why))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection x camera.view %s", who, why);
+    {
+        /* Depth precision: a near plane closer than a millionth of the
+         * scene's scale (as an orbit's, snell__camera_validate) rounds every
+         * depth beyond it to the far plane's. */
+        float e[3], v[16], q[16];
+        double near_;
+        if (standardize(cam->view, p, e, v, q, &near_, why, sizeof why) < 0)
+            return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s: camera.projection x camera.view %s", who, why);
+        if (near_ < 1e-6 * fmax(1.0, sqrt((double)e[0] * e[0] + (double)e[1] * e[1] + (double)e[2] * e[2])))
+            return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s: camera.projection's near plane at %g from the eye is "
+                               "too close for depth precision (at least a millionth of the scene's scale, 1 or the "
+                               "eye's distance from the origin)", who, near_);
+    }
     return SNELL_OK;
 }
 

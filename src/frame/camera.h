@@ -21,6 +21,18 @@ void snell__camera_defaults(const snell_camera *in, snell_camera *out);
  * NULL = all defaults. */
 snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *cam, float aspect, const char *who);
 
+/* What snell__camera_standard found in the host's matrices. */
+#define SNELL__CAMERA_MIRRORED 1 /* the image is a standard camera's flipped in x: the winding flips */
+#define SNELL__CAMERA_REVERSED 2 /* reversed-Z: the host's depth runs from 1 near to 0 far */
+
+/* The camera as snell draws it: snell_camera_matrices, except that host
+ * matrices (a validated SNELL_CAMERA_MATRICES camera) not of glm's standard
+ * forms become a rigid view and a standard projection with the same pixel of
+ * every point, judged by projection x view alone: reversed-Z, an infinite far
+ * plane, an oblique near plane, a scaled or mirrored view. Returns
+ * SNELL__CAMERA_* flags. */
+int snell__camera_standard(const snell_camera *cam, float aspect, float eye[3], float view[16], float proj[16]);
+
 /* 1 if the column-major projection p is orthographic (bottom row 0 0 0 w):
  * every view ray runs along the camera's axis. */
 int snell__projection_orthographic(const float p[16]);

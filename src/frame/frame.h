@@ -60,6 +60,7 @@ typedef struct snell__view {
     mat4 view, proj, view_proj, inv_view_proj;
     float eye[3];                   /* the camera's position (orthographic: a point on its axis) */
     float view_axis[4];             /* the direction it looks along; w 1: orthographic (common/view.glsl) */
+    int mirrored;                   /* the camera flips the image in x (frame/camera.h): windings flip */
     int width, height;
     snell__output_kind out;
     snell__back_maps back;          /* this frame's back-face maps (band 0 and the target's size if none) */
@@ -78,7 +79,7 @@ typedef struct snell__object {
     const snell_glass_resolved *glass;
     mat4 model, inv_model;
     mat3 normal_matrix;             /* inverse transpose of model's 3x3 */
-    int mirrored;                   /* model's determinant < 0: winding flips */
+    int mirrored;                   /* model's determinant < 0 or a mirrored camera (not both): winding flips */
     float bsphere[4];               /* world bounding sphere: centre, radius */
     float view_depth;               /* of the sphere's centre, along the view axis */
     const snell_mesh_analysis *analysis; /* NULL: not analysed (not needed, or failed) */

@@ -749,7 +749,7 @@ snell_status snell__ref_camera_setup(snell_ctx *ctx, const snell_ref_params *p, 
                            SNELL_REF_MAX_SIZE);
     st = snell__camera_validate(ctx, &p->camera, (float)cr->w / (float)cr->h, "reference");
     if (st != SNELL_OK) return st;
-    snell_camera_matrices(&p->camera, (float)cr->w / (float)cr->h, eye, view, proj);
+    snell__camera_standard(&p->camera, (float)cr->w / (float)cr->h, eye, view, proj);
     for (i = 0; i < 4; i++)
         for (j = 0; j < 4; j++) {
             double s = 0.0;

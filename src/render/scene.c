@@ -77,7 +77,7 @@ static snell_status build_object(snell_ctx *ctx, const snell_glass *g, int i, sn
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: model matrix %s", i, why);
     glm_mat4_transpose_to(o->inv_model, inv);
     glm_mat4_pick3(inv, o->normal_matrix);
-    o->mirrored = glm_mat4_det(o->model) < 0.0f;
+    o->mirrored = (glm_mat4_det(o->model) < 0.0f) != sc->view.mirrored; /* either flips the winding */
     snell__bounding_sphere(o->mesh, o->model, o->bsphere);
     glm_mat4_mulv(sc->view.view, (vec4){o->bsphere[0], o->bsphere[1], o->bsphere[2], 1.0f}, c);
     o->view_depth = -c[2];
@@ -112,7 +112,8 @@ snell_status snell__scene_build(snell_ctx *ctx, const snell_frame_desc *fd, int 
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass_count %d outside 0..%d or glass list NULL",
                            fd->glass_count, SNELL_MAX_GLASS);
     memset(v, 0, sizeof *v);
-    snell_camera_matrices(&fd->camera, (float)width / (float)height, v->eye, (float *)v->view, (float *)v->proj);
+    v->mirrored = snell__camera_standard(&fd->camera, (float)width / (float)height, v->eye, (float *)v->view,
+                                         (float *)v->proj) & SNELL__CAMERA_MIRRORED;
     glm_mat4_mul(v->proj, v->view, v->view_proj);
     glm_mat4_inv(v->view_proj, v->inv_view_proj);
     if (snell__projection_orthographic((const float *)v->proj)) {
