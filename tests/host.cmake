@@ -66,6 +66,12 @@ if(TARGET snell-render)
   set_tests_properties(bench_camera_view_alone PROPERTIES LABELS "cli")
 endif()
 
+# The cameras engines use (issue 48): reversed-Z, infinite far, oblique near,
+# mirrored and scaled views as matrices, each the image of its standard
+# equivalent in every method and the reference; bad ones refused by name.
+snell_add_test(test_camera_engines SOURCES test_camera_engines.c LABELS "render;gl")
+target_link_libraries(test_camera_engines PRIVATE PkgConfig::GLES m)
+
 # The host's scene behind the glass (snell_frame_desc.backdrop): a host's
 # frame and depth as textures or copied from its framebuffer, searched by
 # every glass's exit rays; against the reference with the same backdrop.
