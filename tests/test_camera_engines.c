@@ -6,8 +6,9 @@
  * far plane is far -> infinity (compared with far 1e6); an oblique near
  * plane (Lengyel 2005) changes no ray beyond it; a view mirrored in x (on
  * either matrix) is the standard image flipped in x; a scaled view with a
- * projection that undoes it has the same product. Nearly singular or
- * unsupported ones refused by name. */
+ * projection that undoes it has the same product; reversed-Z orthographic
+ * is the orthographic image. Nearly singular or unsupported ones refused by
+ * name, and reversed-Z with the target's depth tested. */
 #include "test_util.h"
 #include "snell/snell_ref.h"
 
@@ -25,14 +26,15 @@ typedef struct cam {
     const char *name;
     mat4 view, proj;
     int flip;     /* the expected image is the standard one flipped in x */
-    int far_1e6;  /* the standard equivalent has far 1e6 (an infinite far plane) */
+    int base;     /* its standard equivalent: 0 far 50, 1 far 1e6 (an infinite far), 2 orthographic */
 } cam;
 
-static void standard(mat4 view, mat4 proj, float z_far)
+static void standard(mat4 view, mat4 proj, int base)
 {
     vec3 eye = {0.6f, 0.8f, 3.2f}, at = {0.0f, 0.0f, 0.0f}, up = {0.0f, 1.0f, 0.0f};
     glm_lookat(eye, at, up, view);
-    glm_perspective(0.8f, 1.0f, 0.1f, z_far, proj);
+    if (base == 2) glm_ortho(-1.6f, 1.6f, -1.6f, 1.6f, 0.5f, 20.0f, proj);
+    else glm_perspective(0.8f, 1.0f, 0.1f, base ? 1e6f : 50.0f, proj);
 }
 
 static void mul_left(const float l[16], mat4 m) /* m = l x m */
@@ -67,13 +69,13 @@ static int make_cases(cam *c)
     static const float clip[4] = {0.25f, 0.3f, -1.0f, -1.2f}; /* tilted, 1.2 ahead, the eye behind it */
     int n = 0, i;
     mat4 view, inf;
-    standard(view, inf, 50.0f);
+    standard(view, inf, 0);
     inf[2][2] = -1.0f, inf[3][2] = -0.2f; /* far -> infinity: -(f + n) / (f - n) -> -1, -2fn / (f - n) -> -2n */
-    for (i = 0; i < 7; i++) standard(c[i].view, c[i].proj, 50.0f);
+    for (i = 0; i < 8; i++) standard(c[i].view, c[i].proj, i == 7 ? 2 : 0);
     c[n].name = "reversed-Z", mul_left(rev, c[n].proj), n++;
-    c[n].name = "infinite far", glm_mat4_copy(inf, c[n].proj), c[n].far_1e6 = 1, n++;
+    c[n].name = "infinite far", glm_mat4_copy(inf, c[n].proj), c[n].base = 1, n++;
     c[n].name = "reversed-Z infinite far", glm_mat4_copy(inf, c[n].proj), mul_left(rev, c[n].proj);
-    c[n].far_1e6 = 1, n++;
+    c[n].base = 1, n++;
     c[n].name = "oblique near plane", oblique(c[n].proj, clip), n++;
     c[n].name = "mirrored view", mul_left(flip, c[n].view), c[n].flip = 1, n++;
     c[n].name = "mirrored projection", mul_left(flip, c[n].proj), c[n].flip = 1, n++;
@@ -85,6 +87,7 @@ static int make_cases(cam *c)
         glm_mat4_copy(p, c[n].proj);
     }
     n++;
+    c[n].name = "reversed-Z orthographic", mul_left(rev, c[n].proj), c[n].base = 2, n++;
     return n;
 }
 
@@ -113,7 +116,7 @@ static void refusals(snell_ctx *ctx, snell_renderer *r, snell_frame_desc *fd)
 {
     mat4 view, proj;
     snell_status st;
-    standard(view, proj, 50.0f);
+    standard(view, proj, 0);
     glm_perspective(0.8f, 1.0f, 1e-7f, 50.0f, proj);
     set_camera(&fd->camera, view, proj);
     st = snell_render(r, fd, NULL);
@@ -125,18 +128,26 @@ static void refusals(snell_ctx *ctx, snell_renderer *r, snell_frame_desc *fd)
     st = snell_render(r, fd, NULL);
     CHECK(st == SNELL_E_UNSUPPORTED && strstr(snell_last_error(ctx), "orthographic"), "negated ortho: %s: %s",
           snell_status_str(st), snell_last_error(ctx));
-    standard(view, proj, 50.0f);
+    standard(view, proj, 0);
     memset(view[2], 0, sizeof view[2]);
     set_camera(&fd->camera, view, proj);
     st = snell_render(r, fd, NULL);
     CHECK(st == SNELL_E_INVALID_ARG && strstr(snell_last_error(ctx), "singular"), "singular view: %s: %s",
           snell_status_str(st), snell_last_error(ctx));
+    standard(view, proj, 0);
+    mul_left((const float[16]){1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1}, proj);
+    set_camera(&fd->camera, view, proj);
+    fd->depth = SNELL_DEPTH_TEST;
+    st = snell_render(r, fd, NULL);
+    CHECK(st == SNELL_E_UNSUPPORTED && strstr(snell_last_error(ctx), "reversed-Z"), "reversed-Z, depth tested: %s: %s",
+          snell_status_str(st), snell_last_error(ctx));
+    fd->depth = SNELL_DEPTH_DEFAULT;
 }
 
 /* The reference through each camera against it through the standard one. */
 static void reference(snell_ctx *ctx, snell_frame_desc *fd, cam *c, int n)
 {
-    static float base[2][NR * NR * 3], img[NR * NR * 3];
+    static float base[3][NR * NR * 3], img[NR * NR * 3];
     static uint8_t a[NR * NR * 4], b[NR * NR * 4];
     snell_ref *ref = NULL;
     snell_ref_params p;
@@ -144,8 +155,8 @@ static void reference(snell_ctx *ctx, snell_frame_desc *fd, cam *c, int n)
     int i, f;
     CHECK_OK_CTX(ctx, test_ref_create(ctx, fd, &ref));
     if (!ref) return;
-    for (f = 0; f < 2; f++) {
-        standard(view, proj, f ? 1e6f : 50.0f);
+    for (f = 0; f < 3; f++) {
+        standard(view, proj, f);
         set_camera(&fd->camera, view, proj);
         test_ref_params(fd, NR, NR, 6, &p);
         CHECK_OK_CTX(ctx, test_ref_render(ref, &p, base[f], NULL, NULL));
@@ -156,7 +167,7 @@ static void reference(snell_ctx *ctx, snell_frame_desc *fd, cam *c, int n)
         test_ref_params(fd, NR, NR, 6, &p);
         CHECK_OK_CTX(ctx, test_ref_render(ref, &p, img, NULL, NULL));
         snell_ref_rgb_to_rgba8(img, NR, NR, a);
-        snell_ref_rgb_to_rgba8(base[c[i].far_1e6], NR, NR, b);
+        snell_ref_rgb_to_rgba8(base[c[i].base], NR, NR, b);
         d = differ(a, b, NR, NR, c[i].flip);
         printf("reference, %s: %d pixels differ\n", c[i].name, d);
         CHECK(d <= 2, "reference, %s: %d of %d pixels differ", c[i].name, d, NR * NR);
@@ -166,14 +177,14 @@ static void reference(snell_ctx *ctx, snell_frame_desc *fd, cam *c, int n)
 
 int main(void)
 {
-    static uint8_t base[2][N * N * 4], img[N * N * 4];
+    static uint8_t base[3][N * N * 4], img[N * N * 4];
     snell_ctx *ctx = test_ctx();
     snell_renderer *r;
     snell_env *env;
     snell_mesh *torus = NULL;
     snell_glass g;
     snell_frame_desc fd;
-    cam c[8];
+    cam c[9];
     int n, m, i, f;
     if (!ctx) SKIP("no GL context");
     env = test_sky(ctx, 32);
@@ -188,9 +199,9 @@ int main(void)
     for (m = 0; m < snell_method_count(); m++) {
         const char *name = snell_method_info_at(m)->name;
         g.material.method = snell_method_info_at(m)->method;
-        for (f = 0; f < 2; f++) {
+        for (f = 0; f < 3; f++) {
             mat4 view, proj;
-            standard(view, proj, f ? 1e6f : 50.0f);
+            standard(view, proj, f);
             set_camera(&fd.camera, view, proj);
             CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
             CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, base[f]));
@@ -203,7 +214,7 @@ int main(void)
             st = snell_render(r, &fd, NULL);
             CHECK(st == SNELL_OK, "%s, %s: %s", name, c[i].name, snell_last_error(ctx));
             CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, img));
-            d = differ(img, base[c[i].far_1e6], N, N, c[i].flip);
+            d = differ(img, base[c[i].base], N, N, c[i].flip);
             printf("%s, %s: %d pixels differ\n", name, c[i].name, d);
             CHECK(d <= EDGE, "%s, %s: %d of %d pixels differ from the standard camera's%s", name, c[i].name, d,
                   N * N, c[i].flip ? " flipped in x" : "");

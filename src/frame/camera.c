@@ -131,8 +131,8 @@ static int standard_pair(const float *v, const float *p)
  * gradient of w; near and far where the host's depth reaches its near and
  * far values along the axis and the frustum's corner rays (an oblique near
  * plane: the nearest; an infinite far: 1e7 times the near). Orthographic:
- * the axis is where x and y stay put, the depth rising along it (a
- * reversed orthographic depth cannot be told from a view turned round).
+ * the axis is where x and y stay put, looking along y x x (a mirrored
+ * orthographic view cannot be told from a reversed-Z one turned round).
  * Returns SNELL__CAMERA_* flags, or -1 with *why. */
 static int standardize(const float *view, const float *proj, float eye[3], float v[16], float p[16], double *near_out,
                        char *why, size_t n)
@@ -150,10 +150,10 @@ static int standardize(const float *view, const float *proj, float eye[3], float
         }
         for (i = 0; i < 3; i++)
             for (j = 0; j < 4; j++) m[i][j] /= m[3][3];
-        y[0] = -m[0][3], y[1] = -m[1][3], y[2] = -1.0 - m[2][3];
+        cross3(m[1], m[0], fwd); /* x right, y up: it looks along y x x */
+        if (dot3(fwd, m[2]) < 0.0) flags |= SNELL__CAMERA_REVERSED;
+        y[0] = -m[0][3], y[1] = -m[1][3], y[2] = (flags ? 1.0 : -1.0) - m[2][3];
         solve3(m[0], m[1], m[2], y, e); /* the near plane's centre */
-        cross3(m[0], m[1], fwd);
-        if (dot3(fwd, m[2]) < 0.0) fwd[0] = -fwd[0], fwd[1] = -fwd[1], fwd[2] = -fwd[2];
     } else {
         y[0] = -m[0][3], y[1] = -m[1][3], y[2] = -m[3][3];
         solve3(m[0], m[1], m[3], y, e);
@@ -175,7 +175,7 @@ static int standardize(const float *view, const float *proj, float eye[3], float
     p[5] = (float)(dot3(m[1], up) / s), p[9] = (float)(-dot3(m[1], fwd) / s);
     if (p[0] < 0.0f) flags |= SNELL__CAMERA_MIRRORED;
     if (ortho) {
-        far_ = 2.0 / dot3(m[2], fwd);
+        far_ = 2.0 / fabs(dot3(m[2], fwd));
         p[10] = (float)(-2.0 / far_), p[14] = -1.0f, p[15] = 1.0f;
         *near_out = HUGE_VAL;
         return flags;
