@@ -78,6 +78,9 @@ const char *snell__quote(const char *s, char *buf, size_t n);
  * Else 0, and why (if not NULL) says whether it is singular or its
  * determinant only overflows or underflows float ("is singular ..."). */
 int snell__matrix_invertible(const float m[16], char *why, size_t n);
+/* inv = m's inverse (cglm's glm_mat4_inv, one copy rather than one inlined
+ * at every caller: the device build's footprint). Both 16-byte aligned (mat4). */
+void snell__mat4_inv(const float m[16], float inv[16]);
 
 /* The context's memory budget (snell_ctx_desc.memory_budget; the default for NULL). */
 size_t snell__ctx_budget(const snell_ctx *ctx);

@@ -37,6 +37,11 @@ static double det_double(const float m[16])
     return s[0] * c[5] - s[1] * c[4] + s[2] * c[3] + s[3] * c[2] - s[4] * c[1] + s[5] * c[0];
 }
 
+void snell__mat4_inv(const float m[16], float inv[16])
+{
+    glm_mat4_inv((vec4 *)(void *)m, (vec4 *)(void *)inv);
+}
+
 int snell__matrix_invertible(const float m[16], char *why, size_t n)
 {
     mat4 a, inv;
@@ -45,7 +50,7 @@ int snell__matrix_invertible(const float m[16], char *why, size_t n)
     memcpy(a, m, sizeof a);
     det = glm_mat4_det(a);
     if (fabsf(det) > 0.0f && isfinite(det)) {
-        glm_mat4_inv(a, inv);
+        snell__mat4_inv((const float *)a, (float *)inv);
         if (all_finite((const float *)inv, 16)) return 1;
     }
     /* an invertible matrix whose determinant float cannot hold is no singular one */

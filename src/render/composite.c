@@ -82,7 +82,7 @@ static void draw_opaque_list(const snell__opaque_prog *p, const snell_opaque *li
         mat3 nm;
         if (o->model) memcpy(model, o->model, sizeof model);
         else glm_mat4_identity(model);
-        glm_mat4_inv(model, inv);
+        snell__mat4_inv((const float *)model, (float *)inv);
         glm_mat4_transpose(inv);
         glm_mat4_pick3(inv, nm);
         glUniformMatrix4fv(p->model, 1, GL_FALSE, (const GLfloat *)model);
@@ -173,7 +173,7 @@ snell_status snell__composite_background(snell_ctx *ctx, snell__composite *c, sn
                                          const float rot_view_proj[16])
 {
     mat4 inv;
-    glm_mat4_inv((vec4 *)rot_view_proj, inv);
+    snell__mat4_inv(rot_view_proj, (float *)inv);
     return snell__composite_background_lookup(ctx, c, kind, 0, (const float *)inv);
 }
 

@@ -81,7 +81,7 @@ static void opaque_item(const snell_opaque *o, int j, layer_item *it)
     it->mesh = o->mesh;
     if (o->model) memcpy(it->model, o->model, sizeof it->model);
     else glm_mat4_identity(it->model);
-    glm_mat4_inv(it->model, inv);
+    snell__mat4_inv((const float *)it->model, (float *)inv);
     glm_mat4_transpose(inv);
     glm_mat4_pick3(inv, it->normal_matrix);
     snell__bounding_sphere(o->mesh, it->model, it->bsphere);

@@ -72,7 +72,7 @@ static snell_status build_object(snell_ctx *ctx, const snell_glass *g, int i, sn
     o->glass = &sc->glass[i];
     if (g->model) memcpy(o->model, g->model, sizeof o->model);
     else glm_mat4_identity(o->model);
-    glm_mat4_inv(o->model, o->inv_model);
+    snell__mat4_inv((const float *)o->model, (float *)o->inv_model);
     if (!snell__matrix_invertible((const float *)o->model, why, sizeof why))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "glass %d: model matrix %s", i, why);
     glm_mat4_transpose_to(o->inv_model, inv);
@@ -115,7 +115,7 @@ snell_status snell__scene_build(snell_ctx *ctx, const snell_frame_desc *fd, int 
     v->mirrored = snell__camera_standard(&fd->camera, (float)width / (float)height, v->eye, (float *)v->view,
                                          (float *)v->proj) & SNELL__CAMERA_MIRRORED;
     glm_mat4_mul(v->proj, v->view, v->view_proj);
-    glm_mat4_inv(v->view_proj, v->inv_view_proj);
+    snell__mat4_inv((const float *)v->view_proj, (float *)v->inv_view_proj);
     if (snell__projection_orthographic((const float *)v->proj)) {
         /* every view ray is the eye's -Z in the world (common/view.glsl) */
         vec3 axis = {-v->view[0][2], -v->view[1][2], -v->view[2][2]};
