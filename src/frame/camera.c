@@ -9,6 +9,31 @@
 #include <stdio.h>
 #include <string.h>
 
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void cross3(const double *a, const double *b, double *o)
+{
+    o[0] = a[1] * b[2] - a[2] * b[1];
+    o[1] = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void unit3(double *a)
+{
+    double l = sqrt(dot3(a, a));
+    a[0] /= l, a[1] /= l, a[2] /= l;
+}
+
+/* x with the rows r0, r1, r2 (xyz) . x = y (Cramer). */
+static void solve3(const double *r0, const double *r1, const double *r2, const double y[3], double x[3])
+{
+    double c12[3], c20[3], c01[3], det;
+    int k;
+    cross3(r1, r2, c12), cross3(r2, r0, c20), cross3(r0, r1, c01);
+    det = dot3(r0, c12);
+    for (k = 0; k < 3; k++) x[k] = (y[0] * c12[k] + y[1] * c20[k] + y[2] * c01[k]) / det;
+}
+
 void snell__camera_defaults(const snell_camera *in, snell_camera *out)
 {
     snell_camera c;
@@ -38,7 +63,7 @@ void snell_camera_matrices(const snell_camera *cam, float aspect, float eye_out[
         /* The eye is where the view matrix puts the origin of eye space. */
         mat4 inv;
         memcpy(view, c.view, sizeof view);
-        glm_mat4_inv(view, inv);
+        snell__mat4_inv((const float *)view, (float *)inv);
         if (eye_out) memcpy(eye_out, inv[3], sizeof(vec3));
         if (view_out) memcpy(view_out, c.view, sizeof(mat4));
         if (proj_out) memcpy(proj_out, c.projection, sizeof(mat4));
@@ -77,151 +102,108 @@ int snell__projection_orthographic(const float p[16])
     return p[3] == 0.0f && p[7] == 0.0f && p[11] == 0.0f && p[15] != 0.0f;
 }
 
-/* ------------------------------------------------ the host's matrices, standardised */
-
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-static void cross3(const double *a, const double *b, double *o)
+/* o = a x b, column-major. */
+static void mul4(const double *a, const double *b, double *o)
 {
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
+    int i, j, k;
+    for (j = 0; j < 4; j++)
+        for (i = 0; i < 4; i++)
+            for (o[4 * j + i] = 0.0, k = 0; k < 4; k++) o[4 * j + i] += a[4 * k + i] * b[4 * j + k];
 }
 
-static void unit3(double *a)
-{
-    double l = sqrt(dot3(a, a));
-    a[0] /= l, a[1] /= l, a[2] /= l;
-}
-
-/* x with the rows r0, r1, r2 (xyz) . x = y (Cramer). */
-static void solve3(const double *r0, const double *r1, const double *r2, const double y[3], double x[3])
-{
-    double c12[3], c20[3], c01[3], det;
-    int k;
-    cross3(r1, r2, c12), cross3(r2, r0, c20), cross3(r0, r1, c01);
-    det = dot3(r0, c12);
-    for (k = 0; k < 3; k++) x[k] = (y[0] * c12[k] + y[1] * c20[k] + y[2] * c01[k]) / det;
-}
-
-/* Already what snell draws with: a rigid view (orthonormal, det +1) and a
- * projection of glm_perspective/glm_frustum/glm_ortho's form (finite far,
- * depth -1 near to 1 far, no oblique or mirrored plane). */
-static int standard_pair(const float *v, const float *p)
-{
-    int i, j;
-    int persp = p[11] == -1.0f && p[15] == 0.0f && p[10] < -1.0f && p[14] < 0.0f && p[12] == 0.0f && p[13] == 0.0f;
-    int ortho = p[11] == 0.0f && p[15] == 1.0f && p[10] < 0.0f && p[8] == 0.0f && p[9] == 0.0f;
-    if (!(persp || ortho) || p[3] != 0.0f || p[7] != 0.0f || !(p[0] > 0.0f) || !(p[5] > 0.0f) || p[1] != 0.0f ||
-        p[2] != 0.0f || p[4] != 0.0f || p[6] != 0.0f || v[3] != 0.0f || v[7] != 0.0f || v[11] != 0.0f ||
-        v[15] != 1.0f)
-        return 0;
-    for (i = 0; i < 3; i++)
-        for (j = 0; j < 3; j++) {
-            float d = v[i] * v[j] + v[4 + i] * v[4 + j] + v[8 + i] * v[8 + j];
-            if (fabsf(d - (i == j)) > 1e-5f) return 0;
-        }
-    return v[0] * (v[5] * v[10] - v[6] * v[9]) - v[4] * (v[1] * v[10] - v[2] * v[9]) +
-               v[8] * (v[1] * v[6] - v[2] * v[5]) > 0.0f;
-}
-
-/* A rigid view and a standard projection (glm's forms) with the same pixel
- * of every world point as projection x view, judged by that product alone.
- * Perspective: the eye is where clip x, y and w vanish, the view axis the
- * gradient of w; near and far where the host's depth reaches its near and
- * far values along the axis and the frustum's corner rays (an oblique near
- * plane: the nearest; an infinite far: 1e7 times the near). Orthographic:
- * the axis is where x and y stay put, looking along y x x (a mirrored
- * orthographic view cannot be told from a reversed-Z one turned round).
- * Returns SNELL__CAMERA_* flags, or -1 with *why. */
+/* A rigid view and a standard projection (glm's forms: depth -1 near to 1
+ * far, finite far, no oblique plane) with the same pixel of every world
+ * point as projection x view, judged by that product alone. Perspective: the
+ * eye is where clip x, y and w vanish, the view axis the gradient of w; near
+ * and far where the host's depth reaches its near and far values along the
+ * axis and the frustum's corner rays (an oblique near plane: the nearest; an
+ * infinite far: 1e7 times the near). Orthographic: the axis is where x and y
+ * stay put, looking along y x x (a mirrored orthographic view cannot be told
+ * from a reversed-Z one turned round). Returns SNELL__CAMERA_* flags, or -1
+ * with *why. */
 static int standardize(const float *view, const float *proj, float eye[3], float v[16], float p[16], double *near_out,
                        char *why, size_t n)
 {
-    double m[4][4], e[3], y[3], fwd[3], up[3], right[3], s = 1.0, z0, near_ = HUGE_VAL, far_ = 0.0;
-    int i, j, k, flags = 0, ortho, infinite = 0;
-    for (i = 0; i < 4; i++)
-        for (j = 0; j < 4; j++)
-            for (m[i][j] = 0.0, k = 0; k < 4; k++) m[i][j] += (double)proj[4 * k + i] * view[4 * j + k];
-    ortho = m[3][0] == 0.0 && m[3][1] == 0.0 && m[3][2] == 0.0;
+    double a[16], b[16], m[16], q[16], row[4][4], e[3], y[3], fwd[3], up[3], right[3], z0, near_ = HUGE_VAL,
+        far_ = 0.0;
+    int i, k, flags = 0, ortho, infinite = 0;
+    for (k = 0; k < 16; k++) a[k] = proj[k], b[k] = view[k];
+    mul4(a, b, m);
+    for (i = 0; i < 16; i++) row[i & 3][i >> 2] = m[i];
+    ortho = row[3][0] == 0.0 && row[3][1] == 0.0 && row[3][2] == 0.0;
+    if (ortho && !(row[3][3] > 0.0)) {
+        snprintf(why, n, "is orthographic with clip w %g <= 0: every point is clipped (a negated matrix?)", row[3][3]);
+        return -1;
+    }
     if (ortho) {
-        if (!(m[3][3] > 0.0)) {
-            snprintf(why, n, "is orthographic with clip w %g <= 0: every point is clipped (a negated matrix?)", m[3][3]);
-            return -1;
-        }
-        for (i = 0; i < 3; i++)
-            for (j = 0; j < 4; j++) m[i][j] /= m[3][3];
-        cross3(m[1], m[0], fwd); /* x right, y up: it looks along y x x */
-        if (dot3(fwd, m[2]) < 0.0) flags |= SNELL__CAMERA_REVERSED;
-        y[0] = -m[0][3], y[1] = -m[1][3], y[2] = (flags ? 1.0 : -1.0) - m[2][3];
-        solve3(m[0], m[1], m[2], y, e); /* the near plane's centre */
+        cross3(row[1], row[0], fwd); /* x right, y up: it looks along y x x */
+        if (dot3(fwd, row[2]) < 0.0) flags |= SNELL__CAMERA_REVERSED;
+        y[0] = -row[0][3], y[1] = -row[1][3], y[2] = (flags ? row[3][3] : -row[3][3]) - row[2][3];
+        solve3(row[0], row[1], row[2], y, e); /* the near plane's centre */
     } else {
-        y[0] = -m[0][3], y[1] = -m[1][3], y[2] = -m[3][3];
-        solve3(m[0], m[1], m[3], y, e);
-        memcpy(fwd, m[3], sizeof fwd);
-        s = sqrt(dot3(fwd, fwd));
+        y[0] = -row[0][3], y[1] = -row[1][3], y[2] = -row[3][3];
+        solve3(row[0], row[1], row[3], y, e);
+        memcpy(fwd, row[3], sizeof fwd);
     }
     unit3(fwd);
-    for (k = 0; k < 3; k++) up[k] = m[1][k] - dot3(m[1], fwd) * fwd[k];
+    for (k = 0; k < 3; k++) up[k] = row[1][k] - dot3(row[1], fwd) * fwd[k];
     unit3(up);
     cross3(fwd, up, right);
-    memset(v, 0, 16 * sizeof *v);
-    memset(p, 0, 16 * sizeof *p);
+    /* b: the rigid view's inverse (columns right, up, back, eye); q: the
+     * host's clip coordinates of its points, scaled to clip w = depth */
+    memset(b, 0, sizeof b);
+    for (k = 0; k < 3; k++) b[k] = right[k], b[4 + k] = up[k], b[8 + k] = -fwd[k], b[12 + k] = e[k];
+    b[15] = 1.0;
+    mul4(m, b, q);
+    z0 = ortho ? q[15] : -q[11];
+    for (k = 0; k < 16; k++) q[k] /= z0;
+    z0 = q[14]; /* ndc z along eye direction (x, y, -1) at depth D: z0 / D + q2 x + q6 y - q10 */
+    if (ortho) {
+        q[10] = -fabs(q[10]), q[14] = -1.0;
+    } else {
+        if (z0 > 0.0) flags |= SNELL__CAMERA_REVERSED;
+        for (k = 0; k < 5; k++) {
+            double cx = k ? ((k & 1) ? 1.0 : -1.0) : 0.0, cy = k ? ((k & 2) ? 1.0 : -1.0) : 0.0;
+            double ye = (cy + q[9]) / q[5], xe = (cx + q[8] - q[4] * ye) / q[0], al = q[2] * xe + q[6] * ye - q[10];
+            double dn = z0 / ((z0 > 0.0 ? 1.0 : -1.0) - al), df = z0 / ((z0 > 0.0 ? -1.0 : 1.0) - al);
+            if (dn > 0.0) near_ = fmin(near_, dn);
+            if (df > 0.0) far_ = fmax(far_, df);
+            else infinite = 1;
+        }
+        if (!(near_ < HUGE_VAL)) {
+            snprintf(why, n, "has no near plane in front of the eye");
+            return -1;
+        }
+        if (infinite || far_ > 1e7 * near_) far_ = 1e7 * near_;
+        q[10] = -(far_ + near_) / (far_ - near_), q[14] = -2.0 * far_ * near_ / (far_ - near_);
+    }
+    *near_out = near_;
+    q[2] = q[6] = 0.0;
+    if (q[0] < 0.0) flags |= SNELL__CAMERA_MIRRORED;
+    for (k = 0; k < 16; k++) p[k] = (float)q[k];
     for (k = 0; k < 3; k++) {
-        v[4 * k] = (float)right[k], v[4 * k + 1] = (float)up[k], v[4 * k + 2] = (float)-fwd[k];
+        v[4 * k] = (float)right[k], v[4 * k + 1] = (float)up[k], v[4 * k + 2] = (float)-fwd[k], v[4 * k + 3] = 0.0f;
         eye[k] = (float)e[k];
     }
     v[12] = (float)-dot3(right, e), v[13] = (float)-dot3(up, e), v[14] = (float)dot3(fwd, e), v[15] = 1.0f;
-    p[0] = (float)(dot3(m[0], right) / s), p[4] = (float)(dot3(m[0], up) / s), p[8] = (float)(-dot3(m[0], fwd) / s);
-    p[5] = (float)(dot3(m[1], up) / s), p[9] = (float)(-dot3(m[1], fwd) / s);
-    if (p[0] < 0.0f) flags |= SNELL__CAMERA_MIRRORED;
-    if (ortho) {
-        far_ = 2.0 / fabs(dot3(m[2], fwd));
-        p[10] = (float)(-2.0 / far_), p[14] = -1.0f, p[15] = 1.0f;
-        *near_out = HUGE_VAL;
-        return flags;
-    }
-    /* Along the eye ray of depth 1 through ndc (cx, cy): ndc z = z0 / (s D) + a. */
-    z0 = m[2][0] * e[0] + m[2][1] * e[1] + m[2][2] * e[2] + m[2][3];
-    if (z0 == 0.0) {
-        snprintf(why, n, "puts the near plane through the eye");
-        return -1;
-    }
-    if (z0 > 0.0) flags |= SNELL__CAMERA_REVERSED;
-    for (k = 0; k < 5; k++) {
-        double cx = k ? ((k & 1) ? 1.0 : -1.0) : 0.0, cy = k ? ((k & 2) ? 1.0 : -1.0) : 0.0, d[3], a, dn, df;
-        double ye = (cy + p[9]) / p[5], xe = (cx + p[8] - p[4] * ye) / p[0];
-        for (j = 0; j < 3; j++) d[j] = xe * right[j] + ye * up[j] + fwd[j];
-        a = dot3(m[2], d) / s;
-        dn = z0 / (s * ((z0 > 0.0 ? 1.0 : -1.0) - a));
-        df = z0 / (s * ((z0 > 0.0 ? -1.0 : 1.0) - a));
-        if (dn > 0.0) near_ = fmin(near_, dn);
-        if (df > 0.0) far_ = fmax(far_, df);
-        else infinite = 1;
-    }
-    *near_out = near_;
-    if (!(near_ < HUGE_VAL)) {
-        snprintf(why, n, "has no near plane in front of the eye");
-        return -1;
-    }
-    if (infinite || far_ > 1e7 * near_) far_ = 1e7 * near_;
-    p[10] = (float)(-(far_ + near_) / (far_ - near_));
-    p[14] = (float)(-2.0 * far_ * near_ / (far_ - near_));
-    p[11] = -1.0f;
     return flags;
 }
 
 int snell__camera_standard(const snell_camera *cam, float aspect, float eye[3], float view[16], float proj[16])
 {
-    snell_camera c;
     float v[16], p[16], e[3];
     double near_;
     char why[8];
-    int flags;
-    snell__camera_defaults(cam, &c);
-    snell_camera_matrices(&c, aspect, eye, view, proj);
-    if (c.kind != SNELL_CAMERA_MATRICES || standard_pair(c.view, c.projection)) return 0;
-    flags = standardize(c.view, c.projection, e, v, p, &near_, why, sizeof why);
+    int flags, k, same = cam && cam->projection[10] != cam->projection[11]; /* equal: an infinite far */
+    snell_camera_matrices(cam, aspect, eye, view, proj);
+    if (!cam || cam->kind != SNELL_CAMERA_MATRICES) return 0;
+    flags = standardize(cam->view, cam->projection, e, v, p, &near_, why, sizeof why);
+    /* The host's own where they are standard already, to float rounding. */
+    for (k = 0; k < 16; k++)
+        same &= fabsf(v[k] - cam->view[k]) <= 1e-5f * fmaxf(1.0f, fabsf(v[k])) &&
+                fabsf(p[k] - cam->projection[k]) <= 1e-5f * fmaxf(1.0f, fabsf(p[k]));
     if (flags < 0) return 0; /* refused by snell__camera_validate */
+    if (same) return flags;  /* a mirrored projection may be standard otherwise */
     if (eye) memcpy(eye, e, sizeof e);
     if (view) memcpy(view, v, sizeof v);
     if (proj) memcpy(proj, p, sizeof p);
