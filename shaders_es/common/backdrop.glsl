@@ -3,12 +3,16 @@
 // render/backdrop.c): what a ray leaving the glass sees of what the host drew,
 // before the environment. With the host's depth, a screen-space search as peel's
 // (Wang 2014, seed 001 3.4): BACKDROP_LINEAR steps, BACKDROP_BINARY halvings;
-// without it, the colour u_backdrop_distance along the ray. Off the view, or not
-// found: false. More: docs/ARCHITECTURE.md, "Design notes by file".
+// without it, the colour u_backdrop_distance along the ray. A ray that meets
+// nothing reaches the host's far plane where its direction vanishes: on the
+// view, where the host's depth holds its far plane (its sky), the host's colour
+// there. Off the view, or not found: false. More: docs/ARCHITECTURE.md,
+// "Design notes by file".
 uniform highp mat4 u_backdrop_view_proj;
 uniform highp vec4 u_backdrop_region;   // x, y, w, h of the texels that hold the view
 uniform highp vec2 u_backdrop_size;     // the textures' size in texels
 uniform highp float u_backdrop_distance; // > 0: no depth, the one look-up's distance
+uniform highp float u_backdrop_far;      // the depth of the host's far plane: 1, or 0 (reversed-Z)
 uniform mediump sampler2D u_backdrop_color;
 uniform highp sampler2D u_backdrop_depth;
 
@@ -30,7 +34,19 @@ bool backdrop_behind(highp vec3 p)
 {
     highp vec2 t = clamp(backdrop_texel(p.xy), u_backdrop_region.xy, u_backdrop_region.xy + u_backdrop_region.zw - 1.0);
     highp float d = texelFetch(u_backdrop_depth, ivec2(t), 0).r;
-    return d < 1.0 && p.z >= d;
+    return d != u_backdrop_far && (u_backdrop_far > 0.5 ? p.z >= d : p.z <= d);
+}
+
+// The host's sky where the direction of clip coordinates cd vanishes, if on the view.
+bool backdrop_sky(highp vec4 cd, out vec3 col)
+{
+    col = vec3(0.0);
+    if (cd.w <= 0.0 || any(greaterThan(abs(cd.xy), vec2(cd.w)))) return false;
+    highp vec2 t = clamp(backdrop_texel(cd.xy / cd.w), u_backdrop_region.xy,
+                         u_backdrop_region.xy + u_backdrop_region.zw - 1.0);
+    if (texelFetch(u_backdrop_depth, ivec2(t), 0).r != u_backdrop_far) return false;
+    col = backdrop_color(cd.xy / cd.w);
+    return true;
 }
 
 bool backdrop_seen(highp vec3 o, highp vec3 dir, out vec3 col)
@@ -51,9 +67,9 @@ bool backdrop_seen(highp vec3 o, highp vec3 dir, out vec3 col)
         highp float f = c0.w + s * c0[a], g = cd.w + s * cd[a];
         if (g < 0.0) t1 = min(t1, -f / g);
         else if (g > 0.0) t0 = max(t0, -f / g);
-        else if (f < 0.0) return false;
+        else if (f < 0.0) return backdrop_sky(cd, col);
     }
-    if (t0 > t1) return false;
+    if (t0 > t1) return backdrop_sky(cd, col);
     highp vec4 ca = c0 + t0 * cd, cb = c0 + t1 * cd;
     highp vec3 a = ca.xyz / ca.w, b = cb.xyz / cb.w;
     a.z = a.z * 0.5 + 0.5;
@@ -67,7 +83,7 @@ bool backdrop_seen(highp vec3 o, highp vec3 dir, out vec3 col)
         }
         ua = u;
     }
-    if (ub < 0.0) return false;
+    if (ub < 0.0) return backdrop_sky(cd, col);
     if (ub > 0.0) {
         for (int s = 0; s < BACKDROP_BINARY; s++) {
             highp float um = 0.5 * (ua + ub);

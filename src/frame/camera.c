@@ -207,7 +207,7 @@ int snell__camera_standard(const snell_camera *cam, float aspect, float eye[3], 
     if (eye) memcpy(eye, e, sizeof e);
     if (view) memcpy(view, v, sizeof v);
     if (proj) memcpy(proj, p, sizeof p);
-    return flags;
+    return flags | SNELL__CAMERA_CHANGED;
 }
 
 /* The host's matrices: finite, invertible, and a perspective projection

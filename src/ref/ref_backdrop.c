@@ -2,8 +2,8 @@
 /* ref_backdrop.c — the host's scene behind the glass in the reference's
  * view (snell_ref_set_backdrop): the host's frame as a depth field, met by
  * the rays in air as common/backdrop.glsl meets it on the GPU, with a far
- * finer search (steps of a quarter texel, 40 halvings), so the kernels'
- * error against it is measured. */
+ * finer search (steps of a quarter texel, 40 halvings), and its sky where a
+ * ray's direction vanishes, so the kernels' error against it is measured. */
 #include "ref/ref_scene.h"
 #include "core/ctx.h"
 #include "frame/camera.h"
@@ -14,6 +14,7 @@ struct ref_backdrop {
     int w, h, has_depth;
     double vp[16];    /* proj * view, column-major */
     double distance;
+    float far_;       /* the depth of the host's far plane: 1, 0 reversed-Z */
     float *depth;     /* w * h, bottom row first; NULL none */
     uint8_t rgba[];   /* w * h * 4, bottom row first */
 };
@@ -57,6 +58,8 @@ snell_status snell_ref_set_backdrop(snell_ref *r, const snell_ref_backdrop *b)
     B->w = b->width, B->h = b->height, B->has_depth = b->depth != NULL;
     B->distance = b->distance > 0.0f ? b->distance : 1.0;
     snell_camera_matrices(&b->camera, (float)b->width / (float)b->height, eye, view, proj);
+    B->far_ = snell__camera_standard(&b->camera, (float)b->width / (float)b->height, NULL, NULL, NULL) &
+                      SNELL__CAMERA_REVERSED ? 0.0f : 1.0f;
     for (col = 0; col < 4; col++)
         for (row = 0; row < 4; row++) {
             double s = 0.0;
@@ -97,7 +100,24 @@ static int behind(const struct ref_backdrop *B, const double p[3])
     ix = ix < 0 ? 0 : ix >= B->w ? B->w - 1 : ix;
     iy = iy < 0 ? 0 : iy >= B->h ? B->h - 1 : iy;
     d = B->depth[(size_t)iy * (size_t)B->w + (size_t)ix];
-    return d < 1.0f && p[2] >= d;
+    return d != B->far_ && (B->far_ > 0.5f ? p[2] >= d : p[2] <= d);
+}
+
+/* A ray that meets nothing (tmax infinite) reaches the host's far plane where
+ * its direction (clip cd) vanishes: on the view, where the host's depth holds
+ * its far plane (its sky), it sees the host's colour there. */
+static int sky(const struct ref_backdrop *B, const double cd[4], double tmax, double rgb[3])
+{
+    double x, y;
+    int ix, iy;
+    if (tmax < HUGE_VAL || !(cd[3] > 0.0) || fabs(cd[0]) > cd[3] || fabs(cd[1]) > cd[3]) return 0;
+    x = cd[0] / cd[3], y = cd[1] / cd[3];
+    ix = (int)floor((0.5 * x + 0.5) * B->w), iy = (int)floor((0.5 * y + 0.5) * B->h);
+    ix = ix < 0 ? 0 : ix >= B->w ? B->w - 1 : ix;
+    iy = iy < 0 ? 0 : iy >= B->h ? B->h - 1 : iy;
+    if (B->depth[(size_t)iy * (size_t)B->w + (size_t)ix] != B->far_) return 0;
+    if (rgb) color_at(B, x, y, rgb);
+    return 1;
 }
 
 static void lerp3(const double a[3], const double b[3], double u, double p[3])
@@ -124,10 +144,10 @@ int snell__ref_backdrop_hit(const snell_ref *r, const double o[3], const double 
         double s = (k & 1) == 0 ? 1.0 : -1.0, f = c0[3] + s * c0[k / 2], g = cd[3] + s * cd[k / 2];
         if (g < 0.0) t1 = fmin(t1, -f / g);
         else if (g > 0.0) t0 = fmax(t0, -f / g);
-        else if (f < 0.0) return 0;
+        else if (f < 0.0) return sky(B, cd, tmax, rgb);
     }
     if (t1 > tmax) t1 = tmax; /* what lies past the nearest object is hidden by it */
-    if (!(t0 <= t1)) return 0;
+    if (!(t0 <= t1)) return sky(B, cd, tmax, rgb);
     for (k = 0; k < 4; k++) ca[k] = c0[k] + t0 * cd[k], cb[k] = c0[k] + t1 * cd[k];
     for (k = 0; k < 3; k++) a[k] = ca[k] / ca[3], b[k] = cb[k] / cb[3];
     a[2] = 0.5 * a[2] + 0.5, b[2] = 0.5 * b[2] + 0.5;
@@ -142,7 +162,7 @@ int snell__ref_backdrop_hit(const snell_ref *r, const double o[3], const double 
         }
         ua = u;
     }
-    if (ub < 0.0) return 0;
+    if (ub < 0.0) return sky(B, cd, tmax, rgb);
     for (i = 0; ub > 0.0 && i < 40; i++) {
         double um = 0.5 * (ua + ub);
         lerp3(a, b, um, p);

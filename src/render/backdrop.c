@@ -15,7 +15,7 @@
 #include <math.h>
 #include <string.h>
 
-#define SNELL__BACKDROP_UNIFORMS 4
+#define SNELL__BACKDROP_UNIFORMS 5
 
 typedef struct snell__backdrop snell__backdrop;
 
@@ -29,6 +29,7 @@ struct snell__backdrop {
     snell_backdrop desc; /* the frame's, its defaults applied */
     /* this frame's, for the kernels' uniforms */
     float view_proj[16], region[4], size[2], distance; /* distance 0: search the depth */
+    float far_;                                        /* the host's far plane's depth: 1, 0 reversed-Z */
 };
 
 static snell_status validate(const snell__services *sv, const snell_frame_desc *fd)
@@ -169,10 +170,15 @@ static snell_status run(snell__frame *f, void *state)
     for (k = 0; k < 4; k++) b->region[k] = (float)bd->region[k];
     b->size[0] = (float)bd->width, b->size[1] = (float)bd->height;
     b->distance = depth ? 0.0f : bd->distance;
-    if (bd->camera) {
+    /* The host's own matrices: its depth is theirs (the frame's may be standardised, frame/camera.h). */
+    k = snell__camera_standard(bd->camera ? bd->camera : &f->fd->camera, b->region[2] / b->region[3], NULL, NULL,
+                               NULL);
+    b->far_ = k & SNELL__CAMERA_REVERSED ? 0.0f : 1.0f;
+    if (bd->camera || (k & SNELL__CAMERA_CHANGED)) {
         mat4 view, proj, vp;
         float eye[3];
-        snell_camera_matrices(bd->camera, b->region[2] / b->region[3], eye, (float *)view, (float *)proj);
+        snell_camera_matrices(bd->camera ? bd->camera : &f->fd->camera, b->region[2] / b->region[3], eye,
+                              (float *)view, (float *)proj);
         glm_mat4_mul(proj, view, vp);
         memcpy(b->view_proj, vp, sizeof b->view_proj);
     } else {
@@ -198,7 +204,7 @@ static const char *backdrop_defines(unsigned bits)
 }
 
 static const char *const backdrop_uniform_names[SNELL__BACKDROP_UNIFORMS] = {
-    "u_backdrop_view_proj", "u_backdrop_region", "u_backdrop_size", "u_backdrop_distance"};
+    "u_backdrop_view_proj", "u_backdrop_region", "u_backdrop_size", "u_backdrop_distance", "u_backdrop_far"};
 
 static void backdrop_uniforms(const snell__glass_program *g, const int *locs, const void *state,
                               const snell__view *v, const snell__object *o)
@@ -209,6 +215,7 @@ static void backdrop_uniforms(const snell__glass_program *g, const int *locs, co
     glUniform4fv(locs[1], 1, b->region);
     glUniform2fv(locs[2], 1, b->size);
     glUniform1f(locs[3], b->distance);
+    glUniform1f(locs[4], b->far_);
 }
 
 static const snell__kernel_hook g_hook = {
