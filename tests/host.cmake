@@ -78,6 +78,13 @@ target_link_libraries(test_camera_engines PRIVATE PkgConfig::GLES m)
 snell_add_test(test_backdrop SOURCES test_backdrop.c LABELS "render;gl" TIMEOUT 600)
 target_link_libraries(test_backdrop PRIVATE PkgConfig::EGL PkgConfig::GLES m)
 
+# The host's sky (issue 48): rays that meet nothing take the host's colour
+# where their direction vanishes over its far plane, standard and reversed-Z,
+# every method against the reference. `test_backdrop_sky PATH` also draws
+# docs/host_sky.png (the app's sky cube as SNELL_ENV_GL_TEXTURE).
+snell_add_test(test_backdrop_sky SOURCES test_backdrop_sky.c LABELS "render;gl")
+target_link_libraries(test_backdrop_sky PRIVATE PkgConfig::GLES m)
+
 # The host's cube map as the environment (SNELL_ENV_GL_TEXTURE): borrowed, not copied.
 snell_add_test(test_env_gl SOURCES test_env_gl.c LABELS "render;gl")
 target_link_libraries(test_env_gl PRIVATE PkgConfig::GLES)
