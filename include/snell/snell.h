@@ -811,9 +811,12 @@ typedef enum snell_background {
  * With a depth texture, each ray is searched against it as a depth field
  * (32 steps across the screen, then 6 halvings): a texel of depth d
  * stands for everything behind its surface (a ray passing behind a thin
- * object is stopped by it), and depth 1 (nothing drawn) for nothing. The
- * colour where the ray goes behind the field is taken, bilinearly; a ray
- * that leaves the view, or finds nothing, sees the environment. Without
+ * object is stopped by it), and the far plane's depth (1; 0 for a
+ * reversed-Z camera) for the host's sky. The colour where the ray goes
+ * behind the field is taken, bilinearly; a ray that finds nothing reaches
+ * the far plane where its direction vanishes: on the view, over the host's
+ * sky, it takes the host's colour there; off the view, or over something
+ * the host drew, it sees the environment. Without
  * depth, the colour where the ray is `distance` past the glass (one look-up,
  * as Filament's and three.js's screen-space refraction). The backdrop is
  * met after the frame's own objects, water and receiver plane. */

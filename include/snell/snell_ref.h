@@ -269,10 +269,12 @@ typedef struct snell_ref_backdrop {
  * snell_ref_trace_pixel / _ray (MATCHED and FULL), before the environment,
  * as a depth field: the ray, clipped to the camera's frustum, meets it
  * where its window depth first reaches the depth of the texel it is over
- * (depth 1: nothing there), searched in steps of at most a quarter texel
- * and halved 40 times; that point must come before the nearest object
- * surface ahead. It shows the colour there, bilinear as GL_LINEAR with
- * clamped edges (radiance = byte / 255). Without depth: the colour where
+ * (depth 1, 0 for a reversed-Z camera: the host's sky), searched in steps
+ * of at most a quarter texel and halved 40 times; that point must come
+ * before the nearest object surface ahead. It shows the colour there,
+ * bilinear as GL_LINEAR with clamped edges (radiance = byte / 255). A ray
+ * that meets nothing takes the colour where its direction vanishes, if
+ * that is on the view and over the host's sky. Without depth: the colour where
  * the ray is `distance` past its start, if that point is in view. A view
  * ray that meets it first ends there (hit 0, object -1). NULL: none.
  * SNELL_E_INVALID_ARG for a NULL rgba, a size out of range, a camera
