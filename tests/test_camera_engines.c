@@ -8,7 +8,7 @@
  * either matrix) is the standard image flipped in x; a scaled view with a
  * projection that undoes it has the same product; reversed-Z orthographic
  * is the orthographic image. Nearly singular or unsupported ones refused by
- * name, and reversed-Z with the target's depth tested. */
+ * name, and reversed-Z or oblique ones with the target's depth tested. */
 #include "test_util.h"
 #include "snell/snell_ref.h"
 
@@ -112,7 +112,7 @@ static int differ(const uint8_t *a, const uint8_t *b, int w, int h, int flip)
     return n;
 }
 
-static void refusals(snell_ctx *ctx, snell_renderer *r, snell_frame_desc *fd)
+static void refusals(snell_ctx *ctx, snell_renderer *r, snell_frame_desc *fd, cam *oblique_cam)
 {
     mat4 view, proj;
     snell_status st;
@@ -140,6 +140,10 @@ static void refusals(snell_ctx *ctx, snell_renderer *r, snell_frame_desc *fd)
     fd->depth = SNELL_DEPTH_TEST;
     st = snell_render(r, fd, NULL);
     CHECK(st == SNELL_E_UNSUPPORTED && strstr(snell_last_error(ctx), "reversed-Z"), "reversed-Z, depth tested: %s: %s",
+          snell_status_str(st), snell_last_error(ctx));
+    set_camera(&fd->camera, oblique_cam->view, oblique_cam->proj);
+    st = snell_render(r, fd, NULL);
+    CHECK(st == SNELL_E_UNSUPPORTED && strstr(snell_last_error(ctx), "oblique"), "oblique, depth tested: %s: %s",
           snell_status_str(st), snell_last_error(ctx));
     fd->depth = SNELL_DEPTH_DEFAULT;
 }
@@ -222,7 +226,7 @@ int main(void)
     }
     g.material.method = SNELL_METHOD_AUTO;
     reference(ctx, &fd, c, n);
-    refusals(ctx, r, &fd);
+    refusals(ctx, r, &fd, &c[3]);
     snell_mesh_destroy(torus);
     snell_renderer_destroy(r);
     snell_env_destroy(env);

@@ -626,7 +626,8 @@ typedef struct snell_camera {
  * (SNELL_E_UNSUPPORTED) a projection neither perspective nor orthographic, a
  * near plane closer than a millionth of the scene's scale (depth precision),
  * an orthographic projection x view whose clip w is negative (a negated
- * matrix), and a reversed-Z camera with the target's depth tested.
+ * matrix), and a reversed-Z or oblique camera with the target's depth
+ * tested (snell's depth is a standard projection's).
  * Matrices are judged by projection x view alone: reversed-Z, an infinite
  * far plane, an oblique near plane, a mirrored or scaled view draw what the
  * standard camera with the same rays draws (a mirrored view: flipped in x). */

@@ -178,6 +178,7 @@ static int standardize(const float *view, const float *proj, float eye[3], float
         q[10] = -(far_ + near_) / (far_ - near_), q[14] = -2.0 * far_ * near_ / (far_ - near_);
     }
     *near_out = near_;
+    if (fabs(q[2]) + fabs(q[6]) > 1e-6 * fabs(q[10])) flags |= SNELL__CAMERA_OBLIQUE;
     q[2] = q[6] = 0.0;
     if (q[0] < 0.0) flags |= SNELL__CAMERA_MIRRORED;
     for (k = 0; k < 16; k++) p[k] = (float)q[k];

@@ -25,6 +25,7 @@ snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *ca
 #define SNELL__CAMERA_MIRRORED 1 /* the image is a standard camera's flipped in x: the winding flips */
 #define SNELL__CAMERA_REVERSED 2 /* reversed-Z: the host's depth runs from 1 near to 0 far */
 #define SNELL__CAMERA_CHANGED 4  /* the matrices are snell's standard ones, not the host's */
+#define SNELL__CAMERA_OBLIQUE 8  /* the host's depth is tilted (an oblique near plane): not snell's */
 
 /* The camera as snell draws it: snell_camera_matrices, except that host
  * matrices (a validated SNELL_CAMERA_MATRICES camera) not of glm's standard

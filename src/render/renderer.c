@@ -249,9 +249,10 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
     st = snell__camera_validate(r->ctx, camera, (float)r->sv.width / (float)r->sv.height, "snell_render");
     if (st != SNELL_OK) return st;
     if (snell__depth_mode_of(fd->depth, r->sv.target) != SNELL_DEPTH_CLEAR &&
-        (snell__camera_standard(camera, 1.0f, NULL, NULL, NULL) & SNELL__CAMERA_REVERSED))
-        return snell__fail(r->ctx, SNELL_E_UNSUPPORTED, "snell_render: a reversed-Z camera (depth 1 near, 0 far) "
-                           "with the target's depth tested: snell's passes test 0 near; use SNELL_DEPTH_CLEAR");
+        (snell__camera_standard(camera, 1.0f, NULL, NULL, NULL) &
+         (SNELL__CAMERA_REVERSED | SNELL__CAMERA_OBLIQUE)))
+        return snell__fail(r->ctx, SNELL_E_UNSUPPORTED, "snell_render: a reversed-Z or oblique camera with the "
+                           "target's depth tested: snell's depth is a standard projection's; use SNELL_DEPTH_CLEAR");
     if (fd->env && fd->env->ctx && fd->env->ctx->destroyed)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG,
                            "the frame's environment went with its context (snell_ctx_destroy): create it again");
