@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* test_camera_engines — the cameras engines use (issue 48), given as
  * matrices, each against the image of its standard equivalent (glm's
- * perspective, a rigid view), in every method and the reference: reversed-Z
+ * perspective, a rigid view), in every method (forward and screen-space
+ * shading) and the reference, to a few edge pixels: reversed-Z
  * P' = [z -> -z] x P (window depth 1 - d) gives the same rays; an infinite
  * far plane is far -> infinity (compared with far 1e6); an oblique near
  * plane (Lengyel 2005) changes no ray beyond it; a view mirrored in x (on
@@ -183,52 +184,59 @@ int main(void)
 {
     static uint8_t base[3][N * N * 4], img[N * N * 4];
     snell_ctx *ctx = test_ctx();
-    snell_renderer *r;
+    snell_renderer *r, *rs[2] = {NULL, NULL};
+    snell_renderer_desc rd = {.width = N, .height = N, .shading = SNELL_SHADING_FORWARD};
     snell_env *env;
     snell_mesh *torus = NULL;
     snell_glass g;
     snell_frame_desc fd;
     cam c[9];
-    int n, m, i, f;
+    int n, m, i, f, sh;
     if (!ctx) SKIP("no GL context");
     env = test_sky(ctx, 32);
     r = test_renderer(ctx, N, N);
+    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &rs[0]));
+    rd.shading = SNELL_SHADING_SCREEN;
+    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &rs[1]));
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &(snell_shape_desc){.shape = SNELL_SHAPE_TORUS}, &torus));
-    if (!env || !r || !torus) return test_finish();
+    if (!env || !r || !rs[0] || !rs[1] || !torus) return test_finish();
     memset(c, 0, sizeof c);
     n = make_cases(c);
     test_frame_one(&fd, &g, torus, env);
     g.model = k_model;
     g.material.ior = 1.5f;
-    for (m = 0; m < snell_method_count(); m++) {
-        const char *name = snell_method_info_at(m)->name;
-        g.material.method = snell_method_info_at(m)->method;
-        for (f = 0; f < 3; f++) {
-            mat4 view, proj;
-            standard(view, proj, f);
-            set_camera(&fd.camera, view, proj);
-            CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
-            CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, base[f]));
+    for (sh = 0; sh < 2; sh++)
+        for (m = 0; m < snell_method_count(); m++) {
+            const char *name = snell_method_info_at(m)->name, *how = sh ? "screen" : "forward";
+            g.material.method = snell_method_info_at(m)->method;
+            for (f = 0; f < 3; f++) {
+                mat4 view, proj;
+                standard(view, proj, f);
+                set_camera(&fd.camera, view, proj);
+                CHECK_OK_CTX(ctx, snell_render(rs[sh], &fd, NULL));
+                CHECK_OK_CTX(ctx, snell_renderer_read_rgba(rs[sh], base[f]));
+            }
+            for (i = 0; i < n; i++) {
+                snell_status st;
+                int d;
+                set_camera(&fd.camera, c[i].view, c[i].proj);
+                memset(img, 0, sizeof img);
+                st = snell_render(rs[sh], &fd, NULL);
+                CHECK(st == SNELL_OK, "%s %s, %s: %s", name, how, c[i].name, snell_last_error(ctx));
+                CHECK_OK_CTX(ctx, snell_renderer_read_rgba(rs[sh], img));
+                d = differ(img, base[c[i].base], N, N, c[i].flip);
+                printf("%s %s, %s: %d pixels differ\n", name, how, c[i].name, d);
+                CHECK(d <= EDGE, "%s %s, %s: %d of %d pixels differ from the standard camera's%s", name, how,
+                      c[i].name, d, N * N, c[i].flip ? " flipped in x" : "");
+            }
         }
-        for (i = 0; i < n; i++) {
-            snell_status st;
-            int d;
-            set_camera(&fd.camera, c[i].view, c[i].proj);
-            memset(img, 0, sizeof img);
-            st = snell_render(r, &fd, NULL);
-            CHECK(st == SNELL_OK, "%s, %s: %s", name, c[i].name, snell_last_error(ctx));
-            CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, img));
-            d = differ(img, base[c[i].base], N, N, c[i].flip);
-            printf("%s, %s: %d pixels differ\n", name, c[i].name, d);
-            CHECK(d <= EDGE, "%s, %s: %d of %d pixels differ from the standard camera's%s", name, c[i].name, d,
-                  N * N, c[i].flip ? " flipped in x" : "");
-        }
-    }
     g.material.method = SNELL_METHOD_AUTO;
     reference(ctx, &fd, c, n);
     refusals(ctx, r, &fd, &c[3]);
     snell_mesh_destroy(torus);
     snell_renderer_destroy(r);
+    snell_renderer_destroy(rs[0]);
+    snell_renderer_destroy(rs[1]);
     snell_env_destroy(env);
     snell_ctx_destroy(ctx);
     return test_finish();
