@@ -1,15 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* test_backdrop_sky — the host's sky behind the glass (issue 48, item 5).
- * The host's frame as textures: its ground (green, depth 0.98) in the lower
- * rows, its cleared sky (magenta, at its far plane) above. A glass sphere's
- * rays that meet nothing reach the far plane where their direction vanishes:
- * on the view, over the host's sky, they show magenta, not snell's
- * procedural sky. Every method's magenta pixels against the reference's (the
- * same backdrop, snell_ref_set_backdrop; SINGLE's through one surface, as it
- * refracts), with the host's camera standard and reversed-Z (its depth 1 - d:
- * sky 0). `test_backdrop_sky PATH` also writes
- * docs/host_sky.png's picture: the app's own sky cube handed over as the
- * environment (SNELL_ENV_GL_TEXTURE) and its frame as the backdrop. */
+ * The host's frame as textures: ground (green, depth 0.98) below, its sky
+ * (magenta, at its far plane) above. Glass rays that meet nothing take the
+ * host's colour where their direction vanishes over its sky: every method's
+ * magenta pixels against the reference's with the same backdrop (SINGLE's
+ * through one surface), the host's camera standard and reversed-Z (depth
+ * 1 - d). `test_backdrop_sky PATH` also draws docs/host_sky.png: the app's
+ * sky cube as the environment (SNELL_ENV_GL_TEXTURE), its frame the backdrop. */
 #include "test_util.h"
 #include "snell/snell_ref.h"
 

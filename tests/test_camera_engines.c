@@ -1,15 +1,13 @@
 /* SPDX-License-Identifier: MIT */
-/* test_camera_engines — the cameras engines use (issue 48), given as
- * matrices, each against the image of its standard equivalent (glm's
- * perspective, a rigid view), in every method (forward and screen-space
- * shading) and the reference, to a few edge pixels: reversed-Z
- * P' = [z -> -z] x P (window depth 1 - d) gives the same rays; an infinite
- * far plane is far -> infinity (compared with far 1e6); an oblique near
- * plane (Lengyel 2005) changes no ray beyond it; a view mirrored in x (on
- * either matrix) is the standard image flipped in x; a scaled view with a
- * projection that undoes it has the same product; reversed-Z orthographic
- * is the orthographic image. Nearly singular or unsupported ones refused by
- * name, and reversed-Z or oblique ones with the target's depth tested. */
+/* test_camera_engines — the cameras engines use (issue 48), as matrices,
+ * each against its standard equivalent (glm's perspective, a rigid view) in
+ * every method (forward and screen-space shading) and the reference, to a
+ * few edge pixels: reversed-Z P' = [z -> -z] x P (depth 1 - d), finite,
+ * infinite far (against far 1e6) and orthographic; an oblique near plane
+ * (Lengyel 2005) beyond it; a view mirrored in x on either matrix (the image
+ * flipped in x); a scaled view undone by the projection. Refused by name:
+ * near 1e-7, a negated orthographic or singular matrix, reversed-Z or oblique
+ * with the target's depth tested. */
 #include "test_util.h"
 #include "snell/snell_ref.h"
 
