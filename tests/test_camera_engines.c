@@ -6,8 +6,8 @@
  * infinite far (against far 1e6) and orthographic; an oblique near plane
  * (Lengyel 2005) beyond it; a view mirrored in x on either matrix (the image
  * flipped in x); a scaled view undone by the projection. Refused by name:
- * near 1e-7, a negated orthographic or singular matrix, reversed-Z or oblique
- * with the target's depth tested. */
+ * near 1e-7, a negated orthographic, singular or degenerate matrix, reversed-Z
+ * or oblique with the target's depth tested. */
 #include "test_util.h"
 #include "snell/snell_ref.h"
 
@@ -134,6 +134,11 @@ static void refusals(snell_ctx *ctx, snell_renderer *r, snell_frame_desc *fd, ca
     CHECK(st == SNELL_E_INVALID_ARG && strstr(snell_last_error(ctx), "singular"), "singular view: %s: %s",
           snell_status_str(st), snell_last_error(ctx));
     standard(view, proj, 0);
+    /* invertible, but clip y and w vary along the same direction: no camera has these pixels */
+    set_camera(&fd->camera, view, (mat4){{1, 0, 0, 0}, {0, 0, 1, 0}, {0, -1, 0.5f, -1}, {0, 1, -0.2f, 0}});
+    st = snell_render(r, fd, NULL);
+    CHECK(st == SNELL_E_UNSUPPORTED && strstr(snell_last_error(ctx), "degenerate"), "degenerate rows: %s: %s",
+          snell_status_str(st), snell_last_error(ctx));
     mul_left((const float[16]){1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1}, proj);
     set_camera(&fd->camera, view, proj);
     fd->depth = SNELL_DEPTH_TEST;

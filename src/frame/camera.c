@@ -149,6 +149,10 @@ static int standardize(const float *view, const float *proj, float eye[3], float
     for (k = 0; k < 3; k++) up[k] = row[1][k] - dot3(row[1], fwd) * fwd[k];
     unit3(up);
     cross3(fwd, up, right);
+    if (!isfinite(dot3(e, e) + dot3(right, right))) {
+        snprintf(why, n, "has no pinhole or parallel camera with its pixels (degenerate rows)");
+        return -1;
+    }
     /* b: the rigid view's inverse (columns right, up, back, eye); q: the
      * host's clip coordinates of its points, scaled to clip w = depth */
     memset(b, 0, sizeof b);
