@@ -4,9 +4,9 @@
  * (magenta, at its far plane) above. Glass rays that meet nothing take the
  * host's colour where their direction vanishes over its sky: every method's
  * magenta pixels against the reference's with the same backdrop (SINGLE's
- * through one surface), the host's camera standard and reversed-Z (depth
- * 1 - d). `test_backdrop_sky PATH` also draws docs/host_sky.png: the app's
- * sky cube as the environment (SNELL_ENV_GL_TEXTURE), its frame the backdrop. */
+ * through one surface): textures under a standard and a reversed-Z camera
+ * (depth 1 - d), and COPY_BOUND. `test_backdrop_sky PATH` also draws
+ * docs/host_sky.png: the app's sky cube as the environment, its frame copied. */
 #include "test_util.h"
 #include "snell/snell_ref.h"
 
@@ -34,14 +34,15 @@ static void camera(snell_camera *c, int reversed)
     memcpy(c->projection, proj, sizeof c->projection);
 }
 
-/* The host's frame at w x h into colour and depth textures: ground below, sky above. */
-static void host_frame(GLuint fbo, GLuint color, GLuint depth, int w, int h, int reversed)
+/* The host's frame at w x h into colour and depth textures (made first if
+ * alloc): ground below, sky above. */
+static void host_frame(GLuint fbo, GLuint color, GLuint depth, int w, int h, int reversed, int alloc)
 {
     int k;
     glBindTexture(GL_TEXTURE_2D, color);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+    if (alloc) glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
     glBindTexture(GL_TEXTURE_2D, depth);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT24, w, h);
+    if (alloc) glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT24, w, h);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color, 0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth, 0);
@@ -143,7 +144,7 @@ static void picture(snell_ctx *ctx, const snell_mesh *sphere, const char *path)
     int y;
     glGenFramebuffers(1, &fbo);
     glGenTextures(2, tex);
-    host_frame(fbo, tex[0], tex[1], W, H, 0);
+    host_frame(fbo, tex[0], tex[1], W, H, 0, 1);
     memset(&ed, 0, sizeof ed);
     ed.source = SNELL_ENV_GL_TEXTURE, ed.gl_texture = cube, ed.face_size = 64;
     CHECK_OK_CTX(ctx, snell_env_create(ctx, &ed, &env));
@@ -182,9 +183,26 @@ static void picture(snell_ctx *ctx, const snell_mesh *sphere, const char *path)
     glDeleteFramebuffers(1, &fbo);
 }
 
+/* img's magenta glass pixels (hit) against the reference's (sky, n_ref of them). */
+static void check_sky(const char *name, const char *how, const uint8_t *img, const uint8_t *hit, const uint8_t *sky,
+                      int n_ref)
+{
+    int i, both = 0, extra = 0;
+    for (i = 0; i < N * N; i++) {
+        int s = hit[i] && magenta(img + 4 * i);
+        both += s && sky[i];
+        extra += s && !sky[i];
+    }
+    printf("%s%s: %d of the reference's %d host-sky pixels, %d more\n", name, how, both, n_ref, extra);
+    CHECK(both > 100 && both >= n_ref * 85 / 100 && extra <= n_ref / 10, "%s%s: the host's sky on %d of %d pixels, "
+          "%d more", name, how, both, n_ref, extra);
+}
+
 int main(int argc, char **argv)
 {
-    static uint8_t img[N * N * 4], hit[N * N], sky[2][N * N];
+    static uint8_t img[N * N * 4], px[N * N * 4], hit[N * N], sky[2][N * N];
+    snell_renderer *rb = NULL;
+    snell_renderer_desc rd = {.width = N, .height = N, .target = SNELL_TARGET_BOUND_FRAMEBUFFER};
     snell_ctx *ctx = test_ctx();
     snell_renderer *r;
     snell_env *env;
@@ -192,7 +210,7 @@ int main(int argc, char **argv)
     snell_glass g;
     snell_frame_desc fd;
     snell_backdrop bd;
-    GLuint fbo[2], tex[4];
+    GLuint fbo[3], tex[6];
     int m, rev, i, n_refs[2];
     if (!ctx) SKIP("no GL context");
     env = test_sky(ctx, 32);
@@ -200,9 +218,9 @@ int main(int argc, char **argv)
     CHECK_OK_CTX(ctx, snell_mesh_create_shape(ctx, &(snell_shape_desc){.shape = SNELL_SHAPE_SPHERE}, &sphere));
     if (!env || !r || !sphere) return test_finish();
     if (argc > 1) picture(ctx, sphere, argv[1]);
-    glGenFramebuffers(2, fbo);
-    glGenTextures(4, tex);
-    for (rev = 0; rev < 2; rev++) host_frame(fbo[rev], tex[2 * rev], tex[2 * rev + 1], N, N, rev);
+    glGenFramebuffers(3, fbo);
+    glGenTextures(6, tex);
+    for (rev = 0; rev < 3; rev++) host_frame(fbo[rev], tex[2 * rev], tex[2 * rev + 1], N, N, rev == 1, 1);
     test_frame_one(&fd, &g, sphere, env);
     g.material.ior = 1.5f;
     camera(&fd.camera, 0);
@@ -219,25 +237,34 @@ int main(int argc, char **argv)
         bd.color_texture = tex[2 * rev], bd.depth_texture = tex[2 * rev + 1];
         for (m = 0; m < snell_method_count(); m++) {
             const char *name = snell_method_info_at(m)->name;
-            int both = 0, extra = 0, one = snell_method_info_at(m)->method == SNELL_METHOD_SINGLE;
-            int n_ref = n_refs[one];
+            int one = snell_method_info_at(m)->method == SNELL_METHOD_SINGLE;
             g.material.method = snell_method_info_at(m)->method;
             CHECK_OK_CTX(ctx, snell_render(r, &fd, NULL));
             CHECK_OK_CTX(ctx, snell_renderer_read_rgba(r, img));
-            for (i = 0; i < N * N; i++) {
-                int s = hit[i] && magenta(img + 4 * i);
-                both += s && sky[one][i];
-                extra += s && !sky[one][i];
-            }
-            printf("%s%s: %d of the reference's %d host-sky pixels, %d more\n", name, rev ? ", reversed-Z" : "",
-                   both, n_ref, extra);
-            CHECK(both > 100 && both >= n_ref * 85 / 100 && extra <= n_ref / 10,
-                  "%s%s: the host's sky on %d of %d pixels, %d more", name, rev ? ", reversed-Z" : "", both, n_ref,
-                  extra);
+            check_sky(name, rev ? ", reversed-Z" : "", img, hit, sky[one], n_refs[one]);
         }
     }
-    glDeleteTextures(4, tex);
-    glDeleteFramebuffers(2, fbo);
+    /* COPY_BOUND: snell copies the bound framebuffer's colour and depth itself */
+    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &rb));
+    camera(&fd.camera, 0);
+    memset(&bd, 0, sizeof bd);
+    bd.source = SNELL_BACKDROP_COPY_BOUND;
+    for (m = 0; rb && m < snell_method_count(); m++) {
+        int one = snell_method_info_at(m)->method == SNELL_METHOD_SINGLE, y;
+        g.material.method = snell_method_info_at(m)->method;
+        host_frame(fbo[2], tex[4], tex[5], N, N, 0, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo[2]);
+        glViewport(0, 0, N, N);
+        CHECK_OK_CTX(ctx, snell_render(rb, &fd, NULL));
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo[2]);
+        glReadPixels(0, 0, N, N, GL_RGBA, GL_UNSIGNED_BYTE, px);
+        for (y = 0; y < N; y++) memcpy(img + 4 * N * y, px + 4 * N * (N - 1 - y), 4 * N); /* top row first */
+        check_sky(snell_method_info_at(m)->name, ", COPY_BOUND", img, hit, sky[one], n_refs[one]);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    snell_renderer_destroy(rb);
+    glDeleteTextures(6, tex);
+    glDeleteFramebuffers(3, fbo);
     snell_mesh_destroy(sphere);
     snell_renderer_destroy(r);
     snell_env_destroy(env);
