@@ -81,6 +81,8 @@ int snell__matrix_invertible(const float m[16], char *why, size_t n);
 /* inv = m's inverse (cglm's glm_mat4_inv, one copy rather than one inlined
  * at every caller: the device build's footprint). Both 16-byte aligned (mat4). */
 void snell__mat4_inv(const float m[16], float inv[16]);
+/* out = a x b (glm_mat4_mul, one copy likewise). */
+void snell__mat4_mul(const float a[16], const float b[16], float out[16]);
 
 /* The context's memory budget (snell_ctx_desc.memory_budget; the default for NULL). */
 size_t snell__ctx_budget(const snell_ctx *ctx);

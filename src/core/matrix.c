@@ -42,6 +42,11 @@ void snell__mat4_inv(const float m[16], float inv[16])
     glm_mat4_inv((vec4 *)(void *)m, (vec4 *)(void *)inv);
 }
 
+void snell__mat4_mul(const float a[16], const float b[16], float out[16])
+{
+    glm_mat4_mul((vec4 *)(void *)a, (vec4 *)(void *)b, (vec4 *)(void *)out);
+}
+
 int snell__matrix_invertible(const float m[16], char *why, size_t n)
 {
     mat4 a, inv;

@@ -237,7 +237,7 @@ static snell_status validate_matrices(const snell_ctx *ctx, const snell_camera *
                            who, p[3], p[7], p[11], p[15]);
     memcpy(a, cam->projection, sizeof a);
     memcpy(b, cam->view, sizeof b);
-    glm_mat4_mul(a, b, vp);
+    snell__mat4_mul((const float *)a, (const float *)b, (float *)vp);
     if (!snell__matrix_invertible((const float *)vp, why, sizeof why))
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: camera.projection x camera.view %s", who, why);
     {

@@ -30,7 +30,7 @@ void snell__cube_face_view_proj(int face, const float eye[3], float z_near, floa
     }
     glm_lookat(e, c, u, view);
     glm_perspective((float)(SNELL_PI / 2.0), 1.0f, z_near, z_far, proj);
-    glm_mat4_mul(proj, view, out);
+    snell__mat4_mul((const float *)proj, (const float *)view, (float *)out);
 }
 
 snell_status snell__ndcube_baker_create(snell_ctx *ctx, snell__ndcube_baker *b)

@@ -179,7 +179,7 @@ static snell_status run(snell__frame *f, void *state)
         float eye[3];
         snell_camera_matrices(bd->camera ? bd->camera : &f->fd->camera, b->region[2] / b->region[3], eye,
                               (float *)view, (float *)proj);
-        glm_mat4_mul(proj, view, vp);
+        snell__mat4_mul((const float *)proj, (const float *)view, (float *)vp);
         memcpy(b->view_proj, vp, sizeof b->view_proj);
     } else {
         memcpy(b->view_proj, v->view_proj, sizeof b->view_proj);

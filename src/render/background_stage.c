@@ -32,7 +32,7 @@ static snell_status run(snell__frame *f, void *state)
     } else {
         glm_mat4_copy(f->sc->view.view, rot);
         rot[3][0] = rot[3][1] = rot[3][2] = 0.0f;
-        glm_mat4_mul(f->sc->view.proj, rot, vp);
+        snell__mat4_mul((const float *)f->sc->view.proj, (const float *)rot, (float *)vp);
         snell__mat4_inv((const float *)vp, (float *)inv);
     }
     if (paraboloid) st = snell__env_paraboloid(sv->ctx, sv->dp, f->fd->env, &tex);

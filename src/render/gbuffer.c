@@ -145,7 +145,7 @@ static snell_status draw_surfaces(snell_ctx *ctx, snell__gbuffer *g, const snell
         mat4 widen = GLM_MAT4_IDENTITY_INIT;
         widen[0][0] = (float)v->width / (float)g->width;
         widen[1][1] = (float)v->height / (float)g->height;
-        glm_mat4_mul(widen, (vec4 *)v->view_proj, view_proj);
+        snell__mat4_mul((const float *)widen, (const float *)v->view_proj, (float *)view_proj);
     } else {
         glViewport(b, b, v->width, v->height);
     }

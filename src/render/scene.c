@@ -114,7 +114,7 @@ snell_status snell__scene_build(snell_ctx *ctx, const snell_frame_desc *fd, int 
     memset(v, 0, sizeof *v);
     v->mirrored = snell__camera_standard(&fd->camera, (float)width / (float)height, v->eye, (float *)v->view,
                                          (float *)v->proj) & SNELL__CAMERA_MIRRORED;
-    glm_mat4_mul(v->proj, v->view, v->view_proj);
+    snell__mat4_mul((const float *)v->proj, (const float *)v->view, (float *)v->view_proj);
     snell__mat4_inv((const float *)v->view_proj, (float *)v->inv_view_proj);
     if (snell__projection_orthographic((const float *)v->proj)) {
         /* every view ray is the eye's -Z in the world (common/view.glsl) */
