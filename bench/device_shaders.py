@@ -8,11 +8,12 @@ a folder per device) and writes OUT/DEVICE.csv and OUT/DEVICE.md per device and 
 one page of them all. Each program is named by its kernel (the shaders_es/ file its source was
 assembled from) and the #defines that tell its variants apart.
 
-  device_shaders.py --shaders shaders_es --out OUT [--strict] [--command CMD] --dump DIR...
-                    --device DEVICE LOGS...     (DEVICE: v3d, adreno[-618|-660] or mali)
+  device_shaders.py --shaders shaders_es --out OUT [--strict] [--promises PAGE] [--command CMD]
+                    --dump DIR... --device DEVICE LOGS...     (DEVICE: v3d, adreno[-618|-660] or mali)
 
 Exit 1 on a program a device's compiler refused (or whose statistics are missing), with
---strict also on any spill and on a V3D program at 1 thread; every offender is printed."""
+--strict also on any spill and on a V3D program at 1 thread or (--promises) below the threads
+the page's table promises its fragment shader; every offender is printed."""
 import argparse
 import csv
 import os
@@ -117,7 +118,8 @@ def c_file_of(text, c_files):
 
 
 def name_programs(sources, files, c_files):
-    """{hash: name} of the programs {hash: folder}: the kernel's fragment file, joined by its
+    """{hash: name} of the programs {hash: folder}, and {hash: (fragment file, vertex file, defines)}.
+    The name: the kernel's fragment file, joined by its
     vertex file where that is the larger and serves no other fragment file (caustics_photon.vert,
     whose fragment shader only splats), or alone where the fragment shader is none of shaders_es/
     (snell's inline one); the vertex file where the kernel has several; then the defines not
@@ -154,7 +156,38 @@ def name_programs(sources, files, c_files):
             parts = [kernel] + (["@" + info[h][1]] if len(verts) > 1 else [])
             parts += [d for d in info[h][2] if d not in common]
             out[h] = " ".join(parts)
-    return out
+    return out, found
+
+
+def read_promises(path):
+    """The V3D threads a page promises: the rows of its table headed "V3D 4.2 threads at least",
+    [(fragment file, [defines], threads)]; "any" stands for every program."""
+    rows, inside = [], False
+    with open(path) as f:
+        for line in f:
+            cells = [c.strip().strip("`") for c in line.strip().strip("|").split("|")]
+            if not line.startswith("|"):
+                inside = False
+            elif len(cells) >= 2 and cells[1] == "V3D 4.2 threads at least":
+                inside = True
+            elif inside and cells[1].isdigit():
+                words = cells[0].split()
+                rows.append((words[0], words[1:], int(cells[1])))
+    if not rows:
+        raise SystemExit(f"device_shaders.py: no table headed 'V3D 4.2 threads at least' in {path}")
+    return rows
+
+
+def promised(rows, frag, defines):
+    """The threads the most specific matching row promises: the fragment file's row whose defines
+    the program all has (the most of them), else the "any" row; None without one."""
+    best, best_n = None, -1
+    for kernel, need, threads in rows:
+        if kernel in (frag, "any") and all(d in defines for d in need):
+            n = len(need) + (kernel != "any") * 100
+            if n > best_n:
+                best, best_n = threads, n
+    return best
 
 
 def values(text):
@@ -271,10 +304,10 @@ def num(x):
         return 0.0
 
 
-def device_report(device, programs, renderer, names, out, refused_here):
-    """Writes out/DEVICE.csv and out/DEVICE.md; returns (markdown, failures, spills, one-thread).
-    A program the suite's own driver refuses too (refused_here: a test's deliberate error) is no
-    failure."""
+def device_report(device, programs, renderer, names, out, refused_here, want_threads):
+    """Writes out/DEVICE.csv and out/DEVICE.md; returns (markdown, failures, spills, too few
+    threads: at 1 on V3D, or below want_threads(hash) for a fragment shader). A program the
+    suite's own driver refuses too (refused_here: a test's deliberate error) is no failure."""
     rows, failures, spills, single = [], [], [], []
     for h in sorted(programs, key=lambda h: (names.get(h, "?"), h)):
         p = programs[h]
@@ -292,8 +325,10 @@ def device_report(device, programs, renderer, names, out, refused_here):
             rows.append(dict(st, program=h, name=name, stage=stage))
             if num(st.get("spills")) or num(st.get("fills")):
                 spills.append(f"{device}: {name} ({h}) {stage}: {st.get('spills')}:{st.get('fills')} spills:fills")
-            if device == "v3d" and st.get("threads") == "1":
-                single.append(f"{device}: {name} ({h}) {stage}: 1 thread")
+            want = want_threads(h) if device == "v3d" and stage == "fragment" else None
+            if device == "v3d" and (st.get("threads") == "1" or (want and num(st.get("threads")) < want)):
+                single.append(f"{device}: {name} ({h}) {stage}: {st.get('threads')} thread(s)"
+                              + (f", {want} promised" if want else ""))
     with open(os.path.join(out, device + ".csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(COLUMNS)
@@ -358,6 +393,8 @@ def main():
     ap.add_argument("--mesa", default="Mesa 22.3.6", help="the drivers' version, for the page's header")
     ap.add_argument("--dump", action="append", required=True, help="a folder of <hash>.vert + .frag")
     ap.add_argument("--device", action="append", nargs=2, required=True, metavar=("DEVICE", "LOGS"))
+    ap.add_argument("--promises", metavar="PAGE",
+                    help="a page whose table headed 'V3D 4.2 threads at least' V3D's fragment shaders are held to")
     ap.add_argument("--reference", metavar="LOGS",
                     help="logs of the programs some device refused, compiled by the suite's own driver")
     a = ap.parse_args()
@@ -373,7 +410,8 @@ def main():
                 if f.endswith((".c", ".h")):
                     with open(os.path.join(root, f), errors="replace") as fh:
                         c_files[os.path.relpath(os.path.join(root, f), os.path.dirname(folder))] = fh.read()
-    names = name_programs(sources, kernels(a.shaders), c_files)
+    names, found = name_programs(sources, kernels(a.shaders), c_files)
+    promises = read_promises(a.promises) if a.promises else []
     os.makedirs(a.out, exist_ok=True)
     pages, failures, spills, single, summary = [], [], [], [], []
     refused_here = {}
@@ -388,7 +426,8 @@ def main():
         if device.split("-")[0] not in PARSERS:
             ap.error(f"--device {device}: want one of {', '.join(PARSERS)} (adreno-618 and the like too)")
         programs, renderer = read_logs(logs, device)
-        md, fail, sp, one = device_report(device, programs, renderer, names, a.out, refused_here)
+        md, fail, sp, one = device_report(device, programs, renderer, names, a.out, refused_here,
+                                          lambda h: promised(promises, found[h][0], found[h][2]) if promises else None)
         pages.append(md)
         failures, spills, single = failures + fail, spills + sp, single + one
         threads = {}
@@ -412,7 +451,7 @@ def main():
                 + "\n".join(f"- {s}" for s in summary) + "\n\n" + "\n".join(pages))
     for s in summary:
         print(s)
-    for what, items in (("refused", failures), ("spills", spills), ("V3D at 1 thread", single)):
+    for what, items in (("refused", failures), ("spills", spills), ("V3D below its threads", single)):
         if items:
             print(f"{what} ({len(items)}):")
             for i in items:

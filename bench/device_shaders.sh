@@ -10,7 +10,12 @@
 #                    given again, the union is compiled. Default: dumped here under each device's own
 #                    profile (rpi-v3d, adreno-6xx, mali-bifrost) by the GL label, plus test_units' own
 #                    dump (the glsl_validate set): a ctest run each, about 3 min each on 2 idle cores
-#     --ci           for CI: --strict, needs --dump, skips (exit 77) without the prebuilt drivers
+#     --defaults     instead: the programs the tools' default frames build on each device, made
+#                    there: snell-render's default scene and snell-bench's every method and auto at
+#                    its defaults on the bunny and the sphere, run on the device's own driver with
+#                    tests' glsl_dump_preload (build/tests/libsnell_glsl_dump.so); about 40 programs
+#     --ci           for CI: --defaults (unless --dump), --strict, V3D fragment shaders held to the
+#                    threads docs/devices.md promises; skips (exit 77) without the prebuilt drivers
 #     --strict       fail on any spill and on a V3D program at 1 thread too
 #     --out DIR      default build/device-shaders
 #     --build DIR    the build holding tests/snell-shaderdb and the tests; default build
@@ -41,12 +46,13 @@ tarball=$shared/mesa-22.3.6-devices.tar.xz
 cache=${SNELL_DEVICES_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/snell/mesa-22.3.6-devices}
 
 dumps=() out=$root/build/device-shaders build=$root/build devices="v3d adreno mali" strict="" ci="" page=""
-jobs=$(nproc) cpu_limit=60 mem_limit=4096 only_drivers="" profiles="" tables=""
-usage() { sed -n '8,32p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+jobs=$(nproc) cpu_limit=60 mem_limit=4096 only_drivers="" profiles="" tables="" defaults=""
+usage() { sed -n '8,36p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case $1 in
         --dump) dumps+=("$(cd "${2:?--dump needs a folder}" && pwd)") || exit 2; shift ;;
         --ci) ci=1 strict=--strict ;;
+        --defaults) defaults=1 ;;
         --strict) strict=--strict ;;
         --out) out=${2:?--out needs a folder}; shift ;;
         --build) build=${2:?--build needs a folder}; shift ;;
@@ -63,7 +69,10 @@ while [ $# -gt 0 ]; do
     esac
     shift
 done
-[ -z "$ci$tables" ] || [ ${#dumps[@]} -gt 0 ] || { echo "device_shaders.sh: --ci and --tables need --dump DIR" >&2; exit 2; }
+[ -z "$tables" ] || [ ${#dumps[@]} -gt 0 ] || [ -n "$defaults" ] ||
+    { echo "device_shaders.sh: --tables needs the --dump or --defaults of the earlier run" >&2; exit 2; }
+[ -z "$ci" ] || [ ${#dumps[@]} -gt 0 ] || defaults=1
+[ -z "$defaults" ] || [ ${#dumps[@]} -eq 0 ] || { echo "device_shaders.sh: --defaults or --dump, not both" >&2; exit 2; }
 for d in $devices; do
     case $d in v3d|adreno|adreno-618|adreno-660|mali) ;; *) echo "device_shaders.sh: unknown device '$d'" >&2; exit 2 ;; esac
 done
@@ -136,16 +145,69 @@ fi
 
 start=$(date +%s)
 mkdir -p "$out"
-# Each device's programs: the given folders, else a dump under its own profile (its limits and
-# extensions choose the variants snell builds there), once per profile.
+# Each device's programs: the given folders; with --defaults what the default frames built on
+# its driver; else a dump under its own profile (its limits and extensions choose the variants
+# snell builds there), once per profile.
 declare -A dumped
 sources_of() { # DEVICE: its dump folders, one a line
-    if [ ${#dumps[@]} -gt 0 ]; then printf '%s\n' "${dumps[@]}"; else
+    if [ ${#dumps[@]} -gt 0 ]; then printf '%s\n' "${dumps[@]}";
+    elif [ -n "$defaults" ]; then echo "$out/dump/defaults-$1"; else
         printf '%s\n' "$out/dump/$(profile_of "$1")" "$out/dump/$(profile_of "$1")-units"; fi
+}
+# The default frames, every program they link dumped (tests/glsl_dump_preload.c), twice: on the
+# device's own driver over drm-shim (its limits, extensions and GL_RENDERER choose the variants,
+# as on the device; it compiles them there too, cheaply, and draws nothing), and on the suite's
+# driver under the device's profile and GL_RENDERER, where read-backs are real (the variants that
+# the data choose: layered's layers, from its bake; over drm-shim they read garbage).
+frames() { # FOLDER: snell-render's default scene, snell-bench's every method on the bunny and sphere
+    local specs=() m
+    for m in single layered cubemap wyman oliveira peel exact auto; do specs+=(-b "$m:scene=bunny,sphere:size=64x64"); done
+    export LD_PRELOAD="${LD_PRELOAD:+$LD_PRELOAD }$build/tests/libsnell_glsl_dump.so" SNELL_GLSL_DUMP=$1
+    timeout 300 "$build/ports/cli/snell-render" -o "$1/render.png" || return $?
+    timeout 300 "$build/ports/cli/snell-bench" -q --cache "$out/dump/reference-cache" "${specs[@]}" \
+        --frames 1 --warmup 0 -o "$1/bench"
+}
+on_device() { # DEVICE COMMAND...: the command under the device's driver, without statistics
+    local device=$1 dev=${1%%-*}
+    shift
+    (
+        [ "$device" = "$dev" ] || export FD_GPU_ID=${device#adreno-}
+        . "$shared/env.sh" "$dir" "$dev"
+        unset V3D_DEBUG IR3_SHADER_DEBUG BIFROST_MESA_DEBUG SNELL_DEVICE_PROFILE # the driver's own answers
+        "$@"
+    )
+}
+dump_defaults() { # DEVICE FOLDER
+    local device=$1 folder=$2 rc=0 renderer profile
+    local bunny=/usr/share/glmark2/models/bunny.obj
+    profile=$(profile_of "$device")
+    [ -f "$build/tests/libsnell_glsl_dump.so" ] ||
+        { echo "device_shaders.sh: no $build/tests/libsnell_glsl_dump.so: cmake --build $build" >&2; return 2; }
+    [ -f "$bunny" ] || { echo "device_shaders.sh: no $bunny (Debian's glmark2-data): the bunny scene" >&2; return 2; }
+    renderer=$(on_device "$device" "$tool" limits 2>/dev/null | sed -n 's/^renderer //p')
+    [ -n "$renderer" ] || { echo "device_shaders.sh: $device: its driver gives no GL_RENDERER" >&2; return 2; }
+    rm -rf "$folder" && mkdir -p "$folder" "$out/dump/reference-cache"
+    {
+        echo "== on the device's driver, $renderer" && on_device "$device" frames "$folder" &&
+            echo "== on the suite's driver as $renderer, under the profile $profile" &&
+            (SNELL_GLSL_DUMP_RENDERER=$renderer SNELL_DEVICE_PROFILE=$profile frames "$folder")
+    } >"$folder.log" 2>&1 || rc=$?
+    rm -f "$folder"/render.png "$folder"/bench.*
+    if [ $rc -ne 0 ]; then
+        echo "device_shaders.sh: $device: the default frames failed (exit $rc$([ $rc -ne 124 ] || echo ', past 300 s')); $folder.log:" >&2
+        tail -n 5 "$folder.log" >&2
+    fi
+    return $rc
 }
 for d in $devices; do
     p=$(profile_of "$d") t0=$(date +%s)
-    if [ ${#dumps[@]} -gt 0 ] || [ -n "${dumped[$p]:-}" ]; then continue; fi
+    if [ -n "$defaults" ] && [ -z "$tables" ]; then
+        echo "== $d: the default frames on its driver, dumping their programs" >&2
+        dump_defaults "$d" "$out/dump/defaults-$d" || exit 1
+        echo "   $(( $(date +%s) - t0 )) s, $(ls "$out/dump/defaults-$d" | grep -c '\.frag$') programs" >&2
+        continue
+    fi
+    if [ ${#dumps[@]} -gt 0 ] || [ -n "$defaults" ] || [ -n "${dumped[$p]:-}" ]; then continue; fi
     dumped[$p]=1
     echo "== the GL label under the profile $p, dumping every program (about 3 min)" >&2
     rm -rf "$out/dump/$p" "$out/dump/$p-units" && mkdir -p "$out/dump/$p" "$out/dump/$p-units"
@@ -218,10 +280,12 @@ done
 # the C file of src/ or tests/ that holds it inline.
 command="bash bench/device_shaders.sh"
 for s in "${dumps[@]}"; do command+=" --dump ${s#"$root"/}"; done
+[ -z "$defaults" ] || command+=" --defaults"
 [ "$devices" = "v3d adreno mali" ] || command+=" --devices '$devices'"
 args=(--shaders "$root/shaders_es" --c-sources "$root/src" --c-sources "$root/tests" --out "$out" --command "$command")
 [ ! -d "$build/generated/shaders_embedded.c.stripped" ] || args+=(--shaders "$build/generated/shaders_embedded.c.stripped")
 [ -z "$strict" ] || args+=(--strict)
+[ -z "$ci" ] || args+=(--promises "$root/docs/devices.md")
 [ ${#refused[@]} -eq 0 ] || args+=(--reference "$out/logs/reference")
 for s in "${folders[@]}"; do args+=(--dump "$s"); done
 rc=0

@@ -6,6 +6,11 @@ add_executable(snell-shaderdb snell_shaderdb.c)
 target_link_libraries(snell-shaderdb PRIVATE snell_static PkgConfig::GLES)
 target_include_directories(snell-shaderdb PRIVATE ${PROJECT_SOURCE_DIR}/src)
 target_compile_options(snell-shaderdb PRIVATE ${SNELL_WARNINGS})
+# What a tool's frames link, dumped for snell-shaderdb (bench/device_shaders.sh --defaults):
+# LD_PRELOAD=libsnell_glsl_dump.so, GL calls wrapped, nothing of snell's changed.
+add_library(snell_glsl_dump MODULE glsl_dump_preload.c)
+target_link_libraries(snell_glsl_dump PRIVATE ${CMAKE_DL_LIBS})
+target_compile_options(snell_glsl_dump PRIVATE ${SNELL_WARNINGS})
 # Each profile of src/core/profile.c with an open driver (rpi-v3d, adreno-6xx, mali-bifrost)
 # against what that driver reports on every GPU it stands for: a limit above the driver's or an
 # extension the driver lacks fails. Skipped (77), saying why, without the drivers' tarball. A
