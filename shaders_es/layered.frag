@@ -48,27 +48,16 @@ uniform int u_max_interfaces;    // 1..MAX_INTERFACES
 // continuous across texels, so the count of surfaces below a point changes
 // only where the ray meets the interpolated surface (nearest texels made it
 // change wherever a surface runs at a grazing angle to the centre's rays).
+// Selected, not branched: a branch's merged values would hold V3D registers
+// through the whole march that calls it (bench/notes/device_tuning.md).
 highp vec3 layer_coord(highp vec3 q)
 {
     highp vec3 a = abs(q);
-    highp float sc, tc, ma;
-    int face;
-    if (a.x >= a.y && a.x >= a.z) {
-        ma = a.x;
-        face = q.x > 0.0 ? 0 : 1;
-        sc = q.x > 0.0 ? -q.z : q.z;
-        tc = -q.y;
-    } else if (a.y >= a.z) {
-        ma = a.y;
-        face = q.y > 0.0 ? 2 : 3;
-        sc = q.x;
-        tc = q.y > 0.0 ? q.z : -q.z;
-    } else {
-        ma = a.z;
-        face = q.z > 0.0 ? 4 : 5;
-        sc = q.z > 0.0 ? q.x : -q.x;
-        tc = -q.y;
-    }
+    bool on_x = a.x >= a.y && a.x >= a.z, on_y = !on_x && a.y >= a.z;
+    highp float ma = on_x ? a.x : on_y ? a.y : a.z;
+    int face = on_x ? (q.x > 0.0 ? 0 : 1) : on_y ? (q.y > 0.0 ? 2 : 3) : (q.z > 0.0 ? 4 : 5);
+    highp float sc = on_x ? (q.x > 0.0 ? -q.z : q.z) : on_y ? q.x : (q.z > 0.0 ? q.x : -q.x);
+    highp float tc = on_y ? (q.y > 0.0 ? q.z : -q.z) : -q.y;
     return vec3(vec2(sc, tc) / max(ma, 1e-30) * 0.5 + 0.5, float(face));
 }
 
