@@ -110,6 +110,7 @@ drivers() {
     fi
     echo "$cache"
 }
+[ -d "$shared" ] || [ -z "$ci$profiles" ] || skip "no $shared: the GPUs' drivers over drm-shim (docs/devices.md)"
 dir=$(drivers)
 [ -z "$only_drivers" ] || { echo "$dir"; exit 0; }
 [ -f "$shared/env.sh" ] || skip "no $shared/env.sh (the drivers' environment, shared/devices/README.md)"

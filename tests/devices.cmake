@@ -20,3 +20,10 @@ if(NOT CMAKE_CROSSCOMPILING)
            --build ${PROJECT_BINARY_DIR} --profiles)
   set_tests_properties(device_profiles PROPERTIES LABELS "device" SKIP_RETURN_CODE 77 TIMEOUT 120)
 endif()
+# CI's device leg (device_shaders.sh --ci) fails where it should: bench/device_shaders.py on
+# made-up compiler logs, a spill, a refusal and a V3D shader below its promised threads.
+if(SNELL_PYTHON3)
+  add_test(NAME device_shaders_verdicts COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/test_device_shaders.py
+           ${PROJECT_SOURCE_DIR}/bench/device_shaders.py)
+  set_tests_properties(device_shaders_verdicts PROPERTIES LABELS "unit" TIMEOUT 60)
+endif()
