@@ -227,10 +227,10 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     highp vec3 p_red = p1, p_blue = p1; // where the red and blue rays are, after the green ray's lengths
 #endif
 #if SNELL_INNER_FRESNEL
+    // the loop ends at the exit: its point and length are the loop's last
     float exit_fresnel = 0.0;   // F at the exit the path refracted out of (0: capped, no exit)
-    highp vec3 exit_in = dir, exit_p = p1;
+    highp vec3 exit_in = dir;
     vec3 exit_n = n;
-    highp float exit_length = 0.0;
 #endif
     // selects, not branches, and the loop ends at its top: on V3D every
     // value the loop merges stays live through all of it
@@ -271,8 +271,6 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         exit_fresnel = out_of_glass ? f_exit : exit_fresnel;
         exit_in = out_of_glass ? dir : exit_in;
         exit_n = out_of_glass ? n2 : exit_n;
-        exit_p = out_of_glass ? p : exit_p;
-        exit_length = out_of_glass ? length_inside : exit_length;
 #endif
         dir = normalize(next);
         done = out_of_glass || k >= u_max_interfaces;
@@ -288,7 +286,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     // which one more search follows (inner_branch). Computed for every pixel
     // and selected: its look-ups take implicit derivatives, undefined in
     // non-uniform control flow (GLSL ES 3.0, 8.9).
-    vec3 inner = inner_branch(exit_p, snell_reflect(exit_in, exit_n), exit_length, v, n);
+    vec3 inner = inner_branch(p, snell_reflect(exit_in, exit_n), length_inside, v, n);
     transmitted = exit_fresnel > 0.0 ? (1.0 - exit_fresnel) * transmitted + exit_fresnel * u_tint * inner : transmitted;
 #endif
     // the reflected direction from v and n, which the loop keeps anyway:
