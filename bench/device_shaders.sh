@@ -287,6 +287,14 @@ args=(--shaders "$root/shaders_es" --c-sources "$root/src" --c-sources "$root/te
 [ ! -d "$build/generated/shaders_embedded.c.stripped" ] || args+=(--shaders "$build/generated/shaders_embedded.c.stripped")
 [ -z "$strict" ] || args+=(--strict)
 [ -z "$ci" ] || args+=(--promises "$root/docs/devices.md")
+if [ -n "$defaults" ]; then
+    args+=(--what "the programs the default frames build on each device: snell-render's default scene and \
+snell-bench's every method and auto at its defaults on the bunny and the sphere, on the device's driver and on \
+llvmpipe under its profile")
+elif [ ${#dumps[@]} -eq 0 ]; then
+    args+=(--what "every program the GL tests and test_units build under each device's profile")
+fi
+commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null) && args+=(--commit "$commit")
 [ ${#refused[@]} -eq 0 ] || args+=(--reference "$out/logs/reference")
 for s in "${folders[@]}"; do args+=(--dump "$s"); done
 rc=0
