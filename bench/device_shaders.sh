@@ -21,6 +21,7 @@
 #     --build DIR    the build holding tests/snell-shaderdb and the tests; default build
 #     --devices L    default "v3d adreno mali"; also adreno-618 and adreno-660 (FD_GPU_ID 618, 660)
 #     --page FILE    also copy OUT/SHADERS.md there (bench/devices/SHADERS.md)
+#     --about TEXT   what the --dump folders hold, for the page
 #     --jobs N       programs compiled at once (default: the cores)
 #     --cpu-limit S  CPU seconds one program may take to compile and link here (default 60); past it,
 #                    it counts as refused: the device's own CPU would stall its first draw for minutes
@@ -34,7 +35,8 @@
 #     --drivers      only print the folder of the unpacked drivers (unpacking them if needed)
 #
 # Exit: 0 ok; 1 a device's compiler refused a program (or, with --strict, a spill or a V3D program at
-# 1 thread), each offender printed; 2 bad usage or no build; 77 skipped, the reason printed.
+# 1 thread, or under --ci below its promised threads), each offender printed; 2 bad usage or no
+# build; 77 skipped, the reason printed.
 # The drivers: $SNELL_DEVICES_DIR (a folder holding inst/) if set; else unpacked once from
 # ../shared/devices/mesa-22.3.6-devices.tar.xz into ${XDG_CACHE_HOME:-~/.cache}/snell/ (again when
 # the tarball changes); without the tarball, built there by ../shared/devices/build.sh (25-45 min,
@@ -46,8 +48,8 @@ tarball=$shared/mesa-22.3.6-devices.tar.xz
 cache=${SNELL_DEVICES_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/snell/mesa-22.3.6-devices}
 
 dumps=() out=$root/build/device-shaders build=$root/build devices="v3d adreno mali" strict="" ci="" page=""
-jobs=$(nproc) cpu_limit=60 mem_limit=4096 only_drivers="" profiles="" tables="" defaults=""
-usage() { sed -n '8,36p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+jobs=$(nproc) cpu_limit=60 mem_limit=4096 only_drivers="" profiles="" tables="" defaults="" about=""
+usage() { sed -n '8,37p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case $1 in
         --dump) dumps+=("$(cd "${2:?--dump needs a folder}" && pwd)") || exit 2; shift ;;
@@ -58,6 +60,7 @@ while [ $# -gt 0 ]; do
         --build) build=${2:?--build needs a folder}; shift ;;
         --devices) devices=${2:?--devices needs a list}; shift ;;
         --page) page=${2:?--page needs a file}; shift ;;
+        --about) about=${2:?--about needs a text}; shift ;;
         --jobs) jobs=${2:?--jobs needs a number}; shift ;;
         --cpu-limit) cpu_limit=${2:?--cpu-limit needs seconds}; shift ;;
         --mem-limit) mem_limit=${2:?--mem-limit needs megabytes}; shift ;;
@@ -291,6 +294,8 @@ if [ -n "$defaults" ]; then
     args+=(--what "the programs the default frames build on each device: snell-render's default scene and \
 snell-bench's every method and auto at its defaults on the bunny and the sphere, on the device's driver and on \
 llvmpipe under its profile")
+elif [ -n "$about" ]; then
+    args+=(--what "$about")
 elif [ ${#dumps[@]} -eq 0 ]; then
     args+=(--what "every program the GL tests and test_units build under each device's profile")
 fi
