@@ -29,7 +29,7 @@ typedef enum snell_status {
     SNELL_E_IO,           /* a file could not be opened or read/written */
     SNELL_E_PARSE,        /* a file's content is malformed */
     SNELL_E_GL,           /* a GL call, shader compile or link failed */
-    SNELL_E_EGL,          /* no EGL display/config/context could be made */
+    SNELL_E_EGL,          /* no EGL display/config/context could be made (EXTERNAL: none current) */
     SNELL_E_UNSUPPORTED,  /* a needed extension or feature is missing */
     SNELL_E_NOMEM,        /* an allocation failed or a size is absurd */
     SNELL_E_LIMIT         /* input exceeds a documented limit */
@@ -79,7 +79,7 @@ typedef enum snell_backend {
     SNELL_BACKEND_DEFAULT = 0,  /* SURFACELESS, which itself falls back to a pbuffer */
     SNELL_BACKEND_SURFACELESS,  /* EGL_MESA_platform_surfaceless + EGL_KHR_surfaceless_context */
     SNELL_BACKEND_PBUFFER,      /* any EGL display, 1x1 pbuffer surface */
-    SNELL_BACKEND_EXTERNAL      /* the caller's current GLES 3.0 context; GL state is restored */
+    SNELL_BACKEND_EXTERNAL      /* the caller's current GLES 3.0 context (EGL, GLX or other); GL state is restored */
 } snell_backend;
 
 typedef struct snell_ctx_desc {

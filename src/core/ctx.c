@@ -4,6 +4,7 @@
 #include "core/ctx.h"
 #include "core/gl.h"
 
+#include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -82,19 +83,29 @@ static snell_status find_profile(const char *name, const snell__profile **out)
                        snell__quote(name, quoted, sizeof quoted), names);
 }
 
+/* Installs snell's KHR_debug callback, keeping the one it replaces (a host's
+ * with its user pointer), or puts that one back. */
 static void install_debug(snell_ctx *ctx, int enable)
 {
     PFNGLDEBUGMESSAGECALLBACKKHRPROC cb;
+    PFNGLGETPOINTERVKHRPROC get;
+    GLDEBUGPROCKHR host;
     if (!ctx->log) return; /* asked only then: a profile's KHR_debug changes nothing else */
     if (enable) ctx->has_khr_debug = snell_ctx_has_gl_extension(ctx, "GL_KHR_debug");
     if (!ctx->has_khr_debug) return;
-    cb = (PFNGLDEBUGMESSAGECALLBACKKHRPROC)eglGetProcAddress("glDebugMessageCallbackKHR");
+    cb = (PFNGLDEBUGMESSAGECALLBACKKHRPROC)snell__platform_proc(&ctx->platform, "glDebugMessageCallbackKHR");
+    get = (PFNGLGETPOINTERVKHRPROC)snell__platform_proc(&ctx->platform, "glGetPointervKHR");
     if (!cb) return;
     if (enable) {
+        if (get) {
+            get(GL_DEBUG_CALLBACK_FUNCTION_KHR, &ctx->host_debug[0]);
+            get(GL_DEBUG_CALLBACK_USER_PARAM_KHR, &ctx->host_debug[1]);
+        }
         cb(debug_callback, ctx);
         if (ctx->backend != SNELL_BACKEND_EXTERNAL) glEnable(GL_DEBUG_OUTPUT_KHR);
     } else {
-        cb(NULL, NULL);
+        memcpy(&host, &ctx->host_debug[0], sizeof host);
+        cb(host, ctx->host_debug[1]);
     }
 }
 
@@ -182,6 +193,9 @@ void snell__ctx_release(snell_ctx *ctx)
     pthread_mutex_unlock(&g_ref_lock);
     if (!last || snell__debug_handles()) return; /* kept destroyed, so that a second destroy is caught */
     al = ctx->alloc;
+#ifdef SNELL_WITH_GLX
+    if (ctx->platform.glx.lib) dlclose(ctx->platform.glx.lib); /* kept for the late destroys' scopes */
+#endif
     snell__free(&al, ctx->gl_extensions);
     snell__free(&al, ctx);
 }
@@ -211,9 +225,9 @@ snell_status snell_ctx_make_current(snell_ctx *ctx)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_ctx_make_current: the context was destroyed");
     p = &ctx->platform;
     if (!p->owns_context) {
-        if (eglGetCurrentContext() == ctx->gl_context) return SNELL_OK;
+        if (snell__platform_current(p) == ctx->gl_context) return SNELL_OK;
         return snell__fail(ctx, SNELL_E_INVALID_ARG,
-                           "snell_ctx_make_current: EXTERNAL context: the host's EGL context it was created on is "
+                           "snell_ctx_make_current: EXTERNAL context: the host's GL context it was created on is "
                            "not current on this thread (the host makes it current, snell cannot)");
     }
     if (!eglMakeCurrent(p->display, p->surface, p->surface, p->context))
@@ -226,25 +240,45 @@ snell_status snell__ctx_check_current(snell_ctx *ctx, const char *who)
 {
     if (ctx->destroyed)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "%s: its context was destroyed (snell_ctx_destroy)", who);
-    if (eglGetCurrentContext() != ctx->gl_context)
+    if (snell__platform_current(&ctx->platform) != ctx->gl_context)
         return snell__fail(ctx, SNELL_E_INVALID_ARG,
                            ctx->platform.owns_context
                                ? "%s: the context's GL context is not current on this thread (another context was "
                                  "created or made current since): call snell_ctx_make_current first"
-                               : "%s: the host's EGL context this EXTERNAL context was created on is not current on "
+                               : "%s: the host's GL context this EXTERNAL context was created on is not current on "
                                  "this thread",
                            who);
     return SNELL_OK;
 }
 
+#ifdef SNELL_WITH_GLX
+/* A GLX host's context, as snell__gl_scope_enter does for EGL below. */
+static int glx_scope_enter(const snell_ctx *ctx, snell__gl_scope *s)
+{
+    const snell__glx *g = s->glx;
+    s->context = g->current();
+    s->display = g->display();
+    s->glx_draw = g->draw();
+    s->glx_read = g->read();
+    if (s->context && s->context == ctx->gl_context && !ctx->destroyed) return 1;
+    if (s->context && g->make_current(s->display, 0, 0, NULL)) s->switched = 1;
+    return 0;
+}
+#endif
+
 int snell__gl_scope_enter(snell_ctx *ctx, snell__gl_scope *s)
 {
+    s->switched = 0;
+#ifdef SNELL_WITH_GLX
+    s->glx = ctx && ctx->platform.glx.lib ? &ctx->platform.glx : NULL;
+    if (s->glx) return glx_scope_enter(ctx, s);
+#endif
     s->display = eglGetCurrentDisplay();
     s->draw = eglGetCurrentSurface(EGL_DRAW);
     s->read = eglGetCurrentSurface(EGL_READ);
     s->context = eglGetCurrentContext();
     s->used_display = s->display;
-    s->switched = 0;
+    if (ctx && ctx->platform.foreign) return !ctx->destroyed; /* nothing to detach it with */
     if (ctx && !ctx->destroyed) {
         const snell_platform *p = &ctx->platform;
         if (s->context != EGL_NO_CONTEXT && s->context == ctx->gl_context) return 1;
@@ -265,6 +299,12 @@ int snell__gl_scope_enter(snell_ctx *ctx, snell__gl_scope *s)
 void snell__gl_scope_leave(const snell__gl_scope *s)
 {
     if (!s->switched) return;
+#ifdef SNELL_WITH_GLX
+    if (s->glx) {
+        s->glx->make_current(s->display, s->glx_draw, s->glx_read, s->context);
+        return;
+    }
+#endif
     if (s->context != EGL_NO_CONTEXT) eglMakeCurrent(s->display, s->draw, s->read, s->context);
     else eglMakeCurrent(s->used_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }

@@ -25,6 +25,7 @@ struct snell_ctx {
     int has_khr_debug;              /* asked where a log callback would get its messages (ctx.c) */
     int light_fixed;                /* snell__light_fixed's answer: 0 not asked yet, 1 yes, -1 no */
     int debug_installed;
+    void *host_debug[2];            /* the KHR_debug callback and user pointer snell's replaced */
     char last_error[1024];
     int fragment_mediump;           /* shader precision policy (program.c): 0 unknown, 1 mediump, -1 highp */
     char precision_reason[96];
@@ -35,7 +36,7 @@ struct snell_ctx {
      * (allocator, messages) lives until the last object is destroyed. */
     int refs;
     int destroyed;                  /* snell_ctx_destroy was called: GL calls must not reach it */
-    EGLContext gl_context;          /* the EGL context it draws in (owned or the host's) */
+    void *gl_context;               /* the context it draws in (owned or the host's; snell__platform_current) */
     /* The most any program given units here asked for (frame/textures.c):
      * samplers, and uniform vectors counted without packing (a mat4 is 4,
      * a float 1), each with the program that asked. test_units checks them
@@ -72,9 +73,11 @@ int snell__light_fixed(snell_ctx *ctx);
  * one that is not current: its objects stay with it). leave puts back
  * whatever was current before. */
 typedef struct snell__gl_scope {
-    EGLDisplay display, used_display;
+    EGLDisplay display, used_display; /* a GLX host's: its Display */
     EGLSurface draw, read;
-    EGLContext context;
+    EGLContext context;               /* a GLX host's: its GLXContext */
+    const snell__glx *glx;            /* the context's GLX calls, NULL: EGL */
+    unsigned long glx_draw, glx_read;
     int switched;
 } snell__gl_scope;
 int snell__gl_scope_enter(snell_ctx *ctx, snell__gl_scope *s);

@@ -115,8 +115,11 @@ int snell__units_count(const snell__units *u)
     return n;
 }
 
-static unsigned char enabled(GLenum cap) { return glIsEnabled(cap) ? 1 : 0; }
-static void set_enabled(GLenum cap, unsigned char on) { if (on) glEnable(cap); else glDisable(cap); }
+/* The capabilities a frame may change, bit i of snell_glstate.caps for k_caps[i]. */
+static const unsigned short k_caps[] = {GL_DEPTH_TEST, GL_CULL_FACE, GL_BLEND, GL_SCISSOR_TEST, GL_STENCIL_TEST,
+                                GL_POLYGON_OFFSET_FILL, GL_DITHER, GL_RASTERIZER_DISCARD,
+                                GL_SAMPLE_ALPHA_TO_COVERAGE, GL_SAMPLE_COVERAGE, GL_PRIMITIVE_RESTART_FIXED_INDEX};
+#define CAPS (int)(sizeof k_caps / sizeof k_caps[0])
 
 static void pixel_save(snell__pixel_store *p, int pack)
 {
@@ -184,7 +187,14 @@ void snell__glstate_frame_defaults(void)
 void snell__glstate_save(snell_glstate *s)
 {
     int i;
-    GLboolean cm[4], dm;
+    GLboolean cm[4], dm, tf_active = GL_FALSE, tf_paused = GL_FALSE;
+    /* A host's active transform feedback would capture snell's draws: paused
+     * until the restore (GLES 3.0 2.15.2 allows binding, drawing and
+     * program changes while paused). */
+    glGetBooleanv(GL_TRANSFORM_FEEDBACK_ACTIVE, &tf_active);
+    glGetBooleanv(GL_TRANSFORM_FEEDBACK_PAUSED, &tf_paused);
+    s->tf_paused = tf_active && !tf_paused;
+    if (s->tf_paused) glPauseTransformFeedback();
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->draw_fbo);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_fbo);
     glGetIntegerv(GL_RENDERBUFFER_BINDING, &s->renderbuffer);
@@ -193,13 +203,8 @@ void snell__glstate_save(snell_glstate *s)
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->array_buffer);
     glGetIntegerv(GL_VIEWPORT, s->viewport);
     glGetIntegerv(GL_SCISSOR_BOX, s->scissor_box);
-    s->depth_test = enabled(GL_DEPTH_TEST);
-    s->cull_face = enabled(GL_CULL_FACE);
-    s->blend = enabled(GL_BLEND);
-    s->scissor_test = enabled(GL_SCISSOR_TEST);
-    s->stencil_test = enabled(GL_STENCIL_TEST);
-    s->polygon_offset = enabled(GL_POLYGON_OFFSET_FILL);
-    s->dither = enabled(GL_DITHER);
+    s->caps = 0;
+    for (i = 0; i < CAPS; i++) s->caps |= (glIsEnabled(k_caps[i]) ? 1u : 0u) << i;
     glGetBooleanv(GL_COLOR_WRITEMASK, cm);
     for (i = 0; i < 4; i++) s->color_mask[i] = cm[i];
     glGetBooleanv(GL_DEPTH_WRITEMASK, &dm);
@@ -215,13 +220,7 @@ void snell__glstate_save(snell_glstate *s)
     glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &s->blend_eq_a);
     glGetFloatv(GL_COLOR_CLEAR_VALUE, s->clear_color);
     glGetFloatv(GL_DEPTH_CLEAR_VALUE, &s->clear_depth);
-    glGetIntegerv(GL_PACK_ALIGNMENT, &s->pack_alignment);
-    glGetIntegerv(GL_UNPACK_ALIGNMENT, &s->unpack_alignment);
     glGetFloatv(GL_DEPTH_RANGE, s->depth_range);
-    s->rasterizer_discard = enabled(GL_RASTERIZER_DISCARD);
-    s->alpha_to_coverage = enabled(GL_SAMPLE_ALPHA_TO_COVERAGE);
-    s->sample_coverage = enabled(GL_SAMPLE_COVERAGE);
-    s->primitive_restart = enabled(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     pixel_save(&s->pack, 1);
     pixel_save(&s->unpack, 0);
     snell__units_begin(&s->units, 1, 0);
@@ -230,6 +229,7 @@ void snell__glstate_save(snell_glstate *s)
 
 void snell__glstate_restore(snell_glstate *s)
 {
+    int i;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_fbo);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_fbo);
     glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)s->renderbuffer);
@@ -241,13 +241,10 @@ void snell__glstate_restore(snell_glstate *s)
     g_units.active = s->active_texture - GL_TEXTURE0;
     glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
     glScissor(s->scissor_box[0], s->scissor_box[1], s->scissor_box[2], s->scissor_box[3]);
-    set_enabled(GL_DEPTH_TEST, s->depth_test);
-    set_enabled(GL_CULL_FACE, s->cull_face);
-    set_enabled(GL_BLEND, s->blend);
-    set_enabled(GL_SCISSOR_TEST, s->scissor_test);
-    set_enabled(GL_STENCIL_TEST, s->stencil_test);
-    set_enabled(GL_POLYGON_OFFSET_FILL, s->polygon_offset);
-    set_enabled(GL_DITHER, s->dither);
+    for (i = 0; i < CAPS; i++) {
+        if (s->caps >> i & 1u) glEnable(k_caps[i]);
+        else glDisable(k_caps[i]);
+    }
     glColorMask(s->color_mask[0], s->color_mask[1], s->color_mask[2], s->color_mask[3]);
     glDepthMask(s->depth_mask);
     glDepthFunc((GLenum)s->depth_func);
@@ -258,13 +255,40 @@ void snell__glstate_restore(snell_glstate *s)
     glBlendEquationSeparate((GLenum)s->blend_eq_rgb, (GLenum)s->blend_eq_a);
     glClearColor(s->clear_color[0], s->clear_color[1], s->clear_color[2], s->clear_color[3]);
     glClearDepthf(s->clear_depth);
-    glPixelStorei(GL_PACK_ALIGNMENT, s->pack_alignment);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, s->unpack_alignment);
     glDepthRangef(s->depth_range[0], s->depth_range[1]);
-    set_enabled(GL_RASTERIZER_DISCARD, s->rasterizer_discard);
-    set_enabled(GL_SAMPLE_ALPHA_TO_COVERAGE, s->alpha_to_coverage);
-    set_enabled(GL_SAMPLE_COVERAGE, s->sample_coverage);
-    set_enabled(GL_PRIMITIVE_RESTART_FIXED_INDEX, s->primitive_restart);
     pixel_set(&s->pack, 1);
     pixel_set(&s->unpack, 0);
+    if (s->tf_paused) glResumeTransformFeedback(); /* the host's program is current again */
+}
+
+/* GL keeps at most one flag per error kind and glGetError clears the one it
+ * returns, so a host's pending error cannot be read without taking it: taken
+ * before snell's work (which checks only its own errors), then raised again
+ * by a call that fails the same way and changes nothing (GLES 3.0 2.5). */
+unsigned snell__gl_errors_take(void)
+{
+    unsigned mask = 0;
+    GLenum e;
+    int i;
+    for (i = 0; i < 8 && (e = glGetError()) != GL_NO_ERROR; i++)
+        if (e >= GL_INVALID_ENUM && e <= GL_INVALID_FRAMEBUFFER_OPERATION) mask |= 1u << (e - GL_INVALID_ENUM);
+    return mask;
+}
+
+void snell__gl_errors_give(unsigned mask)
+{
+    GLint v;
+    GLuint fbo = 0, prev = 0;
+    if (mask & 1u << (GL_INVALID_ENUM - GL_INVALID_ENUM)) glGetIntegerv(GL_NONE, &v);
+    if (mask & 1u << (GL_INVALID_VALUE - GL_INVALID_ENUM)) glGetShaderiv(0, GL_SHADER_TYPE, &v); /* 0 is no shader */
+    if (mask & 1u << (GL_INVALID_OPERATION - GL_INVALID_ENUM))
+        glGetQueryObjectuiv(0, GL_QUERY_RESULT_AVAILABLE, &prev); /* 0 is no query */
+    if (mask & 1u << (GL_INVALID_FRAMEBUFFER_OPERATION - GL_INVALID_ENUM)) {
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &v);
+        glGenFramebuffers(1, &fbo); /* no attachment: incomplete, so a clear of nothing fails */
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glClear(0);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)v);
+        glDeleteFramebuffers(1, &fbo);
+    }
 }

@@ -42,15 +42,14 @@ typedef struct snell_glstate {
     int draw_fbo, read_fbo, renderbuffer, program, vao, array_buffer, active_texture;
     snell__units units; /* the texture units used since the save, as they were */
     int viewport[4], scissor_box[4];
-    unsigned char depth_test, cull_face, blend, scissor_test, stencil_test, polygon_offset, dither;
+    unsigned caps; /* glIsEnabled of each capability in glstate.c's table, a bit each */
     unsigned char color_mask[4], depth_mask;
     int depth_func, cull_mode, front_face;
     int blend_src_rgb, blend_dst_rgb, blend_src_a, blend_dst_a, blend_eq_rgb, blend_eq_a;
     float clear_color[4], clear_depth;
-    int pack_alignment, unpack_alignment;
     float depth_range[2];
-    unsigned char rasterizer_discard, alpha_to_coverage, sample_coverage, primitive_restart;
     snell__pixel_store pack, unpack;
+    unsigned char tf_paused; /* the host's transform feedback, paused by the save */
 } snell_glstate;
 
 /* Saves the state and opens a units scope that saves each unit at its
@@ -74,5 +73,11 @@ void snell__pixel_pack_begin(snell__pixel_store *saved, int alignment);
 void snell__pixel_pack_end(const snell__pixel_store *saved);
 void snell__pixel_unpack_begin(snell__pixel_store *saved, int alignment);
 void snell__pixel_unpack_end(const snell__pixel_store *saved);
+
+/* The GL errors pending now, taken (a bit per kind: 1 << (error -
+ * GL_INVALID_ENUM)), and raised again. GL_OUT_OF_MEMORY and context loss
+ * cannot be raised on purpose: taken, they are gone (docs/integrating.md). */
+unsigned snell__gl_errors_take(void);
+void snell__gl_errors_give(unsigned mask);
 
 #endif

@@ -9,7 +9,23 @@
 #include "core/core.h"
 #include <EGL/egl.h>
 
+/* A host's context made without EGL (GLX: SDL2 and GLFW on X11): GLX's own
+ * calls, found in the process (platform_external.c), to ask which context is
+ * current, detach it for a moment and find GL functions. All NULL for EGL. */
+typedef void (*snell__gl_fn)(void);
+typedef struct snell__glx {
+    void *lib;                   /* dlopen handle of the loaded GLX library */
+    void *(*current)(void);      /* glXGetCurrentContext */
+    void *(*display)(void);      /* glXGetCurrentDisplay */
+    unsigned long (*draw)(void); /* glXGetCurrentDrawable */
+    unsigned long (*read)(void); /* glXGetCurrentReadDrawable */
+    int (*make_current)(void *display, unsigned long draw, unsigned long read, void *context);
+    snell__gl_fn (*proc)(const unsigned char *name); /* glXGetProcAddressARB */
+} snell__glx;
+
 typedef struct snell_platform {
+    snell__glx glx;                 /* a GLX host context (EXTERNAL), else all NULL */
+    int foreign;                    /* EXTERNAL, neither EGL nor GLX: any current GL context is taken */
     EGLDisplay display;
     EGLContext context;
     EGLSurface surface;             /* EGL_NO_SURFACE when surfaceless */
@@ -23,6 +39,12 @@ snell_status snell__platform_open_surfaceless(snell_ctx *ctx, snell_platform *p,
 snell_status snell__platform_open_pbuffer(snell_ctx *ctx, snell_platform *p, int debug);
 snell_status snell__platform_open_external(snell_ctx *ctx, snell_platform *p);
 void snell__platform_close(snell_platform *p);
+/* The GL context current on this thread as the platform knows it (EGL, GLX;
+ * for a foreign one p->context while GL answers), NULL when none. */
+void *snell__platform_current(const snell_platform *p);
+/* A GL or extension function of the current context: GLX's or EGL's
+ * look-up where that made it, else the GLES library's own export. */
+snell__gl_fn snell__platform_proc(const snell_platform *p, const char *name);
 
 /* Shared EGL helpers (platform_egl.c). */
 int snell__egl_has_extension(const char *list, const char *name);

@@ -32,6 +32,22 @@ struct snell__backdrop {
     float far_;                                        /* the host's far plane's depth: 1, 0 reversed-Z */
 };
 
+/* A texture of this context made as GL_TEXTURE_2D: binding one made for
+ * another target fails (GLES 3.0 3.8.1); asked on the active unit, put back. */
+static snell_status texture_2d(snell_ctx *ctx, unsigned tex, int required, const char *field)
+{
+    GLint prev = 0;
+    const char *why = "a texture of this context";
+    if (!tex && !required) return SNELL_OK;
+    if (tex && glIsTexture(tex)) {
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        why = glGetError() == GL_NO_ERROR ? NULL : "a GL_TEXTURE_2D";
+        glBindTexture(GL_TEXTURE_2D, (GLuint)prev);
+    }
+    return why ? snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.%s %u is not %s", field, tex, why) : SNELL_OK;
+}
+
 static snell_status validate(const snell__services *sv, const snell_frame_desc *fd)
 {
     const snell_backdrop *b = fd->backdrop;
@@ -49,12 +65,9 @@ static snell_status validate(const snell__services *sv, const snell_frame_desc *
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop SNELL_BACKDROP_COPY_BOUND with SNELL_DEPTH_CLEAR: "
                            "the depth would be cleared before it is copied");
     if (b->source == SNELL_BACKDROP_TEXTURES) {
-        if (!b->color_texture || !glIsTexture(b->color_texture))
-            return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.color_texture %u is not a texture of this context",
-                               b->color_texture);
-        if (b->depth_texture && !glIsTexture(b->depth_texture))
-            return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.depth_texture %u is not a texture of this context",
-                               b->depth_texture);
+        if ((st = texture_2d(ctx, b->color_texture, 1, "color_texture")) != SNELL_OK ||
+            (st = texture_2d(ctx, b->depth_texture, 0, "depth_texture")) != SNELL_OK)
+            return st;
         if (b->width < 1 || b->height < 1 || b->width > 16384 || b->height > 16384)
             return snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.width x height %dx%d outside 1..16384 (the "
                                "textures' size is required)", b->width, b->height);
@@ -95,9 +108,10 @@ static void sampler(unsigned *s, GLint filter)
  * *depth: 1 the depth was copied. */
 static snell_status copy_bound(snell_ctx *ctx, snell__backdrop *b, int w, int h, int *depth)
 {
-    GLint fbo = 0;
+    GLint fbo = 0, drawn = GL_BACK, read = GL_BACK;
     unsigned format;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    glGetIntegerv(GL_DRAW_BUFFER0, &drawn); /* copied from, not the host's read buffer */
     format = snell__host_depth_format(fbo);
     if (!b->color_tex || b->width != w || b->height != h || b->depth_format != format) {
         if (b->color_tex) glDeleteTextures(1, &b->color_tex);
@@ -124,8 +138,11 @@ static snell_status copy_bound(snell_ctx *ctx, snell__backdrop *b, int w, int h,
         b->width = w, b->height = h, b->depth_format = format;
     }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
+    glGetIntegerv(GL_READ_BUFFER, &read);
+    glReadBuffer((GLenum)drawn);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, b->fbo);
     glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT | (format ? GL_DEPTH_BUFFER_BIT : 0), GL_NEAREST);
+    glReadBuffer((GLenum)read);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
     *depth = format != 0;
     if (glGetError() != GL_NO_ERROR)

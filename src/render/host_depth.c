@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* host_depth.c — see host_depth.h. */
 #include "render/host_depth.h"
+#include "render/host_target.h"
 #include "core/gl.h"
 
 #include <string.h>
@@ -13,24 +14,28 @@ snell_depth_mode snell__depth_mode_of(snell_depth_mode asked, snell_target targe
 
 unsigned snell__host_depth_format(int fbo)
 {
-    GLint type = 0, depth = 0, stencil = 0;
-    GLenum att = fbo ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
-    GLenum satt = fbo ? GL_STENCIL_ATTACHMENT : GL_STENCIL;
-    GLint object = GL_NONE;
-    if (fbo) {
-        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &object);
-        if (object == GL_NONE) return 0;
+    /* A missing attachment's size is an error to ask, for the default
+     * framebuffer too (GLES 3.0 6.1.13): its type is asked first. */
+    GLenum d = fbo ? GL_DEPTH_ATTACHMENT : GL_DEPTH, st = fbo ? GL_STENCIL_ATTACHMENT : GL_STENCIL;
+    GLint depth = 0, stencil = 0, type = 0;
+    if (snell__fb_attachment(d, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) != GL_NONE) {
+        depth = snell__fb_attachment(d, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE);
+        type = snell__fb_attachment(d, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE);
     }
-    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &depth);
-    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
-    object = GL_NONE;
-    if (fbo) glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, satt, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &object);
-    if (!fbo || object != GL_NONE)
-        glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, satt, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE, &stencil);
+    if (depth && snell__fb_attachment(st, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) != GL_NONE)
+        stencil = snell__fb_attachment(st, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE);
     if (type == GL_FLOAT && depth == 32) return stencil ? GL_DEPTH32F_STENCIL8 : GL_DEPTH_COMPONENT32F;
     if (depth == 24) return stencil ? GL_DEPTH24_STENCIL8 : GL_DEPTH_COMPONENT24;
     if (depth == 16 && !stencil) return GL_DEPTH_COMPONENT16;
     return 0;
+}
+
+/* A packed depth-stencil copied whole: its depth alone may be copied through
+ * float, which rounds 24-bit values (Mesa); the stencil snell never writes. */
+static GLbitfield copy_bits(unsigned format)
+{
+    return GL_DEPTH_BUFFER_BIT |
+           (format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8 ? GL_STENCIL_BUFFER_BIT : 0);
 }
 
 snell_status snell__host_depth_begin(snell_ctx *ctx, snell__host_depth *d, snell_depth_mode mode, int width,
@@ -73,7 +78,7 @@ snell_status snell__host_depth_begin(snell_ctx *ctx, snell__host_depth *d, snell
     }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, d->fbo);
-    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, copy_bits(format), GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
     if (glGetError() != GL_NO_ERROR) {
         snell__host_depth_destroy(d);
@@ -91,7 +96,7 @@ snell_status snell__host_depth_end(snell_ctx *ctx, snell__host_depth *d)
     d->saved = 0;
     glBindFramebuffer(GL_READ_FRAMEBUFFER, d->fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, d->target_fbo);
-    glBlitFramebuffer(0, 0, d->width, d->height, 0, 0, d->width, d->height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBlitFramebuffer(0, 0, d->width, d->height, 0, 0, d->width, d->height, copy_bits(d->format), GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, d->target_fbo);
     return glGetError() == GL_NO_ERROR ? SNELL_OK
                                        : snell__fail(ctx, SNELL_E_GL, "SNELL_DEPTH_TEST_NO_WRITE: giving the depth back failed");

@@ -109,6 +109,7 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     snell_status st;
     snell_glstate saved;
     int i;
+    unsigned host_errors;
     if (!ctx || !out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_renderer_create: ctx and out are required");
     *out = NULL;
     if ((st = snell__ctx_check_current(ctx, "snell_renderer_create")) != SNELL_OK) return st;
@@ -159,16 +160,19 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown env_lookup %d", (int)d.env_lookup);
     }
     r->sv.env_lookup = d.env_lookup;
+    r->premultiplied = d.premultiplied_alpha;
     r->sv.device = snell__device_class_of(snell_ctx_gl_renderer(ctx));
     r->sv.out = d.output == SNELL_OUTPUT_COLOR ? SNELL__OUT_COLOR
              : d.output == SNELL_OUTPUT_EXIT_DIRECTION && snell_ctx_has_gl_extension(ctx, "GL_EXT_color_buffer_float")
                  ? SNELL__OUT_DIR_FLOAT
                  : SNELL__OUT_DIR_PACKED;
     snell__ctx_retain(ctx); /* from here on released by snell_renderer_destroy */
+    host_errors = snell__gl_errors_take();
     snell__glstate_save(&saved);
     st = create_stage_states(r, &d);
     if (st == SNELL_OK) st = create_resources(r);
     snell__glstate_restore(&saved);
+    if (ctx->backend == SNELL_BACKEND_EXTERNAL) snell__gl_errors_give(host_errors);
     if (st != SNELL_OK) {
         snell_renderer_destroy(r);
         return st;
@@ -197,6 +201,7 @@ void snell_renderer_destroy(snell_renderer *r)
     snell__paraboloid_gen_destroy(&r->dp);
     snell__composite_destroy(&r->comp);
     snell__host_depth_destroy(&r->host_depth);
+    snell__host_target_destroy(&r->host_target);
     if (r->sv.fbo) glDeleteFramebuffers(1, &r->sv.fbo);
     if (r->color_rb) glDeleteRenderbuffers(1, &r->color_rb);
     if (r->sv.depth_rb) glDeleteRenderbuffers(1, &r->sv.depth_rb);
@@ -276,8 +281,7 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
  * (render/host_depth.h: never cleared for a bound framebuffer unless asked). */
 static snell_status begin_frame_state(snell_renderer *r, const snell_frame_desc *fd)
 {
-    if (r->sv.target == SNELL_TARGET_OFFSCREEN) glBindFramebuffer(GL_FRAMEBUFFER, r->sv.fbo);
-    glViewport(0, 0, r->sv.width, r->sv.height);
+    snell_status st;
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_STENCIL_TEST);
@@ -289,6 +293,12 @@ static snell_status begin_frame_state(snell_renderer *r, const snell_frame_desc 
     snell__glstate_frame_defaults();
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_TRUE);
+    /* the host's framebuffer checked (and its viewport read) with no scissor or discard on its copies */
+    if (r->sv.target == SNELL_TARGET_OFFSCREEN) glBindFramebuffer(GL_FRAMEBUFFER, r->sv.fbo);
+    else if ((st = snell__host_target_begin(r->ctx, &r->host_target, r->sv.width, r->sv.height,
+                                            r->premultiplied)) != SNELL_OK)
+        return st;
+    glViewport(0, 0, r->sv.width, r->sv.height);
     return snell__host_depth_begin(r->ctx, &r->host_depth, snell__depth_mode_of(fd->depth, r->sv.target), r->sv.width,
                                    r->sv.height);
 }
@@ -301,11 +311,16 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     snell__units units;
     snell_status st;
     int external, i;
+    unsigned host_errors;
     size_t named = 0;
     double t0 = snell__now_ms();
     if (!r || !fd) return snell__fail(r ? r->ctx : NULL, SNELL_E_INVALID_ARG, "snell_render: renderer and frame required");
     s = &r->stats;
     memset(s, 0, sizeof *s);
+    if ((st = snell__ctx_check_current(r->ctx, "snell_render")) != SNELL_OK) return st;
+    /* The host's pending GL errors wait outside the frame (core/glstate.h). */
+    external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
+    host_errors = snell__gl_errors_take();
     /* The frame resolved once (sokol_gfx's order): its defaults, then each
      * stage's part; then the resolved copy validated, so that a message
      * names the value the frame would use and no stage sees a zero that
@@ -316,10 +331,12 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     st = validate_frame(r, &r->frame, &fd->camera);
     fd = &r->frame;
     if (st == SNELL_OK) st = snell__scene_build(r->ctx, fd, r->sv.width, r->sv.height, r->sv.out, &r->scene, s);
-    if (st != SNELL_OK) return st;
+    if (st != SNELL_OK) {
+        if (external) snell__gl_errors_give(host_errors);
+        return st;
+    }
     memset(&f, 0, sizeof f);
     f.sv = &r->sv, f.fd = fd, f.s = s, f.sc = &r->scene, f.state = r->stage_state, f.start_ms = t0;
-    external = r->ctx->backend == SNELL_BACKEND_EXTERNAL;
     if (external) snell__glstate_save(&saved);
     snell__units_begin(&units, 0, 1); /* the frame's units: each one's sampler object unbound at its first use */
     st = begin_frame_state(r, fd);
@@ -342,6 +359,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     if (r->sv.target != SNELL_TARGET_OFFSCREEN) {
         snell_status back = snell__host_depth_end(r->ctx, &r->host_depth);
         if (st == SNELL_OK) st = back;
+        snell__host_target_end(&r->host_target);
     }
     snell__units_end(&units);
     s->texture_units = snell__units_count(&units);
@@ -349,6 +367,7 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     if (st == SNELL_OK && glGetError() != GL_NO_ERROR) st = snell__fail(r->ctx, SNELL_E_GL, "GL error during the frame");
     for (i = 0; i < snell__stage_count; i++)
         if (snell__stages[i]->frame_end) snell__stages[i]->frame_end(&f, r->stage_state[i], st);
+    if (external) snell__gl_errors_give(host_errors);
     for (i = 0; i < r->scene.count; i++) s->passes += s->glass[i].passes;
     s->passes += s->background_drawn;
     s->fragment_mediump = snell__ctx_fragment_mediump(r->ctx);

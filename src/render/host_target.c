@@ -1,0 +1,147 @@
+/* SPDX-License-Identifier: MIT */
+/* host_target.c — see host_target.h. */
+#include "render/host_target.h"
+#include "render/host_depth.h"
+#include "core/gl.h"
+
+int snell__fb_attachment(unsigned att, unsigned pname)
+{
+    GLint v = 0;
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, att, pname, &v);
+    return v;
+}
+
+/* Why snell cannot draw into the bound framebuffer, NULL when it can. */
+static const char *refusal(GLint fbo, GLint buf, int premultiplied)
+{
+    GLint type;
+    if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return "is not complete";
+    if (buf == GL_NONE || snell__fb_attachment((GLenum)buf, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) == GL_NONE)
+        return "draws to no colour buffer";
+    type = snell__fb_attachment((GLenum)buf, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE);
+    if (type == GL_INT || type == GL_UNSIGNED_INT) return "has an integer colour buffer";
+    if (premultiplied && snell__fb_attachment((GLenum)buf, GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE) == 0)
+        return "lacks alpha (premultiplied_alpha)";
+    if (snell__fb_attachment(fbo ? GL_DEPTH_ATTACHMENT : GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) == GL_NONE)
+        return "has no depth buffer"; /* the glass is depth-tested, the background drawn behind it */
+    return NULL;
+}
+
+#ifdef SNELL_WITH_HOST_VIEWPORT
+/* The viewport's rectangle of the host's colour (draw buffer 0) and depth
+ * into the copy (in), or back (out). */
+static void copy_blit(const snell__host_target *t, int in)
+{
+    const int *v = t->viewport;
+    GLint read = GL_BACK;
+    GLbitfield bits = GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT |
+                      (t->copy_format == GL_DEPTH24_STENCIL8 || t->copy_format == GL_DEPTH32F_STENCIL8
+                           ? GL_STENCIL_BUFFER_BIT : 0);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, in ? t->fbo : t->copy_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, in ? t->copy_fbo : t->fbo);
+    glGetIntegerv(GL_READ_BUFFER, &read);
+    if (in) glReadBuffer(t->draw_buffers[0]);
+    if (in) glBlitFramebuffer(v[0], v[1], v[0] + v[2], v[1] + v[3], 0, 0, v[2], v[3], bits, GL_NEAREST);
+    else glBlitFramebuffer(0, 0, v[2], v[3], v[0], v[1], v[0] + v[2], v[1] + v[3], bits, GL_NEAREST);
+    glReadBuffer((GLenum)read);
+    glBindFramebuffer(GL_FRAMEBUFFER, in ? t->copy_fbo : t->fbo);
+}
+
+/* A viewport off the origin (two eyes side by side, a split screen): the
+ * frame is drawn into a copy of that rectangle, colour and depth, and copied
+ * back after; snell's passes then see a target of their own size at 0, 0. */
+static snell_status redirect(snell_ctx *ctx, snell__host_target *t)
+{
+    unsigned format = snell__host_depth_format((int)t->fbo);
+    const int *v = t->viewport;
+    if (!format)
+        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell_render: a viewport at %d,%d needs a depth buffer a blit "
+                           "can copy (16, 24 or 32F bits)", v[0], v[1]);
+    if (!t->copy_fbo || t->copy_format != format || t->copy_size[0] != v[2] || t->copy_size[1] != v[3]) {
+        snell__host_target_destroy(t);
+        glGenFramebuffers(1, &t->copy_fbo);
+        glGenRenderbuffers(2, t->copy_rb);
+        glBindRenderbuffer(GL_RENDERBUFFER, t->copy_rb[0]);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, v[2], v[3]);
+        glBindRenderbuffer(GL_RENDERBUFFER, t->copy_rb[1]);
+        glRenderbufferStorage(GL_RENDERBUFFER, format, v[2], v[3]);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, t->copy_fbo);
+        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->copy_rb[0]);
+        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER,
+                                  format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8
+                                      ? GL_DEPTH_STENCIL_ATTACHMENT
+                                      : GL_DEPTH_ATTACHMENT,
+                                  GL_RENDERBUFFER, t->copy_rb[1]);
+        t->copy_format = format, t->copy_size[0] = v[2], t->copy_size[1] = v[3];
+    }
+    copy_blit(t, 1);
+    t->copied = 1;
+    return SNELL_OK;
+}
+#endif
+
+snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int width, int height,
+                                      int premultiplied)
+{
+    GLint fbo = 0, buf = GL_NONE, max = 1, i;
+    const char *why;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    glGetIntegerv(GL_DRAW_BUFFER0, &buf);
+    t->fbo = (unsigned)fbo;
+    t->draw_buffer_count = t->srgb_write = t->copied = 0;
+    if (!(why = refusal(fbo, buf, premultiplied)) &&
+        snell__fb_attachment((GLenum)buf, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING) == GL_SRGB) {
+        /* snell's colour is display-referred already: written as it is, not encoded again */
+        if (!snell_ctx_has_gl_extension(ctx, "GL_EXT_sRGB_write_control"))
+            why = "is sRGB: no GL_EXT_sRGB_write_control";
+        else if ((t->srgb_write = glIsEnabled(GL_FRAMEBUFFER_SRGB_EXT)))
+            glDisable(GL_FRAMEBUFFER_SRGB_EXT);
+    }
+    if (why) return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell_render: the bound framebuffer %d %s", fbo, why);
+    /* Other draw buffers would get undefined values (GLES 3.0 3.9.2.3): off for the frame. */
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &max);
+    if (max > SNELL__HOST_DRAW_BUFFERS) max = SNELL__HOST_DRAW_BUFFERS;
+    for (i = 0; i < max; i++) {
+        GLint b = GL_NONE;
+        glGetIntegerv(GL_DRAW_BUFFER0 + i, &b);
+        t->draw_buffers[i] = (unsigned)b;
+        if (b != GL_NONE && i > 0) t->draw_buffer_count = max;
+    }
+    if (t->draw_buffer_count) glDrawBuffers(1, (const GLenum *)t->draw_buffers);
+    /* The host's viewport: at the origin the frame is drawn at 0, 0 (its size
+     * the renderer's); elsewhere it must be the renderer's size. */
+    glGetIntegerv(GL_VIEWPORT, t->viewport);
+    if (!t->viewport[0] && !t->viewport[1]) return SNELL_OK;
+#ifdef SNELL_WITH_HOST_VIEWPORT
+    if (t->viewport[2] == width && t->viewport[3] == height) return redirect(ctx, t);
+    return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_render: the viewport is %dx%d at %d,%d, the renderer %dx%d",
+                       t->viewport[2], t->viewport[3], t->viewport[0], t->viewport[1], width, height);
+#else
+    (void)width, (void)height;
+    return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell_render: viewport at %d,%d: no SNELL_WITH_HOST_VIEWPORT",
+                       t->viewport[0], t->viewport[1]);
+#endif
+}
+
+void snell__host_target_end(snell__host_target *t)
+{
+#ifdef SNELL_WITH_HOST_VIEWPORT
+    if (t->copied) copy_blit(t, 0);
+    t->copied = 0;
+#endif
+    if (t->srgb_write) glEnable(GL_FRAMEBUFFER_SRGB_EXT);
+    t->srgb_write = 0;
+    if (!t->draw_buffer_count) return;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, t->fbo);
+    glDrawBuffers(t->draw_buffer_count, (const GLenum *)t->draw_buffers);
+    t->draw_buffer_count = 0;
+}
+
+#ifdef SNELL_WITH_HOST_VIEWPORT
+void snell__host_target_destroy(snell__host_target *t)
+{
+    if (t->copy_fbo) glDeleteFramebuffers(1, &t->copy_fbo);
+    if (t->copy_rb[0]) glDeleteRenderbuffers(2, t->copy_rb);
+    t->copy_fbo = t->copy_rb[0] = t->copy_rb[1] = 0;
+}
+#endif

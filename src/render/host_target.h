@@ -1,0 +1,42 @@
+/* SPDX-License-Identifier: MIT */
+/* host_target.h — the host's bound draw framebuffer (SNELL_TARGET_BOUND_FRAMEBUFFER),
+ * checked before a frame draws into it: complete, a normalised or float
+ * colour buffer, a depth buffer, alpha where the output is premultiplied;
+ * an sRGB one written unencoded (GL_EXT_sRGB_write_control) or refused; the
+ * host's viewport honoured (SNELL_WITH_HOST_VIEWPORT) or one off the origin refused.
+ * Only its draw buffer 0 (what snell's location 0 writes) stays on for the
+ * frame; the host's list comes back at its end. */
+#ifndef SNELL_HOST_TARGET_H
+#define SNELL_HOST_TARGET_H
+
+#include "core/core.h"
+
+#define SNELL__HOST_DRAW_BUFFERS 8
+
+typedef struct snell__host_target {
+    unsigned fbo;                                    /* the framebuffer checked (this frame) */
+    unsigned draw_buffers[SNELL__HOST_DRAW_BUFFERS]; /* its list, when snell narrowed it */
+    int draw_buffer_count;                           /* 0: left as it was */
+    int srgb_write;                                  /* an sRGB target's encoding, off for the frame */
+    int viewport[4];                                 /* the host's, at the frame's start */
+    /* A viewport off the origin: its rectangle copied in here, drawn, copied back */
+    unsigned copy_fbo, copy_rb[2], copy_format;
+    int copy_size[2], copied;
+} snell__host_target;
+
+/* With the host's draw framebuffer bound: SNELL_OK, or SNELL_E_INVALID_ARG /
+ * SNELL_E_UNSUPPORTED naming what it lacks (no GL error left). */
+snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int width, int height,
+                                      int premultiplied);
+/* glGetFramebufferAttachmentParameteriv of the bound draw framebuffer. */
+int snell__fb_attachment(unsigned att, unsigned pname);
+/* The host's draw buffers back (the framebuffer bound again), the copy of
+ * a viewport off the origin copied back into it. */
+void snell__host_target_end(snell__host_target *t);
+#ifdef SNELL_WITH_HOST_VIEWPORT
+void snell__host_target_destroy(snell__host_target *t);
+#else
+#define snell__host_target_destroy(t) ((void)(t)) /* nothing made */
+#endif
+
+#endif
