@@ -6,6 +6,7 @@
 #             say which tests skipped themselves and why (ctest counts a skip
 #             as passed: without blender, qemu and the Android headers
 #             test_groundtruth, test_caustics_cycles, kms_vm and android_syntax skip,
+#             without SDL2, GLFW, Qt 5 and Xvfb test_sdl2_app and recipe_*,
 #             and device_profiles without ../shared/devices, docs/devices.md)
 #   test-all: also install what those three need (as root), then as test
 # Works as root on a fresh Debian 12 (uses apt-get), or as a user when the
@@ -36,10 +37,12 @@ install_missing() {
 }
 
 # What the tests that skip without it need (test-all): Blender for
-# test_groundtruth and test_caustics_cycles, qemu and a kernel with the bochs DRM module for kms_vm (the
+# test_groundtruth and test_caustics_cycles, qemu and a kernel with the bochs DRM module for kms_vm,
+# SDL2, GLFW, Qt 5 and Xvfb for test_sdl2_app and the recipe_* tests (the
 # same lists as .ci/run's); ports/android/syntax_check.sh installs its own
 # packages as root (it compiles nothing else of the build).
-EXTRA_PACKAGES=(blender qemu-system-x86 busybox-static kmod linux-image-amd64)
+EXTRA_PACKAGES=(blender qemu-system-x86 busybox-static kmod linux-image-amd64
+                libsdl2-dev libglfw3-dev qtbase5-dev xvfb xauth)
 
 install_extra() {
     local missing=()

@@ -216,7 +216,7 @@ int main(void)
     d.backend = SNELL_BACKEND_EXTERNAL;
     CHECK(snell_ctx_create(&d, &ctx) == SNELL_E_EGL, "EXTERNAL without a current context must fail");
     CHECK(ctx == NULL, "out must be NULL on failure");
-    CHECK(strstr(snell_last_error(NULL), "no EGL context is current") != NULL, "message: %s", snell_last_error(NULL));
+    CHECK(strstr(snell_last_error(NULL), "no GL context is current") != NULL, "message: %s", snell_last_error(NULL));
     d.backend = (snell_backend)42;
     CHECK(snell_ctx_create(&d, &ctx) == SNELL_E_INVALID_ARG, "unknown backend");
     CHECK(snell_ctx_create(NULL, NULL) == SNELL_E_INVALID_ARG, "NULL out");

@@ -5,6 +5,8 @@
 # and runs consumers against it as users would:
 #   consumer_shared, consumer_static   find_package(snell), a C-only project;
 #                                      the static one loads a .glb (C++ inside)
+#   consumer_gl                        its own EGL and GLES calls, linked
+#                                      through snell::snell alone
 #   consumer_pc                        cc with `pkg-config --cflags --libs snell`
 #   consumer_pc_static[_flag]          the shell line `cc main.c $(pkg-config [--static]
 #                                      --cflags --libs snell-static)`, and readelf -d
@@ -52,6 +54,7 @@ if(rc)
 endif()
 run_consumer(${WORK_DIR}/build/consumer_shared)
 run_consumer(${WORK_DIR}/build/consumer_static)
+run_consumer(${WORK_DIR}/build/consumer_gl)
 
 # --- pkg-config -------------------------------------------------------------------
 file(GLOB pc ${prefix}/lib*/pkgconfig/snell.pc ${prefix}/lib/*/pkgconfig/snell.pc)

@@ -63,3 +63,4 @@ if [ "$project" != "$src/tests/subproject" ]; then
 fi
 file "$work/build/subproject_app"
 "${run[@]}" "$work/build/subproject_app" "$src/tests/data/nodes.glb"
+"${run[@]}" "$work/build/subproject_gl"
