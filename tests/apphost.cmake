@@ -35,6 +35,7 @@ set_tests_properties(test_sdl2_app PROPERTIES LABELS "render;gl" SKIP_RETURN_COD
 # snell cannot draw into refused by name, MRT, sRGB and the host's viewport.
 snell_add_test(test_host_gl SOURCES test_host_gl.c LABELS "render;gl")
 target_link_libraries(test_host_gl PRIVATE snell_dep::egl snell_dep::gles m)
+target_compile_definitions(test_host_gl PRIVATE $<$<BOOL:${SNELL_WITH_HOST_FRAMEBUFFERS}>:SNELL_WITH_HOST_FRAMEBUFFERS=1>)
 
 # The recipes of docs/integrating.md (examples/recipes): each built (compiled
 # and linked against snell) by its test where its toolkit is installed, else

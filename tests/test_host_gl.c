@@ -318,6 +318,7 @@ static void check_no_write_exact(void)
 }
 
 
+#ifdef SNELL_WITH_HOST_FRAMEBUFFERS
 /* ------------------------------------------------ framebuffers snell cannot draw into */
 static void expect_refusal(snell_renderer *r, const char *what, const char *part, snell_backdrop *bd)
 {
@@ -510,10 +511,6 @@ static int eye(int x, int w, uint8_t *px, int read_w)
     glViewport(x, 0, W, H);
     st = frame(r, SNELL_DEPTH_TEST, NULL);
     snell_renderer_destroy(r);
-    if (st != SNELL_OK && strstr(snell_last_error(g_ctx), "SNELL_WITH_HOST_VIEWPORT")) {
-        printf("this build refuses a viewport off the origin by name: %s\n", snell_last_error(g_ctx));
-        return 0;
-    }
     CHECK(st == SNELL_OK, "an eye at x %d: %s", x, snell_last_error(g_ctx));
     glReadPixels(0, 0, read_w, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
     (void)w;
@@ -560,6 +557,7 @@ done:
     snell_renderer_destroy(r);
     fb_free(&f);
 }
+#endif
 
 int main(void)
 {
@@ -584,10 +582,14 @@ int main(void)
     check_pending_errors();
     check_transform_feedback();
     check_no_write_exact();
+#ifdef SNELL_WITH_HOST_FRAMEBUFFERS
     check_refusals();
     check_mrt();
     check_srgb();
     check_viewport();
+#else
+    printf("a build without SNELL_WITH_HOST_FRAMEBUFFERS: the bound framebuffer is not checked\n");
+#endif
     snell_env_destroy(g_env);
     snell_mesh_destroy(g_mesh);
     snell_ctx_destroy(g_ctx);

@@ -11,6 +11,7 @@ int snell__fb_attachment(unsigned att, unsigned pname)
     return v;
 }
 
+#ifdef SNELL_WITH_HOST_FRAMEBUFFERS
 /* Why snell cannot draw into the bound framebuffer, NULL when it can. */
 static const char *refusal(GLint fbo, GLint buf, int premultiplied)
 {
@@ -27,7 +28,6 @@ static const char *refusal(GLint fbo, GLint buf, int premultiplied)
     return NULL;
 }
 
-#ifdef SNELL_WITH_HOST_VIEWPORT
 /* The viewport's rectangle of the host's colour (draw buffer 0) and depth
  * into the copy (in), or back (out). */
 static void copy_blit(const snell__host_target *t, int in)
@@ -78,7 +78,6 @@ static snell_status redirect(snell_ctx *ctx, snell__host_target *t)
     t->copied = 1;
     return SNELL_OK;
 }
-#endif
 
 snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int width, int height,
                                       int premultiplied)
@@ -97,38 +96,30 @@ snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int
         else if ((t->srgb_write = glIsEnabled(GL_FRAMEBUFFER_SRGB_EXT)))
             glDisable(GL_FRAMEBUFFER_SRGB_EXT);
     }
-    if (why) return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell_render: the bound framebuffer %d %s", fbo, why);
     /* Other draw buffers would get undefined values (GLES 3.0 3.9.2.3): off for the frame. */
     glGetIntegerv(GL_MAX_DRAW_BUFFERS, &max);
     if (max > SNELL__HOST_DRAW_BUFFERS) max = SNELL__HOST_DRAW_BUFFERS;
-    for (i = 0; i < max; i++) {
+    for (i = 0; i < max && !why; i++) {
         GLint b = GL_NONE;
         glGetIntegerv(GL_DRAW_BUFFER0 + i, &b);
         t->draw_buffers[i] = (unsigned)b;
         if (b != GL_NONE && i > 0) t->draw_buffer_count = max;
     }
+    if (why) return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell_render: the bound framebuffer %d %s", fbo, why);
     if (t->draw_buffer_count) glDrawBuffers(1, (const GLenum *)t->draw_buffers);
     /* The host's viewport: at the origin the frame is drawn at 0, 0 (its size
      * the renderer's); elsewhere it must be the renderer's size. */
     glGetIntegerv(GL_VIEWPORT, t->viewport);
     if (!t->viewport[0] && !t->viewport[1]) return SNELL_OK;
-#ifdef SNELL_WITH_HOST_VIEWPORT
     if (t->viewport[2] == width && t->viewport[3] == height) return redirect(ctx, t);
     return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_render: the viewport is %dx%d at %d,%d, the renderer %dx%d",
                        t->viewport[2], t->viewport[3], t->viewport[0], t->viewport[1], width, height);
-#else
-    (void)width, (void)height;
-    return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell_render: viewport at %d,%d: no SNELL_WITH_HOST_VIEWPORT",
-                       t->viewport[0], t->viewport[1]);
-#endif
 }
 
 void snell__host_target_end(snell__host_target *t)
 {
-#ifdef SNELL_WITH_HOST_VIEWPORT
     if (t->copied) copy_blit(t, 0);
     t->copied = 0;
-#endif
     if (t->srgb_write) glEnable(GL_FRAMEBUFFER_SRGB_EXT);
     t->srgb_write = 0;
     if (!t->draw_buffer_count) return;
@@ -137,7 +128,6 @@ void snell__host_target_end(snell__host_target *t)
     t->draw_buffer_count = 0;
 }
 
-#ifdef SNELL_WITH_HOST_VIEWPORT
 void snell__host_target_destroy(snell__host_target *t)
 {
     if (t->copy_fbo) glDeleteFramebuffers(1, &t->copy_fbo);

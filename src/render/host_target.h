@@ -3,7 +3,7 @@
  * checked before a frame draws into it: complete, a normalised or float
  * colour buffer, a depth buffer, alpha where the output is premultiplied;
  * an sRGB one written unencoded (GL_EXT_sRGB_write_control) or refused; the
- * host's viewport honoured (SNELL_WITH_HOST_VIEWPORT) or one off the origin refused.
+ * host's viewport honoured. All of it with SNELL_WITH_HOST_FRAMEBUFFERS.
  * Only its draw buffer 0 (what snell's location 0 writes) stays on for the
  * frame; the host's list comes back at its end. */
 #ifndef SNELL_HOST_TARGET_H
@@ -24,19 +24,23 @@ typedef struct snell__host_target {
     int copy_size[2], copied;
 } snell__host_target;
 
+/* glGetFramebufferAttachmentParameteriv of the bound draw framebuffer. */
+int snell__fb_attachment(unsigned att, unsigned pname);
+#ifdef SNELL_WITH_HOST_FRAMEBUFFERS
 /* With the host's draw framebuffer bound: SNELL_OK, or SNELL_E_INVALID_ARG /
  * SNELL_E_UNSUPPORTED naming what it lacks (no GL error left). */
 snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int width, int height,
                                       int premultiplied);
-/* glGetFramebufferAttachmentParameteriv of the bound draw framebuffer. */
-int snell__fb_attachment(unsigned att, unsigned pname);
 /* The host's draw buffers back (the framebuffer bound again), the copy of
  * a viewport off the origin copied back into it. */
 void snell__host_target_end(snell__host_target *t);
-#ifdef SNELL_WITH_HOST_VIEWPORT
 void snell__host_target_destroy(snell__host_target *t);
 #else
-#define snell__host_target_destroy(t) ((void)(t)) /* nothing made */
+/* Without it (the device preset, whose apps draw into their own window's
+ * framebuffer) the bound framebuffer is taken as it is. */
+#define snell__host_target_begin(ctx, t, width, height, premultiplied) SNELL_OK
+#define snell__host_target_end(t) ((void)(t))
+#define snell__host_target_destroy(t) ((void)(t))
 #endif
 
 #endif
