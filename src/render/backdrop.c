@@ -40,10 +40,14 @@ static snell_status texture_2d(snell_ctx *ctx, unsigned tex, int required, const
     const char *why = "a texture of this context";
     if (!tex && !required) return SNELL_OK;
     if (tex && glIsTexture(tex)) {
+#ifdef SNELL_WITH_HOST_FRAMEBUFFERS /* the device preset leaves the target's check out (its bytes) */
         glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev);
         glBindTexture(GL_TEXTURE_2D, tex);
         why = glGetError() == GL_NO_ERROR ? NULL : "a GL_TEXTURE_2D";
         glBindTexture(GL_TEXTURE_2D, (GLuint)prev);
+#else
+        why = NULL, (void)prev;
+#endif
     }
     return why ? snell__fail(ctx, SNELL_E_INVALID_ARG, "backdrop.%s %u is not %s", field, tex, why) : SNELL_OK;
 }
