@@ -21,9 +21,6 @@ precision highp int;
 // SNELL_EXACT_REENTRY and the traversal's defines (common/bvh.glsl) are the
 // program's variant (methods/exact.c).
 #include "common/bvh.glsl"
-#ifndef SNELL_FRESNEL_EXACT
-#define SNELL_FRESNEL_EXACT 0
-#endif
 #ifndef SNELL_EXACT_INNER
 #define SNELL_EXACT_INNER 0
 #endif
@@ -48,44 +45,6 @@ uniform vec2 u_pixel_to_ndc;     // 2 / target size in pixels
 // The front surface (common/surface.glsl), read once by main before the
 // traces: its discard is then outside the loop over the channels.
 highp vec3 g_world_pos, g_world_normal;
-
-// common/optics.glsl's snell_refract and snell_fresnel_schlick, selected
-// rather than branched (the same operations, so the same bits): a value
-// merged from branches in the channels' loop (SNELL_DISPERSION 1) stays
-// live through all of it on V3D.
-bool refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
-{
-    float c = -dot(n, i);
-    float k = 1.0 - eta * eta * (1.0 - c * c);
-    vec3 mirror = snell_reflect(i, n), through = eta * i + (eta * c - sqrt(k)) * n;
-    t = k < 0.0 ? mirror : through;
-    return !(k < 0.0);
-}
-
-float fresnel_sel(float cos_i, float n1, float n2)
-{
-#if SNELL_FRESNEL_EXACT
-    float ci = min(abs(cos_i), 1.0);
-    float eta = n1 / n2;
-    float sin2_t = eta * eta * (1.0 - ci * ci);
-    float ct = sqrt(max(1.0 - sin2_t, 0.0));
-    float rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
-    float rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
-    float f = 0.5 * (rs * rs + rp * rp);
-    return n1 == n2 ? 0.0 : sin2_t >= 1.0 ? 1.0 : f;
-#else
-    float r0 = (n1 - n2) / (n1 + n2);
-    float c = abs(cos_i);
-    r0 *= r0;
-    float eta = n1 / n2;
-    float sin2_t = eta * eta * (1.0 - c * c);
-    float ct = sqrt(1.0 - sin2_t);
-    c = n1 > n2 ? ct : c;
-    float m = 1.0 - c;
-    float f = r0 + (1.0 - r0) * m * m * m * m * m;
-    return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
-#endif
-}
 
 #if SNELL_EXACT_TERMS
 // What exact_terms_walk leaves for the colour: the chain's entries after the
@@ -151,7 +110,7 @@ void exact_terms_walk(highp vec3 eye, highp vec3 v, highp vec3 world_pos, vec3 n
         vec3 n2 = hit ? ns : n_raster;
         at = moves ? (hit ? h : RAY_AFTER_MISS) : at;
         vec3 out_dir;
-        bool through = refract_sel(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+        bool through = snell_refract_sel(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
         n_entry = first ? n2 : n_entry;
         vec3 mirror = snell_reflect(dir, n2);
         bool exits = !ends && inside && through;
@@ -161,7 +120,7 @@ void exact_terms_walk(highp vec3 eye, highp vec3 v, highp vec3 world_pos, vec3 n
         rq = splits ? normalize(mirror) : rq;
         q_path = splits ? path : q_path;
         q_at = splits ? at : q_at;
-        g_split_fresnel = splits ? fresnel_sel(-dot(dir, n2), snell_ior, 1.0) : g_split_fresnel;
+        g_split_fresnel = splits ? snell_fresnel_sel(-dot(dir, n2), snell_ior, 1.0) : g_split_fresnel;
         marks = splits ? (marks & ~0xf00) | ((marks & 15) + 1) << 8 | 0x2000 : marks;
 #endif
         marks += !ends && !first && !inside && through ? 16 : 0;
@@ -212,7 +171,7 @@ void exact_terms_walk(highp vec3 eye, highp vec3 v, highp vec3 world_pos, vec3 n
 
 // The colour for one IOR, snell_ior (common/dispersion.glsl); g_visits
 // accumulates over the calls, as the budget counts all of a pixel's rays.
-// Selects rather than branches throughout (refract_sel above).
+// Selects rather than branches throughout (common/optics.glsl: snell_refract_sel).
 vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
     highp vec3 world_pos = g_world_pos, world_normal = g_world_normal;
@@ -263,7 +222,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         path += k > 0 ? t : 0.0;
         if (k > 0 && k >= u_max_interfaces) break;             // the cap
         vec3 out_dir;
-        bool through = refract_sel(dir, n2, k == 0 ? 1.0 / snell_ior : snell_ior, out_dir);
+        bool through = snell_refract_sel(dir, n2, k == 0 ? 1.0 / snell_ior : snell_ior, out_dir);
         n_entry = k == 0 ? n2 : n_entry;                        // its reflection after the loop
         // the entry with an IOR below 1 at grazing incidence: the mirror, in
         // air; inside: refracted out, or totally reflected
@@ -275,8 +234,8 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     // The entry's reflection and Fresnel from its normal, recomputed here
     // rather than carried through the loop: fewer values live across it.
     vec3 r = snell_reflect(v, n_entry), in_dir;
-    bool entered = refract_sel(v, n_entry, 1.0 / snell_ior, in_dir);
-    float f_entry = fresnel_sel(-dot(v, n_entry), 1.0, snell_ior);
+    bool entered = snell_refract_sel(v, n_entry, 1.0 / snell_ior, in_dir);
+    float f_entry = snell_fresnel_sel(-dot(v, n_entry), 1.0, snell_ior);
     float fresnel = entered ? f_entry : 1.0;
     // the budget ran out: single.frag's answer from the rasterised surface
     // (absorption over the bounding-sphere chord); its Fresnel and exit
@@ -290,7 +249,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         snell_refract(v, n_raster, 1.0 / snell_ior, dir);
         path = snell_sphere_exit(world_pos, dir, u_bsphere);
     }
-    float f_raster = fresnel_sel(-dot(v, n_raster), 1.0, snell_ior);
+    float f_raster = snell_fresnel_sel(-dot(v, n_raster), 1.0, snell_ior);
     fresnel = over ? f_raster : fresnel;
     highp vec3 exit_obj = (u_model * vec4(p, 1.0)).xyz;
     highp vec3 exit_p = over ? world_pos : exit_obj;

@@ -138,42 +138,6 @@ vec3 disp_exit_normal(inout highp vec3 q, vec3 dir, highp float t, bool away, ve
 }
 #endif
 
-// common/optics.glsl's snell_refract and snell_fresnel, selected rather
-// than branched (the same operations, so the same bits).
-bool refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
-{
-    float c = -dot(n, i);
-    float k = 1.0 - eta * eta * (1.0 - c * c);
-    vec3 mirror = snell_reflect(i, n), through = eta * i + (eta * c - sqrt(k)) * n;
-    t = k < 0.0 ? mirror : through;
-    return !(k < 0.0);
-}
-
-float fresnel_sel(float cos_i, float n1, float n2)
-{
-#if SNELL_FRESNEL_EXACT
-    float ci = min(abs(cos_i), 1.0);
-    float eta = n1 / n2;
-    float sin2_t = eta * eta * (1.0 - ci * ci);
-    float ct = sqrt(1.0 - sin2_t);
-    float rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
-    float rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
-    float f = 0.5 * (rs * rs + rp * rp);
-    return n1 == n2 ? 0.0 : sin2_t >= 1.0 ? 1.0 : f;
-#else
-    float r0 = (n1 - n2) / (n1 + n2);
-    float c = abs(cos_i);
-    r0 *= r0;
-    float eta = n1 / n2;
-    float sin2_t = eta * eta * (1.0 - c * c);
-    float ct = sqrt(1.0 - sin2_t);
-    c = n1 > n2 ? ct : c;
-    float m = 1.0 - c;
-    float f = r0 + (1.0 - r0) * m * m * m * m * m;
-    return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
-#endif
-}
-
 #if SNELL_INNER_FRESNEL
 // The branch reflected inside at the exit: one more search from q along d,
 // refracted out at the surface found with (1 - F'), its own reflection F'
@@ -195,8 +159,8 @@ vec3 inner_branch(highp vec3 q, highp vec3 d, highp float len, highp vec3 v, vec
     vec3 n3 = z_tex >= 0.0 ? n_map : n_fall;
     n3 = dot(n3, d) > 0.0 ? -n3 : n3;
     highp vec3 out_dir;
-    bool exited = refract_sel(d, n3, snell_ior, out_dir);
-    float f_out = fresnel_sel(-dot(d, n3), snell_ior, 1.0);
+    bool exited = snell_refract_sel(d, n3, snell_ior, out_dir);
+    float f_out = snell_fresnel_sel(-dot(d, n3), snell_ior, 1.0);
     float f = exited ? f_out : 1.0;
     vec3 l = (1.0 - f) * snell_env(normalize(out_dir)) + f * snell_env(snell_reflect(d, n3));
 #if SNELL_ABSORB
@@ -256,7 +220,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         vec3 n2 = z_tex >= 0.0 ? n_map : n_fall;
         n2 = dot(n2, dir) > 0.0 ? -n2 : n2; // face the ray (it comes from inside)
         highp vec3 next;
-        bool out_of_glass = refract_sel(dir, n2, snell_ior, next); // on TIR: the mirror direction
+        bool out_of_glass = snell_refract_sel(dir, n2, snell_ior, next); // on TIR: the mirror direction
 #if SNELL_DISPERSION == 2
         // red and blue meet the surface near where their own rays are after
         // the green ray's length: the map's normal there (a curved exit bends
@@ -267,7 +231,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         snell_disp_cross(n2, out_of_glass, true);
 #endif
 #if SNELL_INNER_FRESNEL
-        float f_exit = fresnel_sel(-dot(dir, n2), snell_ior, 1.0);
+        float f_exit = snell_fresnel_sel(-dot(dir, n2), snell_ior, 1.0);
         exit_fresnel = out_of_glass ? f_exit : exit_fresnel;
         exit_in = out_of_glass ? dir : exit_in;
         exit_n = out_of_glass ? n2 : exit_n;

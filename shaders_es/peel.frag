@@ -333,44 +333,6 @@ vec3 disp_crossing(inout highp vec3 q, vec3 dir, highp float t, int k, vec3 n_gr
 }
 #endif
 
-// common/optics.glsl's snell_refract, selected rather than branched (the
-// same operations, so the same bits).
-bool refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
-{
-    float c = -dot(n, i);
-    float k = 1.0 - eta * eta * (1.0 - c * c);
-    vec3 mirror = snell_reflect(i, n), through = eta * i + (eta * c - sqrt(k)) * n;
-    t = k < 0.0 ? mirror : through;
-    return !(k < 0.0);
-}
-
-// common/optics.glsl's snell_fresnel, selected rather than branched (the
-// same operations, so the same bits).
-float fresnel_sel(float cos_i, float n1, float n2)
-{
-#if SNELL_FRESNEL_EXACT
-    float ci = min(abs(cos_i), 1.0);
-    float eta = n1 / n2;
-    float sin2_t = eta * eta * (1.0 - ci * ci);
-    float ct = sqrt(1.0 - sin2_t);
-    float rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
-    float rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
-    float f = 0.5 * (rs * rs + rp * rp);
-    return n1 == n2 ? 0.0 : sin2_t >= 1.0 ? 1.0 : f;
-#else
-    float r0 = (n1 - n2) / (n1 + n2);
-    float c = abs(cos_i);
-    r0 *= r0;
-    float eta = n1 / n2;
-    float sin2_t = eta * eta * (1.0 - c * c);
-    float ct = sqrt(1.0 - sin2_t);
-    c = n1 > n2 ? ct : c;
-    float m = 1.0 - c;
-    float f = r0 + (1.0 - r0) * m * m * m * m * m;
-    return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
-#endif
-}
-
 // The colour for one IOR, snell_ior (common/dispersion.glsl calls it).
 vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
@@ -467,7 +429,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         bool advance = !(kind == 0 || capped);
 #endif
         vec3 out_dir;
-        bool through = refract_sel(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+        bool through = snell_refract_sel(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
         vec3 out_n = normalize(out_dir);
 #if SNELL_DISPERSION == 2
         if (advance) {
@@ -500,7 +462,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 #if SNELL_INNER_FRESNEL
         // an exit into air: the last exit so far
         bool leaves = advance && through && inside;
-        float f_out = fresnel_sel(-dot(dir, n2), snell_ior, 1.0);
+        float f_out = snell_fresnel_sel(-dot(dir, n2), snell_ior, 1.0);
         vec3 back = snell_reflect(dir, n2);
         exit_fresnel = leaves ? f_out : exit_fresnel;
         vec3 exit_r_next = leaves ? back : exit_r;

@@ -82,6 +82,43 @@ float snell_fresnel(float cos_i, float n1, float n2)
 #endif
 }
 
+// snell_refract and snell_fresnel, selected rather than branched (the same
+// operations, so the same bits): a value merged from branches stays live
+// through a whole loop on V3D (the kernels' interface loops).
+bool snell_refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
+{
+    float c = -dot(n, i);
+    float k = 1.0 - eta * eta * (1.0 - c * c);
+    vec3 mirror = snell_reflect(i, n), through = eta * i + (eta * c - sqrt(k)) * n;
+    t = k < 0.0 ? mirror : through;
+    return !(k < 0.0);
+}
+
+float snell_fresnel_sel(float cos_i, float n1, float n2)
+{
+#if SNELL_FRESNEL_EXACT
+    float ci = min(abs(cos_i), 1.0);
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - ci * ci);
+    float ct = sqrt(1.0 - sin2_t);
+    float rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+    float rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
+    float f = 0.5 * (rs * rs + rp * rp);
+    return n1 == n2 ? 0.0 : sin2_t >= 1.0 ? 1.0 : f;
+#else
+    float r0 = (n1 - n2) / (n1 + n2);
+    float c = abs(cos_i);
+    r0 *= r0;
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - c * c);
+    float ct = sqrt(1.0 - sin2_t);
+    c = n1 > n2 ? ct : c;
+    float m = 1.0 - c;
+    float f = r0 + (1.0 - r0) * m * m * m * m * m;
+    return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
+#endif
+}
+
 // Transmittance of a path of length d through a medium with coefficient sigma.
 vec3 snell_beer_lambert(vec3 sigma, float d)
 {
