@@ -131,16 +131,11 @@ static void check_shape(snell_ctx *ctx, snell_renderer *r, snell_env *env, snell
 int main(void)
 {
     snell_ctx *ctx = test_ctx();
-    snell_renderer *r = NULL;
-    snell_renderer_desc rd;
+    snell_renderer *r;
     snell_env *env;
     if (!ctx) SKIP("no GL context");
     env = test_sky(ctx, 128);
-    memset(&rd, 0, sizeof rd);
-    rd.width = W;
-    rd.height = H;
-    rd.shading = test_shading();
-    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &rd, &r));
+    r = test_renderer(ctx, W, H);
     if (env && r) {
         check_shape(ctx, r, env, SNELL_SHAPE_SPHERE, "sphere", 0.35f);
         check_shape(ctx, r, env, SNELL_SHAPE_TORUS, "torus", 1.2f);
