@@ -371,6 +371,13 @@ int snell__ref_inside(const snell_ref *r, int j, double ior, const snell__ref_su
     }
 }
 
+/* Beer-Lambert through glass g over length len, per channel. */
+static void transmittance(const ref_glass *g, double len, double T[3])
+{
+    int k;
+    for (k = 0; k < 3; k++) T[k] = g->has_sigma ? exp(-g->sigma[k] * len) : 1.0;
+}
+
 /* SNELL_REF_TERM_INNER_REFLECTION: what the chain's internal reflection at
  * its first exit sees, from p along refl inside j after the chain's length
  * len: on to its own exit (total reflections followed, the cap counted on
@@ -380,7 +387,7 @@ static void m_inner(const snell_ref *r, const optics *op, int j, const double p[
                     uint32_t prim, int depth, double len, const double w[3], double L[3])
 {
     const ref_glass *g = &r->glass[j];
-    double pos[3], dir[3], wo[3], cos_out;
+    double pos[3], dir[3], wo[3], T[3], cos_out;
     ref_surf s;
     int k;
     memcpy(pos, p, sizeof pos);
@@ -390,9 +397,10 @@ static void m_inner(const snell_ref *r, const optics *op, int j, const double p[
         snell__ref_shade_opaque(r, -2 - s.object, &s, L);
         return;
     }
-    for (k = 0; k < 3; k++) wo[k] = w[k] * (g->has_sigma ? exp(-g->sigma[k] * len) : 1.0);
+    transmittance(g, len, T);
+    for (k = 0; k < 3; k++) wo[k] = w[k] * T[k];
     m_air(r, op, pos, dir, prim, j, 0, depth, wo, NULL, L);
-    for (k = 0; k < 3; k++) L[k] *= g->has_sigma ? exp(-g->sigma[k] * len) : 1.0;
+    for (k = 0; k < 3; k++) L[k] *= T[k];
 }
 
 /* The refracted chain inside solid glass object j from p along t1
@@ -407,7 +415,7 @@ static void m_inside(const snell_ref *r, const optics *op, int j, const double p
                      int depth, int split, const double w[3], snell_ref_path *path, double *len, double L[3])
 {
     const ref_glass *g = &r->glass[j];
-    double pos[3], dir[3], wo[3], refl[3], cos_out, F, inner[3];
+    double pos[3], dir[3], wo[3], T[3], refl[3], cos_out, F, inner[3];
     ref_surf s;
     int k, end, reenter = (op->terms & SNELL_REF_TERM_REENTRY) != 0;
     memcpy(pos, p, sizeof pos);
@@ -421,13 +429,14 @@ static void m_inside(const snell_ref *r, const optics *op, int j, const double p
         snell__ref_shade_opaque(r, -2 - s.object, &s, L);
         return;
     }
-    for (k = 0; k < 3; k++) wo[k] = w[k] * (g->has_sigma ? exp(-g->sigma[k] * *len) : 1.0);
+    transmittance(g, *len, T);
+    for (k = 0; k < 3; k++) wo[k] = w[k] * T[k];
     m_air(r, op, pos, dir, prim, j, reenter, depth, wo, path, L);
     if (!split || !(op->terms & SNELL_REF_TERM_INNER_REFLECTION) || end != SNELL__REF_OUT) return;
     F = fresnel(op, cos_out, ior_of(op, g), 1.0);
     for (k = 0; k < 3; k++) wo[k] *= F;
     m_inner(r, op, j, pos, refl, prim, depth, *len, wo, inner);
-    for (k = 0; k < 3; k++) L[k] = (1.0 - F) * L[k] * (g->has_sigma ? exp(-g->sigma[k] * *len) : 1.0) + F * inner[k];
+    for (k = 0; k < 3; k++) L[k] = (1.0 - F) * L[k] * T[k] + F * inner[k];
     *len = 0.0;
 }
 
