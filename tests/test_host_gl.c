@@ -7,6 +7,9 @@
  * 0 alone written, COPY_BOUND's source), sRGB (encoded once) and two eyes
  * side by side (the host's viewport). */
 #include "test_util.h"
+#include "snell/snell_2d.h"
+#include "snell/snell_water.h"
+#include "snell_components.h"
 
 #include <EGL/egl.h>
 #include <GLES3/gl3.h>
@@ -148,6 +151,111 @@ static void check_pending_errors(void)
     }
     fb_free(&f);
     glDeleteFramebuffers(1, &incomplete);
+}
+
+/* A call that touches GL with each kind of host error pending: the call
+ * succeeds and the error comes back, once. */
+#define KEEPS(what, call)                                                                                          \
+    do {                                                                                                           \
+        int k_;                                                                                                    \
+        for (k_ = 0; k_ < 4; k_++) {                                                                               \
+            GLenum got_, then_;                                                                                    \
+            snell_status st_;                                                                                      \
+            raise_error(g_kinds[k_], g_incomplete);                                                                \
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);                                                                  \
+            st_ = (call);                                                                                          \
+            CHECK(st_ == SNELL_OK, "%s with host error 0x%x pending: %s", what, g_kinds[k_],                       \
+                  snell_last_error(g_ctx));                                                                        \
+            got_ = glGetError();                                                                                   \
+            then_ = glGetError();                                                                                  \
+            CHECK(got_ == g_kinds[k_] && then_ == GL_NO_ERROR, "%s: host error 0x%x came back as 0x%x, then 0x%x", \
+                  what, g_kinds[k_], got_, then_);                                                                 \
+        }                                                                                                          \
+    } while (0)
+
+static const GLenum g_kinds[4] = {GL_INVALID_ENUM, GL_INVALID_VALUE, GL_INVALID_OPERATION,
+                                  GL_INVALID_FRAMEBUFFER_OPERATION};
+static GLuint g_incomplete;
+
+static snell_status env_made(void)
+{
+    snell_env_desc ed;
+    snell_env *e = NULL;
+    snell_status st;
+    memset(&ed, 0, sizeof ed);
+    ed.face_size = 8;
+    st = snell_env_create(g_ctx, &ed, &e);
+    snell_env_destroy(e);
+    return st;
+}
+
+#ifdef SNELL_WITH_WATER
+static snell_status water_run(void)
+{
+    snell_water_desc wd;
+    snell_water *w = NULL;
+    static float h[64 * 64];
+    snell_status st;
+    memset(&wd, 0, sizeof wd);
+    wd.grid = 64, wd.sim = SNELL_WATER_SIM_GPU;
+    st = snell_water_create(g_ctx, &wd, &w);
+    if (st == SNELL_OK) st = snell_water_drop(w, 0.0f, 0.0f, 0.3f, 0.01f);
+    if (st == SNELL_OK) st = snell_water_step(w, 0.0f, 2, NULL);
+    if (st == SNELL_OK) st = snell_water_read_heights(w, h);
+    snell_water_destroy(w);
+    return st;
+}
+#endif
+
+#ifdef SNELL_WITH_LM2D
+static snell_status lightmap_run(void)
+{
+    snell_lightmap2d_desc d;
+    snell_light2d_desc l;
+    snell_lightmap2d *lm = NULL;
+    snell_scene2d *s = NULL;
+    float rgb[16 * 16 * 3];
+    snell_status st;
+    memset(&d, 0, sizeof d);
+    memset(&l, 0, sizeof l);
+    d.width = d.height = 16, d.threads = 1;
+    l.type = SNELL_LIGHT2D_POINT, l.position[0] = l.position[1] = 8.0f, l.power = 1.0f, l.rays = 500;
+    st = snell_scene2d_create(g_ctx, &s);
+    if (st == SNELL_OK) st = snell_scene2d_add_light(s, &l, NULL);
+    if (st == SNELL_OK) st = snell_lightmap2d_create(g_ctx, &d, &lm);
+    if (st == SNELL_OK) st = snell_lightmap2d_frame(lm, s, NULL);
+    if (st == SNELL_OK) st = snell_lightmap2d_read_rgb(lm, rgb);
+    snell_lightmap2d_destroy(lm);
+    snell_scene2d_destroy(s);
+    return st;
+}
+#endif
+
+/* The other calls that touch GL keep the host's errors as snell_render does. */
+static void check_pending_errors_elsewhere(void)
+{
+    snell_renderer *r = NULL;
+    snell_renderer_desc rd;
+    static uint8_t rgba[W * H * 4];
+    static const float dir[3] = {0.0f, 0.0f, -1.0f};
+    float rgb[3];
+    glGenFramebuffers(1, &g_incomplete);
+    memset(&rd, 0, sizeof rd);
+    rd.width = W, rd.height = H;
+    CHECK_OK_CTX(g_ctx, snell_renderer_create(g_ctx, &rd, &r));
+    CHECK_OK_CTX(g_ctx, frame(r, SNELL_DEPTH_CLEAR, NULL));
+    KEEPS("snell_env_create", env_made());
+    KEEPS("snell_renderer_read_rgba", snell_renderer_read_rgba(r, rgba));
+    KEEPS("snell_renderer_env_probe",
+          snell_renderer_env_probe(r, g_env, SNELL_ENV_LOOKUP_CUBE, dir, 1, rgb));
+#ifdef SNELL_WITH_WATER
+    KEEPS("the water's calls", water_run());
+#endif
+#ifdef SNELL_WITH_LM2D
+    KEEPS("the 2D lightmap's calls", lightmap_run());
+#endif
+    snell_renderer_destroy(r);
+    glDeleteFramebuffers(1, &g_incomplete);
 }
 
 /* ------------------------------------------------ transform feedback */
@@ -580,6 +688,7 @@ int main(void)
     CHECK_OK_CTX(g_ctx, snell_env_create(g_ctx, &ed, &g_env));
     if (!g_ctx || !g_mesh || !g_env) return test_finish();
     check_pending_errors();
+    check_pending_errors_elsewhere();
     check_transform_feedback();
     check_no_write_exact();
 #ifdef SNELL_WITH_HOST_FRAMEBUFFERS

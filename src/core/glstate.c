@@ -188,6 +188,7 @@ void snell__glstate_save(snell_glstate *s)
 {
     int i;
     GLboolean cm[4], dm, tf_active = GL_FALSE, tf_paused = GL_FALSE;
+    s->host_errors = snell__gl_errors_take();
     /* A host's active transform feedback would capture snell's draws: paused
      * until the restore (GLES 3.0 2.15.2 allows binding, drawing and
      * program changes while paused). */
@@ -259,6 +260,7 @@ void snell__glstate_restore(snell_glstate *s)
     pixel_set(&s->pack, 1);
     pixel_set(&s->unpack, 0);
     if (s->tf_paused) glResumeTransformFeedback(); /* the host's program is current again */
+    snell__gl_errors_give(s->host_errors);
 }
 
 /* GL keeps at most one flag per error kind and glGetError clears the one it

@@ -50,10 +50,13 @@ typedef struct snell_glstate {
     float depth_range[2];
     snell__pixel_store pack, unpack;
     unsigned char tf_paused; /* the host's transform feedback, paused by the save */
+    unsigned host_errors;    /* GL errors pending at the save, raised again by the restore */
 } snell_glstate;
 
 /* Saves the state and opens a units scope that saves each unit at its
- * first use; restore closes it and puts everything back (innermost first). */
+ * first use; restore closes it and puts everything back (innermost first).
+ * Errors pending at the save wait outside: a check before the restore sees
+ * only snell's own. */
 void snell__glstate_save(snell_glstate *s);
 void snell__glstate_restore(snell_glstate *s);
 

@@ -35,6 +35,8 @@ snell_status snell__read_light_map(snell_ctx *ctx, unsigned format, unsigned fbo
     snell__pixel_store pack;
     size_t i;
     int fixed = format == GL_RGB10_A2;
+    unsigned host_errors = snell__gl_errors_take(); /* the host's wait outside (core/glstate.h) */
+    GLenum err;
     glFinish();
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
@@ -52,5 +54,7 @@ snell_status snell__read_light_map(snell_ctx *ctx, unsigned format, unsigned fbo
         rgba[4 * i + 2] = (float)(p >> 20 & 1023u) / 1023.0f * SNELL__LIGHT_RANGE;
         rgba[4 * i + 3] = (float)(p >> 30) / 3.0f;
     }
-    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "reading %s failed", what);
+    err = glGetError();
+    snell__gl_errors_give(host_errors);
+    return err == GL_NO_ERROR ? SNELL_OK : snell__fail(ctx, SNELL_E_GL, "reading %s failed", what);
 }

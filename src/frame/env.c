@@ -278,7 +278,6 @@ static snell_status borrow(snell_ctx *ctx, snell_env *env, const snell_env_desc 
     if (!ctx || !d->gl_texture || !glIsTexture(d->gl_texture) || !d->face_size)
         return snell__fail(ctx, SNELL_E_INVALID_ARG, "SNELL_ENV_GL_TEXTURE: a context, gl_texture (a texture of it, "
                            "%u given) and its face_size are required", d->gl_texture);
-    while (glGetError() != GL_NO_ERROR) {}
     glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &prev);
     glBindTexture(GL_TEXTURE_CUBE_MAP, d->gl_texture);
     err = glGetError();
@@ -296,6 +295,7 @@ snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_
     snell_env_desc d;
     snell_env *env;
     snell_status st = SNELL_OK;
+    unsigned host_errors = 0;
     int f;
     if (!out) return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_env_create: out is NULL");
     *out = NULL;
@@ -311,6 +311,7 @@ snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_
     snell__ctx_retain(ctx); /* released by snell_env_destroy */
     env->alloc = *snell__ctx_alloc(ctx);
     env->size = d.face_size ? d.face_size : ENV_DEFAULT_SIZE;
+    if (ctx) host_errors = snell__gl_errors_take(); /* the host's wait outside (core/glstate.h) */
     switch (d.source) {
     case SNELL_ENV_PROCEDURAL:
         for (f = 0; f < 6 && st == SNELL_OK; f++) {
@@ -325,12 +326,10 @@ snell_status snell_env_create(snell_ctx *ctx, const snell_env_desc *desc, snell_
     default: st = snell__fail(ctx, SNELL_E_INVALID_ARG, "unknown environment source %d", (int)d.source);
     }
     if (st == SNELL_OK && ctx && !env->borrowed) st = upload(ctx, env);
-    if (st != SNELL_OK) {
-        snell_env_destroy(env);
-        return st;
-    }
-    *out = env;
-    return SNELL_OK;
+    if (st != SNELL_OK) snell_env_destroy(env);
+    else *out = env;
+    if (ctx) snell__gl_errors_give(host_errors);
+    return st;
 }
 
 void snell_env_destroy(snell_env *env)

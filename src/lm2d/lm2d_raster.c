@@ -90,16 +90,16 @@ snell_status lm2d_gl_create(snell_ctx *ctx, int width, int height, snell_format2
         snell__free(al, g);
         return snell__fail(ctx, SNELL_E_NOMEM, "lightmap2d: out of memory");
     }
-    while (glGetError() != GL_NO_ERROR) {} /* an earlier call's error is not this one's */
+    snell__glstate_save(&ss); /* an earlier error waits outside: not this call's */
     st = snell__program_build(ctx, "lightmap2d/lines.vert", "lightmap2d/lines.frag", NULL, &g->prog);
     if (st != SNELL_OK) {
+        snell__glstate_restore(&ss);
         lm2d_gl_destroy(g);
         return st;
     }
     g->u_size = glGetUniformLocation(g->prog, "u_size");
     g->u_quant = glGetUniformLocation(g->prog, "u_quant");
     g->u_frame = glGetUniformLocation(g->prog, "u_frame");
-    snell__glstate_save(&ss);
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev_tex);
     switch (f) {
     case SNELL_FORMAT2D_RGBA32F: ifmt = GL_RGBA32F; type = GL_FLOAT; break;
@@ -128,8 +128,8 @@ snell_status lm2d_gl_create(snell_ctx *ctx, int width, int height, snell_format2
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, FLOATS_PER_VERTEX * sizeof(float),
                           (const void *)(2 * sizeof(float)));
-    snell__glstate_restore(&ss);
     err = glGetError();
+    snell__glstate_restore(&ss);
     if (status != GL_FRAMEBUFFER_COMPLETE || err != GL_NO_ERROR) {
         lm2d_gl_destroy(g);
         return snell__fail(ctx, SNELL_E_GL, "lightmap2d: accumulation framebuffer (format %d): status 0x%x, GL error 0x%x",
@@ -214,8 +214,8 @@ snell_status lm2d_gl_draw(lm2d_gl *g, const lm2d_path *paths, size_t n, const lm
         glDrawArrays(GL_LINES, 0, (GLsizei)(m * 2));
         i += m;
     }
-    snell__glstate_restore(&ss);
     err = glGetError();
+    snell__glstate_restore(&ss);
     if (err != GL_NO_ERROR) return snell__fail(g->ctx, SNELL_E_GL, "lightmap2d: GL error 0x%x drawing paths", (unsigned)err);
     return SNELL_OK;
 }
@@ -227,10 +227,12 @@ snell_status lm2d_gl_read(lm2d_gl *g, float *rgb, float scale)
     snell__pixel_store pack;
     int x, y, w = g->width, h = g->height;
     GLenum err;
+    unsigned host_errors;
     if (!g->readback) {
         g->readback = snell__calloc(al, (size_t)w * (size_t)h, 4 * sizeof(float));
         if (!g->readback) return snell__fail(g->ctx, SNELL_E_NOMEM, "lightmap2d: out of memory for readback");
     }
+    host_errors = snell__gl_errors_take();
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev);
     snell__pixel_pack_begin(&pack, 4); /* client memory, whatever pixel buffer the host bound */
     glBindFramebuffer(GL_READ_FRAMEBUFFER, g->fbo);
@@ -241,6 +243,7 @@ snell_status lm2d_gl_read(lm2d_gl *g, float *rgb, float scale)
     snell__pixel_pack_end(&pack);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev);
     err = glGetError();
+    snell__gl_errors_give(host_errors);
     if (err != GL_NO_ERROR) return snell__fail(g->ctx, SNELL_E_GL, "lightmap2d: GL error 0x%x reading the lightmap", (unsigned)err);
     /* GL rows are bottom first; the lightmap is stored top row first */
     for (y = 0; y < h; y++) {
@@ -280,6 +283,7 @@ snell_status lm2d_gl_upload(lm2d_gl *g, const float *img, float mul, int one_min
     GLint prev_tex, unpack_buf, align, row_len, skip_rows, skip_px;
     size_t i, n = (size_t)g->width * (size_t)g->height;
     const void *data = img;
+    unsigned host_errors;
     GLenum err;
     if (g->quant != 0.0f || one_minus || mul != 1.0f) {
         if (!g->readback) {
@@ -310,6 +314,7 @@ snell_status lm2d_gl_upload(lm2d_gl *g, const float *img, float mul, int one_min
             }
         }
     }
+    host_errors = snell__gl_errors_take(); /* the host's wait outside (core/glstate.h) */
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev_tex);
     glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack_buf);
     glGetIntegerv(GL_UNPACK_ALIGNMENT, &align);
@@ -334,6 +339,7 @@ snell_status lm2d_gl_upload(lm2d_gl *g, const float *img, float mul, int one_min
     glPixelStorei(GL_UNPACK_SKIP_PIXELS, skip_px);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, (GLuint)unpack_buf);
     err = glGetError();
+    snell__gl_errors_give(host_errors);
     if (err != GL_NO_ERROR)
         return snell__fail(g->ctx, SNELL_E_GL, "lightmap2d: GL error 0x%x uploading the lightmap", (unsigned)err);
     return SNELL_OK;

@@ -391,8 +391,10 @@ static snell_status read_target(snell_renderer *r, GLenum type, void *pixels)
 {
     GLint prev_fbo = 0;
     snell__pixel_store pack;
+    unsigned host_errors;
     snell_status st = snell__ctx_check_current(r->ctx, "snell_renderer_read");
     if (st != SNELL_OK) return st;
+    host_errors = snell__gl_errors_take();
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &prev_fbo);
     /* Into client memory, tightly packed, whatever pixel buffer or pack state the host has set. */
     snell__pixel_pack_begin(&pack, 1);
@@ -401,7 +403,9 @@ static snell_status read_target(snell_renderer *r, GLenum type, void *pixels)
     gpu_done(r);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)prev_fbo);
     snell__pixel_pack_end(&pack);
-    return glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "glReadPixels failed");
+    st = glGetError() == GL_NO_ERROR ? SNELL_OK : snell__fail(r->ctx, SNELL_E_GL, "glReadPixels failed");
+    snell__gl_errors_give(host_errors);
+    return st;
 }
 
 snell_status snell_renderer_read_rgba(snell_renderer *r, uint8_t *pixels)
