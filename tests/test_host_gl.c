@@ -437,6 +437,45 @@ static void expect_refusal(snell_renderer *r, const char *what, const char *part
     CHECK(e == GL_NO_ERROR, "%s: the refusal left GL error 0x%x", what, e);
 }
 
+/* A framebuffer smaller than the frame is named (renderbuffers; textures
+ * where the context is GLES 3.1, which can ask a level's size); a larger
+ * one is drawn into, its corner. */
+static void check_sizes(snell_renderer *r)
+{
+    host_fb f;
+    GLuint tex, small_depth;
+    GLint minor = 0;
+    fb_make(&f, GL_RGBA8, GL_DEPTH_COMPONENT24, W / 2, H / 2);
+    glViewport(0, 0, W, H);
+    expect_refusal(r, "a colour renderbuffer smaller than the renderer", "colour buffer is 32x24", NULL);
+    fb_free(&f);
+    fb_make(&f, GL_RGBA8, 0, W, H);
+    glGenRenderbuffers(1, &small_depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, small_depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, W / 2, H);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, small_depth);
+    expect_refusal(r, "a depth renderbuffer narrower than the renderer", "depth buffer is 32x48", NULL);
+    glDeleteRenderbuffers(1, &small_depth);
+    fb_free(&f);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    fb_make(&f, 0, GL_DEPTH_COMPONENT24, W, H / 2);
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, W, H / 2);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    glViewport(0, 0, W, H);
+    if (minor >= 1) expect_refusal(r, "a colour texture shorter than the renderer", "colour buffer is 64x24", NULL);
+    else printf("a GLES 3.0 context: a texture's size cannot be asked (not checked)\n");
+    glDeleteTextures(1, &tex);
+    fb_free(&f);
+    fb_make(&f, GL_RGBA8, GL_DEPTH_COMPONENT24, 2 * W, 2 * H);
+    CHECK(frame(r, SNELL_DEPTH_TEST, NULL) == SNELL_OK, "a framebuffer larger than the renderer: %s",
+          snell_last_error(g_ctx));
+    CHECK(glGetError() == GL_NO_ERROR, "a larger framebuffer: GL error");
+    fb_free(&f);
+}
+
 static void check_refusals(void)
 {
     host_fb f;
@@ -467,6 +506,7 @@ static void check_refusals(void)
           snell_last_error(g_ctx));
     glDeleteTextures(1, &cube);
     fb_free(&f);
+    check_sizes(r);
     snell_renderer_destroy(r);
     snell_renderer_destroy(pre);
 }

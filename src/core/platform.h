@@ -45,6 +45,9 @@ void *snell__platform_current(const snell_platform *p);
 /* A GL or extension function of the current context: GLX's or EGL's
  * look-up where that made it, else the GLES library's own export. */
 snell__gl_fn snell__platform_proc(const snell_platform *p, const char *name);
+/* The size of the current EGL draw surface (the default framebuffer's), 0
+ * when EGL does not know it (a GLX or foreign context, none current). */
+int snell__platform_surface_size(const snell_platform *p, int size[2]);
 
 /* Shared EGL helpers (platform_egl.c). */
 int snell__egl_has_extension(const char *list, const char *name);

@@ -72,6 +72,17 @@ void *snell__platform_current(const snell_platform *p)
     return eglGetCurrentContext();
 }
 
+int snell__platform_surface_size(const snell_platform *p, int size[2])
+{
+    EGLDisplay dpy = eglGetCurrentDisplay();
+    EGLSurface s = eglGetCurrentSurface(EGL_DRAW);
+    EGLint w = 0, h = 0;
+    if (p->glx.current || dpy == EGL_NO_DISPLAY || s == EGL_NO_SURFACE) return 0;
+    if (!eglQuerySurface(dpy, s, EGL_WIDTH, &w) || !eglQuerySurface(dpy, s, EGL_HEIGHT, &h)) return 0;
+    size[0] = w, size[1] = h;
+    return 1;
+}
+
 snell__gl_fn snell__platform_proc(const snell_platform *p, const char *name)
 {
 #ifdef SNELL_WITH_GLX

@@ -2,6 +2,7 @@
 /* host_target.c — see host_target.h. */
 #include "render/host_target.h"
 #include "render/host_depth.h"
+#include "core/ctx.h"
 #include "core/gl.h"
 
 int snell__fb_attachment(unsigned att, unsigned pname)
@@ -25,6 +26,59 @@ static const char *refusal(GLint fbo, GLint buf, int premultiplied)
         return "lacks alpha (premultiplied_alpha)";
     if (snell__fb_attachment(fbo ? GL_DEPTH_ATTACHMENT : GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) == GL_NONE)
         return "has no depth buffer"; /* the glass is depth-tested, the background drawn behind it */
+    return NULL;
+}
+
+#define TEXTURE_WIDTH 0x1000 /* GLES 3.1's GL_TEXTURE_WIDTH, GL_TEXTURE_HEIGHT */
+#define TEXTURE_HEIGHT 0x1001
+typedef void(GL_APIENTRY *tex_level_fn)(GLenum target, GLint level, GLenum pname, GLint *v);
+
+/* The size of attachment att of the bound draw framebuffer where GLES can
+ * tell: a renderbuffer's; a 2D or cube texture level's through GLES 3.1's
+ * glGetTexLevelParameteriv (3.0 cannot ask); the default framebuffer's from
+ * EGL. 0: unknown. */
+static int attachment_size(snell_ctx *ctx, GLint fbo, GLenum att, GLint size[2])
+{
+    GLint type, name, prev = 0, minor = 0, face, level;
+    GLenum target, binding;
+    tex_level_fn get;
+    if (!fbo) return snell__platform_surface_size(&ctx->platform, size);
+    type = snell__fb_attachment(att, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE);
+    name = snell__fb_attachment(att, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME);
+    if (type == GL_RENDERBUFFER) {
+        glGetIntegerv(GL_RENDERBUFFER_BINDING, &prev);
+        glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)name);
+        glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_WIDTH, &size[0]);
+        glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_HEIGHT, &size[1]);
+        glBindRenderbuffer(GL_RENDERBUFFER, (GLuint)prev);
+        return 1;
+    }
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (type != GL_TEXTURE || minor < 1 || snell__fb_attachment(att, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LAYER) ||
+        !(get = (tex_level_fn)snell__platform_proc(&ctx->platform, "glGetTexLevelParameteriv")))
+        return 0;
+    face = snell__fb_attachment(att, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_CUBE_MAP_FACE);
+    level = snell__fb_attachment(att, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL);
+    target = face ? (GLenum)face : GL_TEXTURE_2D;
+    binding = face ? GL_TEXTURE_BINDING_CUBE_MAP : GL_TEXTURE_BINDING_2D;
+    glGetIntegerv(binding, &prev);
+    glBindTexture(face ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D, (GLuint)name);
+    if (glGetError() != GL_NO_ERROR) return 0; /* a 2D array or 3D texture's layer 0: not asked */
+    get(target, level, TEXTURE_WIDTH, &size[0]);
+    get(target, level, TEXTURE_HEIGHT, &size[1]);
+    glBindTexture(face ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D, (GLuint)prev);
+    return 1;
+}
+
+/* Where the frame's rectangle (x, y, width, height) reaches past the colour
+ * or depth buffer GL can size, which one and how large it is; NULL when it fits. */
+static const char *too_small(snell_ctx *ctx, GLint fbo, GLenum color, const int rect[4], GLint size[2])
+{
+    if (attachment_size(ctx, fbo, color, size) && (size[0] < rect[0] + rect[2] || size[1] < rect[1] + rect[3]))
+        return "colour buffer";
+    if (fbo && attachment_size(ctx, fbo, GL_DEPTH_ATTACHMENT, size) &&
+        (size[0] < rect[0] + rect[2] || size[1] < rect[1] + rect[3]))
+        return "depth buffer";
     return NULL;
 }
 
@@ -110,6 +164,16 @@ snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int
     /* The host's viewport: at the origin the frame is drawn at 0, 0 (its size
      * the renderer's); elsewhere it must be the renderer's size. */
     glGetIntegerv(GL_VIEWPORT, t->viewport);
+    {
+        int rect[4];
+        GLint size[2] = {0, 0};
+        const char *which;
+        rect[0] = t->viewport[0], rect[1] = t->viewport[1], rect[2] = width, rect[3] = height;
+        if ((which = too_small(ctx, fbo, (GLenum)buf, rect, size)))
+            return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_render: the bound framebuffer %d's %s is %dx%d, the "
+                               "renderer draws %dx%d at %d,%d", fbo, which, size[0], size[1], width, height, rect[0],
+                               rect[1]);
+    }
     if (!t->viewport[0] && !t->viewport[1]) return SNELL_OK;
     if (t->viewport[2] == width && t->viewport[3] == height) return redirect(ctx, t);
     return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_render: the viewport is %dx%d at %d,%d, the renderer %dx%d",
