@@ -13,6 +13,7 @@
 #define BINS 32
 #define MAX_LEAF 4        /* a leaf never holds more unless the centroids coincide */
 #define MAX_DEPTH 96      /* beyond this, split by halves (keeps recursion bounded) */
+#define SMALL_NODE 24     /* nodes this small choose their split by sorting, not by sweeping the bins */
 #define STACK_SIZE 128 /* >= MAX_DEPTH + log2(SNELL__BVH_MAX_TRIANGLES) + 1 */
 
 /* ------------------------------------------------------------ ray setup */
@@ -222,12 +223,16 @@ int snell__bvh_any(const snell__bvh *bvh, const double org[3], const double dir[
 
 /* --------------------------------------------------------------- build */
 
+/* A source triangle's box and centroid, moved with it as the build
+ * partitions: each node reads its triangles in order, not scattered. */
+typedef struct build_prim {
+    double lo[3], hi[3], c[3];
+    uint32_t t; /* source triangle index */
+} build_prim;
+
 typedef struct build_ctx {
     snell__bvh *bvh;
-    const double *tv;     /* 9 per source triangle, world space */
-    double *cent;         /* 3 per source triangle */
-    double *lo, *hi;      /* per source triangle boxes */
-    uint32_t *order;      /* source triangle indices, permuted into leaf order */
+    build_prim *prims;    /* one per source triangle, permuted into leaf order */
     uint32_t next_node;
 } build_ctx;
 
@@ -266,6 +271,48 @@ static int bin_of(double c, double lo, double scale)
     return b < 0 ? 0 : (b >= BINS ? BINS - 1 : b);
 }
 
+/* The same choice as the bins below for a node of few triangles (most
+ * nodes), without clearing and sweeping every bin: the cost only changes
+ * where a triangle's bin does, so the splits after each occupied bin are
+ * tried, in the same order, with the same boxes (unions are exact). */
+static void sah_small(const build_ctx *bc, uint32_t begin, uint32_t count, const box3 *cb, const double scales[3],
+                      double *best_cost, int *best_axis, int *best_split)
+{
+    uint32_t idx[SMALL_NODE], j;
+    int bin[SMALL_NODE], k;
+    box3 suffix[SMALL_NODE], acc;
+    for (k = 0; k < 3; k++) {
+        if (scales[k] == 0.0) continue;
+        for (j = 0; j < count; j++) {
+            uint32_t m = j;
+            int b = bin_of(bc->prims[begin + j].c[k], cb->lo[k], scales[k]);
+            for (; m > 0 && bin[idx[m - 1]] > b; m--) idx[m] = idx[m - 1]; /* insertion by bin */
+            idx[m] = j;
+            bin[j] = b;
+        }
+        box_empty(&acc);
+        for (j = count; j-- > 0;) {
+            const build_prim *p = &bc->prims[begin + idx[j]];
+            box_grow(&acc, p->lo, p->hi);
+            suffix[j] = acc;
+        }
+        box_empty(&acc);
+        for (j = 0; j + 1 < count; j++) {
+            const build_prim *p = &bc->prims[begin + idx[j]];
+            uint32_t left_cnt = j + 1, right_cnt = count - j - 1;
+            double cost;
+            box_grow(&acc, p->lo, p->hi);
+            if (bin[idx[j]] == bin[idx[j + 1]]) continue;
+            cost = box_area(&acc) * left_cnt + box_area(&suffix[j + 1]) * right_cnt;
+            if (cost < *best_cost) {
+                *best_cost = cost;
+                *best_axis = k;
+                *best_split = bin[idx[j]];
+            }
+        }
+    }
+}
+
 static void build_node(build_ctx *bc, uint32_t node, uint32_t begin, uint32_t end, int depth)
 {
     snell__bvh_node *n = &bc->bvh->nodes[node];
@@ -276,9 +323,9 @@ static void build_node(build_ctx *bc, uint32_t node, uint32_t begin, uint32_t en
     box_empty(&nb);
     box_empty(&cb);
     for (i = begin; i < end; i++) {
-        uint32_t t = bc->order[i];
-        box_grow(&nb, bc->lo + 3 * (size_t)t, bc->hi + 3 * (size_t)t);
-        box_grow(&cb, bc->cent + 3 * (size_t)t, bc->cent + 3 * (size_t)t);
+        const build_prim *p = &bc->prims[i];
+        box_grow(&nb, p->lo, p->hi);
+        box_grow(&cb, p->c, p->c);
     }
     for (k = 0; k < 3; k++) {
         n->bmin[k] = nb.lo[k];
@@ -289,35 +336,53 @@ static void build_node(build_ctx *bc, uint32_t node, uint32_t begin, uint32_t en
 
     /* Binned SAH (Wald 2007): cost of a split = A_L*N_L + A_R*N_R relative to
      * the node, traversal cost 1, intersection cost 1 per triangle. */
-    if (depth < MAX_DEPTH) {
+    if (depth < MAX_DEPTH && count <= SMALL_NODE) {
+        double scales[3];
         for (k = 0; k < 3; k++) {
-            double ext = cb.hi[k] - cb.lo[k], scale, right_area[BINS];
-            box3 bins[BINS], acc;
-            uint32_t cnt[BINS], right_cnt[BINS], left_cnt = 0;
-            int b;
-            if (!(ext > 0.0)) continue;
-            scale = (double)BINS / ext;
+            double ext = cb.hi[k] - cb.lo[k];
+            scales[k] = ext > 0.0 ? (double)BINS / ext : 0.0;
+        }
+        sah_small(bc, begin, count, &cb, scales, &best_cost, &best_axis, &best_split);
+    } else if (depth < MAX_DEPTH) {
+        box3 bins[3][BINS];
+        uint32_t cnts[3][BINS];
+        double scales[3];
+        int b;
+        /* The three axes' bins filled in one pass over the triangles. */
+        for (k = 0; k < 3; k++) {
+            double ext = cb.hi[k] - cb.lo[k];
+            scales[k] = ext > 0.0 ? (double)BINS / ext : 0.0;
             for (b = 0; b < BINS; b++) {
-                box_empty(&bins[b]);
-                cnt[b] = 0;
+                box_empty(&bins[k][b]);
+                cnts[k][b] = 0;
             }
-            for (i = begin; i < end; i++) {
-                uint32_t t = bc->order[i];
-                b = bin_of(bc->cent[3 * (size_t)t + k], cb.lo[k], scale);
-                cnt[b]++;
-                box_grow(&bins[b], bc->lo + 3 * (size_t)t, bc->hi + 3 * (size_t)t);
+        }
+        for (i = begin; i < end; i++) {
+            const build_prim *p = &bc->prims[i];
+            for (k = 0; k < 3; k++) {
+                if (scales[k] == 0.0) continue;
+                b = bin_of(p->c[k], cb.lo[k], scales[k]);
+                cnts[k][b]++;
+                box_grow(&bins[k][b], p->lo, p->hi);
             }
+        }
+        for (k = 0; k < 3; k++) {
+            double right_area[BINS];
+            box3 acc;
+            const uint32_t *cnt = cnts[k];
+            uint32_t right_cnt[BINS], left_cnt = 0;
+            if (scales[k] == 0.0) continue;
             box_empty(&acc);
             right_cnt[BINS - 1] = 0;
             for (b = BINS - 1; b > 0; b--) {
-                box_grow(&acc, bins[b].lo, bins[b].hi);
+                box_grow(&acc, bins[k][b].lo, bins[k][b].hi);
                 right_cnt[b - 1] = (b < BINS - 1 ? right_cnt[b] : 0) + cnt[b];
                 right_area[b - 1] = box_area(&acc);
             }
             box_empty(&acc);
             for (b = 0; b < BINS - 1; b++) {
                 double cost;
-                box_grow(&acc, bins[b].lo, bins[b].hi);
+                box_grow(&acc, bins[k][b].lo, bins[k][b].hi);
                 left_cnt += cnt[b];
                 if (!left_cnt || !right_cnt[b]) continue;
                 cost = box_area(&acc) * left_cnt + right_area[b] * right_cnt[b];
@@ -339,12 +404,12 @@ static void build_node(build_ctx *bc, uint32_t node, uint32_t begin, uint32_t en
             uint32_t lo_i = begin, hi_i = end;
             /* Partition by the same bin function used for the costs. */
             while (lo_i < hi_i) {
-                uint32_t t = bc->order[lo_i];
-                if (bin_of(bc->cent[3 * (size_t)t + best_axis], cb.lo[best_axis], scale) <= best_split) {
+                if (bin_of(bc->prims[lo_i].c[best_axis], cb.lo[best_axis], scale) <= best_split) {
                     lo_i++;
                 } else {
-                    bc->order[lo_i] = bc->order[--hi_i];
-                    bc->order[hi_i] = t;
+                    build_prim t = bc->prims[lo_i];
+                    bc->prims[lo_i] = bc->prims[--hi_i];
+                    bc->prims[hi_i] = t;
                 }
             }
             mid = lo_i;
@@ -455,22 +520,16 @@ snell_status snell__bvh_build_parts(snell_ctx *ctx, const snell__bvh_part *parts
     bvh->triangle_count = nt;
     bvh->part_count = part_count;
     tv = (double *)snell__calloc(al, 9 * (size_t)nt, sizeof(double));
-    bc.cent = (double *)snell__calloc(al, 3 * (size_t)nt, sizeof(double));
-    bc.lo = (double *)snell__calloc(al, 3 * (size_t)nt, sizeof(double));
-    bc.hi = (double *)snell__calloc(al, 3 * (size_t)nt, sizeof(double));
-    bc.order = (uint32_t *)snell__calloc(al, nt, sizeof(uint32_t));
+    bc.prims = (build_prim *)snell__calloc(al, nt, sizeof(build_prim));
     bvh->nodes = (snell__bvh_node *)snell__calloc(al, 2 * (size_t)nt, sizeof(snell__bvh_node));
     bvh->tri_verts = (double *)snell__calloc(al, 9 * (size_t)nt, sizeof(double));
     bvh->tri_ids = (uint32_t *)snell__calloc(al, nt, sizeof(uint32_t));
     bvh->tri_parts = (uint32_t *)snell__calloc(al, nt, sizeof(uint32_t));
     bvh->part_first = (uint32_t *)snell__calloc(al, (size_t)part_count + 1, sizeof(uint32_t));
-    if (!tv || !bc.cent || !bc.lo || !bc.hi || !bc.order || !bvh->nodes || !bvh->tri_verts || !bvh->tri_ids ||
-        !bvh->tri_parts || !bvh->part_first) {
+    if (!tv || !bc.prims || !bvh->nodes || !bvh->tri_verts || !bvh->tri_ids || !bvh->tri_parts ||
+        !bvh->part_first) {
         snell__free(al, tv);
-        snell__free(al, bc.cent);
-        snell__free(al, bc.lo);
-        snell__free(al, bc.hi);
-        snell__free(al, bc.order);
+        snell__free(al, bc.prims);
         snell__bvh_destroy(bvh);
         return snell__fail(ctx, SNELL_E_NOMEM, "bvh build: out of memory for %u triangles", nt);
     }
@@ -484,26 +543,26 @@ snell_status snell__bvh_build_parts(snell_ctx *ctx, const snell__bvh_part *parts
         part_model(ctx, pt, "", m); /* validated above */
         bvh->part_first[p] = i;
         for (t = 0; t < pt->triangle_count; t++, i++) {
+            build_prim *bp = &bc.prims[i];
             for (j = 0; j < 3; j++) {
                 const float *q = pt->positions + 3 * (size_t)pt->indices[3 * (size_t)t + j];
                 double *w = tv + 9 * (size_t)i + 3 * j;
                 for (k = 0; k < 3; k++) {
                     w[k] = m[k] * q[0] + m[4 + k] * q[1] + m[8 + k] * q[2] + m[12 + k];
-                    if (j == 0 || w[k] < bc.lo[3 * (size_t)i + k]) bc.lo[3 * (size_t)i + k] = w[k];
-                    if (j == 0 || w[k] > bc.hi[3 * (size_t)i + k]) bc.hi[3 * (size_t)i + k] = w[k];
+                    if (j == 0 || w[k] < bp->lo[k]) bp->lo[k] = w[k];
+                    if (j == 0 || w[k] > bp->hi[k]) bp->hi[k] = w[k];
                 }
             }
             for (k = 0; k < 3; k++) {
-                bc.cent[3 * (size_t)i + k] = 0.5 * (bc.lo[3 * (size_t)i + k] + bc.hi[3 * (size_t)i + k]);
-                if (bc.lo[3 * (size_t)i + k] < bvh->bmin[k]) bvh->bmin[k] = bc.lo[3 * (size_t)i + k];
-                if (bc.hi[3 * (size_t)i + k] > bvh->bmax[k]) bvh->bmax[k] = bc.hi[3 * (size_t)i + k];
+                bp->c[k] = 0.5 * (bp->lo[k] + bp->hi[k]);
+                if (bp->lo[k] < bvh->bmin[k]) bvh->bmin[k] = bp->lo[k];
+                if (bp->hi[k] > bvh->bmax[k]) bvh->bmax[k] = bp->hi[k];
             }
-            bc.order[i] = i;
+            bp->t = i;
         }
     }
     bvh->part_first[part_count] = nt;
     bc.bvh = bvh;
-    bc.tv = tv;
     bc.next_node = 1;
     build_node(&bc, 0, 0, nt, 1);
     bvh->node_count = bc.next_node;
@@ -522,7 +581,7 @@ snell_status snell__bvh_build_parts(snell_ctx *ctx, const snell__bvh_part *parts
             bvh->nodes[i].bmax[k] += pad;
         }
     for (i = 0; i < nt; i++) {
-        uint32_t id = bc.order[i], lo = 0, hi = part_count - 1;
+        uint32_t id = bc.prims[i].t, lo = 0, hi = part_count - 1;
         memcpy(bvh->tri_verts + 9 * (size_t)i, tv + 9 * (size_t)id, 9 * sizeof(double));
         bvh->tri_ids[i] = id;
         while (lo < hi) { /* the last part whose first id is <= id */
@@ -535,10 +594,7 @@ snell_status snell__bvh_build_parts(snell_ctx *ctx, const snell__bvh_part *parts
         bvh->tri_parts[i] = lo;
     }
     snell__free(al, tv);
-    snell__free(al, bc.cent);
-    snell__free(al, bc.lo);
-    snell__free(al, bc.hi);
-    snell__free(al, bc.order);
+    snell__free(al, bc.prims);
     *out = bvh;
     return SNELL_OK;
 }
