@@ -92,14 +92,13 @@ static void tri_cross(double v[3][3], double n[3])
  * of non-empty cells up to 2 apart is tested point by point until one pair is
  * within tol (then the cells are joined: union-find). Points straddling a
  * cell face are thereby found like any others. Cost: a sort of the vertices
- * by cell (O(n log n)) and hash look-ups of 62 neighbour cells per non-empty
- * cell; the point tests are capped (WELD_MAX_TESTS) so that an adversarial
+ * by cell (O(n log n)) and a merge over the sorted cells for their 62
+ * neighbours; the point tests are capped (WELD_MAX_TESTS) so that an adversarial
  * file with huge clusters of distinct points just farther apart than tol
  * cannot make the analysis quadratic: it fails with SNELL_E_LIMIT instead. */
 #define WELD_REL_TOL 1e-5
 #define WELD_KEY_BITS 21 /* per axis: the box spans at most sqrt(3)/WELD_REL_TOL < 2^18 cells */
 #define WELD_MAX_TESTS(nv) (32.0 * (double)(nv) + 1048576.0)
-#define WELD_EMPTY 0xffffffffu
 
 typedef struct cell_pt {
     uint64_t key; /* packed cell coordinates */
@@ -118,10 +117,8 @@ typedef struct welder {
     cell_pt *pts; /* vertices sorted by cell */
     uint32_t *start; /* cell c holds pts[start[c] .. start[c + 1]) */
     uint32_t *parent; /* union-find over cells */
-    uint64_t *hkey; /* hash: cell key -> cell index (hval) */
-    uint32_t *hval;
-    uint64_t hmask;
-    int hbits; /* table size 2^hbits >= 2 * cells */
+    uint64_t *ckey; /* cell c's key, ascending */
+    uint32_t *num;  /* the welded vertex number of each cell, at the end */
     uint32_t ncells;
     double tol2;
     double tests; /* point pairs tested so far */
@@ -134,18 +131,6 @@ static uint32_t uf_find(uint32_t *parent, uint32_t c)
         c = parent[c];
     }
     return c;
-}
-
-static uint64_t hash_key(uint64_t key) { return key * 0x9E3779B97F4A7C15ull; }
-
-static uint32_t cell_lookup(const welder *w, uint64_t key)
-{
-    uint64_t h = hash_key(key) >> (64 - w->hbits);
-    while (w->hval[h] != WELD_EMPTY) {
-        if (w->hkey[h] == key) return w->hval[h];
-        h = (h + 1) & w->hmask;
-    }
-    return WELD_EMPTY;
 }
 
 /* Joins cells a and b if some point of one is within tol of some point of
@@ -179,8 +164,8 @@ static void weld_free(welder *w)
     snell__free(al, w->pts);
     snell__free(al, w->start);
     snell__free(al, w->parent);
-    snell__free(al, w->hkey);
-    snell__free(al, w->hval);
+    snell__free(al, w->ckey);
+    snell__free(al, w->num);
 }
 
 /* The weld tolerance: WELD_REL_TOL of the diagonal of the box around the
@@ -213,7 +198,7 @@ static snell_status weld(const snell_mesh *m, const unsigned char *used, uint32_
     const snell_alloc *al = &m->alloc;
     uint32_t nv = 0, i, c, n;
     double lo[3], tol, h;
-    uint64_t hcap;
+    uint32_t near[13]; /* per (dx, dy) of the neighbourhood: the first cell not before its run */
     welder w;
     int k;
     memset(&w, 0, sizeof w);
@@ -244,60 +229,58 @@ static snell_status weld(const snell_mesh *m, const unsigned char *used, uint32_
     qsort(w.pts, nv, sizeof *w.pts, cmp_cell_pt);
     for (i = 0, n = 0; i < nv; i++) n += i == 0 || w.pts[i].key != w.pts[i - 1].key;
     w.ncells = n;
-    w.hbits = 1;
-    while ((hcap = (uint64_t)1 << w.hbits) < 2 * (uint64_t)n) w.hbits++;
-    w.hmask = hcap - 1;
     w.start = (uint32_t *)snell__calloc(al, (size_t)n + 1, sizeof *w.start);
     w.parent = (uint32_t *)snell__calloc(al, n, sizeof *w.parent);
-    w.hkey = (uint64_t *)snell__calloc(al, (size_t)hcap, sizeof *w.hkey);
-    w.hval = (uint32_t *)snell__calloc(al, (size_t)hcap, sizeof *w.hval);
-    if (!w.start || !w.parent || !w.hkey || !w.hval) {
+    w.ckey = (uint64_t *)snell__calloc(al, n, sizeof *w.ckey);
+    w.num = (uint32_t *)snell__calloc(al, n, sizeof *w.num);
+    if (!w.start || !w.parent || !w.ckey || !w.num) {
         weld_free(&w);
         return snell__fail(m->ctx, SNELL_E_NOMEM, "snell_mesh_analyze: out of memory");
     }
-    memset(w.hval, 0xff, (size_t)hcap * sizeof *w.hval);
     for (i = 0, c = 0; i < nv; i++)
         if (i == 0 || w.pts[i].key != w.pts[i - 1].key) {
-            uint64_t hh = hash_key(w.pts[i].key) >> (64 - w.hbits);
-            while (w.hval[hh] != WELD_EMPTY) hh = (hh + 1) & w.hmask;
-            w.hkey[hh] = w.pts[i].key;
-            w.hval[hh] = c;
+            w.ckey[c] = w.pts[i].key;
             w.start[c] = i;
             w.parent[c] = c;
             c++;
         }
     w.start[n] = nv;
 
+    memset(near, 0, sizeof near);
     for (c = 0; c < n; c++) {
-        const uint64_t mask = ((uint64_t)1 << WELD_KEY_BITS) - 1, key = w.pts[w.start[c]].key;
+        const uint64_t mask = ((uint64_t)1 << WELD_KEY_BITS) - 1, key = w.ckey[c];
         const int64_t cx = (int64_t)(key >> (2 * WELD_KEY_BITS)), cy = (int64_t)((key >> WELD_KEY_BITS) & mask),
                       cz = (int64_t)(key & mask);
-        int dx, dy, dz;
-        /* the 62 offsets lexicographically after (0, 0, 0): each pair of cells once */
+        int dx, dy, j = 0;
+        /* The 62 offsets lexicographically after (0, 0, 0), each pair of
+         * cells once: for each (dx, dy) a run of z in the sorted cells, whose
+         * start only moves forward as c does (a merge, not a look-up each). */
         for (dx = 0; dx <= 2; dx++)
-            for (dy = dx ? -2 : 0; dy <= 2; dy++)
-                for (dz = (dx || dy) ? -2 : 1; dz <= 2; dz++) {
-                    int64_t x = cx + dx, y = cy + dy, z = cz + dz;
-                    uint32_t other;
-                    if (y < 0 || z < 0 || x > (int64_t)mask || y > (int64_t)mask || z > (int64_t)mask) continue;
-                    other = cell_lookup(&w, ((uint64_t)x << (2 * WELD_KEY_BITS)) | ((uint64_t)y << WELD_KEY_BITS) |
-                                                (uint64_t)z);
-                    if (other == WELD_EMPTY) continue;
-                    if (!weld_cells(&w, c, other, WELD_MAX_TESTS(nv))) {
+            for (dy = dx ? -2 : 0; dy <= 2; dy++, j++) {
+                int64_t x = cx + dx, y = cy + dy, z0 = cz + ((dx || dy) ? -2 : 1), z1 = cz + 2;
+                uint64_t row, first, last;
+                uint32_t q;
+                if (y < 0 || x > (int64_t)mask || y > (int64_t)mask) continue;
+                row = (uint64_t)x << (2 * WELD_KEY_BITS) | (uint64_t)y << WELD_KEY_BITS;
+                first = row | (uint64_t)(z0 < 0 ? 0 : z0);
+                last = row | (uint64_t)(z1 > (int64_t)mask ? (int64_t)mask : z1);
+                while (near[j] < n && w.ckey[near[j]] < first) near[j]++;
+                for (q = near[j]; q < n && w.ckey[q] <= last; q++)
+                    if (!weld_cells(&w, c, q, WELD_MAX_TESTS(nv))) {
                         weld_free(&w);
                         return snell__fail(m->ctx, SNELL_E_LIMIT,
                                            "snell_mesh_analyze: %u vertices too densely clustered to weld", nv);
                     }
-                }
+            }
     }
 
     /* Number the clusters in cell order: a root is the smallest cell of its
      * cluster (weld_cells keeps the smaller root), so it is numbered before
-     * the others are met. The hash table is done with: hval holds the numbers. */
+     * the others are met. */
     for (c = 0, n = 0; c < w.ncells; c++) {
         uint32_t r = uf_find(w.parent, c);
-        w.hval[c] = r == c ? n++ : w.hval[r];
-        for (i = w.start[c]; i < w.start[c + 1]; i++) id[w.pts[i].v] = w.hval[c];
+        w.num[c] = r == c ? n++ : w.num[r];
+        for (i = w.start[c]; i < w.start[c + 1]; i++) id[w.pts[i].v] = w.num[c];
     }
     *count = n;
     weld_free(&w);
