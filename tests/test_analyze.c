@@ -948,6 +948,21 @@ int main(void)
         CHECK(a.hidden_fraction > 0.35f, "torus: at least 41%% is hidden from any centre, got %g", a.hidden_fraction);
         snell_mesh_destroy(m);
     }
+    {
+        /* Finely tessellated, each edge bends less than the edge test's
+         * tolerance (512 segments: 1.2e-4 of the ring radius): the bends add
+         * up, lines cross it four times, and it is no convex solid. */
+        snell_shape_desc d;
+        memset(&d, 0, sizeof d);
+        d.shape = SNELL_SHAPE_TORUS, d.segments = 512, d.rings = 8;
+        m = NULL;
+        CHECK_OK(snell_mesh_create_shape(NULL, &d, &m));
+        if (m && snell_mesh_analyze(m, &a) == SNELL_OK)
+            CHECK(a.closed && !a.convex && a.depth_complexity == 4,
+                  "fine torus: closed %d, convex %d (wanted 0), depth complexity %d", a.closed, a.convex,
+                  a.depth_complexity);
+        snell_mesh_destroy(m);
+    }
 
     m = shape(NULL, SNELL_SHAPE_GOBLET);
     if (m) {

@@ -282,8 +282,9 @@ typedef struct snell_mesh_analysis {
     uint32_t flipped_edges;     /* edges whose two triangles run it the same way (inconsistent winding) */
     int closed;              /* none of these three (and some triangle): every edge has two triangles of
                               * opposite orientation (vertices where two sheets touch are not checked) */
-    int convex;              /* closed, one piece, and every edge locally convex within 4 weld
-                              * tolerances (so the solid is convex) */
+    int convex;              /* closed, one piece, every edge locally convex within 4 weld
+                              * tolerances, and no sampled line (depth_complexity) crossing
+                              * it more than twice: the solid is convex */
     int inside;              /* closed and the centre's crossing parity was odd along 3 rays */
     int winding;             /* closed: +1 counter-clockwise triangles face outward (signed
                               * volume > 0), -1 they face inward; 0 open or zero volume */

@@ -913,7 +913,10 @@ static void report_topology(const topo *tp, int inside, snell_mesh_analysis *out
     out->nonmanifold_edges = tp->nonmanifold;
     out->flipped_edges = tp->flipped;
     out->closed = tp->closed;
-    out->convex = tp->convex;
+    /* Bends below the edge test's tolerance add up on a finely tessellated
+     * concave mesh (a torus of 512 segments): a line crossing it more than
+     * twice settles it. Call after report_centre. */
+    out->convex = tp->convex && out->depth_complexity <= 2;
     out->pieces = tp->pieces;
     out->inside = tp->closed && inside;
     out->winding = winding_of(tp);
