@@ -37,6 +37,13 @@ snell_add_test(test_host_gl SOURCES test_host_gl.c LABELS "render;gl")
 target_link_libraries(test_host_gl PRIVATE snell_dep::egl snell_dep::gles m)
 target_compile_definitions(test_host_gl PRIVATE $<$<BOOL:${SNELL_WITH_HOST_FRAMEBUFFERS}>:SNELL_WITH_HOST_FRAMEBUFFERS=1>)
 
+# A reversed-Z host depth buffer tested against (mapped in and back), every
+# method against the same scene through the standard projection.
+snell_add_test(test_reversed_z_host SOURCES test_reversed_z_host.c LABELS "render;gl")
+target_link_libraries(test_reversed_z_host PRIVATE snell_dep::gles m)
+target_compile_definitions(test_reversed_z_host PRIVATE
+  $<$<BOOL:${SNELL_WITH_HOST_FRAMEBUFFERS}>:SNELL_WITH_HOST_FRAMEBUFFERS=1>)
+
 # The recipes of docs/integrating.md (examples/recipes): each built (compiled
 # and linked against snell) by its test where its toolkit is installed, else
 # the test skips saying what is missing. Android's has no NDK in Debian: it

@@ -215,6 +215,44 @@ int snell__camera_standard(const snell_camera *cam, float aspect, float eye[3], 
     return flags | SNELL__CAMERA_CHANGED;
 }
 
+/* Window depth of world point x under projection p x view v (column-major). */
+static double window_depth(const float *p, const float *v, const double x[3])
+{
+    double e[4], c[2];
+    int i, k;
+    for (i = 0; i < 4; i++) e[i] = v[12 + i] + v[i] * x[0] + v[4 + i] * x[1] + v[8 + i] * x[2];
+    for (k = 0; k < 2; k++) {
+        int row = k ? 3 : 2;
+        c[k] = p[row] * e[0] + p[4 + row] * e[1] + p[8 + row] * e[2] + p[12 + row] * e[3];
+    }
+    return 0.5 * c[0] / c[1] + 0.5;
+}
+
+int snell__camera_depth_map(const snell_camera *cam, float aspect, double map[2])
+{
+    float e[3], v[16], p[16];
+    double x[2][3], near_, far_, z[2], dh[2], ds[2];
+    int i, k, flags = snell__camera_standard(cam, aspect, e, v, p);
+    map[0] = 1.0, map[1] = 0.0;
+    if (!(flags & SNELL__CAMERA_CHANGED) || (flags & SNELL__CAMERA_OBLIQUE)) return 0;
+    if (snell__projection_orthographic(p)) {
+        near_ = ((double)p[14] + 1.0) / p[10], far_ = ((double)p[14] - 1.0) / p[10];
+    } else {
+        near_ = (double)p[14] / (p[10] - 1.0), far_ = (double)p[14] / (p[10] + 1.0);
+    }
+    z[0] = near_ + 0.25 * (far_ - near_), z[1] = near_ + 0.5 * (far_ - near_);
+    if (!snell__projection_orthographic(p) && far_ > 4.0 * near_) z[0] = 2.0 * near_, z[1] = 4.0 * near_;
+    for (i = 0; i < 2; i++) {
+        for (k = 0; k < 3; k++) x[i][k] = e[k] - z[i] * v[4 * k + 2]; /* along -z of the view */
+        dh[i] = window_depth(cam->projection, cam->view, x[i]);
+        ds[i] = window_depth(p, v, x[i]);
+    }
+    if (!(fabs(dh[1] - dh[0]) > 0.0)) return 0;
+    map[0] = (ds[1] - ds[0]) / (dh[1] - dh[0]);
+    map[1] = ds[0] - map[0] * dh[0];
+    return fabs(map[0] - 1.0) > 1e-6 || fabs(map[1]) > 1e-6;
+}
+
 /* The host's matrices: finite, invertible, and a perspective projection
  * (bottom row 0 0 -w 0: the view rays start at the eye) or an orthographic
  * one (0 0 0 w: they run along the axis, common/view.glsl). */

@@ -35,6 +35,12 @@ snell_status snell__camera_validate(const snell_ctx *ctx, const snell_camera *ca
  * SNELL__CAMERA_* flags. */
 int snell__camera_standard(const snell_camera *cam, float aspect, float eye[3], float view[16], float proj[16]);
 
+/* Where snell__camera_standard changed a host camera that is not oblique,
+ * its window depth and the host's are affine functions of each other (both
+ * of 1/z along the same axis; of z orthographic): snell's = map[0] x the
+ * host's + map[1]. Returns 0 when the depths agree already (to 1e-6). */
+int snell__camera_depth_map(const snell_camera *cam, float aspect, double map[2]);
+
 /* 1 if the column-major projection p is orthographic (bottom row 0 0 0 w):
  * every view ray runs along the camera's axis. */
 int snell__projection_orthographic(const float p[16]);

@@ -82,15 +82,16 @@ static const char *too_small(snell_ctx *ctx, GLint fbo, GLenum color, const int 
     return NULL;
 }
 
-/* The viewport's rectangle of the host's colour (draw buffer 0) and depth
- * into the copy (in), or back (out). */
+/* The frame's rectangle of the host's colour (draw buffer 0) and depth
+ * (unless mapped) into the copy (in), or back (out). */
 static void copy_blit(const snell__host_target *t, int in)
 {
-    const int *v = t->viewport;
+    const int *v = t->rect;
     GLint read = GL_BACK;
-    GLbitfield bits = GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT |
-                      (t->copy_format == GL_DEPTH24_STENCIL8 || t->copy_format == GL_DEPTH32F_STENCIL8
-                           ? GL_STENCIL_BUFFER_BIT : 0);
+    GLbitfield bits = GL_COLOR_BUFFER_BIT;
+    if (!t->mapped)
+        bits |= GL_DEPTH_BUFFER_BIT | (t->copy_format == GL_DEPTH24_STENCIL8 || t->copy_format == GL_DEPTH32F_STENCIL8
+                                           ? GL_STENCIL_BUFFER_BIT : 0);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, in ? t->fbo : t->copy_fbo);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, in ? t->copy_fbo : t->fbo);
     glGetIntegerv(GL_READ_BUFFER, &read);
@@ -101,40 +102,64 @@ static void copy_blit(const snell__host_target *t, int in)
     glBindFramebuffer(GL_FRAMEBUFFER, in ? t->copy_fbo : t->fbo);
 }
 
-/* A viewport off the origin (two eyes side by side, a split screen): the
- * frame is drawn into a copy of that rectangle, colour and depth, and copied
- * back after; snell's passes then see a target of their own size at 0, 0. */
+static void copy_free(snell__host_target *t)
+{
+    if (t->copy_fbo) glDeleteFramebuffers(1, &t->copy_fbo);
+    if (t->copy_rb[0]) glDeleteRenderbuffers(2, t->copy_rb);
+    if (t->copy_depth) glDeleteTextures(1, &t->copy_depth);
+    t->copy_fbo = t->copy_rb[0] = t->copy_rb[1] = t->copy_depth = 0;
+}
+
+/* A viewport off the origin (two eyes side by side, a split screen) or a
+ * depth of another convention (reversed-Z): the frame is drawn into a copy
+ * of its rectangle, colour and depth (a mapped depth: 32-bit float, mapped
+ * in), and copied back after; snell's passes then see a target of their own
+ * size at 0, 0. */
 static snell_status redirect(snell_ctx *ctx, snell__host_target *t)
 {
     unsigned format = snell__host_depth_format((int)t->fbo);
-    const int *v = t->viewport;
-    if (!format)
-        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell_render: a viewport at %d,%d needs a depth buffer a blit "
-                           "can copy (16, 24 or 32F bits)", v[0], v[1]);
-    if (!t->copy_fbo || t->copy_format != format || t->copy_size[0] != v[2] || t->copy_size[1] != v[3]) {
-        snell__host_target_destroy(t);
+    const int *v = t->rect;
+    GLint samples = 0;
+    glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
+    if (!format || samples > 0)
+        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "snell_render: %s needs a single-sampled depth buffer a blit "
+                           "can copy (16, 24 or 32F bits)", t->mapped ? "a reversed-Z camera's depth test" :
+                           "a viewport off the origin");
+    if (t->mapped) format = GL_DEPTH_COMPONENT32F;
+    if (!t->copy_fbo || t->copy_format != format || t->copy_size[0] != v[2] || t->copy_size[1] != v[3] ||
+        !t->copy_depth != !t->mapped) {
+        copy_free(t);
         glGenFramebuffers(1, &t->copy_fbo);
         glGenRenderbuffers(2, t->copy_rb);
         glBindRenderbuffer(GL_RENDERBUFFER, t->copy_rb[0]);
         glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, v[2], v[3]);
-        glBindRenderbuffer(GL_RENDERBUFFER, t->copy_rb[1]);
-        glRenderbufferStorage(GL_RENDERBUFFER, format, v[2], v[3]);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, t->copy_fbo);
         glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->copy_rb[0]);
-        glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER,
-                                  format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8
-                                      ? GL_DEPTH_STENCIL_ATTACHMENT
-                                      : GL_DEPTH_ATTACHMENT,
-                                  GL_RENDERBUFFER, t->copy_rb[1]);
+        if (t->mapped) {
+            /* a texture: the map back reads it */
+            glGenTextures(1, &t->copy_depth);
+            glBindTexture(GL_TEXTURE_2D, t->copy_depth);
+            glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, v[2], v[3]);
+            snell__texture_nearest(GL_TEXTURE_2D, 1);
+            glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t->copy_depth, 0);
+        } else {
+            glBindRenderbuffer(GL_RENDERBUFFER, t->copy_rb[1]);
+            glRenderbufferStorage(GL_RENDERBUFFER, format, v[2], v[3]);
+            glFramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER,
+                                      format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8
+                                          ? GL_DEPTH_STENCIL_ATTACHMENT
+                                          : GL_DEPTH_ATTACHMENT,
+                                      GL_RENDERBUFFER, t->copy_rb[1]);
+        }
         t->copy_format = format, t->copy_size[0] = v[2], t->copy_size[1] = v[3];
     }
     copy_blit(t, 1);
     t->copied = 1;
-    return SNELL_OK;
+    return t->mapped ? snell__depth_map_in(ctx, &t->map, t->fbo, v, t->copy_fbo, t->copy_depth) : SNELL_OK;
 }
 
 snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int width, int height,
-                                      int premultiplied)
+                                      int premultiplied, const double *depth_map)
 {
     GLint fbo = 0, buf = GL_NONE, max = 1, i;
     const char *why;
@@ -142,6 +167,8 @@ snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int
     glGetIntegerv(GL_DRAW_BUFFER0, &buf);
     t->fbo = (unsigned)fbo;
     t->draw_buffer_count = t->srgb_write = t->copied = 0;
+    t->mapped = depth_map != NULL;
+    if (depth_map) t->map.map[0] = depth_map[0], t->map.map[1] = depth_map[1];
     if (!(why = refusal(fbo, buf, premultiplied)) &&
         snell__fb_attachment((GLenum)buf, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING) == GL_SRGB) {
         /* snell's colour is display-referred already: written as it is, not encoded again */
@@ -174,28 +201,32 @@ snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int
                                "renderer draws %dx%d at %d,%d", fbo, which, size[0], size[1], width, height, rect[0],
                                rect[1]);
     }
-    if (!t->viewport[0] && !t->viewport[1]) return SNELL_OK;
-    if (t->viewport[2] == width && t->viewport[3] == height) return redirect(ctx, t);
+    t->rect[0] = t->viewport[0], t->rect[1] = t->viewport[1], t->rect[2] = width, t->rect[3] = height;
+    if (!t->viewport[0] && !t->viewport[1] && !t->mapped) return SNELL_OK;
+    if ((t->viewport[2] == width && t->viewport[3] == height) || (!t->viewport[0] && !t->viewport[1]))
+        return redirect(ctx, t);
     return snell__fail(ctx, SNELL_E_INVALID_ARG, "snell_render: the viewport is %dx%d at %d,%d, the renderer %dx%d",
                        t->viewport[2], t->viewport[3], t->viewport[0], t->viewport[1], width, height);
 }
 
-void snell__host_target_end(snell__host_target *t)
+snell_status snell__host_target_end(snell_ctx *ctx, snell__host_target *t)
 {
+    snell_status st = SNELL_OK;
     if (t->copied) copy_blit(t, 0);
+    if (t->copied && t->mapped) st = snell__depth_map_back(ctx, &t->map, t->fbo, t->rect, t->copy_depth);
     t->copied = 0;
     if (t->srgb_write) glEnable(GL_FRAMEBUFFER_SRGB_EXT);
     t->srgb_write = 0;
-    if (!t->draw_buffer_count) return;
+    if (!t->draw_buffer_count) return st;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, t->fbo);
     glDrawBuffers(t->draw_buffer_count, (const GLenum *)t->draw_buffers);
     t->draw_buffer_count = 0;
+    return st;
 }
 
 void snell__host_target_destroy(snell__host_target *t)
 {
-    if (t->copy_fbo) glDeleteFramebuffers(1, &t->copy_fbo);
-    if (t->copy_rb[0]) glDeleteRenderbuffers(2, t->copy_rb);
-    t->copy_fbo = t->copy_rb[0] = t->copy_rb[1] = 0;
+    copy_free(t);
+    snell__depth_map_destroy(&t->map);
 }
 #endif

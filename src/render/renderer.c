@@ -244,6 +244,15 @@ int snell__env_lookup_paraboloid(snell_env_lookup lookup, int dynamic)
     return lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID || lookup == SNELL_ENV_LOOKUP_DUAL_PARABOLOID_DIRECT;
 }
 
+/* The host cameras whose depth a bound framebuffer's test cannot use: a
+ * reversed-Z one's is mapped where host framebuffers are checked
+ * (render/host_depth_map.c); an oblique one's is not an affine map of snell's. */
+#ifdef SNELL_WITH_HOST_FRAMEBUFFERS
+#define UNMAPPED_CAMERAS SNELL__CAMERA_OBLIQUE
+#else
+#define UNMAPPED_CAMERAS (SNELL__CAMERA_OBLIQUE | SNELL__CAMERA_REVERSED)
+#endif
+
 /* The resolved frame fd; its camera as given (snell__camera_validate
  * resolves it itself, and names a plane derived from the distance as such). */
 static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd, const snell_camera *camera)
@@ -254,10 +263,11 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
     st = snell__camera_validate(r->ctx, camera, (float)r->sv.width / (float)r->sv.height, "snell_render");
     if (st != SNELL_OK) return st;
     if (snell__depth_mode_of(fd->depth, r->sv.target) != SNELL_DEPTH_CLEAR &&
-        (snell__camera_standard(camera, 1.0f, NULL, NULL, NULL) &
-         (SNELL__CAMERA_REVERSED | SNELL__CAMERA_OBLIQUE)))
-        return snell__fail(r->ctx, SNELL_E_UNSUPPORTED, "snell_render: a reversed-Z or oblique camera with the "
-                           "target's depth tested: snell's depth is a standard projection's; use SNELL_DEPTH_CLEAR");
+        (snell__camera_standard(camera, 1.0f, NULL, NULL, NULL) & (SNELL__CAMERA_REVERSED | SNELL__CAMERA_OBLIQUE)) &
+            (r->sv.target == SNELL_TARGET_OFFSCREEN ? SNELL__CAMERA_OBLIQUE : UNMAPPED_CAMERAS))
+        return snell__fail(r->ctx, SNELL_E_UNSUPPORTED, "snell_render: an oblique%s camera with the target's depth "
+                           "tested: snell's depth is a standard projection's; use SNELL_DEPTH_CLEAR",
+                           UNMAPPED_CAMERAS & SNELL__CAMERA_REVERSED ? " or reversed-Z" : "");
     if (fd->env && fd->env->ctx && fd->env->ctx->destroyed)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG,
                            "the frame's environment went with its context (snell_ctx_destroy): create it again");
@@ -295,9 +305,19 @@ static snell_status begin_frame_state(snell_renderer *r, const snell_frame_desc 
     glDepthMask(GL_TRUE);
     /* the host's framebuffer checked (and its viewport read) with no scissor or discard on its copies */
     if (r->sv.target == SNELL_TARGET_OFFSCREEN) glBindFramebuffer(GL_FRAMEBUFFER, r->sv.fbo);
-    else if ((st = snell__host_target_begin(r->ctx, &r->host_target, r->sv.width, r->sv.height,
-                                            r->premultiplied)) != SNELL_OK)
-        return st;
+    else {
+        double map[2];
+        const double *mapped = NULL;
+#ifdef SNELL_WITH_HOST_FRAMEBUFFERS
+        if (snell__depth_mode_of(fd->depth, r->sv.target) != SNELL_DEPTH_CLEAR &&
+            snell__camera_depth_map(&fd->camera, (float)r->sv.width / (float)r->sv.height, map))
+            mapped = map;
+#endif
+        (void)map;
+        if ((st = snell__host_target_begin(r->ctx, &r->host_target, r->sv.width, r->sv.height, r->premultiplied,
+                                           mapped)) != SNELL_OK)
+            return st;
+    }
     glViewport(0, 0, r->sv.width, r->sv.height);
     return snell__host_depth_begin(r->ctx, &r->host_depth, snell__depth_mode_of(fd->depth, r->sv.target), r->sv.width,
                                    r->sv.height);
@@ -359,7 +379,8 @@ snell_status snell_render(snell_renderer *r, const snell_frame_desc *fd, snell_f
     if (r->sv.target != SNELL_TARGET_OFFSCREEN) {
         snell_status back = snell__host_depth_end(r->ctx, &r->host_depth);
         if (st == SNELL_OK) st = back;
-        snell__host_target_end(&r->host_target);
+        back = snell__host_target_end(r->ctx, &r->host_target);
+        if (st == SNELL_OK) st = back;
     }
     snell__units_end(&units);
     s->texture_units = snell__units_count(&units);
