@@ -30,6 +30,7 @@ precision highp int;
 #define SNELL_EXACT_TERMS (SNELL_EXACT_INNER || SNELL_EXACT_REENTRY)
 
 #include "common/view.glsl"
+#include "common/refine.glsl"
 uniform vec3 u_sigma;
 uniform vec3 u_tint;
 uniform highp vec4 u_bsphere;    // world bounding sphere: the fallback's absorption chord
@@ -113,6 +114,15 @@ void exact_terms_walk(highp vec3 eye, highp vec3 v, highp vec3 world_pos, vec3 n
         bool through = snell_refract_sel(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
         n_entry = first ? n2 : n_entry;
         vec3 mirror = snell_reflect(dir, n2);
+#if SNELL_EXACT_INNER && SNELL_REFINE
+        // refinement (common/refine.glsl): an exit after the split reflects
+        // with probability F, else transmits, so that the frames' mean adds
+        // the reflections the split drops (the Whitted tree inside)
+        bool reflects = !ends && inside && through && (marks & 0x6000) != 0 &&
+                        refine_random() < snell_fresnel_sel(-dot(dir, n2), snell_ior, 1.0);
+        through = through && !reflects;
+        out_dir = reflects ? mirror : out_dir;
+#endif
         bool exits = !ends && inside && through;
 #if SNELL_EXACT_INNER
         bool splits = exits && (marks & 0x6000) == 0;
@@ -285,6 +295,9 @@ void main()
 {
     highp vec3 exit_dir;
     snell_surface(g_world_pos, g_world_normal);
+#if SNELL_REFINE
+    refine_seed();
+#endif
 #if SNELL_DISPERSION == 1
     // Per channel: the three traces in one loop, not three inlined copies of
     // the walk; red, blue, then green, whose exit direction is written (the

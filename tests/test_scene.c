@@ -255,7 +255,7 @@ int main(void)
     snell_mesh *sphere = NULL, *cube = NULL, *torus = NULL, *open = NULL;
     snell_env *env = NULL;
     snell_renderer *r = NULL;
-    snell_renderer_desc rd = {W, H, SNELL_TARGET_OFFSCREEN, SNELL_OUTPUT_COLOR, SNELL_SHADING_AUTO, 0, 0, SNELL_ENV_LOOKUP_AUTO, 0};
+    snell_renderer_desc rd = {W, H, SNELL_TARGET_OFFSCREEN, SNELL_OUTPUT_COLOR, SNELL_SHADING_AUTO, 0, 0, SNELL_ENV_LOOKUP_AUTO, 0, 0};
     snell_shape_desc sd = {SNELL_SHAPE_SPHERE, 32, 16};
     snell_glass glass[NG + 1];
     snell_opaque opaque[NO];

@@ -708,7 +708,20 @@ typedef struct snell_renderer_desc {
     snell_env_lookup env_lookup;    /* for every glass object and the background */
     /* 1: premultiplied alpha for compositing; colour output only; 0 = off */
     int premultiplied_alpha;
+    /* Progressive refinement of still frames: while nothing a frame depends
+     * on changes (camera, objects, meshes, materials, methods, environment,
+     * backdrop, the frame's settings), each frame adds a sample, its
+     * projection moved within the pixel and, in exact with inner_fresnel,
+     * every exit's reflection followed at random, and the image read back is
+     * the mean of up to `refine` such frames; any change restarts it
+     * (snell_frame_stats.refine_samples, refine_reason). Offscreen colour
+     * renderers without msaa; needs GL_EXT_color_buffer_float (the mean is
+     * kept in RGBA32F; without it each frame is drawn unrefined, the reason
+     * says so). 0 = off, 1..SNELL_MAX_REFINE. */
+    int refine;
 } snell_renderer_desc;
+
+#define SNELL_MAX_REFINE 4096
 
 #define SNELL_MAX_SSAA 8
 
@@ -975,6 +988,10 @@ typedef struct snell_frame_stats {
     int caustics_reused;            /* 1: the last frame's light map (light, glass and receiver still) */
     char caustics_reason[SNELL_REASON_SIZE]; /* why the caustics stage ran or did not */
     int backdrop;                   /* 0 none; 1 the backdrop's colour at its distance; 2 searched against its depth */
+    /* Progressive refinement (snell_renderer_desc.refine; 0 without): the
+     * frames averaged in the image read back, 1 after a restart */
+    int refine_samples;
+    char refine_reason[SNELL_REASON_SIZE]; /* what the last change was, or why nothing is refined */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

@@ -132,6 +132,9 @@ snell_status snell_renderer_create(snell_ctx *ctx, const snell_renderer_desc *de
     for (i = 0; i < snell__stage_count; i++)
         if (snell__stages[i]->validate_renderer && (st = snell__stages[i]->validate_renderer(&shape, &d)) != SNELL_OK)
             return st;
+#if !SNELL_WITH_REFINE
+    if (d.refine) return snell__fail(ctx, SNELL_E_UNSUPPORTED, "refine: built without SNELL_WITH_REFINE");
+#endif
     if (d.target == SNELL_TARGET_OFFSCREEN) {
         /* the targets made now, before any frame: colour and depth (4 + 4 bytes
          * a pixel, 16 + 4 for exit directions) at the frame's size and samples

@@ -26,7 +26,15 @@
     S(background)             \
     S(ssaa)                   \
     S(msaa)                   \
-    S(premultiplied)
+    S(premultiplied)          \
+    SNELL__STAGE_REFINE(S)
+
+/* The refine stage is a component (SNELL_WITH_REFINE; not in the device preset). */
+#if SNELL_WITH_REFINE
+#define SNELL__STAGE_REFINE(S) S(refine)
+#else
+#define SNELL__STAGE_REFINE(S)
+#endif
 
 #define DECLARE(name) extern const snell__stage snell__stage_##name;
 SNELL__STAGE_TABLE(DECLARE)

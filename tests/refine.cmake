@@ -1,0 +1,10 @@
+# SPDX-License-Identifier: MIT
+# The refine stage (src/render/refine.c): progressive refinement of still frames.
+snell_add_test(test_refine SOURCES test_refine.c LABELS "render;gl" TIMEOUT 300)
+if(TARGET test_refine)
+  target_link_libraries(test_refine PRIVATE snell_dep::gles)
+  # Again without GL_EXT_color_buffer_float (a Pi's v3d): frames unrefined, the reason says so.
+  add_test(NAME test_refine_no_float COMMAND test_refine WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  set_tests_properties(test_refine_no_float PROPERTIES LABELS "render;gl" SKIP_RETURN_CODE 77 TIMEOUT 300
+    ENVIRONMENT "SNELL_TEST_DATA=${CMAKE_CURRENT_SOURCE_DIR}/data;SNELL_TEST_OUT=${CMAKE_CURRENT_BINARY_DIR};MESA_EXTENSION_OVERRIDE=-GL_EXT_color_buffer_float")
+endif()
