@@ -61,6 +61,7 @@ static const common_case g_cases[] = {
     {"shading", "forward", {F(shading), NONE, NONE}, {NONE}},
     {"ssaa", "2", {F(ssaa), NONE, NONE}, {NONE}},
     {"msaa", "4", {F(msaa), NONE, NONE}, {NONE}},
+    {"refine", "16", {F(refine), NONE, NONE}, {NONE}},
     {"lod", "0.5", {F(lod), NONE, NONE}, {NONE}},
     {"spin", "2", {F(spin), NONE, NONE}, {NONE}},
     {"scene_layers", "-1", {F(scene_layers), NONE, NONE}, {NONE}},

@@ -42,6 +42,7 @@ typedef struct bench_options {
     int full_interfaces;
     int threads;
     int aa;                        /* --aa S: errors on S x S area-averaged images (1 = pixel centres) */
+    int floor_aa;                  /* --floor-aa S: FULL's own noise floor, its S x S rays against --aa's (0: none) */
     const char *plot_y;
     int quiet;
     /* --baseline-scene S: the configurations of one size take turns frame by
@@ -116,6 +117,8 @@ typedef struct bench_config {
     snell_shading shading;         /* shading= (the renderer's; default auto) */
     int ssaa, msaa;                /* ssaa=, msaa=: the renderer's antialiasing, timed and measured (0: none;
                                     * then the measured colour frame uses --aa) */
+    int refine;                    /* refine=N: the measured colour frame is the mean of N still frames
+                                    * (snell_renderer_desc.refine), without ssaa; 0: none */
     float lod;                     /* lod=: glass meshes simplified to this triangle ratio; 1 = the
                                     * original (the default); references always use the original */
     int scene_layers;              /* layers=: snell_frame_desc.scene_layers (0 auto, -1 off, 2..8) */
@@ -152,6 +155,8 @@ typedef struct bench_config {
     snell_dir_error dir[2];        /* [0] vs MATCHED, [1] vs FULL */
     snell_image_error img[2];      /* whole image */
     snell_image_error img_glass[2];/* pixels that are glass in either mask */
+    snell_image_error floor_glass; /* --floor-aa: the FULL reference at that many rays against the one at --aa's,
+                                    * over the glass pixels (floor_glass.pixels 0: not measured) */
     double ssim_glass[2];          /* snell_metrics_ssim over the same pixels */
     int angles_meaningful;         /* exit-direction angles compared per pixel mean something: a smooth
                                     * built-in shape or scene of them (on a bumpy scan such as the bunny

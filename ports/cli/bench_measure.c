@@ -130,6 +130,17 @@ static void buf_free(measure_buf *b)
     free(b->through);
 }
 
+/* The frame of fd, refine times where the configuration refines (its mean of
+ * that many still frames), else once. */
+static snell_status render_still(snell_renderer *r, const snell_frame_desc *fd, int refine, snell_frame_stats *fs)
+{
+    snell_status st;
+    int k = 0;
+    do st = snell_render(r, fd, fs);
+    while (st == SNELL_OK && ++k < refine);
+    return st;
+}
+
 /* The colour frame (timing was done before, in bench_time_all), with the
  * per-object statistics: how many glass objects warn. aa > 1: supersampled
  * (snell_renderer_desc.ssaa), the area-averaged image the reference's
@@ -145,10 +156,11 @@ static int colour_frame(snell_ctx *ctx, const snell_frame_desc *fd, int aa, benc
     desc.height = c->height;
     desc.shading = c->shading;
     /* The configuration's own antialiasing if it has one, else --aa's. */
-    desc.ssaa = c->ssaa || c->msaa ? c->ssaa : aa;
+    desc.ssaa = c->ssaa || c->msaa || c->refine ? c->ssaa : aa;
     desc.msaa = c->msaa;
+    desc.refine = c->refine;
     if (snell_renderer_create(ctx, &desc, &r) != SNELL_OK) bench_fail(c, "renderer", ctx);
-    else if (snell_render(r, fd, &fs) != SNELL_OK) bench_fail(c, "render", ctx);
+    else if (render_still(r, fd, c->refine, &fs) != SNELL_OK) bench_fail(c, "render", ctx);
     else if (snell_renderer_read_rgba(r, b->rgba) != SNELL_OK) bench_fail(c, "readback", ctx);
     else ok = 1;
     if (ok) {
@@ -315,14 +327,15 @@ static int alone_frames(snell_ctx *ctx, const snell_frame_desc *fd, int aa, benc
     desc.width = c->width;
     desc.height = c->height;
     desc.shading = c->shading;
-    desc.ssaa = c->ssaa || c->msaa ? c->ssaa : aa;
+    desc.ssaa = c->ssaa || c->msaa || c->refine ? c->ssaa : aa;
     desc.msaa = c->msaa;
+    desc.refine = c->refine;
     if (snell_renderer_create(ctx, &desc, &rc) != SNELL_OK) ok = 0;
-    desc.ssaa = desc.msaa = 0;
+    desc.ssaa = desc.msaa = desc.refine = 0;
     desc.output = SNELL_OUTPUT_EXIT_DIRECTION;
     if (ok && snell_renderer_create(ctx, &desc, &rd) != SNELL_OK) ok = 0;
     one.glass_count = 0;
-    if (ok && (snell_render(rc, &one, NULL) != SNELL_OK || snell_renderer_read_rgba(rc, b->bg_rgba) != SNELL_OK))
+    if (ok && (render_still(rc, &one, c->refine, NULL) != SNELL_OK || snell_renderer_read_rgba(rc, b->bg_rgba) != SNELL_OK))
         ok = 0;
     if (ok) {
         memcpy(b->alone_rgba, b->bg_rgba, b->n * 4);
@@ -334,7 +347,7 @@ static int alone_frames(snell_ctx *ctx, const snell_frame_desc *fd, int aa, benc
         for (i = 0; ok && i < fd->glass_count; i++) {
             if (b->draw_order[i] != order) continue;
             one.glass = &fd->glass[i];
-            if (snell_render(rc, &one, NULL) != SNELL_OK || snell_renderer_read_rgba(rc, b->one_rgba) != SNELL_OK ||
+            if (render_still(rc, &one, c->refine, NULL) != SNELL_OK || snell_renderer_read_rgba(rc, b->one_rgba) != SNELL_OK ||
                 snell_render(rd, &one, NULL) != SNELL_OK || snell_renderer_read_exit_dirs(rd, b->one_dirs) != SNELL_OK) {
                 ok = 0;
                 break;
@@ -409,6 +422,23 @@ static void whole_scene(snell_ctx *ctx, const snell_frame_desc *fd, const snell_
     bench_ref_free(&other);
 }
 
+/* --floor-aa: the FULL reference at floor_aa x floor_aa rays against full
+ * (at --aa's), over the glass pixels of either: how far FULL itself is from
+ * converged at the coarser sampling. */
+static void full_floor(const snell_frame_desc *fd, const snell_glass *ref_glass, const char *env_name,
+                       const bench_options *o, bench_config *c, measure_buf *b, const bench_ref_image *full)
+{
+    bench_options fo = *o;
+    bench_ref_image coarse;
+    int cached;
+    size_t j;
+    fo.aa = o->floor_aa;
+    if (!reference(fd, ref_glass, env_name, &fo, c, 1, !c->layers_drawn, &coarse, &cached)) return;
+    for (j = 0; j < b->n; j++) b->either[j] = (uint8_t)(coarse.hit[j] || full->hit[j]);
+    snell_metrics_image_error(coarse.rgba, full->rgba, c->width, c->height, b->either, &c->floor_glass);
+    bench_ref_free(&coarse);
+}
+
 void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, const bench_options *o,
                    bench_config *c)
 {
@@ -435,6 +465,7 @@ void bench_measure(snell_ctx *ctx, const snell_env *env, const char *env_name, c
             bench_ref_image full;
             if (compare(&fd, ref_glass, env_name, o, c, 1, &b, &full)) {
                 whole_scene(ctx, &fd, ref_glass, env_name, o, c, &b, &full);
+                if (o->floor_aa) full_floor(&fd, ref_glass, env_name, o, c, &b, &full);
                 bench_ref_free(&full);
             }
         }

@@ -55,6 +55,8 @@ static void usage(FILE *f)
             "  --aa S                 colour errors on area-averaged images: the GPU frame with\n"
             "                         ssaa = S, the references with S x S rays a pixel (default 1:\n"
             "                         pixel centres); timing stays the plain frame\n"
+            "  --floor-aa S           FULL's own noise floor: the FULL reference at S x S rays against\n"
+            "                         the one at --aa's, glass PSNR (e.g. --aa 4 --floor-aa 2)\n"
             "                         (llvmpipe's own threads come from LP_NUM_THREADS, unset: one per\n"
             "                         CPU; reported in the table, JSON and CSV)\n"
             "  --env FILE|procedural  environment: procedural (default), an equirectangular image,\n"
@@ -153,6 +155,7 @@ static int value_option(const char *a, const char *v, bench_options *o)
     if (!strcmp(a, "--full-interfaces")) return bench_parse_int(a, v, 1, SNELL_REF_MAX_INTERFACES, &o->full_interfaces);
     if (!strcmp(a, "--threads")) return bench_parse_int(a, v, 0, SNELL_REF_MAX_THREADS, &o->threads);
     if (!strcmp(a, "--aa")) return bench_parse_int(a, v, 1, SNELL_MAX_SSAA, &o->aa);
+    if (!strcmp(a, "--floor-aa")) return bench_parse_int(a, v, 1, SNELL_REF_MAX_SAMPLES, &o->floor_aa);
     if (!strcmp(a, "--env")) {
         char why[160];
         if (!cli_env_spec_check(v, why, sizeof why)) {
@@ -187,6 +190,7 @@ static const struct option g_long[] = {
     {"plot-y", required_argument, NULL, 270},          {"no-cache", no_argument, NULL, 271},
     {"list", no_argument, NULL, 272},                  {"version", no_argument, NULL, 273},
     {"view", required_argument, NULL, 274},            {"projection", required_argument, NULL, 275},
+    {"floor-aa", required_argument, NULL, 276},
     {"help", no_argument, NULL, 'h'},                  {NULL, 0, NULL, 0}};
 
 int bench_parse_options(int argc, char **argv, bench_options *o)

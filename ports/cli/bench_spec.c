@@ -148,6 +148,13 @@ static int k_msaa(bench_config *c, const char *v)
     return bench_parse_int("msaa", v, 1, 64, &c->msaa);
 }
 
+/* refine=N: progressive refinement (snell_renderer_desc.refine), measured
+ * after N still frames; the timed frames add samples as they go. */
+static int k_refine(bench_config *c, const char *v)
+{
+    return bench_parse_int("refine", v, 1, SNELL_MAX_REFINE, &c->refine);
+}
+
 /* lod=R: the scene's glass meshes simplified to the ratio R of their
  * triangles (snell_mesh_simplify) before timing; the references keep the
  * original meshes, so the error measured includes the simplification. */
@@ -220,6 +227,8 @@ static const common_key g_common[] = {
     {"shading", "auto (default), forward or screen (the renderer's screen-space stage)", k_shading},
     {"ssaa", "supersampling S (the renderer's ssaa: S x S, box-resolved), timed and measured", k_ssaa},
     {"msaa", "multisampling N (the renderer's msaa), timed and measured", k_msaa},
+    {"refine", "progressive refinement: the measured colour frame is the mean of N still frames (the renderer's "
+               "refine; not with ssaa or msaa), against references of --aa rays a pixel", k_refine},
     {"lod", "glass meshes simplified to this share of their triangles, 0..1 (default 1: the original; the "
             "reference keeps the original)", k_lod},
     {"spin", "degrees the camera turns about its target every timed frame (default 0: a still scene, whose "

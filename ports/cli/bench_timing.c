@@ -88,6 +88,7 @@ static void open_slot(snell_ctx *ctx, const snell_env *env, const bench_options 
     desc.shading = t->c->shading;
     desc.ssaa = t->c->ssaa;
     desc.msaa = t->c->msaa;
+    desc.refine = t->c->refine;
     if (snell_renderer_create(ctx, &desc, &t->r) != SNELL_OK) {
         bench_fail(t->c, "renderer", ctx);
         return;

@@ -43,6 +43,7 @@ typedef struct render_options {
     snell_shading shading;         /* --shading */
     snell_env_lookup env_lookup;   /* --env-lookup */
     int ssaa, msaa;                /* --ssaa S, --msaa N (snell_renderer_desc) */
+    int refine;                    /* --refine N: the mean of N still frames (snell_renderer_desc.refine) */
     int scene_layers;              /* --scene-layers N|auto|off (snell_frame_desc.scene_layers) */
     int normalize;                 /* fit each mesh into the unit sphere before placing it */
     int stats;                     /* --stats: frame and per-object statistics on stdout */

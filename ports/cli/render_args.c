@@ -76,6 +76,8 @@ void render_usage(FILE *f)
             "                         paraboloid-direct (dynamic environments' maps rendered straight)\n"
             "  --ssaa S               supersample S x S, box-resolved (2..8; the area average)\n"
             "  --msaa N               multisample N (triangle edges only; not with --ssaa)\n"
+            "  --refine N             progressive refinement: the image is the mean of N still frames, each\n"
+            "                         moved within the pixel (1..%d; not with --msaa)\n"
             "  --scene-layers L       glass through glass and opaque objects through glass: auto (default: on\n"
             "                         with 2+ glass or glass + opaque objects), off (each glass sees only the\n"
             "                         environment, or its dynamic one), or 2..%d, the most layers peeled\n"
@@ -95,7 +97,7 @@ void render_usage(FILE *f)
             "  --2d SCENE             2D lightmap mode (see the 2D options with --2d --help)\n"
             "  --water                water mode: a water surface in a box, with glass (see --water --help)\n"
             "  --version              the version and the commit it was built from\n"
-            "  -h, --help             this text\n", SNELL_MAX_SCENE_LAYERS);
+            "  -h, --help             this text\n", SNELL_MAX_REFINE, SNELL_MAX_SCENE_LAYERS);
 }
 
 /* n comma-separated finite floats, the whole string. */
@@ -356,6 +358,9 @@ static int view_option(const char *a, const char *v, render_options *o)
     } else if (!strcmp(a, "--msaa")) {
         if (!parse_int(v, &o->msaa) || o->msaa < 1 || o->msaa > 64)
             return usage_error("%s wants 1..64, got '%s'", a, v);
+    } else if (!strcmp(a, "--refine")) {
+        if (!parse_int(v, &o->refine) || o->refine < 1 || o->refine > SNELL_MAX_REFINE)
+            return usage_error("%s wants 1..4096, got '%s'", a, v);
     } else if (!strcmp(a, "--scene-layers")) {
         if (!strcmp(v, "auto")) o->scene_layers = 0;
         else if (!strcmp(v, "off")) o->scene_layers = -1;
@@ -425,7 +430,7 @@ static const struct option *long_options(void)
 {
     static const char *const valued[] = {"scene", "mesh", "opaque", "place", "color", "env", "size", "camera", "fov",
                                          "view", "projection", "backend", "shading", "env-lookup", "ssaa", "msaa",
-                                         "scene-layers", "frames", "trace-pixel", "ior", "absorption", "attenuation",
+                                         "refine", "scene-layers", "frames", "trace-pixel", "ior", "absorption", "attenuation",
                                          "tint", "thickness", "dispersion", "abbe", "dispersion-model", "scale",
                                          "method", "param", "light", "photons", "floor", "floor-map"};
     static const char *const flags[] = {"no-normalize", "stats", "verbose", "help", "version"};

@@ -73,6 +73,9 @@ static int measure_all(snell_ctx *ctx, const snell_env *env, const bench_options
                     "%.0f s elapsed\n",
                     i + 1, n, c->t_median, c->t_p95, c->t_max, timer, angles, c->img_glass[1].psnr_db, c->img[1].psnr_db, c->nan_inf,
                     (cli_now_ms() - t_start) / 1000.0);
+            if (c->floor_glass.pixels)
+                fprintf(stderr, "[%d/%d] FULL's noise floor: FULL at %dx%d rays against %dx%d, glass PSNR %.2f dB\n",
+                        i + 1, n, o->floor_aa, o->floor_aa, o->aa, o->aa, c->floor_glass.psnr_db);
         }
     }
     return failed;

@@ -168,6 +168,7 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
     fprintf(f, "stats: stages run: %s\n", fs->stages);
     if (s->file) fprintf(f, "stats: camera: %s\n", s->camera_note);
     if (fs->caustics_reason[0]) fprintf(f, "stats: caustics: %s (%d photons)\n", fs->caustics_reason, fs->caustics_photons);
+    if (fs->refine_reason[0]) fprintf(f, "stats: refine: %s\n", fs->refine_reason);
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
         snell_glass_resolved m;
@@ -202,12 +203,13 @@ static int render_frames(snell_ctx *ctx, snell_renderer *r, const render_options
                          const snell_frame_desc *fd, snell_frame_stats *fs)
 {
     double *times = (double *)calloc((size_t)o->frames, sizeof *times);
-    int i;
+    int i, last = o->frames > 1 ? o->frames : 0;
     if (!times) {
         fprintf(stderr, "snell-render: out of memory\n");
         return 0;
     }
-    for (i = 0; i <= (o->frames > 1 ? o->frames : 0); i++) {
+    if (o->refine - 1 > last) last = o->refine - 1; /* --refine N: N frames at least */
+    for (i = 0; i <= last; i++) {
         double t0 = cli_now_ms();
         move_orbit(s, i);
         if (snell_render(r, fd, fs) != SNELL_OK) {
@@ -216,7 +218,7 @@ static int render_frames(snell_ctx *ctx, snell_renderer *r, const render_options
             return 0;
         }
         snell_renderer_finish(r);
-        if (i > 0) times[i - 1] = cli_now_ms() - t0;
+        if (i > 0 && i <= o->frames) times[i - 1] = cli_now_ms() - t0;
     }
     if (o->frames > 1) {
         double med = cli_median(times, o->frames); /* sorts */
@@ -281,6 +283,7 @@ int main(int argc, char **argv)
     rd.env_lookup = o.env_lookup;
     rd.ssaa = o.ssaa;
     rd.msaa = o.msaa;
+    rd.refine = o.refine;
     if (snell_renderer_create(ctx, &rd, &r) != SNELL_OK) {
         fprintf(stderr, "snell-render: renderer: %s\n", snell_last_error(ctx));
         goto done;
