@@ -193,6 +193,20 @@ static void check_caustics(snell_ctx *ctx)
     snell_env_destroy(env);
 }
 
+/* The refine stage: a renderer that asks for it is made, or refused naming the option. */
+static void check_refine(snell_ctx *ctx)
+{
+    snell_renderer *r = NULL;
+    snell_status s = snell_renderer_create(ctx, &(snell_renderer_desc){.width = 16, .height = 16, .refine = 4}, &r);
+    if (snell_build_has("refine")) {
+        CHECK_OK_CTX(ctx, s);
+    } else {
+        check_unsupported("a renderer with refine", s, ctx, "SNELL_WITH_REFINE");
+        CHECK(snell__shader_source("refine_mean.frag") == NULL, "the refine stage's shader left out");
+    }
+    snell_renderer_destroy(r);
+}
+
 int main(void)
 {
     snell_ctx *ctx = NULL;
@@ -211,6 +225,7 @@ int main(void)
     check_lm2d(ctx);
     check_water(ctx);
     check_caustics(ctx);
+    check_refine(ctx);
     snell_ctx_destroy(ctx);
     return test_finish();
 }
