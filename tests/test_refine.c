@@ -1,13 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* test_refine — progressive refinement (snell_renderer_desc.refine): off, a
- * frame is the default renderer's, byte for byte; on, the first frame of a
- * method without random branches is the unrefined frame, and then the mean
- * of exact with its FULL-model terms nears the FULL reference (4 x 4 rays a
- * pixel) as frames are added; the same frames give the same bytes; every
- * kind of change restarts the mean (camera, mesh, material, method,
- * environment, backdrop, frame settings); the mean stays once complete; bad
- * settings are refused. Without GL_EXT_color_buffer_float (run again with
- * Mesa's override) frames are drawn unrefined and the reason says why. */
+/* test_refine — progressive refinement (snell_renderer_desc.refine): off,
+ * the default renderer's frames byte for byte; on, a method without random
+ * branches first draws the plain frame; exact with its FULL-model terms nears
+ * FULL (4 x 4 rays) as frames are added; the same frames give the same bytes;
+ * each kind of change restarts the mean; a complete mean stays; bad settings
+ * are refused; frames after the second allocate nothing. Without
+ * GL_EXT_color_buffer_float (Mesa's override) frames are drawn unrefined and
+ * the reason says why. */
 #include "test_util.h"
 #include "core/gl.h"
 #include "snell/snell_ref.h"
@@ -212,6 +211,40 @@ done:
     free(px);
 }
 
+/* The library's allocations (the context's allocator counts them). */
+static long g_allocs;
+static void *count_alloc(size_t n, void *u)
+{
+    (void)u;
+    g_allocs++;
+    return malloc(n);
+}
+static void *count_realloc(void *p, size_t n, void *u)
+{
+    (void)u;
+    g_allocs++;
+    return realloc(p, n);
+}
+
+/* After the first frames (programs built) a refined frame allocates nothing. */
+static void no_allocation(snell_ctx *ctx, const snell_frame_desc *fd)
+{
+    snell_renderer *r = make(ctx, 16);
+    uint8_t *px = malloc(4 * N);
+    long before;
+    int k;
+    if (!r) goto done;
+    frame(ctx, r, fd, px, NULL);
+    frame(ctx, r, fd, px, NULL);
+    before = g_allocs;
+    for (k = 0; k < 6; k++) frame(ctx, r, fd, px, NULL);
+    CHECK(before > 0 && g_allocs == before, "the allocator counted %ld, then six refined frames allocated %ld times",
+          before, g_allocs - before);
+done:
+    snell_renderer_destroy(r);
+    free(px);
+}
+
 /* Once complete the mean stays: the image and the count. */
 static void complete(snell_ctx *ctx, const snell_frame_desc *fd)
 {
@@ -234,7 +267,8 @@ done:
 
 int main(void)
 {
-    snell_ctx *ctx = test_ctx();
+    snell_ctx_desc cd = {0};
+    snell_ctx *ctx = NULL;
     snell_env *env = NULL, *env2 = NULL;
     snell_mesh *torus = NULL, *moved = NULL;
     snell_shape_desc sd;
@@ -245,7 +279,9 @@ int main(void)
     unsigned bd_tex = 0;
     float *pos = NULL;
     int i;
-    if (!ctx) SKIP("no GL context");
+    cd.allocator.alloc = count_alloc;
+    cd.allocator.realloc = count_realloc;
+    if (snell_ctx_create(&cd, &ctx) != SNELL_OK) SKIP("no GL context");
     env = test_sky(ctx, 64);
     env2 = test_sky(ctx, 32);
     memset(&sd, 0, sizeof sd);
@@ -286,6 +322,7 @@ int main(void)
     ge.material.exact.inner_fresnel = SNELL_INNER_FRESNEL_ON;
     deterministic(ctx, &fd, &exact_fd);
     complete(ctx, &exact_fd);
+    no_allocation(ctx, &exact_fd);
 
     ch = fd;
     ch.camera.azimuth += 0.01f;
@@ -354,5 +391,6 @@ out:
     snell_mesh_destroy(moved);
     snell_env_destroy(env);
     snell_env_destroy(env2);
+    snell_ctx_destroy(ctx);
     return test_finish();
 }
