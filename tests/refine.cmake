@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 # The refine stage (src/render/refine.c): progressive refinement of still frames.
-snell_add_test(test_refine SOURCES test_refine.c LABELS "render;gl" TIMEOUT 300)
+snell_add_test(test_refine SOURCES test_refine.c LABELS "render;gl" SHADINGS forward screen TIMEOUT 300)
 if(TARGET test_refine)
   target_link_libraries(test_refine PRIVATE snell_dep::gles)
   # Again without GL_EXT_color_buffer_float (a Pi's v3d): frames unrefined, the reason says so.
