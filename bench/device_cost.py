@@ -17,6 +17,11 @@ SCENES = ["sphere", "bunny", "torus"]
 METHODS = ["single", "layered", "cubemap", "wyman", "oliveira", "peel", "exact", "auto"]
 SIZES = ["1280x720", "1920x1080"]
 DEVICES = ["v3d", "adreno", "mali"]
+# the fragment kernels the modelled frames draw (each method's, its passes', the background's), whose
+# loops the model must price (tests/scripts/test_device_cost_loops.py checks their forms)
+PRICED_KERNELS = ("single.frag", "cubemap.frag", "wyman.frag", "oliveira.frag", "layered.frag", "peel.frag",
+                  "peel_layer0.frag", "depth_peel.frag", "exact.frag", "skybox.frag", "layered_bake.frag",
+                  "ndcube_bake.frag")
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
@@ -371,11 +376,76 @@ def const_bound(header, defines):
     return None
 
 
+class ModelError(Exception):
+    """A program the model cannot price faithfully: a device loop with no source loop, or a loop that ran
+    with no device loop (device_cost.py stops rather than price it at one trip)."""
+
+
+# Constant trip counts the drivers may unroll fully (NIR's limits are per driver and body size): a loop
+# with a constant bound up to this may be missing on the device; any other loop that ran must be there.
+UNROLL_MAX = 32
+RUN_TIME = "35 minutes"  # bench/device_cost.sh's whole run, stated on the page
+KEYWORDS = ("if", "for", "while", "switch", "return")
+
+
+def _pp_value(expr, defs):
+    """An #if expression's value (C preprocessor rules for what GLSL ES uses: defined, integers,
+    comparisons, && || !, arithmetic); an undefined name is 0."""
+    expr = re.sub(r'\bdefined\s*\(\s*(\w+)\s*\)|\bdefined\s+(\w+)',
+                  lambda m: '1' if (m.group(1) or m.group(2)) in defs else '0', expr)
+    for _ in range(8):
+        new = re.sub(r'\b[A-Za-z_]\w*\b', lambda t: '(%s)' % (defs.get(t.group(0)) or '0'), expr)
+        if new == expr:
+            break
+        expr = new
+    expr = expr.replace('&&', ' and ').replace('||', ' or ').replace('/', '//')
+    expr = re.sub(r'!(?!=)', ' not ', expr)
+    expr = re.sub(r'(\d+)[uU]\b', r'\1', expr)
+    try:
+        return int(eval(expr, {"__builtins__": {}}))  # noqa: S307 (numbers and operators only)
+    except Exception as e:
+        raise ModelError("cannot evaluate #if %r: %s" % (expr, e))
+
+
+def active_source(src):
+    """The comment-free source with the preprocessor applied in place: the lines of inactive #if branches
+    and every directive line blanked (offsets and line numbers kept), and the object-like #defines in
+    force. GLSL ES 3.00 section 3.4."""
+    s = strip_comments(src)
+    out, defs, stack = [], {}, []  # stack: [enclosing active, this branch active, a branch taken]
+    for ln in s.split('\n'):
+        on = not stack or stack[-1][1]
+        t = ln.strip()
+        if t.startswith('#'):
+            m = re.match(r'#\s*(\w+)\s*(.*)$', t)
+            kw, rest = (m.group(1), m.group(2).strip()) if m else ("", "")
+            if kw in ("if", "ifdef", "ifndef"):
+                c = (rest.split()[0] in defs if kw == "ifdef" else rest.split()[0] not in defs if kw == "ifndef"
+                     else bool(_pp_value(rest, defs))) if on else False
+                stack.append([on, on and c, c])
+            elif kw == "elif" and stack:
+                top = stack[-1]
+                c = top[0] and not top[2] and bool(_pp_value(rest, defs))
+                top[1], top[2] = c, top[2] or c
+            elif kw == "else" and stack:
+                top = stack[-1]
+                top[1], top[2] = top[0] and not top[2], True
+            elif kw == "endif" and stack:
+                stack.pop()
+            elif kw == "define" and on:
+                d = re.match(r'(\w+)(\()?\s*(.*)$', rest)
+                if d:
+                    defs[d.group(1)] = None if d.group(2) else d.group(3).strip()
+            elif kw == "undef" and on:
+                defs.pop(rest.split()[0] if rest else "", None)
+            out.append(' ' * len(ln))
+        else:
+            out.append(ln if on else ' ' * len(ln))
+    return '\n'.join(out), {k: v for k, v in defs.items() if v is not None}
+
+
 def source_defines(src):
-    d = {}
-    for m in re.finditer(r'^\s*#\s*define\s+(\w+)\s+([^\n]+)$', src, re.M):
-        d[m.group(1)] = m.group(2).strip()
-    return d
+    return active_source(src)[1]
 
 
 def match_brace(s, i):
@@ -391,50 +461,70 @@ def match_brace(s, i):
     return len(s) - 1
 
 
+def functions(s):
+    """Function definitions of preprocessed source s: name -> [(body's open brace, close brace)], found as
+    a top-level brace right after "name(...)" (the parenthesis matched backwards, so a macro on the line
+    before cannot take the name)."""
+    funcs, i = {}, 0
+    while i < len(s):
+        if s[i] != '{':
+            i += 1
+            continue
+        e = match_brace(s, i)
+        j = i - 1
+        while j >= 0 and s[j] in ' \t\n':
+            j -= 1
+        if j >= 0 and s[j] == ')':
+            d, k = 0, j
+            while k >= 0:
+                d += s[k] == ')'
+                d -= s[k] == '('
+                if d == 0:
+                    break
+                k -= 1
+            m = re.search(r'([A-Za-z_]\w*)\s*$', s[:k])
+            if m and m.group(1) not in KEYWORDS:
+                funcs.setdefault(m.group(1), []).append((i, e))
+        i = e + 1
+    return funcs
+
+
 def source_tree(src):
-    """The fragment shader's loops as the driver sees them after inlining: one instance per loop and call
-    path from main, in code order, each with its parent instance. Returns (loops, instances) with
-    loops[i] = dict(line, head, bound) for source loop i + 1 and instances = [dict(loop, parent)]."""
+    """The fragment shader's loops as a driver sees them: the preprocessor applied, every function inlined.
+    Returns (loops, instances): loops[i] is source loop i + 1 in device_cost_trace.c's numbering (every
+    braced loop of the comment-free text, inactive ones included) with its identity (function, its n-th
+    loop there, line, header), constant bound and whether it is active; instances are one per active loop
+    and call path from main, in code order: dict(loop, parent)."""
     s = strip_comments(src)
-    defs = source_defines(src)
-    loops = []
+    act, defs = active_source(src)
+    funcs = functions(act)
+    owner = sorted(((b[0], b[1], n) for n, bs in funcs.items() for b in bs))
+    loops, per_func = [], {}
     for a, j, k in list(loop_heads(s))[:63]:
         head = ' '.join(s[a:j + 1].split())
+        fn = next((n for f0, f1, n in owner if f0 < a < f1), "?")
+        on = act[a] != ' '
+        per_func[fn] = per_func.get(fn, 0) + (1 if on else 0)
         bm = re.search(r'<\s*=?\s*(\w+)\s*;', head)
-        cp = bool(bm and re.search(r'\bconst\s+int\s+' + bm.group(1) + r'\b', s))
-        loops.append(dict(pos=a, body=(k, match_brace(s, k)), line=s.count('\n', 0, a) + 1,
-                          head=head, bound=const_bound(head, defs), const_param=cp))
-    funcs = {}
-    depth, i = 0, 0
-    while i < len(s):  # function bodies: a top-level brace after "name(...)"
-        c = s[i]
-        if c == '{' and depth == 0:
-            m = re.search(r'(\w+)\s*\([^;{}]*\)\s*$', s[max(0, i - 400):i])
-            e = match_brace(s, i)
-            if m and m.group(1) not in ("if", "for", "while", "switch"):
-                funcs.setdefault(m.group(1), []).append((i, e))
-            i = e + 1
-            continue
-        i += 1
+        cp = bool(bm and re.search(r'\bconst\s+int\s+' + bm.group(1) + r'\b', act))
+        loops.append(dict(pos=a, body=(k, match_brace(s, k)), line=s.count('\n', 0, a) + 1, head=head,
+                          bound=const_bound(head, defs), const_param=cp, active=on, func=fn,
+                          ordinal=per_func[fn] if on else 0))
+    live = [L for L in loops if L["active"]]
     insts = []
 
     def expand(lo, hi, parent, stack):
-        events = []
-        for li, L in enumerate(loops):
-            if lo < L["pos"] < hi and not any(lo < M["pos"] < L["pos"] and L["pos"] < M["body"][1] and
-                                              M["body"][1] < hi for M in loops if M is not L):
-                events.append((L["pos"], "loop", li))
-        inner = [L for L in loops if lo < L["pos"] < hi]
-        for m in re.finditer(r'(?<![A-Za-z0-9_.])(\w+)\s*\(', s[lo:hi]):
+        inner = [L for L in live if lo < L["pos"] < hi]
+        top = [L for L in inner if not any(M["pos"] < L["pos"] <= M["body"][1] for M in inner if M is not L)]
+        events = [(L["pos"], "loop", loops.index(L)) for L in top]
+        for m in re.finditer(r'(?<![\w.])([A-Za-z_]\w*)\s*\(', act[lo:hi]):
             name, at = m.group(1), lo + m.start()
-            if name in funcs and name not in stack and not any(L["pos"] <= at <= L["body"][1] for L in inner):
+            if name in funcs and name not in stack and not any(L["pos"] <= at <= L["body"][1] for L in top):
                 events.append((at, "call", name))
         for at, kind, what in sorted(events, key=lambda e: e[0]):
             if kind == "loop":
                 insts.append(dict(loop=what, parent=parent))
-                me = len(insts) - 1
-                b0, b1 = loops[what]["body"]
-                expand(b0, b1, me, stack)
+                expand(loops[what]["pos"] + 1, loops[what]["body"][1], len(insts) - 1, stack)
             else:
                 for f0, f1 in funcs[what]:
                     expand(f0, f1, parent, stack + (what,))
@@ -444,81 +534,129 @@ def source_tree(src):
     return loops, insts
 
 
-def loop_trips(dev_loops, src, counts, fragments):
-    """Executions per fragment of each device loop's body, and what each was matched to.
+def loop_form_problems(src, host_defines=None):
+    """The loops of a kernel's source (every #if branch, its #includes resolved) the model could not price,
+    as "line N: what": a do-while (device_cost_trace.c counts no do-while body), or a loop whose body is not
+    a braced block (not counted) and whose bound is not a constant up to UNROLL_MAX after the source's and
+    the host's #defines (a driver keeps such a loop, and nothing would say how often it runs)."""
+    s = strip_comments(src)
+    defs = dict(host_defines or {})
+    for m in re.finditer(r'^\s*#\s*define\s+(\w+)\s+([^\n]+)$', s, re.M):
+        defs.setdefault(m.group(1), m.group(2).strip())
+    braced = set(a for a, _, _ in loop_heads(s))
+    out = []
+    for m in re.finditer(r'(?<![A-Za-z0-9_])(for|while|do)\b', s):
+        a, line = m.start(), s.count('\n', 0, m.start()) + 1
+        if m.group(1) == "do" and re.match(r'do\s*\{', s[a:]):
+            out.append("line %d: a do-while loop (its body executions are not counted)" % line)
+        elif m.group(1) != "do" and re.match(r'(for|while)\s*\(', s[a:]) and a not in braced:
+            head = s[a:s.find('\n', a)].strip()
+            if m.group(1) == "while" and s[:a].rstrip().endswith('}'):
+                continue  # the end of a do-while, reported at its do
+            b = const_bound(head, defs)
+            if b is None or b > UNROLL_MAX:
+                out.append("line %d: `%s`: no braced body and no constant bound up to %d" % (line, head, UNROLL_MAX))
+    return out
 
-    The source's loops are inlined into a tree of instances (source_tree), one per call path. The
-    device's loops (from its back edges, with their nesting) are matched to the instances of the loops
-    the frame executed: the subset of instances whose nesting matches the device's best, dropping
-    first the loops of constant bound a driver unrolls. A source loop's measured body executions per
-    fragment (llvmpipe) then go to its device copies in equal shares. A device loop left unmatched
-    counts once per execution of its parent."""
-    loops, insts = source_tree(src)
-    C = [counts[i] / fragments if i < len(counts) and fragments else 0.0 for i in range(len(loops))]
-    def alive(k):  # executed, and so is every loop around it (a dead #if variant's children are not)
-        while k is not None:
-            if C[insts[k]["loop"]] <= 0:
-                return False
-            k = insts[k]["parent"]
-        return True
-    live = [k for k in range(len(insts)) if alive(k)]
-    # the device's tree in code order: parents as indices
+
+def loop_name(L):
+    return "%s() loop %d, L%d `%s`" % (L["func"], L["ordinal"], L["line"], L["head"])
+
+
+def match_loops(dev_loops, loops, insts, C):
+    """Each device loop's source loop instance, by nesting and code order: the device's loop forest must
+    be the source's instance forest with some loops removed (those a driver unrolled or found dead), their
+    inner loops moved up. An ordered-forest inclusion (dynamic programming); removing a loop of constant
+    bound up to UNROLL_MAX is nearly free, one that never ran here cheap, one that ran dear; a device loop
+    left without a source loop dearer still. Returns ({device loop: instance}, [unmatched device loops],
+    [instances of loops that ran but were removed without a constant bound])."""
     order = sorted(range(len(dev_loops)), key=lambda i: dev_loops[i]["start"])
-    dpar = [order.index(dev_loops[i]["parent"]) if dev_loops[i]["parent"] is not None else -1 for i in order]
-    k = len(order)
+    dch, sch = {None: []}, {None: []}
+    for i in order:
+        dch.setdefault(dev_loops[i]["parent"], []).append(i)
+        dch.setdefault(i, [])
+    for k, I in enumerate(insts):
+        sch.setdefault(I["parent"], []).append(k)
+        sch.setdefault(k, [])
 
-    def kept_parents(sub):
-        out = []
-        for k2 in sub:
-            p = insts[k2]["parent"]
-            while p is not None and p not in sub:
-                p = insts[p]["parent"]
-            out.append(sub.index(p) if p is not None else -1)
-        return out
+    def unrollable(k):  # NIR unrolls a loop of constant bound once no loop is left inside it
+        L = loops[insts[k]["loop"]]
+        const = (L["bound"] is not None and L["bound"] <= UNROLL_MAX) or L["const_param"]
+        return const and all(unrollable(c) for c in sch[k])
 
-    def skip_cost(k2):
-        L = loops[insts[k2]["loop"]]
-        b = L["bound"]
-        if b is None and L.get("const_param"):
-            return 0.05
-        return 0.01 * b if b is not None and b <= 32 else 10.0
+    def remove_cost(k):
+        if unrollable(k):
+            return 0.01
+        return 1.0 if C[insts[k]["loop"]] <= 0 else 100.0
 
-    best, best_sub = None, None
-    import itertools
-    n = len(live)
-    if k and n:
-        kk = min(k, n)
-        combos = itertools.combinations(live, kk) if _ncr(n, kk) <= 200000 else [tuple(live[:kk])]
-        for sub in combos:
-            sub = list(sub)
-            kp = kept_parents(sub)
-            mism = sum(1 for a, b in zip(kp, dpar[:kk]) if a != b)
-            cost = mism + sum(skip_cost(x) for x in live if x not in sub)
-            if best is None or cost < best:
-                best, best_sub = cost, sub
-    trips = [None] * len(dev_loops)
+    memo = {}
+    sys.setrecursionlimit(max(10000, sys.getrecursionlimit()))
+
+    def f(S, D):
+        key = (S, D)
+        if key in memo:
+            return memo[key]
+        if not S and not D:
+            r = (0.0, ())
+        elif not D:
+            c, p = f(tuple(sch[S[0]]) + S[1:], D)
+            r = (c + remove_cost(S[0]), p)
+        else:
+            d = D[0]
+            c, p = f(S, tuple(dch[d]) + D[1:])  # the device loop unmatched
+            best = (c + 1000.0, p + ((d, None),))
+            if S:
+                s = S[0]
+                c, p = f(tuple(sch[s]) + S[1:], D)  # the source loop removed
+                if c + remove_cost(s) < best[0]:
+                    best = (c + remove_cost(s), p)
+                c1, p1 = f(tuple(sch[s]), tuple(dch[d]))  # matched: inner with inner, the rest with the rest
+                c2, p2 = f(S[1:], D[1:])
+                if c1 + c2 < best[0]:
+                    best = (c1 + c2, ((d, s),) + p1 + p2)
+            r = best
+        memo[key] = r
+        return r
+
+    _, pairs = f(tuple(sch[None]), tuple(dch[None]))
+    got = {d: s for d, s in pairs if s is not None}
+    unmatched = [d for d, s in pairs if s is None]
+    kept = set(got.values())
+    lost = [k for k in range(len(insts)) if k not in kept and not unrollable(k) and C[insts[k]["loop"]] > 0]
+    return got, unmatched, lost
+
+
+def loop_trips(dev_loops, src, counts, fragments):
+    """Executions per fragment of each device loop's body, and the source loop each was matched to.
+
+    The source's loops are inlined into a tree of instances (source_tree), one per call path, and the
+    device's loops (from its back edges, with their nesting) matched to them (match_loops). A source loop's
+    body executions per fragment measured on llvmpipe go to its device copies in equal shares: the cost is
+    then C(L) x the copies' mean body, whatever the split between call sites really is. A device loop
+    without a source loop, or a loop that ran (no constant bound) without a device loop, raises ModelError."""
+    loops, insts = source_tree(src)
+    if any(L["active"] for L in loops) and len(counts) < len(loops):
+        raise ModelError("%d source loops but %d counted: the 720p run needs SNELL_COST_COUNT=1" %
+                         (len(loops), len(counts)))
+    C = [counts[i] / fragments if i < len(counts) and fragments else 0.0 for i in range(len(loops))]
+    got, unmatched, lost = match_loops(dev_loops, loops, insts, C)
+    problems = ["device loop %d (instructions %d-%d) has no source loop" % (i, dev_loops[i]["start"],
+                dev_loops[i]["end"]) for i in unmatched]
+    problems += ["%s ran %.2f times a fragment but has no device loop" % (loop_name(loops[insts[k]["loop"]]),
+                 C[insts[k]["loop"]]) for k in lost]
+    if problems:
+        raise ModelError("; ".join(problems))
     match = [None] * len(dev_loops)
-    for pos, i in enumerate(order):
-        if best_sub and pos < len(best_sub):
-            li = insts[best_sub[pos]]["loop"]
-            L = loops[li]
-            match[i] = dict(index=li + 1, line=L["line"], head=L["head"])
-    # a source loop's measured executions go to its device copies in equal shares: the cost is then
-    # C(L) x the copies' mean body, whatever the split between call sites really is
+    for i, k in got.items():
+        li = insts[k]["loop"]
+        L = loops[li]
+        match[i] = dict(index=li + 1, line=L["line"], head=L["head"], name=loop_name(L))
+    trips = [0.0] * len(dev_loops)
     for li in set(m["index"] for m in match if m):
         copies = [i for i in range(len(dev_loops)) if match[i] and match[i]["index"] == li]
         for i in copies:
             trips[i] = C[li - 1] / len(copies)
-    for i in order:  # unmatched: once per execution of the parent (parents come first in code order)
-        if trips[i] is None:
-            p = dev_loops[i]["parent"]
-            trips[i] = trips[p] if p is not None and trips[p] is not None else 1.0
-    return trips, match, best
-
-
-def _ncr(n, r):
-    from math import comb
-    return comb(n, r)
+    return trips, match, 0.0
 
 
 # --- the frame model ------------------------------------------------------------------------------------
@@ -584,18 +722,23 @@ def frame_cost(dev, draws, blits, progs, srcdir, ref_draws, ref_srcdir):
             continue
         # the loop counts: this program's own, else the same-named program's in the reference run
         # (V3D's at 720p: the same shader source, the same loops)
+        # (the same device's 720p run: the same program, the same loops, or the model stops)
         rd = ref_by_prog.get(p) if ref_srcdir == srcdir else None
-        if not rd or not any(d["loops"] for d in rd):
-            rd = None
+        if rd is None:
             k = 0
             for q, qds in ref_by_prog.items():
                 qp = os.path.join(ref_srcdir, "p%d.frag" % q)
                 if os.path.exists(qp) and program_name(open(qp).read()) == name:
                     if k == nth:
+                        if source_loops(open(qp).read()) != source_loops(src):
+                            raise ModelError("%s: the 720p run's program has other loops" % name)
                         rd = qds
                         break
                     k += 1
-        c = program_cost(dev, progs[p], src, rd or ds)
+        try:
+            c = program_cost(dev, progs[p], src, rd or ds)
+        except ModelError as e:
+            raise ModelError("%s, program %d (%s): %s" % (srcdir, p, name, e))
         t = frags * c["units"] * c["occ"] / (D["lanes"] * D["clock"])
         alu_s += t
         parts.append(dict(prog=p, name=name, draws=len(ds), fragments=frags, units=c["units"],
@@ -620,12 +763,7 @@ def run(logdir):
                     continue
                 progs = device_programs(dlog, dev)
                 ref_draws, _, _ = parse_llvmpipe(ref_log)
-                ref_dir = os.path.join(logdir, "%s-%s.src" % (tag, SIZES[0]))
-                if not any(d["loops"] for d in ref_draws):  # fragments only: V3D's 720p run counted the loops
-                    v3d_log = os.path.join(logdir, "%s-%s-v3d-%s.llvmpipe.log" % (scene, method, SIZES[0]))
-                    if os.path.exists(v3d_log):
-                        ref_draws, _, _ = parse_llvmpipe(v3d_log)
-                        ref_dir = os.path.join(logdir, "%s-%s-v3d-%s.src" % (scene, method, SIZES[0]))
+                ref_dir = os.path.join(logdir, "%s-%s.src" % (tag, SIZES[0]))  # its loops counted
                 for size in SIZES:
                     llog = os.path.join(logdir, "%s-%s.llvmpipe.log" % (tag, size))
                     if not os.path.exists(llog):
@@ -710,8 +848,11 @@ def write_page(logdir, out_md, res):
       "were counted on llvmpipe, and the two were put together with the clocks and widths stated below. Use it "
       "to rank methods on a device and to size budgets, not as frame times to quote.")
     w("")
-    w("Regenerate (about 20 minutes on a 2-core box): `bench/device_cost.sh [BUILD_DIR] [DEVICES_DIR]` "
-      "(it writes this page through `bench/device_cost.py`). Built from: %s." % (version or "unknown"))
+    w("Made by `bench/device_cost.sh BUILD_DIR DEVICES_DIR` (it writes this page through `bench/device_cost.py`; "
+      "DEVICES_DIR: `mesa-22.3.6-devices.tar.xz` unpacked, Debian 12's Mesa 22.3.6; llvmpipe: the system's Mesa "
+      "22.3.6). Built from: %s. It takes about %s on the shared 2-core box, most of it llvmpipe counting "
+      "the loops of exact and peel at 720p (`KEEP=1` reuses logs, `METHODS=\"peel exact auto\"` narrows the run)."
+      % (version or "unknown", RUN_TIME))
     w("")
     w("## The model, in short")
     w("")
@@ -728,10 +869,14 @@ def write_page(logdir, out_md, res):
       "slots, nops included; Mali: clause tuples) from its disassembly. Each loop's body (found from the "
       "disassembly's back edges: V3D branches, ir3 jumps, Bifrost clause jumps) counts as many times per fragment "
       "as it ran: every source loop's body executions were counted on llvmpipe (a counter in each loop body, "
-      "1280x720), the device's loops were matched to the source loops by their nesting after inlining, and a "
-      "loop the driver unrolled is already in the static count. Branches count both sides (a warp runs both "
+      "1280x720, on each device's own programs), and each device loop takes its own source loop's count: the "
+      "source with its preprocessor applied and every function inlined gives a forest of loops; the device's "
+      "loops must be that forest with only the loops a driver unrolls taken out (a constant bound up to %d "
+      "and no loop left inside), matched by nesting and code order. A device loop with no source loop, or a "
+      "loop that ran with no device loop, stops the model (`device_cost.py` fails, naming it) rather than "
+      "price it at one trip. A loop the driver unrolled is already in the static count. Branches count both sides (a warp runs both "
       "where its pixels differ). Spill and fill instructions count as instructions; the time their memory "
-      "accesses take does not (only the occupancy factor): the detail below gives every program's spills:fills.")
+      "accesses take does not (only the occupancy factor): the detail below gives every program's spills:fills." % UNROLL_MAX)
     w("- **Issue time** = fragments x cost x occupancy factor / (lanes x clock). The occupancy factor stands for "
       "latency hiding lost when the compiler runs out of threads: V3D 4 threads 1.0, 2 threads 1.25, 1 thread "
       "1.6; Mali 2 threads 1.0, 1 thread 1.25; Adreno up to 16 full registers 1.0, up to 32 1.25, more 1.6. "
@@ -785,8 +930,7 @@ def write_page(logdir, out_md, res):
     missing = ["%s %s on %s" % (sc, m, DEV[dv]["renderer"]) for dv in DEVICES for sc in SCENES for m in METHODS
                if (dv, sc, m, SIZES[0]) not in res]
     if missing:
-        w("Not modelled (\"-\"): %s: no compile log for them (left out with SKIP: Mesa 22.3.6 compiling exact "
-          "for Mali spills heavily and took over 15 minutes a program on the 2-core box)." % ", ".join(missing))
+        w("Not modelled (\"-\"): %s: no logs for them (left out with SKIP or METHODS)." % ", ".join(missing))
         w("")
     # relative costs
     w("## Cost of each method relative to single, per mesh class (1280x720)")
@@ -820,7 +964,7 @@ def write_page(logdir, out_md, res):
     for dev in DEVICES:
         w("<details><summary>%s</summary>" % DEV[dev]["name"])
         w("")
-        w("| scene | method | program | fragments | cost/fragment | static | occupancy | spills:fills | ms | loops: own size x executions (source line) |")
+        w("| scene | method | program | fragments | cost/fragment | static | occupancy | spills:fills | ms | loops: own size x executions (source loop: function, its n-th loop, line) |")
         w("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
         for scene in SCENES:
             for m in METHODS:
@@ -831,7 +975,7 @@ def write_page(logdir, out_md, res):
                     if p.get("missing"):
                         w("| %s | %s | %s | %d | (not compiled on the device) | | | | | |" % (scene, m, p["name"], p["fragments"]))
                         continue
-                    loops = "; ".join("%.0f x %.2f (%s)" % (Lp["own"], t, ("L%d `%s`" % (mm["line"], mm["head"])) if mm else "unmatched")
+                    loops = "; ".join("%.0f x %.2f (%s)" % (Lp["own"], t, mm["name"] if mm else "unmatched")
                                       for Lp, t, mm in zip(p["loops"], p["trips"], p["match"]))
                     w("| %s | %s | %s | %d | %.0f | %.0f | %.2f | %s | %.2f | %s |" % (
                         scene, m, p["name"], p["fragments"], p["units"], p["static"], p["occ"],
@@ -846,8 +990,10 @@ def write_page(logdir, out_md, res):
     w("- Throughput is issue-bound only: texture fetches and their latency (the BVH walk of exact, the cube and "
       "layer look-ups) are one slot each, and the occupancy factors are guesses; exact and peel, which fetch "
       "most, are the least trustworthy rows.")
-    w("- The loop matching is a heuristic (nesting after inlining, constant-bound loops taken as unrolled); the "
-      "detail tables show every match so that a wrong one can be seen. Both sides of every branch are counted.")
+    w("- Loops are matched by nesting and code order, not by name: two sibling loops a driver reorders would "
+      "swap their counts (none does here); the detail tables name every match (function, its n-th loop, "
+      "line of the program as compiled). A loop's executions are shared evenly between its inlined copies. "
+      "Both sides of every branch are counted.")
     w("- The device clocks, engine counts and sustained bandwidths are assumptions about typical boards.")
     w("- Tile memory counts colour only; depth kept on chip and texture reads cached flatter the multi-pass methods (peel).")
     w("- No GPU ran: real frame times need the boards (bench/regen.sh on each).")
@@ -872,15 +1018,32 @@ def relative(res):
     return rel
 
 
+C_NAMES = dict(v3d=("V3D 4.2", "0"), adreno=("Adreno 630", "0"),
+               mali=("Mali-G52", "1 /* Panfrost 22.3: local arrays in registers (bench/notes/device_tuning.md) */"))
+
+
 def c_table(rel):
-    out = []
-    out.append("static const snell__device_cost device_costs[] = {")
+    """src/core/device_cost.c's g_models, as written there."""
+    out = ["static const snell__device_cost g_models[] = {"]
     for dev in DEVICES:
-        out.append('    {"%s", {' % DEV[dev]["renderer"])
-        for m in ENUM:
-            row = rel[dev].get(m, [0.0] * 4) if m != "auto" else [0.0] * 4
-            out.append("        {%s}, /* %s */" % (", ".join("%.2ff" % x for x in row), m))
-        out.append("    }},")
+        rows = []
+        for m in ENUM[1:]:
+            r = rel[dev].get(m, [0.0] * 4)
+            rows.append("ROW(%s, %s)" % (m.upper(), ", ".join("1.0f" if m == "single" else
+                                                              ("%.2ff" % x if x else "0.0f") for x in r[:3])))
+        name, flag = C_NAMES[dev]
+        lead = '    {"%s", {' % name
+        lines, cur = [], lead
+        for i, r in enumerate(rows):
+            piece = r + ("," if i + 1 < len(rows) else "},")
+            if len(cur) + len(piece) + 1 > 118 and cur.strip() not in ("", lead.strip()):
+                lines.append(cur.rstrip())
+                cur = " " * len(lead) + piece
+            else:
+                cur += ("" if cur == lead else " ") + piece
+        lines.append(cur)
+        out += lines
+        out.append("     %s}," % flag)
     out.append("};")
     return "\n".join(out)
 
@@ -888,7 +1051,10 @@ def c_table(rel):
 if __name__ == "__main__":
     logdir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build-h4", "device_cost")
     out_md = sys.argv[2] if len(sys.argv) > 2 else os.path.join(ROOT, "bench", "devices", "COSTS.md")
-    res = run(logdir)
+    try:
+        res = run(logdir)
+    except ModelError as e:
+        sys.exit("device_cost.py: %s" % e)
     write_page(logdir, out_md, res)
     if os.environ.get("DEVICE_COST_VERBOSE"):
       for k, v in sorted(res.items()):

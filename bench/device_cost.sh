@@ -12,11 +12,11 @@
 #     auto): a frame on the device's driver over drm-shim keeping its disassembly (compiles only), and the
 #     same frame on llvmpipe at 1280x720 and 1920x1080 taking that device's decisions (its profile,
 #     SNELL_DEVICE_PROFILE, and its GL_RENDERER, SNELL_COST_RENDERER) counting each draw's shaded
-#     fragments, and on V3D's run at 720p each source loop's body executions (SNELL_COST_COUNT=1; 2 elsewhere);
+#     fragments, and at 720p each source loop's body executions (SNELL_COST_COUNT=1; 2 at 1080p);
 #  3. the glmark2 anchor: glmark2's light-refract shaders compiled on each driver as glmark2 does;
 #  4. runs bench/device_cost.py on those logs, which writes bench/devices/COSTS.md.
 # Logs stay in BUILD_DIR/device_cost/ (KEEP=1 reuses those there; SKIP="exact-mali bunny-peel-v3d ..." leaves
-# configurations out). About 40 minutes on a 2-core box, most of it Mesa compiling exact for Mali (its spills).
+# configurations out; DEVS, SCENES and METHODS narrow the lists, e.g. METHODS="peel exact auto"). About 40 minutes on a 2-core box, most of it Mesa compiling exact for Mali (its spills).
 set -eu
 cd "$(dirname "$0")/.."
 B=${1:-build-h4}
@@ -41,15 +41,15 @@ mkdir -p "$OUT"
 { "$R" --version 2>&1 | head -1; git rev-parse --short HEAD 2>/dev/null || echo "${SNELL_COST_COMMIT:-}"; } |
     tr '\n' ' ' >"$OUT/version.txt"
 BUNNY=/usr/share/glmark2/models/bunny.obj
-for dev in v3d adreno mali; do
+for dev in ${DEVS:-v3d adreno mali}; do
     case $dev in
         v3d) profile=rpi-v3d renderer="V3D 4.2" ;;
         adreno) profile=adreno-6xx renderer="FD630" ;;
         mali) profile=mali-bifrost renderer="Mali-G52 (Panfrost)" ;;
     esac
-    for scene in sphere bunny torus; do
+    for scene in ${SCENES:-sphere bunny torus}; do
         case $scene in sphere) mesh="" ;; bunny) mesh="--mesh $BUNNY" ;; *) mesh="--mesh $scene" ;; esac
-        for method in single layered cubemap wyman oliveira peel exact auto; do
+        for method in ${METHODS:-single layered cubemap wyman oliveira peel exact auto}; do
             tag=$scene-$method-$dev
             case " ${SKIP:-} " in *" $tag "*|*" $method-$dev "*) continue ;; esac
             if [ "${KEEP:-0}" != 1 ] || [ ! -s "$OUT/$tag.log" ]; then
@@ -62,10 +62,10 @@ for dev in v3d adreno mali; do
                 [ "${KEEP:-0}" = 1 ] && [ -s "$OUT/$tag-$size.llvmpipe.log" ] && continue
                 rm -rf "$OUT/$tag-$size.src" && mkdir -p "$OUT/$tag-$size.src"
                 # shellcheck disable=SC2086
-                # loop bodies counted once, on the first device at 720p; elsewhere the fragments alone (the
-                # trips per fragment are taken from that run, program by program)
+                # loop bodies counted at 720p on every device (its programs may be other variants: Mali's
+                # exact walks without a stack); at 1080p the fragments alone, trips taken from 720p's
                 count=2
-                [ "$size" = 1280x720 ] && [ $dev = v3d ] && count=1
+                [ "$size" = 1280x720 ] && count=1
                 SNELL_DEVICE_PROFILE=$profile SNELL_COST_RENDERER=$renderer SNELL_COST_COUNT=$count \
                     SNELL_COST_DUMP="$OUT/$tag-$size.src" "$R" $mesh --method $method --size $size \
                     --frames 2 --stats -o "$OUT/$tag-$size.png" >"$OUT/$tag-$size.llvmpipe.log" 2>&1 || true

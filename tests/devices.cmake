@@ -27,3 +27,10 @@ if(SNELL_PYTHON3)
            ${PROJECT_SOURCE_DIR}/bench/device_shaders.py)
   set_tests_properties(device_shaders_verdicts PROPERTIES LABELS "unit" TIMEOUT 60)
 endif()
+# bench/device_cost.py (bench/devices/COSTS.md) prices each device loop by its own source loop's trip
+# count, or stops: a made-up V3D log in exact's shape, and every loop of the kernels it prices.
+if(SNELL_PYTHON3)
+  add_test(NAME device_cost_loops COMMAND ${SNELL_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/test_device_cost_loops.py
+           ${PROJECT_SOURCE_DIR}/bench/device_cost.py ${PROJECT_SOURCE_DIR}/shaders_es)
+  set_tests_properties(device_cost_loops PROPERTIES LABELS "unit" TIMEOUT 60)
+endif()
