@@ -16,7 +16,8 @@
 #  3. the glmark2 anchor: glmark2's light-refract shaders compiled on each driver as glmark2 does;
 #  4. runs bench/device_cost.py on those logs, which writes bench/devices/COSTS.md.
 # Logs stay in BUILD_DIR/device_cost/ (KEEP=1 reuses those there; SKIP="exact-mali bunny-peel-v3d ..." leaves
-# configurations out; DEVS, SCENES and METHODS narrow the lists, e.g. METHODS="peel exact auto"). About 40 minutes on a 2-core box, most of it Mesa compiling exact for Mali (its spills).
+# configurations out; DEVS, SCENES and METHODS narrow the lists, e.g. METHODS="peel exact auto"). About 20
+# minutes on a shared 2-core box, most of it llvmpipe counting the loops of exact and peel at 720p.
 set -eu
 cd "$(dirname "$0")/.."
 B=${1:-build-h4}
