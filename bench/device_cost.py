@@ -565,11 +565,12 @@ def loop_name(L):
 
 def match_loops(dev_loops, loops, insts, C):
     """Each device loop's source loop instance, by nesting and code order: the device's loop forest must
-    be the source's instance forest with some loops removed (those a driver unrolled or found dead), their
-    inner loops moved up. An ordered-forest inclusion (dynamic programming); removing a loop of constant
-    bound up to UNROLL_MAX is nearly free, one that never ran here cheap, one that ran dear; a device loop
-    left without a source loop dearer still. Returns ({device loop: instance}, [unmatched device loops],
-    [instances of loops that ran but were removed without a constant bound])."""
+    be the source's instance forest with some loops removed (those a driver unrolled or found dead) with
+    the loops inside them (a loop of one trip only is removed alone, its inner loops moved up). An
+    ordered-forest inclusion (dynamic programming); removing a loop of constant
+    bound up to UNROLL_MAX costs a hundredth of its bound (a loop of one trip is never a device loop),
+    one that never ran here costs 1, one that ran 100, and a device loop left without a source loop 1000. Returns ({device loop: instance}, [unmatched device loops],
+    [source loops that ran, with no constant bound, and kept no device copy])."""
     order = sorted(range(len(dev_loops)), key=lambda i: dev_loops[i]["start"])
     dch, sch = {None: []}, {None: []}
     for i in order:
@@ -584,10 +585,18 @@ def match_loops(dev_loops, loops, insts, C):
         const = (L["bound"] is not None and L["bound"] <= UNROLL_MAX) or L["const_param"]
         return const and all(unrollable(c) for c in sch[k])
 
-    def remove_cost(k):
+    def remove_cost(k):  # the likelier a driver drops the loop, the cheaper: short constant loops first
+        L = loops[insts[k]["loop"]]
         if unrollable(k):
-            return 0.01
+            return 0.05 if L["bound"] is None else 0.01 * L["bound"]
         return 1.0 if C[insts[k]["loop"]] <= 0 else 100.0
+
+    def single_trip(k):  # a loop of one iteration is no loop to any driver
+        b = loops[insts[k]["loop"]]["bound"]
+        return b is not None and b <= 1
+
+    def removed(k):  # a loop goes with every loop inside it (NIR unrolls inner loops first)
+        return (0.0 if single_trip(k) else remove_cost(k)) + sum(removed(c) for c in sch[k])
 
     memo = {}
     sys.setrecursionlimit(max(10000, sys.getrecursionlimit()))
@@ -599,21 +608,26 @@ def match_loops(dev_loops, loops, insts, C):
         if not S and not D:
             r = (0.0, ())
         elif not D:
-            c, p = f(tuple(sch[S[0]]) + S[1:], D)
-            r = (c + remove_cost(S[0]), p)
+            c, p = f(S[1:], D)
+            r = (c + removed(S[0]), p)
         else:
             d = D[0]
             c, p = f(S, tuple(dch[d]) + D[1:])  # the device loop unmatched
             best = (c + 1000.0, p + ((d, None),))
             if S:
                 s = S[0]
-                c, p = f(tuple(sch[s]) + S[1:], D)  # the source loop removed
-                if c + remove_cost(s) < best[0]:
-                    best = (c + remove_cost(s), p)
-                c1, p1 = f(tuple(sch[s]), tuple(dch[d]))  # matched: inner with inner, the rest with the rest
-                c2, p2 = f(S[1:], D[1:])
-                if c1 + c2 < best[0]:
-                    best = (c1 + c2, ((d, s),) + p1 + p2)
+                if single_trip(s):  # its body is straight code: the loops inside stay
+                    c, p = f(tuple(sch[s]) + S[1:], D)
+                else:  # removed with the loops inside it
+                    c, p = f(S[1:], D)
+                    c += removed(s)
+                if c < best[0]:
+                    best = (c, p)
+                if not single_trip(s):  # matched: inner with inner, the rest with the rest
+                    c1, p1 = f(tuple(sch[s]), tuple(dch[d]))
+                    c2, p2 = f(S[1:], D[1:])
+                    if c1 + c2 < best[0]:
+                        best = (c1 + c2, ((d, s),) + p1 + p2)
             r = best
         memo[key] = r
         return r
@@ -621,8 +635,9 @@ def match_loops(dev_loops, loops, insts, C):
     _, pairs = f(tuple(sch[None]), tuple(dch[None]))
     got = {d: s for d, s in pairs if s is not None}
     unmatched = [d for d, s in pairs if s is None]
-    kept = set(got.values())
-    lost = [k for k in range(len(insts)) if k not in kept and not unrollable(k) and C[insts[k]["loop"]] > 0]
+    kept = set(insts[k]["loop"] for k in got.values())
+    lost = sorted(set(insts[k]["loop"] for k in range(len(insts)) if insts[k]["loop"] not in kept and
+                      not unrollable(k) and C[insts[k]["loop"]] > 0))
     return got, unmatched, lost
 
 
@@ -642,8 +657,8 @@ def loop_trips(dev_loops, src, counts, fragments):
     got, unmatched, lost = match_loops(dev_loops, loops, insts, C)
     problems = ["device loop %d (instructions %d-%d) has no source loop" % (i, dev_loops[i]["start"],
                 dev_loops[i]["end"]) for i in unmatched]
-    problems += ["%s ran %.2f times a fragment but has no device loop" % (loop_name(loops[insts[k]["loop"]]),
-                 C[insts[k]["loop"]]) for k in lost]
+    problems += ["%s ran %.2f times a fragment but has no device loop" % (loop_name(loops[li]), C[li])
+                 for li in lost]
     if problems:
         raise ModelError("; ".join(problems))
     match = [None] * len(dev_loops)

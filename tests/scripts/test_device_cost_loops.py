@@ -9,6 +9,7 @@ its own source loop, or the model stops. No driver needed.
    an inner pop loop and a leaf loop; the walk in two #if variants, a macro with parentheses on the line
    before the active one): every device loop matched to its loop and trip count; a device loop with no
    source loop, a loop that ran with no device loop, and a run without loop counts each stop the model.
+   Constant loops (cubemap's and layered's shape): a driver's loops are the outer ones, inner ones unrolled.
 2. Every loop of every kernel the model prices (device_cost.PRICED_KERNELS, #includes resolved): one the
    model can count (braced body) or one a driver unrolls (constant bound up to device_cost.UNROLL_MAX)."""
 import importlib.util
@@ -74,6 +75,34 @@ EDGES = [(14, 8), (30, 20), (35, 5), (40, 2)]
 WANT = {(2, 40): ("main", 1, 2.0), (5, 35): ("closest", 1, 4.0), (8, 14): ("closest", 2, 3.0),
         (20, 30): ("leaf", 1, 8.0)}
 
+# constant loops only (cubemap's and layered's shape): a loop of 9 around a call holding a loop of 6, and a
+# loop of one trip; body executions in text order (the inner, the outer, the one-trip loop)
+SOURCE_CONST = """#version 300 es
+#define OUTER 9
+#define INNER 6
+#define ONE 1
+precision highp float;
+out vec4 o_colour;
+float g;
+void step_in(int n)
+{
+    for (int i = 0; i < INNER; i++) {
+        g += float(i * n);
+    }
+}
+void main()
+{
+    for (int k = 0; k < OUTER; k++) {
+        for (int u = 0; u < ONE; u++) {
+            g *= 0.5;
+        }
+        step_in(k);
+    }
+    o_colour = vec4(g);
+}
+"""
+COUNTS_CONST = [600, 100, 100]
+
 failures = []
 
 
@@ -98,10 +127,14 @@ def v3d_log(folder, edges, n=50):
     return path
 
 
-def trips(dc, folder, edges, counts=COUNTS):
+def trips(dc, folder, edges, counts=COUNTS, source=SOURCE):
     prog = dc.device_programs(v3d_log(folder, edges), "v3d")[1]
-    t, match, _ = dc.loop_trips(prog["loops"], SOURCE, counts, FRAGMENTS)
+    t, match, _ = dc.loop_trips(prog["loops"], source, counts, FRAGMENTS)
     return prog["loops"], t, match
+
+
+def named(loops, t, match):
+    return [(m["name"].split(" `")[0] if m else None, round(x, 3)) for L, x, m in zip(loops, t, match)]
 
 
 def stops(dc, folder, edges, counts, says, what):
@@ -141,6 +174,15 @@ def main():
         loops, t, match = trips(dc, folder, EDGES + [(47, 43)])
         kept = [(m["name"].split("()")[0], round(x, 3)) for L, x, m in zip(loops, t, match) if L["start"] == 43]
         check(kept == [("main", 3.0)], "a constant loop the driver kept: main's 2nd loop, 3 a fragment (%s)" % kept)
+        # constant loops: a loop goes with the loops inside it, so one device loop is the outer one (its
+        # inner loop unrolled), two nested are both; the one-trip loop is never a device loop
+        got = named(*trips(dc, folder, [(40, 2)], COUNTS_CONST, SOURCE_CONST))
+        check(len(got) == 1 and got[0][0].startswith("main() loop 1") and got[0][1] == 1.0,
+              "one device loop around constant loops: the outer, 1 a fragment (%s)" % got)
+        got = named(*trips(dc, folder, [(30, 10), (40, 2)], COUNTS_CONST, SOURCE_CONST))
+        check(len(got) == 2 and got[0][0].startswith("main() loop 1") and got[0][1] == 1.0 and
+              got[1][0].startswith("step_in() loop 1") and got[1][1] == 6.0,
+              "two nested device loops: the outer and the called inner, 1 and 6 a fragment (%s)" % got)
         stops(dc, folder, EDGES + [(28, 22)], COUNTS, "no source loop", "a device loop with no source loop")
         stops(dc, folder, [e for e in EDGES if e != (35, 5)], COUNTS, "has no device loop",
               "the walk that ran missing on the device")
