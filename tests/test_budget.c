@@ -410,6 +410,48 @@ static void auto_order(void)
         CHECK(order[i]->info == snell_method_info_at(i), "unmodelled class: registry order at %d", i);
 }
 
+/* AUTO's pick (render/scene.c, snell__scene_choose): the first method the
+ * mesh is adequate for in the model's cost order for its class (the
+ * registry's order without a model). */
+static const char *auto_pick(const snell__device_cost *d, const snell_mesh_analysis *an, const snell_glass_resolved *g)
+{
+    const snell__method *order[SNELL_METHOD_COUNT_];
+    char why[SNELL_REASON_SIZE];
+    int i, n = snell__auto_order(d, d ? snell__budget_class(an, g) : 0, order);
+    for (i = 0; i < n; i++)
+        if (!order[i]->fit ||
+            order[i]->fit(order[i]->needs_analysis ? an : NULL, g, why, sizeof why) == SNELL__FIT_ADEQUATE)
+            return order[i]->info->name;
+    return "none";
+}
+
+/* AUTO's picks on each GPU model, as bench/devices/README.md states them
+ * (drawn under each device's profile and GL_RENDERER: bench/devices/COSTS.md's
+ * auto column): a model whose costs reorder the adequate methods fails here. */
+static void auto_picks(const snell_mesh_analysis *convex, const snell_mesh_analysis *bunny,
+                       const snell_mesh_analysis *torus, const snell_glass_resolved *g)
+{
+    static const char *const want[][4] = {
+        {"llvmpipe", "layered", "cubemap", "oliveira"},
+        {"V3D 4.2", "layered", "cubemap", "oliveira"},
+        {"FD630", "layered", "cubemap", "oliveira"},
+        {"Mali-G52 (Panfrost)", "layered", "cubemap", "oliveira"},
+    };
+    const snell_mesh_analysis *meshes[3];
+    int i, k;
+    meshes[0] = convex;
+    meshes[1] = bunny;
+    meshes[2] = torus;
+    for (i = 0; i < (int)(sizeof want / sizeof *want); i++)
+        for (k = 0; k < 3; k++) {
+            const char *got = auto_pick(snell__device_cost_find(want[i][0]), meshes[k], g);
+            printf("AUTO on %s, %s: %s\n", want[i][0], k == 0 ? "convex" : k == 1 ? "bunny" : "torus", got);
+            if (snell_build_has(want[i][k + 1]) && snell_build_has("cubemap") && snell_build_has("layered"))
+                CHECK(strcmp(got, want[i][k + 1]) == 0, "AUTO on %s, mesh class %d: %s, want %s", want[i][0], k, got,
+                      want[i][k + 1]);
+        }
+}
+
 int main(void)
 {
     /* the classes: convex; closed concave that the cubemap serves (a bunny: 25% hidden from its centre);
@@ -526,5 +568,6 @@ int main(void)
     }
     device_costs(&convex, &bunny, &g);
     auto_order();
+    auto_picks(&convex, &bunny, &torus, &g);
     return test_finish();
 }

@@ -12,16 +12,16 @@
 #define ROW(m, convex, bunny, torus) [SNELL_METHOD_##m] = {convex, bunny, torus, 0.0f}
 static const snell__device_cost g_models[] = {
     {"V3D 4.2", {ROW(SINGLE, 1.0f, 1.0f, 1.0f), ROW(CUBEMAP, 4.72f, 1.63f, 1.78f), ROW(WYMAN, 2.46f, 1.97f, 2.10f),
-                 ROW(OLIVEIRA, 27.00f, 6.95f, 7.83f), ROW(PEEL, 54.86f, 79.27f, 98.56f),
-                 ROW(EXACT, 51.47f, 62.74f, 54.36f), ROW(LAYERED, 3.63f, 15.60f, 22.45f)},
+                 ROW(OLIVEIRA, 22.44f, 7.57f, 8.44f), ROW(PEEL, 75.97f, 51.34f, 61.61f),
+                 ROW(EXACT, 41.21f, 50.08f, 43.19f), ROW(LAYERED, 3.42f, 14.02f, 20.19f)},
      0},
     {"Adreno 630", {ROW(SINGLE, 1.0f, 1.0f, 1.0f), ROW(CUBEMAP, 2.20f, 1.25f, 1.32f), ROW(WYMAN, 2.24f, 2.03f, 2.08f),
-                    ROW(OLIVEIRA, 8.86f, 4.10f, 4.33f), ROW(PEEL, 25.43f, 24.88f, 30.40f),
-                    ROW(EXACT, 22.68f, 24.82f, 22.25f), ROW(LAYERED, 1.75f, 13.74f, 23.41f)},
+                    ROW(OLIVEIRA, 9.05f, 4.40f, 4.67f), ROW(PEEL, 28.52f, 21.42f, 25.28f),
+                    ROW(EXACT, 16.25f, 17.66f, 15.80f), ROW(LAYERED, 1.75f, 13.87f, 23.63f)},
      0},
     {"Mali-G52", {ROW(SINGLE, 1.0f, 1.0f, 1.0f), ROW(CUBEMAP, 3.62f, 1.47f, 1.59f), ROW(WYMAN, 2.49f, 2.04f, 2.15f),
-                  ROW(OLIVEIRA, 12.68f, 5.11f, 5.45f), ROW(PEEL, 32.99f, 66.68f, 80.34f),
-                  ROW(EXACT, 222.29f, 0.0f, 0.0f), ROW(LAYERED, 2.58f, 26.49f, 44.68f)},
+                  ROW(OLIVEIRA, 14.54f, 5.85f, 6.32f), ROW(PEEL, 52.81f, 35.63f, 42.57f),
+                  ROW(EXACT, 34.06f, 36.97f, 33.15f), ROW(LAYERED, 2.62f, 27.52f, 46.46f)},
      1 /* Panfrost 22.3: local arrays in registers (bench/notes/device_tuning.md) */},
 };
 #undef ROW
