@@ -6,7 +6,7 @@
  * behind the glass with GREATER. Every method's picture must equal the same
  * scene drawn with the standard projection, to a few edge pixels: the
  * occluder hides the glass, and the glass's depth, given back, hides the probe.
- * D24, D24S8 and D32F depth. Without host framebuffer support the camera is
+ * D24, D24S8 and D32F depth; NO_WRITE gives the host's depth back unchanged. Without host framebuffer support the camera is
  * refused by name. */
 #include "test_util.h"
 #include "snell_components.h"
@@ -165,7 +165,7 @@ int main(void)
         for (m = 0; m < snell_method_count(); m++) {
             const char *name = snell_method_info_at(m)->name;
             snell_status st;
-            int d, glass;
+            int d, glass, probe;
             g.material.method = snell_method_info_at(m)->method;
             CHECK_OK_CTX(ctx, scene(r, &fd, fbo, 0, std_img));
             st = scene(r, &fd, fbo, 1, rev_img);
@@ -176,7 +176,8 @@ int main(void)
 #endif
             CHECK(st == SNELL_OK, "%s, depth 0x%x: reversed-Z, depth tested: %s", name, formats[f],
                   snell_last_error(ctx));
-            glass = N * N - count(std_img, 230, 25, 230) - count(std_img, 25, 204, 51);
+            probe = count(std_img, 230, 25, 230);
+            glass = N * N - probe - count(std_img, 25, 204, 51);
             d = differ(std_img, rev_img);
             printf("%s, depth 0x%x: %d glass pixels, occluder %d, probe %d; reversed-Z differs on %d\n", name,
                    formats[f], glass, count(std_img, 25, 204, 51), count(std_img, 230, 25, 230), d);
@@ -184,6 +185,16 @@ int main(void)
                   "%s: the standard scene shows glass, occluder and probe", name);
             CHECK(d <= EDGE, "%s, depth 0x%x: the reversed-Z picture differs from the standard one on %d pixels",
                   name, formats[f], d);
+            if (formats[f] != GL_DEPTH24_STENCIL8) continue;
+            /* NO_WRITE: the host's depth comes back as it was, so the probe shows through the glass */
+            fd.depth = SNELL_DEPTH_TEST_NO_WRITE;
+            CHECK_OK_CTX(ctx, scene(r, &fd, fbo, 0, std_img));
+            CHECK_OK_CTX(ctx, scene(r, &fd, fbo, 1, rev_img));
+            fd.depth = SNELL_DEPTH_TEST;
+            d = differ(std_img, rev_img);
+            CHECK(d <= EDGE && count(std_img, 230, 25, 230) > probe + glass / 2,
+                  "%s, NO_WRITE: reversed-Z differs on %d pixels; the probe on %d (%d where the glass wrote depth)",
+                  name, d, count(std_img, 230, 25, 230), probe);
         }
     }
     CHECK(glGetError() == GL_NO_ERROR, "GL error at the end");
