@@ -256,5 +256,9 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 #endif
     vec3 reflected = snell_reflection(world_pos, r);
     exit_dir = dir;
-    return mix(transmitted, reflected, fresnel);
+    vec3 c = mix(transmitted, reflected, fresnel);
+#ifdef SNELL_DOUBT_MODE
+    c = snell_doubt(c, world_pos, p, dir); // hybrid.frag
+#endif
+    return c;
 }

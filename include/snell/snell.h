@@ -466,6 +466,8 @@ typedef enum snell_method {
                                 * the dearest; AUTO only where exact.auto_pick allows */
     SNELL_METHOD_LAYERED,      /* multi-layer, view-independent (Umenhoffer et al. 2007): layered distance
                                 * cube maps baked once per mesh version, re-entries included */
+    SNELL_METHOD_HYBRID,       /* the cubemap where it trusts its answer, exact on the pixels it doubts, in
+                                * one frame (material.hybrid); needs what the cubemap needs */
     SNELL_METHOD_COUNT_        /* number of values, not a method */
 } snell_method;
 
@@ -510,6 +512,7 @@ typedef struct snell_glass_material {
     snell_peel_params peel;        /* used when the method (or AUTO's choice) is PEEL */
     snell_exact_params exact;      /* used when it is EXACT (which AUTO picks only if exact.auto_pick allows) */
     snell_layered_params layered;  /* used when it is LAYERED */
+    snell_hybrid_params hybrid;    /* used when it is HYBRID (with cubemap's and exact's) */
     /* shaded at 1/scale per axis, silhouette at full; 0 = 1, 1..SNELL_MAX_GLASS_SCALE */
     float scale;
 } snell_glass_material;

@@ -217,6 +217,31 @@ typedef struct snell_layered_params {
     snell_inner_fresnel inner_fresnel;
 } snell_layered_params;
 
+/* SNELL_METHOD_HYBRID's parameters (material.hybrid); zero = the default.
+ * The hybrid draws the cubemap method (material.cubemap's parameters) with a
+ * doubt test per pixel, and the exact method (material.exact's) on the
+ * pixels it doubts, in the same frame: the cubemap pass leaves those pixels'
+ * depth unwritten (or at the far plane), and exact's pass, depth-tested
+ * LESS, shades only them. A pixel is doubted when the front surface or the
+ * exit found lies off the surface the cubemap holds by more than `doubt`
+ * thousandths of its radius (hidden from its centre, or the search did not
+ * converge), or the path did not leave the object within
+ * hybrid.max_interfaces (total internal reflections past the cap). */
+typedef enum snell_hybrid_refine {
+    SNELL_HYBRID_REFINE_DEFAULT = 0, /* SNELL_HYBRID_REFINE_EXACT */
+    SNELL_HYBRID_REFINE_EXACT,       /* exact on the doubted pixels */
+    SNELL_HYBRID_REFINE_SHOW         /* the doubted pixels magenta, no exact pass (to see the mask) */
+} snell_hybrid_refine;
+
+typedef struct snell_hybrid_params {
+    int doubt;                 /* threshold, thousandths of the cubemap's radius, 1..1000 (default 20) */
+    snell_hybrid_refine refine;
+    int max_interfaces;        /* the cubemap pass's cap on surfaces per path, 1..8 (default 4); its
+                                * paths still inside at the cap are doubted */
+} snell_hybrid_params;
+
+#define SNELL_HYBRID_DEFAULT_DOUBT 20
+
 #define SNELL_LAYERED_MAX_LAYERS 8
 #define SNELL_LAYERED_MAX_INTERFACES 10
 #define SNELL_EXACT_MIN_BUDGET 64

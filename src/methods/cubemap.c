@@ -12,6 +12,7 @@
 #include "core/gl.h"
 #include "frame/ndcube.h"
 #include "core/program.h"
+#include "methods/cubemap.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -45,7 +46,7 @@ typedef struct cube_prepared {
 
 /* A program's own uniforms (over its cache slot's loc); its key: key: prog_key's fields in order */
 typedef struct cube_locs {
-    int inv_model, centre, radius, inner_radius, max_interfaces, texel_angle;
+    int inv_model, centre, radius, inner_radius, max_interfaces, texel_angle, doubt;
 } cube_locs;
 SNELL__PROGRAM_LOCS_FIT(cube_locs);
 
@@ -61,19 +62,28 @@ static void cubemap_destroy(snell_ctx *ctx, void *state);
 typedef struct prog_key {
     snell_ndcube_encoding enc;
     int iterations, linear, no_search, screen, absorb, fresnel_exact, inner, dispersion;
+    int doubt; /* SNELL__CUBEMAP_DOUBT_*: hybrid.frag's doubt test (methods/cubemap.h) */
 } prog_key;
 
 static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const prog_key *k, snell__program_slot *p)
 {
-    char def[320];
+    char def[360];
+    const char *fs = "cubemap.frag";
     snell_status st;
-    snprintf(def, sizeof def,
+    int n = snprintf(def, sizeof def,
              "#define SNELL_NDCUBE_%s 1\n#define SNELL_SEARCH_ITERATIONS %d\n#define SNELL_LINEAR_STEPS %d\n"
              "#define SNELL_NO_SEARCH %d\n#define SNELL_ABSORB %d\n#define SNELL_FRESNEL_EXACT %d\n"
              "#define SNELL_INNER_FRESNEL %d\n#define SNELL_DISPERSION %d\n",
              k->enc == SNELL_NDCUBE_OCT ? "OCT" : "PLAIN", k->iterations, k->linear, k->no_search, k->absorb,
              k->fresnel_exact, k->inner, k->dispersion);
-    st = snell__glass_program_build(ctx, "cubemap.frag", out, def, k->screen, &p->g);
+#if SNELL__BUILT_hybrid
+    if (k->doubt) {
+        snprintf(def + n, sizeof def - (size_t)n, "#define SNELL_DOUBT_MODE %d\n", k->doubt);
+        fs = "hybrid.frag";
+    }
+#endif
+    (void)n;
+    st = snell__glass_program_build(ctx, fs, out, def, k->screen, &p->g);
     if (st != SNELL_OK) return st;
     cube_locs *loc = SNELL__PROGRAM_LOCS_OF(cube_locs, p);
     loc->inv_model = glGetUniformLocation(p->g.prog, "u_inv_model");
@@ -82,6 +92,7 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
     loc->inner_radius = glGetUniformLocation(p->g.prog, "u_inner_radius");
     loc->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
     loc->texel_angle = glGetUniformLocation(p->g.prog, "u_texel_angle");
+    loc->doubt = glGetUniformLocation(p->g.prog, "u_doubt");
     return SNELL_OK;
 }
 
@@ -89,10 +100,10 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
  * used slot. */
 static snell_status get_prog(snell_ctx *ctx, cubemap_state *s, const prog_key *k, const snell__program_slot **out)
 {
-    const int key[9] = {(int)k->enc, k->iterations, k->linear, k->no_search, k->screen, k->absorb, k->fresnel_exact,
-                        k->inner, k->dispersion};
+    const int key[10] = {(int)k->enc, k->iterations, k->linear, k->no_search, k->screen, k->absorb, k->fresnel_exact,
+                         k->inner, k->dispersion, k->doubt};
     int hit;
-    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_CUBEMAP, key, 9, &hit);
+    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_CUBEMAP, key, 10, &hit);
     snell_status st = hit ? SNELL_OK : build_prog(ctx, s->out, k, p);
     if (st == SNELL_OK) *out = p;
     return st;
@@ -107,7 +118,7 @@ static snell_status cubemap_create(snell_ctx *ctx, snell__output_kind out, snell
     if (!s) return snell__fail(ctx, SNELL_E_NOMEM, "out of memory");
     s->out = out;
     s->programs = programs;
-    prog_key k = {SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, 0, 0, DEFAULT_FRESNEL, 0, 0};
+    prog_key k = {SNELL_NDCUBE_PLAIN, DEFAULT_ITERATIONS, 0, 0, 0, 0, DEFAULT_FRESNEL, 0, 0, 0};
     st = get_prog(ctx, s, &k, &p);
     if (st == SNELL_OK) st = snell__ndcube_baker_create(ctx, &s->baker);
     if (st != SNELL_OK) {
@@ -195,8 +206,10 @@ static void cubemap_release(void *prepared)
     snell__ndcube_release(&((cube_prepared *)prepared)->cube);
 }
 
-static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
-                                 snell_object_stats *stats)
+/* The search pass; doubt (SNELL__CUBEMAP_DOUBT_*, 0 none) and its threshold
+ * for the hybrid (methods/cubemap.h). */
+static snell_status draw_search(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                                snell_object_stats *stats, int doubt, float threshold)
 {
     cubemap_state *s = (cubemap_state *)state;
     const snell_cubemap_params *c = &o->glass->material.cubemap;
@@ -219,6 +232,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     k.inner = !k.no_search && (c->inner_fresnel == SNELL_INNER_FRESNEL_ON ||
                                (c->inner_fresnel == SNELL_INNER_FRESNEL_AUTO && o->analysis && o->analysis->convex));
     k.dispersion = snell__dispersion_variant(o->glass);
+    k.doubt = doubt;
     st = get_prog(ctx, s, &k, &p);
     if (st != SNELL_OK) return st;
     if (k.no_search) stats->skipped |= SNELL_SKIP_SEARCH;
@@ -233,6 +247,7 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     /* A texel is 2/N wide in face coordinates; it subtends 2/N rad at a face
      * centre and sqrt(2)/3 * 2/N at a corner: the smaller is the stop bound. */
     glUniform1f(loc->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)c->face_size);
+    if (doubt) glUniform1f(loc->doubt, threshold * cp->cube.radius);
     /* Back faces are culled on closed meshes (snell__draw_surface). A depth
      * pre-pass would do the same for any mesh but cost more than it saved: it
      * doubles the triangle setup, which dominates on llvmpipe for the
@@ -241,6 +256,20 @@ static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view 
     stats->passes++;
     return SNELL_OK;
 }
+
+static snell_status cubemap_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                                 snell_object_stats *stats)
+{
+    return draw_search(ctx, state, v, o, stats, 0, 0.0f);
+}
+
+#if SNELL__BUILT_hybrid
+snell_status snell__cubemap_draw_doubt(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                                       snell_object_stats *stats, int doubt, float threshold)
+{
+    return draw_search(ctx, state, v, o, stats, doubt, threshold);
+}
+#endif
 
 static const char *const g_encoding_names[] = {"default", "plain", "oct"};
 

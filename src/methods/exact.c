@@ -13,6 +13,7 @@
 #include "core/ctx.h"
 #include "core/device_cost.h"
 #include "core/gl.h"
+#include "methods/exact.h"
 #include "core/glstate.h"
 
 #include <math.h>
@@ -61,12 +62,12 @@ static void exact_destroy(snell_ctx *ctx, void *state);
 enum { TERM_FRESNEL_EXACT = 1, TERM_INNER = 2, TERM_REENTRY = 4 };
 
 static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16, int absorb, int variant,
-                             int stack, int dispersion, int terms, const snell__program_slot **out)
+                             int stack, int dispersion, int terms, int ours, const snell__program_slot **out)
 {
-    const int key[7] = {budget, q16, absorb, variant, stack, dispersion, terms};
-    char def[256];
+    const int key[8] = {budget, q16, absorb, variant, stack, dispersion, terms, ours};
+    char def[288];
     int hit;
-    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_EXACT, key, 7, &hit);
+    snell__program_slot *p = snell__program_cache_get(s->programs, SNELL_METHOD_EXACT, key, 8, &hit);
     snell_status st;
     if (hit) {
         *out = p;
@@ -75,9 +76,9 @@ static snell_status get_prog(snell_ctx *ctx, exact_state *s, int budget, int q16
     snprintf(def, sizeof def,
              "#define SNELL_NODE_BUDGET %d\n#define SNELL_NODES_Q16 %d\n#define SNELL_ABSORB %d\n#define SNELL_STACK_WALK %d\n"
              "#define SNELL_DISPERSION %d\n#define SNELL_FRESNEL_EXACT %d\n#define SNELL_EXACT_INNER %d\n"
-             "#define SNELL_EXACT_REENTRY %d\n",
+             "#define SNELL_EXACT_REENTRY %d\n%s",
              budget, q16, absorb, stack, dispersion, (terms & TERM_FRESNEL_EXACT) != 0, (terms & TERM_INNER) != 0,
-             (terms & TERM_REENTRY) != 0);
+             (terms & TERM_REENTRY) != 0, ours ? "#define SNELL_SCREEN_OURS 1\n" : "");
     st = snell__glass_program_build(ctx, "exact.frag", s->out, def, variant, &p->g);
     if (st != SNELL_OK) return st;
     exact_locs *loc = SNELL__PROGRAM_LOCS_OF(exact_locs, p);
@@ -106,7 +107,7 @@ static snell_status exact_create(snell_ctx *ctx, snell__output_kind out, snell__
     s->out = out;
     s->programs = programs;
     st = get_prog(ctx, s, SNELL_EXACT_DEFAULT_BUDGET, 0, 0, 0, snell__exact_walk_stack(ctx->cost, SNELL_EXACT_WALK_DEFAULT),
-                  0, 0, &p);
+                  0, 0, 0, &p);
     if (st != SNELL_OK) {
         exact_destroy(ctx, s);
         return st;
@@ -185,8 +186,10 @@ static int exact_terms(const snell_exact_params *e)
            (e->reentry == SNELL_EXACT_REENTRY_ON ? TERM_REENTRY : 0);
 }
 
-static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
-                               snell_object_stats *stats)
+/* ours: in screen space, every pixel the depth test passes is the object's
+ * (SNELL_SCREEN_OURS, common/surface.glsl: the hybrid, methods/exact.h). */
+static snell_status draw_with(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                              snell_object_stats *stats, int ours)
 {
     exact_state *s = (exact_state *)state;
     const snell_exact_params *e = &o->glass->material.exact;
@@ -197,7 +200,7 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
      * give red and blue estimated exits where the traversal finds the true ones. */
     snell_status st = get_prog(ctx, s, e->node_budget, ep->q16, o->glass->absorbs,
                                 snell__glass_variant(o), snell__exact_walk_stack(ctx->cost, e->walk),
-                                o->glass->disperses ? 1 : 0, exact_terms(e), &p);
+                                o->glass->disperses ? 1 : 0, exact_terms(e), ours, &p);
     if (st != SNELL_OK) return st;
     snell__glass_program_use(&p->g, v, o);
     snell__glass_program_bind(&p->g, "u_bvh", GL_TEXTURE_2D, ep->texture, 0);
@@ -232,6 +235,20 @@ static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v
     if (v->out == SNELL__OUT_DIR_FLOAT) return count_fallbacks(ctx, s, o, &stats->counters[0]);
     return SNELL_OK;
 }
+
+static snell_status exact_draw(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                               snell_object_stats *stats)
+{
+    return draw_with(ctx, state, v, o, stats, 0);
+}
+
+#if SNELL__BUILT_hybrid
+snell_status snell__exact_draw_ours(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
+                                    snell_object_stats *stats)
+{
+    return draw_with(ctx, state, v, o, stats, 1);
+}
+#endif
 
 static const char *const g_nodes_names[] = {"default", "f32", "q16"};
 static const char *const g_auto_names[] = {"default", "never", "allow"};

@@ -26,7 +26,8 @@
     M(wyman, WYMAN)        \
     M(oliveira, OLIVEIRA)  \
     M(peel, PEEL)          \
-    M(exact, EXACT)
+    M(exact, EXACT)        \
+    M(hybrid, HYBRID)
 
 /* SNELL__IF_<0|1>(x): x when built. Two levels so that SNELL__BUILT_<name>
  * expands to its value before it is pasted. */
