@@ -1,16 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* hybrid.c — the cubemap method where it trusts its answer, exact where it
- * doubts it, in one frame and without a read-back: the cubemap's pass
- * (hybrid.frag) leaves the doubted pixels without its depth, and exact's
- * pass, depth-tested, shades only those. Forward (and screen space on a
- * target whose depth the G-buffer did not share): the cubemap discards a
- * doubted pixel, exact's LESS passes only where nothing of the object was
- * written. Screen space on the renderer's own depth: the cubemap moves a
- * doubted pixel's depth to the near plane, exact's full-screen triangle
- * drawn just behind it passes only there (without the G-buffer's object
- * test, whose discard would turn early depth tests off: llvmpipe), and a
- * depth pass (hybrid_depth.frag) writes the G-buffer's depth back.
- * No stencil: a host's framebuffer may have none. */
+ * doubts it, in one frame, without a read-back or a stencil (a host's
+ * framebuffer may have none): the cubemap's pass (hybrid.frag) leaves the
+ * doubted pixels' depth apart and exact's pass, depth-tested, shades only
+ * those. Forward: the cubemap discards them, exact passes LESS. Screen
+ * space: their depth goes to the near plane, exact's full-screen triangle
+ * just behind it passes there only (no object test: its discard would turn
+ * early depth tests off), and hybrid_depth.frag writes the G-buffer's depth
+ * back. Design notes: docs/methods.md, "src/methods/hybrid.c". */
 #include "frame/glass_program.h"
 #include "core/ctx.h"
 #include "core/gl.h"
