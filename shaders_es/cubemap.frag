@@ -256,9 +256,5 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
 #endif
     vec3 reflected = snell_reflection(world_pos, r);
     exit_dir = dir;
-    vec3 c = mix(transmitted, reflected, fresnel);
-#ifdef SNELL_DOUBT_MODE
-    c = snell_doubt(c, world_pos, p, dir); // hybrid.frag
-#endif
-    return c;
+    return mix(transmitted, reflected, fresnel);
 }

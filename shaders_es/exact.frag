@@ -47,6 +47,24 @@ uniform vec2 u_pixel_to_ndc;     // 2 / target size in pixels
 // traces: its discard is then outside the loop over the channels.
 highp vec3 g_world_pos, g_world_normal;
 
+#ifdef SNELL_SCREEN_OURS
+// The hybrid's pass (methods/hybrid.c): its depth test alone passes only
+// this object's doubted pixels, so the G-buffer is read as surface.glsl
+// reads it but without the object test, whose discard would turn early
+// depth tests off (llvmpipe).
+void snell_surface_ours(out highp vec3 pos, out highp vec3 normal)
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    highp uvec4 b = uvec4(texelFetch(u_gdepth_id, px, 0) * 255.0 + 0.5);
+    highp float depth = float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+    highp vec4 w = u_inv_view_proj * vec4(gl_FragCoord.xy * u_inv_size * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    highp vec4 g = texelFetch(u_gnormal, px, 0);
+    pos = w.xyz / w.w;
+    normal = snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0);
+}
+#define snell_surface snell_surface_ours
+#endif
+
 #if SNELL_EXACT_TERMS
 // What exact_terms_walk leaves for the colour: the chain's entries after the
 // first (a tint each), and with SNELL_EXACT_INNER the split's Fresnel (0:

@@ -6,8 +6,7 @@
 // octahedral in 16+16 bits, RGBA8 with the depth in 24 bits and the object id
 // in 8), on a full-screen triangle at the far plane, scissored to the object,
 // that the depth test (GREATER) limits to covered pixels; pixels of other
-// objects are discarded (SNELL_SCREEN_OURS: the depth test alone limits it
-// to this object's, methods/hybrid.c; a discard turns early depth tests off).
+// objects are discarded.
 #ifdef SNELL_SCREEN_SPACE
 uniform highp sampler2D u_gnormal;   // octahedral 16+16 bits
 uniform highp sampler2D u_gdepth_id; // window depth 24 bits, object id 8 bits
@@ -19,9 +18,7 @@ void snell_surface(out highp vec3 pos, out highp vec3 normal)
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
     highp uvec4 b = uvec4(texelFetch(u_gdepth_id, px, 0) * 255.0 + 0.5);
-#ifndef SNELL_SCREEN_OURS
     if (int(b.a) != u_gid) discard;
-#endif
     highp float depth = float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
     highp vec4 ndc = vec4(gl_FragCoord.xy * u_inv_size * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     highp vec4 w = u_inv_view_proj * ndc;

@@ -92,7 +92,9 @@ static snell_status build_prog(snell_ctx *ctx, snell__output_kind out, const pro
     loc->inner_radius = glGetUniformLocation(p->g.prog, "u_inner_radius");
     loc->max_interfaces = glGetUniformLocation(p->g.prog, "u_max_interfaces");
     loc->texel_angle = glGetUniformLocation(p->g.prog, "u_texel_angle");
+#if SNELL__BUILT_hybrid
     loc->doubt = glGetUniformLocation(p->g.prog, "u_doubt");
+#endif
     return SNELL_OK;
 }
 
@@ -247,7 +249,11 @@ static snell_status draw_search(snell_ctx *ctx, void *state, const snell__view *
     /* A texel is 2/N wide in face coordinates; it subtends 2/N rad at a face
      * centre and sqrt(2)/3 * 2/N at a corner: the smaller is the stop bound. */
     glUniform1f(loc->texel_angle, (float)(2.0 * sqrt(2.0) / 3.0) / (float)c->face_size);
+#if SNELL__BUILT_hybrid
     if (doubt) glUniform1f(loc->doubt, threshold * cp->cube.radius);
+#else
+    (void)threshold;
+#endif
     /* Back faces are culled on closed meshes (snell__draw_surface). A depth
      * pre-pass would do the same for any mesh but cost more than it saved: it
      * doubles the triangle setup, which dominates on llvmpipe for the

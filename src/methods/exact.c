@@ -187,7 +187,7 @@ static int exact_terms(const snell_exact_params *e)
 }
 
 /* ours: in screen space, every pixel the depth test passes is the object's
- * (SNELL_SCREEN_OURS, common/surface.glsl: the hybrid, methods/exact.h). */
+ * (SNELL_SCREEN_OURS in exact.frag: the hybrid, methods/exact.h). */
 static snell_status draw_with(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
                               snell_object_stats *stats, int ours)
 {

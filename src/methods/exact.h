@@ -9,7 +9,7 @@
 
 /* The exact method's draw (state its create()'s, o->prepared its prepared
  * resource); in screen space every pixel the depth test passes is taken
- * as the object's (SNELL_SCREEN_OURS, common/surface.glsl). */
+ * as the object's (SNELL_SCREEN_OURS in exact.frag). */
 snell_status snell__exact_draw_ours(snell_ctx *ctx, void *state, const snell__view *v, const snell__object *o,
                                     snell_object_stats *stats);
 
