@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """The hybrid's doubt mask against the cubemap's large errors, from a
 snell-bench --images directory (docs/methods.md, "hybrid"): for each scene,
-marked = the hybrid:refine=show image differs from the cubemap image drawn as
+marked = the hybrid:doubted=show image differs from the cubemap image drawn as
 the hybrid's cubemap pass (a pixel with any doubted sample); large = the
 cubemap's pixel off the reference (FULL, MATCHED) by more than T/255 in some
 channel; over the glass pixels (the cubemap error map's non-grey pixels).

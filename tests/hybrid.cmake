@@ -13,7 +13,7 @@ if(TARGET snell-render)
            -o ${CMAKE_CURRENT_BINARY_DIR}/cli_hybrid.png)
   set_tests_properties(cli_hybrid PROPERTIES LABELS "cli" PASS_REGULAR_EXPRESSION "stats: glass 0 \\([^)]*\\): method hybrid")
   # Clear failures (exit 2, the library's range message) for bad values.
-  foreach(bad "hybrid.doubt=0" "hybrid.doubt=1001" "hybrid.max_interfaces=9" "hybrid.refine=maybe")
+  foreach(bad "hybrid.doubt=0" "hybrid.doubt=1001" "hybrid.max_interfaces=9" "hybrid.doubted=maybe")
     string(MAKE_C_IDENTIFIER "cli_bad_hybrid_${bad}" name)
     add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DEXE=$<TARGET_FILE:snell-render>"
              "-DARGS=--mesh|sphere|--method|hybrid|--param|${bad}" -DCODE=2 "-DERR=snell-render: "

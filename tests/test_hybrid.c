@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* test_hybrid — SNELL_METHOD_HYBRID (issue 50 item 2): the cubemap's doubt
- * mask (hybrid.refine=show) marks the pixels where the cubemap's exit
+ * mask (hybrid.doubted=show) marks the pixels where the cubemap's exit
  * direction is wrong on a torus (surfaces hidden from the cube's centre)
  * and leaves a sphere's, where it is right, unmarked; the hybrid's image
  * is exact's on the marked pixels and the cubemap's on the others, in
@@ -38,11 +38,11 @@ static void render_dirs(snell_ctx *ctx, snell_frame_desc *fd, snell_glass *g, sn
 }
 
 static void render(snell_ctx *ctx, snell_renderer *r, snell_frame_desc *fd, snell_glass *g, snell_method m,
-                   snell_hybrid_refine refine, uint8_t *px)
+                   snell_hybrid_doubted doubted, uint8_t *px)
 {
     snell_frame_stats st;
     g->material.method = m;
-    g->material.hybrid.refine = refine;
+    g->material.hybrid.doubted = doubted;
     CHECK_OK_CTX(ctx, snell_render(r, fd, &st));
     CHECK(st.glass[0].method_used == m, "drawn with %s, not %s (%s)", snell_method_str(st.glass[0].method_used),
           snell_method_str(m), st.glass[0].reason);
@@ -76,10 +76,10 @@ static double check_shape(snell_ctx *ctx, snell_renderer *r, snell_env *env, sne
     g.material.cubemap.inner_fresnel = SNELL_INNER_FRESNEL_OFF;
     fd.camera.elevation = elevation;
     fd.camera.distance = 3.0f;
-    render(ctx, r, &fd, &g, SNELL_METHOD_CUBEMAP, SNELL_HYBRID_REFINE_DEFAULT, cube);
-    render(ctx, r, &fd, &g, SNELL_METHOD_EXACT, SNELL_HYBRID_REFINE_DEFAULT, exact);
-    render(ctx, r, &fd, &g, SNELL_METHOD_HYBRID, SNELL_HYBRID_REFINE_SHOW, show);
-    render(ctx, r, &fd, &g, SNELL_METHOD_HYBRID, SNELL_HYBRID_REFINE_EXACT, hybrid);
+    render(ctx, r, &fd, &g, SNELL_METHOD_CUBEMAP, SNELL_HYBRID_DOUBTED_DEFAULT, cube);
+    render(ctx, r, &fd, &g, SNELL_METHOD_EXACT, SNELL_HYBRID_DOUBTED_DEFAULT, exact);
+    render(ctx, r, &fd, &g, SNELL_METHOD_HYBRID, SNELL_HYBRID_DOUBTED_SHOW, show);
+    render(ctx, r, &fd, &g, SNELL_METHOD_HYBRID, SNELL_HYBRID_DOUBTED_EXACT, hybrid);
     render_dirs(ctx, &fd, &g, SNELL_METHOD_CUBEMAP, cube_dir);
     render_dirs(ctx, &fd, &g, SNELL_METHOD_EXACT, exact_dir);
     fd.glass_count = 0; /* the sky alone: the glass pixels are those any method changes */
@@ -155,8 +155,8 @@ static void check_mixed_shading(snell_ctx *ctx, snell_renderer *r, snell_env *en
     fd.camera.distance = 3.0f;
     g[0].material.cubemap.max_interfaces = 4;
     g[0].material.cubemap.inner_fresnel = SNELL_INNER_FRESNEL_OFF;
-    render(ctx, r, &fd, &g[0], SNELL_METHOD_CUBEMAP, SNELL_HYBRID_REFINE_DEFAULT, cube);
-    render(ctx, r, &fd, &g[0], SNELL_METHOD_EXACT, SNELL_HYBRID_REFINE_DEFAULT, exact);
+    render(ctx, r, &fd, &g[0], SNELL_METHOD_CUBEMAP, SNELL_HYBRID_DOUBTED_DEFAULT, cube);
+    render(ctx, r, &fd, &g[0], SNELL_METHOD_EXACT, SNELL_HYBRID_DOUBTED_DEFAULT, exact);
     g[0].material.method = SNELL_METHOD_HYBRID;
     CHECK_OK_CTX(ctx, snell_render(r, &fd, &st));
     CHECK_OK(snell_renderer_read_rgba(r, hybrid));
@@ -181,9 +181,9 @@ static void check_bad_params(void)
     m.hybrid.doubt = 1001;
     CHECK(snell_glass_defaults(&m, &out) == SNELL_E_INVALID_ARG, "hybrid.doubt = 1001 accepted");
     m.hybrid.doubt = 0;
-    CHECK(snell_glass_set_param(&m, SNELL_METHOD_HYBRID, "refine", "maybe") == SNELL_E_INVALID_ARG,
-          "hybrid.refine = maybe accepted");
-    CHECK_OK(snell_glass_set_param(&m, SNELL_METHOD_HYBRID, "refine", "show"));
+    CHECK(snell_glass_set_param(&m, SNELL_METHOD_HYBRID, "doubted", "maybe") == SNELL_E_INVALID_ARG,
+          "hybrid.doubted = maybe accepted");
+    CHECK_OK(snell_glass_set_param(&m, SNELL_METHOD_HYBRID, "doubted", "show"));
     CHECK_OK(snell_glass_defaults(&m, &out));
     CHECK(out.material.hybrid.doubt == SNELL_HYBRID_DEFAULT_DOUBT, "default doubt %d", out.material.hybrid.doubt);
 }

@@ -227,15 +227,15 @@ typedef struct snell_layered_params {
  * thousandths of its radius (hidden from its centre, or the search did not
  * converge), or the path did not leave the object within
  * hybrid.max_interfaces (total internal reflections past the cap). */
-typedef enum snell_hybrid_refine {
-    SNELL_HYBRID_REFINE_DEFAULT = 0, /* SNELL_HYBRID_REFINE_EXACT */
-    SNELL_HYBRID_REFINE_EXACT,       /* exact on the doubted pixels */
-    SNELL_HYBRID_REFINE_SHOW         /* the doubted pixels magenta, no exact pass (to see the mask) */
-} snell_hybrid_refine;
+typedef enum snell_hybrid_doubted {
+    SNELL_HYBRID_DOUBTED_DEFAULT = 0, /* SNELL_HYBRID_DOUBTED_EXACT */
+    SNELL_HYBRID_DOUBTED_EXACT,       /* exact on the doubted pixels */
+    SNELL_HYBRID_DOUBTED_SHOW         /* the doubted pixels magenta, no exact pass (to see the mask) */
+} snell_hybrid_doubted;
 
 typedef struct snell_hybrid_params {
     int doubt;                 /* threshold, thousandths of the cubemap's radius, 1..1000 (default 20) */
-    snell_hybrid_refine refine;
+    snell_hybrid_doubted doubted;
     int max_interfaces;        /* the cubemap pass's cap on surfaces per path, 1..8 (default 4); its
                                 * paths still inside at the cap are doubted */
 } snell_hybrid_params;

@@ -160,7 +160,7 @@ static snell_status hybrid_draw(snell_ctx *ctx, void *state, const snell__view *
     snell_status st;
     cheap.material.cubemap.max_interfaces = h->max_interfaces;
     c.glass = &cheap;
-    if (h->refine == SNELL_HYBRID_REFINE_SHOW)
+    if (h->doubted == SNELL_HYBRID_DOUBTED_SHOW)
         return snell__cubemap_draw_doubt(ctx, s->cube, v, &c, stats, SNELL__CUBEMAP_DOUBT_SHOW, threshold);
     if (o->screen_space == SNELL__SCREEN_SHARED_DEPTH) {
         /* the cubemap on the G-buffer, writing its depth, the doubted
@@ -186,7 +186,7 @@ static snell_status hybrid_draw(snell_ctx *ctx, void *state, const snell__view *
     return st;
 }
 
-static const char *const g_refine_names[] = {"default", "exact", "show"};
+static const char *const g_doubted_names[] = {"default", "exact", "show"};
 
 static const snell_param_info g_params[] = {
     {.name = "doubt",
@@ -199,10 +199,10 @@ static const snell_param_info g_params[] = {
      .help = "the cubemap pass's surfaces per path (its cubemap.max_interfaces); a path still inside after "
              "them is doubted",
      .min = 1, .max = SNELL_CUBEMAP_MAX_INTERFACES, .def = 4},
-    {.name = "refine",
-     .offset = offsetof(snell_glass_material, hybrid.refine),
+    {.name = "doubted",
+     .offset = offsetof(snell_glass_material, hybrid.doubted),
      .help = "what the doubted pixels get: exact, or show (magenta, no exact pass: the mask)",
-     .min = 0, .max = 2, .def = SNELL_HYBRID_REFINE_EXACT, .value_names = g_refine_names},
+     .min = 0, .max = 2, .def = SNELL_HYBRID_DOUBTED_EXACT, .value_names = g_doubted_names},
 };
 
 static const snell_method_info g_info = {
