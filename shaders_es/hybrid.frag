@@ -36,8 +36,6 @@ vec3 hybrid_exit(highp vec3 exit_p, inout highp vec3 dir)
     g_doubted = g_doubted || off > u_doubt || !leaves;
 #if SNELL_DOUBT_MODE == 1
     if (g_doubted) discard;
-#elif SNELL_DOUBT_MODE == 2
-    if (g_doubted) gl_FragDepth = 0.0;
 #endif
     return snell_disp_exit(exit_p, dir);
 }
@@ -46,6 +44,10 @@ void main()
 {
     highp vec3 exit_dir;
     vec3 color = snell_disp_trace(exit_dir);
+#if SNELL_DOUBT_MODE == 2
+    // written on every path: where it is not, a fragment's depth is undefined (GLSL ES 3.00 7.2)
+    gl_FragDepth = g_doubted ? 0.0 : gl_FragCoord.z;
+#endif
 #if SNELL_DOUBT_MODE == 3
     color = g_doubted ? vec3(1.0, 0.0, 1.0) : color;
 #endif
