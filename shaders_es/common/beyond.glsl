@@ -23,22 +23,24 @@ bool beyond_in_water = false; // set by snell_exit from the above
 #endif
 
 // What a ray from o along dir in the ambient medium sees past every object.
+// The helpers called in beyond_march's loop return at their end only (and
+// select rather than branch where they can): an early return leaves a
+// flag and a result that GPU compilers keep live through the whole loop.
 vec3 beyond_miss(highp vec3 o, highp vec3 dir)
 {
+    vec3 col = vec3(0.0);
+    bool seen = false;
 #ifdef SNELL_WATER
-    if (beyond_in_water) return water_under(o, dir);
-    vec3 col;
-    if (water_air(o, dir, col)) return col;
+    seen = water_seen(o, dir, beyond_in_water, col);
 #endif
 #ifdef SNELL_RECEIVER
-    vec3 lit;
-    if (receiver_seen(o, dir, lit)) return lit;
+    if (!seen) seen = receiver_seen(o, dir, col);
 #endif
 #ifdef SNELL_BACKDROP
-    vec3 host;
-    if (backdrop_seen(o, dir, host)) return host;
+    if (!seen) seen = backdrop_seen(o, dir, col);
 #endif
-    return snell_env(dir);
+    if (!seen) col = snell_env(dir);
+    return col;
 }
 
 #ifdef SNELL_BEYOND
@@ -48,6 +50,8 @@ vec3 beyond_miss(highp vec3 o, highp vec3 dir)
 #define BEYOND_BINARY 6           // more changes nothing visible (bench/notes/code.md, "beyond.glsl")
 #define BEYOND_OPAQUE_ID0 33        // SNELL__LAYERS_OPAQUE_ID0
 #define BEYOND_UNKNOWN (-2)
+#define BEYOND_PENDING 1            // beyond_march's state: a reflection waits for its look-up
+#define BEYOND_ENDING 2             // the march is over: the ray's end is looked up
 
 uniform highp sampler2DArray u_scene_layers; // slice 2k: normal; 2k + 1: depth 24 bits + id 8 bits
 uniform highp sampler2D u_scene_table;       // per id - 1: row 0 (ior, tint; ior 0 = opaque),
@@ -68,12 +72,10 @@ uniform highp vec2 u_scene_size;             // target size in pixels
 bool beyond_pixel(highp vec3 p, out ivec2 px)
 {
     highp vec4 c = u_scene_view_proj * vec4(p, 1.0);
-    px = ivec2(0);
-    if (c.w <= 0.0) return false;
     highp vec2 w = (c.xy / c.w * 0.5 + 0.5) * u_scene_size;
-    if (any(lessThan(w, vec2(0.0))) || any(greaterThanEqual(w, u_scene_size))) return false;
-    px = ivec2(w);
-    return true;
+    bool on = c.w > 0.0 && !(any(lessThan(w, vec2(0.0))) || any(greaterThanEqual(w, u_scene_size)));
+    px = on ? ivec2(w) : ivec2(0);
+    return on;
 }
 
 highp float beyond_depth(highp vec3 p)
@@ -86,7 +88,8 @@ highp float beyond_layer(ivec2 px, int k, out int id)
 {
     highp uvec4 b = uvec4(texelFetch(u_scene_layers, ivec3(px, 2 * k + 1), 0) * 255.0 + 0.5);
     id = int(b.a);
-    return id == 0 ? 2.0 : float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+    highp float d = float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
+    return id == 0 ? 2.0 : d;
 }
 
 // Layer ids: glass i + 1, opaque BEYOND_OPAQUE_ID0 + j, and thin walls with
@@ -117,11 +120,11 @@ bool beyond_thin(int id)
 int beyond_medium(highp vec3 p, int excl)
 {
     ivec2 px;
-    if (!beyond_pixel(p, px)) return BEYOND_UNKNOWN;
+    bool on = beyond_pixel(p, px);
     highp float z = beyond_depth(p);
     int cur = 0, outer = 0, thin = 0, n = 0;
     for (int k = 0; k < BEYOND_MAX_LAYERS; k++) {
-        if (k >= u_scene_layer_count) break;
+        if (!on || k >= u_scene_layer_count) break;
         int id;
         highp float d = beyond_layer(px, k, id);
         if (id == 0 || d >= z) break; // layers are sorted by depth; empty ones come last
@@ -139,16 +142,17 @@ int beyond_medium(highp vec3 p, int excl)
             cur = id;
         }
     }
-    if (n == u_scene_layer_count && u_scene_capped != 0) return BEYOND_UNKNOWN;
-    return cur | thin;
+    return !on || (n == u_scene_layer_count && u_scene_capped != 0) ? BEYOND_UNKNOWN : cur | thin;
 }
 
 float beyond_ior(int medium)
 {
+    float glass = beyond_table(max(medium, 1), 0).x;
+    float ior = medium > 0 ? glass : 1.0;
 #ifdef SNELL_WATER
-    if (medium == 0 && beyond_in_water) return u_water_ior;
+    ior = medium == 0 && beyond_in_water ? u_water_ior : ior;
 #endif
-    return medium > 0 ? beyond_table(medium, 0).x : 1.0;
+    return ior;
 }
 
 // The normal of object id's surface crossed between qa and qb: its layer
@@ -156,14 +160,15 @@ float beyond_ior(int medium)
 // has one (no bend).
 vec3 beyond_normal(highp vec3 qa, highp vec3 qb, int id, highp vec3 dir)
 {
-    for (int e = 0; e < 2; e++) {
+    ivec3 at = ivec3(0, 0, -1); // the normal's texel: none yet
+    for (int e = 0; e < 2 + (u_scene_layer_count >> 8); e++) { // a loop, not two copies (see beyond_march)
         highp vec3 q = e == 0 ? qb : qa;
         ivec2 px;
-        if (!beyond_pixel(q, px)) continue;
+        bool on = beyond_pixel(q, px);
         highp float z = beyond_depth(q), best = 4.0;
         int best_k = -1;
         for (int k = 0; k < BEYOND_MAX_LAYERS; k++) {
-            if (k >= u_scene_layer_count) break;
+            if (!on || k >= u_scene_layer_count) break;
             int lid;
             highp float d = beyond_layer(px, k, lid);
             if (lid == 0) break;
@@ -173,11 +178,13 @@ vec3 beyond_normal(highp vec3 qa, highp vec3 qb, int id, highp vec3 dir)
             }
         }
         if (best_k >= 0) {
-            highp vec4 g = texelFetch(u_scene_layers, ivec3(px, 2 * best_k), 0);
-            return normalize(snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0));
+            at = ivec3(px, 2 * best_k);
+            break;
         }
     }
-    return -dir;
+    highp vec4 g = texelFetch(u_scene_layers, max(at, ivec3(0)), 0);
+    vec3 n = normalize(snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0));
+    return at.z >= 0 ? n : -dir;
 }
 
 // The next stretch of o + t dir with t > t0 inside the bounding sphere (grown
@@ -253,19 +260,35 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
     int left = 0; // the object the ray last left: not re-entered (see the header)
     highp vec3 o = p;
     highp float t0 = 0.0;
-    highp float water_t = 3.0e38; // in the air: how far from o the water or the container is met
-#ifdef SNELL_WATER
-    highp vec3 water_n = vec3(0.0, 1.0, 0.0);
-    int water_what = -1;
-#endif
+    // What the ray sees past every object is looked up in one place, the top
+    // of a round (GPU compilers inline each call site, and beyond_miss holds
+    // the water's and the receiver's look-ups): first a reflection met on the
+    // way (from miss_o along miss_d, weighted miss_w; BEYOND_PENDING), then,
+    // once the march is over (BEYOND_ENDING), the ray's own end.
+    highp vec3 miss_o = p, miss_d = dir;
+    vec3 miss_w = vec3(0.0);
+    int state = 0;
     // each round crosses a surface (at most BEYOND_MAX_INTERFACES) or passes
-    // one object's bounding sphere
-    for (int round = 0; round < BEYOND_MAX_INTERFACES + 32; round++) {
+    // one object's bounding sphere; the last two look up what remains
+    for (int round = 0; round < BEYOND_MAX_INTERFACES + 34; round++) {
+        if (round == BEYOND_MAX_INTERFACES + 32) state |= BEYOND_ENDING;
+        bool last = state == BEYOND_ENDING;
+        miss_o = last ? o : miss_o;
+        miss_d = last ? dir : miss_d;
+        miss_w = last ? thr : miss_w;
+        if (state != 0) radiance += miss_w * beyond_miss(miss_o, miss_d);
+        if (last) break;
+        state &= BEYOND_ENDING;
+        if (state != 0) continue; // the reflection is in: the end next round
         highp float ta, tb, step;
         int inside = medium & 255; // the glass object the ray is in, 0 air
+        highp float water_t = 3.0e38; // in the air: how far from o the water or the container is met
 #ifdef SNELL_WATER
-        // once per start o (t0 > 0: the same o, on past an object's sphere)
-        if (inside == 0 && !beyond_in_water && t0 == 0.0) {
+        // found each round (past an object's sphere, t0 > 0, the same again):
+        // a value kept from round to round is live through the whole loop
+        highp vec3 water_n = vec3(0.0, 1.0, 0.0);
+        int water_what = -1;
+        if (inside == 0 && !beyond_in_water) {
             water_what = water_air_hit(o, dir, water_t, water_n);
             if (water_what < 0) water_t = 3.0e38;
         }
@@ -276,7 +299,10 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
             tb = beyond_inside_stretch(inside, o, dir, step);
         } else if (!beyond_stretch(o, dir, t0, ta, tb, step)) {
             to_water = water_t < 3.0e38;
-            if (!to_water) break;
+            if (!to_water) {
+                state = BEYOND_ENDING;
+                continue;
+            }
         } else if (ta > water_t) {
             to_water = true;
         }
@@ -300,26 +326,31 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
             ia = t;
             if (t >= tb) break;
         }
-        if (unknown) break;
+        if (unknown) {
+            state = BEYOND_ENDING;
+            continue;
+        }
         if (inside == 0 && (to_water || (ib < 0.0 ? tb : ib) > water_t)) {
 #ifdef SNELL_WATER
             // the water (or the container) comes first: a face ends the
-            // ray; at the surface it is refracted into the water and goes on
-            // there (the reflected part from the walls and the sky)
+            // ray (beyond_miss finds it again); at the surface it is
+            // refracted into the water and goes on there (the reflected part
+            // from the walls and the sky)
+            if (water_what != WATER_SURFACE) {
+                state = BEYOND_ENDING;
+                continue;
+            }
             highp vec3 q = o + water_t * dir;
-            if (water_what != WATER_SURFACE) return radiance + thr * (water_what == WATER_IN ? water_under(o, dir)
-                                                                                              : water_tile(water_what, q));
             highp vec3 wn = dot(water_n, dir) > 0.0 ? -water_n : water_n, wt;
-            float wf = snell_fresnel_schlick(-dot(dir, wn), 1.0, u_water_ior);
+            float wf = snell_fresnel_schlick_sel(-dot(dir, wn), 1.0, u_water_ior);
             radiance += thr * wf * water_walls_above(q, snell_reflect(dir, wn));
             thr *= 1.0 - wf;
-            snell_refract(dir, wn, 1.0 / u_water_ior, wt);
+            snell_refract_sel(dir, wn, 1.0 / u_water_ior, wt);
             dir = normalize(wt);
             o = q;
             t0 = 0.0;
-            water_t = 3.0e38;
             beyond_in_water = true;
-            if (++crossed >= BEYOND_MAX_INTERFACES) break;
+            if (++crossed >= BEYOND_MAX_INTERFACES) state = BEYOND_ENDING;
             continue;
 #endif
         }
@@ -336,7 +367,9 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
             }
             continue;
         }
-        for (int s = 0; s < BEYOND_BINARY; s++) {
+        // the count is not a constant to the compiler, so that it keeps the
+        // loop (unrolled, each step is a copy of beyond_medium's layer walk)
+        for (int s = 0; s < BEYOND_BINARY + (u_scene_layer_count >> 8); s++) {
             highp float tm = 0.5 * (ia + ib);
             int m = beyond_medium(o + tm * dir, left);
             if (m == medium) {
@@ -375,7 +408,10 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
                 vec4 w0 = beyond_table(wall, 0), w1 = beyond_table(wall, 1);
                 snell_thin_slab(dot(nw, dir), w0.x, w1.rgb, w1.w, rs, ts);
                 if (dot(nw, dir) > 0.0) nw = -nw;
-                radiance += thr * rs * beyond_miss(qb, snell_reflect(dir, nw));
+                miss_o = qb;
+                miss_d = snell_reflect(dir, nw);
+                miss_w = thr * rs;
+                state = BEYOND_PENDING;
                 thr *= ts * w0.yzw;
             }
             // the whole object is one slab (the single kernel's thin walls,
@@ -383,9 +419,12 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
             o = qb;
             if (wall > 0) left = wall;
             medium = beyond_medium(o, left);
-            if (medium == BEYOND_UNKNOWN) break;
+            if (medium == BEYOND_UNKNOWN) {
+                state |= BEYOND_ENDING;
+                continue;
+            }
             t0 = 0.0;
-            if (++crossed >= BEYOND_MAX_INTERFACES) break;
+            if (++crossed >= BEYOND_MAX_INTERFACES) state |= BEYOND_ENDING;
             continue;
         }
         vec3 n = beyond_normal(qa, qb, entered > 0 ? entered : inside, dir);
@@ -403,12 +442,15 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
         if (dot(n, dir) > 0.0) n = -n; // face the ray
         float n1 = beyond_ior(inside), n2 = beyond_ior(entered);
         vec3 out_dir;
-        bool through = snell_refract(dir, n, n1 / n2, out_dir);
+        bool through = snell_refract_sel(dir, n, n1 / n2, out_dir);
         if (inside == 0) {
             // an entry from air: its reflection, and the tint
-            float f = snell_fresnel(-dot(dir, n), n1, n2);
+            float f = snell_fresnel_sel(-dot(dir, n), n1, n2);
             // one texture level (no mipmaps): the look-up needs no derivatives here
-            radiance += thr * f * beyond_miss(qb, snell_reflect(dir, n));
+            miss_o = qb;
+            miss_d = snell_reflect(dir, n);
+            miss_w = thr * f;
+            state = BEYOND_PENDING;
             thr *= (1.0 - f) * beyond_table(entered, 0).yzw;
         }
         dir = normalize(out_dir);
@@ -420,9 +462,9 @@ vec3 beyond_march(highp vec3 p, inout highp vec3 dir, bool exit_of_self)
             o = qa; // TIR: from the last point inside
         }
         t0 = 0.0;
-        if (++crossed >= BEYOND_MAX_INTERFACES) break; // the cap: leaves in its direction
+        if (++crossed >= BEYOND_MAX_INTERFACES) state |= BEYOND_ENDING; // the cap: leaves in its direction
     }
-    return radiance + thr * beyond_miss(o, dir);
+    return radiance;
 }
 
 vec3 snell_exit(highp vec3 p, inout highp vec3 dir)

@@ -94,6 +94,20 @@ bool snell_refract_sel(vec3 i, vec3 n, float eta, out vec3 t)
     return !(k < 0.0);
 }
 
+float snell_fresnel_schlick_sel(float cos_i, float n1, float n2)
+{
+    float r0 = (n1 - n2) / (n1 + n2);
+    float c = abs(cos_i);
+    r0 *= r0;
+    float eta = n1 / n2;
+    float sin2_t = eta * eta * (1.0 - c * c);
+    float ct = sqrt(1.0 - sin2_t);
+    c = n1 > n2 ? ct : c;
+    float m = 1.0 - c;
+    float f = r0 + (1.0 - r0) * m * m * m * m * m;
+    return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
+}
+
 float snell_fresnel_sel(float cos_i, float n1, float n2)
 {
 #if SNELL_FRESNEL_EXACT
@@ -106,16 +120,7 @@ float snell_fresnel_sel(float cos_i, float n1, float n2)
     float f = 0.5 * (rs * rs + rp * rp);
     return n1 == n2 ? 0.0 : sin2_t >= 1.0 ? 1.0 : f;
 #else
-    float r0 = (n1 - n2) / (n1 + n2);
-    float c = abs(cos_i);
-    r0 *= r0;
-    float eta = n1 / n2;
-    float sin2_t = eta * eta * (1.0 - c * c);
-    float ct = sqrt(1.0 - sin2_t);
-    c = n1 > n2 ? ct : c;
-    float m = 1.0 - c;
-    float f = r0 + (1.0 - r0) * m * m * m * m * m;
-    return n1 == n2 ? 0.0 : n1 > n2 && sin2_t >= 1.0 ? 1.0 : f;
+    return snell_fresnel_schlick_sel(cos_i, n1, n2);
 #endif
 }
 
@@ -144,3 +149,4 @@ void snell_thin_slab(float cos_i, float ior, vec3 sigma, float thickness, out ve
     rs = r + (1.0 - r) * (1.0 - r) * r * ti * ti / d;
     ts = (1.0 - r) * (1.0 - r) * ti / d;
 }
+

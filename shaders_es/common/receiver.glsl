@@ -32,11 +32,11 @@ vec3 receiver_irradiance(highp vec2 uv)
 // meets the square from above, false elsewhere (the plane has no underside).
 bool receiver_seen(highp vec3 o, highp vec3 dir, out vec3 col)
 {
-    col = vec3(0.0);
-    if (u_plane.w <= 0.0 || dir.y >= 0.0 || o.y <= u_plane.x) return false;
     highp vec2 xz = o.xz + dir.xz * ((u_plane.x - o.y) / dir.y);
     highp vec2 uv = (xz - u_plane.yz) / u_plane.w;
-    if (any(greaterThan(abs(uv), vec2(1.0)))) return false;
-    col = u_plane_albedo * receiver_irradiance(uv * 0.5 + 0.5);
-    return true;
+    // at the end only (common/beyond.glsl, beyond_miss)
+    bool seen = !(u_plane.w <= 0.0 || dir.y >= 0.0 || o.y <= u_plane.x) && !any(greaterThan(abs(uv), vec2(1.0)));
+    col = vec3(0.0);
+    if (seen) col = u_plane_albedo * receiver_irradiance(uv * 0.5 + 0.5);
+    return seen;
 }

@@ -3,8 +3,8 @@
 // twin of src/ref/ref_water.c), included by beyond.glsl under SNELL_WATER.
 // World space as snell_water.h. water_under (a ray in the water: floor or wall,
 // Beer-Lambert), water_walls_above (a ray leaving the surface upwards),
-// water_air_hit (what a ray in the air meets first), water_air (the same,
-// shaded). What each does: docs/ARCHITECTURE.md, "Design notes by file".
+// water_air_hit (what a ray in the air meets first), water_seen (what a ray
+// sees of them). What each does: docs/ARCHITECTURE.md, "Design notes by file".
 #include "common/water_tiles.glsl"
 
 uniform highp float u_water_rim;       // top of the walls above the rest level
@@ -91,13 +91,14 @@ vec3 water_under(highp vec3 p, highp vec3 t)
 
 vec3 water_walls_above(highp vec3 p, highp vec3 r)
 {
-    if (r.y > 0.0) {
-        int face;
-        highp float e = water_box_exit(p, r, face); // no floor for a rising ray
-        highp vec3 q = p + e * r;
-        if (face != 0 && q.y <= u_water_rim) return water_tile(face, q);
-    }
-    return snell_env(r);
+    int face;
+    highp float e = water_box_exit(p, r, face); // no floor for a rising ray
+    highp vec3 q = p + e * r;
+    bool wall = r.y > 0.0 && face != 0 && q.y <= u_water_rim;
+    vec3 c;
+    if (wall) c = water_tile(face, q);
+    else c = snell_env(r);
+    return c; // at the end only (beyond.glsl, beyond_miss)
 }
 
 // The height field at world (x, z) inside the container, bilinear in its cell.
@@ -130,16 +131,6 @@ highp vec3 water_node_normal(ivec2 q)
     return vec3(-dhdx, 1.0, -dhdz);
 }
 
-// The surface shaded for a ray in direction v meeting it at p with unit normal n.
-vec3 water_shade(highp vec3 p, highp vec3 v, highp vec3 n)
-{
-    if (dot(n, v) > 0.0) n = -n;
-    highp vec3 t;
-    snell_refract(v, n, 1.0 / u_water_ior, t);
-    float f = snell_fresnel_schlick(-dot(v, n), 1.0, u_water_ior);
-    return mix(water_under(p, normalize(t)), water_walls_above(p, snell_reflect(v, n)), f);
-}
-
 // What a ray in the air from o along unit d meets first: -1
 // nothing, WATER_IN (it starts in the water), a face of the container
 // (0..4) or WATER_SURFACE, at distance dist (the surface: unit normal n).
@@ -150,13 +141,10 @@ int water_air_hit(highp vec3 o, highp vec3 d, out highp float dist, out highp ve
     dist = 3.0e38;
     n = vec3(0.0, 1.0, 0.0);
     // a ray leaving a glass object under the water is in the water (refracted as into air by the kernel)
-    if (water_contains(o)) {
-        dist = 0.0;
-        return WATER_IN;
-    }
+    bool in_water = water_contains(o);
     int what = -1;
     // the container's faces: the floor and the four walls up to the rim, either side
-    if (d.y != 0.0) {
+    if (!in_water && d.y != 0.0) {
         highp float s = (-u_water_depth - o.y) / d.y;
         highp vec3 q = o + s * d;
         if (s > 0.0 && s < dist && abs(q.x) <= u_water_half && abs(q.z) <= u_water_half) {
@@ -166,7 +154,7 @@ int water_air_hit(highp vec3 o, highp vec3 d, out highp float dist, out highp ve
     }
     for (int k = 0; k < 4; k++) {
         highp float dk = k < 2 ? d.x : d.z, ok = k < 2 ? o.x : o.z;
-        if (dk == 0.0) continue;
+        if (in_water || dk == 0.0) continue;
         highp float s = ((k % 2 == 0 ? -u_water_half : u_water_half) - ok) / dk;
         highp vec3 q = o + s * d;
         highp float other = k < 2 ? q.z : q.x;
@@ -176,7 +164,7 @@ int water_air_hit(highp vec3 o, highp vec3 d, out highp float dist, out highp ve
         }
     }
     // the surface, from above: the rest plane, refined by the heights
-    if (d.y < 0.0) {
+    if (!in_water && d.y < 0.0) {
         highp vec2 cell;
         ivec2 c0;
         highp float s = -o.y / d.y;
@@ -191,17 +179,35 @@ int water_air_hit(highp vec3 o, highp vec3 d, out highp float dist, out highp ve
             what = WATER_SURFACE;
         }
     }
-    return what;
+    dist = in_water ? 0.0 : dist;
+    return in_water ? WATER_IN : what; // at the end only (beyond.glsl, beyond_miss)
 }
 
-// The same, shaded: true with the radiance along the ray in col.
-bool water_air(highp vec3 o, highp vec3 d, out vec3 col)
+// What a ray from o along unit d sees of the water and its container, in
+// col: false where it meets neither. in_water: o lies in the water. A ray in
+// the water, one starting in it and one refracted into it at the surface
+// share one look-up of the water's inside (water_under): GPU compilers
+// inline every call, so each call site is a copy of the code.
+bool water_seen(highp vec3 o, highp vec3 d, bool in_water, out vec3 col)
 {
-    highp float dist;
-    highp vec3 n;
-    int what = water_air_hit(o, d, dist, n);
-    col = what < 0 ? vec3(0.0)
-        : what == WATER_IN ? water_under(o, d)
-        : what == WATER_SURFACE ? water_shade(o + dist * d, d, n) : water_tile(what, o + dist * d);
-    return what >= 0;
+    highp vec3 uo = o, ud = d;
+    vec3 above = vec3(0.0);
+    float f = 0.0;
+    highp float dist = 0.0;
+    highp vec3 n = vec3(0.0, 1.0, 0.0);
+    int what = WATER_IN;
+    if (!in_water) what = water_air_hit(o, d, dist, n);
+    if (what == WATER_SURFACE) {
+        // reflected off the surface, refracted into the water
+        uo = o + dist * d;
+        n = dot(n, d) > 0.0 ? -n : n;
+        highp vec3 t;
+        snell_refract_sel(d, n, 1.0 / u_water_ior, t);
+        f = snell_fresnel_schlick_sel(-dot(d, n), 1.0, u_water_ior);
+        above = water_walls_above(uo, snell_reflect(d, n));
+        ud = normalize(t);
+    }
+    if (what == WATER_IN || what == WATER_SURFACE) col = mix(water_under(uo, ud), above, f);
+    else col = water_tile(max(what, 0), o + dist * d);
+    return what >= 0; // at the end only (beyond.glsl, beyond_miss)
 }
