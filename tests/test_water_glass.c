@@ -18,7 +18,7 @@
  * - every kernel (single, cubemap, wyman, oliveira, peel, exact) sees the
  *   water and is seen through it, within its own model's error.
  * Both with the water simulated on the CPU and on the GPU. Writes
- * water_glass_{cpu,gpu}_{gpu,ref,nolayers}.png. */
+ * water_glass_{cpu,gpu}_{gpu,ref,nolayers}.png and water_glass_cpu_METHOD.png. */
 #include "snell/snell_metrics.h"
 #include "snell/snell_water.h"
 #include "test_util.h"
@@ -180,6 +180,8 @@ static void water_case(snell_ctx *ctx, const snell_env *env, snell_water_sim sim
             render(ctx, &fd, gpu, &fs);
             e = error(gpu, ref, mask);
             printf("%s, %s: glass class %.2f dB\n", name, info->name, e.psnr_db);
+            snprintf(path, sizeof path, "%s_%s.png", name, info->name);
+            snell_write_png(test_out(path), W, H, gpu);
             CHECK(fs.glass[0].method_used == info->method && fs.glass[0].sees_water && fs.water_layers,
                   "%s drew the glass and sees the water", info->name);
             /* Measured: single 12.67 dB (one surface: its exit ray leaves the
