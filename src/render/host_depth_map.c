@@ -83,7 +83,7 @@ static void draw(const snell__depth_map *m, int back, unsigned tex, const int re
 }
 
 snell_status snell__depth_map_in(snell_ctx *ctx, snell__depth_map *m, unsigned host_fbo, const int rect[4],
-                                 unsigned copy_fbo, unsigned copy_depth)
+                                 unsigned copy_fbo)
 {
     /* Snell's far plane is 1; the host's is where its depth runs to: 0 reversed. */
     const float far_[2] = {m->map[0] < 0.0 ? 0.0f : 1.0f, 1.0f};
@@ -107,7 +107,6 @@ snell_status snell__depth_map_in(snell_ctx *ctx, snell__depth_map *m, unsigned h
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m->before_fbo);
     glBlitFramebuffer(0, 0, rect[2], rect[3], 0, 0, rect[2], rect[3], GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, copy_fbo);
-    (void)copy_depth;
     return glGetError() == GL_NO_ERROR ? SNELL_OK
                                        : snell__fail(ctx, SNELL_E_GL, "snell_render: mapping the host's depth failed");
 }

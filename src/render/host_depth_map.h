@@ -18,10 +18,10 @@ typedef struct snell__depth_map {
 } snell__depth_map;
 
 /* Before the frame: the host framebuffer host_fbo's depth in rect (x, y, w,
- * h) into copy_fbo's depth texture copy_depth (DEPTH_COMPONENT32F, w x h),
- * mapped; copy_fbo stays bound. */
+ * h) into copy_fbo's depth (DEPTH_COMPONENT32F, w x h), mapped; copy_fbo
+ * stays bound. */
 snell_status snell__depth_map_in(snell_ctx *ctx, snell__depth_map *m, unsigned host_fbo, const int rect[4],
-                                 unsigned copy_fbo, unsigned copy_depth);
+                                 unsigned copy_fbo);
 /* After it: where copy_depth changed, its depth mapped back into the host's. */
 snell_status snell__depth_map_back(snell_ctx *ctx, snell__depth_map *m, unsigned host_fbo, const int rect[4],
                                    unsigned copy_depth);

@@ -155,7 +155,7 @@ static snell_status redirect(snell_ctx *ctx, snell__host_target *t)
     }
     copy_blit(t, 1);
     t->copied = 1;
-    return t->mapped ? snell__depth_map_in(ctx, &t->map, t->fbo, v, t->copy_fbo, t->copy_depth) : SNELL_OK;
+    return t->mapped ? snell__depth_map_in(ctx, &t->map, t->fbo, v, t->copy_fbo) : SNELL_OK;
 }
 
 snell_status snell__host_target_begin(snell_ctx *ctx, snell__host_target *t, int width, int height,
