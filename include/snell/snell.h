@@ -473,6 +473,7 @@ typedef enum snell_method {
 
 /* Each method's parameters (snell_cubemap_params, ...): snell_methods.h. */
 #include "snell_methods.h"
+#include "snell_panels.h"
 
 /* How a kernel renders a dispersive material (snell_glass_material.dispersion > 0).
  * SNELL_METHOD_EXACT always traces per channel (its traversal finds each
@@ -885,6 +886,12 @@ typedef struct snell_frame_desc {
     /* What the frame does with the target's depth buffer (snell_depth_mode). */
     snell_depth_mode depth;
     const snell_backdrop *backdrop; /* the host's scene behind the glass; NULL = none */
+    /* Glass panels over the frame, drawn last, in this order (snell_panels.h);
+     * NULL or 0 = none. A frame of panels only needs no environment (env
+     * NULL with no glass, opaque objects or water and draw_background NONE). */
+    const snell_panel *panels;
+    int panel_count;                /* 0..SNELL_MAX_PANELS */
+    const snell_panels_under *panels_under; /* what lies beneath them; NULL = the frame's rectangle as drawn */
 } snell_frame_desc;
 
 #define SNELL_MAX_SCENE_LAYERS 8
@@ -995,6 +1002,12 @@ typedef struct snell_frame_stats {
      * frames averaged in the image read back, 1 after a restart */
     int refine_samples;
     char refine_reason[SNELL_REASON_SIZE]; /* what the last change was, or why nothing is refined */
+    /* Glass panels (snell_frame_desc.panels; all 0 without): */
+    int panels_drawn;               /* shapes drawn (a merged group counts once; culled ones do not) */
+    int panels_captures;            /* copies of what lies beneath made this frame: 1, more where a panel
+                                     * lies over one drawn before it */
+    unsigned panels_dropped;        /* SNELL_PANELS_DROPPED_* bits: what the budget took away */
+    char panels_reason[SNELL_REASON_SIZE]; /* what lay beneath, what was dropped and why */
 } snell_frame_stats;
 
 /* ------------------------------------------------------------ scene files */

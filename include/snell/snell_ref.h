@@ -282,6 +282,17 @@ typedef struct snell_ref_backdrop {
  * Not while a render runs. */
 snell_status snell_ref_set_backdrop(snell_ref *ref, const snell_ref_backdrop *backdrop);
 
+/* ------------------------------------------------------------ glass panels */
+/* The panels of snell_panels.h's model drawn over an image in double
+ * precision, each pixel the mean of samples x samples rays on a regular grid
+ * within it (0 = 8): under and out are width x height RGBA8, bottom row
+ * first (as glReadPixels reads them); what lies beneath is read from under's
+ * stored values as the GPU reads an RGBA8 texture (bilinear, edges clamped;
+ * frost: a Gaussian of sigma frost pixels, cut at 3 sigma). out may not be
+ * under. SNELL_E_INVALID_ARG for what snell_render refuses in the panels. */
+snell_status snell_ref_panels(const snell_panel *panels, int count, const uint8_t *under, int width, int height,
+                              int samples, uint8_t *out);
+
 /* ---------------------------------------------------- light path (Unger 4.2.2) */
 typedef enum snell_ref_event {
     SNELL_REF_EVENT_EYE = 0,   /* points[0]: the ray origin (camera) */
