@@ -60,7 +60,7 @@ typedef struct snell_panel {
                                      * exponent with the radius of half the shorter side */
     float thickness;                /* of the slab, pixels; 0 = bevel */
     float bevel;                    /* width of the bevelled edge, pixels; 0 = min(24, half the shorter side);
-                                     * clamped to half the shorter side */
+                                     * clamped to half the shorter side; < 0 = none (a flat pane) */
     snell_panel_bevel bevel_profile;
     float ior;                      /* 1..3; 0 = 1.5 */
     float dispersion;               /* KHR_materials_dispersion: 20 / Abbe number, 0..20; 0 = none */
@@ -69,8 +69,8 @@ typedef struct snell_panel {
     float rim;                      /* strength of the reflected light, 0..16; 0 = 1; < 0 = none */
     float light[3];                 /* direction towards the light (normalised by snell); all 0 =
                                      * (-0.5, 0.5, 0.707): from the top-left */
-    float shadow[4];                /* radius (pixels), opacity 0..1, offset x, offset y; all 0 =
-                                     * (16, 0.2, 0, -4); radius < 0 = none */
+    float shadow[4];                /* radius (pixels; 0 a hard edge), opacity 0..1, offset x, offset y;
+                                     * all 0 = (16, 0.2, 0, -4); radius < 0 = none */
     int group;                      /* 0: alone; panels with the same group > 0 merge into one shape (the
                                      * first of them gives the material), at most SNELL_PANEL_GROUP_MAX */
     float merge;                    /* the group's smoothing distance k, pixels; 0 = 16; < 0 = a plain union */
