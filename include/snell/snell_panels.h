@@ -72,7 +72,8 @@ typedef struct snell_panel {
     float shadow[4];                /* radius (pixels; 0 a hard edge), opacity 0..1, offset x, offset y;
                                      * all 0 = (16, 0.2, 0, -4); radius < 0 = none */
     int group;                      /* 0: alone; panels with the same group > 0 merge into one shape (the
-                                     * first of them gives the material), at most SNELL_PANEL_GROUP_MAX */
+                                     * first of them gives the material, its shadow and its place in the
+                                     * order), at most SNELL_PANEL_GROUP_MAX */
     float merge;                    /* the group's smoothing distance k, pixels; 0 = 16; < 0 = a plain union */
 } snell_panel;
 
