@@ -207,6 +207,32 @@ static void check_refine(snell_ctx *ctx)
     snell_renderer_destroy(r);
 }
 
+/* Glass panels: a frame of panels only (no environment) is drawn, or
+ * refused naming the option. */
+static void check_panels(snell_ctx *ctx)
+{
+    snell_renderer *r = NULL;
+    snell_panel p;
+    snell_frame_desc f;
+    snell_frame_stats st;
+    snell_status s;
+    memset(&p, 0, sizeof p);
+    memset(&f, 0, sizeof f);
+    p.center[0] = p.center[1] = 8.0f, p.size[0] = p.size[1] = 12.0f;
+    f.panels = &p, f.panel_count = 1, f.draw_background = SNELL_BACKGROUND_NONE;
+    CHECK_OK_CTX(ctx, snell_renderer_create(ctx, &(snell_renderer_desc){.width = 16, .height = 16}, &r));
+    if (!r) return;
+    s = snell_render(r, &f, &st);
+    if (snell_build_has("panels")) {
+        CHECK(s == SNELL_OK && strstr(st.stages, "panels") && st.panels_drawn == 1, "panels: %s, stages \"%s\"",
+              snell_last_error(ctx), st.stages);
+    } else {
+        check_unsupported("a frame with panels", s, ctx, "SNELL_WITH_PANELS");
+        CHECK(snell__shader_source("panel.frag") == NULL, "the panels' shaders left out");
+    }
+    snell_renderer_destroy(r);
+}
+
 int main(void)
 {
     snell_ctx *ctx = NULL;
@@ -226,6 +252,7 @@ int main(void)
     check_water(ctx);
     check_caustics(ctx);
     check_refine(ctx);
+    check_panels(ctx);
     snell_ctx_destroy(ctx);
     return test_finish();
 }

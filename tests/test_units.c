@@ -5,7 +5,9 @@
  * what GLES 3.0 guarantees (16 fragment samplers, 224 fragment uniform
  * vectors, counted without packing over both stages), read back from each
  * program after linking; a program that samples more textures than the
- * context has fails when it is built, naming them. */
+ * context has fails when it is built, naming them. The glass panels'
+ * programs too: over the frame with frost, over a texture, over an
+ * external one where the context has them. */
 #include "test_util.h"
 #include "core/ctx.h"
 #include "core/gl.h"
@@ -206,6 +208,42 @@ static void clear_dump(const char *dir)
     if (d) closedir(d);
 }
 
+/* Every program of the panels stage (render/panels_stage.c): each source
+ * of what lies beneath, with and without dispersion. */
+static void frames_panels(snell_ctx *ctx)
+{
+    snell_renderer *r = NULL;
+    snell_renderer_desc rd = {.width = W, .height = H};
+    snell_panel p[2];
+    snell_panels_under u;
+    snell_frame_desc fd;
+    GLuint tex[2];
+    int k;
+    memset(p, 0, sizeof p);
+    memset(&u, 0, sizeof u);
+    memset(&fd, 0, sizeof fd);
+    glGenTextures(2, tex);
+    glBindTexture(GL_TEXTURE_2D, tex[0]);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, 8, 8);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindTexture(GL_TEXTURE_EXTERNAL_OES, tex[1]); /* an external texture's name, nothing in it */
+    glBindTexture(GL_TEXTURE_EXTERNAL_OES, 0);
+    glGetError(); /* without the extension the bind fails: that source is not built */
+    /* apart, without shadows: no overlap, so a texture is read directly */
+    p[0].center[0] = p[0].center[1] = 10.0f, p[0].size[0] = p[0].size[1] = 8.0f, p[0].shadow[0] = -1.0f;
+    p[1] = p[0], p[1].center[0] = 36.0f, p[1].dispersion = 1.0f;
+    fd.draw_background = SNELL_BACKGROUND_NONE, fd.panels = p, fd.panel_count = 2, fd.panels_under = &u;
+    CHECK_OK(snell_renderer_create(ctx, &rd, &r));
+    for (k = 0; r && k < 3; k++) {
+        if (k == 2 && !snell_ctx_has_gl_extension(ctx, "GL_OES_EGL_image_external_essl3")) break;
+        u.source = (snell_panels_under_source)k, u.texture = tex[k == 2], u.draw = 1;
+        p[0].frost = k == 0 ? 2.0f : 0.0f;
+        CHECK(snell_render(r, &fd, NULL) == SNELL_OK, "panels over source %d: %s", k, snell_last_error(ctx));
+    }
+    snell_renderer_destroy(r);
+    glDeleteTextures(2, tex);
+}
+
 /* The profiles' limits beside the dumped sources, for glsl_check.py and
  * profile_tests.py: a line per profile, its name, its limits in snell_limit's
  * order, then the extensions it has. */
@@ -250,6 +288,7 @@ int main(void)
     frames_all(ctx, SNELL_SHADING_FORWARD, 0, 0);
     frames_all(ctx, SNELL_SHADING_SCREEN, 1, 0);
     frames_all(ctx, SNELL_SHADING_FORWARD, 0, 1);
+    frames_panels(ctx);
     printf("%d programs given units; most samplers %d (%s), most uniform vectors %d (%s)\n", ctx->census.programs,
            ctx->census.samplers, ctx->census.samplers_of, ctx->census.vectors, ctx->census.vectors_of);
     CHECK(ctx->census.programs >= 2 * snell_method_count(), "only %d programs counted", ctx->census.programs);

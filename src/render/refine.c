@@ -74,7 +74,7 @@ static void keys(const snell__frame *f, uint64_t k[CAUSES])
     }
     MIX(k[CAUSE_SCENE], fd->opaque_count);
     MIX(k[CAUSE_ENV], fd->env);
-    MIX(k[CAUSE_ENV], fd->env->texture);
+    if (fd->env) MIX(k[CAUSE_ENV], fd->env->texture); /* NULL in a frame of panels only */
     if (b) {
         MIX(k[CAUSE_BACKDROP], b->source);
         MIX(k[CAUSE_BACKDROP], b->color_texture);

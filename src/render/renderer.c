@@ -274,11 +274,19 @@ static snell_status validate_frame(snell_renderer *r, const snell_frame_desc *fd
     if (fd->env && fd->env->ctx && fd->env->ctx->destroyed)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG,
                            "the frame's environment went with its context (snell_ctx_destroy): create it again");
-    if (!fd->env || !fd->env->texture)
+#if !SNELL_WITH_PANELS
+    if (fd->panel_count)
+        return snell__fail(r->ctx, SNELL_E_UNSUPPORTED, "panels: built without SNELL_WITH_PANELS");
+#endif
+    /* A frame of panels only (snell_frame_desc.panels) looks up no environment. */
+    if (!fd->env && !(fd->panel_count > 0 && fd->glass_count == 0 && fd->opaque_count == 0 && !fd->water &&
+                      fd->draw_background == SNELL_BACKGROUND_NONE))
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "frame needs an environment created with a context");
-    if (fd->env->ctx && fd->env->ctx != r->ctx)
+    if (fd->env && !fd->env->texture)
+        return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "frame needs an environment created with a context");
+    if (fd->env && fd->env->ctx && fd->env->ctx != r->ctx)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "the environment belongs to another context");
-    if (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048)
+    if ((fd->env || fd->dynamic_env_size) && (fd->dynamic_env_size < 16 || fd->dynamic_env_size > 2048))
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "dynamic_env_size %d outside 16..2048", fd->dynamic_env_size);
     if ((unsigned)fd->depth > SNELL_DEPTH_TEST_NO_WRITE)
         return snell__fail(r->ctx, SNELL_E_INVALID_ARG, "depth %d is not a snell_depth_mode", (int)fd->depth);

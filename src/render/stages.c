@@ -4,8 +4,9 @@
  * the glass set-up's dynamic environments light the opaque objects with) ->
  * glass set-up (method, mesh, prepared resources, dynamic environment,
  * shading) -> scene layers -> water -> back faces -> G-buffer -> kernels ->
- * background -> resolves. snell_render (renderer.c) runs the entries a frame
- * wants. Adding a stage: its module and one line of SNELL__STAGE_TABLE. */
+ * background -> resolves -> refine -> glass panels. snell_render
+ * (renderer.c) runs the entries a frame wants. Adding a stage: its module
+ * and one line of SNELL__STAGE_TABLE. */
 #include "render/renderer.h"
 
 #include <stddef.h>
@@ -27,13 +28,20 @@
     S(ssaa)                   \
     S(msaa)                   \
     S(premultiplied)          \
-    SNELL__STAGE_REFINE(S)
+    SNELL__STAGE_REFINE(S)    \
+    SNELL__STAGE_PANELS(S)
 
 /* The refine stage is a component (SNELL_WITH_REFINE; not in the device preset). */
 #if SNELL_WITH_REFINE
 #define SNELL__STAGE_REFINE(S) S(refine)
 #else
 #define SNELL__STAGE_REFINE(S)
+#endif
+/* The glass panels over the frame, drawn last (SNELL_WITH_PANELS; not in the device preset). */
+#if SNELL_WITH_PANELS
+#define SNELL__STAGE_PANELS(S) S(panels)
+#else
+#define SNELL__STAGE_PANELS(S)
 #endif
 
 #define DECLARE(name) extern const snell__stage snell__stage_##name;

@@ -1,0 +1,12 @@
+# SPDX-License-Identifier: MIT
+# Glass panels over the frame (snell_panels.h, src/render/panels_stage.c):
+# the header's model checked pixel by pixel, every source of what lies
+# beneath, hostile panels and the budget.
+snell_add_test(test_panels SOURCES test_panels.c LABELS "render;gl" TIMEOUT 120)
+if(TARGET test_panels)
+  target_link_libraries(test_panels PRIVATE snell_dep::egl snell_dep::gles m)
+  # Again without OES_EGL_image_external_essl3: EXTERNAL falls back to the target and says so.
+  add_test(NAME test_panels_no_external COMMAND test_panels WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  set_tests_properties(test_panels_no_external PROPERTIES LABELS "render;gl" SKIP_RETURN_CODE 77 TIMEOUT 120
+    ENVIRONMENT "SNELL_TEST_DATA=${CMAKE_CURRENT_SOURCE_DIR}/data;SNELL_TEST_OUT=${CMAKE_CURRENT_BINARY_DIR};MESA_EXTENSION_OVERRIDE=-GL_OES_EGL_image_external_essl3")
+endif()
