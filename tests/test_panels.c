@@ -25,7 +25,7 @@ static snell_ctx *g_ctx;
 static EGLDisplay g_dpy;
 static EGLContext g_egl;
 
-enum { RAMP_X, RAMP_XY, STEP_X, CHECKER, PICTURE };
+enum { RAMP_X, RAMP_XY, STEEP, STEP_X, CHECKER, PICTURE };
 
 /* Texel (i, j) of a pattern, bottom row first. */
 static void texel(int pattern, int i, int j, uint8_t c[4])
@@ -34,6 +34,9 @@ static void texel(int pattern, int i, int j, uint8_t c[4])
     c[3] = 255;
     if (pattern == RAMP_X) c[0] = c[1] = c[2] = (uint8_t)x;
     else if (pattern == RAMP_XY) c[0] = (uint8_t)x, c[1] = (uint8_t)y, c[2] = 90;
+    else if (pattern == STEEP) /* 16 a pixel about (75, 45): a read's move of 0.1 px shows */
+        c[0] = (uint8_t)(i < 67 ? 0 : i > 82 ? 255 : 128 + 16 * (i - 75)),
+        c[1] = (uint8_t)(j < 37 ? 0 : j > 52 ? 255 : 128 + 16 * (j - 45)), c[2] = 0;
     else if (pattern == STEP_X) c[0] = c[1] = c[2] = i >= 21 ? 255 : 0;
     else if (pattern == CHECKER) c[0] = c[1] = c[2] = ((i / 4 + j / 4) & 1) ? 255 : 0;
     else {
@@ -83,20 +86,35 @@ static double fresnel(double c, double ior)
     return 0.5 * (rs * rs + rp * rp);
 }
 
-/* Where the view ray at a point s pixels inside a straight CIRCULAR bevel
- * of width bevel (thickness = bevel) meets z = 0, in pixels along the
- * field's outward unit gradient (< 0: inwards): the header's model in
- * double; *f its Fresnel reflectance. */
+/* Where the view ray meets z = 0, relative to p (out[2]), at a point s
+ * pixels inside a bevel of width bevel and profile squircle (0: circular),
+ * thickness = bevel, where the field's gradient is g (not unit where the
+ * corner's exponent is not 2): the header's model in double; returns the
+ * Fresnel reflectance. */
+static double landing2(double s, double bevel, int squircle, const double g[2], double ior, double out[2])
+{
+    double u = s / bevel, v = 1.0 - u, p, dp, h, n[3], len, eta = 1.0 / ior, c, k, t[3];
+    int a;
+    if (squircle) p = pow(1.0 - pow(v, 4.0), 0.25), dp = v * v * v / (p * p * p);
+    else p = sqrt(1.0 - v * v), dp = v / p;
+    h = bevel * p; /* h'(s) = thickness / bevel P'(u) = P'(u) */
+    n[0] = dp * g[0], n[1] = dp * g[1], n[2] = 1.0;
+    len = sqrt(n[0] * n[0] + n[1] * n[1] + 1.0);
+    for (a = 0; a < 3; a++) n[a] /= len;
+    c = n[2], k = 1.0 - eta * eta * (1.0 - c * c);
+    for (a = 0; a < 3; a++) t[a] = eta * (a == 2 ? -1.0 : 0.0) + (eta * c - sqrt(k)) * n[a];
+    out[0] = h * t[0] / -t[2], out[1] = h * t[1] / -t[2];
+    return fresnel(c, ior);
+}
+
+/* The same along a straight edge whose outward gradient is -x: the read's
+ * move in x (> 0: inwards). */
 static double landing(double s, double bevel, double ior, double *f)
 {
-    double u = s / bevel, p = sqrt(1.0 - (1.0 - u) * (1.0 - u)), dp = (1.0 - u) / p;
-    double h = bevel * p, slope = dp, len = sqrt(slope * slope + 1.0);
-    double n[3] = {slope / len, 0.0, 1.0 / len}, eta = 1.0 / ior, c = n[2];
-    double k = 1.0 - eta * eta * (1.0 - c * c), t[3];
-    int a;
-    for (a = 0; a < 3; a++) t[a] = eta * (a == 2 ? -1.0 : 0.0) + (eta * c - sqrt(k)) * n[a];
-    *f = fresnel(c, ior);
-    return h * t[0] / -t[2];
+    const double g[2] = {-1.0, 0.0};
+    double o[2];
+    *f = landing2(s, bevel, 0, g, ior, o);
+    return o[0];
 }
 
 static snell_renderer *offscreen(snell_output output)
@@ -149,7 +167,7 @@ static int near(int got, double want, double tol)
 static void check_model(snell_renderer *r)
 {
     static uint8_t img[4 * N], alone[4 * N];
-    GLuint ramp = texture(RAMP_XY), step = texture(STEP_X);
+    GLuint ramp = texture(RAMP_XY), step = texture(STEP_X), steep = texture(STEEP);
     snell_panel p = panel(48, 32, 64, 40, 8, 8), q[2];
     snell_frame_stats s;
     double f, dx, f0 = 0.04, want;
@@ -171,12 +189,39 @@ static void check_model(snell_renderer *r)
     p.rim = -1.0f;
     CHECK_OK_CTX(g_ctx, draw(r, &p, 1, ramp, img, &s));
     dx = landing(3.5, 8.0, 1.5, &f);
-    CHECK(dx < -1.0, "the model moves the read by %.2f px inwards", -dx);
-    want = (1.0 - f) * under(RAMP_XY, 19.5 - dx, 32.5, 0); /* the outward gradient is -x */
+    CHECK(dx > 1.0, "the model moves the read by %.2f px inwards", dx);
+    want = (1.0 - f) * under(RAMP_XY, 19.5 + dx, 32.5, 0);
     CHECK(near(at(img, 19, 32, 0), want, 1.5), "bevel: R %d, model %.2f (unrefracted %.2f)", at(img, 19, 32, 0),
           want * 255.0, (1.0 - f) * under(RAMP_XY, 19.5, 32.5, 0) * 255.0);
-    want = (1.0 - f) * under(RAMP_XY, 19.5 - dx, 32.5, 1);
+    want = (1.0 - f) * under(RAMP_XY, 19.5 + dx, 32.5, 1);
     CHECK(near(at(img, 19, 32, 1), want, 1.5), "bevel: G %d, model %.2f", at(img, 19, 32, 1), want * 255.0);
+
+    /* A superelliptic corner (exponent 4, radius 16): at (76.5, 46.5)
+     * q = (12.5, 10.5), d = ||q||_4 - 16, its gradient (q.x^3, q.y^3) /
+     * ||q||_4^3, not a unit vector. Then a squircle bevel 1.5 px inside the
+     * left edge. */
+    {
+        double qx = 12.5, qy = 10.5, norm = pow(pow(qx, 4.0) + pow(qy, 4.0), 0.25), g[2], o[2];
+        const double left[2] = {-1.0, 0.0};
+        snell_panel sq = panel(48, 32, 64, 40, 16, 8);
+        sq.exponent = 4.0f;
+        g[0] = pow(qx / norm, 3.0), g[1] = pow(qy / norm, 3.0);
+        f = landing2(16.0 - norm, 8.0, 0, g, 1.5, o);
+        CHECK_OK_CTX(g_ctx, draw(r, &sq, 1, steep, img, &s));
+        CHECK(hypot(o[0], o[1]) > 1.0 && fabs(hypot(g[0], g[1]) - 1.0) > 0.1, "the corner's read moves %.2f px",
+              hypot(o[0], o[1]));
+        for (c = 0; c < 2; c++) {
+            want = (1.0 - f) * under(STEEP, 76.5 + o[0], 46.5 + o[1], c);
+            CHECK(near(at(img, 76, 46, c), want, 1.5), "superelliptic corner: channel %d %d, model %.2f (unmoved %.2f)",
+                  c, at(img, 76, 46, c), want * 255.0, (1.0 - f) * under(STEEP, 76.5, 46.5, c) * 255.0);
+        }
+        sq.exponent = 2.0f, sq.bevel_profile = SNELL_PANEL_BEVEL_SQUIRCLE;
+        f = landing2(1.5, 8.0, 1, left, 1.5, o);
+        CHECK_OK_CTX(g_ctx, draw(r, &sq, 1, ramp, img, &s));
+        want = (1.0 - f) * under(RAMP_XY, 17.5 + o[0], 32.5, 0);
+        CHECK(o[0] > 1.0 && near(at(img, 17, 32, 0), want, 1.5), "squircle bevel: %d, model %.2f (moved %.2f px)",
+              at(img, 17, 32, 0), want * 255.0, o[0]);
+    }
 
     /* Dispersion (Abbe 5) over a step between x = 20.5 and 21.5: blue bends
      * more than red at the rim, one read in the interior. */
@@ -185,7 +230,7 @@ static void check_model(snell_renderer *r)
     for (c = 0; c < 3; c += 2) {
         double lambda = c ? 486.1 : 656.3, ior = 1.5 + 0.5 * (4.0 / 20.0) * (523655.0 / (lambda * lambda) - 1.5168);
         double d = landing(3.5, 8.0, ior, &f);
-        want = (1.0 - f) * under(STEP_X, 19.5 - d, 32.5, c);
+        want = (1.0 - f) * under(STEP_X, 19.5 + d, 32.5, c);
         CHECK(near(at(img, 19, 32, c), want, 1.5), "dispersion: channel %d %d, model %.2f (ior %.4f)", c,
               at(img, 19, 32, c), want * 255.0, ior);
     }
@@ -231,6 +276,7 @@ static void check_model(snell_renderer *r)
               "over the first panel, channel %d: %d, model %.2f", c, at(img, 53, 32, c), (1.0 - f0) * at(alone, 53, 32, c));
     glDeleteTextures(1, &ramp);
     glDeleteTextures(1, &step);
+    glDeleteTextures(1, &steep);
 }
 
 static double spread(const uint8_t *img, int x0, int y0, int x1, int y1)
