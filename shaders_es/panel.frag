@@ -28,6 +28,7 @@ uniform highp sampler2D u_beneath;
 uniform mat4 u_uv;                        // PANEL_SOURCE 1, 2: the texture's uv over the frame's
 uniform vec2 u_size;                      // the frame's, pixels
 uniform float u_lod;                      // the capture's level: frost
+uniform float u_spread;                   // frost: its taps' offset, pixels; 0: one tap
 uniform int u_count;                      // members
 uniform vec4 u_rect[PANEL_MEMBERS];       // centre, half size
 uniform vec4 u_radius[PANEL_MEMBERS];     // bottom-left, bottom-right, top-right, top-left
@@ -87,7 +88,11 @@ float field(vec2 p, out vec2 g)
 vec4 beneath(vec2 p)
 {
 #if PANEL_SOURCE == 0
-    return textureLod(u_beneath, p / u_size, u_lod);
+    if (u_spread <= 0.0) return textureLod(u_beneath, p / u_size, u_lod);
+    // Frost: four taps of level u_lod at (+-a, +-a) add a^2 to its variance per axis.
+    vec2 a = vec2(u_spread) / u_size, uv = p / u_size;
+    return 0.25 * (textureLod(u_beneath, uv + a, u_lod) + textureLod(u_beneath, uv - a, u_lod) +
+                   textureLod(u_beneath, uv + vec2(a.x, -a.y), u_lod) + textureLod(u_beneath, uv + vec2(-a.x, a.y), u_lod));
 #else
     return texture(u_beneath, (u_uv * vec4(p / u_size, 0.0, 1.0)).xy);
 #endif

@@ -21,15 +21,16 @@
 #endif
 
 enum { SRC_CAPTURE, SRC_TEXTURE, SRC_EXTERNAL, SOURCES };
-enum { U_UV, U_SIZE, U_LOD, U_COUNT, U_RECT, U_RADIUS, U_EXPONENT, U_MERGE, U_SLAB, U_IOR, U_TINT, U_LIGHT,
+enum { U_UV, U_SIZE, U_LOD, U_SPREAD, U_COUNT, U_RECT, U_RADIUS, U_EXPONENT, U_MERGE, U_SLAB, U_IOR, U_TINT, U_LIGHT,
        U_SHADOW, U_BENEATH, U_BOX, UNIFORMS };
-static const char *const g_uniform[UNIFORMS] = {"u_uv",     "u_size",  "u_lod",  "u_count", "u_rect",
+static const char *const g_uniform[UNIFORMS] = {"u_uv",     "u_size",  "u_lod",  "u_spread", "u_count", "u_rect",
                                                 "u_radius", "u_exponent", "u_merge", "u_slab", "u_ior",
                                                 "u_tint",   "u_light", "u_shadow", "u_beneath", "u_box"};
 
-/* The budget's cost model: work units a pixel (the field and one tap: 2;
- * each more tap of dispersion: 1; a mip chain of the frame for frost: 2 a
- * pixel) at an assumed rate of a Raspberry Pi 4-class GPU. */
+/* The budget's cost model: work units a pixel of a shape's box (the field:
+ * 1; each tap 1: one, four with frost, times three with dispersion) and 2
+ * a pixel of the frame for frost's mip chain, at an assumed rate of a
+ * Raspberry Pi 4-class GPU. */
 #define UNITS_PER_MS 250000.0
 
 typedef struct panel_prog {
@@ -256,7 +257,8 @@ static double estimate_ms(const panels_state *ps, int w, int h, int frost, int d
     int i, any_frost = 0;
     for (i = 0; i < ps->shapes; i++) {
         const snell__panel *p = &ps->panel[ps->shape[i].first];
-        units += box_pixels(ps->shape[i].box) * (2.0 + (dispersion && p->dispersion > 0.0f ? 2.0 : 0.0));
+        double taps = (frost && p->frost > 0.0f ? 4.0 : 1.0) * (dispersion && p->dispersion > 0.0f ? 3.0 : 1.0);
+        units += box_pixels(ps->shape[i].box) * (1.0 + taps);
         any_frost |= frost && p->frost > 0.0f;
     }
     if (any_frost) units += 2.0 * (double)w * (double)h;
@@ -327,7 +329,7 @@ static void draw_shape(const panels_state *ps, const panel_prog *p, const panel_
 {
     const snell__panel *m = &ps->panel[s->first];
     float rect[4 * SNELL_PANEL_GROUP_MAX], radius[4 * SNELL_PANEL_GROUP_MAX], expo[SNELL_PANEL_GROUP_MAX];
-    float ior[3], lod = 0.0f;
+    float ior[3], lod = 0.0f, spread = 0.0f;
     int i = s->first, n = 0;
     for (; i >= 0 && n < SNELL_PANEL_GROUP_MAX; i = ps->next[i], n++) {
         const snell__panel *q = &ps->panel[i];
@@ -337,11 +339,17 @@ static void draw_shape(const panels_state *ps, const panel_prog *p, const panel_
         expo[n] = q->exponent;
     }
     snell_opt_ior_rgb(m->ior, dispersion ? m->dispersion : 0.0f, ior);
-    /* Frost: level L of the mip chain is about a Gaussian of sigma 2^(L-1)
-     * pixels (each halving's box of two adds 4^(k-1)/4 to the variance, the
-     * bilinear tent of level L 4^L/6: sum ~ 4^L/4), so L = log2(2 sigma). */
-    if (frost && m->frost > 0.0f) lod = fmaxf(0.0f, log2f(2.0f * m->frost));
+    /* Frost, a Gaussian of sigma f: level L of the mip chain is a blur of
+     * variance (3 4^L - 1) / 12 pixels^2 per axis (each halving's box of
+     * two adds 4^(k-1) / 4, the bilinear tent of level L 4^L / 6); L makes
+     * it half of f^2, and four taps at (+-a, +-a) add the other half: four
+     * overlapping blobs, nearer a Gaussian than one tap of a coarser level. */
+    if (frost && m->frost > 0.0f) {
+        lod = fmaxf(0.0f, 0.5f * log2f((6.0f * m->frost * m->frost + 1.0f) / 3.0f));
+        spread = sqrtf(fmaxf(0.0f, m->frost * m->frost - (3.0f * exp2f(2.0f * lod) - 1.0f) / 12.0f));
+    }
     glUniform1f(p->loc[U_LOD], lod);
+    glUniform1f(p->loc[U_SPREAD], spread);
     glUniform1i(p->loc[U_COUNT], n);
     glUniform4fv(p->loc[U_RECT], n, rect);
     glUniform4fv(p->loc[U_RADIUS], n, radius);
