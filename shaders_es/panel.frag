@@ -57,6 +57,11 @@ float member(int i, vec2 p, out vec2 g)
     }
     float n = u_exponent[i];
     vec2 m = max(q, 0.0);
+    if (n == 2.0) { // circular corners, without powers
+        float len = length(m);
+        g = side * m / len;
+        return len - r;
+    }
     float big = max(m.x, m.y);
     vec2 t = m / big;
     float sum = pow(t.x, n) + pow(t.y, n);
