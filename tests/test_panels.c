@@ -6,7 +6,8 @@
  * dispersion separates the channels at the rim; frost is within 30 dB of
  * a Gaussian; a panel over another sees it; TEXTURE, EXTERNAL (or its
  * fallback), the bound framebuffer with the host's GL state kept; hostile
- * panels refused or drawn; the budget drops frost, then dispersion. */
+ * panels refused or drawn, a second frame allocating nothing; the budget
+ * drops frost, then dispersion. */
 #include "test_util.h"
 #include "core/gl.h"
 
@@ -22,8 +23,13 @@
 #define N ((size_t)W * H)
 
 static snell_ctx *g_ctx;
+static long g_allocs; /* the context's allocations so far */
 static EGLDisplay g_dpy;
 static EGLContext g_egl;
+
+static void *count_alloc(size_t n, void *u) { (void)u; g_allocs++; return malloc(n); }
+static void *count_realloc(void *p, size_t n, void *u) { (void)u; g_allocs++; return realloc(p, n); }
+static void count_free(void *p, void *u) { (void)u; free(p); }
 
 enum { RAMP_X, RAMP_XY, STEEP, STEP_X, CHECKER, WAVES, PICTURE };
 
@@ -556,6 +562,11 @@ static void check_hostile(snell_renderer *r)
     CHECK(s.panels_drawn > 300 && ms < 20000.0 * test_time_scale(), "1,000 panels: %d shapes, %d captures, %.0f ms CPU",
           s.panels_drawn, s.panels_captures, ms);
     printf("1,000 panels: %d shapes drawn, %d captures, %.0f ms CPU\n", s.panels_drawn, s.panels_captures, ms);
+    {
+        long before = g_allocs;
+        CHECK_OK_CTX(g_ctx, snell_render(r, &fd, &s));
+        CHECK(g_allocs == before, "a frame of panels after the first allocates nothing: %ld", g_allocs - before);
+    }
     glDeleteTextures(1, &ramp);
 }
 
@@ -640,6 +651,7 @@ int main(void)
     if (!test_host_context(&g_dpy, &g_egl)) SKIP("cannot make a host context here");
     memset(&d, 0, sizeof d);
     d.backend = SNELL_BACKEND_EXTERNAL;
+    d.allocator.alloc = count_alloc, d.allocator.realloc = count_realloc, d.allocator.free = count_free;
     CHECK_OK(snell_ctx_create(&d, &g_ctx));
     if (!g_ctx) return test_finish();
     r = offscreen(SNELL_OUTPUT_COLOR);
