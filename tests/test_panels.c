@@ -1,13 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* test_panels — glass panels over the frame (snell_panels.h), against the
- * header's model computed here in double: a flat interior is (1 - F0)
- * beneath plus the rim; a bevel or corner pixel reads beneath where the
- * refracted ray lands; the shadow darkens outside; a group merges a gap;
- * dispersion separates the channels at the rim; frost is within 30 dB of
- * a Gaussian; a panel over another sees it; TEXTURE, EXTERNAL (or its
- * fallback), the bound framebuffer with the host's GL state kept; hostile
- * panels refused or drawn, a second frame allocating nothing; the budget
- * drops frost, then dispersion. */
+/* test_panels — glass panels (snell_panels.h) against the header's model
+ * in double: a flat interior is (1 - F0) beneath plus the rim; a bevel or
+ * corner pixel reads where the refracted ray lands; the shadow darkens
+ * outside; a group merges a gap; dispersion splits the rim; frost is a
+ * Gaussian to above 30 dB; a panel over another sees it; TEXTURE, EXTERNAL
+ * (or its fallback), snell's own frame, the bound framebuffer with the
+ * host's GL state kept; hostile panels refused or drawn, a second frame
+ * allocating nothing; the budget drops frost, then dispersion. */
 #include "test_util.h"
 #include "core/gl.h"
 
@@ -483,6 +482,51 @@ static void check_bound(void)
     glDeleteTextures(1, &prog_tex);
 }
 
+/* Over snell's own frame (a glass sphere and the environment, offscreen):
+ * the flat interior is (1 - F0) times that frame's pixel plus the rim. */
+static void check_scene(snell_renderer *r)
+{
+    static uint8_t plain[4 * N], img[4 * N];
+    snell_shape_desc sd;
+    snell_env_desc ed;
+    snell_mesh *mesh = NULL;
+    snell_env *env = NULL;
+    snell_glass g;
+    snell_frame_desc fd;
+    snell_frame_stats s;
+    snell_panel p = panel(40, 30, 50, 40, 8, 8);
+    int c, x, y;
+    memset(&sd, 0, sizeof sd);
+    memset(&ed, 0, sizeof ed);
+    memset(&g, 0, sizeof g);
+    memset(&fd, 0, sizeof fd);
+    ed.face_size = 16;
+    CHECK_OK_CTX(g_ctx, snell_mesh_create_shape(g_ctx, &sd, &mesh));
+    CHECK_OK_CTX(g_ctx, snell_env_create(g_ctx, &ed, &env));
+    g.mesh = mesh;
+    fd.env = env, fd.glass = &g, fd.glass_count = 1;
+    if (mesh && env) {
+        CHECK_OK_CTX(g_ctx, snell_render(r, &fd, NULL));
+        CHECK_OK_CTX(g_ctx, snell_renderer_read_rgba(r, plain));
+        p.rim = 0.0f, fd.panels = &p, fd.panel_count = 1;
+        CHECK_OK_CTX(g_ctx, snell_render(r, &fd, &s));
+        CHECK_OK_CTX(g_ctx, snell_renderer_read_rgba(r, img));
+        CHECK(s.panels_captures == 1 && strstr(s.stages, "kernels") && strstr(s.stages, "panels"),
+              "panels over the frame: %d captures, stages %s", s.panels_captures, s.stages);
+        for (y = 20; y < 40; y += 9)
+            for (x = 30; x < 50; x += 9)
+                for (c = 0; c < 3; c++)
+                    CHECK(near(at(img, x, y, c), 0.96 * at(plain, x, y, c) / 255.0 + 0.01, 1.0),
+                          "over the frame at (%d, %d) channel %d: %d, model %.2f", x, y, c, at(img, x, y, c),
+                          0.96 * at(plain, x, y, c) + 2.55);
+        for (c = 0, y = 0; y < H; y++) /* right of the panel's box (its shadow's reach included) */
+            c += memcmp(img + 4 * ((size_t)y * W + 84), plain + 4 * ((size_t)y * W + 84), 4 * (W - 84)) != 0;
+        CHECK(c == 0, "right of the box the frame is as it was (%d rows differ)", c);
+    }
+    snell_env_destroy(env);
+    snell_mesh_destroy(mesh);
+}
+
 static void refused(snell_renderer *r, snell_frame_desc *fd, const char *part)
 {
     snell_status st = snell_render(r, fd, NULL);
@@ -658,6 +702,7 @@ int main(void)
     if (r) {
         check_model(r);
         check_frost(r);
+        check_scene(r);
         check_external(r);
         check_hostile(r);
         check_budget(r);
