@@ -100,7 +100,9 @@ typedef struct snell_panels_under {
 } snell_panels_under;
 
 /* What the panels stage dropped to hold the frame's budget
- * (snell_frame_stats.panels_dropped). */
+ * (snell_frame_stats.panels_dropped): with budget_ms, when its estimate of
+ * the panels' cost (their boxes' pixels and taps at a Raspberry Pi 4's
+ * rate) is over it, frost goes first, then dispersion. */
 typedef enum snell_panels_dropped {
     SNELL_PANELS_DROPPED_FROST = 1 << 0,
     SNELL_PANELS_DROPPED_DISPERSION = 1 << 1
