@@ -398,6 +398,12 @@ static void check_external(snell_renderer *r)
     CHECK_OK_CTX(g_ctx, snell_renderer_read_rgba(r, img));
     CHECK(strstr(s.panels_reason, "external"), "reason: %s", s.panels_reason);
     CHECK(memcmp(img, want, sizeof img) == 0, "EXTERNAL draws what TEXTURE draws");
+    p.frost = 2.0f; /* copied into the capture first, as a 2D texture is */
+    CHECK_OK_CTX(g_ctx, snell_render(r, &fd, &s));
+    CHECK_OK_CTX(g_ctx, snell_renderer_read_rgba(r, img));
+    CHECK_OK_CTX(g_ctx, draw(r, &p, 1, ramp, want, NULL));
+    CHECK(s.panels_captures == 1 && memcmp(img, want, sizeof img) == 0, "frosted, EXTERNAL draws what TEXTURE draws");
+    p.frost = 0.0f;
     u.texture = ramp; /* a GL_TEXTURE_2D is not an external one */
     CHECK(snell_render(r, &fd, &s) == SNELL_E_INVALID_ARG, "a 2D texture as EXTERNAL is refused: %s",
           snell_last_error(g_ctx));
