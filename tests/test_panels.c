@@ -4,9 +4,9 @@
  * corner pixel reads where the refracted ray lands; the shadow darkens
  * outside; a group merges a gap; dispersion splits the rim; frost is a
  * Gaussian to above 30 dB; a panel over another sees it; TEXTURE, EXTERNAL
- * (or its fallback), snell's own frame, the bound framebuffer with the
- * host's GL state kept; hostile panels refused or drawn, a second frame
- * allocating nothing; the budget drops frost, then dispersion. */
+ * (or its fallback), snell's own frame, ssaa and msaa, the bound framebuffer
+ * with the host's GL state kept; hostile panels refused or drawn, a second
+ * frame allocating nothing; the budget drops frost, then dispersion. */
 #include "test_util.h"
 #include "core/gl.h"
 
@@ -533,6 +533,33 @@ static void check_scene(snell_renderer *r)
     snell_mesh_destroy(mesh);
 }
 
+/* Renderers that resolve (ssaa 2, msaa 4): the panels are drawn over the
+ * image read back, at its size, as without. */
+static void check_resolves(void)
+{
+    static uint8_t img[4 * N];
+    GLuint ramp = texture(RAMP_XY);
+    snell_panel p = panel(48, 32, 64, 40, 8, 8);
+    int k, c;
+    p.rim = 0.0f;
+    for (k = 0; k < 2; k++) {
+        snell_renderer_desc rd;
+        snell_renderer *r = NULL;
+        snell_frame_stats s;
+        memset(&rd, 0, sizeof rd);
+        rd.width = W, rd.height = H, rd.ssaa = k ? 0 : 2, rd.msaa = k ? 4 : 0;
+        CHECK_OK_CTX(g_ctx, snell_renderer_create(g_ctx, &rd, &r));
+        if (!r) continue;
+        CHECK_OK_CTX(g_ctx, draw(r, &p, 1, ramp, img, &s));
+        for (c = 0; c < 3; c++)
+            CHECK(near(at(img, 48, 32, c), 0.96 * under(RAMP_XY, 48.5, 32.5, c) + 0.01, 1.0),
+                  "%s: flat interior channel %d: %d", k ? "msaa 4" : "ssaa 2", c, at(img, 48, 32, c));
+        CHECK(at(img, 2, 2, 0) == 8, "%s: beneath outside the box", k ? "msaa 4" : "ssaa 2");
+        snell_renderer_destroy(r);
+    }
+    glDeleteTextures(1, &ramp);
+}
+
 static void refused(snell_renderer *r, snell_frame_desc *fd, const char *part)
 {
     snell_status st = snell_render(r, fd, NULL);
@@ -714,6 +741,7 @@ int main(void)
         check_budget(r);
     }
     check_bound();
+    check_resolves();
     picture();
     snell_renderer_destroy(r);
     snell_ctx_destroy(g_ctx);
