@@ -487,7 +487,7 @@ int main(void)
      * horse's) where this build draws at a scale (single at 2 as a probe), each drawn at its scale (so on
      * no ladder of a build without it); AUTO picks one where the budget allows no more. */
     {
-        const snell__rung probe = {SNELL_METHOD_SINGLE, NULL, 0, {1, 1, 1, 1}, {1, 1, 1, 1}, 2};
+        const snell__rung probe = {SNELL_METHOD_SINGLE, NULL, 0, {1, 1, 1, 1}, {1, 1, 1, 1}, 2, NULL};
         int scaled = drawn_scale(&probe) == 2, convex_n = scale_rungs(&obj[0], "convex");
         int deep_n = scale_rungs(&obj[1], "deep concave"), open_n = scale_rungs(&obj[2], "open");
         printf("scale rungs on the ladders: convex %d, deep concave %d, open %d (this build %s the scale)\n", convex_n,

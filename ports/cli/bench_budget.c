@@ -42,7 +42,7 @@ typedef struct budget_opts {
 } budget_opts;
 
 typedef struct budget_config {
-    char name[64];
+    char name[112];
     int rung;                       /* -1: AUTO with the budget */
     snell_renderer *r;
     snell_glass glass[SNELL_MAX_GLASS];
@@ -191,7 +191,8 @@ static void rung_name(const snell_budget_rung *g, char *buf, size_t n)
     char param[40] = "", scale[24] = "";
     if (g->param) snprintf(param, sizeof param, " %s=%d", g->param, g->value);
     if (g->scale > 1) snprintf(scale, sizeof scale, " scale=%d", g->scale);
-    snprintf(buf, n, "%s%s%s", snell_method_str(g->method), param, scale);
+    snprintf(buf, n, "%s%s%s%s%s", snell_method_str(g->method), param, g->more ? " " : "", g->more ? g->more : "",
+             scale);
 }
 
 static void print_table(void)
@@ -202,7 +203,7 @@ static void print_table(void)
            "open");
     for (i = 0; i < snell_budget_rung_count(); i++) {
         const snell_budget_rung *g = snell_budget_rung_at(i);
-        char name[64];
+        char name[112];
         rung_name(g, name, sizeof name);
         printf("  %-22s", name);
         for (c = 0; c < 4; c++) {
@@ -227,13 +228,7 @@ static void frame_of(const bench_scene *s, const snell_env *env, budget_config *
         }
         if (k->rung >= 0) {
             const snell_budget_rung *g = snell_budget_rung_at(k->rung);
-            k->glass[i].material.method = g->method;
-            k->glass[i].material.scale = (float)g->scale;
-            if (g->param) {
-                char v[16];
-                snprintf(v, sizeof v, "%d", g->value);
-                snell_glass_set_param(&k->glass[i].material, g->method, g->param, v);
-            }
+            snell_budget_rung_apply(g, &k->glass[i].material);
         } else {
             k->glass[i].material.method = SNELL_METHOD_AUTO;
             if (o->exact_auto) k->glass[i].material.exact.auto_pick = SNELL_EXACT_AUTO_ALLOW;
@@ -355,10 +350,11 @@ static int write_files(const budget_opts *o, const budget_config *ks, int n, con
     for (k = 0; k < n; k++) {
         bench_config *c = &cs[k];
         const snell_budget_rung *g = ks[k].rung >= 0 ? snell_budget_rung_at(ks[k].rung) : NULL;
-        char extra[64] = "";
+        char extra[160] = "";
         c->method = bench_method_info(g ? g->method : SNELL_METHOD_AUTO);
         if (!g) snprintf(extra, sizeof extra, ":budget_ms=%.2f", (double)o->budget_ms);
         else if (g->param) snprintf(extra, sizeof extra, ":%s=%d", g->param, g->value);
+        if (g && g->more) snprintf(extra + strlen(extra), sizeof extra - strlen(extra), ":%s", g->more);
         if (g && g->scale > 1) snprintf(extra + strlen(extra), sizeof extra - strlen(extra), ":scale=%d", g->scale);
         snprintf(c->spec, sizeof c->spec, "%s:scene=%s:size=%dx%d%s", c->method->name, o->scene, o->width, o->height,
                  extra);

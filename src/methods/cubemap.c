@@ -329,7 +329,7 @@ static const snell_method_info g_info = {
  * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
  * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
 static const snell_budget_rung g_rungs[] = {
-    {SNELL_METHOD_CUBEMAP, NULL, 0, {2.14f, 1.08f, 1.44f, 1.02f}, {34.95f, 17.09f, 15.50f, 15.98f}, 1},
+    {SNELL_METHOD_CUBEMAP, NULL, 0, {2.14f, 1.08f, 1.44f, 1.02f}, {34.95f, 17.09f, 15.50f, 15.98f}, 1, NULL},
 };
 
 const snell__method snell__method_cubemap = {

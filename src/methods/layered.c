@@ -595,8 +595,8 @@ static const snell_method_info g_info = {
  * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
  * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
 static const snell_budget_rung g_rungs[] = {
-    {SNELL_METHOD_LAYERED, NULL, 0, {2.07f, 5.58f, 12.41f, 5.17f}, {40.61f, 19.63f, 25.68f, 18.38f}, 1},
-    {SNELL_METHOD_LAYERED, NULL, 0, {2.76f, 3.45f, 5.64f, 3.28f}, {34.42f, 17.92f, 23.85f, 17.34f}, 2},
+    {SNELL_METHOD_LAYERED, NULL, 0, {2.07f, 5.58f, 12.41f, 5.17f}, {40.61f, 19.63f, 25.68f, 18.38f}, 1, NULL},
+    {SNELL_METHOD_LAYERED, NULL, 0, {2.76f, 3.45f, 5.64f, 3.28f}, {34.42f, 17.92f, 23.85f, 17.34f}, 2, NULL},
 };
 
 const snell__method snell__method_layered = {

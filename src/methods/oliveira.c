@@ -181,7 +181,7 @@ static const snell_method_info g_info = {
  * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
  * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
 static const snell_budget_rung g_rungs[] = {
-    {SNELL_METHOD_OLIVEIRA, NULL, 0, {3.84f, 1.31f, 1.86f, 1.41f}, {27.98f, 16.34f, 20.29f, 17.52f}, 1},
+    {SNELL_METHOD_OLIVEIRA, NULL, 0, {3.84f, 1.31f, 1.86f, 1.41f}, {27.98f, 16.34f, 20.29f, 17.52f}, 1, NULL},
 };
 
 const snell__method snell__method_oliveira = {

@@ -470,12 +470,12 @@ static const snell_method_info g_info = {
  * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
  * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
 static const snell_budget_rung g_rungs[] = {
-    {SNELL_METHOD_PEEL, "layers", 2, {7.94f, 3.58f, 5.89f, 3.62f}, {40.32f, 21.88f, 22.70f, 20.71f}, 1},
-    {SNELL_METHOD_PEEL, NULL, 0, {8.03f, 5.89f, 8.43f, 5.56f}, {40.32f, 22.47f, 26.42f, 21.65f}, 1},
-    {SNELL_METHOD_PEEL, "layers", 2, {4.73f, 4.06f, 4.22f, 3.42f}, {34.25f, 19.10f, 22.02f, 18.56f}, 2},
-    {SNELL_METHOD_PEEL, NULL, 0, {4.63f, 5.43f, 5.21f, 4.38f}, {34.25f, 19.30f, 24.16f, 18.86f}, 2},
-    {SNELL_METHOD_PEEL, "layers", 2, {3.53f, 3.44f, 3.12f, 2.66f}, {27.22f, 17.10f, 20.65f, 16.77f}, 4},
-    {SNELL_METHOD_PEEL, NULL, 0, {3.42f, 4.96f, 3.86f, 3.50f}, {27.22f, 17.25f, 21.58f, 16.80f}, 4},
+    {SNELL_METHOD_PEEL, "layers", 2, {7.94f, 3.58f, 5.89f, 3.62f}, {40.32f, 21.88f, 22.70f, 20.71f}, 1, NULL},
+    {SNELL_METHOD_PEEL, NULL, 0, {8.03f, 5.89f, 8.43f, 5.56f}, {40.32f, 22.47f, 26.42f, 21.65f}, 1, NULL},
+    {SNELL_METHOD_PEEL, "layers", 2, {4.73f, 4.06f, 4.22f, 3.42f}, {34.25f, 19.10f, 22.02f, 18.56f}, 2, NULL},
+    {SNELL_METHOD_PEEL, NULL, 0, {4.63f, 5.43f, 5.21f, 4.38f}, {34.25f, 19.30f, 24.16f, 18.86f}, 2, NULL},
+    {SNELL_METHOD_PEEL, "layers", 2, {3.53f, 3.44f, 3.12f, 2.66f}, {27.22f, 17.10f, 20.65f, 16.77f}, 4, NULL},
+    {SNELL_METHOD_PEEL, NULL, 0, {3.42f, 4.96f, 3.86f, 3.50f}, {27.22f, 17.25f, 21.58f, 16.80f}, 4, NULL},
 };
 
 const snell__method snell__method_peel = {

@@ -106,7 +106,7 @@ static const snell_method_info g_info = {
  * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
  * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
 static const snell_budget_rung g_rungs[] = {
-    {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}, 1},
+    {SNELL_METHOD_SINGLE, NULL, 0, {1.00f, 1.00f, 1.00f, 1.00f}, {9.89f, 11.60f, 11.23f, 12.62f}, 1, NULL},
 };
 
 const snell__method snell__method_single = {

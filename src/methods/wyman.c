@@ -270,7 +270,7 @@ static const snell_method_info g_info = {
  * time over single's and glass PSNR vs FULL for a convex, a bunny-like, a
  * torus-like and an open mesh; resolution scale (bench/notes/budget_rungs.md). */
 static const snell_budget_rung g_rungs[] = {
-    {SNELL_METHOD_WYMAN, NULL, 0, {2.22f, 1.33f, 1.92f, 1.86f}, {18.59f, 15.27f, 17.01f, 17.26f}, 1},
+    {SNELL_METHOD_WYMAN, NULL, 0, {2.22f, 1.33f, 1.92f, 1.86f}, {18.59f, 15.27f, 17.01f, 17.26f}, 1, NULL},
 };
 
 const snell__method snell__method_wyman = {

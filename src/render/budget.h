@@ -15,7 +15,7 @@
 
 #define SNELL__BUDGET_CLASSES 4 /* 0 convex, 1 closed concave the cubemap serves, 2 closed concave it does
                                  * not, 3 open, non-manifold or unanalysed */
-#define SNELL__BUDGET_MAX_RUNGS 16
+#define SNELL__BUDGET_MAX_RUNGS 20
 
 /* One configuration of the table (public: snell_budget_rung). */
 typedef snell_budget_rung snell__rung;

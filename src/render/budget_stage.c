@@ -22,7 +22,7 @@ typedef struct budget_state {
     snell_ctx *ctx;                            /* its renderer's */
     snell__budget ctl;                         /* AUTO by budget's controller (budget.h) */
     snell__budget_object obj[SNELL_MAX_GLASS]; /* this frame's ladders */
-    char note[SNELL_MAX_GLASS][128];           /* each object's rung and why (snell__object.budget_note) */
+    char note[SNELL_MAX_GLASS][192];           /* each object's rung and why (snell__object.budget_note) */
     void *fence;                               /* GLsync after the last budget frame, NULL none */
     double start_ms, done_ms;                  /* that frame's start; its completion seen (-1 not yet) */
     double cpu_ms;                             /* that frame's time inside snell_render */
@@ -192,7 +192,7 @@ static snell_status stage_run(snell__frame *f, void *state)
             b->fixed_cost = 1.0f;
             for (k = 0; k < n; k++) {
                 const snell__rung *g = snell__rung_at(k);
-                if (g->method == m && !g->param && g->scale <= 1) b->fixed_cost = snell__rung_cost(sv->ctx->cost, g, cls);
+                if (g->method == m && !g->param && !g->more && g->scale <= 1) b->fixed_cost = snell__rung_cost(sv->ctx->cost, g, cls);
             }
         }
     }
@@ -215,21 +215,14 @@ static snell_status stage_run(snell__frame *f, void *state)
         const snell__budget_object *b = &bs->obj[i];
         snell__object *o = &sc->obj[i];
         const snell__rung *g;
-        char name[40];
+        char name[96];
         if (!b->n || plan[i] < 0) continue;
         g = snell__rung_at(b->ladder[plan[i]]);
         /* The frame's resolved copy of the material (scene.c): the rung draws it as an explicit method,
          * at the rung's scale (the material's own is the rung's to choose, as its method is). */
-        {
-            snell_glass_material *m = &sc->glass[i].material;
-            char value[16];
-            snprintf(value, sizeof value, "%d", g->value);
-            m->method = g->method;
-            m->scale = g->scale > 1 ? (float)g->scale : 1.0f;
-            if (g->param && snell_glass_set_param(m, g->method, g->param, value) != SNELL_OK)
-                return snell__fail(sv->ctx, SNELL_E_INVALID_ARG, "budget: rung %s=%d refused", g->param, g->value);
-        }
         snell__rung_name(g, name, sizeof name);
+        if (snell_budget_rung_apply(g, &sc->glass[i].material) != SNELL_OK)
+            return snell__fail(sv->ctx, SNELL_E_INVALID_ARG, "budget: rung %s refused", name);
         snprintf(bs->note[i], sizeof bs->note[i], "%s (rung %d of %d, %.1f dB predicted for %s mesh)",
                  name, plan[i] + 1, b->n, (double)g->db[b->cls], g_class_names[b->cls]);
         o->budget_note = bs->note[i];
