@@ -452,6 +452,75 @@ static void auto_picks(const snell_mesh_analysis *convex, const snell_mesh_analy
         }
 }
 
+/* The FULL model's terms and the hybrid on AUTO by budget (issue 50 item 4): a rung's further
+ * parameters are written with it (and a bad one refused); with exact allowed, every class's ladder
+ * ends on exact with all three terms (the table's best there), below it a rung with re-entry only;
+ * the hybrid runs for AUTO (a candidate rung, kept where the Pareto cut keeps it), never plain
+ * AUTO's first choice. */
+static void terms_and_hybrid(const snell_mesh_analysis *const meshes[4], const snell_glass_resolved *g)
+{
+    const snell__rung good = {SNELL_METHOD_EXACT, "max_interfaces", 10, {1, 1, 1, 1}, {1, 1, 1, 1}, 1,
+                              "fresnel=exact:inner_fresnel=on:reentry=on"};
+    static const char *const bad[] = {"fresnel", "nope=1", "reentry=maybe", "fresnel=exact:", ":reentry=on"};
+    snell_glass_material m;
+    snell_glass_resolved ga = *g, res;
+    int i, k, cls;
+    memset(&m, 0, sizeof m);
+    m.ior = 1.5f;
+    CHECK(snell_budget_rung_apply(&good, &m) == SNELL_OK && m.method == SNELL_METHOD_EXACT &&
+              m.exact.max_interfaces == 10 && m.exact.fresnel == SNELL_FRESNEL_EXACT &&
+              m.exact.inner_fresnel == SNELL_INNER_FRESNEL_ON && m.exact.reentry == SNELL_EXACT_REENTRY_ON,
+          "a rung's further parameters not written");
+    for (i = 0; i < (int)(sizeof bad / sizeof *bad); i++) {
+        snell__rung r = good;
+        r.more = bad[i];
+        CHECK(snell_budget_rung_apply(&r, &m) == SNELL_E_INVALID_ARG, "rung parameters \"%s\" accepted", bad[i]);
+    }
+    CHECK(snell_budget_rung_apply(NULL, &m) == SNELL_E_INVALID_ARG && snell_budget_rung_apply(&good, NULL) ==
+              SNELL_E_INVALID_ARG, "NULL accepted");
+    if (!snell_build_has("exact")) return;
+    ga.material.exact.auto_pick = SNELL_EXACT_AUTO_ALLOW;
+    for (k = 0; k < 4; k++) {
+        snell__budget_object ex;
+        const snell__rung *top;
+        int reentry_only = 0;
+        snell__budget_ladder(meshes[k], &ga, 0.0f, NULL, all_usable, NULL, &ex);
+        cls = ex.cls;
+        CHECK(ex.n > 0, "class %d: no ladder", cls);
+        if (ex.n <= 0) continue;
+        top = snell__rung_at(ex.ladder[ex.n - 1]);
+        memset(&m, 0, sizeof m);
+        m.ior = 1.5f;
+        CHECK(snell_budget_rung_apply(top, &m) == SNELL_OK && snell_glass_defaults(&m, &res) == SNELL_OK,
+              "class %d: the top rung refused", cls);
+        CHECK(top->method == SNELL_METHOD_EXACT && res.material.exact.fresnel == SNELL_FRESNEL_EXACT &&
+                  res.material.exact.inner_fresnel == SNELL_INNER_FRESNEL_ON &&
+                  res.material.exact.reentry == SNELL_EXACT_REENTRY_ON,
+              "class %d: the top rung (%s) lacks the FULL model's terms", cls, snell_method_str(top->method));
+        for (i = 0; i < ex.n; i++) {
+            memset(&m, 0, sizeof m);
+            m.ior = 1.5f;
+            if (snell_budget_rung_apply(snell__rung_at(ex.ladder[i]), &m) == SNELL_OK &&
+                snell_glass_defaults(&m, &res) == SNELL_OK && m.method == SNELL_METHOD_EXACT)
+                reentry_only |= res.material.exact.reentry == SNELL_EXACT_REENTRY_ON &&
+                                res.material.exact.inner_fresnel != SNELL_INNER_FRESNEL_ON;
+        }
+        CHECK(reentry_only || cls == 0, "class %d: no rung with re-entry alone below the top", cls);
+    }
+    if (snell_build_has("hybrid") && snell_build_has("cubemap")) {
+        const snell__method *h = snell__method_get(SNELL_METHOD_HYBRID);
+        char why[SNELL_REASON_SIZE];
+        int rungs = 0;
+        for (i = 0; i < snell__rung_count(); i++) rungs += snell__rung_at(i)->method == SNELL_METHOD_HYBRID;
+        CHECK(rungs >= 1, "the hybrid has no rung");
+        CHECK(h->fit(meshes[1], g, why, sizeof why) == SNELL__FIT_RUNS, "the hybrid for AUTO on a bunny: not RUNS (%s)",
+              why);
+        ga = *g;
+        ga.material.method = SNELL_METHOD_HYBRID;
+        CHECK(h->fit(meshes[1], &ga, why, sizeof why) == SNELL__FIT_ADEQUATE, "the hybrid by name: %s", why);
+    }
+}
+
 int main(void)
 {
     /* the classes: convex; closed concave that the cubemap serves (a bunny: 25% hidden from its centre);
@@ -569,5 +638,9 @@ int main(void)
     device_costs(&convex, &bunny, &g);
     auto_order();
     auto_picks(&convex, &bunny, &torus, &g);
+    {
+        const snell_mesh_analysis *const meshes[4] = {&convex, &bunny, &torus, &open};
+        terms_and_hybrid(meshes, &g);
+    }
     return test_finish();
 }

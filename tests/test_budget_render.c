@@ -152,7 +152,8 @@ static void test_clock(snell_ctx *ctx, const snell_renderer_desc *rd, snell_fram
 /* An open, non-manifold real mesh (glmark2's horse, IOR 1.33; issue 25's
  * "AUTO by budget at most half the cubemap's FULL mean angle"): with a
  * budget no frame misses and exact allowed on its ladder
- * (material.exact.auto_pick), AUTO climbs to exact, and its exit directions
+ * (material.exact.auto_pick), AUTO climbs to exact with the FULL model's
+ * terms (its top rung, issue 50), and its exit directions
  * are at most half as far from FULL's (10 interfaces) on average as the
  * cubemap's (plain AUTO's pick there is single: bench/notes/history.md).
  * Measured 2026-12-04 (96x96, elevation 0.35, as test_layered's horse):
@@ -200,6 +201,9 @@ static void test_open_mesh(snell_ctx *ctx, const snell_env *env)
         CHECK(st.glass[0].method_used == (allow ? SNELL_METHOD_EXACT : SNELL_METHOD_PEEL),
               "horse, exact %s: the top rung drawn by %s (%s)", allow ? "allowed" : "not allowed",
               snell_method_str(st.glass[0].method_used), st.glass[0].reason);
+        /* exact's top rung is the FULL model's terms (issue 50 item 4) */
+        CHECK(!allow || (strstr(st.glass[0].reason, "inner_fresnel=on") && strstr(st.glass[0].reason, "reentry=on")),
+              "horse, exact allowed: the top rung without the FULL model's terms (%s)", st.glass[0].reason);
         printf("horse, budget %g ms, exact %s: %s, FULL mean %.2f median %.3f deg (cubemap %.2f / %.3f)\n",
                (double)f.budget_ms, allow ? "allowed" : "never", snell_method_str(st.glass[0].method_used),
                ea[allow].mean_deg, ea[allow].median_deg, ec.mean_deg, ec.median_deg);

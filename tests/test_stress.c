@@ -12,8 +12,9 @@
  * intermediates to fp16; the test then shows which cases mediump breaks
  * (expected: IOR 1.0001 loses its bending entirely, 1/1.0001 rounds to 1).
  * Argument: a method name to test only that method, then "terms" for exact
- * with its FULL-model terms on (against MATCHED with the same
- * snell_ref_terms, the same bounds); the environment variable
+ * with its FULL-model terms on as AUTO by budget's top exact rung draws
+ * them (against MATCHED with the same snell_ref_terms and interface cap, the
+ * same bounds); the environment variable
  * STRESS_ONLY=substring restricts the cases by label (for diagnosis). */
 #include "test_util.h"
 #include "core/pack.h"
@@ -101,7 +102,20 @@ typedef struct stress_method {
     int interfaces;
     snell_ref_absorption absorb;
     unsigned terms;             /* exact's terms on: snell_ref_terms of the reference (0: none) */
+    const snell_budget_rung *rung; /* with terms: the budget's rung that draws them, NULL none */
 } stress_method;
+
+/* AUTO by budget's exact rung with all three terms (its top one). */
+static const snell_budget_rung *terms_rung(void)
+{
+    const snell_budget_rung *found = NULL;
+    int i;
+    for (i = 0; i < snell_budget_rung_count(); i++)
+        if (snell_budget_rung_at(i)->method == SNELL_METHOD_EXACT && snell_budget_rung_at(i)->more &&
+            strstr(snell_budget_rung_at(i)->more, "inner_fresnel=on"))
+            found = snell_budget_rung_at(i);
+    return found;
+}
 
 static int resolve_method(const snell_method_info *info, stress_method *out)
 {
@@ -218,6 +232,7 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
         g.material.exact.fresnel = SNELL_FRESNEL_EXACT;
         g.material.exact.inner_fresnel = SNELL_INNER_FRESNEL_ON;
         g.material.exact.reentry = SNELL_EXACT_REENTRY_ON;
+        if (mc->rung) CHECK_OK(snell_budget_rung_apply(mc->rung, &g.material));
     }
     fd.camera.azimuth = (float)(sc->az_deg * PI / 180.0);
     fd.camera.elevation = (float)(sc->el_deg * PI / 180.0);
@@ -366,6 +381,10 @@ int main(int argc, char **argv)
             if (argc > 2 && !strcmp(argv[2], "terms")) {
                 if (sm.id != SNELL_METHOD_EXACT) continue;
                 sm.terms = SNELL_REF_TERMS_ALL;
+                sm.rung = terms_rung();
+                CHECK(sm.rung != NULL, "no exact rung with the terms in the budget's table");
+                if (sm.rung && !strcmp(sm.rung->param ? sm.rung->param : "", "max_interfaces"))
+                    sm.interfaces = sm.rung->value;
             }
             named = 1;
             test_frame_one(&probe, &pg, sphere, env);
@@ -377,7 +396,7 @@ int main(int argc, char **argv)
                 continue;
             }
             ran++;
-            printf("%s%s vs MATCHED(%d), absorption %s\n", sm.name, sm.terms ? " with its terms" : "", sm.interfaces,
+            printf("%s%s vs MATCHED(%d), absorption %s\n", sm.name, sm.terms ? " with its terms (the budget's rung)" : "", sm.interfaces,
                    sm.absorb == SNELL_REF_ABSORB_BOUNDING_SPHERE ? "over the bounding-sphere chord" : "over the path");
             for (k = 0; k < sizeof cases / sizeof *cases; k++)
                 if (getenv("STRESS_ONLY") && !strstr(cases[k].label, getenv("STRESS_ONLY"))) continue;

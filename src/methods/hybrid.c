@@ -74,15 +74,16 @@ static snell_status hybrid_create(snell_ctx *ctx, snell__output_kind out, snell_
     return SNELL_OK;
 }
 
-/* The cubemap's preconditions; AUTO does not pick it (yet): it is chosen by
- * name. */
+/* The cubemap's preconditions. For AUTO it only runs: plain AUTO takes the
+ * cheaper cubemap first, and AUTO by budget puts it on the ladder where its
+ * rung is on the Pareto front (render/budget.c). */
 static snell__fit hybrid_fit(const snell_mesh_analysis *an, const snell_glass_resolved *g, char *why, size_t n)
 {
     snell__fit f = snell__method_cubemap.fit(an, g, why, n);
     if (f == SNELL__FIT_FAILS) return f;
     if (g->material.method != SNELL_METHOD_HYBRID) {
-        snell__why(why, n, "is chosen by name only, not by AUTO");
-        return SNELL__FIT_FAILS;
+        snell__why(why, n, "costs the cubemap plus exact on the doubted pixels: AUTO by budget's, not plain AUTO's");
+        return SNELL__FIT_RUNS;
     }
     return SNELL__FIT_ADEQUATE;
 }
@@ -209,10 +210,17 @@ static const snell_method_info g_info = {
     .method = SNELL_METHOD_HYBRID,
     .name = "hybrid",
     .summary = "the cubemap where it trusts its answer, exact (BVH traversal) on the pixels it doubts",
-    .needs = "what the cubemap needs (a closed mesh, centre inside); chosen by name, not by AUTO",
+    .needs = "what the cubemap needs (a closed mesh, centre inside); AUTO by budget only (its rung)",
     .param_count = (int)(sizeof g_params / sizeof *g_params),
     .params = g_params,
     .default_sweep = "doubt=5,20,80",
+};
+
+/* AUTO by budget's rung (frame/method.h), measured as exact's
+ * (bench/notes/budget_rungs.md); none on the open class: the cubemap's
+ * preconditions fail there. */
+static const snell_budget_rung g_rungs[] = {
+    {SNELL_METHOD_HYBRID, NULL, 0, {3.99f, 11.10f, 14.69f, 0.0f}, {34.95f, 22.44f, 20.90f, 0.0f}, 1, NULL},
 };
 
 const snell__method snell__method_hybrid = {
@@ -227,4 +235,6 @@ const snell__method snell__method_hybrid = {
     .release = hybrid_release,
     .draw = hybrid_draw,
     .software_screen_ppt = 1e9f,
+    .rungs = g_rungs,
+    .rung_count = (int)(sizeof g_rungs / sizeof *g_rungs),
 };
