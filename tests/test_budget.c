@@ -453,15 +453,15 @@ static void auto_picks(const snell_mesh_analysis *convex, const snell_mesh_analy
 }
 
 /* The FULL model's terms and the hybrid on AUTO by budget (issue 50 item 4): a rung's further
- * parameters are written with it (and a bad one refused); with exact allowed, every class's ladder
- * ends on exact with all three terms (the table's best there), below it a rung with re-entry only;
- * the hybrid runs for AUTO (a candidate rung, kept where the Pareto cut keeps it), never plain
- * AUTO's first choice. */
+ * parameters are written with it (a bad one refused, every table rung taken); with exact allowed,
+ * every class's ladder ends on exact with all three terms (the table's best there), below it a
+ * rung with re-entry only; the hybrid runs for AUTO (a candidate rung, kept where the Pareto cut
+ * keeps it), never plain AUTO's first choice. */
 static void terms_and_hybrid(const snell_mesh_analysis *const meshes[4], const snell_glass_resolved *g)
 {
     const snell__rung good = {SNELL_METHOD_EXACT, "max_interfaces", 10, {1, 1, 1, 1}, {1, 1, 1, 1}, 1,
                               "fresnel=exact:inner_fresnel=on:reentry=on"};
-    static const char *const bad[] = {"fresnel", "nope=1", "reentry=maybe", "fresnel=exact:", ":reentry=on"};
+    static const char *const bad[] = {"fresnel", "nope=1", "reentry=maybe", "=exact", ":reentry=on"};
     snell_glass_material m;
     snell_glass_resolved ga = *g, res;
     int i, k, cls;
@@ -478,6 +478,12 @@ static void terms_and_hybrid(const snell_mesh_analysis *const meshes[4], const s
     }
     CHECK(snell_budget_rung_apply(NULL, &m) == SNELL_E_INVALID_ARG && snell_budget_rung_apply(&good, NULL) ==
               SNELL_E_INVALID_ARG, "NULL accepted");
+    /* the budget stage applies the table's rungs without a check: each must apply */
+    for (i = 0; i < snell__rung_count(); i++) {
+        memset(&m, 0, sizeof m);
+        CHECK(snell_budget_rung_apply(snell__rung_at(i), &m) == SNELL_OK && m.method == snell__rung_at(i)->method,
+              "the table's rung %d refused", i);
+    }
     if (!snell_build_has("exact")) return;
     ga.material.exact.auto_pick = SNELL_EXACT_AUTO_ALLOW;
     for (k = 0; k < 4; k++) {

@@ -396,7 +396,8 @@ int main(int argc, char **argv)
                 continue;
             }
             ran++;
-            printf("%s%s vs MATCHED(%d), absorption %s\n", sm.name, sm.terms ? " with its terms (the budget's rung)" : "", sm.interfaces,
+            printf("%s%s vs MATCHED(%d), absorption %s\n", sm.name,
+                   sm.terms ? " with its terms (the budget's rung)" : "", sm.interfaces,
                    sm.absorb == SNELL_REF_ABSORB_BOUNDING_SPHERE ? "over the bounding-sphere chord" : "over the path");
             for (k = 0; k < sizeof cases / sizeof *cases; k++)
                 if (getenv("STRESS_ONLY") && !strstr(cases[k].label, getenv("STRESS_ONLY"))) continue;

@@ -1073,7 +1073,8 @@ typedef struct snell_budget_rung {
                                      * apply (a method reading full-resolution back faces; a build without
                                      * the scale) */
     const char *more;               /* further parameters of the method, "name=value" joined by ':' (as
-                                     * snell_glass_set_param takes them), or NULL */
+                                     * snell_glass_set_param takes them), or NULL; only beside param: a
+                                     * rung without param is the method's defaults */
 } snell_budget_rung;
 int snell_budget_rung_count(void);
 const snell_budget_rung *snell_budget_rung_at(int i); /* NULL outside 0..count-1 */

@@ -185,14 +185,14 @@ static int parse(int argc, char **argv, budget_opts *o)
     return 1;
 }
 
-/* "peel layers=2 scale=2", as the library's reasons name a rung. */
+/* "peel layers=2 scale=2", "exact max_interfaces=10:fresnel=exact:...", as the library's reasons name a rung. */
 static void rung_name(const snell_budget_rung *g, char *buf, size_t n)
 {
     char param[40] = "", scale[24] = "";
     if (g->param) snprintf(param, sizeof param, " %s=%d", g->param, g->value);
     if (g->scale > 1) snprintf(scale, sizeof scale, " scale=%d", g->scale);
-    snprintf(buf, n, "%s%s%s%s%s", snell_method_str(g->method), param, g->more ? " " : "", g->more ? g->more : "",
-             scale);
+    snprintf(buf, n, "%s%s%s%s%s", snell_method_str(g->method), param, g->param && g->more ? ":" : "",
+             g->param && g->more ? g->more : "", scale);
 }
 
 static void print_table(void)

@@ -323,7 +323,8 @@ static const snell_method_info g_info = {
  * re-entry first, it is most of the gain on concave meshes; then all three
  * at the FULL reference's cap. */
 static const snell_budget_rung g_rungs[] = {
-    {SNELL_METHOD_EXACT, "max_interfaces", 2, {14.50f, 5.68f, 11.78f, 5.30f}, {32.30f, 18.17f, 20.65f, 18.80f}, 1, NULL},
+    {SNELL_METHOD_EXACT, "max_interfaces", 2, {14.50f, 5.68f, 11.78f, 5.30f}, {32.30f, 18.17f, 20.65f, 18.80f}, 1,
+     NULL},
     {SNELL_METHOD_EXACT, NULL, 0, {14.74f, 10.16f, 16.00f, 8.19f}, {32.31f, 24.95f, 24.48f, 22.71f}, 1, NULL},
     {SNELL_METHOD_EXACT, "max_interfaces", 8, {16.12f, 13.13f, 23.28f, 7.09f}, {32.67f, 27.08f, 27.88f, 25.41f}, 1,
      "reentry=on:fresnel=exact:node_format=q16"},

@@ -49,37 +49,38 @@ int snell_budget_rung_count(void)
 
 const snell_budget_rung *snell_budget_rung_at(int i) { return i >= 0 ? rung_walk(i, NULL) : NULL; }
 
+/* A rung's parameters as snell-bench writes them after a space: " param=value:more", "" for none. */
+static void rung_params(const snell__rung *g, char *buf, size_t n)
+{
+    *buf = '\0';
+    if (g->param) snprintf(buf, n, " %s=%d%s%s", g->param, g->value, g->more ? ":" : "", g->more ? g->more : "");
+}
+
 void snell__rung_name(const snell__rung *g, char *buf, size_t n)
 {
-    char scale[24] = "", param[40] = "";
+    char params[128], scale[24] = "";
+    rung_params(g, params, sizeof params);
     if (g->scale > 1) snprintf(scale, sizeof scale, " scale=%d", g->scale);
-    if (g->param) snprintf(param, sizeof param, " %s=%d", g->param, g->value);
-    snprintf(buf, n, "%s%s%s%s%s", snell_method_str(g->method), param, g->more ? " " : "", g->more ? g->more : "",
-             scale);
+    snprintf(buf, n, "%s%s%s", snell_method_str(g->method), params, scale);
 }
 
 snell_status snell_budget_rung_apply(const snell_budget_rung *g, snell_glass_material *m)
 {
-    char value[16], more[96], *p, *eq, *end;
-    int last;
+    char all[128], *p, *eq, *end;
     if (!g || !m) return SNELL_E_INVALID_ARG;
     m->method = g->method;
     m->scale = g->scale > 1 ? (float)g->scale : 1.0f;
-    snprintf(value, sizeof value, "%d", g->value);
-    if (g->param && snell_glass_set_param(m, g->method, g->param, value) != SNELL_OK) return SNELL_E_INVALID_ARG;
-    if (!g->more) return SNELL_OK;
-    if (strlen(g->more) >= sizeof more) return SNELL_E_INVALID_ARG;
-    strcpy(more, g->more);
-    for (p = more;; p = end + 1) {
+    rung_params(g, all, sizeof all);
+    /* each "name=value" up to the next ':' */
+    for (p = all + (*all == ' '); *p; p = end) {
         end = p + strcspn(p, ":");
-        last = !*end;
-        *end = '\0';
+        if (*end) *end++ = '\0';
         eq = strchr(p, '=');
-        if (!eq || eq == p) return SNELL_E_INVALID_ARG;
+        if (!eq) return SNELL_E_INVALID_ARG;
         *eq = '\0';
         if (snell_glass_set_param(m, g->method, p, eq + 1) != SNELL_OK) return SNELL_E_INVALID_ARG;
-        if (last) return SNELL_OK;
     }
+    return SNELL_OK;
 }
 
 int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolved *glass)
@@ -98,7 +99,7 @@ float snell__rung_cost(const snell__device_cost *dev, const snell__rung *g, int 
     /* the device's cost of the method's default rung; its other rungs keep their ratios to it */
     for (i = 0; i < n && on_dev > 0.0f; i++) {
         const snell__rung *h = snell__rung_at(i);
-        if (h->method == g->method && !h->param && !h->more && h->scale <= 1) base = h->cost[cls];
+        if (h->method == g->method && !h->param && h->scale <= 1) base = h->cost[cls];
     }
     return base > 0.0f ? g->cost[cls] * on_dev / base : g->cost[cls];
 }
