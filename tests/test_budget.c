@@ -467,21 +467,21 @@ static void terms_and_hybrid(const snell_mesh_analysis *const meshes[4], const s
     int i, k, cls;
     memset(&m, 0, sizeof m);
     m.ior = 1.5f;
-    CHECK(snell_budget_rung_apply(&good, &m) == SNELL_OK && m.method == SNELL_METHOD_EXACT &&
+    CHECK(snell__rung_apply(&good, &m) == SNELL_OK && m.method == SNELL_METHOD_EXACT &&
               m.exact.max_interfaces == 10 && m.exact.fresnel == SNELL_FRESNEL_EXACT &&
               m.exact.inner_fresnel == SNELL_INNER_FRESNEL_ON && m.exact.reentry == SNELL_EXACT_REENTRY_ON,
           "a rung's further parameters not written");
     for (i = 0; i < (int)(sizeof bad / sizeof *bad); i++) {
         snell__rung r = good;
         r.more = bad[i];
-        CHECK(snell_budget_rung_apply(&r, &m) == SNELL_E_INVALID_ARG, "rung parameters \"%s\" accepted", bad[i]);
+        CHECK(snell__rung_apply(&r, &m) == SNELL_E_INVALID_ARG, "rung parameters \"%s\" accepted", bad[i]);
     }
-    CHECK(snell_budget_rung_apply(NULL, &m) == SNELL_E_INVALID_ARG && snell_budget_rung_apply(&good, NULL) ==
+    CHECK(snell__rung_apply(NULL, &m) == SNELL_E_INVALID_ARG && snell__rung_apply(&good, NULL) ==
               SNELL_E_INVALID_ARG, "NULL accepted");
     /* the budget stage applies the table's rungs without a check: each must apply */
     for (i = 0; i < snell__rung_count(); i++) {
         memset(&m, 0, sizeof m);
-        CHECK(snell_budget_rung_apply(snell__rung_at(i), &m) == SNELL_OK && m.method == snell__rung_at(i)->method,
+        CHECK(snell__rung_apply(snell__rung_at(i), &m) == SNELL_OK && m.method == snell__rung_at(i)->method,
               "the table's rung %d refused", i);
     }
     if (!snell_build_has("exact")) return;
@@ -497,7 +497,7 @@ static void terms_and_hybrid(const snell_mesh_analysis *const meshes[4], const s
         top = snell__rung_at(ex.ladder[ex.n - 1]);
         memset(&m, 0, sizeof m);
         m.ior = 1.5f;
-        CHECK(snell_budget_rung_apply(top, &m) == SNELL_OK && snell_glass_defaults(&m, &res) == SNELL_OK,
+        CHECK(snell__rung_apply(top, &m) == SNELL_OK && snell_glass_defaults(&m, &res) == SNELL_OK,
               "class %d: the top rung refused", cls);
         CHECK(top->method == SNELL_METHOD_EXACT && res.material.exact.fresnel == SNELL_FRESNEL_EXACT &&
                   res.material.exact.inner_fresnel == SNELL_INNER_FRESNEL_ON &&
@@ -506,7 +506,7 @@ static void terms_and_hybrid(const snell_mesh_analysis *const meshes[4], const s
         for (i = 0; i < ex.n; i++) {
             memset(&m, 0, sizeof m);
             m.ior = 1.5f;
-            if (snell_budget_rung_apply(snell__rung_at(ex.ladder[i]), &m) == SNELL_OK &&
+            if (snell__rung_apply(snell__rung_at(ex.ladder[i]), &m) == SNELL_OK &&
                 snell_glass_defaults(&m, &res) == SNELL_OK && m.method == SNELL_METHOD_EXACT)
                 reentry_only |= res.material.exact.reentry == SNELL_EXACT_REENTRY_ON &&
                                 res.material.exact.inner_fresnel != SNELL_INNER_FRESNEL_ON;

@@ -18,6 +18,7 @@
  * STRESS_ONLY=substring restricts the cases by label (for diagnosis). */
 #include "test_util.h"
 #include "core/pack.h"
+#include "render/budget.h"
 #include "snell/snell_metrics.h"
 #include "snell/snell_ref.h"
 
@@ -232,7 +233,7 @@ static int run_case(snell_ctx *ctx, snell_renderer *r, const snell_env *env, con
         g.material.exact.fresnel = SNELL_FRESNEL_EXACT;
         g.material.exact.inner_fresnel = SNELL_INNER_FRESNEL_ON;
         g.material.exact.reentry = SNELL_EXACT_REENTRY_ON;
-        if (mc->rung) CHECK_OK(snell_budget_rung_apply(mc->rung, &g.material));
+        if (mc->rung) CHECK_OK(snell__rung_apply(mc->rung, &g.material));
     }
     fd.camera.azimuth = (float)(sc->az_deg * PI / 180.0);
     fd.camera.elevation = (float)(sc->el_deg * PI / 180.0);

@@ -1078,9 +1078,6 @@ typedef struct snell_budget_rung {
 } snell_budget_rung;
 int snell_budget_rung_count(void);
 const snell_budget_rung *snell_budget_rung_at(int i); /* NULL outside 0..count-1 */
-/* Writes rung g into m: its method, scale and parameters (m's others stay).
- * SNELL_E_INVALID_ARG if a parameter is refused. */
-snell_status snell_budget_rung_apply(const snell_budget_rung *g, snell_glass_material *m);
 
 #define SNELL_DEFAULT_RENDER_SIZE 512
 

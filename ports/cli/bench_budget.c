@@ -185,6 +185,23 @@ static int parse(int argc, char **argv, budget_opts *o)
     return 1;
 }
 
+/* Rung g written into m as the library's budget stage writes it: method, scale, param=value and each
+ * further "name=value" of g->more. */
+static void apply_rung(const snell_budget_rung *g, snell_glass_material *m)
+{
+    char v[16], more[160], *p, *eq;
+    m->method = g->method;
+    m->scale = g->scale > 1 ? (float)g->scale : 1.0f;
+    snprintf(v, sizeof v, "%d", g->value);
+    if (g->param) snell_glass_set_param(m, g->method, g->param, v);
+    snprintf(more, sizeof more, "%s", g->param && g->more ? g->more : "");
+    for (p = strtok(more, ":"); p; p = strtok(NULL, ":"))
+        if ((eq = strchr(p, '=')) != NULL) {
+            *eq = '\0';
+            snell_glass_set_param(m, g->method, p, eq + 1);
+        }
+}
+
 /* "peel layers=2 scale=2", "exact max_interfaces=10:fresnel=exact:...", as the library's reasons name a rung. */
 static void rung_name(const snell_budget_rung *g, char *buf, size_t n)
 {
@@ -228,7 +245,7 @@ static void frame_of(const bench_scene *s, const snell_env *env, budget_config *
         }
         if (k->rung >= 0) {
             const snell_budget_rung *g = snell_budget_rung_at(k->rung);
-            snell_budget_rung_apply(g, &k->glass[i].material);
+            apply_rung(g, &k->glass[i].material);
         } else {
             k->glass[i].material.method = SNELL_METHOD_AUTO;
             if (o->exact_auto) k->glass[i].material.exact.auto_pick = SNELL_EXACT_AUTO_ALLOW;

@@ -64,7 +64,7 @@ void snell__rung_name(const snell__rung *g, char *buf, size_t n)
     snprintf(buf, n, "%s%s%s", snell_method_str(g->method), params, scale);
 }
 
-snell_status snell_budget_rung_apply(const snell_budget_rung *g, snell_glass_material *m)
+snell_status snell__rung_apply(const snell__rung *g, snell_glass_material *m)
 {
     char all[128], *p, *eq, *end;
     if (!g || !m) return SNELL_E_INVALID_ARG;

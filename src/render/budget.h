@@ -24,6 +24,9 @@ typedef snell_budget_rung snell__rung;
 #define snell__rung_at snell_budget_rung_at
 /* "peel layers=2", "peel layers=2 scale=2" */
 void snell__rung_name(const snell__rung *g, char *buf, size_t n);
+/* Writes rung g into m: its method, scale and parameters (m's others stay).
+ * SNELL_E_INVALID_ARG if a parameter is refused. */
+snell_status snell__rung_apply(const snell__rung *g, snell_glass_material *m);
 /* The class of a mesh for the table (analysis may be NULL). */
 int snell__budget_class(const snell_mesh_analysis *an, const snell_glass_resolved *glass);
 

@@ -221,7 +221,7 @@ static snell_status stage_run(snell__frame *f, void *state)
         /* The frame's resolved copy of the material (scene.c): the rung draws it as an explicit method,
          * at the rung's scale (the material's own is the rung's to choose, as its method is). */
         snell__rung_name(g, name, sizeof name);
-        (void)snell_budget_rung_apply(g, &sc->glass[i].material); /* the table's rungs apply (test_budget) */
+        (void)snell__rung_apply(g, &sc->glass[i].material); /* the table's rungs apply (test_budget) */
         snprintf(bs->note[i], sizeof bs->note[i], "%s (rung %d of %d, %.1f dB predicted for %s mesh)",
                  name, plan[i] + 1, b->n, (double)g->db[b->cls], g_class_names[b->cls]);
         o->budget_note = bs->note[i];
