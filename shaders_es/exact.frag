@@ -52,17 +52,18 @@ highp vec3 g_world_pos, g_world_normal;
 // this object's doubted pixels, so the G-buffer is read as surface.glsl
 // reads it but without the object test, whose discard would turn early
 // depth tests off (llvmpipe).
-void snell_surface_ours(out highp vec3 pos, out highp vec3 normal)
+void snell_surface_ours(highp vec2 frag, out highp vec3 pos, out highp vec3 normal)
 {
-    ivec2 px = ivec2(gl_FragCoord.xy);
+    ivec2 px = ivec2(frag);
     highp uvec4 b = uvec4(texelFetch(u_gdepth_id, px, 0) * 255.0 + 0.5);
     highp float depth = float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
-    highp vec4 w = u_inv_view_proj * vec4(gl_FragCoord.xy * u_inv_size * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    highp vec4 w = u_inv_view_proj * vec4(frag * u_inv_size * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     highp vec4 g = texelFetch(u_gnormal, px, 0);
     pos = w.xyz / w.w;
     normal = snell_oct_decode(vec2(snell_unpack_unorm16(g.xy), snell_unpack_unorm16(g.zw)) * 2.0 - 1.0);
 }
-#define snell_surface snell_surface_ours
+#define snell_surface_frag snell_surface_ours
+#define snell_surface(pos, normal) snell_surface_ours(gl_FragCoord.xy, pos, normal)
 #endif
 
 #if SNELL_EXACT_TERMS
@@ -71,6 +72,7 @@ void snell_surface_ours(out highp vec3 pos, out highp vec3 normal)
 // no split) and the inner branch's end point, direction and length.
 int g_entries;
 #if SNELL_EXACT_INNER
+int g_entry_tri; // the eye ray's triangle (-1: none), its normal made again after the walk
 float g_split_fresnel, g_inner_path;
 highp vec3 g_inner_p, g_inner_dir;
 #endif
@@ -95,28 +97,31 @@ void exact_terms_walk(highp vec3 eye, highp vec3 v, highp vec3 world_pos, vec3 n
     // The loop's counts and flags packed in one int (one value live through
     // the loop, as peel.frag's marks): bits 0-3 the interfaces processed on
     // this branch, 4-7 the entries after the first, 8-11 the split's
-    // interfaces, 12 inside, 13 split, 14 the inner branch runs, 15 done.
-    // Not a constant to the compiler (u_max_interfaces & 256 is 0), so that
+    // interfaces, 12 inside, 13 split, 14 the inner branch runs, 15 done,
+    // 16 on the rays traced (the loop's counter). Not a constant to the compiler (u_max_interfaces & 256 is 0), so that
     // NIR does not split the fields into loop values of their own.
     int marks = u_max_interfaces & 256;
 #if SNELL_EXACT_INNER
     // The split: its point, reflected direction, length and triangle. When
     // the chain ends the two change places: the inner branch goes on from
     // them, and they keep the chain's end (its entries in bits 4-7 then).
-    highp vec3 q = vec3(0.0), rq = vec3(0.0);
+    // Until the split they hold the rasterised surface's point (object space)
+    // and normal, which only the eye ray's miss reads: fewer values live.
+    highp vec3 q = (u_inv_model * vec4(world_pos, 1.0)).xyz, rq = n_raster;
     highp float q_path = 0.0;
     int q_at = 0;
     g_split_fresnel = 0.0;
+    g_entry_tri = -1;
 #define TERMS_LOOP (2 * MAX_INTERFACES + 1)
 #else
 #define TERMS_LOOP (MAX_INTERFACES + 1)
 #endif
-    for (int it = 0; it < TERMS_LOOP; it++) {
-        if ((marks & 0x8000) != 0) break;
+    while ((marks & 0x8000) == 0 && marks < TERMS_LOOP << 16) {
         Ray ray = make_ray(p, inv3 * dir);
         float t = 3.0e38;
         int h = closest(ray, u_eps, t, at);
-        bool first = it == 0, hit = h >= 0, inside = (marks & 0x1000) != 0;
+        bool first = marks < 0x10000, hit = h >= 0, inside = (marks & 0x1000) != 0;
+        marks += 0x10000;
         // at the cap: inside, the light leaves through the surface ahead in
         // its direction; outside, it sees the object no more
         bool capped = !first && (marks & 15) >= u_max_interfaces;
@@ -124,13 +129,23 @@ void exact_terms_walk(highp vec3 eye, highp vec3 v, highp vec3 world_pos, vec3 n
         vec3 ps, ns;
         surface_at(max(h, 0), ray, dir, ps, ns);
         bool moves = first || (hit && (inside || !capped));
+#if SNELL_EXACT_INNER
+        p = moves ? (hit ? ps : q) : p;
+        path += inside && hit ? t : 0.0;
+        vec3 n2 = hit ? ns : rq;
+#else
         p = moves ? (hit ? ps : (u_inv_model * vec4(world_pos, 1.0)).xyz) : p;
         path += inside && hit ? t : 0.0;
         vec3 n2 = hit ? ns : n_raster;
+#endif
         at = moves ? (hit ? h : RAY_AFTER_MISS) : at;
         vec3 out_dir;
         bool through = snell_refract_sel(dir, n2, inside ? snell_ior : 1.0 / snell_ior, out_dir);
+#if SNELL_EXACT_INNER
+        g_entry_tri = first ? h : g_entry_tri;
+#else
         n_entry = first ? n2 : n_entry;
+#endif
         vec3 mirror = snell_reflect(dir, n2);
 #if SNELL_EXACT_INNER && SNELL_REFINE
         // refinement (common/refine.glsl): an exit after the split reflects
@@ -197,6 +212,14 @@ void exact_terms_walk(highp vec3 eye, highp vec3 v, highp vec3 world_pos, vec3 n
 }
 #endif
 
+// The eye ray's point on the lens plane (view space) for the pixel at frag
+// (gl_FragCoord.xy).
+highp vec3 exact_lens(highp vec2 frag)
+{
+    vec2 ndc = frag * u_pixel_to_ndc - 1.0;
+    return vec3((ndc + u_cam_proj.zw) / u_cam_proj.xy, -1.0);
+}
+
 // The colour for one IOR, snell_ior (common/dispersion.glsl); g_visits
 // accumulates over the calls, as the budget counts all of a pixel's rays.
 // Selects rather than branches throughout (common/optics.glsl: snell_refract_sel).
@@ -208,8 +231,7 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     // points): neither the interpolated position nor one reconstructed from
     // the G-buffer's depth through a float inverse of view_proj (off by up
     // to 5e-4 rad here) is on it to float precision.
-    vec2 ndc = gl_FragCoord.xy * u_pixel_to_ndc - 1.0;
-    highp vec3 lens = vec3((ndc + u_cam_proj.zw) / u_cam_proj.xy, -1.0);
+    highp vec3 lens = exact_lens(gl_FragCoord.xy);
     // orthographic: parallel rays from the lens plane's point
     bool ortho = u_view_axis.w > 0.5;
     // (the orthographic point's products apart from the perspective
@@ -226,6 +248,25 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
     vec3 p, dir, n_entry;
     float path;
     exact_terms_walk(eye, v, world_pos, n_raster, inv3, p, dir, n_entry, path);
+#if SNELL_EXACT_INNER
+    // The front surface, the eye ray, the raster normal and the entry's
+    // normal (from its triangle) made again for what follows, with an opaque
+    // zero (u_max_interfaces >> 8) so that the compiler does not keep the
+    // first ones live through the walk's loop, past V3D's registers: the
+    // same operations on the same values, so the same bits.
+    highp vec2 frag = gl_FragCoord.xy + float(u_max_interfaces >> 8);
+    snell_surface_frag(frag, world_pos, world_normal);
+    lens = exact_lens(frag);
+    v_persp = normalize(u_cam_basis * lens);
+    v = ortho ? u_view_axis.xyz : v_persp;
+    n_raster = normalize(world_normal);
+    n_raster = dot(n_raster, v) > 0.0 ? -n_raster : n_raster;
+    eye_ortho = u_eye + u_cam_basis * vec3(lens.xy + float(u_max_interfaces >> 8), 0.0);
+    eye = ortho ? eye_ortho : u_eye;
+    vec3 entry_p;
+    surface_at(max(g_entry_tri, 0), make_ray((u_inv_model * vec4(eye, 1.0)).xyz, inv3 * v), v, entry_p, n_entry);
+    n_entry = g_entry_tri >= 0 ? n_entry : n_raster;
+#endif
 #else
 
     // One traversal call site for all the pixel's rays (each call site is a

@@ -14,13 +14,16 @@ uniform highp mat4 u_inv_view_proj;
 uniform highp vec2 u_inv_size;       // 1 / target size in pixels
 uniform int u_gid;                   // this object's id in the G-buffer (1..255)
 
-void snell_surface(out highp vec3 pos, out highp vec3 normal)
+// frag: gl_FragCoord.xy (snell_surface), or it plus an opaque zero, which
+// makes the compiler read and decode again rather than keep the first
+// read's values live (exact.frag after its walk).
+void snell_surface_frag(highp vec2 frag, out highp vec3 pos, out highp vec3 normal)
 {
-    ivec2 px = ivec2(gl_FragCoord.xy);
+    ivec2 px = ivec2(frag);
     highp uvec4 b = uvec4(texelFetch(u_gdepth_id, px, 0) * 255.0 + 0.5);
     if (int(b.a) != u_gid) discard;
     highp float depth = float((b.r << 16u) | (b.g << 8u) | b.b) / 16777215.0;
-    highp vec4 ndc = vec4(gl_FragCoord.xy * u_inv_size * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    highp vec4 ndc = vec4(frag * u_inv_size * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     highp vec4 w = u_inv_view_proj * ndc;
     highp vec4 g = texelFetch(u_gnormal, px, 0);
     pos = w.xyz / w.w;
@@ -30,6 +33,10 @@ void snell_surface(out highp vec3 pos, out highp vec3 normal)
     // the renderer cannot attach): the surface's depth goes to the target here
     gl_FragDepth = depth;
 #endif
+}
+void snell_surface(out highp vec3 pos, out highp vec3 normal)
+{
+    snell_surface_frag(gl_FragCoord.xy, pos, normal);
 }
 #else
 in highp vec3 v_world_pos;
@@ -42,6 +49,7 @@ void snell_surface(out highp vec3 pos, out highp vec3 normal)
     pos = v_world_pos;
     normal = v_world_normal;
 }
+#define snell_surface_frag(frag, pos, normal) snell_surface(pos, normal)
 #endif
 
 // Distance along unit d from p, inside sphere (world centre, radius: the
