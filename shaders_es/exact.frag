@@ -28,6 +28,14 @@ precision highp int;
 #define SNELL_EXACT_REENTRY 0
 #endif
 #define SNELL_EXACT_TERMS (SNELL_EXACT_INNER || SNELL_EXACT_REENTRY)
+// The three channels' traces in one loop (dispersion) read the G-buffer
+// again where they need the surface (snell_surface_frag) rather than keep
+// it in registers through the loops.
+#if SNELL_DISPERSION == 1 && defined(SNELL_SCREEN_SPACE)
+#define EXACT_READS_AGAIN 1
+#else
+#define EXACT_READS_AGAIN 0
+#endif
 
 #include "common/view.glsl"
 #include "common/refine.glsl"
@@ -225,7 +233,14 @@ highp vec3 exact_lens(highp vec2 frag)
 // Selects rather than branches throughout (common/optics.glsl: snell_refract_sel).
 vec3 snell_glass_trace(out highp vec3 exit_dir)
 {
+#if EXACT_READS_AGAIN
+    // each channel's trace reads the surface again (as after the terms' walk
+    // below), so that main's read is not live through the channels' loop
+    highp vec3 world_pos, world_normal;
+    snell_surface_frag(gl_FragCoord.xy + float(u_max_interfaces >> 11), world_pos, world_normal);
+#else
     highp vec3 world_pos = g_world_pos, world_normal = g_world_normal;
+#endif
     // The eye ray through the pixel centre from the camera's basis, as the
     // reference's camera rays (the line through the unprojected near and far
     // points): neither the interpolated position nor one reconstructed from
@@ -285,8 +300,20 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         if (h < 0 && k > 0) break;                              // open mesh: leaves in its direction
         vec3 ps, ns;
         surface_at(max(h, 0), ray, dir, ps, ns);
+#if EXACT_READS_AGAIN
+        // the rasterised surface, which the eye ray's miss reads, read here
+        // and again after the loop (other opaque zeros: not the values above)
+        // rather than kept through the walk's and the channels' loops
+        highp vec3 wp, wn;
+        snell_surface_frag(gl_FragCoord.xy + float(u_max_interfaces >> 9), wp, wn);
+        vec3 nr = normalize(wn);
+        nr = dot(nr, dir) > 0.0 ? -nr : nr;
+        p = h >= 0 ? ps : (u_inv_model * vec4(wp, 1.0)).xyz;
+        vec3 n2 = h >= 0 ? ns : nr;
+#else
         p = h >= 0 ? ps : (u_inv_model * vec4(world_pos, 1.0)).xyz;
         vec3 n2 = h >= 0 ? ns : n_raster;
+#endif
         at = h >= 0 ? h : RAY_AFTER_MISS;
         path += k > 0 ? t : 0.0;
         if (k > 0 && k >= u_max_interfaces) break;             // the cap
@@ -295,10 +322,23 @@ vec3 snell_glass_trace(out highp vec3 exit_dir)
         n_entry = k == 0 ? n2 : n_entry;                        // its reflection after the loop
         // the entry with an IOR below 1 at grazing incidence: the mirror, in
         // air; inside: refracted out, or totally reflected
+#if EXACT_READS_AGAIN
+        vec3 mirror = snell_reflect(dir, n2), out_n = normalize(out_dir); // dir: v at k = 0
+#else
         vec3 mirror = snell_reflect(v, n2), out_n = normalize(out_dir);
+#endif
         dir = k == 0 && !through ? mirror : out_n;
         if (through != (k == 0)) break;                        // not entered, or out
     }
+#if EXACT_READS_AGAIN
+    highp vec2 frag = gl_FragCoord.xy + float(u_max_interfaces >> 10);
+    snell_surface_frag(frag, world_pos, world_normal);
+    lens = exact_lens(frag);
+    v_persp = normalize(u_cam_basis * lens);
+    v = ortho ? u_view_axis.xyz : v_persp;
+    n_raster = normalize(world_normal);
+    n_raster = dot(n_raster, v) > 0.0 ? -n_raster : n_raster;
+#endif
 #endif
     // The entry's reflection and Fresnel from its normal, recomputed here
     // rather than carried through the loop: fewer values live across it.
@@ -363,9 +403,11 @@ void main()
     // order of dispersion.glsl's snell_disp_trace).
     vec3 color = vec3(0.0);
     for (int c = 0; c < 3; c++) {
-        vec3 m = c == 0 ? vec3(1.0, 0.0, 0.0) : (c == 1 ? vec3(0.0, 0.0, 1.0) : vec3(0.0, 1.0, 0.0));
-        snell_ior = dot(u_ior_rgb, m);
-        color += m * snell_glass_trace(exit_dir);
+        // the channel's IOR and colour selected, not masked: no mask live
+        // through the trace
+        snell_ior = c == 0 ? u_ior_rgb.r : (c == 1 ? u_ior_rgb.b : u_ior_rgb.g);
+        vec3 rgb = snell_glass_trace(exit_dir);
+        color = vec3(c == 0 ? rgb.r : color.r, c == 2 ? rgb.g : color.g, c == 1 ? rgb.b : color.b);
     }
 #else
     vec3 color = snell_disp_trace(exit_dir);
