@@ -164,13 +164,14 @@ sources_of() { # DEVICE: its dump folders, one a line
 # driver under the device's profile and GL_RENDERER, where read-backs are real (the variants that
 # the data choose: layered's layers, from its bake; over drm-shim they read garbage).
 frames() { # FOLDER: snell-render's default scene, snell-bench's every method on the bunny and sphere
-    # (and exact's FULL terms on the bunny)
+    # (and exact's FULL terms and its dispersion on the bunny)
     local specs=() m
     for m in single layered cubemap wyman oliveira peel exact auto; do specs+=(-b "$m:scene=bunny,sphere:size=64x64"); done
     # exact with the FULL model's terms (inner Fresnel alone and all three): candidates for its
-    # default (issue 50), held to no spills too
+    # default (issue 50); and with dispersion (three traces): held to no spills too
     specs+=(-b exact:scene=bunny:size=64x64:inner_fresnel=on
-        -b exact:scene=bunny:size=64x64:fresnel=exact:inner_fresnel=on:reentry=on)
+        -b exact:scene=bunny:size=64x64:fresnel=exact:inner_fresnel=on:reentry=on
+        -b exact:scene=bunny:size=64x64:dispersion=0.31)
     export LD_PRELOAD="${LD_PRELOAD:+$LD_PRELOAD }$build/tests/libsnell_glsl_dump.so" SNELL_GLSL_DUMP=$1
     timeout 300 "$build/ports/cli/snell-render" -o "$1/render.png" || return $?
     timeout 300 "$build/ports/cli/snell-bench" -q --cache "$out/dump/reference-cache" "${specs[@]}" \
