@@ -139,6 +139,12 @@ if(NOT SNELL_WITH_PANELS)
   # a stage of the renderer, its model and its reference; shaders panel*
   list(FILTER SNELL_SOURCES EXCLUDE REGEX "/src/(frame|render|ref)/(ref_)?panel[^/]*\\.c$")
   list(FILTER SNELL_SHADER_SOURCES EXCLUDE REGEX "/shaders_es/panel[^/]*$")
+  if(SNELL_WITH_REF)
+    # the reference's panels (without the reference, ref_api_off.c has them)
+    snell_off_stubs(${PROJECT_BINARY_DIR}/generated/panels_api_off.c "SNELL_WITH_PANELS" NAMES "^snell_ref_panels$"
+                    ${PROJECT_SOURCE_DIR}/include/snell/snell_ref.h)
+    list(APPEND SNELL_SOURCES ${PROJECT_BINARY_DIR}/generated/panels_api_off.c)
+  endif()
 endif()
 if(NOT SNELL_WITH_CAUSTICS)
   # a stage of the renderer: its files and shaders out, render/caustics_off.c says why

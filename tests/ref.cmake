@@ -22,3 +22,7 @@ target_link_libraries(test_ref_gpu_single PRIVATE m)
 # Supersampling (snell_renderer_desc.ssaa, render/ssaa.c): the resolved frame
 # against the block means of the large one; refused settings.
 snell_add_test(test_ssaa SOURCES test_ssaa.c LABELS "render;gl" SHADINGS forward screen)
+# Glass panels' reference (snell_ref_panels, src/ref/ref_panels.c) against
+# values derived from snell_panels.h's model; hostile input (issue 51).
+snell_add_test(test_ref_panels SOURCES test_ref_panels.c LABELS "unit")
+target_link_libraries(test_ref_panels PRIVATE m)

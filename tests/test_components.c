@@ -77,6 +77,19 @@ static void check_ref(snell_ctx *ctx)
     snell_ref_destroy(ref);
 }
 
+/* The panels' reference: drawn, or refused naming the option that left it out. */
+static void check_panels_ref(void)
+{
+    static const uint8_t under[4 * 4 * 4];
+    uint8_t out[4 * 4 * 4];
+    snell_panel p = {.center = {2, 2}, .size = {2, 2}};
+    snell_status st = snell_ref_panels(&p, 1, under, 4, 4, 1, out);
+    if (snell_build_has("panels") && snell_build_has("ref"))
+        CHECK(st == SNELL_OK, "the panels' reference built in: %s", snell_last_error(NULL));
+    else
+        check_unsupported("snell_ref_panels", st, NULL, snell_build_has("ref") ? "SNELL_WITH_PANELS" : "SNELL_WITH_REF");
+}
+
 static void check_lm2d(snell_ctx *ctx)
 {
     snell_scene2d *s = NULL;
@@ -242,6 +255,7 @@ int main(void)
     check_png();
     check_gltf();
     check_3ds();
+    check_panels_ref();
     ctx = test_ctx();
     if (!ctx) {
         printf("no GL context: the reference, 2D and water checks are not run\n");
