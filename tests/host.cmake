@@ -107,3 +107,8 @@ set_tests_properties(example_host_scene PROPERTIES LABELS "render;gl" SKIP_RETUR
 # validated (sokol_gfx's order): refusals name the resolved value and never re-encode a default.
 snell_add_test(test_resolve_order SOURCES test_resolve_order.c LABELS "unit;gl")
 target_link_libraries(test_resolve_order PRIVATE snell_dep::gles)
+
+# Glass panels (issue 51): the stage against snell_ref_panels over an app's
+# texture: glass PSNR of a clear, a frosted, a dispersive and a merged panel.
+snell_add_test(test_panels_ref SOURCES test_panels_ref.c LABELS "render;gl")
+target_link_libraries(test_panels_ref PRIVATE PkgConfig::GLES m)
