@@ -231,6 +231,68 @@ static void check_symmetry(void)
     CHECK(bad == 0 && memcmp(out, under, sizeof out) != 0, "mirror symmetry: %d channels differ", bad);
 }
 
+/* A superelliptic corner (n = 4): the test's own field, its gradient by a
+ * central difference, the vector form of Snell's law; red ramps in x and
+ * green in y, so both components of the landing point show. */
+static double corner_field(double x, double y)
+{
+    double qx = fabs(x - 48) - (40 - 20), qy = fabs(y - 32) - (28 - 20);
+    double mx = qx > 0 ? qx : 0, my = qy > 0 ? qy : 0, in = qx > qy ? qx : qy;
+    return pow(pow(mx, 4) + pow(my, 4), 0.25) + (in < 0 ? in : 0) - 20;
+}
+
+static void check_corner(void)
+{
+    snell_panel p = plain(48, 32, 80, 56);
+    int x, y, k, bad = 0, n = 0;
+    p.exponent = 4.0f, p.bevel = 16.0f, p.thickness = 24.0f;
+    for (k = 0; k < 4; k++) p.radius[k] = 20.0f;
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            uint8_t *t = under + 4 * (y * W + x);
+            t[0] = (uint8_t)(20 + 2 * x), t[1] = (uint8_t)(20 + 3 * y), t[2] = 0, t[3] = 255;
+        }
+    CHECK_OK(snell_ref_panels(&p, 1, under, W, H, 1, out));
+    for (y = 44; y < 60; y++)
+        for (x = 70; x < 88; x++) {
+            double px_ = x + 0.5, py_ = y + 0.5, d = corner_field(px_, py_), e = 1e-5, g[2], v, h, slope, nn[3];
+            double len, c, eta = 1 / 1.5, k2, tt[3], xl, yl, F;
+            if (!(d < -0.05 && d > -15.95)) continue; /* in the bevel */
+            g[0] = (corner_field(px_ + e, py_) - corner_field(px_ - e, py_)) / (2 * e);
+            g[1] = (corner_field(px_, py_ + e) - corner_field(px_, py_ - e)) / (2 * e);
+            v = 1 + d / 16, h = 24 * sqrt(1 - v * v), slope = 24.0 / 16 * v / sqrt(1 - v * v);
+            nn[0] = slope * g[0], nn[1] = slope * g[1], nn[2] = 1;
+            len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + 1);
+            nn[0] /= len, nn[1] /= len, nn[2] /= len;
+            c = nn[2], k2 = 1 - eta * eta * (1 - c * c);
+            tt[0] = (eta * c - sqrt(k2)) * nn[0], tt[1] = (eta * c - sqrt(k2)) * nn[1];
+            tt[2] = -eta + (eta * c - sqrt(k2)) * nn[2];
+            xl = px_ + h * tt[0] / -tt[2], yl = py_ + h * tt[1] / -tt[2];
+            F = fresnel(c, 1.5);
+            if (xl > W - 1 || yl > H - 1) continue; /* past the ramp's clamped edge */
+            n++;
+            if (fabs(px(x, y, 0) - (1 - F) * (20 + 2 * (xl - 0.5))) > 1.0 ||
+                fabs(px(x, y, 1) - (1 - F) * (20 + 3 * (yl - 0.5))) > 1.0)
+                bad++;
+        }
+    CHECK(n > 40 && bad == 0, "superelliptic corner: %d of %d bevel pixels off the field's gradient", bad, n);
+}
+
+/* Panels in order: the second reads the first's result where they overlap. */
+static void check_order(void)
+{
+    snell_panel p[2];
+    p[0] = plain(30, 32, 40, 40), p[1] = plain(60, 32, 40, 40);
+    p[0].ior = p[1].ior = 1.0f;
+    p[0].tint[0] = 1.0f, p[0].tint[3] = 1.0f;              /* red */
+    p[1].tint[2] = 1.0f, p[1].tint[3] = 0.5f;              /* half blue */
+    fill_const(100);
+    CHECK_OK(snell_ref_panels(p, 2, under, W, H, 1, out));
+    CHECK(px(45, 32, 0) == 128 && px(45, 32, 2) == 128 && px(70, 32, 0) == 50 && px(20, 32, 0) == 255,
+          "the later panel over the earlier one's result: %d %d, %d, %d", px(45, 32, 0), px(45, 32, 2),
+          px(70, 32, 0), px(20, 32, 0));
+}
+
 static void refused(const char *what, snell_status st, const char *needle)
 {
     CHECK(st == SNELL_E_INVALID_ARG && strstr(snell_last_error(NULL), needle), "%s: %s \"%s\"", what,
@@ -295,6 +357,8 @@ int main(void)
     check_union();
     check_frost();
     check_symmetry();
+    check_corner();
+    check_order();
     check_hostile();
     return test_finish();
 }
