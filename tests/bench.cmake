@@ -119,3 +119,14 @@ if(TARGET snell_bench_common)
   target_link_libraries(test_bench_keys PRIVATE snell_bench_common)
   target_include_directories(test_bench_keys PRIVATE ${PROJECT_SOURCE_DIR}/ports/cli)
 endif()
+
+# bench_panels: issue 51's cost of N glass panels against a plain full-screen copy, configurations
+# taking turns (a tool, not a test; figures in bench/BENCHMARKS.md "Panels"); that it runs, small.
+if(SNELL_WITH_PANELS)
+  add_executable(bench_panels bench_panels.c ${PROJECT_SOURCE_DIR}/ports/cli/cli_time.c)
+  target_link_libraries(bench_panels PRIVATE snell_static PkgConfig::GLES)
+  target_include_directories(bench_panels PRIVATE ${PROJECT_SOURCE_DIR}/ports/cli)
+  target_compile_options(bench_panels PRIVATE ${SNELL_WARNINGS})
+  add_test(NAME bench_panels_runs COMMAND bench_panels 128x72 2)
+  set_tests_properties(bench_panels_runs PROPERTIES LABELS "cli;gl" PASS_REGULAR_EXPRESSION "TARGET\\) \\| 64 clear \\| [0-9.]+ \\|")
+endif()
