@@ -16,8 +16,8 @@
 enum { CLEAR, FROSTED, DISPERSIVE, MERGED, CASES };
 static const char *const case_name[CASES] = {"clear", "frosted", "dispersive", "merged"};
 /* Lowest glass PSNR each case reached at 320x180, less a margin (2-3 dB).
- * Frost is the stage's mip chain against the model's Gaussian. */
-static const double case_floor_db[CASES] = {37.0, 30.0, 37.0, 40.0};
+ * Frost: taps of the stage's mip chain against the model's Gaussian. */
+static const double case_floor_db[CASES] = {37.0, 35.0, 37.0, 40.0};
 
 /* The picture beneath: two smooth gradients and a 16-pixel checker, bottom row first. */
 static void make_picture(uint8_t *px, int w, int h)
