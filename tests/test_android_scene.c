@@ -6,8 +6,9 @@
  * shows the glass and the asset's environment; after a context loss (the EGL
  * context destroyed under the GL objects, then glass_scene_destroy_gl with no
  * context current) a new context gets the same frame, pixel for pixel, from
- * the kept CPU data; a resize makes a new renderer; bad assets fail with a
- * message and leave nothing behind. */
+ * the kept CPU data; a resize makes a new renderer; glass panels lie over
+ * the glass scene and over a texture drawn beneath them; bad assets fail
+ * with a message and leave nothing behind. */
 #include "test_util.h"
 #include "glass_scene.h"
 
@@ -168,6 +169,38 @@ int main(void)
         CHECK(centre[0] != 230 && centre[0] > 2 * centre[1] && centre[0] > 2 * centre[2],
               "the glass shows the app's red frame: %d %d %d", centre[0], centre[1], centre[2]);
         CHECK(glass_scene_draw_in(&s, NULL, proj) == SNELL_E_INVALID_ARG, "draw_in without a view");
+    }
+    { /* glass panels (the sample's bar and drop): over the glass scene, then
+       * over an app's texture drawn first, as the video's external texture is */
+        static uint8_t scene_px[40 * 30 * 4], panels_px[40 * 30 * 4], tex_px[40 * 30 * 4], green[4 * 4 * 4];
+        const uint8_t *corner = tex_px + 4 * (29 * 40);
+        snell_panels_under under;
+        GLuint tex = 0;
+        int k, glass = 0;
+        draw_read(&s, 40, 30, scene_px);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        CHECK(glass_scene_draw_panels(&s, 1.0, NULL) == SNELL_OK, "draw_panels: %s", s.error);
+        glReadPixels(0, 0, 40, 30, GL_RGBA, GL_UNSIGNED_BYTE, panels_px);
+        CHECK(differ(scene_px, panels_px, 40 * 30) > 40 * 30 / 10, "the panels change %d bytes of the glass scene",
+              differ(scene_px, panels_px, 40 * 30));
+        for (k = 0; k < 16; k++) green[4 * k] = 20, green[4 * k + 1] = 200, green[4 * k + 2] = 40, green[4 * k + 3] = 255;
+        glGenTextures(1, &tex);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 4, 4, 0, GL_RGBA, GL_UNSIGNED_BYTE, green);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        memset(&under, 0, sizeof under);
+        under.source = SNELL_PANELS_UNDER_TEXTURE;
+        under.texture = tex;
+        under.draw = 1;
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        CHECK(glass_scene_draw_panels(&s, 1.0, &under) == SNELL_OK, "draw_panels over a texture: %s", s.error);
+        glReadPixels(0, 0, 40, 30, GL_RGBA, GL_UNSIGNED_BYTE, tex_px);
+        for (k = 0; k < 40 * 30; k++) glass += memcmp(tex_px + 4 * k, green, 3) != 0;
+        CHECK(corner[0] == 20 && corner[1] == 200 && corner[2] == 40, "the texture drawn beneath: corner %d %d %d",
+              corner[0], corner[1], corner[2]);
+        CHECK(glass > 40 * 30 / 20, "the panels over the texture: %d pixels not its green", glass);
+        glDeleteTextures(1, &tex);
     }
     glass_scene_free(&s);
     CHECK(!s.mesh_bytes && !s.env_rgba && !s.ctx, "freed");

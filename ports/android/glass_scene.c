@@ -2,6 +2,7 @@
 /* glass_scene — the Android port's scene: CPU data kept, GL objects per context (glass_scene.h). */
 #include "glass_scene.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -160,6 +161,49 @@ snell_status glass_scene_draw_in(glass_scene *s, const float view[16], const flo
     fd.draw_background = -1;
     fd.backdrop = &bd;
     if ((st = snell_render(s->renderer, &fd, NULL)) != SNELL_OK) return fail(s, st, "frame in the app's");
+    return SNELL_OK;
+}
+
+snell_status glass_scene_draw_panels(glass_scene *s, double seconds, const snell_panels_under *under)
+{
+    snell_frame_desc fd;
+    snell_glass g;
+    snell_panel p[2];
+    snell_status st;
+    float w = (float)s->width, h = (float)s->height, shorter = w < h ? w : h, r = 0.12f * shorter;
+    int k;
+    if (!s->renderer) {
+        snprintf(s->error, sizeof s->error, "glass_scene_draw_panels without GL objects");
+        return SNELL_E_INVALID_ARG;
+    }
+    memset(p, 0, sizeof p);
+    p[0].center[0] = 0.5f * w, p[0].center[1] = 0.12f * h + 0.5f * r; /* the bar: bottom, 80% wide */
+    p[0].size[0] = 0.8f * w, p[0].size[1] = r;
+    p[0].frost = 3.0f;               /* the group's material: a little frosted, as a control strip */
+    p[1].size[0] = p[1].size[1] = 2.0f * r;
+    for (k = 0; k < 4; k++) p[0].radius[k] = 0.5f * r, p[1].radius[k] = r; /* capsule and circle */
+    /* the drop swings across the bar, dipping into it at the ends */
+    p[1].center[0] = 0.5f * w + 0.3f * w * (float)sin(seconds * 0.8);
+    p[1].center[1] = p[0].center[1] + r * (1.6f - 0.9f * (float)fabs(sin(seconds * 0.8)));
+    p[0].group = p[1].group = 1;
+    memset(&fd, 0, sizeof fd);
+    memset(&g, 0, sizeof g);
+    fd.depth = SNELL_DEPTH_CLEAR;
+    fd.panels = p;
+    fd.panel_count = 2;
+    if (under) { /* a frame of panels only: the video is all that lies beneath */
+        fd.panels_under = under;
+        fd.draw_background = SNELL_BACKGROUND_NONE;
+    } else {
+        g.mesh = s->mesh;
+        g.material = s->material;
+        fd.env = s->env;
+        fd.glass = &g;
+        fd.glass_count = 1;
+        fd.camera = s->camera;
+        fd.camera.azimuth += (float)(seconds * 0.5);
+    }
+    if ((st = snell_render(s->renderer, &fd, NULL)) != SNELL_OK) return fail(s, st, "frame with panels");
     return SNELL_OK;
 }
 

@@ -51,6 +51,13 @@ snell_status glass_scene_draw(glass_scene *s, double seconds);
  * (snell copies the bound framebuffer's colour and depth: a backdrop of
  * SNELL_BACKDROP_COPY_BOUND), nothing drawn where the glass is not. */
 snell_status glass_scene_draw_in(glass_scene *s, const float view[16], const float projection[16]);
+/* Glass panels (snell_panels.h) in the surface's pixels: a bar along the
+ * bottom and a drop that slides over it, merging with it and leaving it
+ * (one group), moved by seconds. under NULL: over the glass scene, drawn in
+ * the same frame (what the frame drew lies beneath). Else a frame of panels
+ * only over what under names: the video's GL_TEXTURE_EXTERNAL_OES with its
+ * SurfaceTexture's transform (snell_activity.c), drawn first when under->draw. */
+snell_status glass_scene_draw_panels(glass_scene *s, double seconds, const snell_panels_under *under);
 /* Destroys the GL objects (in their context if it is current; after a loss
  * the dead context ignores the deletes) and keeps the CPU data. */
 void glass_scene_destroy_gl(glass_scene *s);

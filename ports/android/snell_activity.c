@@ -14,12 +14,16 @@
  * and the procedural sky without them) are read once, at the thread's start.
  * A context loss (EGL_CONTEXT_LOST from eglSwapBuffers) makes the context
  * and the GL objects again from that data. Dragging turns the camera.
+ * Glass panels lie over the frame: over a video, assets/panels.mp4 played
+ * into a SurfaceTexture's external texture (video_under.c, through JNI),
+ * or without that asset over the glass scene.
  *
  * Syntax-checked for aarch64-linux-android24 (syntax_check.sh); not built
  * with an NDK here (docs/android.md). */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, pipe under -std=c99 */
 #include "glass_scene.h"
 #include "lifecycle.h"
+#include "video_under.h"
 
 #include <EGL/egl.h>
 #include <GLES3/gl3.h>
@@ -70,6 +74,8 @@ typedef struct app {
     EGLContext context;
     EGLSurface surface;
     glass_scene scene;
+    video_under video;     /* the video under the panels, per context; not started without the asset */
+    int jni_attached;      /* the render thread is attached to the VM (video_under_start) */
     struct timespec start;
     float drag_x;          /* pointer x at the last move, pixels */
     int dragging;
@@ -156,7 +162,10 @@ static int run_actions(app *a, unsigned act)
     }
     /* With no context current snell skips the GL deletes (after a loss there
      * is nothing to delete; otherwise the context's destruction frees them). */
-    if (act & LIFECYCLE_DESTROY_GL_OBJECTS) glass_scene_destroy_gl(&a->scene);
+    if (act & LIFECYCLE_DESTROY_GL_OBJECTS) {
+        video_under_stop(&a->video);
+        glass_scene_destroy_gl(&a->scene);
+    }
     if (act & LIFECYCLE_DESTROY_CONTEXT) {
         eglDestroyContext(a->display, a->context);
         eglTerminate(a->display);
@@ -172,6 +181,9 @@ static int run_actions(app *a, unsigned act)
             return 0;
         }
         LOGI("scene made in context %u (%dx%d, %s)", a->life.generation, w, h, snell_ctx_gl_renderer(a->scene.ctx));
+        /* the video's texture belongs to this context: started again with it */
+        video_under_start(&a->video, a->activity, "panels.mp4");
+        a->jni_attached = 1;
     }
     return 1;
 }
@@ -196,6 +208,7 @@ static double seconds_since(const struct timespec *t0)
 
 static void draw_frame(app *a)
 {
+    snell_panels_under under;
     int w, h;
     EGLint err;
     surface_size(a, &w, &h);
@@ -207,7 +220,10 @@ static void draw_frame(app *a)
     glViewport(0, 0, w, h);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (glass_scene_draw(&a->scene, seconds_since(&a->start)) != SNELL_OK) LOGE("%s", a->scene.error);
+    /* the panels over the video's newest frame, or over the glass scene */
+    if (glass_scene_draw_panels(&a->scene, seconds_since(&a->start),
+                                video_under_frame(&a->video, &under) ? &under : NULL) != SNELL_OK)
+        LOGE("%s", a->scene.error);
     if (eglSwapBuffers(a->display, a->surface)) return;
     err = eglGetError();
     if (err == EGL_CONTEXT_LOST) {
@@ -341,7 +357,9 @@ static void *render_thread(void *arg)
     }
     if (a->input) AInputQueue_detachLooper(a->input);
     if (a->window) ANativeWindow_release(a->window);
+    video_under_stop(&a->video);
     glass_scene_free(&a->scene);
+    if (a->jni_attached) (*a->activity->vm)->DetachCurrentThread(a->activity->vm);
     ALooper_removeFd(a->looper, a->pipe_fd[0]);
     pthread_mutex_lock(&a->mutex);
     a->exited = 1;

@@ -31,7 +31,7 @@ if [ ${#missing[@]} -gt 0 ]; then
     snell_apt_install "${missing[@]}"
 fi
 
-sources=("$here"/snell_activity.c "$here"/glass_scene.c "$here"/lifecycle.c)
+sources=("$here"/snell_activity.c "$here"/glass_scene.c "$here"/lifecycle.c "$here"/video_under.c)
 clang --target=aarch64-linux-android24 -std=c99 -fsyntax-only -Wall -Wextra -Wpedantic -Werror \
     -include "$here/syntax_stub/bionic_cdefs.h" -D_LARGEFILE64_SOURCE \
     -isystem "$here/syntax_stub" \
