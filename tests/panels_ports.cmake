@@ -3,6 +3,39 @@
 # and --under, the kiosk's --panels and --slide (its --preview: no KMS device
 # here), the panels file's errors, each with its line, and the example app
 # (examples/panels_merge.c). The Android scene's panels are in test_android_scene.
+if(TARGET snell-render AND SNELL_WITH_PANELS)
+  set(cli $<TARGET_FILE:snell-render>)
+  set(expect ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
+  set(one_error ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_one_error.cmake)
+  set(pdir ${CMAKE_CURRENT_BINARY_DIR}/panels_ports)
+  add_executable(panels_diff panels_diff.c)
+  target_link_libraries(panels_diff PRIVATE snell_static)
+  target_compile_options(panels_diff PRIVATE ${SNELL_WARNINGS})
+  # One clear panel (no shadow: the box is all it changes) in a 96x64 frame.
+  file(WRITE ${pdir}/one.txt "# a clear panel, left of the sphere\ncenter=24,32 size=36,40 radius=10 shadow=none\n")
+  set(box 6,12,42,52)
+  add_test(NAME cli_panels COMMAND ${CMAKE_COMMAND} -DEXE=${cli} -DDIFF=$<TARGET_FILE:panels_diff>
+           -DPANELS=${pdir}/one.txt -DBOX=${box} -DOUT_DIR=${pdir}/cli -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/cli_panels.cmake)
+  set_tests_properties(cli_panels PROPERTIES LABELS "cli;gl")
+
+  # A malformed file: exit 2, its line and what is wrong, nothing drawn.
+  file(WRITE ${pdir}/bad_form.txt "# fine\ncenter=10,10 size=20,20\ncenter=30,30 size=20,20 radius=1,2\n")
+  add_test(NAME cli_panels_malformed COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--panels|${pdir}/bad_form.txt"
+           -DCODE=2 "-DERR=^snell-render: --panels .*bad_form.txt line 3: radius wants R or R0,R1,R2,R3 \\(finite\\), got '1,2'$"
+           -P ${one_error})
+  file(WRITE ${pdir}/bad_key.txt "center=10,10 size=20,20 ior=1.5 blur=3\n")
+  add_test(NAME cli_panels_unknown_key COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--panels|${pdir}/bad_key.txt"
+           -DCODE=2 "-DERR=^snell-render: --panels .*bad_key.txt line 1: unknown key 'blur' \\(center, size, " -P ${one_error})
+  # A value out of range is the library's refusal, mapped back to its line.
+  file(WRITE ${pdir}/bad_ior.txt "center=10,10 size=20,20\n\n# the second panel\ncenter=30,30 size=20,20 ior=7\n")
+  add_test(NAME cli_panels_range COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}"
+           "-DARGS=--size|48x48|--panels|${pdir}/bad_ior.txt|-o|${pdir}/bad_ior.png" -DCODE=1
+           "-DERR=^snell-render: render: .*panels\\[1\\]\\.ior .*\\(line 4 of .*bad_ior.txt\\)$" -P ${one_error})
+  add_test(NAME cli_under_needs_panels COMMAND ${CMAKE_COMMAND} "-DEXE=${cli}" "-DARGS=--under|x.png" -DCODE=2
+           "-DERR=^snell-render: --under draws glass panels: give --panels FILE$" -P ${one_error})
+  set_tests_properties(cli_panels_malformed cli_panels_unknown_key cli_under_needs_panels PROPERTIES LABELS "cli")
+  set_tests_properties(cli_panels_range PROPERTIES LABELS "cli;gl")
+endif()
 
 # The panels file's parser alone: fields, lines and hostile text (no GL).
 snell_add_test(test_cli_panels SOURCES test_cli_panels.c ${PROJECT_SOURCE_DIR}/ports/cli/cli_panels.c

@@ -1,11 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* render.h — the parts of snell-render: its command line read as a scene
- * (render_args.c), the reference light paths of --trace-pixel (trace_pixel.c)
- * and the 2D lightmap mode --2d (render2d.c); main is snell_render.c. */
+ * (render_args.c), the reference light paths of --trace-pixel (trace_pixel.c),
+ * glass panels (render_panels.c) and the 2D lightmap mode --2d (render2d.c);
+ * main is snell_render.c. */
 #ifndef SNELL_RENDER_H
 #define SNELL_RENDER_H
 
 #include "snell/snell.h"
+#include "cli_panels.h"
 
 #include <stdio.h>
 
@@ -57,12 +59,30 @@ typedef struct render_options {
     int view_given, projection_given;
     snell_light light;             /* --light, --photons (snell_frame_desc.light) */
     snell_receiver receiver;       /* --floor, --floor-map (snell_frame_desc.receiver) */
+    int size_given;                /* --size was given (else --under's image gives it) */
+    const char *panels_file;       /* --panels FILE: glass panels over the frame (cli_panels.h) */
+    cli_panels panels;             /* its panels, read while parsing */
+    const char *under_file;        /* --under IMAGE: the picture beneath the panels, as a GL texture */
 } render_options;
 
 /* Parses argv into *o. 1: render; 0: bad usage (message printed: exit 2);
  * -1: --help was printed (exit 0). */
 int render_parse_args(int argc, char **argv, render_options *o);
 void render_usage(FILE *f);
+
+/* --panels, --under (render_panels.c). */
+typedef struct render_panels {
+    snell_panels_under under;      /* TEXTURE with draw = 1 when --under is given */
+    unsigned texture;              /* the picture's GL texture, 0 without --under */
+    uint8_t *image;                /* the picture, bottom row first (snell_image_read's) */
+    int width, height;
+} render_panels;
+/* --under: reads the picture, makes its texture (the frame takes its size
+ * unless --size was given). 0 on failure (message printed). */
+int render_panels_open(snell_ctx *ctx, render_options *o, render_panels *p);
+/* The panels into the frame; with --under a frame of panels only. */
+void render_panels_frame(const render_options *o, const render_panels *p, snell_frame_desc *fd);
+void render_panels_close(render_panels *p);
 
 /* snell-render --water ... (render_water.c). */
 int snell_render_water_main(int argc, char **argv);

@@ -94,6 +94,11 @@ void render_usage(FILE *f)
             "  -o FILE                output PNG (default snell.png)\n"
             "  --trace-pixel X,Y      reference light path of pixel X,Y through the whole scene (repeatable):\n"
             "                         drawn over a second view into FILE_trace.png, points in FILE_trace.json\n"
+            "  --panels FILE          glass panels over the frame, one a line: key=value fields named as\n"
+            "                         snell_panel's, e.g. 'center=256,256 size=300,160 radius=40 frost=4 group=1'\n"
+            "                         (pixels from the bottom-left corner; docs/panels.md)\n"
+            "  --under IMAGE          the panels over a PNG (a GL texture the frame draws first), the frame\n"
+            "                         its size unless --size is given; without it, over the scene's frame\n"
             "  --2d SCENE             2D lightmap mode (see the 2D options with --2d --help)\n"
             "  --water                water mode: a water surface in a box, with glass (see --water --help)\n"
             "  --version              the version and the commit it was built from\n"
@@ -320,6 +325,17 @@ static int view_option(const char *a, const char *v, render_options *o)
         if (sscanf(v, "%dx%d%c", &o->width, &o->height, &tail) != 2 || o->width < 1 || o->height < 1 ||
             o->width > 16384 || o->height > 16384)
             return usage_error("%s wants WxH within 1..16384, got '%s'", a, v);
+        o->size_given = 1;
+    } else if (!strcmp(a, "--panels")) {
+        char why[512];
+        cli_panels_free(&o->panels); /* a second --panels replaces the first */
+        if (!cli_panels_read(v, &o->panels, why, sizeof why)) {
+            fprintf(stderr, PROG ": --panels %s\n", why);
+            return 0;
+        }
+        o->panels_file = v;
+    } else if (!strcmp(a, "--under")) {
+        o->under_file = v;
     } else if (!strcmp(a, "--camera")) {
         float c[3];
         if (!parse_floats(v, c, 3) || !(c[2] > 0.0f))
@@ -430,7 +446,7 @@ static const struct option *long_options(void)
 {
     static const char *const valued[] = {"scene", "mesh", "opaque", "place", "color", "env", "size", "camera", "fov",
                                          "view", "projection", "backend", "shading", "env-lookup", "ssaa", "msaa",
-                                         "refine", "scene-layers", "frames", "trace-pixel", "ior", "absorption", "attenuation",
+                                         "refine", "scene-layers", "frames", "trace-pixel", "panels", "under", "ior", "absorption", "attenuation",
                                          "tint", "thickness", "dispersion", "abbe", "dispersion-model", "scale",
                                          "method", "param", "light", "photons", "floor", "floor-map"};
     static const char *const flags[] = {"no-normalize", "stats", "verbose", "help", "version"};
@@ -532,6 +548,13 @@ int render_parse_args(int argc, char **argv, render_options *o)
     if (o->view_given && (o->camera_given || o->fov_given))
         return usage_error("--view and --projection give the whole camera; --camera and --fov do not combine "
                            "with them%s%s", "", "");
+    if (o->under_file && !o->panels_file)
+        return usage_error("%s draws glass panels: give --panels FILE%s", "--under", "");
+    if (o->under_file && (o->scene_file || o->glass_count > 0 || o->opaque_count > 0 || o->orbit > 0))
+        return usage_error("--under draws its picture over the whole frame, panels over it: no --scene, --mesh or "
+                           "--opaque with it%s%s", "", "");
+    if (o->panels_file && o->trace_count)
+        return usage_error("--trace-pixel traces the scene, not its panels: not with --panels%s%s", "", "");
     if (o->glass_count > 0 && o->base.placed) {
         fprintf(stderr, PROG ": --place before the first --mesh places nothing when --mesh is given; put it after "
                         "the --mesh it moves\n");

@@ -169,6 +169,10 @@ static void print_stats(FILE *f, const snell_frame_stats *fs, const render_scene
     if (s->file) fprintf(f, "stats: camera: %s\n", s->camera_note);
     if (fs->caustics_reason[0]) fprintf(f, "stats: caustics: %s (%d photons)\n", fs->caustics_reason, fs->caustics_photons);
     if (fs->refine_reason[0]) fprintf(f, "stats: refine: %s\n", fs->refine_reason);
+    if (fs->panels_drawn || fs->panels_reason[0])
+        fprintf(f, "stats: panels: %d drawn, %d captures, dropped%s%s%s: %s\n", fs->panels_drawn, fs->panels_captures,
+                fs->panels_dropped ? "" : " nothing", fs->panels_dropped & SNELL_PANELS_DROPPED_FROST ? " frost" : "",
+                fs->panels_dropped & SNELL_PANELS_DROPPED_DISPERSION ? " dispersion" : "", fs->panels_reason);
     for (i = 0; i < fs->glass_count; i++) {
         const snell_object_stats *g = &fs->glass[i];
         snell_glass_resolved m;
@@ -213,7 +217,10 @@ static int render_frames(snell_ctx *ctx, snell_renderer *r, const render_options
         double t0 = cli_now_ms();
         move_orbit(s, i);
         if (snell_render(r, fd, fs) != SNELL_OK) {
-            fprintf(stderr, "snell-render: render: %s\n", snell_last_error(ctx));
+            char where[300];
+            fprintf(stderr, "snell-render: render: %s%s\n", snell_last_error(ctx),
+                    cli_panels_where(&o->panels, o->panels_file ? o->panels_file : "", snell_last_error(ctx), where,
+                                     sizeof where));
             free(times);
             return 0;
         }
@@ -253,6 +260,7 @@ int main(int argc, char **argv)
     snell_env *env = NULL;
     snell_renderer *r = NULL;
     snell_renderer_desc rd;
+    render_panels panels;
     snell_frame_desc fd;
     snell_frame_stats fs;
     int i, rc = 1;
@@ -271,8 +279,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "snell-render: cannot create a GL context: %s\n", snell_last_error(NULL));
         return 1;
     }
-    if (build_scene(ctx, &o, &scene) != SNELL_OK) goto done;
-    if (cli_env_open(ctx, o.env, &env) != SNELL_OK) {
+    memset(&panels, 0, sizeof panels);
+    if (!render_panels_open(ctx, &o, &panels)) goto done;
+    /* --under: a frame of panels only, over the picture: no scene to build */
+    if (!o.under_file && build_scene(ctx, &o, &scene) != SNELL_OK) goto done;
+    if (!o.under_file && cli_env_open(ctx, o.env, &env) != SNELL_OK) {
         fprintf(stderr, "snell-render: environment: %s\n", snell_last_error(ctx));
         goto done;
     }
@@ -324,6 +335,7 @@ int main(int argc, char **argv)
         memcpy(fd.camera.projection, o.projection, sizeof fd.camera.projection);
         if (scene.file) snprintf(scene.camera_note, sizeof scene.camera_note, "--view and --projection");
     }
+    render_panels_frame(&o, &panels, &fd);
     if (!render_frames(ctx, r, &o, &scene, &fd, &fs)) goto done;
     if (o.stats) print_stats(stdout, &fs, &scene);
     if (o.verbose) print_stats(stderr, &fs, &scene);
@@ -333,6 +345,8 @@ int main(int argc, char **argv)
         goto done;
     rc = 0;
 done:
+    render_panels_close(&panels);
+    cli_panels_free(&o.panels);
     snell_renderer_destroy(r);
     snell_env_destroy(env);
     for (i = 0; i < scene.mesh_count; i++) snell_mesh_destroy(scene.meshes[i]);
