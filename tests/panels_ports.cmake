@@ -17,6 +17,12 @@ if(TARGET snell-render AND SNELL_WITH_PANELS)
   add_test(NAME cli_panels COMMAND ${CMAKE_COMMAND} -DEXE=${cli} -DDIFF=$<TARGET_FILE:panels_diff>
            -DPANELS=${pdir}/one.txt -DBOX=${box} -DOUT_DIR=${pdir}/cli -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/cli_panels.cmake)
   set_tests_properties(cli_panels PROPERTIES LABELS "cli;gl")
+  if(TARGET snell-kiosk)
+    add_test(NAME kiosk_panels COMMAND ${CMAKE_COMMAND} -DDIFF=$<TARGET_FILE:panels_diff>
+             -DKIOSK=$<TARGET_FILE:snell-kiosk> -DPANELS=${pdir}/one.txt -DBOX=${box} -DOUT_DIR=${pdir}/kiosk
+             -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/cli_panels.cmake)
+    set_tests_properties(kiosk_panels PROPERTIES LABELS "cli;gl")
+  endif()
 
   # A malformed file: exit 2, its line and what is wrong, nothing drawn.
   file(WRITE ${pdir}/bad_form.txt "# fine\ncenter=10,10 size=20,20\ncenter=30,30 size=20,20 radius=1,2\n")
@@ -35,6 +41,21 @@ if(TARGET snell-render AND SNELL_WITH_PANELS)
            "-DERR=^snell-render: --under draws glass panels: give --panels FILE$" -P ${one_error})
   set_tests_properties(cli_panels_malformed cli_panels_unknown_key cli_under_needs_panels PROPERTIES LABELS "cli")
   set_tests_properties(cli_panels_range PROPERTIES LABELS "cli;gl")
+  if(TARGET snell-kiosk)
+    set(kiosk $<TARGET_FILE:snell-kiosk>)
+    # kiosk.conf's panels: the file's error names its line; a slide needs panels.
+    file(WRITE ${pdir}/kiosk_bad.conf "# panels over the scene\n--panels ${pdir}/bad_form.txt\n")
+    add_test(NAME kiosk_panels_malformed COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+             "-DARGS=--config|${pdir}/kiosk_bad.conf|--preview|${pdir}/unused.png" -DCODE=2
+             "-DERR=snell-kiosk: --panels .*bad_form.txt line 3: radius wants.*in .*kiosk_bad.conf line 2" -P ${expect})
+    add_test(NAME kiosk_slide_needs_panels COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+             "-DARGS=--slide|${pdir}/one.txt|--preview|${pdir}/unused.png" -DCODE=2
+             "-DERR=^snell-kiosk: --slide shows pictures under glass panels: give --panels FILE$" -P ${one_error})
+    add_test(NAME kiosk_slide_missing COMMAND ${CMAKE_COMMAND} "-DEXE=${kiosk}"
+             "-DARGS=--panels|${pdir}/one.txt|--slide|${pdir}/none.png" -DCODE=2
+             "-DERR=^snell-kiosk: --slide .*none.png: No such file or directory$" -P ${one_error})
+    set_tests_properties(kiosk_panels_malformed kiosk_slide_needs_panels kiosk_slide_missing PROPERTIES LABELS "cli")
+  endif()
 endif()
 
 # The panels file's parser alone: fields, lines and hostile text (no GL).

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* kiosk_options.c — snell-kiosk's command line. */
+#define _POSIX_C_SOURCE 200809L /* close */
 #include "kiosk.h"
 #include "bench.h"
 #include "cli_input.h"
@@ -11,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static void usage(FILE *f)
 {
@@ -45,13 +47,19 @@ static void usage(FILE *f)
             "  --json FILE         benchmark JSON (default snell-kiosk.json)\n"
             "  --config FILE       options from FILE, one a line as written here ('--spin 0.25', '-b SPEC');\n"
             "                      '#' starts a comment; options after --config override it\n"
+            "  --panels FILE       glass panels over what is shown, one a line as snell-render --panels reads\n"
+            "                      them: key=value fields of snell_panel, pixels of the display from its\n"
+            "                      bottom-left corner (docs/panels.md)\n"
+            "  --slide IMAGE       with --panels: a picture (PNG) under the panels instead of the scene,\n"
+            "                      stretched over the display; repeat for a slideshow (at most %d)\n"
+            "  --slide-seconds S   how long each picture stays (default %g)\n"
             "  --preview FILE      no display: draw the configured scene's first frame offscreen at the\n"
             "                      --mode size (default 1920x1080) into the PNG FILE, after the same checks\n"
             "  --version           the version and the commit it was built from\n"
             "  -h, --help          this text\n"
             "Exit status: 0, 1 on failure, 2 on bad usage, %d when the display went away while showing,\n"
             "%d when there is no DRM/KMS display (a service restarts on both: docs/kiosk.md \"As a service\").\n",
-            BENCH_DEFAULT_FRAMES, KIOSK_EXIT_DISPLAY_LOST, KIOSK_EXIT_NO_DISPLAY);
+            BENCH_DEFAULT_FRAMES, KIOSK_MAX_SLIDES, KIOSK_DEFAULT_SLIDE_S, KIOSK_EXIT_DISPLAY_LOST, KIOSK_EXIT_NO_DISPLAY);
 }
 
 static int parse_long(const char *opt, const char *v, long lo, long hi, long *out)
@@ -116,6 +124,23 @@ static int value_option(const char *a, const char *v, kiosk_options *o)
         o->warmup = (int)l;
     } else if (!strcmp(a, "--json")) {
         o->json = v;
+    } else if (!strcmp(a, "--panels")) {
+        char why[512];
+        cli_panels_free(&o->panels); /* a later --panels replaces the file's */
+        if (!cli_panels_read(v, &o->panels, why, sizeof why))
+            return fprintf(stderr, "snell-kiosk: --panels %s\n", why), 0;
+        o->panels_file = v;
+    } else if (!strcmp(a, "--slide")) {
+        char why[128], safe[256];
+        int fd;
+        if (o->slide_count == KIOSK_MAX_SLIDES)
+            return fprintf(stderr, "snell-kiosk: more than %d --slide\n", KIOSK_MAX_SLIDES), 0;
+        if ((fd = cli_open_input(v, why, sizeof why)) < 0) /* found now, not when it comes on */
+            return fprintf(stderr, "snell-kiosk: --slide %s: %s\n", cli_safe(v, safe, sizeof safe), why), 0;
+        close(fd);
+        o->slides[o->slide_count++] = v;
+    } else if (!strcmp(a, "--slide-seconds")) {
+        if (!parse_double(a, v, 0.1, 86400.0, &o->slide_s)) return 0;
     } else if (!strcmp(a, "--preview")) {
         o->preview = v;
     } else if (!strcmp(a, "--vsync")) {
@@ -133,7 +158,8 @@ static int takes_value(const char *a)
 {
     static const char *const names[] = {"-b",       "--device", "--dri-dir", "--connector", "--mode",
                                         "--spin",   "--frames", "--report",  "--warmup",    "--json",
-                                        "--budget", "--preview", "--vsync"};
+                                        "--budget", "--preview", "--vsync", "--panels", "--slide",
+                                        "--slide-seconds"};
     size_t k;
     for (k = 0; k < sizeof names / sizeof *names; k++)
         if (!strcmp(a, names[k])) return 1;
@@ -164,12 +190,15 @@ static int one_option(const char *a, const char *v, int from_config, kiosk_optio
     } else {
         if (!strcmp(a, "-b") && !from_config && o->config_specs) /* the command line's scene replaces the file's */
             o->spec_count = o->config_specs = 0;
+        if (!strcmp(a, "--slide") && !from_config && o->config_slides) /* and its slides */
+            o->slide_count = o->config_slides = 0;
         if ((r = value_option(a, v, o)) < 0) {
             fprintf(stderr, "snell-kiosk: unknown option '%s'; see --help\n", a);
             return 0;
         }
         if (!r) return 0;
         if (!strcmp(a, "-b") && from_config) o->config_specs++;
+        if (!strcmp(a, "--slide") && from_config) o->config_slides++;
         *spin_set |= !strcmp(a, "--spin");
         *used_value = 1;
     }
@@ -229,7 +258,9 @@ int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
         {"preview", required_argument, NULL, 266}, {"vsync", required_argument, NULL, 267},
         {"config", required_argument, NULL, 268},  {"hold", no_argument, NULL, 269},
         {"bench", no_argument, NULL, 270},         {"atomic", no_argument, NULL, 271},
-        {"version", no_argument, NULL, 272},       {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 272},       {"panels", required_argument, NULL, 273},
+        {"slide", required_argument, NULL, 274},   {"slide-seconds", required_argument, NULL, 275},
+        {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0}};
     int c, spin_set = 0, used;
     memset(o, 0, sizeof *o);
@@ -237,6 +268,7 @@ int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
     o->report_s = 5.0;
     o->warmup = 5;
     o->json = "snell-kiosk.json";
+    o->slide_s = KIOSK_DEFAULT_SLIDE_S;
     if (cli_wants_help(argc, argv)) { /* --help wherever it is */
         usage(stdout);
         return -1;
@@ -269,6 +301,14 @@ int kiosk_parse_options(int argc, char **argv, kiosk_options *o)
     }
     if (!o->bench && o->spec_count > 1) {
         fprintf(stderr, "snell-kiosk: one -b shows one configuration; several need --bench\n");
+        return 0;
+    }
+    if (o->slide_count && !o->panels_file) {
+        fprintf(stderr, "snell-kiosk: --slide shows pictures under glass panels: give --panels FILE\n");
+        return 0;
+    }
+    if (o->bench && o->panels_file) {
+        fprintf(stderr, "snell-kiosk: --bench times -b configurations; --panels is for showing them\n");
         return 0;
     }
     if (o->bench && o->preview) {

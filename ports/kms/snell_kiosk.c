@@ -218,11 +218,13 @@ static int show(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_conf
 {
     snell_renderer *r = NULL;
     snell_glass glass[SNELL_MAX_GLASS];
-    snell_frame_desc fd;
+    snell_frame_desc fd, shown;
     snell_frame_stats stats;
+    kiosk_panels kp;
     double t_start = cli_now_ms(), t_report = t_start, lo, hi;
     long i, frames_at_report = 0;
     int ok = open_config(k, ctx, env, c, &r, glass, &fd);
+    kiosk_panels_open(&kp, o);
     k->record = 1;
     fd.budget_ms = o->budget_ms;
     if (ok && o->budget_ms > 0.0f) {
@@ -232,7 +234,9 @@ static int show(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_conf
     printf("snell-kiosk: showing %s at %dx%d\n", c->spec, k->gpu.width, k->gpu.height);
     for (i = 0; ok && !g_stop && (!o->frames || i < o->frames); i++) {
         fd.camera.azimuth = (float)((c->cam[0] + (double)i * o->spin_deg) * PI / 180.0);
-        ok = frame(k, ctx, r, &fd, &stats);
+        shown = fd;
+        ok = kiosk_panels_frame(&kp, (cli_now_ms() - t_start) / 1000.0, &shown, k->msg, sizeof k->msg) &&
+             frame(k, ctx, r, &shown, &stats);
         if (ok && o->report_s > 0 && cli_now_ms() - t_report >= o->report_s * 1000.0) {
             double now = cli_now_ms();
             printf("snell-kiosk: %ld frames, %.1f FPS over the last %.1f s\n", k->flip.frames,
@@ -258,6 +262,7 @@ static int show(kiosk *k, snell_ctx *ctx, const snell_env *env, const bench_conf
             wait_for_signal();
         }
     }
+    kiosk_panels_close(&kp);
     snell_renderer_destroy(r);
     return ok;
 }
@@ -487,6 +492,8 @@ static int preview(const kiosk_options *o)
     snell_renderer *r = NULL;
     snell_glass glass[SNELL_MAX_GLASS];
     snell_frame_desc fd;
+    snell_frame_stats stats;
+    kiosk_panels kp;
     bench_config *cs = (bench_config *)calloc(BENCH_MAX_CONFIGS, sizeof *cs);
     uint8_t *rgba = NULL;
     int w = o->display.mode.width ? o->display.mode.width : 1920;
@@ -494,6 +501,7 @@ static int preview(const kiosk_options *o)
     int n = 0, status = 1;
     char msg[1024];
     if (!cs) return fprintf(stderr, "snell-kiosk: out of memory\n"), 1;
+    kiosk_panels_open(&kp, o);
     if (snell_ctx_create(NULL, &ctx) != SNELL_OK) {
         fprintf(stderr, "snell-kiosk: --preview: %s\n", snell_last_error(NULL));
         goto done;
@@ -517,19 +525,30 @@ static int preview(const kiosk_options *o)
         fprintf(stderr, "snell-kiosk: out of memory for a %dx%d preview\n", w, h);
         goto done;
     }
-    if (snell_render(r, &fd, NULL) != SNELL_OK || snell_renderer_read_rgba(r, rgba) != SNELL_OK) {
-        fprintf(stderr, "snell-kiosk: --preview %s: %s\n", o->preview, snell_last_error(ctx));
+    if (!kiosk_panels_frame(&kp, 0.0, &fd, msg, sizeof msg)) {
+        fprintf(stderr, "snell-kiosk: %s\n", msg);
+        goto done;
+    }
+    if (snell_render(r, &fd, &stats) != SNELL_OK || snell_renderer_read_rgba(r, rgba) != SNELL_OK) {
+        char where[300];
+        fprintf(stderr, "snell-kiosk: --preview %s: %s%s\n", o->preview, snell_last_error(ctx),
+                cli_panels_where(&o->panels, o->panels_file ? o->panels_file : "", snell_last_error(ctx), where,
+                                 sizeof where));
         goto done;
     }
     if (snell_write_png(o->preview, w, h, rgba) != SNELL_OK) { /* a call without a context: its message is the thread's */
         fprintf(stderr, "snell-kiosk: --preview: %s\n", snell_last_error(NULL));
         goto done;
     }
-    printf("snell-kiosk: preview of %s at %dx%d (%s) written to %s\n", cs[0].spec, w, h, snell_ctx_gl_renderer(ctx),
-           o->preview);
+    printf("snell-kiosk: preview of %s at %dx%d (%s) written to %s\n",
+           o->slide_count ? "the first slide" : cs[0].spec, w, h, snell_ctx_gl_renderer(ctx), o->preview);
+    if (o->panels.count)
+        printf("snell-kiosk: %d panels from %s: %d drawn, %d captures; %s\n", o->panels.count, o->panels_file,
+               stats.panels_drawn, stats.panels_captures, stats.panels_reason);
     status = 0;
 done:
     free(rgba);
+    kiosk_panels_close(&kp);
     snell_renderer_destroy(r);
     bench_scene_release_all();
     snell_env_destroy(env);
