@@ -62,3 +62,15 @@ endif()
 snell_add_test(test_cli_panels SOURCES test_cli_panels.c ${PROJECT_SOURCE_DIR}/ports/cli/cli_panels.c
                ${PROJECT_SOURCE_DIR}/ports/cli/cli_input.c LABELS "unit")
 target_include_directories(test_cli_panels PRIVATE ${PROJECT_SOURCE_DIR}/ports/cli)
+
+# examples/panels_merge.c: three glass panels of one group over the app's
+# picture (its GL texture) merge and split as they move; six frames written.
+# Exit 0 when the space between the drops is glass while they merge and the
+# picture while they are apart.
+if(SNELL_WITH_PANELS AND SNELL_WITH_PNG)
+  add_executable(panels_merge ${PROJECT_SOURCE_DIR}/examples/panels_merge.c)
+  target_link_libraries(panels_merge PRIVATE snell_static snell_dep::gles m)
+  add_test(NAME example_panels_merge COMMAND panels_merge ${CMAKE_CURRENT_BINARY_DIR}/panels_merge 160x96)
+  set_tests_properties(example_panels_merge PROPERTIES LABELS "render;gl" SKIP_RETURN_CODE 77
+                       PASS_REGULAR_EXPRESSION "the drops merged and split")
+endif()
