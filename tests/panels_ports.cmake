@@ -15,7 +15,8 @@ if(TARGET snell-render AND SNELL_WITH_PANELS)
   file(WRITE ${pdir}/one.txt "# a clear panel, left of the sphere\ncenter=24,32 size=36,40 radius=10 shadow=none\n")
   set(box 6,12,42,52)
   add_test(NAME cli_panels COMMAND ${CMAKE_COMMAND} -DEXE=${cli} -DDIFF=$<TARGET_FILE:panels_diff>
-           -DPANELS=${pdir}/one.txt -DBOX=${box} -DOUT_DIR=${pdir}/cli -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/cli_panels.cmake)
+           -DPANELS=${pdir}/one.txt -DBOX=${box} -DOUT_DIR=${pdir}/cli
+           -DREFERENCE=$<BOOL:${SNELL_WITH_REF}> -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/cli_panels.cmake)
   set_tests_properties(cli_panels PROPERTIES LABELS "cli;gl")
   if(TARGET snell-kiosk)
     add_test(NAME kiosk_panels COMMAND ${CMAKE_COMMAND} -DDIFF=$<TARGET_FILE:panels_diff>

@@ -63,6 +63,7 @@ typedef struct render_options {
     const char *panels_file;       /* --panels FILE: glass panels over the frame (cli_panels.h) */
     cli_panels panels;             /* its panels, read while parsing */
     const char *under_file;        /* --under IMAGE: the picture beneath the panels, as a GL texture */
+    int reference;                 /* --reference: snell_ref_panels' image beside -o */
 } render_options;
 
 /* Parses argv into *o. 1: render; 0: bad usage (message printed: exit 2);
@@ -70,11 +71,12 @@ typedef struct render_options {
 int render_parse_args(int argc, char **argv, render_options *o);
 void render_usage(FILE *f);
 
-/* --panels, --under (render_panels.c). */
+/* --panels, --under, --reference (render_panels.c). */
 typedef struct render_panels {
     snell_panels_under under;      /* TEXTURE with draw = 1 when --under is given */
     unsigned texture;              /* the picture's GL texture, 0 without --under */
     uint8_t *image;                /* the picture, bottom row first (snell_image_read's) */
+    uint8_t *plain;                /* --reference without --under: the frame drawn without panels */
     int width, height;
 } render_panels;
 /* --under: reads the picture, makes its texture (the frame takes its size
@@ -82,6 +84,13 @@ typedef struct render_panels {
 int render_panels_open(snell_ctx *ctx, render_options *o, render_panels *p);
 /* The panels into the frame; with --under a frame of panels only. */
 void render_panels_frame(const render_options *o, const render_panels *p, snell_frame_desc *fd);
+/* --reference without --under: draws fd without its panels and keeps that
+ * frame, what lies beneath them. 0 on failure. */
+int render_panels_plain(snell_ctx *ctx, snell_renderer *r, const render_options *o, render_panels *p,
+                        const snell_frame_desc *fd);
+/* --reference: snell_ref_panels over what lay beneath, into -o's name with
+ * _reference.png. 0 on failure. */
+int render_panels_reference(const render_options *o, const render_panels *p);
 void render_panels_close(render_panels *p);
 
 /* snell-render --water ... (render_water.c). */

@@ -99,6 +99,8 @@ void render_usage(FILE *f)
             "                         (pixels from the bottom-left corner; docs/panels.md)\n"
             "  --under IMAGE          the panels over a PNG (a GL texture the frame draws first), the frame\n"
             "                         its size unless --size is given; without it, over the scene's frame\n"
+            "  --reference            with --panels: the reference's image of the same panels over the same\n"
+            "                         pixels (snell_ref_panels) into FILE_reference.png beside -o FILE\n"
             "  --2d SCENE             2D lightmap mode (see the 2D options with --2d --help)\n"
             "  --water                water mode: a water surface in a box, with glass (see --water --help)\n"
             "  --version              the version and the commit it was built from\n"
@@ -449,7 +451,7 @@ static const struct option *long_options(void)
                                          "refine", "scene-layers", "frames", "trace-pixel", "panels", "under", "ior", "absorption", "attenuation",
                                          "tint", "thickness", "dispersion", "abbe", "dispersion-model", "scale",
                                          "method", "param", "light", "photons", "floor", "floor-map"};
-    static const char *const flags[] = {"no-normalize", "stats", "verbose", "help", "version"};
+    static const char *const flags[] = {"no-normalize", "stats", "verbose", "reference", "help", "version"};
     static struct option opts[256];
     static int n;
     size_t k;
@@ -497,6 +499,9 @@ int render_parse_args(int argc, char **argv, render_options *o)
             continue;
         } else if (!strcmp(a, "-v") || !strcmp(a, "--verbose")) {
             o->verbose = 1;
+            continue;
+        } else if (!strcmp(a, "--reference")) {
+            o->reference = 1;
             continue;
         } else if (!strcmp(a, "--version")) {
             cli_print_version(PROG);
@@ -548,8 +553,8 @@ int render_parse_args(int argc, char **argv, render_options *o)
     if (o->view_given && (o->camera_given || o->fov_given))
         return usage_error("--view and --projection give the whole camera; --camera and --fov do not combine "
                            "with them%s%s", "", "");
-    if (o->under_file && !o->panels_file)
-        return usage_error("%s draws glass panels: give --panels FILE%s", "--under", "");
+    if ((o->under_file || o->reference) && !o->panels_file)
+        return usage_error("%s draws glass panels: give --panels FILE%s", o->under_file ? "--under" : "--reference", "");
     if (o->under_file && (o->scene_file || o->glass_count > 0 || o->opaque_count > 0 || o->orbit > 0))
         return usage_error("--under draws its picture over the whole frame, panels over it: no --scene, --mesh or "
                            "--opaque with it%s%s", "", "");

@@ -336,10 +336,11 @@ int main(int argc, char **argv)
         if (scene.file) snprintf(scene.camera_note, sizeof scene.camera_note, "--view and --projection");
     }
     render_panels_frame(&o, &panels, &fd);
+    if (!render_panels_plain(ctx, r, &o, &panels, &fd)) goto done;
     if (!render_frames(ctx, r, &o, &scene, &fd, &fs)) goto done;
     if (o.stats) print_stats(stdout, &fs, &scene);
     if (o.verbose) print_stats(stderr, &fs, &scene);
-    if (!write_image(ctx, r, &o)) goto done;
+    if (!write_image(ctx, r, &o) || !render_panels_reference(&o, &panels)) goto done;
     if (o.trace_count &&
         (rc = snell_render_trace_pixels(ctx, &fd, o.width, o.height, o.trace_xy, o.trace_count, o.out)) != 0)
         goto done;
