@@ -34,5 +34,6 @@ run water_glass.png --water --grid 256 --camera 25,28,3.0 --glass sphere:0.25,-0
     --drop -0.2,0.6,0.08,-0.03 --frames 40
 run water_caustics.png --water --drop 0.3,0.2,0.15,-0.05 --drop -0.4,-0.3,0.1,-0.04 --frames 40 \
     --light dir:0.3,-1,0.2,1.2 --glass sphere:-0.45,-0.1,0.45,0.22
+run panels.png --panels examples/panels.txt --size 640x360 --reference # and panels_reference.png beside it
 run dispersion.png --dispersion 1 --mesh prism --place -0.9,0,0 --mesh sphere --place 1.1,0,0,0.8 --camera -20,8,4.5 \
     --size 512x320
