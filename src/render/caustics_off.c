@@ -10,7 +10,7 @@ snell_status snell__caustics_validate(snell_ctx *ctx, const snell_frame_desc *fd
 {
     if (fd->light.type != SNELL_LIGHT_NONE || fd->receiver.extent != 0.0f)
         return snell__fail(ctx, SNELL_E_UNSUPPORTED, "frame has a light or a receiver: built without "
-                           "SNELL_WITH_CAUSTICS (configure with -DSNELL_WITH_CAUSTICS=ON)");
+                           "SNELL_WITH_CAUSTICS");
     return SNELL_OK;
 }
 
