@@ -10,3 +10,9 @@ if(TARGET test_panels)
   set_tests_properties(test_panels_no_external PROPERTIES LABELS "render;gl" SKIP_RETURN_CODE 77 TIMEOUT 120
     ENVIRONMENT "SNELL_TEST_DATA=${CMAKE_CURRENT_SOURCE_DIR}/data;SNELL_TEST_OUT=${CMAKE_CURRENT_BINARY_DIR};MESA_EXTENSION_OVERRIDE=-GL_OES_EGL_image_external_essl3")
 endif()
+
+# The panels over the host's framebuffer in each colour format apps and EGL configs use.
+snell_add_test(test_panels_formats SOURCES test_panels_formats.c LABELS "render;gl" TIMEOUT 60)
+if(TARGET test_panels_formats)
+  target_link_libraries(test_panels_formats PRIVATE snell_dep::egl snell_dep::gles m)
+endif()

@@ -36,6 +36,10 @@ extern "C" {
  *   each refract at their own index (snell_glass_material's rule for the
  *   Abbe number). The light inside the slab is not followed further (the
  *   slab rests on what lies beneath).
+ * - Values: what lies beneath as the target's colour buffer stores them
+ *   (any normalized or float format, multisampled or not; an integer one
+ *   is refused). On an sRGB buffer the panels work in its encoded values,
+ *   as the rest of the frame does (written unencoded: render/host_target.h).
  * - Edge: a pixel is the mean over its area, so the rim is antialiased.
  * - Shadow: outside the shape, what lies beneath is darkened by
  *   opacity * (1 - clamp(d(p - offset) / radius, 0, 1))^2. */

@@ -60,6 +60,7 @@ typedef struct panels_state {
     panel_prog copy[2];  /* an app's texture drawn over a rectangle: 2D, external */
     unsigned capture_tex, capture_fbo, linear, trilinear, vao;
     int cap_w, cap_h, levels;
+    GLenum cap_format;   /* the capture's sized format, the target's own where a blit needs it */
 } panels_state;
 
 extern const snell__stage snell__stage_panels;
@@ -266,26 +267,73 @@ static double estimate_ms(const panels_state *ps, int w, int h, int frost, int d
     return units / UNITS_PER_MS;
 }
 
+/* The capture's format for what the target's colour buffer holds. A blit
+ * from a multisampled buffer needs the identical format, and converts
+ * only fixed-point to fixed-point or float to float (GLES 3.0 4.3.3), so
+ * the capture takes the buffer's own format where one is color-renderable
+ * and filterable (table 3.13).
+ * Returns 0 (and names the buffer in msg) where none serves. */
+static GLenum capture_format(const panels_state *ps, char *msg, size_t size)
+{
+    GLint type = GL_UNSIGNED_NORMALIZED, enc = GL_LINEAR, r = 8, g = 8, b = 8, a = 8, samples = 0, drawn = GL_BACK;
+    GLenum att;
+    glBindFramebuffer(GL_FRAMEBUFFER, ps->target_fbo);
+    glGetIntegerv(GL_DRAW_BUFFER0, &drawn);
+    glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
+    att = ps->target_fbo ? (GLenum)drawn : GL_BACK;
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING, &enc);
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, &r);
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE, &g);
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE, &b);
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, att, GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE, &a);
+    glGetError(); /* a query the driver refuses leaves the RGBA8 defaults */
+    if (type == GL_UNSIGNED_NORMALIZED && enc == GL_SRGB) {
+        if (r == 8 && g == 8 && b == 8 && (a == 8 || !samples)) return GL_SRGB8_ALPHA8;
+    } else if (type == GL_UNSIGNED_NORMALIZED) {
+        if (r == 5 && g == 6 && b == 5 && a == 0) return GL_RGB565;
+        if (r == 8 && g == 8 && b == 8) return a ? GL_RGBA8 : GL_RGB8;
+        if (r == 10 && g == 10 && b == 10 && a == 2) return GL_RGB10_A2;
+        if (r == 4 && g == 4 && b == 4 && a == 4) return GL_RGBA4;
+        if (r == 5 && g == 5 && b == 5 && a == 1) return GL_RGB5_A1;
+        if (!samples) return GL_RGBA8;
+    } else if (type == GL_FLOAT) {
+        if (r == 11 && g == 11 && b == 10) return GL_R11F_G11F_B10F;
+        if (r == 16 && g == 16 && b == 16 && a == 16) return GL_RGBA16F;
+        if (!samples) return GL_RGBA16F;
+    }
+    snprintf(msg, size, "panels cannot read the target's colour buffer (%s%s, %d/%d/%d/%d bits%s)",
+             type == GL_FLOAT ? "float" : type == GL_INT ? "signed integer" : type == GL_UNSIGNED_INT ? "unsigned integer"
+                                                                                                       : "normalized",
+             enc == GL_SRGB ? " sRGB" : "", r, g, b, a, samples ? ", multisampled" : "");
+    return 0;
+}
+
 /* The capture at w x h with a full mip chain (frost), made once. */
-static snell_status capture_make(snell_ctx *ctx, panels_state *ps, int w, int h)
+static snell_status capture_make(snell_ctx *ctx, panels_state *ps, GLenum format, int w, int h)
 {
     int big = w > h ? w : h;
+    size_t texel = format == GL_RGBA16F ? 8u : 4u;
     snell_status st;
-    if (ps->capture_tex && ps->cap_w == w && ps->cap_h == h) return SNELL_OK;
-    if ((st = snell__budget_check(ctx, (size_t)w * (size_t)h * 16u / 3u, "the panels' capture")) != SNELL_OK)
+    if (ps->capture_tex && ps->cap_w == w && ps->cap_h == h && ps->cap_format == format) return SNELL_OK;
+    if ((st = snell__budget_check(ctx, (size_t)w * (size_t)h * texel * 4u / 3u, "the panels' capture")) != SNELL_OK)
         return st;
     if (ps->capture_tex) glDeleteTextures(1, &ps->capture_tex);
     if (!ps->capture_fbo) glGenFramebuffers(1, &ps->capture_fbo);
     for (ps->levels = 1; big > 1; big >>= 1) ps->levels++;
     glGenTextures(1, &ps->capture_tex);
     glBindTexture(GL_TEXTURE_2D, ps->capture_tex);
-    glTexStorage2D(GL_TEXTURE_2D, ps->levels, GL_RGBA8, w, h);
+    glTexStorage2D(GL_TEXTURE_2D, ps->levels, format, w, h);
     glBindTexture(GL_TEXTURE_2D, 0);
     glBindFramebuffer(GL_FRAMEBUFFER, ps->capture_fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, ps->capture_tex, 0);
-    ps->cap_w = w, ps->cap_h = h;
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return snell__fail(ctx, SNELL_E_GL, "panels: the %dx%d capture is incomplete", w, h);
+    ps->cap_w = w, ps->cap_h = h, ps->cap_format = format;
+    if (glGetError() != GL_NO_ERROR || glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        glDeleteTextures(1, &ps->capture_tex);
+        ps->capture_tex = 0;
+        return snell__fail(ctx, SNELL_E_UNSUPPORTED, "panels: a %dx%d capture of format 0x%04x cannot be drawn to here",
+                           w, h, (unsigned)format);
+    }
     return SNELL_OK;
 }
 
@@ -420,7 +468,12 @@ static snell_status run(snell__frame *f, void *state)
         if ((st = build(ctx, "panel_copy.frag", k ? "#define PANEL_EXTERNAL 1\n" : "", &ps->copy[k])) != SNELL_OK)
             return st;
     }
-    if (capture && (st = capture_make(ctx, ps, w, h)) != SNELL_OK) return st;
+    if (capture) {
+        GLenum format = GL_RGBA8; /* an app's texture drawn in, unless overlaps copy the target in too */
+        if ((source == SRC_CAPTURE || overlap) && !(format = capture_format(ps, ps->msg, sizeof ps->msg)))
+            return snell__fail(ctx, SNELL_E_UNSUPPORTED, "%s", ps->msg);
+        if ((st = capture_make(ctx, ps, format, w, h)) != SNELL_OK) return st;
+    }
     for (k = 0; k < 2; k++) {
         static const char *const defines[SOURCES][2] = {
             {"", "#define PANEL_DISPERSION 1\n"},
