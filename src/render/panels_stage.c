@@ -47,11 +47,17 @@ typedef struct panel_shape {
     float recopy[4];   /* where it overlaps shapes drawn before it (empty: x0 >= x1) */
 } panel_shape;
 
+/* The overlap search's grid: GRID x GRID cells over the frame, each the
+ * bounding box of the drawn shapes' parts in it, so that a shape meets the
+ * cells under its box rather than every shape before it. */
+#define GRID 16
+
 typedef struct panels_state {
     /* Made on the first frame with panels, for SNELL_MAX_PANELS: a frame allocates nothing after. */
     snell__panel *panel;
     panel_shape *shape;
     int *next;
+    float (*cell)[4];   /* GRID * GRID */
     int count, shapes;
     snell_status status; /* of this frame's panels, resolved before validation */
     char msg[200];
@@ -82,6 +88,7 @@ static void destroy(snell_ctx *ctx, void *state)
     snell__free(&ctx->alloc, ps->panel);
     snell__free(&ctx->alloc, ps->shape);
     snell__free(&ctx->alloc, ps->next);
+    snell__free(&ctx->alloc, ps->cell);
 }
 
 /* The panels resolved with their defaults into the slot (frame/panel_model.c,
@@ -97,7 +104,8 @@ static void resolve(const snell__services *sv, snell_frame_desc *fd, void *state
         ps->panel = (snell__panel *)snell__calloc(al, SNELL_MAX_PANELS, sizeof *ps->panel);
         ps->shape = (panel_shape *)snell__calloc(al, SNELL_MAX_PANELS, sizeof *ps->shape);
         ps->next = (int *)snell__calloc(al, SNELL_MAX_PANELS, sizeof *ps->next);
-        if (!ps->panel || !ps->shape || !ps->next) {
+        ps->cell = (float(*)[4])snell__calloc(al, GRID * GRID, sizeof *ps->cell);
+        if (!ps->panel || !ps->shape || !ps->next || !ps->cell) {
             ps->status = SNELL_E_NOMEM;
             snprintf(ps->msg, sizeof ps->msg, "out of memory for %d panels", SNELL_MAX_PANELS);
             return;
@@ -204,6 +212,37 @@ static int box_empty(const float b[4])
     return !(b[0] < b[2] && b[1] < b[3]);
 }
 
+static void box_grow(float a[4], const float b[4])
+{
+    a[0] = fminf(a[0], b[0]), a[1] = fminf(a[1], b[1]), a[2] = fmaxf(a[2], b[2]), a[3] = fmaxf(a[3], b[3]);
+}
+
+static int grid_cell(float x, int size)
+{
+    int c = (int)floorf(x * (float)GRID / (float)size);
+    return c < 0 ? 0 : c >= GRID ? GRID - 1 : c;
+}
+
+/* Grows recopy by where box meets the shapes marked so far (a cell's
+ * bounding box of them: never less than the exact overlap), then marks box. */
+static void grid_add(panels_state *ps, const float box[4], float recopy[4], int w, int h)
+{
+    int cx0 = grid_cell(box[0], w), cx1 = grid_cell(box[2], w);
+    int cy0 = grid_cell(box[1], h), cy1 = grid_cell(box[3], h), cx, cy;
+    for (cy = cy0; cy <= cy1; cy++)
+        for (cx = cx0; cx <= cx1; cx++) {
+            float *c = ps->cell[cy * GRID + cx], o[4], part[4];
+            const float rect[4] = {(float)cx * (float)w / GRID, (float)cy * (float)h / GRID,
+                                   (float)(cx + 1) * (float)w / GRID, (float)(cy + 1) * (float)h / GRID};
+            memcpy(o, box, sizeof o);
+            box_and(o, c);
+            if (!box_empty(o)) box_grow(recopy, o);
+            memcpy(part, box, sizeof part);
+            box_and(part, rect);
+            if (!box_empty(part)) box_grow(c, part);
+        }
+}
+
 /* The shapes in drawing order, their boxes clipped to w x h (culled when
  * empty) and where each overlaps one drawn before it; returns whether any does. */
 static int shapes(panels_state *ps, int w, int h)
@@ -212,6 +251,8 @@ static int shapes(panels_state *ps, int w, int h)
     int i, j, any = 0;
     ps->shapes = 0;
     for (i = 0; i < ps->count; i++) ps->next[i] = -1;
+    for (i = 0; i < GRID * GRID; i++)
+        ps->cell[i][0] = ps->cell[i][1] = INFINITY, ps->cell[i][2] = ps->cell[i][3] = -INFINITY;
     for (i = 0; i < ps->count; i++) {
         panel_shape *s;
         int g = ps->panel[i].group, last = i;
@@ -233,14 +274,7 @@ static int shapes(panels_state *ps, int w, int h)
         box_and(s->box, frame);
         if (box_empty(s->box)) continue;
         s->recopy[0] = s->recopy[1] = INFINITY, s->recopy[2] = s->recopy[3] = -INFINITY;
-        for (j = 0; j < ps->shapes; j++) {
-            float o[4];
-            memcpy(o, s->box, sizeof o);
-            box_and(o, ps->shape[j].box);
-            if (box_empty(o)) continue;
-            s->recopy[0] = fminf(s->recopy[0], o[0]), s->recopy[1] = fminf(s->recopy[1], o[1]);
-            s->recopy[2] = fmaxf(s->recopy[2], o[2]), s->recopy[3] = fmaxf(s->recopy[3], o[3]);
-        }
+        grid_add(ps, s->box, s->recopy, w, h);
         any |= !box_empty(s->recopy);
         ps->shapes++;
     }
