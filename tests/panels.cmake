@@ -16,3 +16,9 @@ snell_add_test(test_panels_formats SOURCES test_panels_formats.c LABELS "render;
 if(TARGET test_panels_formats)
   target_link_libraries(test_panels_formats PRIVATE snell_dep::egl snell_dep::gles m)
 endif()
+
+# Hostile panels: 4,096 in a chain of overlaps, a 1x1 frame, a texture of another size read past 0..1.
+snell_add_test(test_panels_stress SOURCES test_panels_stress.c LABELS "render;gl" TIMEOUT 60)
+if(TARGET test_panels_stress)
+  target_link_libraries(test_panels_stress PRIVATE snell_dep::egl snell_dep::gles m)
+endif()

@@ -98,7 +98,8 @@ typedef struct snell_panels_under {
     snell_panels_under_source source;
     unsigned texture;               /* TEXTURE, EXTERNAL: the texture name, required */
     float uv_transform[16];         /* column-major, applied to (u, v, 0, 1) across the frame's rectangle
-                                     * (Android's SurfaceTexture.getTransformMatrix); all 0 = identity */
+                                     * (Android's SurfaceTexture.getTransformMatrix); all 0 = identity;
+                                     * outside 0..1 the texture's edge texels (clamped) */
     int draw;                       /* TEXTURE, EXTERNAL: 1 = draw the texture over the frame's rectangle first
                                      * (the picture under the panels); 0 = it is there already */
 } snell_panels_under;
