@@ -3,7 +3,8 @@
  * panels each over the one before (every overlap copied again: the stats
  * count them, the frame's time bounded), a 1x1 frame, an app's texture of
  * another size than the frame read through a uv transform that leaves
- * 0..1 (its edge texels, clamped: snell_panels.h). */
+ * 0..1 (its edge texels, clamped: snell_panels.h); frost over a panel
+ * blurring what that panel drew. */
 #include "test_util.h"
 #include "core/gl.h"
 
@@ -71,6 +72,45 @@ static snell_status draw(snell_renderer *r, const snell_panel *p, int n, const s
     return st;
 }
 
+/* A frosted panel over another blurs what that one drew: the overlap's
+ * mip levels made again over its box match a frame that held the first
+ * panel already (its whole chain made). */
+static void check_frost_over(snell_renderer *r, GLuint tex)
+{
+    static uint8_t one[4 * W * H], first[4 * W * H], two[4 * W * H], flip[4 * W * H];
+    snell_panels_under u;
+    snell_frame_stats s;
+    snell_panel p[2];
+    GLuint held;
+    int x, y, c, worst = 0;
+    memset(&u, 0, sizeof u);
+    u.source = SNELL_PANELS_UNDER_TEXTURE, u.texture = tex, u.draw = 1;
+    u.uv_transform[0] = 0.3f, u.uv_transform[5] = u.uv_transform[10] = u.uv_transform[15] = 1.0f; /* a ramp */
+    p[0] = pane(35, 32, 50, 40), p[0].bevel = p[0].thickness = 10.0f; /* its bevel: structure to blur */
+    p[1] = pane(60, 32, 60, 56), p[1].frost = 4.0f;
+    CHECK_OK_CTX(g_ctx, draw(r, p, 2, &u, &s, one));
+    CHECK(s.panels_captures == 2, "frost over a panel: %d captures", s.panels_captures);
+    CHECK_OK_CTX(g_ctx, draw(r, p, 1, &u, &s, first));
+    for (y = 0; y < H; y++) memcpy(flip + 4 * (size_t)y * W, first + 4 * (size_t)(H - 1 - y) * W, 4 * W);
+    glGenTextures(1, &held);
+    glBindTexture(GL_TEXTURE_2D, held);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, flip);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    memset(u.uv_transform, 0, sizeof u.uv_transform);
+    u.texture = held;
+    CHECK_OK_CTX(g_ctx, draw(r, p + 1, 1, &u, &s, two));
+    /* inside both, farther than the blur's reach from the overlap box's edges */
+    for (y = 26; y < 38; y++)
+        for (x = 46; x < 54; x++)
+            for (c = 0; c < 3; c++) {
+                int d = abs(one[4 * ((size_t)y * W + x) + c] - two[4 * ((size_t)y * W + x) + c]);
+                worst = d > worst ? d : worst;
+            }
+    CHECK(worst <= 2, "frost over a panel against a frame holding it: %d levels off", worst);
+    glDeleteTextures(1, &held);
+}
+
 int main(void)
 {
     static snell_panel chain[SNELL_MAX_PANELS];
@@ -105,6 +145,8 @@ int main(void)
         int got = img[4 * ((size_t)(H - 1 - 32) * W + 90) + c];
         CHECK(fabs(got - 0.96 * edge[c]) <= 1.0, "uv past 1: channel %d %d, (1 - F0) edge %.1f", c, got, 0.96 * edge[c]);
     }
+
+    check_frost_over(r, tex);
 
     /* A 1x1 frame under a pane larger than it. */
     u.texture = small;

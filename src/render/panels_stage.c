@@ -64,7 +64,7 @@ typedef struct panels_state {
     unsigned target_fbo; /* where the frame is drawn, found at plan */
     panel_prog prog[SOURCES][2];
     panel_prog copy[2];  /* an app's texture drawn over a rectangle: 2D, external */
-    unsigned capture_tex, capture_fbo, linear, trilinear, vao;
+    unsigned capture_tex, capture_fbo, mip_fbo, linear, trilinear, vao;
     int cap_w, cap_h, levels;
     GLenum cap_format;   /* the capture's sized format, the target's own where a blit needs it */
 } panels_state;
@@ -82,6 +82,7 @@ static void destroy(snell_ctx *ctx, void *state)
         if (ps->copy[k].id) glDeleteProgram(ps->copy[k].id);
     if (ps->capture_tex) glDeleteTextures(1, &ps->capture_tex);
     if (ps->capture_fbo) glDeleteFramebuffers(1, &ps->capture_fbo);
+    if (ps->mip_fbo) glDeleteFramebuffers(1, &ps->mip_fbo);
     if (ps->linear) glDeleteSamplers(1, &ps->linear);
     if (ps->trilinear) glDeleteSamplers(1, &ps->trilinear);
     if (ps->vao) glDeleteVertexArrays(1, &ps->vao);
@@ -385,6 +386,29 @@ static void capture_copy(const panels_state *ps, const float b[4])
     glReadBuffer((GLenum)read);
 }
 
+/* The mip chain over b only, after b was copied again: each level's box
+ * (rounded out) a 2:1 linear blit of the level above, the 2x2 mean that
+ * glGenerateMipmap makes, so that N overlaps cost N boxes, not N frames. */
+static void mips_over(panels_state *ps, const float b[4])
+{
+    int x0 = (int)floorf(b[0]), y0 = (int)floorf(b[1]), x1 = (int)ceilf(b[2]), y1 = (int)ceilf(b[3]), l;
+    if (!ps->mip_fbo) glGenFramebuffers(1, &ps->mip_fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, ps->capture_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, ps->mip_fbo);
+    for (l = 1; l < ps->levels; l++) {
+        int w = ps->cap_w >> l > 1 ? ps->cap_w >> l : 1, h = ps->cap_h >> l > 1 ? ps->cap_h >> l : 1;
+        int pw = ps->cap_w >> (l - 1) > 1 ? ps->cap_w >> (l - 1) : 1, ph = ps->cap_h >> (l - 1) > 1 ? ps->cap_h >> (l - 1) : 1;
+        x0 >>= 1, y0 >>= 1, x1 = (x1 + 1) >> 1, y1 = (y1 + 1) >> 1;
+        if (x1 > w) x1 = w;
+        if (y1 > h) y1 = h;
+        glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, ps->capture_tex, l - 1);
+        glFramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, ps->capture_tex, l);
+        glBlitFramebuffer(2 * x0, 2 * y0, 2 * x1 < pw ? 2 * x1 : pw, 2 * y1 < ph ? 2 * y1 : ph, x0, y0, x1, y1,
+                          GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    }
+    glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, ps->capture_tex, 0);
+}
+
 static void sampler(unsigned *s, GLint min)
 {
     glGenSamplers(1, s);
@@ -562,8 +586,8 @@ static snell_status run(snell__frame *f, void *state)
         const panel_prog *p = &ps->prog[capture ? SRC_CAPTURE : source][disp];
         if (capture && !box_empty(sh->recopy)) {
             capture_copy(ps, sh->recopy);
+            if (frost && any_frost) mips_over(ps, sh->recopy);
             glBindFramebuffer(GL_FRAMEBUFFER, ps->target_fbo);
-            if (frost && any_frost) glGenerateMipmap(GL_TEXTURE_2D);
             s->panels_captures++;
         }
         glUseProgram(p->id);
