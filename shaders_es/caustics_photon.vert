@@ -228,10 +228,38 @@ void thin_maps(vec3 p, vec3 n, vec3 dir, ivec2 ij, float zf, out vec3 q, out vec
     }
 }
 
+// The photon of vertex id: its texel ij of the light's view, where it enters
+// the nearest surface (p, light depth z, normal n facing its ray dir) and
+// its share of u_flux (spot: the solid angle; 0: outside the cone). false:
+// it misses the object. Read again after the BVH's loop at id plus an opaque
+// zero (the same read would be kept live through the loop instead).
+bool photon_entry(int id, out ivec2 ij, out float z, out vec3 p, out vec3 n, out vec3 dir, out float share)
+{
+    ij = ivec2(id % u_size, id / u_size);
+    vec4 fn = texelFetch(u_front_n, ij, 0);
+    z = texelFetch(u_front_z, ij, 0).r;
+    vec2 uv = (vec2(ij) + 0.5) / float(u_size);
+    vec4 w = u_light_inv * vec4(vec3(uv, z) * 2.0 - 1.0, 1.0);
+    p = w.xyz / w.w;
+    n = normalize(fn.xyz * 2.0 - 1.0);
+    dir = u_dir;
+    share = 1.0;
+    if (u_spot == 1) {
+        // its solid angle: the image-plane cell at distance 1 seen at angle
+        // theta off the view's axis (cos^3 theta); none outside the cone
+        vec2 x = (uv * 2.0 - 1.0) * u_tan;
+        float c = inversesqrt(1.0 + dot(x, x));
+        dir = normalize(p - u_pos);
+        share = c * c * c * (dot(dir, u_axis) >= u_cos_cone ? 1.0 : 0.0);
+    }
+    if (dot(n, dir) > 0.0) n = -n;
+    return fn.a >= 0.5;
+}
+
 #if SNELL_PHOTON_BVH
 // The photon's path by the mesh's BVH (exact.frag's rays and model,
 // ref_caustics.c through): from o along the light's ray dir, in where it
-// meets the mesh (p_map, n_map: the nearest-surface map's point and normal
+// meets the mesh (photon_entry: the nearest-surface map's point and normal
 // where the ray misses it, at the silhouette), inside from surface to
 // surface, TIR followed, refracted out, and in again where its way out
 // meets the mesh once more, the entry counted, up to u_max_interfaces
@@ -241,12 +269,12 @@ void thin_maps(vec3 p, vec3 n, vec3 dir, ivec2 ij, float zf, out vec3 q, out vec
 // Beer-Lambert inside; q and t2 the last exit (world) and the direction
 // out. false: dropped. A thin wall (u_thickness > 0) goes straight on from
 // o through every wall on its line, up to u_max_interfaces: e the walls'
-// transmittance, the tint at each after the first, q the last wall (p_map
+// transmittance, the tint at each after the first, q the last wall (the map's point
 // where the ray misses the mesh).
 // One traversal call site for all the photon's rays (each call site is a
 // copy of the walk, common/bvh.glsl): each iteration traces one ray, from
 // outside (the first, or a way out that may meet the mesh again) or inside.
-bool bvh_path(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 t2, out vec3 e)
+bool bvh_path(vec3 o, vec3 dir, vec3 n_map, out vec3 q, out vec3 t2, out vec3 e)
 {
     mat3 inv3 = mat3(u_inv_model);
     bool thin = u_thickness > 0.0, inside = false;
@@ -254,8 +282,6 @@ bool bvh_path(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 t2,
     int at = RAY_FIRST, depth = 0;
     float len = 0.0;
     e = thin ? wall(n_map, dir) : vec3(1.0);
-    q = p_map;
-    t2 = dir;
     for (int i = 0; i < 2 * MAX_INTERFACES + 2; i++) {
         if (thin && i >= MAX_INTERFACES) break;
         Ray ray = make_ray(p, inv3 * d);
@@ -268,7 +294,6 @@ bool bvh_path(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 t2,
             at = h;
             p = ps;
             e = (i == 0 ? vec3(1.0) : e * u_tint) * wall(ns, d);
-            q = (u_model * vec4(p, 1.0)).xyz;
             continue;
         }
         if (inside) {
@@ -298,8 +323,13 @@ bool bvh_path(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 t2,
         // meeting the mesh again (a miss: out for good)
         if (h < 0 && i > 0) break;
         at = h >= 0 ? h : RAY_AFTER_MISS;
-        p = h >= 0 ? ps : (u_inv_model * vec4(p_map, 1.0)).xyz;
-        vec3 n = h >= 0 ? ns : n_map, tr;
+        // the first ray's miss: the map's point and normal, read again
+        ivec2 ij;
+        float z, share;
+        vec3 pm, nm, dm;
+        photon_entry(gl_VertexID + (u_max_interfaces >> 9), ij, z, pm, nm, dm, share);
+        p = h >= 0 ? ps : (u_inv_model * vec4(pm, 1.0)).xyz;
+        vec3 n = h >= 0 ? ns : nm, tr;
         if (!snell_refract(d, n, 1.0 / u_ior, tr)) return false;
         e *= (depth > 0 ? u_tint : vec3(1.0)) * (1.0 - snell_fresnel_schlick(dot(n, -d), 1.0, u_ior));
         d = normalize(tr);
@@ -307,10 +337,16 @@ bool bvh_path(vec3 o, vec3 dir, vec3 p_map, vec3 n_map, out vec3 q, out vec3 t2,
         len = 0.0;
         inside = true;
     }
-    if (!thin) {
-        q = (u_model * vec4(p, 1.0)).xyz;
-        t2 = d;
+    // set here, not carried through the loop: a thin wall's way goes
+    // straight on (d is dir), its last wall p (none met: the map's point)
+    q = (u_model * vec4(p, 1.0)).xyz;
+    if (thin && at == RAY_FIRST) { // the map's point, read again
+        ivec2 ij;
+        float z, share;
+        vec3 nm, dm;
+        photon_entry(gl_VertexID + (u_max_interfaces >> 8), ij, z, q, nm, dm, share);
     }
+    t2 = d;
     return true;
 }
 #endif
@@ -435,31 +471,15 @@ bool chain_path(vec3 o, vec3 dir, out vec3 q, out vec3 t2, out vec3 e)
 }
 #endif
 
-void main()
+// The photon's splat: its clip position and flux. false: none (dropped, or
+// no photon).
+bool photon(out vec4 pos, out vec4 flux4)
 {
-    int i = gl_VertexID % u_size, j = gl_VertexID / u_size;
-    gl_PointSize = 4.0;
-    gl_Position = vec4(4.0, 4.0, 4.0, 1.0); // dropped photons: outside the clip volume
-    v_flux = vec4(0.0);
-    vec4 fn = texelFetch(u_front_n, ivec2(i, j), 0);
-    if (fn.a < 0.5) return; // missed the object: direct light
-    float z = texelFetch(u_front_z, ivec2(i, j), 0).r;
-    vec2 uv = (vec2(i, j) + 0.5) / float(u_size);
-    vec4 w = u_light_inv * vec4(vec3(uv, z) * 2.0 - 1.0, 1.0);
-    vec3 p = w.xyz / w.w;
-    vec3 n = normalize(fn.xyz * 2.0 - 1.0);
-    vec3 dir = u_dir;
-    float share = 1.0;
-    if (u_spot == 1) {
-        // its solid angle: the image-plane cell at distance 1 seen at angle
-        // theta off the view's axis (cos^3 theta); none outside the cone
-        vec2 x = (uv * 2.0 - 1.0) * u_tan;
-        float c = inversesqrt(1.0 + dot(x, x));
-        dir = normalize(p - u_pos);
-        share = c * c * c * (dot(dir, u_axis) >= u_cos_cone ? 1.0 : 0.0);
-        if (share <= 0.0) return;
-    }
-    if (dot(n, dir) > 0.0) n = -n;
+    ivec2 ij;
+    float z, share;
+    vec3 p, n, dir;
+    // missed the object (direct light), or outside the spot's cone
+    if (!photon_entry(gl_VertexID, ij, z, p, n, dir, share) || share <= 0.0) return false;
     vec3 q, t2 = dir, e = vec3(1.0);
     float f1 = 0.0, f2 = 0.0, len = 0.0;
     bool through = true, by_maps = true;
@@ -468,22 +488,24 @@ void main()
     through = chain_path(o, dir, q, t2, e) && !bvh_over(); // past the node budget: dropped
     by_maps = false;
 #elif SNELL_PHOTON_BVH
-    through = bvh_path(p - dir * u_reach, dir, p, n, q, t2, e);
+    through = bvh_path(p - dir * u_reach, dir, n, q, t2, e);
     by_maps = bvh_over(); // past the node budget: the depth maps' path
     if (by_maps) e = vec3(1.0);
+    // the entry again: the walk's loop carries none of it
+    photon_entry(gl_VertexID + (u_max_interfaces >> 8), ij, z, p, n, dir, share);
 #endif
-    if (by_maps && u_thickness > 0.0) thin_maps(p, n, dir, ivec2(i, j), z, q, e);
+    if (by_maps && u_thickness > 0.0) thin_maps(p, n, dir, ij, z, q, e);
     else if (by_maps) through = depth_path(p, n, dir, f1, f2, len, q, t2);
-    if (!through) return;
+    if (!through) return false;
     // where the plane (if any) meets it; its way there, or the reach
     float sp = -1.0, lmax = u_recv_reach;
     if (u_has_plane == 1 && t2.y < 0.0) sp = (u_plane.x - q.y) / t2.y;
     if (sp >= 0.0) lmax = sp;
-    if (u_target == 0 && sp < 0.0) return; // never reaches the plane's lit side (or the object reaches below it)
+    if (u_target == 0 && sp < 0.0) return false; // never reaches the plane's lit side (or the object reaches below it)
     bool on = false;
     float so = u_recv == 1 ? recv_march(q, t2, lmax, on) : -1.0;
-    if (u_target == 0 && so >= 0.0) return; // an opaque object stops it first
-    if (u_target == 1 && !(so >= 0.0 && on)) return;
+    if (u_target == 0 && so >= 0.0) return false; // an opaque object stops it first
+    if (u_target == 1 && !(so >= 0.0 && on)) return false;
     vec3 flux = (u_target == 0 ? u_flux : u_flux_recv) * share * (1.0 - f1) * (1.0 - f2) * exp(-u_sigma * len) * e;
     if (u_target == 1) {
         vec3 h = q + t2 * so;
@@ -499,12 +521,24 @@ void main()
             flux /= u_recv_lin.y * u_recv_lin.y;
 #endif
         }
-        v_flux = vec4(flux, (flux.r + flux.g + flux.b) / 3.0);
-        gl_Position = vec4(c.xy / c.w, 0.0, 1.0);
-        return;
+        flux4 = vec4(flux, (flux.r + flux.g + flux.b) / 3.0);
+        pos = vec4(c.xy / c.w, 0.0, 1.0);
+        return true;
     }
     float s = sp;
     vec3 h = q + t2 * s;
-    v_flux = vec4(flux, (flux.r + flux.g + flux.b) / 3.0);
-    gl_Position = vec4((h.x - u_plane.y) / u_plane.w, (h.z - u_plane.z) / u_plane.w, 0.0, 1.0);
+    flux4 = vec4(flux, (flux.r + flux.g + flux.b) / 3.0);
+    pos = vec4((h.x - u_plane.y) / u_plane.w, (h.z - u_plane.z) / u_plane.w, 0.0, 1.0);
+    return true;
+}
+
+// The outputs written once, at the end: an output written early and again
+// later is a register live through every loop between.
+void main()
+{
+    vec4 pos, flux;
+    bool lit = photon(pos, flux);
+    gl_PointSize = 4.0;
+    gl_Position = lit ? pos : vec4(4.0, 4.0, 4.0, 1.0); // dropped photons: outside the clip volume
+    v_flux = lit ? flux : vec4(0.0);
 }
