@@ -112,11 +112,13 @@ int render_panels_plain(snell_ctx *ctx, snell_renderer *r, const render_options 
 int render_panels_reference(const render_options *o, const render_panels *p)
 {
     size_t bytes = (size_t)o->width * (size_t)o->height * 4, len = strlen(o->out);
-    uint8_t *out = (uint8_t *)malloc(bytes);
-    char *path = (char *)malloc(len + 16);
+    uint8_t *out;
+    char *path;
     snell_status st;
     int ok = 0;
     if (!o->reference) return 1;
+    out = (uint8_t *)malloc(bytes);
+    path = (char *)malloc(len + 16);
     if (!out || !path) {
         fprintf(stderr, "snell-render: out of memory for the reference\n");
         goto done;
